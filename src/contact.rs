@@ -79,17 +79,10 @@ pub fn material(name: &str) -> Result<Material, ThudError> {
         "wc" | "carbide" | "tungsten-carbide" => "tungsten-carbide",
         other => other,
     };
-    MATERIALS
-        .iter()
-        .find(|m| m.name == key)
-        .copied()
-        .ok_or_else(|| {
-            let names: Vec<&str> = MATERIALS.iter().map(|m| m.name).collect();
-            ThudError::invalid(
-                "material",
-                format!("unknown material '{name}'; known: {}", names.join(", ")),
-            )
-        })
+    MATERIALS.iter().find(|m| m.name == key).copied().ok_or_else(|| {
+        let names: Vec<&str> = MATERIALS.iter().map(|m| m.name).collect();
+        ThudError::invalid("material", format!("unknown material '{name}'; known: {}", names.join(", ")))
+    })
 }
 
 /// Hertz stiffness of a sphere of radius `radius_m` on a flat body, Eq 2 (the π's cancel):

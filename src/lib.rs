@@ -1,9 +1,15 @@
 //! thud — the physics of single-unit impact dampers and the noise they make.
 //!
-//! A pure library: no I/O, no terminal. Equation numbers refer to the source paper
-//! (see `README.md` and the project's model notes). SI units throughout.
+//! The engine (`contact`, `acoustics`, `paper`, `units`) is pure: no I/O, no terminal.
+//! Equation numbers refer to the source paper. SI units throughout; the front ends
+//! (`cli`) convert at the edges.
 
+pub mod acoustics;
 pub mod contact;
 pub mod error;
+pub mod paper;
+pub mod units;
+
+pub mod cli;
 
 pub use error::ThudError;

@@ -1,1 +1,6 @@
-fn main(){}
+use clap::Parser;
+
+fn main() {
+    let cli = thud::cli::Cli::parse();
+    std::process::exit(thud::cli::run(cli));
+}

@@ -1,0 +1,582 @@
+//! Sound radiated by a sphere under a Hertzian acceleration pulse (paper Eqs 9–24).
+//!
+//! Pressures in Pa, times in s, distances in m, angles in radians inside (degrees only in the
+//! serialized form and at the user-facing edges). See the project's model notes §2–4.
+
+use serde::{Deserialize, Serialize};
+
+use crate::contact::Contact;
+use crate::error::{check_positive, ThudError};
+
+/// Reference pressure for levels, 20 µPa.
+pub const P_REF_PA: f64 = 20e-6;
+
+/// The air the sound travels through.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Air {
+    /// Characteristic impedance ρ0·c (Pa·s/m). The paper's numbers need 400.
+    pub rho_c_pa_s_m: f64,
+    /// Speed of sound c (m/s).
+    pub c_m_s: f64,
+}
+
+impl Default for Air {
+    /// The paper's air: ρ0·c = 400 Pa·s/m, c = 343 m/s (standard air, 1.21 kg/m³, is +0.32 dB).
+    fn default() -> Self {
+        Self { rho_c_pa_s_m: 400.0, c_m_s: 343.0 }
+    }
+}
+
+impl Air {
+    pub fn validate(&self) -> Result<(), ThudError> {
+        check_positive("rho-c", self.rho_c_pa_s_m, "Pa·s/m")?;
+        check_positive("c", self.c_m_s, "m/s")
+    }
+}
+
+/// Which reflecting surfaces surround the impact (method of images, Eqs 20–23).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Source {
+    /// A free sphere: one source at the centre.
+    Single,
+    /// A sphere on a reflecting plane (Eq 20): source and its image.
+    Dipole,
+    /// A sphere in a wall–floor corner (Eq 22): source and three images.
+    #[default]
+    Quadrupole,
+}
+
+impl Source {
+    pub const ALL: [Source; 3] = [Source::Single, Source::Dipole, Source::Quadrupole];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Source::Single => "single",
+            Source::Dipole => "dipole",
+            Source::Quadrupole => "quadrupole",
+        }
+    }
+}
+
+/// Signs of the two wall images of the quadrupole (Eq 22).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QuadSigns {
+    /// The paper's p1 − p2 + p3 − p4: a pressure-release second wall. Reproduces the paper.
+    Paper,
+    /// p1 − p2 − p3 + p4: a rigid second wall, as in a real enclosure corner (the default).
+    #[default]
+    Rigid,
+}
+
+impl QuadSigns {
+    pub fn name(self) -> &'static str {
+        match self {
+            QuadSigns::Paper => "paper",
+            QuadSigns::Rigid => "rigid",
+        }
+    }
+}
+
+/// Serde helper: an angle held in radians, written and read in degrees (`theta_deg`).
+pub mod degrees {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(rad: &f64, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_f64(rad.to_degrees())
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        f64::deserialize(d).map(f64::to_radians)
+    }
+}
+
+/// Where the sound is heard: distance `r_m` from the contact point and polar angle `theta_rad`
+/// from the plate's normal through the sphere's centre (model notes §3).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Observer {
+    pub r_m: f64,
+    #[serde(rename = "theta_deg", with = "degrees")]
+    pub theta_rad: f64,
+}
+
+impl Observer {
+    pub fn new(r_m: f64, theta_deg: f64) -> Self {
+        Self { r_m, theta_rad: theta_deg.to_radians() }
+    }
+}
+
+/// How the radiation is set up: source type, quadrupole signs and air.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Radiation {
+    pub source: Source,
+    pub quad_signs: QuadSigns,
+    pub air: Air,
+}
+
+/// Response of the pressure to a unit impulse of acceleration, Eq 15 (Pa per m/s):
+/// h(t') = ρ0c·(a/r)·cosθ·[cos λt' − (1 − a/r)·sin λt']·e^(−λt'), zero for t' < 0.
+pub fn impulse_response(t_ret: f64, r: f64, cos_theta: f64, a: f64, air: &Air) -> f64 {
+    if t_ret < 0.0 {
+        return 0.0;
+    }
+    let lambda = air.c_m_s / a;
+    let q = 1.0 - a / r;
+    let lt = lambda * t_ret;
+    air.rho_c_pa_s_m * (a / r) * cos_theta * (lt.cos() - q * lt.sin()) * (-lt).exp()
+}
+
+/// The closed-form convolution of Eq 15 with the half-sine pulse of Eq 7 for one source,
+/// with Eq 18 for 0 ≤ t' ≤ τ and the corrected Eq 19, p = P·{T(t') + T(t' − τ)}, after it.
+#[derive(Debug, Clone, Copy)]
+struct SourceTerm {
+    /// ρ0c·a·cosθ/(2r)·C1/C2 (Pa).
+    p_scale: f64,
+    /// q = 1 − a/r.
+    q: f64,
+}
+
+/// The constants C2…C6 and rates of one pulse, shared by all sources.
+#[derive(Debug, Clone, Copy)]
+struct PulseConstants {
+    lambda: f64,
+    w: f64,
+    tau: f64,
+    c2: f64,
+    c3: f64,
+    c4: f64,
+    c5: f64,
+    c6: f64,
+}
+
+impl PulseConstants {
+    fn new(a: f64, tau: f64, air: &Air) -> Self {
+        let lambda = air.c_m_s / a;
+        let w = std::f64::consts::PI / tau;
+        let (l2, w2) = (lambda * lambda, w * w);
+        Self {
+            lambda,
+            w,
+            tau,
+            c2: 4.0 * l2 * l2 + w2 * w2,
+            c3: 4.0 * l2 * lambda + 2.0 * w2 * lambda,
+            c4: 4.0 * l2 * lambda - 2.0 * w2 * lambda,
+            c5: 2.0 * w2 * w,
+            c6: 4.0 * w * l2,
+        }
+    }
+
+    /// The decaying tail T(s) of model notes §2.
+    fn tail(&self, s: f64, q: f64) -> f64 {
+        let (sn, cs) = (self.lambda * s).sin_cos();
+        ((self.c5 * cs - self.c6 * sn) - q * (self.c6 * cs + self.c5 * sn)) * (-self.lambda * s).exp()
+    }
+
+    /// Pressure of one source at retarded time `t_ret`, divided by its `p_scale`.
+    fn shape(&self, t_ret: f64, q: f64) -> f64 {
+        if t_ret < 0.0 {
+            0.0
+        } else if t_ret <= self.tau {
+            let (sn, cs) = (self.w * t_ret).sin_cos();
+            self.c3 * sn - self.c5 * cs - q * (self.c4 * sn - self.c6 * cs) + self.tail(t_ret, q)
+        } else {
+            self.tail(t_ret, q) + self.tail(t_ret - self.tau, q)
+        }
+    }
+}
+
+/// One source of the image system: its sign, distance (m) and direction cosine, and its
+/// retarded-time offset (r_i − a)/c (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImageSource {
+    pub sign: f64,
+    pub r_m: f64,
+    pub cos_theta: f64,
+    pub delay_s: f64,
+}
+
+/// The image sources for `observer` around a sphere of radius `a` (m), Eqs 20–23.
+pub fn image_sources(a: f64, observer: &Observer, radiation: &Radiation) -> Vec<ImageSource> {
+    let (r, (sin_t, cos_t)) = (observer.r_m, observer.theta_rad.sin_cos());
+    let c = radiation.air.c_m_s;
+    let src =
+        |sign: f64, r_i: f64, cos_i: f64| ImageSource { sign, r_m: r_i, cos_theta: cos_i, delay_s: (r_i - a) / c };
+    let r1 = (r * r + a * a - 2.0 * a * r * cos_t).sqrt();
+    let s1 = src(1.0, r1, (r * cos_t - a) / r1);
+    if radiation.source == Source::Single {
+        return vec![s1];
+    }
+    let r2 = (r * r + a * a + 2.0 * a * r * cos_t).sqrt();
+    let s2 = src(-1.0, r2, (r * cos_t + a) / r2);
+    if radiation.source == Source::Dipole {
+        return vec![s1, s2];
+    }
+    // Quadrupole: sinθ_i = r·sinθ/r_i, so 4a·r_i·sinθ_i = 4a·r·sinθ.
+    let r3 = (r2 * r2 + 4.0 * a * a + 4.0 * a * r * sin_t).sqrt();
+    let r4 = (r1 * r1 + 4.0 * a * a + 4.0 * a * r * sin_t).sqrt();
+    let wall_sign = match radiation.quad_signs {
+        QuadSigns::Paper => 1.0,
+        QuadSigns::Rigid => -1.0,
+    };
+    vec![s1, s2, src(wall_sign, r3, (r * cos_t + a) / r3), src(-wall_sign, r4, (r * cos_t - a) / r4)]
+}
+
+/// Checks that the observer is a valid field point for this radiation: outside the sphere,
+/// on the open side of the plate (and of the second wall for the quadrupole).
+pub fn validate_observer(a: f64, observer: &Observer, source: Source) -> Result<(), ThudError> {
+    let (r, theta) = (observer.r_m, observer.theta_rad);
+    check_positive("r", r, "m")?;
+    if !theta.is_finite() {
+        return Err(ThudError::invalid("theta", "not a number; must be an angle in degrees"));
+    }
+    let r1 = (r * r + a * a - 2.0 * a * r * theta.cos()).sqrt();
+    if r <= a || r1 <= a {
+        return Err(ThudError::invalid(
+            "r",
+            format!("{r} m puts the observer inside the sphere; must be > the sphere's radius {a:.6} m"),
+        ));
+    }
+    let deg = theta.to_degrees();
+    let (lo, hi) = match source {
+        Source::Single => (-180.0, 180.0),
+        Source::Dipole => (-90.0, 90.0),
+        Source::Quadrupole => (0.0, 90.0),
+    };
+    if !(lo - 1e-9..=hi + 1e-9).contains(&deg) {
+        return Err(ThudError::invalid(
+            "theta",
+            format!(
+                "{} deg is behind a reflecting wall of the {} source; must be between {lo} and {hi} deg",
+                crate::units::sig(deg, 6),
+                source.name()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Levels of one pressure pulse.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Levels {
+    /// SPL from the rms pressure over one contact duration τ from the direct arrival (dB re 20 µPa).
+    /// This is the paper's Table 1 convention.
+    pub spl_db: f64,
+    /// rms pressure over the same window (Pa).
+    pub p_rms_pa: f64,
+    /// Peak level 20·log10(max|p|/p_ref) (dB).
+    pub spl_peak_db: f64,
+    /// Sound exposure level 10·log10(∫p²dt / (p_ref²·1 s)) over the whole pulse (dB).
+    pub sel_db: f64,
+    /// Largest and smallest pressure (Pa).
+    pub p_max_pa: f64,
+    pub p_min_pa: f64,
+}
+
+/// A local extremum of the pressure waveform.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Extremum {
+    pub t_s: f64,
+    pub p_pa: f64,
+}
+
+/// The pressure field of one impact at one observer: everything needed to evaluate p(t).
+/// Time `t` is measured from the start of the contact.
+#[derive(Debug, Clone)]
+pub struct Field {
+    consts: PulseConstants,
+    sources: Vec<(ImageSource, SourceTerm)>,
+}
+
+impl Field {
+    /// Builds the field of a sphere of radius `radius_m` with contact `contact` heard at
+    /// `observer`. Validates the geometry and the air.
+    pub fn new(
+        radius_m: f64,
+        contact: &Contact,
+        observer: &Observer,
+        radiation: &Radiation,
+    ) -> Result<Self, ThudError> {
+        check_positive("radius", radius_m, "m")?;
+        radiation.air.validate()?;
+        validate_observer(radius_m, observer, radiation.source)?;
+        if !(contact.tau_s.is_finite() && contact.tau_s > 0.0 && contact.accel_max_m_s2.is_finite()) {
+            return Err(ThudError::invalid("u0", "the contact has no finite duration; U0 must be > 0"));
+        }
+        let air = radiation.air;
+        let consts = PulseConstants::new(radius_m, contact.tau_s, &air);
+        let sources = image_sources(radius_m, observer, radiation)
+            .into_iter()
+            .map(|s| {
+                let p_scale =
+                    air.rho_c_pa_s_m * radius_m * s.cos_theta / (2.0 * s.r_m) * contact.accel_max_m_s2 / consts.c2;
+                (s, SourceTerm { p_scale: s.sign * p_scale, q: 1.0 - radius_m / s.r_m })
+            })
+            .collect();
+        Ok(Self { consts, sources })
+    }
+
+    /// Contact duration τ (s).
+    pub fn tau_s(&self) -> f64 {
+        self.consts.tau
+    }
+
+    /// Arrival time of the direct wave (s after the contact starts), (r1 − a)/c.
+    pub fn arrival_s(&self) -> f64 {
+        self.sources[0].0.delay_s
+    }
+
+    /// The image sources of this field.
+    pub fn sources(&self) -> impl Iterator<Item = &ImageSource> {
+        self.sources.iter().map(|(s, _)| s)
+    }
+
+    /// Time by which the last wave has decayed to ~e^(−30) of its size (s).
+    pub fn end_s(&self) -> f64 {
+        let last = self.sources().map(|s| s.delay_s).fold(0.0, f64::max);
+        last + self.consts.tau + 30.0 / self.consts.lambda
+    }
+
+    /// Pressure (Pa) at time `t_s` after the contact starts: the sum over the image sources,
+    /// each with its own retarded time (Eqs 20–23), of the closed form (Eq 18, corrected Eq 19).
+    pub fn pressure(&self, t_s: f64) -> f64 {
+        self.sources.iter().map(|(s, term)| term.p_scale * self.consts.shape(t_s - s.delay_s, term.q)).sum()
+    }
+
+    /// Time points where p(t) has kinks (arrivals and ends of each source's forced part).
+    fn breakpoints(&self) -> Vec<f64> {
+        let mut b: Vec<f64> = self.sources().flat_map(|s| [s.delay_s, s.delay_s + self.consts.tau]).collect();
+        b.sort_by(f64::total_cmp);
+        b
+    }
+
+    /// ∫ f(p(t)) dt over [t0, t1] by Gauss–Legendre on the smooth pieces between kinks.
+    fn integrate(&self, t0: f64, t1: f64, f: impl Fn(f64) -> f64) -> f64 {
+        let mut cuts = vec![t0];
+        cuts.extend(self.breakpoints().into_iter().filter(|&b| b > t0 && b < t1));
+        cuts.push(t1);
+        // The waveform varies on the scales 1/λ and τ/π: a few GL nodes per such scale suffice.
+        let scale = (1.0 / self.consts.lambda).min(self.consts.tau / std::f64::consts::PI);
+        cuts.windows(2)
+            .map(|w| {
+                let n = ((w[1] - w[0]) / scale).ceil().clamp(1.0, 400.0) as usize;
+                gauss_legendre(w[0], w[1], n, |t| f(self.pressure(t)))
+            })
+            .sum()
+    }
+
+    /// Mean square pressure (Pa²) over one contact duration from the direct arrival (Table 1).
+    pub fn mean_square_over_tau(&self) -> f64 {
+        let t0 = self.arrival_s();
+        self.integrate(t0, t0 + self.consts.tau, |p| p * p) / self.consts.tau
+    }
+
+    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-12 s.
+    pub fn extrema(&self) -> Vec<Extremum> {
+        let (t0, t1) = (self.arrival_s(), self.end_s());
+        let n = 4000;
+        let dt = (t1 - t0) / n as f64;
+        let p: Vec<f64> = (0..=n).map(|i| self.pressure(t0 + i as f64 * dt)).collect();
+        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut out = Vec::new();
+        for i in 1..n {
+            let (a, b, c) = (p[i - 1], p[i], p[i + 1]);
+            let is_max = b > a && b >= c;
+            let is_min = b < a && b <= c;
+            if (is_max || is_min) && b.abs() > 1e-6 * peak {
+                let sign = if is_max { 1.0 } else { -1.0 };
+                let t = golden_max(t0 + (i - 1) as f64 * dt, t0 + (i + 1) as f64 * dt, |t| sign * self.pressure(t));
+                out.push(Extremum { t_s: t, p_pa: self.pressure(t) });
+            }
+        }
+        out
+    }
+
+    /// All the levels of this pulse (see [`Levels`]).
+    pub fn levels(&self) -> Levels {
+        let ms = self.mean_square_over_tau();
+        let exposure = self.integrate(self.arrival_s(), self.end_s(), |p| p * p);
+        let ext = self.extrema();
+        let p_max = ext.iter().map(|e| e.p_pa).fold(0.0, f64::max);
+        let p_min = ext.iter().map(|e| e.p_pa).fold(0.0, f64::min);
+        let p_abs = p_max.max(-p_min);
+        Levels {
+            spl_db: 10.0 * (ms / (P_REF_PA * P_REF_PA)).log10(),
+            p_rms_pa: ms.sqrt(),
+            spl_peak_db: 20.0 * (p_abs / P_REF_PA).log10(),
+            sel_db: 10.0 * (exposure / (P_REF_PA * P_REF_PA)).log10(),
+            p_max_pa: p_max,
+            p_min_pa: p_min,
+        }
+    }
+
+    /// SPL (dB) over τ from the direct arrival only: the cheap level used by sweeps.
+    pub fn spl_db(&self) -> f64 {
+        10.0 * (self.mean_square_over_tau() / (P_REF_PA * P_REF_PA)).log10()
+    }
+
+    /// The waveform sampled at `n` uniform times from slightly before the direct arrival to
+    /// the decay of the last wave: (t in s after contact start, p in Pa).
+    pub fn waveform(&self, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let last = self.sources().map(|s| s.delay_s).fold(0.0, f64::max);
+        let t0 = self.arrival_s() - 0.1 * self.consts.tau;
+        let t1 = last + 1.5 * self.consts.tau + 6.0 / self.consts.lambda;
+        let n = n.max(2);
+        let t: Vec<f64> = (0..n).map(|i| t0 + (t1 - t0) * i as f64 / (n - 1) as f64).collect();
+        let p = t.iter().map(|&ti| self.pressure(ti)).collect();
+        (t, p)
+    }
+}
+
+/// Pressure of one source by direct numerical quadrature of the convolution, Eq 16, with the
+/// half-sine pulse (used to check the closed form).
+pub fn pressure_by_quadrature(t_ret: f64, r: f64, cos_theta: f64, a: f64, contact: &Contact, air: &Air) -> f64 {
+    let upper = t_ret.min(contact.tau_s);
+    if upper <= 0.0 {
+        return 0.0;
+    }
+    let n = 200;
+    gauss_legendre(0.0, upper, n, |xi| impulse_response(t_ret - xi, r, cos_theta, a, air) * contact.half_sine(xi))
+}
+
+/// Composite 10-point Gauss–Legendre rule of ∫f over [a, b] on `n` equal panels.
+pub fn gauss_legendre(a: f64, b: f64, n: usize, f: impl Fn(f64) -> f64) -> f64 {
+    const X: [f64; 5] = [
+        0.148_874_338_981_631_2,
+        0.433_395_394_129_247_2,
+        0.679_409_568_299_024_4,
+        0.865_063_366_688_984_5,
+        0.973_906_528_517_171_7,
+    ];
+    const W: [f64; 5] = [
+        0.295_524_224_714_752_9,
+        0.269_266_719_309_996_4,
+        0.219_086_362_515_982,
+        0.149_451_349_150_580_6,
+        0.066_671_344_308_688_1,
+    ];
+    let h = (b - a) / n as f64;
+    let mut total = 0.0;
+    for k in 0..n {
+        let mid = a + (k as f64 + 0.5) * h;
+        let half = 0.5 * h;
+        let mut s = 0.0;
+        for (x, w) in X.iter().zip(W) {
+            s += w * (f(mid - half * x) + f(mid + half * x));
+        }
+        total += s * half;
+    }
+    total
+}
+
+/// Maximiser of a unimodal `f` on [a, b] by golden-section search (to ~1e-13 of the bracket).
+fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if fc > fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// SPL (dB, rms over τ) and rms pressure (Pa) against θ at fixed r (Figs 3 and 6).
+pub fn directivity(
+    radius_m: f64,
+    contact: &Contact,
+    r_m: f64,
+    thetas_rad: &[f64],
+    radiation: &Radiation,
+) -> Result<Vec<(f64, Levels)>, ThudError> {
+    thetas_rad
+        .iter()
+        .map(|&th| Field::new(radius_m, contact, &Observer { r_m, theta_rad: th }, radiation).map(|f| (th, f.levels())))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::{Impact, Target};
+
+    fn fig2_contact() -> Contact {
+        Impact { mass_kg: 0.0405, u0_m_s: 1.4, k_hz: 5.6e8, target: Target::FixedPlate }.contact()
+    }
+
+    #[test]
+    fn closed_form_matches_quadrature() {
+        let air = Air::default();
+        let mut worst: f64 = 0.0;
+        for (a, u0, r, th) in
+            [(0.01905, 1.4, 0.7, 45.0), (0.009525, 0.99, 0.2828, 10.0), (0.03, 2.8, 0.05, 80.0), (0.005, 0.3, 3.0, 0.0)]
+        {
+            let m = 0.0405 * (a / 0.01905_f64).powi(3);
+            let c = Impact { mass_kg: m, u0_m_s: u0, k_hz: 5.6e8, target: Target::FixedPlate }.contact();
+            let obs = Observer::new(r, th);
+            let field = Field::new(a, &c, &obs, &Radiation { source: Source::Single, ..Default::default() }).unwrap();
+            let s = field.sources().next().copied().unwrap();
+            let scale = field.extrema().iter().fold(0.0_f64, |m, e| m.max(e.p_pa.abs()));
+            for i in 0..200 {
+                let t_ret = (i as f64 / 199.0) * 3.0 * c.tau_s;
+                let closed = field.pressure(t_ret + s.delay_s);
+                let quad = pressure_by_quadrature(t_ret, s.r_m, s.cos_theta, a, &c, &air);
+                worst = worst.max((closed - quad).abs() / scale);
+            }
+        }
+        assert!(worst < 1e-9, "worst relative difference {worst:e}");
+    }
+
+    #[test]
+    fn impulse_response_is_zero_before_arrival() {
+        assert_eq!(impulse_response(-1e-9, 1.0, 1.0, 0.01, &Air::default()), 0.0);
+    }
+
+    #[test]
+    fn single_source_falls_off_as_one_over_r_far_away() {
+        let c = fig2_contact();
+        let rad = Radiation { source: Source::Single, ..Default::default() };
+        let l1 = Field::new(0.01905, &c, &Observer::new(100.0, 0.0), &rad).unwrap().levels();
+        let l2 = Field::new(0.01905, &c, &Observer::new(200.0, 0.0), &rad).unwrap().levels();
+        assert!((l1.spl_db - l2.spl_db - 20.0 * 2f64.log10()).abs() < 0.01);
+    }
+
+    #[test]
+    fn observer_inside_sphere_is_rejected() {
+        let c = fig2_contact();
+        assert!(Field::new(0.01905, &c, &Observer::new(0.01, 45.0), &Radiation::default()).is_err());
+        assert!(Field::new(0.01905, &c, &Observer::new(0.03, 0.0), &Radiation::default()).is_err());
+        assert!(Field::new(0.01905, &c, &Observer::new(f64::NAN, 0.0), &Radiation::default()).is_err());
+    }
+
+    #[test]
+    fn quadrupole_signs_differ() {
+        let c = fig2_contact();
+        let obs = Observer::new(0.7, 45.0);
+        let paper = Field::new(0.01905, &c, &obs, &Radiation { quad_signs: QuadSigns::Paper, ..Default::default() })
+            .unwrap()
+            .levels();
+        let rigid = Field::new(0.01905, &c, &obs, &Radiation::default()).unwrap().levels();
+        assert!((paper.spl_db - rigid.spl_db).abs() > 0.1);
+    }
+
+    #[test]
+    fn degrees_round_trip_through_serde() {
+        let o = Observer::new(0.7, 45.0);
+        let s = serde_json::to_string(&o).unwrap();
+        assert!(s.contains("\"theta_deg\":45"), "{s}");
+        let back: Observer = serde_json::from_str(&s).unwrap();
+        assert!((back.theta_rad - o.theta_rad).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,121 @@
+//! Printing tables as aligned text, JSON or CSV.
+
+use std::io::Write;
+
+use crate::paper::{Table, Value};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputFormat {
+    Text,
+    Json,
+    Csv,
+}
+
+/// A number for people: 4 decimals in the ordinary range, scientific outside it.
+pub fn num(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if !v.is_finite() {
+        format!("{v}")
+    } else if (1e-3..1e6).contains(&v.abs()) {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.4e}")
+    }
+}
+
+fn cell_text(v: &Value) -> String {
+    match v {
+        Value::Num(x) => num(*x),
+        Value::Text(s) => s.clone(),
+        Value::Missing => "—".into(),
+    }
+}
+
+fn cell_csv(v: &Value) -> String {
+    match v {
+        Value::Num(x) => format!("{x}"),
+        Value::Text(s) if s.contains([',', '"']) => format!("\"{}\"", s.replace('"', "\"\"")),
+        Value::Text(s) => s.clone(),
+        Value::Missing => String::new(),
+    }
+}
+
+/// Writes `table` as CSV: a header of column keys, then the rows.
+pub fn write_csv(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
+    let header: Vec<&str> = table.columns.iter().map(|c| c.key).collect();
+    writeln!(out, "{}", header.join(","))?;
+    for row in &table.rows {
+        let cells: Vec<String> = row.iter().map(cell_csv).collect();
+        writeln!(out, "{}", cells.join(","))?;
+    }
+    Ok(())
+}
+
+/// Writes `table` as aligned text with its title and notes.
+pub fn write_text(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
+    writeln!(out, "{}", table.title)?;
+    let cells: Vec<Vec<String>> = table.rows.iter().map(|r| r.iter().map(cell_text).collect()).collect();
+    let widths: Vec<usize> = table
+        .columns
+        .iter()
+        .enumerate()
+        .map(|(i, c)| cells.iter().map(|r| r[i].chars().count()).chain([c.label.chars().count()]).max().unwrap_or(0))
+        .collect();
+    let line = |items: Vec<String>| -> String {
+        items.iter().zip(&widths).map(|(s, w)| format!("{s:>w$}")).collect::<Vec<_>>().join("  ")
+    };
+    writeln!(out, "{}", line(table.columns.iter().map(|c| c.label.to_string()).collect()))?;
+    for row in cells {
+        writeln!(out, "{}", line(row))?;
+    }
+    for n in &table.notes {
+        writeln!(out, "note: {n}")?;
+    }
+    Ok(())
+}
+
+/// Prints `table` on stdout in `format`. A closed pipe (e.g. `| head`) is not an error.
+pub fn print_table(table: &Table, format: OutputFormat) {
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    let _ = match format {
+        OutputFormat::Text => write_text(&mut out, table),
+        OutputFormat::Csv => write_csv(&mut out, table),
+        OutputFormat::Json => serde_json::to_writer_pretty(&mut out, &table_json(table))
+            .map_err(std::io::Error::other)
+            .and_then(|_| writeln!(out)),
+    };
+    let _ = out.flush();
+}
+
+/// A table as JSON: id, title, notes, columns, and rows as objects keyed by column.
+pub fn table_json(table: &Table) -> serde_json::Value {
+    let rows: Vec<serde_json::Value> = table
+        .rows
+        .iter()
+        .map(|r| {
+            let map: serde_json::Map<String, serde_json::Value> = table
+                .columns
+                .iter()
+                .zip(r)
+                .map(|(c, v)| (c.key.to_string(), serde_json::to_value(v).unwrap_or_default()))
+                .collect();
+            serde_json::Value::Object(map)
+        })
+        .collect();
+    serde_json::json!({
+        "id": table.id,
+        "title": table.title,
+        "notes": table.notes,
+        "columns": table.columns,
+        "rows": rows,
+    })
+}
+
+/// Writes a string to stdout, ignoring a closed pipe.
+pub fn print_str(s: &str) {
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(s.as_bytes());
+    let _ = out.flush();
+}

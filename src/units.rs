@@ -1,0 +1,178 @@
+//! Quantities with units at the edges: parsing "40.5g", "19.05mm", "4cm", "45deg", and
+//! formatting numbers for people. Inside, everything is SI (kg, m, s, Pa, rad).
+
+use crate::error::ThudError;
+
+/// What kind of quantity a text stands for; decides the accepted unit suffixes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// kg (plain), g, mg.
+    Mass,
+    /// m (plain), cm, mm, um/µm.
+    Length,
+    /// m/s (plain), cm/s, mm/s.
+    Speed,
+    /// degrees (plain or deg/°), rad.
+    Angle,
+    /// s (plain), ms, us/µs.
+    Time,
+    /// N/m (plain), kN/m.
+    Stiffness,
+    /// N·s/m (plain; also "Ns/m").
+    Damping,
+    /// N/m^1.5 (plain).
+    HertzStiffness,
+    /// kg/m³ (plain), g/cm3.
+    Density,
+    /// Pa·s/m (plain; "rayl").
+    Impedance,
+    /// dB (plain).
+    Level,
+    /// cm/s (plain) — the unit of the damping inclination the paper uses.
+    Inclination,
+    /// A plain number.
+    Number,
+}
+
+impl Kind {
+    /// (suffix, factor to the internal unit). The empty suffix is the plain-number unit.
+    fn units(self) -> &'static [(&'static str, f64)] {
+        match self {
+            Kind::Mass => &[("", 1.0), ("kg", 1.0), ("g", 1e-3), ("mg", 1e-6)],
+            Kind::Length => &[("", 1.0), ("m", 1.0), ("cm", 1e-2), ("mm", 1e-3), ("um", 1e-6), ("µm", 1e-6)],
+            Kind::Speed => &[("", 1.0), ("m/s", 1.0), ("cm/s", 1e-2), ("mm/s", 1e-3)],
+            Kind::Angle => &[("", 1.0), ("deg", 1.0), ("°", 1.0), ("rad", 180.0 / std::f64::consts::PI)],
+            Kind::Time => &[("", 1.0), ("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("µs", 1e-6), ("ns", 1e-9)],
+            Kind::Stiffness => &[("", 1.0), ("n/m", 1.0), ("kn/m", 1e3)],
+            Kind::Damping => &[("", 1.0), ("ns/m", 1.0), ("n.s/m", 1.0), ("n·s/m", 1.0), ("kg/s", 1.0)],
+            Kind::HertzStiffness => &[("", 1.0), ("n/m^1.5", 1.0), ("n/m1.5", 1.0)],
+            Kind::Density => &[("", 1.0), ("kg/m3", 1.0), ("kg/m^3", 1.0), ("g/cm3", 1e3), ("g/cm^3", 1e3)],
+            Kind::Impedance => &[("", 1.0), ("rayl", 1.0), ("pa.s/m", 1.0), ("pas/m", 1.0)],
+            Kind::Level => &[("", 1.0), ("db", 1.0)],
+            Kind::Inclination => &[("", 1.0), ("cm/s", 1.0), ("mm/s", 0.1), ("m/s", 100.0)],
+            Kind::Number => &[("", 1.0)],
+        }
+    }
+
+    /// The unit a plain number is read in, for messages.
+    pub fn plain_unit(self) -> &'static str {
+        match self {
+            Kind::Mass => "kg",
+            Kind::Length => "m",
+            Kind::Speed => "m/s",
+            Kind::Angle => "deg",
+            Kind::Time => "s",
+            Kind::Stiffness => "N/m",
+            Kind::Damping => "N·s/m",
+            Kind::HertzStiffness => "N/m^1.5",
+            Kind::Density => "kg/m^3",
+            Kind::Impedance => "Pa·s/m",
+            Kind::Level => "dB",
+            Kind::Inclination => "cm/s",
+            Kind::Number => "",
+        }
+    }
+}
+
+/// Parses `text` as a quantity of `kind` into the internal unit (SI; degrees for angles;
+/// cm/s for inclinations). `param` names the parameter in the error message.
+pub fn parse(param: &str, text: &str, kind: Kind) -> Result<f64, ThudError> {
+    let t = text.trim();
+    if t.eq_ignore_ascii_case("nan") {
+        return Ok(f64::NAN);
+    }
+    let split = t
+        .char_indices()
+        .find(|&(i, c)| {
+            !(c.is_ascii_digit()
+                || c == '.'
+                || c == '+'
+                || c == '-'
+                || ((c == 'e' || c == 'E') && looks_like_exponent(t, i)))
+        })
+        .map(|(i, _)| i)
+        .unwrap_or(t.len());
+    let (num, unit) = t.split_at(split);
+    let unit_key = unit.trim().to_lowercase();
+    let value: f64 = match num.parse() {
+        Ok(v) => v,
+        Err(_) => {
+            return Err(ThudError::invalid(
+                param,
+                format!("'{text}' is not a number (expected e.g. {})", example(kind)),
+            ));
+        }
+    };
+    let factor = kind.units().iter().find(|(u, _)| *u == unit_key).map(|&(_, f)| f).ok_or_else(|| {
+        let known: Vec<&str> = kind.units().iter().map(|(u, _)| *u).filter(|u| !u.is_empty()).collect();
+        ThudError::invalid(
+            param,
+            format!(
+                "unknown unit '{}' in '{text}'; use {} or a plain number in {}",
+                unit.trim(),
+                known.join(", "),
+                kind.plain_unit()
+            ),
+        )
+    })?;
+    Ok(value * factor)
+}
+
+fn looks_like_exponent(t: &str, i: usize) -> bool {
+    let rest = &t[i + 1..];
+    let next = rest.chars().next();
+    i > 0 && matches!(next, Some(c) if c.is_ascii_digit() || c == '-' || c == '+')
+}
+
+fn example(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Mass => "0.0405 or 40.5g",
+        Kind::Length => "0.04 or 4cm",
+        Kind::Speed => "1.4 or 140cm/s",
+        Kind::Angle => "45 or 45deg",
+        Kind::Time => "2 or 250ms",
+        _ => "1.5",
+    }
+}
+
+/// Formats a value with a few significant digits, without noise like 0.30000000000000004.
+pub fn sig(value: f64, digits: usize) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return format!("{value}");
+    }
+    let mag = value.abs().log10().floor() as i32;
+    let decimals = (digits as i32 - 1 - mag).max(0) as usize;
+    format!("{value:.decimals$}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suffixes_convert_to_si() {
+        assert!((parse("mass", "40.5g", Kind::Mass).unwrap() - 0.0405).abs() < 1e-15);
+        assert!((parse("radius", "19.05mm", Kind::Length).unwrap() - 0.01905).abs() < 1e-15);
+        assert!((parse("gap", "4cm", Kind::Length).unwrap() - 0.04).abs() < 1e-15);
+        assert_eq!(parse("theta", "45deg", Kind::Angle).unwrap(), 45.0);
+        assert_eq!(parse("theta", "45", Kind::Angle).unwrap(), 45.0);
+        assert_eq!(parse("k-hz", "5.6e8", Kind::HertzStiffness).unwrap(), 5.6e8);
+        assert!((parse("dt", "1e-7", Kind::Time).unwrap() - 1e-7).abs() < 1e-22);
+        assert!((parse("v0", "-1.5e-1 m/s", Kind::Speed).unwrap() + 0.15).abs() < 1e-15);
+    }
+
+    #[test]
+    fn unknown_units_and_garbage_are_errors() {
+        let e = parse("mass", "40.5furlongs", Kind::Mass).unwrap_err();
+        assert!(e.to_string().contains("unknown unit"), "{e}");
+        assert!(parse("mass", "abc", Kind::Mass).is_err());
+        assert!(parse("mass", "", Kind::Mass).is_err());
+        assert!(parse("mass", "NaN", Kind::Mass).unwrap().is_nan());
+    }
+
+    #[test]
+    fn sig_formats() {
+        assert_eq!(sig(0.30000000000000004, 3), "0.300");
+        assert_eq!(sig(264.28, 4), "264.3");
+    }
+}
