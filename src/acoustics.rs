@@ -355,8 +355,8 @@ impl Field {
         let mut cuts = vec![t0];
         cuts.extend(self.breakpoints().into_iter().filter(|&b| b > t0 && b < t1));
         cuts.push(t1);
-        // The waveform varies on the scales 1/λ and τ/π: a few GL nodes per such scale suffice.
-        let scale = (1.0 / self.consts.lambda).min(self.consts.tau / std::f64::consts::PI);
+        // The waveform varies on the scales 1/λ and τ/π: ten GL nodes per such scale suffice.
+        let scale = self.scale_s();
         cuts.windows(2)
             .map(|w| {
                 let n = ((w[1] - w[0]) / scale).ceil().clamp(1.0, 400.0) as usize;
@@ -371,10 +371,17 @@ impl Field {
         self.integrate(t0, t0 + self.consts.tau, |p| p * p) / self.consts.tau
     }
 
-    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-12 s.
+    /// The shortest time scale of the waveform (s): min(1/λ, τ/π).
+    fn scale_s(&self) -> f64 {
+        (1.0 / self.consts.lambda).min(self.consts.tau / std::f64::consts::PI)
+    }
+
+    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-13 s.
     pub fn extrema(&self) -> Vec<Extremum> {
-        let (t0, t1) = (self.arrival_s(), self.end_s());
-        let n = 4000;
+        let last = self.sources().map(|s| s.delay_s).fold(0.0, f64::max);
+        // After the last forced part the tail falls as e^(−λt): e^(−12) of the peak is nothing.
+        let (t0, t1) = (self.arrival_s(), last + self.consts.tau + 12.0 / self.consts.lambda);
+        let n = (((t1 - t0) / (0.1 * self.scale_s())).ceil() as usize).clamp(100, 20_000);
         let dt = (t1 - t0) / n as f64;
         let p: Vec<f64> = (0..=n).map(|i| self.pressure(t0 + i as f64 * dt)).collect();
         let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -474,7 +481,7 @@ fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
     let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..80 {
+    for _ in 0..64 {
         if fc > fd {
             b = d;
             d = c;

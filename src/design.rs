@@ -1,0 +1,510 @@
+//! A damper design and what it is worth: damping inclination (Eq 27), peak contact speed, peak
+//! SPL, zones (Figs 15–17), the design sweep over mass × gap and Table 5. Pure functions.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use serde::{Deserialize, Serialize};
+
+use crate::acoustics::{Field, Observer, QuadSigns, Radiation, Source};
+use crate::contact::{self, Impact, Target};
+use crate::damper::{self, DamperParams, Run, RunOptions, Solver};
+use crate::error::{check_positive, ThudError};
+
+/// How the impact mass's radius is found (it sets the sound, Eq 15, and K_HZ from materials).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BallSize {
+    /// From the mass and this density (kg/m³): a = (3m/(4πρ))^(1/3).
+    Density(f64),
+    /// A fixed radius (m), whatever the mass.
+    Radius(f64),
+}
+
+/// The density (kg/m³) that makes the paper's 40.5 g ball 19.05 mm in radius (Fig 2, Table 1).
+pub const PAPER_BALL_DENSITY: f64 = 1398.561_194_685_816;
+
+/// Materials from which K_HZ follows for each ball radius (Eq 2), instead of a fixed K_HZ.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Materials {
+    pub sphere: String,
+    pub plate: String,
+}
+
+/// Which largest contact speed is reported as U0max (model notes §5–6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum U0MaxRule {
+    /// The largest incoming relative speed of an actual impact (physical; default).
+    #[default]
+    Impacts,
+    /// The largest |z'| over the whole run including t = 0 (the paper's Table 3).
+    WholeRun,
+}
+
+/// Which damping inclination classifies the zones.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ZoneBy {
+    /// The paper's e of Eq 27 (first two cycle maxima).
+    #[default]
+    Paper,
+    /// The robust least-squares e_fit.
+    Fit,
+}
+
+/// The zone thresholds L* (dB) and e* (cm/s) of the design chart (model notes §6).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Thresholds {
+    pub spl_db: f64,
+    pub inclination_cm_s: f64,
+    #[serde(default)]
+    pub zone_by: ZoneBy,
+}
+
+impl Default for Thresholds {
+    fn default() -> Self {
+        Self { spl_db: 103.0, inclination_cm_s: 0.9, zone_by: ZoneBy::Paper }
+    }
+}
+
+/// One design: the damper, the ball's size and materials, the listener, the solver and the
+/// conventions for the reported numbers. Everything SI.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Design {
+    pub damper: DamperParams,
+    pub ball: BallSize,
+    /// When set, K_HZ follows from these materials and the ball's radius (Eq 2).
+    #[serde(default)]
+    pub materials: Option<Materials>,
+    pub observer: Observer,
+    pub radiation: Radiation,
+    pub solver: Solver,
+    #[serde(default)]
+    pub u0max_rule: U0MaxRule,
+    #[serde(default)]
+    pub thresholds: Thresholds,
+}
+
+impl Default for Design {
+    /// The physical default: Table 2 (Fig 9: v0 2 m/s, d 4 cm), the paper's ball density, the
+    /// rigid wall–floor corner at r 0.7 m, θ 45°, the event-driven solver.
+    fn default() -> Self {
+        Self {
+            damper: DamperParams::table2(),
+            ball: BallSize::Density(PAPER_BALL_DENSITY),
+            materials: None,
+            observer: Observer::new(0.7, 45.0),
+            radiation: Radiation { source: Source::Quadrupole, quad_signs: QuadSigns::Rigid, ..Default::default() },
+            solver: Solver::Event,
+            u0max_rule: U0MaxRule::Impacts,
+            thresholds: Thresholds::default(),
+        }
+    }
+}
+
+impl Design {
+    /// Radius of the impact mass (m).
+    pub fn ball_radius_m(&self) -> f64 {
+        match self.ball {
+            BallSize::Density(rho) => contact::sphere_radius(self.damper.impact_mass_kg, rho),
+            BallSize::Radius(a) => a,
+        }
+    }
+
+    /// The design with K_HZ set from its materials (if any) for the current radius.
+    pub fn resolved(&self) -> Result<Design, ThudError> {
+        let mut d = self.clone();
+        if let Some(m) = &self.materials {
+            let (s, p) = (contact::material(&m.sphere)?, contact::material(&m.plate)?);
+            d.damper.k_hz = contact::hertz_stiffness(self.ball_radius_m(), &s, &p);
+        }
+        Ok(d)
+    }
+
+    /// Checks every parameter; the first problem is reported, naming the CLI parameter.
+    pub fn validate(&self) -> Result<(), ThudError> {
+        self.damper.validate()?;
+        match self.ball {
+            BallSize::Density(rho) => check_positive("density", rho, "kg/m^3")?,
+            BallSize::Radius(a) => check_positive("radius", a, "m")?,
+        }
+        if let Solver::Newmark { dt_s } = self.solver {
+            check_positive("dt", dt_s, "s")?;
+        }
+        self.radiation.air.validate()?;
+        crate::acoustics::validate_observer(self.ball_radius_m(), &self.observer, self.radiation.source)?;
+        if !self.thresholds.spl_db.is_finite() || !self.thresholds.inclination_cm_s.is_finite() {
+            return Err(ThudError::invalid("thresholds", "L* and e* must be finite numbers"));
+        }
+        Ok(())
+    }
+
+    /// The sound field of one impact of this design at incoming relative speed `u0` (m/s):
+    /// the ball against the main mass, K* = (m+M)/(mM) (Eq 8).
+    pub fn impact_field(&self, u0: f64) -> Result<Field, ThudError> {
+        let impact = Impact {
+            mass_kg: self.damper.impact_mass_kg,
+            u0_m_s: u0,
+            k_hz: self.damper.k_hz,
+            target: Target::MovableMass(self.damper.main_mass_kg),
+        };
+        impact.validate()?;
+        Field::new(self.ball_radius_m(), &impact.contact(), &self.observer, &self.radiation)
+    }
+
+    /// SPL (dB, rms over τ from the direct arrival) of an impact at `u0` (m/s).
+    pub fn impact_spl_db(&self, u0: f64) -> Result<f64, ThudError> {
+        Ok(self.impact_field(u0)?.spl_db())
+    }
+}
+
+/// Zones of the design chart (model notes §6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Zone {
+    /// 1: noisy and weak (SPL ≥ L*, e < e*).
+    NoisyWeak = 1,
+    /// 2: noisy and strong.
+    NoisyStrong = 2,
+    /// 3: quiet and strong — the target.
+    QuietStrong = 3,
+    /// 4: quiet and weak.
+    QuietWeak = 4,
+}
+
+impl Zone {
+    pub fn number(self) -> u8 {
+        self as u8
+    }
+
+    pub fn describe(self) -> &'static str {
+        match self {
+            Zone::NoisyWeak => "noisy, weak",
+            Zone::NoisyStrong => "noisy, strong",
+            Zone::QuietStrong => "quiet, strong",
+            Zone::QuietWeak => "quiet, weak",
+        }
+    }
+
+    /// The zone of a design with peak SPL `spl_db` and inclination `e_cm_s`.
+    pub fn classify(spl_db: f64, e_cm_s: f64, t: &Thresholds) -> Zone {
+        match (spl_db >= t.spl_db, e_cm_s >= t.inclination_cm_s) {
+            (true, false) => Zone::NoisyWeak,
+            (true, true) => Zone::NoisyStrong,
+            (false, true) => Zone::QuietStrong,
+            (false, false) => Zone::QuietWeak,
+        }
+    }
+}
+
+/// What one design is worth.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    pub n_impacts: usize,
+    /// Damping inclination e (Eq 27) from the first two cycle maxima (cm/s); None if < 2 maxima.
+    pub inclination_cm_s: Option<f64>,
+    /// −(least-squares slope of the maxima while X_k ≥ X1/2) (cm/s); None if < 2 such maxima.
+    pub inclination_fit_cm_s: Option<f64>,
+    /// Largest contact speed by the design's U0max rule (m/s).
+    pub u0_max_m_s: f64,
+    /// Largest |z'| over the whole run including t = 0 (m/s).
+    pub zdot_abs_max_m_s: f64,
+    /// SPL (dB) of an impact at U0max; None when there is no impact (and the rule is `impacts`).
+    pub spl_max_db: Option<f64>,
+    /// Duration (s) of the Hertz contact at U0max (closed form, K* = (m+M)/(mM)).
+    pub contact_duration_s: Option<f64>,
+    /// Mean restitution u_out/u_in over the impacts.
+    pub restitution_mean: Option<f64>,
+    /// The zone, when both e and SPLmax exist.
+    pub zone: Option<Zone>,
+}
+
+/// Damping inclination of Eq 27, e = (X1 − X2)/(t2 − t1), in cm/s.
+pub fn inclination_cm_s(maxima: &[damper::Maximum]) -> Option<f64> {
+    let (m1, m2) = (maxima.first()?, maxima.get(1)?);
+    Some(100.0 * (m1.x_m - m2.x_m) / (m2.t_s - m1.t_s))
+}
+
+/// Robust inclination: minus the least-squares slope of X_k against t_k over the leading maxima
+/// with X_k ≥ X1/2, in cm/s.
+pub fn inclination_fit_cm_s(maxima: &[damper::Maximum]) -> Option<f64> {
+    let x1 = maxima.first()?.x_m;
+    let pts: Vec<&damper::Maximum> = maxima.iter().take_while(|m| m.x_m >= 0.5 * x1).collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (st, sx) = pts.iter().fold((0.0, 0.0), |(a, b), m| (a + m.t_s, b + m.x_m));
+    let (mt, mx) = (st / n, sx / n);
+    let (num, den) = pts.iter().fold((0.0, 0.0), |(a, b), m| (a + (m.t_s - mt) * (m.x_m - mx), b + (m.t_s - mt).powi(2)));
+    Some(-100.0 * num / den)
+}
+
+/// The metrics of a finished run of `design`.
+pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
+    let impact_max = run.impacts.iter().map(|i| i.u_in_m_s).fold(0.0, f64::max);
+    let u0_max = match design.u0max_rule {
+        U0MaxRule::Impacts => impact_max,
+        U0MaxRule::WholeRun => run.zdot_abs_max_m_s,
+    };
+    let sounding = u0_max > 0.0 && (design.u0max_rule == U0MaxRule::WholeRun || !run.impacts.is_empty());
+    let (spl_max_db, contact_duration_s) = if sounding {
+        let f = design.impact_field(u0_max)?;
+        (Some(f.spl_db()), Some(f.tau_s()))
+    } else {
+        (None, None)
+    };
+    let e = inclination_cm_s(&run.maxima);
+    let e_fit = inclination_fit_cm_s(&run.maxima);
+    let e_zone = match design.thresholds.zone_by {
+        ZoneBy::Paper => e,
+        ZoneBy::Fit => e_fit,
+    };
+    let restitution_mean = (!run.impacts.is_empty()).then(|| {
+        run.impacts.iter().map(|i| i.u_out_m_s / i.u_in_m_s).sum::<f64>() / run.impacts.len() as f64
+    });
+    Ok(Metrics {
+        n_impacts: run.impacts.len(),
+        inclination_cm_s: e,
+        inclination_fit_cm_s: e_fit,
+        u0_max_m_s: u0_max,
+        zdot_abs_max_m_s: run.zdot_abs_max_m_s,
+        spl_max_db,
+        contact_duration_s,
+        restitution_mean,
+        zone: match (spl_max_db, e_zone) {
+            (Some(l), Some(e)) => Some(Zone::classify(l, e, &design.thresholds)),
+            _ => None,
+        },
+    })
+}
+
+/// A design run through its solver, with its metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    pub run: Run,
+    pub metrics: Metrics,
+}
+
+/// Simulates `design` and computes its metrics. `history_samples` uniform samples of x and y
+/// are kept for plotting (0 for none); `cancel` stops the run between impacts.
+pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicBool>) -> Result<Evaluation, ThudError> {
+    design.validate()?;
+    let d = design.resolved()?;
+    let run = damper::simulate(&d.damper, d.solver, &RunOptions { history_samples, cancel })?;
+    let metrics = metrics(&run, &d)?;
+    Ok(Evaluation { run, metrics })
+}
+
+/// SPL (dB) of every impact of a run, in order.
+pub fn impact_spls(run: &Run, design: &Design) -> Result<Vec<f64>, ThudError> {
+    let d = design.resolved()?;
+    run.impacts.iter().map(|i| d.impact_spl_db(i.u_in_m_s)).collect()
+}
+
+/// `n` evenly spaced values from `from` to `to` inclusive.
+pub fn linspace(from: f64, to: f64, n: usize) -> Vec<f64> {
+    match n {
+        0 => vec![],
+        1 => vec![from],
+        _ => (0..n).map(|i| from + (to - from) * i as f64 / (n - 1) as f64).collect(),
+    }
+}
+
+/// One cell of the design chart.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Cell {
+    pub mass_kg: f64,
+    pub gap_m: f64,
+    pub metrics: Metrics,
+}
+
+/// The design chart: a mass × gap grid of metrics. `cells[g * masses.len() + m]` is gap `g`,
+/// mass `m`; a cell is None until computed (or if the sweep was cancelled first).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Chart {
+    pub masses_kg: Vec<f64>,
+    pub gaps_m: Vec<f64>,
+    pub cells: Vec<Option<Cell>>,
+    pub thresholds: Thresholds,
+}
+
+impl Chart {
+    pub fn empty(masses_kg: Vec<f64>, gaps_m: Vec<f64>, thresholds: Thresholds) -> Self {
+        let n = masses_kg.len() * gaps_m.len();
+        Self { masses_kg, gaps_m, cells: vec![None; n], thresholds }
+    }
+
+    pub fn cell(&self, mass_index: usize, gap_index: usize) -> Option<&Cell> {
+        self.cells.get(gap_index * self.masses_kg.len() + mass_index)?.as_ref()
+    }
+
+    pub fn done(&self) -> usize {
+        self.cells.iter().filter(|c| c.is_some()).count()
+    }
+}
+
+/// The design `base` with this impact mass and gap.
+pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
+    let mut d = base.clone();
+    d.damper.impact_mass_kg = mass_kg;
+    d.damper.gap_m = gap_m;
+    d
+}
+
+/// Sweeps `base` over `masses × gaps` on all cores. `on_cell(index, cell)` is called as each
+/// cell finishes (from worker threads); `cancel` stops the sweep between cells.
+pub fn sweep(
+    base: &Design,
+    masses_kg: &[f64],
+    gaps_m: &[f64],
+    cancel: Option<&AtomicBool>,
+    on_cell: &(dyn Fn(usize, &Cell) + Sync),
+) -> Result<Chart, ThudError> {
+    for &m in masses_kg {
+        check_positive("mass", m, "kg")?;
+    }
+    for &g in gaps_m {
+        check_positive("gap", g, "m")?;
+    }
+    let n = masses_kg.len() * gaps_m.len();
+    let next = AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).min(n.max(1));
+    let results: Vec<Vec<(usize, Result<Cell, ThudError>)>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|_| {
+                s.spawn(|| {
+                    let mut out = Vec::new();
+                    loop {
+                        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                            break;
+                        }
+                        let i = next.fetch_add(1, Ordering::Relaxed);
+                        if i >= n {
+                            break;
+                        }
+                        let (g, m) = (i / masses_kg.len(), i % masses_kg.len());
+                        let d = variant(base, masses_kg[m], gaps_m[g]);
+                        let cell = evaluate(&d, 0, cancel).map(|e| Cell { mass_kg: masses_kg[m], gap_m: gaps_m[g], metrics: e.metrics });
+                        if let Ok(c) = &cell {
+                            on_cell(i, c);
+                        }
+                        out.push((i, cell));
+                    }
+                    out
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap_or_default()).collect()
+    });
+    let mut chart = Chart::empty(masses_kg.to_vec(), gaps_m.to_vec(), base.thresholds);
+    for (i, cell) in results.into_iter().flatten() {
+        chart.cells[i] = Some(cell?);
+    }
+    Ok(chart)
+}
+
+/// One band of Table 5: the spread of SPLmax among designs with e in [e_lo, e_hi).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Band {
+    pub e_lo_cm_s: f64,
+    pub e_hi_cm_s: f64,
+    pub count: usize,
+    pub spl_min_db: f64,
+    pub spl_max_db: f64,
+}
+
+/// Table 5: the range of SPLmax per band of the inclination (cm/s) of width `width_cm_s`.
+pub fn spl_range_by_inclination(chart: &Chart, width_cm_s: f64, zone_by: ZoneBy) -> Vec<Band> {
+    let pts: Vec<(f64, f64)> = chart
+        .cells
+        .iter()
+        .flatten()
+        .filter_map(|c| {
+            let e = match zone_by {
+                ZoneBy::Paper => c.metrics.inclination_cm_s,
+                ZoneBy::Fit => c.metrics.inclination_fit_cm_s,
+            };
+            Some((e?, c.metrics.spl_max_db?))
+        })
+        .collect();
+    if pts.is_empty() || !(width_cm_s > 0.0) {
+        return vec![];
+    }
+    let lo = (pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min) / width_cm_s).floor() as i64;
+    let hi = (pts.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max) / width_cm_s).floor() as i64;
+    (lo..=hi)
+        .filter_map(|k| {
+            let (a, b) = (k as f64 * width_cm_s, (k + 1) as f64 * width_cm_s);
+            let in_band: Vec<f64> = pts.iter().filter(|p| p.0 >= a && p.0 < b).map(|p| p.1).collect();
+            (!in_band.is_empty()).then(|| Band {
+                e_lo_cm_s: a,
+                e_hi_cm_s: b,
+                count: in_band.len(),
+                spl_min_db: in_band.iter().copied().fold(f64::INFINITY, f64::min),
+                spl_max_db: in_band.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            })
+        })
+        .collect()
+}
+
+/// Restitution R = u_out/u0 of one isolated ball–main-mass contact at `u0` for each mass
+/// (Fig 13), with the design's K_HZ (or materials), c1 and clamp.
+pub fn restitution_curve(design: &Design, masses_kg: &[f64], u0: f64) -> Result<Vec<(f64, f64)>, ThudError> {
+    check_positive("u0", u0, "m/s")?;
+    masses_kg
+        .iter()
+        .map(|&m| {
+            check_positive("mass", m, "kg")?;
+            let d = variant(design, m, design.damper.gap_m).resolved()?;
+            let p = &d.damper;
+            let c = damper::single_contact(m, p.main_mass_kg, p.k_hz, p.c1_n_s_m, p.no_tension, u0);
+            Ok((m, c.u_out_m_s / u0))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::damper::Maximum;
+
+    fn maxima(xs: &[(f64, f64)]) -> Vec<Maximum> {
+        xs.iter().map(|&(t_s, x_m)| Maximum { t_s, x_m }).collect()
+    }
+
+    #[test]
+    fn eq27_from_first_two_maxima() {
+        let m = maxima(&[(0.05, 0.06), (0.25, 0.058), (0.45, 0.05)]);
+        assert!((inclination_cm_s(&m).unwrap() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn fit_of_a_straight_decay_is_its_slope() {
+        let m = maxima(&(0..10).map(|k| (0.2 * k as f64, 0.06 - 0.004 * k as f64)).collect::<Vec<_>>());
+        // Slope −0.02 m/s = 2 cm/s; stops below X1/2 = 0.03 (k > 7).
+        assert!((inclination_fit_cm_s(&m).unwrap() - 2.0).abs() < 1e-9);
+        assert!(inclination_fit_cm_s(&m[..1]).is_none());
+    }
+
+    #[test]
+    fn zones_by_thresholds() {
+        let t = Thresholds { spl_db: 100.0, inclination_cm_s: 1.0, zone_by: ZoneBy::Paper };
+        assert_eq!(Zone::classify(101.0, 0.5, &t), Zone::NoisyWeak);
+        assert_eq!(Zone::classify(101.0, 1.5, &t), Zone::NoisyStrong);
+        assert_eq!(Zone::classify(99.0, 1.5, &t), Zone::QuietStrong);
+        assert_eq!(Zone::classify(99.0, 0.5, &t), Zone::QuietWeak);
+    }
+
+    #[test]
+    fn paper_density_gives_fig2_radius() {
+        let a = contact::sphere_radius(0.0405, PAPER_BALL_DENSITY);
+        assert!((a - 0.01905).abs() < 1e-8, "{a}");
+    }
+
+    #[test]
+    fn design_round_trips_through_json() {
+        let d = Design::default();
+        let back: Design = serde_json::from_str(&serde_json::to_string(&d).unwrap()).unwrap();
+        assert_eq!(back, d);
+    }
+}
