@@ -1,9 +1,12 @@
 //! The command-line front end: parses arguments (units at the edge), calls the engine and
 //! prints text, JSON or CSV. No physics here.
 
+pub mod design_args;
 mod format;
 mod paper;
 mod pulse;
+mod simulate;
+mod sweep;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
@@ -28,6 +31,10 @@ pub struct Cli {
 pub enum Command {
     /// The pressure pulse of one Hertzian impact at an observer (Eqs 1–24).
     Pulse(Box<pulse::PulseArgs>),
+    /// Simulate one impact-damper design through its impacts (Eqs 25–27).
+    Simulate(Box<simulate::SimulateArgs>),
+    /// Sweep a design over impact mass × gap: the design chart and Table 5.
+    Sweep(Box<sweep::SweepArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
     Paper(paper::PaperArgs),
 }
@@ -98,6 +105,8 @@ pub(crate) fn quantity(param: &str, text: &Option<String>, kind: Kind) -> Result
 pub fn run(cli: Cli) -> i32 {
     let result = match cli.command {
         Some(Command::Pulse(a)) => pulse::run(&a),
+        Some(Command::Simulate(a)) => simulate::run(&a),
+        Some(Command::Sweep(a)) => sweep::run(&a),
         Some(Command::Paper(a)) => paper::run(&a),
         None => {
             use clap::CommandFactory;

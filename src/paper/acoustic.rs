@@ -1,60 +1,10 @@
-//! The paper's tables and figures, recomputed by the model, with the paper's printed numbers
-//! beside them. Pure data in, tables out; the CLI only formats them.
-
-use serde::Serialize;
+//! Part 1 of the paper: Table 1 and Figs 2, 3, 5, 6, 7, 12 (contact and radiation).
 
 use crate::acoustics::{Field, Observer, QuadSigns, Radiation, Source};
 use crate::contact::{Contact, Impact, Target};
 use crate::error::ThudError;
 
-/// One cell of a reproduced table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum Value {
-    Num(f64),
-    Text(String),
-    /// The paper prints nothing here.
-    Missing,
-}
-
-impl From<f64> for Value {
-    fn from(v: f64) -> Self {
-        Value::Num(v)
-    }
-}
-
-impl From<Option<f64>> for Value {
-    fn from(v: Option<f64>) -> Self {
-        v.map_or(Value::Missing, Value::Num)
-    }
-}
-
-/// A column: a machine key (used in JSON/CSV, unit in the name) and a label for people.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Column {
-    pub key: &'static str,
-    pub label: &'static str,
-}
-
-/// A reproduced table or figure: columns, rows and notes on conventions and deviations.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Table {
-    pub id: &'static str,
-    pub title: String,
-    pub notes: Vec<String>,
-    pub columns: Vec<Column>,
-    pub rows: Vec<Vec<Value>>,
-}
-
-const fn col(key: &'static str, label: &'static str) -> Column {
-    Column { key, label }
-}
-
-/// One reproducible item: id, what it is.
-pub struct Item {
-    pub id: &'static str,
-    pub description: &'static str,
-}
+use super::{col, Item, Table};
 
 /// Every table and figure the acoustics part can reproduce.
 pub const ACOUSTIC_ITEMS: &[Item] = &[
@@ -282,12 +232,3 @@ pub fn acoustic(id: &str) -> Option<Result<Table, ThudError>> {
     })
 }
 
-/// Every reproducible item, in the order `thud paper --list` shows them.
-pub fn items() -> impl Iterator<Item = &'static Item> {
-    ACOUSTIC_ITEMS.iter()
-}
-
-/// The table or figure with this id, or `None` if there is no such item.
-pub fn get(id: &str) -> Option<Result<Table, ThudError>> {
-    acoustic(id)
-}

@@ -1,0 +1,203 @@
+//! `thud simulate`: one damper design through its impacts.
+
+use clap::Args;
+use serde::Serialize;
+
+use super::design_args::DesignArgs;
+use super::format::{num, print_str};
+use super::{OutputArgs, OutputFormat};
+use crate::damper::{free_response, Maximum, Solver};
+use crate::design::{self, Design, Evaluation};
+use crate::error::ThudError;
+
+#[derive(Debug, Clone, Args)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    design: DesignArgs,
+    /// Time-history samples for --csv (and the JSON `history`).
+    #[arg(long, value_name = "N", default_value_t = 2001)]
+    samples: usize,
+    /// Impacts listed in the text summary.
+    #[arg(long, value_name = "N", default_value_t = 12)]
+    show: usize,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+#[derive(Serialize)]
+struct ImpactJson {
+    t_s: f64,
+    wall: i8,
+    u_in_m_s: f64,
+    u_out_m_s: f64,
+    restitution: f64,
+    t_end_s: f64,
+    duration_s: f64,
+    penetration_max_m: f64,
+    spl_db: f64,
+}
+
+#[derive(Serialize)]
+struct SimulateJson<'a> {
+    design: &'a Design,
+    ball_radius_m: f64,
+    n_impacts: usize,
+    inclination_cm_s: Option<f64>,
+    inclination_fit_cm_s: Option<f64>,
+    u0_max_m_s: f64,
+    zdot_abs_max_m_s: f64,
+    spl_max_db: Option<f64>,
+    contact_duration_s: Option<f64>,
+    restitution_mean: Option<f64>,
+    zone: Option<u8>,
+    impacts: Vec<ImpactJson>,
+    maxima: &'a [Maximum],
+    energy: crate::damper::EnergyLedger,
+    final_time_s: f64,
+}
+
+pub fn run(a: &SimulateArgs) -> Result<(), ThudError> {
+    let d = a.design.design()?;
+    let samples = if a.output.csv { a.samples.max(2) } else { 0 };
+    let eval = design::evaluate(&d, samples, None)?;
+    match a.output.format() {
+        OutputFormat::Csv => {
+            let mut s = String::from("t_s,x_m,y_m,x_free_m\n");
+            for h in &eval.run.history {
+                s += &format!("{},{},{},{}\n", h.t_s, h.x_m, h.y_m, free_response(&d.damper, h.t_s));
+            }
+            print_str(&s);
+        }
+        OutputFormat::Json => {
+            let spls = design::impact_spls(&eval.run, &d)?;
+            let impacts = eval
+                .run
+                .impacts
+                .iter()
+                .zip(spls)
+                .map(|(i, spl)| ImpactJson {
+                    t_s: i.t_s,
+                    wall: i.wall,
+                    u_in_m_s: i.u_in_m_s,
+                    u_out_m_s: i.u_out_m_s,
+                    restitution: i.u_out_m_s / i.u_in_m_s,
+                    t_end_s: i.t_end_s,
+                    duration_s: i.t_end_s - i.t_s,
+                    penetration_max_m: i.penetration_max_m,
+                    spl_db: spl,
+                })
+                .collect();
+            let m = &eval.metrics;
+            let j = SimulateJson {
+                design: &d,
+                ball_radius_m: d.ball_radius_m(),
+                n_impacts: m.n_impacts,
+                inclination_cm_s: m.inclination_cm_s,
+                inclination_fit_cm_s: m.inclination_fit_cm_s,
+                u0_max_m_s: m.u0_max_m_s,
+                zdot_abs_max_m_s: m.zdot_abs_max_m_s,
+                spl_max_db: m.spl_max_db,
+                contact_duration_s: m.contact_duration_s,
+                restitution_mean: m.restitution_mean,
+                zone: m.zone.map(|z| z.number()),
+                impacts,
+                maxima: &eval.run.maxima,
+                energy: eval.run.energy,
+                final_time_s: eval.run.final_time_s,
+            };
+            print_str(&(serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"));
+        }
+        OutputFormat::Text => print_str(&summary(&d, &eval, a.show)?),
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("—".into(), |x| format!("{x:.digits$}"))
+}
+
+/// One line describing a design, in the units people use.
+pub fn describe(d: &Design) -> String {
+    let p = &d.damper;
+    let solver = match d.solver {
+        Solver::Event => "event-driven solver".to_string(),
+        Solver::Newmark { dt_s } => format!("Newmark-β solver, dt {} s", num(dt_s)),
+    };
+    format!(
+        "m {} g (a {} mm), d {} cm, v0 {} m/s; M {} kg, K {} N/m, C {} N·s/m; c1 {} N·s/m{}, K_HZ {:.4e} N/m^1.5; {solver}, {} s",
+        num(p.impact_mass_kg * 1e3),
+        num(d.ball_radius_m() * 1e3),
+        num(p.gap_m * 1e2),
+        num(p.v0_m_s),
+        num(p.main_mass_kg),
+        num(p.stiffness_n_m),
+        num(p.damping_n_s_m),
+        num(p.c1_n_s_m),
+        if p.no_tension { " (no tension)" } else { "" },
+        p.k_hz,
+        num(p.duration_s)
+    )
+}
+
+fn summary(d: &Design, e: &Evaluation, show: usize) -> Result<String, ThudError> {
+    let m = &e.metrics;
+    let mut s = format!("design    {}\n", describe(d));
+    s += &format!(
+        "listener  {} source ({} signs), r {} m, θ {}°; SPL = rms over τ from the direct arrival\n",
+        d.radiation.source.name(),
+        d.radiation.quad_signs.name(),
+        num(d.observer.r_m),
+        num(d.observer.theta_rad.to_degrees())
+    );
+    s += &format!(
+        "damping   e {} cm/s (Eq 27), e_fit {} cm/s; {} impacts; mean restitution {}\n",
+        opt(m.inclination_cm_s, 4),
+        opt(m.inclination_fit_cm_s, 4),
+        m.n_impacts,
+        opt(m.restitution_mean, 4)
+    );
+    s += &format!(
+        "noise     U0max {} m/s ({}), SPLmax {} dB, contact {} µs; zone {}\n",
+        format_args!("{:.4}", m.u0_max_m_s),
+        match d.u0max_rule {
+            design::U0MaxRule::Impacts => "largest impact speed",
+            design::U0MaxRule::WholeRun => "largest |z'| incl. t = 0",
+        },
+        opt(m.spl_max_db, 2),
+        opt(m.contact_duration_s.map(|t| t * 1e6), 2),
+        m.zone.map_or("—".into(), |z| format!("{} ({})", z.number(), z.describe()))
+    );
+    let en = &e.run.energy;
+    s += &format!(
+        "energy    initial {} J, final {} J, dissipated {} J viscous + {} J in contacts\n",
+        num(en.initial_j),
+        num(en.final_mechanical_j),
+        num(en.dissipated_viscous_j),
+        num(en.dissipated_contact_j)
+    );
+    if !e.run.impacts.is_empty() {
+        let spls = design::impact_spls(&e.run, d)?;
+        s += &format!("impacts (first {} of {}):\n", show.min(e.run.impacts.len()), e.run.impacts.len());
+        s += "      #       t (s)  wall  u_in (m/s)  u_out (m/s)       R     τ (µs)   δmax (µm)  SPL (dB)\n";
+        for (k, (i, spl)) in e.run.impacts.iter().zip(spls).take(show).enumerate() {
+            s += &format!(
+                "  {:>5}  {:>10.7}  {:>+4}  {:>10.5}  {:>11.5}  {:>6.4}  {:>9.3}  {:>10.3}  {:>8.2}\n",
+                k + 1,
+                i.t_s,
+                i.wall,
+                i.u_in_m_s,
+                i.u_out_m_s,
+                i.u_out_m_s / i.u_in_m_s,
+                (i.t_end_s - i.t_s) * 1e6,
+                i.penetration_max_m * 1e6,
+                spl
+            );
+        }
+    }
+    if !e.run.maxima.is_empty() {
+        let list: Vec<String> =
+            e.run.maxima.iter().take(6).map(|x| format!("{:.4} cm at {:.4} s", x.x_m * 1e2, x.t_s)).collect();
+        s += &format!("maxima    {}{}\n", list.join(", "), if e.run.maxima.len() > 6 { ", …" } else { "" });
+    }
+    Ok(s)
+}
