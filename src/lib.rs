@@ -4,6 +4,7 @@
 //! (see `README.md` and the project's model notes). SI units throughout.
 
 pub mod contact;
+pub mod damper;
 pub mod error;
 
 pub use error::ThudError;
