@@ -6,6 +6,7 @@
 
 pub mod acoustics;
 pub mod contact;
+pub mod damper;
 pub mod error;
 pub mod paper;
 pub mod units;

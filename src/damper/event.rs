@@ -1,0 +1,201 @@
+//! The event-driven solver: exact flights (paper Eq 25 in closed form), contact instants by
+//! conservative advancement, and the adaptive in-contact integrator (Eq 26) between them.
+//! Step-size free: the only numerical parameters are internal tolerances.
+
+use std::sync::atomic::Ordering;
+
+use super::contact::{integrate, Sys};
+use super::flight::{Kind, Oscillator};
+use super::record::{hermite, Recorder};
+use super::{DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions};
+
+/// Total in-contact integrator steps allowed per run (then the run stops with what it has).
+const STEP_BUDGET: usize = 400_000;
+/// Total conservative-advancement iterations allowed per run.
+const FLIGHT_BUDGET: usize = 2_000_000;
+
+/// Outcome of the search for the next contact in one flight.
+enum Search {
+    /// Contact at this flight time (s) on wall `s` (±1).
+    Contact(f64, f64),
+    /// No contact before the end of the interval.
+    None,
+    /// The iteration budget ran out at this flight time.
+    Exhausted(f64),
+}
+
+/// The safe step (s) on one wall's gap `g ≥ 0` (m) with rate `gd` (m/s) when `|g''| ≤ a`: the first
+/// root of the lower-bound parabola `g + gd·s − a·s²/2`.
+#[inline]
+fn safe_step(g: f64, gd: f64, a: f64) -> f64 {
+    let disc = (gd * gd + 2.0 * a * g).sqrt();
+    if gd < 0.0 {
+        2.0 * g / (disc - gd)
+    } else if a > 0.0 {
+        (gd + disc) / a
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Finds the first contact within `(0, t_max]` of the flight from `(x0, v0, y0, w)` by
+/// conservative advancement on both walls' gaps (never skips a grazing contact; converges
+/// quadratically onto a transversal one, to a gap below `1e-13·d/2`).
+#[allow(clippy::too_many_arguments)]
+fn find_contact(
+    osc: &Oscillator,
+    hg: f64,
+    x0: f64,
+    v0: f64,
+    y0: f64,
+    w: f64,
+    t_max: f64,
+    iters: &mut usize,
+) -> Search {
+    let a = osc.accel_bound(x0, v0);
+    let gtol = 1e-13 * hg;
+    let s_min = 1e-15;
+    let mut tau = 0.0;
+    loop {
+        let (x, v) = if tau == 0.0 { (x0, v0) } else { osc.advance(x0, v0, tau) };
+        let z = y0 + w * tau - x;
+        let zd = w - v;
+        let gp = hg - z;
+        let gm = hg + z;
+        if gp <= gtol && zd > 0.0 {
+            return Search::Contact(tau, 1.0);
+        }
+        if gm <= gtol && zd < 0.0 {
+            return Search::Contact(tau, -1.0);
+        }
+        let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).max(s_min);
+        if tau + st >= t_max {
+            return Search::None;
+        }
+        tau += st;
+        if *iters == 0 {
+            return Search::Exhausted(tau);
+        }
+        *iters -= 1;
+    }
+}
+
+/// Records a flight segment `[t0, t0 + tf]`: analytic maxima, crossings, `|z'|` extrema, history.
+#[allow(clippy::too_many_arguments)]
+fn record_flight(
+    osc: &Oscillator,
+    rec: &mut Recorder,
+    t0: f64,
+    x0: f64,
+    v0: f64,
+    y0: f64,
+    w: f64,
+    tf: f64,
+    t1: f64,
+) {
+    osc.for_each_event(x0, v0, tf, |kind, tau| {
+        let (x, v) = osc.advance(x0, v0, tau);
+        match kind {
+            Kind::MaxX => rec.local_max(t0 + tau, x),
+            Kind::UpCross => rec.up_cross(),
+            Kind::ZeroAccel => rec.zdot(w - v),
+        }
+    });
+    let (_, v1) = osc.advance(x0, v0, tf);
+    rec.zdot(w - v1);
+    rec.history_until(t1, |ts| {
+        let tau = (ts - t0).clamp(0.0, tf);
+        (osc.advance(x0, v0, tau).0, y0 + w * tau)
+    });
+}
+
+/// Runs the event-driven solver. Parameters are assumed valid.
+pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
+    let sys = Sys::new(p);
+    let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    let t_end = p.duration_s;
+    let hg = sys.half_gap;
+    let mut rec = Recorder::new(opts.history_samples, t_end);
+    let (mut t, mut x, mut v, mut y, mut w) = (0.0, 0.0, p.v0_m_s, 0.0, 0.0);
+    rec.zdot(w - v);
+    let osc_energy = |x: f64, v: f64| 0.5 * sys.big_m * v * v + 0.5 * sys.k * x * x;
+    let mut energy = EnergyLedger { initial_j: osc_energy(x, v), ..Default::default() };
+    let mut impacts = Vec::new();
+    let mut budget = STEP_BUDGET;
+    let mut iters = FLIGHT_BUDGET;
+    let mut cancelled = false;
+    let mut del_end = 0.0;
+    while t < t_end {
+        if opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            cancelled = true;
+            break;
+        }
+        // Flight.
+        let search = find_contact(&osc, hg, x, v, y, w, t_end - t, &mut iters);
+        let (tf, wall, stop) = match search {
+            Search::Contact(tau, s) => (tau, s, false),
+            Search::None => (t_end - t, 0.0, true),
+            Search::Exhausted(tau) => (tau, 0.0, true),
+        };
+        let t1 = if matches!(search, Search::None) { t_end } else { t + tf };
+        record_flight(&osc, &mut rec, t, x, v, y, w, tf, t1);
+        let (x1, v1) = osc.advance(x, v, tf);
+        energy.dissipated_viscous_j += osc_energy(x, v) - osc_energy(x1, v1);
+        x = x1;
+        v = v1;
+        t = t1;
+        if stop {
+            break;
+        }
+        // Contact: start exactly at δ = 0.
+        let s = wall;
+        let t_start = t;
+        let u_in = s * (w - v);
+        let y0 = [x, v, 0.0, u_in, 0.0, 0.0];
+        let a_bound = osc.accel_bound(x, v);
+        let end = integrate(&sys, s, t, y0, t_end, &mut budget, a_bound, |ta, ya, ka, tb, yb, kb| {
+            rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
+            rec.history_until(tb, |ts| {
+                let (h, q) = (tb - ta, ts - ta);
+                let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
+                let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
+                (xs, xs + s * (hg + ds))
+            });
+        });
+        let ye = end.y;
+        energy.dissipated_contact_j += ye[4];
+        energy.dissipated_viscous_j += ye[5];
+        x = ye[0];
+        v = ye[1];
+        y = x + s * (hg + ye[2]);
+        w = v + s * ye[3];
+        t = end.t;
+        if end.completed {
+            impacts.push(ImpactEvent {
+                t_s: t_start,
+                wall: s as i8,
+                u_in_m_s: u_in,
+                u_out_m_s: -ye[3],
+                t_end_s: t,
+                penetration_max_m: end.pen_max,
+            });
+        } else if !end.grazed {
+            // Time limit or work budget inside a contact.
+            del_end = ye[2].max(0.0);
+            break;
+        }
+    }
+    rec.finish();
+    energy.final_mechanical_j = osc_energy(x, v)
+        + 0.5 * sys.m * w * w
+        + 0.4 * sys.k_hz * del_end * del_end * del_end.sqrt();
+    Run {
+        impacts,
+        maxima: rec.maxima,
+        zdot_abs_max_m_s: rec.zdot_abs_max,
+        energy,
+        history: rec.history,
+        final_time_s: t,
+        cancelled,
+    }
+}

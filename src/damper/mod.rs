@@ -1,0 +1,293 @@
+//! The single-unit impact damper (paper section 4, Eqs 25–27).
+//!
+//! A main mass `M` (kg) on a spring `K` (N/m) with a viscous damper `C` (N·s/m) carries an
+//! enclosure of total clearance `d` (m, `d/2` each side of the centred ball) in which an impact
+//! mass `m` (kg) moves freely. `x` is the main mass's displacement, `y` the ball's, `z = y − x`.
+//!
+//! - Flight (Eq 25): `M·x'' + C·x' + K·x = 0`, `m·y'' = 0`.
+//! - Contact (Eq 26) when the penetration `δ = |z| − d/2 > 0`: force on the ball
+//!   `−sign(z)·(K_HZ·δ^{3/2} + c1·δ')` with `δ' = sign(z)·z'`, equal and opposite on `M`;
+//!   with `no_tension` the bracket is clamped at ≥ 0. The contact ends when `δ` returns to 0.
+//! - Initial state: `x(0) = 0`, `x'(0) = v0`, `y(0) = 0`, `y'(0) = 0`.
+//!
+//! Two solvers: [`Solver::Event`] (exact flights, root-found contact instants, an adaptive
+//! Dormand–Prince integrator inside contacts; fast and step-size free) and [`Solver::Newmark`]
+//! (the paper's uniform Newmark-β reference). SI units everywhere.
+
+mod contact;
+mod event;
+mod flight;
+mod newmark;
+mod record;
+
+use serde::{Deserialize, Serialize};
+
+use crate::contact::{contact_duration, peak_approach};
+use crate::error::{check_non_negative, check_positive, ThudError};
+
+/// The design and the run: paper Table 2 notation, SI units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DamperParams {
+    /// Main mass M (kg).
+    pub main_mass_kg: f64,
+    /// Spring stiffness K (N/m, ≥ 0).
+    pub stiffness_n_m: f64,
+    /// Viscous damping C (N·s/m, ≥ 0).
+    pub damping_n_s_m: f64,
+    /// Impact mass m (kg).
+    pub impact_mass_kg: f64,
+    /// Total clearance d (m): the ball has d/2 each side when centred.
+    pub gap_m: f64,
+    /// Hertz stiffness K_HZ (N/m^1.5).
+    pub k_hz: f64,
+    /// Contact damping c1 (N·s/m, ≥ 0).
+    pub c1_n_s_m: f64,
+    /// Clamp the contact force at ≥ 0 (a contact cannot pull).
+    pub no_tension: bool,
+    /// Initial velocity of the main mass v0 (m/s); any finite value.
+    pub v0_m_s: f64,
+    /// Simulated time (s).
+    pub duration_s: f64,
+}
+
+impl DamperParams {
+    /// Paper Table 2 with the Fig 9 run: C 0.05 N·s/m, K 500 N/m, c1 20 N·s/m,
+    /// K_HZ 5.6e8 N/m^1.5, M 0.5 kg, m 40.5 g, v0 2 m/s, d 4 cm, 2 s, no tension clamp off.
+    pub fn table2() -> Self {
+        DamperParams {
+            main_mass_kg: 0.5,
+            stiffness_n_m: 500.0,
+            damping_n_s_m: 0.05,
+            impact_mass_kg: 0.0405,
+            gap_m: 0.04,
+            k_hz: 5.6e8,
+            c1_n_s_m: 20.0,
+            no_tension: false,
+            v0_m_s: 2.0,
+            duration_s: 2.0,
+        }
+    }
+
+    /// Checks every parameter; the error names the command-line parameter.
+    pub fn validate(&self) -> Result<(), ThudError> {
+        check_positive("main-mass", self.main_mass_kg, "kg")?;
+        check_non_negative("k", self.stiffness_n_m, "N/m")?;
+        check_non_negative("c", self.damping_n_s_m, "N·s/m")?;
+        check_positive("mass", self.impact_mass_kg, "kg")?;
+        check_positive("gap", self.gap_m, "m")?;
+        check_positive("k-hz", self.k_hz, "N/m^1.5")?;
+        check_non_negative("c1", self.c1_n_s_m, "N·s/m")?;
+        if !self.v0_m_s.is_finite() {
+            return Err(ThudError::invalid("v0", format!("{} m/s; must be a finite number", self.v0_m_s)));
+        }
+        check_positive("duration", self.duration_s, "s")?;
+        Ok(())
+    }
+}
+
+/// Which solver integrates the motion.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Solver {
+    /// Event-driven: exact flights, root-found contacts, adaptive DOPRI5 inside contacts.
+    Event,
+    /// The paper's uniform Newmark-β (average acceleration) with time step `dt_s` (s).
+    Newmark { dt_s: f64 },
+}
+
+impl Solver {
+    /// Newmark at the paper's step, 1e-7 s.
+    pub fn newmark_default() -> Self {
+        Solver::Newmark { dt_s: 1e-7 }
+    }
+
+    /// Checks the solver settings (`dt` finite and > 0).
+    pub fn validate(&self) -> Result<(), ThudError> {
+        match self {
+            Solver::Event => Ok(()),
+            Solver::Newmark { dt_s } => check_positive("dt", *dt_s, "s"),
+        }
+    }
+}
+
+/// One completed contact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ImpactEvent {
+    /// Contact onset time (s).
+    pub t_s: f64,
+    /// +1 for the wall on the z > 0 side, −1 otherwise.
+    pub wall: i8,
+    /// Incoming relative normal speed δ' at onset (m/s, > 0).
+    pub u_in_m_s: f64,
+    /// Outgoing relative normal speed −δ' at exit (m/s).
+    pub u_out_m_s: f64,
+    /// Contact end time (s).
+    pub t_end_s: f64,
+    /// Peak penetration δ (m).
+    pub penetration_max_m: f64,
+}
+
+/// A cycle maximum of the main mass's displacement.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Maximum {
+    pub t_s: f64,
+    pub x_m: f64,
+}
+
+/// One history sample (s, m, m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct HistoryPoint {
+    pub t_s: f64,
+    pub x_m: f64,
+    pub y_m: f64,
+}
+
+/// Energy bookkeeping (J): `initial = final_mechanical + dissipated_viscous + dissipated_contact`
+/// up to the solver's error. Mechanical energy is `½Mx'² + ½my'² + ½Kx² + (2/5)K_HZ·δ^{5/2}`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct EnergyLedger {
+    pub initial_j: f64,
+    pub final_mechanical_j: f64,
+    pub dissipated_viscous_j: f64,
+    pub dissipated_contact_j: f64,
+}
+
+/// The result of one run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Run {
+    /// Completed contacts in time order (a contact cut by the end of the run is not listed).
+    pub impacts: Vec<ImpactEvent>,
+    /// Cycle maxima of x: the largest positive x between successive upward zero crossings.
+    pub maxima: Vec<Maximum>,
+    /// Largest |z'| (m/s) over the whole run including t = 0.
+    pub zdot_abs_max_m_s: f64,
+    pub energy: EnergyLedger,
+    /// Uniform samples over [0, duration]; empty unless asked for.
+    pub history: Vec<HistoryPoint>,
+    /// Time reached (s): the duration unless cancelled (or a work cap was hit).
+    pub final_time_s: f64,
+    pub cancelled: bool,
+}
+
+/// Run options: history sampling and cooperative cancellation.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions<'a> {
+    /// Number of uniform history samples over [0, duration] (0: none).
+    pub history_samples: usize,
+    /// When set to true, the run stops (checked between impacts) and returns what it has.
+    pub cancel: Option<&'a std::sync::atomic::AtomicBool>,
+}
+
+/// Simulates one design with the chosen solver.
+pub fn simulate(p: &DamperParams, solver: Solver, opts: &RunOptions) -> Result<Run, ThudError> {
+    p.validate()?;
+    solver.validate()?;
+    Ok(match solver {
+        Solver::Event => event::run(p, opts),
+        Solver::Newmark { dt_s } => newmark::run(p, dt_s, opts),
+    })
+}
+
+/// x(t) (m) of the same structure with no damper (closed form, Eq 25 alone): the Fig 9
+/// comparison curve, from x(0) = 0, x'(0) = v0.
+pub fn free_response(p: &DamperParams, t_s: f64) -> f64 {
+    let osc = flight::Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    osc.advance(0.0, p.v0_m_s, t_s).0
+}
+
+/// One isolated contact between ball `m` and main mass `M`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SingleContact {
+    /// Outgoing relative speed (m/s); 0 if the contact never ended.
+    pub u_out_m_s: f64,
+    /// Contact duration (s).
+    pub duration_s: f64,
+    /// Peak penetration (m).
+    pub penetration_max_m: f64,
+}
+
+fn isolated_sys(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool) -> contact::Sys {
+    let p = DamperParams {
+        main_mass_kg: big_m,
+        stiffness_n_m: 0.0,
+        damping_n_s_m: 0.0,
+        impact_mass_kg: m,
+        gap_m: 0.02,
+        k_hz,
+        c1_n_s_m: c1,
+        no_tension,
+        v0_m_s: 0.0,
+        duration_s: 1.0,
+    };
+    contact::Sys::new(&p)
+}
+
+/// One isolated contact between ball `m` (kg) and main mass `big_m` (kg), no spring: relative
+/// coordinate `δ'' = −K*·(K_HZ·δ^{3/2} + c1·δ')`, `K* = (m+M)/(m·M)` (Eq 8, 26), at approach speed
+/// `u0` (m/s), by the accurate adaptive integrator. Inputs are assumed positive and finite.
+pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, u0: f64) -> SingleContact {
+    let sys = isolated_sys(m, big_m, k_hz, c1, no_tension);
+    let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
+    let mut budget = 200_000;
+    let end = contact::integrate(&sys, 1.0, 0.0, [0.0, 0.0, 0.0, u0, 0.0, 0.0], 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
+    SingleContact {
+        u_out_m_s: if end.completed { -end.y[3] } else { 0.0 },
+        duration_s: end.t,
+        penetration_max_m: end.pen_max,
+    }
+}
+
+/// The same isolated contact by the Newmark reference with step `dt_s` (s).
+pub fn single_contact_newmark(
+    m: f64,
+    big_m: f64,
+    k_hz: f64,
+    c1: f64,
+    no_tension: bool,
+    u0: f64,
+    dt_s: f64,
+) -> SingleContact {
+    newmark::single(&isolated_sys(m, big_m, k_hz, c1, no_tension), u0, dt_s)
+}
+
+/// The contact damping c1 (N·s/m) that gives restitution `r = u_out/u0` for one isolated contact
+/// (bisection on [`single_contact`]; R falls as c1 rises). `r` must be in (0, 1].
+pub fn c1_for_restitution(m: f64, big_m: f64, k_hz: f64, no_tension: bool, u0: f64, r: f64) -> Result<f64, ThudError> {
+    check_positive("mass", m, "kg")?;
+    check_positive("main-mass", big_m, "kg")?;
+    check_positive("k-hz", k_hz, "N/m^1.5")?;
+    check_positive("u0", u0, "m/s")?;
+    if !(r.is_finite() && r > 0.0 && r <= 1.0) {
+        return Err(ThudError::invalid("restitution", format!("{r}; must be in (0, 1]")));
+    }
+    if r == 1.0 {
+        return Ok(0.0);
+    }
+    let rest = |c1: f64| single_contact(m, big_m, k_hz, c1, no_tension, u0).u_out_m_s / u0;
+    // Scale: critical-like damping of the linearised contact, c ~ sqrt(k_lin / K*).
+    let kstar = (m + big_m) / (m * big_m);
+    let amax = peak_approach(u0, kstar, k_hz);
+    let c_scale = (1.5 * k_hz * amax.sqrt() / kstar).sqrt();
+    let (mut lo, mut hi) = (0.0, c_scale * 0.1);
+    let mut n = 0;
+    while rest(hi) > r {
+        lo = hi;
+        hi *= 2.0;
+        n += 1;
+        if n > 60 {
+            return Err(ThudError::invalid("restitution", format!("{r}; not reachable")));
+        }
+    }
+    // Bisection to a relative width of 1e-10 (R is smooth and monotone in c1).
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if hi - lo <= 1e-10 * hi {
+            break;
+        }
+        if rest(mid) > r {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
