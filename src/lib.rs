@@ -7,8 +7,10 @@
 pub mod acoustics;
 pub mod contact;
 pub mod damper;
+pub mod design;
 pub mod error;
 pub mod paper;
+pub mod presets;
 pub mod units;
 
 pub mod cli;
