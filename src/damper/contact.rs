@@ -47,6 +47,15 @@ impl Sys {
         }
     }
 
+    /// The unclamped bracket `K_HZ·δ₊^{3/2} + c1·δ'` (N) at state `y` and its rate (N/s), given
+    /// the state's derivative `d`.
+    #[inline]
+    pub fn raw_bracket(&self, y: &State, d: &State) -> (f64, f64) {
+        let dp = y[2].max(0.0);
+        let r = dp.sqrt();
+        (self.k_hz * dp * r + self.c1 * y[3], 1.5 * self.k_hz * r * y[3] + self.c1 * d[3])
+    }
+
     /// `(F, K_HZ·δ₊^{3/2}, clamped)`: the contact bracket (N) and its elastic part.
     #[inline]
     pub fn bracket(&self, del: f64, dd: f64) -> (f64, f64, bool) {
@@ -110,9 +119,9 @@ const E7: f64 = -1.0 / 40.0;
 pub(crate) const RTOL: f64 = 1e-9;
 
 /// One DOPRI5 step of length `h` from `y` (with `k1 = f(y)`): the new state, `f(new)` and the
-/// scaled error norm (max norm over x, x', δ, δ' with scales `sc`).
+/// scaled error norm (max norm over the state with scales `sc`).
 #[inline]
-fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 4]) -> (State, State, f64) {
+fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (State, State, f64) {
     // The energy rates do not depend on the energies: stages only need x, x', δ, δ'.
     let mut t = *y;
     for i in 0..4 {
@@ -141,7 +150,7 @@ fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 4]) -> (Sta
     }
     let k7 = rhs(sys, s, &yn);
     let mut err: f64 = 0.0;
-    for i in 0..4 {
+    for i in 0..6 {
         let e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
         let tol = RTOL * (sc[i] + y[i].abs().max(yn[i].abs()));
         err = err.max(e.abs() / tol);
@@ -165,7 +174,7 @@ pub(crate) struct ContactEnd {
 
 /// First step as a fraction of the Hertz duration estimate τ (the onset force grows like
 /// t^{3/2}, so the first step is limited by that, not by smoothness).
-const H0_FRACTION: f64 = 1.0 / 200.0;
+const H0_FRACTION: f64 = 1.0 / 1000.0;
 
 /// Integrates one contact at wall `s` from `y0` (δ = 0, δ' > 0) at time `t0` until the exit
 /// (δ returns to 0), the time limit `t_limit`, or `budget` steps run out. `a_bound` (m/s²) bounds
@@ -185,7 +194,11 @@ pub(crate) fn integrate(
     let u0 = y0[3].abs().max(1e-12);
     let amax = peak_approach(u0, sys.kstar, sys.k_hz);
     let tau = contact_duration(amax, u0);
-    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax, u0];
+    // Error scales: positions, velocities, penetration, its rate, and the relative kinetic
+    // energy ½·u0²/K* for the dissipated energies (their integrands are non-smooth where the
+    // clamp holds and at the exit, so they must be error-controlled too).
+    let e_sc = 0.5 * u0 * u0 / sys.kstar;
+    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax, u0, e_sc, e_sc];
     let mut h = tau * H0_FRACTION;
     if a_bound > 0.0 {
         h = h.min(0.1 * u0 / a_bound);
@@ -207,10 +220,44 @@ pub(crate) fn integrate(
         }
         let (yn, k7, err) = step(sys, s, &y, &k1, h, &sc);
         *budget -= 1;
+        if sys.no_tension && sys.c1 > 0.0 && had_pos {
+            // The clamp switches inside the step (the unclamped bracket changes sign): stop the
+            // step there, so that no step straddles the kink of the force law.
+            let b0 = sys.raw_bracket(&y, &k1).0;
+            let b1 = sys.raw_bracket(&yn, &k7).0;
+            if b0 != 0.0 && (b0 > 0.0) != (b1 > 0.0) {
+                let sg = b0.signum();
+                let guess = h * b0 / (b0 - b1);
+                let tol = 1e-14 * sys.c1.max(1e-300) * sc[3];
+                let (hc, yc, kc, err_c) = refine_root(sys, s, &y, &k1, h, guess, &sc, budget, |st, d| {
+                    let (v, r) = sys.raw_bracket(st, d);
+                    (sg * v, sg * r)
+                }, tol);
+                if err_c <= 1.0 || hc <= 1e-14 * tau {
+                    if y[3] > 0.0 && yc[3] <= 0.0 {
+                        pen = pen.max(refine_peak(&y, &k1, hc, &yc, &kc));
+                    }
+                    pen = pen.max(yc[2]);
+                    obs(t, &y, &k1, t + hc, &yc, &kc);
+                    t += hc;
+                    y = yc;
+                    k1 = kc;
+                    if yc[2] <= 0.0 {
+                        y[2] = 0.0;
+                        return ContactEnd { t, y, completed: true, grazed: false, pen_max: pen };
+                    }
+                } else {
+                    h = hc * (0.9 * err_c.powf(-0.2)).clamp(0.2, 0.9);
+                }
+                continue;
+            }
+        }
         if had_pos && yn[2] <= 0.0 {
             // The exit lies in this trial step: locate it with real steps, then judge the error
             // of the step that ends there (the extended force law is non-smooth only beyond it).
-            let (he, mut ye, ke, err_e) = refine_exit(sys, s, &y, &k1, h, &yn, &k7, &sc, budget);
+            let guess = quintic_root(&y, &k1, &yn, &k7, h, 0);
+            let (he, mut ye, ke, err_e) =
+                refine_root(sys, s, &y, &k1, h, guess, &sc, budget, |st, _| (st[2], st[3]), 1e-14 * sc[2]);
             if err_e <= 1.0 || he <= 1e-14 * tau {
                 if y[3] > 0.0 && ye[3] <= 0.0 {
                     pen = pen.max(refine_peak(&y, &k1, he, &ye, &ke));
@@ -360,41 +407,42 @@ fn refine_peak(y: &State, k1: &State, h: f64, yn: &State, k7: &State) -> f64 {
     quintic(y, k1, yn, k7, h, q).0.max(y[2]).max(yn[2])
 }
 
-/// The exit inside a trial step where δ goes from > 0 to ≤ 0: a quintic-Hermite first guess,
-/// then Newton on the real step length for δ(h*) = 0 (derivative δ'), safeguarded by bisection.
+/// A root of `g` inside a trial step: Newton on the real step length from `guess`, safeguarded by
+/// bisection; `g(state, f(state))` returns the function (> 0 at the step start) and its rate.
 /// Returns `(h*, state, f(state), error norm of that step)`.
 #[allow(clippy::too_many_arguments)]
-fn refine_exit(
+fn refine_root(
     sys: &Sys,
     s: f64,
     y: &State,
     k1: &State,
     h: f64,
-    yn: &State,
-    k7: &State,
-    sc: &[f64; 4],
+    guess: f64,
+    sc: &[f64; 6],
     budget: &mut usize,
+    g: impl Fn(&State, &State) -> (f64, f64),
+    g_tol: f64,
 ) -> (f64, State, State, f64) {
     let (mut lo, mut hi) = (0.0, h);
-    let mut hh = quintic_root(y, k1, yn, k7, h, 0);
-    let mut out = (h, *yn, *k7, f64::INFINITY);
-    for _ in 0..12 {
+    let mut hh = guess;
+    let mut out = (h, *y, *k1, f64::INFINITY);
+    for _ in 0..16 {
         if !(hh > lo && hh < hi) {
             hh = 0.5 * (lo + hi);
         }
         let (ys, ks, err) = step(sys, s, y, k1, hh, sc);
         *budget = budget.saturating_sub(1);
         out = (hh, ys, ks, err);
-        let g = ys[2];
-        if g > 0.0 {
+        let (gv, gd) = g(&ys, &ks);
+        if gv > 0.0 {
             lo = hh;
         } else {
             hi = hh;
         }
-        if g.abs() <= 1e-14 * sc[2] || ys[3] == 0.0 {
+        if gv.abs() <= g_tol || gd == 0.0 {
             break;
         }
-        let next = hh - g / ys[3];
+        let next = hh - gv / gd;
         if (next - hh).abs() <= 1e-16 * h {
             break;
         }
