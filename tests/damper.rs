@@ -75,7 +75,6 @@ fn compare_first_impacts(p: DamperParams, n: usize) {
     let ev = simulate(&p, Solver::Event, &opts()).unwrap();
     let nm = simulate(&p, Solver::Newmark { dt_s: 1e-7 }, &opts()).unwrap();
     assert!(ev.impacts.len() >= n && nm.impacts.len() >= n, "{} {}", ev.impacts.len(), nm.impacts.len());
-    eprintln!("{} / {} impacts", ev.impacts.len(), nm.impacts.len());
     for (a, b) in ev.impacts.iter().zip(&nm.impacts).take(n) {
         assert_eq!(a.wall, b.wall);
         assert!((a.t_s - b.t_s).abs() < 1e-6, "{a:?} {b:?}");
