@@ -16,7 +16,14 @@ fn newmark_fig9(c: &mut Criterion) {
     let mut g = c.benchmark_group("newmark");
     g.sample_size(10);
     g.bench_function("newmark fig9 2 s dt 1e-7", |b| {
-        b.iter(|| simulate(black_box(&p), Solver::Newmark { dt_s: 1e-7 }, &RunOptions::default()).unwrap())
+        b.iter(|| {
+            simulate(
+                black_box(&p),
+                Solver::Newmark { dt_s: 1e-7 },
+                &RunOptions::default(),
+            )
+            .unwrap()
+        })
     });
     g.finish();
 }
@@ -36,7 +43,10 @@ fn event_sweep(c: &mut Criterion) {
                         gap_m: 0.02 + 0.03 * j as f64 / 19.0,
                         ..base
                     };
-                    n += simulate(&p, Solver::Event, &RunOptions::default()).unwrap().impacts.len();
+                    n += simulate(&p, Solver::Event, &RunOptions::default())
+                        .unwrap()
+                        .impacts
+                        .len();
                 }
             }
             n

@@ -11,17 +11,35 @@ fn opts() -> RunOptions<'static> {
 }
 
 fn fig9(duration: f64) -> DamperParams {
-    DamperParams { duration_s: duration, ..DamperParams::table2() }
+    DamperParams {
+        duration_s: duration,
+        ..DamperParams::table2()
+    }
 }
 
 fn check_fig9(run: &Run, who: &str) {
     let i1 = run.impacts[0];
     let i2 = run.impacts[1];
     assert!((i1.t_s - 0.0101800).abs() < 1e-6, "{who}: t1 {}", i1.t_s);
-    assert!((i1.u_in_m_s - 1.89529).abs() < 5e-5, "{who}: u_in {}", i1.u_in_m_s);
-    assert!((i1.u_out_m_s - 1.76371).abs() < 5e-5, "{who}: u_out {}", i1.u_out_m_s);
-    assert!((i2.u_in_m_s - 2.43469).abs() < 5e-5, "{who}: u_in2 {}", i2.u_in_m_s);
-    assert_eq!(i1.wall, -1, "{who}: the main mass moves up first, so the ball meets the lower wall");
+    assert!(
+        (i1.u_in_m_s - 1.89529).abs() < 5e-5,
+        "{who}: u_in {}",
+        i1.u_in_m_s
+    );
+    assert!(
+        (i1.u_out_m_s - 1.76371).abs() < 5e-5,
+        "{who}: u_out {}",
+        i1.u_out_m_s
+    );
+    assert!(
+        (i2.u_in_m_s - 2.43469).abs() < 5e-5,
+        "{who}: u_in2 {}",
+        i2.u_in_m_s
+    );
+    assert_eq!(
+        i1.wall, -1,
+        "{who}: the main mass moves up first, so the ball meets the lower wall"
+    );
     assert_eq!(i2.wall, 1);
 }
 
@@ -49,12 +67,24 @@ fn undamped_single_contact_matches_closed_form() {
     for &u0 in &[1.3, 1.4, 2.2] {
         let tau = contact_duration(peak_approach(u0, k_star(m, big_m), k), u0);
         let acc = single_contact(m, big_m, k, 0.0, false, u0);
-        assert!((acc.duration_s / tau - 1.0).abs() < 1e-6, "accurate τ {} vs {tau}", acc.duration_s);
-        assert!((acc.u_out_m_s / u0 - 1.0).abs() < 1e-6, "elastic rebound {}", acc.u_out_m_s);
+        assert!(
+            (acc.duration_s / tau - 1.0).abs() < 1e-6,
+            "accurate τ {} vs {tau}",
+            acc.duration_s
+        );
+        assert!(
+            (acc.u_out_m_s / u0 - 1.0).abs() < 1e-6,
+            "elastic rebound {}",
+            acc.u_out_m_s
+        );
         let amax = peak_approach(u0, k_star(m, big_m), k);
         assert!((acc.penetration_max_m / amax - 1.0).abs() < 1e-6);
         let nm = single_contact_newmark(m, big_m, k, 0.0, false, u0, 1e-7);
-        assert!((nm.duration_s / tau - 1.0).abs() < 5e-5, "newmark τ {} vs {tau}", nm.duration_s);
+        assert!(
+            (nm.duration_s / tau - 1.0).abs() < 5e-5,
+            "newmark τ {} vs {tau}",
+            nm.duration_s
+        );
     }
 }
 
@@ -74,14 +104,22 @@ fn contact_damping_lengthens_the_contact() {
 fn compare_first_impacts(p: DamperParams, n: usize) {
     let ev = simulate(&p, Solver::Event, &opts()).unwrap();
     let nm = simulate(&p, Solver::Newmark { dt_s: 1e-7 }, &opts()).unwrap();
-    assert!(ev.impacts.len() >= n && nm.impacts.len() >= n, "{} {}", ev.impacts.len(), nm.impacts.len());
+    assert!(
+        ev.impacts.len() >= n && nm.impacts.len() >= n,
+        "{} {}",
+        ev.impacts.len(),
+        nm.impacts.len()
+    );
     for (a, b) in ev.impacts.iter().zip(&nm.impacts).take(n) {
         assert_eq!(a.wall, b.wall);
         assert!((a.t_s - b.t_s).abs() < 1e-6, "{a:?} {b:?}");
         assert!((a.t_end_s - b.t_end_s).abs() < 1e-6, "{a:?} {b:?}");
         assert!((a.u_in_m_s - b.u_in_m_s).abs() < 5e-5, "{a:?} {b:?}");
         assert!((a.u_out_m_s - b.u_out_m_s).abs() < 5e-5, "{a:?} {b:?}");
-        assert!((a.penetration_max_m / b.penetration_max_m - 1.0).abs() < 1e-4, "{a:?} {b:?}");
+        assert!(
+            (a.penetration_max_m / b.penetration_max_m - 1.0).abs() < 1e-4,
+            "{a:?} {b:?}"
+        );
     }
 }
 
@@ -89,11 +127,23 @@ fn compare_first_impacts(p: DamperParams, n: usize) {
 fn solvers_agree_on_other_designs() {
     let base = DamperParams::table2();
     compare_first_impacts(
-        DamperParams { impact_mass_kg: 0.03, gap_m: 0.02, v0_m_s: 1.4, duration_s: 0.15, ..base },
+        DamperParams {
+            impact_mass_kg: 0.03,
+            gap_m: 0.02,
+            v0_m_s: 1.4,
+            duration_s: 0.15,
+            ..base
+        },
         5,
     );
     compare_first_impacts(
-        DamperParams { impact_mass_kg: 0.08, gap_m: 0.03, v0_m_s: 2.5, duration_s: 0.15, ..base },
+        DamperParams {
+            impact_mass_kg: 0.08,
+            gap_m: 0.03,
+            v0_m_s: 2.5,
+            duration_s: 0.15,
+            ..base
+        },
         5,
     );
     compare_first_impacts(
@@ -112,10 +162,22 @@ fn solvers_agree_on_other_designs() {
 
 #[test]
 fn no_impact_is_pure_viscous_decay() {
-    let p = DamperParams { v0_m_s: 0.5, gap_m: 0.04, ..DamperParams::table2() };
+    let p = DamperParams {
+        v0_m_s: 0.5,
+        gap_m: 0.04,
+        ..DamperParams::table2()
+    };
     let w = (p.stiffness_n_m / p.main_mass_kg).sqrt();
     assert!(p.gap_m > 2.0 * p.v0_m_s / w);
-    let run = simulate(&p, Solver::Event, &RunOptions { history_samples: 501, cancel: None }).unwrap();
+    let run = simulate(
+        &p,
+        Solver::Event,
+        &RunOptions {
+            history_samples: 501,
+            cancel: None,
+        },
+    )
+    .unwrap();
     assert!(run.impacts.is_empty());
     assert_eq!(run.history.len(), 501);
     for h in &run.history {
@@ -131,17 +193,27 @@ fn no_impact_is_pure_viscous_decay() {
     // Cycle maxima of the free decay: one per period.
     assert!(run.maxima.len() >= 9, "{}", run.maxima.len());
     let e = &run.energy;
-    assert!((e.final_mechanical_j + e.dissipated_viscous_j - e.initial_j).abs() < 1e-12 * e.initial_j);
+    assert!(
+        (e.final_mechanical_j + e.dissipated_viscous_j - e.initial_j).abs() < 1e-12 * e.initial_j
+    );
     assert_eq!(e.dissipated_contact_j, 0.0);
 }
 
 #[test]
 fn energy_is_conserved_without_damping() {
-    let p = DamperParams { damping_n_s_m: 0.0, c1_n_s_m: 0.0, duration_s: 1.0, ..DamperParams::table2() };
+    let p = DamperParams {
+        damping_n_s_m: 0.0,
+        c1_n_s_m: 0.0,
+        duration_s: 1.0,
+        ..DamperParams::table2()
+    };
     let run = simulate(&p, Solver::Event, &opts()).unwrap();
     assert!(run.impacts.len() > 10);
     let e = run.energy;
-    assert!((e.final_mechanical_j / e.initial_j - 1.0).abs() < 1e-6, "{e:?}");
+    assert!(
+        (e.final_mechanical_j / e.initial_j - 1.0).abs() < 1e-6,
+        "{e:?}"
+    );
     for i in &run.impacts {
         assert!((i.u_out_m_s / i.u_in_m_s - 1.0).abs() < 1e-3, "{i:?}");
     }
@@ -150,7 +222,10 @@ fn energy_is_conserved_without_damping() {
 #[test]
 fn energy_ledger_balances_with_damping() {
     for nt in [false, true] {
-        let p = DamperParams { no_tension: nt, ..DamperParams::table2() };
+        let p = DamperParams {
+            no_tension: nt,
+            ..DamperParams::table2()
+        };
         let e = simulate(&p, Solver::Event, &opts()).unwrap().energy;
         let total = e.final_mechanical_j + e.dissipated_viscous_j + e.dissipated_contact_j;
         assert!((total / e.initial_j - 1.0).abs() < 1e-6, "{e:?}");
@@ -161,15 +236,31 @@ fn energy_ledger_balances_with_damping() {
 #[test]
 fn momentum_is_conserved_through_contacts() {
     // K = C = 0: M·x' + m·y' is exactly conserved, so the centre of mass moves uniformly.
-    let p = DamperParams { stiffness_n_m: 0.0, damping_n_s_m: 0.0, duration_s: 0.5, ..DamperParams::table2() };
-    let run = simulate(&p, Solver::Event, &RunOptions { history_samples: 2001, cancel: None }).unwrap();
+    let p = DamperParams {
+        stiffness_n_m: 0.0,
+        damping_n_s_m: 0.0,
+        duration_s: 0.5,
+        ..DamperParams::table2()
+    };
+    let run = simulate(
+        &p,
+        Solver::Event,
+        &RunOptions {
+            history_samples: 2001,
+            cancel: None,
+        },
+    )
+    .unwrap();
     assert!(run.impacts.len() >= 10, "{}", run.impacts.len());
     let (big_m, m) = (p.main_mass_kg, p.impact_mass_kg);
     let v_cm = big_m * p.v0_m_s / (big_m + m);
     for h in &run.history {
         let x_cm = (big_m * h.x_m + m * h.y_m) / (big_m + m);
         let want = v_cm * h.t_s;
-        assert!((x_cm - want).abs() <= 1e-9 * (want.abs() + p.gap_m), "{h:?}: {x_cm} vs {want}");
+        assert!(
+            (x_cm - want).abs() <= 1e-9 * (want.abs() + p.gap_m),
+            "{h:?}: {x_cm} vs {want}"
+        );
     }
 }
 
@@ -193,7 +284,10 @@ fn c1_for_restitution_inverts_single_contact() {
     let r20 = single_contact(0.0405, 0.5, 5.6e8, 20.0, false, 1.4).u_out_m_s / 1.4;
     let c1 = c1_for_restitution(0.0405, 0.5, 5.6e8, false, 1.4, r20).unwrap();
     assert!((c1 - 20.0).abs() < 1e-4, "{c1}");
-    assert_eq!(c1_for_restitution(0.0405, 0.5, 5.6e8, false, 1.4, 1.0).unwrap(), 0.0);
+    assert_eq!(
+        c1_for_restitution(0.0405, 0.5, 5.6e8, false, 1.4, 1.0).unwrap(),
+        0.0
+    );
     for bad in [0.0, -0.1, 1.2, f64::NAN] {
         assert!(c1_for_restitution(0.0405, 0.5, 5.6e8, false, 1.4, bad).is_err());
     }
@@ -203,18 +297,84 @@ fn c1_for_restitution_inverts_single_contact() {
 fn invalid_parameters_are_named() {
     let base = DamperParams::table2();
     let cases: Vec<(DamperParams, &str)> = vec![
-        (DamperParams { impact_mass_kg: 0.0, ..base }, "mass"),
-        (DamperParams { impact_mass_kg: -1.0, ..base }, "mass"),
+        (
+            DamperParams {
+                impact_mass_kg: 0.0,
+                ..base
+            },
+            "mass",
+        ),
+        (
+            DamperParams {
+                impact_mass_kg: -1.0,
+                ..base
+            },
+            "mass",
+        ),
         (DamperParams { gap_m: 0.0, ..base }, "gap"),
-        (DamperParams { gap_m: -0.01, ..base }, "gap"),
-        (DamperParams { v0_m_s: f64::NAN, ..base }, "v0"),
-        (DamperParams { v0_m_s: f64::INFINITY, ..base }, "v0"),
-        (DamperParams { duration_s: 0.0, ..base }, "duration"),
-        (DamperParams { duration_s: -1.0, ..base }, "duration"),
-        (DamperParams { main_mass_kg: 0.0, ..base }, "main-mass"),
-        (DamperParams { stiffness_n_m: -1.0, ..base }, "k"),
-        (DamperParams { damping_n_s_m: f64::NAN, ..base }, "c"),
-        (DamperParams { c1_n_s_m: -1.0, ..base }, "c1"),
+        (
+            DamperParams {
+                gap_m: -0.01,
+                ..base
+            },
+            "gap",
+        ),
+        (
+            DamperParams {
+                v0_m_s: f64::NAN,
+                ..base
+            },
+            "v0",
+        ),
+        (
+            DamperParams {
+                v0_m_s: f64::INFINITY,
+                ..base
+            },
+            "v0",
+        ),
+        (
+            DamperParams {
+                duration_s: 0.0,
+                ..base
+            },
+            "duration",
+        ),
+        (
+            DamperParams {
+                duration_s: -1.0,
+                ..base
+            },
+            "duration",
+        ),
+        (
+            DamperParams {
+                main_mass_kg: 0.0,
+                ..base
+            },
+            "main-mass",
+        ),
+        (
+            DamperParams {
+                stiffness_n_m: -1.0,
+                ..base
+            },
+            "k",
+        ),
+        (
+            DamperParams {
+                damping_n_s_m: f64::NAN,
+                ..base
+            },
+            "c",
+        ),
+        (
+            DamperParams {
+                c1_n_s_m: -1.0,
+                ..base
+            },
+            "c1",
+        ),
         (DamperParams { k_hz: 0.0, ..base }, "k-hz"),
     ];
     for (p, name) in cases {
@@ -228,14 +388,25 @@ fn invalid_parameters_are_named() {
     }
     assert!(base.validate().is_ok());
     // v0 = 0 is valid: nothing moves.
-    let still = simulate(&DamperParams { v0_m_s: 0.0, ..base }, Solver::Event, &opts()).unwrap();
+    let still = simulate(
+        &DamperParams {
+            v0_m_s: 0.0,
+            ..base
+        },
+        Solver::Event,
+        &opts(),
+    )
+    .unwrap();
     assert!(still.impacts.is_empty() && still.maxima.is_empty());
 }
 
 #[test]
 fn cancellation_returns_partial_run() {
     let flag = AtomicBool::new(true);
-    let o = RunOptions { history_samples: 10, cancel: Some(&flag) };
+    let o = RunOptions {
+        history_samples: 10,
+        cancel: Some(&flag),
+    };
     for solver in [Solver::Event, Solver::Newmark { dt_s: 1e-6 }] {
         let run = simulate(&DamperParams::table2(), solver, &o).unwrap();
         assert!(run.cancelled);
@@ -246,34 +417,88 @@ fn cancellation_returns_partial_run() {
 #[test]
 fn history_is_uniform_and_continuous() {
     let n = 4001;
-    let run = simulate(&fig9(0.5), Solver::Event, &RunOptions { history_samples: n, cancel: None }).unwrap();
+    let run = simulate(
+        &fig9(0.5),
+        Solver::Event,
+        &RunOptions {
+            history_samples: n,
+            cancel: None,
+        },
+    )
+    .unwrap();
     assert_eq!(run.history.len(), n);
-    assert_eq!(run.history[0], HistoryPoint { t_s: 0.0, x_m: 0.0, y_m: 0.0 });
+    assert_eq!(
+        run.history[0],
+        HistoryPoint {
+            t_s: 0.0,
+            x_m: 0.0,
+            y_m: 0.0
+        }
+    );
     assert_eq!(run.history[n - 1].t_s, 0.5);
     for w in run.history.windows(2) {
         assert!((w[1].t_s - w[0].t_s - 0.5 / (n - 1) as f64).abs() < 1e-12);
-        assert!((w[1].x_m - w[0].x_m).abs() < 3.0 * 0.5 / (n - 1) as f64, "{w:?}");
+        assert!(
+            (w[1].x_m - w[0].x_m).abs() < 3.0 * 0.5 / (n - 1) as f64,
+            "{w:?}"
+        );
         // The ball stays inside the enclosure up to the (tiny) penetration.
         assert!((w[1].y_m - w[1].x_m).abs() < 0.02 + 3e-4);
     }
     // Newmark history agrees with the event history before the motion becomes chaotic.
-    let nm = simulate(&fig9(0.05), Solver::Newmark { dt_s: 1e-7 }, &RunOptions { history_samples: 101, cancel: None })
-        .unwrap();
-    let ev = simulate(&fig9(0.05), Solver::Event, &RunOptions { history_samples: 101, cancel: None }).unwrap();
+    let nm = simulate(
+        &fig9(0.05),
+        Solver::Newmark { dt_s: 1e-7 },
+        &RunOptions {
+            history_samples: 101,
+            cancel: None,
+        },
+    )
+    .unwrap();
+    let ev = simulate(
+        &fig9(0.05),
+        Solver::Event,
+        &RunOptions {
+            history_samples: 101,
+            cancel: None,
+        },
+    )
+    .unwrap();
     for (a, b) in ev.history.iter().zip(&nm.history) {
-        assert!((a.x_m - b.x_m).abs() < 1e-6 && (a.y_m - b.y_m).abs() < 1e-6, "{a:?} {b:?}");
+        assert!(
+            (a.x_m - b.x_m).abs() < 1e-6 && (a.y_m - b.y_m).abs() < 1e-6,
+            "{a:?} {b:?}"
+        );
     }
 }
 
 #[test]
 fn regimes_without_spring_or_damper_run() {
     // K = 0 and C = 0 (free masses), K = 0 < C (overdamped), heavy damping (overdamped).
-    let base = DamperParams { duration_s: 0.3, gap_m: 0.004, ..DamperParams::table2() };
+    let base = DamperParams {
+        duration_s: 0.3,
+        gap_m: 0.004,
+        ..DamperParams::table2()
+    };
     for p in [
-        DamperParams { stiffness_n_m: 0.0, damping_n_s_m: 0.0, ..base },
-        DamperParams { stiffness_n_m: 0.0, damping_n_s_m: 1.0, ..base },
-        DamperParams { damping_n_s_m: 100.0, ..base },
-        DamperParams { damping_n_s_m: 2.0 * (500.0f64 * 0.5).sqrt(), ..base },
+        DamperParams {
+            stiffness_n_m: 0.0,
+            damping_n_s_m: 0.0,
+            ..base
+        },
+        DamperParams {
+            stiffness_n_m: 0.0,
+            damping_n_s_m: 1.0,
+            ..base
+        },
+        DamperParams {
+            damping_n_s_m: 100.0,
+            ..base
+        },
+        DamperParams {
+            damping_n_s_m: 2.0 * (500.0f64 * 0.5).sqrt(),
+            ..base
+        },
     ] {
         let run = simulate(&p, Solver::Event, &opts()).unwrap();
         let e = run.energy;

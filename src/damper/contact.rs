@@ -53,7 +53,10 @@ impl Sys {
     pub fn raw_bracket(&self, y: &State, d: &State) -> (f64, f64) {
         let dp = y[2].max(0.0);
         let r = dp.sqrt();
-        (self.k_hz * dp * r + self.c1 * y[3], 1.5 * self.k_hz * r * y[3] + self.c1 * d[3])
+        (
+            self.k_hz * dp * r + self.c1 * y[3],
+            1.5 * self.k_hz * r * y[3] + self.c1 * d[3],
+        )
     }
 
     /// `(F, K_HZ·δ₊^{3/2}, clamped)`: the contact bracket (N) and its elastic part.
@@ -128,7 +131,12 @@ fn acc(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64) -> (f64, f64, f64, 
         f = 0.0;
     }
     let spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
-    (spring + s * f * sys.inv_big_m, -sys.kstar * f - s * spring, (f - hz) * dd, sys.c * v * v)
+    (
+        spring + s * f * sys.inv_big_m,
+        -sys.kstar * f - s * spring,
+        (f - hz) * dd,
+        sys.c * v * v,
+    )
 }
 
 /// One DOPRI5 step of length `h` from `y` (with `k1 = f(y)`): the new state, `f(new)` and the
@@ -145,8 +153,12 @@ fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (Sta
     let (a2, b2, _, _) = acc(sys, s, x2, v2, d2, dd2);
     let (q2, r2) = (v2, dd2);
 
-    let (x3, v3, d3, dd3) =
-        st(A31 * q1 + A32 * q2, A31 * a1 + A32 * a2, A31 * r1 + A32 * r2, A31 * b1 + A32 * b2);
+    let (x3, v3, d3, dd3) = st(
+        A31 * q1 + A32 * q2,
+        A31 * a1 + A32 * a2,
+        A31 * r1 + A32 * r2,
+        A31 * b1 + A32 * b2,
+    );
     let (a3, b3, c3, e3) = acc(sys, s, x3, v3, d3, dd3);
     let (q3, r3) = (v3, dd3);
 
@@ -177,7 +189,9 @@ fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (Sta
     let (a6, b6, c6, e6) = acc(sys, s, x6, v6, d6, dd6);
     let (q6, r6) = (v6, dd6);
 
-    let comb = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64| B1 * k1 + B3 * k3 + B4 * k4 + B5 * k5 + B6 * k6;
+    let comb = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64| {
+        B1 * k1 + B3 * k3 + B4 * k4 + B5 * k5 + B6 * k6
+    };
     let yn = [
         x + h * comb(q1, q3, q4, q5, q6),
         v + h * comb(a1, a3, a4, a5, a6),
@@ -262,7 +276,14 @@ fn integrate_impl(
     // energy ½·u0²/K* for the dissipated energies (their integrands are non-smooth where the
     // clamp holds and at the exit, so they must be error-controlled too).
     let e_sc = 0.5 * u0 * u0 / sys.kstar;
-    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax, u0, e_sc, e_sc];
+    let sc = [
+        2.0 * sys.half_gap + y0[0].abs(),
+        y0[1].abs() + u0,
+        amax,
+        u0,
+        e_sc,
+        e_sc,
+    ];
     let mut h = tau * H0_FRACTION;
     if a_bound > 0.0 {
         h = h.min(0.1 * u0 / a_bound);
@@ -276,7 +297,13 @@ fn integrate_impl(
     let mut err_old: f64 = -13.3;
     loop {
         if *budget == 0 {
-            return ContactEnd { t, y, completed: false, grazed: false, pen_max: pen };
+            return ContactEnd {
+                t,
+                y,
+                completed: false,
+                grazed: false,
+                pen_max: pen,
+            };
         }
         let last = t + h >= t_limit;
         if last {
@@ -293,10 +320,21 @@ fn integrate_impl(
                 let sg = b0.signum();
                 let guess = h * b0 / (b0 - b1);
                 let tol = 1e-14 * sys.c1.max(1e-300) * sc[3];
-                let (hc, yc, kc, err_c) = refine_root(sys, s, &y, &k1, h, guess, &sc, budget, |st, d| {
-                    let (v, r) = sys.raw_bracket(st, d);
-                    (sg * v, sg * r)
-                }, tol);
+                let (hc, yc, kc, err_c) = refine_root(
+                    sys,
+                    s,
+                    &y,
+                    &k1,
+                    h,
+                    guess,
+                    &sc,
+                    budget,
+                    |st, d| {
+                        let (v, r) = sys.raw_bracket(st, d);
+                        (sg * v, sg * r)
+                    },
+                    tol,
+                );
                 if err_c <= 1.0 || hc <= 1e-14 * tau {
                     if y[3] > 0.0 && yc[3] <= 0.0 {
                         pen = pen.max(refine_peak(&y, &k1, hc, &yc, &kc));
@@ -308,7 +346,13 @@ fn integrate_impl(
                     k1 = kc;
                     if yc[2] <= 0.0 {
                         y[2] = 0.0;
-                        return ContactEnd { t, y, completed: true, grazed: false, pen_max: pen };
+                        return ContactEnd {
+                            t,
+                            y,
+                            completed: true,
+                            grazed: false,
+                            pen_max: pen,
+                        };
                     }
                 } else {
                     h = hc * (0.9 * err_c.powf(-0.2)).clamp(0.2, 0.9);
@@ -320,21 +364,41 @@ fn integrate_impl(
             // The exit lies in this trial step: locate it with real steps, then judge the error
             // of the step that ends there (the extended force law is non-smooth only beyond it).
             let guess = quintic_root(&y, &k1, &yn, &k7, h, 0);
-            let (he, mut ye, ke, err_e) =
-                refine_root(sys, s, &y, &k1, h, guess, &sc, budget, |st, _| (st[2], st[3]), 1e-14 * sc[2]);
+            let (he, mut ye, ke, err_e) = refine_root(
+                sys,
+                s,
+                &y,
+                &k1,
+                h,
+                guess,
+                &sc,
+                budget,
+                |st, _| (st[2], st[3]),
+                1e-14 * sc[2],
+            );
             if err_e <= 1.0 || he <= 1e-14 * tau {
                 if y[3] > 0.0 && ye[3] <= 0.0 {
                     pen = pen.max(refine_peak(&y, &k1, he, &ye, &ke));
                 }
                 ye[2] = 0.0;
                 obs(t, &y, &k1, t + he, &ye, &ke);
-                return ContactEnd { t: t + he, y: ye, completed: true, grazed: false, pen_max: pen };
+                return ContactEnd {
+                    t: t + he,
+                    y: ye,
+                    completed: true,
+                    grazed: false,
+                    pen_max: pen,
+                };
             }
             h = he * (0.9 * err_e.powf(-0.2)).clamp(0.2, 0.9);
             continue;
         }
-        if !(err <= 1.0) {
-            let f = if err.is_finite() { (0.9 * err.powf(-0.2)).max(0.2) } else { 0.2 };
+        if err.is_nan() || err > 1.0 {
+            let f = if err.is_finite() {
+                (0.9 * err.powf(-0.2)).max(0.2)
+            } else {
+                0.2
+            };
             h *= f;
             continue;
         }
@@ -343,7 +407,13 @@ fn integrate_impl(
             if h <= 1e-14 * tau.max(1e-12) || last {
                 obs(t, &y, &k1, t + h, &yn, &k7);
                 let t1 = if last { t_limit } else { t + h };
-                return ContactEnd { t: t1, y: yn, completed: false, grazed: true, pen_max: 0.0 };
+                return ContactEnd {
+                    t: t1,
+                    y: yn,
+                    completed: false,
+                    grazed: true,
+                    pen_max: 0.0,
+                };
             }
             h *= 0.25;
             continue;
@@ -355,7 +425,13 @@ fn integrate_impl(
         pen = pen.max(yn[2]);
         obs(t, &y, &k1, if last { t_limit } else { t + h }, &yn, &k7);
         if last {
-            return ContactEnd { t: t_limit, y: yn, completed: false, grazed: false, pen_max: pen };
+            return ContactEnd {
+                t: t_limit,
+                y: yn,
+                completed: false,
+                grazed: false,
+                pen_max: pen,
+            };
         }
         t += h;
         y = yn;
@@ -374,7 +450,7 @@ fn fast_log2(x: f64) -> f64 {
     let bits = x.to_bits();
     let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
     let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000); // [1, 2)
-    // ln m = 2·atanh(q), q = (m − 1)/(m + 1) ∈ [0, 1/3): three terms give < 2e-4.
+                                                                                    // ln m = 2·atanh(q), q = (m − 1)/(m + 1) ∈ [0, 1/3): three terms give < 2e-4.
     let q = (m - 1.0) / (m + 1.0);
     let q2 = q * q;
     e as f64 + 2.885_390_081_777_926_8 * q * (1.0 + q2 * (1.0 / 3.0 + q2 * 0.2))
@@ -386,7 +462,8 @@ fn fast_exp2(y: f64) -> f64 {
     let y = y.clamp(-1000.0, 1000.0);
     let fl = y.floor();
     let f = y - fl;
-    let p = 1.0 + f * (0.693_147_2 + f * (0.240_226_5 + f * (0.055_504_1 + f * 0.009_618_1)));
+    let p = 1.0
+        + f * (std::f64::consts::LN_2 + f * (0.240_226_5 + f * (0.055_504_1 + f * 0.009_618_1)));
     p * f64::from_bits(((fl as i64 + 1023) as u64) << 52)
 }
 
@@ -429,7 +506,11 @@ fn quintic_root(y: &State, k1: &State, yn: &State, k7: &State, h: f64, which: us
         }
     };
     let (mut lo, mut hi) = (0.0, h);
-    let (mut glo, mut ghi) = if which == 0 { (y[2], yn[2]) } else { (y[3], yn[3]) };
+    let (mut glo, mut ghi) = if which == 0 {
+        (y[2], yn[2])
+    } else {
+        (y[3], yn[3])
+    };
     let scale = glo.abs().max(ghi.abs());
     let mut side = 0;
     let mut q = 0.5 * h;
@@ -523,7 +604,12 @@ mod tests {
     #[test]
     fn fast_log_exp_are_close() {
         for &x in &[1e-10, 3e-7, 0.01, 0.5, 1.0, 1.7, 3.3, 1e3] {
-            assert!((fast_log2(x) - x.log2()).abs() < 2e-3, "{x}: {} {}", fast_log2(x), x.log2());
+            assert!(
+                (fast_log2(x) - x.log2()).abs() < 2e-3,
+                "{x}: {} {}",
+                fast_log2(x),
+                x.log2()
+            );
         }
         for &y in &[-30.0, -3.3, -0.5, 0.0, 0.7, 2.2] {
             let f: f64 = fast_exp2(y);

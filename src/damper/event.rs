@@ -57,7 +57,11 @@ fn find_contact(
     let s_min = 1e-15;
     let mut tau = 0.0;
     loop {
-        let (x, v) = if tau == 0.0 { (x0, v0) } else { osc.advance(x0, v0, tau) };
+        let (x, v) = if tau == 0.0 {
+            (x0, v0)
+        } else {
+            osc.advance(x0, v0, tau)
+        };
         let z = y0 + w * tau - x;
         let zd = w - v;
         let gp = hg - z;
@@ -68,7 +72,9 @@ fn find_contact(
         if gm <= gtol && zd < 0.0 {
             return Search::Contact(tau, -1.0);
         }
-        let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).max(s_min);
+        let st = safe_step(gp.max(0.0), -zd, a)
+            .min(safe_step(gm.max(0.0), zd, a))
+            .max(s_min);
         if tau + st >= t_max {
             return Search::None;
         }
@@ -119,7 +125,10 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
     let (mut t, mut x, mut v, mut y, mut w) = (0.0, 0.0, p.v0_m_s, 0.0, 0.0);
     rec.zdot(w - v);
     let osc_energy = |x: f64, v: f64| 0.5 * sys.big_m * v * v + 0.5 * sys.k * x * x;
-    let mut energy = EnergyLedger { initial_j: osc_energy(x, v), ..Default::default() };
+    let mut energy = EnergyLedger {
+        initial_j: osc_energy(x, v),
+        ..Default::default()
+    };
     let mut impacts = Vec::new();
     let mut budget = STEP_BUDGET;
     let mut iters = FLIGHT_BUDGET;
@@ -137,7 +146,11 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
             Search::None => (t_end - t, 0.0, true),
             Search::Exhausted(tau) => (tau, 0.0, true),
         };
-        let t1 = if matches!(search, Search::None) { t_end } else { t + tf };
+        let t1 = if matches!(search, Search::None) {
+            t_end
+        } else {
+            t + tf
+        };
         record_flight(&osc, &mut rec, t, x, v, y, w, tf, t1);
         let (x1, v1) = osc.advance(x, v, tf);
         energy.dissipated_viscous_j += osc_energy(x, v) - osc_energy(x1, v1);
@@ -153,15 +166,24 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
         let u_in = s * (w - v);
         let y0 = [x, v, 0.0, u_in, 0.0, 0.0];
         let a_bound = osc.accel_bound(x, v);
-        let end = integrate(&sys, s, t, y0, t_end, &mut budget, a_bound, |ta, ya, ka, tb, yb, kb| {
-            rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
-            rec.history_until(tb, |ts| {
-                let (h, q) = (tb - ta, ts - ta);
-                let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
-                let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
-                (xs, xs + s * (hg + ds))
-            });
-        });
+        let end = integrate(
+            &sys,
+            s,
+            t,
+            y0,
+            t_end,
+            &mut budget,
+            a_bound,
+            |ta, ya, ka, tb, yb, kb| {
+                rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
+                rec.history_until(tb, |ts| {
+                    let (h, q) = (tb - ta, ts - ta);
+                    let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
+                    let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
+                    (xs, xs + s * (hg + ds))
+                });
+            },
+        );
         let ye = end.y;
         energy.dissipated_contact_j += ye[4];
         energy.dissipated_viscous_j += ye[5];

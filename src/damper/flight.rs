@@ -37,13 +37,20 @@ impl Oscillator {
         let disc = gamma * gamma - w0sq;
         let regime = if disc < 0.0 {
             let wd = (-disc).sqrt();
-            Regime::Under { wd, psi: wd.atan2(gamma) }
+            Regime::Under {
+                wd,
+                psi: wd.atan2(gamma),
+            }
         } else if disc == 0.0 {
             Regime::Critical
         } else {
             Regime::Over { s: disc.sqrt() }
         };
-        Oscillator { gamma, w0sq, regime }
+        Oscillator {
+            gamma,
+            w0sq,
+            regime,
+        }
     }
 
     /// `(e^{−γt}·c(t), e^{−γt}·S(t))`, evaluated without overflow or cancellation.
@@ -65,7 +72,9 @@ impl Oscillator {
                 let st = s * t;
                 let sh = if st.abs() < 1e-3 {
                     let q = st * st;
-                    (-self.gamma * t).exp() * t * (1.0 + q / 6.0 * (1.0 + q / 20.0 * (1.0 + q / 42.0)))
+                    (-self.gamma * t).exp()
+                        * t
+                        * (1.0 + q / 6.0 * (1.0 + q / 20.0 * (1.0 + q / 42.0)))
                 } else {
                     (ep - em) / (2.0 * s)
                 };
@@ -78,7 +87,10 @@ impl Oscillator {
     #[inline]
     pub fn advance(&self, x0: f64, v0: f64, t: f64) -> (f64, f64) {
         let (c, s) = self.basis(t);
-        (x0 * c + (v0 + self.gamma * x0) * s, v0 * c - (self.w0sq * x0 + self.gamma * v0) * s)
+        (
+            x0 * c + (v0 + self.gamma * x0) * s,
+            v0 * c - (self.w0sq * x0 + self.gamma * v0) * s,
+        )
     }
 
     /// Acceleration `x''` (m/s²) at the state `(x, v)`.
@@ -152,7 +164,11 @@ impl Oscillator {
                 loop {
                     let tu = (up_base + up_k * two_pi) / wd;
                     let tm = (max_base + max_k * two_pi) / wd;
-                    let (kind, t) = if tu <= tm { (Kind::UpCross, tu) } else { (Kind::MaxX, tm) };
+                    let (kind, t) = if tu <= tm {
+                        (Kind::UpCross, tu)
+                    } else {
+                        (Kind::MaxX, tm)
+                    };
                     if t > t_end || guard > 1_000_000 {
                         break;
                     }
@@ -167,9 +183,13 @@ impl Oscillator {
                     guard += 1;
                 }
                 // Zeros of x'': θ − 2ψ = π/2 + kπ.
-                periodic_times(half_pi + 2.0 * psi + phi, std::f64::consts::PI, wd, t_end, |t| {
-                    f(Kind::ZeroAccel, t)
-                });
+                periodic_times(
+                    half_pi + 2.0 * psi + phi,
+                    std::f64::consts::PI,
+                    wd,
+                    t_end,
+                    |t| f(Kind::ZeroAccel, t),
+                );
             }
             Regime::Critical | Regime::Over { .. } => {
                 // At most one zero each of x, x', x'' (two-exponential or (a+bt)e^{rt} form):
@@ -186,10 +206,16 @@ impl Oscillator {
                     evs[1] = (Kind::MaxX, bisect(|t| xv(t).1, t_end));
                 }
                 if (a0 > 0.0 && a1 < 0.0) || (a0 < 0.0 && a1 > 0.0) {
-                    evs[2] = (Kind::ZeroAccel, bisect(|t| {
-                        let (x, v) = xv(t);
-                        self.accel(x, v)
-                    }, t_end));
+                    evs[2] = (
+                        Kind::ZeroAccel,
+                        bisect(
+                            |t| {
+                                let (x, v) = xv(t);
+                                self.accel(x, v)
+                            },
+                            t_end,
+                        ),
+                    );
                 }
                 evs.sort_by(|p, q| p.1.total_cmp(&q.1));
                 for (k, t) in evs {
@@ -249,7 +275,10 @@ mod tests {
             let (x, v) = o.advance(x0, v0, t);
             let (xr, vr) = rk4(&o, x0, v0, t);
             let sc = x0.abs() + v0.abs();
-            assert!((x - xr).abs() < 1e-10 * sc && (v - vr).abs() < 1e-9 * sc, "{x} {xr} {v} {vr}");
+            assert!(
+                (x - xr).abs() < 1e-10 * sc && (v - vr).abs() < 1e-9 * sc,
+                "{x} {xr} {v} {vr}"
+            );
         }
     }
 

@@ -78,7 +78,10 @@ impl DamperParams {
         check_positive("k-hz", self.k_hz, "N/m^1.5")?;
         check_non_negative("c1", self.c1_n_s_m, "N·s/m")?;
         if !self.v0_m_s.is_finite() {
-            return Err(ThudError::invalid("v0", format!("{} m/s; must be a finite number", self.v0_m_s)));
+            return Err(ThudError::invalid(
+                "v0",
+                format!("{} m/s; must be a finite number", self.v0_m_s),
+            ));
         }
         check_positive("duration", self.duration_s, "s")?;
         Ok(())
@@ -224,11 +227,27 @@ fn isolated_sys(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool) -> con
 /// One isolated contact between ball `m` (kg) and main mass `big_m` (kg), no spring: relative
 /// coordinate `δ'' = −K*·(K_HZ·δ^{3/2} + c1·δ')`, `K* = (m+M)/(m·M)` (Eq 8, 26), at approach speed
 /// `u0` (m/s), by the accurate adaptive integrator. Inputs are assumed positive and finite.
-pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, u0: f64) -> SingleContact {
+pub fn single_contact(
+    m: f64,
+    big_m: f64,
+    k_hz: f64,
+    c1: f64,
+    no_tension: bool,
+    u0: f64,
+) -> SingleContact {
     let sys = isolated_sys(m, big_m, k_hz, c1, no_tension);
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
-    let end = contact::integrate(&sys, 1.0, 0.0, [0.0, 0.0, 0.0, u0, 0.0, 0.0], 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
+    let end = contact::integrate(
+        &sys,
+        1.0,
+        0.0,
+        [0.0, 0.0, 0.0, u0, 0.0, 0.0],
+        1e4 * tau,
+        &mut budget,
+        0.0,
+        |_, _, _, _, _, _| {},
+    );
     SingleContact {
         u_out_m_s: if end.completed { -end.y[3] } else { 0.0 },
         duration_s: end.t,
@@ -251,13 +270,23 @@ pub fn single_contact_newmark(
 
 /// The contact damping c1 (N·s/m) that gives restitution `r = u_out/u0` for one isolated contact
 /// (bisection on [`single_contact`]; R falls as c1 rises). `r` must be in (0, 1].
-pub fn c1_for_restitution(m: f64, big_m: f64, k_hz: f64, no_tension: bool, u0: f64, r: f64) -> Result<f64, ThudError> {
+pub fn c1_for_restitution(
+    m: f64,
+    big_m: f64,
+    k_hz: f64,
+    no_tension: bool,
+    u0: f64,
+    r: f64,
+) -> Result<f64, ThudError> {
     check_positive("mass", m, "kg")?;
     check_positive("main-mass", big_m, "kg")?;
     check_positive("k-hz", k_hz, "N/m^1.5")?;
     check_positive("u0", u0, "m/s")?;
     if !(r.is_finite() && r > 0.0 && r <= 1.0) {
-        return Err(ThudError::invalid("restitution", format!("{r}; must be in (0, 1]")));
+        return Err(ThudError::invalid(
+            "restitution",
+            format!("{r}; must be in (0, 1]"),
+        ));
     }
     if r == 1.0 {
         return Ok(0.0);
@@ -274,7 +303,10 @@ pub fn c1_for_restitution(m: f64, big_m: f64, k_hz: f64, no_tension: bool, u0: f
         hi *= 2.0;
         n += 1;
         if n > 60 {
-            return Err(ThudError::invalid("restitution", format!("{r}; not reachable")));
+            return Err(ThudError::invalid(
+                "restitution",
+                format!("{r}; not reachable"),
+            ));
         }
     }
     // Bisection to a relative width of 1e-10 (R is smooth and monotone in c1).

@@ -85,8 +85,17 @@ fn contact_step(sys: &Sys, s: f64, st: &St, h: f64) -> St {
         let r1 = sys.big_m * a1 + sys.c * n.v + sys.k * n.x - s * f;
         let r2 = sys.m * b1 + s * f;
         out = n;
-        let kt = if clamped { 0.0 } else { 1.5 * sys.k_hz * del.max(0.0).sqrt() * q + sys.c1 * hh };
-        let jac = Matrix2::new(sys.big_m + sys.c * hh + sys.k * q + kt, -kt, -kt, sys.m + kt);
+        let kt = if clamped {
+            0.0
+        } else {
+            1.5 * sys.k_hz * del.max(0.0).sqrt() * q + sys.c1 * hh
+        };
+        let jac = Matrix2::new(
+            sys.big_m + sys.c * hh + sys.k * q + kt,
+            -kt,
+            -kt,
+            sys.m + kt,
+        );
         let Some(inv) = jac.try_inverse() else { break };
         let da = inv * Vector2::new(-r1, -r2);
         a1 += da[0];
@@ -107,7 +116,11 @@ fn split(g0: f64, g1: f64, st1: St, mut eval: impl FnMut(f64) -> (f64, St)) -> (
     let mut side = 0;
     for _ in 0..60 {
         let th = (lo * ghi - hi * glo) / (ghi - glo);
-        let th = if th > lo && th < hi { th } else { 0.5 * (lo + hi) };
+        let th = if th > lo && th < hi {
+            th
+        } else {
+            0.5 * (lo + hi)
+        };
         let (g, stt) = eval(th);
         best = (th, stt);
         if g == 0.0 || (hi - lo) < 1e-15 {
@@ -140,7 +153,14 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let sys = Sys::new(p);
     let t_end = p.duration_s;
     let mut rec = Recorder::new(opts.history_samples, t_end);
-    let mut st = St { x: 0.0, v: p.v0_m_s, a: 0.0, y: 0.0, w: 0.0, b: 0.0 };
+    let mut st = St {
+        x: 0.0,
+        v: p.v0_m_s,
+        a: 0.0,
+        y: 0.0,
+        w: 0.0,
+        b: 0.0,
+    };
     flight_accels(&sys, &mut st);
     rec.zdot(st.w - st.v);
     let mut energy = EnergyLedger {
@@ -152,12 +172,25 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let mut k_next: u64 = 1;
     let mut t = 0.0;
     let mut wall = 0.0; // 0 in flight, ±1 in contact
-    let mut cur = ImpactEvent { t_s: 0.0, wall: 0, u_in_m_s: 0.0, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: 0.0 };
+    let mut cur = ImpactEvent {
+        t_s: 0.0,
+        wall: 0,
+        u_in_m_s: 0.0,
+        u_out_m_s: 0.0,
+        t_end_s: 0.0,
+        penetration_max_m: 0.0,
+    };
     let mut cancelled = false;
     let mut counter: u32 = 0;
 
     // Commits a step from `a` (time t0) to `b` (time t1).
-    let commit = |rec: &mut Recorder, energy: &mut EnergyLedger, s: f64, t0: f64, a: &St, t1: f64, b: &St| {
+    let commit = |rec: &mut Recorder,
+                  energy: &mut EnergyLedger,
+                  s: f64,
+                  t0: f64,
+                  a: &St,
+                  t1: f64,
+                  b: &St| {
         rec.step(t0, a.x, a.v, t1, b.x, b.v, b.w - b.v);
         let h = t1 - t0;
         let vm = 0.5 * (a.v + b.v);
@@ -171,14 +204,22 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
         }
         if rec.next_hist_time().is_some_and(|ts| ts <= t1) {
             rec.history_until(t1, |ts| {
-                let u = if h > 0.0 { ((ts - t0) / h).clamp(0.0, 1.0) } else { 1.0 };
+                let u = if h > 0.0 {
+                    ((ts - t0) / h).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
                 (a.x + u * (b.x - a.x), a.y + u * (b.y - a.y))
             });
         }
     };
 
     while k_next <= n_steps {
-        let t_next = if k_next == n_steps { t_end } else { k_next as f64 * dt };
+        let t_next = if k_next == n_steps {
+            t_end
+        } else {
+            k_next as f64 * dt
+        };
         let h = t_next - t;
         if h <= 0.0 {
             k_next += 1;
@@ -253,7 +294,11 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
         k_next += 1;
     }
     rec.finish();
-    let del = if wall != 0.0 { st.pen(&sys, wall).0.max(0.0) } else { 0.0 };
+    let del = if wall != 0.0 {
+        st.pen(&sys, wall).0.max(0.0)
+    } else {
+        0.0
+    };
     energy.final_mechanical_j = 0.5 * sys.big_m * st.v * st.v
         + 0.5 * sys.m * st.w * st.w
         + 0.5 * sys.k * st.x * st.x
@@ -273,7 +318,14 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
 /// `dt` (s), with the exit located inside the step.
 pub(crate) fn single(sys: &Sys, u0: f64, dt: f64) -> SingleContact {
     let s = 1.0;
-    let mut st = St { x: 0.0, v: 0.0, a: 0.0, y: sys.half_gap, w: u0, b: 0.0 };
+    let mut st = St {
+        x: 0.0,
+        v: 0.0,
+        a: 0.0,
+        y: sys.half_gap,
+        w: u0,
+        b: 0.0,
+    };
     contact_accels(sys, s, &mut st);
     let mut t = 0.0;
     let mut pen: f64 = 0.0;
@@ -297,5 +349,9 @@ pub(crate) fn single(sys: &Sys, u0: f64, dt: f64) -> SingleContact {
         st = n1;
         t += dt;
     }
-    SingleContact { u_out_m_s: 0.0, duration_s: t, penetration_max_m: pen }
+    SingleContact {
+        u_out_m_s: 0.0,
+        duration_s: t,
+        penetration_max_m: pen,
+    }
 }
