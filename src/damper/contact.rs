@@ -235,6 +235,11 @@ pub(crate) struct ContactEnd {
     pub pen_max: f64,
 }
 
+/// Clamp switches located exactly per contact. A ball pressed by the wall under "no tension"
+/// can slide along the switching surface (the clamp chatters); past this many switches the
+/// integrator steps through them under plain error control instead of stopping at each.
+const MAX_SWITCHES: usize = 16;
+
 /// First step as a fraction of the Hertz duration estimate τ (the onset force grows like
 /// t^{3/2}, so the first step is limited by that, not by smoothness).
 const H0_FRACTION: f64 = 1.0 / 1000.0;
@@ -292,6 +297,7 @@ fn integrate_impl(
     let mut y = y0;
     let mut k1 = rhs(sys, s, &y);
     let mut had_pos = false;
+    let mut switches = 0;
     let mut pen: f64 = 0.0;
     // log2 of the previous step's error norm (floored at 1e-4).
     let mut err_old: f64 = -13.3;
@@ -311,7 +317,7 @@ fn integrate_impl(
         }
         let (yn, k7, err) = step(sys, s, &y, &k1, h, &sc);
         *budget -= 1;
-        if sys.no_tension && sys.c1 > 0.0 && had_pos {
+        if sys.no_tension && sys.c1 > 0.0 && had_pos && switches < MAX_SWITCHES {
             // The clamp switches inside the step (the unclamped bracket changes sign): stop the
             // step there, so that no step straddles the kink of the force law.
             let b0 = sys.raw_bracket(&y, &k1).0;
@@ -335,6 +341,7 @@ fn integrate_impl(
                     },
                     tol,
                 );
+                switches += 1;
                 if err_c <= 1.0 || hc <= 1e-14 * tau {
                     if y[3] > 0.0 && yc[3] <= 0.0 {
                         pen = pen.max(refine_peak(&y, &k1, hc, &yc, &kc));
