@@ -148,6 +148,9 @@ fn split(g0: f64, g1: f64, st1: St, mut eval: impl FnMut(f64) -> (f64, St)) -> (
     best
 }
 
+/// At most this many onset/exit splits per grid step; past that the mode switches at the step end.
+const MAX_SPLITS: u32 = 8;
+
 /// Runs the Newmark solver with step `dt` (s). Parameters are assumed valid.
 pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let sys = Sys::new(p);
@@ -182,6 +185,8 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     };
     let mut cancelled = false;
     let mut counter: u32 = 0;
+    // Mode switches inside the current grid step (a guard against endless re-splitting).
+    let mut splits = 0u32;
 
     // Commits a step from `a` (time t0) to `b` (time t1).
     let commit = |rec: &mut Recorder,
@@ -234,7 +239,8 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
             let n1 = flight_step(&sys, &st, h);
             let z1 = n1.y - n1.x;
             let d1 = z1.abs() - sys.half_gap;
-            if d1 > 0.0 {
+            if d1 > 0.0 && splits < MAX_SPLITS {
+                splits += 1;
                 let s = z1.signum();
                 let g0 = st.pen(&sys, s).0;
                 let (th, mut sub) = split(g0, d1, n1, |th| {
@@ -257,16 +263,31 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
                 };
                 if th >= 1.0 {
                     k_next += 1;
+                    splits = 0;
                 }
                 continue;
             }
             commit(&mut rec, &mut energy, 0.0, t, &st, t_next, &n1);
             st = n1;
+            if d1 > 0.0 {
+                // Out of splits: switch to contact at the step end.
+                wall = z1.signum();
+                contact_accels(&sys, wall, &mut st);
+                cur = ImpactEvent {
+                    t_s: t_next,
+                    wall: wall as i8,
+                    u_in_m_s: st.pen(&sys, wall).1,
+                    u_out_m_s: 0.0,
+                    t_end_s: 0.0,
+                    penetration_max_m: d1,
+                };
+            }
         } else {
             let s = wall;
             let n1 = contact_step(&sys, s, &st, h);
             let d1 = n1.pen(&sys, s).0;
-            if d1 < 0.0 {
+            if d1 < 0.0 && splits < MAX_SPLITS {
+                splits += 1;
                 let g0 = st.pen(&sys, s).0;
                 let (th, mut sub) = split(g0, d1, n1, |th| {
                     let q = contact_step(&sys, s, &st, th * h);
@@ -283,15 +304,25 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
                 impacts.push(cur);
                 if th >= 1.0 {
                     k_next += 1;
+                    splits = 0;
                 }
                 continue;
             }
             commit(&mut rec, &mut energy, s, t, &st, t_next, &n1);
             cur.penetration_max_m = cur.penetration_max_m.max(d1);
             st = n1;
+            if d1 < 0.0 {
+                // Out of splits: leave the contact at the step end.
+                flight_accels(&sys, &mut st);
+                wall = 0.0;
+                cur.u_out_m_s = -st.pen(&sys, s).1;
+                cur.t_end_s = t_next;
+                impacts.push(cur);
+            }
         }
         t = t_next;
         k_next += 1;
+        splits = 0;
     }
     rec.finish();
     let del = if wall != 0.0 {
