@@ -543,6 +543,16 @@ proptest! {
         for h in &run.history {
             prop_assert!(h.x_m.is_finite() && h.y_m.is_finite());
         }
+        // The Newmark reference on a short stretch of the same design.
+        let short = DamperParams { duration_s: dur.min(0.02), ..p };
+        let nm = simulate(&short, Solver::Newmark { dt_s: 1e-6 }, &RunOptions::default()).unwrap();
+        let mut last = 0.0;
+        for i in &nm.impacts {
+            prop_assert!(i.u_in_m_s.is_finite() && i.u_out_m_s.is_finite() && i.penetration_max_m >= 0.0);
+            prop_assert!(i.t_s >= last && i.t_end_s >= i.t_s, "{:?}", i);
+            last = i.t_end_s;
+        }
+        prop_assert!(nm.energy.final_mechanical_j.is_finite());
         let e = run.energy;
         prop_assert!(e.final_mechanical_j.is_finite() && e.dissipated_contact_j.is_finite());
         if run.final_time_s == dur {
