@@ -253,6 +253,10 @@ fn momentum_is_conserved_through_contacts() {
     .unwrap();
     assert!(run.impacts.len() >= 10, "{}", run.impacts.len());
     let (big_m, m) = (p.main_mass_kg, p.impact_mass_kg);
+    // Isolated contacts with c1 > 0 always lose relative speed.
+    for i in &run.impacts {
+        assert!(i.u_out_m_s <= i.u_in_m_s * (1.0 + 1e-9), "{i:?}");
+    }
     let v_cm = big_m * p.v0_m_s / (big_m + m);
     for h in &run.history {
         let x_cm = (big_m * h.x_m + m * h.y_m) / (big_m + m);
@@ -536,7 +540,13 @@ proptest! {
             prop_assert!(i.t_s >= last && i.t_end_s >= i.t_s, "{:?}", i);
             prop_assert!(i.penetration_max_m >= 0.0);
             if c1 > 0.0 {
-                prop_assert!(i.u_out_m_s <= i.u_in_m_s * (1.0 + 1e-9), "{:?}", i);
+                // A damped contact cannot speed the ball up by itself, but the spring and the
+                // damper of the main mass act during the contact too (a slow, long contact can
+                // leave faster than it came: found by this test, confirmed by Newmark). Their
+                // relative acceleration is at most |v0|·(ω0 + C/M), as the energy never grows.
+                let a_ext = v0.abs() * ((k / big_m).sqrt() + c / big_m);
+                let slack = a_ext * (i.t_end_s - i.t_s);
+                prop_assert!(i.u_out_m_s <= i.u_in_m_s * (1.0 + 1e-9) + slack, "{:?}", i);
             }
             last = i.t_end_s;
         }
