@@ -129,7 +129,8 @@ pub struct ImpactEvent {
     pub penetration_max_m: f64,
 }
 
-/// A cycle maximum of the main mass's displacement.
+/// A cycle maximum of the main mass's displacement (s, m): the `X_k`, `t_k` of the damping
+/// inclination `e = (X1 − X2)/(t2 − t1)`, paper Eq 27.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Maximum {
     pub t_s: f64,
