@@ -132,7 +132,7 @@ fn acc(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64) -> (f64, f64, f64, 
     }
     let spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
     (
-        spring + s * f * sys.inv_big_m,
+        spring + (s * sys.inv_big_m) * f,
         -sys.kstar * f - s * spring,
         (f - hz) * dd,
         sys.c * v * v,
@@ -147,50 +147,71 @@ fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (Sta
     let (x, v, d, dd) = (y[0], y[1], y[2], y[3]);
     // Stage rates: q = x' (= stage v), a = x'', r = δ' (= stage δ'), b = δ'', c/e = powers.
     let (q1, a1, r1, b1, c1, e1) = (k1[0], k1[1], k1[2], k1[3], k1[4], k1[5]);
-    let st = |cq: f64, ca: f64, cr: f64, cb: f64| (x + h * cq, v + h * ca, d + h * cr, dd + h * cb);
+    // Stage state = (y + h·Σ older terms) + (h·a_last)·k_last: the newest rate enters last, so the
+    // sums over older stages overlap with the evaluation of the newest one.
+    let st = |p: [f64; 4], c: f64, k: [f64; 4]| {
+        let hc = h * c;
+        (
+            (x + h * p[0]) + hc * k[0],
+            (v + h * p[1]) + hc * k[1],
+            (d + h * p[2]) + hc * k[2],
+            (dd + h * p[3]) + hc * k[3],
+        )
+    };
 
-    let (x2, v2, d2, dd2) = st(A21 * q1, A21 * a1, A21 * r1, A21 * b1);
+    let (x2, v2, d2, dd2) = st([0.0; 4], A21, [q1, a1, r1, b1]);
     let (a2, b2, _, _) = acc(sys, s, x2, v2, d2, dd2);
     let (q2, r2) = (v2, dd2);
 
     let (x3, v3, d3, dd3) = st(
-        A31 * q1 + A32 * q2,
-        A31 * a1 + A32 * a2,
-        A31 * r1 + A32 * r2,
-        A31 * b1 + A32 * b2,
+        [A31 * q1, A31 * a1, A31 * r1, A31 * b1],
+        A32,
+        [q2, a2, r2, b2],
     );
     let (a3, b3, c3, e3) = acc(sys, s, x3, v3, d3, dd3);
     let (q3, r3) = (v3, dd3);
 
     let (x4, v4, d4, dd4) = st(
-        A41 * q1 + A42 * q2 + A43 * q3,
-        A41 * a1 + A42 * a2 + A43 * a3,
-        A41 * r1 + A42 * r2 + A43 * r3,
-        A41 * b1 + A42 * b2 + A43 * b3,
+        [
+            A41 * q1 + A42 * q2,
+            A41 * a1 + A42 * a2,
+            A41 * r1 + A42 * r2,
+            A41 * b1 + A42 * b2,
+        ],
+        A43,
+        [q3, a3, r3, b3],
     );
     let (a4, b4, c4, e4) = acc(sys, s, x4, v4, d4, dd4);
     let (q4, r4) = (v4, dd4);
 
     let (x5, v5, d5, dd5) = st(
-        A51 * q1 + A52 * q2 + A53 * q3 + A54 * q4,
-        A51 * a1 + A52 * a2 + A53 * a3 + A54 * a4,
-        A51 * r1 + A52 * r2 + A53 * r3 + A54 * r4,
-        A51 * b1 + A52 * b2 + A53 * b3 + A54 * b4,
+        [
+            A51 * q1 + A52 * q2 + A53 * q3,
+            A51 * a1 + A52 * a2 + A53 * a3,
+            A51 * r1 + A52 * r2 + A53 * r3,
+            A51 * b1 + A52 * b2 + A53 * b3,
+        ],
+        A54,
+        [q4, a4, r4, b4],
     );
     let (a5, b5, c5, e5) = acc(sys, s, x5, v5, d5, dd5);
     let (q5, r5) = (v5, dd5);
 
     let (x6, v6, d6, dd6) = st(
-        A61 * q1 + A62 * q2 + A63 * q3 + A64 * q4 + A65 * q5,
-        A61 * a1 + A62 * a2 + A63 * a3 + A64 * a4 + A65 * a5,
-        A61 * r1 + A62 * r2 + A63 * r3 + A64 * r4 + A65 * r5,
-        A61 * b1 + A62 * b2 + A63 * b3 + A64 * b4 + A65 * b5,
+        [
+            A61 * q1 + A62 * q2 + A63 * q3 + A64 * q4,
+            A61 * a1 + A62 * a2 + A63 * a3 + A64 * a4,
+            A61 * r1 + A62 * r2 + A63 * r3 + A64 * r4,
+            A61 * b1 + A62 * b2 + A63 * b3 + A64 * b4,
+        ],
+        A65,
+        [q5, a5, r5, b5],
     );
     let (a6, b6, c6, e6) = acc(sys, s, x6, v6, d6, dd6);
     let (q6, r6) = (v6, dd6);
 
     let comb = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64| {
-        B1 * k1 + B3 * k3 + B4 * k4 + B5 * k5 + B6 * k6
+        (B1 * k1 + B3 * k3 + B4 * k4 + B5 * k5) + B6 * k6
     };
     let yn = [
         x + h * comb(q1, q3, q4, q5, q6),
