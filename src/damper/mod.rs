@@ -177,7 +177,8 @@ pub struct Run {
 pub struct RunOptions<'a> {
     /// Number of uniform history samples over [0, duration] (0: none).
     pub history_samples: usize,
-    /// When set to true, the run stops (checked between impacts) and returns what it has.
+    /// When it reads true the run stops and returns what it has, with `cancelled: true`
+    /// (checked between impacts by the event solver, every 4096 steps by Newmark).
     pub cancel: Option<&'a std::sync::atomic::AtomicBool>,
 }
 
