@@ -20,9 +20,10 @@ fn physical() -> Design {
 }
 
 fn paper_fig9() -> Design {
-    let mut d = Design::default();
-    d.radiation = Radiation { source: Source::Quadrupole, quad_signs: QuadSigns::Paper, ..Default::default() };
-    d
+    Design {
+        radiation: Radiation { source: Source::Quadrupole, quad_signs: QuadSigns::Paper, ..Default::default() },
+        ..Design::default()
+    }
 }
 
 fn paper_table3() -> Design {
