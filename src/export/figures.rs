@@ -289,6 +289,14 @@ fn plot_of(id: &str) -> Option<Plot> {
     }
 }
 
+/// "SPLmax paper (dB)" → ("SPLmax paper", "dB"); a label without a unit → (label, "").
+fn split_unit(label: &str) -> (String, String) {
+    match (label.rfind(" ("), label.ends_with(')')) {
+        (Some(i), true) => (label[..i].to_string(), label[i + 2..label.len() - 1].to_string()),
+        _ => (label.to_string(), String::new()),
+    }
+}
+
 /// Whether the paper item `id` is drawn as a figure by [`paper_figure`].
 pub fn has_figure(id: &str) -> bool {
     plot_of(id).is_some()
@@ -330,11 +338,12 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
                         .collect()
                 };
                 if groups.is_empty() {
-                    series.push(Series::new(&name, pick(None), style));
+                    series.push(Series::new(&split_unit(&name).0, pick(None), style));
                 } else {
+                    let (gname, gunit) = split_unit(&label(table, group.unwrap_or_default()));
                     for &g in &groups {
-                        let glabel = format!("{} {}", label(table, group.unwrap_or_default()), sig(g, 4));
-                        let name = if ys.len() > 1 { format!("{name}, {glabel}") } else { glabel };
+                        let glabel = format!("{gname} {} {gunit}", sig(g, 4)).trim_end().to_string();
+                        let name = if ys.len() > 1 { format!("{}, {glabel}", split_unit(&name).0) } else { glabel };
                         series.push(Series::new(&name, pick(Some(g)), style));
                     }
                 }
@@ -363,11 +372,13 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
     }
 }
 
-/// A colour from blue (0) through pale yellow to red (1).
+/// A colour from blue (0) through pale yellow to red (1) (the "RdYlBu" scheme, reversed).
 fn ramp(f: f64) -> String {
     let f = if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.0 };
-    let stops = [(49.0, 54.0, 149.0), (255.0, 255.0, 191.0), (165.0, 0.0, 38.0)];
-    let (a, b, t) = if f < 0.5 { (stops[0], stops[1], f * 2.0) } else { (stops[1], stops[2], f * 2.0 - 1.0) };
+    let stops =
+        [(49.0, 54.0, 149.0), (116.0, 173.0, 209.0), (255.0, 255.0, 191.0), (244.0, 109.0, 67.0), (165.0, 0.0, 38.0)];
+    let k = ((f * 4.0).floor() as usize).min(3);
+    let (a, b, t) = (stops[k], stops[k + 1], f * 4.0 - k as f64);
     let mix = |p: f64, q: f64| (p + (q - p) * t).round() as u8;
     format!("#{:02x}{:02x}{:02x}", mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }

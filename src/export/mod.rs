@@ -177,7 +177,8 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
             if kind == Kind::CsvWaveform {
                 csv::waveform(&field, points)
             } else {
-                let title = format!("Sound pressure of one impact, U0 {} m/s ({})", crate::units::sig(u0, 4), listener(&d));
+                let title =
+                    format!("Sound pressure of one impact, U0 {} m/s ({})", crate::units::sig(u0, 4), listener(&d));
                 figures::waveform(&field, points, &title)
             }
         }
@@ -197,7 +198,11 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
         }
         Kind::SvgDirectivity => {
             let u0 = impact_speed(&d, opts.u0_m_s)?;
-            let title = format!("Directivity of one impact, U0 {} m/s, r {} m", crate::units::sig(u0, 4), crate::units::sig(d.observer.r_m, 3));
+            let title = format!(
+                "Directivity of one impact, U0 {} m/s, r {} m",
+                crate::units::sig(u0, 4),
+                crate::units::sig(d.observer.r_m, 3)
+            );
             figures::directivity(&directivity_points(&d, u0)?, &title)
         }
         Kind::SvgRestitution => {

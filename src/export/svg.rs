@@ -232,7 +232,7 @@ impl Axis {
     pub fn ticks(&self) -> Vec<(f64, String)> {
         match self.scale {
             Scale::Linear => {
-                let step = nice_step((self.hi - self.lo) / 6.0);
+                let step = nice_step((self.hi - self.lo) / 7.0);
                 let decimals = (-step.log10().floor()).max(0.0) as usize;
                 let first = (self.lo / step - 1e-9).ceil() as i64;
                 let last = (self.hi / step + 1e-9).floor() as i64;
@@ -310,7 +310,7 @@ pub const CLIP: &str = "plot-area";
 impl Frame {
     /// The standard frame of a [`WIDTH`] × [`HEIGHT`] figure; `legend` leaves room on the right.
     pub fn standard(x: Axis, y: Axis, legend: bool) -> Frame {
-        let right = if legend { 190.0 } else { 30.0 };
+        let right = if legend { 200.0 } else { 30.0 };
         Frame { left: 85.0, top: 50.0, width: WIDTH - 85.0 - right, height: HEIGHT - 50.0 - 70.0, x, y }
     }
 
@@ -334,7 +334,8 @@ impl Frame {
             n(self.width),
             n(self.height)
         ));
-        svg.text(self.left + self.width / 2.0, 28.0, title, 17.0, Anchor::Middle, 0.0);
+        let size = (17.0 * 78.0 / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
+        svg.text(WIDTH / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
         let bottom = self.top + self.height;
         for (v, label) in self.x.ticks() {
             let x = self.px(v);
@@ -429,7 +430,7 @@ pub fn legend(svg: &mut Svg, frame: &Frame, entries: &[(&str, &str)]) {
     for (k, (color, label)) in entries.iter().enumerate() {
         let y = frame.top + 10.0 + 20.0 * k as f64;
         svg.rect(x, y - 9.0, 18.0, 10.0, color, None);
-        svg.text(x + 24.0, y, label, 12.0, Anchor::Start, 0.0);
+        svg.text(x + 24.0, y, label, 11.0, Anchor::Start, 0.0);
     }
 }
 
