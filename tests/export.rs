@@ -243,3 +243,20 @@ fn cli_uses_the_config_thresholds_unless_flags_say_otherwise() {
     assert_eq!(v["design"]["thresholds"]["inclination_cm_s"], 0.9);
     assert_eq!(json(&["--l-star", "95"])["design"]["thresholds"]["spl_db"], 95.0);
 }
+
+#[test]
+fn cli_pulse_takes_the_single_impact_presets() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = |args: &[&str]| -> serde_json::Value {
+        let (code, out, err) = thud(&[&["pulse", "--json", "--points", "50"][..], args].concat(), dir.path());
+        assert_eq!(code, 0, "{err}");
+        serde_json::from_str(&out).unwrap()
+    };
+    let fig2 = json(&["--preset", "paper-fig2"]);
+    assert!((fig2["p_max_pa"].as_f64().unwrap() - 1.853).abs() < 1e-3, "{}", fig2["p_max_pa"]);
+    assert!((fig2["p_min_pa"].as_f64().unwrap() + 2.426).abs() < 1e-3, "{}", fig2["p_min_pa"]);
+    let t1 = json(&["--preset", "paper-table1"]);
+    assert!((t1["spl_db"].as_f64().unwrap() - 105.6063).abs() < 0.03, "{}", t1["spl_db"]);
+    let slower = json(&["--preset", "paper-table1", "--u0", "0.99"]);
+    assert!((slower["spl_db"].as_f64().unwrap() - 101.3914).abs() < 0.03, "{}", slower["spl_db"]);
+}
