@@ -7,7 +7,8 @@ use crate::presets;
 
 use super::{csv, figures};
 
-/// Tables with at most this many rows are printed in full in the report; longer ones are cut.
+/// Tables with at most this many rows are printed in the report; longer ones (waveforms,
+/// histories, chart grids) are only pointed to (their CSV and figure).
 pub const REPORT_ROWS: usize = 60;
 
 /// One file of the bundle: a name inside the output folder and its contents.
@@ -39,16 +40,18 @@ fn md_cell(v: &Value) -> String {
     }
 }
 
-/// `table` as a markdown table (the first [`REPORT_ROWS`] rows when longer, with a pointer to
-/// the CSV), followed by its notes.
+/// `table` as a markdown table (or, past [`REPORT_ROWS`] rows, a pointer to its CSV), followed
+/// by its notes.
 pub fn markdown(table: &Table) -> String {
     let labels: Vec<String> = table.columns.iter().map(|c| c.label.replace('|', "\\|")).collect();
-    let mut s = format!("| {} |\n|{}\n", labels.join(" | "), "---:|".repeat(labels.len()));
-    for row in table.rows.iter().take(REPORT_ROWS) {
-        s += &format!("| {} |\n", row.iter().map(md_cell).collect::<Vec<_>>().join(" | "));
-    }
-    if table.rows.len() > REPORT_ROWS {
-        s += &format!("\n*First {REPORT_ROWS} of {} rows; all of them in `{}.csv`.*\n", table.rows.len(), table.id);
+    let mut s = String::new();
+    if table.rows.len() <= REPORT_ROWS {
+        s += &format!("| {} |\n|{}\n", labels.join(" | "), "---:|".repeat(labels.len()));
+        for row in &table.rows {
+            s += &format!("| {} |\n", row.iter().map(md_cell).collect::<Vec<_>>().join(" | "));
+        }
+    } else {
+        s += &format!("*{} rows of {} — in `{}.csv`.*\n", table.rows.len(), labels.join(", "), table.id);
     }
     if !table.notes.is_empty() {
         s += "\n";
@@ -84,6 +87,9 @@ pub fn paper_bundle() -> Vec<BundleFile> {
                 }
                 let links: Vec<String> = names.iter().map(|n| format!("[`{n}`]({n})")).collect();
                 report += &format!("**{}**  \nFiles: {}\n\n", table.title, links.join(", "));
+                if names.len() > 1 {
+                    report += &format!("![{}]({})\n\n", item.id, names[1]);
+                }
                 report += &markdown(&table);
             }
             Some(Err(e)) => report += &format!("**Error:** {e}\n"),
