@@ -174,7 +174,7 @@ pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str) -> String
         (Zone::QuietStrong, 0.5 * (left + xl), 0.5 * (top + yl)),
         (Zone::QuietWeak, 0.5 * (left + xl), 0.5 * (yl + bottom)),
     ] {
-        svg.text(cx, cy, &format!("zone {}", zone.number()), 22.0, Anchor::Middle, 0.0);
+        svg.text_fill(cx, cy, &format!("zone {}", zone.number()), 22.0, Anchor::Middle, "#b0b0b0");
     }
     frame.vline(&mut svg, t.spl_db, &format!("L* {} dB", sig(t.spl_db, 4)), "black");
     frame.hline(&mut svg, t.inclination_cm_s, &format!("e* {} cm/s", sig(t.inclination_cm_s, 3)), "black");

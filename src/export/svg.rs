@@ -159,6 +159,20 @@ impl Svg {
         );
     }
 
+    /// A text in colour `fill` (e.g. a faint label behind data).
+    pub fn text_fill(&mut self, x: f64, y: f64, text: &str, size: f64, anchor: Anchor, fill: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" text-anchor="{}" fill="{}">{}</text>"#,
+            n(x),
+            n(y),
+            n(size),
+            anchor.name(),
+            escape(fill),
+            escape(text)
+        );
+    }
+
     /// The finished document.
     pub fn finish(self) -> String {
         format!(
@@ -199,7 +213,7 @@ impl Axis {
             let w = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
             (lo - w, hi + w)
         };
-        let step = nice_step((hi - lo) / 6.0);
+        let step = nice_step((hi - lo) / 20.0);
         Axis {
             label: label.into(),
             lo: (lo / step).floor() * step,
