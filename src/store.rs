@@ -8,6 +8,7 @@ use std::fmt;
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::{Deserialize, Serialize};
 
@@ -155,7 +156,9 @@ pub fn write_atomic_with(
     };
     fs::create_dir_all(&dir).map_err(io_err(&dir))?;
     let name = path.file_name().map_or("file".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    static SEQ: AtomicU64 = AtomicU64::new(0);
+    let seq = SEQ.fetch_add(1, Ordering::Relaxed);
+    let tmp = dir.join(format!(".{name}.{}-{seq}.tmp", std::process::id()));
     let result = write_synced(&tmp, bytes)
         .and_then(|()| before_rename(&tmp).map_err(io_err(&tmp)))
         .and_then(|()| fs::rename(&tmp, path).map_err(io_err(path)));
