@@ -7,10 +7,13 @@
 pub mod acoustics;
 pub mod contact;
 pub mod damper;
+pub mod design;
 pub mod error;
 pub mod paper;
+pub mod presets;
 pub mod units;
 
 pub mod cli;
+pub mod tui;
 
 pub use error::ThudError;
