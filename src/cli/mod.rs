@@ -7,6 +7,7 @@ mod paper;
 mod pulse;
 mod simulate;
 mod sweep;
+mod tui;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
@@ -37,6 +38,8 @@ pub enum Command {
     Sweep(Box<sweep::SweepArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
     Paper(paper::PaperArgs),
+    /// The interactive explorer (the default with no subcommand).
+    Tui(tui::TuiArgs),
 }
 
 /// How to print a result.
@@ -101,6 +104,17 @@ pub(crate) fn quantity(param: &str, text: &Option<String>, kind: Kind) -> Result
     text.as_deref().map(|t| units::parse(param, t, kind)).transpose()
 }
 
+/// The exit code of the explorer: 0, or 2 with the error on stderr.
+fn tui_exit(r: Result<(), String>) -> i32 {
+    r.map_or_else(
+        |e| {
+            eprintln!("thud: {e}");
+            2
+        },
+        |()| 0,
+    )
+}
+
 /// Runs the CLI on `args`; returns the process exit code. Errors are one line on stderr.
 pub fn run(cli: Cli) -> i32 {
     let result = match cli.command {
@@ -108,11 +122,8 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Simulate(a)) => simulate::run(&a),
         Some(Command::Sweep(a)) => sweep::run(&a),
         Some(Command::Paper(a)) => paper::run(&a),
-        None => {
-            use clap::CommandFactory;
-            let _ = Cli::command().print_help();
-            Ok(())
-        }
+        Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
+        None => return tui_exit(tui::run(&tui::TuiArgs { preset: "default".into(), ..Default::default() })),
     };
     match result {
         Ok(()) => 0,

@@ -1,0 +1,53 @@
+//! Displacement history x(t) of the main mass with and without the damper (Fig 9).
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Color;
+use ratatui::symbols::Marker;
+use ratatui::widgets::Widget;
+
+use super::plot::{LinePlot, Series};
+use super::theme::Theme;
+
+/// The panel's data: (t in s, x in cm) with the damper, without it, and the pinned design's.
+pub struct HistoryView<'a> {
+    pub with_damper: &'a [(f64, f64)],
+    pub without: &'a [(f64, f64)],
+    pub pinned: Option<&'a [(f64, f64)]>,
+    pub focused: bool,
+    pub theme: Theme,
+}
+
+impl Widget for HistoryView<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let free_marker = if self.theme.ascii { Marker::Dot } else { Marker::Braille };
+        let mut series = vec![
+            Series {
+                name: "no damper",
+                data: self.without,
+                style: self.theme.fg(Color::DarkGray),
+                marker: free_marker,
+            },
+            Series {
+                name: "damper",
+                data: self.with_damper,
+                style: self.theme.fg(Color::Yellow),
+                marker: self.theme.marker(),
+            },
+        ];
+        if let Some(p) = self.pinned {
+            series.push(Series { name: "pinned", data: p, style: self.theme.pinned(), marker: Marker::Dot });
+        }
+        LinePlot {
+            title: "x(t) of the main mass",
+            x_title: "s",
+            y_title: "cm",
+            series,
+            empty: "simulating…",
+            focused: self.focused,
+            theme: self.theme,
+            y_zero: false,
+        }
+        .render(area, buf);
+    }
+}
