@@ -20,8 +20,10 @@ pub enum BallSize {
     Radius(f64),
 }
 
-/// The density (kg/m³) that makes the paper's 40.5 g ball 19.05 mm in radius (Fig 2, Table 1).
-pub const PAPER_BALL_DENSITY: f64 = 1398.561_194_685_816;
+/// Density (kg/m³) of the paper's ball: acrylic, the material its K_HZ = 5.6e8 N/m^1.5 is for
+/// (acrylic on steel, Eq 2). With it Table 3's SPLmax is met to ≈ 0.6 dB rms; the density implied
+/// by Fig 2's pairing of 40.5 g with 19.05 mm (1398.6 kg/m³) gives ≈ 1.3 dB rms.
+pub const PAPER_BALL_DENSITY: f64 = 1190.0;
 
 /// Materials from which K_HZ follows for each ball radius (Eq 2), instead of a fixed K_HZ.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -86,7 +88,7 @@ pub struct Design {
 }
 
 impl Default for Design {
-    /// The physical default: Table 2 (Fig 9: v0 2 m/s, d 4 cm), the paper's ball density, the
+    /// The physical default: Table 2 (Fig 9: v0 2 m/s, d 4 cm), an acrylic ball (the paper's), the
     /// rigid wall–floor corner at r 0.7 m, θ 45°, the event-driven solver.
     fn default() -> Self {
         Self {
@@ -235,7 +237,8 @@ pub fn inclination_fit_cm_s(maxima: &[damper::Maximum]) -> Option<f64> {
     let n = pts.len() as f64;
     let (st, sx) = pts.iter().fold((0.0, 0.0), |(a, b), m| (a + m.t_s, b + m.x_m));
     let (mt, mx) = (st / n, sx / n);
-    let (num, den) = pts.iter().fold((0.0, 0.0), |(a, b), m| (a + (m.t_s - mt) * (m.x_m - mx), b + (m.t_s - mt).powi(2)));
+    let (num, den) =
+        pts.iter().fold((0.0, 0.0), |(a, b), m| (a + (m.t_s - mt) * (m.x_m - mx), b + (m.t_s - mt).powi(2)));
     Some(-100.0 * num / den)
 }
 
@@ -259,9 +262,8 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
         ZoneBy::Paper => e,
         ZoneBy::Fit => e_fit,
     };
-    let restitution_mean = (!run.impacts.is_empty()).then(|| {
-        run.impacts.iter().map(|i| i.u_out_m_s / i.u_in_m_s).sum::<f64>() / run.impacts.len() as f64
-    });
+    let restitution_mean = (!run.impacts.is_empty())
+        .then(|| run.impacts.iter().map(|i| i.u_out_m_s / i.u_in_m_s).sum::<f64>() / run.impacts.len() as f64);
     Ok(Metrics {
         n_impacts: run.impacts.len(),
         inclination_cm_s: e,
@@ -384,7 +386,11 @@ pub fn sweep(
                         }
                         let (g, m) = (i / masses_kg.len(), i % masses_kg.len());
                         let d = variant(base, masses_kg[m], gaps_m[g]);
-                        let cell = evaluate(&d, 0, cancel).map(|e| Cell { mass_kg: masses_kg[m], gap_m: gaps_m[g], metrics: e.metrics });
+                        let cell = evaluate(&d, 0, cancel).map(|e| Cell {
+                            mass_kg: masses_kg[m],
+                            gap_m: gaps_m[g],
+                            metrics: e.metrics,
+                        });
                         if let Ok(c) = &cell {
                             on_cell(i, c);
                         }
@@ -496,9 +502,8 @@ mod tests {
     }
 
     #[test]
-    fn paper_density_gives_fig2_radius() {
-        let a = contact::sphere_radius(0.0405, PAPER_BALL_DENSITY);
-        assert!((a - 0.01905).abs() < 1e-8, "{a}");
+    fn paper_density_is_the_acrylic_of_the_materials_table() {
+        assert_eq!(contact::material("acrylic").unwrap().density_kg_m3, PAPER_BALL_DENSITY);
     }
 
     #[test]

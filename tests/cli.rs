@@ -95,3 +95,83 @@ fn invalid_inputs_exit_nonzero_with_one_clear_line() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn simulate_json_has_the_documented_keys() {
+    let (code, out, err) = thud(&["simulate", "--preset", "paper-fig9", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in ["n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "zdot_abs_max_m_s", "spl_max_db"] {
+        assert!(!v[key].is_null(), "missing {key}");
+    }
+    let first = &v["impacts"][0];
+    for key in ["t_s", "wall", "u_in_m_s", "u_out_m_s", "t_end_s", "penetration_max_m", "spl_db"] {
+        assert!(first[key].is_number(), "impact missing {key}");
+    }
+    assert!((first["u_in_m_s"].as_f64().unwrap() - 1.89529).abs() < 5e-5);
+    assert!(v["maxima"][0]["x_m"].is_number() && v["maxima"][0]["t_s"].is_number());
+}
+
+#[test]
+fn simulate_flags_override_the_preset() {
+    let (_, out, _) = thud(&["simulate", "--preset", "paper-table3", "--gap", "3cm", "--mass", "50g", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["design"]["damper"]["gap_m"].as_f64().unwrap(), 0.03);
+    assert_eq!(v["design"]["damper"]["impact_mass_kg"].as_f64().unwrap(), 0.05);
+    assert_eq!(v["design"]["damper"]["v0_m_s"].as_f64().unwrap(), 1.4);
+}
+
+#[test]
+fn simulate_csv_is_the_time_history() {
+    let (code, out, _) = thud(&["simulate", "--csv", "--samples", "101"]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "t_s,x_m,y_m,x_free_m");
+    assert_eq!(lines.len(), 102);
+}
+
+#[test]
+fn sweep_outputs_a_chart() {
+    let (code, out, err) = thud(&["sweep", "--masses", "30g:60g:3", "--gaps", "2cm:3cm:2", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["chart"]["cells"].as_array().unwrap().len(), 6);
+    let (code, out, _) = thud(&["sweep", "--masses", "30g:60g:3", "--gaps", "2cm:3cm:2", "--csv"]);
+    assert_eq!(code, 0);
+    assert_eq!(out.lines().count(), 7);
+}
+
+#[test]
+fn paper_damper_items_run() {
+    for id in ["table3", "table4", "table5", "fig9", "fig10", "fig13", "fig17"] {
+        let (code, out, err) = thud(&["paper", id, "--json"]);
+        assert_eq!(code, 0, "{id}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert!(!v["rows"].as_array().unwrap().is_empty(), "{id}");
+    }
+}
+
+#[test]
+fn invalid_design_inputs_exit_nonzero_with_one_clear_line() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["simulate", "--mass", "0"], "mass"),
+        (&["simulate", "--mass", "-5g"], "mass"),
+        (&["simulate", "--gap", "0"], "gap"),
+        (&["simulate", "--v0", "NaN"], "v0"),
+        (&["simulate", "--duration", "0"], "duration"),
+        (&["simulate", "--duration", "-1"], "duration"),
+        (&["simulate", "--solver", "newmark", "--dt", "0"], "dt"),
+        (&["simulate", "--dt", "1e-6"], "dt"),
+        (&["simulate", "--preset", "nonesuch"], "preset"),
+        (&["simulate", "--r", "1mm"], "r"),
+        (&["sweep", "--masses", "30g:100g"], "masses"),
+        (&["sweep", "--gaps", "0:5cm:3"], "gap"),
+    ];
+    for (args, needle) in cases {
+        let (code, out, err) = thud(args);
+        assert_ne!(code, 0, "{args:?} succeeded: {out}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}

@@ -114,7 +114,8 @@ impl DesignArgs {
         set(&mut p.duration_s, "duration", &self.duration, Kind::Time)?;
         p.no_tension |= self.no_tension;
         if let Some(s) = &self.sphere {
-            d.materials = Some(Materials { sphere: s.clone(), plate: self.plate.clone().unwrap_or_else(|| "steel".into()) });
+            d.materials =
+                Some(Materials { sphere: s.clone(), plate: self.plate.clone().unwrap_or_else(|| "steel".into()) });
         }
         let dt = quantity("dt", &self.dt, Kind::Time)?;
         d.solver = match (self.solver, dt, d.solver) {
@@ -156,11 +157,9 @@ pub fn parse_range(param: &str, text: &str, kind: Kind) -> Result<Vec<f64>, Thud
         return Err(ThudError::invalid(param, format!("'{text}'; expected FROM:TO:N, e.g. 30g:100g:20")));
     };
     let (from, to) = (crate::units::parse(param, from, kind)?, crate::units::parse(param, to, kind)?);
-    let n: usize = n
-        .trim()
-        .parse()
-        .ok()
-        .filter(|&n| (1..=1000).contains(&n))
-        .ok_or_else(|| ThudError::invalid(param, format!("'{n}' points; N must be a whole number from 1 to 1000")))?;
+    let n: usize =
+        n.trim().parse().ok().filter(|&n| (1..=1000).contains(&n)).ok_or_else(|| {
+            ThudError::invalid(param, format!("'{n}' points; N must be a whole number from 1 to 1000"))
+        })?;
     Ok(crate::design::linspace(from, to, n))
 }

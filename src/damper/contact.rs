@@ -65,14 +65,7 @@ fn rhs(sys: &Sys, s: f64, y: &State) -> State {
     let (x, v, del, dd) = (y[0], y[1], y[2], y[3]);
     let (f, hz, _) = sys.bracket(del, dd);
     let spring = -sys.c * v - sys.k * x;
-    [
-        v,
-        (spring + s * f) / sys.big_m,
-        dd,
-        -sys.kstar * f - s * spring / sys.big_m,
-        (f - hz) * dd,
-        sys.c * v * v,
-    ]
+    [v, (spring + s * f) / sys.big_m, dd, -sys.kstar * f - s * spring / sys.big_m, (f - hz) * dd, sys.c * v * v]
 }
 
 // Dormand–Prince 5(4) coefficients.
@@ -243,16 +236,7 @@ pub(crate) fn integrate(
 /// The peak penetration inside a step where δ' goes from > 0 to ≤ 0: Newton on the step length
 /// for δ'(h*) = 0 (derivative δ'' from the equations of motion), safeguarded by bisection.
 #[allow(clippy::too_many_arguments)]
-fn refine_peak(
-    sys: &Sys,
-    s: f64,
-    y: &State,
-    k1: &State,
-    h: f64,
-    yn: &State,
-    sc: &[f64; 4],
-    budget: &mut usize,
-) -> f64 {
+fn refine_peak(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, yn: &State, sc: &[f64; 4], budget: &mut usize) -> f64 {
     let (mut lo, mut hi) = (0.0, h);
     // Secant start.
     let mut hh = h * y[3] / (y[3] - yn[3]);

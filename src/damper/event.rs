@@ -42,16 +42,7 @@ fn safe_step(g: f64, gd: f64, a: f64) -> f64 {
 /// conservative advancement on both walls' gaps (never skips a grazing contact; converges
 /// quadratically onto a transversal one, to a gap below `1e-13·d/2`).
 #[allow(clippy::too_many_arguments)]
-fn find_contact(
-    osc: &Oscillator,
-    hg: f64,
-    x0: f64,
-    v0: f64,
-    y0: f64,
-    w: f64,
-    t_max: f64,
-    iters: &mut usize,
-) -> Search {
+fn find_contact(osc: &Oscillator, hg: f64, x0: f64, v0: f64, y0: f64, w: f64, t_max: f64, iters: &mut usize) -> Search {
     let a = osc.accel_bound(x0, v0);
     let gtol = 1e-13 * hg;
     let s_min = 1e-15;
@@ -82,17 +73,7 @@ fn find_contact(
 
 /// Records a flight segment `[t0, t0 + tf]`: analytic maxima, crossings, `|z'|` extrema, history.
 #[allow(clippy::too_many_arguments)]
-fn record_flight(
-    osc: &Oscillator,
-    rec: &mut Recorder,
-    t0: f64,
-    x0: f64,
-    v0: f64,
-    y0: f64,
-    w: f64,
-    tf: f64,
-    t1: f64,
-) {
+fn record_flight(osc: &Oscillator, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
     osc.for_each_event(x0, v0, tf, |kind, tau| {
         let (x, v) = osc.advance(x0, v0, tau);
         match kind {
@@ -186,9 +167,8 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
         }
     }
     rec.finish();
-    energy.final_mechanical_j = osc_energy(x, v)
-        + 0.5 * sys.m * w * w
-        + 0.4 * sys.k_hz * del_end * del_end * del_end.sqrt();
+    energy.final_mechanical_j =
+        osc_energy(x, v) + 0.5 * sys.m * w * w + 0.4 * sys.k_hz * del_end * del_end * del_end.sqrt();
     Run {
         impacts,
         maxima: rec.maxima,

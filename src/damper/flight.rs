@@ -167,9 +167,7 @@ impl Oscillator {
                     guard += 1;
                 }
                 // Zeros of x'': θ − 2ψ = π/2 + kπ.
-                periodic_times(half_pi + 2.0 * psi + phi, std::f64::consts::PI, wd, t_end, |t| {
-                    f(Kind::ZeroAccel, t)
-                });
+                periodic_times(half_pi + 2.0 * psi + phi, std::f64::consts::PI, wd, t_end, |t| f(Kind::ZeroAccel, t));
             }
             Regime::Critical | Regime::Over { .. } => {
                 // At most one zero each of x, x', x'' (two-exponential or (a+bt)e^{rt} form):
@@ -186,10 +184,16 @@ impl Oscillator {
                     evs[1] = (Kind::MaxX, bisect(|t| xv(t).1, t_end));
                 }
                 if (a0 > 0.0 && a1 < 0.0) || (a0 < 0.0 && a1 > 0.0) {
-                    evs[2] = (Kind::ZeroAccel, bisect(|t| {
-                        let (x, v) = xv(t);
-                        self.accel(x, v)
-                    }, t_end));
+                    evs[2] = (
+                        Kind::ZeroAccel,
+                        bisect(
+                            |t| {
+                                let (x, v) = xv(t);
+                                self.accel(x, v)
+                            },
+                            t_end,
+                        ),
+                    );
                 }
                 evs.sort_by(|p, q| p.1.total_cmp(&q.1));
                 for (k, t) in evs {

@@ -228,7 +228,16 @@ pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, 
     let sys = isolated_sys(m, big_m, k_hz, c1, no_tension);
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
-    let end = contact::integrate(&sys, 1.0, 0.0, [0.0, 0.0, 0.0, u0, 0.0, 0.0], 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
+    let end = contact::integrate(
+        &sys,
+        1.0,
+        0.0,
+        [0.0, 0.0, 0.0, u0, 0.0, 0.0],
+        1e4 * tau,
+        &mut budget,
+        0.0,
+        |_, _, _, _, _, _| {},
+    );
     SingleContact {
         u_out_m_s: if end.completed { -end.y[3] } else { 0.0 },
         duration_s: end.t,

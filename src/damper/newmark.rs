@@ -80,12 +80,7 @@ fn contact_step(sys: &Sys, s: f64, st: &St, h: f64) -> St {
         let r2 = sys.m * b + s * f;
         out = St { x, v, a, y, w, b };
         let kt = if clamped { 0.0 } else { 1.5 * sys.k_hz * del.max(0.0).sqrt() + sys.c1 * i1 };
-        let jac = Matrix2::new(
-            sys.big_m * i2 + sys.c * i1 + sys.k + kt,
-            -kt,
-            -kt,
-            sys.m * i2 + kt,
-        );
+        let jac = Matrix2::new(sys.big_m * i2 + sys.c * i1 + sys.k + kt, -kt, -kt, sys.m * i2 + kt);
         let Some(inv) = jac.try_inverse() else { break };
         let dx = inv * Vector2::new(-r1, -r2);
         x += dx[0];
@@ -146,16 +141,14 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let mut st = St { x: 0.0, v: p.v0_m_s, a: 0.0, y: 0.0, w: 0.0, b: 0.0 };
     flight_accels(&sys, &mut st);
     rec.zdot(st.w - st.v);
-    let mut energy = EnergyLedger {
-        initial_j: 0.5 * sys.big_m * st.v * st.v,
-        ..Default::default()
-    };
+    let mut energy = EnergyLedger { initial_j: 0.5 * sys.big_m * st.v * st.v, ..Default::default() };
     let mut impacts: Vec<ImpactEvent> = Vec::new();
     let n_steps = (t_end / dt).ceil() as u64;
     let mut k_next: u64 = 1;
     let mut t = 0.0;
     let mut wall = 0.0; // 0 in flight, ±1 in contact
-    let mut cur = ImpactEvent { t_s: 0.0, wall: 0, u_in_m_s: 0.0, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: 0.0 };
+    let mut cur =
+        ImpactEvent { t_s: 0.0, wall: 0, u_in_m_s: 0.0, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: 0.0 };
     let mut cancelled = false;
     let mut counter: u32 = 0;
 
@@ -290,11 +283,7 @@ pub(crate) fn single(sys: &Sys, u0: f64, dt: f64) -> SingleContact {
                 let q = contact_step(sys, s, &st, th * dt);
                 (q.pen(sys, s).0, q)
             });
-            return SingleContact {
-                u_out_m_s: -sub.pen(sys, s).1,
-                duration_s: t + th * dt,
-                penetration_max_m: pen,
-            };
+            return SingleContact { u_out_m_s: -sub.pen(sys, s).1, duration_s: t + th * dt, penetration_max_m: pen };
         }
         pen = pen.max(d1);
         st = n1;

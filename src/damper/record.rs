@@ -68,11 +68,7 @@ impl Recorder {
             return Some(0.0);
         }
         let last = self.n_hist - 1;
-        Some(if self.next_hist == last {
-            self.duration
-        } else {
-            self.next_hist as f64 * self.duration / last as f64
-        })
+        Some(if self.next_hist == last { self.duration } else { self.next_hist as f64 * self.duration / last as f64 })
     }
 
     /// Emits every pending history sample with time `≤ t1`, evaluating `(x, y)` with `eval`.
@@ -116,8 +112,5 @@ pub(crate) fn hermite(f0: f64, d0: f64, f1: f64, d1: f64, h: f64, s: f64) -> f64
     let u = s / h;
     let u2 = u * u;
     let u3 = u2 * u;
-    (2.0 * u3 - 3.0 * u2 + 1.0) * f0
-        + (u3 - 2.0 * u2 + u) * h * d0
-        + (-2.0 * u3 + 3.0 * u2) * f1
-        + (u3 - u2) * h * d1
+    (2.0 * u3 - 3.0 * u2 + 1.0) * f0 + (u3 - 2.0 * u2 + u) * h * d0 + (-2.0 * u3 + 3.0 * u2) * f1 + (u3 - u2) * h * d1
 }

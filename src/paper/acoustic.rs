@@ -231,4 +231,3 @@ pub fn acoustic(id: &str) -> Option<Result<Table, ThudError>> {
         _ => return None,
     })
 }
-
