@@ -20,7 +20,13 @@ pub struct HistoryView<'a> {
 
 impl Widget for HistoryView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let free_marker = if self.theme.ascii { Marker::Dot } else { Marker::Braille };
+        // Without colour the two curves differ by their marker.
+        let free_marker = if self.theme.ascii || !self.theme.color { Marker::Dot } else { Marker::Braille };
+        let title = if self.theme.color {
+            "x(t) cm: damper (yellow), none (grey)"
+        } else {
+            "x(t) cm: damper (fine), none (•)"
+        };
         let mut series = vec![
             Series {
                 name: "no damper",
@@ -39,7 +45,7 @@ impl Widget for HistoryView<'_> {
             series.push(Series { name: "pinned", data: p, style: self.theme.pinned(), marker: Marker::Dot });
         }
         LinePlot {
-            title: "x(t) of the main mass",
+            title,
             x_title: "s",
             y_title: "cm",
             series,
@@ -47,6 +53,7 @@ impl Widget for HistoryView<'_> {
             focused: self.focused,
             theme: self.theme,
             y_zero: false,
+            legend: self.pinned.is_some(),
         }
         .render(area, buf);
     }

@@ -28,8 +28,10 @@ pub struct LinePlot<'a> {
     pub empty: &'a str,
     pub focused: bool,
     pub theme: Theme,
-    /// Extra horizontal lines (y values), e.g. zero.
+    /// Draw the y = 0 line.
     pub y_zero: bool,
+    /// Show the legend box (else the title names the curves).
+    pub legend: bool,
 }
 
 /// The [min, max] of the values, widened a little; a degenerate range becomes ±1 around it.
@@ -85,7 +87,7 @@ impl Widget for LinePlot<'_> {
                 Dataset::default()
                     .data(&zero)
                     .graph_type(GraphType::Line)
-                    .marker(Marker::Dot)
+                    .marker(self.theme.marker())
                     .style(self.theme.pinned()),
             );
         }
@@ -97,8 +99,8 @@ impl Widget for LinePlot<'_> {
             .block(block)
             .x_axis(Axis::default().title(self.x_title).bounds(xb).labels(labels(xb)))
             .y_axis(Axis::default().title(self.y_title).bounds(yb).labels(labels(yb)))
-            .legend_position(Some(LegendPosition::TopRight))
-            .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)))
+            .legend_position(self.legend.then_some(LegendPosition::TopRight))
+            .hidden_legend_constraints((Constraint::Ratio(1, 3), Constraint::Ratio(1, 3)))
             .render(area, buf);
     }
 }

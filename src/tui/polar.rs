@@ -6,7 +6,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Color;
 use ratatui::symbols::Marker;
-use ratatui::widgets::canvas::{Canvas, Circle, Context, Line as CLine};
+use ratatui::widgets::canvas::{Canvas, Context, Line as CLine, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::theme::Theme;
@@ -67,7 +67,7 @@ fn curve(ctx: &mut Context, pts: &[(f64, f64)], floor: f64, color: Color) {
 
 impl Widget for PolarView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let title = format!(" SPL vs θ at r {} m (dB, rms over τ) ", sig(self.r_m, 3));
+        let title = format!(" SPL(θ) dB at r {} m ", sig(self.r_m, 3));
         let block = Block::bordered().title(title).border_style(self.theme.focus(self.focused));
         if self.live.is_empty() {
             let inner = block.inner(area);
@@ -89,9 +89,15 @@ impl Widget for PolarView<'_> {
             .x_bounds(xb)
             .y_bounds(yb)
             .paint(|ctx| {
-                for k in 1..=3 {
-                    ctx.draw(&Circle { x: 0.0, y: 0.0, radius: 10.0 * k as f64, color: color(Color::DarkGray) });
-                }
+                // Rings every 10 dB, dotted so they do not read as curves.
+                let (lo, hi) = self.range_deg;
+                let ring: Vec<(f64, f64)> = (1..=3)
+                    .flat_map(|k| {
+                        let n = ((hi - lo) / 6.0).round() as usize;
+                        (0..=n).map(move |i| point(lo + (hi - lo) * i as f64 / n.max(1) as f64, 10.0 * k as f64, 0.0))
+                    })
+                    .collect();
+                ctx.draw(&Points { coords: &ring, color: color(Color::DarkGray) });
                 ctx.layer();
                 if let Some(p) = self.pinned {
                     ctx.marker(Marker::Dot);

@@ -77,7 +77,7 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Option<Geometry> {
     } else if body.width >= 60 && body.height >= 12 {
         let [left, right] = Layout::horizontal([Constraint::Length(30), Constraint::Min(1)]).areas(body);
         f.render_widget(params_view(app), left);
-        let readout_h = readout_h.min(body.height / 2).max(6);
+        let readout_h = readout_h.min(body.height.saturating_sub(8)).max(6);
         let [readout, slot] = Layout::vertical([Constraint::Length(readout_h), Constraint::Min(0)]).areas(right);
         readout_widget(f, app, readout);
         if slot.height >= 5 {
@@ -211,7 +211,7 @@ fn chart_title(app: &App) -> String {
         ChartView::Zones => "zones m×d",
         ChartView::Scatter => "e vs SPLmax",
     };
-    format!(" chart: {view}, L* {} dB e* {} cm/s{progress} ", sig(t.spl_db, 4), sig(t.inclination_cm_s, 3))
+    format!(" {view}  L* {} dB  e* {} cm/s{progress} ", t.spl_db, t.inclination_cm_s)
 }
 
 fn chart_panel(f: &mut Frame, app: &App, area: Rect, focused: bool) -> Option<Geometry> {

@@ -30,7 +30,7 @@ impl Widget for WaveformView<'_> {
             series.push(Series { name: "pinned", data: p, style: self.theme.pinned(), marker: Marker::Dot });
         }
         LinePlot {
-            title: "pressure at observer, loudest impact",
+            title: "p(t) of the loudest impact, Pa vs ms",
             x_title: "ms",
             y_title: "Pa",
             series,
@@ -38,6 +38,7 @@ impl Widget for WaveformView<'_> {
             focused: self.focused,
             theme: self.theme,
             y_zero: true,
+            legend: self.pinned.is_some(),
         }
         .render(area, buf);
     }
