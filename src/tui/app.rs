@@ -392,7 +392,7 @@ impl App {
     }
 
     fn click(&mut self, x: u16, y: u16) -> Vec<Request> {
-        let Some((m, g)) = self.chart_geometry.and_then(|geo| geo.hit(x, y)) else {
+        let Some((m, g)) = self.chart_geometry.as_ref().and_then(|geo| geo.hit(x, y)) else {
             return vec![];
         };
         self.focus = Panel::Chart;

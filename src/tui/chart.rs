@@ -27,46 +27,66 @@ pub enum CellView {
 /// Width of the gap labels on the left of the grid.
 const LABEL_W: u16 = 6;
 
-/// Where the cells are on screen: used to draw them and to map a mouse click to a cell.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Where the cells are on screen: used to draw them and to map a mouse click to a cell. When
+/// the grid has more cells than the panel has room for, evenly spaced rows/columns are shown.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Geometry {
     /// The rectangle covered by the cells.
     pub cells: Rect,
     pub cell_w: u16,
     pub cell_h: u16,
-    pub n_masses: usize,
-    pub n_gaps: usize,
+    /// Grid mass index of each displayed column, left to right.
+    pub cols: Vec<usize>,
+    /// Grid gap index of each displayed row, bottom to top.
+    pub rows: Vec<usize>,
+}
+
+/// `shown` indices evenly spread over `0..n` (all of them if they fit).
+fn sample(n: usize, shown: usize) -> Vec<usize> {
+    match shown {
+        0 => vec![],
+        1 => vec![0],
+        _ if shown >= n => (0..n).collect(),
+        _ => (0..shown).map(|i| (i * (n - 1) + (shown - 1) / 2) / (shown - 1)).collect(),
+    }
 }
 
 impl Geometry {
-    /// Lays out `n_masses × n_gaps` cells in the inner area of the panel (None if too small).
+    /// Lays out the `n_masses × n_gaps` grid in the inner area of the panel (None if too small).
     pub fn new(inner: Rect, n_masses: usize, n_gaps: usize) -> Option<Self> {
-        let (nm, ng) = (n_masses as u16, n_gaps as u16);
         let avail_w = inner.width.checked_sub(LABEL_W)?;
-        let avail_h = inner.height.checked_sub(2)?;
-        if nm == 0 || ng == 0 || avail_w < nm || avail_h < ng {
+        let avail_h = inner.height.checked_sub(1)?;
+        let (dm, dg) = (n_masses.min(avail_w as usize), n_gaps.min(avail_h as usize));
+        if dm < 2 || dg < 2 {
             return None;
         }
-        let (cell_w, cell_h) = ((avail_w / nm).min(6), (avail_h / ng).min(3));
-        let cells = Rect::new(inner.x + LABEL_W, inner.y, cell_w * nm, cell_h * ng);
-        Some(Self { cells, cell_w, cell_h, n_masses, n_gaps })
+        let (cell_w, cell_h) = ((avail_w / dm as u16).min(6), (avail_h / dg as u16).min(3));
+        let cells = Rect::new(inner.x + LABEL_W, inner.y, cell_w * dm as u16, cell_h * dg as u16);
+        Some(Self { cells, cell_w, cell_h, cols: sample(n_masses, dm), rows: sample(n_gaps, dg) })
     }
 
-    /// The screen rectangle of cell (mass index, gap index); larger gaps are drawn on top.
-    pub fn rect(&self, m: usize, g: usize) -> Rect {
-        let row = (self.n_gaps - 1 - g) as u16;
-        Rect::new(self.cells.x + m as u16 * self.cell_w, self.cells.y + row * self.cell_h, self.cell_w, self.cell_h)
+    /// The screen rectangle of displayed column `c` and displayed row `r` (row 0 at the bottom).
+    pub fn rect(&self, c: usize, r: usize) -> Rect {
+        let top = (self.rows.len() - 1 - r) as u16;
+        Rect::new(self.cells.x + c as u16 * self.cell_w, self.cells.y + top * self.cell_h, self.cell_w, self.cell_h)
     }
 
-    /// The cell (mass index, gap index) under screen position (x, y), if any.
+    /// The grid cell (mass index, gap index) under screen position (x, y), if any.
     pub fn hit(&self, x: u16, y: u16) -> Option<(usize, usize)> {
         let c = self.cells;
         if x < c.x || y < c.y || x >= c.x + c.width || y >= c.y + c.height {
             return None;
         }
-        let m = ((x - c.x) / self.cell_w) as usize;
-        let row = ((y - c.y) / self.cell_h) as usize;
-        Some((m, self.n_gaps - 1 - row))
+        let col = ((x - c.x) / self.cell_w) as usize;
+        let top = ((y - c.y) / self.cell_h) as usize;
+        Some((self.cols[col], self.rows[self.rows.len() - 1 - top]))
+    }
+
+    /// The displayed (column, row) nearest to grid cell (m, g).
+    pub fn shown(&self, m: usize, g: usize) -> (usize, usize) {
+        let near =
+            |v: &[usize], i: usize| v.iter().enumerate().min_by_key(|(_, &x)| x.abs_diff(i)).map_or(0, |(k, _)| k);
+        (near(&self.cols, m), near(&self.rows, g))
     }
 }
 
@@ -128,18 +148,20 @@ impl ZoneGridView<'_> {
 
     fn draw_labels(&self, buf: &mut Buffer, g: &Geometry, inner: Rect) {
         let dim = Style::default().add_modifier(Modifier::DIM);
-        for (gi, d) in self.gaps_cm.iter().enumerate() {
-            let r = g.rect(0, gi);
-            if gi % 2 == 0 || g.cell_h > 1 {
-                buf.set_stringn(inner.x, r.y + r.height / 2, format!("{:>5}", sig(*d, 2)), LABEL_W as usize - 1, dim);
+        for (r, &gi) in g.rows.iter().enumerate() {
+            let rect = g.rect(0, r);
+            if r % 2 == 0 || g.cell_h > 1 {
+                let text = format!("{:>5}", sig(self.gaps_cm[gi], 2));
+                buf.set_stringn(inner.x, rect.y + rect.height / 2, text, LABEL_W as usize - 1, dim);
             }
         }
         let y = g.cells.y + g.cells.height;
         buf.set_stringn(inner.x, y, "d cm", LABEL_W as usize, dim);
         let step = (8 / g.cell_w.max(1)).max(1) as usize;
-        for (mi, m) in self.masses_g.iter().enumerate().step_by(step) {
-            let r = g.rect(mi, 0);
-            buf.set_stringn(r.x, y, sig(*m, 2), (inner.x + inner.width).saturating_sub(r.x) as usize, dim);
+        for (c, &mi) in g.cols.iter().enumerate().step_by(step) {
+            let r = g.rect(c, 0);
+            let room = (inner.x + inner.width).saturating_sub(r.x) as usize;
+            buf.set_stringn(r.x, y, sig(self.masses_g[mi], 2), room, dim);
         }
         if y + 1 < inner.y + inner.height {
             let legend = "m g →  1 noisy,weak  2 noisy,strong  3 quiet,strong  4 quiet,weak  · pending";
@@ -157,10 +179,11 @@ impl Widget for ZoneGridView<'_> {
             Paragraph::new("too small for the chart").render(inner, buf);
             return;
         };
-        for gi in 0..self.gaps_cm.len() {
-            for mi in 0..self.masses_g.len() {
+        let current = self.current.map(|(m, gi)| g.shown(m, gi));
+        for (r, &gi) in g.rows.iter().enumerate() {
+            for (c, &mi) in g.cols.iter().enumerate() {
                 let cell = self.cells.get(gi * self.masses_g.len() + mi).copied().unwrap_or(CellView::Empty);
-                self.draw_cell(buf, g.rect(mi, gi), cell, self.current == Some((mi, gi)));
+                self.draw_cell(buf, g.rect(c, r), cell, current == Some((c, r)));
             }
         }
         self.draw_labels(buf, &g, inner);
@@ -249,5 +272,16 @@ mod tests {
         }
         assert_eq!(g.hit(0, 0), None);
         assert!(Geometry::new(Rect::new(0, 0, 5, 3), 6, 5).is_none());
+    }
+
+    #[test]
+    fn big_grid_in_small_panel_shows_evenly_spaced_rows_with_both_ends() {
+        let g = Geometry::new(Rect::new(0, 0, 40, 9), 16, 12).unwrap();
+        assert_eq!(g.rows.len(), 8);
+        assert_eq!((g.rows[0], g.rows[7]), (0, 11));
+        assert!(g.rows.windows(2).all(|w| w[0] < w[1]));
+        let r = g.rect(3, 0);
+        assert_eq!(g.hit(r.x, r.y), Some((g.cols[3], 0)));
+        assert_eq!(sample(5, 3), vec![0, 2, 4]);
     }
 }
