@@ -201,3 +201,56 @@ fn stale_results_are_dropped() {
     assert!(app.busy(), "still waiting for the new design");
     other.quit = true;
 }
+
+/// The kinds of work a key asks for, after moving the selection to `field`.
+fn work_for_step(field: thud::tui::fields::Field) -> Vec<&'static str> {
+    let mut app = computed_app();
+    app.selected = thud::tui::fields::Field::ALL.iter().position(|f| *f == field).unwrap();
+    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
+    let kinds = reqs
+        .iter()
+        .map(|r| match r {
+            thud::tui::Request::Sim(_) => "sim",
+            thud::tui::Request::Acoustic(..) => "acoustic",
+            thud::tui::Request::Chart(..) => "chart",
+            thud::tui::Request::Relevel(..) => "relevel",
+        })
+        .collect();
+    compute_sync(&mut app, reqs);
+    assert!(!app.busy(), "{field:?}: all results in");
+    kinds
+}
+
+#[test]
+fn each_change_recomputes_only_what_it_must() {
+    use thud::tui::fields::Field;
+    assert_eq!(work_for_step(Field::Theta), ["acoustic", "relevel"], "θ: acoustics only");
+    assert_eq!(work_for_step(Field::R), ["acoustic", "relevel"], "r: acoustics only");
+    assert_eq!(work_for_step(Field::Mass), ["sim"], "m: this design only");
+    assert_eq!(work_for_step(Field::Gap), ["sim"], "d: this design only");
+    assert_eq!(work_for_step(Field::K), ["sim", "chart"], "K: design and sweep");
+    assert!(work_for_step(Field::LStar).is_empty(), "L*: zones are reclassified on draw");
+}
+
+#[test]
+fn theta_change_relevels_the_chart_like_a_fresh_sweep() {
+    let mut app = computed_app();
+    app.selected = thud::tui::fields::Field::ALL.iter().position(|f| *f == thud::tui::fields::Field::Theta).unwrap();
+    press(&mut app, KeyCode::Left);
+    let fresh = computed_with(app.design.clone());
+    for (a, b) in app.chart.fine.cells.iter().zip(&fresh.chart.fine.cells) {
+        let (a, b) = (a.unwrap().metrics.spl_max_db, b.unwrap().metrics.spl_max_db);
+        assert_eq!(a.is_some(), b.is_some());
+        if let (Some(a), Some(b)) = (a, b) {
+            assert!((a - b).abs() < 1e-9);
+        }
+    }
+}
+
+fn computed_with(d: Design) -> App {
+    let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
+    let mut app = App::with_grids(d, "default", Theme::default(), grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    app
+}

@@ -10,7 +10,9 @@ use super::chart::Geometry;
 use super::fields::{Field, Scope};
 use super::keys::{self, Action};
 use super::theme::Theme;
-use super::worker::{acoustic_key, chart_key, sim_key, AcousticResult, Done, Grids, Request, SimResult, Stage};
+use super::worker::{
+    acoustic_key, chart_key, sim_key, sound_key, AcousticResult, ChartPasses, Done, Grids, Request, SimResult, Stage,
+};
 use crate::design::{self, Chart, Design, Metrics, Zone, ZoneBy};
 use crate::presets::PRESETS;
 
@@ -84,6 +86,8 @@ pub struct Pinned {
 #[derive(Debug, Clone)]
 pub struct ChartState {
     pub key: String,
+    /// The sound key (observer, radiation) the cells' SPLmax were computed for.
+    pub levels_for: String,
     pub coarse: Option<Chart>,
     pub fine: Chart,
 }
@@ -92,12 +96,18 @@ impl ChartState {
     fn empty(design: &Design, grids: &Grids) -> Self {
         Self {
             key: chart_key(design, grids),
+            levels_for: sound_key(design),
             coarse: grids
                 .coarse
                 .as_ref()
                 .map(|g| Chart::empty(g.masses_kg.clone(), g.gaps_m.clone(), design.thresholds)),
             fine: Chart::empty(grids.fine.masses_kg.clone(), grids.fine.gaps_m.clone(), design.thresholds),
         }
+    }
+
+    /// The passes, for a relevel request.
+    pub fn passes(&self) -> ChartPasses {
+        ChartPasses { coarse: self.coarse.clone(), fine: self.fine.clone() }
     }
 
     /// (cells done, cells in all passes).
@@ -218,7 +228,7 @@ impl App {
     /// True while the chart is still filling in.
     pub fn chart_busy(&self) -> bool {
         let (done, total) = self.chart.progress();
-        done < total && self.chart_error.is_none()
+        (done < total || self.chart.levels_for != sound_key(&self.design)) && self.chart_error.is_none()
     }
 
     /// Handles one message; returns the work to ask the worker for.
@@ -454,8 +464,15 @@ impl App {
             self.chart = ChartState::empty(&self.design, &self.grids);
             self.chart_error = None;
             out.push(Request::Chart(self.design.clone(), self.grids.clone()));
+        } else if self.chart.levels_for != sound_key(&self.design) {
+            out.push(self.relevel());
         }
         out
+    }
+
+    /// Asks for the chart's levels at the current observer (acoustics only).
+    fn relevel(&self) -> Request {
+        Request::Relevel(self.design.clone(), Arc::new(self.chart.passes()))
     }
 
     /// Takes a worker result if it is for the current parameters; drops stale ones.
@@ -486,15 +503,22 @@ impl App {
                     Err(e) => self.fail(e),
                 }
             }
-            Done::ChartCell { key, stage, index, cell } if key == self.chart.key => {
+            Done::ChartCell { key, sound, stage, index, cell } if key == self.chart.key => {
                 if let Some(slot) = self.stage_chart(stage).and_then(|c| c.cells.get_mut(index)) {
                     *slot = Some(cell);
                 }
+                if sound != sound_key(&self.design) {
+                    self.chart.levels_for = sound;
+                }
             }
-            Done::Chart { key, stage, result } if key == self.chart.key => match result {
+            Done::Chart { key, sound, stage, result } if key == self.chart.key => match result {
                 Ok(chart) => {
                     if let Some(c) = self.stage_chart(stage) {
                         *c = (*chart).clone();
+                    }
+                    if sound != sound_key(&self.design) {
+                        self.chart.levels_for = sound;
+                        return vec![self.relevel()];
                     }
                 }
                 Err(e) => {
@@ -502,9 +526,28 @@ impl App {
                     self.error(e);
                 }
             },
-            Done::ChartCell { .. } | Done::Chart { .. } => {}
+            Done::Relevel { key, sound, passes } if key == self.chart.key && sound == sound_key(&self.design) => {
+                self.merge_levels(&passes);
+                self.chart.levels_for = sound;
+            }
+            Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
         }
         vec![]
+    }
+
+    /// Takes the relevelled cells (cells that arrived since the request keep theirs).
+    fn merge_levels(&mut self, p: &ChartPasses) {
+        let merge = |into: &mut Chart, from: &Chart| {
+            for (a, b) in into.cells.iter_mut().zip(&from.cells) {
+                if b.is_some() {
+                    *a = *b;
+                }
+            }
+        };
+        if let (Some(c), Some(from)) = (self.chart.coarse.as_mut(), p.coarse.as_ref()) {
+            merge(c, from);
+        }
+        merge(&mut self.chart.fine, &p.fine);
     }
 
     fn stage_chart(&mut self, stage: Stage) -> Option<&mut Chart> {

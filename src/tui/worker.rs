@@ -92,15 +92,49 @@ pub enum Request {
     Sim(Design),
     Acoustic(Design, Arc<SimResult>),
     Chart(Design, Grids),
+    /// The chart's SPLmax for the design's observer and radiation, from each cell's U0max:
+    /// acoustics only, no simulation. Carries the chart passes to relevel.
+    Relevel(Design, Arc<ChartPasses>),
+}
+
+/// The passes of a chart (coarse, if any, and fine), as the app holds them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChartPasses {
+    pub coarse: Option<Chart>,
+    pub fine: Chart,
 }
 
 /// What comes back, tagged with the key of the parameters it was computed for.
 #[derive(Debug, Clone)]
 pub enum Done {
-    Sim { key: String, result: Result<Arc<SimResult>, String> },
-    Acoustic { key: String, result: Result<Arc<AcousticResult>, String> },
-    ChartCell { key: String, stage: Stage, index: usize, cell: Cell },
-    Chart { key: String, stage: Stage, result: Result<Arc<Chart>, String> },
+    Sim {
+        key: String,
+        result: Result<Arc<SimResult>, String>,
+    },
+    Acoustic {
+        key: String,
+        result: Result<Arc<AcousticResult>, String>,
+    },
+    /// `sound` is the [`sound_key`] the cell's SPLmax was computed for.
+    ChartCell {
+        key: String,
+        sound: String,
+        stage: Stage,
+        index: usize,
+        cell: Cell,
+    },
+    Chart {
+        key: String,
+        sound: String,
+        stage: Stage,
+        result: Result<Arc<Chart>, String>,
+    },
+    /// The chart's passes relevelled for `sound`; `key` is the chart key.
+    Relevel {
+        key: String,
+        sound: String,
+        passes: Arc<ChartPasses>,
+    },
 }
 
 fn json<T: serde::Serialize>(v: &T) -> String {
@@ -119,10 +153,18 @@ pub fn acoustic_key(d: &Design) -> String {
     json(&d)
 }
 
-/// Key of the chart: everything but the mass, the gap and the thresholds, plus the grids.
+/// Key of what the sound at the observer depends on beyond each impact: observer and radiation.
+pub fn sound_key(d: &Design) -> String {
+    json(&(&d.observer, &d.radiation))
+}
+
+/// Key of the chart's simulations: everything but the mass, the gap, the thresholds and the
+/// sound (a change of observer relevels the chart instead of re-sweeping it), plus the grids.
 pub fn chart_key(d: &Design, grids: &Grids) -> String {
     let mut d = design::variant(d, 0.0, 0.0);
     d.thresholds = Thresholds::default();
+    d.observer = crate::acoustics::Observer::new(0.0, 0.0);
+    d.radiation = Default::default();
     format!(
         "{}|{:?}|{:?}",
         json(&d),
@@ -137,6 +179,7 @@ pub fn request_key(r: &Request) -> String {
         Request::Sim(d) => sim_key(d),
         Request::Acoustic(d, _) => acoustic_key(d),
         Request::Chart(d, g) => chart_key(d, g),
+        Request::Relevel(d, _) => sound_key(d),
     }
 }
 
@@ -191,17 +234,39 @@ pub fn compute_chart(
     cancel: Option<&AtomicBool>,
     notify: &(dyn Fn(Done) + Sync),
 ) -> bool {
+    let sound = sound_key(d);
     let passes = grids.coarse.iter().map(|g| (Stage::Coarse, g)).chain([(Stage::Fine, &grids.fine)]);
     for (stage, grid) in passes {
-        let on_cell =
-            |index: usize, cell: &Cell| notify(Done::ChartCell { key: key.to_string(), stage, index, cell: *cell });
+        let on_cell = |index: usize, cell: &Cell| {
+            notify(Done::ChartCell { key: key.to_string(), sound: sound.clone(), stage, index, cell: *cell })
+        };
         let result = design::sweep(d, &grid.masses_kg, &grid.gaps_m, cancel, &on_cell);
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             return false;
         }
-        notify(Done::Chart { key: key.to_string(), stage, result: result.map(Arc::new).map_err(|e| e.to_string()) });
+        let result = result.map(Arc::new).map_err(|e| e.to_string());
+        notify(Done::Chart { key: key.to_string(), sound: sound.clone(), stage, result });
     }
     true
+}
+
+/// A cell's metrics with SPLmax (and zone) for the observer and radiation of `d`, from its
+/// U0max: one sound-field evaluation, no simulation.
+pub fn relevel_cell(d: &Design, cell: &Cell) -> Cell {
+    let mut out = *cell;
+    if cell.metrics.spl_max_db.is_some() {
+        let v = design::variant(d, cell.mass_kg, cell.gap_m);
+        let spl = v.resolved().and_then(|r| r.impact_spl_db(cell.metrics.u0_max_m_s)).ok();
+        out.metrics.spl_max_db = spl;
+        out.metrics.zone = spl.and_then(|_| super::app::zone_of(&out.metrics, d));
+    }
+    out
+}
+
+/// Every computed cell of the passes relevelled for `d`.
+pub fn compute_relevel(d: &Design, passes: &ChartPasses) -> ChartPasses {
+    let re = |c: &Chart| Chart { cells: c.cells.iter().map(|x| x.map(|x| relevel_cell(d, &x))).collect(), ..c.clone() };
+    ChartPasses { coarse: passes.coarse.as_ref().map(re), fine: re(&passes.fine) }
 }
 
 /// Runs one request on the calling thread, without cache or cancellation (tests, benches).
@@ -218,7 +283,19 @@ pub fn run_sync(req: &Request, notify: &(dyn Fn(Done) + Sync)) {
         Request::Chart(d, g) => {
             compute_chart(d, g, &key, None, notify);
         }
+        Request::Relevel(d, passes) => notify(relevelled(d, passes)),
     }
+}
+
+fn relevelled(d: &Design, passes: &ChartPasses) -> Done {
+    let key = chart_key(d, &grids_of(passes));
+    Done::Relevel { key, sound: sound_key(d), passes: Arc::new(compute_relevel(d, passes)) }
+}
+
+/// The grids of held chart passes (for their key).
+pub fn grids_of(p: &ChartPasses) -> Grids {
+    let grid = |c: &Chart| Grid { masses_kg: c.masses_kg.clone(), gaps_m: c.gaps_m.clone() };
+    Grids { coarse: p.coarse.as_ref().map(grid), fine: grid(&p.fine) }
 }
 
 /// One job slot: the queued job, and the cancel flag and key of the running one.
@@ -289,14 +366,16 @@ pub struct Worker {
     sim: Arc<Slot>,
     acoustic: Arc<Slot>,
     chart: Arc<Slot>,
+    levels: Arc<Slot>,
 }
 
 impl Worker {
     /// Starts the three threads; results go to `notify` (called from the worker threads).
     pub fn start(notify: impl Fn(Done) + Send + Sync + 'static) -> Self {
         let notify: Notify = Arc::new(notify);
-        let w = Self { sim: Arc::new(Slot::new()), acoustic: Arc::new(Slot::new()), chart: Arc::new(Slot::new()) };
-        for slot in [&w.sim, &w.acoustic, &w.chart] {
+        let new = || Arc::new(Slot::new());
+        let w = Self { sim: new(), acoustic: new(), chart: new(), levels: new() };
+        for slot in [&w.sim, &w.acoustic, &w.chart, &w.levels] {
             let (slot, notify) = (slot.clone(), notify.clone());
             std::thread::Builder::new()
                 .name("thud-worker".into())
@@ -313,6 +392,7 @@ impl Worker {
             Request::Sim(_) => &self.sim,
             Request::Acoustic(..) => &self.acoustic,
             Request::Chart(..) => &self.chart,
+            Request::Relevel(..) => &self.levels,
         };
         slot.put(key, req);
     }
@@ -320,7 +400,7 @@ impl Worker {
 
 impl Drop for Worker {
     fn drop(&mut self) {
-        for s in [&self.sim, &self.acoustic, &self.chart] {
+        for s in [&self.sim, &self.acoustic, &self.chart, &self.levels] {
             s.close();
         }
     }
@@ -331,8 +411,11 @@ impl Drop for Worker {
 struct Caches {
     sim: HashMap<String, Arc<SimResult>>,
     acoustic: HashMap<String, Arc<AcousticResult>>,
-    chart: HashMap<String, Vec<(Stage, Arc<Chart>)>>,
+    chart: HashMap<String, CachedChart>,
 }
+
+/// A finished chart: the sound key its levels are for, and its passes.
+type CachedChart = (String, Vec<(Stage, Arc<Chart>)>);
 
 fn bounded<V>(map: &mut HashMap<String, V>) -> &mut HashMap<String, V> {
     if map.len() >= CACHE_MAX {
@@ -374,9 +457,10 @@ fn execute(key: &str, req: &Request, cancel: &AtomicBool, notify: &(dyn Fn(Done)
             notify(Done::Acoustic { key, result });
         }
         Request::Chart(d, grids) => {
-            if let Some(hit) = cache.chart.get(&key) {
+            if let Some((sound, hit)) = cache.chart.get(&key) {
                 for (stage, chart) in hit {
-                    notify(Done::Chart { key: key.clone(), stage: *stage, result: Ok(chart.clone()) });
+                    let (key, sound, stage) = (key.clone(), sound.clone(), *stage);
+                    notify(Done::Chart { key, sound, stage, result: Ok(chart.clone()) });
                 }
                 return;
             }
@@ -388,9 +472,11 @@ fn execute(key: &str, req: &Request, cancel: &AtomicBool, notify: &(dyn Fn(Done)
                 notify(msg);
             };
             if compute_chart(d, grids, &key, Some(cancel), &collect) {
-                bounded(&mut cache.chart).insert(key, done.into_inner().unwrap_or_else(|e| e.into_inner()));
+                let passes = done.into_inner().unwrap_or_else(|e| e.into_inner());
+                bounded(&mut cache.chart).insert(key, (sound_key(d), passes));
             }
         }
+        Request::Relevel(d, passes) => notify(relevelled(d, passes)),
     }
 }
 
@@ -410,6 +496,27 @@ mod tests {
         heard.observer.r_m = 1.0;
         assert_eq!(sim_key(&d), sim_key(&heard));
         assert_ne!(acoustic_key(&d), acoustic_key(&heard));
+        assert_eq!(chart_key(&d, &Grids::default()), chart_key(&heard, &Grids::default()), "observer relevels");
+        assert_ne!(sound_key(&d), sound_key(&heard));
+    }
+
+    #[test]
+    fn relevel_equals_a_fresh_sweep_at_the_new_observer() {
+        let d = Design::default();
+        let (m, g) = ([0.03, 0.06], [0.02, 0.04]);
+        let chart = design::sweep(&d, &m, &g, None, &|_, _| {}).unwrap();
+        let mut far = d.clone();
+        far.observer = crate::acoustics::Observer::new(1.5, 30.0);
+        let fresh = design::sweep(&far, &m, &g, None, &|_, _| {}).unwrap();
+        let re = compute_relevel(&far, &ChartPasses { coarse: None, fine: chart });
+        for (a, b) in re.fine.cells.iter().zip(&fresh.cells) {
+            let (a, b) = (a.unwrap().metrics, b.unwrap().metrics);
+            assert_eq!(a.spl_max_db.is_some(), b.spl_max_db.is_some());
+            if let (Some(x), Some(y)) = (a.spl_max_db, b.spl_max_db) {
+                assert!((x - y).abs() < 1e-9, "{x} vs {y}");
+            }
+            assert_eq!(a.zone, b.zone);
+        }
     }
 
     #[test]
