@@ -254,3 +254,84 @@ fn computed_with(d: Design) -> App {
     compute_sync(&mut app, reqs);
     app
 }
+
+fn render_buffer(app: &mut App, w: u16, h: u16) -> ratatui::buffer::Buffer {
+    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
+    draw(&mut term, app).unwrap();
+    term.backend().buffer().clone()
+}
+
+#[test]
+fn default_palette_is_the_16_named_colours_and_no_color_has_none() {
+    use ratatui::style::Color;
+    let mut app = computed_app();
+    app.pinned = None;
+    let named = |c: Color| !matches!(c, Color::Rgb(..) | Color::Indexed(_));
+    let buf = render_buffer(&mut app, 120, 40);
+    assert!(buf.content.iter().all(|c| named(c.fg) && named(c.bg)));
+    assert!(buf.content.iter().any(|c| c.bg != Color::Reset), "zones are coloured by default");
+    app.theme = Theme { color: false, ascii: false };
+    let buf = render_buffer(&mut app, 120, 40);
+    for c in &buf.content {
+        assert_eq!((c.fg, c.bg), (Color::Reset, Color::Reset), "NO_COLOR: no colour at {:?}", c.symbol());
+    }
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("[1]") || screen.contains('*'), "current design marked by a glyph");
+    assert!(screen.contains("▶mass m"), "selection marked by a glyph");
+}
+
+#[test]
+fn ascii_mode_draws_no_braille() {
+    let mut app = computed_app();
+    app.theme = Theme { color: true, ascii: true };
+    let screen = render(&mut app, 120, 40);
+    assert!(!screen.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)), "{screen}");
+    assert!(screen.contains(">mass m"));
+}
+
+#[test]
+fn presets_list_applies_a_preset() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Char('P'));
+    assert!(render(&mut app, 120, 40).contains("paper-table3"));
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.preset, "paper-table3");
+    assert_eq!(app.design.damper.v0_m_s, 1.4);
+    assert!(render(&mut app, 120, 40).contains("preset paper-table3"));
+    press(&mut app, KeyCode::Char('u'));
+    assert_eq!(app.design.damper.v0_m_s, 2.0, "undo restores the design");
+}
+
+#[test]
+fn mouse_click_on_the_chart_selects_that_design() {
+    let mut app = computed_app();
+    app.mouse = true;
+    render(&mut app, 120, 40);
+    let geo = app.chart_geometry.clone().expect("chart drawn");
+    let r = geo.rect(0, 0);
+    let click = crossterm::event::MouseEvent {
+        kind: crossterm::event::MouseEventKind::Down(crossterm::event::MouseButton::Left),
+        column: r.x,
+        row: r.y,
+        modifiers: KeyModifiers::NONE,
+    };
+    let reqs = app.update(Msg::Input(Event::Mouse(click)));
+    compute_sync(&mut app, reqs);
+    assert_eq!(app.design.damper.impact_mass_kg, app.chart.fine.masses_kg[geo.cols[0]]);
+    assert_eq!(app.design.damper.gap_m, app.chart.fine.gaps_m[geo.rows[0]]);
+    assert!(!app.busy());
+}
+
+#[test]
+fn chart_focus_moves_the_design_across_the_grid() {
+    let mut app = computed_app();
+    while app.focus != thud::tui::app::Panel::Chart {
+        press(&mut app, KeyCode::Tab);
+    }
+    let m0 = app.design.damper.impact_mass_kg;
+    press(&mut app, KeyCode::Right);
+    assert!(app.design.damper.impact_mass_kg > m0);
+    assert!(app.chart.fine.masses_kg.contains(&app.design.damper.impact_mass_kg));
+}
