@@ -101,7 +101,8 @@ fn simulate_json_has_the_documented_keys() {
     let (code, out, err) = thud(&["simulate", "--preset", "paper-fig9", "--json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    for key in ["n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "zdot_abs_max_m_s", "spl_max_db"] {
+    for key in ["n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "zdot_abs_max_m_s", "spl_max_db"]
+    {
         assert!(!v[key].is_null(), "missing {key}");
     }
     let first = &v["impacts"][0];

@@ -13,7 +13,12 @@ fn table3_u0max_every_cell_within_0_012() {
     for (mi, row) in paper::TABLE3.iter().enumerate() {
         for (gi, &(u_paper, _)) in row.iter().enumerate() {
             let u = model[mi][gi].0;
-            assert!((u - u_paper).abs() < 0.012, "m {} d {}: {u:.4} vs {u_paper}", paper::TABLE3_MASSES_KG[mi], paper::TABLE3_GAPS_M[gi]);
+            assert!(
+                (u - u_paper).abs() < 0.012,
+                "m {} d {}: {u:.4} vs {u_paper}",
+                paper::TABLE3_MASSES_KG[mi],
+                paper::TABLE3_GAPS_M[gi]
+            );
             sq += (u - u_paper).powi(2);
         }
     }
@@ -31,7 +36,12 @@ fn table3_splmax_residual_is_reported_not_tuned() {
     for (mi, row) in paper::TABLE3.iter().enumerate() {
         for (gi, &(_, l_paper)) in row.iter().enumerate() {
             let l = model[mi][gi].1;
-            assert!((l - l_paper).abs() < 1.2, "m {} d {}: {l:.2} vs {l_paper}", paper::TABLE3_MASSES_KG[mi], paper::TABLE3_GAPS_M[gi]);
+            assert!(
+                (l - l_paper).abs() < 1.2,
+                "m {} d {}: {l:.2} vs {l_paper}",
+                paper::TABLE3_MASSES_KG[mi],
+                paper::TABLE3_GAPS_M[gi]
+            );
             sq += (l - l_paper).powi(2);
         }
     }

@@ -27,6 +27,8 @@ pub(crate) struct Sys {
     pub no_tension: bool,
     /// K* = (m+M)/(m·M) (1/kg).
     pub kstar: f64,
+    /// 1/M (1/kg).
+    pub inv_big_m: f64,
 }
 
 impl Sys {
@@ -41,7 +43,17 @@ impl Sys {
             c1: p.c1_n_s_m,
             no_tension: p.no_tension,
             kstar: (p.impact_mass_kg + p.main_mass_kg) / (p.impact_mass_kg * p.main_mass_kg),
+            inv_big_m: 1.0 / p.main_mass_kg,
         }
+    }
+
+    /// The unclamped bracket `K_HZ·δ₊^{3/2} + c1·δ'` (N) at state `y` and its rate (N/s), given
+    /// the state's derivative `d`.
+    #[inline]
+    pub fn raw_bracket(&self, y: &State, d: &State) -> (f64, f64) {
+        let dp = y[2].max(0.0);
+        let r = dp.sqrt();
+        (self.k_hz * dp * r + self.c1 * y[3], 1.5 * self.k_hz * r * y[3] + self.c1 * d[3])
     }
 
     /// `(F, K_HZ·δ₊^{3/2}, clamped)`: the contact bracket (N) and its elastic part.
@@ -64,8 +76,8 @@ pub(crate) type State = [f64; 6];
 fn rhs(sys: &Sys, s: f64, y: &State) -> State {
     let (x, v, del, dd) = (y[0], y[1], y[2], y[3]);
     let (f, hz, _) = sys.bracket(del, dd);
-    let spring = -sys.c * v - sys.k * x;
-    [v, (spring + s * f) / sys.big_m, dd, -sys.kstar * f - s * spring / sys.big_m, (f - hz) * dd, sys.c * v * v]
+    let spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+    [v, spring + s * f * sys.inv_big_m, dd, -sys.kstar * f - s * spring, (f - hz) * dd, sys.c * v * v]
 }
 
 // Dormand–Prince 5(4) coefficients.
@@ -97,43 +109,106 @@ const E6: f64 = 22.0 / 525.0;
 const E7: f64 = -1.0 / 40.0;
 
 /// Relative tolerance of the contact integrator (on a state scaled by the contact's own sizes).
-pub(crate) const RTOL: f64 = 1e-10;
+pub(crate) const RTOL: f64 = 3e-9;
+
+/// The four non-trivial rates `(x'', δ'', P_contact, P_viscous)` at `(x, x', δ, δ')`.
+#[inline(always)]
+fn acc(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64) -> (f64, f64, f64, f64) {
+    let dp = del.max(0.0);
+    let hz = sys.k_hz * dp * dp.sqrt();
+    let mut f = hz + sys.c1 * dd;
+    if sys.no_tension && f < 0.0 {
+        f = 0.0;
+    }
+    let spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+    (spring + (s * sys.inv_big_m) * f, -sys.kstar * f - s * spring, (f - hz) * dd, sys.c * v * v)
+}
 
 /// One DOPRI5 step of length `h` from `y` (with `k1 = f(y)`): the new state, `f(new)` and the
-/// scaled error norm (max norm over x, x', δ, δ' with scales `sc`).
-#[inline]
-fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 4]) -> (State, State, f64) {
-    let mut t = [0.0; 6];
-    for i in 0..6 {
-        t[i] = y[i] + h * A21 * k1[i];
-    }
-    let k2 = rhs(sys, s, &t);
-    for i in 0..6 {
-        t[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
-    }
-    let k3 = rhs(sys, s, &t);
-    for i in 0..6 {
-        t[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
-    }
-    let k4 = rhs(sys, s, &t);
-    for i in 0..6 {
-        t[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
-    }
-    let k5 = rhs(sys, s, &t);
-    for i in 0..6 {
-        t[i] = y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
-    }
-    let k6 = rhs(sys, s, &t);
-    let mut yn = [0.0; 6];
-    for i in 0..6 {
-        yn[i] = y[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]);
-    }
-    let k7 = rhs(sys, s, &yn);
+/// scaled error norm (max norm over the state with scales `sc`). Written out per component:
+/// the rates of x and δ are the state's own x' and δ', and no stage needs the energies.
+#[inline(always)]
+fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (State, State, f64) {
+    let (x, v, d, dd) = (y[0], y[1], y[2], y[3]);
+    // Stage rates: q = x' (= stage v), a = x'', r = δ' (= stage δ'), b = δ'', c/e = powers.
+    let (q1, a1, r1, b1, c1, e1) = (k1[0], k1[1], k1[2], k1[3], k1[4], k1[5]);
+    // Stage state = (y + h·Σ older terms) + (h·a_last)·k_last: the newest rate enters last, so the
+    // sums over older stages overlap with the evaluation of the newest one.
+    let st = |p: [f64; 4], c: f64, k: [f64; 4]| {
+        let hc = h * c;
+        (
+            (x + h * p[0]) + hc * k[0],
+            (v + h * p[1]) + hc * k[1],
+            (d + h * p[2]) + hc * k[2],
+            (dd + h * p[3]) + hc * k[3],
+        )
+    };
+
+    let (x2, v2, d2, dd2) = st([0.0; 4], A21, [q1, a1, r1, b1]);
+    let (a2, b2, _, _) = acc(sys, s, x2, v2, d2, dd2);
+    let (q2, r2) = (v2, dd2);
+
+    let (x3, v3, d3, dd3) = st([A31 * q1, A31 * a1, A31 * r1, A31 * b1], A32, [q2, a2, r2, b2]);
+    let (a3, b3, c3, e3) = acc(sys, s, x3, v3, d3, dd3);
+    let (q3, r3) = (v3, dd3);
+
+    let (x4, v4, d4, dd4) =
+        st([A41 * q1 + A42 * q2, A41 * a1 + A42 * a2, A41 * r1 + A42 * r2, A41 * b1 + A42 * b2], A43, [q3, a3, r3, b3]);
+    let (a4, b4, c4, e4) = acc(sys, s, x4, v4, d4, dd4);
+    let (q4, r4) = (v4, dd4);
+
+    let (x5, v5, d5, dd5) = st(
+        [
+            A51 * q1 + A52 * q2 + A53 * q3,
+            A51 * a1 + A52 * a2 + A53 * a3,
+            A51 * r1 + A52 * r2 + A53 * r3,
+            A51 * b1 + A52 * b2 + A53 * b3,
+        ],
+        A54,
+        [q4, a4, r4, b4],
+    );
+    let (a5, b5, c5, e5) = acc(sys, s, x5, v5, d5, dd5);
+    let (q5, r5) = (v5, dd5);
+
+    let (x6, v6, d6, dd6) = st(
+        [
+            A61 * q1 + A62 * q2 + A63 * q3 + A64 * q4,
+            A61 * a1 + A62 * a2 + A63 * a3 + A64 * a4,
+            A61 * r1 + A62 * r2 + A63 * r3 + A64 * r4,
+            A61 * b1 + A62 * b2 + A63 * b3 + A64 * b4,
+        ],
+        A65,
+        [q5, a5, r5, b5],
+    );
+    let (a6, b6, c6, e6) = acc(sys, s, x6, v6, d6, dd6);
+    let (q6, r6) = (v6, dd6);
+
+    let comb = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64| (B1 * k1 + B3 * k3 + B4 * k4 + B5 * k5) + B6 * k6;
+    let yn = [
+        x + h * comb(q1, q3, q4, q5, q6),
+        v + h * comb(a1, a3, a4, a5, a6),
+        d + h * comb(r1, r3, r4, r5, r6),
+        dd + h * comb(b1, b3, b4, b5, b6),
+        y[4] + h * comb(c1, c3, c4, c5, c6),
+        y[5] + h * comb(e1, e3, e4, e5, e6),
+    ];
+    let (a7, b7, c7, e7) = acc(sys, s, yn[0], yn[1], yn[2], yn[3]);
+    let k7 = [yn[1], a7, yn[3], b7, c7, e7];
+    let est = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64, k7: f64| {
+        h * (E1 * k1 + E3 * k3 + E4 * k4 + E5 * k5 + E6 * k6 + E7 * k7)
+    };
+    let errs = [
+        est(q1, q3, q4, q5, q6, k7[0]),
+        est(a1, a3, a4, a5, a6, a7),
+        est(r1, r3, r4, r5, r6, k7[2]),
+        est(b1, b3, b4, b5, b6, b7),
+        est(c1, c3, c4, c5, c6, c7),
+        est(e1, e3, e4, e5, e6, e7),
+    ];
     let mut err: f64 = 0.0;
-    for i in 0..4 {
-        let e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
+    for i in 0..6 {
         let tol = RTOL * (sc[i] + y[i].abs().max(yn[i].abs()));
-        err = err.max(e.abs() / tol);
+        err = err.max(errs[i].abs() / tol);
     }
     (yn, k7, err)
 }
@@ -152,6 +227,15 @@ pub(crate) struct ContactEnd {
     pub pen_max: f64,
 }
 
+/// Clamp switches located exactly per contact. A ball pressed by the wall under "no tension"
+/// can slide along the switching surface (the clamp chatters); past this many switches the
+/// integrator steps through them under plain error control instead of stopping at each.
+const MAX_SWITCHES: usize = 16;
+
+/// First step as a fraction of the Hertz duration estimate τ (the onset force grows like
+/// t^{3/2}, so the first step is limited by that, not by smoothness).
+const H0_FRACTION: f64 = 1.0 / 1000.0;
+
 /// Integrates one contact at wall `s` from `y0` (δ = 0, δ' > 0) at time `t0` until the exit
 /// (δ returns to 0), the time limit `t_limit`, or `budget` steps run out. `a_bound` (m/s²) bounds
 /// the non-contact relative acceleration (used to size the first step of slow contacts).
@@ -165,13 +249,32 @@ pub(crate) fn integrate(
     t_limit: f64,
     budget: &mut usize,
     a_bound: f64,
+    obs: impl FnMut(f64, &State, &State, f64, &State, &State),
+) -> ContactEnd {
+    integrate_impl(sys, s, t0, y0, t_limit, budget, a_bound, obs)
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn integrate_impl(
+    sys: &Sys,
+    s: f64,
+    t0: f64,
+    y0: State,
+    t_limit: f64,
+    budget: &mut usize,
+    a_bound: f64,
     mut obs: impl FnMut(f64, &State, &State, f64, &State, &State),
 ) -> ContactEnd {
     let u0 = y0[3].abs().max(1e-12);
     let amax = peak_approach(u0, sys.kstar, sys.k_hz);
     let tau = contact_duration(amax, u0);
-    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax, u0];
-    let mut h = tau / 50.0;
+    // Error scales: positions, velocities, penetration, its rate, and the relative kinetic
+    // energy ½·u0²/K* for the dissipated energies (their integrands are non-smooth where the
+    // clamp holds and at the exit, so they must be error-controlled too).
+    let e_sc = 0.5 * u0 * u0 / sys.kstar;
+    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax, u0, e_sc, e_sc];
+    let mut h = tau * H0_FRACTION;
     if a_bound > 0.0 {
         h = h.min(0.1 * u0 / a_bound);
     }
@@ -179,8 +282,10 @@ pub(crate) fn integrate(
     let mut y = y0;
     let mut k1 = rhs(sys, s, &y);
     let mut had_pos = false;
+    let mut switches = 0;
     let mut pen: f64 = 0.0;
-    let mut err_old: f64 = 1e-4;
+    // log2 of the previous step's error norm (floored at 1e-4).
+    let mut err_old: f64 = -13.3;
     loop {
         if *budget == 0 {
             return ContactEnd { t, y, completed: false, grazed: false, pen_max: pen };
@@ -191,7 +296,68 @@ pub(crate) fn integrate(
         }
         let (yn, k7, err) = step(sys, s, &y, &k1, h, &sc);
         *budget -= 1;
-        if !(err <= 1.0) {
+        if sys.no_tension && sys.c1 > 0.0 && had_pos && switches < MAX_SWITCHES {
+            // The clamp switches inside the step (the unclamped bracket changes sign): stop the
+            // step there, so that no step straddles the kink of the force law.
+            let b0 = sys.raw_bracket(&y, &k1).0;
+            let b1 = sys.raw_bracket(&yn, &k7).0;
+            if b0 != 0.0 && (b0 > 0.0) != (b1 > 0.0) {
+                let sg = b0.signum();
+                let guess = h * b0 / (b0 - b1);
+                let tol = 1e-14 * sys.c1.max(1e-300) * sc[3];
+                let (hc, yc, kc, err_c) = refine_root(
+                    sys,
+                    s,
+                    &y,
+                    &k1,
+                    h,
+                    guess,
+                    &sc,
+                    budget,
+                    |st, d| {
+                        let (v, r) = sys.raw_bracket(st, d);
+                        (sg * v, sg * r)
+                    },
+                    tol,
+                );
+                switches += 1;
+                if err_c <= 1.0 || hc <= 1e-14 * tau {
+                    if y[3] > 0.0 && yc[3] <= 0.0 {
+                        pen = pen.max(refine_peak(&y, &k1, hc, &yc, &kc));
+                    }
+                    pen = pen.max(yc[2]);
+                    obs(t, &y, &k1, t + hc, &yc, &kc);
+                    t += hc;
+                    y = yc;
+                    k1 = kc;
+                    if yc[2] <= 0.0 {
+                        y[2] = 0.0;
+                        return ContactEnd { t, y, completed: true, grazed: false, pen_max: pen };
+                    }
+                } else {
+                    h = hc * (0.9 * err_c.powf(-0.2)).clamp(0.2, 0.9);
+                }
+                continue;
+            }
+        }
+        if had_pos && yn[2] <= 0.0 {
+            // The exit lies in this trial step: locate it with real steps, then judge the error
+            // of the step that ends there (the extended force law is non-smooth only beyond it).
+            let guess = quintic_root(&y, &k1, &yn, &k7, h, 0);
+            let (he, mut ye, ke, err_e) =
+                refine_root(sys, s, &y, &k1, h, guess, &sc, budget, |st, _| (st[2], st[3]), 1e-14 * sc[2]);
+            if err_e <= 1.0 || he <= 1e-14 * tau {
+                if y[3] > 0.0 && ye[3] <= 0.0 {
+                    pen = pen.max(refine_peak(&y, &k1, he, &ye, &ke));
+                }
+                ye[2] = 0.0;
+                obs(t, &y, &k1, t + he, &ye, &ke);
+                return ContactEnd { t: t + he, y: ye, completed: true, grazed: false, pen_max: pen };
+            }
+            h = he * (0.9 * err_e.powf(-0.2)).clamp(0.2, 0.9);
+            continue;
+        }
+        if err.is_nan() || err > 1.0 {
             let f = if err.is_finite() { (0.9 * err.powf(-0.2)).max(0.2) } else { 0.2 };
             h *= f;
             continue;
@@ -208,16 +374,9 @@ pub(crate) fn integrate(
         }
         had_pos = true;
         if y[3] > 0.0 && yn[3] <= 0.0 {
-            pen = pen.max(refine_peak(sys, s, &y, &k1, h, &yn, &sc, budget));
+            pen = pen.max(refine_peak(&y, &k1, h, &yn, &k7));
         }
         pen = pen.max(yn[2]);
-        if yn[2] <= 0.0 {
-            let (he, mut ye) = refine_exit(sys, s, &y, &k1, h, &yn, &sc, budget);
-            ye[2] = 0.0;
-            let ke = rhs(sys, s, &ye);
-            obs(t, &y, &k1, t + he, &ye, &ke);
-            return ContactEnd { t: t + he, y: ye, completed: true, grazed: false, pen_max: pen };
-        }
         obs(t, &y, &k1, if last { t_limit } else { t + h }, &yn, &k7);
         if last {
             return ContactEnd { t: t_limit, y: yn, completed: false, grazed: false, pen_max: pen };
@@ -226,84 +385,173 @@ pub(crate) fn integrate(
         y = yn;
         k1 = k7;
         // PI step-size control (Hairer's dopri5: α = 0.17, β = 0.04).
-        let e = err.max(1e-10);
-        let fac = (0.9 * e.powf(-0.17) * err_old.powf(0.04)).clamp(0.2, 5.0);
-        err_old = e.max(1e-4);
+        let le = fast_log2(err.max(1e-10));
+        let fac = (0.9 * fast_exp2(-0.17 * le + 0.04 * err_old)).clamp(0.2, 5.0);
+        err_old = le.max(-13.3);
         h *= fac;
     }
 }
 
-/// The peak penetration inside a step where δ' goes from > 0 to ≤ 0: Newton on the step length
-/// for δ'(h*) = 0 (derivative δ'' from the equations of motion), safeguarded by bisection.
-#[allow(clippy::too_many_arguments)]
-fn refine_peak(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, yn: &State, sc: &[f64; 4], budget: &mut usize) -> f64 {
-    let (mut lo, mut hi) = (0.0, h);
-    // Secant start.
-    let mut hh = h * y[3] / (y[3] - yn[3]);
-    let mut best = y[2].max(yn[2]);
-    for _ in 0..8 {
-        if !(hh > lo && hh < hi) {
-            hh = 0.5 * (lo + hi);
-        }
-        let (ys, ks, _) = step(sys, s, y, k1, hh, sc);
-        *budget = budget.saturating_sub(1);
-        best = best.max(ys[2]);
-        let g = ys[3];
-        if g > 0.0 {
-            lo = hh;
-        } else {
-            hi = hh;
-        }
-        let dg = ks[3];
-        if g.abs() <= 1e-15 * sc[3] || dg == 0.0 {
-            break;
-        }
-        let next = hh - g / dg;
-        if (next - hh).abs() <= 1e-16 * h {
-            break;
-        }
-        hh = next;
-    }
-    best
+/// log2(x) for x > 0 to ~1e-4 absolute (step-size control only needs a rough value).
+#[inline]
+fn fast_log2(x: f64) -> f64 {
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000); // [1, 2)
+                                                                                    // ln m = 2·atanh(q), q = (m − 1)/(m + 1) ∈ [0, 1/3): three terms give < 2e-4.
+    let q = (m - 1.0) / (m + 1.0);
+    let q2 = q * q;
+    e as f64 + 2.885_390_081_777_926_8 * q * (1.0 + q2 * (1.0 / 3.0 + q2 * 0.2))
 }
 
-/// The exit inside a step where δ goes from > 0 to ≤ 0: Newton on the step length for
-/// δ(h*) = 0 (derivative δ'), safeguarded by bisection. Returns `(h*, state)`.
+/// 2^y to ~1e-3 relative (step-size control only).
+#[inline]
+fn fast_exp2(y: f64) -> f64 {
+    let y = y.clamp(-1000.0, 1000.0);
+    let fl = y.floor();
+    let f = y - fl;
+    let p = 1.0 + f * (std::f64::consts::LN_2 + f * (0.240_226_5 + f * (0.055_504_1 + f * 0.009_618_1)));
+    p * f64::from_bits(((fl as i64 + 1023) as u64) << 52)
+}
+
+/// Quintic Hermite interpolant of δ on a step of length `h` built from δ, δ', δ'' at both ends
+/// (all known from the step's states and derivatives, error O(h⁶)): `(δ, δ')` at `q ∈ [0, h]`.
+#[inline]
+fn quintic(y: &State, k1: &State, yn: &State, k7: &State, h: f64, q: f64) -> (f64, f64) {
+    let u = q / h;
+    let (p0, d0, a0) = (y[2], h * y[3], h * h * k1[3]);
+    let (p1, d1, a1) = (yn[2], h * yn[3], h * h * k7[3]);
+    let u2 = u * u;
+    let u3 = u2 * u;
+    let u4 = u3 * u;
+    let u5 = u4 * u;
+    let h00 = 1.0 - 10.0 * u3 + 15.0 * u4 - 6.0 * u5;
+    let h10 = u - 6.0 * u3 + 8.0 * u4 - 3.0 * u5;
+    let h20 = 0.5 * (u2 - 3.0 * u3 + 3.0 * u4 - u5);
+    let h01 = 10.0 * u3 - 15.0 * u4 + 6.0 * u5;
+    let h11 = -4.0 * u3 + 7.0 * u4 - 3.0 * u5;
+    let h21 = 0.5 * (u3 - 2.0 * u4 + u5);
+    let g00 = -30.0 * u2 + 60.0 * u3 - 30.0 * u4;
+    let g10 = 1.0 - 18.0 * u2 + 32.0 * u3 - 15.0 * u4;
+    let g20 = 0.5 * (2.0 * u - 9.0 * u2 + 12.0 * u3 - 5.0 * u4);
+    let g11 = -12.0 * u2 + 28.0 * u3 - 15.0 * u4;
+    let g21 = 0.5 * (3.0 * u2 - 8.0 * u3 + 5.0 * u4);
+    let val = h00 * p0 + h10 * d0 + h20 * a0 + h01 * p1 + h11 * d1 + h21 * a1;
+    let der = (g00 * (p0 - p1) + g10 * d0 + g20 * a0 + g11 * d1 + g21 * a1) / h;
+    (val, der)
+}
+
+/// Root in `(0, h)` of the quintic interpolant's δ (`which = 0`) or δ' (`which = 1`), by the
+/// Illinois regula falsi on the sign change between the step ends.
+fn quintic_root(y: &State, k1: &State, yn: &State, k7: &State, h: f64, which: usize) -> f64 {
+    let g = |q: f64| {
+        let (v, d) = quintic(y, k1, yn, k7, h, q);
+        if which == 0 {
+            v
+        } else {
+            d
+        }
+    };
+    let (mut lo, mut hi) = (0.0, h);
+    let (mut glo, mut ghi) = if which == 0 { (y[2], yn[2]) } else { (y[3], yn[3]) };
+    let scale = glo.abs().max(ghi.abs());
+    let mut side = 0;
+    let mut q = 0.5 * h;
+    for _ in 0..60 {
+        q = (lo * ghi - hi * glo) / (ghi - glo);
+        if !(q > lo && q < hi) {
+            q = 0.5 * (lo + hi);
+        }
+        let gq = g(q);
+        if gq == 0.0 || hi - lo <= 1e-14 * h {
+            break;
+        }
+        if (gq > 0.0) == (glo > 0.0) {
+            lo = q;
+            glo = gq;
+            if side == -1 {
+                ghi *= 0.5;
+            }
+            side = -1;
+        } else {
+            hi = q;
+            ghi = gq;
+            if side == 1 {
+                glo *= 0.5;
+            }
+            side = 1;
+        }
+        if gq.abs() <= 1e-15 * scale {
+            break;
+        }
+    }
+    q
+}
+
+/// The peak penetration inside a step where δ' goes from > 0 to ≤ 0, from the quintic Hermite
+/// interpolant: no extra force evaluations.
+fn refine_peak(y: &State, k1: &State, h: f64, yn: &State, k7: &State) -> f64 {
+    let q = quintic_root(y, k1, yn, k7, h, 1);
+    quintic(y, k1, yn, k7, h, q).0.max(y[2]).max(yn[2])
+}
+
+/// A root of `g` inside a trial step: Newton on the real step length from `guess`, safeguarded by
+/// bisection; `g(state, f(state))` returns the function (> 0 at the step start) and its rate.
+/// Returns `(h*, state, f(state), error norm of that step)`.
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn refine_exit(
+fn refine_root(
     sys: &Sys,
     s: f64,
     y: &State,
     k1: &State,
     h: f64,
-    yn: &State,
-    sc: &[f64; 4],
+    guess: f64,
+    sc: &[f64; 6],
     budget: &mut usize,
-) -> (f64, State) {
+    g: impl Fn(&State, &State) -> (f64, f64),
+    g_tol: f64,
+) -> (f64, State, State, f64) {
     let (mut lo, mut hi) = (0.0, h);
-    let mut hh = h * y[2] / (y[2] - yn[2]);
-    let mut out = (h, *yn);
-    for _ in 0..12 {
+    let mut hh = guess;
+    let mut out = (h, *y, *k1, f64::INFINITY);
+    for _ in 0..16 {
         if !(hh > lo && hh < hi) {
             hh = 0.5 * (lo + hi);
         }
-        let (ys, _, _) = step(sys, s, y, k1, hh, sc);
+        let (ys, ks, err) = step(sys, s, y, k1, hh, sc);
         *budget = budget.saturating_sub(1);
-        out = (hh, ys);
-        let g = ys[2];
-        if g > 0.0 {
+        out = (hh, ys, ks, err);
+        let (gv, gd) = g(&ys, &ks);
+        if gv > 0.0 {
             lo = hh;
         } else {
             hi = hh;
         }
-        if g.abs() <= 1e-15 * sc[2] || ys[3] == 0.0 {
+        if gv.abs() <= g_tol || gd == 0.0 {
             break;
         }
-        let next = hh - g / ys[3];
+        let next = hh - gv / gd;
         if (next - hh).abs() <= 1e-16 * h {
             break;
         }
         hh = next;
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fast_log_exp_are_close() {
+        for &x in &[1e-10, 3e-7, 0.01, 0.5, 1.0, 1.7, 3.3, 1e3] {
+            assert!((fast_log2(x) - x.log2()).abs() < 2e-3, "{x}: {} {}", fast_log2(x), x.log2());
+        }
+        for &y in &[-30.0, -3.3, -0.5, 0.0, 0.7, 2.2] {
+            let f: f64 = fast_exp2(y);
+            assert!((f / 2f64.powf(y) - 1.0).abs() < 1e-3, "{y}");
+        }
+    }
 }

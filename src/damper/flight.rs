@@ -282,7 +282,7 @@ mod tests {
     fn events_are_true_extrema() {
         for &(k, c) in &[(500.0, 0.05), (500.0, 80.0), (2.0, 2.0)] {
             let o = Oscillator::new(0.5, k, c);
-            let (x0, v0) = (-0.01, 0.9);
+            let (x0, v0) = (-0.001, 0.9);
             let mut seen = 0;
             o.for_each_event(x0, v0, 1.0, |kind, t| {
                 seen += 1;

@@ -126,7 +126,8 @@ pub struct ImpactEvent {
     pub penetration_max_m: f64,
 }
 
-/// A cycle maximum of the main mass's displacement.
+/// A cycle maximum of the main mass's displacement (s, m): the `X_k`, `t_k` of the damping
+/// inclination `e = (X1 − X2)/(t2 − t1)`, paper Eq 27.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Maximum {
     pub t_s: f64,
@@ -173,7 +174,8 @@ pub struct Run {
 pub struct RunOptions<'a> {
     /// Number of uniform history samples over [0, duration] (0: none).
     pub history_samples: usize,
-    /// When set to true, the run stops (checked between impacts) and returns what it has.
+    /// When it reads true the run stops and returns what it has, with `cancelled: true`
+    /// (checked between impacts by the event solver, every 4096 steps by Newmark).
     pub cancel: Option<&'a std::sync::atomic::AtomicBool>,
 }
 

@@ -46,51 +46,53 @@ fn contact_accels(sys: &Sys, s: f64, st: &mut St) {
     st.b = -s * f / sys.m;
 }
 
-/// One free-flight step of length `h` (linear: solved directly).
+/// The end state of a step of length `h` from `st` given the end accelerations `(a1, b1)`:
+/// `x1 = x0 + h·v0 + h²/4·(a0 + a1)`, `v1 = v0 + h/2·(a0 + a1)` (and the same for the ball).
+/// Written in accelerations, which keeps full precision however small `h` is.
+#[inline]
+fn advance(st: &St, h: f64, a1: f64, b1: f64) -> St {
+    let (hh, q) = (0.5 * h, 0.25 * h * h);
+    St {
+        x: st.x + h * st.v + q * (st.a + a1),
+        v: st.v + hh * (st.a + a1),
+        a: a1,
+        y: st.y + h * st.w + q * (st.b + b1),
+        w: st.w + hh * (st.b + b1),
+        b: b1,
+    }
+}
+
+/// One free-flight step of length `h` (linear: solved directly for the end acceleration).
 #[inline]
 fn flight_step(sys: &Sys, st: &St, h: f64) -> St {
-    let (i1, i2) = (2.0 / h, 4.0 / (h * h));
-    let keff = sys.big_m * i2 + sys.c * i1 + sys.k;
-    let x = (sys.big_m * (i2 * st.x + 2.0 * i1 * st.v + st.a) + sys.c * (i1 * st.x + st.v)) / keff;
-    let v = i1 * (x - st.x) - st.v;
-    let a = i2 * (x - st.x - h * st.v) - st.a;
-    let y = st.y + h * st.w + 0.25 * h * h * st.b;
-    let w = st.w + 0.5 * h * st.b;
-    St { x, v, a, y, w, b: 0.0 }
+    let (hh, q) = (0.5 * h, 0.25 * h * h);
+    let meff = sys.big_m + sys.c * hh + sys.k * q;
+    let a1 = -(sys.c * (st.v + hh * st.a) + sys.k * (st.x + h * st.v + q * st.a)) / meff;
+    advance(st, h, a1, 0.0)
 }
 
 /// One in-contact step of length `h` at wall `s`: Newton on the residuals
-/// `M·a + C·v + K·x − s·F = 0`, `m·b + s·F = 0` in the unknowns `(x, y)` at the step end.
+/// `M·a + C·v + K·x − s·F = 0`, `m·b + s·F = 0` in the unknown end accelerations `(a, b)`.
 #[inline]
 fn contact_step(sys: &Sys, s: f64, st: &St, h: f64) -> St {
-    let (i1, i2) = (2.0 / h, 4.0 / (h * h));
-    let mut x = st.x + h * st.v + 0.5 * h * h * st.a;
-    let mut y = st.y + h * st.w + 0.5 * h * h * st.b;
-    let tol = 1e-15 * (st.x.abs() + st.y.abs() + sys.half_gap);
-    let mut out = *st;
+    let (hh, q) = (0.5 * h, 0.25 * h * h);
+    let (mut a1, mut b1) = (st.a, st.b);
+    let mut out = advance(st, h, a1, b1);
     for _ in 0..30 {
-        let v = i1 * (x - st.x) - st.v;
-        let a = i2 * (x - st.x - h * st.v) - st.a;
-        let w = i1 * (y - st.y) - st.w;
-        let b = i2 * (y - st.y - h * st.w) - st.b;
-        let del = s * (y - x) - sys.half_gap;
-        let dd = s * (w - v);
+        let n = advance(st, h, a1, b1);
+        let (del, dd) = n.pen(sys, s);
         let (f, _, clamped) = sys.bracket(del, dd);
-        let r1 = sys.big_m * a + sys.c * v + sys.k * x - s * f;
-        let r2 = sys.m * b + s * f;
-        out = St { x, v, a, y, w, b };
-        let kt = if clamped { 0.0 } else { 1.5 * sys.k_hz * del.max(0.0).sqrt() + sys.c1 * i1 };
-        let jac = Matrix2::new(sys.big_m * i2 + sys.c * i1 + sys.k + kt, -kt, -kt, sys.m * i2 + kt);
+        let r1 = sys.big_m * a1 + sys.c * n.v + sys.k * n.x - s * f;
+        let r2 = sys.m * b1 + s * f;
+        out = n;
+        let kt = if clamped { 0.0 } else { 1.5 * sys.k_hz * del.max(0.0).sqrt() * q + sys.c1 * hh };
+        let jac = Matrix2::new(sys.big_m + sys.c * hh + sys.k * q + kt, -kt, -kt, sys.m + kt);
         let Some(inv) = jac.try_inverse() else { break };
-        let dx = inv * Vector2::new(-r1, -r2);
-        x += dx[0];
-        y += dx[1];
-        if dx[0].abs() + dx[1].abs() <= tol {
-            let v = i1 * (x - st.x) - st.v;
-            let a = i2 * (x - st.x - h * st.v) - st.a;
-            let w = i1 * (y - st.y) - st.w;
-            let b = i2 * (y - st.y - h * st.w) - st.b;
-            out = St { x, v, a, y, w, b };
+        let da = inv * Vector2::new(-r1, -r2);
+        a1 += da[0];
+        b1 += da[1];
+        if da[0].abs() + da[1].abs() <= 1e-13 * (a1.abs() + b1.abs()) + 1e-300 {
+            out = advance(st, h, a1, b1);
             break;
         }
     }
@@ -133,6 +135,9 @@ fn split(g0: f64, g1: f64, st1: St, mut eval: impl FnMut(f64) -> (f64, St)) -> (
     best
 }
 
+/// At most this many onset/exit splits per grid step; past that the mode switches at the step end.
+const MAX_SPLITS: u32 = 8;
+
 /// Runs the Newmark solver with step `dt` (s). Parameters are assumed valid.
 pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let sys = Sys::new(p);
@@ -151,6 +156,8 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
         ImpactEvent { t_s: 0.0, wall: 0, u_in_m_s: 0.0, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: 0.0 };
     let mut cancelled = false;
     let mut counter: u32 = 0;
+    // Mode switches inside the current grid step (a guard against endless re-splitting).
+    let mut splits = 0u32;
 
     // Commits a step from `a` (time t0) to `b` (time t1).
     let commit = |rec: &mut Recorder, energy: &mut EnergyLedger, s: f64, t0: f64, a: &St, t1: f64, b: &St| {
@@ -189,7 +196,8 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
             let n1 = flight_step(&sys, &st, h);
             let z1 = n1.y - n1.x;
             let d1 = z1.abs() - sys.half_gap;
-            if d1 > 0.0 {
+            if d1 > 0.0 && splits < MAX_SPLITS {
+                splits += 1;
                 let s = z1.signum();
                 let g0 = st.pen(&sys, s).0;
                 let (th, mut sub) = split(g0, d1, n1, |th| {
@@ -212,16 +220,31 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
                 };
                 if th >= 1.0 {
                     k_next += 1;
+                    splits = 0;
                 }
                 continue;
             }
             commit(&mut rec, &mut energy, 0.0, t, &st, t_next, &n1);
             st = n1;
+            if d1 > 0.0 {
+                // Out of splits: switch to contact at the step end.
+                wall = z1.signum();
+                contact_accels(&sys, wall, &mut st);
+                cur = ImpactEvent {
+                    t_s: t_next,
+                    wall: wall as i8,
+                    u_in_m_s: st.pen(&sys, wall).1,
+                    u_out_m_s: 0.0,
+                    t_end_s: 0.0,
+                    penetration_max_m: d1,
+                };
+            }
         } else {
             let s = wall;
             let n1 = contact_step(&sys, s, &st, h);
             let d1 = n1.pen(&sys, s).0;
-            if d1 < 0.0 {
+            if d1 < 0.0 && splits < MAX_SPLITS {
+                splits += 1;
                 let g0 = st.pen(&sys, s).0;
                 let (th, mut sub) = split(g0, d1, n1, |th| {
                     let q = contact_step(&sys, s, &st, th * h);
@@ -238,15 +261,25 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
                 impacts.push(cur);
                 if th >= 1.0 {
                     k_next += 1;
+                    splits = 0;
                 }
                 continue;
             }
             commit(&mut rec, &mut energy, s, t, &st, t_next, &n1);
             cur.penetration_max_m = cur.penetration_max_m.max(d1);
             st = n1;
+            if d1 < 0.0 {
+                // Out of splits: leave the contact at the step end.
+                flight_accels(&sys, &mut st);
+                wall = 0.0;
+                cur.u_out_m_s = -st.pen(&sys, s).1;
+                cur.t_end_s = t_next;
+                impacts.push(cur);
+            }
         }
         t = t_next;
         k_next += 1;
+        splits = 0;
     }
     rec.finish();
     let del = if wall != 0.0 { st.pen(&sys, wall).0.max(0.0) } else { 0.0 };

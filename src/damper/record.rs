@@ -88,6 +88,7 @@ impl Recorder {
     /// velocity `zd1` at the end: maxima, crossings and `|z'|` from the step states. History is
     /// handled by the caller.
     #[inline]
+    #[allow(clippy::too_many_arguments)]
     pub fn step(&mut self, t0: f64, x0: f64, v0: f64, t1: f64, x1: f64, v1: f64, zd1: f64) {
         self.zdot(zd1);
         if v0 > 0.0 && v1 <= 0.0 {
