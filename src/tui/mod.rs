@@ -46,7 +46,9 @@ pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
     let mut app = App::new(design, &opts.preset, theme);
     app.mouse = opts.mouse;
     let (mut term, _guard) = terminal::setup(opts.mouse).map_err(|e| {
-        format!("cannot use the terminal ({e}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)")
+        format!(
+            "cannot use the terminal ({e}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)"
+        )
     })?;
     let (tx, rx) = mpsc::channel();
     let busy = Arc::new(AtomicBool::new(true));
