@@ -320,7 +320,8 @@ impl Slot {
     fn put(&self, key: String, req: Request) {
         let mut s = self.state.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((k, flag)) = &s.running {
-            if *k == key {
+            // The same work is already running (and not cancelled): its result will do.
+            if *k == key && !flag.load(Ordering::Relaxed) {
                 s.queued = None;
                 return;
             }
@@ -517,6 +518,19 @@ mod tests {
             }
             assert_eq!(a.zone, b.zone);
         }
+    }
+
+    #[test]
+    fn slot_requeues_work_whose_running_copy_was_cancelled() {
+        let slot = Slot::new();
+        let (a, b) = (Design::default(), design::variant(&Design::default(), 0.05, 0.03));
+        slot.put(sim_key(&a), Request::Sim(a.clone()));
+        let (_, _, flag_a) = slot.take().unwrap();
+        slot.put(sim_key(&b), Request::Sim(b));
+        assert!(flag_a.load(Ordering::Relaxed), "a newer job cancels the running one");
+        slot.put(sim_key(&a), Request::Sim(a.clone()));
+        let queued = slot.state.lock().unwrap().queued.as_ref().map(|q| q.0.clone());
+        assert_eq!(queued, Some(sim_key(&a)), "back to A: A runs again, B is dropped");
     }
 
     #[test]
