@@ -13,7 +13,7 @@ use super::theme::Theme;
 use crate::units::sig;
 
 /// Decibels shown between the floor and the loudest direction.
-const SPAN_DB: f64 = 30.0;
+const SPAN_DB: f64 = 40.0;
 
 /// The panel's data: (θ in degrees, SPL in dB) over the valid range of the source type.
 pub struct PolarView<'a> {
@@ -91,13 +91,18 @@ impl Widget for PolarView<'_> {
             .paint(|ctx| {
                 // Rings every 10 dB, dotted so they do not read as curves.
                 let (lo, hi) = self.range_deg;
-                let ring: Vec<(f64, f64)> = (1..=3)
+                let ring: Vec<(f64, f64)> = (1..=4)
                     .flat_map(|k| {
                         let n = ((hi - lo) / 6.0).round() as usize;
                         (0..=n).map(move |i| point(lo + (hi - lo) * i as f64 / n.max(1) as f64, 10.0 * k as f64, 0.0))
                     })
                     .collect();
                 ctx.draw(&Points { coords: &ring, color: color(Color::DarkGray) });
+                // The walls / reference axes: the plate normal (θ = 0) and the range's ends.
+                for deg in [0.0, lo, hi] {
+                    let (x, y) = point(deg, floor + SPAN_DB, floor);
+                    ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: x, y2: y, color: color(Color::DarkGray) });
+                }
                 ctx.layer();
                 if let Some(p) = self.pinned {
                     ctx.marker(Marker::Dot);
@@ -106,10 +111,12 @@ impl Widget for PolarView<'_> {
                     ctx.marker(marker);
                 }
                 curve(ctx, self.live, floor, color(Color::Cyan));
-                let (tx, ty) = point(theta, floor + SPAN_DB, floor);
+                let (tx, ty) = point(theta, current.map_or(floor + SPAN_DB, |c| c.1), floor);
                 ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: tx, y2: ty, color: color(Color::Yellow) });
-                for k in 1..=3 {
-                    let (x, y) = point(self.range_deg.1.min(90.0), floor + 10.0 * k as f64, floor);
+                let (nx, ny) = point(0.0, floor + SPAN_DB, floor);
+                ctx.print(nx, ny, "0°");
+                for k in 1..=4 {
+                    let (x, y) = point(hi.min(90.0), floor + 10.0 * k as f64, floor);
                     ctx.print(x, y, format!("{}", floor + 10.0 * k as f64));
                 }
                 let label = match current {
