@@ -159,3 +159,27 @@ fn real_binary_in_tmux_starts_changes_resizes_quits_and_restores() {
     assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
     assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
 }
+
+#[test]
+fn a_panic_restores_the_terminal_before_printing() {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            format!(
+                "THUD_TUI_PANIC_FOR_TEST=1 '{bin}' tui --mouse; echo $? > '{d}/status'; stty -a > '{d}/stty'; \
+                 echo AFTER-THUD; exec sleep 60",
+                d = d.display()
+            )
+        },
+        100,
+        30,
+    );
+    assert_ne!(t.wait_file("status").trim(), "0", "a panic exits non-zero");
+    let stty = t.wait_file("stty");
+    assert!(has_token(&stty, "icanon") && has_token(&stty, "echo"), "raw mode left on after a panic:\n{stty}");
+    let s = t.wait_for("the shell after the panic", |s| s.contains("AFTER-THUD"));
+    assert!(s.contains("panicking on purpose"), "the panic message is printed on the normal screen:\n{s}");
+    assert_eq!(t.format("#{alternate_on}"), "0", "alternate screen off");
+    assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
+}

@@ -35,6 +35,10 @@ pub use worker::{Request, Worker};
 
 use crate::presets;
 
+/// Set this environment variable to make the explorer panic right after it took over the
+/// terminal: the end-to-end test uses it to check that the panic hook restores the terminal.
+pub const PANIC_FOR_TEST: &str = "THUD_TUI_PANIC_FOR_TEST";
+
 /// How often the spinner turns while work is in flight.
 const TICK: Duration = Duration::from_millis(120);
 
@@ -50,6 +54,9 @@ pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
             "cannot use the terminal ({e}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)"
         )
     })?;
+    if std::env::var_os(PANIC_FOR_TEST).is_some() {
+        panic!("{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore");
+    }
     let (tx, rx) = mpsc::channel();
     let busy = Arc::new(AtomicBool::new(true));
     spawn_input(tx.clone(), busy.clone());
