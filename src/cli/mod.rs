@@ -123,7 +123,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Sweep(a)) => sweep::run(&a),
         Some(Command::Paper(a)) => paper::run(&a),
         Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
-        None => return tui_exit(tui::run(&tui::TuiArgs { preset: "default".into(), ..Default::default() })),
+        None => return tui_exit(tui::run_default()),
     };
     match result {
         Ok(()) => 0,

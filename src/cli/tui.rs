@@ -16,6 +16,18 @@ pub struct TuiArgs {
     pub mouse: bool,
 }
 
+/// `thud` with no subcommand: the explorer on a terminal, the help text otherwise (pipes,
+/// scripts, CI).
+pub fn run_default() -> Result<(), String> {
+    use std::io::IsTerminal;
+    if std::io::stdin().is_terminal() && std::io::stdout().is_terminal() {
+        run(&TuiArgs { preset: "default".into(), ..Default::default() })
+    } else {
+        use clap::CommandFactory;
+        super::Cli::command().print_help().map_err(|e| e.to_string())
+    }
+}
+
 /// Runs the explorer; the error is one line for stderr.
 pub fn run(a: &TuiArgs) -> Result<(), String> {
     let opts = crate::tui::Options { preset: a.preset.clone(), ascii: a.ascii, mouse: a.mouse };

@@ -102,25 +102,17 @@ pub const KEYS: &[Binding] = &[
     bind(KeyCode::Char('v'), NONE, Action::ToggleChartView, "v", "chart: zones (mass × gap) / e vs SPLmax", "view"),
 ];
 
-/// The action bound to a key press, if any. Key releases and repeats-as-release are ignored;
-/// SHIFT is ignored for characters (terminals disagree about reporting it).
+/// The action bound to a key press, if any. Key releases are ignored; SHIFT is ignored for
+/// characters and Shift-Tab.
 pub fn action_for(key: &KeyEvent) -> Option<Action> {
     if key.kind == KeyEventKind::Release {
         return None;
     }
-    let mods = match key.code {
-        KeyCode::Char(_) => key.modifiers - KeyModifiers::SHIFT,
-        _ => key.modifiers,
-    };
-    KEYS.iter()
-        .find(|b| {
-            let want = match b.code {
-                KeyCode::Char(_) => b.mods - KeyModifiers::SHIFT,
-                _ => b.mods,
-            };
-            b.code == key.code && want == mods
-        })
-        .map(|b| b.action)
+    // Terminals disagree about reporting SHIFT with characters and with Shift-Tab.
+    let shift_free = |code: KeyCode| matches!(code, KeyCode::Char(_) | KeyCode::BackTab);
+    let strip = |code: KeyCode, m: KeyModifiers| if shift_free(code) { m - KeyModifiers::SHIFT } else { m };
+    let mods = strip(key.code, key.modifiers);
+    KEYS.iter().find(|b| b.code == key.code && strip(b.code, b.mods) == mods).map(|b| b.action)
 }
 
 /// The footer: the hints of the table, in table order, as (key label, hint) pairs.
@@ -161,6 +153,8 @@ mod tests {
         assert_eq!(action_for(&key(KeyCode::Char('P'), SHIFT)), Some(Action::Presets));
         assert_eq!(action_for(&key(KeyCode::Char('P'), NONE)), Some(Action::Presets));
         assert_eq!(action_for(&key(KeyCode::Char('p'), NONE)), Some(Action::Pin));
+        assert_eq!(action_for(&key(KeyCode::BackTab, NONE)), Some(Action::FocusPrev));
+        assert_eq!(action_for(&key(KeyCode::BackTab, SHIFT)), Some(Action::FocusPrev));
     }
 
     #[test]
