@@ -45,5 +45,19 @@ fn event_sweep(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, event_fig9, newmark_fig9, event_sweep);
+/// The same 20×20 chart as the app computes it: `design::sweep` on every core, with e, e_fit,
+/// U0max, SPLmax and zone per cell.
+fn design_sweep(c: &mut Criterion) {
+    let base = thud::design::Design::default();
+    let masses = thud::design::linspace(0.03, 0.1, 20);
+    let gaps = thud::design::linspace(0.02, 0.05, 20);
+    let mut g = c.benchmark_group("sweep");
+    g.sample_size(10);
+    g.bench_function("design sweep 20x20 all cores with metrics", |b| {
+        b.iter(|| thud::design::sweep(&base, &masses, &gaps, None, &|_, _| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, event_fig9, newmark_fig9, event_sweep, design_sweep);
 criterion_main!(benches);

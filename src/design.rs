@@ -433,7 +433,7 @@ pub fn spl_range_by_inclination(chart: &Chart, width_cm_s: f64, zone_by: ZoneBy)
             Some((e?, c.metrics.spl_max_db?))
         })
         .collect();
-    if pts.is_empty() || !(width_cm_s > 0.0) {
+    if pts.is_empty() || width_cm_s.is_nan() || width_cm_s <= 0.0 {
         return vec![];
     }
     let lo = (pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min) / width_cm_s).floor() as i64;

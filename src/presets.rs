@@ -1,61 +1,128 @@
-//! Named starting designs: the paper's set-ups and the physical default.
+//! Named starting designs: the paper's set-ups, the physical default and a few realistic
+//! designs. Each is a TOML file in `assets/presets/` (the format of saved designs,
+//! [`crate::store::DesignFile`]) compiled into the binary, so thud works from any directory.
 
-use crate::acoustics::{QuadSigns, Radiation, Source};
-use crate::design::{Design, U0MaxRule};
+use std::path::Path;
+
+use crate::design::Design;
 use crate::error::ThudError;
-
-/// A named design with a one-line description.
-pub struct Preset {
-    pub name: &'static str,
-    pub description: &'static str,
-    pub build: fn() -> Design,
-}
+use crate::store::DesignFile;
 
 /// The least-squares contact damping (N·s/m) that reproduces Table 3 with the no-tension clamp
-/// (model notes §6).
+/// (model notes §6). The value in `assets/presets/paper-table3.toml`.
 pub const TABLE3_C1: f64 = 83.68;
 
-fn physical() -> Design {
-    Design::default()
-}
-
-fn paper_fig9() -> Design {
-    let mut d = Design::default();
-    d.radiation = Radiation { source: Source::Quadrupole, quad_signs: QuadSigns::Paper, ..Default::default() };
-    d
-}
-
-fn paper_table3() -> Design {
-    let mut d = paper_fig9();
-    d.damper.v0_m_s = 1.4;
-    d.damper.c1_n_s_m = TABLE3_C1;
-    d.damper.no_tension = true;
-    d.u0max_rule = U0MaxRule::WholeRun;
-    d
-}
-
-pub const PRESETS: &[Preset] = &[
-    Preset {
-        name: "default",
-        description: "Table 2 damper (M 0.5 kg, K 500 N/m, C 0.05, c1 20, K_HZ 5.6e8), m 40.5 g, d 4 cm, v0 2 m/s; rigid corner at r 0.7 m, θ 45°",
-        build: physical,
-    },
-    Preset {
-        name: "paper-fig9",
-        description: "the paper's Fig 9: Table 2, v0 2 m/s, d 4 cm; the paper's quadrupole signs",
-        build: paper_fig9,
-    },
-    Preset {
-        name: "paper-table3",
-        description: "the paper's Table 3 set-up: v0 1.4 m/s, c1 83.68 N·s/m with the no-tension clamp, U0max over the whole run including t = 0",
-        build: paper_table3,
-    },
+/// The compiled-in preset files: (name, TOML text), in the order `thud presets` lists them.
+const SOURCES: &[(&str, &str)] = &[
+    ("default", include_str!("../assets/presets/default.toml")),
+    ("paper-fig2", include_str!("../assets/presets/paper-fig2.toml")),
+    ("paper-table1", include_str!("../assets/presets/paper-table1.toml")),
+    ("paper-fig9", include_str!("../assets/presets/paper-fig9.toml")),
+    ("paper-table3", include_str!("../assets/presets/paper-table3.toml")),
+    ("machine-tool-fixture", include_str!("../assets/presets/machine-tool-fixture.toml")),
+    ("quiet-nylon", include_str!("../assets/presets/quiet-nylon.toml")),
+    ("steel-ball", include_str!("../assets/presets/steel-ball.toml")),
 ];
 
-/// The preset called `name`.
+/// A preset's name and one-line description.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PresetInfo {
+    pub name: &'static str,
+    pub description: String,
+}
+
+/// The names of all presets, in listing order.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    SOURCES.iter().map(|(n, _)| *n)
+}
+
+/// Parses the compiled-in file of preset `name` (a parse failure is a bug the tests catch, but
+/// it is reported, not panicked on).
+fn parse(name: &'static str, text: &str) -> Result<DesignFile, ThudError> {
+    let path = format!("assets/presets/{name}.toml");
+    DesignFile::parse(Path::new(&path), text).map_err(|p| ThudError::invalid("preset", p.to_string()))
+}
+
+/// Every preset with its description, in listing order.
+pub fn list() -> Result<Vec<PresetInfo>, ThudError> {
+    SOURCES.iter().map(|&(name, text)| Ok(PresetInfo { name, description: parse(name, text)?.description })).collect()
+}
+
+/// The preset called `name` (case-insensitive) with its description.
+pub fn preset_file(name: &str) -> Result<DesignFile, ThudError> {
+    let key = name.trim();
+    let (n, text) = SOURCES.iter().find(|(n, _)| n.eq_ignore_ascii_case(key)).ok_or_else(|| {
+        ThudError::invalid(
+            "preset",
+            format!("unknown preset '{name}'; one of: {}", names().collect::<Vec<_>>().join(", ")),
+        )
+    })?;
+    parse(n, text)
+}
+
+/// The preset called `name` (case-insensitive).
 pub fn preset(name: &str) -> Result<Design, ThudError> {
-    PRESETS.iter().find(|p| p.name.eq_ignore_ascii_case(name.trim())).map(|p| (p.build)()).ok_or_else(|| {
-        let names: Vec<&str> = PRESETS.iter().map(|p| p.name).collect();
-        ThudError::invalid("preset", format!("unknown preset '{name}'; one of: {}", names.join(", ")))
-    })
+    preset_file(name).map(|f| f.design)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::acoustics::{QuadSigns, Radiation, Source};
+    use crate::design::{BallSize, U0MaxRule};
+
+    /// The Rust-built presets these files replaced; their values must not change.
+    fn legacy(name: &str) -> Design {
+        let mut d = Design::default();
+        if name == "default" {
+            return d;
+        }
+        d.radiation = Radiation { source: Source::Quadrupole, quad_signs: QuadSigns::Paper, ..Default::default() };
+        if name == "paper-table3" {
+            d.damper.v0_m_s = 1.4;
+            d.damper.c1_n_s_m = TABLE3_C1;
+            d.damper.no_tension = true;
+            d.u0max_rule = U0MaxRule::WholeRun;
+        }
+        d
+    }
+
+    #[test]
+    fn the_three_original_presets_are_unchanged() {
+        for name in ["default", "paper-fig9", "paper-table3"] {
+            assert_eq!(preset(name).unwrap(), legacy(name), "{name}");
+        }
+    }
+
+    #[test]
+    fn every_preset_parses_validates_and_has_a_description() {
+        let list = list().unwrap();
+        assert_eq!(list.len(), SOURCES.len());
+        for p in list {
+            assert!(!p.description.is_empty() && !p.description.contains('\n'), "{}", p.name);
+            let d = preset(p.name).unwrap();
+            d.validate().unwrap();
+            d.resolved().unwrap();
+        }
+    }
+
+    #[test]
+    fn single_impact_presets_are_the_papers_dipole() {
+        for name in ["paper-fig2", "paper-table1"] {
+            let d = preset(name).unwrap();
+            assert_eq!(d.ball, BallSize::Radius(0.01905));
+            assert_eq!(d.radiation.source, Source::Dipole);
+            assert_eq!(d.radiation.quad_signs, QuadSigns::Paper);
+            assert_eq!(d.damper.impact_mass_kg, 0.0405);
+        }
+        assert_eq!(preset("paper-table1").unwrap().observer.r_m, 0.2828);
+    }
+
+    #[test]
+    fn unknown_preset_names_the_choices() {
+        let e = preset("nope").unwrap_err();
+        assert_eq!(e.param, "preset");
+        assert!(e.message.contains("quiet-nylon"));
+        assert!(preset(" Paper-Fig9 ").is_ok());
+    }
 }

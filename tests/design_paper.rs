@@ -185,15 +185,16 @@ fn restitution_rises_with_mass() {
 
 #[test]
 fn invalid_designs_are_refused() {
-    let cases: Vec<(&str, Box<dyn Fn(&mut Design)>)> = vec![
-        ("mass", Box::new(|d| d.damper.impact_mass_kg = 0.0)),
-        ("mass", Box::new(|d| d.damper.impact_mass_kg = -0.01)),
-        ("gap", Box::new(|d| d.damper.gap_m = 0.0)),
-        ("v0", Box::new(|d| d.damper.v0_m_s = f64::NAN)),
-        ("duration", Box::new(|d| d.damper.duration_s = 0.0)),
-        ("dt", Box::new(|d| d.solver = thud::damper::Solver::Newmark { dt_s: 0.0 })),
-        ("r", Box::new(|d| d.observer.r_m = 0.001)),
-        ("density", Box::new(|d| d.ball = design::BallSize::Density(-1.0))),
+    type Spoil = fn(&mut Design);
+    let cases: [(&str, Spoil); 8] = [
+        ("mass", |d| d.damper.impact_mass_kg = 0.0),
+        ("mass", |d| d.damper.impact_mass_kg = -0.01),
+        ("gap", |d| d.damper.gap_m = 0.0),
+        ("v0", |d| d.damper.v0_m_s = f64::NAN),
+        ("duration", |d| d.damper.duration_s = 0.0),
+        ("dt", |d| d.solver = thud::damper::Solver::Newmark { dt_s: 0.0 }),
+        ("r", |d| d.observer.r_m = 0.001),
+        ("density", |d| d.ball = design::BallSize::Density(-1.0)),
     ];
     for (param, f) in cases {
         let mut d = Design::default();

@@ -294,8 +294,10 @@ fn presets_list_applies_a_preset() {
     let mut app = computed_app();
     press(&mut app, KeyCode::Char('P'));
     assert!(render(&mut app, 120, 40).contains("paper-table3"));
-    press(&mut app, KeyCode::Down);
-    press(&mut app, KeyCode::Down);
+    let target = app.preset_list.iter().position(|p| p.name == "paper-table3").unwrap();
+    for _ in 0..target {
+        press(&mut app, KeyCode::Down);
+    }
     press(&mut app, KeyCode::Enter);
     assert_eq!(app.preset, "paper-table3");
     assert_eq!(app.design.damper.v0_m_s, 1.4);

@@ -21,7 +21,7 @@ pub enum SolverArg {
 /// A design: a preset, then any flag given explicitly overrides the preset's value.
 #[derive(Debug, Clone, Args)]
 pub struct DesignArgs {
-    /// Starting design: default, paper-fig9, paper-table3.
+    /// Starting design (`thud presets` lists them: default, paper-fig9, paper-table3, quiet-nylon, …).
     #[arg(long, value_name = "P", default_value = "default")]
     preset: String,
     /// Impact mass m (kg, or e.g. 40.5g).
@@ -96,6 +96,7 @@ impl DesignArgs {
     /// The design these flags describe, validated.
     pub fn design(&self) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
+        d.thresholds = super::settings::load().thresholds(d.thresholds);
         let p = &mut d.damper;
         let set = |target: &mut f64, param: &str, text: &Option<String>, kind: Kind| -> Result<(), ThudError> {
             if let Some(v) = quantity(param, text, kind)? {

@@ -2,9 +2,12 @@
 //! prints text, JSON or CSV. No physics here.
 
 pub mod design_args;
+mod export;
 mod format;
 mod paper;
+mod presets;
 mod pulse;
+mod settings;
 mod simulate;
 mod sweep;
 mod tui;
@@ -38,6 +41,10 @@ pub enum Command {
     Sweep(Box<sweep::SweepArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
     Paper(paper::PaperArgs),
+    /// Write a design's data (CSV), figures (SVG) or sound (WAV) to a file.
+    Export(Box<export::ExportArgs>),
+    /// List the named starting designs (--preset NAME).
+    Presets(presets::PresetsArgs),
     /// The interactive explorer (the default with no subcommand).
     Tui(tui::TuiArgs),
 }
@@ -117,11 +124,14 @@ fn tui_exit(r: Result<(), String>) -> i32 {
 
 /// Runs the CLI on `args`; returns the process exit code. Errors are one line on stderr.
 pub fn run(cli: Cli) -> i32 {
+    settings::load();
     let result = match cli.command {
         Some(Command::Pulse(a)) => pulse::run(&a),
         Some(Command::Simulate(a)) => simulate::run(&a),
         Some(Command::Sweep(a)) => sweep::run(&a),
         Some(Command::Paper(a)) => paper::run(&a),
+        Some(Command::Export(a)) => export::run(&a),
+        Some(Command::Presets(a)) => presets::run(&a),
         Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
         None => return tui_exit(tui::run_default()),
     };

@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::format::{num, print_str};
 use super::{quantity, OutputArgs, OutputFormat, QuadSignsArg, SourceArg};
-use crate::acoustics::{Air, Extremum, Field, Levels, Observer, Radiation};
+use crate::acoustics::{Air, Extremum, Field, Levels, Observer, QuadSigns, Radiation, Source};
 use crate::contact::{self, Contact, Impact, Target};
 use crate::error::ThudError;
 use crate::units::Kind;
@@ -14,6 +14,10 @@ use crate::units::Kind;
 /// K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at r 0.7 m, θ 45°.
 #[derive(Debug, Clone, Args)]
 pub struct PulseArgs {
+    /// Take the defaults from a preset (`thud presets`): its ball, K_HZ, observer, source and
+    /// air, and U0 = its v0 (e.g. paper-fig2, paper-table1); the target stays a fixed plate.
+    #[arg(long, value_name = "P")]
+    preset: Option<String>,
     /// Sphere radius (m, or e.g. 19.05mm). Default: from --mass and --sphere's density, else 19.05 mm.
     #[arg(long, value_name = "A", allow_hyphen_values = true)]
     radius: Option<String>,
@@ -41,12 +45,12 @@ pub struct PulseArgs {
     /// Observer angle from the plate's normal (degrees) [default: 45].
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     theta: Option<String>,
-    /// Reflecting surfaces: a free sphere, a plate, or a wall–floor corner.
-    #[arg(long, value_enum, default_value = "dipole")]
-    source: SourceArg,
-    /// Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall.
-    #[arg(long, value_enum, default_value = "rigid")]
-    quad_signs: QuadSignsArg,
+    /// Reflecting surfaces: a free sphere, a plate, or a wall–floor corner [default: dipole].
+    #[arg(long, value_enum)]
+    source: Option<SourceArg>,
+    /// Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall [default: rigid].
+    #[arg(long, value_enum)]
+    quad_signs: Option<QuadSignsArg>,
     /// Air impedance ρ0·c (Pa·s/m) [default: 400, the paper's].
     #[arg(long, value_name = "Z", allow_hyphen_values = true)]
     rho_c: Option<String>,
@@ -69,6 +73,7 @@ struct PulseInput {
 }
 
 fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
+    let base = a.preset.as_deref().map(crate::presets::preset).transpose()?.map(|d| d.resolved()).transpose()?;
     let sphere = a.sphere.as_deref().map(contact::material).transpose()?;
     let plate = match (&a.plate, &sphere) {
         (Some(p), _) => Some(contact::material(p)?),
@@ -81,7 +86,10 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
         (Some(r), Some(m), _) => (r, m),
         (Some(r), None, Some(s)) => (r, contact::sphere_mass(r, s.density_kg_m3)),
         (None, Some(m), Some(s)) => (contact::sphere_radius(m, s.density_kg_m3), m),
-        (r, m, _) => (r.unwrap_or(0.01905), m.unwrap_or(0.0405)),
+        (r, m, _) => (
+            r.or(base.as_ref().map(|d| d.ball_radius_m())).unwrap_or(0.01905),
+            m.or(base.as_ref().map(|d| d.damper.impact_mass_kg)).unwrap_or(0.0405),
+        ),
     };
     crate::error::check_positive("radius", radius_m, "m")?;
     crate::error::check_positive("mass", mass_kg, "kg")?;
@@ -89,32 +97,38 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
         (Some(k), _, _) => k,
         (None, Some(s), Some(p)) => contact::hertz_stiffness(radius_m, &s, &p),
         (None, None, Some(p)) => contact::hertz_stiffness(radius_m, &contact::material("acrylic")?, &p),
-        _ => 5.6e8,
+        _ => match base.as_ref().map(|d| (&d.materials, d.damper.k_hz)) {
+            Some((Some(m), _)) => {
+                contact::hertz_stiffness(radius_m, &contact::material(&m.sphere)?, &contact::material(&m.plate)?)
+            }
+            Some((None, k)) => k,
+            None => 5.6e8,
+        },
     };
     let target = match quantity("main-mass", &a.main_mass, Kind::Mass)? {
         Some(mm) => Target::MovableMass(mm),
         None => Target::FixedPlate,
     };
-    let u0 = quantity("u0", &a.u0, Kind::Speed)?.unwrap_or(1.4);
+    let u0 = quantity("u0", &a.u0, Kind::Speed)?.or(base.as_ref().map(|d| d.damper.v0_m_s)).unwrap_or(1.4);
     let impact = Impact { mass_kg, u0_m_s: u0, k_hz, target };
     impact.validate()?;
+    let base_air = base.as_ref().map_or(Air::default(), |d| d.radiation.air);
     let air = Air {
-        rho_c_pa_s_m: quantity("rho-c", &a.rho_c, Kind::Impedance)?.unwrap_or(400.0),
-        c_m_s: quantity("c", &a.c, Kind::Speed)?.unwrap_or(343.0),
+        rho_c_pa_s_m: quantity("rho-c", &a.rho_c, Kind::Impedance)?.unwrap_or(base_air.rho_c_pa_s_m),
+        c_m_s: quantity("c", &a.c, Kind::Speed)?.unwrap_or(base_air.c_m_s),
     };
+    let base_observer = base.as_ref().map_or(Observer::new(0.7, 45.0), |d| d.observer);
     let observer = Observer::new(
-        quantity("r", &a.r, Kind::Length)?.unwrap_or(0.7),
-        quantity("theta", &a.theta, Kind::Angle)?.unwrap_or(45.0),
+        quantity("r", &a.r, Kind::Length)?.unwrap_or(base_observer.r_m),
+        quantity("theta", &a.theta, Kind::Angle)?.unwrap_or(base_observer.theta_rad.to_degrees()),
     );
+    let source = a.source.map(Into::into).or(base.as_ref().map(|d| d.radiation.source)).unwrap_or(Source::Dipole);
+    let quad_signs =
+        a.quad_signs.map(Into::into).or(base.as_ref().map(|d| d.radiation.quad_signs)).unwrap_or(QuadSigns::Rigid);
     if a.points < 2 || a.points > 1_000_000 {
         return Err(ThudError::invalid("points", format!("{}; must be between 2 and 1000000", a.points)));
     }
-    Ok(PulseInput {
-        radius_m,
-        impact,
-        observer,
-        radiation: Radiation { source: a.source.into(), quad_signs: a.quad_signs.into(), air },
-    })
+    Ok(PulseInput { radius_m, impact, observer, radiation: Radiation { source, quad_signs, air } })
 }
 
 #[derive(Serialize)]

@@ -54,7 +54,7 @@ pub fn run(a: &SweepArgs) -> Result<(), ThudError> {
             let j = serde_json::json!({ "design": d, "chart": chart, "table5": bands });
             print_str(&(serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"));
         }
-        OutputFormat::Csv => print_str(&csv(&chart)),
+        OutputFormat::Csv => print_str(&crate::export::csv::sweep(&chart)),
         OutputFormat::Text => {
             let mut s = format!("base      {}\n", describe(&d));
             s += &format!(
@@ -84,30 +84,6 @@ pub fn run(a: &SweepArgs) -> Result<(), ThudError> {
         }
     }
     Ok(())
-}
-
-/// The chart as CSV, one row per cell.
-pub fn csv(chart: &Chart) -> String {
-    let mut s = String::from(
-        "mass_kg,gap_m,inclination_cm_s,inclination_fit_cm_s,u0_max_m_s,zdot_abs_max_m_s,spl_max_db,n_impacts,zone\n",
-    );
-    let o = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
-    for c in chart.cells.iter().flatten() {
-        let m = &c.metrics;
-        s += &format!(
-            "{},{},{},{},{},{},{},{},{}\n",
-            c.mass_kg,
-            c.gap_m,
-            o(m.inclination_cm_s),
-            o(m.inclination_fit_cm_s),
-            m.u0_max_m_s,
-            m.zdot_abs_max_m_s,
-            o(m.spl_max_db),
-            m.n_impacts,
-            m.zone.map_or(String::new(), |z| z.number().to_string())
-        );
-    }
-    s
 }
 
 /// A text map of the zones: gaps down, masses across.

@@ -14,7 +14,7 @@ use super::worker::{
     acoustic_key, chart_key, sim_key, sound_key, AcousticResult, ChartPasses, Done, Grids, Request, SimResult, Stage,
 };
 use crate::design::{self, Chart, Design, Metrics, Zone, ZoneBy};
-use crate::presets::PRESETS;
+use crate::presets::{self, PresetInfo};
 
 /// Everything the app reacts to.
 #[derive(Debug, Clone)]
@@ -167,6 +167,8 @@ pub struct App {
     pub quit: bool,
     /// Where the chart's cells were last drawn (for mouse clicks).
     pub chart_geometry: Option<Geometry>,
+    /// The presets offered by the `P` list.
+    pub preset_list: Vec<PresetInfo>,
 }
 
 impl App {
@@ -202,6 +204,9 @@ impl App {
             spinner: 0,
             quit: false,
             chart_geometry: None,
+            preset_list: presets::list().unwrap_or_else(|_| {
+                presets::names().map(|name| PresetInfo { name, description: String::new() }).collect()
+            }),
         }
     }
 
@@ -291,7 +296,7 @@ impl App {
             Action::Increase { fine } => return self.step(true, fine),
             Action::Edit => self.mode = Mode::Editing(String::new()),
             Action::Presets => {
-                let i = PRESETS.iter().position(|p| p.name == self.preset).unwrap_or(0);
+                let i = self.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
                 self.mode = Mode::Presets(i);
             }
             Action::Pin => self.toggle_pin(),
@@ -355,15 +360,20 @@ impl App {
     }
 
     fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let n = PRESETS.len();
+        let n = self.preset_list.len().max(1);
         match k.code {
             KeyCode::Up | KeyCode::Char('k') => self.mode = Mode::Presets((i + n - 1) % n),
             KeyCode::Down | KeyCode::Char('j') => self.mode = Mode::Presets((i + 1) % n),
             KeyCode::Enter => {
                 self.mode = Mode::Normal;
-                let p = &PRESETS[i.min(n - 1)];
-                self.preset = p.name.to_string();
-                return self.apply((p.build)(), Scope::All, format!("preset {}", p.name));
+                let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
+                return match presets::preset(name) {
+                    Ok(d) => {
+                        self.preset = name.to_string();
+                        self.apply(d, Scope::All, format!("preset {name}"))
+                    }
+                    Err(e) => self.error(e.to_string()),
+                };
             }
             KeyCode::Char('q') => self.quit = true,
             _ => self.mode = Mode::Normal,

@@ -18,7 +18,6 @@ use super::polar::PolarView;
 use super::readout::{ReadoutView, Row};
 use super::waveform::WaveformView;
 use crate::design::{Chart, Design, Metrics, Zone};
-use crate::presets::PRESETS;
 use crate::units::sig;
 
 /// Smallest terminal that gets more than the one-line message.
@@ -52,7 +51,7 @@ pub fn draw(f: &mut Frame, app: &App) -> Option<Geometry> {
     }
     match app.mode {
         Mode::Help => help_popup(f, area),
-        Mode::Presets(i) => presets_popup(f, area, i),
+        Mode::Presets(i) => presets_popup(f, app, area, i),
         _ => {}
     }
     geometry
@@ -403,8 +402,9 @@ fn help_popup(f: &mut Frame, area: Rect) {
     f.render_widget(Paragraph::new(all), inner);
 }
 
-fn presets_popup(f: &mut Frame, area: Rect, sel: usize) {
-    let mut lines: Vec<Line> = PRESETS
+fn presets_popup(f: &mut Frame, app: &App, area: Rect, sel: usize) {
+    let list = &app.preset_list;
+    let mut lines: Vec<Line> = list
         .iter()
         .enumerate()
         .map(|(i, p)| {
@@ -413,8 +413,10 @@ fn presets_popup(f: &mut Frame, area: Rect, sel: usize) {
         })
         .collect();
     lines.push(Line::from(""));
-    lines.push(Line::from(PRESETS[sel.min(PRESETS.len() - 1)].description));
-    let popup = centered(area, 70, PRESETS.len() as u16 + 6);
+    if let Some(p) = list.get(sel) {
+        lines.push(Line::from(p.description.clone()));
+    }
+    let popup = centered(area, 76, list.len() as u16 + 7);
     f.render_widget(Clear, popup);
     let block = Block::bordered().title(" presets (↑↓, Enter applies, Esc closes) ");
     let inner = block.inner(popup);

@@ -1,0 +1,436 @@
+//! The figures thud exports as SVG: pressure waveform, directivity, time history, restitution
+//! curve, design chart, the Fig 17 zone chart, and a figure for each reproduced paper table.
+//! Inputs are SI; the axes are labelled in the units people read (ms, cm, g, dB).
+
+use crate::acoustics::{Field, Levels};
+use crate::damper::{free_response, DamperParams, Run};
+use crate::design::{Chart, Thresholds, Zone};
+use crate::paper::{Table, Value};
+use crate::units::sig;
+
+use super::svg::{legend, line_plot, Anchor, Axis, Frame, Series, Style, Svg, HEIGHT, WIDTH};
+
+/// The pressure of one impact against time after the direct wave arrives (ms, Pa).
+pub fn waveform(field: &Field, points: usize, title: &str) -> String {
+    let (t, p) = field.waveform(points);
+    let t0 = field.arrival_s();
+    let pts: Vec<(f64, f64)> = t.iter().zip(&p).map(|(&ti, &pi)| ((ti - t0) * 1e3, pi)).collect();
+    let x = Axis::fit("time after the direct arrival (ms)", pts.iter().map(|p| p.0));
+    let y = Axis::fit("sound pressure p (Pa)", pts.iter().map(|p| p.1).chain([0.0]));
+    line_plot(title, x, y, &[Series::new("p", pts, Style::Line)])
+}
+
+/// SPL (rms over τ) and peak level against the observer angle θ: `points` are (θ in rad, levels).
+pub fn directivity(points: &[(f64, Levels)], title: &str) -> String {
+    let spl: Vec<(f64, f64)> = points.iter().map(|(th, l)| (th.to_degrees(), l.spl_db)).collect();
+    let peak: Vec<(f64, f64)> = points.iter().map(|(th, l)| (th.to_degrees(), l.spl_peak_db)).collect();
+    let x = Axis::fit("observer angle θ from the plate normal (deg)", spl.iter().map(|p| p.0));
+    let y = Axis::fit("level (dB re 20 µPa)", spl.iter().chain(&peak).map(|p| p.1));
+    line_plot(
+        title,
+        x,
+        y,
+        &[Series::new("SPL, rms over τ", spl, Style::LineMarkers), Series::new("peak level", peak, Style::Dashed)],
+    )
+}
+
+/// The main mass's displacement with the damper and without it (cm against s).
+pub fn history(run: &Run, damper: &DamperParams, title: &str) -> String {
+    let with: Vec<(f64, f64)> = run.history.iter().map(|h| (h.t_s, h.x_m * 1e2)).collect();
+    let without: Vec<(f64, f64)> = run.history.iter().map(|h| (h.t_s, free_response(damper, h.t_s) * 1e2)).collect();
+    let x = Axis::fit("time t (s)", with.iter().map(|p| p.0));
+    let y = Axis::fit("main-mass displacement x (cm)", with.iter().chain(&without).map(|p| p.1));
+    line_plot(
+        title,
+        x,
+        y,
+        &[Series::new("with the damper", with, Style::Line), Series::new("without the damper", without, Style::Dashed)],
+    )
+}
+
+/// Coefficient of restitution against impact mass (Fig 13): `curve` is (m in kg, R).
+pub fn restitution(curve: &[(f64, f64)], title: &str) -> String {
+    let pts: Vec<(f64, f64)> = curve.iter().map(|&(m, r)| (m * 1e3, r)).collect();
+    let x = Axis::fit("impact mass m (g)", pts.iter().map(|p| p.0));
+    let y = Axis::fit("coefficient of restitution R = u_out/U0", pts.iter().map(|p| p.1));
+    line_plot(title, x, y, &[Series::new("R", pts, Style::LineMarkers)])
+}
+
+/// Fill colour of a zone (none: grey).
+pub fn zone_color(zone: Option<Zone>) -> &'static str {
+    match zone {
+        Some(Zone::NoisyWeak) => "#e8787a",
+        Some(Zone::NoisyStrong) => "#f7b267",
+        Some(Zone::QuietStrong) => "#7fc97f",
+        Some(Zone::QuietWeak) => "#8fb8de",
+        None => "#dddddd",
+    }
+}
+
+const ZONES: [Zone; 4] = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak];
+
+/// Cell edges (axis units) around grid values: midpoints, and half a step outside the ends.
+fn edges(values: &[f64]) -> Vec<f64> {
+    match values {
+        [] => vec![],
+        [v] => vec![v - 0.5 * v.abs().max(1e-9) * 0.1, v + 0.5 * v.abs().max(1e-9) * 0.1],
+        _ => {
+            let mut e = vec![values[0] - 0.5 * (values[1] - values[0])];
+            e.extend(values.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+            let k = values.len() - 1;
+            e.push(values[k] + 0.5 * (values[k] - values[k - 1]));
+            e
+        }
+    }
+}
+
+/// Draws grid cells (`xs` × `ys` in axis units) with fill colours and labels from `cell(i, j)`.
+fn draw_cells(svg: &mut Svg, frame: &Frame, xs: &[f64], ys: &[f64], cell: impl Fn(usize, usize) -> (String, String)) {
+    let (ex, ey) = (edges(xs), edges(ys));
+    let font =
+        ((frame.width / xs.len().max(1) as f64).min(frame.height / ys.len().max(1) as f64) * 0.5).clamp(6.0, 14.0);
+    for j in 0..ys.len() {
+        for i in 0..xs.len() {
+            let (fill, label) = cell(i, j);
+            let (x0, x1) = (frame.px(ex[i]), frame.px(ex[i + 1]));
+            let (y0, y1) = (frame.py(ey[j + 1]), frame.py(ey[j]));
+            svg.rect(x0, y0, x1 - x0, y1 - y0, &fill, Some("white"));
+            if !label.is_empty() {
+                svg.text(0.5 * (x0 + x1), 0.5 * (y0 + y1) + 0.35 * font, &label, font, Anchor::Middle, 0.0);
+            }
+        }
+    }
+}
+
+/// The design chart: impact mass × gap cells coloured by zone, with the zone number in each.
+pub fn design_chart(chart: &Chart, title: &str) -> String {
+    let xs: Vec<f64> = chart.masses_kg.iter().map(|m| m * 1e3).collect();
+    let ys: Vec<f64> = chart.gaps_m.iter().map(|g| g * 1e2).collect();
+    let (ex, ey) = (edges(&xs), edges(&ys));
+    let x = Axis::fixed("impact mass m (g)", ex[0], ex[ex.len() - 1]);
+    let y = Axis::fixed("total clearance d (cm)", ey[0], ey[ey.len() - 1]);
+    let mut svg = Svg::new(WIDTH, HEIGHT, title);
+    let frame = Frame::standard(x, y, true);
+    draw_cells(&mut svg, &frame, &xs, &ys, |i, j| {
+        let zone = chart.cell(i, j).and_then(|c| c.metrics.zone);
+        (zone_color(zone).into(), zone.map_or(String::new(), |z| z.number().to_string()))
+    });
+    frame.draw(&mut svg, title);
+    zone_legend(&mut svg, &frame, &chart.thresholds);
+    svg.finish()
+}
+
+/// The legend of the four zones, with the thresholds.
+fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds) {
+    let labels: Vec<String> = ZONES.iter().map(|z| format!("{} {}", z.number(), z.describe())).collect();
+    let mut entries: Vec<(&str, &str)> =
+        ZONES.iter().zip(&labels).map(|(z, l)| (zone_color(Some(*z)), l.as_str())).collect();
+    entries.push((zone_color(None), "no impact"));
+    legend(svg, frame, &entries);
+    let x = frame.left + frame.width + 15.0;
+    let y = frame.top + 10.0 + 20.0 * entries.len() as f64 + 10.0;
+    svg.text(x, y, &format!("L* = {} dB", sig(t.spl_db, 4)), 12.0, Anchor::Start, 0.0);
+    svg.text(x, y + 18.0, &format!("e* = {} cm/s", sig(t.inclination_cm_s, 3)), 12.0, Anchor::Start, 0.0);
+}
+
+/// A design's point on the Fig 17 chart: SPLmax (dB), inclination (cm/s) and zone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZonePoint {
+    pub spl_db: f64,
+    pub e_cm_s: f64,
+    pub zone: Option<Zone>,
+}
+
+/// The points of a chart for Fig 17 (the inclination the thresholds classify by).
+pub fn zone_points(chart: &Chart) -> Vec<ZonePoint> {
+    chart
+        .cells
+        .iter()
+        .flatten()
+        .filter_map(|c| {
+            let e = match chart.thresholds.zone_by {
+                crate::design::ZoneBy::Paper => c.metrics.inclination_cm_s,
+                crate::design::ZoneBy::Fit => c.metrics.inclination_fit_cm_s,
+            }?;
+            Some(ZonePoint { spl_db: c.metrics.spl_max_db?, e_cm_s: e, zone: c.metrics.zone })
+        })
+        .collect()
+}
+
+/// Fig 17: damping inclination against SPLmax for every design, coloured by zone, with the
+/// L* and e* lines and the zone numbers in the four quadrants.
+pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str) -> String {
+    let x = Axis::fit("SPLmax (dB re 20 µPa)", points.iter().map(|p| p.spl_db).chain([t.spl_db]));
+    let y = Axis::fit("damping inclination e (cm/s)", points.iter().map(|p| p.e_cm_s).chain([t.inclination_cm_s]));
+    let mut svg = Svg::new(WIDTH, HEIGHT, title);
+    let frame = Frame::standard(x, y, true);
+    frame.draw(&mut svg, title);
+    let (xl, yl) = (frame.px(t.spl_db), frame.py(t.inclination_cm_s));
+    let (left, right) = (frame.left, frame.left + frame.width);
+    let (top, bottom) = (frame.top, frame.top + frame.height);
+    for (zone, cx, cy) in [
+        (Zone::NoisyWeak, 0.5 * (xl + right), 0.5 * (yl + bottom)),
+        (Zone::NoisyStrong, 0.5 * (xl + right), 0.5 * (top + yl)),
+        (Zone::QuietStrong, 0.5 * (left + xl), 0.5 * (top + yl)),
+        (Zone::QuietWeak, 0.5 * (left + xl), 0.5 * (yl + bottom)),
+    ] {
+        svg.text_fill(cx, cy, &format!("zone {}", zone.number()), 22.0, Anchor::Middle, "#b0b0b0");
+    }
+    frame.vline(&mut svg, t.spl_db, &format!("L* {} dB", sig(t.spl_db, 4)), "black");
+    frame.hline(&mut svg, t.inclination_cm_s, &format!("e* {} cm/s", sig(t.inclination_cm_s, 3)), "black");
+    for p in points {
+        svg.circle(frame.px(p.spl_db), frame.py(p.e_cm_s), 4.0, darker(p.zone));
+    }
+    zone_legend(&mut svg, &frame, t);
+    svg.finish()
+}
+
+/// Fig 17 of a design chart.
+pub fn fig17(chart: &Chart, title: &str) -> String {
+    fig17_points(&zone_points(chart), &chart.thresholds, title)
+}
+
+/// Marker colour of a zone (stronger than the cell fill).
+fn darker(zone: Option<Zone>) -> &'static str {
+    match zone {
+        Some(Zone::NoisyWeak) => "#d62728",
+        Some(Zone::NoisyStrong) => "#ff7f0e",
+        Some(Zone::QuietStrong) => "#2ca02c",
+        Some(Zone::QuietWeak) => "#1f77b4",
+        None => "#7f7f7f",
+    }
+}
+
+/// How a paper table is drawn.
+enum Plot {
+    /// `ys` against `x` (each with its style), one set per value of `group` if given.
+    Lines {
+        x: &'static str,
+        ys: &'static [(&'static str, Style)],
+        group: Option<&'static str>,
+        y_label: &'static str,
+        log_x: bool,
+    },
+    /// A cell map of `v` over `x` × `y`.
+    Cells { x: &'static str, y: &'static str, v: &'static str },
+    /// Fig 17's zone chart.
+    Zones,
+}
+
+/// The plot of each paper item that is a figure or a table worth plotting.
+fn plot_of(id: &str) -> Option<Plot> {
+    use Style::*;
+    let lines = |x, ys, group, y_label, log_x| Some(Plot::Lines { x, ys, group, y_label, log_x });
+    match id {
+        "table1" => lines(
+            "u0_m_s",
+            &[("spl_experiment_db", Markers), ("spl_paper_db", Markers), ("spl_model_db", Line)],
+            Some("radius_mm"),
+            "SPL (dB re 20 µPa)",
+            false,
+        ),
+        "fig2" | "fig5" => lines("t_ms", &[("p_pa", Line)], None, "sound pressure p (Pa)", false),
+        "fig3" | "fig6" => {
+            lines("theta_deg", &[("spl_db", LineMarkers), ("spl_peak_db", Dashed)], None, "level (dB re 20 µPa)", false)
+        }
+        "fig7" => lines(
+            "r_m",
+            &[("delta_spl_db", LineMarkers), ("delta_peak_db", Dashed), ("delta_sel_db", Line)],
+            None,
+            "quadrupole − dipole (dB)",
+            true,
+        ),
+        "fig12" => lines("r_m", &[("p_max_pa", LineMarkers), ("p_min_pa", LineMarkers)], None, "pressure (Pa)", true),
+        "table3" => lines(
+            "mass_g",
+            &[("splmax_paper_db", Markers), ("splmax_model_db", Line)],
+            Some("gap_cm"),
+            "SPLmax (dB re 20 µPa)",
+            false,
+        ),
+        "table4" => lines(
+            "u0_m_s",
+            &[
+                ("paper_newmark_us", Markers),
+                ("paper_exact_us", Markers),
+                ("closed_form_us", Line),
+                ("closed_form_40_5g_us", Dashed),
+                ("newmark_us", Markers),
+                ("damped_c1_20_us", Line),
+            ],
+            None,
+            "contact duration τ (µs)",
+            false,
+        ),
+        "table5" => lines(
+            "e_lo_cm_s",
+            &[("spl_min_db", LineMarkers), ("spl_max_db", LineMarkers)],
+            None,
+            "SPLmax (dB re 20 µPa)",
+            false,
+        ),
+        "fig9" => {
+            lines("t_s", &[("x_damper_m", Line), ("x_free_m", Dashed)], None, "main-mass displacement x (m)", false)
+        }
+        "fig10" => lines("gap_cm", &[("inclination_cm_s", LineMarkers)], Some("mass_g"), "e (cm/s)", false),
+        "fig11" => lines("mass_g", &[("splmax_db", LineMarkers)], Some("gap_cm"), "SPLmax (dB re 20 µPa)", false),
+        "fig13" => lines(
+            "mass_g",
+            &[("restitution", LineMarkers), ("restitution_reference", Markers)],
+            None,
+            "coefficient of restitution R",
+            false,
+        ),
+        "fig14" => lines("mass_g", &[("inclination_cm_s", LineMarkers)], Some("gap_cm"), "e (cm/s)", false),
+        "fig15" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "inclination_cm_s" }),
+        "fig16" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "splmax_db" }),
+        "fig17" => Some(Plot::Zones),
+        _ => None,
+    }
+}
+
+/// "SPLmax paper (dB)" → ("SPLmax paper", "dB"); a label without a unit → (label, "").
+fn split_unit(label: &str) -> (String, String) {
+    match (label.rfind(" ("), label.ends_with(')')) {
+        (Some(i), true) => (label[..i].to_string(), label[i + 2..label.len() - 1].to_string()),
+        _ => (label.to_string(), String::new()),
+    }
+}
+
+/// Whether the paper item `id` is drawn as a figure by [`paper_figure`].
+pub fn has_figure(id: &str) -> bool {
+    plot_of(id).is_some()
+}
+
+/// Column `key` of `table` as numbers (NaN where not a number); None if there is no such column.
+fn column(table: &Table, key: &str) -> Option<Vec<f64>> {
+    let i = table.columns.iter().position(|c| c.key == key)?;
+    Some(table.rows.iter().map(|r| if let Some(Value::Num(x)) = r.get(i) { *x } else { f64::NAN }).collect())
+}
+
+fn label(table: &Table, key: &str) -> String {
+    table.columns.iter().find(|c| c.key == key).map_or(key.to_string(), |c| c.label.to_string())
+}
+
+/// The SVG of a reproduced paper table, or None when it is not worth plotting. Fig 17 uses
+/// `thresholds` for its zone lines (those of the chart it was computed with).
+pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
+    let title = table.title.as_str();
+    match plot_of(table.id)? {
+        Plot::Lines { x, ys, group, y_label, log_x } => {
+            let xv = column(table, x)?;
+            let gv = group.and_then(|g| column(table, g));
+            let mut groups: Vec<f64> = Vec::new();
+            for g in gv.iter().flatten() {
+                if !groups.iter().any(|h| h == g) {
+                    groups.push(*g);
+                }
+            }
+            let mut series = Vec::new();
+            for &(yk, style) in ys {
+                let yv = column(table, yk)?;
+                let name = label(table, yk);
+                let pick = |g: Option<f64>| -> Vec<(f64, f64)> {
+                    (0..xv.len())
+                        .filter(|&i| g.is_none_or(|g| gv.as_ref().is_some_and(|v| v[i] == g)))
+                        .map(|i| (xv[i], yv[i]))
+                        .filter(|p| !(style == Style::Markers && p.1.is_nan()))
+                        .collect()
+                };
+                if groups.is_empty() {
+                    series.push(Series::new(&split_unit(&name).0, pick(None), style));
+                } else {
+                    let (gname, gunit) = split_unit(&label(table, group.unwrap_or_default()));
+                    for &g in &groups {
+                        let glabel = format!("{gname} {} {gunit}", sig(g, 4)).trim_end().to_string();
+                        let name = if ys.len() > 1 { format!("{}, {glabel}", split_unit(&name).0) } else { glabel };
+                        series.push(Series::new(&name, pick(Some(g)), style));
+                    }
+                }
+            }
+            let all_y = series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).collect::<Vec<_>>();
+            let xa = if log_x {
+                Axis::fit_log(&label(table, x), xv.clone())
+            } else {
+                Axis::fit(&label(table, x), xv.clone())
+            };
+            Some(line_plot(title, xa, Axis::fit(y_label, all_y), &series))
+        }
+        Plot::Cells { x, y, v } => Some(cell_map(table, x, y, v)),
+        Plot::Zones => {
+            let (s, e, z) = (column(table, "splmax_db")?, column(table, "inclination_cm_s")?, column(table, "zone")?);
+            let pts: Vec<ZonePoint> = (0..s.len())
+                .filter(|&i| s[i].is_finite() && e[i].is_finite())
+                .map(|i| ZonePoint {
+                    spl_db: s[i],
+                    e_cm_s: e[i],
+                    zone: ZONES.iter().copied().find(|zz| zz.number() as f64 == z[i]),
+                })
+                .collect();
+            Some(fig17_points(&pts, thresholds, title))
+        }
+    }
+}
+
+/// A colour from blue (0) through pale yellow to red (1) (the "RdYlBu" scheme, reversed).
+fn ramp(f: f64) -> String {
+    let f = if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.0 };
+    let stops =
+        [(49.0, 54.0, 149.0), (116.0, 173.0, 209.0), (255.0, 255.0, 191.0), (244.0, 109.0, 67.0), (165.0, 0.0, 38.0)];
+    let k = ((f * 4.0).floor() as usize).min(3);
+    let (a, b, t) = (stops[k], stops[k + 1], f * 4.0 - k as f64);
+    let mix = |p: f64, q: f64| (p + (q - p) * t).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// A cell map of column `v` over the grid of columns `x` × `y`, with a colour scale.
+fn cell_map(table: &Table, x: &str, y: &str, v: &str) -> String {
+    let (xv, yv, vv) = (
+        column(table, x).unwrap_or_default(),
+        column(table, y).unwrap_or_default(),
+        column(table, v).unwrap_or_default(),
+    );
+    let distinct = |vals: &[f64]| {
+        let mut d: Vec<f64> = vals.iter().copied().filter(|a| a.is_finite()).collect();
+        d.sort_by(f64::total_cmp);
+        d.dedup();
+        d
+    };
+    let (xs, ys) = (distinct(&xv), distinct(&yv));
+    let (lo, hi) =
+        vv.iter().filter(|a| a.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &c| (a.min(c), b.max(c)));
+    let title = table.title.as_str();
+    let mut svg = Svg::new(WIDTH, HEIGHT, title);
+    if xs.is_empty() || ys.is_empty() {
+        return svg.finish();
+    }
+    let (ex, ey) = (edges(&xs), edges(&ys));
+    let frame = Frame::standard(
+        Axis::fixed(&label(table, x), ex[0], ex[ex.len() - 1]),
+        Axis::fixed(&label(table, y), ey[0], ey[ey.len() - 1]),
+        true,
+    );
+    let value_at = |i: usize, j: usize| (0..vv.len()).find(|&k| xv[k] == xs[i] && yv[k] == ys[j]).map(|k| vv[k]);
+    draw_cells(&mut svg, &frame, &xs, &ys, |i, j| match value_at(i, j).filter(|a| a.is_finite()) {
+        Some(a) => (ramp((a - lo) / (hi - lo).max(1e-300)), String::new()),
+        None => ("#dddddd".into(), String::new()),
+    });
+    frame.draw(&mut svg, title);
+    let lx = frame.left + frame.width + 15.0;
+    svg.text(lx, frame.top + 4.0, &label(table, v), 12.0, Anchor::Start, 0.0);
+    for k in 0..=10 {
+        let f = 1.0 - k as f64 / 10.0;
+        svg.rect(lx, frame.top + 14.0 + 22.0 * k as f64, 22.0, 22.0, &ramp(f), None);
+        if k % 2 == 0 && lo.is_finite() {
+            svg.text(
+                lx + 28.0,
+                frame.top + 30.0 + 22.0 * k as f64,
+                &sig(lo + f * (hi - lo), 4),
+                12.0,
+                Anchor::Start,
+                0.0,
+            );
+        }
+    }
+    svg.finish()
+}

@@ -1,0 +1,251 @@
+//! Files that leave the terminal: CSV tables, SVG figures and WAV sound.
+//!
+//! The building blocks ([`csv`], [`figures`], [`wav`], [`report`]) return the file's contents
+//! (`String` or `Vec<u8>`). [`render`] and [`export_to_path`] are the one-call front door used
+//! by the CLI and the TUI: a [`Kind`] of file, a design and [`ExportOptions`] in; the contents,
+//! or a file written atomically, out.
+
+pub mod csv;
+pub mod figures;
+pub mod report;
+pub mod svg;
+pub mod wav;
+
+use std::path::Path;
+
+use crate::acoustics::{self, Levels, Source};
+use crate::contact::{Impact, Target};
+use crate::design::{self, linspace, Design, Evaluation};
+use crate::error::ThudError;
+use crate::store::{self, StoreError};
+
+/// Every file thud can export for a design.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// CSV `t_s,p_pa`: the pressure of one impact (the loudest, or at `u0_m_s`).
+    CsvWaveform,
+    /// CSV `t_s,x_m,y_m,x_free_m`: the time history with and without the damper.
+    CsvHistory,
+    /// CSV: every impact with its speeds, duration, penetration and SPL.
+    CsvImpacts,
+    /// CSV: the design chart over `masses_kg` × `gaps_m`.
+    CsvSweep,
+    /// SVG: the pressure of one impact.
+    SvgWaveform,
+    /// SVG: SPL and peak level against the observer angle.
+    SvgDirectivity,
+    /// SVG: the main mass's displacement with and without the damper.
+    SvgHistory,
+    /// SVG: restitution against impact mass (Fig 13).
+    SvgRestitution,
+    /// SVG: the mass × gap chart coloured by zone.
+    SvgChart,
+    /// SVG: e against SPLmax with the zones (Fig 17).
+    SvgFig17,
+    /// WAV: the damper's sound at the observer over the whole run.
+    Wav,
+}
+
+impl Kind {
+    pub const ALL: [Kind; 11] = [
+        Kind::CsvWaveform,
+        Kind::CsvHistory,
+        Kind::CsvImpacts,
+        Kind::CsvSweep,
+        Kind::SvgWaveform,
+        Kind::SvgDirectivity,
+        Kind::SvgHistory,
+        Kind::SvgRestitution,
+        Kind::SvgChart,
+        Kind::SvgFig17,
+        Kind::Wav,
+    ];
+
+    /// A file name to suggest, e.g. `thud-waveform.csv`.
+    pub fn default_file_name(self) -> &'static str {
+        match self {
+            Kind::CsvWaveform => "thud-waveform.csv",
+            Kind::CsvHistory => "thud-history.csv",
+            Kind::CsvImpacts => "thud-impacts.csv",
+            Kind::CsvSweep => "thud-sweep.csv",
+            Kind::SvgWaveform => "thud-waveform.svg",
+            Kind::SvgDirectivity => "thud-directivity.svg",
+            Kind::SvgHistory => "thud-history.svg",
+            Kind::SvgRestitution => "thud-restitution.svg",
+            Kind::SvgChart => "thud-chart.svg",
+            Kind::SvgFig17 => "thud-fig17.svg",
+            Kind::Wav => "thud-sound.wav",
+        }
+    }
+
+    /// Whether this export needs the mass × gap grid (a sweep).
+    pub fn needs_sweep(self) -> bool {
+        matches!(self, Kind::CsvSweep | Kind::SvgChart | Kind::SvgFig17)
+    }
+}
+
+/// What to export besides the design. `Default` is what the CLI uses without flags.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExportOptions {
+    /// Impact speed (m/s) for the waveform, directivity and restitution; None: the design's
+    /// largest impact speed (restitution: 1.4 m/s, Fig 13's).
+    pub u0_m_s: Option<f64>,
+    /// Impact masses (kg) of sweeps and of the restitution curve; None: 30–100 g (sweeps,
+    /// 20 values) or 5–100 g (restitution, 20 values).
+    pub masses_kg: Option<Vec<f64>>,
+    /// Gaps (m) of sweeps; None: 2–5 cm, 20 values.
+    pub gaps_m: Option<Vec<f64>>,
+    /// Points of a waveform or history.
+    pub points: usize,
+    /// Sample rate and scale of WAV files.
+    pub wav: wav::WavOptions,
+}
+
+impl Default for ExportOptions {
+    fn default() -> Self {
+        Self { u0_m_s: None, masses_kg: None, gaps_m: None, points: 2001, wav: wav::WavOptions::default() }
+    }
+}
+
+/// Runs `design` (with `points` history samples).
+fn run(design: &Design, points: usize) -> Result<Evaluation, ThudError> {
+    design::evaluate(design, points, None)
+}
+
+/// The impact speed to draw: `u0` if given, else the largest impact speed of the run.
+fn impact_speed(design: &Design, u0: Option<f64>) -> Result<f64, ThudError> {
+    if let Some(u) = u0 {
+        crate::error::check_positive("u0", u, "m/s")?;
+        return Ok(u);
+    }
+    let e = run(design, 0)?;
+    let u = e.run.impacts.iter().map(|i| i.u_in_m_s).fold(0.0, f64::max);
+    if u > 0.0 {
+        Ok(u)
+    } else {
+        Err(ThudError::invalid("u0", "the design has no impact to hear; give an impact speed with --u0"))
+    }
+}
+
+/// SPL and peak level of one impact of `design` at `u0` (m/s) for observer angles over the
+/// open side of its reflecting surfaces (5° steps), at the design's distance.
+pub fn directivity_points(design: &Design, u0: f64) -> Result<Vec<(f64, Levels)>, ThudError> {
+    let d = design.resolved()?;
+    let (lo, hi) = match d.radiation.source {
+        Source::Single => (-180, 180),
+        Source::Dipole => (-90, 90),
+        Source::Quadrupole => (0, 90),
+    };
+    let thetas: Vec<f64> = (lo / 5..=hi / 5).map(|k| (5.0 * k as f64).to_radians()).collect();
+    let impact = Impact {
+        mass_kg: d.damper.impact_mass_kg,
+        u0_m_s: u0,
+        k_hz: d.damper.k_hz,
+        target: Target::MovableMass(d.damper.main_mass_kg),
+    };
+    impact.validate()?;
+    acoustics::directivity(d.ball_radius_m(), &impact.contact(), d.observer.r_m, &thetas, &d.radiation)
+}
+
+/// The sweep grid of `opts` (defaults as documented on [`ExportOptions`]).
+fn grid(opts: &ExportOptions) -> (Vec<f64>, Vec<f64>) {
+    (
+        opts.masses_kg.clone().unwrap_or_else(|| linspace(0.030, 0.100, 20)),
+        opts.gaps_m.clone().unwrap_or_else(|| linspace(0.02, 0.05, 20)),
+    )
+}
+
+/// Where the sound is heard, for titles: "r 0.7 m, θ 45°, quadrupole".
+fn listener(d: &Design) -> String {
+    format!(
+        "r {} m, θ {}°, {}",
+        crate::units::sig(d.observer.r_m, 3),
+        crate::units::sig(d.observer.theta_rad.to_degrees(), 3),
+        d.radiation.source.name()
+    )
+}
+
+/// The contents of an export of `kind` for `design`.
+pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ThudError> {
+    design.validate()?;
+    let d = design.resolved()?;
+    let points = opts.points.clamp(2, 1_000_000);
+    let text = match kind {
+        Kind::CsvWaveform | Kind::SvgWaveform => {
+            let u0 = impact_speed(&d, opts.u0_m_s)?;
+            let field = d.impact_field(u0)?;
+            if kind == Kind::CsvWaveform {
+                csv::waveform(&field, points)
+            } else {
+                let title =
+                    format!("Sound pressure of one impact, U0 {} m/s ({})", crate::units::sig(u0, 4), listener(&d));
+                figures::waveform(&field, points, &title)
+            }
+        }
+        Kind::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper),
+        Kind::SvgHistory => {
+            let title = format!(
+                "Free vibration with and without the damper (m {} g, d {} cm, v0 {} m/s)",
+                crate::units::sig(d.damper.impact_mass_kg * 1e3, 3),
+                crate::units::sig(d.damper.gap_m * 1e2, 3),
+                crate::units::sig(d.damper.v0_m_s, 3)
+            );
+            figures::history(&run(&d, points)?.run, &d.damper, &title)
+        }
+        Kind::CsvImpacts => {
+            let e = run(&d, 0)?;
+            csv::impacts(&e.run, &design::impact_spls(&e.run, &d)?)
+        }
+        Kind::SvgDirectivity => {
+            let u0 = impact_speed(&d, opts.u0_m_s)?;
+            let title = format!(
+                "Directivity of one impact, U0 {} m/s, r {} m",
+                crate::units::sig(u0, 4),
+                crate::units::sig(d.observer.r_m, 3)
+            );
+            figures::directivity(&directivity_points(&d, u0)?, &title)
+        }
+        Kind::SvgRestitution => {
+            let masses = opts.masses_kg.clone().unwrap_or_else(|| linspace(0.005, 0.100, 20));
+            let u0 = opts.u0_m_s.unwrap_or(1.4);
+            let curve = design::restitution_curve(&d, &masses, u0)?;
+            let title = format!(
+                "Restitution against impact mass (U0 {} m/s, c1 {} N·s/m, M {} kg)",
+                crate::units::sig(u0, 3),
+                crate::units::sig(d.damper.c1_n_s_m, 4),
+                crate::units::sig(d.damper.main_mass_kg, 3)
+            );
+            figures::restitution(&curve, &title)
+        }
+        Kind::CsvSweep | Kind::SvgChart | Kind::SvgFig17 => {
+            let (masses, gaps) = grid(opts);
+            let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {})?;
+            match kind {
+                Kind::CsvSweep => csv::sweep(&chart),
+                Kind::SvgChart => figures::design_chart(&chart, "Design chart: zone of each impact mass × gap"),
+                _ => figures::fig17(&chart, "Design chart: damping inclination against SPLmax (Fig 17)"),
+            }
+        }
+        Kind::Wav => {
+            let e = run(&d, 0)?;
+            return wav::damper_sound(&d, &e.run, &opts.wav);
+        }
+    };
+    Ok(text.into_bytes())
+}
+
+/// Writes `bytes` to `path` atomically; the error names the path and the reason.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), ThudError> {
+    store::write_atomic(path, bytes).map_err(|e| {
+        let reason = match e {
+            StoreError::Io { source, .. } => source.to_string(),
+            other => other.to_string(),
+        };
+        ThudError::invalid("out", format!("cannot write {}: {reason}", path.display()))
+    })
+}
+
+/// Renders an export of `kind` for `design` and writes it to `path` (atomically).
+pub fn export_to_path(kind: Kind, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ThudError> {
+    write_file(path, &render(kind, design, opts)?)
+}

@@ -1,0 +1,484 @@
+//! A small SVG writer: an escaped document builder, axes with "nice" ticks (linear or log),
+//! line/marker plots with a legend, and a cell map. No fonts or system libraries: text is left
+//! to the viewer's sans-serif font. Coordinates are in SVG pixels; data values in the units of
+//! the axis labels (the callers convert from SI for the labels).
+
+use std::fmt::Write as _;
+
+/// Width of every figure (px).
+pub const WIDTH: f64 = 860.0;
+/// Height of every figure (px).
+pub const HEIGHT: f64 = 540.0;
+
+/// Colours for series, in order (colour-blind friendly "tableau 10").
+pub const PALETTE: [&str; 10] =
+    ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+
+/// Escapes text for XML content and attribute values.
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c if (c as u32) < 0x20 && c != '\n' && c != '\t' => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// A number for an SVG attribute (two decimals are finer than a pixel).
+fn n(v: f64) -> String {
+    if v.is_finite() {
+        let s = format!("{v:.2}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        "0".into()
+    }
+}
+
+/// Horizontal anchoring of a text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Anchor {
+    Start,
+    Middle,
+    End,
+}
+
+impl Anchor {
+    fn name(self) -> &'static str {
+        match self {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        }
+    }
+}
+
+/// An SVG document under construction, with a `<title>` (shown by viewers, read by tests).
+#[derive(Debug, Clone)]
+pub struct Svg {
+    width: f64,
+    height: f64,
+    title: String,
+    defs: String,
+    body: String,
+}
+
+impl Svg {
+    /// An empty white canvas titled `title`.
+    pub fn new(width: f64, height: f64, title: &str) -> Svg {
+        let mut s = Svg { width, height, title: title.to_string(), defs: String::new(), body: String::new() };
+        s.rect(0.0, 0.0, width, height, "white", None);
+        s
+    }
+
+    /// Adds raw definitions (e.g. a clip path) to `<defs>`; the caller escapes its text.
+    pub fn def(&mut self, raw: &str) {
+        self.defs.push_str(raw);
+    }
+
+    /// A straight line; `dash` is an SVG dash pattern like "6 4".
+    pub fn line(&mut self, (x1, y1): (f64, f64), (x2, y2): (f64, f64), stroke: &str, width: f64, dash: Option<&str>) {
+        let _ = writeln!(
+            self.body,
+            r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{}" stroke-width="{}"{}/>"#,
+            n(x1),
+            n(y1),
+            n(x2),
+            n(y2),
+            escape(stroke),
+            n(width),
+            dash.map_or(String::new(), |d| format!(r#" stroke-dasharray="{}""#, escape(d)))
+        );
+    }
+
+    /// A polyline through `points`, clipped to clip path `clip` if given.
+    pub fn polyline(
+        &mut self,
+        points: &[(f64, f64)],
+        stroke: &str,
+        width: f64,
+        dash: Option<&str>,
+        clip: Option<&str>,
+    ) {
+        if points.is_empty() {
+            return;
+        }
+        let pts: Vec<String> = points.iter().map(|&(x, y)| format!("{},{}", n(x), n(y))).collect();
+        let _ = writeln!(
+            self.body,
+            r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linejoin="round"{}{}/>"#,
+            pts.join(" "),
+            escape(stroke),
+            n(width),
+            dash.map_or(String::new(), |d| format!(r#" stroke-dasharray="{}""#, escape(d))),
+            clip.map_or(String::new(), |c| format!(r#" clip-path="url(#{})""#, escape(c)))
+        );
+    }
+
+    /// A rectangle filled with `fill`, outlined with `stroke` if given.
+    pub fn rect(&mut self, x: f64, y: f64, w: f64, h: f64, fill: &str, stroke: Option<&str>) {
+        let _ = writeln!(
+            self.body,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{}"{}/>"#,
+            n(x),
+            n(y),
+            n(w.max(0.0)),
+            n(h.max(0.0)),
+            escape(fill),
+            stroke.map_or(String::new(), |s| format!(r#" stroke="{}" stroke-width="1""#, escape(s)))
+        );
+    }
+
+    /// A filled circle.
+    pub fn circle(&mut self, cx: f64, cy: f64, r: f64, fill: &str) {
+        let _ = writeln!(self.body, r#"<circle cx="{}" cy="{}" r="{}" fill="{}"/>"#, n(cx), n(cy), n(r), escape(fill));
+    }
+
+    /// A text of font size `size` px, rotated by `rotate` degrees about its anchor point.
+    pub fn text(&mut self, x: f64, y: f64, text: &str, size: f64, anchor: Anchor, rotate: f64) {
+        let transform = if rotate == 0.0 {
+            String::new()
+        } else {
+            format!(r#" transform="rotate({} {} {})""#, n(rotate), n(x), n(y))
+        };
+        let _ = writeln!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" text-anchor="{}"{}>{}</text>"#,
+            n(x),
+            n(y),
+            n(size),
+            anchor.name(),
+            transform,
+            escape(text)
+        );
+    }
+
+    /// A text in colour `fill` (e.g. a faint label behind data).
+    pub fn text_fill(&mut self, x: f64, y: f64, text: &str, size: f64, anchor: Anchor, fill: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" text-anchor="{}" fill="{}">{}</text>"#,
+            n(x),
+            n(y),
+            n(size),
+            anchor.name(),
+            escape(fill),
+            escape(text)
+        );
+    }
+
+    /// The finished document.
+    pub fn finish(self) -> String {
+        format!(
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\">\n<title>{}</title>\n<defs>{}</defs>\n{}</svg>\n",
+            escape(&self.title),
+            self.defs,
+            self.body,
+            w = n(self.width),
+            h = n(self.height),
+        )
+    }
+}
+
+/// Linear or logarithmic axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scale {
+    Linear,
+    Log,
+}
+
+/// An axis: label (with unit), range and scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    pub label: String,
+    pub lo: f64,
+    pub hi: f64,
+    pub scale: Scale,
+}
+
+impl Axis {
+    /// A linear axis over the finite `values`, widened by 5 % each side and to nice ticks.
+    pub fn fit(label: &str, values: impl IntoIterator<Item = f64>) -> Axis {
+        let (lo, hi) = finite_range(values).unwrap_or((0.0, 1.0));
+        let (lo, hi) = if hi - lo > 0.0 {
+            let pad = 0.05 * (hi - lo);
+            (lo - pad, hi + pad)
+        } else {
+            let w = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+            (lo - w, hi + w)
+        };
+        let step = nice_step((hi - lo) / 20.0);
+        Axis {
+            label: label.into(),
+            lo: (lo / step).floor() * step,
+            hi: (hi / step).ceil() * step,
+            scale: Scale::Linear,
+        }
+    }
+
+    /// A logarithmic axis over the positive `values`, to whole decades.
+    pub fn fit_log(label: &str, values: impl IntoIterator<Item = f64>) -> Axis {
+        let (lo, hi) = finite_range(values.into_iter().filter(|v| *v > 0.0)).unwrap_or((1.0, 10.0));
+        let (lo, hi) = (10f64.powf(lo.log10().floor()), 10f64.powf(hi.log10().ceil()));
+        Axis { label: label.into(), lo, hi: if hi > lo { hi } else { lo * 10.0 }, scale: Scale::Log }
+    }
+
+    /// A linear axis from `lo` to `hi` exactly.
+    pub fn fixed(label: &str, lo: f64, hi: f64) -> Axis {
+        Axis { label: label.into(), lo, hi, scale: Scale::Linear }
+    }
+
+    /// Where `v` falls on the axis, 0 at `lo` and 1 at `hi`.
+    pub fn fraction(&self, v: f64) -> f64 {
+        match self.scale {
+            Scale::Linear => (v - self.lo) / (self.hi - self.lo),
+            Scale::Log => (v.log10() - self.lo.log10()) / (self.hi.log10() - self.lo.log10()),
+        }
+    }
+
+    /// Tick values and their labels.
+    pub fn ticks(&self) -> Vec<(f64, String)> {
+        match self.scale {
+            Scale::Linear => {
+                let step = nice_step((self.hi - self.lo) / 7.0);
+                let decimals = (-step.log10().floor()).max(0.0) as usize;
+                let first = (self.lo / step - 1e-9).ceil() as i64;
+                let last = (self.hi / step + 1e-9).floor() as i64;
+                (first..=last)
+                    .map(|k| {
+                        let v = k as f64 * step;
+                        let v = if v.abs() < 1e-12 * step { 0.0 } else { v };
+                        (v, format!("{v:.decimals$}"))
+                    })
+                    .collect()
+            }
+            Scale::Log => {
+                let (a, b) = (self.lo.log10().round() as i32, self.hi.log10().round() as i32);
+                let mults: &[f64] = if b - a <= 2 { &[1.0, 2.0, 5.0] } else { &[1.0] };
+                (a..=b)
+                    .flat_map(|k| mults.iter().map(move |m| m * 10f64.powi(k)))
+                    .filter(|v| *v >= self.lo * (1.0 - 1e-9) && *v <= self.hi * (1.0 + 1e-9))
+                    .map(|v| (v, format_log_tick(v)))
+                    .collect()
+            }
+        }
+    }
+}
+
+/// A log tick label: plain for 0.001–99999, else scientific.
+fn format_log_tick(v: f64) -> String {
+    if (1e-3..1e5).contains(&v) {
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        format!("{v:.0e}")
+    }
+}
+
+/// Smallest and largest of the finite values, if any.
+fn finite_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    values.into_iter().filter(|v| v.is_finite()).fold(None, |acc, v| match acc {
+        None => Some((v, v)),
+        Some((a, b)) => Some((a.min(v), b.max(v))),
+    })
+}
+
+/// The 1-2-5 step nearest above `raw`.
+pub fn nice_step(raw: f64) -> f64 {
+    if !(raw.is_finite() && raw > 0.0) {
+        return 1.0;
+    }
+    let mag = 10f64.powf(raw.log10().floor());
+    let f = raw / mag;
+    mag * if f <= 1.0 {
+        1.0
+    } else if f <= 2.0 {
+        2.0
+    } else if f <= 5.0 {
+        5.0
+    } else {
+        10.0
+    }
+}
+
+/// The plotting area of a figure and its axes: maps data to pixels and draws the frame.
+#[derive(Debug, Clone)]
+pub struct Frame {
+    pub left: f64,
+    pub top: f64,
+    pub width: f64,
+    pub height: f64,
+    pub x: Axis,
+    pub y: Axis,
+}
+
+/// Id of the clip path of the plotting area.
+pub const CLIP: &str = "plot-area";
+
+impl Frame {
+    /// The standard frame of a [`WIDTH`] × [`HEIGHT`] figure; `legend` leaves room on the right.
+    pub fn standard(x: Axis, y: Axis, legend: bool) -> Frame {
+        let right = if legend { 200.0 } else { 30.0 };
+        Frame { left: 85.0, top: 50.0, width: WIDTH - 85.0 - right, height: HEIGHT - 50.0 - 70.0, x, y }
+    }
+
+    /// Pixel x of data value `v`.
+    pub fn px(&self, v: f64) -> f64 {
+        self.left + self.x.fraction(v) * self.width
+    }
+
+    /// Pixel y of data value `v`.
+    pub fn py(&self, v: f64) -> f64 {
+        self.top + (1.0 - self.y.fraction(v)) * self.height
+    }
+
+    /// Draws the title, the box, grid lines, ticks with labels and the axis labels, and
+    /// defines the clip path [`CLIP`].
+    pub fn draw(&self, svg: &mut Svg, title: &str) {
+        svg.def(&format!(
+            r#"<clipPath id="{CLIP}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>"#,
+            n(self.left),
+            n(self.top),
+            n(self.width),
+            n(self.height)
+        ));
+        let size = (17.0 * 78.0 / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
+        svg.text(WIDTH / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
+        let bottom = self.top + self.height;
+        for (v, label) in self.x.ticks() {
+            let x = self.px(v);
+            svg.line((x, self.top), (x, bottom), "#e6e6e6", 1.0, None);
+            svg.line((x, bottom), (x, bottom + 5.0), "black", 1.0, None);
+            svg.text(x, bottom + 20.0, &label, 12.0, Anchor::Middle, 0.0);
+        }
+        for (v, label) in self.y.ticks() {
+            let y = self.py(v);
+            svg.line((self.left, y), (self.left + self.width, y), "#e6e6e6", 1.0, None);
+            svg.line((self.left - 5.0, y), (self.left, y), "black", 1.0, None);
+            svg.text(self.left - 8.0, y + 4.0, &label, 12.0, Anchor::End, 0.0);
+        }
+        svg.rect(self.left, self.top, self.width, self.height, "none", Some("black"));
+        svg.text(self.left + self.width / 2.0, bottom + 48.0, &self.x.label, 14.0, Anchor::Middle, 0.0);
+        let yc = self.top + self.height / 2.0;
+        svg.text(22.0, yc, &self.y.label, 14.0, Anchor::Middle, -90.0);
+    }
+
+    /// A horizontal reference line at `v` with a label at its right end.
+    pub fn hline(&self, svg: &mut Svg, v: f64, label: &str, color: &str) {
+        let y = self.py(v);
+        svg.line((self.left, y), (self.left + self.width, y), color, 1.5, Some("6 4"));
+        svg.text(self.left + self.width - 4.0, y - 5.0, label, 12.0, Anchor::End, 0.0);
+    }
+
+    /// A vertical reference line at `v` with a label at its top.
+    pub fn vline(&self, svg: &mut Svg, v: f64, label: &str, color: &str) {
+        let x = self.px(v);
+        svg.line((x, self.top), (x, self.top + self.height), color, 1.5, Some("6 4"));
+        svg.text(x + 4.0, self.top + 14.0, label, 12.0, Anchor::Start, 0.0);
+    }
+}
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    Line,
+    Dashed,
+    Markers,
+    LineMarkers,
+}
+
+/// One named series of (x, y) points in axis units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    pub style: Style,
+}
+
+impl Series {
+    pub fn new(label: &str, points: Vec<(f64, f64)>, style: Style) -> Series {
+        Series { label: label.into(), points, style }
+    }
+}
+
+/// Draws the series into `frame` with the palette's colours, and a legend on the right when
+/// there is more than one series. Points that are not finite break the line.
+pub fn draw_series(svg: &mut Svg, frame: &Frame, series: &[Series]) {
+    for (k, s) in series.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        let lines = matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers);
+        let dash = (s.style == Style::Dashed).then_some("7 4");
+        if lines {
+            for run in s.points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
+                let px: Vec<(f64, f64)> = run.iter().map(|&(x, y)| (frame.px(x), frame.py(y))).collect();
+                svg.polyline(&px, color, 1.8, dash, Some(CLIP));
+            }
+        }
+        if matches!(s.style, Style::Markers | Style::LineMarkers) {
+            for &(x, y) in s.points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()) {
+                let (cx, cy) = (frame.px(x), frame.py(y));
+                let inside = (frame.left..=frame.left + frame.width).contains(&cx)
+                    && (frame.top..=frame.top + frame.height).contains(&cy);
+                if inside {
+                    svg.circle(cx, cy, 3.0, color);
+                }
+            }
+        }
+    }
+    if series.len() > 1 {
+        let entries: Vec<(&str, &str)> =
+            series.iter().enumerate().map(|(k, s)| (PALETTE[k % PALETTE.len()], s.label.as_str())).collect();
+        legend(svg, frame, &entries);
+    }
+}
+
+/// A legend of coloured swatches to the right of the frame.
+pub fn legend(svg: &mut Svg, frame: &Frame, entries: &[(&str, &str)]) {
+    let x = frame.left + frame.width + 15.0;
+    for (k, (color, label)) in entries.iter().enumerate() {
+        let y = frame.top + 10.0 + 20.0 * k as f64;
+        svg.rect(x, y - 9.0, 18.0, 10.0, color, None);
+        svg.text(x + 24.0, y, label, 11.0, Anchor::Start, 0.0);
+    }
+}
+
+/// A complete x–y figure: title, axes, series (and a legend when there are several).
+pub fn line_plot(title: &str, x: Axis, y: Axis, series: &[Series]) -> String {
+    let mut svg = Svg::new(WIDTH, HEIGHT, title);
+    let frame = Frame::standard(x, y, series.len() > 1);
+    frame.draw(&mut svg, title);
+    draw_series(&mut svg, &frame, series);
+    svg.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_is_escaped() {
+        assert_eq!(escape(r#"a<b & "c" 'd'>"#), "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;");
+        let mut s = Svg::new(10.0, 10.0, "<x>");
+        s.text(1.0, 1.0, "p & q", 10.0, Anchor::Start, 0.0);
+        let doc = s.finish();
+        assert!(doc.contains("<title>&lt;x&gt;</title>") && doc.contains(">p &amp; q</text>"));
+    }
+
+    #[test]
+    fn ticks_are_nice_and_inside() {
+        let a = Axis::fit("x", [0.13, 2.71]);
+        let t = a.ticks();
+        assert!(t.len() >= 4 && t.len() <= 15, "{t:?}");
+        assert!(t.iter().all(|(v, _)| *v >= a.lo - 1e-12 && *v <= a.hi + 1e-12));
+        assert_eq!(nice_step(0.33), 0.5);
+        let l = Axis::fit_log("r", [0.05, 20.0]);
+        assert_eq!((l.lo, l.hi), (0.01, 100.0));
+        assert_eq!(l.ticks().iter().map(|t| t.1.as_str()).collect::<Vec<_>>(), ["0.01", "0.1", "1", "10", "100"]);
+    }
+}
