@@ -42,7 +42,12 @@ impl Widget for HistoryView<'_> {
             },
         ];
         if let Some(p) = self.pinned {
-            series.push(Series { name: "pinned", data: p, style: self.theme.pinned(), marker: Marker::Dot });
+            series.push(Series {
+                name: "pinned",
+                data: p,
+                style: self.theme.pinned(),
+                marker: self.theme.pinned_marker(),
+            });
         }
         LinePlot {
             title,

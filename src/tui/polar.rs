@@ -5,7 +5,6 @@
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Color;
-use ratatui::symbols::Marker;
 use ratatui::widgets::canvas::{Canvas, Context, Line as CLine, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
@@ -105,7 +104,7 @@ impl Widget for PolarView<'_> {
                 }
                 ctx.layer();
                 if let Some(p) = self.pinned {
-                    ctx.marker(Marker::Dot);
+                    ctx.marker(self.theme.pinned_marker());
                     curve(ctx, p, floor, color(Color::DarkGray));
                     ctx.layer();
                     ctx.marker(marker);

@@ -32,7 +32,7 @@ impl Widget for ReadoutView<'_> {
         block.render(area, buf);
         let any_pinned = self.rows.iter().any(|r| r.pinned.is_some());
         let w = inner.width as usize;
-        let pin_w = if any_pinned && w >= 40 { 14 } else { 0 };
+        let pin_w = if any_pinned && w >= 30 { 13 } else { 0 };
         let mut lines: Vec<Line> = Vec::new();
         if pin_w > 0 {
             let head = format!("{:<8}{:<w2$}{:<pin_w$}", "", "live", "pinned", w2 = w.saturating_sub(8 + pin_w));

@@ -72,6 +72,16 @@ impl Theme {
         }
     }
 
+    /// Marker of the pinned design's curves: Braille like the live one when colour tells them
+    /// apart, plain dots otherwise.
+    pub fn pinned_marker(&self) -> Marker {
+        if self.color && !self.ascii {
+            Marker::Braille
+        } else {
+            Marker::Dot
+        }
+    }
+
     /// The marker put before the selected row.
     pub fn pointer(&self) -> &'static str {
         if self.ascii {

@@ -4,7 +4,6 @@
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Color;
-use ratatui::symbols::Marker;
 use ratatui::widgets::Widget;
 
 use super::plot::{LinePlot, Series};
@@ -27,7 +26,12 @@ impl Widget for WaveformView<'_> {
             marker: self.theme.marker(),
         }];
         if let Some(p) = self.pinned {
-            series.push(Series { name: "pinned", data: p, style: self.theme.pinned(), marker: Marker::Dot });
+            series.push(Series {
+                name: "pinned",
+                data: p,
+                style: self.theme.pinned(),
+                marker: self.theme.pinned_marker(),
+            });
         }
         LinePlot {
             title: "p(t) of the loudest impact, Pa vs ms",
