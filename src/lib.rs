@@ -18,5 +18,6 @@ pub mod store;
 pub mod units;
 
 pub mod cli;
+pub mod tui;
 
 pub use error::ThudError;

@@ -10,6 +10,7 @@ mod pulse;
 mod settings;
 mod simulate;
 mod sweep;
+mod tui;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
@@ -44,6 +45,8 @@ pub enum Command {
     Export(Box<export::ExportArgs>),
     /// List the named starting designs (--preset NAME).
     Presets(presets::PresetsArgs),
+    /// The interactive explorer (the default with no subcommand).
+    Tui(tui::TuiArgs),
 }
 
 /// How to print a result.
@@ -108,6 +111,17 @@ pub(crate) fn quantity(param: &str, text: &Option<String>, kind: Kind) -> Result
     text.as_deref().map(|t| units::parse(param, t, kind)).transpose()
 }
 
+/// The exit code of the explorer: 0, or 2 with the error on stderr.
+fn tui_exit(r: Result<(), String>) -> i32 {
+    r.map_or_else(
+        |e| {
+            eprintln!("thud: {e}");
+            2
+        },
+        |()| 0,
+    )
+}
+
 /// Runs the CLI on `args`; returns the process exit code. Errors are one line on stderr.
 pub fn run(cli: Cli) -> i32 {
     settings::load();
@@ -118,11 +132,8 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Paper(a)) => paper::run(&a),
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Presets(a)) => presets::run(&a),
-        None => {
-            use clap::CommandFactory;
-            let _ = Cli::command().print_help();
-            Ok(())
-        }
+        Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
+        None => return tui_exit(tui::run_default()),
     };
     match result {
         Ok(()) => 0,

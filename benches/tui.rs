@@ -1,0 +1,109 @@
+//! Benchmarks of the explorer: one full frame at 200×60, a mass change until the readout and
+//! waveform are updated (through the real worker threads), and the default chart filling.
+
+use std::sync::mpsc::{self, Receiver};
+use std::time::{Duration, Instant};
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use ratatui::backend::TestBackend;
+use ratatui::Terminal;
+use thud::design::Design;
+use thud::tui::app::{App, Msg};
+use thud::tui::worker::{acoustic_key, Grid, Grids};
+use thud::tui::{compute_sync, draw, Theme, Worker};
+
+fn computed(grids: Grids) -> App {
+    let mut app = App::with_grids(Design::default(), "default", Theme::default(), grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    app
+}
+
+/// Feeds worker results to the app until `done` holds.
+fn pump(app: &mut App, worker: &Worker, rx: &Receiver<Msg>, done: impl Fn(&App) -> bool) {
+    while !done(app) {
+        let msg = rx.recv_timeout(Duration::from_secs(30)).expect("worker answers");
+        for r in app.update(msg) {
+            worker.submit(r);
+        }
+    }
+}
+
+fn frame(c: &mut Criterion) {
+    let mut app = computed(Grids::default());
+    let mut term = Terminal::new(TestBackend::new(200, 60)).unwrap();
+    c.bench_function("tui frame 200x60 (full redraw, TestBackend)", |b| {
+        b.iter(|| {
+            term.clear().unwrap();
+            draw(&mut term, &mut app).unwrap();
+        })
+    });
+}
+
+fn mass_change(c: &mut Criterion) {
+    let (tx, rx) = mpsc::channel();
+    let worker = Worker::start(move |d| {
+        let _ = tx.send(Msg::Work(d));
+    });
+    let mut app = App::with_grids(
+        Design::default(),
+        "default",
+        Theme::default(),
+        Grids { coarse: None, fine: Grid::standard(2, 2) },
+    );
+    for r in app.initial_requests() {
+        worker.submit(r);
+    }
+    pump(&mut app, &worker, &rx, |a| !a.busy());
+    let mut step = 0u32;
+    c.bench_function("tui mass change -> readout + waveform (worker, uncached)", |b| {
+        b.iter(|| {
+            // A new mass every time so the worker's cache cannot answer.
+            step += 1;
+            let m = 0.0405 + 1e-6 * f64::from(step);
+            let gap = app.design.damper.gap_m;
+            for r in app.select_design(m, gap) {
+                worker.submit(r);
+            }
+            pump(&mut app, &worker, &rx, |a| a.acoustic_for.as_deref() == Some(acoustic_key(&a.design).as_str()));
+        })
+    });
+}
+
+fn chart_fill(c: &mut Criterion) {
+    let mut g = c.benchmark_group("tui chart fill (worker, uncached)");
+    g.sample_size(10).measurement_time(Duration::from_secs(20));
+    let (tx, rx) = mpsc::channel();
+    let worker = Worker::start(move |d| {
+        let _ = tx.send(Msg::Work(d));
+    });
+    let mut step = 0u32;
+    let cases = [
+        ("coarse 6x5", Grids { coarse: None, fine: Grid::standard(6, 5) }),
+        ("default: 6x5 then 16x12", Grids::default()),
+    ];
+    for (name, grids) in cases {
+        g.bench_function(name, |b| {
+            b.iter_custom(|iters| {
+                let mut total = Duration::ZERO;
+                for _ in 0..iters {
+                    step += 1;
+                    let mut d = Design::default();
+                    d.damper.v0_m_s += 1e-9 * f64::from(step);
+                    let mut app = App::with_grids(d, "default", Theme::default(), grids.clone());
+                    let t0 = Instant::now();
+                    for r in app.initial_requests() {
+                        worker.submit(r);
+                    }
+                    pump(&mut app, &worker, &rx, |a| !a.chart_busy());
+                    total += t0.elapsed();
+                }
+                total
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, frame, mass_change, chart_fill);
+criterion_main!(benches);

@@ -1,0 +1,135 @@
+//! The terminal explorer: tune mass, gap and observer live and watch the readout, the
+//! waveform, the polar, the time history and the zone chart follow.
+//!
+//! One way data flow: terminal events (own thread) and worker results arrive on one channel as
+//! [`Msg`]s; [`App::update`] changes the state and returns [`Request`]s for the [`Worker`];
+//! the screen is redrawn after each batch of messages (no fast tick). The UI thread never runs
+//! a simulation.
+
+pub mod app;
+pub mod chart;
+pub mod fields;
+pub mod history;
+pub mod keys;
+pub mod params;
+pub mod plot;
+pub mod polar;
+pub mod readout;
+pub mod terminal;
+pub mod theme;
+pub mod ui;
+pub mod waveform;
+pub mod worker;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::Arc;
+use std::time::Duration;
+
+use ratatui::backend::Backend;
+use ratatui::Terminal;
+
+pub use app::{App, Msg, Options};
+pub use theme::Theme;
+pub use worker::{Request, Worker};
+
+use crate::presets;
+
+/// Set this environment variable to make the explorer panic right after it took over the
+/// terminal: the end-to-end test uses it to check that the panic hook restores the terminal.
+pub const PANIC_FOR_TEST: &str = "THUD_TUI_PANIC_FOR_TEST";
+
+/// How often the spinner turns while work is in flight.
+const TICK: Duration = Duration::from_millis(120);
+
+/// Runs the explorer until the user quits. Errors (bad preset, no terminal) come back before
+/// or after the screen is restored.
+pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
+    let design = presets::preset(&opts.preset)?;
+    let theme = Theme::from_env(opts.ascii);
+    let mut app = App::new(design, &opts.preset, theme);
+    app.mouse = opts.mouse;
+    let (mut term, _guard) = terminal::setup(opts.mouse).map_err(|e| {
+        format!(
+            "cannot use the terminal ({e}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)"
+        )
+    })?;
+    if std::env::var_os(PANIC_FOR_TEST).is_some() {
+        panic!("{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore");
+    }
+    let (tx, rx) = mpsc::channel();
+    let busy = Arc::new(AtomicBool::new(true));
+    spawn_input(tx.clone(), busy.clone());
+    let worker = Worker::start(move |d| {
+        let _ = tx.send(Msg::Work(d));
+    });
+    event_loop(&mut term, &mut app, &worker, &rx, &busy)?;
+    Ok(())
+}
+
+/// Reads terminal events on their own thread; sends a tick when idle while work is in flight.
+fn spawn_input(tx: Sender<Msg>, busy: Arc<AtomicBool>) {
+    std::thread::spawn(move || loop {
+        let msg = match crossterm::event::poll(TICK) {
+            Ok(true) => match crossterm::event::read() {
+                Ok(e) => Msg::Input(e),
+                Err(_) => return,
+            },
+            Ok(false) if busy.load(Ordering::Relaxed) => Msg::Tick,
+            Ok(false) => continue,
+            Err(_) => return,
+        };
+        if tx.send(msg).is_err() {
+            return;
+        }
+    });
+}
+
+/// Draw, block for a message, handle it and everything else already queued, repeat.
+pub fn event_loop<B: Backend>(
+    term: &mut Terminal<B>,
+    app: &mut App,
+    worker: &Worker,
+    rx: &Receiver<Msg>,
+    busy: &AtomicBool,
+) -> Result<(), B::Error> {
+    for r in app.initial_requests() {
+        worker.submit(r);
+    }
+    loop {
+        draw(term, app)?;
+        busy.store(app.busy(), Ordering::Relaxed);
+        let Ok(first) = rx.recv() else { return Ok(()) };
+        let mut next = Some(first);
+        while let Some(msg) = next {
+            for r in app.update(msg) {
+                worker.submit(r);
+            }
+            if app.quit {
+                return Ok(());
+            }
+            next = rx.try_recv().ok();
+        }
+    }
+}
+
+/// Draws one frame and remembers where the chart is (for clicks).
+pub fn draw<B: Backend>(term: &mut Terminal<B>, app: &mut App) -> Result<(), B::Error> {
+    let mut geometry = None;
+    term.draw(|f| geometry = ui::draw(f, app))?;
+    app.chart_geometry = geometry;
+    Ok(())
+}
+
+/// Computes every result `app` asks for on the calling thread, until nothing is left to do.
+/// Deterministic: used by the snapshot tests and benchmarks.
+pub fn compute_sync(app: &mut App, requests: Vec<Request>) {
+    let mut queue: std::collections::VecDeque<Request> = requests.into();
+    while let Some(req) = queue.pop_front() {
+        let done = std::sync::Mutex::new(Vec::new());
+        worker::run_sync(&req, &|d| done.lock().unwrap_or_else(|e| e.into_inner()).push(d));
+        for d in done.into_inner().unwrap_or_else(|e| e.into_inner()) {
+            queue.extend(app.update(Msg::Work(d)));
+        }
+    }
+}

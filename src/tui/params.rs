@@ -1,0 +1,66 @@
+//! The parameter panel: one row per field, the selected one reversed and pointed at.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph, Widget};
+
+use super::theme::Theme;
+
+/// The panel's data: (label, value) rows, the selected row, whether the panel has focus.
+pub struct ParamsView<'a> {
+    pub rows: &'a [(String, String)],
+    pub selected: usize,
+    pub focused: bool,
+    pub theme: Theme,
+}
+
+impl ParamsView<'_> {
+    /// The first row shown so that the selected one is visible in `height` rows.
+    fn scroll(&self, height: usize) -> usize {
+        if height == 0 || self.selected < height {
+            0
+        } else {
+            self.selected + 1 - height
+        }
+    }
+
+    fn line(&self, i: usize, label: &str, value: &str, width: usize) -> Line<'static> {
+        let selected = i == self.selected;
+        let pointer = if selected { self.theme.pointer() } else { " " };
+        let label_w = 10.min(width.saturating_sub(2));
+        let value_w = width.saturating_sub(label_w + 2);
+        let text = format!("{pointer}{label:<label_w$} {value:>value_w$}");
+        let style = if selected {
+            let s = Style::default().add_modifier(Modifier::REVERSED);
+            if self.focused {
+                s.add_modifier(Modifier::BOLD)
+            } else {
+                s
+            }
+        } else {
+            Style::default()
+        };
+        Line::from(Span::styled(text, style))
+    }
+}
+
+impl Widget for ParamsView<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let block = Block::bordered().title(" parameters ").border_style(self.theme.focus(self.focused));
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let h = inner.height as usize;
+        let first = self.scroll(h);
+        let lines: Vec<Line> = self
+            .rows
+            .iter()
+            .enumerate()
+            .skip(first)
+            .take(h)
+            .map(|(i, (l, v))| self.line(i, l, v, inner.width as usize))
+            .collect();
+        Paragraph::new(lines).render(inner, buf);
+    }
+}

@@ -1,0 +1,80 @@
+//! Terminal setup and restore. Every exit path — normal return, `?` error, panic — leaves the
+//! terminal as it was: raw mode off, alternate screen left, mouse capture off, cursor shown.
+
+use std::io::{self, Stdout, Write};
+use std::sync::Once;
+
+use crossterm::cursor::{Hide, Show};
+use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
+use crossterm::terminal::{self, EnterAlternateScreen, LeaveAlternateScreen};
+use crossterm::{execute, queue};
+use ratatui::backend::CrosstermBackend;
+use ratatui::Terminal;
+
+/// The terminal the app draws on.
+pub type Term = Terminal<CrosstermBackend<Stdout>>;
+
+/// Writes the escape sequences that undo [`setup`]: leave the alternate screen, stop mouse
+/// capture, show the cursor. Separate from raw mode so it can be tested on a buffer.
+pub fn write_restore_sequence(out: &mut impl Write) -> io::Result<()> {
+    queue!(out, DisableMouseCapture, LeaveAlternateScreen, Show)?;
+    out.flush()
+}
+
+/// Restores the terminal. Safe to call more than once and when setup never happened; errors
+/// are ignored (there is nothing better to do on the way out).
+pub fn restore() {
+    let _ = terminal::disable_raw_mode();
+    let _ = write_restore_sequence(&mut io::stdout());
+}
+
+/// Installs (once) a panic hook that restores the terminal before the default hook prints.
+pub fn install_panic_hook() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            restore();
+            previous(info);
+        }));
+    });
+}
+
+/// Restores the terminal when dropped: hold one for the life of the UI.
+pub struct Guard;
+
+impl Drop for Guard {
+    fn drop(&mut self) {
+        restore();
+    }
+}
+
+/// Raw mode, alternate screen, hidden cursor and (if asked) mouse capture. On error the
+/// terminal is restored before returning.
+pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
+    install_panic_hook();
+    let guard = Guard;
+    terminal::enable_raw_mode()?;
+    let mut out = io::stdout();
+    execute!(out, EnterAlternateScreen, Hide)?;
+    if mouse {
+        execute!(out, EnableMouseCapture)?;
+    }
+    let term = Terminal::new(CrosstermBackend::new(out))?;
+    Ok((term, guard))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn restore_sequence_leaves_alt_screen_shows_cursor_and_stops_mouse() {
+        let mut buf = Vec::new();
+        write_restore_sequence(&mut buf).unwrap();
+        let s = String::from_utf8(buf).unwrap();
+        assert!(s.contains("\x1b[?1049l"), "leave alternate screen: {s:?}");
+        assert!(s.contains("\x1b[?25h"), "show cursor: {s:?}");
+        assert!(s.contains("\x1b[?1000l"), "mouse capture off: {s:?}");
+    }
+}

@@ -1,0 +1,185 @@
+//! End to end: the real binary in a tmux pane. The screen appears, a key changes a value, a
+//! resize to 80×24 keeps it usable, `q` exits with status 0 and the terminal is sane after:
+//! canonical mode and echo on, alternate screen left, cursor shown, mouse reporting off.
+//! Requires tmux (CI installs it); fails with a clear message without it.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+const TIMEOUT: Duration = Duration::from_secs(20);
+
+/// A private tmux server (own socket), killed when dropped.
+struct Tmux {
+    socket: String,
+    dir: PathBuf,
+}
+
+impl Tmux {
+    /// Starts `shell_cmd(dir)` in a `w × h` pane; `dir` is a fresh temporary directory.
+    fn start(shell_cmd: impl Fn(&std::path::Path) -> String, w: u16, h: u16) -> Self {
+        let found = Command::new("tmux").arg("-V").output().is_ok_and(|o| o.status.success());
+        assert!(found, "tmux is not installed: install it (apt-get install tmux) to run this end-to-end test");
+        let socket = format!("thud-test-{}-{}", std::process::id(), rand_suffix());
+        let dir = std::env::temp_dir().join(&socket);
+        std::fs::create_dir_all(&dir).unwrap();
+        let t = Self { socket, dir };
+        let out = t.run(&[
+            "new-session",
+            "-d",
+            "-x",
+            &w.to_string(),
+            "-y",
+            &h.to_string(),
+            "-e",
+            "TERM=xterm-256color",
+            "sh",
+            "-c",
+            &shell_cmd(&t.dir),
+        ]);
+        assert!(out.status.success(), "tmux new-session failed: {}", String::from_utf8_lossy(&out.stderr));
+        t
+    }
+
+    fn run(&self, args: &[&str]) -> Output {
+        Command::new("tmux").arg("-L").arg(&self.socket).arg("-f").arg("/dev/null").args(args).output().unwrap()
+    }
+
+    fn capture(&self) -> String {
+        String::from_utf8_lossy(&self.run(&["capture-pane", "-p"]).stdout).into_owned()
+    }
+
+    fn format(&self, f: &str) -> String {
+        String::from_utf8_lossy(&self.run(&["display-message", "-p", f]).stdout).trim().to_string()
+    }
+
+    fn keys(&self, keys: &[&str]) {
+        let mut args = vec!["send-keys"];
+        args.extend_from_slice(keys);
+        assert!(self.run(&args).status.success());
+    }
+
+    /// Polls the screen until `ok` holds; panics with the last screen after the timeout.
+    fn wait_for(&self, what: &str, ok: impl Fn(&str) -> bool) -> String {
+        let start = Instant::now();
+        loop {
+            let screen = self.capture();
+            if ok(&screen) {
+                return screen;
+            }
+            assert!(start.elapsed() < TIMEOUT, "timed out waiting for {what}; screen:\n{screen}");
+            std::thread::sleep(Duration::from_millis(40));
+        }
+    }
+
+    fn wait_file(&self, name: &str) -> String {
+        let path = self.dir.join(name);
+        let start = Instant::now();
+        loop {
+            if let Ok(s) = std::fs::read_to_string(&path) {
+                if s.ends_with('\n') {
+                    return s;
+                }
+            }
+            assert!(start.elapsed() < TIMEOUT, "timed out waiting for {}; screen:\n{}", path.display(), self.capture());
+            std::thread::sleep(Duration::from_millis(40));
+        }
+    }
+}
+
+impl Drop for Tmux {
+    fn drop(&mut self) {
+        let _ = self.run(&["kill-server"]);
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+fn rand_suffix() -> u128 {
+    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
+}
+
+/// True if `word` is a whitespace-separated token of `text` (so "echo" but not "-echo").
+fn has_token(text: &str, word: &str) -> bool {
+    text.split_whitespace().any(|t| t == word)
+}
+
+#[test]
+fn real_binary_in_tmux_starts_changes_resizes_quits_and_restores() {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            format!(
+                "'{bin}' tui --mouse; echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
+                d = d.display()
+            )
+        },
+        120,
+        40,
+    );
+
+    // 1. The screen appears with computed numbers.
+    let computed = |s: &str| s.lines().any(|l| l.contains("U0max") && l.contains("m/s"));
+    let s = t.wait_for("the main screen with a computed readout", |s| s.contains("parameters") && computed(s));
+    assert!(s.contains("40.50 g"), "{s}");
+    assert_eq!(t.format("#{alternate_on}"), "1", "runs on the alternate screen");
+
+    // 2. A key changes a value.
+    t.keys(&["Right"]);
+    t.wait_for("mass 41.50 g", |s| s.contains("41.50 g"));
+
+    // 3. Resize to 80×24: still usable (parameters and readout on screen).
+    assert!(t.run(&["resize-window", "-x", "80", "-y", "24"]).status.success());
+    let s = t.wait_for("the 80×24 layout", |s| {
+        s.lines().count() <= 24 && s.contains("parameters") && s.contains("readout") && s.contains("U0max")
+    });
+    assert!(s.lines().all(|l| l.chars().count() <= 80), "{s}");
+    t.keys(&["Left"]);
+    t.wait_for("mass back to 40.50 g at 80×24", |s| s.contains("40.50 g"));
+
+    // 4. With --mouse, a click on a chart cell (the bottom row: gap 1 cm) selects that design.
+    let s = t.wait_for("the chart's bottom row", |s| s.lines().any(|l| l.contains("│  1.0 ")));
+    let (y, line) = s.lines().enumerate().find(|(_, l)| l.contains("│  1.0 ")).unwrap();
+    let label_end = line.find("│  1.0 ").unwrap() + "│  1.0 ".len();
+    let x = line[..label_end].chars().count() + 2;
+    // An SGR mouse press and release at (x, y), 1-based, as a terminal would send it.
+    let click = format!("\x1b[<0;{};{}M\x1b[<0;{};{}m", x + 1, y + 1, x + 1, y + 1);
+    t.keys(&["-l", &click]);
+    t.wait_for("the clicked design (gap 1.00 cm)", |s| s.contains("d 1.00 cm"));
+
+    // 5. q exits with status 0.
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0", "exit status");
+
+    // 6. The terminal is sane afterwards.
+    let stty = t.wait_file("stty");
+    assert!(has_token(&stty, "icanon") && has_token(&stty, "echo"), "raw mode left on:\n{stty}");
+    let s = t.wait_for("the shell after thud", |s| s.contains("AFTER-THUD"));
+    assert!(!s.contains("parameters"), "alternate screen left behind:\n{s}");
+    assert_eq!(t.format("#{alternate_on}"), "0", "alternate screen off");
+    assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
+}
+
+#[test]
+fn a_panic_restores_the_terminal_before_printing() {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            format!(
+                "THUD_TUI_PANIC_FOR_TEST=1 '{bin}' tui --mouse; echo $? > '{d}/status'; stty -a > '{d}/stty'; \
+                 echo AFTER-THUD; exec sleep 60",
+                d = d.display()
+            )
+        },
+        100,
+        30,
+    );
+    assert_ne!(t.wait_file("status").trim(), "0", "a panic exits non-zero");
+    let stty = t.wait_file("stty");
+    assert!(has_token(&stty, "icanon") && has_token(&stty, "echo"), "raw mode left on after a panic:\n{stty}");
+    let s = t.wait_for("the shell after the panic", |s| s.contains("AFTER-THUD"));
+    assert!(s.contains("panicking on purpose"), "the panic message is printed on the normal screen:\n{s}");
+    assert_eq!(t.format("#{alternate_on}"), "0", "alternate screen off");
+    assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
+}
