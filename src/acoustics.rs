@@ -399,6 +399,24 @@ impl Field {
         out
     }
 
+    /// The extrema larger than `fraction` of the largest |p|: the peaks a person would name.
+    pub fn significant_extrema(&self, fraction: f64) -> Vec<Extremum> {
+        let ext = self.extrema();
+        let peak = ext.iter().fold(0.0_f64, |m, e| m.max(e.p_pa.abs()));
+        ext.into_iter().filter(|e| e.p_pa.abs() > fraction * peak).collect()
+    }
+
+    /// The significant extrema as "+1.853 Pa at 0.0856 ms" (time after the direct arrival).
+    pub fn describe_peaks(&self) -> String {
+        let t0 = self.arrival_s();
+        let items: Vec<String> = self
+            .significant_extrema(0.02)
+            .iter()
+            .map(|e| format!("{:+.3} Pa at {:.4} ms", e.p_pa, (e.t_s - t0) * 1e3))
+            .collect();
+        items.join(", ")
+    }
+
     /// All the levels of this pulse (see [`Levels`]).
     pub fn levels(&self) -> Levels {
         let ms = self.mean_square_over_tau();

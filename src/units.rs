@@ -135,6 +135,19 @@ fn example(kind: Kind) -> &'static str {
     }
 }
 
+/// A number for people: 4 decimals in the ordinary range, scientific outside it.
+pub fn num(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if !v.is_finite() {
+        format!("{v}")
+    } else if (1e-3..1e6).contains(&v.abs()) {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.4e}")
+    }
+}
+
 /// Formats a value with a few significant digits, without noise like 0.30000000000000004.
 pub fn sig(value: f64, digits: usize) -> String {
     if value == 0.0 || !value.is_finite() {

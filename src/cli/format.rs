@@ -3,25 +3,13 @@
 use std::io::Write;
 
 use crate::paper::{Table, Value};
+pub use crate::units::num;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OutputFormat {
     Text,
     Json,
     Csv,
-}
-
-/// A number for people: 4 decimals in the ordinary range, scientific outside it.
-pub fn num(v: f64) -> String {
-    if v == 0.0 {
-        "0".into()
-    } else if !v.is_finite() {
-        format!("{v}")
-    } else if (1e-3..1e6).contains(&v.abs()) {
-        format!("{v:.4}")
-    } else {
-        format!("{v:.4e}")
-    }
 }
 
 fn cell_text(v: &Value) -> String {

@@ -252,13 +252,6 @@ fn summary(input: &PulseInput, c: &Contact, field: &Field, lv: &Levels) -> Strin
         lv.spl_db, lv.spl_peak_db, lv.sel_db
     );
     s += &format!("pressure  max {:+.4} Pa   min {:+.4} Pa   rms {:.4} Pa\n", lv.p_max_pa, lv.p_min_pa, lv.p_rms_pa);
-    let t0 = field.arrival_s();
-    let big: Vec<String> = field
-        .extrema()
-        .iter()
-        .filter(|e| e.p_pa.abs() > 0.02 * lv.p_max_pa.max(-lv.p_min_pa))
-        .map(|e| format!("{:+.3} Pa at {:.4} ms", e.p_pa, (e.t_s - t0) * 1e3))
-        .collect();
-    s += &format!("extrema   {} (after the direct arrival)\n", big.join(", "));
+    s += &format!("extrema   {} (after the direct arrival)\n", field.describe_peaks());
     s
 }

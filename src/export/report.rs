@@ -4,6 +4,7 @@
 use crate::design::Thresholds;
 use crate::paper::{self, Table, Value};
 use crate::presets;
+use crate::units::num;
 
 use super::{csv, figures};
 
@@ -16,19 +17,6 @@ pub const REPORT_ROWS: usize = 60;
 pub struct BundleFile {
     pub name: String,
     pub contents: String,
-}
-
-/// A number for the report: 4 decimals in the ordinary range, scientific outside it.
-fn num(v: f64) -> String {
-    if v == 0.0 {
-        "0".into()
-    } else if !v.is_finite() {
-        format!("{v}")
-    } else if (1e-3..1e6).contains(&v.abs()) {
-        format!("{v:.4}")
-    } else {
-        format!("{v:.4e}")
-    }
 }
 
 /// A cell of a markdown table ('|' escaped).

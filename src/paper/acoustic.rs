@@ -105,13 +105,7 @@ fn waveform_table(id: &'static str, title: &str, field: &Field, n: usize) -> Tab
         "Levels: SPL (rms over τ) {:.2} dB, peak {:.2} dB, SEL {:.2} dB.",
         lv.spl_db, lv.spl_peak_db, lv.sel_db
     ));
-    let peaks: Vec<String> = field
-        .extrema()
-        .iter()
-        .filter(|e| e.p_pa.abs() > 0.02 * lv.p_max_pa.max(-lv.p_min_pa))
-        .map(|e| format!("{:+.3} Pa at {:.4} ms", e.p_pa, (e.t_s - t_arr) * 1e3))
-        .collect();
-    notes.push(format!("Extrema: {}.", peaks.join(", ")));
+    notes.push(format!("Extrema: {}.", field.describe_peaks()));
     Table {
         id,
         title: title.into(),
