@@ -113,6 +113,9 @@ pub struct Radiation {
     pub source: Source,
     pub quad_signs: QuadSigns,
     pub air: Air,
+    /// The acceleration pulse: the paper's half-sine (default) or the exact Hertz pulse.
+    #[serde(default)]
+    pub pulse: PulseShape,
 }
 
 /// Response of the pressure to a unit impulse of acceleration, Eq 15 (Pa per m/s):
@@ -127,17 +130,88 @@ pub fn impulse_response(t_ret: f64, r: f64, cos_theta: f64, a: f64, air: &Air) -
     air.rho_c_pa_s_m * (a / r) * cos_theta * (lt.cos() - q * lt.sin()) * (-lt).exp()
 }
 
-/// The closed-form convolution of Eq 15 with the half-sine pulse of Eq 7 for one source,
-/// with Eq 18 for 0 ≤ t' ≤ τ and the corrected Eq 19, p = P·{T(t') + T(t' − τ)}, after it.
+/// The shape of the sphere's acceleration during the contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PulseShape {
+    /// The paper's half-sine, Eq 7 (its impulse is 2.342·U0 instead of 2·U0: +17 %).
+    #[default]
+    HalfSine,
+    /// The exact Hertz pulse A = (K_HZ/m)·α^1.5 with α'' = −K*·K_HZ·α^1.5 (impulse exactly
+    /// 2·U0·M/(m+M) for an elastic rebound), as a sine series of odd harmonics of π/τ.
+    Hertz,
+}
+
+impl PulseShape {
+    pub fn name(self) -> &'static str {
+        match self {
+            PulseShape::HalfSine => "half-sine",
+            PulseShape::Hertz => "hertz",
+        }
+    }
+
+    /// Coefficients b_k of A(t)/A_max = Σ b_k·sin(kπt/τ) over odd k = 1, 3, 5, …
+    pub fn sine_series(self) -> &'static [f64] {
+        match self {
+            PulseShape::HalfSine => &[1.0],
+            PulseShape::Hertz => hertz_sine_series(),
+        }
+    }
+}
+
+/// The universal exact Hertz approach g(s) = α(sτ)/α_max on s ∈ [0, 1]: g'' = −(5/4)κ²·g^1.5,
+/// g(0) = 0, g'(0) = κ (Eq 3 in units of α_max and τ). Returned at `n + 1` uniform points.
+pub fn hertz_approach_shape(n: usize) -> Vec<f64> {
+    let kappa = crate::contact::kappa();
+    let c = 1.25 * kappa * kappa;
+    let acc = |g: f64| -c * g.max(0.0).powf(1.5);
+    let h = 1.0 / n as f64;
+    let (mut g, mut v) = (0.0_f64, kappa);
+    let mut out = Vec::with_capacity(n + 1);
+    out.push(g);
+    for _ in 0..n {
+        // Classical RK4 on (g, g').
+        let (k1g, k1v) = (v, acc(g));
+        let (k2g, k2v) = (v + 0.5 * h * k1v, acc(g + 0.5 * h * k1g));
+        let (k3g, k3v) = (v + 0.5 * h * k2v, acc(g + 0.5 * h * k2g));
+        let (k4g, k4v) = (v + h * k3v, acc(g + h * k3g));
+        g += h / 6.0 * (k1g + 2.0 * k2g + 2.0 * k3g + k4g);
+        v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        out.push(g.max(0.0));
+    }
+    out
+}
+
+/// Sine-series coefficients of the exact Hertz acceleration g(s)^1.5 (odd k = 1 … 39), computed
+/// once. The series converges like k^(−2.5) (the pulse starts as s^1.5).
+fn hertz_sine_series() -> &'static [f64] {
+    static SERIES: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    SERIES.get_or_init(|| {
+        let n = 20_000;
+        let a: Vec<f64> = hertz_approach_shape(n).into_iter().map(|g| g.powf(1.5)).collect();
+        (0..20)
+            .map(|j| {
+                let k = (2 * j + 1) as f64;
+                // Trapezoid rule; both ends vanish.
+                let sum: f64 = (1..n).map(|i| a[i] * (k * std::f64::consts::PI * i as f64 / n as f64).sin()).sum();
+                2.0 * sum / n as f64
+            })
+            .collect()
+    })
+}
+
+/// One source's share of the closed-form pressure.
 #[derive(Debug, Clone, Copy)]
 struct SourceTerm {
-    /// ρ0c·a·cosθ/(2r)·C1/C2 (Pa).
+    /// ±ρ0c·a·cosθ/(2r)·A_max (Pa·s⁴, before the 1/C2 of each harmonic).
     p_scale: f64,
     /// q = 1 − a/r.
     q: f64,
 }
 
-/// The constants C2…C6 and rates of one pulse, shared by all sources.
+/// The constants C2…C6 and rates of one sine pulse sin(wt) on [0, τ], shared by all sources.
+/// Eq 18 holds for 0 ≤ t' ≤ τ and the corrected Eq 19, p = P·{T(t') + T(t' − τ)}, after it
+/// (for every odd harmonic w = kπ/τ, since then sin(w(ξ)) = −sin(w(ξ − τ))).
 #[derive(Debug, Clone, Copy)]
 struct PulseConstants {
     lambda: f64,
@@ -151,9 +225,10 @@ struct PulseConstants {
 }
 
 impl PulseConstants {
-    fn new(a: f64, tau: f64, air: &Air) -> Self {
+    /// Constants of the harmonic w = kπ/τ (k odd).
+    fn new(a: f64, tau: f64, k: f64, air: &Air) -> Self {
         let lambda = air.c_m_s / a;
-        let w = std::f64::consts::PI / tau;
+        let w = k * std::f64::consts::PI / tau;
         let (l2, w2) = (lambda * lambda, w * w);
         Self {
             lambda,
@@ -284,7 +359,10 @@ pub struct Extremum {
 /// Time `t` is measured from the start of the contact.
 #[derive(Debug, Clone)]
 pub struct Field {
+    /// The fundamental (k = 1): τ, λ and the time scales.
     consts: PulseConstants,
+    /// Each odd harmonic of the pulse with its weight b_k/C2_k.
+    harmonics: Vec<(PulseConstants, f64)>,
     sources: Vec<(ImageSource, SourceTerm)>,
 }
 
@@ -304,16 +382,24 @@ impl Field {
             return Err(ThudError::invalid("u0", "the contact has no finite duration; U0 must be > 0"));
         }
         let air = radiation.air;
-        let consts = PulseConstants::new(radius_m, contact.tau_s, &air);
+        let harmonics: Vec<(PulseConstants, f64)> = radiation
+            .pulse
+            .sine_series()
+            .iter()
+            .enumerate()
+            .map(|(j, &b)| {
+                let c = PulseConstants::new(radius_m, contact.tau_s, (2 * j + 1) as f64, &air);
+                (c, b / c.c2)
+            })
+            .collect();
         let sources = image_sources(radius_m, observer, radiation)
             .into_iter()
             .map(|s| {
-                let p_scale =
-                    air.rho_c_pa_s_m * radius_m * s.cos_theta / (2.0 * s.r_m) * contact.accel_max_m_s2 / consts.c2;
+                let p_scale = air.rho_c_pa_s_m * radius_m * s.cos_theta / (2.0 * s.r_m) * contact.accel_max_m_s2;
                 (s, SourceTerm { p_scale: s.sign * p_scale, q: 1.0 - radius_m / s.r_m })
             })
             .collect();
-        Ok(Self { consts, sources })
+        Ok(Self { consts: harmonics[0].0, harmonics, sources })
     }
 
     /// Contact duration τ (s).
@@ -340,7 +426,13 @@ impl Field {
     /// Pressure (Pa) at time `t_s` after the contact starts: the sum over the image sources,
     /// each with its own retarded time (Eqs 20–23), of the closed form (Eq 18, corrected Eq 19).
     pub fn pressure(&self, t_s: f64) -> f64 {
-        self.sources.iter().map(|(s, term)| term.p_scale * self.consts.shape(t_s - s.delay_s, term.q)).sum()
+        self.sources
+            .iter()
+            .map(|(s, term)| {
+                let t_ret = t_s - s.delay_s;
+                term.p_scale * self.harmonics.iter().map(|(c, weight)| weight * c.shape(t_ret, term.q)).sum::<f64>()
+            })
+            .sum()
     }
 
     /// Time points where p(t) has kinks (arrivals and ends of each source's forced part).
@@ -371,9 +463,11 @@ impl Field {
         self.integrate(t0, t0 + self.consts.tau, |p| p * p) / self.consts.tau
     }
 
-    /// The shortest time scale of the waveform (s): min(1/λ, τ/π).
+    /// The shortest time scale of the waveform (s): min(1/λ, τ/(kπ)), with k = 1 for the
+    /// half-sine and k = 4 for the Hertz pulse (whose harmonics above the 7th are < 1 %).
     fn scale_s(&self) -> f64 {
-        (1.0 / self.consts.lambda).min(self.consts.tau / std::f64::consts::PI)
+        let k = if self.harmonics.len() > 1 { 4.0 } else { 1.0 };
+        (1.0 / self.consts.lambda).min(self.consts.tau / (k * std::f64::consts::PI))
     }
 
     /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-13 s.
@@ -561,6 +655,70 @@ mod tests {
             }
         }
         assert!(worst < 1e-9, "worst relative difference {worst:e}");
+    }
+
+    #[test]
+    fn hertz_approach_is_the_exact_impact() {
+        let n = 20_000;
+        let g = hertz_approach_shape(n);
+        // Peak approach α_max at τ/2, back to zero at τ (the exact κ), symmetric.
+        assert!((g[n / 2] - 1.0).abs() < 1e-9, "{}", g[n / 2]);
+        assert!(g[n].abs() < 1e-6, "{}", g[n]);
+        for i in (0..=n).step_by(500) {
+            assert!((g[i] - g[n - i]).abs() < 1e-7);
+        }
+        // Its acceleration impulse is 2·U0: ∫g^1.5 ds = 8/(5κ) in units of A_max·τ.
+        let impulse = gauss_legendre(0.0, 1.0, 200, |s| {
+            let x = s * n as f64;
+            let i = (x as usize).min(n - 1);
+            let g = g[i] + (x - i as f64) * (g[i + 1] - g[i]);
+            g.powf(1.5)
+        });
+        let want = 8.0 / (5.0 * crate::contact::kappa());
+        assert!((impulse - want).abs() < 1e-6, "{impulse} vs {want}");
+    }
+
+    #[test]
+    fn hertz_sine_series_reconstructs_the_pulse() {
+        let n = 2000;
+        let g = hertz_approach_shape(n);
+        let b = PulseShape::Hertz.sine_series();
+        let mut worst: f64 = 0.0;
+        for (i, gi) in g.iter().enumerate() {
+            let s = i as f64 / n as f64;
+            let series: f64 =
+                b.iter().enumerate().map(|(j, bk)| bk * ((2 * j + 1) as f64 * std::f64::consts::PI * s).sin()).sum();
+            worst = worst.max((series - gi.powf(1.5)).abs());
+        }
+        assert!(worst < 1e-3, "{worst}");
+        // The half-sine is its own one-term series; the Hertz pulse carries 8/(5κ)/(2/π) of its impulse.
+        assert_eq!(PulseShape::HalfSine.sine_series(), &[1.0]);
+    }
+
+    #[test]
+    fn hertz_pulse_closed_form_matches_quadrature() {
+        let c = fig2_contact();
+        let air = Air::default();
+        let rad = Radiation { source: Source::Single, pulse: PulseShape::Hertz, ..Default::default() };
+        let field = Field::new(0.01905, &c, &Observer::new(0.7, 30.0), &rad).unwrap();
+        let src = field.sources().next().copied().unwrap();
+        let n = 20_000;
+        let g = hertz_approach_shape(n);
+        let accel = |xi: f64| {
+            let x = (xi / c.tau_s).clamp(0.0, 1.0) * n as f64;
+            let i = (x as usize).min(n - 1);
+            c.accel_max_m_s2 * (g[i] + (x - i as f64) * (g[i + 1] - g[i])).powf(1.5)
+        };
+        let peak = field.extrema().iter().fold(0.0_f64, |m, e| m.max(e.p_pa.abs()));
+        for k in 0..120 {
+            let t_ret = k as f64 / 119.0 * 2.5 * c.tau_s;
+            let upper = t_ret.min(c.tau_s);
+            let quad = gauss_legendre(0.0, upper.max(1e-30), 200, |xi| {
+                impulse_response(t_ret - xi, src.r_m, src.cos_theta, 0.01905, &air) * accel(xi)
+            });
+            let closed = field.pressure(t_ret + src.delay_s);
+            assert!((closed - quad).abs() < 2e-3 * peak, "t' {t_ret}: {closed} vs {quad}");
+        }
     }
 
     #[test]

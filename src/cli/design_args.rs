@@ -2,7 +2,7 @@
 
 use clap::{Args, ValueEnum};
 
-use super::{quantity, QuadSignsArg, SourceArg};
+use super::{quantity, PulseArg, QuadSignsArg, SourceArg};
 use crate::acoustics::Source;
 use crate::damper::Solver;
 use crate::design::{BallSize, Design, Materials};
@@ -84,6 +84,9 @@ pub struct DesignArgs {
     /// Quadrupole wall-image signs.
     #[arg(long, value_enum)]
     quad_signs: Option<QuadSignsArg>,
+    /// Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse.
+    #[arg(long, value_enum)]
+    pulse: Option<PulseArg>,
     /// Zone threshold L* on SPLmax (dB).
     #[arg(long, value_name = "DB", allow_hyphen_values = true)]
     l_star: Option<String>,
@@ -143,6 +146,9 @@ impl DesignArgs {
         }
         if let Some(q) = self.quad_signs {
             d.radiation.quad_signs = q.into();
+        }
+        if let Some(p) = self.pulse {
+            d.radiation.pulse = p.into();
         }
         set(&mut d.thresholds.spl_db, "l-star", &self.l_star, Kind::Level)?;
         set(&mut d.thresholds.inclination_cm_s, "e-star", &self.e_star, Kind::Inclination)?;

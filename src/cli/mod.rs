@@ -14,7 +14,7 @@ mod tui;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::acoustics::{QuadSigns, Source};
+use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::error::ThudError;
 use crate::units::{self, Kind};
 
@@ -86,6 +86,24 @@ impl From<SourceArg> for Source {
             SourceArg::Single => Source::Single,
             SourceArg::Dipole => Source::Dipole,
             SourceArg::Quadrupole => Source::Quadrupole,
+        }
+    }
+}
+
+/// Acceleration pulse shape on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PulseArg {
+    /// The paper's half-sine, Eq 7.
+    HalfSine,
+    /// The exact Hertz pulse.
+    Hertz,
+}
+
+impl From<PulseArg> for PulseShape {
+    fn from(p: PulseArg) -> Self {
+        match p {
+            PulseArg::HalfSine => PulseShape::HalfSine,
+            PulseArg::Hertz => PulseShape::Hertz,
         }
     }
 }

@@ -4,7 +4,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::format::{num, print_str};
-use super::{quantity, OutputArgs, OutputFormat, QuadSignsArg, SourceArg};
+use super::{quantity, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
 use crate::acoustics::{Air, Extremum, Field, Levels, Observer, QuadSigns, Radiation, Source};
 use crate::contact::{self, Contact, Impact, Target};
 use crate::error::ThudError;
@@ -51,6 +51,9 @@ pub struct PulseArgs {
     /// Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall [default: rigid].
     #[arg(long, value_enum)]
     quad_signs: Option<QuadSignsArg>,
+    /// Acceleration pulse: the paper's half-sine (Eq 7) or the exact Hertz pulse [default: half-sine].
+    #[arg(long, value_enum)]
+    pulse: Option<PulseArg>,
     /// Air impedance ρ0·c (Pa·s/m) [default: 400, the paper's].
     #[arg(long, value_name = "Z", allow_hyphen_values = true)]
     rho_c: Option<String>,
@@ -128,7 +131,8 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
     if a.points < 2 || a.points > 1_000_000 {
         return Err(ThudError::invalid("points", format!("{}; must be between 2 and 1000000", a.points)));
     }
-    Ok(PulseInput { radius_m, impact, observer, radiation: Radiation { source, quad_signs, air } })
+    let pulse = a.pulse.map(Into::into).or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default();
+    Ok(PulseInput { radius_m, impact, observer, radiation: Radiation { source, quad_signs, air, pulse } })
 }
 
 #[derive(Serialize)]
@@ -147,6 +151,7 @@ struct PulseJson<'a> {
     theta_deg: f64,
     source: &'static str,
     quad_signs: &'static str,
+    pulse: &'static str,
     rho_c_pa_s_m: f64,
     c_m_s: f64,
     alpha_max_m: f64,
@@ -190,6 +195,7 @@ pub fn run(a: &PulseArgs) -> Result<(), ThudError> {
                 theta_deg: input.observer.theta_rad.to_degrees(),
                 source: input.radiation.source.name(),
                 quad_signs: input.radiation.quad_signs.name(),
+                pulse: input.radiation.pulse.name(),
                 rho_c_pa_s_m: input.radiation.air.rho_c_pa_s_m,
                 c_m_s: input.radiation.air.c_m_s,
                 alpha_max_m: contact.alpha_max_m,
