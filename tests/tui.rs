@@ -214,6 +214,7 @@ fn work_for_step(field: thud::tui::fields::Field) -> Vec<&'static str> {
             thud::tui::Request::Acoustic(..) => "acoustic",
             thud::tui::Request::Chart(..) => "chart",
             thud::tui::Request::Relevel(..) => "relevel",
+            thud::tui::Request::Export(_) => "export",
         })
         .collect();
     compute_sync(&mut app, reqs);
