@@ -551,7 +551,11 @@ impl App {
                     " saved designs (↑↓, Enter loads, Esc closes) ".to_string(),
                     good.chain(bad).collect(),
                     *i,
-                    format!("No saved designs in {}; press {} to save one.", dir.display(), self.key_label(Action::Save)),
+                    format!(
+                        "No saved designs in {}; press {} to save one.",
+                        dir.display(),
+                        self.key_label(Action::Save)
+                    ),
                 )
             }
             Mode::Export(i) => (

@@ -114,7 +114,8 @@ pub struct ExportJob {
 impl ExportJob {
     /// Renders and writes the file.
     pub fn run(&self) -> Done {
-        let result = export::export_to_path(self.kind, &self.design, &self.options, &self.path).map_err(|e| e.to_string());
+        let result =
+            export::export_to_path(self.kind, &self.design, &self.options, &self.path).map_err(|e| e.to_string());
         Done::Export { kind: self.kind, path: self.path.clone(), result }
     }
 }
