@@ -564,7 +564,7 @@ impl App {
                     .iter()
                     .map(|(k, label)| ListItem {
                         label: label.to_string(),
-                        detail: format!("{} in {}", k.default_file_name(), self.export_dir.display()),
+                        detail: format!("{} in {}", k.default_file_name(), self.export_dir_name()),
                         problem: false,
                     })
                     .collect(),
@@ -644,6 +644,15 @@ impl App {
         };
         self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
         Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path }))
+    }
+
+    /// The export directory as shown.
+    fn export_dir_name(&self) -> String {
+        if self.export_dir == Path::new(".") {
+            "the current directory".into()
+        } else {
+            self.export_dir.display().to_string()
+        }
     }
 
     /// An export path as shown: the file name alone in the current directory.

@@ -407,7 +407,11 @@ fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
             let spans: Vec<Span> = (0..cols)
                 .filter_map(|c| keys.get(c * per_col + r))
                 .flat_map(|b| {
-                    let text = format!("{:<10}{:<14}{}", b.label, b.name, b.help);
+                    let text = if cols == 1 {
+                        format!("{:<10}{:<14}{}", b.label, b.name, b.help)
+                    } else {
+                        format!("{:<10}{}", b.label, b.help)
+                    };
                     let text: String = text.chars().take(col_w.saturating_sub(1)).collect();
                     [Span::raw(format!("{text:<col_w$}"))]
                 })
@@ -425,8 +429,9 @@ fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
     let mut all = lines;
     let dim = Style::default().add_modifier(Modifier::DIM);
     all.push(Line::from(Span::styled("Values are typed with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB", dim)));
+    let names = if cols == 1 { "The second column is the action's name for" } else { "Actions are renamed by" };
     all.push(Line::from(Span::styled(
-        "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\"",
+        format!("{names} [keys] in config.toml, e.g. save = \"ctrl-s\" (names: see the README)"),
         dim,
     )));
     f.render_widget(Paragraph::new(all), inner);
@@ -465,5 +470,5 @@ fn list_popup(f: &mut Frame, list: &ListView, area: Rect) {
         .collect();
     lines.push(Line::from(""));
     lines.push(Line::from(list.items[sel].detail.clone()));
-    f.render_widget(Paragraph::new(lines).wrap(ratatui::widgets::Wrap { trim: true }), inner);
+    f.render_widget(Paragraph::new(lines).wrap(ratatui::widgets::Wrap { trim: false }), inner);
 }
