@@ -489,11 +489,11 @@ fn a_key_override_shows_in_help_and_footer_and_works() {
     app.configure(&thud::config::load_config(dir.path()));
     let screen = render(&mut app, 120, 40);
     assert!(status_of(&screen).contains("pin = \"q\": that key is already quit"), "bad override reported:\n{screen}");
-    assert!(screen.lines().last().unwrap().contains("Ctrl-s save"), "footer:\n{screen}");
+    assert!(screen.lines().last().unwrap().contains("Ctrl-S save"), "footer:\n{screen}");
     press(&mut app, KeyCode::Char('?'));
     let help = render(&mut app, 120, 40);
     let save_row = help.lines().find(|l| l.contains("save this design")).unwrap();
-    assert!(save_row.contains("Ctrl-s") && save_row.contains("save"), "{save_row}");
+    assert!(save_row.contains("Ctrl-S") && save_row.contains("save"), "{save_row}");
     press(&mut app, KeyCode::Esc);
     press(&mut app, KeyCode::Char('s'));
     assert_eq!(app.mode, Mode::Normal, "s is no longer save");

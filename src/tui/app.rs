@@ -636,11 +636,16 @@ impl App {
     pub fn export(&mut self, kind: Kind) -> Request {
         let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
         self.exports.push(path.clone());
+        // Sweeps use the chart's grid, so the file shows what the screen does.
         let g = &self.grids.fine;
-        let options = ExportOptions {
-            masses_kg: Some(g.masses_kg.clone()),
-            gaps_m: Some(g.gaps_m.clone()),
-            ..ExportOptions::default()
+        let options = if kind.needs_sweep() {
+            ExportOptions {
+                masses_kg: Some(g.masses_kg.clone()),
+                gaps_m: Some(g.gaps_m.clone()),
+                ..ExportOptions::default()
+            }
+        } else {
+            ExportOptions::default()
         };
         self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
         Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path }))

@@ -285,7 +285,9 @@ pub fn from_spec(spec: KeySpec) -> (KeyCode, KeyModifiers, String) {
         ConfigKey::Char(c) => {
             // Shift with a letter is the capital letter (what terminals send).
             let c = if spec.shift { c.to_uppercase().next().unwrap_or(c) } else { c };
-            (KeyCode::Char(c), c.to_string())
+            // Shown like the table's "Ctrl-C": a capital letter after Ctrl- or Alt-.
+            let shown = if spec.ctrl || spec.alt { c.to_ascii_uppercase() } else { c };
+            (KeyCode::Char(c), shown.to_string())
         }
         ConfigKey::F(n) => {
             if spec.shift {
@@ -481,8 +483,8 @@ mod tests {
         assert_eq!(map.action_for(&key(KeyCode::Char('s'), NONE)), None);
         assert_eq!(map.action_for(&key(KeyCode::F(3), NONE)), Some(Action::Load));
         assert_eq!(map.action_for(&key(KeyCode::Char('o'), NONE)), Some(Action::Load), "alternates stay");
-        assert_eq!(map.label_of(Action::Save), Some("Ctrl-s"));
-        assert!(map.footer_hints().contains(&("Ctrl-s".to_string(), "save")));
+        assert_eq!(map.label_of(Action::Save), Some("Ctrl-S"));
+        assert!(map.footer_hints().contains(&("Ctrl-S".to_string(), "save")));
     }
 
     #[test]
