@@ -1,6 +1,7 @@
 //! The explorer's state and its one transition function, [`App::update`]: a message in (a key,
-//! a click, a worker result, a tick), the state changed, and the work to ask for out. No I/O
-//! and no physics here, so every behaviour can be tested without a terminal.
+//! a click, a worker result, a tick), the state changed, and the work to ask for out. No
+//! physics here, and no I/O but saving, listing and loading designs (small TOML files in the
+//! data directory), so every behaviour can be tested without a terminal.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -619,7 +620,7 @@ impl App {
                 Err(e) => self.error(format!("cannot load {name}: {e}")),
             };
         }
-        match self.saved.problems.get(i - self.saved.designs.len().min(i)) {
+        match i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j)) {
             Some(p) => self.error(format!("cannot load {p}")),
             None => vec![],
         }
