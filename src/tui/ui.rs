@@ -429,11 +429,12 @@ fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
     let mut all = lines;
     let dim = Style::default().add_modifier(Modifier::DIM);
     all.push(Line::from(Span::styled("Values are typed with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB", dim)));
-    let names = if cols == 1 { "The second column is the action's name for" } else { "Actions are renamed by" };
-    all.push(Line::from(Span::styled(
-        format!("{names} [keys] in config.toml, e.g. save = \"ctrl-s\" (names: see the README)"),
-        dim,
-    )));
+    let note = if cols == 1 {
+        "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\""
+    } else {
+        "Rebind in config.toml [keys], e.g. save = \"ctrl-s\" (names: ? on a wider screen)"
+    };
+    all.push(Line::from(Span::styled(note, dim)));
     f.render_widget(Paragraph::new(all), inner);
 }
 
