@@ -92,7 +92,16 @@ fn tiny_sizes_render_without_panic() {
     let mut fresh = App::new(Design::default(), "default", Theme::default());
     let mut done = computed_app();
     for app in [&mut fresh, &mut done] {
-        for mode in [Mode::Normal, Mode::Help, Mode::Presets(0), Mode::Editing("40".into())] {
+        app.data_dir = Some(std::env::temp_dir().join("thud-tui-tiny-sizes-none"));
+        for mode in [
+            Mode::Normal,
+            Mode::Help,
+            Mode::Presets(0),
+            Mode::Editing("40".into()),
+            Mode::SaveAs("design-1".into()),
+            Mode::Saved(0),
+            Mode::Export(3),
+        ] {
             app.mode = mode;
             for w in 0..=20 {
                 for h in 0..=5 {
@@ -214,6 +223,7 @@ fn work_for_step(field: thud::tui::fields::Field) -> Vec<&'static str> {
             thud::tui::Request::Acoustic(..) => "acoustic",
             thud::tui::Request::Chart(..) => "chart",
             thud::tui::Request::Relevel(..) => "relevel",
+            thud::tui::Request::Export(_) => "export",
         })
         .collect();
     compute_sync(&mut app, reqs);
@@ -336,4 +346,221 @@ fn chart_focus_moves_the_design_across_the_grid() {
     press(&mut app, KeyCode::Right);
     assert!(app.design.damper.impact_mass_kg > m0);
     assert!(app.chart.fine.masses_kg.contains(&app.design.damper.impact_mass_kg));
+}
+
+// ---- settings, saved designs and export (issue 5) ----
+
+fn status_of(screen: &str) -> &str {
+    let lines: Vec<&str> = screen.lines().collect();
+    lines[lines.len() - 2]
+}
+
+fn clear_line(app: &mut App) {
+    for _ in 0..70 {
+        press(app, KeyCode::Backspace);
+    }
+}
+
+#[test]
+fn save_then_load_round_trips_through_the_keys() {
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    press(&mut app, KeyCode::Right);
+    let saved_mass = app.design.damper.impact_mass_kg;
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.mode, Mode::SaveAs("design-1".into()), "a sensible name is offered");
+    assert!(render(&mut app, 120, 40).contains("save as: design-1"));
+    clear_line(&mut app);
+    type_text(&mut app, "my-test");
+    press(&mut app, KeyCode::Enter);
+    let path = data.path().join("designs").join("my-test.toml");
+    assert!(path.exists());
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("saved my-test to"), "{screen}");
+
+    // Move away, then load it back from the list.
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Right);
+    assert_ne!(app.design.damper.impact_mass_kg, saved_mass);
+    press(&mut app, KeyCode::Char('L'));
+    assert_eq!(app.mode, Mode::Saved(0));
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("saved designs") && screen.contains("my-test"), "{screen}");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.design.damper.impact_mass_kg, saved_mass);
+    assert!(!app.busy(), "loading recomputes like any change");
+    assert!(render(&mut app, 120, 40).contains("loaded my-test"));
+    press(&mut app, KeyCode::Char('u'));
+    assert_ne!(app.design.damper.impact_mass_kg, saved_mass, "loading is undoable");
+
+    // `o` opens the same list; Esc closes it.
+    press(&mut app, KeyCode::Char('o'));
+    assert_eq!(app.mode, Mode::Saved(0));
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(!app.quit);
+}
+
+#[test]
+fn saving_with_a_bad_name_or_an_unwritable_dir_is_an_error_line() {
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    press(&mut app, KeyCode::Char('s'));
+    clear_line(&mut app);
+    type_text(&mut app, "../evil");
+    press(&mut app, KeyCode::Enter);
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("error: cannot save"), "{screen}");
+    assert!(!data.path().join("designs").exists());
+
+    // A data dir that is a file: the directory cannot be created.
+    let file = data.path().join("not-a-dir");
+    std::fs::write(&file, "x").unwrap();
+    app.data_dir = Some(file);
+    press(&mut app, KeyCode::Char('s'));
+    press(&mut app, KeyCode::Enter);
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("error: cannot save design-1"), "{screen}");
+    assert!(!app.quit);
+}
+
+#[test]
+fn the_load_list_shows_a_corrupt_saved_file_as_a_problem() {
+    let data = tempfile::tempdir().unwrap();
+    let designs = data.path().join("designs");
+    std::fs::create_dir_all(&designs).unwrap();
+    std::fs::write(designs.join("broken.toml"), "description = \"x\"\n[design\n").unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    app.save_as("good");
+    let before = app.design.clone();
+    press(&mut app, KeyCode::Char('L'));
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("good") && screen.contains("broken.toml (cannot be loaded)"), "{screen}");
+    press(&mut app, KeyCode::Down);
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("broken.toml:2:"), "the problem names the file and line:\n{screen}");
+    press(&mut app, KeyCode::Enter);
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("error: cannot load"), "{screen}");
+    assert_eq!(app.design, before, "nothing loaded");
+    assert_eq!(std::fs::read_to_string(designs.join("broken.toml")).unwrap(), "description = \"x\"\n[design\n");
+}
+
+#[test]
+fn a_corrupt_config_warns_in_the_status_line_and_the_app_runs_on_defaults() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "theme = \"mono\"\nmarkers = 3\n";
+    std::fs::write(dir.path().join("config.toml"), text).unwrap();
+    let load = thud::config::load_config(dir.path());
+    let mut app = computed_app();
+    app.configure(&load);
+    let screen = render(&mut app, 120, 40);
+    let status = status_of(&screen);
+    assert!(status.contains("warning:") && status.contains("config.toml:2:"), "{screen}");
+    assert!(screen.contains("parameters") && screen.contains("U0max"), "still renders:\n{screen}");
+    assert!(app.theme.color, "defaults, not the half-read file");
+    assert_eq!(std::fs::read_to_string(dir.path().join("config.toml")).unwrap(), text, "file untouched");
+    press(&mut app, KeyCode::Right);
+    assert!(render(&mut app, 120, 40).contains("41.50 g"), "keys still work");
+}
+
+#[test]
+fn config_sets_theme_markers_and_thresholds() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "theme = \"mono\"\nmarkers = \"ascii\"\n[thresholds]\nl_star_db = 99.5\ne_star_cm_s = 3.25\n";
+    std::fs::write(dir.path().join("config.toml"), text).unwrap();
+    let mut app = computed_app();
+    app.configure(&thud::config::load_config(dir.path()));
+    assert_eq!(app.theme, Theme { color: false, ascii: true });
+    assert_eq!((app.design.thresholds.spl_db, app.design.thresholds.inclination_cm_s), (99.5, 3.25));
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("L* 99.5 dB") && screen.contains("e* 3.25 cm/s"), "{screen}");
+    assert!(!screen.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)), "ascii markers");
+}
+
+#[test]
+fn a_key_override_shows_in_help_and_footer_and_works() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("config.toml"), "[keys]\nsave = \"ctrl-s\"\npin = \"q\"\n").unwrap();
+    let mut app = computed_app();
+    app.configure(&thud::config::load_config(dir.path()));
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("pin = \"q\": that key is already quit"), "bad override reported:\n{screen}");
+    assert!(screen.lines().last().unwrap().contains("Ctrl-S save"), "footer:\n{screen}");
+    press(&mut app, KeyCode::Char('?'));
+    let help = render(&mut app, 120, 40);
+    let save_row = help.lines().find(|l| l.contains("save this design")).unwrap();
+    assert!(save_row.contains("Ctrl-S") && save_row.contains("save"), "{save_row}");
+    press(&mut app, KeyCode::Esc);
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.mode, Mode::Normal, "s is no longer save");
+    press_mod(&mut app, KeyCode::Char('s'), KeyModifiers::CONTROL);
+    assert!(matches!(app.mode, Mode::SaveAs(_)), "Ctrl-S saves");
+    press(&mut app, KeyCode::Esc);
+    press(&mut app, KeyCode::Char('p'));
+    assert!(app.pinned.is_some(), "the refused override left p as pin");
+}
+
+#[test]
+fn export_through_the_key_writes_the_file_and_names_it() {
+    let out = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.export_dir = out.path().to_path_buf();
+    press(&mut app, KeyCode::Char('e'));
+    assert_eq!(app.mode, Mode::Export(0));
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("waveform CSV") && screen.contains("sound WAV"), "{screen}");
+    press(&mut app, KeyCode::Enter); // waveform CSV, computed synchronously by compute_sync
+    let file = out.path().join("thud-waveform.csv");
+    assert!(std::fs::read_to_string(&file).unwrap().starts_with("t_s,p_pa"));
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("exported waveform CSV") && screen.contains("thud-waveform.csv"), "{screen}");
+    // Again: a new name, the first file is kept.
+    press(&mut app, KeyCode::Char('e'));
+    press(&mut app, KeyCode::Enter);
+    assert!(out.path().join("thud-waveform-1.csv").exists());
+    assert!(render(&mut app, 120, 40).contains("thud-waveform-1.csv"));
+    // The chart SVG uses the chart's grid.
+    press(&mut app, KeyCode::Char('e'));
+    let chart = thud::tui::app::EXPORTS.iter().position(|(k, _)| *k == thud::export::Kind::SvgChart).unwrap();
+    for _ in 0..chart {
+        press(&mut app, KeyCode::Down);
+    }
+    press(&mut app, KeyCode::Enter);
+    assert!(std::fs::read_to_string(out.path().join("thud-chart.svg")).unwrap().contains("<svg"));
+    assert!(app.exports.is_empty() && !app.busy());
+}
+
+#[test]
+fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
+    use std::time::Duration;
+    let out = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.export_dir = out.path().to_path_buf();
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = thud::tui::Worker::start(move |d| {
+        let _ = tx.send(d);
+    });
+    worker.submit(app.export(thud::export::Kind::Wav));
+    assert!(app.busy(), "the spinner turns while the file is written");
+    assert!(render(&mut app, 120, 40).contains("exporting"));
+    let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
+    app.update(Msg::Work(done));
+    assert!(!app.busy());
+    let wav = out.path().join("thud-sound.wav");
+    assert!(std::fs::metadata(&wav).unwrap().len() > 44);
+    assert!(status_of(&render(&mut app, 120, 40)).contains("exported sound WAV"));
+
+    // An export dir that is a file: an error line, no crash.
+    let file = out.path().join("plain-file");
+    std::fs::write(&file, "x").unwrap();
+    app.export_dir = file;
+    worker.submit(app.export(thud::export::Kind::CsvImpacts));
+    let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
+    app.update(Msg::Work(done));
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("error: export of impacts CSV failed"), "{screen}");
 }

@@ -109,7 +109,8 @@ fn real_binary_in_tmux_starts_changes_resizes_quits_and_restores() {
     let t = Tmux::start(
         |d| {
             format!(
-                "'{bin}' tui --mouse; echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
+                "cd '{d}' && XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui --mouse; \
+                 echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
                 d = d.display()
             )
         },
@@ -146,11 +147,24 @@ fn real_binary_in_tmux_starts_changes_resizes_quits_and_restores() {
     t.keys(&["-l", &click]);
     t.wait_for("the clicked design (gap 1.00 cm)", |s| s.contains("d 1.00 cm"));
 
-    // 5. q exits with status 0.
+    // 5. s saves into $XDG_DATA_HOME/thud/designs; e exports into the current directory.
+    t.keys(&["s"]);
+    t.wait_for("the save line", |s| s.contains("save as: design-1"));
+    t.keys(&["Enter"]);
+    t.wait_for("the saved path", |s| s.contains("saved design-1 to"));
+    assert!(t.dir.join("data/thud/designs/design-1.toml").is_file(), "saved in the XDG data dir");
+    t.keys(&["e"]);
+    t.wait_for("the export menu", |s| s.contains("sound WAV"));
+    t.keys(&["Enter"]);
+    t.wait_for("the exported file", |s| s.contains("exported waveform CSV to thud-waveform.csv"));
+    assert!(t.dir.join("thud-waveform.csv").is_file());
+    assert!(!t.dir.join("config").exists(), "the config is never written");
+
+    // 6. q exits with status 0.
     t.keys(&["q"]);
     assert_eq!(t.wait_file("status").trim(), "0", "exit status");
 
-    // 6. The terminal is sane afterwards.
+    // 7. The terminal is sane afterwards.
     let stty = t.wait_file("stty");
     assert!(has_token(&stty, "icanon") && has_token(&stty, "echo"), "raw mode left on:\n{stty}");
     let s = t.wait_for("the shell after thud", |s| s.contains("AFTER-THUD"));

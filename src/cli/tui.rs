@@ -14,6 +14,9 @@ pub struct TuiArgs {
     /// Capture the mouse: a click on the chart selects that design.
     #[arg(long)]
     pub mouse: bool,
+    /// Folder the export key (e) writes files into (default: the current directory).
+    #[arg(long, value_name = "DIR")]
+    pub export_dir: Option<std::path::PathBuf>,
 }
 
 /// `thud` with no subcommand: the explorer on a terminal, the help text otherwise (pipes,
@@ -30,6 +33,11 @@ pub fn run_default() -> Result<(), String> {
 
 /// Runs the explorer; the error is one line for stderr.
 pub fn run(a: &TuiArgs) -> Result<(), String> {
-    let opts = crate::tui::Options { preset: a.preset.clone(), ascii: a.ascii, mouse: a.mouse };
+    let opts = crate::tui::Options {
+        preset: a.preset.clone(),
+        ascii: a.ascii,
+        mouse: a.mouse,
+        export_dir: a.export_dir.clone(),
+    };
     crate::tui::run(&opts).map_err(|e| e.to_string())
 }

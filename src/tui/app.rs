@@ -1,20 +1,26 @@
 //! The explorer's state and its one transition function, [`App::update`]: a message in (a key,
-//! a click, a worker result, a tick), the state changed, and the work to ask for out. No I/O
-//! and no physics here, so every behaviour can be tested without a terminal.
+//! a click, a worker result, a tick), the state changed, and the work to ask for out. No
+//! physics here, and no I/O but saving, listing and loading designs (small TOML files in the
+//! data directory), so every behaviour can be tested without a terminal.
 
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind};
 
 use super::chart::Geometry;
 use super::fields::{Field, Scope};
-use super::keys::{self, Action};
+use super::keys::{Action, Keymap};
 use super::theme::Theme;
 use super::worker::{
-    acoustic_key, chart_key, sim_key, sound_key, AcousticResult, ChartPasses, Done, Grids, Request, SimResult, Stage,
+    acoustic_key, chart_key, sim_key, sound_key, AcousticResult, ChartPasses, Done, ExportJob, Grids, Request,
+    SimResult, Stage,
 };
+use crate::config::{self, Config, ConfigLoad, MarkerStyle};
 use crate::design::{self, Chart, Design, Metrics, Zone, ZoneBy};
+use crate::export::{ExportOptions, Kind};
 use crate::presets::{self, PresetInfo};
+use crate::store::{self, DesignFile, DesignList};
 
 /// Everything the app reacts to.
 #[derive(Debug, Clone)]
@@ -65,6 +71,60 @@ pub enum Mode {
     Editing(String),
     /// Choosing a preset; the highlighted index.
     Presets(usize),
+    /// Typing the name to save the design under.
+    SaveAs(String),
+    /// Choosing a saved design to load (the list is [`App::saved`]); the highlighted index.
+    Saved(usize),
+    /// Choosing what to export; the highlighted index in [`EXPORTS`].
+    Export(usize),
+}
+
+/// What the export menu offers, in menu order, with how it is named there.
+pub const EXPORTS: [(Kind, &str); 11] = [
+    (Kind::CsvWaveform, "waveform CSV — pressure of the loudest impact"),
+    (Kind::SvgWaveform, "waveform SVG"),
+    (Kind::CsvHistory, "history CSV — x(t) with and without the damper"),
+    (Kind::SvgHistory, "history SVG"),
+    (Kind::CsvImpacts, "impacts CSV — every impact of the run"),
+    (Kind::CsvSweep, "sweep CSV — the chart's mass × gap grid"),
+    (Kind::SvgChart, "chart SVG — zones over mass × gap"),
+    (Kind::SvgFig17, "Fig 17 SVG — e against SPLmax"),
+    (Kind::SvgDirectivity, "directivity SVG — SPL against θ"),
+    (Kind::SvgRestitution, "restitution SVG — e against impact mass"),
+    (Kind::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
+];
+
+/// The short name of an export kind ("waveform CSV").
+pub fn export_name(kind: Kind) -> &'static str {
+    let label = EXPORTS.iter().find(|(k, _)| *k == kind).map_or("file", |(_, l)| l);
+    label.split(" — ").next().unwrap_or(label)
+}
+
+/// One row of a list popup (presets, saved designs, exports).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ListItem {
+    pub label: String,
+    /// Shown under the list for the highlighted row.
+    pub detail: String,
+    /// A row that cannot be chosen (e.g. a corrupt saved file).
+    pub problem: bool,
+}
+
+/// A list popup to draw: title, rows, highlighted row, and a line for an empty list.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ListView {
+    pub title: String,
+    pub items: Vec<ListItem>,
+    pub selected: usize,
+    pub empty: String,
+}
+
+/// What a key does in a list popup.
+enum ListNav {
+    Stay,
+    Choose(usize),
+    Close,
+    Quit,
 }
 
 /// The status line's message.
@@ -125,11 +185,13 @@ pub struct Options {
     pub preset: String,
     pub ascii: bool,
     pub mouse: bool,
+    /// Where exports go; None: the current directory.
+    pub export_dir: Option<PathBuf>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Self { preset: "default".into(), ascii: false, mouse: false }
+        Self { preset: "default".into(), ascii: false, mouse: false, export_dir: None }
     }
 }
 
@@ -169,6 +231,18 @@ pub struct App {
     pub chart_geometry: Option<Geometry>,
     /// The presets offered by the `P` list.
     pub preset_list: Vec<PresetInfo>,
+    /// The keys in effect (the table with the config's overrides).
+    pub keys: Keymap,
+    /// The user's settings (defaults if there is no usable `config.toml`).
+    pub config: Config,
+    /// Where designs are saved (`designs/` inside); None: no home directory, saving refused.
+    pub data_dir: Option<PathBuf>,
+    /// Where exports are written (the current directory by default).
+    pub export_dir: PathBuf,
+    /// The saved designs offered by the load list (read when it opens).
+    pub saved: DesignList,
+    /// Export files being written.
+    pub exports: Vec<PathBuf>,
 }
 
 impl App {
@@ -207,6 +281,35 @@ impl App {
             preset_list: presets::list().unwrap_or_else(|_| {
                 presets::names().map(|name| PresetInfo { name, description: String::new() }).collect()
             }),
+            keys: Keymap::default(),
+            config: Config::default(),
+            data_dir: None,
+            export_dir: PathBuf::from("."),
+            saved: DesignList::default(),
+            exports: Vec::new(),
+        }
+    }
+
+    /// Applies the user's settings (call before [`App::initial_requests`]): `mono` turns colour
+    /// off, `ascii` markers avoid Braille, the thresholds become the design's, and the key
+    /// overrides take effect. A problem with the file or an override goes to the status line;
+    /// the rest of the settings still apply.
+    pub fn configure(&mut self, load: &ConfigLoad) {
+        let c = &load.config;
+        if c.theme == config::Theme::Mono {
+            self.theme.color = false;
+        }
+        if c.markers == MarkerStyle::Ascii {
+            self.theme.ascii = true;
+        }
+        self.design.thresholds = c.thresholds(self.design.thresholds);
+        let (keys, problems) = Keymap::with_overrides(&c.keys);
+        self.keys = keys;
+        self.config = c.clone();
+        let mut warnings: Vec<String> = load.warning().into_iter().collect();
+        warnings.extend(problems.iter().map(|p| format!("warning: {}: {p}", load.path.display())));
+        if !warnings.is_empty() {
+            self.status = Some(Status { text: warnings.join("; "), error: true });
         }
     }
 
@@ -222,7 +325,7 @@ impl App {
 
     /// True while results for the current design are missing or being recomputed.
     pub fn busy(&self) -> bool {
-        self.work_error.is_none() && (self.design_busy() || self.chart_busy())
+        !self.exports.is_empty() || (self.work_error.is_none() && (self.design_busy() || self.chart_busy()))
     }
 
     /// True while the live design's readout is not for its current parameters.
@@ -263,15 +366,18 @@ impl App {
         }
         match self.mode.clone() {
             Mode::Editing(buf) => self.edit_key(k, buf),
+            Mode::SaveAs(buf) => self.save_key(k, buf),
             Mode::Presets(i) => self.preset_key(k, i),
+            Mode::Saved(i) => self.saved_key(k, i),
+            Mode::Export(i) => self.export_key(k, i),
             Mode::Help => {
-                match keys::action_for(&k) {
+                match self.keys.action_for(&k) {
                     Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
                     _ => self.mode = Mode::Normal,
                 }
                 vec![]
             }
-            Mode::Normal => keys::action_for(&k).map_or_else(Vec::new, |a| self.act(a)),
+            Mode::Normal => self.keys.action_for(&k).map_or_else(Vec::new, |a| self.act(a)),
         }
     }
 
@@ -307,6 +413,9 @@ impl App {
                     ChartView::Scatter => ChartView::Zones,
                 }
             }
+            Action::Save => self.mode = Mode::SaveAs(self.suggested_name()),
+            Action::Load => self.open_saved(),
+            Action::Export => self.mode = Mode::Export(0),
         }
         vec![]
     }
@@ -322,29 +431,243 @@ impl App {
         }
     }
 
-    fn edit_key(&mut self, k: KeyEvent, mut buf: String) -> Vec<Request> {
-        match k.code {
-            KeyCode::Esc => {
+    fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
+        match line_key(k, buf, 40) {
+            Line::Typing(buf) => self.mode = Mode::Editing(buf),
+            Line::Cancel => {
                 self.mode = Mode::Normal;
                 self.set_status("input cancelled", false);
             }
-            KeyCode::Enter => {
+            Line::Submit(buf) => {
                 self.mode = Mode::Normal;
                 return self.submit_text(&buf);
             }
-            KeyCode::Backspace => {
-                buf.pop();
-                self.mode = Mode::Editing(buf);
-            }
-            KeyCode::Char(c) if !k.modifiers.contains(KeyModifiers::CONTROL) => {
-                if buf.chars().count() < 40 {
-                    buf.push(c);
-                }
-                self.mode = Mode::Editing(buf);
-            }
-            _ => {}
         }
         vec![]
+    }
+
+    fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
+        match line_key(k, buf, 64) {
+            Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
+            Line::Cancel => {
+                self.mode = Mode::Normal;
+                self.set_status("save cancelled", false);
+            }
+            Line::Submit(name) => {
+                self.mode = Mode::Normal;
+                self.save_as(name.trim());
+            }
+        }
+        vec![]
+    }
+
+    /// The name offered when saving: the preset's or saved design's name, or the first free
+    /// `design-N`.
+    pub fn suggested_name(&self) -> String {
+        if self.preset != "default" && store::check_design_name(&self.preset).is_ok() {
+            return self.preset.clone();
+        }
+        let taken = |name: &str| {
+            self.data_dir.as_deref().is_some_and(|d| store::design_path(d, name).is_ok_and(|p| p.exists()))
+        };
+        (1..).map(|n| format!("design-{n}")).find(|n| !taken(n)).unwrap_or_else(|| "design-1".into())
+    }
+
+    /// Saves the live design as `name` in the data directory (a small file, written
+    /// atomically on this thread); the outcome goes to the status line.
+    pub fn save_as(&mut self, name: &str) {
+        if let Err(e) = store::check_design_name(name) {
+            self.error(format!("cannot save: {e}"));
+            return;
+        }
+        let Some(dir) = self.data_dir.clone() else {
+            self.error("cannot save: no home directory, so no data directory".into());
+            return;
+        };
+        let p = &self.design.damper;
+        let description = format!(
+            "saved from the explorer: m {} g, d {} cm (from {})",
+            crate::units::sig(p.impact_mass_kg * 1e3, 4),
+            crate::units::sig(p.gap_m * 1e2, 3),
+            self.preset
+        );
+        let file = DesignFile { description, design: self.design.clone() };
+        match store::save_design(&dir, name, &file) {
+            Ok(path) => {
+                self.preset = name.to_string();
+                self.set_status(&format!("saved {name} to {}", path.display()), false);
+            }
+            Err(e) => {
+                self.error(format!("cannot save {name}: {e}"));
+            }
+        }
+    }
+
+    /// Opens the list of saved designs (read from the data directory now: a few small files).
+    fn open_saved(&mut self) {
+        let Some(dir) = self.data_dir.clone() else {
+            self.error("cannot load: no home directory, so no data directory".into());
+            return;
+        };
+        match store::list_designs(&dir) {
+            Ok(list) => {
+                let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
+                self.saved = list;
+                self.mode = Mode::Saved(i);
+            }
+            Err(e) => {
+                self.error(format!("cannot list saved designs: {e}"));
+            }
+        }
+    }
+
+    /// The popup list of the current mode, if it shows one.
+    pub fn list_view(&self) -> Option<ListView> {
+        let (title, items, selected, empty) = match &self.mode {
+            Mode::Presets(i) => (
+                " presets (↑↓, Enter applies, Esc closes) ".to_string(),
+                self.preset_list
+                    .iter()
+                    .map(|p| ListItem { label: p.name.to_string(), detail: p.description.clone(), problem: false })
+                    .collect(),
+                *i,
+                String::new(),
+            ),
+            Mode::Saved(i) => {
+                let good = self.saved.designs.iter().map(|d| ListItem {
+                    label: d.name.clone(),
+                    detail: d.description.clone(),
+                    problem: false,
+                });
+                let bad = self.saved.problems.iter().map(|p| ListItem {
+                    label: format!(
+                        "✗ {} (cannot be loaded)",
+                        p.path.file_name().map_or_else(|| p.path.display().to_string(), |n| n.to_string_lossy().into())
+                    ),
+                    detail: p.to_string(),
+                    problem: true,
+                });
+                let dir = self.data_dir.as_deref().map_or_else(PathBuf::new, store::designs_dir);
+                (
+                    " saved designs (↑↓, Enter loads, Esc closes) ".to_string(),
+                    good.chain(bad).collect(),
+                    *i,
+                    format!(
+                        "No saved designs in {}; press {} to save one.",
+                        dir.display(),
+                        self.key_label(Action::Save)
+                    ),
+                )
+            }
+            Mode::Export(i) => (
+                " export (↑↓, Enter writes the file, Esc closes) ".to_string(),
+                EXPORTS
+                    .iter()
+                    .map(|(k, label)| ListItem {
+                        label: label.to_string(),
+                        detail: format!("{} in {}", k.default_file_name(), self.export_dir_name()),
+                        problem: false,
+                    })
+                    .collect(),
+                *i,
+                String::new(),
+            ),
+            _ => return None,
+        };
+        Some(ListView { title, items, selected, empty })
+    }
+
+    /// The key shown for `action` (its first binding).
+    pub fn key_label(&self, action: Action) -> &str {
+        self.keys.label_of(action).unwrap_or("?")
+    }
+
+    /// Up/down/Enter/Esc in a list of `n` rows with row `i` highlighted.
+    fn list_nav(&mut self, k: KeyEvent, i: usize, n: usize, mode: fn(usize) -> Mode) -> ListNav {
+        let n = n.max(1);
+        match k.code {
+            KeyCode::Up | KeyCode::Char('k') => self.mode = mode((i + n - 1) % n),
+            KeyCode::Down | KeyCode::Char('j') => self.mode = mode((i + 1) % n),
+            KeyCode::Home => self.mode = mode(0),
+            KeyCode::End => self.mode = mode(n - 1),
+            KeyCode::Enter => {
+                self.mode = Mode::Normal;
+                return ListNav::Choose(i);
+            }
+            KeyCode::Char('q') => {
+                self.quit = true;
+                return ListNav::Quit;
+            }
+            _ => {
+                self.mode = Mode::Normal;
+                return ListNav::Close;
+            }
+        }
+        ListNav::Stay
+    }
+
+    fn saved_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
+        let n = self.saved.designs.len() + self.saved.problems.len();
+        let ListNav::Choose(i) = self.list_nav(k, i, n, Mode::Saved) else { return vec![] };
+        if let Some(entry) = self.saved.designs.get(i) {
+            let name = entry.name.clone();
+            let Some(dir) = self.data_dir.clone() else { return vec![] };
+            return match store::load_design(&dir, &name) {
+                Ok(file) => {
+                    self.preset = name.clone();
+                    self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"))
+                }
+                Err(e) => self.error(format!("cannot load {name}: {e}")),
+            };
+        }
+        match i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j)) {
+            Some(p) => self.error(format!("cannot load {p}")),
+            None => vec![],
+        }
+    }
+
+    fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
+        let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
+        let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
+        vec![self.export(kind)]
+    }
+
+    /// Asks the worker to write an export of `kind` into the export directory, under its
+    /// default name (with -1, -2 … added if that file exists or is being written).
+    pub fn export(&mut self, kind: Kind) -> Request {
+        let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
+        self.exports.push(path.clone());
+        // Sweeps use the chart's grid, so the file shows what the screen does.
+        let g = &self.grids.fine;
+        let options = if kind.needs_sweep() {
+            ExportOptions {
+                masses_kg: Some(g.masses_kg.clone()),
+                gaps_m: Some(g.gaps_m.clone()),
+                ..ExportOptions::default()
+            }
+        } else {
+            ExportOptions::default()
+        };
+        self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
+        Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path }))
+    }
+
+    /// The export directory as shown.
+    fn export_dir_name(&self) -> String {
+        if self.export_dir == Path::new(".") {
+            "the current directory".into()
+        } else {
+            self.export_dir.display().to_string()
+        }
+    }
+
+    /// An export path as shown: the file name alone in the current directory.
+    fn shown_path(&self, path: &Path) -> String {
+        if self.export_dir == Path::new(".") {
+            path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+        } else {
+            path.display().to_string()
+        }
     }
 
     /// Sets the selected field from typed text; a bad value is refused with a message.
@@ -360,25 +683,16 @@ impl App {
     }
 
     fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let n = self.preset_list.len().max(1);
-        match k.code {
-            KeyCode::Up | KeyCode::Char('k') => self.mode = Mode::Presets((i + n - 1) % n),
-            KeyCode::Down | KeyCode::Char('j') => self.mode = Mode::Presets((i + 1) % n),
-            KeyCode::Enter => {
-                self.mode = Mode::Normal;
-                let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
-                return match presets::preset(name) {
-                    Ok(d) => {
-                        self.preset = name.to_string();
-                        self.apply(d, Scope::All, format!("preset {name}"))
-                    }
-                    Err(e) => self.error(e.to_string()),
-                };
+        let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
+        let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
+        match presets::preset(name) {
+            Ok(mut d) => {
+                d.thresholds = self.config.thresholds(d.thresholds);
+                self.preset = name.to_string();
+                self.apply(d, Scope::All, format!("preset {name}"))
             }
-            KeyCode::Char('q') => self.quit = true,
-            _ => self.mode = Mode::Normal,
+            Err(e) => self.error(e.to_string()),
         }
-        vec![]
     }
 
     /// Moves the design to the neighbouring chart cell along mass (`axis` 1) or gap (0).
@@ -541,6 +855,16 @@ impl App {
                 self.chart.levels_for = sound;
             }
             Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
+            Done::Export { kind, path, result } => {
+                self.exports.retain(|p| *p != path);
+                let shown = self.shown_path(&path);
+                match result {
+                    Ok(()) => self.set_status(&format!("exported {} to {shown}", export_name(kind)), false),
+                    Err(e) => {
+                        self.error(format!("export of {} failed: {e}", export_name(kind)));
+                    }
+                }
+            }
         }
         vec![]
     }
@@ -599,6 +923,47 @@ pub fn zone_of(m: &Metrics, d: &Design) -> Option<Zone> {
         ZoneBy::Fit => m.inclination_fit_cm_s,
     }?;
     Some(Zone::classify(m.spl_max_db?, e, &d.thresholds))
+}
+
+/// What a key did to an input line.
+enum Line {
+    Typing(String),
+    Cancel,
+    Submit(String),
+}
+
+/// Esc, Enter, Backspace and typing (at most `max` characters) in an input line.
+fn line_key(k: KeyEvent, mut buf: String, max: usize) -> Line {
+    match k.code {
+        KeyCode::Esc => Line::Cancel,
+        KeyCode::Enter => Line::Submit(buf),
+        KeyCode::Backspace => {
+            buf.pop();
+            Line::Typing(buf)
+        }
+        KeyCode::Char(c) if !k.modifiers.contains(KeyModifiers::CONTROL) => {
+            if buf.chars().count() < max {
+                buf.push(c);
+            }
+            Line::Typing(buf)
+        }
+        _ => Line::Typing(buf),
+    }
+}
+
+/// `dir/name`, or `dir/stem-1.ext`, `dir/stem-2.ext` … the first that neither exists nor is
+/// in `pending`.
+pub fn unique_path(dir: &Path, name: &str, pending: &[PathBuf]) -> PathBuf {
+    let free = |p: &PathBuf| !p.exists() && !pending.contains(p);
+    let first = dir.join(name);
+    if free(&first) {
+        return first;
+    }
+    let (stem, ext) = match name.rsplit_once('.') {
+        Some((s, e)) => (s, format!(".{e}")),
+        None => (name, String::new()),
+    };
+    (1..).map(|n| dir.join(format!("{stem}-{n}{ext}"))).find(free).unwrap_or(first)
 }
 
 /// Index of the value nearest `x` (0 for an empty slice).

@@ -1,7 +1,11 @@
 //! The one key table. The `?` help overlay, the footer hints and the key dispatch all read
 //! [`KEYS`], so a binding cannot exist without being documented.
 
+use std::collections::BTreeMap;
+
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use crate::config::{ActionName, KeyBinding, KeyCode as ConfigKey, KeySpec, NamedKey};
 
 /// Everything a key (or a mouse click) can ask the app to do.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,14 +32,23 @@ pub enum Action {
     Pin,
     Undo,
     ToggleChartView,
+    /// Save the design under a name in the data directory.
+    Save,
+    /// Choose a saved design to load.
+    Load,
+    /// Choose a file to export into the export directory.
+    Export,
 }
 
-/// One binding: the key, its modifiers, the action, how the key is written and what it does.
+/// One binding: the key, its modifiers, the action, its name in `config.toml`'s `[keys]`, how
+/// the key is written and what it does.
 #[derive(Debug, Clone, Copy)]
 pub struct Binding {
     pub code: KeyCode,
     pub mods: KeyModifiers,
     pub action: Action,
+    /// The action's name in the `[keys]` table of `config.toml` (several keys may share one).
+    pub name: &'static str,
     /// The key as shown to people ("Ctrl-C", "Shift-→").
     pub label: &'static str,
     /// What it does, for the help overlay.
@@ -52,82 +65,374 @@ const fn bind(
     code: KeyCode,
     mods: KeyModifiers,
     action: Action,
+    name: &'static str,
     label: &'static str,
     help: &'static str,
     hint: &'static str,
 ) -> Binding {
-    Binding { code, mods, action, label, help, hint }
+    Binding { code, mods, action, name, label, help, hint }
 }
 
-/// Every binding of the app (normal mode). The input line and the lists use Enter/Esc/arrows
-/// as described in the help text of `Enter` and `P`.
+/// Every binding of the app (normal mode), in help order. The input line and the lists use
+/// Enter/Esc/arrows as described in the help text of `Enter` and `P`. A `[keys]` override in
+/// `config.toml` replaces the first key of the named action (see [`Keymap::with_overrides`]).
 pub const KEYS: &[Binding] = &[
-    bind(KeyCode::Char('q'), NONE, Action::Quit, "q", "quit", "quit"),
-    bind(KeyCode::Esc, NONE, Action::Quit, "Esc", "quit (or close a popup / cancel the input line)", ""),
-    bind(KeyCode::Char('c'), CTRL, Action::Quit, "Ctrl-C", "quit", ""),
-    bind(KeyCode::Char('?'), NONE, Action::Help, "?", "show or hide this help", "help"),
-    bind(KeyCode::Up, NONE, Action::Up, "↑", "previous parameter (chart focused: larger gap)", ""),
-    bind(KeyCode::Char('k'), NONE, Action::Up, "k", "same as ↑", ""),
-    bind(KeyCode::Down, NONE, Action::Down, "↓", "next parameter (chart focused: smaller gap)", "select"),
-    bind(KeyCode::Char('j'), NONE, Action::Down, "j", "same as ↓", ""),
-    bind(KeyCode::Left, NONE, Action::Decrease { fine: false }, "←", "decrease by a step (chart: lighter ball)", ""),
+    bind(KeyCode::Char('q'), NONE, Action::Quit, "quit", "q", "quit", "quit"),
+    bind(KeyCode::Esc, NONE, Action::Quit, "quit", "Esc", "quit (or close a popup / cancel the input line)", ""),
+    bind(KeyCode::Char('c'), CTRL, Action::Quit, "quit", "Ctrl-C", "quit", ""),
+    bind(KeyCode::Char('?'), NONE, Action::Help, "help", "?", "show or hide this help", "help"),
+    bind(KeyCode::Up, NONE, Action::Up, "up", "↑", "previous parameter (chart focused: larger gap)", ""),
+    bind(KeyCode::Char('k'), NONE, Action::Up, "up", "k", "same as ↑", ""),
+    bind(KeyCode::Down, NONE, Action::Down, "down", "↓", "next parameter (chart focused: smaller gap)", "select"),
+    bind(KeyCode::Char('j'), NONE, Action::Down, "down", "j", "same as ↓", ""),
+    bind(
+        KeyCode::Left,
+        NONE,
+        Action::Decrease { fine: false },
+        "decrease",
+        "←",
+        "decrease by a step (chart: lighter ball)",
+        "",
+    ),
     bind(
         KeyCode::Right,
         NONE,
         Action::Increase { fine: false },
+        "increase",
         "→",
         "increase by a step (chart: heavier ball)",
         "change",
     ),
-    bind(KeyCode::Char('-'), NONE, Action::Decrease { fine: false }, "-", "decrease by a step", ""),
-    bind(KeyCode::Char('+'), NONE, Action::Increase { fine: false }, "+", "increase by a step", ""),
-    bind(KeyCode::Char('='), NONE, Action::Increase { fine: false }, "=", "increase by a step", ""),
-    bind(KeyCode::Left, SHIFT, Action::Decrease { fine: true }, "Shift-←", "decrease by a fine step", ""),
-    bind(KeyCode::Right, SHIFT, Action::Increase { fine: true }, "Shift-→", "increase by a fine step", ""),
-    bind(KeyCode::Char('_'), NONE, Action::Decrease { fine: true }, "_", "decrease by a fine step", ""),
-    bind(KeyCode::Char('*'), NONE, Action::Increase { fine: true }, "*", "increase by a fine step", "fine"),
+    bind(KeyCode::Char('-'), NONE, Action::Decrease { fine: false }, "decrease", "-", "decrease by a step", ""),
+    bind(KeyCode::Char('+'), NONE, Action::Increase { fine: false }, "increase", "+", "increase by a step", ""),
+    bind(KeyCode::Char('='), NONE, Action::Increase { fine: false }, "increase", "=", "increase by a step", ""),
+    bind(
+        KeyCode::Left,
+        SHIFT,
+        Action::Decrease { fine: true },
+        "decrease-fine",
+        "Shift-←",
+        "decrease by a fine step",
+        "",
+    ),
+    bind(
+        KeyCode::Right,
+        SHIFT,
+        Action::Increase { fine: true },
+        "increase-fine",
+        "Shift-→",
+        "increase by a fine step",
+        "",
+    ),
+    bind(
+        KeyCode::Char('_'),
+        NONE,
+        Action::Decrease { fine: true },
+        "decrease-fine",
+        "_",
+        "decrease by a fine step",
+        "",
+    ),
+    bind(
+        KeyCode::Char('*'),
+        NONE,
+        Action::Increase { fine: true },
+        "increase-fine",
+        "*",
+        "increase by a fine step",
+        "",
+    ),
     bind(
         KeyCode::Enter,
         NONE,
         Action::Edit,
+        "edit",
         "Enter",
         "type a value with units, e.g. 40.5g, 3cm, 60deg (Enter accepts, Esc cancels)",
         "type",
     ),
-    bind(KeyCode::Tab, NONE, Action::FocusNext, "Tab", "focus the next panel", "focus"),
-    bind(KeyCode::BackTab, SHIFT, Action::FocusPrev, "Shift-Tab", "focus the previous panel", ""),
-    bind(KeyCode::Char('P'), SHIFT, Action::Presets, "P", "choose a preset (↑↓, Enter applies, Esc closes)", "presets"),
-    bind(KeyCode::Char('p'), NONE, Action::Pin, "p", "pin this design: plots show it beside the live one", "pin"),
-    bind(KeyCode::Char('u'), NONE, Action::Undo, "u", "undo the last change", "undo"),
-    bind(KeyCode::Char('v'), NONE, Action::ToggleChartView, "v", "chart: zones (mass × gap) / e vs SPLmax", "view"),
+    bind(KeyCode::Tab, NONE, Action::FocusNext, "next-panel", "Tab", "focus the next panel", "focus"),
+    bind(KeyCode::BackTab, SHIFT, Action::FocusPrev, "prev-panel", "Shift-Tab", "focus the previous panel", ""),
+    bind(
+        KeyCode::Char('P'),
+        SHIFT,
+        Action::Presets,
+        "presets",
+        "P",
+        "choose a preset (↑↓, Enter applies, Esc closes)",
+        "presets",
+    ),
+    bind(
+        KeyCode::Char('p'),
+        NONE,
+        Action::Pin,
+        "pin",
+        "p",
+        "pin this design: plots show it beside the live one",
+        "pin",
+    ),
+    bind(KeyCode::Char('u'), NONE, Action::Undo, "undo", "u", "undo the last change", "undo"),
+    bind(
+        KeyCode::Char('v'),
+        NONE,
+        Action::ToggleChartView,
+        "view",
+        "v",
+        "chart: zones (mass × gap) / e vs SPLmax",
+        "view",
+    ),
+    bind(
+        KeyCode::Char('s'),
+        NONE,
+        Action::Save,
+        "save",
+        "s",
+        "save this design under a name (Enter saves, Esc cancels)",
+        "save",
+    ),
+    bind(
+        KeyCode::Char('L'),
+        SHIFT,
+        Action::Load,
+        "load",
+        "L",
+        "load a saved design (↑↓, Enter loads, Esc closes)",
+        "load",
+    ),
+    bind(KeyCode::Char('o'), NONE, Action::Load, "load", "o", "same as L", ""),
+    bind(
+        KeyCode::Char('e'),
+        NONE,
+        Action::Export,
+        "export",
+        "e",
+        "export a CSV, SVG or WAV file of this design to the export directory",
+        "export",
+    ),
 ];
 
-/// The action bound to a key press, if any. Key releases are ignored; SHIFT is ignored for
-/// characters and Shift-Tab.
-pub fn action_for(key: &KeyEvent) -> Option<Action> {
-    if key.kind == KeyEventKind::Release {
-        return None;
-    }
-    // Terminals disagree about reporting SHIFT with characters and with Shift-Tab.
-    let shift_free = |code: KeyCode| matches!(code, KeyCode::Char(_) | KeyCode::BackTab);
-    let strip = |code: KeyCode, m: KeyModifiers| if shift_free(code) { m - KeyModifiers::SHIFT } else { m };
-    let mods = strip(key.code, key.modifiers);
-    KEYS.iter().find(|b| b.code == key.code && strip(b.code, b.mods) == mods).map(|b| b.action)
+/// One binding in effect: the table's row with its key, possibly overridden by the config.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Key {
+    pub code: KeyCode,
+    pub mods: KeyModifiers,
+    pub action: Action,
+    pub name: &'static str,
+    /// The key as shown (the table's label, or the override's).
+    pub label: String,
+    pub help: &'static str,
+    pub hint: &'static str,
+    /// True if the config replaced the table's key.
+    pub overridden: bool,
 }
 
-/// The footer: the hints of the table, in table order, as (key label, hint) pairs.
-pub fn footer_hints() -> Vec<(&'static str, &'static str)> {
-    let mut out: Vec<(&str, &str)> = Vec::new();
-    for b in KEYS.iter().filter(|b| !b.hint.is_empty()) {
-        let label = match b.action {
-            Action::Down => "↑↓",
-            Action::Increase { fine: false } => "←→",
-            Action::Increase { fine: true } => "Shift-←→",
-            _ => b.label,
-        };
-        out.push((label, b.hint));
+/// The bindings in effect: [`KEYS`] with the config's overrides. Dispatch, help overlay and
+/// footer all read it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Keymap {
+    pub keys: Vec<Key>,
+}
+
+impl Default for Keymap {
+    fn default() -> Self {
+        let keys = KEYS
+            .iter()
+            .map(|b| Key {
+                code: b.code,
+                mods: b.mods,
+                action: b.action,
+                name: b.name,
+                label: b.label.to_string(),
+                help: b.help,
+                hint: b.hint,
+                overridden: false,
+            })
+            .collect();
+        Self { keys }
+    }
+}
+
+/// Terminals disagree about reporting SHIFT with characters and with Shift-Tab: ignore it there.
+fn strip(code: KeyCode, m: KeyModifiers) -> KeyModifiers {
+    if matches!(code, KeyCode::Char(_) | KeyCode::BackTab) {
+        m - KeyModifiers::SHIFT
+    } else {
+        m
+    }
+}
+
+/// The action names of the table, each once, in table order.
+pub fn action_names() -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = Vec::new();
+    for b in KEYS {
+        if !out.contains(&b.name) {
+            out.push(b.name);
+        }
     }
     out
+}
+
+/// A config key as a crossterm key and modifiers, with its label.
+pub fn from_spec(spec: KeySpec) -> (KeyCode, KeyModifiers, String) {
+    let mut mods = KeyModifiers::NONE;
+    if spec.ctrl {
+        mods |= KeyModifiers::CONTROL;
+    }
+    if spec.alt {
+        mods |= KeyModifiers::ALT;
+    }
+    let (code, name) = match spec.code {
+        ConfigKey::Char(c) => {
+            // Shift with a letter is the capital letter (what terminals send).
+            let c = if spec.shift { c.to_uppercase().next().unwrap_or(c) } else { c };
+            // Shown like the table's "Ctrl-C": a capital letter after Ctrl- or Alt-.
+            let shown = if spec.ctrl || spec.alt { c.to_ascii_uppercase() } else { c };
+            (KeyCode::Char(c), shown.to_string())
+        }
+        ConfigKey::F(n) => {
+            if spec.shift {
+                mods |= KeyModifiers::SHIFT;
+            }
+            (KeyCode::F(n), format!("F{n}"))
+        }
+        ConfigKey::Named(k) => {
+            if spec.shift {
+                mods |= KeyModifiers::SHIFT;
+            }
+            named(k)
+        }
+    };
+    let mut label = String::new();
+    if spec.ctrl {
+        label.push_str("Ctrl-");
+    }
+    if spec.alt {
+        label.push_str("Alt-");
+    }
+    if mods.contains(KeyModifiers::SHIFT) {
+        label.push_str("Shift-");
+    }
+    label.push_str(&name);
+    (code, mods, label)
+}
+
+fn named(k: NamedKey) -> (KeyCode, String) {
+    let (code, label) = match k {
+        NamedKey::Enter => (KeyCode::Enter, "Enter"),
+        NamedKey::Esc => (KeyCode::Esc, "Esc"),
+        NamedKey::Tab => (KeyCode::Tab, "Tab"),
+        NamedKey::BackTab => (KeyCode::BackTab, "BackTab"),
+        NamedKey::Backspace => (KeyCode::Backspace, "Backspace"),
+        NamedKey::Delete => (KeyCode::Delete, "Delete"),
+        NamedKey::Insert => (KeyCode::Insert, "Insert"),
+        NamedKey::Space => (KeyCode::Char(' '), "Space"),
+        NamedKey::Up => (KeyCode::Up, "↑"),
+        NamedKey::Down => (KeyCode::Down, "↓"),
+        NamedKey::Left => (KeyCode::Left, "←"),
+        NamedKey::Right => (KeyCode::Right, "→"),
+        NamedKey::Home => (KeyCode::Home, "Home"),
+        NamedKey::End => (KeyCode::End, "End"),
+        NamedKey::PageUp => (KeyCode::PageUp, "PageUp"),
+        NamedKey::PageDown => (KeyCode::PageDown, "PageDown"),
+    };
+    (code, label.to_string())
+}
+
+impl Keymap {
+    /// The table with `overrides` (action name → key) applied: each one replaces the first key
+    /// of its action (other keys of the action, like `o` for load, stay). An unknown action
+    /// name, or a key that another binding still uses, is refused: the problems come back as
+    /// messages and the table's key stays.
+    pub fn with_overrides(overrides: &BTreeMap<ActionName, KeyBinding>) -> (Keymap, Vec<String>) {
+        let mut map = Keymap::default();
+        let mut problems = Vec::new();
+        let mut applied: Vec<(usize, &ActionName, &KeyBinding)> = Vec::new();
+        for (name, binding) in overrides {
+            let Some(i) = map.keys.iter().position(|k| k.name == name.as_str()) else {
+                problems.push(format!(
+                    "unknown action '{}' in [keys]; one of: {}",
+                    name.as_str(),
+                    action_names().join(", ")
+                ));
+                continue;
+            };
+            let (code, mods, label) = from_spec(binding.spec());
+            let k = &mut map.keys[i];
+            (k.code, k.mods, k.label, k.overridden) = (code, mods, label, true);
+            applied.push((i, name, binding));
+        }
+        // Refuse overrides whose key is still taken by another binding (checked after all are
+        // applied, so keys can be swapped between actions; a refusal may free or take a key, so
+        // repeat until none is left).
+        let default = Keymap::default();
+        loop {
+            let clash = applied.iter().enumerate().find_map(|(n, &(i, name, binding))| {
+                let k = &map.keys[i];
+                map.keys
+                    .iter()
+                    .enumerate()
+                    .find(|(j, o)| *j != i && o.code == k.code && strip(o.code, o.mods) == strip(k.code, k.mods))
+                    .map(|(_, o)| (n, i, name, binding, o.name))
+            });
+            let Some((n, i, name, binding, other)) = clash else { break };
+            problems.push(format!(
+                "[keys] {} = \"{binding}\": that key is already {other}; kept {}",
+                name.as_str(),
+                default.keys[i].label
+            ));
+            map.keys[i] = default.keys[i].clone();
+            applied.remove(n);
+        }
+        (map, problems)
+    }
+
+    /// The action bound to a key press, if any. Key releases are ignored; SHIFT is ignored for
+    /// characters and Shift-Tab.
+    pub fn action_for(&self, key: &KeyEvent) -> Option<Action> {
+        if key.kind == KeyEventKind::Release {
+            return None;
+        }
+        let mods = strip(key.code, key.modifiers);
+        self.keys.iter().find(|b| b.code == key.code && strip(b.code, b.mods) == mods).map(|b| b.action)
+    }
+
+    /// The first key of `action` as shown (e.g. "s"), if any.
+    pub fn label_of(&self, action: Action) -> Option<&str> {
+        self.keys.iter().find(|k| k.action == action).map(|k| k.label.as_str())
+    }
+
+    /// The footer: the hints of the table, in table order, as (key label, hint) pairs.
+    pub fn footer_hints(&self) -> Vec<(String, &'static str)> {
+        let first = |a: Action| self.keys.iter().find(|k| k.action == a);
+        let pair = |a: Action, b: Action, both: &str| match (first(a), first(b)) {
+            (Some(x), Some(y)) if x.overridden || y.overridden => format!("{}{}", x.label, y.label),
+            _ => both.to_string(),
+        };
+        self.keys
+            .iter()
+            .filter(|k| !k.hint.is_empty())
+            .map(|k| {
+                let label = match k.action {
+                    Action::Down => pair(Action::Up, Action::Down, "↑↓"),
+                    Action::Increase { fine: false } => {
+                        pair(Action::Decrease { fine: false }, Action::Increase { fine: false }, "←→")
+                    }
+                    _ => k.label.clone(),
+                };
+                (label, k.hint)
+            })
+            .collect()
+    }
+}
+
+/// The action bound to a key press by the table without overrides.
+pub fn action_for(key: &KeyEvent) -> Option<Action> {
+    Keymap::default().action_for(key)
+}
+
+/// The footer hints of the table without overrides.
+pub fn footer_hints() -> Vec<(String, &'static str)> {
+    Keymap::default().footer_hints()
 }
 
 #[cfg(test)]
@@ -166,11 +471,46 @@ mod tests {
         }
     }
 
+    fn overrides(pairs: &[(&str, &str)]) -> BTreeMap<ActionName, KeyBinding> {
+        pairs.iter().map(|(a, k)| (ActionName::new(a).unwrap(), KeyBinding::new(k).unwrap())).collect()
+    }
+
+    #[test]
+    fn an_override_replaces_the_first_key_of_its_action() {
+        let (map, problems) = Keymap::with_overrides(&overrides(&[("save", "ctrl-s"), ("load", "F3")]));
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!(map.action_for(&key(KeyCode::Char('s'), CTRL)), Some(Action::Save));
+        assert_eq!(map.action_for(&key(KeyCode::Char('s'), NONE)), None);
+        assert_eq!(map.action_for(&key(KeyCode::F(3), NONE)), Some(Action::Load));
+        assert_eq!(map.action_for(&key(KeyCode::Char('o'), NONE)), Some(Action::Load), "alternates stay");
+        assert_eq!(map.label_of(Action::Save), Some("Ctrl-S"));
+        assert!(map.footer_hints().contains(&("Ctrl-S".to_string(), "save")));
+    }
+
+    #[test]
+    fn bad_overrides_are_reported_and_the_table_key_stays() {
+        let (map, problems) = Keymap::with_overrides(&overrides(&[("sav", "w"), ("pin", "q")]));
+        assert_eq!(problems.len(), 2, "{problems:?}");
+        assert!(problems[0].contains("unknown action 'sav'"), "{}", problems[0]);
+        assert!(problems[1].contains("already quit"), "{}", problems[1]);
+        assert_eq!(map.action_for(&key(KeyCode::Char('p'), NONE)), Some(Action::Pin));
+        assert_eq!(map.action_for(&key(KeyCode::Char('q'), NONE)), Some(Action::Quit));
+    }
+
+    #[test]
+    fn keys_can_be_swapped() {
+        let (map, problems) = Keymap::with_overrides(&overrides(&[("pin", "s"), ("save", "p")]));
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!(map.action_for(&key(KeyCode::Char('s'), NONE)), Some(Action::Pin));
+        assert_eq!(map.action_for(&key(KeyCode::Char('p'), NONE)), Some(Action::Save));
+    }
+
     #[test]
     fn footer_comes_from_the_table() {
         let hints = footer_hints();
-        assert!(hints.contains(&("q", "quit")));
-        assert!(hints.contains(&("?", "help")));
+        assert!(hints.contains(&("q".to_string(), "quit")));
+        assert!(hints.contains(&("?".to_string(), "help")));
+        assert!(hints.contains(&("s".to_string(), "save")));
         assert!(hints.len() >= 8);
     }
 }

@@ -33,7 +33,7 @@ pub use app::{App, Msg, Options};
 pub use theme::Theme;
 pub use worker::{Request, Worker};
 
-use crate::presets;
+use crate::{config, presets, store};
 
 /// Set this environment variable to make the explorer panic right after it took over the
 /// terminal: the end-to-end test uses it to check that the panic hook restores the terminal.
@@ -43,12 +43,18 @@ pub const PANIC_FOR_TEST: &str = "THUD_TUI_PANIC_FOR_TEST";
 const TICK: Duration = Duration::from_millis(120);
 
 /// Runs the explorer until the user quits. Errors (bad preset, no terminal) come back before
-/// or after the screen is restored.
+/// or after the screen is restored. The user's `config.toml` is read (never written): a
+/// problem with it is shown in the status line and the defaults are used.
 pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
     let design = presets::preset(&opts.preset)?;
     let theme = Theme::from_env(opts.ascii);
     let mut app = App::new(design, &opts.preset, theme);
     app.mouse = opts.mouse;
+    app.configure(&config::load_user_config());
+    app.data_dir = store::Dirs::project().map(|d| d.data_dir);
+    if let Some(dir) = &opts.export_dir {
+        app.export_dir = dir.clone();
+    }
     let (mut term, _guard) = terminal::setup(opts.mouse).map_err(|e| {
         format!(
             "cannot use the terminal ({e}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)"

@@ -8,11 +8,11 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 use ratatui::Frame;
 
-use super::app::{nearest, zone_of, App, ChartView, Mode, Panel};
+use super::app::{nearest, zone_of, App, ChartView, ListView, Mode, Panel};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
 use super::fields::{theta_range_deg, Field};
 use super::history::HistoryView;
-use super::keys::{footer_hints, KEYS};
+use super::keys::Keymap;
 use super::params::ParamsView;
 use super::polar::PolarView;
 use super::readout::{ReadoutView, Row};
@@ -47,12 +47,12 @@ pub fn draw(f: &mut Frame, app: &App) -> Option<Geometry> {
     let geometry = body_panels(f, app, body);
     f.render_widget(status_line(app), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(), footer);
+        f.render_widget(footer_line(&app.keys, footer.width), footer);
     }
-    match app.mode {
-        Mode::Help => help_popup(f, area),
-        Mode::Presets(i) => presets_popup(f, app, area, i),
-        _ => {}
+    if app.mode == Mode::Help {
+        help_popup(f, &app.keys, area);
+    } else if let Some(list) = app.list_view() {
+        list_popup(f, &list, area);
     }
     geometry
 }
@@ -317,9 +317,15 @@ fn header_line(app: &App) -> Paragraph<'static> {
     ];
     if app.busy() {
         let frames = app.theme.spinner();
-        let what = if app.design_busy() { "computing design" } else { "filling chart" };
+        let frame = frames[app.spinner % frames.len()];
         let (done, total) = app.chart.progress();
-        spans.push(Span::styled(format!("│ {} {what} {done}/{total} ", frames[app.spinner % frames.len()]), bold));
+        let text = if !app.exports.is_empty() && !app.design_busy() {
+            format!("│ {frame} exporting {} ", app.exports.len())
+        } else {
+            let what = if app.design_busy() { "computing design" } else { "filling chart" };
+            format!("│ {frame} {what} {done}/{total} ")
+        };
+        spans.push(Span::styled(text, bold));
     }
     if app.pinned.is_some() {
         spans.push(Span::styled("│ pinned ", app.theme.pinned()));
@@ -331,10 +337,21 @@ fn header_line(app: &App) -> Paragraph<'static> {
 }
 
 fn status_line(app: &App) -> Paragraph<'static> {
+    let cursor = if app.theme.ascii { "_" } else { "█" };
+    if let Mode::SaveAs(buf) = &app.mode {
+        let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
+        return Paragraph::new(Line::from(vec![
+            Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
+            Span::raw(format!("{buf}{cursor}")),
+            Span::styled(
+                format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"),
+                Style::default().add_modifier(Modifier::DIM),
+            ),
+        ]));
+    }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.field();
         let unit = f.kind().map(|k| k.plain_unit()).unwrap_or("");
-        let cursor = if app.theme.ascii { "_" } else { "█" };
         let hint = if unit.is_empty() {
             String::new()
         } else {
@@ -353,11 +370,20 @@ fn status_line(app: &App) -> Paragraph<'static> {
     }
 }
 
-fn footer_line() -> Paragraph<'static> {
+/// The footer: the key table's hints, as many whole ones as fit in `width`, in table order.
+fn footer_line(keys: &Keymap, width: u16) -> Paragraph<'static> {
     let mut spans = Vec::new();
-    for (k, h) in footer_hints() {
-        spans.push(Span::styled(format!(" {k}"), Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED)));
-        spans.push(Span::raw(format!(" {h} ")));
+    let mut used = 0;
+    for (k, h) in keys.footer_hints() {
+        let (key, text) = (format!(" {k}"), format!(" {h} "));
+        let w = key.chars().count() + text.chars().count();
+        // The last item's trailing space may fall off the edge.
+        if used + w - 1 > width as usize {
+            continue;
+        }
+        used += w;
+        spans.push(Span::styled(key, Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED)));
+        spans.push(Span::raw(text));
     }
     Paragraph::new(Line::from(spans))
 }
@@ -368,18 +394,24 @@ fn centered(area: Rect, w: u16, h: u16) -> Rect {
     Rect::new(area.x + (area.width - w) / 2, area.y + (area.height - h) / 2, w, h)
 }
 
-/// The help overlay: every binding of the key table, in one or two columns.
-fn help_popup(f: &mut Frame, area: Rect) {
-    let rows_avail = area.height.saturating_sub(4).max(1) as usize;
-    let cols = KEYS.len().div_ceil(rows_avail).clamp(1, 3);
-    let per_col = KEYS.len().div_ceil(cols);
+/// The help overlay: every binding in effect (with its `[keys]` action name), in one to three
+/// columns.
+fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
+    let keys = &keys.keys;
+    let rows_avail = area.height.saturating_sub(5).max(1) as usize;
+    let cols = keys.len().div_ceil(rows_avail).clamp(1, 3);
+    let per_col = keys.len().div_ceil(cols);
     let col_w = (area.width.saturating_sub(2) as usize / cols).max(10);
     let lines: Vec<Line> = (0..per_col)
         .map(|r| {
             let spans: Vec<Span> = (0..cols)
-                .filter_map(|c| KEYS.get(c * per_col + r))
+                .filter_map(|c| keys.get(c * per_col + r))
                 .flat_map(|b| {
-                    let text = format!("{:<10}{}", b.label, b.help);
+                    let text = if cols == 1 {
+                        format!("{:<10}{:<14}{}", b.label, b.name, b.help)
+                    } else {
+                        format!("{:<10}{}", b.label, b.help)
+                    };
                     let text: String = text.chars().take(col_w.saturating_sub(1)).collect();
                     [Span::raw(format!("{text:<col_w$}"))]
                 })
@@ -387,39 +419,57 @@ fn help_popup(f: &mut Frame, area: Rect) {
             Line::from(spans)
         })
         .collect();
-    let h = per_col as u16 + 3;
-    let w = if cols == 1 { 96 } else { area.width };
+    let h = per_col as u16 + 4;
+    let w = if cols == 1 { 112 } else { area.width };
     let popup = centered(area, w, h);
     f.render_widget(Clear, popup);
     let block = Block::bordered().title(" keys (? or Esc closes) ");
     let inner = block.inner(popup);
     f.render_widget(block, popup);
     let mut all = lines;
-    all.push(Line::from(Span::styled(
-        "Values are typed with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB",
-        Style::default().add_modifier(Modifier::DIM),
-    )));
+    let dim = Style::default().add_modifier(Modifier::DIM);
+    all.push(Line::from(Span::styled("Values are typed with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB", dim)));
+    let note = if cols == 1 {
+        "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\""
+    } else {
+        "Rebind in config.toml [keys], e.g. save = \"ctrl-s\" (names: ? on a wider screen)"
+    };
+    all.push(Line::from(Span::styled(note, dim)));
     f.render_widget(Paragraph::new(all), inner);
 }
 
-fn presets_popup(f: &mut Frame, app: &App, area: Rect, sel: usize) {
-    let list = &app.preset_list;
+/// A list popup (presets, saved designs, exports): the rows around the highlighted one, then
+/// the highlighted row's detail. Rows that cannot be chosen are drawn in the error style.
+fn list_popup(f: &mut Frame, list: &ListView, area: Rect) {
+    let n = list.items.len();
+    let popup = centered(area, 76, (n.max(1) as u16).saturating_add(7));
+    f.render_widget(Clear, popup);
+    let block = Block::bordered().title(list.title.clone());
+    let inner = block.inner(popup);
+    f.render_widget(block, popup);
+    if n == 0 {
+        f.render_widget(Paragraph::new(list.empty.clone()).wrap(ratatui::widgets::Wrap { trim: true }), inner);
+        return;
+    }
+    let sel = list.selected.min(n - 1);
+    let detail_h = 3.min(inner.height.saturating_sub(1));
+    let rows_h = (inner.height - detail_h).max(1) as usize;
+    let first = (sel + 1).saturating_sub(rows_h);
     let mut lines: Vec<Line> = list
+        .items
         .iter()
         .enumerate()
-        .map(|(i, p)| {
-            let style = if i == sel { Style::default().add_modifier(Modifier::REVERSED) } else { Style::default() };
-            Line::from(Span::styled(format!("{} {}", if i == sel { ">" } else { " " }, p.name), style))
+        .skip(first)
+        .take(rows_h)
+        .map(|(i, item)| {
+            let mut style = if item.problem { Style::default().add_modifier(Modifier::DIM) } else { Style::default() };
+            if i == sel {
+                style = style.add_modifier(Modifier::REVERSED);
+            }
+            Line::from(Span::styled(format!("{} {}", if i == sel { ">" } else { " " }, item.label), style))
         })
         .collect();
     lines.push(Line::from(""));
-    if let Some(p) = list.get(sel) {
-        lines.push(Line::from(p.description.clone()));
-    }
-    let popup = centered(area, 76, list.len() as u16 + 7);
-    f.render_widget(Clear, popup);
-    let block = Block::bordered().title(" presets (↑↓, Enter applies, Esc closes) ");
-    let inner = block.inner(popup);
-    f.render_widget(block, popup);
-    f.render_widget(Paragraph::new(lines).wrap(ratatui::widgets::Wrap { trim: true }), inner);
+    lines.push(Line::from(list.items[sel].detail.clone()));
+    f.render_widget(Paragraph::new(lines).wrap(ratatui::widgets::Wrap { trim: false }), inner);
 }

@@ -5,12 +5,14 @@
 //! and cached by that key so going back (undo, presets) is instant.
 
 use std::collections::HashMap;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 
 use crate::damper;
 use crate::design::{self, linspace, Cell, Chart, Design, Evaluation, Metrics, Thresholds};
 use crate::error::ThudError;
+use crate::export::{self, ExportOptions, Kind};
 
 use super::fields::theta_range_deg;
 
@@ -95,6 +97,27 @@ pub enum Request {
     /// The chart's SPLmax for the design's observer and radiation, from each cell's U0max:
     /// acoustics only, no simulation. Carries the chart passes to relevel.
     Relevel(Design, Arc<ChartPasses>),
+    /// Write an export file (CSV, SVG or WAV) of the design: never cancelled, never cached;
+    /// each one runs on its own short-lived thread.
+    Export(Box<ExportJob>),
+}
+
+/// One file to export.
+#[derive(Debug, Clone)]
+pub struct ExportJob {
+    pub kind: Kind,
+    pub design: Design,
+    pub options: ExportOptions,
+    pub path: PathBuf,
+}
+
+impl ExportJob {
+    /// Renders and writes the file.
+    pub fn run(&self) -> Done {
+        let result =
+            export::export_to_path(self.kind, &self.design, &self.options, &self.path).map_err(|e| e.to_string());
+        Done::Export { kind: self.kind, path: self.path.clone(), result }
+    }
 }
 
 /// The passes of a chart (coarse, if any, and fine), as the app holds them.
@@ -134,6 +157,12 @@ pub enum Done {
         key: String,
         sound: String,
         passes: Arc<ChartPasses>,
+    },
+    /// An export finished (or failed) writing `path`.
+    Export {
+        kind: Kind,
+        path: PathBuf,
+        result: Result<(), String>,
     },
 }
 
@@ -180,6 +209,7 @@ pub fn request_key(r: &Request) -> String {
         Request::Acoustic(d, _) => acoustic_key(d),
         Request::Chart(d, g) => chart_key(d, g),
         Request::Relevel(d, _) => sound_key(d),
+        Request::Export(job) => job.path.display().to_string(),
     }
 }
 
@@ -284,6 +314,7 @@ pub fn run_sync(req: &Request, notify: &(dyn Fn(Done) + Sync)) {
             compute_chart(d, g, &key, None, notify);
         }
         Request::Relevel(d, passes) => notify(relevelled(d, passes)),
+        Request::Export(job) => notify(job.run()),
     }
 }
 
@@ -364,6 +395,7 @@ type Notify = Arc<dyn Fn(Done) + Send + Sync>;
 
 /// The background worker: one thread and one slot per job kind.
 pub struct Worker {
+    notify: Notify,
     sim: Arc<Slot>,
     acoustic: Arc<Slot>,
     chart: Arc<Slot>,
@@ -375,7 +407,7 @@ impl Worker {
     pub fn start(notify: impl Fn(Done) + Send + Sync + 'static) -> Self {
         let notify: Notify = Arc::new(notify);
         let new = || Arc::new(Slot::new());
-        let w = Self { sim: new(), acoustic: new(), chart: new(), levels: new() };
+        let w = Self { notify: notify.clone(), sim: new(), acoustic: new(), chart: new(), levels: new() };
         for slot in [&w.sim, &w.acoustic, &w.chart, &w.levels] {
             let (slot, notify) = (slot.clone(), notify.clone());
             std::thread::Builder::new()
@@ -386,10 +418,19 @@ impl Worker {
         w
     }
 
-    /// Queues a request in its slot (newest wins).
+    /// Queues a request in its slot (newest wins); an export gets a thread of its own.
     pub fn submit(&self, req: Request) {
         let key = request_key(&req);
         let slot = match req {
+            Request::Export(job) => {
+                let (kind, notify) = (job.kind, self.notify.clone());
+                let spawned = std::thread::Builder::new().name("thud-export".into()).spawn(move || notify(job.run()));
+                if let Err(e) = spawned {
+                    let path = PathBuf::from(key);
+                    (self.notify)(Done::Export { kind, path, result: Err(format!("cannot start: {e}")) });
+                }
+                return;
+            }
             Request::Sim(_) => &self.sim,
             Request::Acoustic(..) => &self.acoustic,
             Request::Chart(..) => &self.chart,
@@ -478,6 +519,7 @@ fn execute(key: &str, req: &Request, cancel: &AtomicBool, notify: &(dyn Fn(Done)
             }
         }
         Request::Relevel(d, passes) => notify(relevelled(d, passes)),
+        Request::Export(job) => notify(job.run()),
     }
 }
 
