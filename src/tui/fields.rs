@@ -1,7 +1,7 @@
 //! The editable parameters of the panel: how each one is shown (display units), stepped and
 //! typed. Values live in the `Design` in SI units; conversions happen only here, at the edge.
 
-use crate::acoustics::{QuadSigns, Source};
+use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::contact::MATERIALS;
 use crate::damper::Solver;
 use crate::design::{Design, Materials};
@@ -24,6 +24,7 @@ pub enum Field {
     Materials,
     Source,
     QuadSigns,
+    Pulse,
     Clamp,
     Solver,
     Duration,
@@ -68,7 +69,7 @@ fn material_choices() -> Vec<Option<Materials>> {
 
 impl Field {
     /// All fields, in panel order.
-    pub const ALL: [Field; 18] = [
+    pub const ALL: [Field; 19] = [
         Field::Mass,
         Field::Gap,
         Field::R,
@@ -82,6 +83,7 @@ impl Field {
         Field::Materials,
         Field::Source,
         Field::QuadSigns,
+        Field::Pulse,
         Field::Clamp,
         Field::Solver,
         Field::Duration,
@@ -105,6 +107,7 @@ impl Field {
             Field::Materials => "materials",
             Field::Source => "source",
             Field::QuadSigns => "quad signs",
+            Field::Pulse => "pulse",
             Field::Clamp => "clamp",
             Field::Solver => "solver",
             Field::Duration => "duration",
@@ -129,6 +132,7 @@ impl Field {
             Field::Materials => "materials",
             Field::Source => "source",
             Field::QuadSigns => "quad-signs",
+            Field::Pulse => "pulse",
             Field::Clamp => "no-tension",
             Field::Solver => "solver",
             Field::Duration => "duration",
@@ -158,7 +162,7 @@ impl Field {
     /// What a change of this field invalidates.
     pub fn scope(self) -> Scope {
         match self {
-            Field::R | Field::Theta | Field::Source | Field::QuadSigns => Scope::Acoustics,
+            Field::R | Field::Theta | Field::Source | Field::QuadSigns | Field::Pulse => Scope::Acoustics,
             Field::Mass | Field::Gap => Scope::Design,
             Field::LStar | Field::EStar => Scope::Thresholds,
             _ => Scope::All,
@@ -249,6 +253,7 @@ impl Field {
             },
             Field::Source => d.radiation.source.name().into(),
             Field::QuadSigns => d.radiation.quad_signs.name().into(),
+            Field::Pulse => d.radiation.pulse.name().into(),
             Field::Clamp => if p.no_tension { "no tension" } else { "off" }.into(),
             Field::Solver => match d.solver {
                 Solver::Event => "event".into(),
@@ -297,6 +302,12 @@ impl Field {
                     QuadSigns::Rigid => QuadSigns::Paper,
                 }
             }
+            Field::Pulse => {
+                d.radiation.pulse = match d.radiation.pulse {
+                    PulseShape::HalfSine => PulseShape::Hertz,
+                    PulseShape::Hertz => PulseShape::HalfSine,
+                }
+            }
             Field::Clamp => d.damper.no_tension = !d.damper.no_tension,
             Field::Solver => {
                 d.solver = match d.solver {
@@ -343,6 +354,13 @@ impl Field {
                     "paper" => QuadSigns::Paper,
                     "rigid" => QuadSigns::Rigid,
                     _ => return Err(bad("paper or rigid")),
+                }
+            }
+            Field::Pulse => {
+                d.radiation.pulse = match low.as_str() {
+                    "half-sine" | "halfsine" | "sine" | "half sine" => PulseShape::HalfSine,
+                    "hertz" | "exact" => PulseShape::Hertz,
+                    _ => return Err(bad("half-sine or hertz")),
                 }
             }
             Field::Clamp => {

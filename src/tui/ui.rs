@@ -63,7 +63,8 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Option<Geometry> {
     let readout_h = 11 + u16::from(pinned);
     if body.width >= 110 && body.height >= 20 + readout_h {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
-        let [params, readout] = Layout::vertical([Constraint::Length(20), Constraint::Min(1)]).areas(left);
+        let [params, readout] =
+            Layout::vertical([Constraint::Length(Field::ALL.len() as u16 + 2), Constraint::Min(1)]).areas(left);
         f.render_widget(params_view(app), params);
         readout_widget(f, app, readout);
         let [top, bottom] = Layout::vertical([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(right);
