@@ -52,9 +52,14 @@ impl Drop for Guard {
 /// Raw mode, alternate screen, hidden cursor and (if asked) mouse capture. On error the
 /// terminal is restored before returning.
 pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
+    use std::io::IsTerminal;
+    if !io::stdout().is_terminal() {
+        // Nothing was changed, so nothing is restored (no stray escape sequences in a pipe).
+        return Err(io::Error::other("standard output is not a terminal"));
+    }
     install_panic_hook();
-    let guard = Guard;
     terminal::enable_raw_mode()?;
+    let guard = Guard;
     let mut out = io::stdout();
     execute!(out, EnterAlternateScreen, Hide)?;
     if mouse {
