@@ -469,6 +469,14 @@ pub fn restitution_curve(design: &Design, masses_kg: &[f64], u0: f64) -> Result<
         .collect()
 }
 
+/// The contact damping c1 (N·s/m) that gives the restitution `r` to one isolated contact of
+/// this design's ball against its main mass at `u0` (the inverse of [`restitution_curve`]).
+pub fn c1_for_restitution(design: &Design, u0: f64, r: f64) -> Result<f64, ThudError> {
+    let d = design.resolved()?;
+    let p = &d.damper;
+    damper::c1_for_restitution(p.impact_mass_kg, p.main_mass_kg, p.k_hz, p.no_tension, u0, r)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -504,6 +512,17 @@ mod tests {
     #[test]
     fn paper_density_is_the_acrylic_of_the_materials_table() {
         assert_eq!(contact::material("acrylic").unwrap().density_kg_m3, PAPER_BALL_DENSITY);
+    }
+
+    #[test]
+    fn c1_for_restitution_inverts_the_curve() {
+        let d = Design::default();
+        let c1 = c1_for_restitution(&d, 1.4, 0.8).unwrap();
+        let mut d2 = d.clone();
+        d2.damper.c1_n_s_m = c1;
+        let r = restitution_curve(&d2, &[d.damper.impact_mass_kg], 1.4).unwrap()[0].1;
+        assert!((r - 0.8).abs() < 1e-6, "{r}");
+        assert!(c1_for_restitution(&d, 1.4, 1.5).is_err());
     }
 
     #[test]

@@ -176,3 +176,21 @@ fn invalid_design_inputs_exit_nonzero_with_one_clear_line() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn restitution_curve_and_its_inverse() {
+    let (code, out, err) = thud(&["restitution", "--masses", "10g:100g:4", "--target", "0.9", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 4);
+    // R rises with the mass (model notes §5: ≈ 0.84 at 10 g, 0.95 at 100 g).
+    assert!((rows[0]["restitution"].as_f64().unwrap() - 0.84).abs() < 0.01);
+    assert!((rows[3]["restitution"].as_f64().unwrap() - 0.95).abs() < 0.01);
+    // A heavier ball needs more c1 for the same R.
+    let c1: Vec<f64> = rows.iter().map(|r| r["c1_for_target_n_s_m"].as_f64().unwrap()).collect();
+    assert!(c1.windows(2).all(|w| w[1] > w[0]), "{c1:?}");
+    let (code, _, err) = thud(&["restitution", "--target", "1.5"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("restitution"), "{err}");
+}

@@ -7,6 +7,7 @@ mod format;
 mod paper;
 mod presets;
 mod pulse;
+mod restitution;
 mod settings;
 mod simulate;
 mod sweep;
@@ -39,6 +40,8 @@ pub enum Command {
     Simulate(Box<simulate::SimulateArgs>),
     /// Sweep a design over impact mass × gap: the design chart and Table 5.
     Sweep(Box<sweep::SweepArgs>),
+    /// Restitution against impact mass (Fig 13), and the c1 that gives a wanted restitution.
+    Restitution(Box<restitution::RestitutionArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
     Paper(paper::PaperArgs),
     /// Write a design's data (CSV), figures (SVG) or sound (WAV) to a file.
@@ -147,6 +150,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Pulse(a)) => pulse::run(&a),
         Some(Command::Simulate(a)) => simulate::run(&a),
         Some(Command::Sweep(a)) => sweep::run(&a),
+        Some(Command::Restitution(a)) => restitution::run(&a),
         Some(Command::Paper(a)) => paper::run(&a),
         Some(Command::Export(a)) => export::run(&a),
         Some(Command::Presets(a)) => presets::run(&a),
