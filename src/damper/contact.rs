@@ -32,6 +32,15 @@ pub(crate) struct Sys {
 }
 
 impl Sys {
+    /// Total mechanical energy (J): kinetic of both masses, the spring, and the Hertz contact
+    /// at penetration `delta` (m, ≥ 0): ½Mx'² + ½Kx² + ½my'² + (2/5)·K_HZ·δ^(5/2).
+    pub fn mechanical_energy(&self, x: f64, v: f64, w: f64, delta: f64) -> f64 {
+        0.5 * self.big_m * v * v
+            + 0.5 * self.k * x * x
+            + 0.5 * self.m * w * w
+            + 0.4 * self.k_hz * delta * delta * delta.sqrt()
+    }
+
     pub fn new(p: &DamperParams) -> Self {
         Sys {
             big_m: p.main_mass_kg,

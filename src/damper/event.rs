@@ -167,8 +167,7 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
         }
     }
     rec.finish();
-    energy.final_mechanical_j =
-        osc_energy(x, v) + 0.5 * sys.m * w * w + 0.4 * sys.k_hz * del_end * del_end * del_end.sqrt();
+    energy.final_mechanical_j = sys.mechanical_energy(x, v, w, del_end);
     Run {
         impacts,
         maxima: rec.maxima,

@@ -146,7 +146,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let mut st = St { x: 0.0, v: p.v0_m_s, a: 0.0, y: 0.0, w: 0.0, b: 0.0 };
     flight_accels(&sys, &mut st);
     rec.zdot(st.w - st.v);
-    let mut energy = EnergyLedger { initial_j: 0.5 * sys.big_m * st.v * st.v, ..Default::default() };
+    let mut energy = EnergyLedger { initial_j: sys.mechanical_energy(st.x, st.v, st.w, 0.0), ..Default::default() };
     let mut impacts: Vec<ImpactEvent> = Vec::new();
     let n_steps = (t_end / dt).ceil() as u64;
     let mut k_next: u64 = 1;
@@ -283,10 +283,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     }
     rec.finish();
     let del = if wall != 0.0 { st.pen(&sys, wall).0.max(0.0) } else { 0.0 };
-    energy.final_mechanical_j = 0.5 * sys.big_m * st.v * st.v
-        + 0.5 * sys.m * st.w * st.w
-        + 0.5 * sys.k * st.x * st.x
-        + 0.4 * sys.k_hz * del * del * del.sqrt();
+    energy.final_mechanical_j = sys.mechanical_energy(st.x, st.v, st.w, del);
     Run {
         impacts,
         maxima: rec.maxima,
