@@ -41,7 +41,7 @@ pub fn run(a: &SweepArgs) -> Result<(), ThudError> {
     let progress = std::io::stderr().is_terminal();
     let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {
         let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-        if progress && (k % 8 == 0 || k == total) {
+        if progress && (k.is_multiple_of(8) || k == total) {
             eprint!("\rsweep {k}/{total} designs");
             if k == total {
                 eprintln!();

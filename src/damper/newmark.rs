@@ -188,7 +188,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
             continue;
         }
         counter = counter.wrapping_add(1);
-        if counter % 4096 == 0 && opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        if counter.is_multiple_of(4096) && opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             cancelled = true;
             break;
         }
