@@ -166,15 +166,6 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
             break;
         }
     }
-    rec.finish();
     energy.final_mechanical_j = sys.mechanical_energy(x, v, w, del_end);
-    Run {
-        impacts,
-        maxima: rec.maxima,
-        zdot_abs_max_m_s: rec.zdot_abs_max,
-        energy,
-        history: rec.history,
-        final_time_s: t,
-        cancelled,
-    }
+    rec.into_run(impacts, energy, t, cancelled)
 }

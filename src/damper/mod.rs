@@ -126,6 +126,14 @@ pub struct ImpactEvent {
     pub penetration_max_m: f64,
 }
 
+impl ImpactEvent {
+    /// A contact that has just begun at `t_s` on `wall` (±1) with incoming speed `u_in_m_s` and
+    /// penetration `penetration_m` so far; its exit is filled in when it ends.
+    pub(crate) fn onset(t_s: f64, wall: f64, u_in_m_s: f64, penetration_m: f64) -> Self {
+        Self { t_s, wall: wall as i8, u_in_m_s, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: penetration_m }
+    }
+}
+
 /// A cycle maximum of the main mass's displacement (s, m): the `X_k`, `t_k` of the damping
 /// inclination `e = (X1 − X2)/(t2 − t1)`, paper Eq 27.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

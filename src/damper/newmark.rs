@@ -152,8 +152,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let mut k_next: u64 = 1;
     let mut t = 0.0;
     let mut wall = 0.0; // 0 in flight, ±1 in contact
-    let mut cur =
-        ImpactEvent { t_s: 0.0, wall: 0, u_in_m_s: 0.0, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: 0.0 };
+    let mut cur = ImpactEvent::onset(0.0, 0.0, 0.0, 0.0);
     let mut cancelled = false;
     let mut counter: u32 = 0;
     // Mode switches inside the current grid step (a guard against endless re-splitting).
@@ -210,14 +209,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
                 st = sub;
                 t = t1;
                 wall = s;
-                cur = ImpactEvent {
-                    t_s: t,
-                    wall: s as i8,
-                    u_in_m_s: st.pen(&sys, s).1,
-                    u_out_m_s: 0.0,
-                    t_end_s: 0.0,
-                    penetration_max_m: 0.0,
-                };
+                cur = ImpactEvent::onset(t, s, st.pen(&sys, s).1, 0.0);
                 if th >= 1.0 {
                     k_next += 1;
                     splits = 0;
@@ -230,14 +222,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
                 // Out of splits: switch to contact at the step end.
                 wall = z1.signum();
                 contact_accels(&sys, wall, &mut st);
-                cur = ImpactEvent {
-                    t_s: t_next,
-                    wall: wall as i8,
-                    u_in_m_s: st.pen(&sys, wall).1,
-                    u_out_m_s: 0.0,
-                    t_end_s: 0.0,
-                    penetration_max_m: d1,
-                };
+                cur = ImpactEvent::onset(t_next, wall, st.pen(&sys, wall).1, d1);
             }
         } else {
             let s = wall;
@@ -281,18 +266,9 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
         k_next += 1;
         splits = 0;
     }
-    rec.finish();
     let del = if wall != 0.0 { st.pen(&sys, wall).0.max(0.0) } else { 0.0 };
     energy.final_mechanical_j = sys.mechanical_energy(st.x, st.v, st.w, del);
-    Run {
-        impacts,
-        maxima: rec.maxima,
-        zdot_abs_max_m_s: rec.zdot_abs_max,
-        energy,
-        history: rec.history,
-        final_time_s: if cancelled { t } else { t_end },
-        cancelled,
-    }
+    rec.into_run(impacts, energy, if cancelled { t } else { t_end }, cancelled)
 }
 
 /// One isolated contact (no spring, no viscous damper) at approach speed `u0` by Newmark steps of

@@ -1,7 +1,7 @@
 //! What both solvers record along a run: cycle maxima of `x`, the largest `|z'|`, uniform history
 //! samples. Units: seconds, metres, m/s.
 
-use super::{HistoryPoint, Maximum};
+use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run};
 
 /// Accumulates the run's outputs in time order.
 pub(crate) struct Recorder {
@@ -45,9 +45,25 @@ impl Recorder {
         }
     }
 
-    /// Closes the last (partial) cycle if it holds an interior maximum.
-    pub fn finish(&mut self) {
+    /// Closes the last (partial) cycle if it holds an interior maximum, and assembles the run:
+    /// what this recorder saw plus the solver's impacts, energy ledger and end time.
+    pub fn into_run(
+        mut self,
+        impacts: Vec<ImpactEvent>,
+        energy: EnergyLedger,
+        final_time_s: f64,
+        cancelled: bool,
+    ) -> Run {
         self.up_cross();
+        Run {
+            impacts,
+            maxima: self.maxima,
+            zdot_abs_max_m_s: self.zdot_abs_max,
+            energy,
+            history: self.history,
+            final_time_s,
+            cancelled,
+        }
     }
 
     #[inline]
