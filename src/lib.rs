@@ -1,23 +1,16 @@
-//! thud — the physics of single-unit impact dampers and the noise they make.
+//! thud — design single-unit impact dampers from the terminal.
 //!
-//! The engine (`contact`, `acoustics`, `paper`, `units`) is pure: no I/O, no terminal.
-//! Equation numbers refer to the source paper. SI units throughout; the front ends
-//! (`cli`) convert at the edges. `config`, `store` and `export` are front-end support: settings,
-//! saved designs and files (CSV, SVG, WAV), kept out of the physics modules.
+//! This crate is the application: the command line (`cli`), the terminal explorer (`tui`), files
+//! (`export`, `config`, `store`) and the compiled-in presets. The physics lives in the pure
+//! `thud-core` crate (no I/O, no terminal); its modules are re-exported here under their own
+//! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
-pub mod acoustics;
+pub use thud_core::{acoustics, contact, damper, design, error, paper, units, ThudError};
+
 pub mod config;
-pub mod contact;
-pub mod damper;
-pub mod design;
-pub mod error;
 pub mod export;
-pub mod paper;
 pub mod presets;
 pub mod store;
-pub mod units;
 
 pub mod cli;
 pub mod tui;
-
-pub use error::ThudError;

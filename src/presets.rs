@@ -8,9 +8,7 @@ use crate::design::Design;
 use crate::error::ThudError;
 use crate::store::DesignFile;
 
-/// The least-squares contact damping (N·s/m) that reproduces Table 3 with the no-tension clamp
-/// (model notes §6). The value in `assets/presets/paper-table3.toml`.
-pub const TABLE3_C1: f64 = 83.68;
+pub use crate::design::TABLE3_C1;
 
 /// The compiled-in preset files: (name, TOML text), in the order `thud presets` lists them.
 const SOURCES: &[(&str, &str)] = &[
@@ -71,7 +69,9 @@ mod tests {
     use crate::acoustics::{QuadSigns, Radiation, Source};
     use crate::design::{BallSize, U0MaxRule};
 
-    /// The Rust-built presets these files replaced; their values must not change.
+    /// The Rust-built presets these files replaced; their values must not change. The engine
+    /// builds the paper's set-ups itself (its `paper` module runs without the app's files), so
+    /// this also checks that the engine and the files agree.
     fn legacy(name: &str) -> Design {
         let mut d = Design::default();
         if name == "default" {
@@ -85,6 +85,13 @@ mod tests {
             d.u0max_rule = U0MaxRule::WholeRun;
         }
         d
+    }
+
+    #[test]
+    fn the_engines_paper_designs_equal_the_preset_files() {
+        assert_eq!(preset("default").unwrap(), Design::default());
+        assert_eq!(preset("paper-fig9").unwrap(), Design::paper_fig9());
+        assert_eq!(preset("paper-table3").unwrap(), Design::paper_table3());
     }
 
     #[test]

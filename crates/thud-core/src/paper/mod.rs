@@ -50,7 +50,9 @@ pub struct Table {
     pub rows: Vec<Vec<Value>>,
 }
 
-pub(crate) const fn col(key: &'static str, label: &'static str) -> Column {
+/// A column with machine `key` and human `label`.
+#[must_use]
+pub const fn col(key: &'static str, label: &'static str) -> Column {
     Column { key, label }
 }
 

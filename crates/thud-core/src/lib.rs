@@ -1,0 +1,24 @@
+//! thud-core — the physics of single-unit impact dampers and the noise they make.
+//!
+//! Pure: no I/O, no terminal, no command line. Equation numbers refer to the source paper and to
+//! the model notes in `docs/model.md`. SI units throughout; the front ends (the `thud` crate)
+//! convert at the edges.
+//!
+//! - [`contact`]: Hertz contact of one impact (Eqs 1–8) and materials.
+//! - [`acoustics`]: the sound of one impact (Eqs 9–24): impulse response, closed form, image
+//!   sources, levels and directivity.
+//! - [`damper`]: the 2-DOF impact damper (Eqs 25–26): exact flight, the event-driven solver and
+//!   the Newmark-β reference.
+//! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
+//! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
+//! - [`units`]: parsing and formatting of quantities with units.
+
+pub mod acoustics;
+pub mod contact;
+pub mod damper;
+pub mod design;
+pub mod error;
+pub mod paper;
+pub mod units;
+
+pub use error::ThudError;
