@@ -13,10 +13,22 @@ use serde::{Deserialize, Serialize};
 
 use crate::design::Thresholds;
 use crate::error::ThudError;
+use crate::fsio;
 use crate::store::{self, FileProblem, StoreError};
 
 /// File name of the settings inside the config directory.
 pub const CONFIG_FILE: &str = "config.toml";
+
+/// A value in `config.toml` that cannot be used (serde reports it with the file's line).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ConfigError {
+    /// A key binding that names no key.
+    #[error("'{0}' is not a key; use a character, f1-f24 or a named key like enter, esc, tab, up, pagedown, optionally with ctrl-, alt-, shift-")]
+    NotAKey(String),
+    /// An entry of `[keys]` whose name cannot be an action.
+    #[error("'{0}' is not an action name; use lower-case letters, digits, '-' or '_'")]
+    NotAnAction(String),
+}
 
 /// Colour theme of the terminal interface.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -103,7 +115,7 @@ impl KeySpec {
     /// Parses a key string: optional `ctrl-`, `alt-`, `shift-` prefixes (also with '+'), then one
     /// character, `f1`–`f24` or a named key (enter, esc, tab, backtab, backspace, delete, insert,
     /// space, up, down, left, right, home, end, pageup, pagedown). Names are case-insensitive.
-    pub fn parse(text: &str) -> Result<KeySpec, String> {
+    pub fn parse(text: &str) -> Result<KeySpec, ConfigError> {
         let mut rest = text.trim();
         let (mut ctrl, mut alt, mut shift) = (false, false, false);
         loop {
@@ -121,9 +133,7 @@ impl KeySpec {
             }
             rest = &rest[p.len()..];
         }
-        let code = key_code(rest).ok_or_else(|| {
-            format!("'{text}' is not a key; use a character, f1-f24 or a named key like enter, esc, tab, up, pagedown, optionally with ctrl-, alt-, shift-")
-        })?;
+        let code = key_code(rest).ok_or_else(|| ConfigError::NotAKey(text.to_string()))?;
         Ok(KeySpec { ctrl, alt, shift, code })
     }
 }
@@ -151,7 +161,7 @@ pub struct KeyBinding {
 
 impl KeyBinding {
     /// The binding for key text `text` (see [`KeySpec::parse`]).
-    pub fn new(text: &str) -> Result<KeyBinding, String> {
+    pub fn new(text: &str) -> Result<KeyBinding, ConfigError> {
         Ok(KeyBinding { spec: KeySpec::parse(text)?, text: text.trim().to_string() })
     }
 
@@ -167,8 +177,8 @@ impl KeyBinding {
 }
 
 impl TryFrom<String> for KeyBinding {
-    type Error = String;
-    fn try_from(s: String) -> Result<Self, String> {
+    type Error = ConfigError;
+    fn try_from(s: String) -> Result<Self, ConfigError> {
         KeyBinding::new(&s)
     }
 }
@@ -194,13 +204,13 @@ pub struct ActionName(String);
 
 impl ActionName {
     /// Checks and wraps an action name.
-    pub fn new(name: &str) -> Result<ActionName, String> {
+    pub fn new(name: &str) -> Result<ActionName, ConfigError> {
         let ok = name.chars().next().is_some_and(|c| c.is_ascii_lowercase())
             && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-' || c == '_');
         if ok {
             Ok(ActionName(name.to_string()))
         } else {
-            Err(format!("'{name}' is not an action name; use lower-case letters, digits, '-' or '_'"))
+            Err(ConfigError::NotAnAction(name.to_string()))
         }
     }
 
@@ -210,8 +220,8 @@ impl ActionName {
 }
 
 impl TryFrom<String> for ActionName {
-    type Error = String;
-    fn try_from(s: String) -> Result<Self, String> {
+    type Error = ConfigError;
+    fn try_from(s: String) -> Result<Self, ConfigError> {
         ActionName::new(&s)
     }
 }
@@ -309,16 +319,17 @@ pub fn config_path(config_dir: &Path) -> PathBuf {
 }
 
 /// Loads `config.toml` from `config_dir`. A missing file gives the defaults silently; a file
-/// that cannot be read, does not parse or holds invalid values gives the defaults and a
-/// [`FileProblem`]. Never writes.
+/// that cannot be read, is not a regular file (a symlink to one is fine; a FIFO or a device such
+/// as `/dev/zero` is not opened for reading), is larger than [`fsio::MAX_READ_BYTES`], does not
+/// parse or holds invalid values gives the defaults and a [`FileProblem`]. Never writes.
 pub fn load_config(config_dir: &Path) -> ConfigLoad {
     let path = config_path(config_dir);
     let problem = |line, column, message: String| FileProblem { path: path.clone(), line, column, message };
-    let parsed = match store::read_optional(&path) {
+    let parsed = match fsio::read_optional(&path, fsio::MAX_READ_BYTES) {
         Ok(None) => Ok(Config::default()),
         Ok(Some(text)) => store::parse_toml::<Config>(&path, &text)
             .and_then(|c| c.validate().map(|()| c).map_err(|e| problem(None, None, e.to_string()))),
-        Err(e) => Err(problem(None, None, e.to_string())),
+        Err(e) => Err(problem(None, None, e.reason())),
     };
     match parsed {
         Ok(config) => ConfigLoad { config, path, problem: None },
@@ -344,8 +355,7 @@ pub fn load_user_config() -> ConfigLoad {
 
 /// [`save_config`] to the user's config directory.
 pub fn save_user_config(config: &Config) -> Result<PathBuf, StoreError> {
-    let d = store::Dirs::project()
-        .ok_or_else(|| ThudError::invalid("home", "no home directory; cannot find the config directory"))?;
+    let d = store::Dirs::project().ok_or(StoreError::NoHome("config"))?;
     save_config(&d.config_dir, config)
 }
 

@@ -9,7 +9,9 @@ pub use thud_core::{acoustics, contact, damper, design, error, paper, units, Thu
 
 pub mod config;
 pub mod export;
+pub mod fsio;
 pub mod presets;
+pub mod signals;
 pub mod store;
 
 pub mod cli;

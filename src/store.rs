@@ -1,19 +1,21 @@
 //! Files that outlive a session: atomic writes, TOML parse problems with file/line/column, and
-//! named saved designs in the data directory. Front-end support, not physics.
+//! named saved designs in the data directory. Front-end support, not physics. Every read and
+//! write goes through [`crate::fsio`]: writes are atomic and never replace a file unasked or a
+//! non-regular file at all; reads take only regular files up to [`fsio::MAX_READ_BYTES`].
 //!
 //! Every function takes the directory it works in, so tests use a temporary directory; the
 //! `ProjectDirs`-based locations are in [`Dirs`].
 
 use std::fmt;
 use std::fs;
-use std::io::{self, Write};
+use std::io;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::{Deserialize, Serialize};
 
 use crate::design::Design;
 use crate::error::ThudError;
+use crate::fsio::{self, FileKind, FsError, Overwrite};
 
 /// The directories thud keeps its files in.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -86,60 +88,52 @@ pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Re
 }
 
 /// A failure to read or write one of thud's files.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum StoreError {
     /// The operating system refused: the path and the reason.
-    Io { path: PathBuf, source: io::Error },
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: io::Error,
+    },
+    /// The file exists and replacing it was not asked for (the caller may ask the user, then
+    /// call again with `overwrite`).
+    #[error("{}: already exists", .0.display())]
+    Exists(PathBuf),
+    /// The path is a directory, device, FIFO or socket: never read or replaced.
+    #[error("{}: is {kind}, not a regular file", path.display())]
+    NotRegular { path: PathBuf, kind: FileKind },
+    /// The file is larger than [`fsio::MAX_READ_BYTES`]: not a settings or design file.
+    #[error("{}: is larger than {limit_bytes} bytes", path.display())]
+    TooLarge { path: PathBuf, limit_bytes: u64 },
     /// The file is there but is not valid (it is left untouched).
-    Invalid(FileProblem),
-    /// A bad argument (e.g. a design name with a '/').
-    Thud(ThudError),
+    #[error(transparent)]
+    Invalid(#[from] FileProblem),
+    /// A bad argument (e.g. a design name with a '/') or a design that fails its checks.
+    #[error(transparent)]
+    Thud(#[from] ThudError),
+    /// No home directory, so no config or data directory.
+    #[error("no home directory, so no {0} directory")]
+    NoHome(&'static str),
 }
 
-impl fmt::Display for StoreError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            StoreError::Io { path, source } => write!(f, "{}: {source}", path.display()),
-            StoreError::Invalid(p) => write!(f, "{p}"),
-            StoreError::Thud(e) => write!(f, "{e}"),
-        }
-    }
-}
-
-impl std::error::Error for StoreError {}
-
-impl From<ThudError> for StoreError {
-    fn from(e: ThudError) -> Self {
-        StoreError::Thud(e)
-    }
-}
-
-impl From<FileProblem> for StoreError {
-    fn from(p: FileProblem) -> Self {
-        StoreError::Invalid(p)
-    }
-}
-
-impl From<StoreError> for ThudError {
-    /// For the CLI: a store failure as a one-line error naming the file.
-    fn from(e: StoreError) -> Self {
+impl From<FsError> for StoreError {
+    fn from(e: FsError) -> Self {
         match e {
-            StoreError::Thud(t) => t,
-            StoreError::Io { path, source } => ThudError::invalid("file", format!("{}: {source}", path.display())),
-            StoreError::Invalid(p) => ThudError::invalid("file", p.to_string()),
+            FsError::Io { path, source } => StoreError::Io { path, source },
+            FsError::Exists(path) => StoreError::Exists(path),
+            FsError::NotRegular { path, kind } => StoreError::NotRegular { path, kind },
+            FsError::TooLarge { path, limit_bytes } => StoreError::TooLarge { path, limit_bytes },
         }
     }
 }
 
-fn io_err(path: &Path) -> impl FnOnce(io::Error) -> StoreError + '_ {
-    move |source| StoreError::Io { path: path.to_path_buf(), source }
-}
-
-/// Writes `bytes` to `path` atomically: a temporary file in the same directory is written,
-/// flushed to disk (fsync) and renamed over `path`, so a reader sees the old or the new file,
-/// never a part. Creates the parent directory if needed.
+/// Writes `bytes` to `path` atomically, replacing what is there (for files the user asked to
+/// save, like the config): see [`fsio::write`]. A reader sees the old or the new file, never a
+/// part; a target that is not a regular file is refused. Creates the parent directory.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), StoreError> {
-    write_atomic_with(path, bytes, |_| Ok(()))
+    Ok(fsio::write(path, bytes, Overwrite::Replace)?)
 }
 
 /// [`write_atomic`] with a seam: `before_rename(temp_path)` runs after the temporary file is
@@ -150,47 +144,13 @@ pub fn write_atomic_with(
     bytes: &[u8],
     before_rename: impl FnOnce(&Path) -> io::Result<()>,
 ) -> Result<(), StoreError> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    fs::create_dir_all(&dir).map_err(io_err(&dir))?;
-    let name = path.file_name().map_or("file".into(), |n| n.to_string_lossy().into_owned());
-    static SEQ: AtomicU64 = AtomicU64::new(0);
-    let seq = SEQ.fetch_add(1, Ordering::Relaxed);
-    let tmp = dir.join(format!(".{name}.{}-{seq}.tmp", std::process::id()));
-    let result = write_synced(&tmp, bytes)
-        .and_then(|()| before_rename(&tmp).map_err(io_err(&tmp)))
-        .and_then(|()| fs::rename(&tmp, path).map_err(io_err(path)));
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-        return result;
-    }
-    sync_dir(&dir);
-    Ok(())
+    Ok(fsio::write_with(path, bytes, Overwrite::Replace, before_rename)?)
 }
 
-/// Creates `path` with `bytes` and fsyncs it.
-fn write_synced(path: &Path, bytes: &[u8]) -> Result<(), StoreError> {
-    let mut f = fs::File::create(path).map_err(io_err(path))?;
-    f.write_all(bytes).map_err(io_err(path))?;
-    f.sync_all().map_err(io_err(path))
-}
-
-/// Makes a rename durable by syncing its directory (best effort; not possible everywhere).
-fn sync_dir(dir: &Path) {
-    if let Ok(d) = fs::File::open(dir) {
-        let _ = d.sync_all();
-    }
-}
-
-/// Reads `path` as text; `Ok(None)` when it does not exist.
+/// Reads `path` as text if it is a regular file of at most [`fsio::MAX_READ_BYTES`];
+/// `Ok(None)` when it does not exist.
 pub fn read_optional(path: &Path) -> Result<Option<String>, StoreError> {
-    match fs::read_to_string(path) {
-        Ok(s) => Ok(Some(s)),
-        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(None),
-        Err(e) => Err(StoreError::Io { path: path.to_path_buf(), source: e }),
-    }
+    Ok(fsio::read_optional(path, fsio::MAX_READ_BYTES)?)
 }
 
 /// A design file: a one-line description and the design. The format of saved designs and of
@@ -244,12 +204,13 @@ pub fn design_path(data_dir: &Path, name: &str) -> Result<PathBuf, ThudError> {
     Ok(designs_dir(data_dir).join(format!("{name}.toml")))
 }
 
-/// Saves `file` as the design `name` in `data_dir` (atomically, replacing one of that name).
-/// Returns the path written.
-pub fn save_design(data_dir: &Path, name: &str, file: &DesignFile) -> Result<PathBuf, StoreError> {
+/// Saves `file` as the design `name` in `data_dir`, atomically. A design of that name is
+/// replaced only with `overwrite`; without it the answer is [`StoreError::Exists`] and the file
+/// is untouched (the explorer asks the user, then calls again). Returns the path written.
+pub fn save_design(data_dir: &Path, name: &str, file: &DesignFile, overwrite: bool) -> Result<PathBuf, StoreError> {
     let path = design_path(data_dir, name)?;
     file.design.validate()?;
-    write_atomic(&path, file.to_toml()?.as_bytes())?;
+    fsio::write(&path, file.to_toml()?.as_bytes(), Overwrite::from_force(overwrite))?;
     Ok(path)
 }
 
@@ -257,14 +218,14 @@ pub fn save_design(data_dir: &Path, name: &str, file: &DesignFile) -> Result<Pat
 /// invalid design is reported as [`StoreError::Invalid`] and left as it is.
 pub fn load_design(data_dir: &Path, name: &str) -> Result<DesignFile, StoreError> {
     let path = design_path(data_dir, name)?;
-    let text = fs::read_to_string(&path).map_err(io_err(&path))?;
+    let text = fsio::read_to_string(&path, fsio::MAX_READ_BYTES)?;
     Ok(DesignFile::parse(&path, &text)?)
 }
 
 /// Deletes the saved design `name` from `data_dir`.
 pub fn delete_design(data_dir: &Path, name: &str) -> Result<(), StoreError> {
     let path = design_path(data_dir, name)?;
-    fs::remove_file(&path).map_err(io_err(&path))
+    fs::remove_file(&path).map_err(|source| StoreError::Io { path, source })
 }
 
 /// One saved design in a listing.
@@ -299,8 +260,8 @@ pub fn list_designs(data_dir: &Path) -> Result<DesignList, StoreError> {
         if path.extension().is_none_or(|e| e != "toml") || check_design_name(&name).is_err() {
             continue;
         }
-        let parsed = fs::read_to_string(&path)
-            .map_err(|e| FileProblem { path: path.clone(), line: None, column: None, message: e.to_string() })
+        let parsed = fsio::read_to_string(&path, fsio::MAX_READ_BYTES)
+            .map_err(|e| FileProblem { path: path.clone(), line: None, column: None, message: e.reason() })
             .and_then(|text| DesignFile::parse(&path, &text));
         match parsed {
             Ok(f) => list.designs.push(SavedEntry { name, description: f.description, path }),
@@ -311,8 +272,8 @@ pub fn list_designs(data_dir: &Path) -> Result<DesignList, StoreError> {
 }
 
 /// [`save_design`] in the user's data directory.
-pub fn save_user_design(name: &str, file: &DesignFile) -> Result<PathBuf, StoreError> {
-    save_design(&user_dirs()?.data_dir, name, file)
+pub fn save_user_design(name: &str, file: &DesignFile, overwrite: bool) -> Result<PathBuf, StoreError> {
+    save_design(&user_dirs()?.data_dir, name, file, overwrite)
 }
 
 /// [`load_design`] from the user's data directory.
@@ -326,8 +287,7 @@ pub fn list_user_designs() -> Result<DesignList, StoreError> {
 }
 
 fn user_dirs() -> Result<Dirs, StoreError> {
-    Dirs::project()
-        .ok_or_else(|| ThudError::invalid("home", "no home directory; cannot find the data directory").into())
+    Dirs::project().ok_or(StoreError::NoHome("data"))
 }
 
 #[cfg(test)]

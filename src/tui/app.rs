@@ -492,7 +492,7 @@ impl App {
             self.preset
         );
         let file = DesignFile { description, design: self.design.clone() };
-        match store::save_design(&dir, name, &file) {
+        match store::save_design(&dir, name, &file, false) {
             Ok(path) => {
                 self.preset = name.to_string();
                 self.set_status(&format!("saved {name} to {}", path.display()), false);

@@ -1,0 +1,100 @@
+//! What happens when thud is told to stop: SIGINT, SIGTERM or SIGHUP run every registered
+//! clean-up (remove a live temporary file, restore the terminal), then the process exits with
+//! status 128 + the signal number, as a shell reports a process killed by that signal.
+//!
+//! One handler for the whole process, so the file writer ([`crate::fsio`]) and the terminal
+//! ([`crate::tui::terminal`]) cannot race each other to `exit`. The signal itself is caught by
+//! `signal-hook`, which only writes to a pipe in the signal handler; the clean-ups run on an
+//! ordinary thread that reads that pipe, so they may lock, allocate and do I/O. The handler is
+//! installed the first time something registers a clean-up, so commands that write no file and
+//! draw no screen keep the default signal behaviour.
+
+use std::io;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, OnceLock, PoisonError};
+
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+use signal_hook::iterator::Signals;
+
+/// The signals that run the clean-ups and end the process.
+pub const HANDLED: [i32; 3] = [SIGINT, SIGTERM, SIGHUP];
+
+type Cleanup = Box<dyn Fn() + Send + Sync>;
+
+/// The live clean-ups, each with the id of its [`Registration`].
+static CLEANUPS: Mutex<Vec<(u64, Cleanup)>> = Mutex::new(Vec::new());
+static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+
+/// A registered clean-up; dropping it unregisters it (the clean-up is not run).
+#[derive(Debug)]
+#[must_use = "the clean-up is unregistered when this is dropped"]
+pub struct Registration(u64);
+
+impl Drop for Registration {
+    fn drop(&mut self) {
+        let mut list = CLEANUPS.lock().unwrap_or_else(PoisonError::into_inner);
+        list.retain(|(id, _)| *id != self.0);
+    }
+}
+
+/// Registers `cleanup` to run if SIGINT, SIGTERM or SIGHUP arrives while the returned
+/// [`Registration`] is alive; installs the handler on first use. If the handler cannot be
+/// installed the clean-up is still registered (and never runs) and the error is returned, so a
+/// caller may go on without the safety net.
+pub fn on_signal(cleanup: impl Fn() + Send + Sync + 'static) -> (Registration, io::Result<()>) {
+    let installed = install();
+    let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+    CLEANUPS.lock().unwrap_or_else(PoisonError::into_inner).push((id, Box::new(cleanup)));
+    (Registration(id), installed)
+}
+
+/// Installs the handler and its thread (once).
+fn install() -> io::Result<()> {
+    static INSTALLED: OnceLock<Result<(), String>> = OnceLock::new();
+    INSTALLED
+        .get_or_init(|| {
+            let mut signals = Signals::new(HANDLED).map_err(|e| e.to_string())?;
+            std::thread::Builder::new()
+                .name("thud-signals".into())
+                .spawn(move || {
+                    if let Some(signal) = signals.forever().next() {
+                        run_cleanups();
+                        std::process::exit(128 + signal);
+                    }
+                })
+                .map(drop)
+                .map_err(|e| e.to_string())
+        })
+        .clone()
+        .map_err(io::Error::other)
+}
+
+/// Runs every registered clean-up, newest first.
+fn run_cleanups() {
+    let list = CLEANUPS.lock().unwrap_or_else(PoisonError::into_inner);
+    for (_, cleanup) in list.iter().rev() {
+        cleanup();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::AtomicUsize;
+    use std::sync::Arc;
+
+    #[test]
+    fn a_dropped_registration_is_forgotten() {
+        let runs = Arc::new(AtomicUsize::new(0));
+        let r = runs.clone();
+        let (reg, installed) = on_signal(move || {
+            r.fetch_add(1, Ordering::SeqCst);
+        });
+        assert!(installed.is_ok());
+        let id = reg.0;
+        assert!(CLEANUPS.lock().unwrap().iter().any(|(i, _)| *i == id));
+        drop(reg);
+        assert!(!CLEANUPS.lock().unwrap().iter().any(|(i, _)| *i == id));
+        assert_eq!(runs.load(Ordering::SeqCst), 0, "dropping does not run the clean-up");
+    }
+}
