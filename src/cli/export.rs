@@ -1,13 +1,15 @@
 //! `thud export csv|svg|wav`: a design's data, figures and sound as files.
 
-use std::path::PathBuf;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand, ValueEnum};
 
 use super::design_args::{parse_range, DesignArgs};
 use super::quantity;
 use crate::error::ThudError;
-use crate::export::{self, wav::WavOptions, ExportOptions, Kind};
+use crate::export::{self, wav::WavOptions, ExportError, ExportOptions, Kind};
+use crate::fsio::{self, FsError, Overwrite};
 use crate::units::Kind as Unit;
 
 #[derive(Debug, Clone, Args)]
@@ -86,9 +88,12 @@ struct Common {
     /// Points of a waveform or time history.
     #[arg(long, value_name = "N", default_value_t = 2001)]
     points: usize,
-    /// The file to write.
+    /// The file to write (`-`: standard output). An existing file is kept unless --force.
     #[arg(long, value_name = "FILE")]
     out: PathBuf,
+    /// Replace the --out file if it exists (atomically; never a device, FIFO or folder).
+    #[arg(long)]
+    force: bool,
 }
 
 impl Common {
@@ -103,15 +108,53 @@ impl Common {
     }
 }
 
-/// Renders and writes one export; says on stderr what was written.
+/// Renders and writes one export; says on stderr what was written. The target is checked
+/// before the work starts, so a refused --out costs nothing.
 fn write(kind: Kind, common: &Common, opts: &ExportOptions) -> Result<(), ThudError> {
     if opts.points < 2 {
         return Err(ThudError::invalid("points", format!("{}; must be at least 2", opts.points)));
     }
     let design = common.design.design()?;
-    export::export_to_path(kind, &design, opts, &common.out)?;
-    eprintln!("thud: wrote {}", common.out.display());
+    let overwrite = Overwrite::from_force(common.force);
+    let out = &common.out;
+    if fsio::is_stdout(out) {
+        if kind == Kind::Wav && std::io::stdout().is_terminal() {
+            return Err(ThudError::invalid(
+                "out",
+                "-: a WAV file is binary; redirect standard output to a file or a player",
+            ));
+        }
+        let bytes = export::render(kind, &design, opts).map_err(|e| export_error(out, e))?;
+        return fsio::write_stdout(&bytes)
+            .map_err(|e| ThudError::invalid("out", format!("cannot write to standard output: {e}")));
+    }
+    fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    let bytes = export::render(kind, &design, opts).map_err(|e| export_error(out, e))?;
+    fsio::write(out, &bytes, overwrite).map_err(|e| out_error(out, &e))?;
+    eprintln!("thud: wrote {}", out.display());
     Ok(())
+}
+
+/// An export failure as the CLI's one-line error.
+fn export_error(out: &Path, e: ExportError) -> ThudError {
+    match e {
+        ExportError::Invalid(t) => t,
+        ExportError::File(f) => out_error(out, &f),
+        ExportError::Csv(c) => ThudError::invalid("out", format!("cannot write {}: {c}", out.display())),
+    }
+}
+
+/// A refused or failed write of `out` as the CLI's one-line error (exit 2): what is at the
+/// path and what to do.
+pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
+    let message = match e {
+        FsError::Exists(p) => format!("{} exists; add --force to replace it", p.display()),
+        FsError::NotRegular { path, kind } => {
+            format!("{} is {kind}; thud writes only regular files (even with --force)", path.display())
+        }
+        FsError::TooLarge { .. } | FsError::Io { .. } => format!("cannot write {}: {}", out.display(), e.reason()),
+    };
+    ThudError::invalid("out", message)
 }
 
 pub fn run(a: &ExportArgs) -> Result<(), ThudError> {

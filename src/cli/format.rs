@@ -20,24 +20,10 @@ fn cell_text(v: &Value) -> String {
     }
 }
 
-fn cell_csv(v: &Value) -> String {
-    match v {
-        Value::Num(x) => format!("{x}"),
-        Value::Text(s) if s.contains([',', '"']) => format!("\"{}\"", s.replace('"', "\"\"")),
-        Value::Text(s) => s.clone(),
-        Value::Missing => String::new(),
-    }
-}
-
-/// Writes `table` as CSV: a header of column keys, then the rows.
+/// Writes `table` as CSV: a header of column keys, then the rows (the one CSV writer,
+/// [`crate::export::csv::write_table`]).
 pub fn write_csv(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
-    let header: Vec<&str> = table.columns.iter().map(|c| c.key).collect();
-    writeln!(out, "{}", header.join(","))?;
-    for row in &table.rows {
-        let cells: Vec<String> = row.iter().map(cell_csv).collect();
-        writeln!(out, "{}", cells.join(","))?;
-    }
-    Ok(())
+    crate::export::csv::write_table(out, table).map_err(crate::export::csv::into_io)
 }
 
 /// Writes `table` as aligned text with its title and notes.

@@ -4,9 +4,12 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use super::export::out_error;
 use super::format::print_str;
 use super::{print_table, OutputArgs};
 use crate::error::ThudError;
+use crate::export::report;
+use crate::fsio::{self, FsError, Overwrite};
 use crate::paper;
 
 #[derive(Debug, Clone, Args)]
@@ -17,9 +20,12 @@ pub struct PaperArgs {
     /// List every table and figure that can be reproduced.
     #[arg(long)]
     list: bool,
-    /// Folder for `thud paper all` (created if missing).
+    /// Folder for `thud paper all` (created if missing); files in it are kept unless --force.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// With `all`: replace files of the same names in --out (atomically; never a device or folder).
+    #[arg(long, requires = "out")]
+    force: bool,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -35,7 +41,7 @@ pub fn run(a: &PaperArgs) -> Result<(), ThudError> {
     }
     let id = a.id.as_deref().unwrap_or_default().to_ascii_lowercase();
     if id == "all" {
-        return all(a.out.as_deref());
+        return all(a.out.as_deref(), Overwrite::from_force(a.force));
     }
     let table = paper::get(&id).ok_or_else(|| {
         let ids: Vec<&str> = paper::items().map(|i| i.id).collect();
@@ -45,13 +51,18 @@ pub fn run(a: &PaperArgs) -> Result<(), ThudError> {
     Ok(())
 }
 
-/// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md.
-fn all(out: Option<&std::path::Path>) -> Result<(), ThudError> {
+/// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md. Every
+/// target is checked before the work starts; an existing file is kept unless `--force`.
+fn all(out: Option<&std::path::Path>, overwrite: Overwrite) -> Result<(), ThudError> {
     let dir = out.ok_or_else(|| ThudError::invalid("out", "`thud paper all` needs --out DIR"))?;
-    let files = crate::export::report::paper_bundle();
-    for f in &files {
-        crate::export::write_file(&dir.join(&f.name), f.contents.as_bytes())?;
+    if fsio::is_stdout(dir) {
+        return Err(ThudError::invalid("out", "-: `thud paper all` writes a folder of files; give --out DIR"));
     }
+    let refused = |e: FsError| out_error(e.path(), &e);
+    let expected = report::expected_files();
+    report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite).map_err(refused)?;
+    let files = report::paper_bundle();
+    report::write_bundle(dir, &files, overwrite).map_err(refused)?;
     eprintln!("thud: wrote {} files to {}", files.len(), dir.display());
     Ok(())
 }

@@ -54,7 +54,9 @@ pub fn run(a: &SweepArgs) -> Result<(), ThudError> {
             let j = serde_json::json!({ "design": d, "chart": chart, "table5": bands });
             print_str(&(serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"));
         }
-        OutputFormat::Csv => print_str(&crate::export::csv::sweep(&chart)),
+        OutputFormat::Csv => print_str(
+            &crate::export::csv::sweep(&chart).map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?,
+        ),
         OutputFormat::Text => {
             let mut s = format!("base      {}\n", describe(&d));
             s += &format!(

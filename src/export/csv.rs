@@ -1,98 +1,284 @@
-//! CSV files: a header of keys with their SI unit in the name, then one row per point. Numbers
-//! are written in full precision (Rust's shortest round-trip form).
+//! CSV files: a header of keys with their SI unit in the name, then one row per point. One writer
+//! for every table thud prints or saves: the `csv` crate, fed serde rows, so quoting is the
+//! same everywhere (a field with a comma, a quote or a line break is quoted). Numbers are written
+//! in full precision in Rust's shortest round-trip form (`0.00001`, not `1e-5`), so they parse
+//! back to the same `f64`.
+
+use std::io::Write;
+
+use serde::{Serialize, Serializer};
 
 use crate::acoustics::Field;
 use crate::damper::{free_response, DamperParams, Run};
 use crate::design::Chart;
 use crate::paper::{Table, Value};
 
-/// An optional number: empty when absent.
-fn opt(v: Option<f64>) -> String {
-    v.map_or(String::new(), |x| x.to_string())
+/// A number as CSV writes it: Rust's `Display` (shortest round trip, never an exponent).
+#[derive(Debug, Clone, Copy)]
+struct Num(f64);
+
+impl Serialize for Num {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(&self.0)
+    }
 }
+
+/// `header`, then one record per row, as text.
+fn to_csv<R: Serialize>(header: &[&str], rows: impl IntoIterator<Item = R>) -> Result<String, csv::Error> {
+    let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
+    w.write_record(header)?;
+    for row in rows {
+        w.serialize(row)?;
+    }
+    into_string(w)
+}
+
+/// The text of a writer over memory.
+fn into_string(w: csv::Writer<Vec<u8>>) -> Result<String, csv::Error> {
+    let bytes = w.into_inner().map_err(|e| csv::Error::from(e.into_error()))?;
+    String::from_utf8(bytes)
+        .map_err(|e| csv::Error::from(std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error())))
+}
+
+#[derive(Serialize)]
+struct WaveformRow {
+    t_s: Num,
+    p_pa: Num,
+}
+const WAVEFORM_HEADER: [&str; 2] = ["t_s", "p_pa"];
 
 /// The pressure waveform of one impact, `n` uniform samples: `t_s,p_pa` (time after the
 /// contact starts, so the first sound arrives at the propagation delay).
-pub fn waveform(field: &Field, n: usize) -> String {
+pub fn waveform(field: &Field, n: usize) -> Result<String, csv::Error> {
     let (t, p) = field.waveform(n);
-    let mut s = String::from("t_s,p_pa\n");
-    for (ti, pi) in t.iter().zip(&p) {
-        s += &format!("{ti},{pi}\n");
-    }
-    s
+    to_csv(&WAVEFORM_HEADER, t.iter().zip(&p).map(|(&t, &p)| WaveformRow { t_s: Num(t), p_pa: Num(p) }))
 }
+
+#[derive(Serialize)]
+struct HistoryRow {
+    t_s: Num,
+    x_m: Num,
+    y_m: Num,
+    x_free_m: Num,
+}
+const HISTORY_HEADER: [&str; 4] = ["t_s", "x_m", "y_m", "x_free_m"];
 
 /// The time history of a run: `t_s,x_m,y_m,x_free_m`, with the main mass's motion without the
 /// damper (`x_free_m`) beside it.
-pub fn history(run: &Run, damper: &DamperParams) -> String {
-    let mut s = String::from("t_s,x_m,y_m,x_free_m\n");
-    for h in &run.history {
-        s += &format!("{},{},{},{}\n", h.t_s, h.x_m, h.y_m, free_response(damper, h.t_s));
-    }
-    s
+pub fn history(run: &Run, damper: &DamperParams) -> Result<String, csv::Error> {
+    to_csv(
+        &HISTORY_HEADER,
+        run.history.iter().map(|h| HistoryRow {
+            t_s: Num(h.t_s),
+            x_m: Num(h.x_m),
+            y_m: Num(h.y_m),
+            x_free_m: Num(free_response(damper, h.t_s)),
+        }),
+    )
 }
+
+#[derive(Serialize)]
+struct ImpactRow {
+    index: usize,
+    t_s: Num,
+    wall: i8,
+    u_in_m_s: Num,
+    u_out_m_s: Num,
+    restitution: Num,
+    t_end_s: Num,
+    duration_s: Num,
+    penetration_max_m: Num,
+    spl_db: Option<Num>,
+}
+const IMPACTS_HEADER: [&str; 10] = [
+    "index",
+    "t_s",
+    "wall",
+    "u_in_m_s",
+    "u_out_m_s",
+    "restitution",
+    "t_end_s",
+    "duration_s",
+    "penetration_max_m",
+    "spl_db",
+];
 
 /// The impacts of a run with the SPL of each (`spl_db[k]` for impact k, dB re 20 µPa, rms
 /// over τ from the direct arrival).
-pub fn impacts(run: &Run, spl_db: &[f64]) -> String {
-    let mut s =
-        String::from("index,t_s,wall,u_in_m_s,u_out_m_s,restitution,t_end_s,duration_s,penetration_max_m,spl_db\n");
-    for (k, i) in run.impacts.iter().enumerate() {
-        s += &format!(
-            "{},{},{},{},{},{},{},{},{},{}\n",
-            k + 1,
-            i.t_s,
-            i.wall,
-            i.u_in_m_s,
-            i.u_out_m_s,
-            i.u_out_m_s / i.u_in_m_s,
-            i.t_end_s,
-            i.t_end_s - i.t_s,
-            i.penetration_max_m,
-            opt(spl_db.get(k).copied())
-        );
-    }
-    s
+pub fn impacts(run: &Run, spl_db: &[f64]) -> Result<String, csv::Error> {
+    to_csv(
+        &IMPACTS_HEADER,
+        run.impacts.iter().enumerate().map(|(k, i)| ImpactRow {
+            index: k + 1,
+            t_s: Num(i.t_s),
+            wall: i.wall,
+            u_in_m_s: Num(i.u_in_m_s),
+            u_out_m_s: Num(i.u_out_m_s),
+            restitution: Num(i.u_out_m_s / i.u_in_m_s),
+            t_end_s: Num(i.t_end_s),
+            duration_s: Num(i.t_end_s - i.t_s),
+            penetration_max_m: Num(i.penetration_max_m),
+            spl_db: spl_db.get(k).copied().map(Num),
+        }),
+    )
 }
+
+#[derive(Serialize)]
+struct SweepRow {
+    mass_kg: Num,
+    gap_m: Num,
+    inclination_cm_s: Option<Num>,
+    inclination_fit_cm_s: Option<Num>,
+    u0_max_m_s: Num,
+    zdot_abs_max_m_s: Num,
+    spl_max_db: Option<Num>,
+    n_impacts: usize,
+    zone: Option<u8>,
+}
+const SWEEP_HEADER: [&str; 9] = [
+    "mass_kg",
+    "gap_m",
+    "inclination_cm_s",
+    "inclination_fit_cm_s",
+    "u0_max_m_s",
+    "zdot_abs_max_m_s",
+    "spl_max_db",
+    "n_impacts",
+    "zone",
+];
 
 /// The design chart, one row per computed cell (mass × gap).
-pub fn sweep(chart: &Chart) -> String {
-    let mut s = String::from(
-        "mass_kg,gap_m,inclination_cm_s,inclination_fit_cm_s,u0_max_m_s,zdot_abs_max_m_s,spl_max_db,n_impacts,zone\n",
-    );
-    for c in chart.cells.iter().flatten() {
-        let m = &c.metrics;
-        s += &format!(
-            "{},{},{},{},{},{},{},{},{}\n",
-            c.mass_kg,
-            c.gap_m,
-            opt(m.inclination_cm_s),
-            opt(m.inclination_fit_cm_s),
-            m.u0_max_m_s,
-            m.zdot_abs_max_m_s,
-            opt(m.spl_max_db),
-            m.n_impacts,
-            m.zone.map_or(String::new(), |z| z.number().to_string())
-        );
-    }
-    s
+pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
+    to_csv(
+        &SWEEP_HEADER,
+        chart.cells.iter().flatten().map(|c| {
+            let m = &c.metrics;
+            SweepRow {
+                mass_kg: Num(c.mass_kg),
+                gap_m: Num(c.gap_m),
+                inclination_cm_s: m.inclination_cm_s.map(Num),
+                inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
+                u0_max_m_s: Num(m.u0_max_m_s),
+                zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
+                spl_max_db: m.spl_max_db.map(Num),
+                n_impacts: m.n_impacts,
+                zone: m.zone.map(|z| z.number()),
+            }
+        }),
+    )
 }
 
-/// One cell of a table: numbers in full, text quoted when needed, nothing for a missing value.
+/// One cell of a table: numbers in full, text as it is (the writer quotes it when needed),
+/// nothing for a missing value.
 fn cell(v: &Value) -> String {
     match v {
-        Value::Num(x) => format!("{x}"),
-        Value::Text(s) if s.contains([',', '"', '\n']) => format!("\"{}\"", s.replace('"', "\"\"")),
+        Value::Num(x) => x.to_string(),
         Value::Text(s) => s.clone(),
         Value::Missing => String::new(),
     }
 }
 
-/// A reproduced paper table: a header of column keys, then the rows.
-pub fn table(t: &Table) -> String {
-    let mut s = t.columns.iter().map(|c| c.key).collect::<Vec<_>>().join(",") + "\n";
+/// Writes a reproduced paper table to `out`: a header of column keys, then the rows. The one
+/// table writer of both `thud paper ID --csv` and `thud paper all`.
+pub fn write_table(out: impl Write, t: &Table) -> Result<(), csv::Error> {
+    let mut w = csv::WriterBuilder::new().flexible(true).from_writer(out);
+    w.write_record(t.columns.iter().map(|c| c.key))?;
     for row in &t.rows {
-        s += &(row.iter().map(cell).collect::<Vec<_>>().join(",") + "\n");
+        w.write_record(row.iter().map(cell))?;
     }
-    s
+    w.flush()?;
+    Ok(())
+}
+
+/// A CSV error as an I/O error, keeping the kind of one that was I/O (a closed pipe stays
+/// `BrokenPipe`).
+pub fn into_io(e: csv::Error) -> std::io::Error {
+    if !e.is_io_error() {
+        return std::io::Error::other(e);
+    }
+    match e.into_kind() {
+        csv::ErrorKind::Io(io) => io,
+        kind => std::io::Error::other(format!("{kind:?}")),
+    }
+}
+
+/// A reproduced paper table as CSV text (see [`write_table`]).
+pub fn table(t: &Table) -> Result<String, csv::Error> {
+    let mut bytes = Vec::new();
+    write_table(&mut bytes, t)?;
+    String::from_utf8(bytes)
+        .map_err(|e| csv::Error::from(std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error())))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::paper::col;
+
+    /// The header a row type writes itself (its field names), to check the constants.
+    fn serde_header<R: Serialize>(row: R) -> String {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.serialize(row).unwrap();
+        String::from_utf8(w.into_inner().unwrap()).unwrap().lines().next().unwrap().to_string()
+    }
+
+    #[test]
+    fn each_header_is_its_row_type_s_field_names() {
+        let n = Num(0.0);
+        assert_eq!(serde_header(WaveformRow { t_s: n, p_pa: n }), WAVEFORM_HEADER.join(","));
+        assert_eq!(serde_header(HistoryRow { t_s: n, x_m: n, y_m: n, x_free_m: n }), HISTORY_HEADER.join(","));
+        let imp = ImpactRow {
+            index: 1,
+            t_s: n,
+            wall: 1,
+            u_in_m_s: n,
+            u_out_m_s: n,
+            restitution: n,
+            t_end_s: n,
+            duration_s: n,
+            penetration_max_m: n,
+            spl_db: None,
+        };
+        assert_eq!(serde_header(imp), IMPACTS_HEADER.join(","));
+        let sw = SweepRow {
+            mass_kg: n,
+            gap_m: n,
+            inclination_cm_s: None,
+            inclination_fit_cm_s: None,
+            u0_max_m_s: n,
+            zdot_abs_max_m_s: n,
+            spl_max_db: None,
+            n_impacts: 0,
+            zone: None,
+        };
+        assert_eq!(serde_header(sw), SWEEP_HEADER.join(","));
+    }
+
+    #[test]
+    fn numbers_are_written_in_full_without_exponents() {
+        let s = to_csv(&["a", "b"], [WaveformRow { t_s: Num(1e-5), p_pa: Num(-2.5) }]).unwrap();
+        assert_eq!(s, "a,b\n0.00001,-2.5\n");
+        assert_eq!(to_csv::<WaveformRow>(&["a", "b"], []).unwrap(), "a,b\n", "the header even with no rows");
+    }
+
+    #[test]
+    fn text_with_commas_quotes_or_line_breaks_is_quoted_the_same_way_everywhere() {
+        let t = Table {
+            id: "t",
+            title: "t".into(),
+            columns: vec![col("a", "a"), col("b", "b")],
+            rows: vec![
+                vec![Value::Text("x, y".into()), Value::Num(0.5)],
+                vec![Value::Text("say \"hi\"".into()), Value::Missing],
+                vec![Value::Text("two\nlines".into()), Value::Text("plain".into())],
+            ],
+            notes: vec![],
+        };
+        let s = table(&t).unwrap();
+        assert_eq!(s, "a,b\n\"x, y\",0.5\n\"say \"\"hi\"\"\",\n\"two\nlines\",plain\n");
+        let mut r = csv::Reader::from_reader(s.as_bytes());
+        let rows: Vec<csv::StringRecord> = r.records().map(Result::unwrap).collect();
+        assert_eq!(rows.len(), 3, "a line break inside a field does not start a row");
+        assert_eq!(&rows[2][0], "two\nlines");
+    }
 }

@@ -3,7 +3,7 @@
 //! The building blocks ([`csv`], [`figures`], [`wav`], [`report`]) return the file's contents
 //! (`String` or `Vec<u8>`). [`render`] and [`export_to_path`] are the one-call front door used
 //! by the CLI and the TUI: a [`Kind`] of file, a design and [`ExportOptions`] in; the contents,
-//! or a file written atomically, out.
+//! or a file written through [`crate::fsio`] (atomic, never over an existing file), out.
 
 pub mod csv;
 pub mod figures;
@@ -13,11 +13,27 @@ pub mod wav;
 
 use std::path::Path;
 
+use thiserror::Error;
+
 use crate::acoustics::{self, Levels, Source};
 use crate::contact::{Impact, Target};
 use crate::design::{self, linspace, Design, Evaluation};
 use crate::error::ThudError;
-use crate::store::{self, StoreError};
+use crate::fsio::{self, FsError, Overwrite};
+
+/// Why an export was not made.
+#[derive(Debug, Error)]
+pub enum ExportError {
+    /// The design or an option is not valid.
+    #[error(transparent)]
+    Invalid(#[from] ThudError),
+    /// The table could not be written as CSV.
+    #[error("cannot write the CSV: {0}")]
+    Csv(#[from] ::csv::Error),
+    /// The file could not be written (it exists, is not a regular file, or the system refused).
+    #[error("cannot write {0}")]
+    File(#[from] FsError),
+}
 
 /// Every file thud can export for a design.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -166,7 +182,7 @@ fn listener(d: &Design) -> String {
 }
 
 /// The contents of an export of `kind` for `design`.
-pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ThudError> {
+pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
     design.validate()?;
     let d = design.resolved()?;
     let points = opts.points.clamp(2, 1_000_000);
@@ -175,14 +191,14 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
             let u0 = impact_speed(&d, opts.u0_m_s)?;
             let field = d.impact_field(u0)?;
             if kind == Kind::CsvWaveform {
-                csv::waveform(&field, points)
+                csv::waveform(&field, points)?
             } else {
                 let title =
                     format!("Sound pressure of one impact, U0 {} m/s ({})", crate::units::sig(u0, 4), listener(&d));
                 figures::waveform(&field, points, &title)
             }
         }
-        Kind::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper),
+        Kind::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper)?,
         Kind::SvgHistory => {
             let title = format!(
                 "Free vibration with and without the damper (m {} g, d {} cm, v0 {} m/s)",
@@ -194,7 +210,7 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
         }
         Kind::CsvImpacts => {
             let e = run(&d, 0)?;
-            csv::impacts(&e.run, &design::impact_spls(&e.run, &d)?)
+            csv::impacts(&e.run, &design::impact_spls(&e.run, &d)?)?
         }
         Kind::SvgDirectivity => {
             let u0 = impact_speed(&d, opts.u0_m_s)?;
@@ -221,31 +237,23 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
             let (masses, gaps) = grid(opts);
             let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {})?;
             match kind {
-                Kind::CsvSweep => csv::sweep(&chart),
+                Kind::CsvSweep => csv::sweep(&chart)?,
                 Kind::SvgChart => figures::design_chart(&chart, "Design chart: zone of each impact mass × gap"),
                 _ => figures::fig17(&chart, "Design chart: damping inclination against SPLmax (Fig 17)"),
             }
         }
         Kind::Wav => {
             let e = run(&d, 0)?;
-            return wav::damper_sound(&d, &e.run, &opts.wav);
+            return Ok(wav::damper_sound(&d, &e.run, &opts.wav)?);
         }
     };
     Ok(text.into_bytes())
 }
 
-/// Writes `bytes` to `path` atomically; the error names the path and the reason.
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), ThudError> {
-    store::write_atomic(path, bytes).map_err(|e| {
-        let reason = match e {
-            StoreError::Io { source, .. } => source.to_string(),
-            other => other.to_string(),
-        };
-        ThudError::invalid("out", format!("cannot write {}: {reason}", path.display()))
-    })
-}
-
-/// Renders an export of `kind` for `design` and writes it to `path` (atomically).
-pub fn export_to_path(kind: Kind, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ThudError> {
-    write_file(path, &render(kind, design, opts)?)
+/// Renders an export of `kind` for `design` and writes it to `path` through [`fsio::write`]:
+/// atomically, and never over an existing file (the explorer picks a free name; a file that
+/// appears meanwhile is left alone and reported).
+pub fn export_to_path(kind: Kind, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ExportError> {
+    fsio::write(path, &render(kind, design, opts)?, Overwrite::Refuse)?;
+    Ok(())
 }

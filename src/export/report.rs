@@ -1,7 +1,10 @@
 //! `paper all`: every reproducible table and figure as CSV (and SVG where it is a figure or a
 //! table worth plotting), and a `REPORT.md` with the side-by-side tables, notes and errors.
 
+use std::path::Path;
+
 use crate::design::Thresholds;
+use crate::fsio::{self, FsError, Overwrite};
 use crate::paper::{self, Table, Value};
 use crate::presets;
 use crate::units::num;
@@ -67,8 +70,15 @@ pub fn paper_bundle() -> Vec<BundleFile> {
         report += &format!("## {} — {}\n\n", item.id, item.description);
         match paper::get(item.id) {
             Some(Ok(table)) => {
+                let contents = match csv::table(&table) {
+                    Ok(text) => text,
+                    Err(e) => {
+                        report += &format!("**Error:** {e}\n\n");
+                        continue;
+                    }
+                };
                 let mut names = vec![format!("{}.csv", item.id)];
-                files.push(BundleFile { name: names[0].clone(), contents: csv::table(&table) });
+                files.push(BundleFile { name: names[0].clone(), contents });
                 if let Some(svg) = figures::paper_figure(&table, &thresholds) {
                     names.push(format!("{}.svg", item.id));
                     files.push(BundleFile { name: names[1].clone(), contents: svg });
@@ -100,4 +110,29 @@ pub fn expected_files() -> Vec<String> {
     }
     v.push("REPORT.md".into());
     v
+}
+
+/// Checks that every file of `names` may be written into `dir` with `overwrite` (see
+/// [`fsio::check_target`]); the first that may not is the error. Run before the bundle is
+/// computed, so a refusal costs nothing.
+pub fn check_bundle_targets<'a>(
+    dir: &Path,
+    names: impl IntoIterator<Item = &'a str>,
+    overwrite: Overwrite,
+) -> Result<(), FsError> {
+    for name in names {
+        fsio::check_target(&dir.join(name), overwrite)?;
+    }
+    Ok(())
+}
+
+/// Writes `files` into `dir` (created if missing), each through [`fsio::write`]. Every target is
+/// checked first, so a refusal (an existing file without `Replace`, or a path that is not a
+/// regular file) writes nothing.
+pub fn write_bundle(dir: &Path, files: &[BundleFile], overwrite: Overwrite) -> Result<(), FsError> {
+    check_bundle_targets(dir, files.iter().map(|f| f.name.as_str()), overwrite)?;
+    for f in files {
+        fsio::write(&dir.join(&f.name), f.contents.as_bytes(), overwrite)?;
+    }
+    Ok(())
 }
