@@ -197,3 +197,50 @@ fn a_panic_restores_the_terminal_before_printing() {
     assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
     assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
 }
+
+/// Starts the explorer with mouse capture in a pane, waits for its screen, sends `signal` to
+/// its pid and checks that it exits with 128 + the signal number and leaves the terminal as it
+/// found it: main screen, cursor visible, mouse reporting off, canonical mode and echo on.
+fn a_signal_restores_the_terminal(signal: &str, number: i32) {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            // The inner shell writes its pid and becomes thud (exec), so the pid is thud's.
+            format!(
+                "cd '{d}' && sh -c 'echo $$ > pid; exec env XDG_CONFIG_HOME=\"{d}/config\" XDG_DATA_HOME=\"{d}/data\" \"{bin}\" tui --mouse'; \
+                 echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
+                d = d.display()
+            )
+        },
+        100,
+        30,
+    );
+    t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
+    assert_eq!(t.format("#{alternate_on}"), "1", "runs on the alternate screen");
+    assert_eq!(t.format("#{mouse_any_flag}"), "1", "mouse reporting on");
+    let pid = t.wait_file("pid");
+    let sent = Command::new("kill").args([&format!("-{signal}"), pid.trim()]).status().unwrap();
+    assert!(sent.success(), "kill -{signal} {pid}");
+    assert_eq!(t.wait_file("status").trim(), (128 + number).to_string(), "exit status after SIG{signal}");
+    let stty = t.wait_file("stty");
+    assert!(has_token(&stty, "icanon") && has_token(&stty, "echo"), "raw mode left on after SIG{signal}:\n{stty}");
+    t.wait_for("the shell after thud", |s| s.contains("AFTER-THUD"));
+    assert_eq!(t.format("#{alternate_on}"), "0", "alternate screen off after SIG{signal}");
+    assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown after SIG{signal}");
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off after SIG{signal}");
+}
+
+#[test]
+fn sigterm_restores_the_terminal() {
+    a_signal_restores_the_terminal("TERM", 15);
+}
+
+#[test]
+fn sighup_restores_the_terminal() {
+    a_signal_restores_the_terminal("HUP", 1);
+}
+
+#[test]
+fn sigint_restores_the_terminal() {
+    a_signal_restores_the_terminal("INT", 2);
+}

@@ -1,5 +1,7 @@
-//! Terminal setup and restore. Every exit path — normal return, `?` error, panic — leaves the
-//! terminal as it was: raw mode off, alternate screen left, mouse capture off, cursor shown.
+//! Terminal setup and restore. Every exit path — normal return, `?` error, panic, and SIGTERM,
+//! SIGHUP (a dropped SSH connection) or SIGINT — leaves the terminal as it was: raw mode off,
+//! alternate screen left, mouse capture off, cursor shown. On a signal the same [`restore`] as
+//! the panic hook runs (through [`crate::signals`]), then thud exits with 128 + the signal.
 
 use std::io::{self, Stdout, Write};
 use std::sync::Once;
@@ -10,6 +12,8 @@ use crossterm::terminal::{self, EnterAlternateScreen, LeaveAlternateScreen};
 use crossterm::{execute, queue};
 use ratatui::backend::CrosstermBackend;
 use ratatui::Terminal;
+
+use crate::signals;
 
 /// The terminal the app draws on.
 pub type Term = Terminal<CrosstermBackend<Stdout>>;
@@ -40,8 +44,11 @@ pub fn install_panic_hook() {
     });
 }
 
-/// Restores the terminal when dropped: hold one for the life of the UI.
-pub struct Guard;
+/// Restores the terminal when dropped: hold one for the life of the UI. While it lives, SIGTERM,
+/// SIGHUP and SIGINT restore the terminal before thud exits.
+pub struct Guard {
+    _on_signal: signals::Registration,
+}
 
 impl Drop for Guard {
     fn drop(&mut self) {
@@ -58,8 +65,11 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
         return Err(io::Error::other("standard output is not a terminal"));
     }
     install_panic_hook();
+    // Registered before the terminal changes, so a signal at any point after is covered. If the
+    // handler cannot be installed the explorer still runs (quit, errors and panics restore).
+    let (on_signal, _installed) = signals::on_signal(restore);
     terminal::enable_raw_mode()?;
-    let guard = Guard;
+    let guard = Guard { _on_signal: on_signal };
     let mut out = io::stdout();
     execute!(out, EnterAlternateScreen, Hide)?;
     if mouse {
