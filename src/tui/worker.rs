@@ -124,7 +124,7 @@ pub fn request_key(r: &Request) -> String {
 }
 
 /// Finished results kept on a job's thread, keyed by their parameters; cleared when full.
-pub struct Cache<V>(HashMap<String, Arc<V>>);
+struct Cache<V>(HashMap<String, Arc<V>>);
 
 impl<V> Default for Cache<V> {
     fn default() -> Self {
@@ -146,7 +146,7 @@ impl<V> Cache<V> {
 }
 
 /// Simulate one design with its history.
-pub struct SimJob {
+struct SimJob {
     key: String,
     design: Design,
 }
@@ -178,7 +178,7 @@ impl Job for SimJob {
 }
 
 /// The sound of a simulated design: metrics, waveform, directivity.
-pub struct AcousticJob {
+struct AcousticJob {
     key: String,
     design: Design,
     sim: Arc<SimResult>,
@@ -209,13 +209,13 @@ impl Job for AcousticJob {
 }
 
 /// A finished chart: the sound key its levels are for, and its passes.
-pub struct CachedChart {
+struct CachedChart {
     sound: String,
     passes: Vec<(Stage, Arc<Chart>)>,
 }
 
 /// The chart sweep: every cell as it is done, then each pass.
-pub struct ChartJob {
+struct ChartJob {
     key: String,
     design: Design,
     grids: Grids,
@@ -263,7 +263,7 @@ impl Job for ChartJob {
 }
 
 /// The chart's levels at the design's observer, from each cell's U0max.
-pub struct RelevelJob {
+struct RelevelJob {
     /// The slot's key: the sound it relevels for.
     sound: String,
     design: Design,
