@@ -9,11 +9,11 @@ use ratatui::backend::TestBackend;
 use ratatui::Terminal;
 use thud::design::Design;
 use thud::tui::app::{App, Msg};
-use thud::tui::worker::{acoustic_key, Grid, Grids};
-use thud::tui::{compute_sync, draw, Theme, Worker};
+use thud::tui::compute::{Grid, Grids};
+use thud::tui::{compute_sync, draw, Palette, Worker};
 
 fn computed(grids: Grids) -> App {
-    let mut app = App::with_grids(Design::default(), "default", Theme::default(), grids);
+    let mut app = App::with_grids(Design::default(), "default", Palette::default(), grids);
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
@@ -48,7 +48,7 @@ fn mass_change(c: &mut Criterion) {
     let mut app = App::with_grids(
         Design::default(),
         "default",
-        Theme::default(),
+        Palette::default(),
         Grids { coarse: None, fine: Grid::standard(2, 2) },
     );
     for r in app.initial_requests() {
@@ -65,7 +65,7 @@ fn mass_change(c: &mut Criterion) {
             for r in app.select_design(m, gap) {
                 worker.submit(r);
             }
-            pump(&mut app, &worker, &rx, |a| a.acoustic_for.as_deref() == Some(acoustic_key(&a.design).as_str()));
+            pump(&mut app, &worker, &rx, |a| !a.design_busy());
         })
     });
 }
@@ -90,7 +90,7 @@ fn chart_fill(c: &mut Criterion) {
                     step += 1;
                     let mut d = Design::default();
                     d.damper.v0_m_s += 1e-9 * f64::from(step);
-                    let mut app = App::with_grids(d, "default", Theme::default(), grids.clone());
+                    let mut app = App::with_grids(d, "default", Palette::default(), grids.clone());
                     let t0 = Instant::now();
                     for r in app.initial_requests() {
                         worker.submit(r);

@@ -6,14 +6,14 @@ use ratatui::backend::TestBackend;
 use ratatui::Terminal;
 use thud::design::Design;
 use thud::tui::app::{App, Mode, Msg};
+use thud::tui::compute::{Grid, Grids};
 use thud::tui::keys::KEYS;
-use thud::tui::worker::{Grid, Grids};
-use thud::tui::{compute_sync, draw, Theme};
+use thud::tui::{compute_sync, draw, Palette};
 
 /// The default design with every result computed on this thread (small chart grid).
 fn computed_app() -> App {
     let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
-    let mut app = App::with_grids(Design::default(), "default", Theme { color: true, ascii: false }, grids);
+    let mut app = App::with_grids(Design::default(), "default", Palette { color: true, ascii: false }, grids);
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
@@ -89,7 +89,7 @@ fn shift_gives_a_fine_step_and_undo_goes_back() {
 
 #[test]
 fn tiny_sizes_render_without_panic() {
-    let mut fresh = App::new(Design::default(), "default", Theme::default());
+    let mut fresh = App::new(Design::default(), "default", Palette::default());
     let mut done = computed_app();
     for app in [&mut fresh, &mut done] {
         app.data_dir = Some(std::env::temp_dir().join("thud-tui-tiny-sizes-none"));
@@ -175,7 +175,7 @@ fn quit_keys_quit() {
         (KeyCode::Esc, KeyModifiers::NONE),
         (KeyCode::Char('c'), KeyModifiers::CONTROL),
     ] {
-        let mut app = App::new(Design::default(), "default", Theme::default());
+        let mut app = App::new(Design::default(), "default", Palette::default());
         app.update(Msg::Input(Event::Key(KeyEvent::new(code, mods))));
         assert!(app.quit);
     }
@@ -200,7 +200,7 @@ fn stale_results_are_dropped() {
     // Change the mass but do not compute: then feed a result computed for another design.
     let _pending = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
     let mut other =
-        App::with_grids(old, "default", Theme::default(), Grids { coarse: None, fine: Grid::standard(2, 2) });
+        App::with_grids(old, "default", Palette::default(), Grids { coarse: None, fine: Grid::standard(2, 2) });
     let sim_req = thud::tui::Request::Sim(other.design.clone());
     let got = std::sync::Mutex::new(Vec::new());
     thud::tui::worker::run_sync(&sim_req, &|d| got.lock().unwrap().push(d));
@@ -212,9 +212,9 @@ fn stale_results_are_dropped() {
 }
 
 /// The kinds of work a key asks for, after moving the selection to `field`.
-fn work_for_step(field: thud::tui::fields::Field) -> Vec<&'static str> {
+fn work_for_step(field: thud::tui::fields::Param) -> Vec<&'static str> {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Field::ALL.iter().position(|f| *f == field).unwrap();
+    app.selected = thud::tui::fields::Param::ALL.iter().position(|f| *f == field).unwrap();
     let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
     let kinds = reqs
         .iter()
@@ -233,19 +233,19 @@ fn work_for_step(field: thud::tui::fields::Field) -> Vec<&'static str> {
 
 #[test]
 fn each_change_recomputes_only_what_it_must() {
-    use thud::tui::fields::Field;
-    assert_eq!(work_for_step(Field::Theta), ["acoustic", "relevel"], "θ: acoustics only");
-    assert_eq!(work_for_step(Field::R), ["acoustic", "relevel"], "r: acoustics only");
-    assert_eq!(work_for_step(Field::Mass), ["sim"], "m: this design only");
-    assert_eq!(work_for_step(Field::Gap), ["sim"], "d: this design only");
-    assert_eq!(work_for_step(Field::K), ["sim", "chart"], "K: design and sweep");
-    assert!(work_for_step(Field::LStar).is_empty(), "L*: zones are reclassified on draw");
+    use thud::tui::fields::Param;
+    assert_eq!(work_for_step(Param::Theta), ["acoustic", "relevel"], "θ: acoustics only");
+    assert_eq!(work_for_step(Param::R), ["acoustic", "relevel"], "r: acoustics only");
+    assert_eq!(work_for_step(Param::Mass), ["sim"], "m: this design only");
+    assert_eq!(work_for_step(Param::Gap), ["sim"], "d: this design only");
+    assert_eq!(work_for_step(Param::K), ["sim", "chart"], "K: design and sweep");
+    assert!(work_for_step(Param::LStar).is_empty(), "L*: zones are reclassified on draw");
 }
 
 #[test]
 fn theta_change_relevels_the_chart_like_a_fresh_sweep() {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Field::ALL.iter().position(|f| *f == thud::tui::fields::Field::Theta).unwrap();
+    app.selected = thud::tui::fields::Param::ALL.iter().position(|f| *f == thud::tui::fields::Param::Theta).unwrap();
     press(&mut app, KeyCode::Left);
     let fresh = computed_with(app.design.clone());
     for (a, b) in app.chart.fine.cells.iter().zip(&fresh.chart.fine.cells) {
@@ -259,7 +259,7 @@ fn theta_change_relevels_the_chart_like_a_fresh_sweep() {
 
 fn computed_with(d: Design) -> App {
     let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
-    let mut app = App::with_grids(d, "default", Theme::default(), grids);
+    let mut app = App::with_grids(d, "default", Palette::default(), grids);
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
@@ -280,7 +280,7 @@ fn default_palette_is_the_16_named_colours_and_no_color_has_none() {
     let buf = render_buffer(&mut app, 120, 40);
     assert!(buf.content.iter().all(|c| named(c.fg) && named(c.bg)));
     assert!(buf.content.iter().any(|c| c.bg != Color::Reset), "zones are coloured by default");
-    app.theme = Theme { color: false, ascii: false };
+    app.theme = Palette { color: false, ascii: false };
     let buf = render_buffer(&mut app, 120, 40);
     for c in &buf.content {
         assert_eq!((c.fg, c.bg), (Color::Reset, Color::Reset), "NO_COLOR: no colour at {:?}", c.symbol());
@@ -293,7 +293,7 @@ fn default_palette_is_the_16_named_colours_and_no_color_has_none() {
 #[test]
 fn ascii_mode_draws_no_braille() {
     let mut app = computed_app();
-    app.theme = Theme { color: true, ascii: true };
+    app.theme = Palette { color: true, ascii: true };
     let screen = render(&mut app, 120, 40);
     assert!(!screen.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)), "{screen}");
     assert!(screen.contains(">mass m"));
@@ -474,7 +474,7 @@ fn config_sets_theme_markers_and_thresholds() {
     std::fs::write(dir.path().join("config.toml"), text).unwrap();
     let mut app = computed_app();
     app.configure(&thud::config::load_config(dir.path()));
-    assert_eq!(app.theme, Theme { color: false, ascii: true });
+    assert_eq!(app.theme, Palette { color: false, ascii: true });
     assert_eq!((app.design.thresholds.spl_db, app.design.thresholds.inclination_cm_s), (99.5, 3.25));
     let screen = render(&mut app, 120, 40);
     assert!(screen.contains("L* 99.5 dB") && screen.contains("e* 3.25 cm/s"), "{screen}");
@@ -525,7 +525,7 @@ fn export_through_the_key_writes_the_file_and_names_it() {
     assert!(render(&mut app, 120, 40).contains("thud-waveform-1.csv"));
     // The chart SVG uses the chart's grid.
     press(&mut app, KeyCode::Char('e'));
-    let chart = thud::tui::app::EXPORTS.iter().position(|(k, _)| *k == thud::export::Kind::SvgChart).unwrap();
+    let chart = thud::tui::files::EXPORTS.iter().position(|(k, _)| *k == thud::export::Kind::SvgChart).unwrap();
     for _ in 0..chart {
         press(&mut app, KeyCode::Down);
     }
@@ -563,4 +563,100 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     app.update(Msg::Work(done));
     let screen = render(&mut app, 120, 40);
     assert!(status_of(&screen).contains("error: export of impacts CSV failed"), "{screen}");
+}
+
+// ---- saving over a name asks first (issue 9); a crashed job is an error, not a hang ----
+
+#[test]
+fn saving_over_an_existing_name_asks_first_and_only_y_overwrites() {
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    press(&mut app, KeyCode::Char('s'));
+    clear_line(&mut app);
+    type_text(&mut app, "mine");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Normal, "a new name is saved without a question");
+    let path = data.path().join("designs").join("mine.toml");
+    let first = std::fs::read_to_string(&path).unwrap();
+
+    press(&mut app, KeyCode::Right);
+    for refusal in [KeyCode::Char('n'), KeyCode::Esc, KeyCode::Enter] {
+        press(&mut app, KeyCode::Char('s'));
+        assert_eq!(app.mode, Mode::SaveAs("mine".into()), "the saved name is offered");
+        press(&mut app, KeyCode::Enter);
+        assert_eq!(app.mode, Mode::ConfirmOverwrite("mine".into()));
+        let screen = render(&mut app, 120, 40);
+        assert!(status_of(&screen).contains("overwrite mine? y/n"), "{screen}");
+        for (w, h) in [(0, 0), (10, 3), (30, 8), (80, 24)] {
+            draw_only(&mut app, w, h);
+        }
+        press(&mut app, refusal);
+        assert_eq!(app.mode, Mode::Normal);
+        assert!(!app.quit);
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), first, "{refusal:?} keeps the saved design");
+        assert!(status_of(&render(&mut app, 120, 40)).contains("save cancelled"));
+    }
+
+    press(&mut app, KeyCode::Char('s'));
+    press(&mut app, KeyCode::Enter);
+    press(&mut app, KeyCode::Char('y'));
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(status_of(&render(&mut app, 120, 40)).contains("saved mine to"));
+    let saved = thud::store::load_design(data.path(), "mine").unwrap();
+    assert_eq!(saved.design, app.design, "y overwrote the file with the live design");
+    assert_ne!(std::fs::read_to_string(&path).unwrap(), first);
+}
+
+/// A job that panics, standing in for the simulation of the design with `key`.
+struct Crash {
+    key: String,
+}
+
+impl thud::tui::job::Job for Crash {
+    const NAME: &'static str = "simulation";
+    type Report = thud::tui::worker::Done;
+    type State = ();
+
+    fn key(&self) -> &str {
+        &self.key
+    }
+
+    fn run(&self, (): &mut (), _: &thud::tui::job::Context<'_, Self::Report>) {
+        panic!("injected failure");
+    }
+
+    fn failed(&self, error: thud::tui::job::JobError) -> Self::Report {
+        thud::tui::worker::Done::Sim { key: self.key.clone(), result: Err(error.into()) }
+    }
+}
+
+#[test]
+fn a_panicking_job_is_an_error_in_the_status_line_and_frees_its_slot() {
+    use std::time::Duration;
+    let mut app = computed_app();
+    // Change the mass but do not compute: the app now waits for that design's simulation.
+    let _pending = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
+    assert!(app.busy());
+    let (tx, rx) = std::sync::mpsc::channel();
+    let runner = thud::tui::job::SingleJob::start(std::sync::Arc::new(move |d| {
+        let _ = tx.send(d);
+    }));
+    let key = thud::tui::compute::sim_key(&app.design);
+    runner.spawn(Crash { key: key.clone() });
+    let done = rx.recv_timeout(Duration::from_secs(30)).expect("the runner answered the crashed job");
+    assert!(!runner.is_pending(), "the slot is free, not stuck running");
+    app.update(Msg::Work(done));
+    let screen = render(&mut app, 120, 40);
+    let status = status_of(&screen);
+    assert!(status.contains("error: internal error in the simulation job: injected failure"), "{screen}");
+    assert!(!app.busy(), "the app stops waiting for the crashed job");
+
+    runner.spawn(Crash { key });
+    rx.recv_timeout(Duration::from_secs(30)).expect("the same runner takes the next job");
+    // The next change computes again and clears the error.
+    press(&mut app, KeyCode::Right);
+    let screen = render(&mut app, 120, 40);
+    assert!(!status_of(&screen).contains("error"), "{screen}");
+    assert!(!app.busy());
 }

@@ -148,10 +148,7 @@ pub fn zone_points(chart: &Chart) -> Vec<ZonePoint> {
         .iter()
         .flatten()
         .filter_map(|c| {
-            let e = match chart.thresholds.zone_by {
-                crate::design::ZoneBy::Paper => c.metrics.inclination_cm_s,
-                crate::design::ZoneBy::Fit => c.metrics.inclination_fit_cm_s,
-            }?;
+            let e = c.metrics.inclination_by(chart.thresholds.zone_by)?;
             Some(ZonePoint { spl_db: c.metrics.spl_max_db?, e_cm_s: e, zone: c.metrics.zone })
         })
         .collect()

@@ -15,7 +15,7 @@ use std::path::Path;
 
 use thiserror::Error;
 
-use crate::acoustics::{self, Levels, Source};
+use crate::acoustics::{self, Levels};
 use crate::contact::{Impact, Target};
 use crate::design::{self, linspace, Design, Evaluation};
 use crate::error::ThudError;
@@ -147,12 +147,8 @@ fn impact_speed(design: &Design, u0: Option<f64>) -> Result<f64, ThudError> {
 /// open side of its reflecting surfaces (5° steps), at the design's distance.
 pub fn directivity_points(design: &Design, u0: f64) -> Result<Vec<(f64, Levels)>, ThudError> {
     let d = design.resolved()?;
-    let (lo, hi) = match d.radiation.source {
-        Source::Single => (-180, 180),
-        Source::Dipole => (-90, 90),
-        Source::Quadrupole => (0, 90),
-    };
-    let thetas: Vec<f64> = (lo / 5..=hi / 5).map(|k| (5.0 * k as f64).to_radians()).collect();
+    let (lo, hi) = d.radiation.source.theta_range_deg();
+    let thetas: Vec<f64> = ((lo / 5.0) as i32..=(hi / 5.0) as i32).map(|k| (5.0 * f64::from(k)).to_radians()).collect();
     let impact = Impact {
         mass_kg: d.damper.impact_mass_kg,
         u0_m_s: u0,

@@ -1,29 +1,30 @@
 //! The explorer's state and its one transition function, [`App::update`]: a message in (a key,
 //! a click, a worker result, a tick), the state changed, and the work to ask for out. No
-//! physics here, and no I/O but saving, listing and loading designs (small TOML files in the
-//! data directory), so every behaviour can be tested without a terminal.
+//! physics and no drawing here, so every behaviour can be tested without a terminal. The
+//! other halves of `App` live beside it: what each key does in each mode in `input.rs`,
+//! saving, loading and exporting in `files.rs`; the screen (popups too) is drawn by `ui.rs`.
 
-use std::path::{Path, PathBuf};
+use std::fmt::Display;
+use std::path::PathBuf;
 use std::sync::Arc;
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind};
+use crossterm::event::{Event, MouseButton, MouseEventKind};
 
 use super::chart::Geometry;
-use super::fields::{Field, Scope};
-use super::keys::{Action, Keymap};
-use super::theme::Theme;
-use super::worker::{
-    acoustic_key, chart_key, sim_key, sound_key, AcousticResult, ChartPasses, Done, ExportJob, Grids, Request,
-    SimResult, Stage,
+use super::compute::{
+    acoustic_key, chart_key, nearest, sim_key, sound_key, AcousticResult, ChartPasses, Grids, SimResult, Stage,
 };
+use super::fields::{Param, Scope};
+use super::keys::{Action, Keymap};
+use super::theme::Palette;
+use super::worker::{Done, Request};
 use crate::config::{self, Config, ConfigLoad, MarkerStyle};
-use crate::design::{self, Chart, Design, Metrics, Zone, ZoneBy};
-use crate::export::{ExportOptions, Kind};
+use crate::design::{self, Chart, Design, Metrics, Zone};
 use crate::presets::{self, PresetInfo};
-use crate::store::{self, DesignFile, DesignList};
+use crate::store::DesignList;
 
 /// Everything the app reacts to.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub enum Msg {
     /// A terminal event (key, mouse, resize).
     Input(Event),
@@ -46,7 +47,7 @@ pub enum Panel {
 impl Panel {
     pub const ALL: [Panel; 5] = [Panel::Params, Panel::Waveform, Panel::Polar, Panel::History, Panel::Chart];
 
-    fn cycle(self, forward: bool) -> Panel {
+    pub(crate) fn cycle(self, forward: bool) -> Panel {
         let i = Self::ALL.iter().position(|p| *p == self).unwrap_or(0);
         let n = Self::ALL.len();
         Self::ALL[if forward { (i + 1) % n } else { (i + n - 1) % n }]
@@ -67,64 +68,18 @@ pub enum ChartView {
 pub enum Mode {
     Normal,
     Help,
-    /// Typing a value for the selected field.
+    /// Typing a value for the selected parameter.
     Editing(String),
     /// Choosing a preset; the highlighted index.
     Presets(usize),
     /// Typing the name to save the design under.
     SaveAs(String),
-    /// Choosing a saved design to load (the list is [`App::saved`]); the highlighted index.
+    /// A saved design of this name exists: `y` overwrites it, any other key keeps it.
+    ConfirmOverwrite(String),
+    /// Choosing a saved design to load (from the list read when it opened); the highlighted index.
     Saved(usize),
-    /// Choosing what to export; the highlighted index in [`EXPORTS`].
+    /// Choosing what to export; the highlighted index in `files::EXPORTS`.
     Export(usize),
-}
-
-/// What the export menu offers, in menu order, with how it is named there.
-pub const EXPORTS: [(Kind, &str); 11] = [
-    (Kind::CsvWaveform, "waveform CSV — pressure of the loudest impact"),
-    (Kind::SvgWaveform, "waveform SVG"),
-    (Kind::CsvHistory, "history CSV — x(t) with and without the damper"),
-    (Kind::SvgHistory, "history SVG"),
-    (Kind::CsvImpacts, "impacts CSV — every impact of the run"),
-    (Kind::CsvSweep, "sweep CSV — the chart's mass × gap grid"),
-    (Kind::SvgChart, "chart SVG — zones over mass × gap"),
-    (Kind::SvgFig17, "Fig 17 SVG — e against SPLmax"),
-    (Kind::SvgDirectivity, "directivity SVG — SPL against θ"),
-    (Kind::SvgRestitution, "restitution SVG — e against impact mass"),
-    (Kind::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
-];
-
-/// The short name of an export kind ("waveform CSV").
-pub fn export_name(kind: Kind) -> &'static str {
-    let label = EXPORTS.iter().find(|(k, _)| *k == kind).map_or("file", |(_, l)| l);
-    label.split(" — ").next().unwrap_or(label)
-}
-
-/// One row of a list popup (presets, saved designs, exports).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ListItem {
-    pub label: String,
-    /// Shown under the list for the highlighted row.
-    pub detail: String,
-    /// A row that cannot be chosen (e.g. a corrupt saved file).
-    pub problem: bool,
-}
-
-/// A list popup to draw: title, rows, highlighted row, and a line for an empty list.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ListView {
-    pub title: String,
-    pub items: Vec<ListItem>,
-    pub selected: usize,
-    pub empty: String,
-}
-
-/// What a key does in a list popup.
-enum ListNav {
-    Stay,
-    Choose(usize),
-    Close,
-    Quit,
 }
 
 /// The status line's message.
@@ -198,61 +153,65 @@ impl Default for Options {
 /// Undo depth.
 const UNDO_MAX: usize = 200;
 
-/// The explorer's whole state.
+/// The explorer's whole state. The public fields are the ones a host (and the tests) set up
+/// or inspect; the rest is the app's own.
 pub struct App {
     pub design: Design,
+    /// The name of the preset or saved design the live one came from.
     pub preset: String,
+    /// The selected parameter (index into [`Param::ALL`]).
     pub selected: usize,
     pub focus: Panel,
     /// The plot shown in the compact layout (the last focused plot).
-    pub plot: Panel,
+    pub(crate) plot: Panel,
     pub mode: Mode,
-    pub status: Option<Status>,
-    pub undo: Vec<Design>,
+    pub(crate) status: Option<Status>,
+    pub(crate) undo: Vec<Design>,
     pub pinned: Option<Pinned>,
-    pub chart_view: ChartView,
-    pub grids: Grids,
-    pub sim: Option<Arc<SimResult>>,
+    pub(crate) chart_view: ChartView,
+    pub(crate) grids: Grids,
+    pub(crate) sim: Option<Arc<SimResult>>,
     /// The simulation key `sim` was computed for.
-    pub sim_for: Option<String>,
-    pub acoustic: Option<Arc<AcousticResult>>,
+    pub(crate) sim_for: Option<String>,
+    pub(crate) acoustic: Option<Arc<AcousticResult>>,
     /// The acoustics key `acoustic` was computed for.
-    pub acoustic_for: Option<String>,
+    pub(crate) acoustic_for: Option<String>,
     pub chart: ChartState,
     /// An error from the chart sweep, if it failed.
-    pub chart_error: Option<String>,
+    pub(crate) chart_error: Option<String>,
     /// An error from the physics for the current design (e.g. a field point the source rejects).
-    pub work_error: Option<String>,
-    pub theme: Theme,
+    pub(crate) work_error: Option<String>,
+    pub theme: Palette,
+    /// Mouse clicks select chart cells.
     pub mouse: bool,
-    pub spinner: usize,
+    pub(crate) spinner: usize,
     pub quit: bool,
     /// Where the chart's cells were last drawn (for mouse clicks).
     pub chart_geometry: Option<Geometry>,
     /// The presets offered by the `P` list.
     pub preset_list: Vec<PresetInfo>,
     /// The keys in effect (the table with the config's overrides).
-    pub keys: Keymap,
+    pub(crate) keys: Keymap,
     /// The user's settings (defaults if there is no usable `config.toml`).
-    pub config: Config,
+    pub(crate) config: Config,
     /// Where designs are saved (`designs/` inside); None: no home directory, saving refused.
     pub data_dir: Option<PathBuf>,
     /// Where exports are written (the current directory by default).
     pub export_dir: PathBuf,
     /// The saved designs offered by the load list (read when it opens).
-    pub saved: DesignList,
+    pub(crate) saved: DesignList,
     /// Export files being written.
     pub exports: Vec<PathBuf>,
 }
 
 impl App {
     /// A new app on `design` (named `preset`) with the default chart grids.
-    pub fn new(design: Design, preset: &str, theme: Theme) -> Self {
+    pub fn new(design: Design, preset: &str, theme: Palette) -> Self {
         Self::with_grids(design, preset, theme, Grids::default())
     }
 
     /// A new app with given chart grids (tests use a small one).
-    pub fn with_grids(design: Design, preset: &str, theme: Theme, grids: Grids) -> Self {
+    pub fn with_grids(design: Design, preset: &str, theme: Palette, grids: Grids) -> Self {
         let chart = ChartState::empty(&design, &grids);
         Self {
             design,
@@ -318,9 +277,14 @@ impl App {
         vec![Request::Sim(self.design.clone()), Request::Chart(self.design.clone(), self.grids.clone())]
     }
 
-    /// The selected field.
-    pub fn field(&self) -> Field {
-        Field::ALL[self.selected.min(Field::ALL.len() - 1)]
+    /// The selected parameter.
+    pub fn param(&self) -> Param {
+        Param::ALL[self.selected.min(Param::ALL.len() - 1)]
+    }
+
+    /// The status line's message, if any.
+    pub fn status(&self) -> Option<&Status> {
+        self.status.as_ref()
     }
 
     /// True while results for the current design are missing or being recomputed.
@@ -356,347 +320,32 @@ impl App {
         }
     }
 
-    fn key(&mut self, k: KeyEvent) -> Vec<Request> {
-        if k.kind == KeyEventKind::Release {
-            return vec![];
-        }
-        if k.code == KeyCode::Char('c') && k.modifiers.contains(KeyModifiers::CONTROL) {
-            self.quit = true;
-            return vec![];
-        }
-        match self.mode.clone() {
-            Mode::Editing(buf) => self.edit_key(k, buf),
-            Mode::SaveAs(buf) => self.save_key(k, buf),
-            Mode::Presets(i) => self.preset_key(k, i),
-            Mode::Saved(i) => self.saved_key(k, i),
-            Mode::Export(i) => self.export_key(k, i),
-            Mode::Help => {
-                match self.keys.action_for(&k) {
-                    Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
-                    _ => self.mode = Mode::Normal,
-                }
-                vec![]
-            }
-            Mode::Normal => self.keys.action_for(&k).map_or_else(Vec::new, |a| self.act(a)),
-        }
-    }
-
-    /// Performs one action of the key table.
-    pub fn act(&mut self, a: Action) -> Vec<Request> {
-        match a {
-            Action::Quit => self.quit = true,
-            Action::Help => self.mode = Mode::Help,
-            Action::FocusNext | Action::FocusPrev => {
-                self.focus = self.focus.cycle(a == Action::FocusNext);
-                if self.focus != Panel::Params {
-                    self.plot = self.focus;
-                }
-            }
-            Action::Up | Action::Down if self.focus == Panel::Chart => return self.chart_move(0, a == Action::Up),
-            Action::Up => self.selected = (self.selected + Field::ALL.len() - 1) % Field::ALL.len(),
-            Action::Down => self.selected = (self.selected + 1) % Field::ALL.len(),
-            Action::Decrease { .. } | Action::Increase { .. } if self.focus == Panel::Chart => {
-                return self.chart_move(1, matches!(a, Action::Increase { .. }))
-            }
-            Action::Decrease { fine } => return self.step(false, fine),
-            Action::Increase { fine } => return self.step(true, fine),
-            Action::Edit => self.mode = Mode::Editing(String::new()),
-            Action::Presets => {
-                let i = self.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
-                self.mode = Mode::Presets(i);
-            }
-            Action::Pin => self.toggle_pin(),
-            Action::Undo => return self.undo(),
-            Action::ToggleChartView => {
-                self.chart_view = match self.chart_view {
-                    ChartView::Zones => ChartView::Scatter,
-                    ChartView::Scatter => ChartView::Zones,
-                }
-            }
-            Action::Save => self.mode = Mode::SaveAs(self.suggested_name()),
-            Action::Load => self.open_saved(),
-            Action::Export => self.mode = Mode::Export(0),
-        }
-        vec![]
-    }
-
-    fn step(&mut self, up: bool, fine: bool) -> Vec<Request> {
-        let f = self.field();
+    /// Steps the selected parameter once (`up`: increase; `fine`: a small step).
+    pub(crate) fn step(&mut self, up: bool, fine: bool) -> Vec<Request> {
+        let f = self.param();
         match f.stepped(&self.design, up, fine) {
             Ok(d) => {
                 let shown = f.display(&d);
                 self.apply(d, f.scope(), format!("{} {}", f.label(), shown))
             }
-            Err(e) => self.error(e.to_string()),
+            Err(e) => self.error(e),
         }
     }
 
-    fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        match line_key(k, buf, 40) {
-            Line::Typing(buf) => self.mode = Mode::Editing(buf),
-            Line::Cancel => {
-                self.mode = Mode::Normal;
-                self.set_status("input cancelled", false);
-            }
-            Line::Submit(buf) => {
-                self.mode = Mode::Normal;
-                return self.submit_text(&buf);
-            }
-        }
-        vec![]
-    }
-
-    fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        match line_key(k, buf, 64) {
-            Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
-            Line::Cancel => {
-                self.mode = Mode::Normal;
-                self.set_status("save cancelled", false);
-            }
-            Line::Submit(name) => {
-                self.mode = Mode::Normal;
-                self.save_as(name.trim());
-            }
-        }
-        vec![]
-    }
-
-    /// The name offered when saving: the preset's or saved design's name, or the first free
-    /// `design-N`.
-    pub fn suggested_name(&self) -> String {
-        if self.preset != "default" && store::check_design_name(&self.preset).is_ok() {
-            return self.preset.clone();
-        }
-        let taken = |name: &str| {
-            self.data_dir.as_deref().is_some_and(|d| store::design_path(d, name).is_ok_and(|p| p.exists()))
-        };
-        (1..).map(|n| format!("design-{n}")).find(|n| !taken(n)).unwrap_or_else(|| "design-1".into())
-    }
-
-    /// Saves the live design as `name` in the data directory (a small file, written
-    /// atomically on this thread); the outcome goes to the status line.
-    pub fn save_as(&mut self, name: &str) {
-        if let Err(e) = store::check_design_name(name) {
-            self.error(format!("cannot save: {e}"));
-            return;
-        }
-        let Some(dir) = self.data_dir.clone() else {
-            self.error("cannot save: no home directory, so no data directory".into());
-            return;
-        };
-        let p = &self.design.damper;
-        let description = format!(
-            "saved from the explorer: m {} g, d {} cm (from {})",
-            crate::units::sig(p.impact_mass_kg * 1e3, 4),
-            crate::units::sig(p.gap_m * 1e2, 3),
-            self.preset
-        );
-        let file = DesignFile { description, design: self.design.clone() };
-        match store::save_design(&dir, name, &file, false) {
-            Ok(path) => {
-                self.preset = name.to_string();
-                self.set_status(&format!("saved {name} to {}", path.display()), false);
-            }
-            Err(e) => {
-                self.error(format!("cannot save {name}: {e}"));
-            }
-        }
-    }
-
-    /// Opens the list of saved designs (read from the data directory now: a few small files).
-    fn open_saved(&mut self) {
-        let Some(dir) = self.data_dir.clone() else {
-            self.error("cannot load: no home directory, so no data directory".into());
-            return;
-        };
-        match store::list_designs(&dir) {
-            Ok(list) => {
-                let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
-                self.saved = list;
-                self.mode = Mode::Saved(i);
-            }
-            Err(e) => {
-                self.error(format!("cannot list saved designs: {e}"));
-            }
-        }
-    }
-
-    /// The popup list of the current mode, if it shows one.
-    pub fn list_view(&self) -> Option<ListView> {
-        let (title, items, selected, empty) = match &self.mode {
-            Mode::Presets(i) => (
-                " presets (↑↓, Enter applies, Esc closes) ".to_string(),
-                self.preset_list
-                    .iter()
-                    .map(|p| ListItem { label: p.name.to_string(), detail: p.description.clone(), problem: false })
-                    .collect(),
-                *i,
-                String::new(),
-            ),
-            Mode::Saved(i) => {
-                let good = self.saved.designs.iter().map(|d| ListItem {
-                    label: d.name.clone(),
-                    detail: d.description.clone(),
-                    problem: false,
-                });
-                let bad = self.saved.problems.iter().map(|p| ListItem {
-                    label: format!(
-                        "✗ {} (cannot be loaded)",
-                        p.path.file_name().map_or_else(|| p.path.display().to_string(), |n| n.to_string_lossy().into())
-                    ),
-                    detail: p.to_string(),
-                    problem: true,
-                });
-                let dir = self.data_dir.as_deref().map_or_else(PathBuf::new, store::designs_dir);
-                (
-                    " saved designs (↑↓, Enter loads, Esc closes) ".to_string(),
-                    good.chain(bad).collect(),
-                    *i,
-                    format!(
-                        "No saved designs in {}; press {} to save one.",
-                        dir.display(),
-                        self.key_label(Action::Save)
-                    ),
-                )
-            }
-            Mode::Export(i) => (
-                " export (↑↓, Enter writes the file, Esc closes) ".to_string(),
-                EXPORTS
-                    .iter()
-                    .map(|(k, label)| ListItem {
-                        label: label.to_string(),
-                        detail: format!("{} in {}", k.default_file_name(), self.export_dir_name()),
-                        problem: false,
-                    })
-                    .collect(),
-                *i,
-                String::new(),
-            ),
-            _ => return None,
-        };
-        Some(ListView { title, items, selected, empty })
-    }
-
-    /// The key shown for `action` (its first binding).
-    pub fn key_label(&self, action: Action) -> &str {
-        self.keys.label_of(action).unwrap_or("?")
-    }
-
-    /// Up/down/Enter/Esc in a list of `n` rows with row `i` highlighted.
-    fn list_nav(&mut self, k: KeyEvent, i: usize, n: usize, mode: fn(usize) -> Mode) -> ListNav {
-        let n = n.max(1);
-        match k.code {
-            KeyCode::Up | KeyCode::Char('k') => self.mode = mode((i + n - 1) % n),
-            KeyCode::Down | KeyCode::Char('j') => self.mode = mode((i + 1) % n),
-            KeyCode::Home => self.mode = mode(0),
-            KeyCode::End => self.mode = mode(n - 1),
-            KeyCode::Enter => {
-                self.mode = Mode::Normal;
-                return ListNav::Choose(i);
-            }
-            KeyCode::Char('q') => {
-                self.quit = true;
-                return ListNav::Quit;
-            }
-            _ => {
-                self.mode = Mode::Normal;
-                return ListNav::Close;
-            }
-        }
-        ListNav::Stay
-    }
-
-    fn saved_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let n = self.saved.designs.len() + self.saved.problems.len();
-        let ListNav::Choose(i) = self.list_nav(k, i, n, Mode::Saved) else { return vec![] };
-        if let Some(entry) = self.saved.designs.get(i) {
-            let name = entry.name.clone();
-            let Some(dir) = self.data_dir.clone() else { return vec![] };
-            return match store::load_design(&dir, &name) {
-                Ok(file) => {
-                    self.preset = name.clone();
-                    self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"))
-                }
-                Err(e) => self.error(format!("cannot load {name}: {e}")),
-            };
-        }
-        match i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j)) {
-            Some(p) => self.error(format!("cannot load {p}")),
-            None => vec![],
-        }
-    }
-
-    fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
-        let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
-        vec![self.export(kind)]
-    }
-
-    /// Asks the worker to write an export of `kind` into the export directory, under its
-    /// default name (with -1, -2 … added if that file exists or is being written).
-    pub fn export(&mut self, kind: Kind) -> Request {
-        let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
-        self.exports.push(path.clone());
-        // Sweeps use the chart's grid, so the file shows what the screen does.
-        let g = &self.grids.fine;
-        let options = if kind.needs_sweep() {
-            ExportOptions {
-                masses_kg: Some(g.masses_kg.clone()),
-                gaps_m: Some(g.gaps_m.clone()),
-                ..ExportOptions::default()
-            }
-        } else {
-            ExportOptions::default()
-        };
-        self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
-        Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path }))
-    }
-
-    /// The export directory as shown.
-    fn export_dir_name(&self) -> String {
-        if self.export_dir == Path::new(".") {
-            "the current directory".into()
-        } else {
-            self.export_dir.display().to_string()
-        }
-    }
-
-    /// An export path as shown: the file name alone in the current directory.
-    fn shown_path(&self, path: &Path) -> String {
-        if self.export_dir == Path::new(".") {
-            path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
-        } else {
-            path.display().to_string()
-        }
-    }
-
-    /// Sets the selected field from typed text; a bad value is refused with a message.
+    /// Sets the selected parameter from typed text; a bad value is refused with a message.
     pub fn submit_text(&mut self, text: &str) -> Vec<Request> {
-        let f = self.field();
+        let f = self.param();
         match f.parsed(&self.design, text) {
             Ok(d) => {
                 let shown = f.display(&d);
                 self.apply(d, f.scope(), format!("{} {}", f.label(), shown))
             }
-            Err(e) => self.error(e.to_string()),
-        }
-    }
-
-    fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
-        let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
-        match presets::preset(name) {
-            Ok(mut d) => {
-                d.thresholds = self.config.thresholds(d.thresholds);
-                self.preset = name.to_string();
-                self.apply(d, Scope::All, format!("preset {name}"))
-            }
-            Err(e) => self.error(e.to_string()),
+            Err(e) => self.error(e),
         }
     }
 
     /// Moves the design to the neighbouring chart cell along mass (`axis` 1) or gap (0).
-    fn chart_move(&mut self, axis: usize, up: bool) -> Vec<Request> {
+    pub(crate) fn chart_move(&mut self, axis: usize, up: bool) -> Vec<Request> {
         let g = &self.grids.fine;
         let (values, now) = if axis == 1 {
             (&g.masses_kg, self.design.damper.impact_mass_kg)
@@ -719,8 +368,8 @@ impl App {
         let d = design::variant(&self.design, mass_kg, gap_m);
         let msg = format!(
             "m {} g, d {} cm",
-            Field::Mass.display(&d).trim_end_matches(" g"),
-            Field::Gap.display(&d).trim_end_matches(" cm")
+            Param::Mass.display(&d).trim_end_matches(" g"),
+            Param::Gap.display(&d).trim_end_matches(" cm")
         );
         self.apply(d, Scope::Design, msg)
     }
@@ -735,7 +384,7 @@ impl App {
         self.select_design(mass, gap)
     }
 
-    fn toggle_pin(&mut self) {
+    pub(crate) fn toggle_pin(&mut self) {
         if self.pinned.take().is_some() {
             self.set_status("unpinned", false);
         } else {
@@ -745,7 +394,14 @@ impl App {
         }
     }
 
-    fn undo(&mut self) -> Vec<Request> {
+    pub(crate) fn toggle_chart_view(&mut self) {
+        self.chart_view = match self.chart_view {
+            ChartView::Zones => ChartView::Scatter,
+            ChartView::Scatter => ChartView::Zones,
+        }
+    }
+
+    pub(crate) fn undo(&mut self) -> Vec<Request> {
         match self.undo.pop() {
             Some(d) => {
                 self.design = d;
@@ -760,7 +416,7 @@ impl App {
     }
 
     /// Makes `new` the live design (pushing the old one for undo) and asks for what it needs.
-    fn apply(&mut self, new: Design, scope: Scope, message: String) -> Vec<Request> {
+    pub(crate) fn apply(&mut self, new: Design, scope: Scope, message: String) -> Vec<Request> {
         if new == self.design {
             self.set_status(&message, false);
             return vec![];
@@ -799,7 +455,8 @@ impl App {
         Request::Relevel(self.design.clone(), Arc::new(self.chart.passes()))
     }
 
-    /// Takes a worker result if it is for the current parameters; drops stale ones.
+    /// Takes a worker result if it is for the current parameters; drops stale ones. A failed
+    /// job (refused by the physics, or crashed) is an error in the status line.
     fn work(&mut self, done: Done) -> Vec<Request> {
         match done {
             Done::Sim { key, result } => {
@@ -845,26 +502,19 @@ impl App {
                         return vec![self.relevel()];
                     }
                 }
-                Err(e) => {
-                    self.chart_error = Some(e.clone());
-                    self.error(e);
-                }
+                Err(e) => self.chart_failed(e),
             },
-            Done::Relevel { key, sound, passes } if key == self.chart.key && sound == sound_key(&self.design) => {
-                self.merge_levels(&passes);
-                self.chart.levels_for = sound;
+            Done::Relevel { key, sound, result } if key == self.chart.key && sound == sound_key(&self.design) => {
+                match result {
+                    Ok(passes) => {
+                        self.merge_levels(&passes);
+                        self.chart.levels_for = sound;
+                    }
+                    Err(e) => self.chart_failed(e),
+                }
             }
             Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
-            Done::Export { kind, path, result } => {
-                self.exports.retain(|p| *p != path);
-                let shown = self.shown_path(&path);
-                match result {
-                    Ok(()) => self.set_status(&format!("exported {} to {shown}", export_name(kind)), false),
-                    Err(e) => {
-                        self.error(format!("export of {} failed: {e}", export_name(kind)));
-                    }
-                }
-            }
+            Done::Export { kind, path, result } => self.export_finished(kind, &path, result),
         }
         vec![]
     }
@@ -891,17 +541,25 @@ impl App {
         }
     }
 
-    fn fail(&mut self, e: String) {
-        self.work_error = Some(e.clone());
+    /// The live design's work failed: its readout shows the error until the design changes.
+    fn fail(&mut self, e: impl Display) {
+        self.work_error = Some(e.to_string());
         self.error(e);
     }
 
-    fn error(&mut self, e: String) -> Vec<Request> {
+    /// The chart's work failed: the chart stops filling in and the error is shown.
+    fn chart_failed(&mut self, e: impl Display) {
+        self.chart_error = Some(e.to_string());
+        self.error(e);
+    }
+
+    /// Shows `e` as an error in the status line; asks for nothing.
+    pub(crate) fn error(&mut self, e: impl Display) -> Vec<Request> {
         self.status = Some(Status { text: format!("error: {e}"), error: true });
         vec![]
     }
 
-    fn set_status(&mut self, text: &str, error: bool) {
+    pub(crate) fn set_status(&mut self, text: &str, error: bool) {
         self.status = Some(Status { text: text.to_string(), error });
     }
 
@@ -910,63 +568,14 @@ impl App {
         self.acoustic.as_ref().map(|a| &a.metrics)
     }
 
-    /// The zone of metrics under the current thresholds.
+    /// The zone of metrics under the current thresholds (classified on draw so threshold
+    /// edits are free).
     pub fn zone(&self, m: &Metrics) -> Option<Zone> {
-        zone_of(m, &self.design)
+        m.zone(&self.design.thresholds)
     }
-}
 
-/// The zone of `m` under the thresholds of `d` (classified on draw so threshold edits are free).
-pub fn zone_of(m: &Metrics, d: &Design) -> Option<Zone> {
-    let e = match d.thresholds.zone_by {
-        ZoneBy::Paper => m.inclination_cm_s,
-        ZoneBy::Fit => m.inclination_fit_cm_s,
-    }?;
-    Some(Zone::classify(m.spl_max_db?, e, &d.thresholds))
-}
-
-/// What a key did to an input line.
-enum Line {
-    Typing(String),
-    Cancel,
-    Submit(String),
-}
-
-/// Esc, Enter, Backspace and typing (at most `max` characters) in an input line.
-fn line_key(k: KeyEvent, mut buf: String, max: usize) -> Line {
-    match k.code {
-        KeyCode::Esc => Line::Cancel,
-        KeyCode::Enter => Line::Submit(buf),
-        KeyCode::Backspace => {
-            buf.pop();
-            Line::Typing(buf)
-        }
-        KeyCode::Char(c) if !k.modifiers.contains(KeyModifiers::CONTROL) => {
-            if buf.chars().count() < max {
-                buf.push(c);
-            }
-            Line::Typing(buf)
-        }
-        _ => Line::Typing(buf),
+    /// The key shown for `action` (its first binding).
+    pub fn key_label(&self, action: Action) -> &str {
+        self.keys.label_of(action).unwrap_or("?")
     }
-}
-
-/// `dir/name`, or `dir/stem-1.ext`, `dir/stem-2.ext` … the first that neither exists nor is
-/// in `pending`.
-pub fn unique_path(dir: &Path, name: &str, pending: &[PathBuf]) -> PathBuf {
-    let free = |p: &PathBuf| !p.exists() && !pending.contains(p);
-    let first = dir.join(name);
-    if free(&first) {
-        return first;
-    }
-    let (stem, ext) = match name.rsplit_once('.') {
-        Some((s, e)) => (s, format!(".{e}")),
-        None => (name, String::new()),
-    };
-    (1..).map(|n| dir.join(format!("{stem}-{n}{ext}"))).find(free).unwrap_or(first)
-}
-
-/// Index of the value nearest `x` (0 for an empty slice).
-pub fn nearest(values: &[f64], x: f64) -> usize {
-    values.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs())).map_or(0, |(i, _)| i)
 }

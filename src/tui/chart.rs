@@ -9,7 +9,7 @@ use ratatui::symbols::Marker;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget};
 
 use super::plot::{fit_bounds, labels};
-use super::theme::Theme;
+use super::theme::Palette;
 use crate::design::Zone;
 use crate::units::sig;
 
@@ -100,11 +100,11 @@ pub struct ZoneGridView<'a> {
     pub current: Option<(usize, usize)>,
     pub title: &'a str,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
 }
 
 /// The panel's block (shared by both views so the geometry matches the hit test).
-pub fn block<'a>(title: &'a str, focused: bool, theme: &Theme) -> Block<'a> {
+pub fn block<'a>(title: &'a str, focused: bool, theme: &Palette) -> Block<'a> {
     Block::bordered().title(title).border_style(theme.focus(focused))
 }
 
@@ -199,7 +199,7 @@ pub struct ScatterView<'a> {
     pub e_star_cm_s: f64,
     pub title: &'a str,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
 }
 
 impl Widget for ScatterView<'_> {

@@ -8,9 +8,9 @@ use crate::design::{Design, Materials};
 use crate::error::ThudError;
 use crate::units::{self, sig, Kind};
 
-/// One editable parameter of the design.
+/// One editable parameter of the design (a row of the parameter panel).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Field {
+pub enum Param {
     Mass,
     Gap,
     R,
@@ -67,94 +67,94 @@ fn material_choices() -> Vec<Option<Materials>> {
         .collect()
 }
 
-impl Field {
+impl Param {
     /// All fields, in panel order.
-    pub const ALL: [Field; 19] = [
-        Field::Mass,
-        Field::Gap,
-        Field::R,
-        Field::Theta,
-        Field::V0,
-        Field::MainMass,
-        Field::K,
-        Field::C,
-        Field::C1,
-        Field::KHz,
-        Field::Materials,
-        Field::Source,
-        Field::QuadSigns,
-        Field::Pulse,
-        Field::Clamp,
-        Field::Solver,
-        Field::Duration,
-        Field::LStar,
-        Field::EStar,
+    pub const ALL: [Param; 19] = [
+        Param::Mass,
+        Param::Gap,
+        Param::R,
+        Param::Theta,
+        Param::V0,
+        Param::MainMass,
+        Param::K,
+        Param::C,
+        Param::C1,
+        Param::KHz,
+        Param::Materials,
+        Param::Source,
+        Param::QuadSigns,
+        Param::Pulse,
+        Param::Clamp,
+        Param::Solver,
+        Param::Duration,
+        Param::LStar,
+        Param::EStar,
     ];
 
     /// Short label for the panel.
     pub fn label(self) -> &'static str {
         match self {
-            Field::Mass => "mass m",
-            Field::Gap => "gap d",
-            Field::R => "r",
-            Field::Theta => "θ",
-            Field::V0 => "v0",
-            Field::MainMass => "M",
-            Field::K => "K",
-            Field::C => "C",
-            Field::C1 => "c1",
-            Field::KHz => "K_HZ",
-            Field::Materials => "materials",
-            Field::Source => "source",
-            Field::QuadSigns => "quad signs",
-            Field::Pulse => "pulse",
-            Field::Clamp => "clamp",
-            Field::Solver => "solver",
-            Field::Duration => "duration",
-            Field::LStar => "L*",
-            Field::EStar => "e*",
+            Param::Mass => "mass m",
+            Param::Gap => "gap d",
+            Param::R => "r",
+            Param::Theta => "θ",
+            Param::V0 => "v0",
+            Param::MainMass => "M",
+            Param::K => "K",
+            Param::C => "C",
+            Param::C1 => "c1",
+            Param::KHz => "K_HZ",
+            Param::Materials => "materials",
+            Param::Source => "source",
+            Param::QuadSigns => "quad signs",
+            Param::Pulse => "pulse",
+            Param::Clamp => "clamp",
+            Param::Solver => "solver",
+            Param::Duration => "duration",
+            Param::LStar => "L*",
+            Param::EStar => "e*",
         }
     }
 
     /// The parameter's name in messages (as on the command line).
     pub fn param(self) -> &'static str {
         match self {
-            Field::Mass => "mass",
-            Field::Gap => "gap",
-            Field::R => "r",
-            Field::Theta => "theta",
-            Field::V0 => "v0",
-            Field::MainMass => "main-mass",
-            Field::K => "k",
-            Field::C => "c",
-            Field::C1 => "c1",
-            Field::KHz => "k-hz",
-            Field::Materials => "materials",
-            Field::Source => "source",
-            Field::QuadSigns => "quad-signs",
-            Field::Pulse => "pulse",
-            Field::Clamp => "no-tension",
-            Field::Solver => "solver",
-            Field::Duration => "duration",
-            Field::LStar => "L*",
-            Field::EStar => "e*",
+            Param::Mass => "mass",
+            Param::Gap => "gap",
+            Param::R => "r",
+            Param::Theta => "theta",
+            Param::V0 => "v0",
+            Param::MainMass => "main-mass",
+            Param::K => "k",
+            Param::C => "c",
+            Param::C1 => "c1",
+            Param::KHz => "k-hz",
+            Param::Materials => "materials",
+            Param::Source => "source",
+            Param::QuadSigns => "quad-signs",
+            Param::Pulse => "pulse",
+            Param::Clamp => "no-tension",
+            Param::Solver => "solver",
+            Param::Duration => "duration",
+            Param::LStar => "L*",
+            Param::EStar => "e*",
         }
     }
 
     /// The unit a typed plain number is read in, and the unit the value is shown in.
     pub fn kind(self) -> Option<Kind> {
         Some(match self {
-            Field::Mass => Kind::Mass,
-            Field::Gap | Field::R => Kind::Length,
-            Field::Theta => Kind::Angle,
-            Field::V0 => Kind::Speed,
-            Field::MainMass => Kind::Mass,
-            Field::K => Kind::Stiffness,
-            Field::C | Field::C1 => Kind::Damping,
-            Field::KHz => Kind::HertzStiffness,
-            Field::Duration => Kind::Time,
-            Field::LStar => Kind::Level,
-            Field::EStar => Kind::Inclination,
+            Param::Mass => Kind::Mass,
+            Param::Gap | Param::R => Kind::Length,
+            Param::Theta => Kind::Angle,
+            Param::V0 => Kind::Speed,
+            Param::MainMass => Kind::Mass,
+            Param::K => Kind::Stiffness,
+            Param::C | Param::C1 => Kind::Damping,
+            Param::KHz => Kind::HertzStiffness,
+            Param::Duration => Kind::Time,
+            Param::LStar => Kind::Level,
+            Param::EStar => Kind::Inclination,
             _ => return None,
         })
     }
@@ -162,9 +162,9 @@ impl Field {
     /// What a change of this field invalidates.
     pub fn scope(self) -> Scope {
         match self {
-            Field::R | Field::Theta | Field::Source | Field::QuadSigns | Field::Pulse => Scope::Acoustics,
-            Field::Mass | Field::Gap => Scope::Design,
-            Field::LStar | Field::EStar => Scope::Thresholds,
+            Param::R | Param::Theta | Param::Source | Param::QuadSigns | Param::Pulse => Scope::Acoustics,
+            Param::Mass | Param::Gap => Scope::Design,
+            Param::LStar | Param::EStar => Scope::Thresholds,
             _ => Scope::All,
         }
     }
@@ -172,16 +172,16 @@ impl Field {
     /// How the field is stepped.
     pub fn step(self) -> Step {
         match self {
-            Field::Mass => Step::Add(1e-3, 1e-4),
-            Field::Gap => Step::Add(2e-3, 2e-4),
-            Field::R => Step::Add(0.05, 0.01),
-            Field::Theta => Step::Add(5.0, 1.0),
-            Field::V0 => Step::Add(0.1, 0.01),
-            Field::MainMass => Step::Add(0.05, 0.005),
-            Field::K | Field::C | Field::C1 | Field::KHz => Step::Mul(0.1, 0.01),
-            Field::Duration => Step::Add(0.5, 0.1),
-            Field::LStar => Step::Add(1.0, 0.1),
-            Field::EStar => Step::Add(0.1, 0.01),
+            Param::Mass => Step::Add(1e-3, 1e-4),
+            Param::Gap => Step::Add(2e-3, 2e-4),
+            Param::R => Step::Add(0.05, 0.01),
+            Param::Theta => Step::Add(5.0, 1.0),
+            Param::V0 => Step::Add(0.1, 0.01),
+            Param::MainMass => Step::Add(0.05, 0.005),
+            Param::K | Param::C | Param::C1 | Param::KHz => Step::Mul(0.1, 0.01),
+            Param::Duration => Step::Add(0.5, 0.1),
+            Param::LStar => Step::Add(1.0, 0.1),
+            Param::EStar => Step::Add(0.1, 0.01),
             _ => Step::Cycle,
         }
     }
@@ -190,19 +190,19 @@ impl Field {
     pub fn get(self, d: &Design) -> Option<f64> {
         let p = &d.damper;
         Some(match self {
-            Field::Mass => p.impact_mass_kg,
-            Field::Gap => p.gap_m,
-            Field::R => d.observer.r_m,
-            Field::Theta => d.observer.theta_rad.to_degrees(),
-            Field::V0 => p.v0_m_s,
-            Field::MainMass => p.main_mass_kg,
-            Field::K => p.stiffness_n_m,
-            Field::C => p.damping_n_s_m,
-            Field::C1 => p.c1_n_s_m,
-            Field::KHz => d.resolved().map(|r| r.damper.k_hz).unwrap_or(p.k_hz),
-            Field::Duration => p.duration_s,
-            Field::LStar => d.thresholds.spl_db,
-            Field::EStar => d.thresholds.inclination_cm_s,
+            Param::Mass => p.impact_mass_kg,
+            Param::Gap => p.gap_m,
+            Param::R => d.observer.r_m,
+            Param::Theta => d.observer.theta_rad.to_degrees(),
+            Param::V0 => p.v0_m_s,
+            Param::MainMass => p.main_mass_kg,
+            Param::K => p.stiffness_n_m,
+            Param::C => p.damping_n_s_m,
+            Param::C1 => p.c1_n_s_m,
+            Param::KHz => d.resolved().map(|r| r.damper.k_hz).unwrap_or(p.k_hz),
+            Param::Duration => p.duration_s,
+            Param::LStar => d.thresholds.spl_db,
+            Param::EStar => d.thresholds.inclination_cm_s,
             _ => return None,
         })
     }
@@ -212,22 +212,22 @@ impl Field {
         let mut d = d.clone();
         let p = &mut d.damper;
         match self {
-            Field::Mass => p.impact_mass_kg = v,
-            Field::Gap => p.gap_m = v,
-            Field::R => d.observer.r_m = v,
-            Field::Theta => d.observer.theta_rad = v.to_radians(),
-            Field::V0 => p.v0_m_s = v,
-            Field::MainMass => p.main_mass_kg = v,
-            Field::K => p.stiffness_n_m = v,
-            Field::C => p.damping_n_s_m = v,
-            Field::C1 => p.c1_n_s_m = v,
-            Field::KHz => {
+            Param::Mass => p.impact_mass_kg = v,
+            Param::Gap => p.gap_m = v,
+            Param::R => d.observer.r_m = v,
+            Param::Theta => d.observer.theta_rad = v.to_radians(),
+            Param::V0 => p.v0_m_s = v,
+            Param::MainMass => p.main_mass_kg = v,
+            Param::K => p.stiffness_n_m = v,
+            Param::C => p.damping_n_s_m = v,
+            Param::C1 => p.c1_n_s_m = v,
+            Param::KHz => {
                 p.k_hz = v;
                 d.materials = None;
             }
-            Field::Duration => p.duration_s = v,
-            Field::LStar => d.thresholds.spl_db = v,
-            Field::EStar => d.thresholds.inclination_cm_s = v,
+            Param::Duration => p.duration_s = v,
+            Param::LStar => d.thresholds.spl_db = v,
+            Param::EStar => d.thresholds.inclination_cm_s = v,
             _ => {}
         }
         d
@@ -237,31 +237,31 @@ impl Field {
     pub fn display(self, d: &Design) -> String {
         let p = &d.damper;
         match self {
-            Field::Mass => format!("{} g", sig(p.impact_mass_kg * 1e3, 4)),
-            Field::Gap => format!("{} cm", sig(p.gap_m * 1e2, 3)),
-            Field::R => format!("{} m", sig(d.observer.r_m, 3)),
-            Field::Theta => format!("{} deg", sig(d.observer.theta_rad.to_degrees(), 3)),
-            Field::V0 => format!("{} m/s", sig(p.v0_m_s, 3)),
-            Field::MainMass => format!("{} kg", sig(p.main_mass_kg, 3)),
-            Field::K => format!("{} N/m", sig(p.stiffness_n_m, 4)),
-            Field::C => format!("{} N·s/m", sig(p.damping_n_s_m, 3)),
-            Field::C1 => format!("{} N·s/m", sig(p.c1_n_s_m, 4)),
-            Field::KHz => format!("{:.3e}", self.get(d).unwrap_or(p.k_hz)),
-            Field::Materials => match &d.materials {
+            Param::Mass => format!("{} g", sig(p.impact_mass_kg * 1e3, 4)),
+            Param::Gap => format!("{} cm", sig(p.gap_m * 1e2, 3)),
+            Param::R => format!("{} m", sig(d.observer.r_m, 3)),
+            Param::Theta => format!("{} deg", sig(d.observer.theta_rad.to_degrees(), 3)),
+            Param::V0 => format!("{} m/s", sig(p.v0_m_s, 3)),
+            Param::MainMass => format!("{} kg", sig(p.main_mass_kg, 3)),
+            Param::K => format!("{} N/m", sig(p.stiffness_n_m, 4)),
+            Param::C => format!("{} N·s/m", sig(p.damping_n_s_m, 3)),
+            Param::C1 => format!("{} N·s/m", sig(p.c1_n_s_m, 4)),
+            Param::KHz => format!("{:.3e}", self.get(d).unwrap_or(p.k_hz)),
+            Param::Materials => match &d.materials {
                 None => "off (K_HZ)".into(),
                 Some(m) => format!("{}/{}", m.sphere, m.plate),
             },
-            Field::Source => d.radiation.source.name().into(),
-            Field::QuadSigns => d.radiation.quad_signs.name().into(),
-            Field::Pulse => d.radiation.pulse.name().into(),
-            Field::Clamp => if p.no_tension { "no tension" } else { "off" }.into(),
-            Field::Solver => match d.solver {
+            Param::Source => d.radiation.source.name().into(),
+            Param::QuadSigns => d.radiation.quad_signs.name().into(),
+            Param::Pulse => d.radiation.pulse.name().into(),
+            Param::Clamp => if p.no_tension { "no tension" } else { "off" }.into(),
+            Param::Solver => match d.solver {
                 Solver::Event => "event".into(),
                 Solver::Newmark { dt_s } => format!("newmark {}µs", sig(dt_s * 1e6, 2)),
             },
-            Field::Duration => format!("{} s", sig(p.duration_s, 3)),
-            Field::LStar => format!("{} dB", sig(d.thresholds.spl_db, 4)),
-            Field::EStar => format!("{} cm/s", sig(d.thresholds.inclination_cm_s, 3)),
+            Param::Duration => format!("{} s", sig(p.duration_s, 3)),
+            Param::LStar => format!("{} dB", sig(d.thresholds.spl_db, 4)),
+            Param::EStar => format!("{} cm/s", sig(d.thresholds.inclination_cm_s, 3)),
         }
     }
 
@@ -290,32 +290,32 @@ impl Field {
         let mut d = d.clone();
         let turn = |i: usize, n: usize| if up { (i + 1) % n } else { (i + n - 1) % n };
         match self {
-            Field::Source => {
+            Param::Source => {
                 let all = Source::ALL;
                 let i = all.iter().position(|s| *s == d.radiation.source).unwrap_or(0);
                 d.radiation.source = all[turn(i, all.len())];
                 clamp_theta(&mut d);
             }
-            Field::QuadSigns => {
+            Param::QuadSigns => {
                 d.radiation.quad_signs = match d.radiation.quad_signs {
                     QuadSigns::Paper => QuadSigns::Rigid,
                     QuadSigns::Rigid => QuadSigns::Paper,
                 }
             }
-            Field::Pulse => {
+            Param::Pulse => {
                 d.radiation.pulse = match d.radiation.pulse {
                     PulseShape::HalfSine => PulseShape::Hertz,
                     PulseShape::Hertz => PulseShape::HalfSine,
                 }
             }
-            Field::Clamp => d.damper.no_tension = !d.damper.no_tension,
-            Field::Solver => {
+            Param::Clamp => d.damper.no_tension = !d.damper.no_tension,
+            Param::Solver => {
                 d.solver = match d.solver {
                     Solver::Event => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
                     Solver::Newmark { .. } => Solver::Event,
                 }
             }
-            Field::Materials => {
+            Param::Materials => {
                 let all = material_choices();
                 let i = all.iter().position(|m| *m == d.materials).unwrap_or(0);
                 d.materials = all[turn(i, all.len())].clone();
@@ -343,34 +343,34 @@ impl Field {
         let low = t.to_ascii_lowercase();
         let bad = |what: &str| ThudError::invalid(self.param(), format!("'{t}'; expected {what}"));
         match self {
-            Field::Source => {
+            Param::Source => {
                 d.radiation.source = Source::ALL
                     .into_iter()
                     .find(|s| s.name().starts_with(&low) && !low.is_empty())
                     .ok_or_else(|| bad("single, dipole or quadrupole"))?;
             }
-            Field::QuadSigns => {
+            Param::QuadSigns => {
                 d.radiation.quad_signs = match low.as_str() {
                     "paper" => QuadSigns::Paper,
                     "rigid" => QuadSigns::Rigid,
                     _ => return Err(bad("paper or rigid")),
                 }
             }
-            Field::Pulse => {
+            Param::Pulse => {
                 d.radiation.pulse = match low.as_str() {
                     "half-sine" | "halfsine" | "sine" | "half sine" => PulseShape::HalfSine,
                     "hertz" | "exact" => PulseShape::Hertz,
                     _ => return Err(bad("half-sine or hertz")),
                 }
             }
-            Field::Clamp => {
+            Param::Clamp => {
                 d.damper.no_tension = match low.as_str() {
                     "on" | "yes" | "true" | "no tension" | "no-tension" => true,
                     "off" | "no" | "false" => false,
                     _ => return Err(bad("on or off")),
                 }
             }
-            Field::Solver => {
+            Param::Solver => {
                 d.solver = match low.as_str() {
                     "event" => Solver::Event,
                     "newmark" => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
@@ -379,7 +379,7 @@ impl Field {
                     },
                 }
             }
-            Field::Materials => {
+            Param::Materials => {
                 d.materials = match low.as_str() {
                     "off" | "none" | "" => None,
                     _ => {
@@ -397,18 +397,9 @@ impl Field {
 
 /// Puts θ back inside the valid range of the source type after the source changed.
 fn clamp_theta(d: &mut Design) {
-    let (lo, hi) = theta_range_deg(d.radiation.source);
+    let (lo, hi) = d.radiation.source.theta_range_deg();
     let deg = d.observer.theta_rad.to_degrees().clamp(lo, hi);
     d.observer.theta_rad = deg.to_radians();
-}
-
-/// The valid observer angles (deg) of a source type: the open side of its walls.
-pub fn theta_range_deg(source: Source) -> (f64, f64) {
-    match source {
-        Source::Single => (-180.0, 180.0),
-        Source::Dipole => (-90.0, 90.0),
-        Source::Quadrupole => (0.0, 90.0),
-    }
 }
 
 #[cfg(test)]
@@ -418,22 +409,22 @@ mod tests {
     #[test]
     fn mass_steps_in_grams_and_snaps() {
         let d = Design::default();
-        let up = Field::Mass.stepped(&d, true, false).unwrap();
+        let up = Param::Mass.stepped(&d, true, false).unwrap();
         assert!((up.damper.impact_mass_kg - 0.0415).abs() < 1e-12, "{}", up.damper.impact_mass_kg);
-        let fine = Field::Mass.stepped(&d, true, true).unwrap();
+        let fine = Param::Mass.stepped(&d, true, true).unwrap();
         assert!((fine.damper.impact_mass_kg - 0.0406).abs() < 1e-12);
-        assert_eq!(Field::Mass.display(&d), "40.50 g");
+        assert_eq!(Param::Mass.display(&d), "40.50 g");
     }
 
     #[test]
     fn typed_values_with_units_and_refusals() {
         let d = Design::default();
-        assert!((Field::Gap.parsed(&d, "3cm").unwrap().damper.gap_m - 0.03).abs() < 1e-15);
-        assert!(Field::Gap.parsed(&d, "-3cm").is_err());
-        assert!(Field::Mass.parsed(&d, "abc").is_err());
-        assert!(Field::Theta.parsed(&d, "120").is_err(), "quadrupole θ is 0–90°");
-        assert_eq!(Field::Source.parsed(&d, "dip").unwrap().radiation.source, Source::Dipole);
-        let m = Field::Materials.parsed(&d, "brass/steel").unwrap();
+        assert!((Param::Gap.parsed(&d, "3cm").unwrap().damper.gap_m - 0.03).abs() < 1e-15);
+        assert!(Param::Gap.parsed(&d, "-3cm").is_err());
+        assert!(Param::Mass.parsed(&d, "abc").is_err());
+        assert!(Param::Theta.parsed(&d, "120").is_err(), "quadrupole θ is 0–90°");
+        assert_eq!(Param::Source.parsed(&d, "dip").unwrap().radiation.source, Source::Dipole);
+        let m = Param::Materials.parsed(&d, "brass/steel").unwrap();
         assert_eq!(m.materials.as_ref().unwrap().sphere, "brass");
     }
 
@@ -442,7 +433,7 @@ mod tests {
         let mut d = Design::default();
         d.radiation.source = Source::Single;
         d.observer.theta_rad = 150f64.to_radians();
-        let q = Field::Source.stepped(&d, false, false).unwrap();
+        let q = Param::Source.stepped(&d, false, false).unwrap();
         assert_eq!(q.radiation.source, Source::Quadrupole);
         assert!((q.observer.theta_rad.to_degrees() - 90.0).abs() < 1e-9);
     }
@@ -451,6 +442,6 @@ mod tests {
     fn step_below_zero_is_refused() {
         let mut d = Design::default();
         d.damper.impact_mass_kg = 0.001;
-        assert!(Field::Mass.stepped(&d, false, false).is_err());
+        assert!(Param::Mass.stepped(&d, false, false).is_err());
     }
 }

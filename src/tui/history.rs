@@ -6,8 +6,8 @@ use ratatui::style::Color;
 use ratatui::symbols::Marker;
 use ratatui::widgets::Widget;
 
-use super::plot::{LinePlot, Series};
-use super::theme::Theme;
+use super::plot::{Curve, LinePlot};
+use super::theme::Palette;
 
 /// The panel's data: (t in s, x in cm) with the damper, without it, and the pinned design's.
 pub struct HistoryView<'a> {
@@ -15,7 +15,7 @@ pub struct HistoryView<'a> {
     pub without: &'a [(f64, f64)],
     pub pinned: Option<&'a [(f64, f64)]>,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
 }
 
 impl Widget for HistoryView<'_> {
@@ -28,13 +28,8 @@ impl Widget for HistoryView<'_> {
             "x(t) cm: damper (fine), none (•)"
         };
         let mut series = vec![
-            Series {
-                name: "no damper",
-                data: self.without,
-                style: self.theme.fg(Color::DarkGray),
-                marker: free_marker,
-            },
-            Series {
+            Curve { name: "no damper", data: self.without, style: self.theme.fg(Color::DarkGray), marker: free_marker },
+            Curve {
                 name: "damper",
                 data: self.with_damper,
                 style: self.theme.fg(Color::Yellow),
@@ -42,7 +37,7 @@ impl Widget for HistoryView<'_> {
             },
         ];
         if let Some(p) = self.pinned {
-            series.push(Series {
+            series.push(Curve {
                 name: "pinned",
                 data: p,
                 style: self.theme.pinned(),

@@ -5,11 +5,22 @@
 //! [`Msg`]s; [`App::update`] changes the state and returns [`Request`]s for the [`Worker`];
 //! the screen is redrawn after each batch of messages (no fast tick). The UI thread never runs
 //! a simulation.
+//!
+//! The modules, from the state out: `app` (state and update) with `input` (keys per mode)
+//! and `files` (save, load, export); `worker` (requests, results, the four job slots) on
+//! `job` (the generic single-slot runner) calling `compute` (the physics each job does);
+//! `ui` (layout, one function per area) drawing the widgets `params`, `readout`, `waveform`,
+//! `polar`, `history`, `chart` (on `plot` and `theme`); `fields` (the editable parameters),
+//! `keys` (the key table) and `terminal` (setup and restore).
 
 pub mod app;
 pub mod chart;
+pub mod compute;
 pub mod fields;
+pub mod files;
 pub mod history;
+pub mod input;
+pub mod job;
 pub mod keys;
 pub mod params;
 pub mod plot;
@@ -30,10 +41,25 @@ use ratatui::backend::Backend;
 use ratatui::Terminal;
 
 pub use app::{App, Msg, Options};
-pub use theme::Theme;
+pub use theme::Palette;
 pub use worker::{Request, Worker};
 
+use crate::error::ThudError;
 use crate::{config, presets, store};
+
+/// Why the explorer could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum TuiError {
+    /// The starting preset is unknown or its file is bad.
+    #[error(transparent)]
+    Preset(#[from] ThudError),
+    /// No usable terminal (not a tty, or setting it up failed).
+    #[error("cannot use the terminal ({0}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)")]
+    Terminal(#[source] std::io::Error),
+    /// Drawing on the terminal failed.
+    #[error("cannot draw on the terminal: {0}")]
+    Draw(#[source] std::io::Error),
+}
 
 /// Set this environment variable to make the explorer panic right after it took over the
 /// terminal: the end-to-end test uses it to check that the panic hook restores the terminal.
@@ -45,9 +71,9 @@ const TICK: Duration = Duration::from_millis(120);
 /// Runs the explorer until the user quits. Errors (bad preset, no terminal) come back before
 /// or after the screen is restored. The user's `config.toml` is read (never written): a
 /// problem with it is shown in the status line and the defaults are used.
-pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
+pub fn run(opts: &Options) -> Result<(), TuiError> {
     let design = presets::preset(&opts.preset)?;
-    let theme = Theme::from_env(opts.ascii);
+    let theme = Palette::from_env(opts.ascii);
     let mut app = App::new(design, &opts.preset, theme);
     app.mouse = opts.mouse;
     app.configure(&config::load_user_config());
@@ -55,11 +81,7 @@ pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(dir) = &opts.export_dir {
         app.export_dir = dir.clone();
     }
-    let (mut term, _guard) = terminal::setup(opts.mouse).map_err(|e| {
-        format!(
-            "cannot use the terminal ({e}); the explorer needs an interactive terminal (over SSH: ssh -t host thud)"
-        )
-    })?;
+    let (mut term, _guard) = terminal::setup(opts.mouse).map_err(TuiError::Terminal)?;
     if std::env::var_os(PANIC_FOR_TEST).is_some() {
         panic!("{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore");
     }
@@ -69,8 +91,7 @@ pub fn run(opts: &Options) -> Result<(), Box<dyn std::error::Error>> {
     let worker = Worker::start(move |d| {
         let _ = tx.send(Msg::Work(d));
     });
-    event_loop(&mut term, &mut app, &worker, &rx, &busy)?;
-    Ok(())
+    event_loop(&mut term, &mut app, &worker, &rx, &busy).map_err(TuiError::Draw)
 }
 
 /// Reads terminal events on their own thread; sends a tick when idle while work is in flight.

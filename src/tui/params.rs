@@ -6,14 +6,14 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::theme::Theme;
+use super::theme::Palette;
 
 /// The panel's data: (label, value) rows, the selected row, whether the panel has focus.
 pub struct ParamsView<'a> {
     pub rows: &'a [(String, String)],
     pub selected: usize,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
 }
 
 impl ParamsView<'_> {

@@ -8,11 +8,11 @@ use ratatui::symbols::Marker;
 use ratatui::text::Span;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LegendPosition, Paragraph, Widget};
 
-use super::theme::Theme;
+use super::theme::Palette;
 use crate::units::sig;
 
 /// One curve.
-pub struct Series<'a> {
+pub struct Curve<'a> {
     pub name: &'a str,
     pub data: &'a [(f64, f64)],
     pub style: Style,
@@ -24,10 +24,10 @@ pub struct LinePlot<'a> {
     pub title: &'a str,
     pub x_title: &'a str,
     pub y_title: &'a str,
-    pub series: Vec<Series<'a>>,
+    pub series: Vec<Curve<'a>>,
     pub empty: &'a str,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
     /// Draw the y = 0 line.
     pub y_zero: bool,
     /// Show the legend box (else the title names the curves).

@@ -8,7 +8,7 @@ use ratatui::style::Color;
 use ratatui::widgets::canvas::{Canvas, Context, Line as CLine, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::theme::Theme;
+use super::theme::Palette;
 use crate::units::sig;
 
 /// Decibels shown between the floor and the loudest direction.
@@ -22,7 +22,7 @@ pub struct PolarView<'a> {
     pub range_deg: (f64, f64),
     pub r_m: f64,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
 }
 
 /// Cartesian point of level `db` at angle `deg` above `floor`.

@@ -6,7 +6,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::theme::Theme;
+use super::theme::Palette;
 
 /// One readout row: label, live value, pinned value (if a design is pinned).
 #[derive(Debug, Clone, PartialEq)]
@@ -21,7 +21,7 @@ pub struct ReadoutView<'a> {
     pub rows: &'a [Row],
     /// A line under the rows (e.g. "no impacts" or an error), if any.
     pub note: Option<&'a str>,
-    pub theme: Theme,
+    pub theme: Palette,
     pub focused: bool,
 }
 

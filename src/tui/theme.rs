@@ -6,21 +6,22 @@ use ratatui::symbols::Marker;
 
 use crate::design::Zone;
 
-/// How to draw: with or without colour, with or without Braille.
+/// How to draw: with or without colour, with or without Braille. (The `theme` setting of
+/// `config.toml`, [`crate::config::Theme`], is one of the things that chooses it.)
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Theme {
+pub struct Palette {
     pub color: bool,
     pub ascii: bool,
 }
 
-impl Default for Theme {
+impl Default for Palette {
     fn default() -> Self {
         Self { color: true, ascii: false }
     }
 }
 
-impl Theme {
-    /// Colour unless `NO_COLOR` is set to anything non-empty (https://no-color.org).
+impl Palette {
+    /// Colour unless `NO_COLOR` is set to anything non-empty (<https://no-color.org>).
     pub fn from_env(ascii: bool) -> Self {
         let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
         Self { color: !no_color, ascii }

@@ -1,6 +1,8 @@
 //! Layout: turns the app state into panels sized for the terminal. From 80×24 up every panel
 //! is reachable (the plots share one slot in the compact layout; Tab picks it); smaller
-//! terminals get fewer panels, down to a one-line message; nothing is drawn on 0×0.
+//! terminals get fewer panels, down to a one-line message; nothing is drawn on 0×0. One
+//! function per area: header, body panels, status line (with the input lines and the
+//! overwrite question), footer, and the popups (help, the lists and their text).
 
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
@@ -8,16 +10,22 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 use ratatui::Frame;
 
-use super::app::{nearest, zone_of, App, ChartView, ListView, Mode, Panel};
+use std::path::PathBuf;
+
+use super::app::{App, ChartView, Mode, Panel};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
-use super::fields::{theta_range_deg, Field};
+use super::compute::nearest;
+use super::fields::Param;
+use super::files::EXPORTS;
 use super::history::HistoryView;
+use super::keys::Action;
 use super::keys::Keymap;
 use super::params::ParamsView;
 use super::polar::PolarView;
 use super::readout::{ReadoutView, Row};
 use super::waveform::WaveformView;
 use crate::design::{Chart, Design, Metrics, Zone};
+use crate::store;
 use crate::units::sig;
 
 /// Smallest terminal that gets more than the one-line message.
@@ -51,7 +59,7 @@ pub fn draw(f: &mut Frame, app: &App) -> Option<Geometry> {
     }
     if app.mode == Mode::Help {
         help_popup(f, &app.keys, area);
-    } else if let Some(list) = app.list_view() {
+    } else if let Some(list) = list_view(app) {
         list_popup(f, &list, area);
     }
     geometry
@@ -64,7 +72,7 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Option<Geometry> {
     if body.width >= 110 && body.height >= 20 + readout_h {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] =
-            Layout::vertical([Constraint::Length(Field::ALL.len() as u16 + 2), Constraint::Min(1)]).areas(left);
+            Layout::vertical([Constraint::Length(Param::ALL.len() as u16 + 2), Constraint::Min(1)]).areas(left);
         f.render_widget(params_view(app), params);
         readout_widget(f, app, readout);
         let [top, bottom] = Layout::vertical([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(right);
@@ -86,7 +94,7 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Option<Geometry> {
         None
     } else {
         let [sel, readout] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(body);
-        let fld = app.field();
+        let fld = app.param();
         let line = format!("{}{} {}", app.theme.pointer(), fld.label(), fld.display(&app.design));
         f.render_widget(Paragraph::new(line).style(Style::default().add_modifier(Modifier::REVERSED)), sel);
         readout_widget(f, app, readout);
@@ -110,7 +118,7 @@ fn params_view(app: &App) -> impl Widget + '_ {
             .render(area, buf);
         }
     }
-    let rows = Field::ALL.iter().map(|f| (f.label().to_string(), f.display(&app.design))).collect();
+    let rows = Param::ALL.iter().map(|f| (f.label().to_string(), f.display(&app.design))).collect();
     Owned { rows, app }
 }
 
@@ -135,7 +143,8 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         ("e_fit", &|m, _| opt(m.inclination_fit_cm_s, 3, "cm/s")),
         ("SPLmax", &|m, _| opt(m.spl_max_db, 4, "dB")),
         ("zone", &|m, d| {
-            zone_of(m, d).map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {}", z.number(), z.describe()))
+            m.zone(&d.thresholds)
+                .map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {}", z.number(), z.describe()))
         }),
         ("impacts", &|m, _| m.n_impacts.to_string()),
         ("τ@U0max", &|m, _| opt(m.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
@@ -186,7 +195,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 live,
                 pinned: pin,
                 theta_deg: d.observer.theta_rad.to_degrees(),
-                range_deg: theta_range_deg(d.radiation.source),
+                range_deg: d.radiation.source.theta_range_deg(),
                 r_m: d.observer.r_m,
                 focused,
                 theme,
@@ -262,7 +271,7 @@ pub fn chart_cells(app: &App) -> Vec<CellView> {
         .iter()
         .enumerate()
         .map(|(i, c)| match c {
-            Some(c) => CellView::Exact(zone_of(&c.metrics, &app.design)),
+            Some(c) => CellView::Exact(app.zone(&c.metrics)),
             None => coarse_zone(app.chart.coarse.as_ref(), fine.masses_kg[i % nm], fine.gaps_m[i / nm], app),
         })
         .collect()
@@ -271,7 +280,7 @@ pub fn chart_cells(app: &App) -> Vec<CellView> {
 fn coarse_zone(coarse: Option<&Chart>, m: f64, g: f64, app: &App) -> CellView {
     let Some(c) = coarse else { return CellView::Empty };
     match c.cell(nearest(&c.masses_kg, m), nearest(&c.gaps_m, g)) {
-        Some(cell) => CellView::Approx(zone_of(&cell.metrics, &app.design)),
+        Some(cell) => CellView::Approx(app.zone(&cell.metrics)),
         None => CellView::Empty,
     }
 }
@@ -298,7 +307,7 @@ pub fn scatter_points(app: &App) -> Vec<(f64, f64, Zone)> {
             .flatten()
             .filter_map(|c| {
                 let m = &c.metrics;
-                Some((m.inclination_cm_s?, m.spl_max_db?, zone_of(m, &app.design)?))
+                Some((m.inclination_cm_s?, m.spl_max_db?, app.zone(m)?))
             })
             .collect()
     })
@@ -350,8 +359,17 @@ fn status_line(app: &App) -> Paragraph<'static> {
             ),
         ]));
     }
+    if let Mode::ConfirmOverwrite(name) = &app.mode {
+        return Paragraph::new(Line::from(vec![
+            Span::styled(format!(" overwrite {name}? y/n"), Style::default().add_modifier(Modifier::BOLD)),
+            Span::styled(
+                "  (y replaces the saved design of that name; any other key keeps it)",
+                Style::default().add_modifier(Modifier::DIM),
+            ),
+        ]));
+    }
     if let Mode::Editing(buf) = &app.mode {
-        let f = app.field();
+        let f = app.param();
         let unit = f.kind().map(|k| k.plain_unit()).unwrap_or("");
         let hint = if unit.is_empty() {
             String::new()
@@ -473,4 +491,75 @@ fn list_popup(f: &mut Frame, list: &ListView, area: Rect) {
     lines.push(Line::from(""));
     lines.push(Line::from(list.items[sel].detail.clone()));
     f.render_widget(Paragraph::new(lines).wrap(ratatui::widgets::Wrap { trim: false }), inner);
+}
+
+/// One row of a list popup (presets, saved designs, exports).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ListItem {
+    pub label: String,
+    /// Shown under the list for the highlighted row.
+    pub detail: String,
+    /// A row that cannot be chosen (e.g. a corrupt saved file).
+    pub problem: bool,
+}
+
+/// A list popup to draw: title, rows, highlighted row, and a line for an empty list.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ListView {
+    pub title: String,
+    pub items: Vec<ListItem>,
+    pub selected: usize,
+    pub empty: String,
+}
+
+/// The list popup of the app's mode, if it shows one.
+pub fn list_view(app: &App) -> Option<ListView> {
+    let (title, items, selected, empty) = match &app.mode {
+        Mode::Presets(i) => (
+            " presets (↑↓, Enter applies, Esc closes) ".to_string(),
+            app.preset_list
+                .iter()
+                .map(|p| ListItem { label: p.name.to_string(), detail: p.description.clone(), problem: false })
+                .collect(),
+            *i,
+            String::new(),
+        ),
+        Mode::Saved(i) => {
+            let good = app.saved.designs.iter().map(|d| ListItem {
+                label: d.name.clone(),
+                detail: d.description.clone(),
+                problem: false,
+            });
+            let bad = app.saved.problems.iter().map(|p| ListItem {
+                label: format!(
+                    "✗ {} (cannot be loaded)",
+                    p.path.file_name().map_or_else(|| p.path.display().to_string(), |n| n.to_string_lossy().into())
+                ),
+                detail: p.to_string(),
+                problem: true,
+            });
+            let dir = app.data_dir.as_deref().map_or_else(PathBuf::new, store::designs_dir);
+            (
+                " saved designs (↑↓, Enter loads, Esc closes) ".to_string(),
+                good.chain(bad).collect(),
+                *i,
+                format!("No saved designs in {}; press {} to save one.", dir.display(), app.key_label(Action::Save)),
+            )
+        }
+        Mode::Export(i) => (
+            " export (↑↓, Enter writes the file, Esc closes) ".to_string(),
+            EXPORTS
+                .iter()
+                .map(|(k, label)| ListItem {
+                    label: label.to_string(),
+                    detail: format!("{} in {}", k.default_file_name(), app.export_dir_name()),
+                    problem: false,
+                })
+                .collect(),
+            *i,
+            String::new(),
+        ),
+        _ => return None,
+    };
+    Some(ListView { title, items, selected, empty })
 }

@@ -6,27 +6,27 @@ use ratatui::layout::Rect;
 use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
-use super::plot::{LinePlot, Series};
-use super::theme::Theme;
+use super::plot::{Curve, LinePlot};
+use super::theme::Palette;
 
 /// The panel's data: (t in ms after the direct arrival, p in Pa).
 pub struct WaveformView<'a> {
     pub live: &'a [(f64, f64)],
     pub pinned: Option<&'a [(f64, f64)]>,
     pub focused: bool,
-    pub theme: Theme,
+    pub theme: Palette,
 }
 
 impl Widget for WaveformView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let mut series = vec![Series {
+        let mut series = vec![Curve {
             name: "live",
             data: self.live,
             style: self.theme.fg(Color::Cyan),
             marker: self.theme.marker(),
         }];
         if let Some(p) = self.pinned {
-            series.push(Series {
+            series.push(Curve {
                 name: "pinned",
                 data: p,
                 style: self.theme.pinned(),

@@ -57,6 +57,18 @@ impl Source {
             Source::Quadrupole => "quadrupole",
         }
     }
+
+    /// The valid observer angles θ (deg, lowest and highest): the open side of the source's
+    /// reflecting surfaces (Eqs 20–23) — all round for a free sphere, the half-space above the
+    /// plate for the dipole, the quarter-space of the wall–floor corner for the quadrupole.
+    #[must_use]
+    pub fn theta_range_deg(self) -> (f64, f64) {
+        match self {
+            Source::Single => (-180.0, 180.0),
+            Source::Dipole => (-90.0, 90.0),
+            Source::Quadrupole => (0.0, 90.0),
+        }
+    }
 }
 
 /// Signs of the two wall images of the quadrupole (Eq 22).
@@ -313,11 +325,7 @@ pub fn validate_observer(a: f64, observer: &Observer, source: Source) -> Result<
         ));
     }
     let deg = theta.to_degrees();
-    let (lo, hi) = match source {
-        Source::Single => (-180.0, 180.0),
-        Source::Dipole => (-90.0, 90.0),
-        Source::Quadrupole => (0.0, 90.0),
-    };
+    let (lo, hi) = source.theta_range_deg();
     if !(lo - 1e-9..=hi + 1e-9).contains(&deg) {
         return Err(ThudError::invalid(
             "theta",
@@ -629,6 +637,25 @@ pub fn directivity(
 mod tests {
     use super::*;
     use crate::contact::{Impact, Target};
+
+    #[test]
+    fn theta_range_is_the_open_side_of_each_source() {
+        let a = 0.01905;
+        for source in Source::ALL {
+            let (lo, hi) = source.theta_range_deg();
+            let valid = |deg: f64| validate_observer(a, &Observer::new(0.7, deg), source).is_ok();
+            assert!(valid(lo) && valid(hi) && valid(0.5 * (lo + hi)), "{source:?}: {lo}..{hi} valid");
+            if lo > -180.0 {
+                assert!(!valid(lo - 1.0), "{source:?}: below {lo} is behind a wall");
+            }
+            if hi < 180.0 {
+                assert!(!valid(hi + 1.0), "{source:?}: above {hi} is behind a wall");
+            }
+        }
+        // Each added reflecting surface closes off space: quadrupole ⊂ dipole ⊂ single.
+        let width = |s: Source| s.theta_range_deg().1 - s.theta_range_deg().0;
+        assert!(width(Source::Quadrupole) < width(Source::Dipole) && width(Source::Dipole) < width(Source::Single));
+    }
 
     fn fig2_contact() -> Contact {
         Impact { mass_kg: 0.0405, u0_m_s: 1.4, k_hz: 5.6e8, target: Target::FixedPlate }.contact()

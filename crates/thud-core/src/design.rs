@@ -246,6 +246,26 @@ pub struct Metrics {
     pub zone: Option<Zone>,
 }
 
+impl Metrics {
+    /// The inclination (cm/s) that `by` names: Eq 27's e or the robust e_fit; None if the run
+    /// had too few maxima for it.
+    #[must_use]
+    pub fn inclination_by(&self, by: ZoneBy) -> Option<f64> {
+        match by {
+            ZoneBy::Paper => self.inclination_cm_s,
+            ZoneBy::Fit => self.inclination_fit_cm_s,
+        }
+    }
+
+    /// The zone (Figs 15–17) of these metrics under `t`, by the inclination `t` names; None
+    /// without SPLmax or without that inclination. The stored [`Metrics::zone`] field is this
+    /// under the thresholds the metrics were computed with.
+    #[must_use]
+    pub fn zone(&self, t: &Thresholds) -> Option<Zone> {
+        Some(Zone::classify(self.spl_max_db?, self.inclination_by(t.zone_by)?, t))
+    }
+}
+
 /// Damping inclination of Eq 27, e = (X1 − X2)/(t2 − t1), in cm/s.
 pub fn inclination_cm_s(maxima: &[damper::Maximum]) -> Option<f64> {
     let (m1, m2) = (maxima.first()?, maxima.get(1)?);
@@ -284,13 +304,9 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
     };
     let e = inclination_cm_s(&run.maxima);
     let e_fit = inclination_fit_cm_s(&run.maxima);
-    let e_zone = match design.thresholds.zone_by {
-        ZoneBy::Paper => e,
-        ZoneBy::Fit => e_fit,
-    };
     let restitution_mean = (!run.impacts.is_empty())
         .then(|| run.impacts.iter().map(|i| i.u_out_m_s / i.u_in_m_s).sum::<f64>() / run.impacts.len() as f64);
-    Ok(Metrics {
+    let mut m = Metrics {
         n_impacts: run.impacts.len(),
         inclination_cm_s: e,
         inclination_fit_cm_s: e_fit,
@@ -299,11 +315,10 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
         spl_max_db,
         contact_duration_s,
         restitution_mean,
-        zone: match (spl_max_db, e_zone) {
-            (Some(l), Some(e)) => Some(Zone::classify(l, e, &design.thresholds)),
-            _ => None,
-        },
-    })
+        zone: None,
+    };
+    m.zone = m.zone(&design.thresholds);
+    Ok(m)
 }
 
 /// A design run through its solver, with its metrics.
@@ -451,13 +466,7 @@ pub fn spl_range_by_inclination(chart: &Chart, width_cm_s: f64, zone_by: ZoneBy)
         .cells
         .iter()
         .flatten()
-        .filter_map(|c| {
-            let e = match zone_by {
-                ZoneBy::Paper => c.metrics.inclination_cm_s,
-                ZoneBy::Fit => c.metrics.inclination_fit_cm_s,
-            };
-            Some((e?, c.metrics.spl_max_db?))
-        })
+        .filter_map(|c| Some((c.metrics.inclination_by(zone_by)?, c.metrics.spl_max_db?)))
         .collect();
     if pts.is_empty() || width_cm_s.is_nan() || width_cm_s <= 0.0 {
         return vec![];
@@ -533,6 +542,50 @@ mod tests {
         assert_eq!(Zone::classify(101.0, 1.5, &t), Zone::NoisyStrong);
         assert_eq!(Zone::classify(99.0, 1.5, &t), Zone::QuietStrong);
         assert_eq!(Zone::classify(99.0, 0.5, &t), Zone::QuietWeak);
+    }
+
+    fn metrics_with(e: Option<f64>, e_fit: Option<f64>, spl: Option<f64>) -> Metrics {
+        Metrics {
+            n_impacts: 3,
+            inclination_cm_s: e,
+            inclination_fit_cm_s: e_fit,
+            u0_max_m_s: 1.0,
+            zdot_abs_max_m_s: 1.0,
+            spl_max_db: spl,
+            contact_duration_s: None,
+            restitution_mean: None,
+            zone: None,
+        }
+    }
+
+    #[test]
+    fn zone_uses_the_inclination_the_thresholds_name() {
+        let m = metrics_with(Some(0.5), Some(1.5), Some(101.0));
+        assert_eq!(m.inclination_by(ZoneBy::Paper), Some(0.5));
+        assert_eq!(m.inclination_by(ZoneBy::Fit), Some(1.5));
+        let paper = Thresholds { spl_db: 100.0, inclination_cm_s: 1.0, zone_by: ZoneBy::Paper };
+        let fit = Thresholds { zone_by: ZoneBy::Fit, ..paper };
+        assert_eq!(m.zone(&paper), Some(Zone::NoisyWeak), "e 0.5 < e* 1");
+        assert_eq!(m.zone(&fit), Some(Zone::NoisyStrong), "e_fit 1.5 ≥ e* 1");
+        assert_eq!(metrics_with(Some(0.5), None, Some(101.0)).zone(&fit), None, "no e_fit: no zone by it");
+        assert_eq!(metrics_with(Some(0.5), None, Some(101.0)).zone(&paper), Some(Zone::NoisyWeak));
+        assert_eq!(metrics_with(Some(0.5), Some(1.5), None).zone(&paper), None, "no sound: no zone");
+    }
+
+    #[test]
+    fn evaluated_zone_is_the_zone_under_the_design_thresholds() {
+        for zone_by in [ZoneBy::Paper, ZoneBy::Fit] {
+            let mut d = Design::default();
+            d.thresholds.zone_by = zone_by;
+            let m = evaluate(&d, 0, None).unwrap().metrics;
+            assert!(m.zone.is_some(), "the default design sounds and decays");
+            assert_eq!(m.zone, m.zone(&d.thresholds));
+            let e = m.inclination_by(zone_by).unwrap();
+            // e* moved to the other side of e: strong becomes weak or weak strong.
+            let e_star = if e >= d.thresholds.inclination_cm_s { e + 1.0 } else { e - 1.0 };
+            let flipped = Thresholds { inclination_cm_s: e_star, ..d.thresholds };
+            assert_ne!(m.zone(&flipped), m.zone, "e* across e changes the zone");
+        }
     }
 
     #[test]

@@ -1,0 +1,272 @@
+//! What the explorer's jobs compute: one design simulated with its history, its sound (metrics,
+//! loudest-impact waveform, directivity), the chart sweep over mass × gap and the chart's levels
+//! at a new observer. Calls into the engine only; no threads, no slots, no messages — the worker
+//! (`worker.rs`) runs these on its threads and `tui::compute_sync` on the caller's.
+//!
+//! Each result is tagged with a key: the serialized parameters it depends on. A result whose
+//! key differs from the live design's is stale, and equal keys let the worker's caches answer.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::acoustics::Observer;
+use crate::damper;
+use crate::design::{self, linspace, Cell, Chart, Design, Evaluation, Metrics, Thresholds};
+use crate::error::ThudError;
+
+/// History samples kept for the x(t) plot.
+pub const HISTORY_SAMPLES: usize = 600;
+/// Samples of the pressure waveform.
+pub const WAVEFORM_SAMPLES: usize = 400;
+/// Angle step of the directivity polar (deg).
+pub const POLAR_STEP_DEG: f64 = 5.0;
+
+/// A mass × gap grid (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    pub masses_kg: Vec<f64>,
+    pub gaps_m: Vec<f64>,
+}
+
+impl Grid {
+    /// `nm` masses from 20 to 100 g and `ng` gaps from 1 to 7 cm.
+    pub fn standard(nm: usize, ng: usize) -> Self {
+        Self { masses_kg: linspace(0.02, 0.1, nm), gaps_m: linspace(0.01, 0.07, ng) }
+    }
+
+    pub fn len(&self) -> usize {
+        self.masses_kg.len() * self.gaps_m.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// The chart's grids: an optional coarse pass first, then the fine grid shown.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grids {
+    pub coarse: Option<Grid>,
+    pub fine: Grid,
+}
+
+impl Default for Grids {
+    /// 6 × 5 first, then 16 × 12.
+    fn default() -> Self {
+        Self { coarse: Some(Grid::standard(6, 5)), fine: Grid::standard(16, 12) }
+    }
+}
+
+/// Which pass of the chart a result belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stage {
+    Coarse,
+    Fine,
+}
+
+/// A simulated design: the evaluation and its history in plotting units.
+#[derive(Debug, Clone)]
+pub struct SimResult {
+    pub eval: Evaluation,
+    /// (t in s, x in cm) with the damper.
+    pub history_cm: Vec<(f64, f64)>,
+    /// (t in s, x in cm) of the same structure without the damper.
+    pub free_cm: Vec<(f64, f64)>,
+}
+
+/// The sound of a simulated design at its observer.
+#[derive(Debug, Clone)]
+pub struct AcousticResult {
+    pub metrics: Metrics,
+    /// (ms after the direct arrival, Pa) of the loudest impact.
+    pub waveform: Vec<(f64, f64)>,
+    /// (θ in deg, SPL in dB) at the observer's distance.
+    pub polar: Vec<(f64, f64)>,
+}
+
+/// The passes of a chart (coarse, if any, and fine), as the app holds them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChartPasses {
+    pub coarse: Option<Chart>,
+    pub fine: Chart,
+}
+
+/// Index of the value nearest `x` (0 for an empty slice): the grid cell a design falls in.
+pub fn nearest(values: &[f64], x: f64) -> usize {
+    values.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs())).map_or(0, |(i, _)| i)
+}
+
+/// The grids of held chart passes (for their key).
+pub fn grids_of(p: &ChartPasses) -> Grids {
+    let grid = |c: &Chart| Grid { masses_kg: c.masses_kg.clone(), gaps_m: c.gaps_m.clone() };
+    Grids { coarse: p.coarse.as_ref().map(grid), fine: grid(&p.fine) }
+}
+
+fn json<T: serde::Serialize>(v: &T) -> String {
+    serde_json::to_string(v).unwrap_or_default()
+}
+
+/// Key of what a simulation depends on: the damper, the ball, materials and solver.
+pub fn sim_key(d: &Design) -> String {
+    json(&(&d.damper, &d.ball, &d.materials, &d.solver))
+}
+
+/// Key of the acoustics: everything but the zone thresholds (zones are classified on draw).
+pub fn acoustic_key(d: &Design) -> String {
+    let mut d = d.clone();
+    d.thresholds = Thresholds::default();
+    json(&d)
+}
+
+/// Key of what the sound at the observer depends on beyond each impact: observer and radiation.
+pub fn sound_key(d: &Design) -> String {
+    json(&(&d.observer, &d.radiation))
+}
+
+/// Key of the chart's simulations: everything but the mass, the gap, the thresholds and the
+/// sound (a change of observer relevels the chart instead of re-sweeping it), plus the grids.
+pub fn chart_key(d: &Design, grids: &Grids) -> String {
+    let mut d = design::variant(d, 0.0, 0.0);
+    d.thresholds = Thresholds::default();
+    d.observer = Observer::new(0.0, 0.0);
+    d.radiation = Default::default();
+    format!(
+        "{}|{:?}|{:?}",
+        json(&d),
+        grids.coarse.as_ref().map(|g| (g.masses_kg.len(), g.gaps_m.len())),
+        (grids.fine.masses_kg.len(), grids.fine.gaps_m.len())
+    )
+}
+
+/// Simulates `d` with history; `None` if cancelled.
+pub fn compute_sim(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<SimResult>, ThudError> {
+    let eval = design::evaluate(d, HISTORY_SAMPLES, cancel)?;
+    if eval.run.cancelled {
+        return Ok(None);
+    }
+    let p = d.resolved()?.damper;
+    let history_cm = eval.run.history.iter().map(|h| (h.t_s, 100.0 * h.x_m)).collect();
+    let free_cm = eval.run.history.iter().map(|h| (h.t_s, 100.0 * damper::free_response(&p, h.t_s))).collect();
+    Ok(Some(SimResult { eval, history_cm, free_cm }))
+}
+
+/// Metrics, loudest-impact waveform and directivity of `d` from its cached run.
+pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, ThudError> {
+    let r = d.resolved()?;
+    let metrics = design::metrics(&sim.eval.run, &r)?;
+    let (mut waveform, mut polar) = (Vec::new(), Vec::new());
+    if metrics.spl_max_db.is_some() {
+        let u0 = metrics.u0_max_m_s;
+        let field = r.impact_field(u0)?;
+        let arrival = field.arrival_s();
+        let (t, p) = field.waveform(WAVEFORM_SAMPLES);
+        waveform = t.iter().zip(&p).map(|(t, p)| (1e3 * (t - arrival), *p)).collect();
+        polar = directivity(&r, u0);
+    }
+    Ok(AcousticResult { metrics, waveform, polar })
+}
+
+/// SPL (dB) every [`POLAR_STEP_DEG`] over the valid angles of the source, at the design's r.
+fn directivity(d: &Design, u0: f64) -> Vec<(f64, f64)> {
+    let (lo, hi) = d.radiation.source.theta_range_deg();
+    let n = ((hi - lo) / POLAR_STEP_DEG).round() as usize;
+    (0..=n)
+        .filter_map(|i| {
+            let deg = lo + i as f64 * POLAR_STEP_DEG;
+            let mut v = d.clone();
+            v.observer.theta_rad = deg.to_radians();
+            v.impact_spl_db(u0).ok().map(|l| (deg, l))
+        })
+        .collect()
+}
+
+/// Sweeps the coarse grid (if any) then the fine one: `on_cell` hears every cell as it is
+/// done (from the sweep's threads), `on_pass` every finished pass. Returns false if cancelled
+/// (the cancelled pass is not reported).
+pub fn compute_chart(
+    d: &Design,
+    grids: &Grids,
+    cancel: Option<&AtomicBool>,
+    on_cell: &(dyn Fn(Stage, usize, &Cell) + Sync),
+    on_pass: &mut dyn FnMut(Stage, Result<Chart, ThudError>),
+) -> bool {
+    let passes = grids.coarse.iter().map(|g| (Stage::Coarse, g)).chain([(Stage::Fine, &grids.fine)]);
+    for (stage, grid) in passes {
+        let result = design::sweep(d, &grid.masses_kg, &grid.gaps_m, cancel, &|i, cell| on_cell(stage, i, cell));
+        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return false;
+        }
+        on_pass(stage, result);
+    }
+    true
+}
+
+/// A cell's metrics with SPLmax (and zone) for the observer and radiation of `d`, from its
+/// U0max: one sound-field evaluation, no simulation.
+pub fn relevel_cell(d: &Design, cell: &Cell) -> Cell {
+    let mut out = *cell;
+    if cell.metrics.spl_max_db.is_some() {
+        let v = design::variant(d, cell.mass_kg, cell.gap_m);
+        out.metrics.spl_max_db = v.resolved().and_then(|r| r.impact_spl_db(cell.metrics.u0_max_m_s)).ok();
+        out.metrics.zone = out.metrics.zone(&d.thresholds);
+    }
+    out
+}
+
+/// Every computed cell of the passes relevelled for `d`.
+pub fn compute_relevel(d: &Design, passes: &ChartPasses) -> ChartPasses {
+    let re = |c: &Chart| Chart { cells: c.cells.iter().map(|x| x.map(|x| relevel_cell(d, &x))).collect(), ..c.clone() };
+    ChartPasses { coarse: passes.coarse.as_ref().map(re), fine: re(&passes.fine) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_separate_what_they_should() {
+        let d = Design::default();
+        let moved = design::variant(&d, 0.05, 0.03);
+        assert_ne!(sim_key(&d), sim_key(&moved));
+        assert_eq!(chart_key(&d, &Grids::default()), chart_key(&moved, &Grids::default()));
+        let mut heard = d.clone();
+        heard.observer.r_m = 1.0;
+        assert_eq!(sim_key(&d), sim_key(&heard));
+        assert_ne!(acoustic_key(&d), acoustic_key(&heard));
+        assert_eq!(chart_key(&d, &Grids::default()), chart_key(&heard, &Grids::default()), "observer relevels");
+        assert_ne!(sound_key(&d), sound_key(&heard));
+    }
+
+    #[test]
+    fn relevel_equals_a_fresh_sweep_at_the_new_observer() {
+        let d = Design::default();
+        let (m, g) = ([0.03, 0.06], [0.02, 0.04]);
+        let chart = design::sweep(&d, &m, &g, None, &|_, _| {}).unwrap();
+        let mut far = d.clone();
+        far.observer = Observer::new(1.5, 30.0);
+        let fresh = design::sweep(&far, &m, &g, None, &|_, _| {}).unwrap();
+        let re = compute_relevel(&far, &ChartPasses { coarse: None, fine: chart });
+        for (a, b) in re.fine.cells.iter().zip(&fresh.cells) {
+            let (a, b) = (a.unwrap().metrics, b.unwrap().metrics);
+            assert_eq!(a.spl_max_db.is_some(), b.spl_max_db.is_some());
+            if let (Some(x), Some(y)) = (a.spl_max_db, b.spl_max_db) {
+                assert!((x - y).abs() < 1e-9, "{x} vs {y}");
+            }
+            assert_eq!(a.zone, b.zone);
+        }
+    }
+
+    #[test]
+    fn the_polar_spans_the_open_side_of_the_source() {
+        for source in crate::acoustics::Source::ALL {
+            let mut d = Design::default();
+            d.radiation.source = source;
+            d.observer.theta_rad = 0.0;
+            let sim = compute_sim(&d, None).unwrap().unwrap();
+            let a = compute_acoustic(&d, &sim).unwrap();
+            let (lo, hi) = source.theta_range_deg();
+            let first = a.polar.first().map(|p| p.0);
+            let last = a.polar.last().map(|p| p.0);
+            assert_eq!((first, last), (Some(lo), Some(hi)), "{source:?}");
+        }
+    }
+}

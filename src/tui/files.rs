@@ -1,0 +1,222 @@
+//! The explorer's file actions: save the live design under a name (asking before one is
+//! overwritten), list and load saved designs (small TOML files in the data directory, read
+//! on the UI thread), and ask the worker for exports (written on their own threads).
+
+use std::path::{Path, PathBuf};
+
+use super::app::{App, Mode};
+use super::fields::Scope;
+use super::worker::{ExportJob, Request, WorkError};
+use crate::export::{ExportOptions, Kind};
+use crate::store::{self, DesignFile};
+use crate::units::sig;
+
+/// What the export menu offers, in menu order, with how it is named there.
+pub const EXPORTS: [(Kind, &str); 11] = [
+    (Kind::CsvWaveform, "waveform CSV — pressure of the loudest impact"),
+    (Kind::SvgWaveform, "waveform SVG"),
+    (Kind::CsvHistory, "history CSV — x(t) with and without the damper"),
+    (Kind::SvgHistory, "history SVG"),
+    (Kind::CsvImpacts, "impacts CSV — every impact of the run"),
+    (Kind::CsvSweep, "sweep CSV — the chart's mass × gap grid"),
+    (Kind::SvgChart, "chart SVG — zones over mass × gap"),
+    (Kind::SvgFig17, "Fig 17 SVG — e against SPLmax"),
+    (Kind::SvgDirectivity, "directivity SVG — SPL against θ"),
+    (Kind::SvgRestitution, "restitution SVG — e against impact mass"),
+    (Kind::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
+];
+
+/// The short name of an export kind ("waveform CSV").
+pub fn export_name(kind: Kind) -> &'static str {
+    let label = EXPORTS.iter().find(|(k, _)| *k == kind).map_or("file", |(_, l)| l);
+    label.split(" — ").next().unwrap_or(label)
+}
+
+/// `dir/name`, or `dir/stem-1.ext`, `dir/stem-2.ext` … the first that neither exists nor is
+/// in `pending`.
+pub fn unique_path(dir: &Path, name: &str, pending: &[PathBuf]) -> PathBuf {
+    let free = |p: &PathBuf| !p.exists() && !pending.contains(p);
+    let first = dir.join(name);
+    if free(&first) {
+        return first;
+    }
+    let (stem, ext) = match name.rsplit_once('.') {
+        Some((s, e)) => (s, format!(".{e}")),
+        None => (name, String::new()),
+    };
+    (1..).map(|n| dir.join(format!("{stem}-{n}{ext}"))).find(free).unwrap_or(first)
+}
+
+impl App {
+    /// The name offered when saving: the preset's or saved design's name, or the first free
+    /// `design-N`.
+    pub fn suggested_name(&self) -> String {
+        if self.preset != "default" && store::check_design_name(&self.preset).is_ok() {
+            return self.preset.clone();
+        }
+        (1..).map(|n| format!("design-{n}")).find(|n| !self.is_saved(n)).unwrap_or_else(|| "design-1".into())
+    }
+
+    /// True if something (a saved design, or anything else) is at `name`'s path in the data
+    /// directory. A dangling link counts: saving would replace it.
+    fn is_saved(&self, name: &str) -> bool {
+        let path = self.data_dir.as_deref().and_then(|d| store::design_path(d, name).ok());
+        path.is_some_and(|p| p.symlink_metadata().is_ok())
+    }
+
+    /// Saves the live design as `name`, but first asks if that would replace a saved design.
+    pub(crate) fn save_or_ask(&mut self, name: &str) {
+        if self.is_saved(name) {
+            self.mode = Mode::ConfirmOverwrite(name.to_string());
+        } else {
+            self.write_design(name, false);
+        }
+    }
+
+    /// Saves the live design as `name` in the data directory (a small file, written
+    /// atomically on this thread), replacing any design of that name; the outcome goes to the
+    /// status line. The keys ask first ([`Mode::ConfirmOverwrite`]) before replacing one.
+    pub fn save_as(&mut self, name: &str) {
+        self.write_design(name, true);
+    }
+
+    /// Writes the live design as `name`; an existing file is replaced only if `overwrite`
+    /// (without it, one that appeared since the question is reported, not replaced).
+    fn write_design(&mut self, name: &str, overwrite: bool) {
+        if let Err(e) = store::check_design_name(name) {
+            self.error(format_args!("cannot save: {e}"));
+            return;
+        }
+        let Some(dir) = self.data_dir.clone() else {
+            self.error("cannot save: no home directory, so no data directory");
+            return;
+        };
+        let p = &self.design.damper;
+        let description = format!(
+            "saved from the explorer: m {} g, d {} cm (from {})",
+            sig(p.impact_mass_kg * 1e3, 4),
+            sig(p.gap_m * 1e2, 3),
+            self.preset
+        );
+        let file = DesignFile { description, design: self.design.clone() };
+        match store::save_design(&dir, name, &file, overwrite) {
+            Ok(path) => {
+                self.preset = name.to_string();
+                self.set_status(&format!("saved {name} to {}", path.display()), false);
+            }
+            Err(e) => {
+                self.error(format_args!("cannot save {name}: {e}"));
+            }
+        }
+    }
+
+    /// Opens the list of saved designs (read from the data directory now: a few small files).
+    pub(crate) fn open_saved(&mut self) {
+        let Some(dir) = self.data_dir.clone() else {
+            self.error("cannot load: no home directory, so no data directory");
+            return;
+        };
+        match store::list_designs(&dir) {
+            Ok(list) => {
+                let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
+                self.saved = list;
+                self.mode = Mode::Saved(i);
+            }
+            Err(e) => {
+                self.error(format_args!("cannot list saved designs: {e}"));
+            }
+        }
+    }
+
+    /// Loads row `i` of the saved-designs list (the good designs, then the problem files).
+    pub(crate) fn load_saved(&mut self, i: usize) -> Vec<Request> {
+        if let Some(entry) = self.saved.designs.get(i) {
+            let name = entry.name.clone();
+            let Some(dir) = self.data_dir.clone() else { return vec![] };
+            return match store::load_design(&dir, &name) {
+                Ok(file) => {
+                    self.preset = name.clone();
+                    self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"))
+                }
+                Err(e) => self.error(format_args!("cannot load {name}: {e}")),
+            };
+        }
+        let problem = i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j));
+        match problem.map(ToString::to_string) {
+            Some(p) => self.error(format_args!("cannot load {p}")),
+            None => vec![],
+        }
+    }
+
+    /// Asks the worker to write an export of `kind` into the export directory, under its
+    /// default name (with -1, -2 … added if that file exists or is being written).
+    pub fn export(&mut self, kind: Kind) -> Request {
+        let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
+        self.exports.push(path.clone());
+        // Sweeps use the chart's grid, so the file shows what the screen does.
+        let g = &self.grids.fine;
+        let options = if kind.needs_sweep() {
+            ExportOptions {
+                masses_kg: Some(g.masses_kg.clone()),
+                gaps_m: Some(g.gaps_m.clone()),
+                ..ExportOptions::default()
+            }
+        } else {
+            ExportOptions::default()
+        };
+        self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
+        Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path }))
+    }
+
+    /// An export ended: the file is no longer pending and the status line says how it went.
+    pub(crate) fn export_finished(&mut self, kind: Kind, path: &Path, result: Result<(), WorkError>) {
+        self.exports.retain(|p| p != path);
+        let shown = self.shown_path(path);
+        match result {
+            Ok(()) => self.set_status(&format!("exported {} to {shown}", export_name(kind)), false),
+            Err(e) => {
+                self.error(format_args!("export of {} failed: {e}", export_name(kind)));
+            }
+        }
+    }
+
+    /// The export directory as shown.
+    pub(crate) fn export_dir_name(&self) -> String {
+        if self.export_dir == Path::new(".") {
+            "the current directory".into()
+        } else {
+            self.export_dir.display().to_string()
+        }
+    }
+
+    /// An export path as shown: the file name alone in the current directory.
+    fn shown_path(&self, path: &Path) -> String {
+        if self.export_dir == Path::new(".") {
+            path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+        } else {
+            path.display().to_string()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unique_path_skips_existing_and_pending_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let first = dir.path().join("out.csv");
+        assert_eq!(unique_path(dir.path(), "out.csv", &[]), first);
+        std::fs::write(&first, "x").unwrap();
+        let pending = [dir.path().join("out-1.csv")];
+        assert_eq!(unique_path(dir.path(), "out.csv", &pending), dir.path().join("out-2.csv"));
+    }
+
+    #[test]
+    fn export_names_are_the_menu_labels_short_form() {
+        assert_eq!(export_name(Kind::CsvWaveform), "waveform CSV");
+        assert_eq!(export_name(Kind::Wav), "sound WAV");
+        assert!(EXPORTS.iter().all(|(k, _)| !export_name(*k).contains(" — ")));
+    }
+}

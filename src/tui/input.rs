@@ -1,0 +1,204 @@
+//! What a key does in each mode: the key table's actions on the normal screen, typing in the
+//! input lines (a value, a name to save under), the overwrite question, and moving through
+//! the list popups (presets, saved designs, exports).
+
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use super::app::{App, Mode, Panel};
+use super::fields::{Param, Scope};
+use super::files::EXPORTS;
+use super::keys::Action;
+use super::worker::Request;
+use crate::presets;
+
+/// What a key did to an input line.
+enum Line {
+    Typing(String),
+    Cancel,
+    Submit(String),
+}
+
+/// Esc, Enter, Backspace and typing (at most `max` characters) in an input line.
+fn line_key(k: KeyEvent, mut buf: String, max: usize) -> Line {
+    match k.code {
+        KeyCode::Esc => Line::Cancel,
+        KeyCode::Enter => Line::Submit(buf),
+        KeyCode::Backspace => {
+            buf.pop();
+            Line::Typing(buf)
+        }
+        KeyCode::Char(c) if !k.modifiers.contains(KeyModifiers::CONTROL) => {
+            if buf.chars().count() < max {
+                buf.push(c);
+            }
+            Line::Typing(buf)
+        }
+        _ => Line::Typing(buf),
+    }
+}
+
+/// What a key does in a list popup.
+enum ListNav {
+    Stay,
+    Choose(usize),
+    Close,
+    Quit,
+}
+
+/// Longest value typed in the input line (characters).
+const VALUE_MAX: usize = 40;
+/// Longest name typed in the save line (characters).
+const NAME_MAX: usize = 64;
+
+impl App {
+    /// One key press, in the current mode. Ctrl-C quits from every mode.
+    pub(crate) fn key(&mut self, k: KeyEvent) -> Vec<Request> {
+        if k.kind == KeyEventKind::Release {
+            return vec![];
+        }
+        if k.code == KeyCode::Char('c') && k.modifiers.contains(KeyModifiers::CONTROL) {
+            self.quit = true;
+            return vec![];
+        }
+        match self.mode.clone() {
+            Mode::Editing(buf) => self.edit_key(k, buf),
+            Mode::SaveAs(buf) => self.save_key(k, buf),
+            Mode::ConfirmOverwrite(name) => self.confirm_key(k, &name),
+            Mode::Presets(i) => self.preset_key(k, i),
+            Mode::Saved(i) => self.saved_key(k, i),
+            Mode::Export(i) => self.export_key(k, i),
+            Mode::Help => {
+                match self.keys.action_for(&k) {
+                    Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
+                    _ => self.mode = Mode::Normal,
+                }
+                vec![]
+            }
+            Mode::Normal => self.keys.action_for(&k).map_or_else(Vec::new, |a| self.act(a)),
+        }
+    }
+
+    /// Performs one action of the key table.
+    pub fn act(&mut self, a: Action) -> Vec<Request> {
+        match a {
+            Action::Quit => self.quit = true,
+            Action::Help => self.mode = Mode::Help,
+            Action::FocusNext | Action::FocusPrev => {
+                self.focus = self.focus.cycle(a == Action::FocusNext);
+                if self.focus != Panel::Params {
+                    self.plot = self.focus;
+                }
+            }
+            Action::Up | Action::Down if self.focus == Panel::Chart => return self.chart_move(0, a == Action::Up),
+            Action::Up => self.selected = (self.selected + Param::ALL.len() - 1) % Param::ALL.len(),
+            Action::Down => self.selected = (self.selected + 1) % Param::ALL.len(),
+            Action::Decrease { .. } | Action::Increase { .. } if self.focus == Panel::Chart => {
+                return self.chart_move(1, matches!(a, Action::Increase { .. }))
+            }
+            Action::Decrease { fine } => return self.step(false, fine),
+            Action::Increase { fine } => return self.step(true, fine),
+            Action::Edit => self.mode = Mode::Editing(String::new()),
+            Action::Presets => {
+                let i = self.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
+                self.mode = Mode::Presets(i);
+            }
+            Action::Pin => self.toggle_pin(),
+            Action::Undo => return self.undo(),
+            Action::ToggleChartView => self.toggle_chart_view(),
+            Action::Save => self.mode = Mode::SaveAs(self.suggested_name()),
+            Action::Load => self.open_saved(),
+            Action::Export => self.mode = Mode::Export(0),
+        }
+        vec![]
+    }
+
+    fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
+        match line_key(k, buf, VALUE_MAX) {
+            Line::Typing(buf) => self.mode = Mode::Editing(buf),
+            Line::Cancel => {
+                self.mode = Mode::Normal;
+                self.set_status("input cancelled", false);
+            }
+            Line::Submit(buf) => {
+                self.mode = Mode::Normal;
+                return self.submit_text(&buf);
+            }
+        }
+        vec![]
+    }
+
+    fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
+        match line_key(k, buf, NAME_MAX) {
+            Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
+            Line::Cancel => {
+                self.mode = Mode::Normal;
+                self.set_status("save cancelled", false);
+            }
+            Line::Submit(name) => {
+                self.mode = Mode::Normal;
+                self.save_or_ask(name.trim());
+            }
+        }
+        vec![]
+    }
+
+    /// The answer to "overwrite NAME?": only `y` overwrites; any other key keeps the file.
+    fn confirm_key(&mut self, k: KeyEvent, name: &str) -> Vec<Request> {
+        self.mode = Mode::Normal;
+        if matches!(k.code, KeyCode::Char('y' | 'Y')) {
+            self.save_as(name);
+        } else {
+            self.set_status(&format!("save cancelled: {name} kept as it was"), false);
+        }
+        vec![]
+    }
+
+    /// Up/down/Enter/Esc in a list of `n` rows with row `i` highlighted.
+    fn list_nav(&mut self, k: KeyEvent, i: usize, n: usize, mode: fn(usize) -> Mode) -> ListNav {
+        let n = n.max(1);
+        match k.code {
+            KeyCode::Up | KeyCode::Char('k') => self.mode = mode((i + n - 1) % n),
+            KeyCode::Down | KeyCode::Char('j') => self.mode = mode((i + 1) % n),
+            KeyCode::Home => self.mode = mode(0),
+            KeyCode::End => self.mode = mode(n - 1),
+            KeyCode::Enter => {
+                self.mode = Mode::Normal;
+                return ListNav::Choose(i);
+            }
+            KeyCode::Char('q') => {
+                self.quit = true;
+                return ListNav::Quit;
+            }
+            _ => {
+                self.mode = Mode::Normal;
+                return ListNav::Close;
+            }
+        }
+        ListNav::Stay
+    }
+
+    fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
+        let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
+        let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
+        match presets::preset(name) {
+            Ok(mut d) => {
+                d.thresholds = self.config.thresholds(d.thresholds);
+                self.preset = name.to_string();
+                self.apply(d, Scope::All, format!("preset {name}"))
+            }
+            Err(e) => self.error(e),
+        }
+    }
+
+    fn saved_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
+        let n = self.saved.designs.len() + self.saved.problems.len();
+        let ListNav::Choose(i) = self.list_nav(k, i, n, Mode::Saved) else { return vec![] };
+        self.load_saved(i)
+    }
+
+    fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
+        let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
+        let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
+        vec![self.export(kind)]
+    }
+}
