@@ -4,8 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::format::print_str;
-use super::{print_table, OutputArgs};
+use super::{budget, CliError, Out, OutputArgs};
 use crate::error::ThudError;
 use crate::paper;
 
@@ -24,14 +23,13 @@ pub struct PaperArgs {
     output: OutputArgs,
 }
 
-pub fn run(a: &PaperArgs) -> Result<(), ThudError> {
+pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
     if a.list {
         let mut s = String::new();
         for item in paper::items() {
             s += &format!("{:<8} {}\n", item.id, item.description);
         }
-        print_str(&s);
-        return Ok(());
+        return out.text(&s);
     }
     let id = a.id.as_deref().unwrap_or_default().to_ascii_lowercase();
     if id == "all" {
@@ -41,17 +39,28 @@ pub fn run(a: &PaperArgs) -> Result<(), ThudError> {
         let ids: Vec<&str> = paper::items().map(|i| i.id).collect();
         ThudError::invalid("paper item", format!("unknown '{id}'; one of: {}", ids.join(", ")))
     })??;
-    print_table(&table, a.output.format());
-    Ok(())
+    out.table(&table, a.output.format())
 }
 
 /// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md.
-fn all(out: Option<&std::path::Path>) -> Result<(), ThudError> {
+fn all(out: Option<&std::path::Path>) -> Result<(), CliError> {
     let dir = out.ok_or_else(|| ThudError::invalid("out", "`thud paper all` needs --out DIR"))?;
+    let spinner = budget::spinner("reproducing the paper", true);
     let files = crate::export::report::paper_bundle();
+    spinner.finish_and_clear();
+    // Every number in every file is checked before the first file is written.
+    for f in &files {
+        super::output::check_text(&f.contents).map_err(|e| {
+            if let CliError::NonFinite(w) = e {
+                CliError::NonFinite(format!("{w} in {}", f.name))
+            } else {
+                e
+            }
+        })?;
+    }
     for f in &files {
         crate::export::write_file(&dir.join(&f.name), f.contents.as_bytes())?;
     }
-    eprintln!("thud: wrote {} files to {}", files.len(), dir.display());
+    super::warn(&format!("wrote {} files to {}", files.len(), dir.display()));
     Ok(())
 }

@@ -6,6 +6,7 @@ use crate::contact::MATERIALS;
 use crate::damper::Solver;
 use crate::design::{Design, Materials};
 use crate::error::ThudError;
+use crate::limits;
 use crate::units::{self, sig, Kind};
 
 /// One editable parameter of the design.
@@ -159,6 +160,37 @@ impl Field {
         })
     }
 
+    /// The field's valid range, from the one table of ranges ([`crate::limits`]).
+    pub fn range(self) -> Option<limits::Range> {
+        Some(match self {
+            Field::Mass => limits::MASS,
+            Field::Gap => limits::GAP,
+            Field::R => limits::R,
+            Field::Theta => limits::THETA,
+            Field::V0 => limits::V0,
+            Field::MainMass => limits::MAIN_MASS,
+            Field::K => limits::STIFFNESS,
+            Field::C => limits::DAMPING,
+            Field::C1 => limits::C1,
+            Field::KHz => limits::K_HZ,
+            Field::Duration => limits::DURATION,
+            Field::LStar => limits::L_STAR,
+            Field::EStar => limits::E_STAR,
+            _ => return None,
+        })
+    }
+
+    /// Checks this field's value in `d` against its range.
+    fn check_range(self, d: &Design) -> Result<(), ThudError> {
+        if let (Some(r), Some(v)) = (self.range(), self.get(d)) {
+            r.check_as(self.param(), v)?;
+        }
+        if let Solver::Newmark { dt_s } = d.solver {
+            limits::DT.check(dt_s)?;
+        }
+        Ok(())
+    }
+
     /// What a change of this field invalidates.
     pub fn scope(self) -> Scope {
         match self {
@@ -280,6 +312,7 @@ impl Field {
             }
             _ => self.cycled(d, up),
         };
+        self.check_range(&next)?;
         next.validate()?;
         next.resolved()?;
         Ok(next)
@@ -332,6 +365,7 @@ impl Field {
             Some(kind) => self.set(d, units::parse(self.param(), t, kind)?),
             None => self.parse_choice(d, t)?,
         };
+        self.check_range(&next)?;
         next.validate()?;
         next.resolved()?;
         Ok(next)
@@ -404,11 +438,7 @@ fn clamp_theta(d: &mut Design) {
 
 /// The valid observer angles (deg) of a source type: the open side of its walls.
 pub fn theta_range_deg(source: Source) -> (f64, f64) {
-    match source {
-        Source::Single => (-180.0, 180.0),
-        Source::Dipole => (-90.0, 90.0),
-        Source::Quadrupole => (0.0, 90.0),
-    }
+    limits::theta_range_deg(source)
 }
 
 #[cfg(test)]
