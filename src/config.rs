@@ -256,11 +256,15 @@ pub struct Config {
 }
 
 impl Config {
-    /// Checks the values serde cannot: finite thresholds, no key bound to two actions.
+    /// Checks the values serde cannot: thresholds inside their ranges (the same table the
+    /// command line and the explorer use, [`crate::limits`]), no key bound to two actions.
     pub fn validate(&self) -> Result<(), ThudError> {
-        for (name, v) in [("l_star_db", self.thresholds.l_star_db), ("e_star_cm_s", self.thresholds.e_star_cm_s)] {
-            if v.is_some_and(|x| !x.is_finite()) {
-                return Err(ThudError::invalid(name, "must be a finite number"));
+        use crate::limits::{E_STAR, L_STAR};
+        for (name, v, range) in
+            [("l_star_db", self.thresholds.l_star_db, L_STAR), ("e_star_cm_s", self.thresholds.e_star_cm_s, E_STAR)]
+        {
+            if let Some(x) = v {
+                range.check_as(name, x)?;
             }
         }
         let mut seen: Vec<(KeySpec, &ActionName)> = Vec::new();

@@ -1,6 +1,3 @@
-use clap::Parser;
-
 fn main() {
-    let cli = thud::cli::Cli::parse();
-    std::process::exit(thud::cli::run(cli));
+    std::process::exit(thud::cli::main());
 }

@@ -2,11 +2,12 @@
 
 use clap::{Args, ValueEnum};
 
-use super::{quantity, PulseArg, QuadSignsArg, SourceArg};
+use super::{quantity, CliError, Ctx, PulseArg, QuadSignsArg, SourceArg};
 use crate::acoustics::Source;
 use crate::damper::Solver;
 use crate::design::{BallSize, Design, Materials};
 use crate::error::ThudError;
+use crate::limits::{self, short, Estimate, Range};
 use crate::presets;
 use crate::units::Kind;
 
@@ -96,32 +97,33 @@ pub struct DesignArgs {
 }
 
 impl DesignArgs {
-    /// The design these flags describe, validated.
+    /// The design these flags describe, validated: each flag against its range (the error
+    /// names the flag), then the whole design (preset values too) and its derived quantities.
     pub fn design(&self) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
         let p = &mut d.damper;
-        let set = |target: &mut f64, param: &str, text: &Option<String>, kind: Kind| -> Result<(), ThudError> {
-            if let Some(v) = quantity(param, text, kind)? {
+        let set = |target: &mut f64, name: &str, text: &Option<String>, kind: Kind, range: &Range| {
+            if let Some(v) = quantity(name, text, kind, range)? {
                 *target = v;
             }
-            Ok(())
+            Ok::<(), ThudError>(())
         };
-        set(&mut p.impact_mass_kg, "mass", &self.mass, Kind::Mass)?;
-        set(&mut p.gap_m, "gap", &self.gap, Kind::Length)?;
-        set(&mut p.v0_m_s, "v0", &self.v0, Kind::Speed)?;
-        set(&mut p.main_mass_kg, "main-mass", &self.main_mass, Kind::Mass)?;
-        set(&mut p.stiffness_n_m, "k", &self.k, Kind::Stiffness)?;
-        set(&mut p.damping_n_s_m, "c", &self.c, Kind::Damping)?;
-        set(&mut p.c1_n_s_m, "c1", &self.c1, Kind::Damping)?;
-        set(&mut p.k_hz, "k-hz", &self.k_hz, Kind::HertzStiffness)?;
-        set(&mut p.duration_s, "duration", &self.duration, Kind::Time)?;
+        set(&mut p.impact_mass_kg, "mass", &self.mass, Kind::Mass, &limits::MASS)?;
+        set(&mut p.gap_m, "gap", &self.gap, Kind::Length, &limits::GAP)?;
+        set(&mut p.v0_m_s, "v0", &self.v0, Kind::Speed, &limits::V0)?;
+        set(&mut p.main_mass_kg, "main-mass", &self.main_mass, Kind::Mass, &limits::MAIN_MASS)?;
+        set(&mut p.stiffness_n_m, "k", &self.k, Kind::Stiffness, &limits::STIFFNESS)?;
+        set(&mut p.damping_n_s_m, "c", &self.c, Kind::Damping, &limits::DAMPING)?;
+        set(&mut p.c1_n_s_m, "c1", &self.c1, Kind::Damping, &limits::C1)?;
+        set(&mut p.k_hz, "k-hz", &self.k_hz, Kind::HertzStiffness, &limits::K_HZ)?;
+        set(&mut p.duration_s, "duration", &self.duration, Kind::Time, &limits::DURATION)?;
         p.no_tension |= self.no_tension;
         if let Some(s) = &self.sphere {
             d.materials =
                 Some(Materials { sphere: s.clone(), plate: self.plate.clone().unwrap_or_else(|| "steel".into()) });
         }
-        let dt = quantity("dt", &self.dt, Kind::Time)?;
+        let dt = quantity("dt", &self.dt, Kind::Time, &limits::DT)?;
         d.solver = match (self.solver, dt, d.solver) {
             (Some(SolverArg::Event), _, _) => Solver::Event,
             (Some(SolverArg::Newmark), dt, _) => Solver::Newmark { dt_s: dt.unwrap_or(1e-7) },
@@ -131,14 +133,14 @@ impl DesignArgs {
             }
             (None, None, s) => s,
         };
-        if let Some(rho) = quantity("density", &self.density, Kind::Density)? {
+        if let Some(rho) = quantity("density", &self.density, Kind::Density, &limits::DENSITY)? {
             d.ball = BallSize::Density(rho);
         }
-        if let Some(a) = quantity("radius", &self.radius, Kind::Length)? {
+        if let Some(a) = quantity("radius", &self.radius, Kind::Length, &limits::RADIUS)? {
             d.ball = BallSize::Radius(a);
         }
-        set(&mut d.observer.r_m, "r", &self.r, Kind::Length)?;
-        if let Some(th) = quantity("theta", &self.theta, Kind::Angle)? {
+        set(&mut d.observer.r_m, "r", &self.r, Kind::Length, &limits::R)?;
+        if let Some(th) = quantity("theta", &self.theta, Kind::Angle, &limits::THETA)? {
             d.observer.theta_rad = th.to_radians();
         }
         if let Some(s) = self.source {
@@ -150,23 +152,152 @@ impl DesignArgs {
         if let Some(p) = self.pulse {
             d.radiation.pulse = p.into();
         }
-        set(&mut d.thresholds.spl_db, "l-star", &self.l_star, Kind::Level)?;
-        set(&mut d.thresholds.inclination_cm_s, "e-star", &self.e_star, Kind::Inclination)?;
-        d.validate()?;
+        set(&mut d.thresholds.spl_db, "l-star", &self.l_star, Kind::Level, &limits::L_STAR)?;
+        set(&mut d.thresholds.inclination_cm_s, "e-star", &self.e_star, Kind::Inclination, &limits::E_STAR)?;
+        limits::check_design(&d)?;
+        d.validate().map_err(|e| self.blame_ball(e, &d))?;
         d.resolved()
+    }
+
+    /// An observer inside the ball is the ball's fault when the user sized the ball and left
+    /// the observer alone: name the flag they typed, not `r`.
+    fn blame_ball(&self, e: ThudError, d: &Design) -> ThudError {
+        if self.r.is_some() || !e.to_string().starts_with("invalid r: ") {
+            return e;
+        }
+        let typed = [("mass", &self.mass), ("density", &self.density), ("radius", &self.radius)]
+            .into_iter()
+            .find(|(_, t)| t.is_some());
+        match typed {
+            Some((name, _)) => ThudError::invalid(
+                format!("--{name}"),
+                format!(
+                    "the ball's radius {} m reaches the observer at r {} m; make the ball smaller or move the observer with --r",
+                    short(d.ball_radius_m()),
+                    short(d.observer.r_m)
+                ),
+            ),
+            None => e,
+        }
+    }
+
+    /// The numeric flags the user typed, as `--name value`, for messages about the design as
+    /// a whole.
+    pub(crate) fn typed(&self) -> String {
+        let all = [
+            ("mass", &self.mass),
+            ("gap", &self.gap),
+            ("v0", &self.v0),
+            ("main-mass", &self.main_mass),
+            ("k", &self.k),
+            ("c", &self.c),
+            ("c1", &self.c1),
+            ("k-hz", &self.k_hz),
+            ("duration", &self.duration),
+            ("dt", &self.dt),
+            ("density", &self.density),
+            ("radius", &self.radius),
+        ];
+        let typed: Vec<String> = all
+            .iter()
+            .filter_map(|(n, t)| t.as_ref().map(|t| format!("--{n} {}", super::errors::cut_chars(t, 20))))
+            .collect();
+        typed.join(", ")
+    }
+
+    /// `--duration` as typed, if it was.
+    pub(crate) fn duration_text(&self) -> Option<String> {
+        self.duration.clone()
+    }
+
+    /// What to show for a flag in a refusal: what the user typed, else the design's value.
+    fn shown(text: &Option<String>, value: f64, unit: &str) -> String {
+        text.clone().unwrap_or_else(|| format!("{} {unit}", short(value)))
+    }
+
+    /// Refuses one run of `d` whose work is over a cap (see [`limits::design_run`]), naming
+    /// the flag that drives it; `samples_flag` is the flag that asked for `history_samples`.
+    pub(crate) fn check_run(
+        &self,
+        ctx: &Ctx,
+        d: &Design,
+        history_samples: usize,
+        samples_flag: &str,
+    ) -> Result<(), CliError> {
+        let [steps, cycles, history] = limits::design_run(d, history_samples);
+        self.check_newmark(ctx, d, steps, "")?;
+        self.check_cycles(ctx, d, cycles, "")?;
+        ctx.enforce(
+            history,
+            samples_flag,
+            &history_samples.to_string(),
+            &format!("use {samples_flag} ≤ {}", short(history.cap.max)),
+        )
+    }
+
+    /// Refuses Newmark steps over the cap (`per` says "per cell" sizes for sweeps).
+    fn check_newmark(&self, ctx: &Ctx, d: &Design, steps: Estimate, cells: &str) -> Result<(), CliError> {
+        let Solver::Newmark { dt_s } = d.solver else { return Ok(()) };
+        let dur = d.damper.duration_s;
+        let scale = steps.value / limits::newmark_steps(dur, dt_s);
+        let (min_dt, max_dur) = (dur * scale / steps.cap.max, steps.cap.max * dt_s / scale);
+        if self.duration.is_some() && self.dt.is_none() {
+            let hint = format!("use --duration ≤ {} s{cells} or a larger --dt", short(max_dur));
+            ctx.enforce(steps, "--duration", &Self::shown(&self.duration, dur, "s"), &hint)
+        } else {
+            let hint = format!("use --dt ≥ {} s{cells} or a shorter --duration", short(min_dt));
+            ctx.enforce(steps, "--dt", &Self::shown(&self.dt, dt_s, "s"), &hint)
+        }
+    }
+
+    /// Refuses main-mass cycles over the cap.
+    fn check_cycles(&self, ctx: &Ctx, d: &Design, cycles: Estimate, cells: &str) -> Result<(), CliError> {
+        let dur = d.damper.duration_s;
+        let max_dur = dur * cycles.cap.max / cycles.value;
+        let p = &d.damper;
+        let (flag, shown) = if self.duration.is_none() && self.k.is_some() {
+            ("--k", Self::shown(&self.k, p.stiffness_n_m, "N/m"))
+        } else if self.duration.is_none() && self.main_mass.is_some() {
+            ("--main-mass", Self::shown(&self.main_mass, p.main_mass_kg, "kg"))
+        } else {
+            ("--duration", Self::shown(&self.duration, dur, "s"))
+        };
+        ctx.enforce(cycles, flag, &shown, &format!("use --duration ≤ {} s{cells}", short(max_dur)))
+    }
+
+    /// Refuses a design chart of `n_masses` × `n_gaps` cells of `d` whose work is over a cap.
+    pub(crate) fn check_sweep(&self, ctx: &Ctx, d: &Design, n_masses: usize, n_gaps: usize) -> Result<(), CliError> {
+        let cells = limits::sweep_cells(n_masses, n_gaps);
+        ctx.enforce(
+            cells,
+            "--masses/--gaps",
+            &format!("{n_masses} × {n_gaps}"),
+            &format!("use fewer values N on either axis (product ≤ {})", short(cells.cap.max)),
+        )?;
+        let n = n_masses * n_gaps;
+        let [cell_seconds, steps, cycles] = limits::sweep_work(d, n);
+        let per = format!(" with {n} cells");
+        ctx.enforce(
+            cell_seconds,
+            "--duration",
+            &Self::shown(&self.duration, d.damper.duration_s, "s"),
+            &format!("use --duration ≤ {} s{per} or fewer cells", short(cell_seconds.cap.max / n as f64)),
+        )?;
+        self.check_newmark(ctx, d, steps, &per)?;
+        self.check_cycles(ctx, d, cycles, &per)
     }
 }
 
-/// Parses a range "FROM:TO:N" of quantities of `kind` (e.g. "30g:100g:20").
-pub fn parse_range(param: &str, text: &str, kind: Kind) -> Result<Vec<f64>, ThudError> {
+/// Parses a range "FROM:TO:N" of quantities of `kind` (e.g. "30g:100g:20") for flag `--{name}`;
+/// both ends are checked against `range`, N against [`limits::GRID_N`].
+pub fn parse_range(name: &str, text: &str, kind: Kind, range: &Range) -> Result<Vec<f64>, ThudError> {
+    let flag = format!("--{name}");
     let parts: Vec<&str> = text.split(':').collect();
     let [from, to, n] = parts[..] else {
-        return Err(ThudError::invalid(param, format!("'{text}'; expected FROM:TO:N, e.g. 30g:100g:20")));
+        return Err(ThudError::invalid(&flag, format!("'{text}'; expected FROM:TO:N, e.g. 30g:100g:20")));
     };
-    let (from, to) = (crate::units::parse(param, from, kind)?, crate::units::parse(param, to, kind)?);
-    let n: usize =
-        n.trim().parse().ok().filter(|&n| (1..=1000).contains(&n)).ok_or_else(|| {
-            ThudError::invalid(param, format!("'{n}' points; N must be a whole number from 1 to 1000"))
-        })?;
+    let from = range.check_as(&flag, crate::units::parse(&flag, from, kind)?)?;
+    let to = range.check_as(&flag, crate::units::parse(&flag, to, kind)?)?;
+    let n = limits::GRID_N.parse_count(&flag, n)?;
     Ok(crate::design::linspace(from, to, n))
 }

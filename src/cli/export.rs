@@ -6,10 +6,12 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Subcommand, ValueEnum};
 
 use super::design_args::{parse_range, DesignArgs};
-use super::quantity;
+use super::{budget, count, quantity, CliError, Ctx};
+use crate::design::Design;
 use crate::error::ThudError;
 use crate::export::{self, wav::WavOptions, ExportError, ExportOptions, Kind};
 use crate::fsio::{self, FsError, Overwrite};
+use crate::limits::{self, short};
 use crate::units::Kind as Unit;
 
 #[derive(Debug, Clone, Args)]
@@ -65,7 +67,7 @@ struct SvgArgs {
 #[derive(Debug, Clone, Args)]
 struct WavArgs {
     /// Pressure written as sample value 1.0 (Pa); the same for every design, so files compare by ear.
-    #[arg(long, value_name = "PA", default_value = "20")]
+    #[arg(long, value_name = "PA", default_value = "20", allow_hyphen_values = true)]
     full_scale: String,
     #[command(flatten)]
     common: Common,
@@ -80,14 +82,14 @@ struct Common {
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     u0: Option<String>,
     /// Impact masses FROM:TO:N of sweep/chart/fig17 [default: 30g:100g:20] and restitution [default: 5g:100g:20].
-    #[arg(long, value_name = "FROM:TO:N")]
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
     masses: Option<String>,
     /// Gaps FROM:TO:N of sweep/chart/fig17 [default: 2cm:5cm:20].
-    #[arg(long, value_name = "FROM:TO:N")]
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
     gaps: Option<String>,
-    /// Points of a waveform or time history.
-    #[arg(long, value_name = "N", default_value_t = 2001)]
-    points: usize,
+    /// Points of a waveform or time history (at most 1000000).
+    #[arg(long, value_name = "N", default_value = "2001", allow_hyphen_values = true)]
+    points: String,
     /// The file to write (`-`: standard output). An existing file is kept unless --force.
     #[arg(long, value_name = "FILE")]
     out: PathBuf,
@@ -96,49 +98,130 @@ struct Common {
     force: bool,
 }
 
+/// The most points an export renders (`export::render` draws at most this many).
+const EXPORT_POINTS_MAX: usize = 1_000_000;
+
 impl Common {
     fn options(&self) -> Result<ExportOptions, ThudError> {
+        let points = count("points", &self.points, &limits::POINTS)?;
+        if points > EXPORT_POINTS_MAX {
+            return Err(ThudError::invalid(
+                "--points",
+                format!("{points}; an export draws at most {EXPORT_POINTS_MAX} points"),
+            ));
+        }
         Ok(ExportOptions {
-            u0_m_s: quantity("u0", &self.u0, Unit::Speed)?,
-            masses_kg: self.masses.as_deref().map(|m| parse_range("masses", m, Unit::Mass)).transpose()?,
-            gaps_m: self.gaps.as_deref().map(|g| parse_range("gaps", g, Unit::Length)).transpose()?,
-            points: self.points,
+            u0_m_s: quantity("u0", &self.u0, Unit::Speed, &limits::U0)?,
+            masses_kg: self
+                .masses
+                .as_deref()
+                .map(|m| parse_range("masses", m, Unit::Mass, &limits::MASS))
+                .transpose()?,
+            gaps_m: self.gaps.as_deref().map(|g| parse_range("gaps", g, Unit::Length, &limits::GAP)).transpose()?,
+            points,
             wav: WavOptions::default(),
         })
     }
+
+    /// Refuses an export whose work is over a cap; says whether it is expected to be long.
+    fn check_work(&self, ctx: &Ctx, kind: Kind, d: &Design, opts: &ExportOptions) -> Result<bool, CliError> {
+        let points = &self.points;
+        let runs = !kind.needs_sweep() && kind != Kind::SvgRestitution;
+        let history = if matches!(kind, Kind::CsvHistory | Kind::SvgHistory) { opts.points } else { 0 };
+        if runs {
+            self.design.check_run(ctx, d, history, "--points")?;
+        }
+        let mut long = runs && limits::design_run(d, history).iter().any(|e| e.value > 0.1 * e.cap.max);
+        if kind.needs_sweep() {
+            let m = opts.masses_kg.as_ref().map_or(20, Vec::len);
+            let g = opts.gaps_m.as_ref().map_or(20, Vec::len);
+            self.design.check_sweep(ctx, d, m, g)?;
+            long |= m * g >= 2000;
+        }
+        if matches!(kind, Kind::CsvWaveform | Kind::SvgWaveform) {
+            let e = limits::waveform_points(opts.points);
+            ctx.enforce(e, "--points", points, &format!("use --points ≤ {}", short(e.cap.max)))?;
+        }
+        if kind == Kind::SvgRestitution {
+            let n = opts.masses_kg.as_ref().map_or(20, Vec::len);
+            let e = limits::restitution_contacts(n, false);
+            let masses = self.masses.clone().unwrap_or_default();
+            ctx.enforce(e, "--masses", &masses, &format!("use at most {} masses", short(e.cap.max)))?;
+        }
+        if kind == Kind::Wav {
+            let e = limits::wav_samples(d.damper.duration_s, f64::from(opts.wav.sample_rate));
+            let shown = self.design_duration_text(d);
+            let max = e.cap.max / f64::from(opts.wav.sample_rate);
+            ctx.enforce(e, "--duration", &shown, &format!("use --duration ≤ {} s for a WAV", short(max)))?;
+            long |= e.value > 0.1 * e.cap.max;
+        }
+        Ok(long)
+    }
+
+    /// The duration as typed, or the design's.
+    fn design_duration_text(&self, d: &Design) -> String {
+        self.design.duration_text().unwrap_or_else(|| format!("{} s", short(d.damper.duration_s)))
+    }
 }
 
-/// Renders and writes one export; says on stderr what was written. The target is checked
-/// before the work starts, so a refused --out costs nothing.
-fn write(kind: Kind, common: &Common, opts: &ExportOptions) -> Result<(), ThudError> {
-    if opts.points < 2 {
-        return Err(ThudError::invalid("points", format!("{}; must be at least 2", opts.points)));
+/// "No impact to hear" is about the whole design: say which flags made it.
+fn no_impact(e: ThudError, common: &Common) -> ThudError {
+    let typed = common.design.typed();
+    if common.u0.is_some() || typed.is_empty() || !e.to_string().contains("no impact") {
+        return e;
     }
+    ThudError::invalid("--u0", format!("the design ({typed}) has no impact to hear; give an impact speed with --u0"))
+}
+
+/// Checks rendered contents hold no non-finite number: WAV samples as floats, text as text.
+fn check_contents(kind: Kind, bytes: &[u8]) -> Result<(), CliError> {
+    if kind == Kind::Wav {
+        // 32-bit float samples after the 44-byte header of a mono float WAV.
+        let bad = bytes.get(44..).unwrap_or_default().chunks_exact(4).find_map(|c| {
+            let x = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
+            (!x.is_finite()).then_some(x)
+        });
+        return bad.map_or(Ok(()), |x| Err(CliError::NonFinite(format!("{x} in a WAV sample"))));
+    }
+    super::output::check_text(&String::from_utf8_lossy(bytes))
+}
+
+/// Renders and writes one export; says on stderr what was written. The target and the work are
+/// checked before the work starts, so a refused --out or an over-cap run costs nothing, and the
+/// contents are checked for non-finite numbers before anything is written.
+fn write(ctx: &Ctx, kind: Kind, common: &Common, opts: &ExportOptions) -> Result<(), CliError> {
     let design = common.design.design()?;
     let overwrite = Overwrite::from_force(common.force);
     let out = &common.out;
-    if fsio::is_stdout(out) {
-        if kind == Kind::Wav && std::io::stdout().is_terminal() {
-            return Err(ThudError::invalid(
-                "out",
-                "-: a WAV file is binary; redirect standard output to a file or a player",
-            ));
-        }
-        let bytes = export::render(kind, &design, opts).map_err(|e| export_error(out, e))?;
-        return fsio::write_stdout(&bytes)
-            .map_err(|e| ThudError::invalid("out", format!("cannot write to standard output: {e}")));
+    let to_stdout = fsio::is_stdout(out);
+    if to_stdout && kind == Kind::Wav && std::io::stdout().is_terminal() {
+        return Err(ThudError::invalid(
+            "out",
+            "-: a WAV file is binary; redirect standard output to a file or a player",
+        )
+        .into());
     }
-    fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
-    let bytes = export::render(kind, &design, opts).map_err(|e| export_error(out, e))?;
+    if !to_stdout {
+        fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    }
+    let long = common.check_work(ctx, kind, &design, opts)?;
+    let spinner = budget::spinner("exporting", long);
+    let bytes = export::render(kind, &design, opts);
+    spinner.finish_and_clear();
+    let bytes = bytes.map_err(|e| export_error(out, e, common))?;
+    check_contents(kind, &bytes)?;
+    if to_stdout {
+        return Ok(fsio::write_stdout(&bytes)?);
+    }
     fsio::write(out, &bytes, overwrite).map_err(|e| out_error(out, &e))?;
-    eprintln!("thud: wrote {}", out.display());
+    super::warn(&format!("wrote {}", out.display()));
     Ok(())
 }
 
 /// An export failure as the CLI's one-line error.
-fn export_error(out: &Path, e: ExportError) -> ThudError {
+fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
     match e {
-        ExportError::Invalid(t) => t,
+        ExportError::Invalid(t) => no_impact(t, common),
         ExportError::File(f) => out_error(out, &f),
         ExportError::Csv(c) => ThudError::invalid("out", format!("cannot write {}: {c}", out.display())),
     }
@@ -157,7 +240,7 @@ pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
     ThudError::invalid("out", message)
 }
 
-pub fn run(a: &ExportArgs) -> Result<(), ThudError> {
+pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
     match &a.what {
         ExportCommand::Csv(c) => {
             let kind = match c.what {
@@ -166,7 +249,7 @@ pub fn run(a: &ExportArgs) -> Result<(), ThudError> {
                 CsvWhat::Impacts => Kind::CsvImpacts,
                 CsvWhat::Sweep => Kind::CsvSweep,
             };
-            write(kind, &c.common, &c.common.options()?)
+            write(ctx, kind, &c.common, &c.common.options()?)
         }
         ExportCommand::Svg(s) => {
             let kind = match s.what {
@@ -177,13 +260,14 @@ pub fn run(a: &ExportArgs) -> Result<(), ThudError> {
                 SvgWhat::Chart => Kind::SvgChart,
                 SvgWhat::Fig17 => Kind::SvgFig17,
             };
-            write(kind, &s.common, &s.common.options()?)
+            write(ctx, kind, &s.common, &s.common.options()?)
         }
         ExportCommand::Wav(w) => {
             let mut opts = w.common.options()?;
-            opts.wav.full_scale_pa = crate::units::parse("full-scale", &w.full_scale, Unit::Number)?;
+            opts.wav.full_scale_pa =
+                quantity("full-scale", &Some(w.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
             opts.wav.validate()?;
-            write(Kind::Wav, &w.common, &opts)
+            write(ctx, Kind::Wav, &w.common, &opts)
         }
     }
 }

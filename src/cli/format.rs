@@ -1,4 +1,4 @@
-//! Printing tables as aligned text, JSON or CSV.
+//! Tables as aligned text, JSON or CSV (written through [`super::Out`]).
 
 use std::io::Write;
 
@@ -49,20 +49,6 @@ pub fn write_text(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Prints `table` on stdout in `format`. A closed pipe (e.g. `| head`) is not an error.
-pub fn print_table(table: &Table, format: OutputFormat) {
-    let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
-    let _ = match format {
-        OutputFormat::Text => write_text(&mut out, table),
-        OutputFormat::Csv => write_csv(&mut out, table),
-        OutputFormat::Json => serde_json::to_writer_pretty(&mut out, &table_json(table))
-            .map_err(std::io::Error::other)
-            .and_then(|_| writeln!(out)),
-    };
-    let _ = out.flush();
-}
-
 /// A table as JSON: id, title, notes, columns, and rows as objects keyed by column.
 pub fn table_json(table: &Table) -> serde_json::Value {
     let rows: Vec<serde_json::Value> = table
@@ -85,11 +71,4 @@ pub fn table_json(table: &Table) -> serde_json::Value {
         "columns": table.columns,
         "rows": rows,
     })
-}
-
-/// Writes a string to stdout, ignoring a closed pipe.
-pub fn print_str(s: &str) {
-    let mut out = std::io::stdout().lock();
-    let _ = out.write_all(s.as_bytes());
-    let _ = out.flush();
 }

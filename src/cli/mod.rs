@@ -1,9 +1,12 @@
 //! The command-line front end: parses arguments (units at the edge), calls the engine and
 //! prints text, JSON or CSV. No physics here.
 
+mod budget;
 pub mod design_args;
+mod errors;
 mod export;
 mod format;
+mod output;
 mod paper;
 mod presets;
 mod pulse;
@@ -13,13 +16,17 @@ mod simulate;
 mod sweep;
 mod tui;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 
 use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::error::ThudError;
+use crate::limits::Range;
 use crate::units::{self, Kind};
 
-pub use format::{print_table, OutputFormat};
+pub use budget::Ctx;
+pub use errors::CliError;
+pub use format::OutputFormat;
+pub use output::Out;
 
 /// thud — design single-unit impact dampers: Hertz contact, impact noise and a live explorer.
 ///
@@ -30,6 +37,9 @@ pub use format::{print_table, OutputFormat};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Lift the work caps (Newmark steps, samples, sweep cells, …; `thud limits` lists them).
+    #[arg(long, global = true)]
+    pub no_limit: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -50,6 +60,16 @@ pub enum Command {
     Presets(presets::PresetsArgs),
     /// The interactive explorer (the default with no subcommand).
     Tui(tui::TuiArgs),
+    /// The valid range of every parameter and the work cap of every run.
+    Limits(LimitsArgs),
+}
+
+/// Options of `thud limits`.
+#[derive(Debug, Clone, Copy, Args)]
+pub struct LimitsArgs {
+    /// Print one JSON object {ranges, caps}.
+    #[arg(long)]
+    json: bool,
 }
 
 /// How to print a result.
@@ -127,16 +147,80 @@ impl From<QuadSignsArg> for QuadSigns {
     }
 }
 
-/// Parses an optional quantity flag.
-pub(crate) fn quantity(param: &str, text: &Option<String>, kind: Kind) -> Result<Option<f64>, ThudError> {
-    text.as_deref().map(|t| units::parse(param, t, kind)).transpose()
+/// Parses the optional flag `--{name}` as a quantity of `kind` and checks it against its range;
+/// the error names the flag.
+pub(crate) fn quantity(name: &str, text: &Option<String>, kind: Kind, range: &Range) -> Result<Option<f64>, ThudError> {
+    text.as_deref()
+        .map(|t| {
+            let flag = format!("--{name}");
+            range.check_as(&flag, units::parse(&flag, t, kind)?)
+        })
+        .transpose()
+}
+
+/// Parses the count flag `--{name}` (a whole number, `1e4` allowed) against its range.
+pub(crate) fn count(name: &str, text: &str, range: &Range) -> Result<usize, ThudError> {
+    range.parse_count(&format!("--{name}"), text)
+}
+
+/// Prints one line on stderr, `thud: …` (never panics, even with stderr closed).
+pub(crate) fn warn(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "thud: {}", errors::one_line(line));
+}
+
+/// The flags engine errors name bare, without dashes: the parameters of the range table, the
+/// sweep axes and the preset (the message names the flag).
+fn numeric_flags() -> Vec<String> {
+    crate::limits::RANGES.iter().map(|r| r.param).chain(["masses", "gaps", "preset"]).map(str::to_string).collect()
+}
+
+/// The command path the user typed up to a command that needs a subcommand, and its
+/// subcommands ("thud export", [csv, svg, wav]).
+fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
+    let mut cmd = Cli::command();
+    let mut path = vec!["thud".to_string()];
+    for a in args.iter().skip(1).filter(|a| !a.starts_with('-')) {
+        match cmd.find_subcommand(a) {
+            Some(sub) => {
+                path.push(a.clone());
+                cmd = sub.clone();
+            }
+            None => break,
+        }
+    }
+    let subs: Vec<String> =
+        cmd.get_subcommands().filter(|s| s.get_name() != "help").map(|s| s.get_name().to_string()).collect();
+    (!subs.is_empty()).then(|| (path.join(" "), subs))
+}
+
+/// The whole command line: parses the arguments (a clap error becomes one line, exit 2; help
+/// and version print and exit 0), runs the command, returns the exit code.
+pub fn main() -> i32 {
+    let args: Vec<String> = std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect();
+    match Cli::try_parse_from(&args) {
+        Ok(cli) => run(cli),
+        Err(e) => {
+            use clap::error::ErrorKind;
+            match e.kind() {
+                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+                    let _ = e.print();
+                    0
+                }
+                _ => {
+                    warn(&errors::clap_line(&e, missing_subcommand(&args)));
+                    2
+                }
+            }
+        }
+    }
 }
 
 /// The exit code of the explorer: 0, or 2 with the error on stderr.
 fn tui_exit(r: Result<(), String>) -> i32 {
     r.map_or_else(
         |e| {
-            eprintln!("thud: {e}");
+            warn(&e);
             2
         },
         |()| 0,
@@ -146,22 +230,55 @@ fn tui_exit(r: Result<(), String>) -> i32 {
 /// Runs the CLI on `args`; returns the process exit code. Errors are one line on stderr.
 pub fn run(cli: Cli) -> i32 {
     settings::load();
+    let ctx = Ctx { no_limit: cli.no_limit };
+    let mut out = Out::new();
     let result = match cli.command {
-        Some(Command::Pulse(a)) => pulse::run(&a),
-        Some(Command::Simulate(a)) => simulate::run(&a),
-        Some(Command::Sweep(a)) => sweep::run(&a),
-        Some(Command::Restitution(a)) => restitution::run(&a),
-        Some(Command::Paper(a)) => paper::run(&a),
-        Some(Command::Export(a)) => export::run(&a),
-        Some(Command::Presets(a)) => presets::run(&a),
+        Some(Command::Pulse(a)) => pulse::run(&a, &ctx, &mut out),
+        Some(Command::Simulate(a)) => simulate::run(&a, &ctx, &mut out),
+        Some(Command::Sweep(a)) => sweep::run(&a, &ctx, &mut out),
+        Some(Command::Restitution(a)) => restitution::run(&a, &ctx, &mut out),
+        Some(Command::Paper(a)) => paper::run(&a, &mut out),
+        Some(Command::Export(a)) => export::run(&a, &ctx),
+        Some(Command::Presets(a)) => presets::run(&a, &mut out),
+        Some(Command::Limits(a)) => limits(&a, &mut out),
         Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
         None => return tui_exit(tui::run_default()),
     };
-    match result {
+    match result.and_then(|()| out.flush()) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("thud: {e}");
-            2
+            let (code, line) = e.report(&numeric_flags());
+            if let Some(line) = line {
+                warn(&line);
+            }
+            code
         }
     }
+}
+
+/// `thud limits`: the table of ranges and caps.
+fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
+    use crate::limits::{CAPS, RANGES};
+    if a.json {
+        let ranges: Vec<serde_json::Value> = RANGES
+            .iter()
+            .map(|r| {
+                serde_json::json!({ "param": r.param, "what": r.what, "min": r.min, "max": r.max,
+                    "unit": r.unit, "reason": r.reason })
+            })
+            .collect();
+        let caps: Vec<serde_json::Value> =
+            CAPS.iter().map(|c| serde_json::json!({ "what": c.what, "max": c.max, "basis": c.basis })).collect();
+        return out.json(&serde_json::json!({ "ranges": ranges, "caps": caps }));
+    }
+    let mut s = String::from("Ranges (a plain number is in the unit shown; θ is narrowed by the source type):\n");
+    for r in RANGES.iter().chain([&crate::limits::GRID_N]) {
+        let flag = if r.param == "N" { "FROM:TO:N".to_string() } else { format!("--{}", r.param) };
+        s += &format!("  {flag:<13} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);
+    }
+    s += "\nWork caps per run (--no-limit lifts them):\n";
+    for c in &CAPS {
+        s += &format!("  {:<24} {:>8}   {}\n", c.what, crate::limits::short(c.max), c.basis);
+    }
+    out.text(&s)
 }

@@ -5,8 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::export::out_error;
-use super::format::print_str;
-use super::{print_table, OutputArgs};
+use super::{budget, CliError, Out, OutputArgs};
 use crate::error::ThudError;
 use crate::export::report;
 use crate::fsio::{self, FsError, Overwrite};
@@ -30,14 +29,13 @@ pub struct PaperArgs {
     output: OutputArgs,
 }
 
-pub fn run(a: &PaperArgs) -> Result<(), ThudError> {
+pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
     if a.list {
         let mut s = String::new();
         for item in paper::items() {
             s += &format!("{:<8} {}\n", item.id, item.description);
         }
-        print_str(&s);
-        return Ok(());
+        return out.text(&s);
     }
     let id = a.id.as_deref().unwrap_or_default().to_ascii_lowercase();
     if id == "all" {
@@ -47,22 +45,33 @@ pub fn run(a: &PaperArgs) -> Result<(), ThudError> {
         let ids: Vec<&str> = paper::items().map(|i| i.id).collect();
         ThudError::invalid("paper item", format!("unknown '{id}'; one of: {}", ids.join(", ")))
     })??;
-    print_table(&table, a.output.format());
-    Ok(())
+    out.table(&table, a.output.format())
 }
 
 /// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md. Every
-/// target is checked before the work starts; an existing file is kept unless `--force`.
-fn all(out: Option<&std::path::Path>, overwrite: Overwrite) -> Result<(), ThudError> {
+/// target is checked before the work starts (an existing file is kept unless `--force`), and
+/// every number in every file before the first file is written.
+fn all(out: Option<&std::path::Path>, overwrite: Overwrite) -> Result<(), CliError> {
     let dir = out.ok_or_else(|| ThudError::invalid("out", "`thud paper all` needs --out DIR"))?;
     if fsio::is_stdout(dir) {
-        return Err(ThudError::invalid("out", "-: `thud paper all` writes a folder of files; give --out DIR"));
+        return Err(ThudError::invalid("out", "-: `thud paper all` writes a folder of files; give --out DIR").into());
     }
     let refused = |e: FsError| out_error(e.path(), &e);
     let expected = report::expected_files();
     report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite).map_err(refused)?;
+    let spinner = budget::spinner("reproducing the paper", true);
     let files = report::paper_bundle();
+    spinner.finish_and_clear();
+    for f in &files {
+        super::output::check_text(&f.contents).map_err(|e| {
+            if let CliError::NonFinite(w) = e {
+                CliError::NonFinite(format!("{w} in {}", f.name))
+            } else {
+                e
+            }
+        })?;
+    }
     report::write_bundle(dir, &files, overwrite).map_err(refused)?;
-    eprintln!("thud: wrote {} files to {}", files.len(), dir.display());
+    super::warn(&format!("wrote {} files to {}", files.len(), dir.display()));
     Ok(())
 }

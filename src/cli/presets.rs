@@ -2,8 +2,7 @@
 
 use clap::Args;
 
-use super::format::print_str;
-use crate::error::ThudError;
+use super::{CliError, Out};
 use crate::presets;
 
 #[derive(Debug, Clone, Args)]
@@ -13,13 +12,12 @@ pub struct PresetsArgs {
     json: bool,
 }
 
-pub fn run(a: &PresetsArgs) -> Result<(), ThudError> {
+pub fn run(a: &PresetsArgs, out: &mut Out) -> Result<(), CliError> {
     let list = presets::list()?;
     if a.json {
         let v: Vec<serde_json::Value> =
             list.iter().map(|p| serde_json::json!({ "name": p.name, "description": p.description })).collect();
-        print_str(&(serde_json::to_string_pretty(&v).unwrap_or_default() + "\n"));
-        return Ok(());
+        return out.json(&v);
     }
     let width = list.iter().map(|p| p.name.len()).max().unwrap_or(0);
     let mut s = String::new();
@@ -27,6 +25,5 @@ pub fn run(a: &PresetsArgs) -> Result<(), ThudError> {
         s += &format!("{:<width$}  {}\n", p.name, p.description);
     }
     s += "\nUse one with --preset NAME (simulate, sweep, export); flags override its values.\n";
-    print_str(&s);
-    Ok(())
+    out.text(&s)
 }

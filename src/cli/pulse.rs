@@ -3,11 +3,12 @@
 use clap::Args;
 use serde::Serialize;
 
-use super::format::{num, print_str};
-use super::{quantity, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
+use super::format::num;
+use super::{count, quantity, CliError, Ctx, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
 use crate::acoustics::{Air, Extremum, Field, Levels, Observer, QuadSigns, Radiation, Source};
 use crate::contact::{self, Contact, Impact, Target};
 use crate::error::ThudError;
+use crate::limits::{self, short};
 use crate::units::Kind;
 
 /// Defaults are the paper's Fig 2 impact: an acrylic sphere, a 19.05 mm, m 40.5 g, U0 1.4 m/s,
@@ -60,9 +61,9 @@ pub struct PulseArgs {
     /// Speed of sound (m/s) [default: 343].
     #[arg(long, value_name = "C", allow_hyphen_values = true)]
     c: Option<String>,
-    /// Waveform points [default: 2000].
-    #[arg(long, value_name = "N", default_value_t = 2000)]
-    points: usize,
+    /// Waveform points.
+    #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
+    points: String,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -83,20 +84,24 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
         (None, Some(_)) => Some(contact::material("steel")?),
         (None, None) => None,
     };
-    let radius = quantity("radius", &a.radius, Kind::Length)?;
-    let mass = quantity("mass", &a.mass, Kind::Mass)?;
+    let radius = quantity("radius", &a.radius, Kind::Length, &limits::RADIUS)?;
+    let mass = quantity("mass", &a.mass, Kind::Mass, &limits::MASS)?;
     let (radius_m, mass_kg) = match (radius, mass, sphere) {
         (Some(r), Some(m), _) => (r, m),
-        (Some(r), None, Some(s)) => (r, contact::sphere_mass(r, s.density_kg_m3)),
-        (None, Some(m), Some(s)) => (contact::sphere_radius(m, s.density_kg_m3), m),
+        (Some(r), None, Some(s)) => {
+            (r, derived(&limits::MASS, contact::sphere_mass(r, s.density_kg_m3), "radius", r, &s)?)
+        }
+        (None, Some(m), Some(s)) => {
+            (derived(&limits::RADIUS, contact::sphere_radius(m, s.density_kg_m3), "mass", m, &s)?, m)
+        }
         (r, m, _) => (
             r.or(base.as_ref().map(|d| d.ball_radius_m())).unwrap_or(0.01905),
             m.or(base.as_ref().map(|d| d.damper.impact_mass_kg)).unwrap_or(0.0405),
         ),
     };
-    crate::error::check_positive("radius", radius_m, "m")?;
-    crate::error::check_positive("mass", mass_kg, "kg")?;
-    let k_hz = match (quantity("k-hz", &a.k_hz, Kind::HertzStiffness)?, sphere, plate) {
+    limits::RADIUS.check_as("--radius", radius_m)?;
+    limits::MASS.check_as("--mass", mass_kg)?;
+    let k_hz = match (quantity("k-hz", &a.k_hz, Kind::HertzStiffness, &limits::K_HZ)?, sphere, plate) {
         (Some(k), _, _) => k,
         (None, Some(s), Some(p)) => contact::hertz_stiffness(radius_m, &s, &p),
         (None, None, Some(p)) => contact::hertz_stiffness(radius_m, &contact::material("acrylic")?, &p),
@@ -108,31 +113,66 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
             None => 5.6e8,
         },
     };
-    let target = match quantity("main-mass", &a.main_mass, Kind::Mass)? {
+    let ball_flag = if a.radius.is_some() || a.mass.is_none() { "--radius" } else { "--mass" };
+    limits::K_HZ.check_as(ball_flag, k_hz)?;
+    let target = match quantity("main-mass", &a.main_mass, Kind::Mass, &limits::MAIN_MASS)? {
         Some(mm) => Target::MovableMass(mm),
         None => Target::FixedPlate,
     };
-    let u0 = quantity("u0", &a.u0, Kind::Speed)?.or(base.as_ref().map(|d| d.damper.v0_m_s)).unwrap_or(1.4);
+    let u0 = quantity("u0", &a.u0, Kind::Speed, &limits::U0)?.or(base.as_ref().map(|d| d.damper.v0_m_s)).unwrap_or(1.4);
+    limits::U0.check_as("--u0", u0)?;
     let impact = Impact { mass_kg, u0_m_s: u0, k_hz, target };
     impact.validate()?;
     let base_air = base.as_ref().map_or(Air::default(), |d| d.radiation.air);
     let air = Air {
-        rho_c_pa_s_m: quantity("rho-c", &a.rho_c, Kind::Impedance)?.unwrap_or(base_air.rho_c_pa_s_m),
-        c_m_s: quantity("c", &a.c, Kind::Speed)?.unwrap_or(base_air.c_m_s),
+        rho_c_pa_s_m: quantity("rho-c", &a.rho_c, Kind::Impedance, &limits::RHO_C)?.unwrap_or(base_air.rho_c_pa_s_m),
+        c_m_s: quantity("c", &a.c, Kind::Speed, &limits::C_SOUND)?.unwrap_or(base_air.c_m_s),
     };
     let base_observer = base.as_ref().map_or(Observer::new(0.7, 45.0), |d| d.observer);
     let observer = Observer::new(
-        quantity("r", &a.r, Kind::Length)?.unwrap_or(base_observer.r_m),
-        quantity("theta", &a.theta, Kind::Angle)?.unwrap_or(base_observer.theta_rad.to_degrees()),
+        quantity("r", &a.r, Kind::Length, &limits::R)?.unwrap_or(base_observer.r_m),
+        quantity("theta", &a.theta, Kind::Angle, &limits::THETA)?.unwrap_or(base_observer.theta_rad.to_degrees()),
     );
     let source = a.source.map(Into::into).or(base.as_ref().map(|d| d.radiation.source)).unwrap_or(Source::Dipole);
     let quad_signs =
         a.quad_signs.map(Into::into).or(base.as_ref().map(|d| d.radiation.quad_signs)).unwrap_or(QuadSigns::Rigid);
-    if a.points < 2 || a.points > 1_000_000 {
-        return Err(ThudError::invalid("points", format!("{}; must be between 2 and 1000000", a.points)));
-    }
     let pulse = a.pulse.map(Into::into).or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default();
     Ok(PulseInput { radius_m, impact, observer, radiation: Radiation { source, quad_signs, air, pulse } })
+}
+
+/// An observer inside the ball is the ball's fault when the user sized the ball and left the
+/// observer alone: name the flag they typed, not `r`.
+fn blame_ball(a: &PulseArgs, e: ThudError) -> ThudError {
+    let msg = e.to_string();
+    let Some(rest) = msg.strip_prefix("invalid r: ") else { return e };
+    match [("radius", &a.radius), ("mass", &a.mass)].into_iter().find(|(_, t)| t.is_some()) {
+        Some((name, _)) if a.r.is_none() => {
+            ThudError::invalid(format!("--{name}"), format!("the ball reaches the observer: {rest}"))
+        }
+        _ => e,
+    }
+}
+
+/// A ball size derived from the typed `--{from}` and the sphere's density, checked against
+/// `range`; the error names the flag typed.
+fn derived(range: &limits::Range, value: f64, from: &str, typed: f64, s: &contact::Material) -> Result<f64, ThudError> {
+    if range.contains(value) {
+        return Ok(value);
+    }
+    Err(ThudError::invalid(
+        format!("--{from}"),
+        format!(
+            "{} {} of {} ({} kg/m^3) makes a {} of {} {}; it must be {}",
+            short(typed),
+            if from == "radius" { "m" } else { "kg" },
+            s.name,
+            short(s.density_kg_m3),
+            range.what,
+            short(value),
+            range.unit,
+            range.describe()
+        ),
+    ))
 }
 
 #[derive(Serialize)]
@@ -170,18 +210,25 @@ struct PulseJson<'a> {
     waveform: Waveform,
 }
 
-pub fn run(a: &PulseArgs) -> Result<(), ThudError> {
+pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let points = count("points", &a.points, &limits::POINTS)?;
+    ctx.enforce(
+        limits::waveform_points(points),
+        "--points",
+        &a.points,
+        &format!("use --points ≤ {}", short(limits::WAVEFORM_POINTS.max)),
+    )?;
     let input = resolve(a)?;
     let contact = input.impact.contact();
-    let field = Field::new(input.radius_m, &contact, &input.observer, &input.radiation)?;
-    let (t, p) = field.waveform(a.points);
+    let field =
+        Field::new(input.radius_m, &contact, &input.observer, &input.radiation).map_err(|e| blame_ball(a, e))?;
+    let (t, p) = field.waveform(points);
     match a.output.format() {
         OutputFormat::Csv => {
-            let mut s = String::from("t_s,p_pa\n");
+            out.text("t_s,p_pa\n")?;
             for (ti, pi) in t.iter().zip(&p) {
-                s.push_str(&format!("{ti},{pi}\n"));
+                out.csv_row(&[*ti, *pi])?;
             }
-            print_str(&s);
         }
         OutputFormat::Json => {
             let lv = field.levels();
@@ -213,9 +260,9 @@ pub fn run(a: &PulseArgs) -> Result<(), ThudError> {
                 extrema: &ext,
                 waveform: Waveform { t_s: t, p_pa: p },
             };
-            print_str(&(serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"));
+            out.json(&j)?;
         }
-        OutputFormat::Text => print_str(&summary(&input, &contact, &field, &field.levels())),
+        OutputFormat::Text => out.text(&summary(&input, &contact, &field, &field.levels()))?,
     }
     Ok(())
 }

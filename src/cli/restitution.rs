@@ -3,9 +3,9 @@
 use clap::Args;
 
 use super::design_args::{parse_range, DesignArgs};
-use super::{print_table, quantity, OutputArgs};
+use super::{quantity, CliError, Ctx, Out, OutputArgs};
 use crate::design;
-use crate::error::ThudError;
+use crate::limits::{self, short};
 use crate::paper::{col, Table};
 use crate::units::{num, Kind};
 
@@ -17,7 +17,7 @@ pub struct RestitutionArgs {
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     u0: Option<String>,
     /// Impact masses FROM:TO:N [default: 5g:100g:20].
-    #[arg(long, value_name = "FROM:TO:N", default_value = "5g:100g:20")]
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "5g:100g:20")]
     masses: String,
     /// A wanted restitution R in (0, 1]: print the c1 that gives it for each mass.
     #[arg(long, value_name = "R", allow_hyphen_values = true)]
@@ -26,12 +26,19 @@ pub struct RestitutionArgs {
     output: OutputArgs,
 }
 
-pub fn run(a: &RestitutionArgs) -> Result<(), ThudError> {
+pub fn run(a: &RestitutionArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
-    let u0 = quantity("u0", &a.u0, Kind::Speed)?.unwrap_or(1.4);
-    crate::error::check_positive("u0", u0, "m/s")?;
-    let masses = parse_range("masses", &a.masses, Kind::Mass)?;
-    let target = quantity("target", &a.target, Kind::Number)?;
+    let u0 = quantity("u0", &a.u0, Kind::Speed, &limits::U0)?.unwrap_or(1.4);
+    let masses = parse_range("masses", &a.masses, Kind::Mass, &limits::MASS)?;
+    let target = quantity("target", &a.target, Kind::Number, &limits::TARGET)?;
+    let contacts = limits::restitution_contacts(masses.len(), target.is_some());
+    let per_mass = contacts.value / masses.len() as f64;
+    ctx.enforce(
+        contacts,
+        "--masses",
+        &a.masses,
+        &format!("use at most {} masses", short((contacts.cap.max / per_mass).floor())),
+    )?;
     let curve = design::restitution_curve(&d, &masses, u0)?;
     let mut rows = Vec::new();
     for &(m, r) in &curve {
@@ -66,6 +73,5 @@ pub fn run(a: &RestitutionArgs) -> Result<(), ThudError> {
         columns,
         rows,
     };
-    print_table(&table, a.output.format());
-    Ok(())
+    out.table(&table, a.output.format())
 }

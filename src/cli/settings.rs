@@ -13,7 +13,7 @@ pub fn load() -> &'static Config {
     CONFIG.get_or_init(|| {
         let loaded = config::load_user_config();
         if let Some(w) = loaded.warning() {
-            eprintln!("thud: {w}");
+            super::warn(&w);
         }
         loaded.config
     })

@@ -3,23 +3,25 @@
 use clap::Args;
 use serde::Serialize;
 
+use super::budget;
 use super::design_args::DesignArgs;
-use super::format::{num, print_str};
-use super::{OutputArgs, OutputFormat};
-use crate::damper::{free_response, Maximum, Solver};
+use super::format::num;
+use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::damper::{free_response, Maximum, Run, Solver};
 use crate::design::{self, Design, Evaluation};
 use crate::error::ThudError;
+use crate::limits::{self, short};
 
 #[derive(Debug, Clone, Args)]
 pub struct SimulateArgs {
     #[command(flatten)]
     design: DesignArgs,
-    /// Time-history samples for --csv (and the JSON `history`).
-    #[arg(long, value_name = "N", default_value_t = 2001)]
-    samples: usize,
+    /// Time-history samples for --csv.
+    #[arg(long, value_name = "N", default_value = "2001", allow_hyphen_values = true)]
+    samples: String,
     /// Impacts listed in the text summary.
-    #[arg(long, value_name = "N", default_value_t = 12)]
-    show: usize,
+    #[arg(long, value_name = "N", default_value = "12", allow_hyphen_values = true)]
+    show: String,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -54,19 +56,45 @@ struct SimulateJson<'a> {
     maxima: &'a [Maximum],
     energy: crate::damper::EnergyLedger,
     final_time_s: f64,
+    /// Whether the run stopped before its duration (a solver work cap).
+    truncated: bool,
+    /// Why, when it did.
+    truncation_reason: Option<String>,
 }
 
-pub fn run(a: &SimulateArgs) -> Result<(), ThudError> {
+/// Why `run` stopped before the design's duration `duration_s`, if it did (and was not
+/// cancelled): the event solver stops at its work caps (400 000 in-contact steps, 2 000 000
+/// flight iterations) and returns what it has. Detected from the final time; when the engine's
+/// `Run` says so itself, this function should just read that.
+pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
+    (!run.cancelled && run.final_time_s < duration_s * (1.0 - 1e-12)).then(|| {
+        format!(
+            "the solver's work cap stopped the run at t = {} s of {} s; the results cover only that time",
+            short(run.final_time_s),
+            short(duration_s)
+        )
+    })
+}
+
+pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
-    let samples = if a.output.csv { a.samples.max(2) } else { 0 };
+    let samples = if a.output.csv { count("samples", &a.samples, &limits::SAMPLES)? } else { 0 };
+    let show = count("show", &a.show, &limits::SHOW)?;
+    a.design.check_run(ctx, &d, samples, "--samples")?;
+    let long = limits::design_run(&d, samples)[0].value > 4e7;
+    let spinner = budget::spinner("simulating", long);
     let eval = design::evaluate(&d, samples, None)?;
+    spinner.finish_and_clear();
+    let truncated = truncation(&eval.run, d.damper.duration_s);
     match a.output.format() {
         OutputFormat::Csv => {
-            let mut s = String::from("t_s,x_m,y_m,x_free_m\n");
-            for h in &eval.run.history {
-                s += &format!("{},{},{},{}\n", h.t_s, h.x_m, h.y_m, free_response(&d.damper, h.t_s));
+            if let Some(why) = &truncated {
+                super::warn(&format!("warning: {why}"));
             }
-            print_str(&s);
+            out.text("t_s,x_m,y_m,x_free_m\n")?;
+            for h in &eval.run.history {
+                out.csv_row(&[h.t_s, h.x_m, h.y_m, free_response(&d.damper, h.t_s)])?;
+            }
         }
         OutputFormat::Json => {
             let spls = design::impact_spls(&eval.run, &d)?;
@@ -104,10 +132,16 @@ pub fn run(a: &SimulateArgs) -> Result<(), ThudError> {
                 maxima: &eval.run.maxima,
                 energy: eval.run.energy,
                 final_time_s: eval.run.final_time_s,
+                truncated: truncated.is_some(),
+                truncation_reason: truncated,
             };
-            print_str(&(serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"));
+            out.json(&j)?;
         }
-        OutputFormat::Text => print_str(&summary(&d, &eval, a.show)?),
+        OutputFormat::Text => {
+            // The summary prints these; check them as data too (the text check is the backstop).
+            super::output::check_finite(&(&eval.metrics, &eval.run.energy))?;
+            out.text(&summary(&d, &eval, show, truncated.as_deref())?)?
+        }
     }
     Ok(())
 }
@@ -139,9 +173,12 @@ pub fn describe(d: &Design) -> String {
     )
 }
 
-fn summary(d: &Design, e: &Evaluation, show: usize) -> Result<String, ThudError> {
+fn summary(d: &Design, e: &Evaluation, show: usize, truncated: Option<&str>) -> Result<String, ThudError> {
     let m = &e.metrics;
     let mut s = format!("design    {}\n", describe(d));
+    if let Some(why) = truncated {
+        s += &format!("TRUNCATED {why}\n");
+    }
     s += &format!(
         "listener  {} source ({} signs), r {} m, θ {}°; SPL = rms over τ from the direct arrival\n",
         d.radiation.source.name(),

@@ -1,16 +1,16 @@
 //! `thud sweep`: the design chart over impact mass × gap.
 
-use std::io::IsTerminal;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use clap::Args;
+use serde::Serialize;
 
+use super::budget;
 use super::design_args::{parse_range, DesignArgs};
-use super::format::{num, print_str};
+use super::format::num;
 use super::simulate::describe;
-use super::{OutputArgs, OutputFormat};
-use crate::design::{self, Chart, ZoneBy};
+use super::{quantity, CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::design::{self, Band, Chart, Design, ZoneBy};
 use crate::error::ThudError;
+use crate::limits::{self, short};
 use crate::units::Kind;
 
 #[derive(Debug, Clone, Args)]
@@ -18,45 +18,59 @@ pub struct SweepArgs {
     #[command(flatten)]
     design: DesignArgs,
     /// Impact masses FROM:TO:N (e.g. 30g:100g:20).
-    #[arg(long, value_name = "FROM:TO:N", default_value = "30g:100g:20")]
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "30g:100g:20")]
     masses: String,
     /// Gaps FROM:TO:N (e.g. 2cm:5cm:20).
-    #[arg(long, value_name = "FROM:TO:N", default_value = "2cm:5cm:20")]
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "2cm:5cm:20")]
     gaps: String,
     /// Width of the inclination bands of the Table 5 summary (cm/s).
-    #[arg(long, value_name = "CM_S", default_value = "0.2")]
+    #[arg(long, value_name = "CM_S", default_value = "0.2", allow_hyphen_values = true)]
     band: String,
     #[command(flatten)]
     output: OutputArgs,
 }
 
-pub fn run(a: &SweepArgs) -> Result<(), ThudError> {
+#[derive(Serialize)]
+struct SweepJson<'a> {
+    design: &'a Design,
+    chart: &'a Chart,
+    table5: &'a [Band],
+}
+
+/// The smallest and largest inclination (cm/s) among the cells Table 5 bands: those with both
+/// an inclination (by `zone_by`) and an SPLmax.
+fn inclination_span(chart: &Chart, zone_by: ZoneBy) -> Option<(f64, f64)> {
+    let es: Vec<f64> = chart
+        .cells
+        .iter()
+        .flatten()
+        .filter(|c| c.metrics.spl_max_db.is_some())
+        .filter_map(|c| c.metrics.inclination_by(zone_by))
+        .collect();
+    let lo = es.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = es.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (!es.is_empty()).then_some((lo, hi))
+}
+
+pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
-    let masses = parse_range("masses", &a.masses, Kind::Mass)?;
-    let gaps = parse_range("gaps", &a.gaps, Kind::Length)?;
-    let band = crate::units::parse("band", &a.band, Kind::Inclination)?;
-    crate::error::check_positive("band", band, "cm/s")?;
-    let total = masses.len() * gaps.len();
-    let done = AtomicUsize::new(0);
-    let progress = std::io::stderr().is_terminal();
-    let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {
-        let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-        if progress && (k.is_multiple_of(8) || k == total) {
-            eprint!("\rsweep {k}/{total} designs");
-            if k == total {
-                eprintln!();
-            }
-        }
-    })?;
+    let masses = parse_range("masses", &a.masses, Kind::Mass, &limits::MASS)?;
+    let gaps = parse_range("gaps", &a.gaps, Kind::Length, &limits::GAP)?;
+    let band = quantity("band", &Some(a.band.clone()), Kind::Inclination, &limits::BAND)?.unwrap_or(0.2);
+    a.design.check_sweep(ctx, &d, masses.len(), gaps.len())?;
+    let bar = budget::bar((masses.len() * gaps.len()) as u64, "sweep");
+    let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| bar.inc(1))?;
+    bar.finish_and_clear();
+    if let Some((lo, hi)) = inclination_span(&chart, d.thresholds.zone_by) {
+        let bands = limits::band_count(lo, hi, band);
+        ctx.enforce(bands, "--band", &a.band, &format!("use --band ≥ {} cm/s", short((hi - lo) / bands.cap.max)))?;
+    }
     let bands = design::spl_range_by_inclination(&chart, band, d.thresholds.zone_by);
     match a.output.format() {
-        OutputFormat::Json => {
-            let j = serde_json::json!({ "design": d, "chart": chart, "table5": bands });
-            print_str(&(serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"));
-        }
-        OutputFormat::Csv => print_str(
+        OutputFormat::Json => out.json(&SweepJson { design: &d, chart: &chart, table5: &bands })?,
+        OutputFormat::Csv => out.text(
             &crate::export::csv::sweep(&chart).map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?,
-        ),
+        )?,
         OutputFormat::Text => {
             let mut s = format!("base      {}\n", describe(&d));
             s += &format!(
@@ -82,7 +96,8 @@ pub fn run(a: &SweepArgs) -> Result<(), ThudError> {
                 );
             }
             s += "\n(--csv for every cell: e, e_fit, U0max, SPLmax, impacts, zone)\n";
-            print_str(&s);
+            super::output::check_finite(&(&chart, &bands))?;
+            out.text(&s)?;
         }
     }
     Ok(())

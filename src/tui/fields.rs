@@ -6,6 +6,7 @@ use crate::contact::MATERIALS;
 use crate::damper::Solver;
 use crate::design::{Design, Materials};
 use crate::error::ThudError;
+use crate::limits;
 use crate::units::{self, sig, Kind};
 
 /// One editable parameter of the design (a row of the parameter panel).
@@ -159,6 +160,37 @@ impl Param {
         })
     }
 
+    /// The field's valid range, from the one table of ranges ([`crate::limits`]).
+    pub fn range(self) -> Option<limits::Range> {
+        Some(match self {
+            Param::Mass => limits::MASS,
+            Param::Gap => limits::GAP,
+            Param::R => limits::R,
+            Param::Theta => limits::THETA,
+            Param::V0 => limits::V0,
+            Param::MainMass => limits::MAIN_MASS,
+            Param::K => limits::STIFFNESS,
+            Param::C => limits::DAMPING,
+            Param::C1 => limits::C1,
+            Param::KHz => limits::K_HZ,
+            Param::Duration => limits::DURATION,
+            Param::LStar => limits::L_STAR,
+            Param::EStar => limits::E_STAR,
+            _ => return None,
+        })
+    }
+
+    /// Checks this field's value in `d` against its range.
+    fn check_range(self, d: &Design) -> Result<(), ThudError> {
+        if let (Some(r), Some(v)) = (self.range(), self.get(d)) {
+            r.check_as(self.param(), v)?;
+        }
+        if let Solver::Newmark { dt_s } = d.solver {
+            limits::DT.check(dt_s)?;
+        }
+        Ok(())
+    }
+
     /// What a change of this field invalidates.
     pub fn scope(self) -> Scope {
         match self {
@@ -280,6 +312,7 @@ impl Param {
             }
             _ => self.cycled(d, up),
         };
+        self.check_range(&next)?;
         next.validate()?;
         next.resolved()?;
         Ok(next)
@@ -332,6 +365,7 @@ impl Param {
             Some(kind) => self.set(d, units::parse(self.param(), t, kind)?),
             None => self.parse_choice(d, t)?,
         };
+        self.check_range(&next)?;
         next.validate()?;
         next.resolved()?;
         Ok(next)

@@ -11,6 +11,7 @@
 //!   the Newmark-β reference.
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
+//! - [`limits`]: the range of every parameter and the work cap of every run.
 //! - [`units`]: parsing and formatting of quantities with units.
 
 pub mod acoustics;
@@ -18,6 +19,7 @@ pub mod contact;
 pub mod damper;
 pub mod design;
 pub mod error;
+pub mod limits;
 pub mod paper;
 pub mod units;
 

@@ -1,0 +1,695 @@
+//! Every input's range and every run's work budget, in one table that the command line, the
+//! terminal explorer and the config file all use. Pure: no I/O.
+//!
+//! **Ranges** ([`Range`]) are what is physically meaningful for each parameter, in the unit the
+//! engine uses inside (SI; degrees for angles, dB for levels, cm/s for inclinations), each with a
+//! one-line reason. A value outside its range (or NaN/∞) is refused with an error that names the
+//! parameter, the value and the range ([`Range::check`]). The ranges are wide enough that every
+//! combination of in-range values gives finite results; the few derived quantities that can
+//! still go wrong (a ball radius from mass and density, K_HZ from materials, the observer inside
+//! the ball) are checked by [`check_design`].
+//!
+//! **Caps** ([`Cap`]) bound the work of one run before it starts: [`design_run`] estimates the
+//! Newmark steps, main-mass cycles and history samples of a simulation; [`wav_samples`],
+//! [`sweep_cells`], [`sweep_work`], [`band_count`] and [`restitution_contacts`] the rest.
+//! Each cap is about the largest run that finishes in about a minute and fits in 1 GB on a
+//! 2-core machine (measured on the release build; the numbers are in each cap's `basis`). Front
+//! ends refuse an estimate over its cap unless the user lifts the caps (`--no-limit`).
+
+use crate::acoustics::Source;
+use crate::contact;
+use crate::damper::Solver;
+use crate::design::{BallSize, Design};
+use crate::error::ThudError;
+
+/// The physically meaningful range of one parameter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// The parameter's name as on the command line, without dashes (`mass`, `k-hz`, …).
+    pub param: &'static str,
+    /// What it is, for people (`ball mass m`).
+    pub what: &'static str,
+    /// Smallest valid value (inclusive), in `unit`.
+    pub min: f64,
+    /// Largest valid value (inclusive), in `unit`.
+    pub max: f64,
+    /// The unit of `min`, `max` and of a plain number (`kg`, `m`, `deg`, … ; empty for counts).
+    pub unit: &'static str,
+    /// Why these bounds, in one line.
+    pub reason: &'static str,
+}
+
+/// Shorthand for the table below.
+const fn range(
+    param: &'static str,
+    what: &'static str,
+    min: f64,
+    max: f64,
+    unit: &'static str,
+    reason: &'static str,
+) -> Range {
+    Range { param, what, min, max, unit, reason }
+}
+
+/// Impact (ball) mass m (kg).
+pub const MASS: Range = range(
+    "mass",
+    "ball mass m",
+    1e-4,
+    100.0,
+    "kg",
+    "a 0.1 g bead to a 100 kg slug: lighter, air drag and adhesion dominate; heavier is no single-unit damper",
+);
+/// Total clearance d (m).
+pub const GAP: Range = range(
+    "gap",
+    "clearance d",
+    1e-5,
+    10.0,
+    "m",
+    "10 µm is machining tolerance (a smaller gap is a press fit); 10 m is no enclosure",
+);
+/// Initial velocity of the main mass v0 (m/s).
+pub const V0: Range = range(
+    "v0",
+    "initial velocity v0",
+    -100.0,
+    100.0,
+    "m/s",
+    "structures vibrate at mm/s to a few m/s; beyond 100 m/s the elastic Hertz contact no longer holds",
+);
+/// Main mass M (kg).
+pub const MAIN_MASS: Range = range("main-mass", "main mass M", 1e-3, 1e6, "kg", "a 1 g part to a 1000 t structure");
+/// Spring stiffness K (N/m).
+pub const STIFFNESS: Range =
+    range("k", "stiffness K", 0.0, 1e10, "N/m", "0 is an unsupported mass; 1e10 N/m is a stiff machine frame");
+/// Viscous damping C (N·s/m).
+pub const DAMPING: Range = range(
+    "c",
+    "viscous damping C",
+    0.0,
+    1e6,
+    "N·s/m",
+    "0 is undamped; 1e6 N·s/m overdamps any structure in this table",
+);
+/// Contact damping c1 (N·s/m).
+pub const C1: Range = range(
+    "c1",
+    "contact damping c1",
+    0.0,
+    1e6,
+    "N·s/m",
+    "0 is an elastic contact; 1e6 N·s/m is above critical for the heaviest, stiffest contact",
+);
+/// Hertz stiffness K_HZ (N/m^1.5).
+pub const K_HZ: Range = range(
+    "k-hz",
+    "Hertz stiffness K_HZ",
+    1e4,
+    1e13,
+    "N/m^1.5",
+    "spans Eq 2 for every material pair and ball radius in this table (rubber 0.1 mm ≈ 4e5, carbide 2 m ≈ 6e11)",
+);
+/// Simulated time (s).
+pub const DURATION: Range = range(
+    "duration",
+    "simulated time",
+    1e-6,
+    1e6,
+    "s",
+    "shorter than 1 µs sees no contact; 1e6 s (11 days) is far beyond any free decay",
+);
+/// Newmark time step (s).
+pub const DT: Range = range(
+    "dt",
+    "Newmark time step",
+    1e-14,
+    1e-3,
+    "s",
+    "a contact lasts µs to ms, so a step must be ≤ 1 ms; below 1e-14 s, t + dt stops advancing in double precision",
+);
+/// Ball density (kg/m³).
+pub const DENSITY: Range =
+    range("density", "ball density", 10.0, 25_000.0, "kg/m^3", "from foam to osmium (22 590 kg/m³)");
+/// Ball radius (m).
+pub const RADIUS: Range = range(
+    "radius",
+    "ball radius a",
+    1e-4,
+    2.0,
+    "m",
+    "0.1 mm to 2 m: every mass and density in this table gives a radius inside it",
+);
+/// Observer distance r (m).
+pub const R: Range = range(
+    "r",
+    "observer distance r",
+    1e-3,
+    1e3,
+    "m",
+    "closer than 1 mm is inside any ball; beyond 1 km air absorption (not modelled) dominates",
+);
+/// Observer angle θ (degrees), over all source types; see [`theta_deg`] for one source.
+pub const THETA: Range = range(
+    "theta",
+    "observer angle θ",
+    -180.0,
+    180.0,
+    "deg",
+    "an angle from the plate's normal; a wall narrows it per source type",
+);
+/// Impact speed U0 (m/s).
+pub const U0: Range = range(
+    "u0",
+    "impact speed U0",
+    1e-4,
+    100.0,
+    "m/s",
+    "below 0.1 mm/s surface roughness and adhesion dominate; beyond 100 m/s the contact is not elastic",
+);
+/// Air impedance ρ0·c (Pa·s/m).
+pub const RHO_C: Range =
+    range("rho-c", "air impedance ρ0·c", 1.0, 1e7, "Pa·s/m", "from thin gas (≈ 1) past air (413) to water (1.5e6)");
+/// Speed of sound c (m/s).
+pub const C_SOUND: Range =
+    range("c", "speed of sound c", 1.0, 1e4, "m/s", "every gas, liquid and solid is inside 1–10 000 m/s (air 343)");
+/// Zone threshold L* on SPLmax (dB).
+pub const L_STAR: Range = range(
+    "l-star",
+    "zone threshold L*",
+    0.0,
+    200.0,
+    "dB",
+    "0 dB is the threshold of hearing; 194 dB is a pressure swing of one atmosphere",
+);
+/// Zone threshold e* on the damping inclination (cm/s).
+pub const E_STAR: Range = range(
+    "e-star",
+    "zone threshold e*",
+    0.0,
+    1e3,
+    "cm/s",
+    "an inclination is a decay rate ≥ 0; 10 m/s per second is beyond any damper",
+);
+/// Pressure written as WAV sample value 1.0 (Pa).
+pub const FULL_SCALE: Range = range(
+    "full-scale",
+    "WAV full scale",
+    1e-5,
+    1e6,
+    "Pa",
+    "from below the threshold of hearing (20 µPa) to 10 atmospheres",
+);
+/// A wanted restitution R (`restitution --target`).
+pub const TARGET: Range = range(
+    "target",
+    "restitution R",
+    1e-3,
+    1.0,
+    "",
+    "R = u_out/u_in ≤ 1 for a passive contact; below 0.001 the ball sticks",
+);
+/// Width of the inclination bands of Table 5 (cm/s).
+pub const BAND: Range = range(
+    "band",
+    "Table 5 band width",
+    1e-3,
+    1e3,
+    "cm/s",
+    "narrower than 0.01 mm/s is below the resolution of e; wider than 10 m/s is one band",
+);
+/// Points of a waveform or history curve.
+pub const POINTS: Range = range(
+    "points",
+    "curve points",
+    2.0,
+    1e9,
+    "",
+    "a curve needs 2 points; the work cap (not this range) limits long ones",
+);
+/// History samples of `simulate --csv`.
+pub const SAMPLES: Range = range(
+    "samples",
+    "history samples",
+    2.0,
+    1e9,
+    "",
+    "a history needs 2 samples; the work cap (not this range) limits long ones",
+);
+/// Impacts listed in the text summary.
+pub const SHOW: Range = range("show", "impacts listed", 0.0, 1e9, "", "never more than the run's impacts are listed");
+/// Values N of a FROM:TO:N sweep axis.
+pub const GRID_N: Range = range(
+    "N",
+    "values on a sweep axis",
+    1.0,
+    1000.0,
+    "",
+    "1000 × 1000 cells is the most a chart can show; the work cap limits the product",
+);
+
+/// Every range, in the order `thud` lists them.
+pub const RANGES: [Range; 25] = [
+    MASS, GAP, V0, MAIN_MASS, STIFFNESS, DAMPING, C1, K_HZ, DURATION, DT, DENSITY, RADIUS, R, THETA, U0, RHO_C,
+    C_SOUND, L_STAR, E_STAR, FULL_SCALE, TARGET, BAND, POINTS, SAMPLES, SHOW,
+];
+
+/// A number for messages, to 6 significant digits: plain in the ordinary range, scientific
+/// outside it (`0.0405`, `1.33651`, `1e-14`, `1e308`, `5.03292e11`).
+pub fn short(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let r: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    if (1e-4..1e5).contains(&r.abs()) {
+        format!("{r}")
+    } else {
+        format!("{r:e}")
+    }
+}
+
+impl Range {
+    /// Whether `value` is finite and inside the range, to a relative 1e-9 (so `10um`, which
+    /// parses to 9.999999999999999e-6 m, is inside a range from 1e-5 m).
+    pub fn contains(&self, value: f64) -> bool {
+        let slack = |b: f64| 1e-9 * b.abs();
+        value.is_finite() && value >= self.min - slack(self.min) && value <= self.max + slack(self.max)
+    }
+
+    /// "0.0001 to 100 kg".
+    pub fn describe(&self) -> String {
+        let unit = if self.unit.is_empty() { String::new() } else { format!(" {}", self.unit) };
+        format!("{} to {}{unit}", short(self.min), short(self.max))
+    }
+
+    /// `value` if it is inside the range; otherwise an error naming [`Range::param`].
+    pub fn check(&self, value: f64) -> Result<f64, ThudError> {
+        self.check_as(self.param, value)
+    }
+
+    /// `value` if it is inside the range; otherwise an error naming `param` (the flag, field or
+    /// config key the user typed), the value and the range.
+    pub fn check_as(&self, param: &str, value: f64) -> Result<f64, ThudError> {
+        if self.contains(value) {
+            return Ok(value);
+        }
+        let unit = if self.unit.is_empty() || !value.is_finite() { String::new() } else { format!(" {}", self.unit) };
+        let what = if value.is_finite() { "is out of range" } else { "is not a finite number" };
+        Err(ThudError::invalid(
+            param,
+            format!("{}{unit} {what}; the {} must be {}", short(value), self.what, self.describe()),
+        ))
+    }
+
+    /// A whole number typed as `text` (plain or like `1e4`), checked against the range.
+    pub fn parse_count(&self, param: &str, text: &str) -> Result<usize, ThudError> {
+        let t = text.trim();
+        let v: f64 = t.parse().map_err(|_| {
+            ThudError::invalid(
+                param,
+                format!("'{t}' is not a whole number; the {} must be {}", self.what, self.describe()),
+            )
+        })?;
+        if v.fract() != 0.0 && v.is_finite() {
+            return Err(ThudError::invalid(
+                param,
+                format!("'{t}' is not a whole number; the {} must be {}", self.what, self.describe()),
+            ));
+        }
+        Ok(self.check_as(param, v)? as usize)
+    }
+}
+
+/// The range of θ (deg) for one source type.
+pub fn theta_deg(source: Source) -> Range {
+    let (min, max) = source.theta_range_deg();
+    let reason = match source {
+        Source::Single => "a free sphere: every direction",
+        Source::Dipole => "a sphere on a plate: the open half-space",
+        Source::Quadrupole => "a sphere in a wall–floor corner: the open quarter-space",
+    };
+    Range { min, max, reason, ..THETA }
+}
+
+/// Checks every parameter of a design against its range, then the derived quantities that a
+/// combination can push out (the ball radius from mass and density, K_HZ from materials). The
+/// error names the parameter (bare, as on the command line).
+pub fn check_design(d: &Design) -> Result<(), ThudError> {
+    let p = &d.damper;
+    MASS.check(p.impact_mass_kg)?;
+    GAP.check(p.gap_m)?;
+    V0.check(p.v0_m_s)?;
+    MAIN_MASS.check(p.main_mass_kg)?;
+    STIFFNESS.check(p.stiffness_n_m)?;
+    DAMPING.check(p.damping_n_s_m)?;
+    C1.check(p.c1_n_s_m)?;
+    if d.materials.is_none() {
+        K_HZ.check(p.k_hz)?;
+    }
+    DURATION.check(p.duration_s)?;
+    if let Solver::Newmark { dt_s } = d.solver {
+        DT.check(dt_s)?;
+    }
+    match d.ball {
+        BallSize::Density(rho) => {
+            DENSITY.check(rho)?;
+            let a = d.ball_radius_m();
+            if !RADIUS.contains(a) {
+                return Err(ThudError::invalid(
+                    "mass",
+                    format!(
+                        "{} kg at {} kg/m^3 makes a ball of radius {} m; the {} must be {}",
+                        short(p.impact_mass_kg),
+                        short(rho),
+                        short(a),
+                        RADIUS.what,
+                        RADIUS.describe()
+                    ),
+                ));
+            }
+        }
+        BallSize::Radius(a) => {
+            RADIUS.check(a)?;
+        }
+    }
+    if let Some(m) = &d.materials {
+        let k =
+            contact::hertz_stiffness(d.ball_radius_m(), &contact::material(&m.sphere)?, &contact::material(&m.plate)?);
+        if !K_HZ.contains(k) {
+            return Err(ThudError::invalid(
+                "radius",
+                format!(
+                    "{} m of {} on {} gives K_HZ {} N/m^1.5; the {} must be {}",
+                    short(d.ball_radius_m()),
+                    m.sphere,
+                    m.plate,
+                    short(k),
+                    K_HZ.what,
+                    K_HZ.describe()
+                ),
+            ));
+        }
+    }
+    R.check(d.observer.r_m)?;
+    // Degrees back from radians to 1e-9 deg, so 90° stays 90°.
+    theta_deg(d.radiation.source).check((d.observer.theta_rad.to_degrees() * 1e9).round() / 1e9)?;
+    RHO_C.check(d.radiation.air.rho_c_pa_s_m)?;
+    C_SOUND.check_as("speed of sound", d.radiation.air.c_m_s)?;
+    L_STAR.check(d.thresholds.spl_db)?;
+    E_STAR.check(d.thresholds.inclination_cm_s)?;
+    Ok(())
+}
+
+/// A cap on one kind of work of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cap {
+    /// What is counted (`Newmark steps`).
+    pub what: &'static str,
+    /// The largest estimate allowed without `--no-limit`.
+    pub max: f64,
+    /// How the cap was set (measured time or memory on the release build).
+    pub basis: &'static str,
+}
+
+/// Newmark-β steps of one run, or summed over a sweep: duration / dt per design.
+pub const NEWMARK_STEPS: Cap = Cap {
+    what: "Newmark steps",
+    max: 1e9,
+    basis: "≈ 25 ns a step in flight, up to 130 ns in contact: 2e8 steps took 4.9 s alone, 1e9 took 84 s with other builds running",
+};
+/// Cycles of the main mass in one run (each is a recorded maximum): duration × damped frequency.
+pub const CYCLES: Cap = Cap {
+    what: "main-mass cycles",
+    max: 1e7,
+    basis: "16 bytes and ≈ 0.7 µs a cycle with its JSON: 1e7 cycles took 6.9 s and 130 MB",
+};
+/// History samples kept of one run (`simulate --csv --samples`, history exports `--points`).
+pub const HISTORY_SAMPLES: Cap = Cap {
+    what: "history samples",
+    max: 1e7,
+    basis: "24 bytes each in memory, ≈ 1.2 µs each to write: 1e7 samples took 12 s and 240 MB",
+};
+/// Points of one waveform (`pulse --points`, waveform exports `--points`).
+pub const WAVEFORM_POINTS: Cap = Cap {
+    what: "waveform points",
+    max: 1e7,
+    basis: "the slowest kind (Hertz pulse, quadrupole, JSON): 1e7 points took 58 s and 160 MB",
+};
+/// Samples of one WAV file: duration × sample rate.
+pub const WAV_SAMPLES: Cap = Cap {
+    what: "WAV samples",
+    max: 4.8e7,
+    basis: "1000 s of sound at 48 kHz: at most 12 bytes a sample while rendering; took 2 s and 194 MB",
+};
+/// Cells of one design chart: masses × gaps.
+pub const SWEEP_CELLS: Cap = Cap {
+    what: "sweep cells",
+    max: 1e5,
+    basis: "≈ 0.6 ms a 2 s cell on each of 2 cores: 1e4 cells took 6 s, 1e5 took 90 s with other builds running",
+};
+/// Simulated seconds summed over the cells of one design chart: cells × duration.
+pub const SWEEP_CELL_SECONDS: Cap = Cap {
+    what: "simulated cell-seconds",
+    max: 2e5,
+    basis: "1e5 cells of 2 s; 1000 cells of 200 s took 6.7 s (a cell is also capped by the solver's own work cap)",
+};
+/// Bands of the Table 5 summary: (largest e − smallest e) / band width.
+pub const BANDS: Cap =
+    Cap { what: "Table 5 bands", max: 1e4, basis: "each band scans every cell: 1e4 bands × 1e5 cells is ≈ 1 s" };
+/// Isolated contacts integrated by `restitution`: one per mass, ≈ 100 per mass with `--target`.
+pub const RESTITUTION_CONTACTS: Cap = Cap {
+    what: "isolated contacts",
+    max: 2e5,
+    basis:
+        "≈ 5 µs a typical contact, up to 55 ms a heavily overdamped one (each is capped at 200 000 integrator steps)",
+};
+
+/// Every cap, in the order `thud` lists them.
+pub const CAPS: [Cap; 9] = [
+    NEWMARK_STEPS,
+    CYCLES,
+    HISTORY_SAMPLES,
+    WAVEFORM_POINTS,
+    WAV_SAMPLES,
+    SWEEP_CELLS,
+    SWEEP_CELL_SECONDS,
+    BANDS,
+    RESTITUTION_CONTACTS,
+];
+
+/// One estimate of the work of a run, against its cap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    pub cap: Cap,
+    pub value: f64,
+}
+
+impl Estimate {
+    /// Whether the estimate is over its cap (a NaN estimate is over).
+    pub fn exceeded(&self) -> bool {
+        self.value.is_nan() || self.value > self.cap.max
+    }
+
+    /// "2e12 Newmark steps exceed the limit of 1e9".
+    pub fn describe(&self) -> String {
+        format!("{} {} exceed the limit of {}", short(self.value.ceil()), self.cap.what, short(self.cap.max))
+    }
+}
+
+/// Newmark steps of one run of `duration_s` at `dt_s`: ⌈duration / dt⌉.
+pub fn newmark_steps(duration_s: f64, dt_s: f64) -> f64 {
+    (duration_s / dt_s).ceil()
+}
+
+/// Cycles of the main mass over `duration_s`: duration × ω_d / 2π with the damped frequency
+/// ω_d = √(K/M − (C/2M)²) (Eq 25 alone; zero when overdamped or without a spring).
+pub fn cycles(duration_s: f64, main_mass_kg: f64, stiffness_n_m: f64, damping_n_s_m: f64) -> f64 {
+    let gamma = damping_n_s_m / (2.0 * main_mass_kg);
+    let wd2 = stiffness_n_m / main_mass_kg - gamma * gamma;
+    if wd2 > 0.0 {
+        duration_s * wd2.sqrt() / (2.0 * std::f64::consts::PI)
+    } else {
+        0.0
+    }
+}
+
+/// The work of one simulation of `d` keeping `history_samples` samples: its Newmark steps (0
+/// with the event-driven solver), main-mass cycles and history samples.
+pub fn design_run(d: &Design, history_samples: usize) -> [Estimate; 3] {
+    let p = &d.damper;
+    let steps = match d.solver {
+        Solver::Event => 0.0,
+        Solver::Newmark { dt_s } => newmark_steps(p.duration_s, dt_s),
+    };
+    [
+        Estimate { cap: NEWMARK_STEPS, value: steps },
+        Estimate { cap: CYCLES, value: cycles(p.duration_s, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m) },
+        Estimate { cap: HISTORY_SAMPLES, value: history_samples as f64 },
+    ]
+}
+
+/// Samples of a WAV file `duration_s` long at `rate_hz`.
+pub fn wav_samples(duration_s: f64, rate_hz: f64) -> Estimate {
+    Estimate { cap: WAV_SAMPLES, value: (duration_s * rate_hz).round() }
+}
+
+/// Points of one waveform.
+pub fn waveform_points(points: usize) -> Estimate {
+    Estimate { cap: WAVEFORM_POINTS, value: points as f64 }
+}
+
+/// Cells of an `n_masses` × `n_gaps` chart.
+pub fn sweep_cells(n_masses: usize, n_gaps: usize) -> Estimate {
+    Estimate { cap: SWEEP_CELLS, value: n_masses as f64 * n_gaps as f64 }
+}
+
+/// The work of a design chart of `cells` cells of design `d` (mass and gap do not change it):
+/// simulated cell-seconds, and the Newmark steps and main-mass cycles summed over the cells.
+pub fn sweep_work(d: &Design, cells: usize) -> [Estimate; 3] {
+    let n = cells as f64;
+    let [steps, cycles, _] = design_run(d, 0);
+    [
+        Estimate { cap: SWEEP_CELL_SECONDS, value: n * d.damper.duration_s },
+        Estimate { value: n * steps.value, ..steps },
+        Estimate { value: n * cycles.value, ..cycles },
+    ]
+}
+
+/// Bands of width `width_cm_s` between inclinations `e_min` and `e_max` (cm/s).
+pub fn band_count(e_min_cm_s: f64, e_max_cm_s: f64, width_cm_s: f64) -> Estimate {
+    let value = if e_max_cm_s >= e_min_cm_s {
+        (e_max_cm_s / width_cm_s).floor() - (e_min_cm_s / width_cm_s).floor() + 1.0
+    } else {
+        0.0
+    };
+    Estimate { cap: BANDS, value }
+}
+
+/// Isolated contacts of a restitution curve over `n_masses` masses; with a target restitution
+/// each mass also costs the bisection on c1 (≤ 60 doublings + ≤ 40 halvings to 1e-10).
+pub fn restitution_contacts(n_masses: usize, with_target: bool) -> Estimate {
+    let per_mass = if with_target { 101.0 } else { 1.0 };
+    Estimate { cap: RESTITUTION_CONTACTS, value: n_masses as f64 * per_mass }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_range_is_ordered_and_finite() {
+        for r in RANGES.iter().chain([&GRID_N]) {
+            assert!(r.min.is_finite() && r.max.is_finite() && r.min < r.max, "{}", r.param);
+            assert!(!r.reason.is_empty() && !r.what.is_empty(), "{}", r.param);
+        }
+    }
+
+    #[test]
+    fn check_names_the_parameter_the_value_and_the_range() {
+        let e = MASS.check_as("--mass", 1e308).unwrap_err().to_string();
+        assert!(e.starts_with("invalid --mass: 1e308 kg is out of range"), "{e}");
+        assert!(e.contains("0.0001 to 100 kg"), "{e}");
+        let e = GAP.check(f64::NAN).unwrap_err().to_string();
+        assert!(e.contains("invalid gap: NaN is not a finite number"), "{e}");
+        assert_eq!(MASS.check(0.0405).unwrap(), 0.0405);
+        assert!(STIFFNESS.check(0.0).is_ok() && STIFFNESS.check(-1.0).is_err());
+        assert!(V0.check(-2.0).is_ok());
+        assert!(GAP.check(10.0 * 1e-6).is_ok(), "10 µm as parsed is inside");
+        assert!(GAP.check(0.99e-5).is_err());
+    }
+
+    #[test]
+    fn counts_are_whole_numbers_in_range() {
+        assert_eq!(POINTS.parse_count("--points", "1e3").unwrap(), 1000);
+        assert_eq!(POINTS.parse_count("--points", " 50 ").unwrap(), 50);
+        for bad in ["1", "2.5", "-3", "abc", "", "1e308", "NaN", "inf"] {
+            let e = POINTS.parse_count("--points", bad).unwrap_err().to_string();
+            assert!(e.starts_with("invalid --points: "), "{bad}: {e}");
+        }
+        assert_eq!(SHOW.parse_count("--show", "0").unwrap(), 0);
+    }
+
+    #[test]
+    fn theta_depends_on_the_source() {
+        assert!(theta_deg(Source::Quadrupole).check(-10.0).is_err());
+        assert!(theta_deg(Source::Dipole).check(-10.0).is_ok());
+        assert!(theta_deg(Source::Single).check(170.0).is_ok());
+        assert!(theta_deg(Source::Dipole).check(170.0).is_err());
+    }
+
+    #[test]
+    fn the_default_design_and_presets_like_it_are_in_range() {
+        check_design(&Design::default()).unwrap();
+        check_design(&Design::paper_table3()).unwrap();
+    }
+
+    #[test]
+    fn derived_radius_and_k_hz_stay_inside_their_ranges_at_the_corners() {
+        // Every in-range mass and density gives an in-range radius ...
+        for m in [MASS.min, MASS.max] {
+            for rho in [DENSITY.min, DENSITY.max] {
+                let a = contact::sphere_radius(m, rho);
+                assert!(RADIUS.contains(a), "m {m} rho {rho}: a {a}");
+            }
+        }
+        // ... and every material pair at every in-range radius an in-range K_HZ.
+        for s in contact::MATERIALS {
+            for p in contact::MATERIALS {
+                for a in [RADIUS.min, RADIUS.max] {
+                    let k = contact::hertz_stiffness(a, s, p);
+                    assert!(K_HZ.contains(k), "{} on {} at {a}: {k}", s.name, p.name);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn check_design_refuses_an_out_of_range_field_by_name() {
+        let mut d = Design::default();
+        d.damper.stiffness_n_m = 1e308;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid k: "));
+        let d = Design { ball: BallSize::Density(1e308), ..Design::default() };
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid density: "));
+        let mut d = Design::default();
+        d.thresholds.inclination_cm_s = -5.0;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid e-star: "));
+    }
+
+    #[test]
+    fn newmark_work_is_duration_over_dt() {
+        let mut d = Design { solver: Solver::Newmark { dt_s: 1e-12 }, ..Design::default() };
+        let [steps, cycles, hist] = design_run(&d, 5);
+        assert_eq!(steps.value, 2e12);
+        assert!(steps.exceeded());
+        assert_eq!(steps.describe(), "2e12 Newmark steps exceed the limit of 1e9");
+        assert_eq!(short(1.336504617571976), "1.3365");
+        assert_eq!(short(522761.01755734155), "5.22761e5");
+        assert_eq!(short(0.0405), "0.0405");
+        assert_eq!(short(-100.0), "-100");
+        // Table 2: K 500 N/m, M 0.5 kg, C 0.05 N·s/m → ≈ 5.03 Hz, 2 s.
+        assert!((cycles.value - 2.0 * (1000.0f64 - 0.0025).sqrt() / (2.0 * std::f64::consts::PI)).abs() < 1e-9);
+        assert!(!cycles.exceeded() && !hist.exceeded());
+        d.solver = Solver::Event;
+        assert_eq!(design_run(&d, 0)[0].value, 0.0);
+    }
+
+    #[test]
+    fn overdamped_or_springless_main_masses_have_no_cycles() {
+        assert_eq!(cycles(1e6, 1.0, 0.0, 0.0), 0.0);
+        assert_eq!(cycles(1e6, 1.0, 100.0, 1e3), 0.0);
+    }
+
+    #[test]
+    fn other_estimates() {
+        assert_eq!(wav_samples(2.0, 48_000.0).value, 96_000.0);
+        assert!(wav_samples(1e308, 48_000.0).exceeded());
+        assert!(sweep_cells(1000, 1000).exceeded() && !sweep_cells(20, 20).exceeded());
+        let [cell_s, steps, cycles] = sweep_work(&Design::default(), 400);
+        assert_eq!((cell_s.value, steps.value), (800.0, 0.0));
+        assert!((cycles.value / 400.0 - design_run(&Design::default(), 0)[1].value).abs() < 1e-9);
+        assert_eq!(band_count(0.1, 0.95, 0.2).value, 5.0);
+        assert!(band_count(0.0, 1.0, 1e-308).exceeded());
+        assert!(Estimate { cap: BANDS, value: f64::NAN }.exceeded());
+        assert_eq!(restitution_contacts(20, true).value, 2020.0);
+    }
+}

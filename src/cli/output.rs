@@ -1,0 +1,389 @@
+//! Command output: one buffered writer on stdout whose errors propagate (a closed pipe ends the
+//! command quietly, any other failure is reported), and the finite check every number passes
+//! before it leaves — a NaN or ∞ anywhere in a result is an internal error, never a value.
+//!
+//! The check is done on the data where the data is at hand ([`check_finite`] walks anything
+//! `Serialize` — needed because `serde_json` would print NaN as `null`, indistinguishable from
+//! "no value") and on the text where only text is at hand ([`non_finite_word`]: Rust formats a
+//! non-finite `f64` as `NaN`, `inf` or `-inf` whatever the precision). serde has no ready-made
+//! "visit every float" walker, hence the small serializer here.
+
+use std::fmt;
+use std::io::{self, BufWriter, Stdout, Write};
+
+use serde::ser::{self, Serialize};
+
+use super::errors::CliError;
+use crate::paper::{Table, Value};
+
+/// Buffered stdout.
+pub struct Out {
+    w: BufWriter<Stdout>,
+}
+
+impl Default for Out {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Out {
+    pub fn new() -> Self {
+        Out { w: BufWriter::with_capacity(1 << 16, io::stdout()) }
+    }
+
+    /// Writes text after checking it holds no non-finite number.
+    pub fn text(&mut self, s: &str) -> Result<(), CliError> {
+        check_text(s)?;
+        self.w.write_all(s.as_bytes())?;
+        Ok(())
+    }
+
+    /// Writes `v` as pretty JSON and a newline, after checking every number in it is finite.
+    pub fn json<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), CliError> {
+        check_finite(v)?;
+        serde_json::to_writer_pretty(&mut self.w, v).map_err(io::Error::from)?;
+        self.w.write_all(b"\n")?;
+        Ok(())
+    }
+
+    /// Writes one CSV row of numbers, after checking they are finite.
+    pub fn csv_row(&mut self, values: &[f64]) -> Result<(), CliError> {
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(CliError::NonFinite(format!("{v} in a CSV row")));
+        }
+        let mut first = true;
+        for v in values {
+            if !first {
+                self.w.write_all(b",")?;
+            }
+            first = false;
+            write!(self.w, "{v}")?;
+        }
+        self.w.write_all(b"\n")?;
+        Ok(())
+    }
+
+    /// Writes a table in `format`, after checking its numbers.
+    pub fn table(&mut self, table: &Table, format: super::OutputFormat) -> Result<(), CliError> {
+        check_table(table)?;
+        match format {
+            super::OutputFormat::Text => super::format::write_text(&mut self.w, table)?,
+            super::OutputFormat::Csv => super::format::write_csv(&mut self.w, table)?,
+            super::OutputFormat::Json => return self.json(&super::format::table_json(table)),
+        }
+        Ok(())
+    }
+
+    /// Flushes stdout; a failure here is reported like any other write.
+    pub fn flush(&mut self) -> Result<(), CliError> {
+        self.w.flush()?;
+        Ok(())
+    }
+}
+
+/// Checks that text holds no `NaN`, `inf` or `-inf` word.
+pub fn check_text(s: &str) -> Result<(), CliError> {
+    match non_finite_word(s) {
+        Some(w) => Err(CliError::NonFinite(w.to_string())),
+        None => Ok(()),
+    }
+}
+
+/// The first word of `text` that is how Rust prints a non-finite number (`NaN`, `inf`).
+pub fn non_finite_word(text: &str) -> Option<&str> {
+    text.split(|c: char| !c.is_ascii_alphanumeric()).find(|w| *w == "NaN" || *w == "inf")
+}
+
+/// Checks every number of a paper/restitution table.
+pub fn check_table(t: &Table) -> Result<(), CliError> {
+    for row in &t.rows {
+        for (v, c) in row.iter().zip(&t.columns) {
+            if let Value::Num(x) = v {
+                if !x.is_finite() {
+                    return Err(CliError::NonFinite(format!("{x} (column {})", c.key)));
+                }
+            }
+        }
+    }
+    check_text(&t.title)?;
+    t.notes.iter().try_for_each(|n| check_text(n))
+}
+
+/// Checks every floating-point number in `v` is finite; the error names the field.
+pub fn check_finite<T: Serialize + ?Sized>(v: &T) -> Result<(), CliError> {
+    let mut f = Finder { path: Vec::new() };
+    v.serialize(&mut f).map_err(|e| CliError::NonFinite(e.0))
+}
+
+/// A non-finite number found, described as "NaN (field.path)".
+#[derive(Debug)]
+struct Found(String);
+
+impl fmt::Display for Found {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Found {}
+
+impl ser::Error for Found {
+    fn custom<T: fmt::Display>(msg: T) -> Self {
+        Found(msg.to_string())
+    }
+}
+
+/// A serializer that writes nothing and fails at the first non-finite float.
+struct Finder {
+    path: Vec<&'static str>,
+}
+
+impl Finder {
+    fn float(&self, v: f64) -> Result<(), Found> {
+        if v.is_finite() {
+            Ok(())
+        } else if self.path.is_empty() {
+            Err(Found(format!("{v}")))
+        } else {
+            Err(Found(format!("{v} ({})", self.path.join("."))))
+        }
+    }
+
+    fn field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> Result<(), Found> {
+        self.path.push(key);
+        value.serialize(&mut *self)?;
+        self.path.pop();
+        Ok(())
+    }
+}
+
+type R = Result<(), Found>;
+
+impl ser::Serializer for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    type SerializeSeq = Self;
+    type SerializeTuple = Self;
+    type SerializeTupleStruct = Self;
+    type SerializeTupleVariant = Self;
+    type SerializeMap = Self;
+    type SerializeStruct = Self;
+    type SerializeStructVariant = Self;
+
+    fn serialize_bool(self, _: bool) -> R {
+        Ok(())
+    }
+    fn serialize_i8(self, _: i8) -> R {
+        Ok(())
+    }
+    fn serialize_i16(self, _: i16) -> R {
+        Ok(())
+    }
+    fn serialize_i32(self, _: i32) -> R {
+        Ok(())
+    }
+    fn serialize_i64(self, _: i64) -> R {
+        Ok(())
+    }
+    fn serialize_u8(self, _: u8) -> R {
+        Ok(())
+    }
+    fn serialize_u16(self, _: u16) -> R {
+        Ok(())
+    }
+    fn serialize_u32(self, _: u32) -> R {
+        Ok(())
+    }
+    fn serialize_u64(self, _: u64) -> R {
+        Ok(())
+    }
+    fn serialize_f32(self, v: f32) -> R {
+        self.float(f64::from(v))
+    }
+    fn serialize_f64(self, v: f64) -> R {
+        self.float(v)
+    }
+    fn serialize_char(self, _: char) -> R {
+        Ok(())
+    }
+    fn serialize_str(self, _: &str) -> R {
+        Ok(())
+    }
+    fn serialize_bytes(self, _: &[u8]) -> R {
+        Ok(())
+    }
+    fn serialize_none(self) -> R {
+        Ok(())
+    }
+    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> R {
+        value.serialize(self)
+    }
+    fn serialize_unit(self) -> R {
+        Ok(())
+    }
+    fn serialize_unit_struct(self, _: &'static str) -> R {
+        Ok(())
+    }
+    fn serialize_unit_variant(self, _: &'static str, _: u32, _: &'static str) -> R {
+        Ok(())
+    }
+    fn serialize_newtype_struct<T: Serialize + ?Sized>(self, _: &'static str, value: &T) -> R {
+        value.serialize(self)
+    }
+    fn serialize_newtype_variant<T: Serialize + ?Sized>(
+        self,
+        _: &'static str,
+        _: u32,
+        variant: &'static str,
+        value: &T,
+    ) -> R {
+        self.field(variant, value)
+    }
+    fn serialize_seq(self, _: Option<usize>) -> Result<Self, Found> {
+        Ok(self)
+    }
+    fn serialize_tuple(self, _: usize) -> Result<Self, Found> {
+        Ok(self)
+    }
+    fn serialize_tuple_struct(self, _: &'static str, _: usize) -> Result<Self, Found> {
+        Ok(self)
+    }
+    fn serialize_tuple_variant(self, _: &'static str, _: u32, v: &'static str, _: usize) -> Result<Self, Found> {
+        self.path.push(v);
+        Ok(self)
+    }
+    fn serialize_map(self, _: Option<usize>) -> Result<Self, Found> {
+        Ok(self)
+    }
+    fn serialize_struct(self, _: &'static str, _: usize) -> Result<Self, Found> {
+        Ok(self)
+    }
+    fn serialize_struct_variant(self, _: &'static str, _: u32, v: &'static str, _: usize) -> Result<Self, Found> {
+        self.path.push(v);
+        Ok(self)
+    }
+}
+
+impl ser::SerializeSeq for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
+        value.serialize(&mut **self)
+    }
+    fn end(self) -> R {
+        Ok(())
+    }
+}
+
+impl ser::SerializeTuple for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
+        value.serialize(&mut **self)
+    }
+    fn end(self) -> R {
+        Ok(())
+    }
+}
+
+impl ser::SerializeTupleStruct for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
+        value.serialize(&mut **self)
+    }
+    fn end(self) -> R {
+        Ok(())
+    }
+}
+
+impl ser::SerializeTupleVariant for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
+        value.serialize(&mut **self)
+    }
+    fn end(self) -> R {
+        self.path.pop();
+        Ok(())
+    }
+}
+
+impl ser::SerializeMap for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> R {
+        key.serialize(&mut **self)
+    }
+    fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
+        value.serialize(&mut **self)
+    }
+    fn end(self) -> R {
+        Ok(())
+    }
+}
+
+impl ser::SerializeStruct for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> R {
+        self.field(key, value)
+    }
+    fn end(self) -> R {
+        Ok(())
+    }
+}
+
+impl ser::SerializeStructVariant for &mut Finder {
+    type Ok = ();
+    type Error = Found;
+    fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> R {
+        self.field(key, value)
+    }
+    fn end(self) -> R {
+        self.path.pop();
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(serde::Serialize)]
+    struct Inner {
+        spl_db: Option<f64>,
+        ok: Vec<f64>,
+    }
+
+    #[derive(serde::Serialize)]
+    struct Outer {
+        n: usize,
+        name: &'static str,
+        inner: Inner,
+    }
+
+    #[test]
+    fn a_nan_deep_inside_is_found_by_its_path() {
+        let good = Outer { n: 1, name: "x", inner: Inner { spl_db: Some(3.0), ok: vec![1.0, 2.0] } };
+        assert!(check_finite(&good).is_ok());
+        let none = Outer { inner: Inner { spl_db: None, ..good.inner }, ..good };
+        assert!(check_finite(&none).is_ok(), "None is not a number");
+        let bad = Outer { n: 1, name: "x", inner: Inner { spl_db: Some(f64::NEG_INFINITY), ok: vec![] } };
+        match check_finite(&bad) {
+            Err(CliError::NonFinite(m)) => assert_eq!(m, "-inf (inner.spl_db)"),
+            other => panic!("{other:?}"),
+        }
+        let v = vec![1.0, f64::NAN];
+        assert!(check_finite(&v).is_err());
+    }
+
+    #[test]
+    fn text_with_non_finite_words_is_refused() {
+        assert_eq!(non_finite_word("SPL NaN dB"), Some("NaN"));
+        assert_eq!(non_finite_word("SPLmax -inf dB"), Some("inf"));
+        assert_eq!(non_finite_word("1,inf\n"), Some("inf"));
+        assert_eq!(non_finite_word("info: infinite 1.0e308 nan-free"), None);
+    }
+}

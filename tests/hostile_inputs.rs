@@ -1,0 +1,586 @@
+//! Hostile and careless input (issue 9, "What was found" 2–4): every numeric flag is range
+//! checked, every run is budgeted before it starts, no NaN/∞ is ever printed as a result, and
+//! every error is one line on stderr naming the flag the user typed. Process runs of the built
+//! binary with HOME and the XDG folders in a temporary folder; each run is killed after 20 s
+//! (a failure).
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use proptest::prelude::*;
+
+/// What one run of thud did.
+#[derive(Debug)]
+struct Ran {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+/// A thud command with HOME and the XDG folders inside `home`.
+fn command(home: &Path, args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_thud"));
+    c.args(args)
+        .env("HOME", home)
+        .env("XDG_CONFIG_HOME", home.join("config"))
+        .env("XDG_DATA_HOME", home.join("data"))
+        .env_remove("XDG_CONFIG_DIRS")
+        .stdin(Stdio::null());
+    c
+}
+
+/// Runs thud in `home`; panics (a test failure) if it runs longer than 20 s.
+fn thud_in(home: &Path, args: &[&str]) -> Ran {
+    let mut child = command(home, args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("run thud");
+    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
+    let t_out = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = out.read_to_end(&mut s);
+        s
+    });
+    let t_err = std::thread::spawn(move || {
+        let mut s = Vec::new();
+        let _ = err.read_to_end(&mut s);
+        s
+    });
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().expect("wait") {
+            break s;
+        }
+        if start.elapsed() > Duration::from_secs(20) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{args:?} ran longer than 20 s");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    Ran {
+        code: status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&t_out.join().unwrap()).into(),
+        stderr: String::from_utf8_lossy(&t_err.join().unwrap()).into(),
+    }
+}
+
+fn thud(args: &[&str]) -> Ran {
+    let home = tempfile::tempdir().unwrap();
+    thud_in(home.path(), args)
+}
+
+/// Asserts a refusal: exit 2, exactly one stderr line, no stdout, and the line contains every
+/// one of `needles` (the flag first).
+fn assert_refused(args: &[&str], needles: &[&str]) {
+    let r = thud(args);
+    assert_eq!(r.code, 2, "{args:?}: exit {} stderr {}", r.code, r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+    assert!(r.stdout.is_empty(), "{args:?} printed: {}", r.stdout);
+    assert!(r.stderr.starts_with("thud: "), "{args:?}: {}", r.stderr);
+    for n in needles {
+        assert!(r.stderr.contains(n), "{args:?}: '{n}' not in: {}", r.stderr);
+    }
+}
+
+/// The first word of `text` that is how Rust prints NaN or ∞.
+fn non_finite_word(text: &str) -> Option<&str> {
+    text.split(|c: char| !c.is_ascii_alphanumeric()).find(|w| *w == "NaN" || *w == "inf")
+}
+
+// ---- What was found 2: work and memory are unbounded -------------------------------------
+
+#[test]
+fn newmark_steps_are_budgeted_before_the_run() {
+    // Used to run for hours.
+    assert_refused(
+        &["simulate", "--solver", "newmark", "--dt", "1e-12"],
+        &["--dt 1e-12", "2e12 Newmark steps exceed the limit of 1e9", "--dt ≥ 2e-9", "--no-limit"],
+    );
+    // Used to hang.
+    assert_refused(&["simulate", "--solver", "newmark", "--dt", "1e-308"], &["--dt", "1e-308", "1e-14 to 0.001 s"]);
+    assert_refused(&["simulate", "--solver", "newmark", "--duration", "1000"], &["--duration 1000", "Newmark steps"]);
+}
+
+#[test]
+fn no_limit_lifts_the_caps() {
+    // 1e6 steps is small, but over no cap either way: the refusal above needs the cap, and
+    // --no-limit must let a capped run through. A short --duration keeps it quick.
+    let r = thud(&["simulate", "--solver", "newmark", "--dt", "1e-12", "--duration", "2e-6", "--no-limit", "--json"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["design"]["solver"]["Newmark"]["dt_s"].as_f64(), Some(1e-12));
+    let refused = thud(&["simulate", "--solver", "newmark", "--dt", "1e-12", "--duration", "2e-2"]);
+    assert_eq!(refused.code, 2, "{}", refused.stderr);
+}
+
+#[test]
+fn wav_length_is_budgeted() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.wav");
+    let out = out.to_str().unwrap();
+    // Used to panic with "capacity overflow".
+    assert_refused(&["export", "wav", "--duration", "1e308", "--out", out], &["--duration", "1e308"]);
+    // Used to abort out of memory.
+    assert_refused(
+        &["export", "wav", "--duration", "1e4", "--out", out],
+        &["--duration 1e4", "4.8e8 WAV samples exceed the limit of 4.8e7"],
+    );
+    assert!(!Path::new(out).exists());
+}
+
+#[test]
+fn history_samples_are_budgeted() {
+    // Used to abort after allocating 3.5 GB.
+    assert_refused(
+        &["simulate", "--csv", "--samples", "100000000"],
+        &["--samples 100000000", "1e8 history samples exceed the limit of 1e7"],
+    );
+    assert_refused(&["pulse", "--points", "1e9"], &["--points 1e9", "waveform points exceed the limit"]);
+}
+
+#[test]
+fn sweeps_are_budgeted() {
+    // Used to hang.
+    assert_refused(&["sweep", "--band", "1e-308"], &["--band", "1e-308", "0.001 to 1000 cm/s"]);
+    // Used to run ~10 minutes with no progress shown.
+    assert_refused(
+        &["sweep", "--masses", "30g:100g:1000", "--gaps", "2cm:5cm:1000"],
+        &["--masses/--gaps 1000 × 1000", "sweep cells exceed the limit"],
+    );
+    assert_refused(&["sweep", "--duration", "1000"], &["--duration 1000", "cell-seconds exceed the limit"]);
+    assert_refused(&["sweep", "--solver", "newmark"], &["--dt", "Newmark steps exceed the limit"]);
+}
+
+#[test]
+fn main_mass_cycles_are_budgeted() {
+    // 5e11 cycles of a 500 kHz structure: would hang and then run out of memory.
+    assert_refused(
+        &["simulate", "--duration", "1e6", "--c", "0", "--k", "1e10", "--main-mass", "1e-3"],
+        &["--duration 1e6", "main-mass cycles exceed the limit of 1e7"],
+    );
+}
+
+#[test]
+fn a_run_cut_short_by_its_work_cap_says_so() {
+    // The issue's case: a v0 of 200 m/s is outside the physical range, so it is refused...
+    assert_refused(&["simulate", "--duration", "1e6", "--v0", "200", "--json"], &["--v0", "200 m/s", "-100 to 100"]);
+    // ... and an in-range design that still hits the solver's cap (a 10 µm gap rattles) says it.
+    let r = thud(&["simulate", "--duration", "100", "--gap", "10um", "--json"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    let t = v["final_time_s"].as_f64().unwrap();
+    assert!(t < 100.0, "final time {t}");
+    assert_eq!(v["truncated"], serde_json::Value::Bool(true));
+    let why = v["truncation_reason"].as_str().unwrap();
+    assert!(why.contains("work cap") && why.contains("100 s"), "{why}");
+    let text = thud(&["simulate", "--duration", "100", "--gap", "10um"]);
+    assert_eq!(text.code, 0);
+    assert!(text.stdout.lines().any(|l| l.starts_with("TRUNCATED") && l.contains("work cap")), "{}", text.stdout);
+    // A run that reaches its duration is not truncated.
+    let full: serde_json::Value = serde_json::from_str(&thud(&["simulate", "--json"]).stdout).unwrap();
+    assert_eq!(full["truncated"], serde_json::Value::Bool(false));
+    assert!(full["truncation_reason"].is_null());
+}
+
+#[test]
+fn progress_is_silent_when_stderr_is_not_a_terminal() {
+    let r = thud(&["sweep", "--masses", "30g:60g:3", "--gaps", "2cm:3cm:2", "--csv"]);
+    assert_eq!(r.code, 0);
+    assert!(r.stderr.is_empty(), "{}", r.stderr);
+}
+
+// ---- What was found 3: wrong numbers printed as results -----------------------------------
+
+#[test]
+fn non_finite_results_are_refused_as_out_of_range_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (csv, wav) = (f("e.csv"), f("p.wav"));
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["pulse", "--c", "1e308"], "--c"),
+        (vec!["pulse", "--c", "1e-308"], "--c"),
+        (vec!["pulse", "--rho-c", "1e308"], "--rho-c"),
+        (vec!["pulse", "--k-hz", "1e-308"], "--k-hz"),
+        (vec!["pulse", "--u0", "1e308"], "--u0"),
+        (vec!["simulate", "--r", "1e308"], "--r"),
+        (vec!["simulate", "--v0", "1e308"], "--v0"),
+        (vec!["simulate", "--k", "1e308"], "--k"),
+        (vec!["simulate", "--main-mass", "1e-308"], "--main-mass"),
+        (vec!["export", "csv", "history", "--k", "1e308", "--out", &csv], "--k"),
+        (vec!["export", "wav", "--full-scale", "1e-308", "--out", &wav], "--full-scale"),
+        (vec!["export", "wav", "--radius", "1e-308", "--out", &wav], "--radius"),
+    ];
+    for (args, flag) in &cases {
+        assert_refused(args, &[&format!("invalid {flag}: ")]);
+    }
+    assert!(!Path::new(&csv).exists() && !Path::new(&wav).exists(), "a file was written");
+}
+
+// ---- What was found 4: errors that name the wrong thing ------------------------------------
+
+#[test]
+fn errors_name_the_flag_the_user_typed() {
+    // Used to say "invalid r: … sphere's radius inf m" and "invalid radius: 0 m".
+    assert_refused(&["simulate", "--mass", "1e308"], &["invalid --mass: 1e308 kg is out of range", "0.0001 to 100 kg"]);
+    assert_refused(&["simulate", "--density", "1e308"], &["invalid --density: 1e308 kg/m^3"]);
+    // A ball grown into the observer is the ball's flag, not r.
+    assert_refused(&["simulate", "--mass", "100", "--density", "10"], &["invalid --mass: ", "reaches the observer"]);
+    assert_refused(&["pulse", "--sphere", "tungsten-carbide", "--radius", "2"], &["invalid --radius: ", "100 kg"]);
+    // Engine errors are named by flag too.
+    assert_refused(&["simulate", "--r", "1cm"], &["invalid --r: ", "inside the sphere"]);
+}
+
+#[test]
+fn count_flags_give_one_line_not_clap_s_three() {
+    for (args, flag) in [
+        (vec!["pulse", "--points", "abc"], "--points"),
+        (vec!["pulse", "--points", "-5"], "--points"),
+        (vec!["simulate", "--csv", "--samples", "-1"], "--samples"),
+        (vec!["simulate", "--csv", "--samples", "2.5"], "--samples"),
+        (vec!["simulate", "--show", "x"], "--show"),
+        (vec!["simulate", "--show", "1e308"], "--show"),
+        (vec!["export", "csv", "waveform", "--points", "lots", "--out", "x.csv"], "--points"),
+    ] {
+        assert_refused(&args, &[flag]);
+    }
+}
+
+#[test]
+fn clap_s_own_errors_are_one_line() {
+    assert_refused(&["simulate", "--mas", "3"], &["'--mas'", "--mass"]);
+    assert_refused(&["simulate", "--solver", "rk4"], &["rk4", "--solver"]);
+    assert_refused(&["export"], &["thud export", "csv, svg, wav"]);
+    assert_refused(&["paper"], &["<ID>"]);
+    assert_refused(&["nonesuch"], &["nonesuch"]);
+}
+
+#[test]
+fn long_values_are_cut_and_stay_on_one_line() {
+    let long = "x".repeat(100_000);
+    assert_refused(&["simulate", "--mass", &long], &["invalid --mass: ", "…"]);
+    let r = thud(&["simulate", "--mass", &long]);
+    assert!(r.stderr.chars().count() < 200, "{} characters", r.stderr.chars().count());
+    let r = thud(&["simulate", "--preset", &long]);
+    assert_eq!(r.stderr.lines().count(), 1);
+    assert!(r.stderr.chars().count() < 600, "{} characters", r.stderr.chars().count());
+    assert_refused(&["simulate", "--preset", "a\nsecond line"], &["--preset", "a\\nsecond line"]);
+}
+
+#[test]
+fn config_thresholds_out_of_range_fall_back_with_a_warning() {
+    for (key, value) in [("e_star_cm_s", "-5"), ("l_star_db", "1e308")] {
+        let home = tempfile::tempdir().unwrap();
+        let dir = home.path().join("config").join("thud");
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("config.toml"), format!("[thresholds]\n{key} = {value}\n")).unwrap();
+        let r = thud_in(home.path(), &["simulate", "--json"]);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+        assert!(r.stderr.contains("warning") && r.stderr.contains(key), "{}", r.stderr);
+        let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+        let t = &v["design"]["thresholds"];
+        assert_eq!((t["spl_db"].as_f64(), t["inclination_cm_s"].as_f64()), (Some(103.0), Some(0.9)), "{key}");
+    }
+}
+
+// ---- Output: a closed pipe is quiet, another write error is reported -----------------------
+
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    for args in [
+        &["simulate", "--csv", "--samples", "1000000"][..],
+        &["pulse", "--json", "--points", "1000000"][..],
+        &["paper", "table1"][..],
+    ] {
+        let home = tempfile::tempdir().unwrap();
+        let mut child =
+            command(home.path(), args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("run thud");
+        let mut first = String::new();
+        BufReader::new(child.stdout.take().unwrap()).read_line(&mut first).unwrap();
+        assert!(!first.is_empty());
+        // The reader is gone: like `| head -1`.
+        let out = child.wait_with_output().unwrap();
+        let code = out.status.code();
+        assert!(code == Some(0) || code == Some(141) || code.is_none(), "{args:?}: {code:?}");
+        assert!(out.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+}
+
+#[test]
+fn a_failed_write_to_stdout_is_reported() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else { return };
+    let home = tempfile::tempdir().unwrap();
+    let out = command(home.path(), &["simulate", "--csv"]).stdout(full).stderr(Stdio::piped()).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("cannot write the output"), "{err}");
+}
+
+// ---- The ranges: every bound of every flag gives finite numbers or a one-line refusal -------
+
+/// The numeric flags of each command, with a unit suffix of the wrong kind for each.
+#[derive(Clone, Copy)]
+struct Flag {
+    name: &'static str,
+    range: Option<thud::limits::Range>,
+    wrong_unit: &'static str,
+}
+
+const fn flag(name: &'static str, range: Option<thud::limits::Range>, wrong_unit: &'static str) -> Flag {
+    Flag { name, range, wrong_unit }
+}
+
+use thud::limits as L;
+
+const DESIGN_FLAGS: &[Flag] = &[
+    flag("mass", Some(L::MASS), "3cm"),
+    flag("gap", Some(L::GAP), "3g"),
+    flag("v0", Some(L::V0), "3kg"),
+    flag("main-mass", Some(L::MAIN_MASS), "3m"),
+    flag("k", Some(L::STIFFNESS), "3kg"),
+    flag("c", Some(L::DAMPING), "3m"),
+    flag("c1", Some(L::C1), "3m"),
+    flag("k-hz", Some(L::K_HZ), "3kg"),
+    flag("duration", Some(L::DURATION), "3kg"),
+    flag("dt", Some(L::DT), "3kg"),
+    flag("density", Some(L::DENSITY), "3m"),
+    flag("radius", Some(L::RADIUS), "3g"),
+    flag("r", Some(L::R), "3g"),
+    flag("theta", Some(L::THETA), "3m"),
+    flag("l-star", Some(L::L_STAR), "3kg"),
+    flag("e-star", Some(L::E_STAR), "3kg"),
+];
+
+const PULSE_FLAGS: &[Flag] = &[
+    flag("radius", Some(L::RADIUS), "3g"),
+    flag("mass", Some(L::MASS), "3cm"),
+    flag("u0", Some(L::U0), "3kg"),
+    flag("k-hz", Some(L::K_HZ), "3kg"),
+    flag("main-mass", Some(L::MAIN_MASS), "3m"),
+    flag("r", Some(L::R), "3g"),
+    flag("theta", Some(L::THETA), "3m"),
+    flag("rho-c", Some(L::RHO_C), "3kg"),
+    flag("c", Some(L::C_SOUND), "3kg"),
+    flag("points", Some(L::POINTS), "3cm"),
+];
+
+/// A command under test: its base arguments, its own numeric flags, whether the design flags
+/// apply, and its output modes.
+type Cmd = (Vec<&'static str>, Vec<Flag>, bool, Vec<&'static str>);
+
+/// The commands under test.
+fn commands() -> Vec<Cmd> {
+    vec![
+        (vec!["pulse"], PULSE_FLAGS.to_vec(), false, vec!["", "--json", "--csv"]),
+        (
+            vec!["simulate"],
+            vec![flag("samples", Some(L::SAMPLES), "3cm"), flag("show", Some(L::SHOW), "3cm")],
+            true,
+            vec!["", "--json", "--csv"],
+        ),
+        (
+            vec!["sweep"],
+            vec![
+                flag("masses", None, "30g:60g:3cm"),
+                flag("gaps", None, "2cm:3g:2"),
+                flag("band", Some(L::BAND), "3kg"),
+            ],
+            true,
+            vec!["", "--json", "--csv"],
+        ),
+        (
+            vec!["restitution"],
+            vec![
+                flag("u0", Some(L::U0), "3kg"),
+                flag("masses", None, "5g:100cm:4"),
+                flag("target", Some(L::TARGET), "3kg"),
+            ],
+            true,
+            vec!["", "--json", "--csv"],
+        ),
+        (
+            vec!["export", "csv", "history"],
+            vec![flag("points", Some(L::POINTS), "3cm"), flag("u0", Some(L::U0), "3kg")],
+            true,
+            vec![""],
+        ),
+        (
+            vec!["export", "svg", "waveform"],
+            vec![flag("points", Some(L::POINTS), "3cm"), flag("u0", Some(L::U0), "3kg")],
+            true,
+            vec![""],
+        ),
+        (
+            vec!["export", "wav"],
+            vec![flag("full-scale", Some(L::FULL_SCALE), "3kg"), flag("u0", Some(L::U0), "3kg")],
+            true,
+            vec![""],
+        ),
+    ]
+}
+
+/// Arguments that keep each command quick when it is not the flag under test.
+fn quick(base: &[&str]) -> Vec<String> {
+    match base[0] {
+        "sweep" => ["--masses", "30g:60g:3", "--gaps", "2cm:3cm:2"].map(String::from).to_vec(),
+        "restitution" => ["--masses", "10g:100g:4"].map(String::from).to_vec(),
+        _ => vec![],
+    }
+}
+
+/// Runs one command with `--{flag} value` and checks the contract: exit 0 with only finite
+/// numbers in the output (and the file), or exit 2 with one stderr line naming a flag the user
+/// typed. Never a panic; never longer than 20 s.
+fn check_contract(base: &[&str], flag: &str, value: &str, mode: &str) {
+    let home = tempfile::tempdir().unwrap();
+    let file = home.path().join(if base[0] == "export" && base[1] == "wav" { "out.wav" } else { "out.txt" });
+    let mut args: Vec<String> = base.iter().map(|s| s.to_string()).collect();
+    let own = quick(base);
+    let replaced = own.iter().any(|a| a == &format!("--{flag}"));
+    let mut i = 0;
+    while i < own.len() {
+        if replaced && own[i] == format!("--{flag}") {
+            i += 2;
+            continue;
+        }
+        args.push(own[i].clone());
+        i += 1;
+    }
+    if flag == "dt" {
+        args.extend(["--solver".into(), "newmark".into()]);
+    }
+    // --samples only matters with --csv.
+    let mode = if flag == "samples" { "--csv" } else { mode };
+    if !mode.is_empty() {
+        args.push(mode.into());
+    }
+    if base[0] == "export" {
+        args.extend(["--out".into(), file.to_str().unwrap().into()]);
+    }
+    args.extend([format!("--{flag}"), value.to_string()]);
+    let argv: Vec<&str> = args.iter().map(String::as_str).collect();
+    let r = thud_in(home.path(), &argv);
+    let shown: Vec<String> = argv.iter().map(|a| a.chars().take(40).collect()).collect();
+    assert!(!r.stderr.contains("panicked") && r.code != 101, "{shown:?}: {}", r.stderr);
+    match r.code {
+        0 => {
+            assert!(non_finite_word(&r.stdout).is_none(), "{shown:?} printed a non-finite number:\n{}", r.stdout);
+            if mode == "--json" {
+                assert!(serde_json::from_str::<serde_json::Value>(&r.stdout).is_ok(), "{shown:?}: bad JSON");
+            }
+            if base[0] == "export" {
+                let bytes = std::fs::read(&file).unwrap_or_else(|e| panic!("{shown:?}: no file: {e}"));
+                if base[1] == "wav" {
+                    let bad = bytes[44..]
+                        .chunks_exact(4)
+                        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                        .find(|x| !x.is_finite());
+                    assert!(bad.is_none(), "{shown:?}: WAV sample {bad:?}");
+                } else {
+                    let text = String::from_utf8_lossy(&bytes);
+                    assert!(non_finite_word(&text).is_none(), "{shown:?} wrote a non-finite number");
+                }
+            }
+        }
+        2 => {
+            assert_eq!(r.stderr.lines().count(), 1, "{shown:?}: {}", r.stderr);
+            assert!(r.stderr.contains(&format!("--{flag}")), "{shown:?}: does not name --{flag}: {}", r.stderr);
+            assert!(r.stderr.chars().count() < 400, "{shown:?}: {} characters", r.stderr.chars().count());
+        }
+        c => panic!("{shown:?}: exit {c}: {}", r.stderr),
+    }
+}
+
+/// Every range bound of every flag of every command, in every output mode: finite numbers or
+/// a one-line refusal. This is where a NaN at an extreme but valid value would show.
+#[test]
+fn every_bound_of_every_flag_keeps_the_contract() {
+    for (base, own, design, modes) in commands() {
+        let flags: Vec<&Flag> = own.iter().chain(if design { DESIGN_FLAGS } else { &[] }).collect();
+        for f in flags {
+            let Some(range) = f.range else { continue };
+            for v in [range.min, range.max] {
+                let text = format!("{v:e}");
+                // Sweeps and exports are the slow ones: one output mode is enough there.
+                let modes: &[&str] = if base[0] == "sweep" || base[0] == "export" { &modes[..1] } else { &modes };
+                for mode in modes {
+                    check_contract(&base, f.name, &text, mode);
+                }
+            }
+        }
+    }
+}
+
+/// Hostile values for any numeric flag.
+fn hostile() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("NaN".to_string()),
+        Just("nan".to_string()),
+        Just("inf".to_string()),
+        Just("-inf".to_string()),
+        Just("0".to_string()),
+        Just("1e-308".to_string()),
+        Just("-1e-308".to_string()),
+        Just("1e308".to_string()),
+        Just("-1e308".to_string()),
+        Just("-1".to_string()),
+        Just("-0.5".to_string()),
+        Just("1e400".to_string()),
+        Just("9".repeat(100_000)),
+        Just("x".repeat(100_000)),
+        Just("".to_string()),
+        Just("1 2".to_string()),
+        Just("1e3e3".to_string()),
+        Just("3furlongs".to_string()),
+        Just("\u{1b}[31m1".to_string()),
+        Just("1\n2".to_string()),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Every numeric flag of every command, fed a hostile value (or a unit of the wrong kind),
+    /// keeps the contract.
+    #[test]
+    fn hostile_values_keep_the_contract(
+        cmd in 0usize..7,
+        pick in 0usize..64,
+        value in hostile(),
+        wrong_unit in any::<bool>(),
+        mode_pick in 0usize..3,
+    ) {
+        let all = commands();
+        let (base, own, design, modes) = &all[cmd];
+        let flags: Vec<&Flag> = own.iter().chain(if *design { DESIGN_FLAGS } else { &[] }).collect();
+        let f = flags[pick % flags.len()];
+        let value = if wrong_unit { f.wrong_unit.to_string() } else { value };
+        check_contract(base, f.name, &value, modes[mode_pick % modes.len()]);
+    }
+}
+
+/// The explorer's typed values use the same table: out of range is refused by the field's name.
+#[test]
+fn explorer_fields_use_the_same_ranges() {
+    use thud::design::Design;
+    use thud::tui::fields::Param;
+    let d = Design::default();
+    for (field, text, name) in [
+        (Param::Mass, "1e308", "mass"),
+        (Param::Gap, "1e-308", "gap"),
+        (Param::K, "1e308", "k"),
+        (Param::R, "2km", "r"),
+        (Param::EStar, "-5", "e*"),
+        (Param::LStar, "1e308", "L*"),
+        (Param::Solver, "1e-308", "dt"),
+    ] {
+        let e = field.parsed(&d, text).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("invalid {name}: ")), "{text}: {e}");
+    }
+    assert!(Param::Mass.parsed(&d, "100kg").is_ok());
+    // Stepping past a bound is refused too.
+    let mut big = d.clone();
+    big.damper.stiffness_n_m = 1e10;
+    assert!(Param::K.stepped(&big, true, false).is_err());
+}
