@@ -77,7 +77,7 @@ pub fn run(a: &SimulateArgs) -> Result<(), ThudError> {
                 .zip(spls)
                 .map(|(i, spl)| ImpactJson {
                     t_s: i.t_s,
-                    wall: i.wall,
+                    wall: i.wall.into(),
                     u_in_m_s: i.u_in_m_s,
                     u_out_m_s: i.u_out_m_s,
                     restitution: i.u_out_m_s / i.u_in_m_s,
