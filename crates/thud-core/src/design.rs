@@ -400,9 +400,11 @@ pub fn sweep(
         check_positive("gap", g, "m")?;
     }
     let n = masses_kg.len() * gaps_m.len();
-    let results: Vec<Option<Result<Cell, ThudError>>> = (0..n)
-        .into_par_iter()
-        .map(|i| {
+    // `par_bridge` hands the cells out in index order as threads come free, so the chart fills
+    // row by row and a cancelled sweep leaves (about) a prefix.
+    let mut results: Vec<(usize, Result<Cell, ThudError>)> = (0..n)
+        .par_bridge()
+        .filter_map(|i| {
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return None;
             }
@@ -413,14 +415,13 @@ pub fn sweep(
             if let Ok(c) = &cell {
                 on_cell(i, c);
             }
-            Some(cell)
+            Some((i, cell))
         })
         .collect();
+    results.sort_unstable_by_key(|&(i, _)| i);
     let mut chart = Chart::empty(masses_kg.to_vec(), gaps_m.to_vec(), base.thresholds);
-    for (slot, cell) in chart.cells.iter_mut().zip(results) {
-        if let Some(cell) = cell {
-            *slot = Some(cell?);
-        }
+    for (i, cell) in results {
+        chart.cells[i] = Some(cell?);
     }
     Ok(chart)
 }

@@ -19,7 +19,7 @@
 //! and the stages carry only the motion (the dissipated energies enter the final combination
 //! alone). The state and the stage sums are nalgebra vectors.
 
-use nalgebra::{Vector4, Vector6};
+use nalgebra::{Vector2, Vector4, Vector6};
 
 use crate::contact::{contact_duration, peak_approach};
 
@@ -152,11 +152,11 @@ fn acc(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64) -> (f64, f64, f64, 
 }
 
 /// The rate of the motion `[x', x'', δ', δ'']` at a stage state and the two dissipated powers
-/// `(P_contact, P_viscous)` (W) there.
+/// `[P_contact, P_viscous]` (W) there.
 #[inline(always)]
-fn stage_rate(sys: &Sys, s: f64, m: &Motion) -> (Motion, f64, f64) {
+fn stage_rate(sys: &Sys, s: f64, m: &Motion) -> (Motion, Vector2<f64>) {
     let (a, b, pc, pv) = acc(sys, s, m[0], m[1], m[2], m[3]);
-    (Motion::new(m[1], a, m[3], b), pc, pv)
+    (Motion::new(m[1], a, m[3], b), Vector2::new(pc, pv))
 }
 
 /// One DOPRI5 step of length `h` from `y` (with `k1 = f(y)`): the new state, `f(new)` and the
@@ -165,37 +165,27 @@ fn stage_rate(sys: &Sys, s: f64, m: &Motion) -> (Motion, f64, f64) {
 /// enter the final combination alone.
 #[inline(always)]
 fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (State, State, f64) {
-    let y0: Motion = y.fixed_rows::<4>(0).into_owned();
-    let r1: Motion = k1.fixed_rows::<4>(0).into_owned();
-    let (pc1, pv1) = (k1[4], k1[5]);
+    let (y0, e0): (Motion, Vector2<f64>) = (y.fixed_rows::<4>(0).into_owned(), y.fixed_rows::<2>(4).into_owned());
+    let (r1, p1): (Motion, Vector2<f64>) = (k1.fixed_rows::<4>(0).into_owned(), k1.fixed_rows::<2>(4).into_owned());
     // Stage state = (y + h·Σ older terms) + (h·a_last)·k_last: the newest rate enters last, so the
     // sums over older stages overlap with the evaluation of the newest one.
     let stage = |older: Motion, a_last: f64, r_last: &Motion| (y0 + older * h) + r_last * (h * a_last);
 
-    let (r2, _, _) = stage_rate(sys, s, &stage(Motion::zeros(), A21, &r1));
-    let (r3, pc3, pv3) = stage_rate(sys, s, &stage(r1 * A31, A32, &r2));
-    let (r4, pc4, pv4) = stage_rate(sys, s, &stage(r1 * A41 + r2 * A42, A43, &r3));
-    let (r5, pc5, pv5) = stage_rate(sys, s, &stage(r1 * A51 + r2 * A52 + r3 * A53, A54, &r4));
-    let (r6, pc6, pv6) = stage_rate(sys, s, &stage(r1 * A61 + r2 * A62 + r3 * A63 + r4 * A64, A65, &r5));
+    let (r2, _) = stage_rate(sys, s, &stage(Motion::zeros(), A21, &r1));
+    let (r3, p3) = stage_rate(sys, s, &stage(r1 * A31, A32, &r2));
+    let (r4, p4) = stage_rate(sys, s, &stage(r1 * A41 + r2 * A42, A43, &r3));
+    let (r5, p5) = stage_rate(sys, s, &stage(r1 * A51 + r2 * A52 + r3 * A53, A54, &r4));
+    let (r6, p6) = stage_rate(sys, s, &stage(r1 * A61 + r2 * A62 + r3 * A63 + r4 * A64, A65, &r5));
 
-    let comb = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64| (B1 * k1 + B3 * k3 + B4 * k4 + B5 * k5) + B6 * k6;
+    // The fifth-order solution (B2 = 0), its rate (first-same-as-last) and the error estimate.
     let m7 = y0 + (r1 * B1 + r3 * B3 + r4 * B4 + r5 * B5 + r6 * B6) * h;
-    let yn = State::new(
-        m7[0],
-        m7[1],
-        m7[2],
-        m7[3],
-        y[4] + h * comb(pc1, pc3, pc4, pc5, pc6),
-        y[5] + h * comb(pv1, pv3, pv4, pv5, pv6),
-    );
-    let (r7, pc7, pv7) = stage_rate(sys, s, &m7);
-    let k7 = State::new(r7[0], r7[1], r7[2], r7[3], pc7, pv7);
-
-    let est = |k1: f64, k3: f64, k4: f64, k5: f64, k6: f64, k7: f64| {
-        h * (E1 * k1 + E3 * k3 + E4 * k4 + E5 * k5 + E6 * k6 + E7 * k7)
-    };
+    let e7 = e0 + (p1 * B1 + p3 * B3 + p4 * B4 + p5 * B5 + p6 * B6) * h;
+    let yn = State::new(m7[0], m7[1], m7[2], m7[3], e7[0], e7[1]);
+    let (r7, p7) = stage_rate(sys, s, &m7);
+    let k7 = State::new(r7[0], r7[1], r7[2], r7[3], p7[0], p7[1]);
     let em = (r1 * E1 + r3 * E3 + r4 * E4 + r5 * E5 + r6 * E6 + r7 * E7) * h;
-    let errs = [em[0], em[1], em[2], em[3], est(pc1, pc3, pc4, pc5, pc6, pc7), est(pv1, pv3, pv4, pv5, pv6, pv7)];
+    let ep = (p1 * E1 + p3 * E3 + p4 * E4 + p5 * E5 + p6 * E6 + p7 * E7) * h;
+    let errs = [em[0], em[1], em[2], em[3], ep[0], ep[1]];
     let mut err: f64 = 0.0;
     for i in 0..6 {
         let tol = RTOL * (sc[i] + y[i].abs().max(yn[i].abs()));

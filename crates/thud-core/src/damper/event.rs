@@ -157,12 +157,13 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
                 impacts.push(ImpactEvent::onset(t_start, wall, u_in, end.pen_max).ended(t, -ye[3]));
             }
             ContactOutcome::Grazed => {}
-            ContactOutcome::EndOfRun | ContactOutcome::WorkCap => {
-                // The run ends inside this contact.
+            ContactOutcome::EndOfRun => {
                 del_end = ye[2].max(0.0);
-                if end.outcome == ContactOutcome::WorkCap {
-                    truncated = Some(Truncation::ContactSteps);
-                }
+                break;
+            }
+            ContactOutcome::WorkCap => {
+                del_end = ye[2].max(0.0);
+                truncated = Some(Truncation::ContactSteps);
                 break;
             }
         }

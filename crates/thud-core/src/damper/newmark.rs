@@ -155,7 +155,6 @@ struct Ledger {
 impl Ledger {
     /// Commits a step from `a` (time `t0`) to `b` (time `t1`), in contact with `wall` if any:
     /// maxima and `|z'|`, the viscous and contact dissipation (trapezoidal), history samples.
-    #[allow(clippy::too_many_arguments)]
     fn commit(&mut self, sys: &Sys, wall: Option<Wall>, t0: f64, a: &St, t1: f64, b: &St) {
         self.rec.step(t0, a.pos[0], a.vel[0], t1, b.pos[0], b.vel[0], b.vel[1] - b.vel[0]);
         let h = t1 - t0;
