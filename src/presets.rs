@@ -128,8 +128,8 @@ mod tests {
     #[test]
     fn unknown_preset_names_the_choices() {
         let e = preset("nope").unwrap_err();
-        assert_eq!(e.param, "preset");
-        assert!(e.message.contains("quiet-nylon"));
+        assert_eq!(e.param(), "preset");
+        assert!(e.to_string().contains("quiet-nylon"));
         assert!(preset(" Paper-Fig9 ").is_ok());
     }
 }

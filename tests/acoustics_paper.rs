@@ -1,4 +1,4 @@
-//! Part 1 of the paper reproduced: Hertz contact and the radiated sound (model notes §1–4, §7).
+//! Part 1 of the paper reproduced: Hertz contact and the radiated sound (docs/model.md §2–5, §9).
 
 use thud::acoustics::{Field, Observer, QuadSigns, Radiation, Source};
 use thud::contact::{Contact, Impact, Target};
@@ -34,7 +34,7 @@ fn fig2_dipole_peaks_and_times() {
 
 #[test]
 fn dipole_waveform_is_m_shaped() {
-    // Compression positive: positive, a larger negative, positive (model notes §3).
+    // Compression positive: positive, a larger negative, positive (docs/model.md §4).
     let f = field(Source::Dipole, 0.7, 45.0);
     let big: Vec<f64> = f.extrema().iter().map(|e| e.p_pa).filter(|p| p.abs() > 0.1).collect();
     assert_eq!(big.len(), 3, "{big:?}");
@@ -67,7 +67,7 @@ fn quadrupole_minus_dipole_settles_far_away() {
     let diff = |r: f64| field(Source::Quadrupole, r, 45.0).spl_db() - field(Source::Dipole, r, 45.0).spl_db();
     let (d10, d20, d40) = (diff(10.0), diff(20.0), diff(40.0));
     assert!((d20 - d40).abs() < 0.01 && (d10 - d20).abs() < 0.02, "{d10} {d20} {d40}");
-    // Not the paper's 3 dB: with the Table 1 level it tends to ≈ 1.3 dB (model notes §4).
+    // Not the paper's 3 dB: with the Table 1 level it tends to ≈ 1.3 dB (docs/model.md §5).
     assert!((d40 - 1.3).abs() < 0.1, "{d40}");
 }
 

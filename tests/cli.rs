@@ -184,7 +184,7 @@ fn restitution_curve_and_its_inverse() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let rows = v["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 4);
-    // R rises with the mass (model notes §5: ≈ 0.84 at 10 g, 0.95 at 100 g).
+    // R rises with the mass (docs/model.md §9: ≈ 0.84 at 10 g, 0.95 at 100 g).
     assert!((rows[0]["restitution"].as_f64().unwrap() - 0.84).abs() < 0.01);
     assert!((rows[3]["restitution"].as_f64().unwrap() - 0.95).abs() < 0.01);
     // A heavier ball needs more c1 for the same R.

@@ -1,5 +1,5 @@
 //! Part 2 of the paper reproduced: Tables 3–5, Figs 9 and 13, and the design metrics
-//! (model notes §5–7).
+//! (docs/model.md §6, §7, §9).
 
 use thud::contact::{kappa, ln_gamma};
 use thud::design::{self, Design, U0MaxRule, Zone};
@@ -22,7 +22,7 @@ fn table3_u0max_every_cell_within_0_012() {
             sq += (u - u_paper).powi(2);
         }
     }
-    // model notes §6: rms ≈ 0.005 m/s.
+    // docs/model.md §7: rms ≈ 0.005 m/s.
     assert!((sq / 44.0).sqrt() < 0.006);
 }
 
@@ -89,7 +89,7 @@ fn kappa_and_table4_closed_form() {
 
 #[test]
 fn table4_model_notes_values() {
-    // model notes §6 lists the 40 g closed form to 0.01 µs; those numbers were made with the
+    // docs/model.md §7 lists the 40 g closed form to 0.01 µs; those numbers were made with the
     // paper's rounded κ = 2.9432 (e.g. 251.50 where the exact κ gives 251.51). Check both:
     // the list with the rounded κ to its rounding, and the exact κ within the κ rounding.
     let listed = [258.81, 255.00, 251.50, 248.28, 245.29, 242.50, 239.89, 237.44, 235.14, 232.96];
@@ -200,6 +200,6 @@ fn invalid_designs_are_refused() {
         let mut d = Design::default();
         f(&mut d);
         let err = design::evaluate(&d, 0, None).unwrap_err();
-        assert_eq!(err.param, param, "{err}");
+        assert_eq!(err.param(), param, "{err}");
     }
 }

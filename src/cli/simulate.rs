@@ -62,14 +62,13 @@ struct SimulateJson<'a> {
     truncation_reason: Option<String>,
 }
 
-/// Why `run` stopped before the design's duration `duration_s`, if it did (and was not
-/// cancelled): the event solver stops at its work caps (400 000 in-contact steps, 2 000 000
-/// flight iterations) and returns what it has. Detected from the final time; when the engine's
-/// `Run` says so itself, this function should just read that.
+/// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's own
+/// [`Run::truncated`] (which solver cap was reached) with the time reached.
 pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
-    (!run.cancelled && run.final_time_s < duration_s * (1.0 - 1e-12)).then(|| {
+    run.truncated.map(|why| {
         format!(
-            "the solver's work cap stopped the run at t = {} s of {} s; the results cover only that time",
+            "{} at t = {} s of {} s; the results cover only that time",
+            why.describe(),
             short(run.final_time_s),
             short(duration_s)
         )
@@ -105,7 +104,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 .zip(spls)
                 .map(|(i, spl)| ImpactJson {
                     t_s: i.t_s,
-                    wall: i.wall,
+                    wall: i.wall.into(),
                     u_in_m_s: i.u_in_m_s,
                     u_out_m_s: i.u_out_m_s,
                     restitution: i.u_out_m_s / i.u_in_m_s,

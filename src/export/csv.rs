@@ -111,7 +111,7 @@ pub fn impacts(run: &Run, spl_db: &[f64]) -> Result<String, csv::Error> {
         run.impacts.iter().enumerate().map(|(k, i)| ImpactRow {
             index: k + 1,
             t_s: Num(i.t_s),
-            wall: i.wall,
+            wall: i.wall.into(),
             u_in_m_s: Num(i.u_in_m_s),
             u_out_m_s: Num(i.u_out_m_s),
             restitution: Num(i.u_out_m_s / i.u_in_m_s),

@@ -139,7 +139,7 @@ fn impact_speed(design: &Design, u0: Option<f64>) -> Result<f64, ThudError> {
     if u > 0.0 {
         Ok(u)
     } else {
-        Err(ThudError::invalid("u0", "the design has no impact to hear; give an impact speed with --u0"))
+        Err(ThudError::NoImpact)
     }
 }
 

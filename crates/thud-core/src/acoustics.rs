@@ -1,7 +1,7 @@
 //! Sound radiated by a sphere under a Hertzian acceleration pulse (paper Eqs 9–24).
 //!
 //! Pressures in Pa, times in s, distances in m, angles in radians inside (degrees only in the
-//! serialized form and at the user-facing edges). See the project's model notes §2–4.
+//! serialized form and at the user-facing edges). The model: docs/model.md §3–5.
 
 use serde::{Deserialize, Serialize};
 
@@ -105,7 +105,7 @@ pub mod degrees {
 }
 
 /// Where the sound is heard: distance `r_m` from the contact point and polar angle `theta_rad`
-/// from the plate's normal through the sphere's centre (model notes §3).
+/// from the plate's normal through the sphere's centre (docs/model.md §4).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Observer {
     pub r_m: f64,
@@ -254,7 +254,7 @@ impl PulseConstants {
         }
     }
 
-    /// The decaying tail T(s) of model notes §2.
+    /// The decaying tail T(s) of docs/model.md §3.
     fn tail(&self, s: f64, q: f64) -> f64 {
         let (sn, cs) = (self.lambda * s).sin_cos();
         ((self.c5 * cs - self.c6 * sn) - q * (self.c6 * cs + self.c5 * sn)) * (-self.lambda * s).exp()

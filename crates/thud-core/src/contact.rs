@@ -81,7 +81,7 @@ pub fn material(name: &str) -> Result<Material, ThudError> {
     };
     MATERIALS.iter().find(|m| m.name == key).copied().ok_or_else(|| {
         let names: Vec<&str> = MATERIALS.iter().map(|m| m.name).collect();
-        ThudError::invalid("material", format!("unknown material '{name}'; known: {}", names.join(", ")))
+        ThudError::UnknownMaterial { name: name.into(), known: names.join(", ") }
     })
 }
 
@@ -227,8 +227,8 @@ mod tests {
         let c = Impact { mass_kg: 0.0405, u0_m_s: 1.4, k_hz: 5.6e8, target: Target::FixedPlate }.contact();
         assert!(rel(c.alpha_max_m, 1.257110e-4) < 1e-6, "{c:?}");
         assert!(rel(c.accel_max_m_s2, 19489.15) < 1e-6, "{c:?}");
-        // model.md §7 lists τ = 264.2804 µs, which is κ rounded to the paper's 2.9432; model.md §1
-        // says to use the exact κ, which gives 264.2872 µs (+2.3e-5 relative, the rounding alone).
+        // With the paper's κ rounded to 2.9432, τ would be 264.2804 µs; the exact κ (docs/model.md
+        // §2, §9) gives 264.2872 µs (+2.3e-5 relative, the rounding alone).
         assert!(rel(c.tau_s, 264.2872e-6) < 1e-6, "{c:?}");
         assert!(rel(2.9432 * c.alpha_max_m / 1.4, 264.2804e-6) < 1e-6, "{c:?}");
     }

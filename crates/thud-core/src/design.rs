@@ -1,8 +1,9 @@
 //! A damper design and what it is worth: damping inclination (Eq 27), peak contact speed, peak
 //! SPL, zones (Figs 15–17), the design sweep over mass × gap and Table 5. Pure functions.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::acoustics::{Field, Observer, QuadSigns, Radiation, Source};
@@ -26,7 +27,7 @@ pub enum BallSize {
 pub const PAPER_BALL_DENSITY: f64 = 1190.0;
 
 /// The least-squares contact damping (N·s/m) that reproduces Table 3 with the no-tension clamp
-/// (`docs/model.md`, "Table 3"). The value in the `paper-table3` preset file.
+/// (docs/model.md §7, Table 3). The value in the `paper-table3` preset file.
 pub const TABLE3_C1: f64 = 83.68;
 
 /// Materials from which K_HZ follows for each ball radius (Eq 2), instead of a fixed K_HZ.
@@ -36,7 +37,7 @@ pub struct Materials {
     pub plate: String,
 }
 
-/// Which largest contact speed is reported as U0max (model notes §5–6).
+/// Which largest contact speed is reported as U0max (docs/model.md §6–7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum U0MaxRule {
@@ -58,7 +59,7 @@ pub enum ZoneBy {
     Fit,
 }
 
-/// The zone thresholds L* (dB) and e* (cm/s) of the design chart (model notes §6).
+/// The zone thresholds L* (dB) and e* (cm/s) of the design chart (docs/model.md §6).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Thresholds {
     pub spl_db: f64,
@@ -186,7 +187,7 @@ impl Design {
     }
 }
 
-/// Zones of the design chart (model notes §6).
+/// Zones of the design chart (docs/model.md §6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Zone {
     /// 1: noisy and weak (SPL ≥ L*, e < e*).
@@ -394,8 +395,12 @@ pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
     d
 }
 
-/// Sweeps `base` over `masses × gaps` on all cores. `on_cell(index, cell)` is called as each
-/// cell finishes (from worker threads); `cancel` stops the sweep between cells.
+/// Sweeps `base` over `masses × gaps` on rayon's global thread pool (one pool for the whole
+/// process, so sweeps running at once share the cores instead of each taking all of them).
+/// `on_cell(index, cell)` is called as each cell finishes (from pool threads, in no particular
+/// order); `cancel` stops the sweep between cells (cells not started stay `None`). The chart
+/// does not depend on the scheduling; the first failing cell (in index order) gives the error.
+/// A panic in a cell (or in `on_cell`) propagates to the caller.
 pub fn sweep(
     base: &Design,
     masses_kg: &[f64],
@@ -410,41 +415,27 @@ pub fn sweep(
         check_positive("gap", g, "m")?;
     }
     let n = masses_kg.len() * gaps_m.len();
-    let next = AtomicUsize::new(0);
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).min(n.max(1));
-    let results: Vec<Vec<(usize, Result<Cell, ThudError>)>> = std::thread::scope(|s| {
-        let handles: Vec<_> = (0..threads)
-            .map(|_| {
-                s.spawn(|| {
-                    let mut out = Vec::new();
-                    loop {
-                        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                            break;
-                        }
-                        let i = next.fetch_add(1, Ordering::Relaxed);
-                        if i >= n {
-                            break;
-                        }
-                        let (g, m) = (i / masses_kg.len(), i % masses_kg.len());
-                        let d = variant(base, masses_kg[m], gaps_m[g]);
-                        let cell = evaluate(&d, 0, cancel).map(|e| Cell {
-                            mass_kg: masses_kg[m],
-                            gap_m: gaps_m[g],
-                            metrics: e.metrics,
-                        });
-                        if let Ok(c) = &cell {
-                            on_cell(i, c);
-                        }
-                        out.push((i, cell));
-                    }
-                    out
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap_or_default()).collect()
-    });
+    // `par_bridge` hands the cells out in index order as threads come free, so the chart fills
+    // row by row and a cancelled sweep leaves (about) a prefix.
+    let mut results: Vec<(usize, Result<Cell, ThudError>)> = (0..n)
+        .par_bridge()
+        .filter_map(|i| {
+            if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return None;
+            }
+            let (g, m) = (i / masses_kg.len(), i % masses_kg.len());
+            let d = variant(base, masses_kg[m], gaps_m[g]);
+            let cell =
+                evaluate(&d, 0, cancel).map(|e| Cell { mass_kg: masses_kg[m], gap_m: gaps_m[g], metrics: e.metrics });
+            if let Ok(c) = &cell {
+                on_cell(i, c);
+            }
+            Some((i, cell))
+        })
+        .collect();
+    results.sort_unstable_by_key(|&(i, _)| i);
     let mut chart = Chart::empty(masses_kg.to_vec(), gaps_m.to_vec(), base.thresholds);
-    for (i, cell) in results.into_iter().flatten() {
+    for (i, cell) in results {
         chart.cells[i] = Some(cell?);
     }
     Ok(chart)
@@ -602,6 +593,60 @@ mod tests {
         let r = restitution_curve(&d2, &[d.damper.impact_mass_kg], 1.4).unwrap()[0].1;
         assert!((r - 0.8).abs() < 1e-6, "{r}");
         assert!(c1_for_restitution(&d, 1.4, 1.5).is_err());
+    }
+
+    /// A small chart: four cells of short runs.
+    fn small_sweep(on_cell: &(dyn Fn(usize, &Cell) + Sync), cancel: Option<&AtomicBool>) -> Result<Chart, ThudError> {
+        let mut d = Design::default();
+        d.damper.duration_s = 0.1;
+        sweep(&d, &[0.03, 0.06], &[0.02, 0.04], cancel, on_cell)
+    }
+
+    #[test]
+    fn sweep_is_the_cells_evaluated_one_by_one() {
+        let seen = std::sync::atomic::AtomicUsize::new(0);
+        let chart = small_sweep(
+            &|_, _| {
+                seen.fetch_add(1, Ordering::Relaxed);
+            },
+            None,
+        )
+        .unwrap();
+        assert_eq!(seen.into_inner(), 4);
+        assert_eq!(chart.done(), 4);
+        let mut d = Design::default();
+        d.damper.duration_s = 0.1;
+        for (g, &gap) in chart.gaps_m.iter().enumerate() {
+            for (m, &mass) in chart.masses_kg.iter().enumerate() {
+                let alone = evaluate(&variant(&d, mass, gap), 0, None).unwrap().metrics;
+                assert_eq!(chart.cell(m, g).unwrap().metrics, alone, "mass {mass}, gap {gap}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_cancelled_sweep_starts_no_cell() {
+        let stop = AtomicBool::new(true);
+        let chart = small_sweep(&|_, _| panic!("no cell may finish"), Some(&stop)).unwrap();
+        assert_eq!(chart.done(), 0);
+    }
+
+    /// A panic inside one cell (here in its progress callback, which runs in the cell's task)
+    /// reaches the caller instead of leaving a hole in an `Ok` chart.
+    #[test]
+    fn a_panicking_cell_propagates() {
+        let caught = std::panic::catch_unwind(|| {
+            small_sweep(
+                &|i, _| {
+                    if i == 2 {
+                        panic!("cell 2 failed");
+                    }
+                },
+                None,
+            )
+        });
+        let payload = caught.expect_err("the panic must propagate out of the sweep");
+        assert_eq!(payload.downcast_ref::<&str>(), Some(&"cell 2 failed"));
     }
 
     #[test]

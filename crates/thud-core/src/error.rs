@@ -1,28 +1,59 @@
-//! The one error type of the engine: a bad parameter, named, with the valid range.
+//! The engine's error type: one variant per way an input can fail, each naming the parameter
+//! (as spelled on the command line) so that the front ends can point at what the user typed.
+//!
+//! Every variant displays as `invalid {param}: {what is wrong and what is valid}`, the one-line
+//! form the command line prints; [`ThudError::param`] gives the parameter's name alone.
 
-use std::fmt;
+use thiserror::Error;
 
-/// An input the physics cannot accept. `param` is the user-facing name of the parameter
-/// (as spelled on the command line), `message` says what is wrong and what is valid.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ThudError {
-    pub param: String,
-    pub message: String,
+/// An input the physics cannot accept, or a request it cannot answer.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ThudError {
+    /// A value out of its valid range or not a finite number. `param` is the user-facing name of
+    /// the parameter; `message` says what is wrong and what is valid.
+    #[error("invalid {param}: {message}")]
+    Invalid { param: String, message: String },
+
+    /// A quantity whose number does not parse; `example` shows one that does.
+    #[error("invalid {param}: '{text}' is not a number (expected e.g. {example})")]
+    NotANumber { param: String, text: String, example: &'static str },
+
+    /// A quantity with a unit its kind does not have (`known`: the accepted units, comma separated;
+    /// `plain_unit`: the unit of a bare number).
+    #[error("invalid {param}: unknown unit '{unit}' in '{text}'; use {known} or a plain number in {plain_unit}")]
+    UnknownUnit { param: String, unit: String, text: String, known: String, plain_unit: &'static str },
+
+    /// A material name that is not in the materials table (`known`: the table's names).
+    #[error("invalid material: unknown material '{name}'; known: {known}")]
+    UnknownMaterial { name: String, known: String },
+
+    /// A restitution that no contact damping c1 ≥ 0 reaches for this contact.
+    #[error("invalid restitution: {restitution}; not reachable")]
+    RestitutionUnreachable { restitution: f64 },
+
+    /// A design whose run has no impact, asked for the sound of its impacts.
+    #[error("invalid u0: the design has no impact to hear; give an impact speed with --u0")]
+    NoImpact,
 }
 
 impl ThudError {
+    /// A value of `param` out of range (or not finite); `message` says what is valid.
+    #[must_use]
     pub fn invalid(param: impl Into<String>, message: impl Into<String>) -> Self {
-        Self { param: param.into(), message: message.into() }
+        Self::Invalid { param: param.into(), message: message.into() }
+    }
+
+    /// The user-facing name of the parameter at fault (as spelled on the command line).
+    #[must_use]
+    pub fn param(&self) -> &str {
+        match self {
+            Self::Invalid { param, .. } | Self::NotANumber { param, .. } | Self::UnknownUnit { param, .. } => param,
+            Self::UnknownMaterial { .. } => "material",
+            Self::RestitutionUnreachable { .. } => "restitution",
+            Self::NoImpact => "u0",
+        }
     }
 }
-
-impl fmt::Display for ThudError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "invalid {}: {}", self.param, self.message)
-    }
-}
-
-impl std::error::Error for ThudError {}
 
 /// `value` must be finite and > 0.
 pub fn check_positive(param: &str, value: f64, unit: &str) -> Result<(), ThudError> {
@@ -48,5 +79,43 @@ pub fn check_range(param: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Res
         Ok(())
     } else {
         Err(ThudError::invalid(param, format!("{value} {unit}; must be between {lo} and {hi} {unit}")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every variant reads `invalid {param}: …` with the parameter `param()` names.
+    #[test]
+    fn every_variant_names_its_parameter_first() {
+        let all = [
+            ThudError::invalid("gap", "-1 m; must be a finite number > 0"),
+            ThudError::NotANumber { param: "mass".into(), text: "x".into(), example: "40.5g" },
+            ThudError::UnknownUnit {
+                param: "mass".into(),
+                unit: "lb".into(),
+                text: "3lb".into(),
+                known: "kg, g".into(),
+                plain_unit: "kg",
+            },
+            ThudError::UnknownMaterial { name: "unobtainium".into(), known: "steel, acrylic".into() },
+            ThudError::RestitutionUnreachable { restitution: 0.5 },
+            ThudError::NoImpact,
+        ];
+        for e in all {
+            let text = e.to_string();
+            let prefix = format!("invalid {}: ", e.param());
+            assert!(text.starts_with(&prefix) && text.len() > prefix.len(), "{text:?}");
+            assert!(!text.contains('\n'), "{text:?}");
+        }
+    }
+
+    #[test]
+    fn invalid_keeps_the_one_line_form() {
+        let e = ThudError::invalid("dt", "0 s; must be a finite number > 0");
+        assert_eq!(e.to_string(), "invalid dt: 0 s; must be a finite number > 0");
+        assert_eq!(e.param(), "dt");
+        assert_eq!(check_range("theta", 91.0, 0.0, 90.0, "deg").unwrap_err().param(), "theta");
     }
 }

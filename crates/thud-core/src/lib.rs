@@ -1,8 +1,9 @@
 //! thud-core — the physics of single-unit impact dampers and the noise they make.
 //!
-//! Pure: no I/O, no terminal, no command line. Equation numbers refer to the source paper and to
-//! the model notes in `docs/model.md`. SI units throughout; the front ends (the `thud` crate)
-//! convert at the edges.
+//! Pure: no I/O, no terminal, no command line. Equation numbers refer to the source paper; the
+//! model as the code implements it — conventions, the paper's errors, the reference values the
+//! tests check — is stated in the repository's `docs/model.md`, cited as "docs/model.md §N".
+//! SI units throughout; the front ends (the `thud` crate) convert at the edges.
 //!
 //! - [`contact`]: Hertz contact of one impact (Eqs 1–8) and materials.
 //! - [`acoustics`]: the sound of one impact (Eqs 9–24): impulse response, closed form, image

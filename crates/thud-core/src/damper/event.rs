@@ -1,23 +1,22 @@
 //! The event-driven solver: exact flights (paper Eq 25 in closed form), contact instants by
 //! conservative advancement, and the adaptive in-contact integrator (Eq 26) between them.
-//! Step-size free: the only numerical parameters are internal tolerances.
+//! Step-size free: the only numerical parameters are internal tolerances. Two work caps bound a
+//! run ([`CONTACT_STEP_CAP`] in-contact steps, [`FLIGHT_SEARCH_CAP`] search iterations); a run
+//! stopped by one says which in [`Run::truncated`].
 
 use std::sync::atomic::Ordering;
 
-use super::contact::{integrate, Sys};
-use super::flight::{Kind, Oscillator};
+use super::contact::{integrate, ContactOutcome, State, Sys};
+use super::flight::{FlightEvent, Oscillator};
 use super::record::{hermite, Recorder};
-use super::{DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions};
-
-/// Total in-contact integrator steps allowed per run (then the run stops with what it has).
-const STEP_BUDGET: usize = 400_000;
-/// Total conservative-advancement iterations allowed per run.
-const FLIGHT_BUDGET: usize = 2_000_000;
+use super::{
+    DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, Truncation, Wall, CONTACT_STEP_CAP, FLIGHT_SEARCH_CAP,
+};
 
 /// Outcome of the search for the next contact in one flight.
 enum Search {
-    /// Contact at this flight time (s) on wall `s` (±1).
-    Contact(f64, f64),
+    /// Contact at this flight time (s) on this wall.
+    Contact(f64, Wall),
     /// No contact before the end of the interval.
     None,
     /// The iteration budget ran out at this flight time.
@@ -54,10 +53,10 @@ fn find_contact(osc: &Oscillator, hg: f64, x0: f64, v0: f64, y0: f64, w: f64, t_
         let gp = hg - z;
         let gm = hg + z;
         if gp <= gtol && zd > 0.0 {
-            return Search::Contact(tau, 1.0);
+            return Search::Contact(tau, Wall::Upper);
         }
         if gm <= gtol && zd < 0.0 {
-            return Search::Contact(tau, -1.0);
+            return Search::Contact(tau, Wall::Lower);
         }
         let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).max(s_min);
         if tau + st >= t_max {
@@ -77,9 +76,9 @@ fn record_flight(osc: &Oscillator, rec: &mut Recorder, t0: f64, x0: f64, v0: f64
     osc.for_each_event(x0, v0, tf, |kind, tau| {
         let (x, v) = osc.advance(x0, v0, tau);
         match kind {
-            Kind::MaxX => rec.local_max(t0 + tau, x),
-            Kind::UpCross => rec.up_cross(),
-            Kind::ZeroAccel => rec.zdot(w - v),
+            FlightEvent::MaxX => rec.local_max(t0 + tau, x),
+            FlightEvent::UpCross => rec.up_cross(),
+            FlightEvent::ZeroAccel => rec.zdot(w - v),
         }
     });
     let (_, v1) = osc.advance(x0, v0, tf);
@@ -102,9 +101,10 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
     let osc_energy = |x: f64, v: f64| 0.5 * sys.big_m * v * v + 0.5 * sys.k * x * x;
     let mut energy = EnergyLedger { initial_j: osc_energy(x, v), ..Default::default() };
     let mut impacts = Vec::new();
-    let mut budget = STEP_BUDGET;
-    let mut iters = FLIGHT_BUDGET;
+    let mut budget = CONTACT_STEP_CAP;
+    let mut iters = FLIGHT_SEARCH_CAP;
     let mut cancelled = false;
+    let mut truncated = None;
     let mut del_end = 0.0;
     while t < t_end {
         if opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -113,10 +113,13 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
         }
         // Flight.
         let search = find_contact(&osc, hg, x, v, y, w, t_end - t, &mut iters);
-        let (tf, wall, stop) = match search {
-            Search::Contact(tau, s) => (tau, s, false),
-            Search::None => (t_end - t, 0.0, true),
-            Search::Exhausted(tau) => (tau, 0.0, true),
+        let (tf, wall) = match search {
+            Search::Contact(tau, wall) => (tau, Some(wall)),
+            Search::None => (t_end - t, None),
+            Search::Exhausted(tau) => {
+                truncated = Some(Truncation::FlightSearch);
+                (tau, None)
+            }
         };
         let t1 = if matches!(search, Search::None) { t_end } else { t + tf };
         record_flight(&osc, &mut rec, t, x, v, y, w, tf, t1);
@@ -125,14 +128,12 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
         x = x1;
         v = v1;
         t = t1;
-        if stop {
-            break;
-        }
+        let Some(wall) = wall else { break };
         // Contact: start exactly at δ = 0.
-        let s = wall;
+        let s = wall.sign();
         let t_start = t;
         let u_in = s * (w - v);
-        let y0 = [x, v, 0.0, u_in, 0.0, 0.0];
+        let y0 = State::new(x, v, 0.0, u_in, 0.0, 0.0);
         let a_bound = osc.accel_bound(x, v);
         let end = integrate(&sys, s, t, y0, t_end, &mut budget, a_bound, |ta, ya, ka, tb, yb, kb| {
             rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
@@ -151,21 +152,22 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
         y = x + s * (hg + ye[2]);
         w = v + s * ye[3];
         t = end.t;
-        if end.completed {
-            impacts.push(ImpactEvent {
-                t_s: t_start,
-                wall: s as i8,
-                u_in_m_s: u_in,
-                u_out_m_s: -ye[3],
-                t_end_s: t,
-                penetration_max_m: end.pen_max,
-            });
-        } else if !end.grazed {
-            // Time limit or work budget inside a contact.
-            del_end = ye[2].max(0.0);
-            break;
+        match end.outcome {
+            ContactOutcome::Separated => {
+                impacts.push(ImpactEvent::onset(t_start, wall, u_in, end.pen_max).ended(t, -ye[3]));
+            }
+            ContactOutcome::Grazed => {}
+            ContactOutcome::EndOfRun => {
+                del_end = ye[2].max(0.0);
+                break;
+            }
+            ContactOutcome::WorkCap => {
+                del_end = ye[2].max(0.0);
+                truncated = Some(Truncation::ContactSteps);
+                break;
+            }
         }
     }
     energy.final_mechanical_j = sys.mechanical_energy(x, v, w, del_end);
-    rec.into_run(impacts, energy, t, cancelled)
+    rec.into_run(impacts, energy, t, cancelled, truncated)
 }

@@ -115,9 +115,9 @@ fn periodic_times(base: f64, period: f64, wd: f64, t_end: f64, mut f: impl FnMut
     }
 }
 
-/// Which event of the main mass's motion is meant.
+/// An event of the main mass's free motion that the recorder needs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Kind {
+pub(crate) enum FlightEvent {
     /// A local maximum of `x`.
     MaxX,
     /// An upward zero crossing of `x`.
@@ -129,7 +129,7 @@ pub(crate) enum Kind {
 impl Oscillator {
     /// Calls `f(kind, t)` in time order for the events of the free motion from `(x0, v0)` over
     /// `t ∈ (0, t_end]`: local maxima of `x`, upward zero crossings of `x`, zeros of `x''`.
-    pub fn for_each_event(&self, x0: f64, v0: f64, t_end: f64, mut f: impl FnMut(Kind, f64)) {
+    pub fn for_each_event(&self, x0: f64, v0: f64, t_end: f64, mut f: impl FnMut(FlightEvent, f64)) {
         match self.regime {
             Regime::Under { wd, psi } => {
                 // x = R·e^{−γt}·cos θ, θ = ωd·t − φ; x' = −R·ω0·e^{−γt}·cos(θ − ψ);
@@ -152,14 +152,14 @@ impl Oscillator {
                 loop {
                     let tu = (up_base + up_k * two_pi) / wd;
                     let tm = (max_base + max_k * two_pi) / wd;
-                    let (kind, t) = if tu <= tm { (Kind::UpCross, tu) } else { (Kind::MaxX, tm) };
+                    let (kind, t) = if tu <= tm { (FlightEvent::UpCross, tu) } else { (FlightEvent::MaxX, tm) };
                     if t > t_end || guard > 1_000_000 {
                         break;
                     }
                     if t > 0.0 {
                         f(kind, t);
                     }
-                    if kind == Kind::UpCross {
+                    if kind == FlightEvent::UpCross {
                         up_k += 1.0;
                     } else {
                         max_k += 1.0;
@@ -167,7 +167,9 @@ impl Oscillator {
                     guard += 1;
                 }
                 // Zeros of x'': θ − 2ψ = π/2 + kπ.
-                periodic_times(half_pi + 2.0 * psi + phi, std::f64::consts::PI, wd, t_end, |t| f(Kind::ZeroAccel, t));
+                periodic_times(half_pi + 2.0 * psi + phi, std::f64::consts::PI, wd, t_end, |t| {
+                    f(FlightEvent::ZeroAccel, t)
+                });
             }
             Regime::Critical | Regime::Over { .. } => {
                 // At most one zero each of x, x', x'' (two-exponential or (a+bt)e^{rt} form):
@@ -176,16 +178,16 @@ impl Oscillator {
                 let (x1, v1) = xv(t_end);
                 let a0 = self.accel(x0, v0);
                 let a1 = self.accel(x1, v1);
-                let mut evs: [(Kind, f64); 3] = [(Kind::MaxX, f64::INFINITY); 3];
+                let mut evs: [(FlightEvent, f64); 3] = [(FlightEvent::MaxX, f64::INFINITY); 3];
                 if x0 <= 0.0 && x1 > 0.0 {
-                    evs[0] = (Kind::UpCross, bisect(|t| xv(t).0, t_end));
+                    evs[0] = (FlightEvent::UpCross, bisect(|t| xv(t).0, t_end));
                 }
                 if v0 > 0.0 && v1 <= 0.0 {
-                    evs[1] = (Kind::MaxX, bisect(|t| xv(t).1, t_end));
+                    evs[1] = (FlightEvent::MaxX, bisect(|t| xv(t).1, t_end));
                 }
                 if (a0 > 0.0 && a1 < 0.0) || (a0 < 0.0 && a1 > 0.0) {
                     evs[2] = (
-                        Kind::ZeroAccel,
+                        FlightEvent::ZeroAccel,
                         bisect(
                             |t| {
                                 let (x, v) = xv(t);
@@ -288,9 +290,9 @@ mod tests {
                 seen += 1;
                 let (x, v) = o.advance(x0, v0, t);
                 match kind {
-                    Kind::MaxX => assert!(v.abs() < 1e-12, "v {v}"),
-                    Kind::UpCross => assert!(x.abs() < 1e-14, "x {x}"),
-                    Kind::ZeroAccel => assert!(o.accel(x, v).abs() < 1e-9, "a"),
+                    FlightEvent::MaxX => assert!(v.abs() < 1e-12, "v {v}"),
+                    FlightEvent::UpCross => assert!(x.abs() < 1e-14, "x {x}"),
+                    FlightEvent::ZeroAccel => assert!(o.accel(x, v).abs() < 1e-9, "a"),
                 }
             });
             assert!(seen > 0);

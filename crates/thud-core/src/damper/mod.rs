@@ -109,13 +109,77 @@ impl Solver {
     }
 }
 
+/// One of the enclosure's two walls. The ball meets [`Wall::Upper`] when `z = y − x > 0` (it
+/// is above its centred position relative to the main mass) and [`Wall::Lower`] when `z < 0`.
+///
+/// Written as the sign of `z` at contact, `1` or `-1`, in JSON and CSV ([`Display`](std::fmt::Display)
+/// and serde both use that number; `{:+}` gives `+1`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(into = "i8", try_from = "i8")]
+pub enum Wall {
+    /// The wall on the `z < 0` side (written `-1`).
+    Lower,
+    /// The wall on the `z > 0` side (written `1`).
+    Upper,
+}
+
+impl Wall {
+    /// The wall on the side of a relative position `z` (m): `Upper` if `z > 0`, else `Lower`.
+    #[must_use]
+    pub fn facing(z_m: f64) -> Self {
+        if z_m > 0.0 {
+            Wall::Upper
+        } else {
+            Wall::Lower
+        }
+    }
+
+    /// The wall's sign `s` in the equations (Eq 26): `+1.0` for `Upper`, `−1.0` for `Lower`;
+    /// the penetration at wall `s` is `δ = s·z − d/2`.
+    #[must_use]
+    pub fn sign(self) -> f64 {
+        match self {
+            Wall::Lower => -1.0,
+            Wall::Upper => 1.0,
+        }
+    }
+}
+
+impl From<Wall> for i8 {
+    fn from(w: Wall) -> i8 {
+        match w {
+            Wall::Lower => -1,
+            Wall::Upper => 1,
+        }
+    }
+}
+
+impl TryFrom<i8> for Wall {
+    type Error = String;
+
+    fn try_from(n: i8) -> Result<Self, String> {
+        match n {
+            -1 => Ok(Wall::Lower),
+            1 => Ok(Wall::Upper),
+            _ => Err(format!("wall {n}; must be -1 (lower) or 1 (upper)")),
+        }
+    }
+}
+
+impl std::fmt::Display for Wall {
+    /// The wall's number, `-1` or `1`, with the formatter's flags (`{:+}` gives `+1`).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Display::fmt(&i8::from(*self), f)
+    }
+}
+
 /// One completed contact.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ImpactEvent {
     /// Contact onset time (s).
     pub t_s: f64,
-    /// +1 for the wall on the z > 0 side, −1 otherwise.
-    pub wall: i8,
+    /// The wall the ball struck.
+    pub wall: Wall,
     /// Incoming relative normal speed δ' at onset (m/s, > 0).
     pub u_in_m_s: f64,
     /// Outgoing relative normal speed −δ' at exit (m/s).
@@ -127,10 +191,16 @@ pub struct ImpactEvent {
 }
 
 impl ImpactEvent {
-    /// A contact that has just begun at `t_s` on `wall` (±1) with incoming speed `u_in_m_s` and
-    /// penetration `penetration_m` so far; its exit is filled in when it ends.
-    pub(crate) fn onset(t_s: f64, wall: f64, u_in_m_s: f64, penetration_m: f64) -> Self {
-        Self { t_s, wall: wall as i8, u_in_m_s, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: penetration_m }
+    /// A contact that has just begun at `t_s` on `wall` with incoming speed `u_in_m_s` and
+    /// penetration `penetration_m` so far; [`ImpactEvent::ended`] fills in its exit. Both
+    /// solvers build their impacts this way.
+    pub(crate) fn onset(t_s: f64, wall: Wall, u_in_m_s: f64, penetration_m: f64) -> Self {
+        Self { t_s, wall, u_in_m_s, u_out_m_s: 0.0, t_end_s: 0.0, penetration_max_m: penetration_m }
+    }
+
+    /// The contact, ended at `t_end_s` with outgoing speed `u_out_m_s`.
+    pub(crate) fn ended(self, t_end_s: f64, u_out_m_s: f64) -> Self {
+        Self { t_end_s, u_out_m_s, ..self }
     }
 }
 
@@ -160,6 +230,42 @@ pub struct EnergyLedger {
     pub dissipated_contact_j: f64,
 }
 
+/// Total in-contact integrator steps the event solver allows per run (a work cap: past it the
+/// run stops with what it has and says so with [`Truncation::ContactSteps`]).
+pub const CONTACT_STEP_CAP: usize = 400_000;
+/// Total contact-search iterations (conservative advancement in flight) the event solver allows
+/// per run ([`Truncation::FlightSearch`] past it).
+pub const FLIGHT_SEARCH_CAP: usize = 2_000_000;
+/// Grid steps the Newmark solver takes at most per run ([`Truncation::NewmarkSteps`] past it): a
+/// backstop above any run worth waiting for (at about 30 ns a step, some five minutes; the paper's
+/// 2 s at 1e-7 s is 2e7 steps), so that a vanishing `dt` cannot loop for ever.
+pub const NEWMARK_STEP_CAP: u64 = 10_000_000_000;
+
+/// Why a run stopped before its duration at a solver work cap.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Truncation {
+    /// The event solver's in-contact steps ran out ([`CONTACT_STEP_CAP`]), e.g. a ball that
+    /// rattles for a very long run, or an endless chattering contact.
+    ContactSteps,
+    /// The event solver's contact search ran out ([`FLIGHT_SEARCH_CAP`]): endless grazing flights.
+    FlightSearch,
+    /// The Newmark solver took [`NEWMARK_STEP_CAP`] steps.
+    NewmarkSteps,
+}
+
+impl Truncation {
+    /// One line for a summary: which cap stopped the run.
+    #[must_use]
+    pub fn describe(self) -> &'static str {
+        match self {
+            Truncation::ContactSteps => "the event solver's work cap (in-contact steps) stopped the run",
+            Truncation::FlightSearch => "the event solver's work cap (contact searches) stopped the run",
+            Truncation::NewmarkSteps => "the Newmark solver's work cap (time steps) stopped the run",
+        }
+    }
+}
+
 /// The result of one run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Run {
@@ -172,9 +278,13 @@ pub struct Run {
     pub energy: EnergyLedger,
     /// Uniform samples over [0, duration]; empty unless asked for.
     pub history: Vec<HistoryPoint>,
-    /// Time reached (s): the duration unless cancelled (or a work cap was hit).
+    /// Time reached (s): the duration unless cancelled or truncated.
     pub final_time_s: f64,
     pub cancelled: bool,
+    /// Set when a solver work cap stopped the run before its duration (then `final_time_s` is
+    /// where it stopped). Absent from JSON when the run was not truncated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub truncated: Option<Truncation>,
 }
 
 /// Run options: history sampling and cooperative cancellation.
@@ -238,18 +348,10 @@ pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, 
     let sys = isolated_sys(m, big_m, k_hz, c1, no_tension);
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
-    let end = contact::integrate(
-        &sys,
-        1.0,
-        0.0,
-        [0.0, 0.0, 0.0, u0, 0.0, 0.0],
-        1e4 * tau,
-        &mut budget,
-        0.0,
-        |_, _, _, _, _, _| {},
-    );
+    let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
+    let end = contact::integrate(&sys, 1.0, 0.0, y0, 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
     SingleContact {
-        u_out_m_s: if end.completed { -end.y[3] } else { 0.0 },
+        u_out_m_s: if end.outcome == contact::ContactOutcome::Separated { -end.y[3] } else { 0.0 },
         duration_s: end.t,
         penetration_max_m: end.pen_max,
     }
@@ -293,7 +395,7 @@ pub fn c1_for_restitution(m: f64, big_m: f64, k_hz: f64, no_tension: bool, u0: f
         hi *= 2.0;
         n += 1;
         if n > 60 {
-            return Err(ThudError::invalid("restitution", format!("{r}; not reachable")));
+            return Err(ThudError::RestitutionUnreachable { restitution: r });
         }
     }
     // Bisection to a relative width of 1e-10 (R is smooth and monotone in c1).
@@ -309,4 +411,34 @@ pub fn c1_for_restitution(m: f64, big_m: f64, k_hz: f64, no_tension: bool, u0: f
         }
     }
     Ok(0.5 * (lo + hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn walls_are_written_as_the_sign_of_z() {
+        assert_eq!(serde_json::to_string(&[Wall::Lower, Wall::Upper]).unwrap(), "[-1,1]");
+        assert_eq!(serde_json::from_str::<Wall>("-1").unwrap(), Wall::Lower);
+        assert!(serde_json::from_str::<Wall>("0").is_err());
+        assert_eq!(format!("{} {:+}", Wall::Lower, Wall::Upper), "-1 +1");
+        assert_eq!(Wall::facing(-0.01).sign(), -1.0);
+        assert_eq!(Wall::facing(0.01), Wall::Upper);
+    }
+
+    #[test]
+    fn a_run_cut_by_a_work_cap_says_so() {
+        // A violent, very long run: the in-contact step cap stops it long before 1e6 s.
+        let p = DamperParams { duration_s: 1e6, v0_m_s: 200.0, ..DamperParams::table2() };
+        let run = simulate(&p, Solver::Event, &RunOptions::default()).unwrap();
+        assert_eq!(run.truncated, Some(Truncation::ContactSteps));
+        assert!(!run.cancelled && run.final_time_s > 0.0 && run.final_time_s < p.duration_s, "{}", run.final_time_s);
+        let json = serde_json::to_string(&run).unwrap();
+        assert!(json.contains(r#""truncated":"contact_steps""#));
+        // A run that reaches its end says nothing.
+        let full = simulate(&DamperParams::table2(), Solver::Event, &RunOptions::default()).unwrap();
+        assert_eq!(full.truncated, None);
+        assert!(!serde_json::to_string(&full).unwrap().contains("truncated"));
+    }
 }

@@ -1,7 +1,7 @@
 //! What both solvers record along a run: cycle maxima of `x`, the largest `|z'|`, uniform history
 //! samples. Units: seconds, metres, m/s.
 
-use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run};
+use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run, Truncation};
 
 /// Accumulates the run's outputs in time order.
 pub(crate) struct Recorder {
@@ -46,13 +46,15 @@ impl Recorder {
     }
 
     /// Closes the last (partial) cycle if it holds an interior maximum, and assembles the run:
-    /// what this recorder saw plus the solver's impacts, energy ledger and end time.
+    /// what this recorder saw plus the solver's impacts, energy ledger, end time and how it
+    /// ended (cancelled, or truncated at a work cap).
     pub fn into_run(
         mut self,
         impacts: Vec<ImpactEvent>,
         energy: EnergyLedger,
         final_time_s: f64,
         cancelled: bool,
+        truncated: Option<Truncation>,
     ) -> Run {
         self.up_cross();
         Run {
@@ -63,6 +65,7 @@ impl Recorder {
             history: self.history,
             final_time_s,
             cancelled,
+            truncated,
         }
     }
 

@@ -123,7 +123,7 @@ pub fn fig2() -> Result<Table, ThudError> {
         &field,
         400,
     );
-    t.notes.push("The model notes' reference peaks: +1.853, −2.426, +1.624 Pa at 0.0856, 0.2427, 0.3695 ms (the paper prints only the plot).".into());
+    t.notes.push("Reference peaks (docs/model.md §9): +1.853, −2.426, +1.624 Pa at 0.0856, 0.2427, 0.3695 ms (the paper prints only the plot).".into());
     Ok(t)
 }
 

@@ -115,7 +115,7 @@ pub fn table3() -> Result<Table, ThudError> {
         id: "table3",
         title: "Table 3 — U0max and SPLmax at r 0.7 m over impact mass × gap (M 0.5 kg)".into(),
         notes: vec![
-            "Set-up (preset paper-table3, model notes §6): v0 1.4 m/s, c1 83.68 N·s/m with the no-tension clamp, U0max = largest |z'| over 2 s including t = 0 (hence 1.4000 at d 2 cm). The stated Table 2 values with v0 2 m/s do not reproduce the table.".into(),
+            "Set-up (preset paper-table3, docs/model.md §7): v0 1.4 m/s, c1 83.68 N·s/m with the no-tension clamp, U0max = largest |z'| over 2 s including t = 0 (hence 1.4000 at d 2 cm). The stated Table 2 values with v0 2 m/s do not reproduce the table.".into(),
             format!("U0max: rms error {:.4} m/s, largest {:.4} m/s.", rms(&du), max_abs(&du)),
             format!(
                 "SPLmax: quadrupole with the paper's signs, r 0.7 m, θ 45°, SPL = rms over τ from the direct arrival, ball radius from its mass at the acrylic density {:.0} kg/m³ (the paper's ball material), K* = (m+M)/(mM); rms error {:.2} dB, largest {:.2} dB. Not tuned: the paper's SPL column follows no clear convention better than ≈ 0.4 dB (Fig 2's implied 1398.6 kg/m³ gives ≈ 1.3 dB rms).",
@@ -344,7 +344,7 @@ pub fn fig13() -> Result<Table, ThudError> {
         id: "fig13",
         title: "Fig 13 — coefficient of restitution against impact mass (U0 1.4 m/s, c1 20, M 0.5 kg)".into(),
         notes: vec![
-            "One isolated ball–main-mass contact, δ'' = −K*(K_HZ δ^1.5 + c1 δ'), R = u_out/U0. Reference: the model notes' ≈ values read off the figure.".into(),
+            "One isolated ball–main-mass contact, δ'' = −K*(K_HZ δ^1.5 + c1 δ'), R = u_out/U0. Reference: the ≈ values read off the figure (docs/model.md §9).".into(),
         ],
         columns: vec![col("mass_g", "m (g)"), col("restitution", "R model"), col("restitution_reference", "R ref (≈)")],
         rows: curve.iter().map(|&(m, r)| vec![(m * 1e3).into(), r.into(), reference(m).into()]).collect(),
