@@ -660,3 +660,456 @@ fn a_panicking_job_is_an_error_in_the_status_line_and_frees_its_slot() {
     assert!(!status_of(&screen).contains("error"), "{screen}");
     assert!(!app.busy());
 }
+
+// ---- an explorer you can teach with (issue 10) ----
+
+fn render_with(app: &mut App, w: u16, h: u16) -> (String, ratatui::buffer::Buffer) {
+    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
+    draw(&mut term, app).unwrap();
+    (term.backend().to_string(), term.backend().buffer().clone())
+}
+
+/// The default design on the full 16 × 12 chart, everything computed.
+fn full_app(preset: &str, theme: Palette) -> App {
+    let d = thud::presets::preset(preset).unwrap();
+    let grids = Grids { coarse: None, fine: Grid::standard(16, 12) };
+    let mut app = App::with_grids(d, preset, theme, grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    app
+}
+
+const SIZES: [(u16, u16); 3] = [(80, 24), (120, 40), (200, 60)];
+
+/// Brings the chart on screen in the teaching layout (Tab to the history/chart pair).
+fn show_chart(app: &mut App) {
+    while app.focus != thud::tui::app::Panel::History {
+        press(app, KeyCode::Tab);
+    }
+}
+
+#[test]
+fn snapshots_of_the_main_screen_the_tour_help_page_2_no_color_and_ascii() {
+    for (w, h) in SIZES {
+        let mut app = full_app("default", Palette { color: true, ascii: false });
+        if (w, h) == (200, 60) {
+            insta::assert_snapshot!("main_200x60", render(&mut app, w, h));
+        }
+        press(&mut app, KeyCode::Char('T'));
+        insta::assert_snapshot!(format!("tour_step1_{w}x{h}"), render(&mut app, w, h));
+
+        let mut app = full_app("default", Palette { color: true, ascii: false });
+        press(&mut app, KeyCode::Char('?'));
+        press(&mut app, KeyCode::Right);
+        assert_eq!(app.mode, Mode::Glossary(0));
+        let screen = render(&mut app, w, h);
+        assert!(screen.contains("What the numbers mean"), "{screen}");
+        insta::assert_snapshot!(format!("help2_{w}x{h}"), screen);
+
+        let mut app = full_app("default", Palette { color: false, ascii: false });
+        let (screen, buf) = render_with(&mut app, w, h);
+        assert!(buf
+            .content
+            .iter()
+            .all(|c| c.fg == ratatui::style::Color::Reset && c.bg == ratatui::style::Color::Reset));
+        insta::assert_snapshot!(format!("no_color_{w}x{h}"), screen);
+
+        let mut app = full_app("default", Palette { color: true, ascii: true });
+        let screen = render(&mut app, w, h);
+        assert!(screen.is_ascii(), "--ascii draws only ASCII:\n{screen}");
+        assert!(screen.contains("theta") && screen.contains("us"), "units spelled in ASCII:\n{screen}");
+        insta::assert_snapshot!(format!("ascii_{w}x{h}"), screen);
+    }
+}
+
+#[test]
+fn ascii_frames_are_pure_ascii_in_every_mode_and_size() {
+    let mut app = full_app("default", Palette { color: false, ascii: true });
+    app.data_dir = Some(std::env::temp_dir().join("thud-tui-ascii-none"));
+    for mode in [
+        Mode::Normal,
+        Mode::Help,
+        Mode::Glossary(3),
+        Mode::Presets(0),
+        Mode::Editing("40".into()),
+        Mode::SaveAs("x".into()),
+        Mode::Saved(0),
+        Mode::Export(2),
+    ] {
+        app.mode = mode.clone();
+        for (w, h) in [(30, 8), (59, 14), (80, 24), (100, 30), (120, 40), (200, 60)] {
+            let screen = render(&mut app, w, h);
+            assert!(screen.is_ascii(), "{mode:?} at {w}x{h}:\n{screen}");
+        }
+    }
+    app.mode = Mode::Normal;
+    press(&mut app, KeyCode::Char('T'));
+    for (w, h) in SIZES {
+        assert!(render(&mut app, w, h).is_ascii());
+    }
+    press(&mut app, KeyCode::Esc);
+    press(&mut app, KeyCode::Char('v'));
+    show_chart(&mut app);
+    assert!(render(&mut app, 80, 24).is_ascii());
+}
+
+/// The zone number the readout shows ("zone    1 noisy, weak").
+fn readout_zone(screen: &str) -> Option<char> {
+    let line = screen.lines().find(|l| l.contains("│zone "))?;
+    let after = &line[line.find("│zone ")? + "│zone ".len()..];
+    after.trim_start().chars().next()
+}
+
+/// Every zone the chart's marker shows: `[n]` on the grid and in the line under it.
+fn marker_zones(screen: &str) -> Vec<char> {
+    let chars: Vec<char> = screen.chars().collect();
+    chars.windows(3).filter(|w| w[0] == '[' && w[2] == ']').map(|w| w[1]).collect()
+}
+
+#[test]
+fn the_chart_marker_shows_the_readouts_zone_for_random_designs_and_sizes() {
+    // A seeded loop (xorshift) over designs on and off the chart and terminal sizes.
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let sizes = [(80, 24), (90, 28), (100, 30), (120, 40), (160, 50), (200, 60)];
+    let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
+    let mut base = App::with_grids(Design::default(), "default", Palette::default(), grids);
+    let reqs = base.initial_requests();
+    compute_sync(&mut base, reqs);
+    let mut checked = 0;
+    for case in 0..24 {
+        let (m, d) = (0.005 + 0.145 * next(), 0.004 + 0.09 * next());
+        let (w, h) = sizes[case % sizes.len()];
+        let reqs = base.select_design(m, d);
+        compute_sync(&mut base, reqs);
+        show_chart(&mut base);
+        let screen = render(&mut base, w, h);
+        let want = readout_zone(&screen).unwrap_or_else(|| panic!("no readout zone:\n{screen}"));
+        let want = if want == '—' { '-' } else { want };
+        let live = base.metrics().and_then(|x| base.zone(x)).map_or('-', |z| char::from(b'0' + z.number()));
+        assert_eq!(want, live, "the readout is the engine's zone");
+        let marks = marker_zones(&screen);
+        assert!(!marks.is_empty(), "case {case} {m} kg {d} m at {w}x{h}: no marker\n{screen}");
+        for z in marks {
+            assert_eq!(z, want, "case {case}: m {m} kg, d {d} m at {w}x{h}\n{screen}");
+        }
+        let grid = &base.chart.fine;
+        let on = |v: &[f64], x: f64| {
+            let half = 0.5 * (v[1] - v[0]);
+            x >= v[0] - half && x <= v[v.len() - 1] + half
+        };
+        let inside = on(&grid.masses_kg, m) && on(&grid.gaps_m, d);
+        assert_eq!(!inside, screen.contains("off the chart"), "case {case}: {m} {d}\n{screen}");
+        checked += 1;
+        press(&mut base, KeyCode::Tab);
+        press(&mut base, KeyCode::Tab);
+        press(&mut base, KeyCode::Tab);
+    }
+    assert_eq!(checked, 24);
+}
+
+#[test]
+fn the_default_design_at_200x60_is_marked_with_its_own_zone_not_a_cells() {
+    let mut app = full_app("default", Palette::default());
+    let screen = render(&mut app, 200, 60);
+    assert_eq!(readout_zone(&screen), Some('1'), "{screen}");
+    assert!(marker_zones(&screen).iter().all(|z| *z == '1'), "{screen}");
+    // Stepping the gap moves the marker (4.82 → 5.36 cm were one row at 80×24 before).
+    app.selected = 1;
+    let reqs = app.select_design(0.0405, 0.0482);
+    compute_sync(&mut app, reqs);
+    show_chart(&mut app);
+    let a = render(&mut app, 80, 24);
+    let reqs = app.select_design(0.0405, 0.0536);
+    compute_sync(&mut app, reqs);
+    let b = render(&mut app, 80, 24);
+    let (za, zb) = (readout_zone(&a).unwrap(), readout_zone(&b).unwrap());
+    let find = |s: &str, z: char| s.lines().position(|l| l.contains(&format!("[{z}]")) && !l.contains("this design"));
+    assert_ne!(find(&a, za), find(&b, zb), "the marker moves with d:\n{a}\n{b}");
+}
+
+#[test]
+fn at_80x24_the_pulse_and_the_polar_are_side_by_side_and_tab_brings_history_and_chart() {
+    let mut app = full_app("default", Palette::default());
+    let screen = render(&mut app, 80, 24);
+    let top = screen.lines().nth(1).unwrap();
+    assert!(top.contains("p(t)") && top.contains("SPL(θ)"), "{screen}");
+    assert!(screen.contains("ms after the direct arrival"), "{screen}");
+    assert!(screen.contains("readout") && screen.contains("parameters"));
+    show_chart(&mut app);
+    let screen = render(&mut app, 80, 24);
+    let top = screen.lines().nth(1).unwrap();
+    assert!(top.contains("x(t)") && top.contains("zones"), "{screen}");
+    assert!(screen.contains("m (g)") && screen.contains("d (cm)") && screen.contains("no impact"), "{screen}");
+}
+
+#[test]
+fn the_chart_has_axis_titles_round_ticks_and_the_whole_legend_at_every_size() {
+    for (w, h) in [(80, 24), (100, 30), (120, 40), (160, 45), (200, 60)] {
+        let mut app = full_app("default", Palette::default());
+        show_chart(&mut app);
+        let screen = render(&mut app, w, h);
+        for want in
+            ["m (g) →", "d (cm) ↑", "1 noisy,weak", "2 noisy,strong", "3 quiet,strong", "4 quiet,weak", "- no impact"]
+        {
+            assert!(screen.contains(want), "{w}x{h} lacks {want}:\n{screen}");
+        }
+        // Round mass ticks: 20 … 100 g (some of them), never 36 or 52.
+        assert!(screen.contains("100") && !screen.contains(" 36 "), "{w}x{h}:\n{screen}");
+    }
+}
+
+#[test]
+fn typed_plain_numbers_are_in_the_unit_shown_and_refusals_name_the_field() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Enter);
+    assert!(render(&mut app, 120, 40).contains("plain number: g"));
+    type_text(&mut app, "45");
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.045).abs() < 1e-15, "45 is 45 g");
+    assert!(render(&mut app, 120, 40).contains("45.00 g"));
+    press(&mut app, KeyCode::Enter);
+    type_text(&mut app, "1e9g");
+    press(&mut app, KeyCode::Enter);
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("error: invalid mass: 1e9 g is out of range"), "{screen}");
+    press(&mut app, KeyCode::Enter);
+    type_text(&mut app, "450");
+    press(&mut app, KeyCode::Enter);
+    let screen = render(&mut app, 120, 40);
+    assert!((app.design.damper.impact_mass_kg - 0.45).abs() < 1e-15);
+    assert!(status_of(&screen).contains("off the chart"), "{screen}");
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Enter);
+    type_text(&mut app, "3");
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.gap_m - 0.03).abs() < 1e-15, "3 is 3 cm for the gap");
+}
+
+#[test]
+fn the_status_line_explains_the_selected_field() {
+    let mut app = computed_app();
+    for _ in 0..8 {
+        press(&mut app, KeyCode::Down);
+    }
+    assert_eq!(app.param(), thud::tui::fields::Param::C1);
+    let status = status_of(&render(&mut app, 120, 40)).to_string();
+    assert!(status.contains("c1 — contact damping in the Hertz contact force (Eq 26), N·s/m, 0–"), "{status}");
+}
+
+#[test]
+fn a_negative_e_is_marked_and_points_to_the_glossary() {
+    let mut app = computed_app();
+    let reqs = app.select_design(0.050, 0.060);
+    compute_sync(&mut app, reqs);
+    let e = app.metrics().unwrap().inclination_cm_s.unwrap();
+    assert!(e < 0.0, "this design's e is negative: {e}");
+    let screen = render(&mut app, 120, 40);
+    assert!(row(&screen, "e").contains("(!)"), "{screen}");
+    assert!(screen.contains("see ? page 2"), "{screen}");
+    press(&mut app, KeyCode::Char('?'));
+    press(&mut app, KeyCode::Right);
+    let help = render(&mut app, 120, 40);
+    assert!(help.contains("What the numbers mean") && help.contains("negative") && help.contains("decides"), "{help}");
+}
+
+#[test]
+fn undo_names_what_changed() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Char('u'));
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("undo: mass 41.50 g → 40.50 g"), "{screen}");
+    press(&mut app, KeyCode::Char('P'));
+    let t3 = app.preset_list.iter().position(|p| p.name == "paper-table3").unwrap();
+    for _ in 0..t3 {
+        press(&mut app, KeyCode::Down);
+    }
+    press(&mut app, KeyCode::Enter);
+    press(&mut app, KeyCode::Char('u'));
+    let status = status_of(&render(&mut app, 120, 40)).to_string();
+    assert!(status.contains("preset paper-table3 → default") && status.contains("v0 1.40 m/s → 2.00 m/s"), "{status}");
+    assert_eq!(app.preset, "default");
+}
+
+#[test]
+fn v_with_the_chart_hidden_says_how_to_show_it() {
+    let mut app = computed_app();
+    render(&mut app, 80, 24);
+    press(&mut app, KeyCode::Char('v'));
+    let screen = render(&mut app, 80, 24);
+    assert!(status_of(&screen).contains("press Tab"), "{screen}");
+    render(&mut app, 120, 40);
+    press(&mut app, KeyCode::Char('v'));
+    assert!(!status_of(&render(&mut app, 120, 40)).contains("press Tab"));
+}
+
+#[test]
+fn the_export_menu_names_the_files() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Char('e'));
+    let screen = render(&mut app, 120, 40);
+    assert!(screen.contains("restitution SVG — R against impact mass"), "{screen}");
+    assert!(screen.contains("[thud-restitution.svg]") && screen.contains("[thud-fig17.svg]"), "{screen}");
+}
+
+#[test]
+fn paper_fig2_opens_on_the_impact_thud_pulse_computes() {
+    let app = full_app("paper-fig2", Palette::default());
+    assert_eq!(app.pulse, thud::tui::app::PulseView::Single);
+    let single = app.acoustic().unwrap().single.clone().unwrap();
+    // The same impact through the command line.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(["pulse", "--preset", "paper-fig2", "--json"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let arrival = json["arrival_s"].as_f64().unwrap();
+    let peak = json["p_max_pa"].as_f64().unwrap().abs().max(json["p_min_pa"].as_f64().unwrap().abs());
+    let cli: Vec<(f64, f64)> = json["extrema"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| ((e["t_s"].as_f64().unwrap() - arrival) * 1e3, e["p_pa"].as_f64().unwrap()))
+        .filter(|e| e.1.abs() > 0.02 * peak)
+        .collect();
+    assert_eq!(single.peaks.len(), cli.len());
+    for (a, b) in single.peaks.iter().zip(&cli) {
+        assert!((a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9, "{a:?} vs {b:?}");
+    }
+    let mut app = app;
+    let screen = render(&mut app, 80, 24);
+    assert!(screen.contains("peaks +1.853 -2.426 +1.624"), "{screen}");
+    assert!(screen.contains("one impact"), "{screen}");
+    press(&mut app, KeyCode::Char('i'));
+    assert!(!render(&mut app, 80, 24).contains("peaks +1.853"), "i shows the run's loudest impact");
+}
+
+/// The margin of a cell as `b` defines it, recomputed here from the cell's metrics.
+fn margin(m: &thud::design::Metrics, t: &thud::design::Thresholds) -> f64 {
+    let quiet = 1.0 - 10f64.powf((m.spl_max_db.unwrap() - t.spl_db) / 20.0);
+    let strong = (m.inclination_by(t.zone_by).unwrap() - t.inclination_cm_s) / t.inclination_cm_s;
+    quiet.min(strong)
+}
+
+#[test]
+fn b_jumps_to_the_zone3_design_with_the_largest_margin() {
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('b'));
+    assert!(status_of(&render(&mut app, 120, 40)).contains("none in zone 3"));
+
+    let mut app = full_app("paper-table3", Palette::default());
+    let t = app.design.thresholds;
+    let zone3: Vec<_> = app
+        .chart
+        .fine
+        .cells
+        .iter()
+        .flatten()
+        .filter(|c| c.metrics.zone(&t) == Some(thud::design::Zone::QuietStrong))
+        .collect();
+    assert!(!zone3.is_empty(), "Table 3's set-up has zone-3 designs");
+    let best = zone3.iter().max_by(|a, b| margin(&a.metrics, &t).total_cmp(&margin(&b.metrics, &t))).unwrap();
+    let want = (best.mass_kg, best.gap_m);
+    press(&mut app, KeyCode::Char('b'));
+    assert_eq!((app.design.damper.impact_mass_kg, app.design.damper.gap_m), want);
+    let screen = render(&mut app, 120, 40);
+    assert!(status_of(&screen).contains("best zone 3") && status_of(&screen).contains("margin"), "{screen}");
+    assert_eq!(readout_zone(&screen), Some('3'), "the readout, recomputed for that design, agrees:\n{screen}");
+    assert!(marker_zones(&screen).iter().all(|z| *z == '3'));
+}
+
+#[test]
+fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    let n = app.tour.as_ref().unwrap().tour.steps.len();
+    assert!((6..=8).contains(&n));
+    for i in 0..n {
+        let state = app.tour.as_ref().expect("still touring");
+        assert_eq!(state.step, i);
+        let step = state.tour.steps[i].clone();
+        for (w, h) in SIZES {
+            let screen = render(&mut app, w, h);
+            assert!(screen.contains(&format!("tour {}/{n}: {}", i + 1, step.title)), "{w}x{h}:\n{screen}");
+            assert!(screen.contains("▶ "), "the step's panel is highlighted:\n{screen}");
+            let first_words: String = step.caption.split_whitespace().take(3).collect::<Vec<_>>().join(" ");
+            assert!(screen.contains(&first_words), "{w}x{h} caption:\n{screen}");
+        }
+        assert_eq!(app.pulse, step.pulse);
+        assert!(!app.busy(), "step {i} computed");
+        press(&mut app, KeyCode::Right);
+    }
+    assert!(app.tour.is_none(), "→ on the last step leaves");
+    let screen = render(&mut app, 80, 24);
+    assert!(status_of(&screen).contains("tour finished"), "{screen}");
+    // The last step found a zone-3 design and it stays to explore.
+    assert_eq!(readout_zone(&screen), Some('3'), "{screen}");
+    // ← goes back, Esc leaves with the state kept.
+    press(&mut app, KeyCode::Char('T'));
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Left);
+    assert_eq!(app.tour.as_ref().unwrap().step, 0);
+    press(&mut app, KeyCode::Right);
+    let d = app.design.clone();
+    press(&mut app, KeyCode::Esc);
+    assert!(app.tour.is_none() && !app.quit && app.design == d);
+    press(&mut app, KeyCode::Right);
+    assert!(app.design.damper.impact_mass_kg > d.damper.impact_mass_kg, "→ changes values again");
+}
+
+#[test]
+fn a_bad_tour_file_is_refused_with_one_line_and_status_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.toml");
+    std::fs::write(&file, "title = \"x\"\n[[step]]\ntitle = \"a\"\npanel = \"nowhere\"\ncaption = \"c\"\n").unwrap();
+    let out =
+        std::process::Command::new(env!("CARGO_BIN_EXE_thud")).args(["tui", "--tour"]).arg(&file).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("bad.toml") && err.contains("step 1 (a): panel 'nowhere'"), "{err}");
+}
+
+#[test]
+fn the_polar_curve_is_never_covered_and_its_parts_have_their_own_glyphs() {
+    use ratatui::widgets::Widget;
+    use thud::tui::polar::PolarView;
+    let app = full_app("default", Palette::default());
+    let polar: &'static [(f64, f64)] = Box::leak(app.acoustic().unwrap().polar.clone().into_boxed_slice());
+    for theme in [Palette { color: false, ascii: false }, Palette { color: false, ascii: true }, Palette::default()] {
+        for (w, h) in [(20, 10), (34, 14), (36, 16), (60, 25), (90, 30)] {
+            let area = ratatui::layout::Rect::new(0, 0, w, h);
+            let view = |live: &'static [(f64, f64)]| PolarView {
+                block: theme.block("", false),
+                live,
+                pinned: None,
+                theta_deg: 45.0,
+                range_deg: (0.0, 90.0),
+                theme,
+            };
+            let mut full = ratatui::buffer::Buffer::empty(area);
+            view(polar).render(area, &mut full);
+            let curve = view(polar).curve_layer(area);
+            let mut curve_cells = 0;
+            for (a, c) in full.content.iter().zip(&curve.content) {
+                if c.symbol() != " " {
+                    assert_eq!(a.symbol(), c.symbol(), "{w}x{h}: the curve is covered");
+                    curve_cells += 1;
+                }
+            }
+            assert!(curve_cells > 0, "{w}x{h}: no curve drawn");
+            let symbols: std::collections::HashSet<&str> = full.content.iter().map(|c| c.symbol()).collect();
+            let (ring, ray) = if theme.ascii { (".", "+") } else { ("·", "•") };
+            if h >= 14 {
+                assert!(symbols.contains(ring) && symbols.contains(ray), "{w}x{h}: rings and ray have their glyphs");
+            }
+        }
+    }
+}

@@ -1,6 +1,8 @@
 //! End to end: the real binary in a tmux pane. The screen appears, a key changes a value, a
 //! resize to 80×24 keeps it usable, `q` exits with status 0 and the terminal is sane after:
-//! canonical mode and echo on, alternate screen left, cursor shown, mouse reporting off.
+//! canonical mode and echo on, alternate screen left, cursor shown, mouse reporting off. The
+//! teaching layout: at 80×24 the pulse and the polar side by side on start, the chart's marker
+//! showing the readout's zone at 80×24 and 200×60, typed values in the unit shown, the tour.
 //! Requires tmux (CI installs it); fails with a clear message without it.
 
 use std::path::PathBuf;
@@ -138,6 +140,8 @@ fn real_binary_in_tmux_starts_changes_resizes_quits_and_restores() {
     t.wait_for("mass back to 40.50 g at 80×24", |s| s.contains("40.50 g"));
 
     // 4. With --mouse, a click on a chart cell (the bottom row: gap 1 cm) selects that design.
+    // At 80×24 the pulse and the polar come first; Tab brings in the history and the chart.
+    t.keys(&["Tab", "Tab", "Tab"]);
     let s = t.wait_for("the chart's bottom row", |s| s.lines().any(|l| l.contains("│  1.0 ")));
     let (y, line) = s.lines().enumerate().find(|(_, l)| l.contains("│  1.0 ")).unwrap();
     let label_end = line.find("│  1.0 ").unwrap() + "│  1.0 ".len();
@@ -243,4 +247,100 @@ fn sighup_restores_the_terminal() {
 #[test]
 fn sigint_restores_the_terminal() {
     a_signal_restores_the_terminal("INT", 2);
+}
+
+/// The explorer in a `w × h` pane with its own config and data folders, `args` after `tui`.
+fn explorer(args: &str, w: u16, h: u16) -> Tmux {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    Tmux::start(
+        |d| {
+            format!(
+                "cd '{d}' && XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui {args}; \
+                 echo $? > '{d}/status'; echo AFTER-THUD; exec sleep 60",
+                d = d.display()
+            )
+        },
+        w,
+        h,
+    )
+}
+
+/// The zone number in the readout's zone row ("│zone   1 noisy, weak").
+fn readout_zone(s: &str) -> Option<char> {
+    let line = s.lines().find(|l| l.contains("│zone "))?;
+    let rest = &line[line.find("│zone ")? + "│zone ".len()..];
+    rest.trim_start().chars().next().filter(char::is_ascii_digit)
+}
+
+/// Every zone the chart's marker shows ("[n]" on the grid and on the line under it).
+fn marker_zones(s: &str) -> Vec<char> {
+    let c: Vec<char> = s.chars().collect();
+    c.windows(3).filter(|w| w[0] == '[' && w[2] == ']').map(|w| w[1]).collect()
+}
+
+/// True when nothing is being computed: the readout has its zone and the chart is full.
+fn settled(s: &str) -> bool {
+    readout_zone(s).is_some() && !s.contains("filling chart") && !s.contains("computing") && !s.contains("[?]")
+}
+
+#[test]
+fn at_80x24_pulse_and_polar_show_first_and_the_marker_shows_the_readouts_zone_at_80x24_and_200x60() {
+    let t = explorer("", 80, 24);
+    let s = t.wait_for("the pulse and the polar, computed", |s| {
+        let top = s.lines().nth(1).unwrap_or("");
+        top.contains("p(t)") && top.contains("SPL(θ)") && readout_zone(s).is_some()
+    });
+    assert!(s.contains("ms after the direct arrival") && s.contains("dB"), "{s}");
+    assert!(s.lines().all(|l| l.chars().count() <= 80), "{s}");
+
+    // Tab brings in the chart: its marker shows the readout's zone.
+    t.keys(&["Tab", "Tab", "Tab"]);
+    let s = t.wait_for("the chart at 80×24, settled", |s| s.contains("m (g)") && settled(s));
+    let zone = readout_zone(&s).unwrap();
+    let marks = marker_zones(&s);
+    assert!(!marks.is_empty() && marks.iter().all(|z| *z == zone), "readout zone {zone}, marker {marks:?}:\n{s}");
+
+    // 200×60: everything on screen, the same agreement.
+    assert!(t.run(&["resize-window", "-x", "200", "-y", "60"]).status.success());
+    let s = t.wait_for("the 200×60 layout, settled", |s| {
+        s.lines().count() > 40 && s.contains("parameters") && s.contains("m (g)") && settled(s)
+    });
+    let zone = readout_zone(&s).unwrap();
+    let marks = marker_zones(&s);
+    assert!(!marks.is_empty() && marks.iter().all(|z| *z == zone), "readout zone {zone}, marker {marks:?}:\n{s}");
+
+    // Typing 45 in the mass field is 45 g, as the field shows.
+    t.keys(&["Enter"]);
+    t.wait_for("the input line in g", |s| s.contains("plain number: g"));
+    t.keys(&["-l", "45"]);
+    t.keys(&["Enter"]);
+    let s = t.wait_for("mass 45.00 g", |s| s.contains("m 45.00 g") && settled(s));
+    let zone = readout_zone(&s).unwrap();
+    assert!(marker_zones(&s).iter().all(|z| *z == zone), "{s}");
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0");
+}
+
+#[test]
+fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
+    let n = thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).unwrap().steps.len();
+    let t = explorer("--tour", 80, 24);
+    t.wait_for("the tour's first step", |s| s.contains(&format!("tour 1/{n}:")) && s.contains("peaks +1.853"));
+    for i in 2..=n {
+        t.keys(&["Right"]);
+        t.wait_for(&format!("step {i}"), |s| s.contains(&format!("tour {i}/{n}:")));
+    }
+    // The last step jumps to the best zone-3 design once its chart is in.
+    t.wait_for("the best zone-3 design", |s| settled(s) && readout_zone(s) == Some('3'));
+    t.keys(&["Right"]);
+    let s = t.wait_for("the explorer after the tour", |s| s.contains("tour finished") && settled(s));
+    assert!(!s.contains(&format!("tour {n}/{n}")), "the caption box is gone:\n{s}");
+    assert!(s.lines().last().is_some_and(|l| l.contains("quit")), "the footer is back:\n{s}");
+    // The last step found a zone-3 design; the explorer works from there.
+    assert_eq!(readout_zone(&s), Some('3'), "{s}");
+    let before = s.lines().next().unwrap_or("").to_string();
+    t.keys(&["Right"]);
+    t.wait_for("a step of the mass", |s| s.lines().next().unwrap_or("") != before);
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0");
 }

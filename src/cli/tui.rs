@@ -8,7 +8,7 @@ pub struct TuiArgs {
     /// Starting design: default, paper-fig9, paper-table3.
     #[arg(long, default_value = "default")]
     pub preset: String,
-    /// Plain dots instead of Braille (for fonts without Braille).
+    /// Pure ASCII: plain borders, plot glyphs and text (theta, us) for fonts without Braille.
     #[arg(long)]
     pub ascii: bool,
     /// Capture the mouse: a click on the chart selects that design.
@@ -17,6 +17,11 @@ pub struct TuiArgs {
     /// Folder the export key (e) writes files into (default: the current directory).
     #[arg(long, value_name = "DIR")]
     pub export_dir: Option<std::path::PathBuf>,
+    /// Start with the guided tour: the built-in one, or the steps of FILE (TOML, see
+    /// assets/tour.toml). T starts it from inside the explorer.
+    #[arg(long, value_name = "FILE", num_args = 0..=1)]
+    #[allow(clippy::option_option)]
+    pub tour: Option<Option<std::path::PathBuf>>,
 }
 
 /// `thud` with no subcommand: the explorer on a terminal, the help text otherwise (pipes,
@@ -33,11 +38,14 @@ pub fn run_default() -> Result<(), String> {
 
 /// Runs the explorer; the error is one line for stderr.
 pub fn run(a: &TuiArgs) -> Result<(), String> {
+    use crate::tui::tour::TourSource;
+    let tour = a.tour.as_ref().map(|file| file.clone().map_or(TourSource::BuiltIn, TourSource::File));
     let opts = crate::tui::Options {
         preset: a.preset.clone(),
         ascii: a.ascii,
         mouse: a.mouse,
         export_dir: a.export_dir.clone(),
+        tour,
     };
     crate::tui::run(&opts).map_err(|e| e.to_string())
 }

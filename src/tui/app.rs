@@ -10,18 +10,21 @@ use std::sync::Arc;
 
 use crossterm::event::{Event, MouseButton, MouseEventKind};
 
-use super::chart::Geometry;
+use super::chart::{DesignZone, Geometry};
 use super::compute::{
     acoustic_key, chart_key, nearest, sim_key, sound_key, AcousticResult, ChartPasses, Grids, SimResult, Stage,
 };
+use super::explain;
 use super::fields::{Param, Scope};
 use super::keys::{Action, Keymap};
 use super::theme::Palette;
+use super::tour::{Tour, TourSource};
 use super::worker::{Done, Request};
 use crate::config::{self, Config, ConfigLoad, MarkerStyle};
-use crate::design::{self, Chart, Design, Metrics, Zone};
+use crate::design::{self, Chart, Design, Metrics, Thresholds, Zone};
 use crate::presets::{self, PresetInfo};
 use crate::store::DesignList;
+use crate::units::sig;
 
 /// Everything the app reacts to.
 #[derive(Debug)]
@@ -34,7 +37,7 @@ pub enum Msg {
     Tick,
 }
 
-/// The panels; Tab cycles through them.
+/// The panels; Tab cycles through them (not the readout, which a tour step may point at).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Panel {
     Params,
@@ -42,6 +45,7 @@ pub enum Panel {
     Polar,
     History,
     Chart,
+    Readout,
 }
 
 impl Panel {
@@ -52,6 +56,90 @@ impl Panel {
         let n = Self::ALL.len();
         Self::ALL[if forward { (i + 1) % n } else { (i + n - 1) % n }]
     }
+}
+
+/// Which impact the pulse panel and the polar show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PulseView {
+    /// The loudest impact of the run (at U0max, against the main mass).
+    #[default]
+    Loudest,
+    /// One impact at U0 = v0 on a fixed plate: what `thud pulse` computes (Fig 2, Table 1).
+    Single,
+}
+
+impl PulseView {
+    /// The view a preset opens on: the single-impact presets (the paper's Fig 2 and Table 1)
+    /// show their one impact, every other preset the run's loudest.
+    pub fn for_preset(name: &str) -> Self {
+        match name {
+            "paper-fig2" | "paper-table1" => PulseView::Single,
+            _ => PulseView::Loudest,
+        }
+    }
+}
+
+/// The guided tour while it runs: the tour and the step shown.
+#[derive(Debug, Clone)]
+pub struct TourState {
+    pub tour: Arc<Tour>,
+    pub step: usize,
+}
+
+/// A design as it was before a change, for undo.
+#[derive(Debug, Clone)]
+pub(crate) struct UndoEntry {
+    pub design: Design,
+    pub preset: String,
+}
+
+/// The zone-3 design of a chart furthest inside both thresholds, and why.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Best {
+    pub mass_kg: f64,
+    pub gap_m: f64,
+    /// The smaller of `quiet` and `strong`: how far inside zone 3 the design is.
+    pub margin: f64,
+    /// 1 − p/p*: the fraction by which its rms pressure at SPLmax is under the pressure of L*.
+    pub quiet: f64,
+    /// (e − e*)/e*: the fraction by which its inclination is over e* (∞ when e* = 0).
+    pub strong: f64,
+    /// dB under L*.
+    pub db_under: f64,
+    /// How many computed cells are in zone 3.
+    pub count: usize,
+}
+
+/// The zone-3 cell of `chart` with the largest margin under `t`: margin = min(1 − 10^((SPLmax −
+/// L*)/20), (e − e*)/e*), the smaller of the relative distances inside the two thresholds (sound
+/// pressure under L*'s, inclination over e*, both as fractions). None without a zone-3 cell.
+pub fn best_zone3(chart: &Chart, t: &Thresholds) -> Option<Best> {
+    let mut best: Option<Best> = None;
+    let mut count = 0;
+    for cell in chart.cells.iter().flatten() {
+        let m = &cell.metrics;
+        if m.zone(t) != Some(Zone::QuietStrong) {
+            continue;
+        }
+        let (Some(spl), Some(e)) = (m.spl_max_db, m.inclination_by(t.zone_by)) else { continue };
+        count += 1;
+        let quiet = 1.0 - 10f64.powf((spl - t.spl_db) / 20.0);
+        let strong =
+            if t.inclination_cm_s > 0.0 { (e - t.inclination_cm_s) / t.inclination_cm_s } else { f64::INFINITY };
+        let margin = quiet.min(strong);
+        if best.is_none_or(|b| margin > b.margin) {
+            best = Some(Best {
+                mass_kg: cell.mass_kg,
+                gap_m: cell.gap_m,
+                margin,
+                quiet,
+                strong,
+                db_under: t.spl_db - spl,
+                count: 0,
+            });
+        }
+    }
+    best.map(|b| Best { count, ..b })
 }
 
 /// Which picture the chart panel shows.
@@ -67,7 +155,10 @@ pub enum ChartView {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Mode {
     Normal,
+    /// The help's first page: the keys.
     Help,
+    /// The help's second page, "what the numbers mean", scrolled down this many lines.
+    Glossary(u16),
     /// Typing a value for the selected parameter.
     Editing(String),
     /// Choosing a preset; the highlighted index.
@@ -142,11 +233,13 @@ pub struct Options {
     pub mouse: bool,
     /// Where exports go; None: the current directory.
     pub export_dir: Option<PathBuf>,
+    /// Start with the guided tour from here (the built-in one or a file).
+    pub tour: Option<TourSource>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Self { preset: "default".into(), ascii: false, mouse: false, export_dir: None }
+        Self { preset: "default".into(), ascii: false, mouse: false, export_dir: None, tour: None }
     }
 }
 
@@ -166,7 +259,7 @@ pub struct App {
     pub(crate) plot: Panel,
     pub mode: Mode,
     pub(crate) status: Option<Status>,
-    pub(crate) undo: Vec<Design>,
+    pub(crate) undo: Vec<UndoEntry>,
     pub pinned: Option<Pinned>,
     pub(crate) chart_view: ChartView,
     pub(crate) grids: Grids,
@@ -202,6 +295,16 @@ pub struct App {
     pub(crate) saved: DesignList,
     /// Export files being written.
     pub exports: Vec<PathBuf>,
+    /// Which impact the pulse panel shows.
+    pub pulse: PulseView,
+    /// The guided tour, while it runs.
+    pub tour: Option<TourState>,
+    /// The tour `T` starts (the built-in one unless `--tour FILE` gave another).
+    pub tour_def: Option<Arc<Tour>>,
+    /// Whether the last frame showed the chart panel.
+    pub chart_shown: bool,
+    /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
+    pub(crate) pending_best: bool,
 }
 
 impl App {
@@ -220,7 +323,10 @@ impl App {
             focus: Panel::Params,
             plot: Panel::Chart,
             mode: Mode::Normal,
-            status: Some(Status { text: "ready — press ? for help".into(), error: false }),
+            status: Some(Status {
+                text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
+                error: false,
+            }),
             undo: Vec::new(),
             pinned: None,
             chart_view: ChartView::Zones,
@@ -246,6 +352,11 @@ impl App {
             export_dir: PathBuf::from("."),
             saved: DesignList::default(),
             exports: Vec::new(),
+            pulse: PulseView::for_preset(preset),
+            tour: None,
+            tour_def: None,
+            chart_shown: false,
+            pending_best: false,
         }
     }
 
@@ -275,6 +386,125 @@ impl App {
     /// The work to start with: simulate the design and sweep the chart.
     pub fn initial_requests(&self) -> Vec<Request> {
         vec![Request::Sim(self.design.clone()), Request::Chart(self.design.clone(), self.grids.clone())]
+    }
+
+    /// Starts the guided tour (`tour_def`, else the built-in one) at its first step; returns
+    /// the work that step needs. A tour that cannot be loaded is an error in the status line.
+    pub fn start_tour(&mut self) -> Vec<Request> {
+        let tour = match &self.tour_def {
+            Some(t) => t.clone(),
+            None => match Tour::load(&TourSource::BuiltIn) {
+                Ok(t) => {
+                    let t = Arc::new(t);
+                    self.tour_def = Some(t.clone());
+                    t
+                }
+                Err(e) => return self.error(e),
+            },
+        };
+        self.tour = Some(TourState { tour, step: 0 });
+        self.tour_step(0)
+    }
+
+    /// Shows step `i` of the running tour: its design (undoable), pulse view and panel.
+    pub(crate) fn tour_step(&mut self, i: usize) -> Vec<Request> {
+        let Some(state) = self.tour.as_mut() else { return vec![] };
+        let Some(step) = state.tour.steps.get(i).cloned() else { return vec![] };
+        state.step = i;
+        let n = state.tour.steps.len();
+        let mut d = step.design.clone();
+        if !step.sets_thresholds {
+            d.thresholds = self.config.thresholds(d.thresholds);
+        }
+        self.pulse = step.pulse;
+        self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
+        if self.focus != Panel::Params {
+            self.plot = self.focus;
+        }
+        self.mode = Mode::Normal;
+        let mut reqs = self.apply(d, Scope::All, String::new());
+        self.preset = step.preset.clone();
+        self.set_status(&format!("tour {}/{n}: {} — → next, ← back, Esc explores from here", i + 1, step.title), false);
+        self.pending_best = step.best;
+        if step.best && !self.chart_busy() {
+            reqs.extend(self.best());
+        }
+        reqs
+    }
+
+    /// Leaves the tour, keeping the design on screen to explore.
+    pub(crate) fn leave_tour(&mut self, finished: bool) {
+        self.tour = None;
+        // Finishing lets the last step's jump to the best design happen; Esc keeps the state.
+        if !finished {
+            self.pending_best = false;
+        }
+        let text = if finished {
+            "tour finished — explore from here (T starts it again)"
+        } else {
+            "left the tour — explore from here (T starts it again)"
+        };
+        self.set_status(text, false);
+    }
+
+    /// The panel the running tour's step talks about.
+    pub fn tour_panel(&self) -> Option<Panel> {
+        let t = self.tour.as_ref()?;
+        t.tour.steps.get(t.step).map(|s| s.panel)
+    }
+
+    /// The zone the chart's marker shows: the live design's own, as the readout shows it.
+    pub fn design_zone(&self) -> DesignZone {
+        match self.metrics() {
+            Some(m) if !self.design_busy() => DesignZone::Known(self.zone(m)),
+            _ if self.work_error.is_some() => DesignZone::Known(None),
+            _ => DesignZone::Computing,
+        }
+    }
+
+    /// Jumps to the zone-3 design of the chart with the largest margin (see [`best_zone3`]),
+    /// saying why in the status line; "none in zone 3" if there is none.
+    pub fn best(&mut self) -> Vec<Request> {
+        let fine = &self.chart.fine;
+        let chart = if fine.done() > 0 { Some(fine) } else { self.chart.coarse.as_ref() };
+        let (done, total) = self.chart.progress();
+        let filling = if done < total { format!(" (chart still filling: {done}/{total})") } else { String::new() };
+        let Some(b) = chart.and_then(|c| best_zone3(c, &self.design.thresholds)) else {
+            self.set_status(
+                &format!("none in zone 3 on this chart{filling}: no design is both quiet and strong"),
+                false,
+            );
+            return vec![];
+        };
+        let reqs = self.select_design(b.mass_kg, b.gap_m);
+        let by = match self.design.thresholds.zone_by {
+            design::ZoneBy::Paper => "e",
+            design::ZoneBy::Fit => "e_fit",
+        };
+        let strong = if b.strong.is_finite() {
+            format!("{by} {:.0} % over e*", 100.0 * b.strong)
+        } else {
+            format!("{by} > e* = 0")
+        };
+        self.set_status(
+            &format!(
+                "best zone 3: m {} g, d {} cm; margin {:.0} % = min(sound pressure {:.0} % under L* ({} dB), {strong}), best of {} zone-3 cells{filling}",
+                sig(b.mass_kg * 1e3, 3),
+                sig(b.gap_m * 1e2, 3),
+                100.0 * b.margin,
+                100.0 * b.quiet,
+                sig(b.db_under, 2),
+                b.count
+            ),
+            false,
+        );
+        reqs
+    }
+
+    /// The status line's hint for the selected field (what it is, unit, range).
+    pub(crate) fn show_hint(&mut self) {
+        let h = explain::field_hint(self.param(), &self.design);
+        self.set_status(&h, false);
     }
 
     /// The selected parameter.
@@ -332,15 +562,39 @@ impl App {
         }
     }
 
-    /// Sets the selected parameter from typed text; a bad value is refused with a message.
+    /// Sets the selected parameter from typed text (a plain number in the unit the field
+    /// shows); a bad value is refused with a message naming the field, and a value off the
+    /// chart's range is accepted with a word saying so.
     pub fn submit_text(&mut self, text: &str) -> Vec<Request> {
         let f = self.param();
         match f.parsed(&self.design, text) {
             Ok(d) => {
                 let shown = f.display(&d);
-                self.apply(d, f.scope(), format!("{} {}", f.label(), shown))
+                let off = self.off_chart(f, &d);
+                self.apply(d, f.scope(), format!("{} {}{off}", f.label(), shown))
             }
             Err(e) => self.error(e),
+        }
+    }
+
+    /// " — off the chart (…)" if field `f` of `d` (mass or gap) lies outside the chart's grid.
+    fn off_chart(&self, f: Param, d: &Design) -> String {
+        let g = &self.grids.fine;
+        let (values, v, unit, k) = match f {
+            Param::Mass => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
+            Param::Gap => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
+            _ => return String::new(),
+        };
+        let (Some(lo), Some(hi)) = (values.first(), values.last()) else { return String::new() };
+        let half = if values.len() > 1 { 0.5 * (hi - lo) / (values.len() - 1) as f64 } else { 0.0 };
+        if v < lo - half || v > hi + half {
+            format!(
+                " — off the chart ({}–{} {unit}): the chart marks it with an arrow at its edge",
+                sig(lo * k, 3),
+                sig(hi * k, 3)
+            )
+        } else {
+            String::new()
         }
     }
 
@@ -398,14 +652,42 @@ impl App {
         self.chart_view = match self.chart_view {
             ChartView::Zones => ChartView::Scatter,
             ChartView::Scatter => ChartView::Zones,
-        }
+        };
+        let view = match self.chart_view {
+            ChartView::Zones => "zones over mass × gap",
+            ChartView::Scatter => "e vs SPLmax (Fig 17)",
+        };
+        let text = if self.chart_shown {
+            format!("chart view: {view}")
+        } else {
+            format!("chart view: {view}; not on screen: press {} to show the chart", self.key_label(Action::FocusNext))
+        };
+        self.set_status(&text, false);
+    }
+
+    /// Switches the pulse panel between the run's loudest impact and one impact on a plate.
+    pub(crate) fn toggle_pulse(&mut self) {
+        self.pulse = match self.pulse {
+            PulseView::Loudest => PulseView::Single,
+            PulseView::Single => PulseView::Loudest,
+        };
+        let text = match self.pulse {
+            PulseView::Loudest => "pulse: the loudest impact of the run (at U0max, against the main mass)".to_string(),
+            PulseView::Single => format!(
+                "pulse: one impact at U0 = v0 = {} m/s on a fixed plate (as thud pulse; the paper's Fig 2)",
+                sig(self.design.damper.v0_m_s, 3)
+            ),
+        };
+        self.set_status(&text, false);
     }
 
     pub(crate) fn undo(&mut self) -> Vec<Request> {
         match self.undo.pop() {
-            Some(d) => {
-                self.design = d;
-                self.set_status("undone", false);
+            Some(entry) => {
+                let what = changes(&self.design, &self.preset, &entry.design, &entry.preset);
+                self.design = entry.design;
+                self.preset = entry.preset;
+                self.set_status(&format!("undo: {what}"), false);
                 self.requests(Scope::All)
             }
             None => {
@@ -421,7 +703,8 @@ impl App {
             self.set_status(&message, false);
             return vec![];
         }
-        self.undo.push(std::mem::replace(&mut self.design, new));
+        let old = std::mem::replace(&mut self.design, new);
+        self.undo.push(UndoEntry { design: old, preset: self.preset.clone() });
         if self.undo.len() > UNDO_MAX {
             self.undo.remove(0);
         }
@@ -516,6 +799,10 @@ impl App {
             Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
             Done::Export { kind, path, result } => self.export_finished(kind, &path, result),
         }
+        if self.pending_best && !self.chart_busy() {
+            self.pending_best = false;
+            return self.best();
+        }
         vec![]
     }
 
@@ -563,6 +850,11 @@ impl App {
         self.status = Some(Status { text: text.to_string(), error });
     }
 
+    /// The sound of the live design (metrics, pulses, polars), if computed.
+    pub fn acoustic(&self) -> Option<&AcousticResult> {
+        self.acoustic.as_deref()
+    }
+
     /// The metrics of the live design, if computed for it.
     pub fn metrics(&self) -> Option<&Metrics> {
         self.acoustic.as_ref().map(|a| &a.metrics)
@@ -577,5 +869,31 @@ impl App {
     /// The key shown for `action` (its first binding).
     pub fn key_label(&self, action: Action) -> &str {
         self.keys.label_of(action).unwrap_or("?")
+    }
+}
+
+/// What differs between the live design (`now`, from preset `now_preset`) and `then`, as
+/// "mass 45.50 g → 40.50 g" (at most three fields, then how many more).
+pub fn changes(now: &Design, now_preset: &str, then: &Design, then_preset: &str) -> String {
+    let mut parts = Vec::new();
+    if now_preset != then_preset {
+        parts.push(format!("preset {now_preset} → {then_preset}"));
+    }
+    let fields: Vec<String> = Param::ALL
+        .iter()
+        .filter_map(|p| {
+            let (a, b) = (p.display(now), p.display(then));
+            (a != b).then(|| format!("{} {a} → {b}", p.param()))
+        })
+        .collect();
+    let more = fields.len().saturating_sub(3);
+    parts.extend(fields.into_iter().take(3));
+    if more > 0 {
+        parts.push(format!("and {more} more"));
+    }
+    if parts.is_empty() {
+        "the design is as it was".into()
+    } else {
+        parts.join(", ")
     }
 }

@@ -1,14 +1,18 @@
-//! The design chart: the mass × gap grid coloured by zone with the zone number drawn in every
-//! cell (not colour alone), the current design bracketed; and the second view, e against
-//! SPLmax (Fig 17) with the L* and e* lines.
+//! The design chart: the mass × gap grid with the zone number drawn in every cell (not colour
+//! alone) on continuous axes, the current design marked at its exact (m, d) with its own zone;
+//! and the second view, e against SPLmax (Fig 17) with the L* and e* lines.
+//!
+//! One truth: the marker's zone is the live design's own (the readout's), never a cell's; a
+//! design between cells is drawn between them, one off the chart's range as an arrow at the
+//! edge with a line saying so. The axes have titles with units and round ticks; the legend
+//! (zones 1–4, no impact, pending) is always drawn, below or beside the grid as space allows.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
-use ratatui::symbols::Marker;
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph, Widget};
+use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::plot::{fit_bounds, labels};
+use super::plot::{fit_bounds, tick_step, ticks, Curve, LinePlot};
 use super::theme::Palette;
 use crate::design::Zone;
 use crate::units::sig;
@@ -24,8 +28,30 @@ pub enum CellView {
     Exact(Option<Zone>),
 }
 
-/// Width of the gap labels on the left of the grid.
+/// What the marker of the live design shows: its own zone (the readout's), or that it is
+/// still being computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DesignZone {
+    Computing,
+    /// The live design's zone; None: no zone (no impact or too few maxima).
+    Known(Option<Zone>),
+}
+
+impl DesignZone {
+    /// The marker's text: `[n]`, `[-]` (no zone) or `[?]` (computing).
+    pub fn marker(self) -> String {
+        match self {
+            DesignZone::Computing => "[?]".into(),
+            DesignZone::Known(z) => format!("[{}]", glyph(z)),
+        }
+    }
+}
+
+/// Width of the gap labels on the left of the grid ("  4.0 ").
 const LABEL_W: u16 = 6;
+/// Widest cell (columns) and tallest cell (rows).
+const CELL_W_MAX: u16 = 6;
+const CELL_H_MAX: u16 = 3;
 
 /// Where the cells are on screen: used to draw them and to map a mouse click to a cell. When
 /// the grid has more cells than the panel has room for, evenly spaced rows/columns are shown.
@@ -52,16 +78,18 @@ fn sample(n: usize, shown: usize) -> Vec<usize> {
 }
 
 impl Geometry {
-    /// Lays out the `n_masses × n_gaps` grid in the inner area of the panel (None if too small).
-    pub fn new(inner: Rect, n_masses: usize, n_gaps: usize) -> Option<Self> {
-        let avail_w = inner.width.checked_sub(LABEL_W)?;
-        let avail_h = inner.height.checked_sub(1)?;
+    /// Lays out an `n_masses × n_gaps` grid in `area` (gap labels on its left included);
+    /// None if fewer than 2 × 2 cells fit.
+    pub fn new(area: Rect, n_masses: usize, n_gaps: usize) -> Option<Self> {
+        let avail_w = area.width.checked_sub(LABEL_W)?;
+        let avail_h = area.height;
         let (dm, dg) = (n_masses.min(avail_w as usize), n_gaps.min(avail_h as usize));
         if dm < 2 || dg < 2 {
             return None;
         }
-        let (cell_w, cell_h) = ((avail_w / dm as u16).min(6), (avail_h / dg as u16).min(3));
-        let cells = Rect::new(inner.x + LABEL_W, inner.y, cell_w * dm as u16, cell_h * dg as u16);
+        let cell_w = (avail_w / dm as u16).min(CELL_W_MAX);
+        let cell_h = (avail_h / dg as u16).min(CELL_H_MAX);
+        let cells = Rect::new(area.x + LABEL_W, area.y, cell_w * dm as u16, cell_h * dg as u16);
         Some(Self { cells, cell_w, cell_h, cols: sample(n_masses, dm), rows: sample(n_gaps, dg) })
     }
 
@@ -81,39 +109,164 @@ impl Geometry {
         let top = ((y - c.y) / self.cell_h) as usize;
         Some((self.cols[col], self.rows[self.rows.len() - 1 - top]))
     }
+}
 
-    /// The displayed (column, row) nearest to grid cell (m, g).
-    pub fn shown(&self, m: usize, g: usize) -> (usize, usize) {
-        let near =
-            |v: &[usize], i: usize| v.iter().enumerate().min_by_key(|(_, &x)| x.abs_diff(i)).map_or(0, |(k, _)| k);
-        (near(&self.cols, m), near(&self.rows, g))
+/// A continuous axis over the cells: the grid's values at the cells' centres, the cells'
+/// outer edges at the ends, mapped linearly onto `len` screen cells from `start`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CellAxis {
+    /// Value at the outer edge of the first cell and of the last.
+    pub lo: f64,
+    pub hi: f64,
+    pub start: u16,
+    pub len: u16,
+}
+
+impl CellAxis {
+    /// The axis of evenly spaced grid `values` drawn over `len` cells from `start`.
+    pub fn new(values: &[f64], start: u16, len: u16) -> Self {
+        let (first, last) = (values.first().copied().unwrap_or(0.0), values.last().copied().unwrap_or(1.0));
+        let half = if values.len() > 1 { 0.5 * (last - first) / (values.len() - 1) as f64 } else { 0.5 };
+        Self { lo: first - half, hi: last + half, start, len }
+    }
+
+    /// Where `v` falls: `Ok(offset)` inside (0 at the low edge), `Err(low side?)` outside.
+    pub fn place(&self, v: f64) -> Result<u16, bool> {
+        if !v.is_finite() || v < self.lo {
+            return Err(true);
+        }
+        if v > self.hi {
+            return Err(false);
+        }
+        let f = (v - self.lo) / (self.hi - self.lo);
+        Ok(((f * f64::from(self.len)).floor() as u16).min(self.len.saturating_sub(1)))
     }
 }
 
 /// The zone grid's data.
 pub struct ZoneGridView<'a> {
+    pub block: Block<'a>,
     pub masses_g: &'a [f64],
     pub gaps_cm: &'a [f64],
     /// `cells[g * masses.len() + m]`.
     pub cells: &'a [CellView],
-    /// The grid cell nearest the current design.
-    pub current: Option<(usize, usize)>,
-    pub title: &'a str,
-    pub focused: bool,
+    /// The live design (m in g, d in cm) and its own zone.
+    pub design: (f64, f64),
+    pub zone: DesignZone,
     pub theme: Palette,
-}
-
-/// The panel's block (shared by both views so the geometry matches the hit test).
-pub fn block<'a>(title: &'a str, focused: bool, theme: &Palette) -> Block<'a> {
-    Block::bordered().title(title).border_style(theme.focus(focused))
 }
 
 fn glyph(z: Option<Zone>) -> String {
     z.map_or("-".into(), |z| z.number().to_string())
 }
 
+/// The legend's entries (text, zone for its colour).
+fn legend_items(theme: &Palette) -> Vec<(String, Option<Zone>)> {
+    let mut v: Vec<(String, Option<Zone>)> = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak]
+        .iter()
+        .map(|z| (format!("{} {}", z.number(), z.describe().replace(", ", ",")), Some(*z)))
+        .collect();
+    v.push(("- no impact".into(), None));
+    v.push((format!("{} pending", theme.sym("·", ".")), None));
+    v
+}
+
+/// The legend's entries flowed into lines of `width` columns (entries two spaces apart).
+fn flow(items: &[(String, Option<Zone>)], width: usize) -> Vec<Vec<usize>> {
+    let mut lines: Vec<Vec<usize>> = vec![];
+    let mut used = 0;
+    for (i, (text, _)) in items.iter().enumerate() {
+        let w = text.chars().count();
+        match lines.last_mut() {
+            Some(line) if used + 2 + w <= width => {
+                line.push(i);
+                used += 2 + w;
+            }
+            _ => {
+                lines.push(vec![i]);
+                used = w;
+            }
+        }
+    }
+    lines
+}
+
+/// Where everything of the zone grid goes inside the panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChartLayout {
+    pub geometry: Geometry,
+    /// The grid's value axes (mass in g, gap in cm) over the drawn cells.
+    pub mass_axis: CellAxis,
+    pub gap_axis: CellAxis,
+    /// The legend: one entry per row beside the grid (x, y), or flowed lines below it.
+    pub legend: LegendPlace,
+    /// Rows of the y title, the x labels, the x title and the design's line.
+    pub y_title_y: u16,
+    pub x_labels_y: u16,
+    pub x_title_y: u16,
+    pub info_y: u16,
+    /// The right edge of the grid's area (the legend, when beside, starts after it).
+    pub grid_right: u16,
+}
+
+/// Where the legend goes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum LegendPlace {
+    /// One entry per row from (x, y).
+    Beside(u16, u16),
+    /// Lines of entry indices from row y.
+    Below(u16, Vec<Vec<usize>>),
+}
+
+/// Lays out the zone grid, its axes, legend and the design's line in the panel's inner area;
+/// None if the grid does not fit.
+pub fn layout(inner: Rect, masses: &[f64], gaps: &[f64], theme: &Palette) -> Option<ChartLayout> {
+    let (nm, ng) = (masses.len(), gaps.len());
+    let items = legend_items(theme);
+    let legend_w = items.iter().map(|(t, _)| t.chars().count() as u16).max().unwrap_or(0) + 1;
+    // Fixed rows: y title, x labels, the design's line.
+    let fixed = 3u16;
+    let below_lines = flow(&items, inner.width as usize);
+    let below_h = inner.height.checked_sub(fixed + below_lines.len() as u16)?;
+    let beside_w = inner.width.saturating_sub(legend_w + 1);
+    let grid_room_beside = beside_w.saturating_sub(LABEL_W) as usize;
+    let beside_fits = inner.height >= fixed + items.len() as u16 && grid_room_beside >= nm;
+    let beside = beside_fits && (usize::from(below_h) < ng || grid_room_beside >= 2 * nm);
+    let (grid_w, grid_h) = if beside { (beside_w, inner.height - fixed) } else { (inner.width, below_h) };
+    let mut geometry = Geometry::new(Rect::new(inner.x, inner.y + 1, grid_w, grid_h), nm, ng)?;
+    // The x title goes on the labels row if there is room right of the grid, else on a row of
+    // its own under it (taken from the grid).
+    let x_title_w = 8u16;
+    let grid_right = inner.x + grid_w;
+    let title_beside = grid_right.saturating_sub(geometry.cells.right()) > x_title_w;
+    if !title_beside {
+        let room = grid_h.saturating_sub(1);
+        geometry = Geometry::new(Rect::new(inner.x, inner.y + 1, grid_w, room), nm, ng)?;
+    }
+    let cells = geometry.cells;
+    let x_labels_y = cells.bottom();
+    let x_title_y = if title_beside { x_labels_y } else { x_labels_y + 1 };
+    let info_y = x_title_y + 1;
+    let legend = if beside {
+        LegendPlace::Beside(inner.right().saturating_sub(legend_w), inner.y)
+    } else {
+        LegendPlace::Below(info_y + 1, below_lines)
+    };
+    Some(ChartLayout {
+        mass_axis: CellAxis::new(masses, cells.x, cells.width),
+        gap_axis: CellAxis::new(gaps, 0, cells.height),
+        geometry,
+        legend,
+        y_title_y: inner.y,
+        x_labels_y,
+        x_title_y,
+        info_y,
+        grid_right,
+    })
+}
+
 impl ZoneGridView<'_> {
-    fn draw_cell(&self, buf: &mut Buffer, r: Rect, cell: CellView, current: bool) {
+    fn draw_cell(&self, buf: &mut Buffer, r: Rect, cell: CellView) {
         let (zone, known, exact) = match cell {
             CellView::Empty => (None, false, false),
             CellView::Approx(z) => (z, true, false),
@@ -124,135 +277,262 @@ impl ZoneGridView<'_> {
             _ => Style::default(),
         };
         style = if exact { style.add_modifier(Modifier::BOLD) } else { style.add_modifier(Modifier::DIM) };
-        if current {
-            style = style.add_modifier(Modifier::REVERSED);
-        }
-        let text = if !known { "·".to_string() } else { glyph(zone) };
-        let text = if current && r.width >= 3 {
-            format!("[{text}]")
-        } else if current {
-            "*".into()
-        } else {
-            text
-        };
+        let text = if known { glyph(zone) } else { self.theme.sym("·", ".").to_string() };
         for y in r.y..r.y + r.height {
             for x in r.x..r.x + r.width {
                 buf[(x, y)].set_symbol(" ").set_style(style);
             }
         }
-        let tw = text.chars().count() as u16;
-        let x = r.x + r.width.saturating_sub(tw) / 2;
-        let y = r.y + r.height / 2;
-        buf.set_stringn(x, y, &text, r.width as usize, style);
+        let x = r.x + r.width.saturating_sub(1) / 2;
+        let y = r.y + r.height.saturating_sub(1) / 2;
+        buf.set_stringn(x, y, &text, 1, style);
     }
 
-    fn draw_labels(&self, buf: &mut Buffer, g: &Geometry, inner: Rect) {
+    fn draw_axes(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
         let dim = Style::default().add_modifier(Modifier::DIM);
-        for (r, &gi) in g.rows.iter().enumerate() {
-            let rect = g.rect(0, r);
-            if r % 2 == 0 || g.cell_h > 1 {
-                let text = format!("{:>5}", sig(self.gaps_cm[gi], 2));
-                buf.set_stringn(inner.x, rect.y + rect.height / 2, text, LABEL_W as usize - 1, dim);
+        let cells = l.geometry.cells;
+        let th = &self.theme;
+        buf.set_stringn(inner.x, l.y_title_y, th.text("d (cm) ↑"), inner.width as usize, dim);
+        // Gap ticks: round values at the rows they fall in.
+        let (g, rows) = (&l.gap_axis, cells.height);
+        let n = usize::from(rows / 2 + 1).clamp(2, 8);
+        if let Some(step) = tick_step(g.lo, g.hi, n) {
+            let decimals = ((-step.log10().floor()).max(1.0)) as usize;
+            for v in ticks(g.lo, g.hi, n) {
+                if let Ok(off) = g.place(v) {
+                    let y = cells.bottom() - 1 - off;
+                    buf.set_stringn(inner.x, y, format!("{v:>5.decimals$} "), LABEL_W as usize, dim);
+                }
             }
         }
-        let y = g.cells.y + g.cells.height;
-        buf.set_stringn(inner.x, y, "d cm", LABEL_W as usize, dim);
-        let step = (8 / g.cell_w.max(1)).max(1) as usize;
-        for (c, &mi) in g.cols.iter().enumerate().step_by(step) {
-            let r = g.rect(c, 0);
-            let room = (inner.x + inner.width).saturating_sub(r.x) as usize;
-            buf.set_stringn(r.x, y, sig(self.masses_g[mi], 2), room, dim);
+        // Mass ticks: round values centred at their columns, none touching the next.
+        let m = &l.mass_axis;
+        let mut n = (usize::from(cells.width) / 4).clamp(2, 10);
+        let labels = loop {
+            let t = ticks(m.lo, m.hi, n);
+            let step = tick_step(m.lo, m.hi, n).unwrap_or(1.0);
+            let w = t.iter().map(|v| super::plot::tick_label(*v, step).len()).max().unwrap_or(1);
+            if n <= 2 || (w + 1) * t.len() <= usize::from(cells.width) {
+                break t.iter().map(|v| (*v, super::plot::tick_label(*v, step))).collect::<Vec<_>>();
+            }
+            n -= 1;
+        };
+        let mut next_free = inner.x;
+        for (v, text) in labels {
+            let Ok(off) = m.place(v) else { continue };
+            let w = text.len() as u16;
+            let x = (m.start + off).saturating_sub(w / 2).min(l.grid_right.saturating_sub(w));
+            if x < next_free {
+                continue;
+            }
+            buf.set_stringn(x, l.x_labels_y, &text, w as usize, dim);
+            next_free = x + w + 1;
         }
-        if y + 1 < inner.y + inner.height {
-            let legend = "m g →  1 noisy,weak  2 noisy,strong  3 quiet,strong  4 quiet,weak  · pending";
-            buf.set_stringn(inner.x, y + 1, legend, inner.width as usize, dim);
+        let title = th.text("m (g) →").into_owned();
+        let tw = title.chars().count() as u16;
+        let tx =
+            if l.x_title_y == l.x_labels_y { cells.right() + 1 } else { cells.right().saturating_sub(tw).max(inner.x) };
+        if l.x_title_y < inner.bottom() {
+            buf.set_stringn(tx, l.x_title_y, &title, inner.right().saturating_sub(tx) as usize, dim);
+        }
+    }
+
+    fn draw_legend(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
+        let items = legend_items(&self.theme);
+        let style = |z: Option<Zone>| z.map_or(Style::default(), |z| self.theme.zone(z));
+        let put = |buf: &mut Buffer, x: u16, y: u16, i: usize| {
+            let (text, z) = &items[i];
+            if y >= inner.bottom() || x >= inner.right() {
+                return 0;
+            }
+            let room = (inner.right() - x) as usize;
+            let cut = text.char_indices().nth(1).map_or(text.len(), |(i, _)| i);
+            let (head, tail) = text.split_at(cut);
+            buf.set_stringn(x, y, head, room, style(*z).add_modifier(Modifier::BOLD));
+            buf.set_stringn(x + 1, y, tail, room.saturating_sub(1), Style::default());
+            text.chars().count() as u16
+        };
+        match &l.legend {
+            LegendPlace::Beside(x, y) => {
+                for i in 0..items.len() {
+                    put(buf, *x, *y + i as u16, i);
+                }
+            }
+            LegendPlace::Below(y, lines) => {
+                for (k, line) in lines.iter().enumerate() {
+                    let mut x = inner.x;
+                    for &i in line {
+                        x += put(buf, x, *y + k as u16, i) + 2;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The design's marker at its exact place with its own zone, or an arrow at the edge;
+    /// and the line under the grid saying which zone it is in and whether it is on the chart.
+    fn draw_design(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
+        let cells = l.geometry.cells;
+        let th = &self.theme;
+        let (m, d) = self.design;
+        let mark_style = Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED);
+        let marker = self.zone.marker();
+        let (pm, pd) = (l.mass_axis.place(m), l.gap_axis.place(d));
+        let row = |p: Result<u16, bool>| match p {
+            Ok(off) => cells.bottom() - 1 - off,
+            Err(true) => cells.bottom() - 1,
+            Err(false) => cells.y,
+        };
+        let col = |p: Result<u16, bool>| match p {
+            Ok(off) => l.mass_axis.start + off,
+            Err(true) => cells.x,
+            Err(false) => cells.right() - 1,
+        };
+        let (x, y) = (col(pm), row(pd));
+        let off = match (pm, pd) {
+            (Ok(_), Ok(_)) => {
+                let x0 = x.saturating_sub(1).clamp(cells.x, cells.right().saturating_sub(3));
+                buf.set_stringn(x0, y, &marker, 3, mark_style);
+                None
+            }
+            _ => {
+                let arrow = match (pm, pd) {
+                    (Err(true), _) => th.sym("←", "<"),
+                    (Err(false), _) => th.sym("→", ">"),
+                    (_, Err(true)) => th.sym("↓", "v"),
+                    _ => th.sym("↑", "^"),
+                };
+                buf.set_stringn(x, y, arrow, 1, mark_style);
+                let mut why = Vec::new();
+                if let Err(low) = pm {
+                    let (cmp, edge) = if low { ("<", l.mass_axis.lo) } else { (">", l.mass_axis.hi) };
+                    why.push(format!("m {} g {cmp} {} g", sig(m, 3), sig(edge, 3)));
+                }
+                if let Err(low) = pd {
+                    let (cmp, edge) = if low { ("<", l.gap_axis.lo) } else { (">", l.gap_axis.hi) };
+                    why.push(format!("d {} cm {cmp} {} cm", sig(d, 3), sig(edge, 3)));
+                }
+                Some(format!("off the chart {arrow} ({})", why.join(", ")))
+            }
+        };
+        let (zone, short) = match self.zone {
+            DesignZone::Computing => ("computing".to_string(), "computing".to_string()),
+            DesignZone::Known(Some(z)) => {
+                (format!("zone {} {}", z.number(), z.describe()), format!("zone {}", z.number()))
+            }
+            DesignZone::Known(None) => ("no zone (no impact or < 2 maxima)".to_string(), "no zone".to_string()),
+        };
+        let options = match &off {
+            None => vec![format!(" this design: {zone}"), format!(" this design: {short}"), format!(" {short}")],
+            Some(o) => {
+                let head = o.split(" (").next().unwrap_or(o);
+                vec![
+                    format!(" this design: {zone}, {o}"),
+                    format!(" this design: {short}, {o}"),
+                    format!(" {short}, {o}"),
+                    format!(" {short}, {head}"),
+                    format!(" {head}"),
+                ]
+            }
+        };
+        // Beside a legend that reaches this row the line stops at the grid's edge.
+        let right = match &l.legend {
+            LegendPlace::Beside(_, y) if l.info_y < y + legend_items(th).len() as u16 => l.grid_right,
+            _ => inner.right(),
+        };
+        let room = right.saturating_sub(inner.x + 3) as usize;
+        let text = options
+            .iter()
+            .map(|o| th.text(o).into_owned())
+            .find(|o| o.chars().count() <= room)
+            .unwrap_or_else(|| th.text(&options[options.len() - 1]).into_owned());
+        if l.info_y < inner.bottom() {
+            buf.set_stringn(inner.x, l.info_y, &marker, 3, mark_style);
+            buf.set_stringn(inner.x + 3, l.info_y, &text, room, Style::default());
         }
     }
 }
 
 impl Widget for ZoneGridView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let block = block(self.title, self.focused, &self.theme);
-        let inner = block.inner(area);
-        block.render(area, buf);
-        let Some(g) = Geometry::new(inner, self.masses_g.len(), self.gaps_cm.len()) else {
+        let inner = self.block.inner(area);
+        (&self.block).render(area, buf);
+        let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme) else {
             Paragraph::new("too small for the chart").render(inner, buf);
             return;
         };
-        let current = self.current.map(|(m, gi)| g.shown(m, gi));
+        let g = &l.geometry;
         for (r, &gi) in g.rows.iter().enumerate() {
             for (c, &mi) in g.cols.iter().enumerate() {
                 let cell = self.cells.get(gi * self.masses_g.len() + mi).copied().unwrap_or(CellView::Empty);
-                self.draw_cell(buf, g.rect(c, r), cell, current == Some((c, r)));
+                self.draw_cell(buf, g.rect(c, r), cell);
             }
         }
-        self.draw_labels(buf, &g, inner);
+        self.draw_axes(buf, &l, inner);
+        self.draw_legend(buf, &l, inner);
+        self.draw_design(buf, &l, inner);
     }
 }
 
-/// The e–SPLmax view's data (Fig 17): one point per computed cell.
+/// The e–SPLmax view's data (Fig 17): one point per computed cell, drawn as its zone digit.
 pub struct ScatterView<'a> {
+    pub block: Block<'a>,
     /// (e in cm/s, SPLmax in dB, zone).
     pub points: &'a [(f64, f64, Zone)],
     pub current: Option<(f64, f64)>,
     pub l_star_db: f64,
     pub e_star_cm_s: f64,
-    pub title: &'a str,
-    pub focused: bool,
     pub theme: Palette,
 }
 
 impl Widget for ScatterView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let block = block(self.title, self.focused, &self.theme);
-        let xb = fit_bounds(self.points.iter().map(|p| p.0).chain([self.e_star_cm_s]), 0.05);
-        let yb = fit_bounds(self.points.iter().map(|p| p.1).chain([self.l_star_db]), 0.05);
-        let by_zone: Vec<Vec<(f64, f64)>> = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak]
-            .iter()
-            .map(|z| self.points.iter().filter(|p| p.2 == *z).map(|p| (p.0, p.1)).collect())
-            .collect();
+        let th = self.theme;
+        let cur: Vec<(f64, f64)> = self.current.into_iter().collect();
+        let xb =
+            fit_bounds(self.points.iter().map(|p| p.0).chain([self.e_star_cm_s]).chain(cur.iter().map(|c| c.0)), 0.05);
+        let yb =
+            fit_bounds(self.points.iter().map(|p| p.1).chain([self.l_star_db]).chain(cur.iter().map(|c| c.1)), 0.05);
+        let zones = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak];
+        let by_zone: Vec<Vec<(f64, f64)>> =
+            zones.iter().map(|z| self.points.iter().filter(|p| p.2 == *z).map(|p| (p.0, p.1)).collect()).collect();
         let l_line = [(xb[0], self.l_star_db), (xb[1], self.l_star_db)];
         let e_line = [(self.e_star_cm_s, yb[0]), (self.e_star_cm_s, yb[1])];
-        let cur: Vec<(f64, f64)> = self.current.into_iter().collect();
         let colors = [Color::Red, Color::Yellow, Color::Green, Color::Blue];
         let names = ["1", "2", "3", "4"];
-        let mut sets = vec![
-            Dataset::default()
-                .name("L*")
-                .data(&l_line)
-                .graph_type(GraphType::Line)
-                .marker(Marker::Dot)
-                .style(self.theme.pinned()),
-            Dataset::default()
-                .name("e*")
-                .data(&e_line)
-                .graph_type(GraphType::Line)
-                .marker(Marker::Dot)
-                .style(self.theme.pinned()),
+        let line = th.pinned();
+        let mut series = vec![
+            Curve::line("L*", &l_line, line, th.mark('─', '-')),
+            Curve::line("e*", &e_line, line, th.mark('│', '|')),
         ];
         for (i, pts) in by_zone.iter().enumerate() {
-            sets.push(
-                Dataset::default()
-                    .name(names[i])
-                    .data(pts)
-                    .graph_type(GraphType::Scatter)
-                    .marker(self.theme.marker())
-                    .style(self.theme.fg(colors[i])),
-            );
+            let digit = char::from(b'1' + i as u8);
+            series.push(Curve::points(
+                names[i],
+                pts,
+                th.fg(colors[i]).add_modifier(Modifier::BOLD),
+                th.mark(digit, digit),
+            ));
         }
-        sets.push(
-            Dataset::default()
-                .name("this")
-                .data(&cur)
-                .graph_type(GraphType::Scatter)
-                .marker(Marker::Block)
-                .style(Style::default().add_modifier(Modifier::BOLD)),
-        );
-        Chart::new(sets)
-            .block(block)
-            .x_axis(Axis::default().title("e cm/s").bounds(xb).labels(labels(xb)))
-            .y_axis(Axis::default().title("SPLmax dB").bounds(yb).labels(labels(yb)))
-            .render(area, buf);
+        series.push(Curve::points(
+            "this design",
+            &cur,
+            Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED),
+            th.mark('@', '@'),
+        ));
+        LinePlot {
+            block: self.block,
+            x_title: "e (cm/s)",
+            y_title: "SPLmax (dB)",
+            series,
+            empty: "no computed cells yet",
+            theme: th,
+            y_zero: false,
+            x_bounds: Some(xb),
+            y_bounds: Some(yb),
+            legend: true,
+        }
+        .render(area, buf);
     }
 }
 
@@ -276,12 +556,45 @@ mod tests {
 
     #[test]
     fn big_grid_in_small_panel_shows_evenly_spaced_rows_with_both_ends() {
-        let g = Geometry::new(Rect::new(0, 0, 40, 9), 16, 12).unwrap();
+        let g = Geometry::new(Rect::new(0, 0, 40, 8), 16, 12).unwrap();
         assert_eq!(g.rows.len(), 8);
         assert_eq!((g.rows[0], g.rows[7]), (0, 11));
         assert!(g.rows.windows(2).all(|w| w[0] < w[1]));
         let r = g.rect(3, 0);
         assert_eq!(g.hit(r.x, r.y), Some((g.cols[3], 0)));
         assert_eq!(sample(5, 3), vec![0, 2, 4]);
+    }
+
+    #[test]
+    fn a_cell_axis_puts_grid_values_at_cell_centres_and_edges_outside() {
+        // 12 gaps 1..7 cm over 12 rows: each value in its own row, the edges half a step out.
+        let gaps: Vec<f64> = (0..12).map(|i| 1.0 + 6.0 * i as f64 / 11.0).collect();
+        let a = CellAxis::new(&gaps, 0, 12);
+        for (i, g) in gaps.iter().enumerate() {
+            assert_eq!(a.place(*g), Ok(i as u16));
+        }
+        // Between two rows' values it moves with the value (4.82 → 5.36 cm: rows 7 and 8).
+        assert_ne!(a.place(4.82), a.place(5.36));
+        assert_eq!(a.place(0.5), Err(true));
+        assert_eq!(a.place(7.5), Err(false));
+        assert_eq!(a.place(f64::NAN), Err(true));
+        // Over 7 rows (a small panel) the design still moves with d.
+        let small = CellAxis::new(&gaps, 0, 7);
+        assert!(small.place(4.0).unwrap() < small.place(5.4).unwrap());
+    }
+
+    #[test]
+    fn the_legend_flows_into_lines_that_fit() {
+        let items = legend_items(&Palette::default());
+        assert!(items.iter().any(|(t, _)| t == "- no impact"));
+        for w in [20usize, 38, 60, 120] {
+            let lines = flow(&items, w);
+            assert_eq!(lines.iter().map(Vec::len).sum::<usize>(), items.len());
+            for line in &lines {
+                let width: usize =
+                    line.iter().map(|&i| items[i].0.chars().count()).sum::<usize>() + 2 * (line.len() - 1);
+                assert!(width <= w || line.len() == 1, "{width} > {w}");
+            }
+        }
     }
 }

@@ -8,7 +8,8 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use crate::acoustics::Observer;
+use crate::acoustics::{Field, Observer};
+use crate::contact::{Impact, Target};
 use crate::damper;
 use crate::design::{self, linspace, Cell, Chart, Design, Evaluation, Metrics, Thresholds};
 use crate::error::ThudError;
@@ -71,6 +72,10 @@ pub struct SimResult {
     pub history_cm: Vec<(f64, f64)>,
     /// (t in s, x in cm) of the same structure without the damper.
     pub free_cm: Vec<(f64, f64)>,
+    /// The run's cycle maxima X_k (t in s, X in cm), the points of Eq 27: the decay envelope.
+    pub maxima_cm: Vec<(f64, f64)>,
+    /// The cycle maxima of the structure without the damper (t in s, X in cm).
+    pub free_maxima_cm: Vec<(f64, f64)>,
 }
 
 /// The sound of a simulated design at its observer.
@@ -81,6 +86,24 @@ pub struct AcousticResult {
     pub waveform: Vec<(f64, f64)>,
     /// (θ in deg, SPL in dB) at the observer's distance.
     pub polar: Vec<(f64, f64)>,
+    /// One impact of the ball at U0 = v0 on a fixed plate (what `thud pulse` computes for the
+    /// design: Fig 2, Table 1); an error text when v0 gives no impact.
+    pub single: Result<SingleImpact, String>,
+}
+
+/// One impact at U0 = v0 on a fixed plate (K* = 1/m, Eq 8), heard at the design's observer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SingleImpact {
+    /// The impact speed (m/s).
+    pub u0_m_s: f64,
+    /// SPL (dB, rms over τ from the direct arrival).
+    pub spl_db: f64,
+    /// (ms after the direct arrival, Pa).
+    pub waveform: Vec<(f64, f64)>,
+    /// (θ in deg, SPL in dB) at the observer's distance.
+    pub polar: Vec<(f64, f64)>,
+    /// The waveform's significant extrema (ms after the direct arrival, Pa): the humps of the M.
+    pub peaks: Vec<(f64, f64)>,
 }
 
 /// The passes of a chart (coarse, if any, and fine), as the app holds them.
@@ -146,7 +169,10 @@ pub fn compute_sim(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<Sim
     let p = d.resolved()?.damper;
     let history_cm = eval.run.history.iter().map(|h| (h.t_s, 100.0 * h.x_m)).collect();
     let free_cm = eval.run.history.iter().map(|h| (h.t_s, 100.0 * damper::free_response(&p, h.t_s))).collect();
-    Ok(Some(SimResult { eval, history_cm, free_cm }))
+    let cm = |m: &damper::Maximum| (m.t_s, 100.0 * m.x_m);
+    let maxima_cm = eval.run.maxima.iter().map(cm).collect();
+    let free_maxima_cm = damper::free_maxima(&p).iter().map(cm).collect();
+    Ok(Some(SimResult { eval, history_cm, free_cm, maxima_cm, free_maxima_cm }))
 }
 
 /// Metrics, loudest-impact waveform and directivity of `d` from its cached run.
@@ -162,7 +188,44 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         waveform = t.iter().zip(&p).map(|(t, p)| (1e3 * (t - arrival), *p)).collect();
         polar = directivity(&r, u0);
     }
-    Ok(AcousticResult { metrics, waveform, polar })
+    let single = single_impact(&r).map_err(|e| e.to_string());
+    Ok(AcousticResult { metrics, waveform, polar, single })
+}
+
+/// The impact of the design's ball at U0 = v0 on a fixed plate (as `thud pulse --preset`).
+fn plate_impact(d: &Design) -> Impact {
+    Impact {
+        mass_kg: d.damper.impact_mass_kg,
+        u0_m_s: d.damper.v0_m_s,
+        k_hz: d.damper.k_hz,
+        target: Target::FixedPlate,
+    }
+}
+
+/// The sound field of the plate impact of `d` (resolved) at observer `observer`.
+fn plate_field(d: &Design, observer: &Observer) -> Result<Field, ThudError> {
+    let impact = plate_impact(d);
+    impact.validate()?;
+    Field::new(d.ball_radius_m(), &impact.contact(), observer, &d.radiation)
+}
+
+/// One impact at U0 = v0 on a fixed plate: waveform, directivity and its peaks (`d` resolved).
+pub fn single_impact(d: &Design) -> Result<SingleImpact, ThudError> {
+    let field = plate_field(d, &d.observer)?;
+    let arrival = field.arrival_s();
+    let (t, p) = field.waveform(WAVEFORM_SAMPLES);
+    let waveform = t.iter().zip(&p).map(|(t, p)| (1e3 * (t - arrival), *p)).collect();
+    let peaks = field.significant_extrema(0.02).iter().map(|e| (1e3 * (e.t_s - arrival), e.p_pa)).collect();
+    let (lo, hi) = d.radiation.source.theta_range_deg();
+    let n = ((hi - lo) / POLAR_STEP_DEG).round() as usize;
+    let polar = (0..=n)
+        .filter_map(|i| {
+            let deg = lo + i as f64 * POLAR_STEP_DEG;
+            let at = Observer { theta_rad: deg.to_radians(), ..d.observer };
+            plate_field(d, &at).ok().map(|f| (deg, f.spl_db()))
+        })
+        .collect();
+    Ok(SingleImpact { u0_m_s: d.damper.v0_m_s, spl_db: field.spl_db(), waveform, polar, peaks })
 }
 
 /// SPL (dB) every [`POLAR_STEP_DEG`] over the valid angles of the source, at the design's r.

@@ -180,10 +180,57 @@ impl Param {
         })
     }
 
-    /// Checks this field's value in `d` against its range.
+    /// The unit the value is shown in, and the factor from it to the internal unit (SI;
+    /// degrees; dB; cm/s): a typed plain number is read in this unit (`45` for the mass is
+    /// 45 g, as shown), not in the internal one.
+    pub fn display_unit(self) -> Option<(&'static str, f64)> {
+        Some(match self {
+            Param::Mass => ("g", 1e-3),
+            Param::Gap => ("cm", 1e-2),
+            Param::R => ("m", 1.0),
+            Param::Theta => ("deg", 1.0),
+            Param::V0 => ("m/s", 1.0),
+            Param::MainMass => ("kg", 1.0),
+            Param::K => ("N/m", 1.0),
+            Param::C | Param::C1 => ("N·s/m", 1.0),
+            Param::KHz => ("N/m^1.5", 1.0),
+            Param::Duration => ("s", 1.0),
+            Param::LStar => ("dB", 1.0),
+            Param::EStar => ("cm/s", 1.0),
+            _ => return None,
+        })
+    }
+
+    /// The valid range in the display unit: (lowest, highest). θ's is the current source's
+    /// open side.
+    pub fn display_range(self, d: &Design) -> Option<(f64, f64)> {
+        let (_, k) = self.display_unit()?;
+        if self == Param::Theta {
+            let r = limits::theta_deg(d.radiation.source);
+            return Some((r.min, r.max));
+        }
+        let r = self.range()?;
+        Some((r.min / k, r.max / k))
+    }
+
+    /// Checks this field's value in `d` against its range; the refusal names the field and
+    /// gives the value and the range in the unit the field is shown in.
     fn check_range(self, d: &Design) -> Result<(), ThudError> {
-        if let (Some(r), Some(v)) = (self.range(), self.get(d)) {
-            r.check_as(self.param(), v)?;
+        if let (Some(r), Some(v), Some((unit, k))) = (self.range(), self.get(d), self.display_unit()) {
+            if !r.contains(v) {
+                let (lo, hi) = (r.min / k, r.max / k);
+                let shown = if v.is_finite() { format!("{} {unit}", limits::short(v / k)) } else { format!("{v}") };
+                return Err(ThudError::invalid(
+                    self.param(),
+                    format!(
+                        "{shown} is out of range; the {} must be {} to {} {unit} ({})",
+                        r.what,
+                        limits::short(lo),
+                        limits::short(hi),
+                        r.reason
+                    ),
+                ));
+            }
         }
         if let Solver::Newmark { dt_s } = d.solver {
             limits::DT.check(dt_s)?;
@@ -361,9 +408,13 @@ impl Param {
     /// The design with this field set from typed text (units allowed), validated.
     pub fn parsed(self, d: &Design, text: &str) -> Result<Design, ThudError> {
         let t = text.trim();
-        let next = match self.kind() {
-            Some(kind) => self.set(d, units::parse(self.param(), t, kind)?),
-            None => self.parse_choice(d, t)?,
+        let next = match (self.kind(), self.display_unit()) {
+            // A plain number is in the unit shown.
+            (Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
+                self.set(d, t.parse::<f64>().unwrap_or(f64::NAN) * k)
+            }
+            (Some(kind), _) => self.set(d, units::parse(self.param(), t, kind)?),
+            (None, _) => self.parse_choice(d, t)?,
         };
         self.check_range(&next)?;
         next.validate()?;

@@ -11,18 +11,19 @@ use crate::export::{ExportOptions, Kind};
 use crate::store::{self, DesignFile};
 use crate::units::sig;
 
-/// What the export menu offers, in menu order, with how it is named there.
+/// What the export menu offers, in menu order, with how it is named there: the short name
+/// matches the file's (`thud-waveform.csv` is "waveform CSV"), then what the file holds.
 pub const EXPORTS: [(Kind, &str); 11] = [
     (Kind::CsvWaveform, "waveform CSV — pressure of the loudest impact"),
-    (Kind::SvgWaveform, "waveform SVG"),
+    (Kind::SvgWaveform, "waveform SVG — the same pressure pulse as a figure"),
     (Kind::CsvHistory, "history CSV — x(t) with and without the damper"),
-    (Kind::SvgHistory, "history SVG"),
+    (Kind::SvgHistory, "history SVG — the same x(t) as a figure"),
     (Kind::CsvImpacts, "impacts CSV — every impact of the run"),
     (Kind::CsvSweep, "sweep CSV — the chart's mass × gap grid"),
     (Kind::SvgChart, "chart SVG — zones over mass × gap"),
-    (Kind::SvgFig17, "Fig 17 SVG — e against SPLmax"),
+    (Kind::SvgFig17, "fig17 SVG — e against SPLmax (Fig 17)"),
     (Kind::SvgDirectivity, "directivity SVG — SPL against θ"),
-    (Kind::SvgRestitution, "restitution SVG — e against impact mass"),
+    (Kind::SvgRestitution, "restitution SVG — R against impact mass (Fig 13)"),
     (Kind::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
 ];
 
@@ -135,8 +136,9 @@ impl App {
             let Some(dir) = self.data_dir.clone() else { return vec![] };
             return match store::load_design(&dir, &name) {
                 Ok(file) => {
+                    let reqs = self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"));
                     self.preset = name.clone();
-                    self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"))
+                    reqs
                 }
                 Err(e) => self.error(format_args!("cannot load {name}: {e}")),
             };
@@ -211,6 +213,18 @@ mod tests {
         std::fs::write(&first, "x").unwrap();
         let pending = [dir.path().join("out-1.csv")];
         assert_eq!(unique_path(dir.path(), "out.csv", &pending), dir.path().join("out-2.csv"));
+    }
+
+    #[test]
+    fn each_menu_name_is_the_file_name() {
+        for (kind, label) in EXPORTS {
+            // "thud-fig17.svg" is "fig17 SVG", "thud-sound.wav" is "sound WAV".
+            let file = kind.default_file_name();
+            let (stem, ext) = file.trim_start_matches("thud-").rsplit_once('.').unwrap();
+            assert_eq!(export_name(kind), format!("{stem} {}", ext.to_uppercase()), "{label}");
+        }
+        let restitution = EXPORTS.iter().find(|(k, _)| *k == Kind::SvgRestitution).unwrap().1;
+        assert!(restitution.contains("R against impact mass"), "it plots R, not e");
     }
 
     #[test]

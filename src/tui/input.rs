@@ -4,7 +4,7 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use super::app::{App, Mode, Panel};
+use super::app::{App, Mode, Panel, PulseView};
 use super::fields::{Param, Scope};
 use super::files::EXPORTS;
 use super::keys::Action;
@@ -67,14 +67,39 @@ impl App {
             Mode::Presets(i) => self.preset_key(k, i),
             Mode::Saved(i) => self.saved_key(k, i),
             Mode::Export(i) => self.export_key(k, i),
-            Mode::Help => {
-                match self.keys.action_for(&k) {
-                    Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
-                    _ => self.mode = Mode::Normal,
-                }
+            Mode::Help | Mode::Glossary(_) => {
+                self.help_key(k);
                 vec![]
             }
-            Mode::Normal => self.keys.action_for(&k).map_or_else(Vec::new, |a| self.act(a)),
+            Mode::Normal => {
+                let touring = self.tour.is_some();
+                self.keys.action_in(&k, touring).map_or_else(Vec::new, |a| self.act(a))
+            }
+        }
+    }
+
+    /// Keys in the help: → (or PageDown, Tab, 2) the second page, ← (PageUp, BackTab, 1) the
+    /// first, ↑↓ scroll the second page, `q` quits, anything else closes it.
+    fn help_key(&mut self, k: KeyEvent) {
+        let scroll = match self.mode {
+            Mode::Glossary(s) => s,
+            _ => 0,
+        };
+        match k.code {
+            KeyCode::Right | KeyCode::PageDown | KeyCode::Tab | KeyCode::Char('2') => {
+                self.mode = Mode::Glossary(scroll)
+            }
+            KeyCode::Left | KeyCode::PageUp | KeyCode::BackTab | KeyCode::Char('1') => self.mode = Mode::Help,
+            KeyCode::Down | KeyCode::Char('j') if self.mode != Mode::Help => {
+                self.mode = Mode::Glossary(scroll.saturating_add(1).min(200));
+            }
+            KeyCode::Up | KeyCode::Char('k') if self.mode != Mode::Help => {
+                self.mode = Mode::Glossary(scroll.saturating_sub(1));
+            }
+            _ => match self.keys.action_for(&k) {
+                Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
+                _ => self.mode = Mode::Normal,
+            },
         }
     }
 
@@ -90,8 +115,14 @@ impl App {
                 }
             }
             Action::Up | Action::Down if self.focus == Panel::Chart => return self.chart_move(0, a == Action::Up),
-            Action::Up => self.selected = (self.selected + Param::ALL.len() - 1) % Param::ALL.len(),
-            Action::Down => self.selected = (self.selected + 1) % Param::ALL.len(),
+            Action::Up => {
+                self.selected = (self.selected + Param::ALL.len() - 1) % Param::ALL.len();
+                self.show_hint();
+            }
+            Action::Down => {
+                self.selected = (self.selected + 1) % Param::ALL.len();
+                self.show_hint();
+            }
             Action::Decrease { .. } | Action::Increase { .. } if self.focus == Panel::Chart => {
                 return self.chart_move(1, matches!(a, Action::Increase { .. }))
             }
@@ -108,6 +139,24 @@ impl App {
             Action::Save => self.mode = Mode::SaveAs(self.suggested_name()),
             Action::Load => self.open_saved(),
             Action::Export => self.mode = Mode::Export(0),
+            Action::Tour => return self.start_tour(),
+            Action::Best => return self.best(),
+            Action::PulseView => self.toggle_pulse(),
+            Action::TourNext => {
+                let next = self.tour.as_ref().map(|t| (t.step + 1, t.tour.steps.len()));
+                match next {
+                    Some((i, n)) if i < n => return self.tour_step(i),
+                    Some(_) => self.leave_tour(true),
+                    None => {}
+                }
+            }
+            Action::TourPrev => {
+                let prev = self.tour.as_ref().map(|t| t.step.saturating_sub(1));
+                if let Some(i) = prev {
+                    return self.tour_step(i);
+                }
+            }
+            Action::TourLeave => self.leave_tour(false),
         }
         vec![]
     }
@@ -183,8 +232,10 @@ impl App {
         match presets::preset(name) {
             Ok(mut d) => {
                 d.thresholds = self.config.thresholds(d.thresholds);
+                self.pulse = PulseView::for_preset(name);
+                let reqs = self.apply(d, Scope::All, format!("preset {name}"));
                 self.preset = name.to_string();
-                self.apply(d, Scope::All, format!("preset {name}"))
+                reqs
             }
             Err(e) => self.error(e),
         }

@@ -1,5 +1,6 @@
 //! The one key table. The `?` help overlay, the footer hints and the key dispatch all read
-//! [`KEYS`], so a binding cannot exist without being documented.
+//! [`KEYS`] (the explorer) and [`TOUR_KEYS`] (what changes while the guided tour runs), so a
+//! binding cannot exist without being documented.
 
 use std::collections::BTreeMap;
 
@@ -38,6 +39,18 @@ pub enum Action {
     Load,
     /// Choose a file to export into the export directory.
     Export,
+    /// Start the guided tour.
+    Tour,
+    /// Jump to the zone-3 design of the chart with the largest margin.
+    Best,
+    /// The pulse panel: the loudest impact of the run, or one impact on a plate.
+    PulseView,
+    /// Tour: the next step (after the last: leave the tour).
+    TourNext,
+    /// Tour: the previous step.
+    TourPrev,
+    /// Tour: leave it, keeping the design to explore.
+    TourLeave,
 }
 
 /// One binding: the key, its modifiers, the action, its name in `config.toml`'s `[keys]`, how
@@ -80,7 +93,16 @@ pub const KEYS: &[Binding] = &[
     bind(KeyCode::Char('q'), NONE, Action::Quit, "quit", "q", "quit", "quit"),
     bind(KeyCode::Esc, NONE, Action::Quit, "quit", "Esc", "quit (or close a popup / cancel the input line)", ""),
     bind(KeyCode::Char('c'), CTRL, Action::Quit, "quit", "Ctrl-C", "quit", ""),
-    bind(KeyCode::Char('?'), NONE, Action::Help, "help", "?", "show or hide this help", "help"),
+    bind(KeyCode::Char('?'), NONE, Action::Help, "help", "?", "help: keys, then (→) what the numbers mean", "help"),
+    bind(
+        KeyCode::Char('T'),
+        SHIFT,
+        Action::Tour,
+        "tour",
+        "T",
+        "guided tour of the paper's story (→ next, ← back, Esc leaves)",
+        "tour",
+    ),
     bind(KeyCode::Up, NONE, Action::Up, "up", "↑", "previous parameter (chart focused: larger gap)", ""),
     bind(KeyCode::Char('k'), NONE, Action::Up, "up", "k", "same as ↑", ""),
     bind(KeyCode::Down, NONE, Action::Down, "down", "↓", "next parameter (chart focused: smaller gap)", "select"),
@@ -190,15 +212,7 @@ pub const KEYS: &[Binding] = &[
         "save this design under a name (Enter saves, Esc cancels)",
         "save",
     ),
-    bind(
-        KeyCode::Char('L'),
-        SHIFT,
-        Action::Load,
-        "load",
-        "L",
-        "load a saved design (↑↓, Enter loads, Esc closes)",
-        "load",
-    ),
+    bind(KeyCode::Char('L'), SHIFT, Action::Load, "load", "L", "load a saved design (↑↓, Enter loads, Esc closes)", ""),
     bind(KeyCode::Char('o'), NONE, Action::Load, "load", "o", "same as L", ""),
     bind(
         KeyCode::Char('e'),
@@ -207,8 +221,34 @@ pub const KEYS: &[Binding] = &[
         "export",
         "e",
         "export a CSV, SVG or WAV file of this design to the export directory",
-        "export",
+        "",
     ),
+    bind(
+        KeyCode::Char('b'),
+        NONE,
+        Action::Best,
+        "best",
+        "b",
+        "jump to the zone-3 design of the chart furthest inside both thresholds",
+        "best",
+    ),
+    bind(
+        KeyCode::Char('i'),
+        NONE,
+        Action::PulseView,
+        "impact",
+        "i",
+        "pulse panel: the run's loudest impact / one impact at v0 on a plate (Fig 2)",
+        "",
+    ),
+];
+
+/// The bindings that change while the guided tour runs (looked up before [`KEYS`]; every
+/// other key works as usual).
+pub const TOUR_KEYS: &[Binding] = &[
+    bind(KeyCode::Right, NONE, Action::TourNext, "tour-next", "→", "tour: next step", "next"),
+    bind(KeyCode::Left, NONE, Action::TourPrev, "tour-back", "←", "tour: previous step", "back"),
+    bind(KeyCode::Esc, NONE, Action::TourLeave, "tour-leave", "Esc", "tour: leave it and explore from here", "leave"),
 ];
 
 /// One binding in effect: the table's row with its key, possibly overridden by the config.
@@ -224,6 +264,8 @@ pub struct Key {
     pub hint: &'static str,
     /// True if the config replaced the table's key.
     pub overridden: bool,
+    /// A tour key ([`TOUR_KEYS`]): it acts only while the tour runs.
+    pub tour: bool,
 }
 
 /// The bindings in effect: [`KEYS`] with the config's overrides. Dispatch, help overlay and
@@ -235,19 +277,18 @@ pub struct Keymap {
 
 impl Default for Keymap {
     fn default() -> Self {
-        let keys = KEYS
-            .iter()
-            .map(|b| Key {
-                code: b.code,
-                mods: b.mods,
-                action: b.action,
-                name: b.name,
-                label: b.label.to_string(),
-                help: b.help,
-                hint: b.hint,
-                overridden: false,
-            })
-            .collect();
+        let key = |b: &Binding, tour: bool| Key {
+            code: b.code,
+            mods: b.mods,
+            action: b.action,
+            name: b.name,
+            label: b.label.to_string(),
+            help: b.help,
+            hint: b.hint,
+            overridden: false,
+            tour,
+        };
+        let keys = KEYS.iter().map(|b| key(b, false)).chain(TOUR_KEYS.iter().map(|b| key(b, true))).collect();
         Self { keys }
     }
 }
@@ -264,7 +305,7 @@ fn strip(code: KeyCode, m: KeyModifiers) -> KeyModifiers {
 /// The action names of the table, each once, in table order.
 pub fn action_names() -> Vec<&'static str> {
     let mut out: Vec<&'static str> = Vec::new();
-    for b in KEYS {
+    for b in KEYS.iter().chain(TOUR_KEYS) {
         if !out.contains(&b.name) {
             out.push(b.name);
         }
@@ -371,7 +412,12 @@ impl Keymap {
                 map.keys
                     .iter()
                     .enumerate()
-                    .find(|(j, o)| *j != i && o.code == k.code && strip(o.code, o.mods) == strip(k.code, k.mods))
+                    .find(|(j, o)| {
+                        *j != i
+                            && o.tour == k.tour
+                            && o.code == k.code
+                            && strip(o.code, o.mods) == strip(k.code, k.mods)
+                    })
                     .map(|(_, o)| (n, i, name, binding, o.name))
             });
             let Some((n, i, name, binding, other)) = clash else { break };
@@ -386,14 +432,22 @@ impl Keymap {
         (map, problems)
     }
 
-    /// The action bound to a key press, if any. Key releases are ignored; SHIFT is ignored for
-    /// characters and Shift-Tab.
+    /// The action bound to a key press in the explorer, if any. Key releases are ignored;
+    /// SHIFT is ignored for characters and Shift-Tab.
     pub fn action_for(&self, key: &KeyEvent) -> Option<Action> {
+        self.action_in(key, false)
+    }
+
+    /// The action bound to a key press; while the tour runs (`touring`) its keys come first.
+    pub fn action_in(&self, key: &KeyEvent, touring: bool) -> Option<Action> {
         if key.kind == KeyEventKind::Release {
             return None;
         }
         let mods = strip(key.code, key.modifiers);
-        self.keys.iter().find(|b| b.code == key.code && strip(b.code, b.mods) == mods).map(|b| b.action)
+        let hit = |tour: bool| {
+            self.keys.iter().find(|b| b.tour == tour && b.code == key.code && strip(b.code, b.mods) == mods)
+        };
+        touring.then(|| hit(true)).flatten().or_else(|| hit(false)).map(|b| b.action)
     }
 
     /// The first key of `action` as shown (e.g. "s"), if any.
@@ -401,16 +455,28 @@ impl Keymap {
         self.keys.iter().find(|k| k.action == action).map(|k| k.label.as_str())
     }
 
-    /// The footer: the hints of the table, in table order, as (key label, hint) pairs.
+    /// The footer: the hints of the explorer's table, in table order, as (key label, hint).
     pub fn footer_hints(&self) -> Vec<(String, &'static str)> {
+        self.footer_hints_in(false)
+    }
+
+    /// The footer while the tour runs (`touring`: its keys first) or not.
+    pub fn footer_hints_in(&self, touring: bool) -> Vec<(String, &'static str)> {
         let first = |a: Action| self.keys.iter().find(|k| k.action == a);
         let pair = |a: Action, b: Action, both: &str| match (first(a), first(b)) {
             (Some(x), Some(y)) if x.overridden || y.overridden => format!("{}{}", x.label, y.label),
             _ => both.to_string(),
         };
-        self.keys
-            .iter()
+        let tour_first: Vec<&Key> = if touring {
+            self.keys.iter().filter(|k| k.tour).chain(self.keys.iter().filter(|k| !k.tour)).collect()
+        } else {
+            self.keys.iter().filter(|k| !k.tour).collect()
+        };
+        tour_first
+            .into_iter()
             .filter(|k| !k.hint.is_empty())
+            // While touring ← and → move through the steps.
+            .filter(|k| !(touring && !k.tour && matches!(k.action, Action::Increase { .. })))
             .map(|k| {
                 let label = match k.action {
                     Action::Down => pair(Action::Up, Action::Down, "↑↓"),
@@ -503,6 +569,25 @@ mod tests {
         assert!(problems.is_empty(), "{problems:?}");
         assert_eq!(map.action_for(&key(KeyCode::Char('s'), NONE)), Some(Action::Pin));
         assert_eq!(map.action_for(&key(KeyCode::Char('p'), NONE)), Some(Action::Save));
+    }
+
+    #[test]
+    fn tour_keys_act_only_while_touring_and_are_unique() {
+        for (i, a) in TOUR_KEYS.iter().enumerate() {
+            for b in &TOUR_KEYS[i + 1..] {
+                assert!(!(a.code == b.code && a.mods == b.mods), "{} bound twice", a.label);
+            }
+        }
+        let map = Keymap::default();
+        let right = key(KeyCode::Right, NONE);
+        assert_eq!(map.action_in(&right, true), Some(Action::TourNext));
+        assert_eq!(map.action_in(&right, false), Some(Action::Increase { fine: false }));
+        assert_eq!(map.action_in(&key(KeyCode::Char('q'), NONE), true), Some(Action::Quit), "others still work");
+        assert_eq!(map.action_in(&key(KeyCode::Esc, NONE), true), Some(Action::TourLeave));
+        assert_eq!(map.footer_hints_in(true)[0], ("→".to_string(), "next"));
+        assert!(!map.footer_hints().iter().any(|(_, h)| *h == "next"));
+        assert_eq!(action_for(&key(KeyCode::Char('T'), SHIFT)), Some(Action::Tour));
+        assert_eq!(action_for(&key(KeyCode::Char('b'), NONE)), Some(Action::Best));
     }
 
     #[test]

@@ -6,16 +6,24 @@
 //! the screen is redrawn after each batch of messages (no fast tick). The UI thread never runs
 //! a simulation.
 //!
+//! It is made to teach with: the chart never contradicts the readout (its marker is the live
+//! design at its exact mass and gap with the design's own zone), every plot has round ticks and
+//! axis titles with units, the selected field's meaning, unit and range are in the status line,
+//! the help's second page says what the numbers mean, and a guided tour (`T`, `thud tui
+//! --tour [FILE]`) tells the paper's story step by step with the real computations.
+//!
 //! The modules, from the state out: `app` (state and update) with `input` (keys per mode)
 //! and `files` (save, load, export); `worker` (requests, results, the four job slots) on
 //! `job` (the generic single-slot runner) calling `compute` (the physics each job does);
 //! `ui` (layout, one function per area) drawing the widgets `params`, `readout`, `waveform`,
 //! `polar`, `history`, `chart` (on `plot` and `theme`); `fields` (the editable parameters),
-//! `keys` (the key table) and `terminal` (setup and restore).
+//! `explain` (what each field and number means), `tour` (the guided tour's steps), `keys`
+//! (the key table) and `terminal` (setup and restore).
 
 pub mod app;
 pub mod chart;
 pub mod compute;
+pub mod explain;
 pub mod fields;
 pub mod files;
 pub mod history;
@@ -28,6 +36,7 @@ pub mod polar;
 pub mod readout;
 pub mod terminal;
 pub mod theme;
+pub mod tour;
 pub mod ui;
 pub mod waveform;
 pub mod worker;
@@ -59,6 +68,9 @@ pub enum TuiError {
     /// Drawing on the terminal failed.
     #[error("cannot draw on the terminal: {0}")]
     Draw(#[source] std::io::Error),
+    /// The `--tour` file cannot be read or is not a valid tour.
+    #[error(transparent)]
+    Tour(#[from] tour::TourError),
 }
 
 /// Set this environment variable to make the explorer panic right after it took over the
@@ -73,8 +85,10 @@ const TICK: Duration = Duration::from_millis(120);
 /// problem with it is shown in the status line and the defaults are used.
 pub fn run(opts: &Options) -> Result<(), TuiError> {
     let design = presets::preset(&opts.preset)?;
+    let tour_def = opts.tour.as_ref().map(tour::Tour::load).transpose()?;
     let theme = Palette::from_env(opts.ascii);
     let mut app = App::new(design, &opts.preset, theme);
+    app.tour_def = tour_def.map(Arc::new);
     app.mouse = opts.mouse;
     app.configure(&config::load_user_config());
     app.data_dir = store::Dirs::project().map(|d| d.data_dir);
@@ -91,6 +105,11 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     let worker = Worker::start(move |d| {
         let _ = tx.send(Msg::Work(d));
     });
+    if opts.tour.is_some() {
+        for r in app.start_tour() {
+            worker.submit(r);
+        }
+    }
     event_loop(&mut term, &mut app, &worker, &rx, &busy).map_err(TuiError::Draw)
 }
 
@@ -140,11 +159,12 @@ pub fn event_loop<B: Backend>(
     }
 }
 
-/// Draws one frame and remembers where the chart is (for clicks).
+/// Draws one frame and remembers where the chart is (for clicks) and whether it is shown.
 pub fn draw<B: Backend>(term: &mut Terminal<B>, app: &mut App) -> Result<(), B::Error> {
-    let mut geometry = None;
-    term.draw(|f| geometry = ui::draw(f, app))?;
-    app.chart_geometry = geometry;
+    let mut drawn = ui::Drawn::default();
+    term.draw(|f| drawn = ui::draw(f, app))?;
+    app.chart_geometry = drawn.geometry;
+    app.chart_shown = drawn.chart_shown;
     Ok(())
 }
 

@@ -1,4 +1,6 @@
-//! The parameter panel: one row per field, the selected one reversed and pointed at.
+//! The parameter panel: one row per field, the selected one reversed and pointed at. When not
+//! every row fits (the teaching layout at 80×24) it shows the selected field and its
+//! neighbours.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -10,6 +12,7 @@ use super::theme::Palette;
 
 /// The panel's data: (label, value) rows, the selected row, whether the panel has focus.
 pub struct ParamsView<'a> {
+    pub block: Block<'a>,
     pub rows: &'a [(String, String)],
     pub selected: usize,
     pub focused: bool,
@@ -17,12 +20,14 @@ pub struct ParamsView<'a> {
 }
 
 impl ParamsView<'_> {
-    /// The first row shown so that the selected one is visible in `height` rows.
+    /// The first row shown: all rows when they fit, else the selected one in the middle of
+    /// its neighbours.
     fn scroll(&self, height: usize) -> usize {
-        if height == 0 || self.selected < height {
+        let n = self.rows.len();
+        if height == 0 || n <= height {
             0
         } else {
-            self.selected + 1 - height
+            self.selected.saturating_sub(height / 2).min(n - height)
         }
     }
 
@@ -31,6 +36,8 @@ impl ParamsView<'_> {
         let pointer = if selected { self.theme.pointer() } else { " " };
         let label_w = 10.min(width.saturating_sub(2));
         let value_w = width.saturating_sub(label_w + 2);
+        let label = self.theme.text(label);
+        let value = self.theme.text(value);
         let text = format!("{pointer}{label:<label_w$} {value:>value_w$}");
         let style = if selected {
             let s = Style::default().add_modifier(Modifier::REVERSED);
@@ -48,9 +55,8 @@ impl ParamsView<'_> {
 
 impl Widget for ParamsView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let block = Block::bordered().title(" parameters ").border_style(self.theme.focus(self.focused));
-        let inner = block.inner(area);
-        block.render(area, buf);
+        let inner = self.block.inner(area);
+        (&self.block).render(area, buf);
         let h = inner.height as usize;
         let first = self.scroll(h);
         let lines: Vec<Line> = self

@@ -1,27 +1,33 @@
-//! Directivity polar: SPL against θ at the current r, drawn as a polar curve on a Canvas.
+//! Directivity polar: SPL against θ at the current r, drawn as a polar curve on a canvas.
 //! θ is measured from the plate's normal (up on screen); the radius is the level above a floor
-//! 30 dB under the loudest direction, with rings every 10 dB.
+//! 40 dB under the loudest direction's round 10 dB, with rings every 10 dB.
+//!
+//! No label is ever drawn over the curve: the rings' levels are a scale on their own row under
+//! the canvas (where each ring crosses θ = 90°, which every source's range contains), the
+//! normal's "θ 0" on a row above it and the listener's angle and level on the last row. The
+//! curve, the rings (and walls) and the θ ray each have their own glyph, so they read apart
+//! without colour and in ASCII.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::Color;
-use ratatui::widgets::canvas::{Canvas, Context, Line as CLine, Points};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::widgets::canvas::{Context, Line as CLine, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
+use super::plot::stamp;
 use super::theme::Palette;
 use crate::units::sig;
 
-/// Decibels shown between the floor and the loudest direction.
+/// Decibels shown between the floor and the loudest direction's round 10 dB.
 const SPAN_DB: f64 = 40.0;
 
 /// The panel's data: (θ in degrees, SPL in dB) over the valid range of the source type.
 pub struct PolarView<'a> {
+    pub block: Block<'a>,
     pub live: &'a [(f64, f64)],
     pub pinned: Option<&'a [(f64, f64)]>,
     pub theta_deg: f64,
     pub range_deg: (f64, f64),
-    pub r_m: f64,
-    pub focused: bool,
     pub theme: Palette,
 }
 
@@ -42,7 +48,7 @@ fn bounds(range: (f64, f64), r: f64, area: Rect) -> ([f64; 2], [f64; 2]) {
         let (x, y) = point(deg, r, 0.0);
         (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
     }
-    let pad = 0.08 * r;
+    let pad = 0.04 * r;
     let (mut xb, mut yb) = ([x0 - pad, x1 + pad], [y0 - pad, y1 + pad]);
     let (w, h) = (f64::from(area.width.max(1)), 2.0 * f64::from(area.height.max(1)));
     let (sx, sy) = ((xb[1] - xb[0]) / w, (yb[1] - yb[0]) / h);
@@ -57,74 +63,128 @@ fn bounds(range: (f64, f64), r: f64, area: Rect) -> ([f64; 2], [f64; 2]) {
 }
 
 /// Draws a curve of (deg, dB) points as connected segments.
-fn curve(ctx: &mut Context, pts: &[(f64, f64)], floor: f64, color: Color) {
+fn curve(ctx: &mut Context, pts: &[(f64, f64)], floor: f64) {
     for w in pts.windows(2) {
         let (a, b) = (point(w[0].0, w[0].1, floor), point(w[1].0, w[1].1, floor));
-        ctx.draw(&CLine { x1: a.0, y1: a.1, x2: b.0, y2: b.1, color });
+        ctx.draw(&CLine { x1: a.0, y1: a.1, x2: b.0, y2: b.1, color: Color::Reset });
+    }
+}
+
+/// The column of canvas x-coordinate `x` in `area` with bounds `xb` (the canvas's mapping).
+fn col(x: f64, xb: [f64; 2], area: Rect) -> u16 {
+    let w = f64::from(area.width.max(1));
+    let c = ((x - xb[0]) / (xb[1] - xb[0]) * (w - 1.0)).round().clamp(0.0, w - 1.0);
+    area.x + c as u16
+}
+
+/// Where the polar's canvas is and what it spans: the canvas rectangle, its bounds and the
+/// level of the centre (dB).
+struct PolarLayout {
+    canvas: Rect,
+    xb: [f64; 2],
+    yb: [f64; 2],
+    floor: f64,
+    top: f64,
+}
+
+impl PolarView<'_> {
+    /// The canvas between the "θ 0" row above and the scale and listener rows below; None when
+    /// there is nothing to draw or no room.
+    fn layout(&self, inner: Rect) -> Option<PolarLayout> {
+        if self.live.is_empty() || inner.height < 5 || inner.width < 10 {
+            return None;
+        }
+        let max = self.live.iter().chain(self.pinned.unwrap_or(&[])).map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+        if !max.is_finite() {
+            return None;
+        }
+        let top = (max / 10.0).ceil() * 10.0;
+        let canvas = Rect::new(inner.x, inner.y + 1, inner.width, inner.height - 3);
+        let (xb, yb) = bounds(self.range_deg, SPAN_DB, canvas);
+        Some(PolarLayout { canvas, xb, yb, floor: top - SPAN_DB, top })
+    }
+
+    /// The live curve alone, drawn where the full picture draws it (for checking that
+    /// nothing covers it).
+    pub fn curve_layer(&self, area: Rect) -> Buffer {
+        let mut buf = Buffer::empty(area);
+        if let Some(l) = self.layout(self.block.inner(area)) {
+            let live = self.live;
+            stamp(&mut buf, l.canvas, l.xb, l.yb, self.theme.line_marker(), Style::default(), |ctx| {
+                curve(ctx, live, l.floor)
+            });
+        }
+        buf
     }
 }
 
 impl Widget for PolarView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let title = format!(" SPL(θ) dB at r {} m ", sig(self.r_m, 3));
-        let block = Block::bordered().title(title).border_style(self.theme.focus(self.focused));
-        if self.live.is_empty() {
-            let inner = block.inner(area);
-            block.render(area, buf);
-            Paragraph::new("no impact: no sound").render(inner, buf);
+        let inner = self.block.inner(area);
+        (&self.block).render(area, buf);
+        let th = self.theme;
+        let Some(PolarLayout { canvas, xb, yb, floor, top }) = self.layout(inner) else {
+            let text = if self.live.is_empty() { "no impact: no sound" } else { "too small for the polar" };
+            Paragraph::new(th.text(text).into_owned()).render(inner, buf);
             return;
-        }
-        let max = self.live.iter().chain(self.pinned.unwrap_or(&[])).map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
-        let top = (max / 10.0).ceil() * 10.0;
-        let floor = top - SPAN_DB;
-        let (xb, yb) = bounds(self.range_deg, SPAN_DB, block.inner(area));
-        let color = |c: Color| if self.theme.color { c } else { Color::Reset };
-        let marker = self.theme.marker();
+        };
+        let (lo, hi) = self.range_deg;
+        let dim = Style::default().add_modifier(Modifier::DIM);
+        let ring_style = th.fg(Color::DarkGray).patch(dim);
+        // Rings every 10 dB and the walls (the range's ends and the normal).
+        stamp(buf, canvas, xb, yb, th.mark('·', '.'), ring_style, |ctx| {
+            let n = (((hi - lo) / 10.0).round() as usize).max(2);
+            let ring: Vec<(f64, f64)> = (1..=4)
+                .flat_map(|k| (0..=n).map(move |i| point(lo + (hi - lo) * i as f64 / n as f64, 10.0 * k as f64, 0.0)))
+                .collect();
+            ctx.draw(&Points { coords: &ring, color: Color::Reset });
+            for deg in [0.0, lo, hi] {
+                let (x, y) = point(deg, SPAN_DB, 0.0);
+                ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: x, y2: y, color: Color::Reset });
+            }
+        });
         let theta = self.theta_deg;
         let current = self.live.iter().min_by(|a, b| (a.0 - theta).abs().total_cmp(&(b.0 - theta).abs())).copied();
-        Canvas::default()
-            .block(block)
-            .marker(marker)
-            .x_bounds(xb)
-            .y_bounds(yb)
-            .paint(|ctx| {
-                // Rings every 10 dB, dotted so they do not read as curves.
-                let (lo, hi) = self.range_deg;
-                let ring: Vec<(f64, f64)> = (1..=4)
-                    .flat_map(|k| {
-                        let n = ((hi - lo) / 6.0).round() as usize;
-                        (0..=n).map(move |i| point(lo + (hi - lo) * i as f64 / n.max(1) as f64, 10.0 * k as f64, 0.0))
-                    })
-                    .collect();
-                ctx.draw(&Points { coords: &ring, color: color(Color::DarkGray) });
-                // The walls / reference axes: the plate normal (θ = 0) and the range's ends.
-                for deg in [0.0, lo, hi] {
-                    let (x, y) = point(deg, floor + SPAN_DB, floor);
-                    ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: x, y2: y, color: color(Color::DarkGray) });
-                }
-                ctx.layer();
-                if let Some(p) = self.pinned {
-                    ctx.marker(self.theme.pinned_marker());
-                    curve(ctx, p, floor, color(Color::DarkGray));
-                    ctx.layer();
-                    ctx.marker(marker);
-                }
-                curve(ctx, self.live, floor, color(Color::Cyan));
-                let (tx, ty) = point(theta, current.map_or(floor + SPAN_DB, |c| c.1), floor);
-                ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: tx, y2: ty, color: color(Color::Yellow) });
-                let (nx, ny) = point(0.0, floor + SPAN_DB, floor);
-                ctx.print(nx, ny, "0°");
-                for k in 1..=4 {
-                    let (x, y) = point(hi.min(90.0), floor + 10.0 * k as f64, floor);
-                    ctx.print(x, y, format!("{}", floor + 10.0 * k as f64));
-                }
-                let label = match current {
-                    Some((_, db)) => format!("θ {}° {} dB", sig(theta, 3), sig(db, 4)),
-                    None => format!("θ {}°", sig(theta, 3)),
-                };
-                ctx.print(tx, ty, label);
-            })
-            .render(area, buf);
+        let (tx, ty) = point(theta, current.map_or(top, |c| c.1), floor);
+        stamp(buf, canvas, xb, yb, th.mark('•', '+'), th.fg(Color::Yellow).add_modifier(Modifier::BOLD), |ctx| {
+            ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: tx, y2: ty, color: Color::Reset });
+        });
+        if let Some(p) = self.pinned {
+            stamp(buf, canvas, xb, yb, th.mark('◇', '%'), th.pinned(), |ctx| curve(ctx, p, floor));
+        }
+        let live = self.live;
+        stamp(buf, canvas, xb, yb, th.line_marker(), th.fg(Color::Cyan).add_modifier(Modifier::BOLD), |ctx| {
+            curve(ctx, live, floor)
+        });
+        // "θ 0" above the normal.
+        let zero = th.text("θ 0°").into_owned();
+        let zx = col(0.0, xb, canvas).saturating_sub(1).min(inner.right().saturating_sub(zero.len() as u16));
+        buf.set_stringn(zx.max(inner.x), inner.y, &zero, inner.width as usize, dim);
+        // The ring scale: each ring's level where it crosses θ = 90°.
+        let scale_y = canvas.bottom();
+        let mut next_free = inner.x;
+        for k in 0..=4 {
+            let label = format!("{}", floor + 10.0 * f64::from(k));
+            let c = col(10.0 * f64::from(k), xb, canvas);
+            let x = c.saturating_sub(label.len() as u16 / 2).max(inner.x);
+            if x < next_free || x + label.len() as u16 > inner.right() {
+                continue;
+            }
+            buf.set_stringn(x, scale_y, &label, label.len(), dim);
+            next_free = x + label.len() as u16 + 1;
+        }
+        let unit = " dB";
+        if next_free + 2 < inner.right() {
+            buf.set_stringn(next_free.saturating_sub(1), scale_y, unit, (inner.right() - next_free) as usize, dim);
+        }
+        // The listener: angle and level, with the ray's glyph.
+        let ray = th.sym("•", "+");
+        let text = match current {
+            Some((_, db)) => format!("{ray} θ {}° → {} dB", sig(theta, 3), sig(db, 4)),
+            None => format!("{ray} θ {}°", sig(theta, 3)),
+        };
+        let text = th.text(&text).into_owned();
+        buf.set_stringn(inner.x, inner.bottom() - 1, &text, inner.width as usize, Style::default());
     }
 }
 

@@ -1,4 +1,5 @@
-//! The readout: what the design is worth, live beside pinned.
+//! The readout: what the design is worth, live beside pinned. Tall (one row per number) where
+//! there is room, compact (two numbers a row, the zone first) in the teaching layout at 80×24.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -18,38 +19,96 @@ pub struct Row {
 
 /// The readout's data.
 pub struct ReadoutView<'a> {
+    pub block: Block<'a>,
     pub rows: &'a [Row],
     /// A line under the rows (e.g. "no impacts" or an error), if any.
     pub note: Option<&'a str>,
     pub theme: Palette,
-    pub focused: bool,
+    /// Two numbers a row (the zone on its own row first).
+    pub compact: bool,
 }
 
-impl Widget for ReadoutView<'_> {
-    fn render(self, area: Rect, buf: &mut Buffer) {
-        let block = Block::bordered().title(" readout ").border_style(self.theme.focus(self.focused));
-        let inner = block.inner(area);
-        block.render(area, buf);
+impl ReadoutView<'_> {
+    fn tall(&self, w: usize) -> Vec<Line<'static>> {
+        let th = &self.theme;
         let any_pinned = self.rows.iter().any(|r| r.pinned.is_some());
-        let w = inner.width as usize;
         let pin_w = if any_pinned && w >= 30 { 13 } else { 0 };
+        // The labels' column: 8 wide, or wider for a label spelled out in ASCII (tau@U0max).
+        let lw = self.rows.iter().map(|r| th.text(r.label).chars().count() + 1).max().unwrap_or(0).max(8);
         let mut lines: Vec<Line> = Vec::new();
         if pin_w > 0 {
-            let head = format!("{:<8}{:<w2$}{:<pin_w$}", "", "live", "pinned", w2 = w.saturating_sub(8 + pin_w));
+            let head = format!("{:<lw$}{:<w2$}{:<pin_w$}", "", "live", "pinned", w2 = w.saturating_sub(lw + pin_w));
             lines.push(Line::from(Span::styled(head, Style::default().add_modifier(Modifier::UNDERLINED))));
         }
         for r in self.rows {
             let mut spans = vec![
-                Span::styled(format!("{:<8}", r.label), Style::default().add_modifier(Modifier::BOLD)),
-                Span::raw(format!("{:<w2$}", r.live, w2 = w.saturating_sub(8 + pin_w))),
+                Span::styled(format!("{:<lw$}", th.text(r.label)), Style::default().add_modifier(Modifier::BOLD)),
+                Span::raw(format!("{:<w2$}", th.text(&r.live), w2 = w.saturating_sub(lw + pin_w))),
             ];
             if pin_w > 0 {
-                spans.push(Span::styled(r.pinned.clone().unwrap_or_default(), self.theme.pinned()));
+                spans.push(Span::styled(th.text(&r.pinned.clone().unwrap_or_default()).into_owned(), th.pinned()));
             }
             lines.push(Line::from(spans));
         }
+        lines
+    }
+
+    /// Zone first on its own row, then pairs: e | e_fit, SPLmax | U0max, τ | R mean, impacts.
+    /// With a pinned design: zone, e and SPLmax as live | pinned.
+    fn compact(&self, w: usize) -> Vec<Line<'static>> {
+        let th = &self.theme;
+        let get = |label: &str| self.rows.iter().find(|r| r.label == label);
+        let bold = Style::default().add_modifier(Modifier::BOLD);
+        let cell = |r: Option<&Row>, width: usize| -> Vec<Span<'static>> {
+            let Some(r) = r else { return vec![] };
+            let label = th.text(r.label).into_owned();
+            let value = th.text(&r.live).into_owned();
+            let lw = label.chars().count().max(6) + 1;
+            vec![
+                Span::styled(format!("{label:<lw$}"), bold),
+                Span::raw(format!("{value:<vw$}", vw = width.saturating_sub(lw))),
+            ]
+        };
+        let mut lines = Vec::new();
+        if self.rows.iter().any(|r| r.pinned.is_some()) {
+            for label in ["zone", "e", "SPLmax"] {
+                if let Some(r) = get(label) {
+                    let half = w.saturating_sub(7) / 2;
+                    lines.push(Line::from(vec![
+                        Span::styled(format!("{:<7}", th.text(r.label)), bold),
+                        Span::raw(format!("{:<half$}", th.text(&r.live))),
+                        Span::styled(th.text(r.pinned.as_deref().unwrap_or("")).into_owned(), th.pinned()),
+                    ]));
+                }
+            }
+            return lines;
+        }
+        lines.push(Line::from(cell(get("zone"), w)));
+        let pairs = [("e", "e_fit"), ("SPLmax", "U0max"), ("τ@U0max", "R mean")];
+        // The left column as wide as its widest entry (a negative e carries its marker).
+        let width = |r: Option<&Row>| {
+            r.map_or(0, |r| th.text(r.label).chars().count().max(6) + 1 + th.text(&r.live).chars().count())
+        };
+        let left = pairs.iter().map(|(a, _)| width(get(a))).max().unwrap_or(0) + 2;
+        let left = left.max(w / 2).min(w.saturating_sub(12));
+        for (a, b) in pairs {
+            let mut spans = cell(get(a), left);
+            spans.extend(cell(get(b), w - left));
+            lines.push(Line::from(spans));
+        }
+        lines
+    }
+}
+
+impl Widget for ReadoutView<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let inner = self.block.inner(area);
+        (&self.block).render(area, buf);
+        let w = inner.width as usize;
+        let mut lines = if self.compact { self.compact(w) } else { self.tall(w) };
         if let Some(n) = self.note {
-            lines.push(Line::from(Span::styled(n.to_string(), Style::default().add_modifier(Modifier::ITALIC))));
+            let n = self.theme.text(n).into_owned();
+            lines.push(Line::from(Span::styled(n, Style::default().add_modifier(Modifier::ITALIC))));
         }
         Paragraph::new(lines).render(inner, buf);
     }

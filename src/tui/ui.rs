@@ -1,30 +1,41 @@
-//! Layout: turns the app state into panels sized for the terminal. From 80×24 up every panel
-//! is reachable (the plots share one slot in the compact layout; Tab picks it); smaller
-//! terminals get fewer panels, down to a one-line message; nothing is drawn on 0×0. One
-//! function per area: header, body panels, status line (with the input lines and the
-//! overwrite question), footer, and the popups (help, the lists and their text).
+//! Layout: turns the app state into panels sized for the terminal. Three size classes:
+//!
+//! - wide (≥ 110 × 34): parameters and a tall readout on the left; the pulse, the polar, the
+//!   history and the chart on the right;
+//! - teaching (≥ 60 × 15, e.g. 80×24): two plots side by side — the M-shaped pulse and the
+//!   polar, or (Tab to them) the history and the chart — over a compact strip of the selected
+//!   parameter with its neighbours and a compact readout;
+//! - tiny: the selected parameter and the readout, down to a one-line message.
+//!
+//! The guided tour adds its caption box at the bottom and draws the panel its step talks about
+//! with a heavy border. One function per area: header, body panels, status line (with the
+//! input lines and the overwrite question), footer, the tour's caption and the popups (help's
+//! two pages, the lists). With `--ascii` the frame gets a last pass that keeps it pure ASCII.
 
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+use ratatui::widgets::{Block, Clear, Paragraph};
 use ratatui::Frame;
 
 use std::path::PathBuf;
 
-use super::app::{App, ChartView, Mode, Panel};
+use super::app::{App, ChartView, Mode, Panel, PulseView};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
 use super::compute::nearest;
+use super::explain;
 use super::fields::Param;
 use super::files::EXPORTS;
-use super::history::HistoryView;
+use super::history::{self, HistoryView};
 use super::keys::Action;
 use super::keys::Keymap;
 use super::params::ParamsView;
 use super::polar::PolarView;
 use super::readout::{ReadoutView, Row};
-use super::waveform::WaveformView;
-use crate::design::{Chart, Design, Metrics, Zone};
+use super::theme::{fold_buffer, Palette};
+use super::tour::wrap;
+use super::waveform::{self, WaveformView};
+use crate::design::{Chart, Design, Metrics, Zone, ZoneBy};
 use crate::store;
 use crate::units::sig;
 
@@ -32,18 +43,29 @@ use crate::units::sig;
 pub const MIN_W: u16 = 30;
 pub const MIN_H: u16 = 8;
 
-/// Draws the whole screen; returns where the chart cells are (for mouse clicks), if shown.
-pub fn draw(f: &mut Frame, app: &App) -> Option<Geometry> {
+/// What a frame drew that the app needs to know: where the chart's cells are (for mouse
+/// clicks) and whether the chart was on screen at all.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Drawn {
+    pub geometry: Option<Geometry>,
+    pub chart_shown: bool,
+}
+
+/// Draws the whole screen.
+pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     let area = f.area();
     if area.width == 0 || area.height == 0 {
-        return None;
+        return Drawn::default();
     }
     if area.width < MIN_W || area.height < MIN_H {
         let msg = format!("thud: terminal {}×{} too small; need {MIN_W}×{MIN_H}", area.width, area.height);
-        f.render_widget(Paragraph::new(msg), Rect { height: 1, ..area });
-        return None;
+        f.render_widget(Paragraph::new(app.theme.text(&msg).into_owned()), Rect { height: 1, ..area });
+        fold(f, app);
+        return Drawn::default();
     }
-    let footer_h = u16::from(area.height >= 12);
+    let touring = app.tour.is_some();
+    // While touring the caption box carries the tour's keys: no footer.
+    let footer_h = u16::from(area.height >= 12 && !touring);
     let [header, body, status, footer] = Layout::vertical([
         Constraint::Length(1),
         Constraint::Min(1),
@@ -52,80 +74,145 @@ pub fn draw(f: &mut Frame, app: &App) -> Option<Geometry> {
     ])
     .areas(area);
     f.render_widget(header_line(app), header);
-    let geometry = body_panels(f, app, body);
+    let caption_h = if touring && body.height >= 12 { 5 } else { 0 };
+    let [panels, caption] = Layout::vertical([Constraint::Min(1), Constraint::Length(caption_h)]).areas(body);
+    let drawn = body_panels(f, app, panels);
+    if caption_h > 0 {
+        caption_box(f, app, caption);
+    }
     f.render_widget(status_line(app), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(&app.keys, footer.width), footer);
+        f.render_widget(footer_line(&app.keys, footer.width, touring, &app.theme), footer);
     }
-    if app.mode == Mode::Help {
-        help_popup(f, &app.keys, area);
-    } else if let Some(list) = list_view(app) {
-        list_popup(f, &list, area);
+    match app.mode {
+        Mode::Help => help_popup(f, &app.keys, &app.theme, area),
+        Mode::Glossary(scroll) => glossary_popup(f, app, scroll, area),
+        _ => {
+            if let Some(list) = list_view(app) {
+                list_popup(f, &list, &app.theme, area);
+            }
+        }
     }
-    geometry
+    fold(f, app);
+    drawn
+}
+
+/// The `--ascii` frame's last pass.
+fn fold(f: &mut Frame, app: &App) {
+    if app.theme.ascii {
+        fold_buffer(f.buffer_mut());
+    }
+}
+
+/// The plots shown side by side in the teaching layout: the pulse and the polar, or, once
+/// Tab reaches them, the history and the chart.
+pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
+    match focus {
+        Panel::History | Panel::Chart => (Panel::History, Panel::Chart),
+        _ => (Panel::Waveform, Panel::Polar),
+    }
 }
 
 /// Lays out the body by size class.
-fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Option<Geometry> {
-    let pinned = app.pinned.is_some();
-    let readout_h = 11 + u16::from(pinned);
-    if body.width >= 110 && body.height >= 20 + readout_h {
+fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
+    let params_h = Param::ALL.len() as u16 + 2;
+    if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
-        let [params, readout] =
-            Layout::vertical([Constraint::Length(Param::ALL.len() as u16 + 2), Constraint::Min(1)]).areas(left);
-        f.render_widget(params_view(app), params);
-        readout_widget(f, app, readout);
+        let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
+        params_widget(f, app, params);
+        readout_widget(f, app, readout, false);
         let [top, bottom] = Layout::vertical([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(right);
         let [wave, polar] = Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top);
         let [hist, chart] = Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(bottom);
         plot(f, app, Panel::Waveform, wave);
         plot(f, app, Panel::Polar, polar);
         plot(f, app, Panel::History, hist);
-        plot(f, app, Panel::Chart, chart)
+        Drawn { geometry: plot(f, app, Panel::Chart, chart), chart_shown: true }
     } else if body.width >= 60 && body.height >= 12 {
-        let [left, right] = Layout::horizontal([Constraint::Length(30), Constraint::Min(1)]).areas(body);
-        f.render_widget(params_view(app), left);
-        let readout_h = readout_h.min(body.height.saturating_sub(8)).max(6);
-        let [readout, slot] = Layout::vertical([Constraint::Length(readout_h), Constraint::Min(0)]).areas(right);
-        readout_widget(f, app, readout);
-        if slot.height >= 5 {
-            return plot(f, app, app.plot, slot);
+        let strip_h = if body.height >= 19 { 7 } else { 6 };
+        if teaching_pair(app.focus).0 == Panel::Waveform {
+            // The sound: pulse and polar over the parameters and the readout.
+            let [top, strip] = Layout::vertical([Constraint::Min(1), Constraint::Length(strip_h)]).areas(body);
+            let [params, readout] = Layout::horizontal([Constraint::Length(30), Constraint::Min(1)]).areas(strip);
+            params_widget(f, app, params);
+            readout_widget(f, app, readout, true);
+            let [left, right] = Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top);
+            plot(f, app, Panel::Waveform, left);
+            plot(f, app, Panel::Polar, right);
+            Drawn::default()
+        } else {
+            // The design: the chart the full height (every gap row at 80×24), the history,
+            // parameters and readout beside it.
+            let [left, chart] =
+                Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(body);
+            let params_h = if body.height >= 19 { 5 } else { 4 };
+            let [hist, params, readout] =
+                Layout::vertical([Constraint::Min(1), Constraint::Length(params_h), Constraint::Length(strip_h)])
+                    .areas(left);
+            plot(f, app, Panel::History, hist);
+            params_widget(f, app, params);
+            readout_widget(f, app, readout, true);
+            Drawn { geometry: plot(f, app, Panel::Chart, chart), chart_shown: true }
         }
-        None
     } else {
         let [sel, readout] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(body);
         let fld = app.param();
         let line = format!("{}{} {}", app.theme.pointer(), fld.label(), fld.display(&app.design));
+        let line = app.theme.text(&line).into_owned();
         f.render_widget(Paragraph::new(line).style(Style::default().add_modifier(Modifier::REVERSED)), sel);
-        readout_widget(f, app, readout);
-        None
+        readout_widget(f, app, readout, false);
+        Drawn::default()
     }
 }
 
-fn params_view(app: &App) -> impl Widget + '_ {
-    struct Owned<'a> {
-        rows: Vec<(String, String)>,
-        app: &'a App,
+/// A panel's block: the tour's panel with a heavy border and a pointer, the focused one
+/// coloured, the title folded to ASCII with `--ascii`.
+fn panel_block(app: &App, which: Panel, title: &str) -> Block<'static> {
+    let th = &app.theme;
+    if app.tour_panel() == Some(which) {
+        let t = format!(" {} {}", th.sym("▶", ">"), title.trim_start());
+        th.highlight_block(th.text(&t).into_owned())
+    } else {
+        th.block(th.text(title).into_owned(), app.focus == which)
     }
-    impl Widget for Owned<'_> {
-        fn render(self, area: Rect, buf: &mut ratatui::buffer::Buffer) {
-            ParamsView {
-                rows: &self.rows,
-                selected: self.app.selected,
-                focused: self.app.focus == Panel::Params,
-                theme: self.app.theme,
-            }
-            .render(area, buf);
-        }
+}
+
+/// The longest of `options` that fits a panel `width` wide (its borders taken off), as drawn
+/// (folded to ASCII with `--ascii`).
+fn fit(theme: &Palette, options: &[String], width: u16) -> String {
+    let w = usize::from(width).saturating_sub(2);
+    options.iter().find(|t| theme.text(t).chars().count() <= w).unwrap_or(&options[options.len() - 1]).clone()
+}
+
+/// The width a panel's title may use: the panel's, less the tour's pointer when it has one.
+fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
+    if app.tour_panel() == Some(which) {
+        area.width.saturating_sub(2)
+    } else {
+        area.width
     }
-    let rows = Param::ALL.iter().map(|f| (f.label().to_string(), f.display(&app.design))).collect();
-    Owned { rows, app }
+}
+
+fn params_widget(f: &mut Frame, app: &App, area: Rect) {
+    let rows: Vec<(String, String)> =
+        Param::ALL.iter().map(|p| (p.label().to_string(), p.display(&app.design))).collect();
+    let view = ParamsView {
+        block: panel_block(app, Panel::Params, " parameters "),
+        rows: &rows,
+        selected: app.selected,
+        focused: app.focus == Panel::Params,
+        theme: app.theme,
+    };
+    f.render_widget(view, area);
 }
 
 /// Formats one readout value from a design's metrics.
 type Format<'a> = &'a dyn Fn(&Metrics, &Design) -> String;
 
-/// The readout rows of the live (and pinned) design.
+/// The marker put after a negative e: the glossary (help page 2) explains it.
+pub const NEGATIVE_E: &str = "(!)";
+
+/// The readout rows of the live (and pinned) design, and the note under them.
 pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
     let live = app.metrics().filter(|_| !app.design_busy());
     let pinned = app.pinned.as_ref().and_then(|p| p.acoustic.as_ref().map(|a| (a.metrics, p.design.clone())));
@@ -138,13 +225,24 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
     };
     let spec: [(&'static str, Format); 8] = [
-        ("U0max", &|m, _| format!("{} m/s", sig(m.u0_max_m_s, 4))),
-        ("e", &|m, _| opt(m.inclination_cm_s, 3, "cm/s")),
+        ("U0max", &|m, _| format!("{} m/s", sig(m.u0_max_m_s, 5))),
+        ("e", &|m, _| {
+            let v = opt(m.inclination_cm_s, 3, "cm/s");
+            if m.inclination_cm_s.is_some_and(|e| e < 0.0) {
+                format!("{v} {NEGATIVE_E}")
+            } else {
+                v
+            }
+        }),
         ("e_fit", &|m, _| opt(m.inclination_fit_cm_s, 3, "cm/s")),
         ("SPLmax", &|m, _| opt(m.spl_max_db, 4, "dB")),
         ("zone", &|m, d| {
+            let by = match d.thresholds.zone_by {
+                ZoneBy::Paper => "by e",
+                ZoneBy::Fit => "by e_fit",
+            };
             m.zone(&d.thresholds)
-                .map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {}", z.number(), z.describe()))
+                .map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {} ({by})", z.number(), z.describe()))
         }),
         ("impacts", &|m, _| m.n_impacts.to_string()),
         ("τ@U0max", &|m, _| opt(m.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
@@ -157,10 +255,13 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
             Row { label, live: live.trim_end().to_string(), pinned: pinned.map(|p| p.trim_end().to_string()) }
         })
         .collect();
+    let negative = live.is_some_and(|m| m.inclination_cm_s.is_some_and(|e| e < 0.0));
     let note = if let Some(e) = &app.work_error {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
+    } else if negative {
+        format!("{NEGATIVE_E} e < 0: see ? page 2")
     } else {
         format!(
             "SPL: rms over τ at r {} m, θ {}°",
@@ -171,77 +272,169 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
     (rows, Some(note))
 }
 
-fn readout_widget(f: &mut Frame, app: &App, area: Rect) {
+fn readout_widget(f: &mut Frame, app: &App, area: Rect, compact: bool) {
     let (rows, note) = readout_rows(app);
-    f.render_widget(ReadoutView { rows: &rows, note: note.as_deref(), theme: app.theme, focused: false }, area);
+    let view = ReadoutView {
+        block: panel_block(app, Panel::Readout, " readout "),
+        rows: &rows,
+        note: note.as_deref(),
+        theme: app.theme,
+        compact,
+    };
+    f.render_widget(view, area);
+}
+
+/// What the pulse and polar panels draw of one design's sound in the current pulse view.
+struct Sound<'a> {
+    /// (ms after the direct arrival, Pa).
+    pulse: &'a [(f64, f64)],
+    /// (θ in deg, SPL in dB).
+    polar: &'a [(f64, f64)],
+    /// The pulse's humps (ms, Pa), for the single impact.
+    peaks: &'a [(f64, f64)],
+    /// The message shown when there is nothing to draw.
+    empty: String,
+}
+
+/// The sound of a design in the current pulse view.
+fn sound_of(a: Option<&super::compute::AcousticResult>, view: PulseView) -> Sound<'_> {
+    let none = |empty: String| Sound { pulse: &[], polar: &[], peaks: &[], empty };
+    match (a, view) {
+        (None, _) => none("computing…".into()),
+        (Some(a), PulseView::Loudest) => {
+            Sound { pulse: &a.waveform, polar: &a.polar, peaks: &[], empty: "no impact: no sound".into() }
+        }
+        (Some(a), PulseView::Single) => match &a.single {
+            Ok(s) => Sound { pulse: &s.waveform, polar: &s.polar, peaks: &s.peaks, empty: String::new() },
+            Err(e) => none(format!("no single impact: {e}")),
+        },
+    }
 }
 
 /// Draws one plot panel; returns the chart geometry if it drew the zone grid.
 fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> {
-    let focused = app.focus == which;
     let theme = app.theme;
     let pinned = app.pinned.as_ref();
+    let pin_sound = pinned.and_then(|p| p.acoustic.as_deref());
     match which {
-        Panel::Waveform | Panel::Params => {
-            let live = app.acoustic.as_ref().map_or(&[][..], |a| &a.waveform);
-            let pin = pinned.and_then(|p| p.acoustic.as_ref()).map(|a| &a.waveform[..]);
-            f.render_widget(WaveformView { live, pinned: pin, focused, theme }, area);
+        Panel::Waveform | Panel::Params | Panel::Readout => {
+            let Sound { pulse: live, peaks, empty, .. } = sound_of(app.acoustic.as_deref(), app.pulse);
+            let pin = pin_sound.map(|a| sound_of(Some(a), app.pulse).pulse);
+            let u0 = match app.pulse {
+                PulseView::Single => Some(app.design.damper.v0_m_s),
+                PulseView::Loudest => None,
+            };
+            let title = waveform::title(u0, title_width(app, Panel::Waveform, area));
+            let view = WaveformView {
+                block: panel_block(app, Panel::Waveform, &title),
+                live,
+                pinned: pin,
+                peaks,
+                empty: &empty,
+                theme,
+            };
+            f.render_widget(view, area);
         }
         Panel::Polar => {
-            let live = app.acoustic.as_ref().map_or(&[][..], |a| &a.polar);
-            let pin = pinned.and_then(|p| p.acoustic.as_ref()).map(|a| &a.polar[..]);
+            let live = sound_of(app.acoustic.as_deref(), app.pulse).polar;
+            let pin = pin_sound.map(|a| sound_of(Some(a), app.pulse).polar);
             let d = &app.design;
+            let r = sig(d.observer.r_m, 3);
+            let what = if app.pulse == PulseView::Single { "one impact" } else { "loudest impact" };
+            let title = fit(
+                &theme,
+                &[
+                    format!(" directivity SPL(θ) of the {what}, r {r} m "),
+                    format!(" directivity SPL(θ), r {r} m "),
+                    format!(" SPL(θ), r {r} m "),
+                    " SPL(θ) ".into(),
+                ],
+                title_width(app, Panel::Polar, area),
+            );
             let view = PolarView {
+                block: panel_block(app, Panel::Polar, &title),
                 live,
                 pinned: pin,
                 theta_deg: d.observer.theta_rad.to_degrees(),
                 range_deg: d.radiation.source.theta_range_deg(),
-                r_m: d.observer.r_m,
-                focused,
                 theme,
             };
             f.render_widget(view, area);
         }
         Panel::History => {
-            let (with, without) = app.sim.as_ref().map_or((&[][..], &[][..]), |s| (&s.history_cm[..], &s.free_cm[..]));
-            let pin = pinned.and_then(|p| p.sim.as_ref()).map(|s| &s.history_cm[..]);
-            f.render_widget(HistoryView { with_damper: with, without, pinned: pin, focused, theme }, area);
+            let empty: &[(f64, f64)] = &[];
+            let s = app.sim.as_deref();
+            let view = HistoryView {
+                block: panel_block(app, Panel::History, history::title(title_width(app, Panel::History, area))),
+                with_damper: s.map_or(empty, |s| &s.history_cm),
+                without: s.map_or(empty, |s| &s.free_cm),
+                maxima: s.map_or(empty, |s| &s.maxima_cm),
+                free_maxima: s.map_or(empty, |s| &s.free_maxima_cm),
+                pinned: pinned.and_then(|p| p.sim.as_deref()).map(|s| &s.maxima_cm[..]),
+                theme,
+            };
+            f.render_widget(view, area);
         }
-        Panel::Chart => return chart_panel(f, app, area, focused),
+        Panel::Chart => return chart_panel(f, app, area),
     }
     None
 }
 
-fn chart_title(app: &App) -> String {
+fn chart_title(app: &App, width: u16) -> String {
+    let th = &app.theme;
     let t = &app.design.thresholds;
     let (done, total) = app.chart.progress();
     let progress = if done < total { format!(" {done}/{total}") } else { String::new() };
-    let view = match app.chart_view {
-        ChartView::Zones => "zones m×d",
-        ChartView::Scatter => "e vs SPLmax",
+    let by = match t.zone_by {
+        ZoneBy::Paper => "e",
+        ZoneBy::Fit => "e_fit",
     };
-    format!(" {view}  L* {} dB  e* {} cm/s{progress} ", t.spl_db, t.inclination_cm_s)
+    let (l, e) = (format!("L* {} dB", t.spl_db), format!("e* {} cm/s", t.inclination_cm_s));
+    match app.chart_view {
+        ChartView::Zones => fit(
+            th,
+            &[
+                format!(" zones over mass × gap  {l}  {e} (by {by}){progress} "),
+                format!(" zones m×d  {l}  {e}{progress} "),
+                format!(" zones  {l}  {e} "),
+                " zones ".into(),
+            ],
+            width,
+        ),
+        ChartView::Scatter => fit(
+            th,
+            &[
+                format!(" e vs SPLmax (Fig 17)  {l}  {e}{progress} "),
+                format!(" e vs SPLmax  {l}  {e} "),
+                " e vs SPLmax ".into(),
+            ],
+            width,
+        ),
+    }
 }
 
-fn chart_panel(f: &mut Frame, app: &App, area: Rect, focused: bool) -> Option<Geometry> {
-    let title = chart_title(app);
+fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
+    let title = chart_title(app, title_width(app, Panel::Chart, area));
+    let block = panel_block(app, Panel::Chart, &title);
+    let inner = block.inner(area);
     let fine = &app.chart.fine;
     match app.chart_view {
         ChartView::Zones => {
             let cells = chart_cells(app);
             let masses_g: Vec<f64> = fine.masses_kg.iter().map(|m| m * 1e3).collect();
             let gaps_cm: Vec<f64> = fine.gaps_m.iter().map(|g| g * 1e2).collect();
+            let p = &app.design.damper;
             let view = ZoneGridView {
+                block,
                 masses_g: &masses_g,
                 gaps_cm: &gaps_cm,
                 cells: &cells,
-                current: current_cell(app),
-                title: &title,
-                focused,
+                design: (p.impact_mass_kg * 1e3, p.gap_m * 1e2),
+                zone: app.design_zone(),
                 theme: app.theme,
             };
             f.render_widget(view, area);
-            Geometry::new(chart::block("", false, &app.theme).inner(area), masses_g.len(), gaps_cm.len())
+            chart::layout(inner, &masses_g, &gaps_cm, &app.theme).map(|l| l.geometry)
         }
         ChartView::Scatter => {
             let pts = scatter_points(app);
@@ -249,12 +442,11 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect, focused: bool) -> Option<Ge
                 app.metrics().filter(|_| !app.design_busy()).and_then(|m| Some((m.inclination_cm_s?, m.spl_max_db?)));
             let t = &app.design.thresholds;
             let view = ScatterView {
+                block,
                 points: &pts,
                 current,
                 l_star_db: t.spl_db,
                 e_star_cm_s: t.inclination_cm_s,
-                title: &title,
-                focused,
                 theme: app.theme,
             };
             f.render_widget(view, area);
@@ -285,18 +477,6 @@ fn coarse_zone(coarse: Option<&Chart>, m: f64, g: f64, app: &App) -> CellView {
     }
 }
 
-/// The fine-grid cell of the live design, if it lies inside the grid.
-fn current_cell(app: &App) -> Option<(usize, usize)> {
-    let g = &app.chart.fine;
-    let p = &app.design.damper;
-    let inside = |v: &[f64], x: f64| {
-        let half = if v.len() > 1 { 0.5 * (v[1] - v[0]) } else { f64::INFINITY };
-        !v.is_empty() && x >= v[0] - half && x <= v[v.len() - 1] + half
-    };
-    (inside(&g.masses_kg, p.impact_mass_kg) && inside(&g.gaps_m, p.gap_m))
-        .then(|| (nearest(&g.masses_kg, p.impact_mass_kg), nearest(&g.gaps_m, p.gap_m)))
-}
-
 /// (e, SPLmax, zone) of every computed cell (fine pass, or coarse while the fine one is empty).
 pub fn scatter_points(app: &App) -> Vec<(f64, f64, Zone)> {
     let fine = &app.chart.fine;
@@ -314,87 +494,94 @@ pub fn scatter_points(app: &App) -> Vec<(f64, f64, Zone)> {
 }
 
 fn header_line(app: &App) -> Paragraph<'static> {
+    let th = &app.theme;
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let p = &app.design.damper;
+    let bar = th.sym("│", "|");
     let mut spans = vec![
         Span::styled(" thud ", bold.add_modifier(Modifier::REVERSED)),
         Span::raw(format!(
-            " preset {} │ m {} g, d {} cm ",
+            " preset {} {bar} m {} g, d {} cm ",
             app.preset,
             sig(p.impact_mass_kg * 1e3, 4),
             sig(p.gap_m * 1e2, 3)
         )),
     ];
     if app.busy() {
-        let frames = app.theme.spinner();
+        let frames = th.spinner();
         let frame = frames[app.spinner % frames.len()];
         let (done, total) = app.chart.progress();
         let text = if !app.exports.is_empty() && !app.design_busy() {
-            format!("│ {frame} exporting {} ", app.exports.len())
+            format!("{bar} {frame} exporting {} ", app.exports.len())
         } else {
             let what = if app.design_busy() { "computing design" } else { "filling chart" };
-            format!("│ {frame} {what} {done}/{total} ")
+            format!("{bar} {frame} {what} {done}/{total} ")
         };
         spans.push(Span::styled(text, bold));
     }
     if app.pinned.is_some() {
-        spans.push(Span::styled("│ pinned ", app.theme.pinned()));
+        spans.push(Span::styled(format!("{bar} pinned "), th.pinned()));
+    }
+    if app.pulse == PulseView::Single {
+        spans.push(Span::raw(format!("{bar} pulse: one impact ")));
     }
     if app.focus != Panel::Params {
-        spans.push(Span::raw(format!("│ focus: {:?} ", app.focus).to_lowercase()));
+        spans.push(Span::raw(format!("{bar} focus: {:?} ", app.focus).to_lowercase()));
     }
     Paragraph::new(Line::from(spans))
 }
 
 fn status_line(app: &App) -> Paragraph<'static> {
-    let cursor = if app.theme.ascii { "_" } else { "█" };
+    let th = &app.theme;
+    let cursor = th.sym("█", "_");
+    let dim = Style::default().add_modifier(Modifier::DIM);
     if let Mode::SaveAs(buf) = &app.mode {
         let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
         return Paragraph::new(Line::from(vec![
             Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
             Span::raw(format!("{buf}{cursor}")),
-            Span::styled(
-                format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"),
-                Style::default().add_modifier(Modifier::DIM),
-            ),
+            Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), dim),
         ]));
     }
     if let Mode::ConfirmOverwrite(name) = &app.mode {
         return Paragraph::new(Line::from(vec![
             Span::styled(format!(" overwrite {name}? y/n"), Style::default().add_modifier(Modifier::BOLD)),
-            Span::styled(
-                "  (y replaces the saved design of that name; any other key keeps it)",
-                Style::default().add_modifier(Modifier::DIM),
-            ),
+            Span::styled("  (y replaces the saved design of that name; any other key keeps it)", dim),
         ]));
     }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.param();
-        let unit = f.kind().map(|k| k.plain_unit()).unwrap_or("");
-        let hint = if unit.is_empty() {
-            String::new()
-        } else {
-            format!("  (plain number: {unit}; Enter accepts, Esc cancels)")
+        let hint = match (f.display_unit(), f.display_range(&app.design)) {
+            (Some((unit, _)), Some((lo, hi))) => format!(
+                "  (plain number: {unit}, {}–{}; or with a unit; Enter accepts, Esc cancels)",
+                crate::limits::short(lo),
+                crate::limits::short(hi)
+            ),
+            _ => "  (Enter accepts, Esc cancels)".to_string(),
         };
         return Paragraph::new(Line::from(vec![
-            Span::styled(format!(" {} = ", f.label()), Style::default().add_modifier(Modifier::BOLD)),
+            Span::styled(
+                th.text(&format!(" {} = ", f.label())).into_owned(),
+                Style::default().add_modifier(Modifier::BOLD),
+            ),
             Span::raw(format!("{buf}{cursor}")),
-            Span::styled(hint, Style::default().add_modifier(Modifier::DIM)),
+            Span::styled(th.text(&hint).into_owned(), dim),
         ]));
     }
     match &app.status {
-        Some(s) if s.error => Paragraph::new(Span::styled(format!(" {}", s.text), app.theme.error())),
-        Some(s) => Paragraph::new(format!(" {}", s.text)),
+        Some(s) if s.error => Paragraph::new(Span::styled(th.text(&format!(" {}", s.text)).into_owned(), th.error())),
+        Some(s) => Paragraph::new(th.text(&format!(" {}", s.text)).into_owned()),
         None => Paragraph::new(""),
     }
 }
 
-/// The footer: the key table's hints, as many whole ones as fit in `width`, in table order.
-fn footer_line(keys: &Keymap, width: u16) -> Paragraph<'static> {
+/// The footer: the key table's hints (the tour's first while it runs), as many whole ones as
+/// fit in `width`, in table order.
+fn footer_line(keys: &Keymap, width: u16, touring: bool, theme: &Palette) -> Paragraph<'static> {
     let mut spans = Vec::new();
     let mut used = 0;
-    for (k, h) in keys.footer_hints() {
-        let (key, text) = (format!(" {k}"), format!(" {h} "));
+    for (k, h) in keys.footer_hints_in(touring) {
+        let (key, text) = (format!(" {}", key_text(&k, theme)), format!(" {h} "));
         let w = key.chars().count() + text.chars().count();
         // The last item's trailing space may fall off the edge.
         if used + w - 1 > width as usize {
@@ -407,15 +594,48 @@ fn footer_line(keys: &Keymap, width: u16) -> Paragraph<'static> {
     Paragraph::new(Line::from(spans))
 }
 
+/// A key as shown: with `--ascii` the arrows are spelled (`Left`, `Up/Down`).
+fn key_text(label: &str, theme: &Palette) -> String {
+    if !theme.ascii {
+        return label.to_string();
+    }
+    let spelled = label.replace("↑↓", "Up/Down").replace("←→", "Left/Right");
+    let spelled = spelled.replace('↑', "Up").replace('↓', "Down").replace('←', "Left").replace('→', "Right");
+    theme.text(&spelled).into_owned()
+}
+
+/// The tour's caption: which step, its title and the caption wrapped to the box.
+fn caption_box(f: &mut Frame, app: &App, area: Rect) {
+    let Some(state) = &app.tour else { return };
+    let Some(step) = state.tour.steps.get(state.step) else { return };
+    let th = &app.theme;
+    let n = state.tour.steps.len();
+    let title = th.text(&format!(" tour {}/{n}: {} ", state.step + 1, step.title)).into_owned();
+    let keys = if state.step + 1 < n {
+        " → next  ← back  Esc explore from here "
+    } else {
+        " → finish  ← back  Esc explore "
+    };
+    let block = th
+        .block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true)
+        .title_bottom(Line::from(th.text(keys).into_owned()).right_aligned());
+    let inner = block.inner(area);
+    f.render_widget(Clear, area);
+    f.render_widget(block, area);
+    let caption = th.text(&step.caption).into_owned();
+    let lines: Vec<Line> = wrap(&caption, inner.width as usize).into_iter().map(Line::from).collect();
+    f.render_widget(Paragraph::new(lines), inner);
+}
+
 /// A rectangle of at most `w × h` centred in `area`.
 fn centered(area: Rect, w: u16, h: u16) -> Rect {
     let (w, h) = (w.min(area.width), h.min(area.height));
     Rect::new(area.x + (area.width - w) / 2, area.y + (area.height - h) / 2, w, h)
 }
 
-/// The help overlay: every binding in effect (with its `[keys]` action name), in one to three
-/// columns.
-fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
+/// The help's first page: every binding in effect (with its `[keys]` action name), in one to
+/// three columns.
+fn help_popup(f: &mut Frame, keys: &Keymap, theme: &Palette, area: Rect) {
     let keys = &keys.keys;
     let rows_avail = area.height.saturating_sub(5).max(1) as usize;
     let cols = keys.len().div_ceil(rows_avail).clamp(1, 3);
@@ -426,10 +646,12 @@ fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
             let spans: Vec<Span> = (0..cols)
                 .filter_map(|c| keys.get(c * per_col + r))
                 .flat_map(|b| {
+                    let label = key_text(&b.label, theme);
+                    let help = theme.text(b.help);
                     let text = if cols == 1 {
-                        format!("{:<10}{:<14}{}", b.label, b.name, b.help)
+                        format!("{label:<10}{:<14}{help}", b.name)
                     } else {
-                        format!("{:<10}{}", b.label, b.help)
+                        format!("{label:<10}{help}")
                     };
                     let text: String = text.chars().take(col_w.saturating_sub(1)).collect();
                     [Span::raw(format!("{text:<col_w$}"))]
@@ -442,12 +664,16 @@ fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
     let w = if cols == 1 { 112 } else { area.width };
     let popup = centered(area, w, h);
     f.render_widget(Clear, popup);
-    let block = Block::bordered().title(" keys (? or Esc closes) ");
+    let block =
+        theme.block(theme.text(" help 1/2: keys — → what the numbers mean, ? or Esc closes ").into_owned(), false);
     let inner = block.inner(popup);
     f.render_widget(block, popup);
     let mut all = lines;
     let dim = Style::default().add_modifier(Modifier::DIM);
-    all.push(Line::from(Span::styled("Values are typed with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB", dim)));
+    all.push(Line::from(Span::styled(
+        "Values are typed in the unit shown (45 = 45 g) or with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB",
+        dim,
+    )));
     let note = if cols == 1 {
         "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\""
     } else {
@@ -457,17 +683,44 @@ fn help_popup(f: &mut Frame, keys: &Keymap, area: Rect) {
     f.render_widget(Paragraph::new(all), inner);
 }
 
+/// The help's second page, "What the numbers mean": the glossary, wrapped, scrolled by
+/// `scroll` lines.
+fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
+    let th = &app.theme;
+    let width = 100.min(area.width);
+    let term_w = 8usize;
+    let text_w = (width as usize).saturating_sub(term_w + 3).max(10);
+    let bold = Style::default().add_modifier(Modifier::BOLD);
+    let mut lines: Vec<Line> = Vec::new();
+    for (term, text) in explain::glossary(app.design.thresholds.zone_by) {
+        let text = th.text(&text).into_owned();
+        for (i, l) in wrap(&text, text_w).into_iter().enumerate() {
+            let head = if i == 0 { th.text(term).into_owned() } else { String::new() };
+            lines.push(Line::from(vec![Span::styled(format!("{head:<term_w$}"), bold), Span::raw(l)]));
+        }
+    }
+    let popup = centered(area, width, (lines.len() as u16).saturating_add(2));
+    f.render_widget(Clear, popup);
+    let title = format!(" help 2/2: {} — ↑↓ scroll, ← keys, Esc closes ", explain::GLOSSARY_TITLE);
+    let block = th.block(th.text(&title).into_owned(), false);
+    let inner = block.inner(popup);
+    f.render_widget(block, popup);
+    let max_scroll = (lines.len() as u16).saturating_sub(inner.height);
+    f.render_widget(Paragraph::new(lines).scroll((scroll.min(max_scroll), 0)), inner);
+}
+
 /// A list popup (presets, saved designs, exports): the rows around the highlighted one, then
 /// the highlighted row's detail. Rows that cannot be chosen are drawn in the error style.
-fn list_popup(f: &mut Frame, list: &ListView, area: Rect) {
+fn list_popup(f: &mut Frame, list: &ListView, theme: &Palette, area: Rect) {
     let n = list.items.len();
     let popup = centered(area, 76, (n.max(1) as u16).saturating_add(7));
     f.render_widget(Clear, popup);
-    let block = Block::bordered().title(list.title.clone());
+    let block = theme.block(theme.text(&list.title).into_owned(), false);
     let inner = block.inner(popup);
     f.render_widget(block, popup);
     if n == 0 {
-        f.render_widget(Paragraph::new(list.empty.clone()).wrap(ratatui::widgets::Wrap { trim: true }), inner);
+        let empty = theme.text(&list.empty).into_owned();
+        f.render_widget(Paragraph::new(empty).wrap(ratatui::widgets::Wrap { trim: true }), inner);
         return;
     }
     let sel = list.selected.min(n - 1);
@@ -485,11 +738,12 @@ fn list_popup(f: &mut Frame, list: &ListView, area: Rect) {
             if i == sel {
                 style = style.add_modifier(Modifier::REVERSED);
             }
-            Line::from(Span::styled(format!("{} {}", if i == sel { ">" } else { " " }, item.label), style))
+            let label = theme.text(&item.label).into_owned();
+            Line::from(Span::styled(format!("{} {label}", if i == sel { ">" } else { " " }), style))
         })
         .collect();
     lines.push(Line::from(""));
-    lines.push(Line::from(list.items[sel].detail.clone()));
+    lines.push(Line::from(theme.text(&list.items[sel].detail).into_owned()));
     f.render_widget(Paragraph::new(lines).wrap(ratatui::widgets::Wrap { trim: false }), inner);
 }
 
@@ -551,7 +805,7 @@ pub fn list_view(app: &App) -> Option<ListView> {
             EXPORTS
                 .iter()
                 .map(|(k, label)| ListItem {
-                    label: label.to_string(),
+                    label: format!("{label}  [{}]", k.default_file_name()),
                     detail: format!("{} in {}", k.default_file_name(), app.export_dir_name()),
                     problem: false,
                 })

@@ -314,6 +314,21 @@ pub fn free_response(p: &DamperParams, t_s: f64) -> f64 {
     osc.advance(0.0, p.v0_m_s, t_s).0
 }
 
+/// The cycle maxima `X_k` (s, m) of [`free_response`] over `[0, duration]`, by the rule of
+/// [`Run::maxima`] (the largest positive maximum between upward zero crossings): the envelope of
+/// the same structure without the damper, to set beside the damped run's (Eq 27).
+pub fn free_maxima(p: &DamperParams) -> Vec<Maximum> {
+    let osc = flight::Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    let mut rec = record::Recorder::new(0, p.duration_s);
+    osc.for_each_event(0.0, p.v0_m_s, p.duration_s, |kind, t| match kind {
+        flight::FlightEvent::MaxX => rec.local_max(t, osc.advance(0.0, p.v0_m_s, t).0),
+        flight::FlightEvent::UpCross => rec.up_cross(),
+        flight::FlightEvent::ZeroAccel => {}
+    });
+    rec.up_cross();
+    rec.maxima
+}
+
 /// One isolated contact between ball `m` and main mass `M`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SingleContact {
@@ -440,5 +455,28 @@ mod tests {
         let full = simulate(&DamperParams::table2(), Solver::Event, &RunOptions::default()).unwrap();
         assert_eq!(full.truncated, None);
         assert!(!serde_json::to_string(&full).unwrap().contains("truncated"));
+    }
+}
+
+#[cfg(test)]
+mod free_tests {
+    use super::*;
+
+    #[test]
+    fn free_maxima_are_the_peaks_of_the_free_response_and_decay_as_exp_minus_gamma_t() {
+        let p = DamperParams::table2();
+        let maxima = free_maxima(&p);
+        // ω0 = √(K/M) ≈ 31.6 rad/s: about 10 cycles in 2 s.
+        assert!((9..=11).contains(&maxima.len()), "{}", maxima.len());
+        let gamma = p.damping_n_s_m / (2.0 * p.main_mass_kg);
+        for m in &maxima {
+            let x = free_response(&p, m.t_s);
+            assert!((x - m.x_m).abs() < 1e-15 && x > 0.0);
+            assert!(free_response(&p, m.t_s - 1e-5) < x && free_response(&p, m.t_s + 1e-5) < x, "{m:?}");
+        }
+        for w in maxima.windows(2) {
+            let ratio = w[1].x_m / w[0].x_m;
+            assert!((ratio - (-gamma * (w[1].t_s - w[0].t_s)).exp()).abs() < 1e-12, "{ratio}");
+        }
     }
 }

@@ -1,0 +1,136 @@
+//! What the numbers mean, said where they appear: the status-line hint of each parameter
+//! (what it is, its equation, its unit and range from the one range table) and the glossary
+//! of the help's second page (zones, e and e_fit, U0max, SPLmax, τ, R, K_HZ, c1, the sources).
+
+use super::fields::Param;
+use crate::design::{Design, ZoneBy};
+use crate::limits;
+
+/// What a parameter is, with the paper's equation where it has one.
+pub fn what(p: Param) -> &'static str {
+    match p {
+        Param::Mass => "the ball (impact mass) rattling in the enclosure",
+        Param::Gap => "total clearance of the ball in its enclosure (d/2 each side)",
+        Param::R => "distance of the listener from the contact point",
+        Param::Theta => "listener angle from the plate's normal (0 = along the normal)",
+        Param::V0 => "initial speed of the main mass, the blow that starts the ring-down (Eq 25)",
+        Param::MainMass => "the structure being damped (Eq 25)",
+        Param::K => "stiffness of the structure's spring (Eq 25)",
+        Param::C => "viscous damping of the structure (Eq 25)",
+        Param::C1 => "contact damping in the Hertz contact force (Eq 26)",
+        Param::KHz => "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)",
+        Param::Materials => "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed",
+        Param::Source => "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)",
+        Param::QuadSigns => "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)",
+        Param::Pulse => "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse",
+        Param::Clamp => "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)",
+        Param::Solver => "event-driven (exact flight) or the paper's Newmark-β at a fixed step",
+        Param::Duration => "simulated time of the ring-down",
+        Param::LStar => "zone threshold on SPLmax: below L* is quiet",
+        Param::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
+    }
+}
+
+/// The status-line hint of parameter `p`: "c1 — contact damping in the Hertz contact force
+/// (Eq 26), N·s/m, 0–1e+06". The range is the one table's ([`crate::limits`]), in the unit
+/// the field shows; θ's is the current source's open side.
+pub fn field_hint(p: Param, d: &Design) -> String {
+    match (p.display_unit(), p.display_range(d)) {
+        (Some((unit, _)), Some((lo, hi))) => {
+            format!("{} — {}, {unit}, {}–{}", p.label(), what(p), limits::short(lo), limits::short(hi))
+        }
+        _ => format!("{} — {}; ←→ changes it", p.label(), what(p)),
+    }
+}
+
+/// The title of the help's second page.
+pub const GLOSSARY_TITLE: &str = "What the numbers mean";
+
+/// The glossary: (term, explanation) pairs, explanations to be wrapped. `zone_by` is the rule
+/// the current thresholds use, so the page says which inclination decides the zone.
+pub fn glossary(zone_by: ZoneBy) -> Vec<(&'static str, String)> {
+    let decides = match zone_by {
+        ZoneBy::Paper => "Here e decides the zone (the paper's rule), so e_fit may pass e* while the zone says weak.",
+        ZoneBy::Fit => "Here e_fit decides the zone (thresholds zone_by = \"fit\"), not the paper's e.",
+    };
+    vec![
+        (
+            "zones",
+            "Each design has two numbers: SPLmax (how loud its loudest click is) and e (how fast it damps). \
+             L* and e* split them into four zones: 1 noisy, weak (SPLmax ≥ L*, e < e*); 2 noisy, strong \
+             (SPLmax ≥ L*, e ≥ e*); 3 quiet, strong (SPLmax < L*, e ≥ e*) — the target; 4 quiet, weak \
+             (SPLmax < L*, e < e*). The chart shows each cell's zone; its marker [n] is the live design's own."
+                .into(),
+        ),
+        (
+            "e",
+            "Damping inclination, Eq 27: e = (X1 − X2)/(t2 − t1), the drop between the first two positive \
+             peaks X_k of the main mass's swing over their time apart, in cm/s. The rattle is chaotic: when an \
+             impact lands near a peak, X2 can exceed X1 and e is negative (marked (!) in the readout) — that \
+             first cycle grew; read the envelope and e_fit."
+                .into(),
+        ),
+        (
+            "e_fit",
+            format!(
+                "Minus the least-squares slope of all the peaks while X_k ≥ X1/2: steadier than e. {decides}"
+            ),
+        ),
+        ("U0max", "The largest impact speed of the run (m/s): the ball against the main mass's wall.".into()),
+        (
+            "SPLmax",
+            "The SPL of an impact at U0max at the listener (r, θ): 10·log10(mean p² / p_ref²) over one contact \
+             duration τ from the arrival of the direct wave, p_ref = 20 µPa (the level of the paper's Table 1)."
+                .into(),
+        ),
+        ("τ", "Contact duration of that impact (µs): τ = 2.943·α_max/U0 for the Hertz contact (Eqs 5–7).".into()),
+        (
+            "R",
+            "Restitution u_out/u_in of one impact (R mean: over the run). c1 sets it; heavier balls rebound more (Fig 13)."
+                .into(),
+        ),
+        ("K_HZ", "Hertz stiffness (N/m^1.5): the contact force is K_HZ·δ^1.5 + c1·δ' for a penetration δ (Eqs 1, 26).".into()),
+        ("c1", "Contact damping (N·s/m): the viscous part of the contact force; it is what makes R < 1.".into()),
+        (
+            "sources",
+            "single: a ball in free air. dipole: a ball on a plate, heard with its mirror image (Eq 20) — loud \
+             along the normal, quiet along the plate. quadrupole: a ball in a wall–floor corner, three images \
+             (Eq 22), θ only 0–90°."
+                .into(),
+        ),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_c1_hint_says_what_unit_and_range() {
+        let h = field_hint(Param::C1, &Design::default());
+        assert!(h.starts_with("c1 — contact damping"), "{h}");
+        assert!(h.contains("(Eq 26)") && h.contains("N·s/m") && h.contains(&limits::short(limits::C1.max)), "{h}");
+    }
+
+    #[test]
+    fn the_mass_hint_is_in_grams_and_theta_follows_the_source() {
+        let d = Design::default();
+        let h = field_hint(Param::Mass, &d);
+        assert!(h.contains(", g, 0.1–"), "{h}");
+        assert!(field_hint(Param::Theta, &d).contains("deg, 0–90"));
+        let mut dip = d.clone();
+        dip.radiation.source = crate::acoustics::Source::Dipole;
+        assert!(field_hint(Param::Theta, &dip).contains("deg, -90–90"));
+        assert!(field_hint(Param::Source, &d).contains("quadrupole"));
+    }
+
+    #[test]
+    fn the_glossary_says_which_inclination_decides() {
+        let g = glossary(ZoneBy::Paper);
+        for term in ["zones", "e", "e_fit", "U0max", "SPLmax", "τ", "R", "K_HZ", "c1", "sources"] {
+            assert!(g.iter().any(|(t, _)| *t == term), "{term}");
+        }
+        assert!(g.iter().any(|(_, x)| x.contains("e decides the zone")));
+        assert!(glossary(ZoneBy::Fit).iter().any(|(_, x)| x.contains("e_fit decides")));
+    }
+}

@@ -1,0 +1,305 @@
+//! The guided tour: a few steps that tell the paper's story on screen with the real
+//! computations. Each step sets the parameters (a preset, then fields typed as in the
+//! explorer), says which panel it talks about and shows a caption of at most three lines.
+//!
+//! The steps live in TOML (`assets/tour.toml`, compiled in; `thud tui --tour FILE` reads a
+//! lecturer's own). Every step is checked when the tour is loaded — its preset, each field and
+//! value (with the field's range), its panel, the caption's length — so a bad file is refused
+//! before the explorer starts, with one line naming the step and the problem.
+//!
+//! ```toml
+//! title = "The impact damper"
+//! [[step]]
+//! title = "One impact, one M"
+//! preset = "paper-fig2"        # optional: else the previous step's design (the first: default)
+//! set = { theta = "30deg" }    # optional: fields as typed in the explorer (plain = unit shown)
+//! pulse = "single"             # optional: "single" (one impact on a plate) or "loudest"
+//! panel = "waveform"           # params, readout, waveform, polar, history or chart
+//! best = false                 # optional: jump to the best zone-3 design once the chart is in
+//! caption = "Two to three lines of text."
+//! ```
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use super::app::{Panel, PulseView};
+use super::fields::Param;
+use crate::design::Design;
+use crate::{fsio, presets};
+
+/// The built-in tour.
+pub const BUILT_IN: &str = include_str!("../../assets/tour.toml");
+
+/// Columns a caption is wrapped to when it is checked (the caption box at 80 columns).
+pub const CAPTION_WIDTH: usize = 76;
+/// Lines a caption may take at [`CAPTION_WIDTH`].
+pub const CAPTION_LINES: usize = 3;
+/// Most steps in a tour.
+const MAX_STEPS: usize = 30;
+
+/// Where a tour comes from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum TourSource {
+    BuiltIn,
+    File(PathBuf),
+}
+
+/// Why a tour cannot be used: the file and the problem, for one line.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("tour {file}: {message}")]
+pub struct TourError {
+    pub file: String,
+    pub message: String,
+}
+
+/// One step, checked: the design it shows and what it says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    pub title: String,
+    pub caption: String,
+    pub panel: Panel,
+    pub pulse: PulseView,
+    pub best: bool,
+    /// The preset named by the step (or the one before it): the explorer's preset name.
+    pub preset: String,
+    pub design: Design,
+    /// True if the step sets L* or e* itself (else the user's configured thresholds apply).
+    pub sets_thresholds: bool,
+}
+
+/// A checked tour.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tour {
+    pub title: String,
+    pub steps: Vec<Step>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TourFile {
+    title: String,
+    #[serde(rename = "step")]
+    steps: Vec<StepFile>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepFile {
+    title: String,
+    caption: String,
+    panel: String,
+    preset: Option<String>,
+    pulse: Option<String>,
+    #[serde(default)]
+    best: bool,
+    #[serde(default)]
+    set: BTreeMap<String, toml::Value>,
+}
+
+/// `text` wrapped greedily at spaces into lines of at most `width` columns (a longer word
+/// gets a line of its own).
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// The panel a step names.
+fn panel(name: &str) -> Option<Panel> {
+    Some(match name {
+        "params" | "parameters" => Panel::Params,
+        "readout" => Panel::Readout,
+        "waveform" | "pulse" => Panel::Waveform,
+        "polar" | "directivity" => Panel::Polar,
+        "history" => Panel::History,
+        "chart" => Panel::Chart,
+        _ => return None,
+    })
+}
+
+impl Tour {
+    /// The tour of `source` (the built-in one, or a file read through the bounded reader).
+    pub fn load(source: &TourSource) -> Result<Tour, TourError> {
+        match source {
+            TourSource::BuiltIn => Tour::parse("assets/tour.toml", BUILT_IN),
+            TourSource::File(path) => {
+                let text = fsio::read_to_string(path, fsio::MAX_READ_BYTES)
+                    .map_err(|e| TourError { file: path.display().to_string(), message: e.reason() })?;
+                Tour::parse(&path.display().to_string(), &text)
+            }
+        }
+    }
+
+    /// Parses and checks a tour's TOML text; `file` names it in errors.
+    pub fn parse(file: &str, text: &str) -> Result<Tour, TourError> {
+        let err = |message: String| TourError { file: file.to_string(), message };
+        let parsed: TourFile = toml::from_str(text).map_err(|e| {
+            let at = e.span().map(|s| line_col(text, s.start)).map_or(String::new(), |(l, c)| format!("{l}:{c}: "));
+            err(format!("{at}{}", e.message().trim()))
+        })?;
+        if parsed.steps.is_empty() || parsed.steps.len() > MAX_STEPS {
+            return Err(err(format!("{} steps; a tour has 1 to {MAX_STEPS}", parsed.steps.len())));
+        }
+        let mut steps = Vec::new();
+        let (mut design, mut preset) = (Design::default(), "default".to_string());
+        for (i, s) in parsed.steps.into_iter().enumerate() {
+            let at = |m: String| err(format!("step {} ({}): {m}", i + 1, s.title));
+            if let Some(p) = &s.preset {
+                design = presets::preset(p).map_err(|e| at(e.to_string()))?;
+                preset = p.trim().to_ascii_lowercase();
+            }
+            design = apply_sets(&design, &s.set).map_err(at)?;
+            let panel = panel(&s.panel).ok_or_else(|| {
+                at(format!("panel '{}'; one of params, readout, waveform, polar, history, chart", s.panel))
+            })?;
+            let pulse = match s.pulse.as_deref() {
+                None | Some("loudest") => PulseView::Loudest,
+                Some("single") => PulseView::Single,
+                Some(other) => return Err(at(format!("pulse '{other}'; single or loudest"))),
+            };
+            let caption = s.caption.split_whitespace().collect::<Vec<_>>().join(" ");
+            let lines = wrap(&caption, CAPTION_WIDTH).len();
+            if lines == 0 || lines > CAPTION_LINES {
+                return Err(at(format!(
+                    "the caption takes {lines} lines at {CAPTION_WIDTH} columns; keep it to 1–{CAPTION_LINES}"
+                )));
+            }
+            if s.title.trim().is_empty() || s.title.chars().count() > 60 {
+                return Err(at("a step title has 1 to 60 characters".into()));
+            }
+            let sets_thresholds = s.set.keys().any(|k| matches!(k.as_str(), "L*" | "e*" | "l-star" | "e-star"));
+            steps.push(Step {
+                title: s.title.trim().to_string(),
+                caption,
+                panel,
+                pulse,
+                best: s.best,
+                preset: preset.clone(),
+                design: design.clone(),
+                sets_thresholds,
+            });
+        }
+        Ok(Tour { title: parsed.title, steps })
+    }
+}
+
+/// The field a step's `set` key names (its name in messages, e.g. `mass`, `theta`, `L*`).
+fn field(key: &str) -> Option<Param> {
+    let key = match key {
+        "l-star" => "L*",
+        "e-star" => "e*",
+        k => k,
+    };
+    Param::ALL.into_iter().find(|p| p.param() == key)
+}
+
+/// `d` with the step's fields set, choices (like the source) first so that a value checked
+/// against them (θ against the source's open side) sees the new choice.
+fn apply_sets(d: &Design, sets: &BTreeMap<String, toml::Value>) -> Result<Design, String> {
+    let mut fields = Vec::new();
+    for (key, value) in sets {
+        let p = field(key).ok_or_else(|| {
+            let names: Vec<&str> = Param::ALL.iter().map(|p| p.param()).collect();
+            format!("unknown field '{key}'; one of: {}", names.join(", "))
+        })?;
+        let text = match value {
+            toml::Value::String(s) => s.clone(),
+            toml::Value::Integer(n) => n.to_string(),
+            toml::Value::Float(x) => x.to_string(),
+            toml::Value::Boolean(b) => if *b { "on" } else { "off" }.to_string(),
+            other => return Err(format!("field '{key}': {other} is not a value (write it as text, e.g. \"45g\")")),
+        };
+        fields.push((p, text));
+    }
+    fields.sort_by_key(|(p, _)| (p.kind().is_some(), Param::ALL.iter().position(|q| q == p)));
+    let mut d = d.clone();
+    for (p, text) in fields {
+        d = p.parsed(&d, &text).map_err(|e| e.to_string())?;
+    }
+    Ok(d)
+}
+
+/// 1-based line and column of byte `at` in `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let before = &text[..at.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// The file name of a tour source, for messages.
+pub fn source_name(source: &TourSource) -> String {
+    match source {
+        TourSource::BuiltIn => "the built-in tour".into(),
+        TourSource::File(p) => Path::new(p).display().to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_tour_loads_with_six_to_eight_steps_of_three_lines_at_most() {
+        let t = Tour::load(&TourSource::BuiltIn).unwrap();
+        assert!((6..=8).contains(&t.steps.len()), "{}", t.steps.len());
+        for s in &t.steps {
+            let n = wrap(&s.caption, CAPTION_WIDTH).len();
+            assert!((2..=3).contains(&n), "{}: {n} lines", s.title);
+        }
+        assert_eq!(t.steps[0].pulse, PulseView::Single, "it opens on one impact");
+        assert!(t.steps.iter().any(|s| s.panel == Panel::Chart && s.best), "it ends by finding a zone-3 design");
+    }
+
+    #[test]
+    fn bad_tours_name_the_step_and_the_problem() {
+        let ok = "title = \"t\"\n[[step]]\ntitle = \"a\"\npanel = \"polar\"\ncaption = \"one line\"\n";
+        assert!(Tour::parse("x.toml", ok).is_ok());
+        for (text, want) in [
+            (ok.replace("polar", "sideways"), "step 1 (a): panel 'sideways'"),
+            (ok.replace("caption = \"one line\"", "caption = \"one line\"\nset = { mas = 3 }"), "unknown field 'mas'"),
+            (ok.replace("caption = \"one line\"", "caption = \"one line\"\nset = { mass = \"1e9\" }"), "invalid mass"),
+            (ok.replace("caption = \"one line\"", "caption = \"one line\"\npreset = \"nope\""), "unknown preset"),
+            (ok.replace("one line", &"word ".repeat(80)), "keep it to 1–3"),
+            (ok.replace("title = \"t\"\n", ""), "x.toml: "),
+            ("title = \"t\"\nstep = []\n".to_string(), "0 steps"),
+            (ok.replace("panel", "pannel"), "1:"),
+        ] {
+            let e = Tour::parse("x.toml", &text).unwrap_err().to_string();
+            assert!(e.starts_with("tour x.toml: ") && e.contains(want), "{want}: {e}");
+            assert!(!e.contains('\n'), "one line: {e}");
+        }
+    }
+
+    #[test]
+    fn a_step_sets_the_source_before_the_angle_it_allows() {
+        let text = "title = \"t\"\n[[step]]\ntitle = \"a\"\npanel = \"polar\"\ncaption = \"c\"\n\
+                    set = { theta = \"-60\", source = \"dipole\", mass = 45 }\n";
+        let t = Tour::parse("x.toml", text).unwrap();
+        let d = &t.steps[0].design;
+        assert_eq!(d.radiation.source, crate::acoustics::Source::Dipole);
+        assert!((d.observer.theta_rad.to_degrees() + 60.0).abs() < 1e-9);
+        assert!((d.damper.impact_mass_kg - 0.045).abs() < 1e-12, "a plain 45 is 45 g, as the field shows");
+    }
+
+    #[test]
+    fn wrap_keeps_lines_within_the_width() {
+        let lines = wrap("aa bb cc dd ee", 5);
+        assert_eq!(lines, vec!["aa bb", "cc dd", "ee"]);
+        assert!(wrap("", 10).is_empty());
+    }
+}
