@@ -1,5 +1,7 @@
 //! Benchmarks of the explorer: one full frame at 200×60, a mass change until the readout and
-//! waveform are updated (through the real worker threads), and the default chart filling.
+//! waveform are updated (through the real worker threads), and the default chart filling; and
+//! the same two as the user sees them at 200×60: a mass step until its frame is redrawn, and
+//! the chart filling with a frame drawn after every batch of results, as the event loop does.
 
 use std::sync::mpsc::{self, Receiver};
 use std::time::{Duration, Instant};
@@ -105,5 +107,75 @@ fn chart_fill(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, frame, mass_change, chart_fill);
+/// Feeds worker results to the app, drawing a 200×60 frame after each batch (as the event loop
+/// does), until `done` holds.
+fn pump_drawing(
+    app: &mut App,
+    term: &mut Terminal<TestBackend>,
+    worker: &Worker,
+    rx: &Receiver<Msg>,
+    done: impl Fn(&App) -> bool,
+) {
+    while !done(app) {
+        let first = rx.recv_timeout(Duration::from_secs(30)).expect("worker answers");
+        let mut next = Some(first);
+        while let Some(msg) = next {
+            for r in app.update(msg) {
+                worker.submit(r);
+            }
+            next = rx.try_recv().ok();
+        }
+        draw(term, app).unwrap();
+    }
+}
+
+fn at_200x60(c: &mut Criterion) {
+    let mut g = c.benchmark_group("tui at 200x60 (worker, uncached, frames drawn)");
+    g.sample_size(10).measurement_time(Duration::from_secs(20));
+    let (tx, rx) = mpsc::channel();
+    let worker = Worker::start(move |d| {
+        let _ = tx.send(Msg::Work(d));
+    });
+    let mut term = Terminal::new(TestBackend::new(200, 60)).unwrap();
+    let mut app = App::new(Design::default(), "default", Palette::default());
+    for r in app.initial_requests() {
+        worker.submit(r);
+    }
+    pump_drawing(&mut app, &mut term, &worker, &rx, |a| !a.busy());
+    let mut step = 0u32;
+    g.bench_function("mass step -> readout, pulse, polar, history redrawn", |b| {
+        b.iter(|| {
+            step += 1;
+            let m = 0.0405 + 1e-6 * f64::from(step);
+            let gap = app.design.damper.gap_m;
+            for r in app.select_design(m, gap) {
+                worker.submit(r);
+            }
+            draw(&mut term, &mut app).unwrap();
+            pump_drawing(&mut app, &mut term, &worker, &rx, |a| !a.design_busy());
+        })
+    });
+    g.bench_function("chart fill: 6x5 then 16x12, drawn as it fills", |b| {
+        b.iter_custom(|iters| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iters {
+                step += 1;
+                let mut d = Design::default();
+                d.damper.v0_m_s += 1e-9 * f64::from(step);
+                let mut app = App::new(d, "default", Palette::default());
+                let t0 = Instant::now();
+                for r in app.initial_requests() {
+                    worker.submit(r);
+                }
+                draw(&mut term, &mut app).unwrap();
+                pump_drawing(&mut app, &mut term, &worker, &rx, |a| !a.chart_busy());
+                total += t0.elapsed();
+            }
+            total
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, frame, mass_change, chart_fill, at_200x60);
 criterion_main!(benches);

@@ -255,8 +255,6 @@ pub struct App {
     /// The selected parameter (index into [`Param::ALL`]).
     pub selected: usize,
     pub focus: Panel,
-    /// The plot shown in the compact layout (the last focused plot).
-    pub(crate) plot: Panel,
     pub mode: Mode,
     pub(crate) status: Option<Status>,
     pub(crate) undo: Vec<UndoEntry>,
@@ -321,7 +319,6 @@ impl App {
             preset: preset.to_string(),
             selected: 0,
             focus: Panel::Params,
-            plot: Panel::Chart,
             mode: Mode::Normal,
             status: Some(Status {
                 text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
@@ -418,9 +415,6 @@ impl App {
         }
         self.pulse = step.pulse;
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
-        if self.focus != Panel::Params {
-            self.plot = self.focus;
-        }
         self.mode = Mode::Normal;
         let mut reqs = self.apply(d, Scope::All, String::new());
         self.preset = step.preset.clone();

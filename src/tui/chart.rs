@@ -160,14 +160,21 @@ fn glyph(z: Option<Zone>) -> String {
     z.map_or("-".into(), |z| z.number().to_string())
 }
 
-/// The legend's entries (text, zone for its colour).
-fn legend_items(theme: &Palette) -> Vec<(String, Option<Zone>)> {
+/// True while some cell is not computed on the fine grid yet (the legend then explains `·`).
+pub fn pending(cells: &[CellView]) -> bool {
+    cells.iter().any(|c| !matches!(c, CellView::Exact(_)))
+}
+
+/// The legend's entries (text, zone for its colour); "pending" only while cells are.
+fn legend_items(theme: &Palette, pending: bool) -> Vec<(String, Option<Zone>)> {
     let mut v: Vec<(String, Option<Zone>)> = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak]
         .iter()
         .map(|z| (format!("{} {}", z.number(), z.describe().replace(", ", ",")), Some(*z)))
         .collect();
     v.push(("- no impact".into(), None));
-    v.push((format!("{} pending", theme.sym("·", ".")), None));
+    if pending {
+        v.push((format!("{} pending", theme.sym("·", ".")), None));
+    }
     v
 }
 
@@ -220,9 +227,9 @@ pub enum LegendPlace {
 
 /// Lays out the zone grid, its axes, legend and the design's line in the panel's inner area;
 /// None if the grid does not fit.
-pub fn layout(inner: Rect, masses: &[f64], gaps: &[f64], theme: &Palette) -> Option<ChartLayout> {
+pub fn layout(inner: Rect, masses: &[f64], gaps: &[f64], theme: &Palette, pending: bool) -> Option<ChartLayout> {
     let (nm, ng) = (masses.len(), gaps.len());
-    let items = legend_items(theme);
+    let items = legend_items(theme, pending);
     let legend_w = items.iter().map(|(t, _)| t.chars().count() as u16).max().unwrap_or(0) + 1;
     // Fixed rows: y title, x labels, the design's line.
     let fixed = 3u16;
@@ -338,7 +345,7 @@ impl ZoneGridView<'_> {
     }
 
     fn draw_legend(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
-        let items = legend_items(&self.theme);
+        let items = legend_items(&self.theme, pending(self.cells));
         let style = |z: Option<Zone>| z.map_or(Style::default(), |z| self.theme.zone(z));
         let put = |buf: &mut Buffer, x: u16, y: u16, i: usize| {
             let (text, z) = &items[i];
@@ -437,7 +444,9 @@ impl ZoneGridView<'_> {
         };
         // Beside a legend that reaches this row the line stops at the grid's edge.
         let right = match &l.legend {
-            LegendPlace::Beside(_, y) if l.info_y < y + legend_items(th).len() as u16 => l.grid_right,
+            LegendPlace::Beside(_, y) if l.info_y < y + legend_items(th, pending(self.cells)).len() as u16 => {
+                l.grid_right
+            }
             _ => inner.right(),
         };
         let room = right.saturating_sub(inner.x + 3) as usize;
@@ -457,7 +466,7 @@ impl Widget for ZoneGridView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let inner = self.block.inner(area);
         (&self.block).render(area, buf);
-        let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme) else {
+        let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme, pending(self.cells)) else {
             Paragraph::new("too small for the chart").render(inner, buf);
             return;
         };
@@ -499,7 +508,7 @@ impl Widget for ScatterView<'_> {
         let l_line = [(xb[0], self.l_star_db), (xb[1], self.l_star_db)];
         let e_line = [(self.e_star_cm_s, yb[0]), (self.e_star_cm_s, yb[1])];
         let colors = [Color::Red, Color::Yellow, Color::Green, Color::Blue];
-        let names = ["1", "2", "3", "4"];
+
         let line = th.pinned();
         let mut series = vec![
             Curve::line("L*", &l_line, line, th.mark('─', '-')),
@@ -507,12 +516,8 @@ impl Widget for ScatterView<'_> {
         ];
         for (i, pts) in by_zone.iter().enumerate() {
             let digit = char::from(b'1' + i as u8);
-            series.push(Curve::points(
-                names[i],
-                pts,
-                th.fg(colors[i]).add_modifier(Modifier::BOLD),
-                th.mark(digit, digit),
-            ));
+            // Each point is its zone's digit: no legend entry needed.
+            series.push(Curve::points("", pts, th.fg(colors[i]).add_modifier(Modifier::BOLD), th.mark(digit, digit)));
         }
         series.push(Curve::points(
             "this design",
@@ -585,8 +590,9 @@ mod tests {
 
     #[test]
     fn the_legend_flows_into_lines_that_fit() {
-        let items = legend_items(&Palette::default());
+        let items = legend_items(&Palette::default(), true);
         assert!(items.iter().any(|(t, _)| t == "- no impact"));
+        assert!(legend_items(&Palette::default(), false).iter().all(|(t, _)| !t.contains("pending")));
         for w in [20usize, 38, 60, 120] {
             let lines = flow(&items, w);
             assert_eq!(lines.iter().map(Vec::len).sum::<usize>(), items.len());

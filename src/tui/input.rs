@@ -108,12 +108,7 @@ impl App {
         match a {
             Action::Quit => self.quit = true,
             Action::Help => self.mode = Mode::Help,
-            Action::FocusNext | Action::FocusPrev => {
-                self.focus = self.focus.cycle(a == Action::FocusNext);
-                if self.focus != Panel::Params {
-                    self.plot = self.focus;
-                }
-            }
+            Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
             Action::Up | Action::Down if self.focus == Panel::Chart => return self.chart_move(0, a == Action::Up),
             Action::Up => {
                 self.selected = (self.selected + Param::ALL.len() - 1) % Param::ALL.len();

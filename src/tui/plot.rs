@@ -124,13 +124,17 @@ impl<'a> Curve<'a> {
     }
 }
 
-/// A sample of a marker for the legend.
-pub fn sample(marker: Marker) -> String {
-    match marker {
-        Marker::Custom(c) => format!("{c}{c}"),
-        Marker::Dot => "••".into(),
-        Marker::Block => "██".into(),
-        _ => "⣀⣀".into(),
+/// A sample of a curve's glyph for the legend: two for a line, one for points.
+pub fn sample(marker: Marker, shape: Shape) -> String {
+    let one = match marker {
+        Marker::Custom(c) => c.to_string(),
+        Marker::Dot => "•".into(),
+        Marker::Block => "█".into(),
+        _ => "⣀".into(),
+    };
+    match shape {
+        Shape::Line => one.repeat(2),
+        Shape::Points => one,
     }
 }
 
@@ -273,7 +277,7 @@ impl Widget for LinePlot<'_> {
                 .series
                 .iter()
                 .filter(|s| !s.name.is_empty())
-                .map(|s| (format!("{} {}", sample(s.marker), self.theme.text(s.name)), s.style))
+                .map(|s| (format!("{} {}", sample(s.marker, s.shape), self.theme.text(s.name)), s.style))
                 .collect();
             draw_legend(buf, inner, &items, self.y_title.chars().count() as u16 + 2);
         }

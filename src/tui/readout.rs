@@ -71,15 +71,17 @@ impl ReadoutView<'_> {
         };
         let mut lines = Vec::new();
         if self.rows.iter().any(|r| r.pinned.is_some()) {
-            for label in ["zone", "e", "SPLmax"] {
-                if let Some(r) = get(label) {
-                    let half = w.saturating_sub(7) / 2;
-                    lines.push(Line::from(vec![
-                        Span::styled(format!("{:<7}", th.text(r.label)), bold),
-                        Span::raw(format!("{:<half$}", th.text(&r.live))),
-                        Span::styled(th.text(r.pinned.as_deref().unwrap_or("")).into_owned(), th.pinned()),
-                    ]));
-                }
+            let shown: Vec<&Row> = ["zone", "e", "SPLmax"].iter().filter_map(|l| get(l)).collect();
+            // The live column as wide as its widest value, so the pinned one never runs into it.
+            let live_w = shown.iter().map(|r| th.text(&r.live).chars().count()).max().unwrap_or(0) + 2;
+            let head = format!("{:<7}{:<live_w$}pinned", "", "live");
+            lines.push(Line::from(Span::styled(head, Style::default().add_modifier(Modifier::UNDERLINED))));
+            for r in shown {
+                lines.push(Line::from(vec![
+                    Span::styled(format!("{:<7}", th.text(r.label)), bold),
+                    Span::raw(format!("{:<live_w$}", th.text(&r.live))),
+                    Span::styled(th.text(r.pinned.as_deref().unwrap_or("")).into_owned(), th.pinned()),
+                ]));
             }
             return lines;
         }

@@ -434,7 +434,7 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
                 theme: app.theme,
             };
             f.render_widget(view, area);
-            chart::layout(inner, &masses_g, &gaps_cm, &app.theme).map(|l| l.geometry)
+            chart::layout(inner, &masses_g, &gaps_cm, &app.theme, chart::pending(&cells)).map(|l| l.geometry)
         }
         ChartView::Scatter => {
             let pts = scatter_points(app);
