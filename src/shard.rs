@@ -48,7 +48,7 @@ pub const FORMAT: &str = "thud-sweep-shard";
 /// The version of the part format this thud writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
 /// The largest part file `thud merge` reads (1 GiB): a part of the largest chart the run caps
-/// allow (1e5 runs) is about 40 MB.
+/// allow (1e5 runs) is about 25–35 MB.
 pub const MAX_PART_BYTES: u64 = 1 << 30;
 
 /// What a chart is of: everything that decides its numbers and its printout. Its hash names it.
@@ -509,14 +509,14 @@ impl Merged {
         chart
     }
 
-    /// The chart of ensembles, each cell's summary recomputed from its runs by the engine.
+    /// The chart of ensembles, each cell's summary recomputed from its runs by the engine (the
+    /// runs move into it: a merged chart is held in memory once).
     #[must_use]
-    pub fn ensemble_chart(&self) -> EnsembleChart {
+    pub fn into_ensemble_chart(self) -> EnsembleChart {
         let t = self.thresholds();
-        let mut chart =
-            EnsembleChart::empty(self.study.masses_kg.clone(), self.study.gaps_m.clone(), self.study.ensemble, t);
-        for c in &self.cells {
-            let ensemble = Ensemble::from_members(c.runs.clone(), &t);
+        let mut chart = EnsembleChart::empty(self.study.masses_kg, self.study.gaps_m, self.study.ensemble, t);
+        for c in self.cells {
+            let ensemble = Ensemble::from_members(c.runs, &t);
             chart.cells[c.index] = Some(EnsembleCell { mass_kg: c.mass_kg, gap_m: c.gap_m, ensemble });
         }
         chart
@@ -643,7 +643,7 @@ mod tests {
                 for n in [1, 4, 6] {
                     let m = read(&parts(&s, n, format)).unwrap();
                     assert_eq!(m.study, s);
-                    assert_eq!(m.ensemble_chart(), whole, "{ens} runs, {n} parts, {format:?}");
+                    assert_eq!(m.clone().into_ensemble_chart(), whole, "{ens} runs, {n} parts, {format:?}");
                     assert_eq!(m.all_csv, format == Format::Csv);
                 }
             }

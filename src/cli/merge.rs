@@ -47,7 +47,7 @@ pub fn run(a: &MergeArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let target = Target::new(Some(a.out.as_path()), a.force)?;
     let parts = a.parts.iter().map(|p| read_part(p)).collect::<Result<Vec<_>, _>>()?;
     let merged = shard::merge(parts).map_err(|e| refused(&e))?;
-    let s = &merged.study;
+    let s = merged.study.clone();
     let runs = limits::merged_runs(s.cells(), s.ensemble);
     ctx.enforce(
         runs,
@@ -61,7 +61,7 @@ pub fn run(a: &MergeArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         f => f,
     };
     let charted =
-        if s.ensemble == 1 { Charted::Plain(merged.chart()) } else { Charted::Ensemble(merged.ensemble_chart()) };
+        if s.ensemble == 1 { Charted::Plain(merged.chart()) } else { Charted::Ensemble(merged.into_ensemble_chart()) };
     let text = render(ctx, &s.design, &charted, s.band_cm_s, &short(s.band_cm_s), format)?;
     target.write(&text, out)
 }

@@ -491,8 +491,8 @@ pub const RUN_SECONDS: Cap = Cap {
 /// Runs held in one merged chart (`thud merge`): cells × ensemble runs over all the parts.
 pub const MERGED_RUNS: Cap = Cap {
     what: "merged runs (cells × ensemble)",
-    max: 2e6,
-    basis: "≈ 0.3 kB in memory and 0.5 kB of JSON a run: 2e6 runs is about 1 GB written",
+    max: 1e6,
+    basis: "1e5 cells × 10 runs merged to 495 MB of JSON in 7.4 s with 730 MB peak memory (2e6 took 1.7 GB)",
 };
 
 /// Every cap, in the order `thud` lists them.
