@@ -82,12 +82,14 @@ pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
 
 pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
+    // Checked even when unused (only --csv writes the history), so a bad value is never ignored.
+    let typed_samples = count("samples", &a.samples, &limits::SAMPLES)?;
+    let samples = if a.output.csv { typed_samples } else { 0 };
+    let show = count("show", &a.show, &limits::SHOW)?;
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
     if runs > 1 {
         return run_ensemble(a, ctx, out, &d, runs);
     }
-    let samples = if a.output.csv { count("samples", &a.samples, &limits::SAMPLES)? } else { 0 };
-    let show = count("show", &a.show, &limits::SHOW)?;
     a.design.check_run(ctx, &d, samples, "--samples")?;
     let long = limits::design_run(&d, samples)[0].value > 4e7;
     let spinner = budget::spinner("simulating", long);
