@@ -237,6 +237,7 @@ fn count_flags_give_one_line_not_clap_s_three() {
         (vec!["pulse", "--points", "-5"], "--points"),
         (vec!["simulate", "--csv", "--samples", "-1"], "--samples"),
         (vec!["simulate", "--csv", "--samples", "2.5"], "--samples"),
+        (vec!["simulate", "--samples", "-1"], "--samples"),
         (vec!["simulate", "--show", "x"], "--show"),
         (vec!["simulate", "--show", "1e308"], "--show"),
         (vec!["export", "csv", "waveform", "--points", "lots", "--out", "x.csv"], "--points"),

@@ -288,6 +288,39 @@ impl DesignArgs {
     }
 }
 
+impl DesignArgs {
+    /// Refuses `cells` cells of `d` with `runs` ensemble runs each (a chart, a chart's part, or
+    /// one design with `cells` = 1) whose work is over a cap (see [`limits::ensemble_work`]):
+    /// the runs (named by `flag` typed as `value`), the simulated run-seconds, and the Newmark
+    /// steps and main-mass cycles summed over the runs.
+    pub(crate) fn check_runs(
+        &self,
+        ctx: &Ctx,
+        d: &Design,
+        cells: usize,
+        runs: usize,
+        flag: &str,
+        value: &str,
+    ) -> Result<(), CliError> {
+        let [n, seconds, steps, cycles] = limits::ensemble_work(d, cells, runs);
+        let hint = if cells > 1 {
+            format!("use fewer runs ({cells} cells × {runs}; at most {} runs), e.g. more shards", short(n.cap.max))
+        } else {
+            format!("use at most {} runs", short(n.cap.max))
+        };
+        ctx.enforce(n, flag, value, &hint)?;
+        let per = format!(" with {} runs", short(n.value));
+        ctx.enforce(
+            seconds,
+            "--duration",
+            &Self::shown(&self.duration, d.damper.duration_s, "s"),
+            &format!("use --duration ≤ {} s{per} or fewer runs", short(seconds.cap.max / n.value)),
+        )?;
+        self.check_newmark(ctx, d, steps, &per)?;
+        self.check_cycles(ctx, d, cycles, &per)
+    }
+}
+
 /// Parses a range "FROM:TO:N" of quantities of `kind` (e.g. "30g:100g:20") for flag `--{name}`;
 /// both ends are checked against `range`, N against [`limits::GRID_N`].
 pub fn parse_range(name: &str, text: &str, kind: Kind, range: &Range) -> Result<Vec<f64>, ThudError> {

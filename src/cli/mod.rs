@@ -6,6 +6,7 @@ pub mod design_args;
 mod errors;
 mod export;
 mod format;
+mod merge;
 mod output;
 mod paper;
 mod presets;
@@ -50,6 +51,8 @@ pub enum Command {
     Simulate(Box<simulate::SimulateArgs>),
     /// Sweep a design over impact mass × gap: the design chart and Table 5.
     Sweep(Box<sweep::SweepArgs>),
+    /// Join the parts written by `thud sweep --shard K/N` into the whole chart.
+    Merge(Box<merge::MergeArgs>),
     /// Restitution against impact mass (Fig 13), and the c1 that gives a wanted restitution.
     Restitution(Box<restitution::RestitutionArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
@@ -236,6 +239,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Pulse(a)) => pulse::run(&a, &ctx, &mut out),
         Some(Command::Simulate(a)) => simulate::run(&a, &ctx, &mut out),
         Some(Command::Sweep(a)) => sweep::run(&a, &ctx, &mut out),
+        Some(Command::Merge(a)) => merge::run(&a, &ctx, &mut out),
         Some(Command::Restitution(a)) => restitution::run(&a, &ctx, &mut out),
         Some(Command::Paper(a)) => paper::run(&a, &mut out),
         Some(Command::Export(a)) => export::run(&a, &ctx),

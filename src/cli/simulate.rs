@@ -9,6 +9,7 @@ use super::format::num;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::damper::{free_response, Maximum, Run, Solver};
 use crate::design::{self, Design, Evaluation};
+use crate::ensemble::{self, Ensemble, Member, Percentiles, Spread};
 use crate::error::ThudError;
 use crate::limits::{self, short};
 
@@ -22,6 +23,10 @@ pub struct SimulateArgs {
     /// Impacts listed in the text summary.
     #[arg(long, value_name = "N", default_value = "12", allow_hyphen_values = true)]
     show: String,
+    /// Runs from ball offsets spread evenly over the clearance (y0 = −d/2 + (k + ½)·d/N, at
+    /// rest): each metric as median [p10–p90], with every run (1: the single trajectory).
+    #[arg(long, value_name = "N", default_value = "1", allow_hyphen_values = true)]
+    ensemble: String,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -77,8 +82,14 @@ pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
 
 pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
-    let samples = if a.output.csv { count("samples", &a.samples, &limits::SAMPLES)? } else { 0 };
+    // Checked even when unused (only --csv writes the history), so a bad value is never ignored.
+    let typed_samples = count("samples", &a.samples, &limits::SAMPLES)?;
+    let samples = if a.output.csv { typed_samples } else { 0 };
     let show = count("show", &a.show, &limits::SHOW)?;
+    let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
+    if runs > 1 {
+        return run_ensemble(a, ctx, out, &d, runs);
+    }
     a.design.check_run(ctx, &d, samples, "--samples")?;
     let long = limits::design_run(&d, samples)[0].value > 4e7;
     let spinner = budget::spinner("simulating", long);
@@ -143,6 +154,125 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+#[derive(Serialize)]
+struct SimulateEnsembleJson<'a> {
+    design: &'a Design,
+    ball_radius_m: f64,
+    runs: usize,
+    /// The zone of the medians (number 1–4).
+    zone: Option<u8>,
+    zone3_probability: f64,
+    agreement: f64,
+    spread: &'a Spread,
+    ensemble: &'a [Member],
+    /// Whether any run stopped before its duration (a solver work cap).
+    truncated: bool,
+    truncation_reason: Option<String>,
+}
+
+/// `thud simulate --ensemble N` (N > 1): the design from N ball offsets.
+fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &Design, runs: usize) -> Result<(), CliError> {
+    a.design.check_run(ctx, d, 0, "--samples")?;
+    a.design.check_runs(ctx, d, 1, runs, "--ensemble", &a.ensemble)?;
+    let long = limits::ensemble_work(d, 1, runs)[2].value > 4e7;
+    let spinner = budget::spinner("simulating", long);
+    let e = ensemble::evaluate(d, runs, None)?;
+    spinner.finish_and_clear();
+    let e = e.ok_or_else(|| ThudError::invalid("ensemble", "the runs were cancelled"))?;
+    let cut: Vec<&Member> = e.ensemble.iter().filter(|m| m.truncated.is_some()).collect();
+    let truncated = (!cut.is_empty()).then(|| {
+        format!(
+            "{} of {} runs stopped at a solver work cap before {} s (first at y0 = {} m); their results cover only part of the run",
+            cut.len(),
+            runs,
+            short(d.damper.duration_s),
+            short(cut[0].ball_position_m)
+        )
+    });
+    match a.output.format() {
+        OutputFormat::Csv => {
+            if let Some(why) = &truncated {
+                super::warn(&format!("warning: {why}"));
+            }
+            super::output::check_finite(&e.ensemble)?;
+            let csv = crate::export::csv::ensemble_members(&e.ensemble)
+                .map_err(|err| ThudError::invalid("csv", format!("cannot write: {err}")))?;
+            out.text(&csv)?;
+        }
+        OutputFormat::Json => out.json(&SimulateEnsembleJson {
+            design: d,
+            ball_radius_m: d.ball_radius_m(),
+            runs,
+            zone: e.metrics.zone.map(|z| z.number()),
+            zone3_probability: e.zone3_probability,
+            agreement: e.agreement,
+            spread: &e.spread,
+            ensemble: &e.ensemble,
+            truncated: truncated.is_some(),
+            truncation_reason: truncated,
+        })?,
+        OutputFormat::Text => {
+            super::output::check_finite(&e)?;
+            out.text(&ensemble_summary(d, &e, truncated.as_deref()))?;
+        }
+    }
+    Ok(())
+}
+
+/// "0.6100 cm/s [0.5200–0.7000]": the median and [p10–p90] of one metric, with `digits`
+/// decimals; "—" for a percentile among runs without the metric.
+pub(crate) fn spread_text(p: &Percentiles, digits: usize, unit: &str) -> String {
+    format!("{}{unit} [{}–{}]", opt(p.median, digits), opt(p.p10, digits), opt(p.p90, digits))
+}
+
+/// The text summary of an ensemble.
+fn ensemble_summary(d: &Design, e: &Ensemble, truncated: Option<&str>) -> String {
+    let s_ = &e.spread;
+    let mut s = format!("design    {}\n", describe(d));
+    if let Some(why) = truncated {
+        s += &format!("TRUNCATED {why}\n");
+    }
+    let half = 0.5 * d.damper.gap_m;
+    s += &format!(
+        "ensemble  {} runs, the ball at rest from y0 = −d/2 + (k + ½)·d/{} ({} to {} cm); median [p10–p90] by nearest rank\n",
+        e.runs,
+        e.runs,
+        num(-(half - half / e.runs as f64) * 1e2),
+        num((half - half / e.runs as f64) * 1e2),
+    );
+    s += &format!(
+        "damping   e {} (Eq 27), e_fit {}\n",
+        spread_text(&s_.inclination_cm_s, 4, " cm/s"),
+        spread_text(&s_.inclination_fit_cm_s, 4, " cm/s")
+    );
+    s += &format!(
+        "noise     U0max {}, SPLmax {}\n",
+        spread_text(&s_.u0_max_m_s, 4, " m/s"),
+        spread_text(&s_.spl_max_db, 2, " dB")
+    );
+    s += &format!(
+        "zone      {} of the medians; {:.0} % of the runs agree; zone 3 in {:.0} % of the runs\n",
+        e.metrics.zone.map_or("—".into(), |z| format!("{} ({})", z.number(), z.describe())),
+        100.0 * e.agreement,
+        100.0 * e.zone3_probability
+    );
+    s += "runs:\n      k    y0 (cm)  impacts   e (cm/s)  e_fit (cm/s)  U0max (m/s)  SPLmax (dB)  zone\n";
+    for (k, m) in e.ensemble.iter().enumerate() {
+        s += &format!(
+            "  {:>5}  {:>9.4}  {:>7}  {:>9}  {:>12}  {:>11.4}  {:>11}  {:>4}\n",
+            k,
+            m.ball_position_m * 1e2,
+            m.n_impacts,
+            opt(m.inclination_cm_s, 4),
+            opt(m.inclination_fit_cm_s, 4),
+            m.u0_max_m_s,
+            opt(m.spl_max_db, 2),
+            m.zone.map_or("—".into(), |z| z.number().to_string())
+        );
+    }
+    s
 }
 
 fn opt(v: Option<f64>, digits: usize) -> String {

@@ -11,6 +11,7 @@ use serde::{Serialize, Serializer};
 use crate::acoustics::Field;
 use crate::damper::{free_response, DamperParams, Run};
 use crate::design::Chart;
+use crate::ensemble::{EnsembleChart, Percentiles};
 use crate::paper::{Table, Value};
 
 /// A number as CSV writes it: Rust's `Display` (shortest round trip, never an exponent).
@@ -168,6 +169,109 @@ pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
     )
 }
 
+#[derive(Serialize)]
+struct EnsembleSweepRow {
+    /// The sweep's columns, for the medians (written in place: no header is serialized).
+    medians: SweepRow,
+    runs: usize,
+    zone3_probability: Num,
+    agreement: Num,
+    inclination_cm_s_p10: Option<Num>,
+    inclination_cm_s_p90: Option<Num>,
+    inclination_fit_cm_s_p10: Option<Num>,
+    inclination_fit_cm_s_p90: Option<Num>,
+    u0_max_m_s_p10: Option<Num>,
+    u0_max_m_s_p90: Option<Num>,
+    spl_max_db_p10: Option<Num>,
+    spl_max_db_p90: Option<Num>,
+}
+const ENSEMBLE_SWEEP_EXTRA: [&str; 11] = [
+    "runs",
+    "zone3_probability",
+    "agreement",
+    "inclination_cm_s_p10",
+    "inclination_cm_s_p90",
+    "inclination_fit_cm_s_p10",
+    "inclination_fit_cm_s_p90",
+    "u0_max_m_s_p10",
+    "u0_max_m_s_p90",
+    "spl_max_db_p10",
+    "spl_max_db_p90",
+];
+
+/// The design chart of ensembles, one row per computed cell: the sweep's columns for the
+/// cell's medians (its zone that of the medians), then the runs, the zone-3 probability, the
+/// agreement and the p10 and p90 of e, e_fit, U0max and SPLmax.
+pub fn sweep_ensemble(chart: &EnsembleChart) -> Result<String, csv::Error> {
+    let header: Vec<&str> = SWEEP_HEADER.iter().chain(&ENSEMBLE_SWEEP_EXTRA).copied().collect();
+    let ends = |p: &Percentiles| (p.p10.map(Num), p.p90.map(Num));
+    to_csv(
+        &header,
+        chart.cells.iter().flatten().map(|c| {
+            let (e, m) = (&c.ensemble, &c.ensemble.metrics);
+            let s = &e.spread;
+            let (incl_lo, incl_hi) = ends(&s.inclination_cm_s);
+            let (fit_lo, fit_hi) = ends(&s.inclination_fit_cm_s);
+            let (u0_lo, u0_hi) = ends(&s.u0_max_m_s);
+            let (spl_lo, spl_hi) = ends(&s.spl_max_db);
+            EnsembleSweepRow {
+                medians: SweepRow {
+                    mass_kg: Num(c.mass_kg),
+                    gap_m: Num(c.gap_m),
+                    inclination_cm_s: m.inclination_cm_s.map(Num),
+                    inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
+                    u0_max_m_s: Num(m.u0_max_m_s),
+                    zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
+                    spl_max_db: m.spl_max_db.map(Num),
+                    n_impacts: m.n_impacts,
+                    zone: m.zone.map(|z| z.number()),
+                },
+                runs: e.runs,
+                zone3_probability: Num(e.zone3_probability),
+                agreement: Num(e.agreement),
+                inclination_cm_s_p10: incl_lo,
+                inclination_cm_s_p90: incl_hi,
+                inclination_fit_cm_s_p10: fit_lo,
+                inclination_fit_cm_s_p90: fit_hi,
+                u0_max_m_s_p10: u0_lo,
+                u0_max_m_s_p90: u0_hi,
+                spl_max_db_p10: spl_lo,
+                spl_max_db_p90: spl_hi,
+            }
+        }),
+    )
+}
+
+#[derive(Serialize)]
+struct MemberRow {
+    ball_position_m: Num,
+    n_impacts: usize,
+    inclination_cm_s: Option<Num>,
+    inclination_fit_cm_s: Option<Num>,
+    u0_max_m_s: Num,
+    spl_max_db: Option<Num>,
+    zone: Option<u8>,
+}
+const MEMBERS_HEADER: [&str; 7] =
+    ["ball_position_m", "n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "spl_max_db", "zone"];
+
+/// The runs of one design's ensemble, one row each: the ball's initial offset and the run's
+/// metrics.
+pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, csv::Error> {
+    to_csv(
+        &MEMBERS_HEADER,
+        members.iter().map(|r| MemberRow {
+            ball_position_m: Num(r.ball_position_m),
+            n_impacts: r.n_impacts,
+            inclination_cm_s: r.inclination_cm_s.map(Num),
+            inclination_fit_cm_s: r.inclination_fit_cm_s.map(Num),
+            u0_max_m_s: Num(r.u0_max_m_s),
+            spl_max_db: r.spl_max_db.map(Num),
+            zone: r.zone.map(|z| z.number()),
+        }),
+    )
+}
+
 /// One cell of a table: numbers in full, text as it is (the writer quotes it when needed),
 /// nothing for a missing value.
 fn cell(v: &Value) -> String {
@@ -252,6 +356,37 @@ mod tests {
             zone: None,
         };
         assert_eq!(serde_header(sw), SWEEP_HEADER.join(","));
+        let m = MemberRow {
+            ball_position_m: n,
+            n_impacts: 0,
+            inclination_cm_s: None,
+            inclination_fit_cm_s: None,
+            u0_max_m_s: n,
+            spl_max_db: None,
+            zone: None,
+        };
+        assert_eq!(serde_header(m), MEMBERS_HEADER.join(","));
+    }
+
+    #[test]
+    fn an_ensemble_chart_row_is_the_sweep_row_of_its_medians_then_the_spread() {
+        let mut d = crate::design::Design::default();
+        d.damper.duration_s = 0.2;
+        let chart = crate::ensemble::sweep(&d, &[0.03, 0.05], &[0.03], 3, None, &|_, _| {}).unwrap();
+        let text = sweep_ensemble(&chart).unwrap();
+        let medians = sweep(&chart.medians()).unwrap();
+        let mut r = csv::Reader::from_reader(text.as_bytes());
+        let head: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+        assert_eq!(head.len(), SWEEP_HEADER.len() + ENSEMBLE_SWEEP_EXTRA.len());
+        for (line, want) in text.lines().zip(medians.lines()).skip(1) {
+            assert!(line.starts_with(&format!("{want},3,")), "{line} / {want}");
+        }
+        let rows: Vec<csv::StringRecord> = r.records().map(Result::unwrap).collect();
+        assert_eq!(rows.len(), 2);
+        let c = chart.cell(1, 0).unwrap();
+        let col = |k: &str| head.iter().position(|h| h == k).unwrap();
+        assert_eq!(rows[1][col("zone3_probability")].parse::<f64>().unwrap(), c.ensemble.zone3_probability);
+        assert_eq!(rows[1][col("spl_max_db_p90")].parse::<f64>().ok(), c.ensemble.spread.spl_max_db.p90);
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! A damper design and what it is worth: damping inclination (Eq 27), peak contact speed, peak
 //! SPL, zones (Figs 15–17), the design sweep over mass × gap and Table 5. Pure functions.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
@@ -408,25 +409,40 @@ pub fn sweep(
     cancel: Option<&AtomicBool>,
     on_cell: &(dyn Fn(usize, &Cell) + Sync),
 ) -> Result<Chart, ThudError> {
-    for &m in masses_kg {
-        check_positive("mass", m, "kg")?;
-    }
-    for &g in gaps_m {
-        check_positive("gap", g, "m")?;
-    }
     let n = masses_kg.len() * gaps_m.len();
+    let cells = sweep_cells(base, masses_kg, gaps_m, 0..n, cancel, on_cell)?;
+    let mut chart = Chart::empty(masses_kg.to_vec(), gaps_m.to_vec(), base.thresholds);
+    for (i, cell) in cells {
+        chart.cells[i] = Some(cell);
+    }
+    Ok(chart)
+}
+
+/// The cells `range` of the chart [`sweep`] would compute (row-major indices, `g·masses + m`),
+/// as `(index, cell)` in index order: the part of the chart one shard computes. Scheduling,
+/// cancellation, errors and panics as in [`sweep`] (a cancelled run returns the cells it
+/// finished). Indices past the grid are ignored.
+pub fn sweep_cells(
+    base: &Design,
+    masses_kg: &[f64],
+    gaps_m: &[f64],
+    range: Range<usize>,
+    cancel: Option<&AtomicBool>,
+    on_cell: &(dyn Fn(usize, &Cell) + Sync),
+) -> Result<Vec<(usize, Cell)>, ThudError> {
+    check_grid(masses_kg, gaps_m)?;
+    let range = range.start..range.end.min(masses_kg.len() * gaps_m.len());
     // `par_bridge` hands the cells out in index order as threads come free, so the chart fills
     // row by row and a cancelled sweep leaves (about) a prefix.
-    let mut results: Vec<(usize, Result<Cell, ThudError>)> = (0..n)
+    let mut results: Vec<(usize, Result<Cell, ThudError>)> = range
         .par_bridge()
         .filter_map(|i| {
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return None;
             }
-            let (g, m) = (i / masses_kg.len(), i % masses_kg.len());
-            let d = variant(base, masses_kg[m], gaps_m[g]);
-            let cell =
-                evaluate(&d, 0, cancel).map(|e| Cell { mass_kg: masses_kg[m], gap_m: gaps_m[g], metrics: e.metrics });
+            let (mass_kg, gap_m) = grid_point(masses_kg, gaps_m, i);
+            let d = variant(base, mass_kg, gap_m);
+            let cell = evaluate(&d, 0, cancel).map(|e| Cell { mass_kg, gap_m, metrics: e.metrics });
             if let Ok(c) = &cell {
                 on_cell(i, c);
             }
@@ -434,11 +450,37 @@ pub fn sweep(
         })
         .collect();
     results.sort_unstable_by_key(|&(i, _)| i);
-    let mut chart = Chart::empty(masses_kg.to_vec(), gaps_m.to_vec(), base.thresholds);
-    for (i, cell) in results {
-        chart.cells[i] = Some(cell?);
+    results.into_iter().map(|(i, cell)| Ok((i, cell?))).collect()
+}
+
+/// Checks the axes of a chart: every mass and gap finite and > 0.
+pub(crate) fn check_grid(masses_kg: &[f64], gaps_m: &[f64]) -> Result<(), ThudError> {
+    for &m in masses_kg {
+        check_positive("mass", m, "kg")?;
     }
-    Ok(chart)
+    for &g in gaps_m {
+        check_positive("gap", g, "m")?;
+    }
+    Ok(())
+}
+
+/// The (mass kg, gap m) of the chart cell with row-major index `i` (`g·masses + m`).
+pub(crate) fn grid_point(masses_kg: &[f64], gaps_m: &[f64], i: usize) -> (f64, f64) {
+    (masses_kg[i % masses_kg.len()], gaps_m[i / masses_kg.len()])
+}
+
+/// The cells of part `k` (0-based) of `n` equal parts of a chart of `cells` cells: the
+/// contiguous row-major indices `⌊k·cells/n⌋ .. ⌊(k+1)·cells/n⌋`. The parts cover every cell
+/// once, in order, and differ in size by at most one cell; each is non-empty when
+/// `n ≤ cells`. `k < n` and `n > 0` are the caller's to check (the result is empty otherwise).
+#[must_use]
+pub fn shard_range(cells: usize, k: usize, n: usize) -> Range<usize> {
+    if n == 0 || k >= n {
+        return 0..0;
+    }
+    // u128: k·cells cannot overflow.
+    let at = |j: usize| (j as u128 * cells as u128 / n as u128) as usize;
+    at(k)..at(k + 1)
 }
 
 /// One band of Table 5: the spread of SPLmax among designs with e in [e_lo, e_hi).
@@ -647,6 +689,39 @@ mod tests {
         });
         let payload = caught.expect_err("the panic must propagate out of the sweep");
         assert_eq!(payload.downcast_ref::<&str>(), Some(&"cell 2 failed"));
+    }
+
+    #[test]
+    fn shards_cover_every_cell_once_in_order() {
+        for cells in [1usize, 2, 7, 400, 401] {
+            for n in 1..=cells.min(70) {
+                let parts: Vec<Range<usize>> = (0..n).map(|k| shard_range(cells, k, n)).collect();
+                assert_eq!(parts[0].start, 0);
+                assert_eq!(parts[n - 1].end, cells);
+                for w in parts.windows(2) {
+                    assert_eq!(w[0].end, w[1].start, "{cells} cells, {n} parts: contiguous");
+                }
+                let (lo, hi) = (parts.iter().map(|r| r.len()).min(), parts.iter().map(|r| r.len()).max());
+                assert!(lo.unwrap() >= 1 && hi.unwrap() - lo.unwrap() <= 1, "{cells}/{n}: {lo:?}..{hi:?}");
+            }
+        }
+        assert_eq!(shard_range(10, 3, 3), 0..0, "k ≥ n is no part");
+        assert_eq!(shard_range(10, 0, 0), 0..0);
+    }
+
+    #[test]
+    fn a_sweep_split_into_parts_is_the_whole_sweep() {
+        let mut d = Design::default();
+        d.damper.duration_s = 0.1;
+        let (masses, gaps) = ([0.03, 0.05, 0.07], [0.02, 0.04]);
+        let whole = sweep(&d, &masses, &gaps, None, &|_, _| {}).unwrap();
+        let mut joined = Chart::empty(masses.to_vec(), gaps.to_vec(), d.thresholds);
+        for k in 0..4 {
+            for (i, c) in sweep_cells(&d, &masses, &gaps, shard_range(6, k, 4), None, &|_, _| {}).unwrap() {
+                assert!(joined.cells[i].replace(c).is_none(), "cell {i} twice");
+            }
+        }
+        assert_eq!(joined, whole);
     }
 
     #[test]

@@ -11,6 +11,8 @@
 //! - [`damper`]: the 2-DOF impact damper (Eqs 25–26): exact flight, the event-driven solver and
 //!   the Newmark-β reference.
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
+//! - [`ensemble`]: N runs of a design from evenly spread initial ball offsets, and the
+//!   spread of their metrics (p10 / median / p90, zone-3 probability).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
 //! - [`units`]: parsing and formatting of quantities with units.
@@ -19,6 +21,7 @@ pub mod acoustics;
 pub mod contact;
 pub mod damper;
 pub mod design;
+pub mod ensemble;
 pub mod error;
 pub mod limits;
 pub mod paper;

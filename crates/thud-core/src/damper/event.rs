@@ -96,7 +96,7 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
     let t_end = p.duration_s;
     let hg = sys.half_gap;
     let mut rec = Recorder::new(opts.history_samples, t_end);
-    let (mut t, mut x, mut v, mut y, mut w) = (0.0, 0.0, p.v0_m_s, 0.0, 0.0);
+    let (mut t, mut x, mut v, mut y, mut w) = (0.0, 0.0, p.v0_m_s, p.ball_position_m, 0.0);
     rec.zdot(w - v);
     let osc_energy = |x: f64, v: f64| 0.5 * sys.big_m * v * v + 0.5 * sys.k * x * x;
     let mut energy = EnergyLedger { initial_j: osc_energy(x, v), ..Default::default() };

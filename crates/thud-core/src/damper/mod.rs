@@ -8,7 +8,9 @@
 //! - Contact (Eq 26) when the penetration `δ = |z| − d/2 > 0`: force on the ball
 //!   `−sign(z)·(K_HZ·δ^{3/2} + c1·δ')` with `δ' = sign(z)·z'`, equal and opposite on `M`;
 //!   with `no_tension` the bracket is clamped at ≥ 0. The contact ends when `δ` returns to 0.
-//! - Initial state: `x(0) = 0`, `x'(0) = v0`, `y(0) = 0`, `y'(0) = 0`.
+//! - Initial state: `x(0) = 0`, `x'(0) = v0`, `y(0) = y0` (the ball's offset from the
+//!   enclosure's centre, [`DamperParams::ball_position_m`]; 0 = centred, the paper's case),
+//!   `y'(0) = 0`.
 //!
 //! Two solvers: [`Solver::Event`] (exact flights, root-found contact instants, an adaptive
 //! Dormand–Prince integrator inside contacts; fast and step-size free) and [`Solver::Newmark`]
@@ -48,6 +50,10 @@ pub struct DamperParams {
     pub v0_m_s: f64,
     /// Simulated time (s).
     pub duration_s: f64,
+    /// Initial offset y0 of the ball from the enclosure's centre (m), at rest; |y0| < d/2.
+    /// 0 (the default) is the paper's centred ball.
+    #[serde(default)]
+    pub ball_position_m: f64,
 }
 
 impl DamperParams {
@@ -65,6 +71,7 @@ impl DamperParams {
             no_tension: false,
             v0_m_s: 2.0,
             duration_s: 2.0,
+            ball_position_m: 0.0,
         }
     }
 
@@ -81,6 +88,16 @@ impl DamperParams {
             return Err(ThudError::invalid("v0", format!("{} m/s; must be a finite number", self.v0_m_s)));
         }
         check_positive("duration", self.duration_s, "s")?;
+        if !(self.ball_position_m.is_finite() && self.ball_position_m.abs() < 0.5 * self.gap_m) {
+            return Err(ThudError::invalid(
+                "ball-position",
+                format!(
+                    "{} m; the ball must start inside the clearance, |y0| < d/2 = {} m",
+                    self.ball_position_m,
+                    0.5 * self.gap_m
+                ),
+            ));
+        }
         Ok(())
     }
 }
@@ -352,6 +369,7 @@ fn isolated_sys(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool) -> con
         no_tension,
         v0_m_s: 0.0,
         duration_s: 1.0,
+        ball_position_m: 0.0,
     };
     contact::Sys::new(&p)
 }
@@ -440,6 +458,41 @@ mod tests {
         assert_eq!(format!("{} {:+}", Wall::Lower, Wall::Upper), "-1 +1");
         assert_eq!(Wall::facing(-0.01).sign(), -1.0);
         assert_eq!(Wall::facing(0.01), Wall::Upper);
+    }
+
+    /// A ball at rest off-centre at y0: the main mass flies free (Eq 25 alone) until it has
+    /// closed the lower gap, x = y0 + d/2. Both solvers' first impact is at that instant of
+    /// the closed form, found here by bisection.
+    #[test]
+    fn an_off_centre_ball_is_first_struck_where_the_free_flight_closes_its_gap() {
+        let p = DamperParams { ball_position_m: 0.005, duration_s: 0.1, ..DamperParams::table2() };
+        let reach = p.ball_position_m + 0.5 * p.gap_m;
+        let (mut lo, mut hi) = (0.0, 0.25 * 2.0 * std::f64::consts::PI / (p.stiffness_n_m / p.main_mass_kg).sqrt());
+        assert!(free_response(&p, hi) > reach, "the swing reaches the ball");
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if free_response(&p, mid) < reach {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        for solver in [Solver::Event, Solver::Newmark { dt_s: 1e-7 }] {
+            let first = simulate(&p, solver, &RunOptions::default()).unwrap().impacts[0];
+            assert_eq!(first.wall, Wall::Lower, "{solver:?}");
+            assert!((first.t_s - lo).abs() < 1e-9, "{solver:?}: {} vs {lo}", first.t_s);
+        }
+        let centred = simulate(&DamperParams { ball_position_m: 0.0, ..p }, Solver::Event, &RunOptions::default());
+        assert!(centred.unwrap().impacts[0].t_s < lo, "a centred ball is struck sooner");
+    }
+
+    #[test]
+    fn the_ball_must_start_inside_the_clearance() {
+        for y0 in [0.02, -0.02, 0.5, f64::NAN] {
+            let p = DamperParams { ball_position_m: y0, ..DamperParams::table2() };
+            assert!(p.validate().unwrap_err().to_string().starts_with("invalid ball-position: "), "{y0}");
+        }
+        assert!(DamperParams { ball_position_m: -0.0199, ..DamperParams::table2() }.validate().is_ok());
     }
 
     #[test]

@@ -276,7 +276,7 @@ pub(crate) fn run(p: &DamperParams, dt: f64, opts: &RunOptions) -> Run {
     let t_end = p.duration_s;
     let mut rec = Recorder::new(opts.history_samples, t_end);
     let zero = Vector2::zeros();
-    let mut st = St { pos: zero, vel: Vector2::new(p.v0_m_s, 0.0), acc: zero };
+    let mut st = St { pos: Vector2::new(0.0, p.ball_position_m), vel: Vector2::new(p.v0_m_s, 0.0), acc: zero };
     flight_accels(&sys, &mut st);
     rec.zdot(st.vel[1] - st.vel[0]);
     let energy =
