@@ -272,12 +272,15 @@ fn write_unnamed(
         // No call links over an existing name: link under a fresh exclusive name, then rename.
         Overwrite::Replace => {
             let prefix = temp_prefix(path);
-            let named = tempfile::Builder::new()
-                .prefix(&prefix)
-                .suffix(".tmp")
-                .make_in(dir, |p| link(p).map_err(io::Error::from))
-                .map_err(io_at(path))?;
-            let (_registration, _) = remove_on_signal(named.path());
+            let (named, _registration) = signals::guarded(|| {
+                let named = tempfile::Builder::new()
+                    .prefix(&prefix)
+                    .suffix(".tmp")
+                    .make_in(dir, |p| link(p).map_err(io::Error::from))?;
+                let (registration, _) = remove_on_signal(named.path());
+                Ok::<_, io::Error>((named, registration))
+            })
+            .map_err(io_at(path))?;
             named.persist(path).map(drop).map_err(|e| io_at(path)(e.error))
         }
     }
@@ -293,13 +296,17 @@ fn write_named(
     before_link: impl FnOnce(&Path) -> io::Result<()>,
 ) -> Result<(), FsError> {
     let prefix = temp_prefix(path);
-    let mut temp = tempfile::Builder::new()
-        .prefix(&prefix)
-        .suffix(".tmp")
-        .permissions(Permissions::from_mode(0o666))
-        .tempfile_in(dir)
-        .map_err(io_at(path))?;
-    let (_registration, _) = remove_on_signal(temp.path());
+    // Created and registered with signals held off, so no signal falls between the two.
+    let (mut temp, _registration) = signals::guarded(|| {
+        let temp = tempfile::Builder::new()
+            .prefix(&prefix)
+            .suffix(".tmp")
+            .permissions(Permissions::from_mode(0o666))
+            .tempfile_in(dir)?;
+        let (registration, _) = remove_on_signal(temp.path());
+        Ok::<_, io::Error>((temp, registration))
+    })
+    .map_err(io_at(path))?;
     fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
     before_link(temp.path()).map_err(io_at(temp.path()))?;
     hold_for_test();

@@ -24,6 +24,9 @@ type Cleanup = Box<dyn Fn() + Send + Sync>;
 /// The live clean-ups, each with the id of its [`Registration`].
 static CLEANUPS: Mutex<Vec<(u64, Cleanup)>> = Mutex::new(Vec::new());
 static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+/// Held while a resource is created and its clean-up registered ([`guarded`]), and by the
+/// signal thread before it runs the clean-ups, so a signal never falls between the two.
+static CRITICAL: Mutex<()> = Mutex::new(());
 
 /// A registered clean-up; dropping it unregisters it (the clean-up is not run).
 #[derive(Debug)]
@@ -46,6 +49,17 @@ pub fn on_signal(cleanup: impl Fn() + Send + Sync + 'static) -> (Registration, i
     let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
     CLEANUPS.lock().unwrap_or_else(PoisonError::into_inner).push((id, Box::new(cleanup)));
     (Registration(id), installed)
+}
+
+/// Runs `f` — create a resource and register its clean-up — with the clean-ups held off: the
+/// handler is installed first, and a signal that arrives meanwhile runs the clean-ups only after
+/// `f` returns, so a temporary file created and registered inside `f` is never left behind.
+pub fn guarded<T>(f: impl FnOnce() -> T) -> T {
+    // Without a handler the default action ends the process at once; `f`'s resource is then
+    // left as it would be without this module, and `on_signal` reports the failure.
+    let _ = install();
+    let _critical = CRITICAL.lock().unwrap_or_else(PoisonError::into_inner);
+    f()
 }
 
 /// Installs the handler and its thread (once).
@@ -71,6 +85,7 @@ fn install() -> io::Result<()> {
 
 /// Runs every registered clean-up, newest first.
 fn run_cleanups() {
+    let _critical = CRITICAL.lock().unwrap_or_else(PoisonError::into_inner);
     let list = CLEANUPS.lock().unwrap_or_else(PoisonError::into_inner);
     for (_, cleanup) in list.iter().rev() {
         cleanup();
