@@ -585,3 +585,34 @@ fn explorer_fields_use_the_same_ranges() {
     big.damper.stiffness_n_m = 1e10;
     assert!(Param::K.stepped(&big, true, false).is_err());
 }
+
+/// The explorer refuses a duration or a Newmark step whose runs exceed the command line's work
+/// caps (the live design or the chart's fine grid), naming the field and the estimate, and
+/// refuses a WAV export over its cap instead of running out of memory.
+#[test]
+fn explorer_refuses_runs_over_the_work_caps() {
+    use thud::design::Design;
+    use thud::tui::fields::Param;
+    let d = Design::default();
+    // 1e6 s is inside the duration's range, but the chart's 192 cells × 1e6 s exceed the
+    // sweep's cell-seconds cap.
+    let e = Param::Duration.parsed(&d, "1e6").unwrap_err().to_string();
+    assert!(e.starts_with("invalid duration: ") && e.contains("exceed the limit"), "{e}");
+    // A Newmark step of 1e-12 s over 2 s is 2e12 steps.
+    let e = Param::Solver.parsed(&d, "1e-12").unwrap_err().to_string();
+    assert!(e.starts_with("invalid dt: ") && e.contains("Newmark steps exceed the limit"), "{e}");
+    // An ordinary duration is fine.
+    assert!(Param::Duration.parsed(&d, "5").is_ok());
+    // A WAV of 1000 s of a 1000-s design is over the 4.8e7-sample cap only past 1000 s; the
+    // chart's cap (192 cells × duration ≤ 2e5 s) already refuses durations past ~1041 s, so
+    // the export check is reached with a design built directly.
+    let dir = tempfile::tempdir().unwrap();
+    let mut long = d.clone();
+    long.damper.duration_s = 2000.0;
+    let mut app = thud::tui::App::new(long, "default", thud::tui::Palette::default());
+    app.export_dir = dir.path().to_path_buf();
+    assert!(app.export(thud::export::Kind::Wav).is_none());
+    let status = app.status().map(|s| s.text.clone()).unwrap_or_default();
+    assert!(status.contains("WAV samples exceed the limit"), "{status}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}

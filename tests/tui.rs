@@ -544,7 +544,7 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     let worker = thud::tui::Worker::start(move |d| {
         let _ = tx.send(d);
     });
-    worker.submit(app.export(thud::export::Kind::Wav));
+    worker.submit(app.export(thud::export::Kind::Wav).unwrap());
     assert!(app.busy(), "the spinner turns while the file is written");
     assert!(render(&mut app, 120, 40).contains("exporting"));
     let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
@@ -558,7 +558,7 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     let file = out.path().join("plain-file");
     std::fs::write(&file, "x").unwrap();
     app.export_dir = file;
-    worker.submit(app.export(thud::export::Kind::CsvImpacts));
+    worker.submit(app.export(thud::export::Kind::CsvImpacts).unwrap());
     let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
     app.update(Msg::Work(done));
     let screen = render(&mut app, 120, 40);

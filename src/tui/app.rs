@@ -742,6 +742,14 @@ impl App {
                 }
                 match result {
                     Ok(sim) => {
+                        if let Some(why) = sim.eval.run.truncated {
+                            self.error(format_args!(
+                                "run cut short: {} at t = {} s of {} s; the numbers cover only that time",
+                                why.describe(),
+                                crate::limits::short(sim.eval.run.final_time_s),
+                                crate::limits::short(self.design.damper.duration_s)
+                            ));
+                        }
                         self.sim = Some(sim.clone());
                         self.sim_for = Some(key);
                         return vec![Request::Acoustic(self.design.clone(), sim)];

@@ -215,6 +215,29 @@ impl Param {
 
     /// Checks this field's value in `d` against its range; the refusal names the field and
     /// gives the value and the range in the unit the field is shown in.
+    /// Refuses a design whose runs in the explorer would exceed the work caps the command line
+    /// uses ([`limits::design_run`] for the live design, [`limits::sweep_work`] for the chart's
+    /// fine grid): the same estimate and limit, worded for the status line. This is what keeps a
+    /// duration or a Newmark step typed here from running for hours or out of memory.
+    fn check_work(self, d: &Design) -> Result<(), ThudError> {
+        let cells = crate::tui::compute::Grids::default().fine.len();
+        let over = limits::design_run(d, crate::tui::compute::HISTORY_SAMPLES)
+            .into_iter()
+            .chain(limits::sweep_work(d, cells))
+            .find(limits::Estimate::exceeded);
+        match over {
+            Some(e) => {
+                // The solver field is named by its step, as the command line's --dt.
+                let (name, shown) = match (self, d.solver) {
+                    (Param::Solver, Solver::Newmark { dt_s }) => ("dt", format!("{} s", limits::short(dt_s))),
+                    _ => (self.param(), self.display(d)),
+                };
+                Err(ThudError::invalid(name, format!("{shown}: {}", e.describe())))
+            }
+            None => Ok(()),
+        }
+    }
+
     fn check_range(self, d: &Design) -> Result<(), ThudError> {
         if let (Some(r), Some(v), Some((unit, k))) = (self.range(), self.get(d), self.display_unit()) {
             if !r.contains(v) {
@@ -360,6 +383,7 @@ impl Param {
             _ => self.cycled(d, up),
         };
         self.check_range(&next)?;
+        self.check_work(&next)?;
         next.validate()?;
         next.resolved()?;
         Ok(next)
@@ -417,6 +441,7 @@ impl Param {
             (None, _) => self.parse_choice(d, t)?,
         };
         self.check_range(&next)?;
+        self.check_work(&next)?;
         next.validate()?;
         next.resolved()?;
         Ok(next)

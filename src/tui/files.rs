@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::app::{App, Mode};
 use super::fields::Scope;
 use super::worker::{ExportJob, Request, WorkError};
-use crate::export::{ExportOptions, Kind};
+use crate::export::{wav::WavOptions, ExportOptions, Kind};
 use crate::store::{self, DesignFile};
 use crate::units::sig;
 
@@ -152,7 +152,15 @@ impl App {
 
     /// Asks the worker to write an export of `kind` into the export directory, under its
     /// default name (with -1, -2 … added if that file exists or is being written).
-    pub fn export(&mut self, kind: Kind) -> Request {
+    pub fn export(&mut self, kind: Kind) -> Option<Request> {
+        if kind == Kind::Wav {
+            let e =
+                crate::limits::wav_samples(self.design.damper.duration_s, f64::from(WavOptions::default().sample_rate));
+            if e.exceeded() {
+                self.error(format_args!("cannot export {}: {}; shorten the duration", export_name(kind), e.describe()));
+                return None;
+            }
+        }
         let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
         self.exports.push(path.clone());
         // Sweeps use the chart's grid, so the file shows what the screen does.
@@ -167,7 +175,7 @@ impl App {
             ExportOptions::default()
         };
         self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
-        Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path }))
+        Some(Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path })))
     }
 
     /// An export ended: the file is no longer pending and the status line says how it went.

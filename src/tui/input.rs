@@ -245,6 +245,6 @@ impl App {
     fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
         let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
-        vec![self.export(kind)]
+        self.export(kind).into_iter().collect()
     }
 }
