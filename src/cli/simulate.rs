@@ -10,7 +10,7 @@ use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::damper::{free_response, Maximum, Run, Solver};
 use crate::design::{self, Design, Evaluation};
 use crate::error::ThudError;
-use crate::limits::{self, short};
+use crate::limits;
 
 #[derive(Debug, Clone, Args)]
 pub struct SimulateArgs {
@@ -62,18 +62,10 @@ struct SimulateJson<'a> {
     truncation_reason: Option<String>,
 }
 
-/// Why `run` stopped before the design's duration `duration_s`, if it did (and was not
-/// cancelled): the event solver stops at its work caps (400 000 in-contact steps, 2 000 000
-/// flight iterations) and returns what it has. Detected from the final time; when the engine's
-/// `Run` says so itself, this function should just read that.
+/// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's
+/// [`design::truncation`] (shared with the Python module).
 pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
-    (!run.cancelled && run.final_time_s < duration_s * (1.0 - 1e-12)).then(|| {
-        format!(
-            "the solver's work cap stopped the run at t = {} s of {} s; the results cover only that time",
-            short(run.final_time_s),
-            short(duration_s)
-        )
-    })
+    design::truncation(run, duration_s)
 }
 
 pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {

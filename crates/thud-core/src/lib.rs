@@ -12,6 +12,7 @@
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
+//! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
 //! - [`units`]: parsing and formatting of quantities with units.
 
 pub mod acoustics;
@@ -21,6 +22,7 @@ pub mod design;
 pub mod error;
 pub mod limits;
 pub mod paper;
+pub mod params;
 pub mod units;
 
 pub use error::ThudError;
