@@ -9,7 +9,7 @@
 //! the same SI units; the mapping and the range table are the engine's
 //! ([`thud_core::params`], [`thud_core::limits`]), so a value the command line refuses raises
 //! `thud.ParameterError` (a `ValueError`) with the same one line, the parameter spelled as
-//! typed. The engine runs without the GIL ([`detach`]). Every number handed out is checked
+//! typed. The engine runs without the GIL (see the `detach` module). Every number handed out is checked
 //! finite; a missing value (no impact, so no SPL) is `None`, or NaN inside an array.
 //!
 //! The Python-facing documentation (docstrings, `thud.pyi`) is in the `#[pyo3]` items and the
