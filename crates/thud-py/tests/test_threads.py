@@ -8,6 +8,7 @@
 """
 
 import os
+import signal
 import subprocess
 import threading
 import time
@@ -96,3 +97,30 @@ def test_two_threads_finish_in_less_than_twice_one(cli_env):
         assert py < LIMIT, f"two runs in two threads took {py:.2f}× one run (two processes: {proc:.2f}×)"
     else:
         assert py < LIMIT or py <= 1.15 * proc, f"threads {py:.2f}× vs processes {proc:.2f}×: {text}"
+
+
+def interrupt_after(seconds):
+    """Sends this process SIGINT (Ctrl-C) after `seconds`."""
+    timer = threading.Timer(seconds, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    return timer
+
+
+@pytest.mark.parametrize("call", ["simulate", "sweep"])
+def test_ctrl_c_stops_a_long_run(call):
+    work = {
+        # About 1e9 Newmark steps (tens of seconds of work) …
+        "simulate": lambda: thud.simulate(duration=100, samples=2, no_limit=True, **DESIGN),
+        # … and 400 cells of 50 s each (about a minute).
+        "sweep": lambda: thud.sweep("30g:100g:20", "2cm:5cm:20", duration=50),
+    }[call]
+    t0 = time.perf_counter()
+    timer = interrupt_after(0.3)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            work()
+    finally:
+        timer.cancel()
+    elapsed = time.perf_counter() - t0
+    REPORT.append((f"Ctrl-C stopped {call} after", f"{elapsed:.2f} s"))
+    assert elapsed < 5, f"{call} went on for {elapsed:.1f} s after Ctrl-C"
