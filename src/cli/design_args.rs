@@ -2,12 +2,12 @@
 
 use clap::{Args, ValueEnum};
 
-use super::{quantity, CliError, Ctx, PulseArg, QuadSignsArg, SourceArg};
-use crate::acoustics::Source;
+use super::{CliError, Ctx, PulseArg, QuadSignsArg, SourceArg};
 use crate::damper::Solver;
-use crate::design::{BallSize, Design, Materials};
+use crate::design::Design;
 use crate::error::ThudError;
 use crate::limits::{self, short, Estimate, Range};
+use crate::params::{self, Spelling, Value};
 use crate::presets;
 use crate::units::Kind;
 
@@ -99,86 +99,51 @@ pub struct DesignArgs {
 impl DesignArgs {
     /// The design these flags describe, validated: each flag against its range (the error
     /// names the flag), then the whole design (preset values too) and its derived quantities.
+    /// The mapping from flags to the design is the engine's ([`params::design`]), shared with
+    /// the Python module.
     pub fn design(&self) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
-        let p = &mut d.damper;
-        let set = |target: &mut f64, name: &str, text: &Option<String>, kind: Kind, range: &Range| {
-            if let Some(v) = quantity(name, text, kind, range)? {
-                *target = v;
-            }
-            Ok::<(), ThudError>(())
-        };
-        set(&mut p.impact_mass_kg, "mass", &self.mass, Kind::Mass, &limits::MASS)?;
-        set(&mut p.gap_m, "gap", &self.gap, Kind::Length, &limits::GAP)?;
-        set(&mut p.v0_m_s, "v0", &self.v0, Kind::Speed, &limits::V0)?;
-        set(&mut p.main_mass_kg, "main-mass", &self.main_mass, Kind::Mass, &limits::MAIN_MASS)?;
-        set(&mut p.stiffness_n_m, "k", &self.k, Kind::Stiffness, &limits::STIFFNESS)?;
-        set(&mut p.damping_n_s_m, "c", &self.c, Kind::Damping, &limits::DAMPING)?;
-        set(&mut p.c1_n_s_m, "c1", &self.c1, Kind::Damping, &limits::C1)?;
-        set(&mut p.k_hz, "k-hz", &self.k_hz, Kind::HertzStiffness, &limits::K_HZ)?;
-        set(&mut p.duration_s, "duration", &self.duration, Kind::Time, &limits::DURATION)?;
-        p.no_tension |= self.no_tension;
-        if let Some(s) = &self.sphere {
-            d.materials =
-                Some(Materials { sphere: s.clone(), plate: self.plate.clone().unwrap_or_else(|| "steel".into()) });
-        }
-        let dt = quantity("dt", &self.dt, Kind::Time, &limits::DT)?;
-        d.solver = match (self.solver, dt, d.solver) {
-            (Some(SolverArg::Event), _, _) => Solver::Event,
-            (Some(SolverArg::Newmark), dt, _) => Solver::Newmark { dt_s: dt.unwrap_or(1e-7) },
-            (None, Some(dt), Solver::Newmark { .. }) => Solver::Newmark { dt_s: dt },
-            (None, Some(_), Solver::Event) => {
-                return Err(ThudError::invalid("dt", "only the newmark solver has a time step; add --solver newmark"))
-            }
-            (None, None, s) => s,
-        };
-        if let Some(rho) = quantity("density", &self.density, Kind::Density, &limits::DENSITY)? {
-            d.ball = BallSize::Density(rho);
-        }
-        if let Some(a) = quantity("radius", &self.radius, Kind::Length, &limits::RADIUS)? {
-            d.ball = BallSize::Radius(a);
-        }
-        set(&mut d.observer.r_m, "r", &self.r, Kind::Length, &limits::R)?;
-        if let Some(th) = quantity("theta", &self.theta, Kind::Angle, &limits::THETA)? {
-            d.observer.theta_rad = th.to_radians();
-        }
-        if let Some(s) = self.source {
-            d.radiation.source = Source::from(s);
-        }
-        if let Some(q) = self.quad_signs {
-            d.radiation.quad_signs = q.into();
-        }
-        if let Some(p) = self.pulse {
-            d.radiation.pulse = p.into();
-        }
-        set(&mut d.thresholds.spl_db, "l-star", &self.l_star, Kind::Level, &limits::L_STAR)?;
-        set(&mut d.thresholds.inclination_cm_s, "e-star", &self.e_star, Kind::Inclination, &limits::E_STAR)?;
-        limits::check_design(&d)?;
-        d.validate().map_err(|e| self.blame_ball(e, &d))?;
-        d.resolved()
+        params::design(d, &self.given(), Spelling::Flag)
     }
 
-    /// An observer inside the ball is the ball's fault when the user sized the ball and left
-    /// the observer alone: name the flag they typed, not `r`.
-    fn blame_ball(&self, e: ThudError, d: &Design) -> ThudError {
-        if self.r.is_some() || !e.to_string().starts_with("invalid r: ") {
-            return e;
-        }
-        let typed = [("mass", &self.mass), ("density", &self.density), ("radius", &self.radius)]
+    /// The design flags given, as (name, value) pairs for [`params::design`].
+    fn given(&self) -> Vec<(String, Value)> {
+        let texts = [
+            ("mass", &self.mass),
+            ("gap", &self.gap),
+            ("v0", &self.v0),
+            ("main-mass", &self.main_mass),
+            ("k", &self.k),
+            ("c", &self.c),
+            ("c1", &self.c1),
+            ("k-hz", &self.k_hz),
+            ("sphere", &self.sphere),
+            ("plate", &self.plate),
+            ("duration", &self.duration),
+            ("dt", &self.dt),
+            ("density", &self.density),
+            ("radius", &self.radius),
+            ("r", &self.r),
+            ("theta", &self.theta),
+            ("l-star", &self.l_star),
+            ("e-star", &self.e_star),
+        ];
+        let choices = [
+            ("solver", choice_name(self.solver)),
+            ("source", choice_name(self.source)),
+            ("quad-signs", choice_name(self.quad_signs)),
+            ("pulse", choice_name(self.pulse)),
+        ];
+        let mut given: Vec<(String, Value)> = texts
             .into_iter()
-            .find(|(_, t)| t.is_some());
-        match typed {
-            Some((name, _)) => ThudError::invalid(
-                format!("--{name}"),
-                format!(
-                    "the ball's radius {} m reaches the observer at r {} m; make the ball smaller or move the observer with --r",
-                    short(d.ball_radius_m()),
-                    short(d.observer.r_m)
-                ),
-            ),
-            None => e,
+            .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Value::Text(t.clone()))))
+            .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Value::Text(c)))))
+            .collect();
+        if self.no_tension {
+            given.push(("no-tension".into(), Value::Switch(true)));
         }
+        given
     }
 
     /// The numeric flags the user typed, as `--name value`, for messages about the design as
@@ -322,15 +287,12 @@ impl DesignArgs {
 }
 
 /// Parses a range "FROM:TO:N" of quantities of `kind` (e.g. "30g:100g:20") for flag `--{name}`;
-/// both ends are checked against `range`, N against [`limits::GRID_N`].
+/// both ends are checked against `range`, N against [`limits::GRID_N`] ([`params::parse_range`]).
 pub fn parse_range(name: &str, text: &str, kind: Kind, range: &Range) -> Result<Vec<f64>, ThudError> {
-    let flag = format!("--{name}");
-    let parts: Vec<&str> = text.split(':').collect();
-    let [from, to, n] = parts[..] else {
-        return Err(ThudError::invalid(&flag, format!("'{text}'; expected FROM:TO:N, e.g. 30g:100g:20")));
-    };
-    let from = range.check_as(&flag, crate::units::parse(&flag, from, kind)?)?;
-    let to = range.check_as(&flag, crate::units::parse(&flag, to, kind)?)?;
-    let n = limits::GRID_N.parse_count(&flag, n)?;
-    Ok(crate::design::linspace(from, to, n))
+    params::parse_range(&format!("--{name}"), text, kind, range)
+}
+
+/// The name of a clap value (`half-sine`), as the engine's tables spell it.
+fn choice_name<T: ValueEnum>(v: Option<T>) -> Option<String> {
+    v.and_then(|v| v.to_possible_value()).map(|p| p.get_name().to_string())
 }

@@ -13,6 +13,7 @@ mod presets;
 mod pulse;
 mod restitution;
 mod settings;
+mod shell;
 mod simulate;
 mod sweep;
 mod tui;
@@ -65,6 +66,10 @@ pub enum Command {
     Tui(tui::TuiArgs),
     /// The valid range of every parameter and the work cap of every run.
     Limits(LimitsArgs),
+    /// Print a shell completion script: bash, zsh, fish, powershell (or elvish).
+    Completions(shell::CompletionsArgs),
+    /// Print the man page (roff) of thud, or of one command (`thud man pulse`).
+    Man(shell::ManArgs),
 }
 
 /// Options of `thud limits`.
@@ -245,6 +250,8 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Export(a)) => export::run(&a, &ctx),
         Some(Command::Presets(a)) => presets::run(&a, &mut out),
         Some(Command::Limits(a)) => limits(&a, &mut out),
+        Some(Command::Completions(a)) => shell::completions(&a, &mut out),
+        Some(Command::Man(a)) => shell::man(&a, &mut out),
         Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
         None => return tui_exit(tui::run_default()),
     };

@@ -39,6 +39,12 @@ impl Out {
         Ok(())
     }
 
+    /// Writes text that carries no results (a completion script, a man page) as it is.
+    pub fn raw(&mut self, bytes: &[u8]) -> Result<(), CliError> {
+        self.w.write_all(bytes)?;
+        Ok(())
+    }
+
     /// Writes `v` as pretty JSON and a newline, after checking every number in it is finite.
     pub fn json<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), CliError> {
         check_finite(v)?;

@@ -1,15 +1,15 @@
 //! `thud pulse`: one Hertzian impact heard at one observer.
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 use serde::Serialize;
 
 use super::format::num;
-use super::{count, quantity, CliError, Ctx, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
-use crate::acoustics::{Air, Extremum, Field, Levels, Observer, QuadSigns, Radiation, Source};
-use crate::contact::{self, Contact, Impact, Target};
+use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
+use crate::acoustics::{Extremum, Field, Levels};
+use crate::contact::{Contact, Target};
 use crate::error::ThudError;
 use crate::limits::{self, short};
-use crate::units::Kind;
+use crate::params::{self, PulseInput, Spelling, Value};
 
 /// Defaults are the paper's Fig 2 impact: an acrylic sphere, a 19.05 mm, m 40.5 g, U0 1.4 m/s,
 /// K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at r 0.7 m, θ 45°.
@@ -68,111 +68,34 @@ pub struct PulseArgs {
     output: OutputArgs,
 }
 
-/// Everything a pulse computation needs, in SI units.
-struct PulseInput {
-    radius_m: f64,
-    impact: Impact,
-    observer: Observer,
-    radiation: Radiation,
-}
-
+/// The impact these flags describe: the engine's [`params::pulse`] on the flags given, with the
+/// preset's design (if any) for the defaults.
 fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
-    let base = a.preset.as_deref().map(crate::presets::preset).transpose()?.map(|d| d.resolved()).transpose()?;
-    let sphere = a.sphere.as_deref().map(contact::material).transpose()?;
-    let plate = match (&a.plate, &sphere) {
-        (Some(p), _) => Some(contact::material(p)?),
-        (None, Some(_)) => Some(contact::material("steel")?),
-        (None, None) => None,
-    };
-    let radius = quantity("radius", &a.radius, Kind::Length, &limits::RADIUS)?;
-    let mass = quantity("mass", &a.mass, Kind::Mass, &limits::MASS)?;
-    let (radius_m, mass_kg) = match (radius, mass, sphere) {
-        (Some(r), Some(m), _) => (r, m),
-        (Some(r), None, Some(s)) => {
-            (r, derived(&limits::MASS, contact::sphere_mass(r, s.density_kg_m3), "radius", r, &s)?)
-        }
-        (None, Some(m), Some(s)) => {
-            (derived(&limits::RADIUS, contact::sphere_radius(m, s.density_kg_m3), "mass", m, &s)?, m)
-        }
-        (r, m, _) => (
-            r.or(base.as_ref().map(|d| d.ball_radius_m())).unwrap_or(0.01905),
-            m.or(base.as_ref().map(|d| d.damper.impact_mass_kg)).unwrap_or(0.0405),
-        ),
-    };
-    limits::RADIUS.check_as("--radius", radius_m)?;
-    limits::MASS.check_as("--mass", mass_kg)?;
-    let k_hz = match (quantity("k-hz", &a.k_hz, Kind::HertzStiffness, &limits::K_HZ)?, sphere, plate) {
-        (Some(k), _, _) => k,
-        (None, Some(s), Some(p)) => contact::hertz_stiffness(radius_m, &s, &p),
-        (None, None, Some(p)) => contact::hertz_stiffness(radius_m, &contact::material("acrylic")?, &p),
-        _ => match base.as_ref().map(|d| (&d.materials, d.damper.k_hz)) {
-            Some((Some(m), _)) => {
-                contact::hertz_stiffness(radius_m, &contact::material(&m.sphere)?, &contact::material(&m.plate)?)
-            }
-            Some((None, k)) => k,
-            None => 5.6e8,
-        },
-    };
-    let ball_flag = if a.radius.is_some() || a.mass.is_none() { "--radius" } else { "--mass" };
-    limits::K_HZ.check_as(ball_flag, k_hz)?;
-    let target = match quantity("main-mass", &a.main_mass, Kind::Mass, &limits::MAIN_MASS)? {
-        Some(mm) => Target::MovableMass(mm),
-        None => Target::FixedPlate,
-    };
-    let u0 = quantity("u0", &a.u0, Kind::Speed, &limits::U0)?.or(base.as_ref().map(|d| d.damper.v0_m_s)).unwrap_or(1.4);
-    limits::U0.check_as("--u0", u0)?;
-    let impact = Impact { mass_kg, u0_m_s: u0, k_hz, target };
-    impact.validate()?;
-    let base_air = base.as_ref().map_or(Air::default(), |d| d.radiation.air);
-    let air = Air {
-        rho_c_pa_s_m: quantity("rho-c", &a.rho_c, Kind::Impedance, &limits::RHO_C)?.unwrap_or(base_air.rho_c_pa_s_m),
-        c_m_s: quantity("c", &a.c, Kind::Speed, &limits::C_SOUND)?.unwrap_or(base_air.c_m_s),
-    };
-    let base_observer = base.as_ref().map_or(Observer::new(0.7, 45.0), |d| d.observer);
-    let observer = Observer::new(
-        quantity("r", &a.r, Kind::Length, &limits::R)?.unwrap_or(base_observer.r_m),
-        quantity("theta", &a.theta, Kind::Angle, &limits::THETA)?.unwrap_or(base_observer.theta_rad.to_degrees()),
-    );
-    let source = a.source.map(Into::into).or(base.as_ref().map(|d| d.radiation.source)).unwrap_or(Source::Dipole);
-    let quad_signs =
-        a.quad_signs.map(Into::into).or(base.as_ref().map(|d| d.radiation.quad_signs)).unwrap_or(QuadSigns::Rigid);
-    let pulse = a.pulse.map(Into::into).or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default();
-    Ok(PulseInput { radius_m, impact, observer, radiation: Radiation { source, quad_signs, air, pulse } })
-}
-
-/// An observer inside the ball is the ball's fault when the user sized the ball and left the
-/// observer alone: name the flag they typed, not `r`.
-fn blame_ball(a: &PulseArgs, e: ThudError) -> ThudError {
-    let msg = e.to_string();
-    let Some(rest) = msg.strip_prefix("invalid r: ") else { return e };
-    match [("radius", &a.radius), ("mass", &a.mass)].into_iter().find(|(_, t)| t.is_some()) {
-        Some((name, _)) if a.r.is_none() => {
-            ThudError::invalid(format!("--{name}"), format!("the ball reaches the observer: {rest}"))
-        }
-        _ => e,
-    }
-}
-
-/// A ball size derived from the typed `--{from}` and the sphere's density, checked against
-/// `range`; the error names the flag typed.
-fn derived(range: &limits::Range, value: f64, from: &str, typed: f64, s: &contact::Material) -> Result<f64, ThudError> {
-    if range.contains(value) {
-        return Ok(value);
-    }
-    Err(ThudError::invalid(
-        format!("--{from}"),
-        format!(
-            "{} {} of {} ({} kg/m^3) makes a {} of {} {}; it must be {}",
-            short(typed),
-            if from == "radius" { "m" } else { "kg" },
-            s.name,
-            short(s.density_kg_m3),
-            range.what,
-            short(value),
-            range.unit,
-            range.describe()
-        ),
-    ))
+    let base = a.preset.as_deref().map(crate::presets::preset).transpose()?;
+    let texts = [
+        ("sphere", &a.sphere),
+        ("plate", &a.plate),
+        ("radius", &a.radius),
+        ("mass", &a.mass),
+        ("k-hz", &a.k_hz),
+        ("main-mass", &a.main_mass),
+        ("u0", &a.u0),
+        ("rho-c", &a.rho_c),
+        ("c", &a.c),
+        ("r", &a.r),
+        ("theta", &a.theta),
+    ];
+    let choices = [
+        ("source", a.source.and_then(|v| v.to_possible_value())),
+        ("quad-signs", a.quad_signs.and_then(|v| v.to_possible_value())),
+        ("pulse", a.pulse.and_then(|v| v.to_possible_value())),
+    ];
+    let given: Vec<(String, Value)> = texts
+        .into_iter()
+        .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Value::Text(t.clone()))))
+        .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Value::Text(c.get_name().into())))))
+        .collect();
+    params::pulse(base.as_ref(), &given, Spelling::Flag)
 }
 
 #[derive(Serialize)]
@@ -219,9 +142,8 @@ pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         &format!("use --points ≤ {}", short(limits::WAVEFORM_POINTS.max)),
     )?;
     let input = resolve(a)?;
-    let contact = input.impact.contact();
-    let field =
-        Field::new(input.radius_m, &contact, &input.observer, &input.radiation).map_err(|e| blame_ball(a, e))?;
+    let contact = input.contact();
+    let field = input.field(&contact)?;
     let (t, p) = field.waveform(points);
     match a.output.format() {
         OutputFormat::Csv => {

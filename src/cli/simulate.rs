@@ -67,17 +67,10 @@ struct SimulateJson<'a> {
     truncation_reason: Option<String>,
 }
 
-/// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's own
-/// [`Run::truncated`] (which solver cap was reached) with the time reached.
+/// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's
+/// [`design::truncation`] (shared with the Python module).
 pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
-    run.truncated.map(|why| {
-        format!(
-            "{} at t = {} s of {} s; the results cover only that time",
-            why.describe(),
-            short(run.final_time_s),
-            short(duration_s)
-        )
-    })
+    design::truncation(run, duration_s)
 }
 
 pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {

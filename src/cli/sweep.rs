@@ -58,19 +58,10 @@ struct SweepJson<'a> {
     table5: &'a [Band],
 }
 
-/// The smallest and largest inclination (cm/s) among the cells Table 5 bands: those with both
-/// an inclination (by `zone_by`) and an SPLmax.
+/// The smallest and largest inclination (cm/s) among the cells Table 5 bands: the engine's
+/// [`design::inclination_span`].
 fn inclination_span(chart: &Chart, zone_by: ZoneBy) -> Option<(f64, f64)> {
-    let es: Vec<f64> = chart
-        .cells
-        .iter()
-        .flatten()
-        .filter(|c| c.metrics.spl_max_db.is_some())
-        .filter_map(|c| c.metrics.inclination_by(zone_by))
-        .collect();
-    let lo = es.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = es.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    (!es.is_empty()).then_some((lo, hi))
+    design::inclination_span(chart, zone_by)
 }
 
 pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {

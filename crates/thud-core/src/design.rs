@@ -340,6 +340,19 @@ pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicB
     Ok(Evaluation { run, metrics })
 }
 
+/// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's own
+/// [`Run::truncated`] (which solver cap was reached) with the time reached.
+pub fn truncation(run: &Run, duration_s: f64) -> Option<String> {
+    run.truncated.map(|why| {
+        format!(
+            "{} at t = {} s of {} s; the results cover only that time",
+            why.describe(),
+            crate::limits::short(run.final_time_s),
+            crate::limits::short(duration_s)
+        )
+    })
+}
+
 /// SPL (dB) of every impact of a run, in order.
 pub fn impact_spls(run: &Run, design: &Design) -> Result<Vec<f64>, ThudError> {
     let d = design.resolved()?;
@@ -491,6 +504,21 @@ pub struct Band {
     pub count: usize,
     pub spl_min_db: f64,
     pub spl_max_db: f64,
+}
+
+/// The smallest and largest inclination (cm/s, by `zone_by`) among the cells Table 5 bands:
+/// those with both that inclination and an SPLmax. None when there are none.
+pub fn inclination_span(chart: &Chart, zone_by: ZoneBy) -> Option<(f64, f64)> {
+    let es: Vec<f64> = chart
+        .cells
+        .iter()
+        .flatten()
+        .filter(|c| c.metrics.spl_max_db.is_some())
+        .filter_map(|c| c.metrics.inclination_by(zone_by))
+        .collect();
+    let lo = es.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = es.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (!es.is_empty()).then_some((lo, hi))
 }
 
 /// Table 5: the range of SPLmax per band of the inclination (cm/s) of width `width_cm_s`.

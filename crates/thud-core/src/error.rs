@@ -53,6 +53,28 @@ impl ThudError {
             Self::NoImpact => "u0",
         }
     }
+
+    /// The same error naming the parameter `param` (as a front end spells it: `--mass`,
+    /// `mass`); errors not about a named parameter are returned unchanged.
+    #[must_use]
+    pub fn renamed(self, param: impl Into<String>) -> Self {
+        match self {
+            Self::Invalid { message, .. } => Self::Invalid { param: param.into(), message },
+            Self::NotANumber { text, example, .. } => Self::NotANumber { param: param.into(), text, example },
+            Self::UnknownUnit { unit, text, known, plain_unit, .. } => {
+                Self::UnknownUnit { param: param.into(), unit, text, known, plain_unit }
+            }
+            other => other,
+        }
+    }
+
+    /// What is wrong and what is valid: the message after `invalid {param}: `.
+    #[must_use]
+    pub fn detail(&self) -> String {
+        let full = self.to_string();
+        let prefix = format!("invalid {}: ", self.param());
+        full.strip_prefix(&prefix).map_or_else(|| full.clone(), str::to_string)
+    }
 }
 
 /// `value` must be finite and > 0.

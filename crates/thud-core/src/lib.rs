@@ -15,6 +15,7 @@
 //!   spread of their metrics (p10 / median / p90, zone-3 probability).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
+//! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
 //! - [`units`]: parsing and formatting of quantities with units.
 
 pub mod acoustics;
@@ -25,6 +26,7 @@ pub mod ensemble;
 pub mod error;
 pub mod limits;
 pub mod paper;
+pub mod params;
 pub mod units;
 
 pub use error::ThudError;

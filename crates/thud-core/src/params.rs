@@ -1,0 +1,678 @@
+//! Parameters by name: the one mapping from named inputs — the command line's long flags
+//! (`--main-mass 0.5`) and Python's keywords (`main_mass=0.5`) — to a checked [`Design`] or a
+//! single impact ([`PulseInput`]). Every number is checked against its range in
+//! [`crate::limits`] (the one range table), so every front end accepts and refuses the same
+//! values with the same one-line message.
+//!
+//! A front end hands in `(name, Value)` pairs, names as [`Spelling::key`] spells them: the long
+//! flags without dashes (`main-mass`) from the command line, keywords (`main_mass`) from Python. The tables [`DESIGN`] and [`PULSE`] list the known names; values are parsed
+//! and applied in table order (not the order given), so every front end reports the same first
+//! problem. Messages name the parameter the way the front end's user typed it ([`Spelling`]):
+//! `invalid --main-mass: …` on the command line, `invalid main_mass: …` in Python.
+//!
+//! Adding a parameter to a design is one line in [`DESIGN`]: its name, what it accepts
+//! (a quantity of a [`Kind`] inside a [`Range`], a choice of names, a name or a switch) and
+//! where it goes. The command line then needs its clap field, Python nothing more.
+
+use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
+use crate::contact::{self, Contact, Impact, Material, Target};
+use crate::damper::Solver;
+use crate::design::{BallSize, Design, Materials};
+use crate::error::ThudError;
+use crate::limits::{self, short, Range};
+use crate::units::{self, Kind};
+
+/// A value as a front end received it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    /// A number in the plain unit of the parameter's range (SI; degrees, dB, cm/s where the
+    /// range says so).
+    Num(f64),
+    /// Text as typed: a number with or without a unit (`40.5g`), or a name (`dipole`).
+    Text(String),
+    /// A switch turned on or off (`no-tension`).
+    Switch(bool),
+    /// A value of a type the front end has no engine value for, described for the message
+    /// (`a list`).
+    Other(String),
+}
+
+impl Value {
+    /// What the value is, for a message about a value of the wrong type.
+    fn describe(&self) -> String {
+        match self {
+            Value::Num(_) => "a number".to_string(),
+            Value::Text(t) => format!("'{t}'"),
+            Value::Switch(_) => "a switch (True or False)".to_string(),
+            Value::Other(what) => what.clone(),
+        }
+    }
+}
+
+/// How a front end spells a parameter's name in messages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Spelling {
+    /// The command line's long flag: `--main-mass`.
+    Flag,
+    /// A Python keyword: `main_mass`.
+    Keyword,
+}
+
+impl Spelling {
+    /// How a front end hands in the name `name` of the tables: the command line as in the
+    /// tables (`main-mass`), Python as its keyword (`main_mass`).
+    pub fn key(self, name: &str) -> String {
+        match self {
+            Spelling::Flag => name.to_string(),
+            Spelling::Keyword => self.spell(name),
+        }
+    }
+
+    /// `name` (as in the tables, `main-mass`) as the user typed it.
+    pub fn spell(self, name: &str) -> String {
+        match self {
+            Spelling::Flag => format!("--{name}"),
+            Spelling::Keyword => name.replace('-', "_"),
+        }
+    }
+}
+
+/// What one parameter accepts, and where its value goes in the draft `T`.
+pub enum Accepts<T: 'static> {
+    /// A quantity of `kind` inside `range` (a plain number is in the range's unit).
+    Quantity { kind: Kind, range: &'static Range, set: fn(&mut T, f64) },
+    /// One of `names`; `set` gets the index of the name.
+    Choice { names: &'static [&'static str], set: fn(&mut T, usize) },
+    /// A name the engine checks itself (a material).
+    Name { set: fn(&mut T, &str) },
+    /// On or off.
+    Switch { set: fn(&mut T, bool) },
+}
+
+/// One named parameter.
+pub struct Param<T: 'static> {
+    /// The long flag without dashes (`main-mass`).
+    pub name: &'static str,
+    pub accepts: Accepts<T>,
+}
+
+/// Shorthand for a quantity row of the tables.
+const fn quantity<T>(name: &'static str, kind: Kind, range: &'static Range, set: fn(&mut T, f64)) -> Param<T> {
+    Param { name, accepts: Accepts::Quantity { kind, range, set } }
+}
+
+/// Shorthand for a choice row of the tables.
+const fn choice<T>(name: &'static str, names: &'static [&'static str], set: fn(&mut T, usize)) -> Param<T> {
+    Param { name, accepts: Accepts::Choice { names, set } }
+}
+
+/// The names of the solvers, as on the command line.
+pub const SOLVERS: [&str; 2] = ["event", "newmark"];
+/// The names of the source types, in [`Source::ALL`] order.
+pub const SOURCES: [&str; 3] = ["single", "dipole", "quadrupole"];
+/// The names of the quadrupole wall-image signs.
+pub const QUAD_SIGNS: [&str; 2] = ["paper", "rigid"];
+/// The names of the acceleration pulse shapes.
+pub const PULSES: [&str; 2] = ["half-sine", "hertz"];
+
+fn source(i: usize) -> Source {
+    Source::ALL[i.min(2)]
+}
+
+fn quad_signs(i: usize) -> QuadSigns {
+    if i == 0 {
+        QuadSigns::Paper
+    } else {
+        QuadSigns::Rigid
+    }
+}
+
+fn pulse_shape(i: usize) -> PulseShape {
+    if i == 0 {
+        PulseShape::HalfSine
+    } else {
+        PulseShape::Hertz
+    }
+}
+
+/// A design being built from a base design and named parameters.
+#[derive(Debug, Clone)]
+pub struct DesignDraft {
+    pub design: Design,
+    /// `solver`, as an index into [`SOLVERS`].
+    solver: Option<usize>,
+    dt_s: Option<f64>,
+    sphere: Option<String>,
+    plate: Option<String>,
+}
+
+/// The parameters of a design (`simulate`, `sweep`, `export` and Python's `simulate`/`sweep`),
+/// in the order they are checked.
+pub const DESIGN: &[Param<DesignDraft>] = &[
+    quantity("mass", Kind::Mass, &limits::MASS, |d, v| d.design.damper.impact_mass_kg = v),
+    quantity("gap", Kind::Length, &limits::GAP, |d, v| d.design.damper.gap_m = v),
+    quantity("v0", Kind::Speed, &limits::V0, |d, v| d.design.damper.v0_m_s = v),
+    quantity("main-mass", Kind::Mass, &limits::MAIN_MASS, |d, v| d.design.damper.main_mass_kg = v),
+    quantity("k", Kind::Stiffness, &limits::STIFFNESS, |d, v| d.design.damper.stiffness_n_m = v),
+    quantity("c", Kind::Damping, &limits::DAMPING, |d, v| d.design.damper.damping_n_s_m = v),
+    quantity("c1", Kind::Damping, &limits::C1, |d, v| d.design.damper.c1_n_s_m = v),
+    quantity("k-hz", Kind::HertzStiffness, &limits::K_HZ, |d, v| d.design.damper.k_hz = v),
+    Param { name: "sphere", accepts: Accepts::Name { set: |d, s| d.sphere = Some(s.to_string()) } },
+    Param { name: "plate", accepts: Accepts::Name { set: |d, s| d.plate = Some(s.to_string()) } },
+    Param { name: "no-tension", accepts: Accepts::Switch { set: |d, on| d.design.damper.no_tension = on } },
+    quantity("duration", Kind::Time, &limits::DURATION, |d, v| d.design.damper.duration_s = v),
+    choice("solver", &SOLVERS, |d, i| d.solver = Some(i)),
+    quantity("dt", Kind::Time, &limits::DT, |d, v| d.dt_s = Some(v)),
+    quantity("density", Kind::Density, &limits::DENSITY, |d, v| d.design.ball = BallSize::Density(v)),
+    quantity("radius", Kind::Length, &limits::RADIUS, |d, v| d.design.ball = BallSize::Radius(v)),
+    quantity("r", Kind::Length, &limits::R, |d, v| d.design.observer.r_m = v),
+    quantity("theta", Kind::Angle, &limits::THETA, |d, v| d.design.observer.theta_rad = v.to_radians()),
+    choice("source", &SOURCES, |d, i| d.design.radiation.source = source(i)),
+    choice("quad-signs", &QUAD_SIGNS, |d, i| d.design.radiation.quad_signs = quad_signs(i)),
+    choice("pulse", &PULSES, |d, i| d.design.radiation.pulse = pulse_shape(i)),
+    quantity("l-star", Kind::Level, &limits::L_STAR, |d, v| d.design.thresholds.spl_db = v),
+    quantity("e-star", Kind::Inclination, &limits::E_STAR, |d, v| d.design.thresholds.inclination_cm_s = v),
+];
+
+/// The named parameters a front end received, checked against a table: no unknown name, no
+/// name twice.
+struct Given<'a, T: 'static> {
+    table: &'static [Param<T>],
+    values: Vec<(&'static Param<T>, &'a Value)>,
+    spelling: Spelling,
+}
+
+impl<'a, T> Given<'a, T> {
+    fn new(table: &'static [Param<T>], pairs: &'a [(String, Value)], spelling: Spelling) -> Result<Self, ThudError> {
+        let mut values: Vec<(&'static Param<T>, &'a Value)> = Vec::with_capacity(pairs.len());
+        for (name, value) in pairs {
+            let Some(p) = table.iter().find(|p| spelling.key(p.name) == *name) else {
+                return Err(unknown(table, name, spelling));
+            };
+            if values.iter().any(|(q, _)| q.name == p.name) {
+                return Err(ThudError::invalid(spelling.spell(name), "is given twice"));
+            }
+            values.push((p, value));
+        }
+        // Table order, whatever the order given.
+        values.sort_by_key(|(p, _)| table.iter().position(|q| q.name == p.name));
+        Ok(Given { table, values, spelling })
+    }
+
+    fn has(&self, name: &str) -> bool {
+        self.values.iter().any(|(p, _)| p.name == name)
+    }
+
+    fn spell(&self, name: &str) -> String {
+        self.spelling.spell(name)
+    }
+
+    /// Parses every value and applies it to `draft`, in table order.
+    fn apply(&self, draft: &mut T) -> Result<(), ThudError> {
+        for (p, value) in &self.values {
+            let flag = self.spell(p.name);
+            match (&p.accepts, value) {
+                (Accepts::Quantity { range, set, .. }, Value::Num(v)) => set(draft, range.check_as(&flag, *v)?),
+                (Accepts::Quantity { kind, range, set }, Value::Text(t)) => {
+                    set(draft, range.check_as(&flag, units::parse(&flag, t, *kind)?)?)
+                }
+                (Accepts::Choice { names, set }, Value::Text(t)) => match names.iter().position(|n| n == t) {
+                    Some(i) => set(draft, i),
+                    None => {
+                        return Err(ThudError::invalid(
+                            flag,
+                            format!("unknown value '{t}'; one of: {}", names.join(", ")),
+                        ))
+                    }
+                },
+                (Accepts::Name { set }, Value::Text(t)) => set(draft, t),
+                (Accepts::Switch { set }, Value::Switch(on)) => set(draft, *on),
+                (accepts, v) => {
+                    return Err(ThudError::invalid(
+                        flag,
+                        format!("expected {}, not {}", expected(accepts), v.describe()),
+                    ))
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// An engine error that names a parameter of the table bare (`mass`) named as typed.
+    fn respell(&self, mut e: ThudError) -> ThudError {
+        if self.table.iter().any(|p| p.name == e.param()) {
+            let spelled = self.spell(e.param());
+            e = e.renamed(spelled);
+        }
+        e
+    }
+
+    /// Refuses two parameters given together that contradict each other.
+    fn conflict(&self, a: &str, b: &str, why: &str) -> Result<(), ThudError> {
+        if self.has(a) && self.has(b) {
+            return Err(ThudError::invalid(self.spell(b), format!("cannot be combined with {}: {why}", self.spell(a))));
+        }
+        Ok(())
+    }
+}
+
+/// What a parameter accepts, for a message about a value of the wrong type.
+fn expected<T>(accepts: &Accepts<T>) -> String {
+    match accepts {
+        Accepts::Quantity { kind, .. } => match kind.plain_unit() {
+            "" => "a number".to_string(),
+            unit => format!("a number in {unit} or a text with a unit"),
+        },
+        Accepts::Choice { names, .. } => format!("one of: {}", names.join(", ")),
+        Accepts::Name { .. } => "a name".to_string(),
+        Accepts::Switch { .. } => "on or off (a switch)".to_string(),
+    }
+}
+
+/// "unknown parameter; did you mean …? (one of: …)".
+fn unknown<T>(table: &[Param<T>], name: &str, spelling: Spelling) -> ThudError {
+    let canonical = name.replace('_', "-");
+    let near = table.iter().map(|p| (edit_distance(&canonical, p.name), p.name)).min_by_key(|&(d, _)| d);
+    let all: Vec<String> = table.iter().map(|p| spelling.spell(p.name)).collect();
+    let hint = match near {
+        Some((d, n)) if d <= 2 => format!("did you mean {}? ", spelling.spell(n)),
+        _ => String::new(),
+    };
+    let shown = match spelling {
+        Spelling::Flag => spelling.spell(name),
+        Spelling::Keyword => name.to_string(),
+    };
+    ThudError::invalid(shown, format!("unknown parameter; {hint}(one of: {})", all.join(", ")))
+}
+
+/// Levenshtein distance between two short names (for "did you mean").
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
+
+/// The design `base` with the named parameters `given` applied, checked: each value against its
+/// range (the error names the parameter as `spelling` spells it), then the whole design and its
+/// derived quantities (ball radius, K_HZ from materials, the observer outside the ball). The
+/// result has K_HZ resolved from its materials, if any.
+pub fn design(base: Design, given: &[(String, Value)], spelling: Spelling) -> Result<Design, ThudError> {
+    let given = Given::new(DESIGN, given, spelling)?;
+    given.conflict("density", "radius", "the radius follows from the mass and the density")?;
+    given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
+    if given.has("plate") && !given.has("sphere") {
+        return Err(ThudError::invalid(given.spell("plate"), format!("needs {} as well", given.spell("sphere"))));
+    }
+    let mut draft = DesignDraft { design: base, solver: None, dt_s: None, sphere: None, plate: None };
+    given.apply(&mut draft)?;
+    let DesignDraft { design: mut d, solver, dt_s, sphere, plate } = draft;
+    if let Some(sphere) = sphere {
+        d.materials = Some(Materials { sphere, plate: plate.unwrap_or_else(|| "steel".into()) });
+    }
+    d.solver = match (solver, dt_s, d.solver) {
+        (Some(0), _, _) => Solver::Event,
+        (Some(_), dt, _) => Solver::Newmark { dt_s: dt.unwrap_or(1e-7) },
+        (None, Some(dt), Solver::Newmark { .. }) => Solver::Newmark { dt_s: dt },
+        (None, Some(_), Solver::Event) => {
+            return Err(ThudError::invalid(
+                given.spell("dt"),
+                format!("only the newmark solver has a time step; add {}", solver_hint(spelling)),
+            ))
+        }
+        (None, None, s) => s,
+    };
+    limits::check_design(&d).map_err(|e| given.respell(e))?;
+    d.validate().map_err(|e| blame_ball(&given, e, &d))?;
+    d.resolved().map_err(|e| given.respell(e))
+}
+
+/// How to ask for the Newmark solver, as the front end's user types it.
+fn solver_hint(spelling: Spelling) -> &'static str {
+    match spelling {
+        Spelling::Flag => "--solver newmark",
+        Spelling::Keyword => "solver=\"newmark\"",
+    }
+}
+
+/// An observer inside the ball is the ball's fault when the user sized the ball and left the
+/// observer alone: name the parameter they typed, not `r`.
+fn blame_ball(given: &Given<DesignDraft>, e: ThudError, d: &Design) -> ThudError {
+    if given.has("r") || e.param() != "r" {
+        return given.respell(e);
+    }
+    match ["mass", "density", "radius"].into_iter().find(|n| given.has(n)) {
+        Some(name) => ThudError::invalid(
+            given.spell(name),
+            format!(
+                "the ball's radius {} m reaches the observer at r {} m; make the ball smaller or move the observer with {}",
+                short(d.ball_radius_m()),
+                short(d.observer.r_m),
+                given.spell("r")
+            ),
+        ),
+        None => given.respell(e),
+    }
+}
+
+/// "FROM:TO:N" (e.g. `30g:100g:20`) as N evenly spaced quantities of `kind` ([`crate::design::linspace`]);
+/// both ends are checked against `range`, N against [`limits::GRID_N`]. `param` names the
+/// parameter in errors, as typed (`--masses`).
+pub fn parse_range(param: &str, text: &str, kind: Kind, range: &Range) -> Result<Vec<f64>, ThudError> {
+    let parts: Vec<&str> = text.split(':').collect();
+    let [from, to, n] = parts[..] else {
+        return Err(ThudError::invalid(param, format!("'{text}'; expected FROM:TO:N, e.g. 30g:100g:20")));
+    };
+    let from = range.check_as(param, units::parse(param, from, kind)?)?;
+    let to = range.check_as(param, units::parse(param, to, kind)?)?;
+    let n = limits::GRID_N.parse_count(param, n)?;
+    Ok(crate::design::linspace(from, to, n))
+}
+
+/// A single impact being built from named parameters (`thud pulse`, Python's `pulse`).
+#[derive(Debug, Clone, Default)]
+pub struct PulseDraft {
+    radius_m: Option<f64>,
+    mass_kg: Option<f64>,
+    u0_m_s: Option<f64>,
+    k_hz: Option<f64>,
+    sphere: Option<String>,
+    plate: Option<String>,
+    main_mass_kg: Option<f64>,
+    r_m: Option<f64>,
+    theta_deg: Option<f64>,
+    source: Option<Source>,
+    quad_signs: Option<QuadSigns>,
+    pulse: Option<PulseShape>,
+    rho_c_pa_s_m: Option<f64>,
+    c_m_s: Option<f64>,
+}
+
+/// The parameters of one impact, in the order they are checked.
+pub const PULSE: &[Param<PulseDraft>] = &[
+    Param { name: "sphere", accepts: Accepts::Name { set: |d, s| d.sphere = Some(s.to_string()) } },
+    Param { name: "plate", accepts: Accepts::Name { set: |d, s| d.plate = Some(s.to_string()) } },
+    quantity("radius", Kind::Length, &limits::RADIUS, |d, v| d.radius_m = Some(v)),
+    quantity("mass", Kind::Mass, &limits::MASS, |d, v| d.mass_kg = Some(v)),
+    quantity("k-hz", Kind::HertzStiffness, &limits::K_HZ, |d, v| d.k_hz = Some(v)),
+    quantity("main-mass", Kind::Mass, &limits::MAIN_MASS, |d, v| d.main_mass_kg = Some(v)),
+    quantity("u0", Kind::Speed, &limits::U0, |d, v| d.u0_m_s = Some(v)),
+    quantity("rho-c", Kind::Impedance, &limits::RHO_C, |d, v| d.rho_c_pa_s_m = Some(v)),
+    quantity("c", Kind::Speed, &limits::C_SOUND, |d, v| d.c_m_s = Some(v)),
+    quantity("r", Kind::Length, &limits::R, |d, v| d.r_m = Some(v)),
+    quantity("theta", Kind::Angle, &limits::THETA, |d, v| d.theta_deg = Some(v)),
+    choice("source", &SOURCES, |d, i| d.source = Some(source(i))),
+    choice("quad-signs", &QUAD_SIGNS, |d, i| d.quad_signs = Some(quad_signs(i))),
+    choice("pulse", &PULSES, |d, i| d.pulse = Some(pulse_shape(i))),
+];
+
+/// Everything one impact's sound needs, in SI units, and which parameters were given (to
+/// name the right one when the field cannot be built).
+#[derive(Debug, Clone)]
+pub struct PulseInput {
+    pub radius_m: f64,
+    pub impact: Impact,
+    pub observer: Observer,
+    pub radiation: Radiation,
+    /// (`radius` given, `mass` given, `r` given, spelling) for [`PulseInput::field`]'s errors.
+    typed: (bool, bool, bool, Spelling),
+}
+
+/// One impact from named parameters. Defaults are the paper's Fig 2 impact (an acrylic sphere,
+/// a 19.05 mm, m 40.5 g, U0 1.4 m/s, K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at
+/// r 0.7 m, θ 45°), or taken from `base` (a preset: its ball, K_HZ, observer, source and air,
+/// and U0 = its v0; the target stays a fixed plate).
+pub fn pulse(base: Option<&Design>, given: &[(String, Value)], spelling: Spelling) -> Result<PulseInput, ThudError> {
+    let given = Given::new(PULSE, given, spelling)?;
+    given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
+    given.conflict("plate", "k-hz", "K_HZ follows from the materials")?;
+    let mut a = PulseDraft::default();
+    given.apply(&mut a)?;
+    let base = base.map(Design::resolved).transpose()?;
+    let sphere = a.sphere.as_deref().map(contact::material).transpose().map_err(|e| given.respell(e))?;
+    let plate = match (&a.plate, &sphere) {
+        (Some(p), _) => Some(contact::material(p).map_err(|e| given.respell(e))?),
+        (None, Some(_)) => Some(contact::material("steel")?),
+        (None, None) => None,
+    };
+    let (radius_m, mass_kg) = match (a.radius_m, a.mass_kg, sphere) {
+        (Some(r), Some(m), _) => (r, m),
+        (Some(r), None, Some(s)) => {
+            (r, derived(&given, &limits::MASS, contact::sphere_mass(r, s.density_kg_m3), "radius", r, &s)?)
+        }
+        (None, Some(m), Some(s)) => {
+            (derived(&given, &limits::RADIUS, contact::sphere_radius(m, s.density_kg_m3), "mass", m, &s)?, m)
+        }
+        (r, m, _) => (
+            r.or(base.as_ref().map(Design::ball_radius_m)).unwrap_or(0.01905),
+            m.or(base.as_ref().map(|d| d.damper.impact_mass_kg)).unwrap_or(0.0405),
+        ),
+    };
+    limits::RADIUS.check_as(&given.spell("radius"), radius_m)?;
+    limits::MASS.check_as(&given.spell("mass"), mass_kg)?;
+    let k_hz = match (a.k_hz, sphere, plate) {
+        (Some(k), _, _) => k,
+        (None, Some(s), Some(p)) => contact::hertz_stiffness(radius_m, &s, &p),
+        (None, None, Some(p)) => contact::hertz_stiffness(radius_m, &contact::material("acrylic")?, &p),
+        _ => match base.as_ref().map(|d| (&d.materials, d.damper.k_hz)) {
+            Some((Some(m), _)) => {
+                contact::hertz_stiffness(radius_m, &contact::material(&m.sphere)?, &contact::material(&m.plate)?)
+            }
+            Some((None, k)) => k,
+            None => 5.6e8,
+        },
+    };
+    let ball = if given.has("radius") || !given.has("mass") { "radius" } else { "mass" };
+    limits::K_HZ.check_as(&given.spell(ball), k_hz)?;
+    let target = a.main_mass_kg.map_or(Target::FixedPlate, Target::MovableMass);
+    let u0 = a.u0_m_s.or(base.as_ref().map(|d| d.damper.v0_m_s)).unwrap_or(1.4);
+    limits::U0.check_as(&given.spell("u0"), u0)?;
+    let impact = Impact { mass_kg, u0_m_s: u0, k_hz, target };
+    impact.validate().map_err(|e| given.respell(e))?;
+    let base_air = base.as_ref().map_or(Air::default(), |d| d.radiation.air);
+    let air =
+        Air { rho_c_pa_s_m: a.rho_c_pa_s_m.unwrap_or(base_air.rho_c_pa_s_m), c_m_s: a.c_m_s.unwrap_or(base_air.c_m_s) };
+    let base_observer = base.as_ref().map_or(Observer::new(0.7, 45.0), |d| d.observer);
+    let observer =
+        Observer::new(a.r_m.unwrap_or(base_observer.r_m), a.theta_deg.unwrap_or(base_observer.theta_rad.to_degrees()));
+    let source = a.source.or(base.as_ref().map(|d| d.radiation.source)).unwrap_or(Source::Dipole);
+    let quad_signs = a.quad_signs.or(base.as_ref().map(|d| d.radiation.quad_signs)).unwrap_or(QuadSigns::Rigid);
+    let pulse = a.pulse.or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default();
+    Ok(PulseInput {
+        radius_m,
+        impact,
+        observer,
+        radiation: Radiation { source, quad_signs, air, pulse },
+        typed: (given.has("radius"), given.has("mass"), given.has("r"), spelling),
+    })
+}
+
+/// A ball size derived from the given `from` (radius or mass) and the sphere's density,
+/// checked against `range`; the error names the parameter given.
+fn derived(
+    given: &Given<PulseDraft>,
+    range: &Range,
+    value: f64,
+    from: &str,
+    typed: f64,
+    s: &Material,
+) -> Result<f64, ThudError> {
+    if range.contains(value) {
+        return Ok(value);
+    }
+    Err(ThudError::invalid(
+        given.spell(from),
+        format!(
+            "{} {} of {} ({} kg/m^3) makes a {} of {} {}; it must be {}",
+            short(typed),
+            if from == "radius" { "m" } else { "kg" },
+            s.name,
+            short(s.density_kg_m3),
+            range.what,
+            short(value),
+            range.unit,
+            range.describe()
+        ),
+    ))
+}
+
+impl PulseInput {
+    /// The contact of the impact (Eqs 5–7).
+    pub fn contact(&self) -> Contact {
+        self.impact.contact()
+    }
+
+    /// The sound field of the impact at the observer (Eqs 9–24). An observer inside the ball is
+    /// the ball's fault when the user sized the ball and left the observer alone: the error
+    /// names the parameter they typed, not `r`.
+    pub fn field(&self, contact: &Contact) -> Result<Field, ThudError> {
+        let (radius, mass, r, spelling) = self.typed;
+        Field::new(self.radius_m, contact, &self.observer, &self.radiation).map_err(|e| {
+            let typed = [("radius", radius), ("mass", mass)].into_iter().find(|(_, t)| *t);
+            match typed {
+                Some((name, _)) if e.param() == "r" && !r => {
+                    ThudError::invalid(spelling.spell(name), format!("the ball reaches the observer: {}", e.detail()))
+                }
+                _ if PULSE.iter().any(|p| p.name == e.param()) => {
+                    let spelled = spelling.spell(e.param());
+                    e.renamed(spelled)
+                }
+                _ => e,
+            }
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn text(pairs: &[(&str, &str)]) -> Vec<(String, Value)> {
+        pairs.iter().map(|(n, v)| (n.to_string(), Value::Text(v.to_string()))).collect()
+    }
+
+    fn err(r: Result<Design, ThudError>) -> String {
+        r.unwrap_err().to_string()
+    }
+
+    #[test]
+    fn numbers_and_texts_with_units_give_the_same_design() {
+        let a = design(Design::default(), &text(&[("mass", "0.05"), ("gap", "3cm")]), Spelling::Flag).unwrap();
+        let b = design(
+            Design::default(),
+            &[("gap".into(), Value::Num(0.03)), ("mass".into(), Value::Num(0.05))],
+            Spelling::Keyword,
+        )
+        .unwrap();
+        assert_eq!(a, b);
+        assert_eq!(a.damper.impact_mass_kg, 0.05);
+        assert_eq!(a.damper.gap_m, 0.03);
+    }
+
+    #[test]
+    fn no_parameters_leave_the_base_as_it_is() {
+        assert_eq!(design(Design::paper_fig9(), &[], Spelling::Flag).unwrap(), Design::paper_fig9());
+    }
+
+    #[test]
+    fn errors_name_the_parameter_as_the_front_end_spells_it() {
+        let e = err(design(Design::default(), &text(&[("main-mass", "1e308")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --main-mass: 1e308 kg is out of range; the main mass M must be"), "{e}");
+        let e = err(design(Design::default(), &[("main_mass".into(), Value::Num(1e308))], Spelling::Keyword));
+        assert!(e.starts_with("invalid main_mass: 1e308 kg is out of range; the main mass M must be"), "{e}");
+        let e = err(design(Design::default(), &[("gap".into(), Value::Num(f64::NAN))], Spelling::Keyword));
+        assert!(e.starts_with("invalid gap: NaN is not a finite number"), "{e}");
+        let e = err(design(Design::default(), &[("gap".into(), Value::Num(f64::INFINITY))], Spelling::Keyword));
+        assert!(e.starts_with("invalid gap: inf is not a finite number"), "{e}");
+    }
+
+    #[test]
+    fn unknown_names_and_wrong_kinds_are_refused() {
+        let e = err(design(Design::default(), &[("mas".into(), Value::Num(1.0))], Spelling::Keyword));
+        assert!(e.starts_with("invalid mas: unknown parameter; did you mean mass?"), "{e}");
+        assert!(e.contains("main_mass") && e.contains("e_star"), "{e}");
+        let e = err(design(Design::default(), &[("mass".into(), Value::Switch(true))], Spelling::Keyword));
+        assert_eq!(e, "invalid mass: expected a number in kg or a text with a unit, not a switch (True or False)");
+        let e = err(design(Design::default(), &[("mass".into(), Value::Other("a list".into()))], Spelling::Keyword));
+        assert_eq!(e, "invalid mass: expected a number in kg or a text with a unit, not a list");
+        let e = err(design(Design::default(), &[("main-mass".into(), Value::Num(1.0))], Spelling::Keyword));
+        assert!(e.starts_with("invalid main-mass: unknown parameter; did you mean main_mass?"), "{e}");
+        let e = err(design(Design::default(), &text(&[("source", "monopole")]), Spelling::Keyword));
+        assert_eq!(e, "invalid source: unknown value 'monopole'; one of: single, dipole, quadrupole");
+        let e = err(design(Design::default(), &[("no_tension".into(), Value::Num(1.0))], Spelling::Keyword));
+        assert!(e.starts_with("invalid no_tension: expected on or off"), "{e}");
+    }
+
+    #[test]
+    fn the_first_problem_in_table_order_is_reported_whatever_the_order_given() {
+        let pairs = text(&[("theta", "1e9"), ("mass", "-1")]);
+        assert!(err(design(Design::default(), &pairs, Spelling::Flag)).starts_with("invalid --mass: "));
+    }
+
+    #[test]
+    fn combinations_the_command_line_refuses_in_clap_are_refused_here() {
+        let e = err(design(Design::default(), &text(&[("density", "1000"), ("radius", "1cm")]), Spelling::Keyword));
+        assert!(e.starts_with("invalid radius: cannot be combined with density"), "{e}");
+        let e = err(design(Design::default(), &text(&[("plate", "steel")]), Spelling::Keyword));
+        assert_eq!(e, "invalid plate: needs sphere as well");
+        let e = err(design(Design::default(), &text(&[("dt", "1e-7")]), Spelling::Keyword));
+        assert!(e.contains("add solver=\"newmark\""), "{e}");
+    }
+
+    #[test]
+    fn solver_materials_and_choices_apply() {
+        let d = design(
+            Design::default(),
+            &text(&[("solver", "newmark"), ("dt", "1e-6"), ("sphere", "steel"), ("source", "dipole")]),
+            Spelling::Flag,
+        )
+        .unwrap();
+        assert_eq!(d.solver, Solver::Newmark { dt_s: 1e-6 });
+        assert_eq!(d.materials.as_ref().map(|m| m.plate.as_str()), Some("steel"));
+        assert_eq!(d.radiation.source, Source::Dipole);
+        let steel = contact::material("steel").unwrap();
+        assert_eq!(d.damper.k_hz, contact::hertz_stiffness(d.ball_radius_m(), &steel, &steel));
+    }
+
+    #[test]
+    fn a_ball_that_reaches_the_observer_blames_what_was_typed() {
+        let e = err(design(Design::default(), &text(&[("mass", "100"), ("density", "10")]), Spelling::Keyword));
+        assert!(e.starts_with("invalid mass: the ball's radius"), "{e}");
+        assert!(e.ends_with("move the observer with r"), "{e}");
+    }
+
+    #[test]
+    fn ranges_parse_like_the_command_line() {
+        let m = parse_range("--masses", "30g:100g:3", Kind::Mass, &limits::MASS).unwrap();
+        assert_eq!(m, crate::design::linspace(0.03, 0.1, 3));
+        let e = parse_range("masses", "30g:100g", Kind::Mass, &limits::MASS).unwrap_err().to_string();
+        assert!(e.starts_with("invalid masses: '30g:100g'; expected FROM:TO:N"), "{e}");
+    }
+
+    #[test]
+    fn a_pulse_defaults_to_the_paper_s_fig2_impact() {
+        let p = pulse(None, &[], Spelling::Flag).unwrap();
+        assert_eq!((p.radius_m, p.impact.mass_kg, p.impact.u0_m_s, p.impact.k_hz), (0.01905, 0.0405, 1.4, 5.6e8));
+        assert_eq!(p.radiation.source, Source::Dipole);
+        let e = pulse(None, &[("u0".into(), Value::Num(-1.0))], Spelling::Keyword).unwrap_err().to_string();
+        assert!(e.starts_with("invalid u0: -1 m/s is out of range"), "{e}");
+        let p = pulse(None, &text(&[("r", "1cm")]), Spelling::Keyword).unwrap();
+        let e = p.field(&p.contact()).unwrap_err().to_string();
+        assert!(e.starts_with("invalid r: "), "{e}");
+    }
+
+    #[test]
+    fn edit_distance_counts_edits() {
+        assert_eq!(edit_distance("mas", "mass"), 1);
+        assert_eq!(edit_distance("gap", "gap"), 0);
+        assert_eq!(edit_distance("estar", "e-star"), 1);
+    }
+}

@@ -1,0 +1,284 @@
+"""thud — design single-unit impact dampers from Python, on the engine of the `thud` app.
+
+pulse(**params) -> Pulse, simulate(**params) -> Run, sweep(masses_kg, gaps_m, **params) -> Chart.
+
+Parameters are the command line's long flags as keywords (``--main-mass`` → ``main_mass=``).
+A plain number is in SI units (kg, m, s, m/s, N/m, N·s/m, N/m^1.5, kg/m³, Pa·s/m) except angles
+(degrees), levels (dB) and inclinations (cm/s); a string may carry a unit: "40.5g", "19.05mm",
+"4cm", "250ms", "45deg". ``None`` means "not given". Every value is checked against the same
+range table as the command line (``thud.ranges()``); bad input raises ``ParameterError`` (a
+``ValueError``) with the command line's one-line message, the parameter spelled as typed.
+
+The GIL is released while the engine runs: Python threads run designs in parallel. Results are
+bit-for-bit those of ``thud pulse|simulate|sweep --json`` for the same design.
+"""
+
+from typing import Dict, List, Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+#: A number in the parameter's plain unit, or a string with a unit ("40.5g").
+Quantity = Union[float, str]
+#: A whole number (or its text, "1e4").
+Count = Union[int, str]
+Source = Literal["single", "dipole", "quadrupole"]
+QuadSigns = Literal["paper", "rigid"]
+PulseShape = Literal["half-sine", "hertz"]
+Solver = Literal["event", "newmark"]
+FloatArray = npt.NDArray[np.float64]
+
+class ParameterError(ValueError):
+    """A parameter thud cannot accept: unknown, of the wrong type, NaN/inf, out of its range,
+    or a run whose work is over its cap. ``str(e)`` is one line naming the parameter, e.g.
+    "invalid main_mass: 1e308 kg is out of range; the main mass M must be 0.001 to 1e6 kg"."""
+
+    #: The parameter's name as typed (``main_mass``), or the option (``preset``, ``points``).
+    param: str
+
+class Pulse:
+    """One Hertzian impact heard at one observer: the inputs as used, the contact (Eqs 5–7),
+    the levels (dB re 20 µPa) and the waveform. The fields of ``thud pulse --json``."""
+
+    radius_m: float
+    """Sphere radius a (m)."""
+    mass_kg: float
+    """Sphere mass m (kg)."""
+    u0_m_s: float
+    """Impact speed U0 (m/s)."""
+    k_hz: float
+    """Hertz stiffness K_HZ (N/m^1.5)."""
+    r_m: float
+    """Observer distance r (m)."""
+    theta_deg: float
+    """Observer angle θ from the plate's normal (degrees)."""
+    source: Source
+    quad_signs: QuadSigns
+    pulse: PulseShape
+    rho_c_pa_s_m: float
+    """Air impedance ρ0·c (Pa·s/m)."""
+    c_m_s: float
+    """Speed of sound c (m/s)."""
+    alpha_max_m: float
+    """Peak approach α_max (m)."""
+    accel_max_m_s2: float
+    """Peak acceleration A_max (m/s²)."""
+    tau_s: float
+    """Contact duration τ (s)."""
+    force_max_n: float
+    """Peak contact force (N)."""
+    arrival_s: float
+    """Arrival of the direct wave (s after the contact starts)."""
+    spl_db: float
+    """SPL (dB): rms pressure over one contact duration from the direct arrival."""
+    spl_definition: str
+    spl_peak_db: float
+    """Peak level 20·log10(max|p|/20 µPa) (dB)."""
+    sel_db: float
+    """Sound exposure level (dB)."""
+    p_rms_pa: float
+    """rms pressure over the SPL window (Pa)."""
+    p_max_pa: float
+    """Largest pressure (Pa)."""
+    p_min_pa: float
+    """Smallest pressure (Pa)."""
+    extrema: Dict[str, FloatArray]
+    """Local extrema of the waveform: {"t_s": times (s), "p_pa": pressures (Pa)}."""
+    t_s: FloatArray
+    """Waveform times (s) from the contact's start."""
+    p_pa: FloatArray
+    """Waveform pressure (Pa)."""
+    def as_dict(self) -> Dict[str, object]:
+        """Every field in one dict."""
+
+class Run:
+    """One damper design run through its impacts: the fields of ``thud simulate --json`` and
+    the time history. None = no such value (too few maxima for e, no impact for SPLmax)."""
+
+    design: Dict[str, object]
+    """The design as run (the JSON "design" object; SI units, angles in degrees)."""
+    ball_radius_m: float
+    """Ball radius (m)."""
+    n_impacts: int
+    inclination_cm_s: Optional[float]
+    """Damping inclination e of Eq 27 from the first two cycle maxima (cm/s)."""
+    inclination_fit_cm_s: Optional[float]
+    """Robust least-squares inclination e_fit (cm/s)."""
+    u0_max_m_s: float
+    """U0max: the largest contact speed by the design's rule (m/s)."""
+    zdot_abs_max_m_s: float
+    """Largest |z'| over the run including t = 0 (m/s)."""
+    spl_max_db: Optional[float]
+    """SPLmax: the SPL of an impact at U0max (dB)."""
+    contact_duration_s: Optional[float]
+    """Contact duration at U0max (s)."""
+    restitution_mean: Optional[float]
+    """Mean restitution u_out/u_in."""
+    zone: Optional[int]
+    """Zone 1 noisy & weak, 2 noisy & strong, 3 quiet & strong (the target), 4 quiet & weak."""
+    impacts: Dict[str, np.ndarray]
+    """Every impact, as arrays: t_s (s), wall (±1, int8), u_in_m_s, u_out_m_s (m/s),
+    restitution, t_end_s, duration_s (s), penetration_max_m (m), spl_db (dB)."""
+    maxima: Dict[str, FloatArray]
+    """Cycle maxima of the main mass: t_s (s), x_m (m)."""
+    energy: Dict[str, float]
+    """Energy ledger (J): initial_j, final_mechanical_j, dissipated_viscous_j, dissipated_contact_j."""
+    final_time_s: float
+    """Time reached (s)."""
+    truncated: bool
+    """Whether the solver's work cap stopped the run before its duration."""
+    truncation_reason: Optional[str]
+    history: Dict[str, FloatArray]
+    """Uniform time history: t_s (s), x_m (main mass, m), y_m (ball, m), x_free_m (no damper, m)."""
+    def as_dict(self) -> Dict[str, object]:
+        """Every field in one dict."""
+
+class Chart:
+    """The design chart of a sweep. Every metric is a 2-D array of shape
+    (len(gaps_m), len(masses_kg)): row = gap, column = mass. NaN = no such value (no impact,
+    so no SPLmax; too few maxima for e); zone 0 = no zone. The cells of ``thud sweep --json``."""
+
+    design: Dict[str, object]
+    masses_kg: FloatArray
+    """Impact masses, the columns (kg)."""
+    gaps_m: FloatArray
+    """Gaps, the rows (m)."""
+    n_impacts: npt.NDArray[np.int64]
+    inclination_cm_s: FloatArray
+    """e of Eq 27 (cm/s)."""
+    inclination_fit_cm_s: FloatArray
+    """e_fit (cm/s)."""
+    u0_max_m_s: FloatArray
+    """U0max (m/s)."""
+    zdot_abs_max_m_s: FloatArray
+    spl_max_db: FloatArray
+    """SPLmax (dB)."""
+    contact_duration_s: FloatArray
+    restitution_mean: FloatArray
+    zone: npt.NDArray[np.int8]
+    """Zone 1–4; 0 = none."""
+    thresholds: Dict[str, object]
+    """{"spl_db": L* (dB), "inclination_cm_s": e* (cm/s), "zone_by": "paper" | "fit"}."""
+    def table5(self, band_cm_s: float = 0.2, no_limit: bool = False) -> Dict[str, np.ndarray]:
+        """Table 5: the SPLmax spread per band of e of width band_cm_s (cm/s), as
+        ``thud sweep --band``: e_lo_cm_s, e_hi_cm_s (cm/s), count, spl_min_db, spl_max_db (dB)."""
+    def as_dict(self) -> Dict[str, object]:
+        """Every field in one dict."""
+
+def pulse(
+    *,
+    preset: Optional[str] = None,
+    radius: Optional[Quantity] = None,
+    mass: Optional[Quantity] = None,
+    u0: Optional[Quantity] = None,
+    k_hz: Optional[Quantity] = None,
+    sphere: Optional[str] = None,
+    plate: Optional[str] = None,
+    main_mass: Optional[Quantity] = None,
+    r: Optional[Quantity] = None,
+    theta: Optional[Quantity] = None,
+    source: Optional[Source] = None,
+    quad_signs: Optional[QuadSigns] = None,
+    pulse: Optional[PulseShape] = None,
+    rho_c: Optional[Quantity] = None,
+    c: Optional[Quantity] = None,
+    points: Count = 2000,
+    no_limit: bool = False,
+) -> Pulse:
+    """The pressure pulse of one Hertzian impact at an observer (Eqs 1–24), as ``thud pulse``.
+
+    Defaults: the paper's Fig 2 impact — acrylic sphere a 19.05 mm, m 40.5 g, U0 1.4 m/s,
+    K_HZ 5.6e8 N/m^1.5 on a fixed plate, dipole at r 0.7 m, θ 45°; or those of ``preset``.
+
+    radius (m), mass (kg), u0 (m/s), k_hz (N/m^1.5); sphere/plate: materials (K_HZ from Eq 2);
+    main_mass (kg): a movable target (Eq 8); r (m), theta (degrees); rho_c (Pa·s/m), c (m/s);
+    points: waveform points; no_limit: lift the work cap.
+    """
+
+def simulate(
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,
+    gap: Optional[Quantity] = None,
+    v0: Optional[Quantity] = None,
+    main_mass: Optional[Quantity] = None,
+    k: Optional[Quantity] = None,
+    c: Optional[Quantity] = None,
+    c1: Optional[Quantity] = None,
+    k_hz: Optional[Quantity] = None,
+    sphere: Optional[str] = None,
+    plate: Optional[str] = None,
+    no_tension: Optional[bool] = None,
+    duration: Optional[Quantity] = None,
+    solver: Optional[Solver] = None,
+    dt: Optional[Quantity] = None,
+    density: Optional[Quantity] = None,
+    radius: Optional[Quantity] = None,
+    r: Optional[Quantity] = None,
+    theta: Optional[Quantity] = None,
+    source: Optional[Source] = None,
+    quad_signs: Optional[QuadSigns] = None,
+    pulse: Optional[PulseShape] = None,
+    l_star: Optional[Quantity] = None,
+    e_star: Optional[Quantity] = None,
+    samples: Count = 2001,
+    no_limit: bool = False,
+) -> Run:
+    """One impact-damper design through its impacts (Eqs 25–27), as ``thud simulate``.
+
+    preset: the starting design (default "default"; ``thud.presets()``), then: mass (kg),
+    gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m), k_hz (N/m^1.5),
+    sphere/plate (materials), no_tension, duration (s), solver, dt (s, Newmark), density
+    (kg/m³) or radius (m) of the ball, r (m), theta (degrees), source, quad_signs, pulse,
+    l_star (dB), e_star (cm/s); samples: time-history samples; no_limit: lift the work caps.
+    Ctrl-C stops the run (KeyboardInterrupt).
+    """
+
+def sweep(
+    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str],
+    gaps_m: Union[Sequence[Quantity], npt.ArrayLike, str],
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,
+    gap: Optional[Quantity] = None,
+    v0: Optional[Quantity] = None,
+    main_mass: Optional[Quantity] = None,
+    k: Optional[Quantity] = None,
+    c: Optional[Quantity] = None,
+    c1: Optional[Quantity] = None,
+    k_hz: Optional[Quantity] = None,
+    sphere: Optional[str] = None,
+    plate: Optional[str] = None,
+    no_tension: Optional[bool] = None,
+    duration: Optional[Quantity] = None,
+    solver: Optional[Solver] = None,
+    dt: Optional[Quantity] = None,
+    density: Optional[Quantity] = None,
+    radius: Optional[Quantity] = None,
+    r: Optional[Quantity] = None,
+    theta: Optional[Quantity] = None,
+    source: Optional[Source] = None,
+    quad_signs: Optional[QuadSigns] = None,
+    pulse: Optional[PulseShape] = None,
+    l_star: Optional[Quantity] = None,
+    e_star: Optional[Quantity] = None,
+    no_limit: bool = False,
+) -> Chart:
+    """The design chart: the design run for every impact mass × gap on all cores, as
+    ``thud sweep``. masses_kg (kg) and gaps_m (m): sequences, or "FROM:TO:N" text as on the
+    command line ("30g:100g:20" — N evenly spaced values, the command line's very numbers).
+    Keywords as for ``simulate``. Ctrl-C stops the sweep.
+    """
+
+def axis(name: Literal["masses", "gaps"], spec: str) -> FloatArray:
+    """The values of a sweep axis "FROM:TO:N" exactly as the command line computes them:
+    axis("masses", "30g:100g:20") (kg), axis("gaps", "2cm:5cm:20") (m)."""
+
+def presets() -> Dict[str, str]:
+    """The named starting designs (``preset=``) with their one-line descriptions."""
+
+def ranges() -> List[Dict[str, object]]:
+    """The valid range of every numeric parameter (``thud limits``): dicts with param (the
+    keyword), what, min, max, unit (of a plain number) and reason."""
