@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Benchmarks of the impact-damper solvers (paper Fig 9 design, Table 2 values).
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Benchmarks of the acoustics: one `pulse` evaluation (a ~2,000-point waveform plus all levels).
 
 use criterion::{criterion_group, criterion_main, Criterion};

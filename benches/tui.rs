@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Benchmarks of the explorer: one full frame at 200×60, a mass change until the readout and
 //! waveform are updated (through the real worker threads), and the default chart filling; and
 //! the same two as the user sees them at 200×60: a mass step until its frame is redrawn, and

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Part 1 of the paper reproduced: Hertz contact and the radiated sound (docs/model.md §2–5, §9).
 
 use thud::acoustics::{Field, Observer, QuadSigns, Radiation, Source};

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! The command line: output shapes and clear errors for bad input.
 
 use std::process::Command;

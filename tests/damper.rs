@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Integration tests of the impact-damper solvers against docs/model.md §6, §7, §9.
 
 use std::sync::atomic::AtomicBool;

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Part 2 of the paper reproduced: Tables 3–5, Figs 9 and 13, and the design metrics
 //! (docs/model.md §6, §7, §9).
 

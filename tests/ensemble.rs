@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! `--ensemble N`: N runs of a design from ball offsets spread over the clearance. Each run is
 //! the single run with the ball at its offset; N = 1 is today's output exactly; the spread,
 //! zone, zone-3 probability and agreement are what the runs say (recomputed here from the

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Export: WAV, SVG, CSV, `paper all`, and the CLI commands that write them.
 
 use std::fs;

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Files as found (issue 9, "What was found" 1 and "Bounded reads"): the real binary run with
 //! HOME and the XDG folders in a temporary directory. No export replaces an existing file
 //! without --force; none replaces a device, FIFO or folder even with it; none follows a symlink

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Hostile and careless input (issue 9, "What was found" 2–4): every numeric flag is range
 //! checked, every run is budgeted before it starts, no NaN/∞ is ever printed as a result, and
 //! every error is one line on stderr naming the flag the user typed. Process runs of the built

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! `thud sweep --shard K/N` and `thud merge`: the parts of a chart computed apart and joined
 //! give the chart one `thud sweep` gives, byte for byte; a missing, doubled, foreign or cut part
 //! is refused with one line naming it.

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Shell integration: completion scripts and man pages generated from the command line's own
 //! definitions, naming every command and flag.
 

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Settings and saved designs: round trips, corrupt files left intact, atomic writes.
 
 use std::fs;

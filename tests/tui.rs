@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! The explorer on ratatui's TestBackend: snapshots of the main screen, keys changing state
 //! and the next frame, tiny terminals, the help overlay and refused input.
 

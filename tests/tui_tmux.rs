@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! End to end: the real binary in a tmux pane. The screen appears, a key changes a value, a
 //! resize to 80×24 keeps it usable, `q` exits with status 0 and the terminal is sane after:
 //! canonical mode and echo on, alternate screen left, cursor shown, mouse reporting off. The
