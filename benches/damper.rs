@@ -8,7 +8,7 @@ use thud::damper::{simulate, DamperParams, RunOptions, Solver};
 fn event_fig9(c: &mut Criterion) {
     let p = DamperParams::table2();
     c.bench_function("event fig9 2 s", |b| {
-        b.iter(|| simulate(black_box(&p), Solver::Event, &RunOptions::default()).unwrap())
+        b.iter(|| simulate(black_box(&p), Solver::Event, &RunOptions::default()).unwrap());
     });
 }
 
@@ -17,7 +17,7 @@ fn newmark_fig9(c: &mut Criterion) {
     let mut g = c.benchmark_group("newmark");
     g.sample_size(10);
     g.bench_function("newmark fig9 2 s dt 1e-7", |b| {
-        b.iter(|| simulate(black_box(&p), Solver::Newmark { dt_s: 1e-7 }, &RunOptions::default()).unwrap())
+        b.iter(|| simulate(black_box(&p), Solver::Newmark { dt_s: 1e-7 }, &RunOptions::default()).unwrap());
     });
     g.finish();
 }
@@ -33,15 +33,15 @@ fn event_sweep(c: &mut Criterion) {
             for i in 0..20 {
                 for j in 0..20 {
                     let p = DamperParams {
-                        impact_mass_kg: 0.03 + 0.07 * i as f64 / 19.0,
-                        gap_m: 0.02 + 0.03 * j as f64 / 19.0,
+                        impact_mass_kg: 0.03 + 0.07 * f64::from(i) / 19.0,
+                        gap_m: 0.02 + 0.03 * f64::from(j) / 19.0,
                         ..base
                     };
                     n += simulate(&p, Solver::Event, &RunOptions::default()).unwrap().impacts.len();
                 }
             }
             n
-        })
+        });
     });
     g.finish();
 }
@@ -55,7 +55,7 @@ fn design_sweep(c: &mut Criterion) {
     let mut g = c.benchmark_group("sweep");
     g.sample_size(10);
     g.bench_function("design sweep 20x20 all cores with metrics", |b| {
-        b.iter(|| thud::design::sweep(&base, &masses, &gaps, None, &|_, _| {}).unwrap())
+        b.iter(|| thud::design::sweep(&base, &masses, &gaps, None, &|_, _| {}).unwrap());
     });
     g.finish();
 }

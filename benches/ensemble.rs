@@ -19,13 +19,13 @@ fn robust_chart_vs_newmark(c: &mut Criterion) {
     let mut g = c.benchmark_group("robust chart vs newmark");
     g.sample_size(10);
     g.bench_function("newmark fig9 2 s dt 1e-7 (one design)", |b| {
-        b.iter(|| design::evaluate(black_box(&newmark), 0, None).unwrap())
+        b.iter(|| design::evaluate(black_box(&newmark), 0, None).unwrap());
     });
     g.bench_function("robust chart 20x20 x 16 runs all cores", |b| {
-        b.iter(|| ensemble::sweep(black_box(&base), &masses, &gaps, 16, None, &|_, _| {}).unwrap())
+        b.iter(|| ensemble::sweep(black_box(&base), &masses, &gaps, 16, None, &|_, _| {}).unwrap());
     });
     g.bench_function("plain chart 20x20 all cores", |b| {
-        b.iter(|| design::sweep(black_box(&base), &masses, &gaps, None, &|_, _| {}).unwrap())
+        b.iter(|| design::sweep(black_box(&base), &masses, &gaps, None, &|_, _| {}).unwrap());
     });
     g.finish();
 }

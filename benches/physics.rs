@@ -17,14 +17,14 @@ fn pulse(c: &mut Criterion) {
                 let w = field.waveform(2000);
                 let l = field.levels();
                 black_box((w, l))
-            })
+            });
         });
         c.bench_function(&format!("spl {} (rms over tau only)", source.name()), |b| {
             b.iter(|| {
                 let contact = black_box(impact).contact();
                 let field = Field::new(0.01905, &contact, &Observer::new(0.7, 45.0), &rad).unwrap();
                 black_box(field.spl_db())
-            })
+            });
         });
     }
 }

@@ -39,7 +39,7 @@ fn frame(c: &mut Criterion) {
         b.iter(|| {
             term.clear().unwrap();
             draw(&mut term, &mut app).unwrap();
-        })
+        });
     });
 }
 
@@ -69,7 +69,7 @@ fn mass_change(c: &mut Criterion) {
                 worker.submit(r);
             }
             pump(&mut app, &worker, &rx, |a| !a.design_busy());
-        })
+        });
     });
 }
 
@@ -102,7 +102,7 @@ fn chart_fill(c: &mut Criterion) {
                     total += t0.elapsed();
                 }
                 total
-            })
+            });
         });
     }
     g.finish();
@@ -154,7 +154,7 @@ fn at_200x60(c: &mut Criterion) {
             }
             draw(&mut term, &mut app).unwrap();
             pump_drawing(&mut app, &mut term, &worker, &rx, |a| !a.design_busy());
-        })
+        });
     });
     g.bench_function("chart fill: 6x5 then 16x12, drawn as it fills", |b| {
         b.iter_custom(|iters| {
@@ -173,7 +173,7 @@ fn at_200x60(c: &mut Criterion) {
                 total += t0.elapsed();
             }
             total
-        })
+        });
     });
     g.finish();
 }

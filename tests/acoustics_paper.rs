@@ -46,7 +46,7 @@ fn dipole_waveform_is_m_shaped() {
 #[test]
 fn dipole_directivity_symmetric_and_minimum_near_90() {
     let levels: Vec<(f64, f64)> =
-        (-18..=18).map(|k| 5.0 * k as f64).map(|th| (th, field(Source::Dipole, 0.7, th).spl_db())).collect();
+        (-18..=18).map(|k| 5.0 * f64::from(k)).map(|th| (th, field(Source::Dipole, 0.7, th).spl_db())).collect();
     for k in 0..levels.len() {
         let (th, l) = levels[k];
         let (th2, l2) = levels[levels.len() - 1 - k];

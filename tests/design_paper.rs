@@ -133,8 +133,8 @@ fn splmax_rises_with_impact_speed() {
     let d = Design::default();
     let mut last = f64::NEG_INFINITY;
     for k in 1..40 {
-        let l = d.impact_spl_db(0.1 * k as f64).unwrap();
-        assert!(l > last, "U0 {}", 0.1 * k as f64);
+        let l = d.impact_spl_db(0.1 * f64::from(k)).unwrap();
+        assert!(l > last, "U0 {}", 0.1 * f64::from(k));
         last = l;
     }
 }

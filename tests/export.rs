@@ -1,4 +1,9 @@
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::case_sensitive_file_extension_comparisons,
+    clippy::items_after_statements
+)] // a panic is how a test fails; file names here are ours
 //! Export: WAV, SVG, CSV, `paper all`, and the CLI commands that write them.
 
 use std::fs;
@@ -41,7 +46,7 @@ fn wav_parses_back_with_rate_length_and_a_peak_at_each_impact() {
         let t = i.t_s + delay;
         let expected = d.impact_field(i.u_in_m_s).unwrap().levels();
         let p_peak = expected.p_max_pa.max(-expected.p_min_pa) / wav::FULL_SCALE_PA;
-        let got = peak_in(t, t + 1e-3) as f64;
+        let got = f64::from(peak_in(t, t + 1e-3));
         assert!(got > 0.7 * p_peak && got < 1.05 * p_peak, "impact {k}: peak {got} vs {p_peak}");
         if e.run.impacts.get(k + 1).is_none_or(|n| n.t_s > i.t_s + 5e-3) {
             assert!(peak_in(t + 3e-3, t + 4e-3) < 0.01 * got as f32, "impact {k}: the pulse has died away");

@@ -437,7 +437,7 @@ fn quick(base: &[&str]) -> Vec<String> {
 fn check_contract(base: &[&str], flag: &str, value: &str, mode: &str) {
     let home = tempfile::tempdir().unwrap();
     let file = home.path().join(if base[0] == "export" && base[1] == "wav" { "out.wav" } else { "out.txt" });
-    let mut args: Vec<String> = base.iter().map(|s| s.to_string()).collect();
+    let mut args: Vec<String> = base.iter().map(std::string::ToString::to_string).collect();
     let own = quick(base);
     let replaced = own.iter().any(|a| a == &format!("--{flag}"));
     let mut i = 0;
@@ -531,7 +531,7 @@ fn hostile() -> impl Strategy<Value = String> {
         Just("1e400".to_string()),
         Just("9".repeat(100_000)),
         Just("x".repeat(100_000)),
-        Just("".to_string()),
+        Just(String::new()),
         Just("1 2".to_string()),
         Just("1e3e3".to_string()),
         Just("3furlongs".to_string()),

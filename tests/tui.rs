@@ -1106,7 +1106,8 @@ fn the_polar_curve_is_never_covered_and_its_parts_have_their_own_glyphs() {
                 }
             }
             assert!(curve_cells > 0, "{w}x{h}: no curve drawn");
-            let symbols: std::collections::HashSet<&str> = full.content.iter().map(|c| c.symbol()).collect();
+            let symbols: std::collections::HashSet<&str> =
+                full.content.iter().map(ratatui::buffer::Cell::symbol).collect();
             let (ring, ray) = if theme.ascii { (".", "+") } else { ("·", "•") };
             if h >= 14 {
                 assert!(symbols.contains(ring) && symbols.contains(ray), "{w}x{h}: rings and ray have their glyphs");

@@ -39,7 +39,7 @@ pub fn man(a: &ManArgs, out: &mut Out) -> Result<(), CliError> {
     for name in &a.command {
         let next = cmd.find_subcommand(name).cloned();
         cmd = next.ok_or_else(|| {
-            let known: Vec<&str> = cmd.get_subcommands().map(|s| s.get_name()).collect();
+            let known: Vec<&str> = cmd.get_subcommands().map(clap::Command::get_name).collect();
             let what = if known.is_empty() {
                 "it has no commands".to_string()
             } else {

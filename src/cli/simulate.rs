@@ -130,7 +130,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 spl_max_db: m.spl_max_db,
                 contact_duration_s: m.contact_duration_s,
                 restitution_mean: m.restitution_mean,
-                zone: m.zone.map(|z| z.number()),
+                zone: m.zone.map(thud_core::design::Zone::number),
                 impacts,
                 maxima: &eval.run.maxima,
                 energy: eval.run.energy,
@@ -143,7 +143,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         OutputFormat::Text => {
             // The summary prints these; check them as data too (the text check is the backstop).
             super::output::check_finite(&(&eval.metrics, &eval.run.energy))?;
-            out.text(&summary(&d, &eval, show, truncated.as_deref())?)?
+            out.text(&summary(&d, &eval, show, truncated.as_deref())?)?;
         }
     }
     Ok(())
@@ -198,7 +198,7 @@ fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &Design, runs: us
             design: d,
             ball_radius_m: d.ball_radius_m(),
             runs,
-            zone: e.metrics.zone.map(|z| z.number()),
+            zone: e.metrics.zone.map(thud_core::design::Zone::number),
             zone3_probability: e.zone3_probability,
             agreement: e.agreement,
             spread: &e.spread,

@@ -163,7 +163,7 @@ pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
                 zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
                 spl_max_db: m.spl_max_db.map(Num),
                 n_impacts: m.n_impacts,
-                zone: m.zone.map(|z| z.number()),
+                zone: m.zone.map(thud_core::design::Zone::number),
             }
         }),
     )
@@ -224,7 +224,7 @@ pub fn sweep_ensemble(chart: &EnsembleChart) -> Result<String, csv::Error> {
                     zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
                     spl_max_db: m.spl_max_db.map(Num),
                     n_impacts: m.n_impacts,
-                    zone: m.zone.map(|z| z.number()),
+                    zone: m.zone.map(thud_core::design::Zone::number),
                 },
                 runs: e.runs,
                 zone3_probability: Num(e.zone3_probability),
@@ -267,7 +267,7 @@ pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, c
             inclination_fit_cm_s: r.inclination_fit_cm_s.map(Num),
             u0_max_m_s: Num(r.u0_max_m_s),
             spl_max_db: r.spl_max_db.map(Num),
-            zone: r.zone.map(|z| z.number()),
+            zone: r.zone.map(thud_core::design::Zone::number),
         }),
     )
 }

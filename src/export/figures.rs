@@ -216,7 +216,7 @@ enum Plot {
 
 /// The plot of each paper item that is a figure or a table worth plotting.
 fn plot_of(id: &str) -> Option<Plot> {
-    use Style::*;
+    use Style::{Dashed, Line, LineMarkers, Markers};
     let lines = |x, ys, group, y_label, log_x| Some(Plot::Lines { x, ys, group, y_label, log_x });
     match id {
         "table1" => lines(
@@ -361,7 +361,7 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
                 .map(|i| ZonePoint {
                     spl_db: s[i],
                     e_cm_s: e[i],
-                    zone: ZONES.iter().copied().find(|zz| zz.number() as f64 == z[i]),
+                    zone: ZONES.iter().copied().find(|zz| f64::from(zz.number()) == z[i]),
                 })
                 .collect();
             Some(fig17_points(&pts, thresholds, title))
@@ -416,12 +416,12 @@ fn cell_map(table: &Table, x: &str, y: &str, v: &str) -> String {
     let lx = frame.left + frame.width + 15.0;
     svg.text(lx, frame.top + 4.0, &label(table, v), 12.0, Anchor::Start, 0.0);
     for k in 0..=10 {
-        let f = 1.0 - k as f64 / 10.0;
-        svg.rect(lx, frame.top + 14.0 + 22.0 * k as f64, 22.0, 22.0, &ramp(f), None);
+        let f = 1.0 - f64::from(k) / 10.0;
+        svg.rect(lx, frame.top + 14.0 + 22.0 * f64::from(k), 22.0, 22.0, &ramp(f), None);
         if k % 2 == 0 && lo.is_finite() {
             svg.text(
                 lx + 28.0,
-                frame.top + 30.0 + 22.0 * k as f64,
+                frame.top + 30.0 + 22.0 * f64::from(k),
                 &sig(lo + f * (hi - lo), 4),
                 12.0,
                 Anchor::Start,

@@ -49,7 +49,7 @@ impl WavOptions {
 
 /// Number of samples of a sound `duration_s` long.
 pub fn sample_count(duration_s: f64, sample_rate: u32) -> usize {
-    (duration_s * sample_rate as f64).round().max(0.0) as usize
+    (duration_s * f64::from(sample_rate)).round().max(0.0) as usize
 }
 
 /// The pressure (Pa) at the observer over the run, one value per sample from t = 0 to the
@@ -57,7 +57,7 @@ pub fn sample_count(duration_s: f64, sample_rate: u32) -> usize {
 pub fn render(design: &Design, run: &Run, sample_rate: u32) -> Result<Vec<f64>, ThudError> {
     let d = design.resolved()?;
     let n = sample_count(d.damper.duration_s, sample_rate);
-    let dt = 1.0 / sample_rate as f64;
+    let dt = 1.0 / f64::from(sample_rate);
     let mut p = vec![0.0; n];
     for impact in &run.impacts {
         let field = d.impact_field(impact.u_in_m_s)?;

@@ -417,7 +417,7 @@ impl App {
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
         self.mode = Mode::Normal;
         let mut reqs = self.apply(d, Scope::All, String::new());
-        self.preset = step.preset.clone();
+        self.preset.clone_from(&step.preset);
         self.set_status(&format!("tour {}/{n}: {} — → next, ← back, Esc explores from here", i + 1, step.title), false);
         self.pending_best = step.best;
         if step.best && !self.chart_busy() {
@@ -676,18 +676,15 @@ impl App {
     }
 
     pub(crate) fn undo(&mut self) -> Vec<Request> {
-        match self.undo.pop() {
-            Some(entry) => {
-                let what = changes(&self.design, &self.preset, &entry.design, &entry.preset);
-                self.design = entry.design;
-                self.preset = entry.preset;
-                self.set_status(&format!("undo: {what}"), false);
-                self.requests(Scope::All)
-            }
-            None => {
-                self.set_status("nothing to undo", false);
-                vec![]
-            }
+        if let Some(entry) = self.undo.pop() {
+            let what = changes(&self.design, &self.preset, &entry.design, &entry.preset);
+            self.design = entry.design;
+            self.preset = entry.preset;
+            self.set_status(&format!("undo: {what}"), false);
+            self.requests(Scope::All)
+        } else {
+            self.set_status("nothing to undo", false);
+            vec![]
         }
     }
 

@@ -396,31 +396,28 @@ impl ZoneGridView<'_> {
             Err(false) => cells.right() - 1,
         };
         let (x, y) = (col(pm), row(pd));
-        let off = match (pm, pd) {
-            (Ok(_), Ok(_)) => {
-                let x0 = x.saturating_sub(1).clamp(cells.x, cells.right().saturating_sub(3));
-                buf.set_stringn(x0, y, &marker, 3, mark_style);
-                None
+        let off = if let (Ok(_), Ok(_)) = (pm, pd) {
+            let x0 = x.saturating_sub(1).clamp(cells.x, cells.right().saturating_sub(3));
+            buf.set_stringn(x0, y, &marker, 3, mark_style);
+            None
+        } else {
+            let arrow = match (pm, pd) {
+                (Err(true), _) => th.sym("←", "<"),
+                (Err(false), _) => th.sym("→", ">"),
+                (_, Err(true)) => th.sym("↓", "v"),
+                _ => th.sym("↑", "^"),
+            };
+            buf.set_stringn(x, y, arrow, 1, mark_style);
+            let mut why = Vec::new();
+            if let Err(low) = pm {
+                let (cmp, edge) = if low { ("<", l.mass_axis.lo) } else { (">", l.mass_axis.hi) };
+                why.push(format!("m {} g {cmp} {} g", sig(m, 3), sig(edge, 3)));
             }
-            _ => {
-                let arrow = match (pm, pd) {
-                    (Err(true), _) => th.sym("←", "<"),
-                    (Err(false), _) => th.sym("→", ">"),
-                    (_, Err(true)) => th.sym("↓", "v"),
-                    _ => th.sym("↑", "^"),
-                };
-                buf.set_stringn(x, y, arrow, 1, mark_style);
-                let mut why = Vec::new();
-                if let Err(low) = pm {
-                    let (cmp, edge) = if low { ("<", l.mass_axis.lo) } else { (">", l.mass_axis.hi) };
-                    why.push(format!("m {} g {cmp} {} g", sig(m, 3), sig(edge, 3)));
-                }
-                if let Err(low) = pd {
-                    let (cmp, edge) = if low { ("<", l.gap_axis.lo) } else { (">", l.gap_axis.hi) };
-                    why.push(format!("d {} cm {cmp} {} cm", sig(d, 3), sig(edge, 3)));
-                }
-                Some(format!("off the chart {arrow} ({})", why.join(", ")))
+            if let Err(low) = pd {
+                let (cmp, edge) = if low { ("<", l.gap_axis.lo) } else { (">", l.gap_axis.hi) };
+                why.push(format!("d {} cm {cmp} {} cm", sig(d, 3), sig(edge, 3)));
             }
+            Some(format!("off the chart {arrow} ({})", why.join(", ")))
         };
         let (zone, short) = match self.zone {
             DesignZone::Computing => ("computing".to_string(), "computing".to_string()),
@@ -573,7 +570,7 @@ mod tests {
     #[test]
     fn a_cell_axis_puts_grid_values_at_cell_centres_and_edges_outside() {
         // 12 gaps 1..7 cm over 12 rows: each value in its own row, the edges half a step out.
-        let gaps: Vec<f64> = (0..12).map(|i| 1.0 + 6.0 * i as f64 / 11.0).collect();
+        let gaps: Vec<f64> = (0..12).map(|i| 1.0 + 6.0 * f64::from(i) / 11.0).collect();
         let a = CellAxis::new(&gaps, 0, 12);
         for (i, g) in gaps.iter().enumerate() {
             assert_eq!(a.place(*g), Ok(i as u16));

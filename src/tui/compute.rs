@@ -151,7 +151,7 @@ pub fn chart_key(d: &Design, grids: &Grids) -> String {
     let mut d = design::variant(d, 0.0, 0.0);
     d.thresholds = Thresholds::default();
     d.observer = Observer::new(0.0, 0.0);
-    d.radiation = Default::default();
+    d.radiation = crate::acoustics::Radiation::default();
     format!(
         "{}|{:?}|{:?}",
         json(&d),

@@ -301,7 +301,7 @@ impl Param {
             Param::K => p.stiffness_n_m,
             Param::C => p.damping_n_s_m,
             Param::C1 => p.c1_n_s_m,
-            Param::KHz => d.resolved().map(|r| r.damper.k_hz).unwrap_or(p.k_hz),
+            Param::KHz => d.resolved().map_or(p.k_hz, |r| r.damper.k_hz),
             Param::Duration => p.duration_s,
             Param::LStar => d.thresholds.spl_db,
             Param::EStar => d.thresholds.inclination_cm_s,
@@ -422,7 +422,7 @@ impl Param {
             Param::Materials => {
                 let all = material_choices();
                 let i = all.iter().position(|m| *m == d.materials).unwrap_or(0);
-                d.materials = all[turn(i, all.len())].clone();
+                d.materials.clone_from(&all[turn(i, all.len())]);
             }
             _ => {}
         }

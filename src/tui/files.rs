@@ -137,7 +137,7 @@ impl App {
             return match store::load_design(&dir, &name) {
                 Ok(file) => {
                     let reqs = self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"));
-                    self.preset = name.clone();
+                    self.preset.clone_from(&name);
                     reqs
                 }
                 Err(e) => self.error(format_args!("cannot load {name}: {e}")),

@@ -87,7 +87,7 @@ impl App {
         };
         match k.code {
             KeyCode::Right | KeyCode::PageDown | KeyCode::Tab | KeyCode::Char('2') => {
-                self.mode = Mode::Glossary(scroll)
+                self.mode = Mode::Glossary(scroll);
             }
             KeyCode::Left | KeyCode::PageUp | KeyCode::BackTab | KeyCode::Char('1') => self.mode = Mode::Help,
             KeyCode::Down | KeyCode::Char('j') if self.mode != Mode::Help => {

@@ -100,7 +100,7 @@ impl<J: Job> Slot<J> {
 
     /// The state; a poisoned lock is taken as is (no job code runs while it is held).
     fn lock(&self) -> MutexGuard<'_, SlotState<J>> {
-        self.state.lock().unwrap_or_else(|e| e.into_inner())
+        self.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
     /// Queues `job` (replacing any queued job) and cancels a running job with another key.
@@ -129,7 +129,7 @@ impl<J: Job> Slot<J> {
                 s.running = Some((job.key().to_string(), flag.clone()));
                 return Some((job, flag));
             }
-            s = self.ready.wait(s).unwrap_or_else(|e| e.into_inner());
+            s = self.ready.wait(s).unwrap_or_else(std::sync::PoisonError::into_inner);
         }
     }
 
@@ -329,9 +329,7 @@ mod tests {
                     g = cv.wait_timeout(g, Duration::from_millis(5)).unwrap().0;
                 }
             }
-            if self.panic {
-                panic!("job {} blew up", self.key);
-            }
+            assert!(!self.panic, "job {} blew up", self.key);
             if !cx.is_cancelled() {
                 cx.report((self.key.clone(), Ok(*runs)));
             }

@@ -93,12 +93,13 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     app.configure(&config::load_user_config());
     app.data_dir = store::Dirs::project().map(|d| d.data_dir);
     if let Some(dir) = &opts.export_dir {
-        app.export_dir = dir.clone();
+        app.export_dir.clone_from(dir);
     }
     let (mut term, _guard) = terminal::setup(opts.mouse).map_err(TuiError::Terminal)?;
-    if std::env::var_os(PANIC_FOR_TEST).is_some() {
-        panic!("{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore");
-    }
+    assert!(
+        std::env::var_os(PANIC_FOR_TEST).is_none(),
+        "{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore"
+    );
     let (tx, rx) = mpsc::channel();
     let busy = Arc::new(AtomicBool::new(true));
     spawn_input(tx.clone(), busy.clone());
@@ -174,8 +175,8 @@ pub fn compute_sync(app: &mut App, requests: Vec<Request>) {
     let mut queue: std::collections::VecDeque<Request> = requests.into();
     while let Some(req) = queue.pop_front() {
         let done = std::sync::Mutex::new(Vec::new());
-        worker::run_sync(&req, &|d| done.lock().unwrap_or_else(|e| e.into_inner()).push(d));
-        for d in done.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        worker::run_sync(&req, &|d| done.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(d));
+        for d in done.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner) {
             queue.extend(app.update(Msg::Work(d)));
         }
     }

@@ -44,7 +44,7 @@ fn bounds(range: (f64, f64), r: f64, area: Rect) -> ([f64; 2], [f64; 2]) {
     let (mut x0, mut x1, mut y0, mut y1) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let n = 72;
     for i in 0..=n {
-        let deg = range.0 + (range.1 - range.0) * i as f64 / n as f64;
+        let deg = range.0 + (range.1 - range.0) * f64::from(i) / f64::from(n);
         let (x, y) = point(deg, r, 0.0);
         (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
     }
@@ -111,7 +111,7 @@ impl PolarView<'_> {
         if let Some(l) = self.layout(self.block.inner(area)) {
             let live = self.live;
             stamp(&mut buf, l.canvas, l.xb, l.yb, self.theme.line_marker(), Style::default(), |ctx| {
-                curve(ctx, live, l.floor)
+                curve(ctx, live, l.floor);
             });
         }
         buf
@@ -135,7 +135,9 @@ impl Widget for PolarView<'_> {
         stamp(buf, canvas, xb, yb, th.mark('·', '.'), ring_style, |ctx| {
             let n = (((hi - lo) / 10.0).round() as usize).max(2);
             let ring: Vec<(f64, f64)> = (1..=4)
-                .flat_map(|k| (0..=n).map(move |i| point(lo + (hi - lo) * i as f64 / n as f64, 10.0 * k as f64, 0.0)))
+                .flat_map(|k| {
+                    (0..=n).map(move |i| point(lo + (hi - lo) * i as f64 / n as f64, 10.0 * f64::from(k), 0.0))
+                })
                 .collect();
             ctx.draw(&Points { coords: &ring, color: Color::Reset });
             for deg in [0.0, lo, hi] {
@@ -154,7 +156,7 @@ impl Widget for PolarView<'_> {
         }
         let live = self.live;
         stamp(buf, canvas, xb, yb, th.line_marker(), th.fg(Color::Cyan).add_modifier(Modifier::BOLD), |ctx| {
-            curve(ctx, live, floor)
+            curve(ctx, live, floor);
         });
         // "θ 0" above the normal.
         let zero = th.text("θ 0°").into_owned();

@@ -407,7 +407,7 @@ mod tests {
         let got = loop {
             match rx.recv_timeout(Duration::from_secs(20)).expect("worker answered") {
                 Done::Sim { key, result } if key == want => break result,
-                _ => continue,
+                _ => {}
             }
         };
         let sim = got.unwrap();

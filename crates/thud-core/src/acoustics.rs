@@ -203,7 +203,7 @@ fn hertz_sine_series() -> &'static [f64] {
         let a: Vec<f64> = hertz_approach_shape(n).into_iter().map(|g| g.powf(1.5)).collect();
         (0..20)
             .map(|j| {
-                let k = (2 * j + 1) as f64;
+                let k = f64::from(2 * j + 1);
                 // Trapezoid rule; both ends vanish.
                 let sum: f64 = (1..n).map(|i| a[i] * (k * std::f64::consts::PI * i as f64 / n as f64).sin()).sum();
                 2.0 * sum / n as f64
@@ -675,7 +675,7 @@ mod tests {
             let s = field.sources().next().copied().unwrap();
             let scale = field.extrema().iter().fold(0.0_f64, |m, e| m.max(e.p_pa.abs()));
             for i in 0..200 {
-                let t_ret = (i as f64 / 199.0) * 3.0 * c.tau_s;
+                let t_ret = (f64::from(i) / 199.0) * 3.0 * c.tau_s;
                 let closed = field.pressure(t_ret + s.delay_s);
                 let quad = pressure_by_quadrature(t_ret, s.r_m, s.cos_theta, a, &c, &air);
                 worst = worst.max((closed - quad).abs() / scale);
@@ -738,7 +738,7 @@ mod tests {
         };
         let peak = field.extrema().iter().fold(0.0_f64, |m, e| m.max(e.p_pa.abs()));
         for k in 0..120 {
-            let t_ret = k as f64 / 119.0 * 2.5 * c.tau_s;
+            let t_ret = f64::from(k) / 119.0 * 2.5 * c.tau_s;
             let upper = t_ret.min(c.tau_s);
             let quad = gauss_legendre(0.0, upper.max(1e-30), 200, |xi| {
                 impulse_response(t_ret - xi, src.r_m, src.cos_theta, 0.01905, &air) * accel(xi)

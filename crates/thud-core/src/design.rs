@@ -590,7 +590,7 @@ mod tests {
 
     #[test]
     fn fit_of_a_straight_decay_is_its_slope() {
-        let m = maxima(&(0..10).map(|k| (0.2 * k as f64, 0.06 - 0.004 * k as f64)).collect::<Vec<_>>());
+        let m = maxima(&(0..10).map(|k| (0.2 * f64::from(k), 0.06 - 0.004 * f64::from(k))).collect::<Vec<_>>());
         // Slope −0.02 m/s = 2 cm/s; stops below X1/2 = 0.03 (k > 7).
         assert!((inclination_fit_cm_s(&m).unwrap() - 2.0).abs() < 1e-9);
         assert!(inclination_fit_cm_s(&m[..1]).is_none());
@@ -708,9 +708,7 @@ mod tests {
         let caught = std::panic::catch_unwind(|| {
             small_sweep(
                 &|i, _| {
-                    if i == 2 {
-                        panic!("cell 2 failed");
-                    }
+                    assert!(i != 2, "cell 2 failed");
                 },
                 None,
             )
@@ -729,7 +727,10 @@ mod tests {
                 for w in parts.windows(2) {
                     assert_eq!(w[0].end, w[1].start, "{cells} cells, {n} parts: contiguous");
                 }
-                let (lo, hi) = (parts.iter().map(|r| r.len()).min(), parts.iter().map(|r| r.len()).max());
+                let (lo, hi) = (
+                    parts.iter().map(std::iter::ExactSizeIterator::len).min(),
+                    parts.iter().map(std::iter::ExactSizeIterator::len).max(),
+                );
                 assert!(lo.unwrap() >= 1 && hi.unwrap() - lo.unwrap() <= 1, "{cells}/{n}: {lo:?}..{hi:?}");
             }
         }

@@ -157,7 +157,7 @@ impl Member {
 
 /// A zone written as its number 1–4 (as `simulate --json` and the CSV files write it).
 mod zone_number {
-    use super::*;
+    use super::{zone_from_number, Deserialize, Deserializer, Serialize, Serializer, Zone};
 
     pub fn serialize<S: Serializer>(z: &Option<Zone>, s: S) -> Result<S::Ok, S::Error> {
         z.map(Zone::number).serialize(s)
@@ -401,16 +401,16 @@ mod tests {
 
     #[test]
     fn nearest_rank_percentiles() {
-        let ten: Vec<Option<f64>> = (1..=10).map(|i| Some(i as f64)).collect();
+        let ten: Vec<Option<f64>> = (1..=10).map(|i| Some(f64::from(i))).collect();
         let p = Percentiles::of(ten.iter().rev().copied());
         assert_eq!((p.p10, p.median, p.p90), (Some(1.0), Some(5.0), Some(9.0)), "ranks 1, 5, 9 of 10");
-        let sixteen = (1..=16).map(|i| Some(i as f64));
+        let sixteen = (1..=16).map(|i| Some(f64::from(i)));
         let p = Percentiles::of(sixteen);
         assert_eq!((p.p10, p.median, p.p90), (Some(2.0), Some(8.0), Some(15.0)), "ranks 2, 8, 15 of 16");
         let one = Percentiles::of([Some(0.61)]);
         assert_eq!((one.p10, one.median, one.p90), (Some(0.61), Some(0.61), Some(0.61)));
         // 30 runs: 0.1·30 in floating point is 3.0000000000000004; the rank must still be 3.
-        let p = Percentiles::of((1..=30).map(|i| Some(i as f64)));
+        let p = Percentiles::of((1..=30).map(|i| Some(f64::from(i))));
         assert_eq!((p.p10, p.median, p.p90), (Some(3.0), Some(15.0), Some(27.0)));
         // Runs without the value rank lowest.
         let p = Percentiles::of([None, Some(3.0), None, Some(1.0), None]);

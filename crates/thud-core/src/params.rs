@@ -214,7 +214,7 @@ impl<'a, T> Given<'a, T> {
             match (&p.accepts, value) {
                 (Accepts::Quantity { range, set, .. }, Value::Num(v)) => set(draft, range.check_as(&flag, *v)?),
                 (Accepts::Quantity { kind, range, set }, Value::Text(t)) => {
-                    set(draft, range.check_as(&flag, units::parse(&flag, t, *kind)?)?)
+                    set(draft, range.check_as(&flag, units::parse(&flag, t, *kind)?)?);
                 }
                 (Accepts::Choice { names, set }, Value::Text(t)) => match names.iter().position(|n| n == t) {
                     Some(i) => set(draft, i),

@@ -94,8 +94,7 @@ pub fn parse(param: &str, text: &str, kind: Kind) -> Result<f64, ThudError> {
                 || c == '-'
                 || ((c == 'e' || c == 'E') && looks_like_exponent(t, i)))
         })
-        .map(|(i, _)| i)
-        .unwrap_or(t.len());
+        .map_or(t.len(), |(i, _)| i);
     let (num, unit) = t.split_at(split);
     let unit_key = unit.trim().to_lowercase();
     let value: f64 = match num.parse() {

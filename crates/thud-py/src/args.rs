@@ -143,7 +143,7 @@ pub fn to_value(v: &Bound<'_, PyAny>) -> PyResult<Value> {
 
 /// "a list", "a dict": what a value is, for messages.
 pub fn kind_of(v: &Bound<'_, PyAny>) -> String {
-    let name = v.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "object".into());
+    let name = v.get_type().name().map_or_else(|_| "object".into(), |n| n.to_string());
     let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
     format!("{article} {name}")
 }

@@ -122,16 +122,13 @@ fn axis(py: Python<'_>, name: &str, value: &Bound<'_, PyAny>, kind: Kind, range:
     let values: Vec<f64> = if let Ok(s) = value.cast::<PyString>() {
         params::parse_range(name, &s.to_cow()?, kind, range).map_err(|e| engine_error(py, e))?
     } else {
-        let seq: Vec<Bound<'_, PyAny>> = match value.try_iter() {
-            Ok(it) => it.collect::<PyResult<_>>()?,
-            Err(_) => {
-                let what = args::kind_of(value);
-                let msg = format!(
-                    "invalid {name}: expected a sequence of numbers in {} or 'FROM:TO:N', not {what}",
-                    range.unit
-                );
-                return Err(parameter_error(py, name, msg));
-            }
+        let seq: Vec<Bound<'_, PyAny>> = if let Ok(it) = value.try_iter() {
+            it.collect::<PyResult<_>>()?
+        } else {
+            let what = args::kind_of(value);
+            let msg =
+                format!("invalid {name}: expected a sequence of numbers in {} or 'FROM:TO:N', not {what}", range.unit);
+            return Err(parameter_error(py, name, msg));
         };
         let mut out = Vec::with_capacity(seq.len());
         for v in &seq {

@@ -323,7 +323,7 @@ impl Run {
                 ("spl_db", spls),
             ],
         )?;
-        let walls: Vec<i8> = run.impacts.iter().map(|i| i.wall).collect();
+        let walls: Vec<i8> = run.impacts.iter().map(|i| i8::from(i.wall)).collect();
         impacts.bind(py).set_item("wall", walls.into_pyarray(py))?;
         let energy = PyDict::new(py);
         let en = &run.energy;
@@ -347,7 +347,7 @@ impl Run {
             spl_max_db: finite_opt("spl_max_db", m.spl_max_db)?,
             contact_duration_s: finite_opt("contact_duration_s", m.contact_duration_s)?,
             restitution_mean: finite_opt("restitution_mean", m.restitution_mean)?,
-            zone: m.zone.map(|z| z.number()),
+            zone: m.zone.map(thud_core::design::Zone::number),
             impacts,
             maxima: arrays(
                 py,

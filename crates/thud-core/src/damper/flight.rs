@@ -168,7 +168,7 @@ impl Oscillator {
                 }
                 // Zeros of x'': θ − 2ψ = π/2 + kπ.
                 periodic_times(half_pi + 2.0 * psi + phi, std::f64::consts::PI, wd, t_end, |t| {
-                    f(FlightEvent::ZeroAccel, t)
+                    f(FlightEvent::ZeroAccel, t);
                 });
             }
             Regime::Critical | Regime::Over { .. } => {
@@ -234,7 +234,7 @@ mod tests {
     /// Reference: RK4 with a fine step on x'' = −2γx' − ω0²x.
     fn rk4(o: &Oscillator, x0: f64, v0: f64, t: f64) -> (f64, f64) {
         let n = 20_000;
-        let h = t / n as f64;
+        let h = t / f64::from(n);
         let f = |x: f64, v: f64| (v, o.accel(x, v));
         let (mut x, mut v) = (x0, v0);
         for _ in 0..n {

@@ -217,7 +217,7 @@ impl ImpactEvent {
 
     /// The contact, ended at `t_end_s` with outgoing speed `u_out_m_s`.
     pub(crate) fn ended(self, t_end_s: f64, u_out_m_s: f64) -> Self {
-        Self { t_end_s, u_out_m_s, ..self }
+        Self { u_out_m_s, t_end_s, ..self }
     }
 }
 

@@ -152,18 +152,18 @@ fn directivity_table(id: &'static str, title: &str, source: Source, thetas_deg: 
 }
 
 pub fn fig3() -> Result<Table, ThudError> {
-    let thetas: Vec<f64> = (-18..=18).map(|k| 5.0 * k as f64).collect();
+    let thetas: Vec<f64> = (-18..=18).map(|k| 5.0 * f64::from(k)).collect();
     directivity_table("fig3", "Fig 3 — dipole directivity at r 0.7 m", Source::Dipole, &thetas)
 }
 
 pub fn fig6() -> Result<Table, ThudError> {
-    let thetas: Vec<f64> = (0..=18).map(|k| 5.0 * k as f64).collect();
+    let thetas: Vec<f64> = (0..=18).map(|k| 5.0 * f64::from(k)).collect();
     directivity_table("fig6", "Fig 6 — quadrupole directivity at r 0.7 m (paper signs)", Source::Quadrupole, &thetas)
 }
 
 /// Distances (m) for the r sweeps of Figs 7 and 12: log-spaced from 5 cm to 20 m.
 pub fn r_grid() -> Vec<f64> {
-    (0..=26).map(|k| 0.05 * 10f64.powf(k as f64 / 10.0)).filter(|&r| r <= 20.0 + 1e-9).collect()
+    (0..=26).map(|k| 0.05 * 10f64.powf(f64::from(k) / 10.0)).filter(|&r| r <= 20.0 + 1e-9).collect()
 }
 
 pub fn fig7() -> Result<Table, ThudError> {

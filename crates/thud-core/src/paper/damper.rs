@@ -219,7 +219,7 @@ fn grid_table(id: &'static str, title: &str, chart: &Chart) -> Table {
                 k.u0_max_m_s.into(),
                 k.spl_max_db.into(),
                 (k.n_impacts as f64).into(),
-                k.zone.map_or(Value::Missing, |z| Value::Num(z.number() as f64)),
+                k.zone.map_or(Value::Missing, |z| Value::Num(f64::from(z.number()))),
             ]);
         }
     }
@@ -331,7 +331,7 @@ pub fn fig9() -> Result<Table, ThudError> {
 
 pub fn fig13() -> Result<Table, ThudError> {
     let d = Design::default();
-    let masses: Vec<f64> = (1..=20).map(|k| 0.005 * k as f64).collect();
+    let masses: Vec<f64> = (1..=20).map(|k| 0.005 * f64::from(k)).collect();
     let curve = design::restitution_curve(&d, &masses, 1.4)?;
     let reference = |m: f64| match (m * 1e3).round() as i64 {
         10 => Some(0.84),
