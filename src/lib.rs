@@ -5,7 +5,7 @@
 //! `thud-core` crate (no I/O, no terminal); its modules are re-exported here under their own
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
-pub use thud_core::{acoustics, contact, damper, design, error, limits, paper, units, ThudError};
+pub use thud_core::{acoustics, contact, damper, design, error, limits, paper, response, units, ThudError};
 
 pub mod config;
 pub mod export;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::design_args::{parse_range, DesignArgs};
+use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
 use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::Design;
 use crate::error::ThudError;
@@ -77,7 +77,7 @@ struct WavArgs {
 #[derive(Debug, Clone, Args)]
 struct Common {
     #[command(flatten)]
-    design: DesignArgs,
+    design: DesignArgs<ForceAmplitude>,
     /// Impact speed U0 of waveform/directivity/restitution (m/s) [default: the design's largest impact speed; 1.4 for restitution].
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     u0: Option<String>,

@@ -245,6 +245,9 @@ pub struct Metrics {
     pub restitution_mean: Option<f64>,
     /// The zone, when both e and SPLmax exist.
     pub zone: Option<Zone>,
+    /// The steady state of a forced design (absent without a force).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steady: Option<crate::response::Steady>,
 }
 
 impl Metrics {
@@ -317,6 +320,7 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
         contact_duration_s,
         restitution_mean,
         zone: None,
+        steady: crate::response::steady(run, design)?,
     };
     m.zone = m.zone(&design.thresholds);
     Ok(m)
@@ -546,6 +550,7 @@ mod tests {
             contact_duration_s: None,
             restitution_mean: None,
             zone: None,
+            steady: None,
         }
     }
 

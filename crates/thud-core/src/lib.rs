@@ -13,6 +13,7 @@
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
+//! - [`response`]: a forced design's steady state and level (`Leq`), and its frequency response.
 //! - [`units`]: parsing and formatting of quantities with units.
 
 pub mod acoustics;
@@ -22,6 +23,7 @@ pub mod design;
 pub mod error;
 pub mod limits;
 pub mod paper;
+pub mod response;
 pub mod units;
 
 pub use error::ThudError;

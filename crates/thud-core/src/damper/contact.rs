@@ -782,6 +782,31 @@ mod tests {
     }
 
     #[test]
+    fn a_cut_contact_resumes_where_it_stopped() {
+        let s = sys(20.0);
+        let tau = contact_duration(peak_approach(1.4, s.kstar, s.k_hz), 1.4);
+        let (whole, _) = contact(&s, 1.0, 10_000);
+        for cut in [0.1, 0.5, 0.93] {
+            let (first, _) = contact(&s, cut * tau, 10_000);
+            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
+            let r = first.resume.expect("a cut contact can resume");
+            let mut left = 10_000;
+            let mut seen_from = f64::NAN;
+            let end = resume(&s, NoLoad, &r, 1.0, &mut left, |t0, _, _, _, _, _| {
+                if seen_from.is_nan() {
+                    seen_from = t0;
+                }
+            });
+            assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
+            assert_eq!(end.outcome, ContactOutcome::Separated);
+            assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);
+            // The same contact to the integrator's tolerance (RTOL 3e-9 a step).
+            assert!((end.y[3] / whole.y[3] - 1.0).abs() < 1e-7 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-7, "{cut}: {:?} vs {:?}", end.y, whole.y);
+            assert!((end.pen_max / whole.pen_max - 1.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
     fn a_damped_contact_dissipates_what_the_ball_loses() {
         let s = sys(20.0);
         let (end, _) = contact(&s, 1.0, 10_000);

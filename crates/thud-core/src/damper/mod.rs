@@ -398,6 +398,20 @@ pub fn simulate(p: &DamperParams, solver: Solver, opts: &RunOptions) -> Result<R
     Ok(steady::run(p, solver, opts, &Start::of(p), false).0)
 }
 
+/// Simulates `p` from `start` (a continuation's state and force phase); with `want_end`, also
+/// the state the run ended in, off the record (a contact still open is finished first).
+pub(crate) fn run_from(
+    p: &DamperParams,
+    solver: Solver,
+    opts: &RunOptions,
+    start: &Start,
+    want_end: bool,
+) -> Result<(Run, Option<Start>), ThudError> {
+    p.validate()?;
+    solver.validate()?;
+    Ok(steady::run(p, solver, opts, start, want_end))
+}
+
 /// x(t) (m) of the same structure with no damper (closed form, Eq 25 alone): the Fig 9
 /// comparison curve, from x(0) = 0, x'(0) = v0, under the design's force if it has one.
 pub fn free_response(p: &DamperParams, t_s: f64) -> f64 {

@@ -6,9 +6,13 @@ use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run, Truncation};
 /// Probes of `x` per forcing period in a steady-state window (for the periodicity check).
 pub(crate) const PROBES_PER_PERIOD: usize = 64;
 
+/// Windows that end by the run's duration: the steady state is the last, and the run has
+/// settled when the amplitudes of all of them agree.
+pub(crate) const PRE_WINDOWS: usize = 3;
+
 /// The steady-state windows of a forced run (docs/model.md §6.2): consecutive stretches of `N`
-/// forcing periods `L = N·T`, window `k` ending at `D + (k − 1)·L` where `D` is the run's
-/// duration, so windows 0 and 1 are the two last of a run to `D` and windows 2, 3, … the
+/// forcing periods `L = N·T`, window `k` ending at `D + (k − 2)·L` where `D` is the run's
+/// duration, so windows 0, 1 and 2 are the three last of a run to `D` and windows 3, 4, … the
 /// stretches a settling run adds. Each window keeps the largest `|x|` seen in it (at extrema,
 /// step ends and probes) and `x` at `N·S + 1` uniform probe times (`S` =
 /// [`PROBES_PER_PERIOD`]), the first and last on its ends.
@@ -24,7 +28,7 @@ pub(crate) struct Windows {
     inv_len: f64,
     /// The window accumulators, by index (closed ones keep only their figures).
     acc: Vec<WindowAcc>,
-    /// Index of the next probe; probe `i` is at `D + (i − 2·N·S)·T/S`.
+    /// Index of the next probe; probe `i` is at `D + (i − 3·N·S)·T/S`.
     next_probe: usize,
 }
 
@@ -67,7 +71,7 @@ impl Windows {
     /// Time (s) of probe `i`.
     #[inline]
     fn probe_time(&self, i: usize) -> f64 {
-        self.d + (i as f64 - 2.0 * self.per as f64) * self.dtp
+        self.d + (i as f64 - (PRE_WINDOWS * self.per) as f64) * self.dtp
     }
 
     /// Start and end (s) of window `k` (the start may be < 0).
@@ -85,7 +89,7 @@ impl Windows {
     /// `x` (m) at time `t` (s): counts towards the amplitude of the window holding `t`.
     #[inline]
     pub fn x_at(&mut self, t: f64, x: f64) {
-        let k = ((t - self.d) * self.inv_len + 2.0).floor();
+        let k = ((t - self.d) * self.inv_len + PRE_WINDOWS as f64).floor();
         if k >= 0.0 && t >= 0.0 {
             let w = self.window(k as usize);
             w.max_abs_x = w.max_abs_x.max(x.abs());
@@ -352,16 +356,17 @@ mod tests {
 
     #[test]
     fn windows_split_probes_and_judge_periodicity() {
-        // D = 3 s, T = 0.5 s, N = 2: windows [1, 2], [2, 3], then [3, 4] …
+        // D = 3 s, T = 0.5 s, N = 2: windows [0, 1], [1, 2], [2, 3], then [3, 4] …
         let mut w = Windows::new(3.0, 0.5, 2);
-        assert_eq!(w.bounds(0), (1.0, 2.0));
-        assert_eq!(w.bounds(1), (2.0, 3.0));
+        assert_eq!(w.bounds(0), (0.0, 1.0));
+        assert_eq!(w.bounds(2), (2.0, 3.0));
+        assert_eq!(w.bounds(3), (3.0, 4.0));
         let x = |t: f64| 0.01 * (2.0 * std::f64::consts::PI * t / 0.5).sin();
         while w.next_probe_time() <= 3.0 {
             let t = w.next_probe_time();
             w.probe(x(t));
         }
-        let s = w.close(1);
+        let s = w.close(2);
         assert!(s.complete && s.periodic && (s.amplitude_m - 0.01).abs() < 1e-6, "{s:?}");
         // A window whose motion grows by 1 % a period is not periodic.
         let mut g = Windows::new(3.0, 0.5, 2);
@@ -369,12 +374,12 @@ mod tests {
             let t = g.next_probe_time();
             g.probe(x(t) + 1e-4 * t);
         }
-        assert!(!g.close(1).periodic);
-        // A run shorter than two windows leaves the first one incomplete.
-        let mut short = Windows::new(1.5, 0.5, 2);
-        while short.next_probe_time() <= 1.5 {
+        assert!(!g.close(2).periodic);
+        // A run shorter than three windows leaves the first ones incomplete.
+        let mut short = Windows::new(2.5, 0.5, 2);
+        while short.next_probe_time() <= 2.5 {
             short.probe(0.0);
         }
-        assert!(!short.close(0).complete && short.close(1).complete);
+        assert!(!short.close(0).complete && short.close(1).complete && short.close(2).complete);
     }
 }

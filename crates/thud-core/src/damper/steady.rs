@@ -2,12 +2,14 @@
 //! under.
 //!
 //! A forced run of duration `D` at forcing period `T` is judged over windows of `N` periods
-//! (`L = N·T`, [`Windows`]): window 1 is `[D − L, D]`, window 0 the one before it. Its
-//! [`SteadyMotion`] is window 1's: the largest `|x|`, the impacts per period, whether `x` repeats
-//! from period to period (within 1e-3 of the amplitude), and whether the run has settled — the
-//! amplitude of window 1 within 1e-3 (relative) of window 0's. With `settle`, the run goes on
-//! past `D` one window at a time until it has settled, or for at most [`SETTLE_PERIODS_MAX`]
-//! more periods (then `settled` is false); the steady state is then the last window's.
+//! (`L = N·T`, [`Windows`]): the last is `[D − L, D]`, and the two before it count too. Its
+//! [`SteadyMotion`] is the last window's: the largest `|x|`, the impacts per period, whether `x`
+//! repeats from period to period (within 1e-3 of the amplitude), and whether the run has
+//! settled — the amplitudes of the last three windows agree within 1e-3 (relative), i.e. two
+//! successive changes are that small (one alone can be a coincidence of a slowly decaying
+//! beat). With `settle`, the run goes on past `D` one window at a time until it has settled, or
+//! for at most [`SETTLE_PERIODS_MAX`] more periods (then `settled` is false); the steady state
+//! is then the last window's.
 
 use serde::{Deserialize, Serialize};
 
@@ -15,7 +17,7 @@ use super::event::{EventSim, Free, ForcedFlight};
 use super::flight::Oscillator;
 use super::forced::{Forced, Harmonic};
 use super::newmark::NewmarkSim;
-use super::record::{Recorder, WindowStats, Windows};
+use super::record::{Recorder, WindowStats, Windows, PRE_WINDOWS};
 use super::{DamperParams, ImpactEvent, Run, RunOptions, Solver};
 
 /// The most forcing periods a settling run adds past its duration.
@@ -104,6 +106,11 @@ fn converged(a: &WindowStats, b: &WindowStats) -> bool {
     a.complete && b.complete && (b.amplitude_m - a.amplitude_m).abs() <= SETTLED_TOLERANCE * b.amplitude_m
 }
 
+/// Whether the last three windows agree (`w[0]` the oldest).
+fn settled(w: &[WindowStats; 3]) -> bool {
+    converged(&w[0], &w[1]) && converged(&w[1], &w[2])
+}
+
 /// Runs `p` from `start` with `solver`: to its duration, then (forced, with `settle`) on until
 /// it settles. Returns the run and, if `want_end`, the state it ended in (for a continuation).
 pub(crate) fn run(p: &DamperParams, solver: Solver, opts: &RunOptions, start: &Start, want_end: bool) -> (Run, Option<Start>) {
@@ -155,22 +162,21 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
     fn windows<S: Stepper>(s: &mut S) -> &mut Windows {
         s.recorder().windows.as_mut().expect("a forced run has windows")
     }
-    let mut prev = windows(s).close(0);
-    let mut last = windows(s).close(1);
-    let mut k = 1;
+    let mut w = [windows(s).close(0), windows(s).close(1), windows(s).close(2)];
+    let mut k = PRE_WINDOWS - 1;
     if p.settle {
         let max_windows = SETTLE_PERIODS_MAX.div_ceil(p.steady_periods);
         for _ in 0..max_windows {
-            if s.halted() || converged(&prev, &last) {
+            if s.halted() || settled(&w) {
                 break;
             }
             k += 1;
             let end = windows(s).bounds(k).1;
             s.advance_to(end);
-            prev = last;
-            last = windows(s).close(k);
+            w = [w[1], w[2], windows(s).close(k)];
         }
     }
+    let [_, prev, last] = w;
     let period = 1.0 / p.freq_hz;
     let impacts = s.impacts().iter().filter(|i| i.t_s >= last.start_s && i.t_s < last.end_s).count();
     let span = (last.end_s - last.start_s).max(0.0);
@@ -189,7 +195,7 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
         impacts,
         impacts_per_period: if span > 0.0 { impacts as f64 * period / span } else { 0.0 },
         periodic: last.complete && last.periodic,
-        settled: converged(&prev, &last),
+        settled: settled(&w),
         truncated: false,
         previous_amplitude_m: prev.complete.then_some(prev.amplitude_m),
     }
