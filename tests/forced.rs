@@ -105,10 +105,11 @@ fn forced_flight_matches_numerical_integration() {
 
 #[test]
 fn without_impacts_the_steady_amplitude_is_the_closed_form() {
-    // A damped main mass (the transient has decayed by e^-60 over the run) whose ball never
-    // reaches a wall: the largest |x| over the window is F0/√((K − MΩ²)² + (CΩ)²) to 1e-9.
+    // A damped main mass (the transient has decayed by e^-60 within the first third of the run)
+    // whose ball never reaches a wall: the largest |x| over the window is
+    // F0/√((K − MΩ²)² + (CΩ)²) to 1e-9.
     for freq in [2.0, 4.9, 5.03, 9.0] {
-        let p = DamperParams { gap_m: 10.0, damping_n_s_m: 5.0, ..forced(1.0, freq, 20.0) };
+        let p = DamperParams { gap_m: 10.0, damping_n_s_m: 5.0, ..forced(1.0, freq, 40.0) };
         let run = simulate(&p, Solver::Event, &opts()).unwrap();
         let s = run.steady.expect("a forced run has a steady state");
         let om = 2.0 * std::f64::consts::PI * freq;
@@ -117,8 +118,8 @@ fn without_impacts_the_steady_amplitude_is_the_closed_form() {
         assert!(close(s.amplitude_m, closed, 1e-9), "{freq} Hz: {} vs {closed}", s.amplitude_m);
         assert!(s.reduction_db.unwrap().abs() < 1e-7);
         assert!(s.periodic && s.settled && !s.truncated && s.impacts == 0, "{s:?}");
-        assert_eq!(s.window_end_s, 20.0);
-        assert!((s.window_start_s - (20.0 - 10.0 / freq)).abs() < 1e-12);
+        assert_eq!(s.window_end_s, 40.0);
+        assert!((s.window_start_s - (40.0 - 10.0 / freq)).abs() < 1e-12);
     }
     // The Newmark reference to its own accuracy.
     let p = DamperParams { gap_m: 10.0, damping_n_s_m: 5.0, ..forced(1.0, 5.0, 6.0) };
@@ -158,7 +159,7 @@ fn undamped_resonance_has_no_steady_state() {
 }
 
 #[test]
-fn settling_runs_on_until_three_windows_agree() {
+fn settling_runs_on_until_the_windows_agree() {
     // Light damping, no impact: the free transient decays as e^(−γt), γ = 0.05 1/s.
     let p = DamperParams { gap_m: 10.0, ..forced(1.0, 3.0, 10.0) };
     let plain = simulate(&p, Solver::Event, &opts()).unwrap();
@@ -171,8 +172,8 @@ fn settling_runs_on_until_three_windows_agree() {
     assert_eq!(s.window_end_s, settled.final_time_s);
     let change = (s.amplitude_m / s.previous_amplitude_m.unwrap() - 1.0).abs();
     assert!(change <= 1e-3, "{change}");
-    // Settled to the criterion, the transient is small but not gone: within 1 % of the closed form.
-    assert!(close(s.amplitude_m, s.amplitude_linear_m.unwrap(), 1e-2), "{s:?}");
+    // Settled to the criterion, what is left of the transient is below 1e-3 of the amplitude.
+    assert!(close(s.amplitude_m, s.amplitude_linear_m.unwrap(), 1e-3), "{s:?}");
     // A run that never settles stops at the cap and says so.
     let w0 = (500.0f64 / 0.5).sqrt();
     let never = DamperParams {

@@ -157,6 +157,12 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// The design these flags describe, validated: each flag against its range (the error
     /// names the flag), then the whole design (preset values too) and its derived quantities.
     pub fn design(&self) -> Result<Design, ThudError> {
+        self.design_with(|_| {})
+    }
+
+    /// As [`DesignArgs::design`], with `adjust` applied to the design before it is checked as a
+    /// whole (a command that sets a parameter itself, as `response` sets the frequency).
+    pub fn design_with(&self, adjust: impl FnOnce(&mut Design)) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
         let p = &mut d.damper;
@@ -183,12 +189,6 @@ impl<F: ForceFlag> DesignArgs<F> {
             p.steady_periods = limits::PERIODS.parse_count("--periods", n)? as u32;
         }
         p.settle |= self.settle;
-        if p.force_n > 0.0 && p.freq_hz == 0.0 {
-            return Err(ThudError::invalid(
-                format!("--{}", F::NAME),
-                format!("{} N needs a forcing frequency; add --freq (Hz)", short(p.force_n)),
-            ));
-        }
         p.no_tension |= self.no_tension;
         if let Some(s) = &self.sphere {
             d.materials =
@@ -225,6 +225,7 @@ impl<F: ForceFlag> DesignArgs<F> {
         }
         set(&mut d.thresholds.spl_db, "l-star", &self.l_star, Kind::Level, &limits::L_STAR)?;
         set(&mut d.thresholds.inclination_cm_s, "e-star", &self.e_star, Kind::Inclination, &limits::E_STAR)?;
+        adjust(&mut d);
         limits::check_design(&d)?;
         d.validate().map_err(|e| self.blame_ball(e, &d))?;
         d.resolved()

@@ -6,16 +6,13 @@ use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run, Truncation};
 /// Probes of `x` per forcing period in a steady-state window (for the periodicity check).
 pub(crate) const PROBES_PER_PERIOD: usize = 64;
 
-/// Windows that end by the run's duration: the steady state is the last, and the run has
-/// settled when the amplitudes of all of them agree.
-pub(crate) const PRE_WINDOWS: usize = 3;
-
 /// The steady-state windows of a forced run (docs/model.md §6.2): consecutive stretches of `N`
-/// forcing periods `L = N·T`, window `k` ending at `D + (k − 2)·L` where `D` is the run's
-/// duration, so windows 0, 1 and 2 are the three last of a run to `D` and windows 3, 4, … the
-/// stretches a settling run adds. Each window keeps the largest `|x|` seen in it (at extrema,
-/// step ends and probes) and `x` at `N·S + 1` uniform probe times (`S` =
-/// [`PROBES_PER_PERIOD`]), the first and last on its ends.
+/// forcing periods `L = N·T` laid back from the run's duration `D` to `t = 0` (the first may
+/// start before 0, and is then incomplete) and on past `D` for a settling run. Each window keeps
+/// the largest `|x|` seen in it (at extrema, step ends and probes) and `x` at `N·S + 1` uniform
+/// probe times (`S` = [`PROBES_PER_PERIOD`]), the first and last on its ends; when its last
+/// probe is taken it is closed: its figures are kept ([`WindowStats`] for the last three, the
+/// amplitude for all) and its probes freed.
 #[derive(Debug, Clone)]
 pub(crate) struct Windows {
     /// `D` (s).
@@ -24,11 +21,17 @@ pub(crate) struct Windows {
     dtp: f64,
     /// Probes per window, `N·S`.
     per: usize,
-    /// Probe spacing in windows, `1/L` (1/s), for attributing a time to its window.
+    /// Windows that end by `D`.
+    k0: usize,
+    /// `1/L` (1/s), for attributing a time to its window.
     inv_len: f64,
-    /// The window accumulators, by index (closed ones keep only their figures).
-    acc: Vec<WindowAcc>,
-    /// Index of the next probe; probe `i` is at `D + (i − 3·N·S)·T/S`.
+    /// The windows still open (at most a few), by index.
+    open: Vec<(usize, WindowAcc)>,
+    /// The amplitude of every closed window (m), by index.
+    amplitudes: Vec<f32>,
+    /// The figures of the last three closed windows, oldest first.
+    recent: Vec<WindowStats>,
+    /// Index of the next probe; probe `i` is at `D + (i − k0·N·S)·T/S`.
     next_probe: usize,
 }
 
@@ -60,8 +63,19 @@ impl Windows {
     pub fn new(duration_s: f64, period_s: f64, periods: usize) -> Self {
         let per = periods * PROBES_PER_PERIOD;
         let dtp = period_s / PROBES_PER_PERIOD as f64;
-        let mut w =
-            Windows { d: duration_s, dtp, per, inv_len: 1.0 / (per as f64 * dtp), acc: Vec::new(), next_probe: 0 };
+        let len = per as f64 * dtp;
+        let k0 = ((duration_s / len) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+        let mut w = Windows {
+            d: duration_s,
+            dtp,
+            per,
+            k0,
+            inv_len: 1.0 / len,
+            open: Vec::new(),
+            amplitudes: Vec::new(),
+            recent: Vec::new(),
+            next_probe: 0,
+        };
         while w.probe_time(w.next_probe) < 0.0 {
             w.next_probe += 1;
         }
@@ -71,7 +85,7 @@ impl Windows {
     /// Time (s) of probe `i`.
     #[inline]
     fn probe_time(&self, i: usize) -> f64 {
-        self.d + (i as f64 - (PRE_WINDOWS * self.per) as f64) * self.dtp
+        self.d + (i as f64 - (self.k0 * self.per) as f64) * self.dtp
     }
 
     /// Start and end (s) of window `k` (the start may be < 0).
@@ -79,20 +93,28 @@ impl Windows {
         (self.probe_time(k * self.per), self.probe_time((k + 1) * self.per))
     }
 
-    fn window(&mut self, k: usize) -> &mut WindowAcc {
-        if self.acc.len() <= k {
-            self.acc.resize_with(k + 1, WindowAcc::default);
+    /// The open window `k`, opened if need be; None if it is closed already.
+    fn window(&mut self, k: usize) -> Option<&mut WindowAcc> {
+        if k < self.amplitudes.len() {
+            return None;
         }
-        &mut self.acc[k]
+        match self.open.iter().position(|(i, _)| *i == k) {
+            Some(at) => Some(&mut self.open[at].1),
+            None => {
+                self.open.push((k, WindowAcc::default()));
+                self.open.last_mut().map(|(_, w)| w)
+            }
+        }
     }
 
     /// `x` (m) at time `t` (s): counts towards the amplitude of the window holding `t`.
     #[inline]
     pub fn x_at(&mut self, t: f64, x: f64) {
-        let k = ((t - self.d) * self.inv_len + PRE_WINDOWS as f64).floor();
+        let k = ((t - self.d) * self.inv_len + self.k0 as f64).floor();
         if k >= 0.0 && t >= 0.0 {
-            let w = self.window(k as usize);
-            w.max_abs_x = w.max_abs_x.max(x.abs());
+            if let Some(w) = self.window(k as usize) {
+                w.max_abs_x = w.max_abs_x.max(x.abs());
+            }
         }
     }
 
@@ -102,11 +124,12 @@ impl Windows {
         self.probe_time(self.next_probe)
     }
 
-    /// Takes the next probe, `x` (m) at [`Windows::next_probe_time`]; a probe on the boundary
-    /// of two windows belongs to both.
+    /// Takes the next probe, `x` (m) at [`Windows::next_probe_time`]. A probe on the boundary
+    /// of two windows belongs to both, and closes the earlier one.
     pub fn probe(&mut self, x: f64) {
         let i = self.next_probe;
         let (k, j) = (i / self.per, i % self.per);
+        let per = self.per;
         let push = |w: &mut WindowAcc, j: usize| {
             if w.probes.is_empty() {
                 w.first = j;
@@ -114,27 +137,61 @@ impl Windows {
             w.probes.push(x);
             w.max_abs_x = w.max_abs_x.max(x.abs());
         };
-        let per = self.per;
-        push(self.window(k), j);
+        if let Some(w) = self.window(k) {
+            push(w, j);
+        }
         if j == 0 && k > 0 {
-            push(self.window(k - 1), per);
+            if let Some(w) = self.window(k - 1) {
+                push(w, per);
+            }
+            self.close(k - 1);
         }
         self.next_probe += 1;
     }
 
-    /// The figures of window `k` (which must be over, or the run stopped inside it); frees its
-    /// probes.
-    pub fn close(&mut self, k: usize) -> WindowStats {
+    /// Closes window `k` (the next one to close) with what it has seen.
+    fn close(&mut self, k: usize) {
+        debug_assert_eq!(k, self.amplitudes.len());
+        let acc = match self.open.iter().position(|(i, _)| *i == k) {
+            Some(at) => self.open.swap_remove(at).1,
+            None => WindowAcc::default(),
+        };
         let (start_s, end_s) = self.bounds(k);
-        let per = self.per;
-        let w = self.window(k);
-        let probes = std::mem::take(&mut w.probes);
-        let amplitude_m = w.max_abs_x;
-        let complete = w.first == 0 && probes.len() == per + 1;
+        let amplitude_m = acc.max_abs_x;
+        let complete = acc.first == 0 && acc.probes.len() == self.per + 1;
         let s = PROBES_PER_PERIOD;
-        let drift = probes.windows(s + 1).map(|p| (p[s] - p[0]).abs()).fold(0.0, f64::max);
-        let periodic = probes.len() > s && drift <= 1e-3 * amplitude_m;
-        WindowStats { start_s: start_s.max(0.0), end_s, amplitude_m, periodic, complete }
+        let drift = acc.probes.windows(s + 1).map(|p| (p[s] - p[0]).abs()).fold(0.0, f64::max);
+        let periodic = acc.probes.len() > s && drift <= 1e-3 * amplitude_m;
+        self.amplitudes.push(amplitude_m as f32);
+        if self.recent.len() == 3 {
+            self.recent.remove(0);
+        }
+        self.recent.push(WindowStats { start_s: start_s.max(0.0), end_s, amplitude_m, periodic, complete });
+    }
+
+    /// Closes the window the run stopped in (a run cut short by a work cap or cancellation).
+    pub fn close_open(&mut self) {
+        self.close(self.amplitudes.len());
+    }
+
+    /// Windows closed so far.
+    pub fn closed(&self) -> usize {
+        self.amplitudes.len()
+    }
+
+    /// The figures of the last (up to three) closed windows, oldest first.
+    pub fn recent(&self) -> &[WindowStats] {
+        &self.recent
+    }
+
+    /// The amplitude (m, to single precision) of closed window `k`.
+    pub fn amplitude(&self, k: usize) -> f64 {
+        f64::from(self.amplitudes[k])
+    }
+
+    /// Whether closed window `k` started at or after `t = 0`.
+    pub fn starts_in_run(&self, k: usize) -> bool {
+        self.bounds(k).0 >= 0.0
     }
 }
 
@@ -355,7 +412,7 @@ mod tests {
     }
 
     #[test]
-    fn windows_split_probes_and_judge_periodicity() {
+    fn windows_split_probes_close_and_judge_periodicity() {
         // D = 3 s, T = 0.5 s, N = 2: windows [0, 1], [1, 2], [2, 3], then [3, 4] …
         let mut w = Windows::new(3.0, 0.5, 2);
         assert_eq!(w.bounds(0), (0.0, 1.0));
@@ -366,20 +423,24 @@ mod tests {
             let t = w.next_probe_time();
             w.probe(x(t));
         }
-        let s = w.close(2);
+        assert_eq!(w.closed(), 3, "the probe at D closes the window ending there");
+        let s = w.recent()[2];
         assert!(s.complete && s.periodic && (s.amplitude_m - 0.01).abs() < 1e-6, "{s:?}");
+        assert!((w.amplitude(0) - 0.01).abs() < 1e-6 && w.starts_in_run(0));
         // A window whose motion grows by 1 % a period is not periodic.
         let mut g = Windows::new(3.0, 0.5, 2);
         while g.next_probe_time() <= 3.0 {
             let t = g.next_probe_time();
             g.probe(x(t) + 1e-4 * t);
         }
-        assert!(!g.close(2).periodic);
-        // A run shorter than three windows leaves the first ones incomplete.
+        assert!(!g.recent()[2].periodic);
+        // A run that is not a whole number of windows starts with an incomplete one.
         let mut short = Windows::new(2.5, 0.5, 2);
         while short.next_probe_time() <= 2.5 {
             short.probe(0.0);
         }
-        assert!(!short.close(0).complete && short.close(1).complete && short.close(2).complete);
+        let r = short.recent();
+        assert_eq!(short.closed(), 3);
+        assert!(!r[0].complete && !short.starts_in_run(0) && r[1].complete && r[2].complete);
     }
 }

@@ -2,14 +2,18 @@
 //! under.
 //!
 //! A forced run of duration `D` at forcing period `T` is judged over windows of `N` periods
-//! (`L = N·T`, [`Windows`]): the last is `[D − L, D]`, and the two before it count too. Its
-//! [`SteadyMotion`] is the last window's: the largest `|x|`, the impacts per period, whether `x`
-//! repeats from period to period (within 1e-3 of the amplitude), and whether the run has
-//! settled — the amplitudes of the last three windows agree within 1e-3 (relative), i.e. two
-//! successive changes are that small (one alone can be a coincidence of a slowly decaying
-//! beat). With `settle`, the run goes on past `D` one window at a time until it has settled, or
-//! for at most [`SETTLE_PERIODS_MAX`] more periods (then `settled` is false); the steady state
-//! is then the last window's.
+//! (`L = N·T`, [`Windows`]) laid back from `D`: the last is `[D − L, D]`. Its [`SteadyMotion`]
+//! is the last window's: the largest `|x|`, the impacts per period, whether `x` repeats from
+//! period to period (within 1e-3 of the amplitude), and whether the run has settled: the
+//! amplitude of each of the last three windows is within 1e-3 (relative) of the one before —
+//! two successive changes that small, as one alone can be a coincidence of a slowly decaying
+//! beat — and within 1e-3 of the window a third of the way back through the run (with four
+//! windows or more), which a transient that decays slowly (light damping: a change of only γ·L
+//! a window) cannot pass while it is more than about 1e-3 of the amplitude: a transient
+//! `e^(−γt)` passes it once `e^(−2γt/3)·(1 − e^(−γt/3)) < 1e-3`, and is then below 1e-4 or so
+//! (docs/model.md §6.2). With `settle`, the run goes on past `D` one window
+//! at a time until it has settled, or for at most [`SETTLE_PERIODS_MAX`] more periods (then
+//! `settled` is false); the steady state is then the last window's.
 
 use serde::{Deserialize, Serialize};
 
@@ -17,7 +21,7 @@ use super::event::{EventSim, Free, ForcedFlight};
 use super::flight::Oscillator;
 use super::forced::{Forced, Harmonic};
 use super::newmark::NewmarkSim;
-use super::record::{Recorder, WindowStats, Windows, PRE_WINDOWS};
+use super::record::{Recorder, WindowStats, Windows};
 use super::{DamperParams, ImpactEvent, Run, RunOptions, Solver};
 
 /// The most forcing periods a settling run adds past its duration.
@@ -106,9 +110,23 @@ fn converged(a: &WindowStats, b: &WindowStats) -> bool {
     a.complete && b.complete && (b.amplitude_m - a.amplitude_m).abs() <= SETTLED_TOLERANCE * b.amplitude_m
 }
 
-/// Whether the last three windows agree (`w[0]` the oldest).
-fn settled(w: &[WindowStats; 3]) -> bool {
-    converged(&w[0], &w[1]) && converged(&w[1], &w[2])
+/// Whether the run has settled by its closed windows (see the module documentation).
+fn settled(w: &Windows) -> bool {
+    let [a, b, c] = match w.recent() {
+        [a, b, c] => [a, b, c],
+        _ => return false,
+    };
+    if !(converged(a, b) && converged(b, c)) {
+        return false;
+    }
+    let n = w.closed();
+    if n < 4 {
+        return true;
+    }
+    // The window a third of the way back (before the last three); its amplitude is kept to
+    // single precision, far below 1e-3.
+    let r = (2 * n / 3).min(n - 4);
+    w.starts_in_run(r) && (w.amplitude(r) - c.amplitude_m).abs() <= SETTLED_TOLERANCE * c.amplitude_m * (1.0 + 1e-6)
 }
 
 /// Runs `p` from `start` with `solver`: to its duration, then (forced, with `settle`) on until
@@ -162,21 +180,28 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
     fn windows<S: Stepper>(s: &mut S) -> &mut Windows {
         s.recorder().windows.as_mut().expect("a forced run has windows")
     }
-    let mut w = [windows(s).close(0), windows(s).close(1), windows(s).close(2)];
-    let mut k = PRE_WINDOWS - 1;
-    if p.settle {
+    if s.halted() {
+        windows(s).close_open();
+    } else if p.settle {
         let max_windows = SETTLE_PERIODS_MAX.div_ceil(p.steady_periods);
         for _ in 0..max_windows {
-            if s.halted() || settled(&w) {
+            if settled(windows(s)) {
                 break;
             }
-            k += 1;
-            let end = windows(s).bounds(k).1;
+            let next = windows(s).closed();
+            let end = windows(s).bounds(next).1;
             s.advance_to(end);
-            w = [w[1], w[2], windows(s).close(k)];
+            if s.halted() {
+                windows(s).close_open();
+                break;
+            }
         }
     }
-    let [_, prev, last] = w;
+    let w = windows(s);
+    let is_settled = settled(w);
+    let recent = w.recent();
+    let last = *recent.last().expect("a forced run closes at least its last window");
+    let prev = recent.len().checked_sub(2).map(|i| recent[i]);
     let period = 1.0 / p.freq_hz;
     let impacts = s.impacts().iter().filter(|i| i.t_s >= last.start_s && i.t_s < last.end_s).count();
     let span = (last.end_s - last.start_s).max(0.0);
@@ -195,8 +220,8 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
         impacts,
         impacts_per_period: if span > 0.0 { impacts as f64 * period / span } else { 0.0 },
         periodic: last.complete && last.periodic,
-        settled: settled(&w),
+        settled: is_settled,
         truncated: false,
-        previous_amplitude_m: prev.complete.then_some(prev.amplitude_m),
+        previous_amplitude_m: prev.filter(|p| p.complete).map(|p| p.amplitude_m),
     }
 }
