@@ -6,7 +6,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::budget;
-use super::design_args::{parse_range, DesignArgs};
+use super::design_args::{parse_range, DesignArgs, ForceFlag};
 use super::format::num;
 use super::simulate::describe;
 use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
@@ -42,7 +42,7 @@ struct ResponseJson<'a> {
 
 /// The design of a response: the flags, from rest unless the start was typed, at the first
 /// frequency (each point sets its own).
-pub(crate) fn response_design(args: &DesignArgs<impl super::design_args::ForceFlag>, first_hz: f64) -> Result<Design, ThudError> {
+pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<Design, ThudError> {
     if let Some(f) = args.freq_text() {
         return Err(ThudError::invalid("--freq", format!("'{f}': a response sweeps the frequency; give --freqs FROM:TO:N")));
     }
@@ -54,7 +54,10 @@ pub(crate) fn response_design(args: &DesignArgs<impl super::design_args::ForceFl
         }
     })?;
     if !d.damper.forced() {
-        return Err(ThudError::invalid("--force", "0 N: a response needs a force; give --force F0 (N)"));
+        return Err(ThudError::invalid(
+            format!("--{}", F::NAME),
+            format!("0 N: a response needs a force; give --{} F0 (N)", F::NAME),
+        ));
     }
     Ok(d)
 }
