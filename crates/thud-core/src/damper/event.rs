@@ -19,6 +19,50 @@ use super::{
     DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, Truncation, Wall, CONTACT_STEP_CAP, FLIGHT_SEARCH_CAP,
 };
 
+/// Where the event solver's time goes, by phase (with the cargo feature `timing` only: the
+/// clock reads cost about 25 ns each, a few per impact; without the feature there is no timing
+/// code at all). Counted per thread over every run since the last [`timing::take`].
+#[cfg(feature = "timing")]
+pub mod timing {
+    use std::cell::Cell;
+    use std::time::Instant;
+
+    /// Nanoseconds spent per phase, and the counts that go with them.
+    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+    pub struct Breakdown {
+        /// Contact search (conservative advancement on the closed-form flight).
+        pub search_ns: u64,
+        /// Recording flights: maxima, crossings, `|z'|` extrema, history and window probes.
+        pub flight_record_ns: u64,
+        /// Contacts: the adaptive integrator, with its own recording of each step.
+        pub contact_ns: u64,
+        /// Flights searched, contacts integrated.
+        pub flights: u64,
+        pub contacts: u64,
+    }
+
+    thread_local! {
+        static NOW: Cell<Breakdown> = Cell::new(Breakdown::default());
+    }
+
+    /// The breakdown so far on this thread; starts a new one.
+    pub fn take() -> Breakdown {
+        NOW.with(|c| c.replace(Breakdown::default()))
+    }
+
+    pub(crate) fn add(f: impl FnOnce(&mut Breakdown)) {
+        NOW.with(|c| {
+            let mut b = c.get();
+            f(&mut b);
+            c.set(b);
+        });
+    }
+
+    pub(crate) fn since(t: Instant) -> u64 {
+        t.elapsed().as_nanos() as u64
+    }
+}
+
 /// Outcome of the search for the next contact in one flight.
 pub(crate) enum Search {
     /// Contact at this flight time (s) on this wall.
@@ -195,12 +239,13 @@ impl Flight for ForcedFlight {
         iters: &mut usize,
     ) -> Search {
         let fo = &self.0;
+        let seg = fo.segment(t0, x0, v0);
         let h = fo.horizon();
         let gtol = 1e-13 * hg;
         let s_min = 1e-15;
         let mut tau = 0.0;
         loop {
-            let (x, v) = if tau == 0.0 { (x0, v0) } else { fo.advance(t0, x0, v0, tau) };
+            let (x, v) = if tau == 0.0 { (x0, v0) } else { seg.at(tau) };
             let z = y0 + w * tau - x;
             let zd = w - v;
             let gp = hg - z;
@@ -227,9 +272,9 @@ impl Flight for ForcedFlight {
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
     /// for the steady windows; history and window probes.
     fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
-        let fo = &self.0;
+        let seg = self.0.segment(t0, x0, v0);
         rec.x_at(t0, x0);
-        fo.for_each_event(t0, x0, v0, tf, |kind, tau, x, v| match kind {
+        seg.for_each_event(tf, |kind, tau, x, v| match kind {
             ForcedEvent::MaxX => {
                 rec.local_max(t0 + tau, x);
                 rec.x_at(t0 + tau, x);
@@ -238,12 +283,12 @@ impl Flight for ForcedFlight {
             ForcedEvent::UpCross => rec.up_cross(),
             ForcedEvent::ZeroAccel => rec.zdot(w - v),
         });
-        let (x1, v1) = fo.advance(t0, x0, v0, tf);
+        let (x1, v1) = seg.at(tf);
         rec.zdot(w - v1);
         rec.x_at(t0 + tf, x1);
         rec.history_until(t1, |ts| {
             let tau = (ts - t0).clamp(0.0, tf);
-            (fo.advance(t0, x0, v0, tau).0, y0 + w * tau)
+            (seg.at(tau).0, y0 + w * tau)
         });
     }
 
@@ -397,7 +442,11 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             }
             // Flight.
             let (t, x, v, y, w) = (self.t, self.x, self.v, self.y, self.w);
+            #[cfg(feature = "timing")]
+            let clock = std::time::Instant::now();
             let search = self.flight.find_contact(self.sys.half_gap, t, x, v, y, w, t_stop - t, &mut self.iters);
+            #[cfg(feature = "timing")]
+            let (search_ns, clock) = (timing::since(clock), std::time::Instant::now());
             let (tf, wall) = match search {
                 Search::Contact(tau, wall) => (tau, Some(wall)),
                 Search::None => (t_stop - t, None),
@@ -408,6 +457,12 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             };
             let t1 = if matches!(search, Search::None) { t_stop } else { t + tf };
             self.flight.record(&mut self.rec, t, x, v, y, w, tf, t1);
+            #[cfg(feature = "timing")]
+            timing::add(|b| {
+                b.search_ns += search_ns;
+                b.flight_record_ns += timing::since(clock);
+                b.flights += 1;
+            });
             let (x1, v1) = self.flight.advance(t, x, v, tf);
             let (viscous, work) = self.flight.energies(&self.sys, t, x, v, tf, x1, v1);
             self.energy.dissipated_viscous_j += viscous;
@@ -421,7 +476,14 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             let Some(wall) = wall else { break };
             // Contact: start exactly at δ = 0.
             let u_in = wall.sign() * (self.w - self.v);
+            #[cfg(feature = "timing")]
+            let clock = std::time::Instant::now();
             self.contact(wall, self.t, u_in, None, t_stop);
+            #[cfg(feature = "timing")]
+            timing::add(|b| {
+                b.contact_ns += timing::since(clock);
+                b.contacts += 1;
+            });
         }
     }
 

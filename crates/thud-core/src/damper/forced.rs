@@ -131,10 +131,11 @@ impl Forced {
         (a * c + b * s, self.load.omega * (b * c - a * s))
     }
 
-    /// The undamped zero-state response and its rate a time `tau` after `t0` (beat form).
+    /// The undamped zero-state response and its rate a time `tau` after `t0`, where
+    /// `θ(t0) = atan2(s0, c0)` (beat form).
     #[inline]
-    fn beat(&self, w0: f64, sigma: f64, delta: f64, t0: f64, tau: f64) -> (f64, f64) {
-        let (s0, c0) = self.load.theta(t0).sin_cos();
+    #[allow(clippy::too_many_arguments)]
+    fn beat(&self, w0: f64, sigma: f64, delta: f64, s0: f64, c0: f64, tau: f64) -> (f64, f64) {
         let (ss, cs) = (sigma * tau).sin_cos();
         let ts = sin_over(delta, tau);
         let cd = (delta * tau).cos();
@@ -150,19 +151,20 @@ impl Forced {
     /// Position and velocity `(x, x')` a time `tau` (s) after the state `(x0, v0)` at time `t0`.
     #[inline]
     pub fn advance(&self, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64) {
-        match self.part {
+        self.segment(t0, x0, v0).at(tau)
+    }
+
+    /// The flight from `(x0, v0)` at `t0`, with what stays the same along it computed once.
+    #[inline]
+    pub fn segment(&self, t0: f64, x0: f64, v0: f64) -> Segment<'_> {
+        let (h0, trig0) = match self.part {
             Particular::Steady { a, b } => {
                 let (xp0, vp0) = self.particular(a, b, t0);
-                let (xh, vh) = self.osc.advance(x0 - xp0, v0 - vp0, tau);
-                let (xp1, vp1) = self.particular(a, b, t0 + tau);
-                (xh + xp1, vh + vp1)
+                ((x0 - xp0, v0 - vp0), (0.0, 1.0))
             }
-            Particular::Beat { w0, sigma, delta } => {
-                let (xh, vh) = self.osc.advance(x0, v0, tau);
-                let (xf, vf) = self.beat(w0, sigma, delta, t0, tau);
-                (xh + xf, vh + vf)
-            }
-        }
+            Particular::Beat { .. } => ((x0, v0), self.load.theta(t0).sin_cos()),
+        };
+        Segment { fo: self, t0, h0, trig0 }
     }
 
     /// Acceleration `x''` (m/s²) at the state `(x, v)` at time `t`.
@@ -236,48 +238,72 @@ impl Forced {
         let work = big_m * work_per_kg;
         (e0 - e1 + work, work)
     }
+}
 
-    /// Calls `f(kind, τ, x, x')` in time order for the zeros of the flight from `(x0, v0)` at
-    /// `t0` over `τ ∈ (0, tf]` (see [`ForcedEvent`]). The flight is sampled at a sixteenth of its
-    /// fastest period; each sign change is refined by safeguarded Newton to a few ulp. (Two
-    /// zeros closer than a sample apart — a near-tangency — are passed over: at most a
-    /// wiggle of `x` that small.)
-    pub fn for_each_event(&self, t0: f64, x0: f64, v0: f64, tf: f64, mut f: impl FnMut(ForcedEvent, f64, f64, f64)) {
+/// One flight of the forced oscillator from `(x0, v0)` at `t0`, with the start of its free part
+/// (and, in beat form, the force's phase there) computed once.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Segment<'a> {
+    fo: &'a Forced,
+    t0: f64,
+    /// The free part's start: `(x0 − x_p(t0), v0 − x_p'(t0))` in steady form, `(x0, v0)` in beat form.
+    h0: (f64, f64),
+    /// `(sin θ(t0), cos θ(t0))` (beat form only).
+    trig0: (f64, f64),
+}
+
+impl Segment<'_> {
+    /// `(x, x')` a time `tau` (s) into the flight.
+    #[inline]
+    pub fn at(&self, tau: f64) -> (f64, f64) {
+        let fo = self.fo;
+        let (xh, vh) = fo.osc.advance(self.h0.0, self.h0.1, tau);
+        let (xf, vf) = match fo.part {
+            Particular::Steady { a, b } => fo.particular(a, b, self.t0 + tau),
+            Particular::Beat { w0, sigma, delta } => fo.beat(w0, sigma, delta, self.trig0.0, self.trig0.1, tau),
+        };
+        (xh + xf, vh + vf)
+    }
+
+    /// Calls `f(kind, τ, x, x')` in time order for the zeros of the flight over `τ ∈ (0, tf]`
+    /// (see [`ForcedEvent`]). The flight is sampled at a sixteenth of its fastest period; each
+    /// sign change is refined by safeguarded Newton to a few ulp. (Two zeros closer than a
+    /// sample apart — a near-tangency — are passed over: at most a wiggle of `x` that small.)
+    pub fn for_each_event(&self, tf: f64, mut f: impl FnMut(ForcedEvent, f64, f64, f64)) {
         if tf <= 0.0 {
             return;
         }
-        let n = ((tf / (self.horizon() * 0.5)).ceil() as usize).max(1);
+        let fo = self.fo;
+        let t0 = self.t0;
+        let n = ((tf / (fo.horizon() * 0.5)).ceil() as usize).max(1);
         let at = |tau: f64| {
-            let (x, v) = self.advance(t0, x0, v0, tau);
-            (x, v, self.accel(t0 + tau, x, v))
+            let (x, v) = self.at(tau);
+            (x, v, fo.accel(t0 + tau, x, v))
         };
-        let (mut x_a, mut v_a, mut a_a) = (x0, v0, self.accel(t0, x0, v0));
+        let (x0, v0) = self.at(0.0);
+        let (mut x_a, mut v_a, mut a_a) = (x0, v0, fo.accel(t0, x0, v0));
         let mut tau_a = 0.0;
         for j in 1..=n {
             let tau_b = if j == n { tf } else { tf * j as f64 / n as f64 };
             let (x_b, v_b, a_b) = at(tau_b);
             let mut evs: [(ForcedEvent, f64); 3] = [(ForcedEvent::MaxX, f64::INFINITY); 3];
+            let rate = |tau: f64| {
+                let (x, v) = self.at(tau);
+                (v, fo.accel(t0 + tau, x, v))
+            };
             if v_a > 0.0 && v_b <= 0.0 {
-                let r = self.root(tau_a, tau_b, v_a, v_b, |tau| {
-                    let (x, v) = self.advance(t0, x0, v0, tau);
-                    (v, self.accel(t0 + tau, x, v))
-                });
-                evs[0] = (ForcedEvent::MaxX, r);
+                evs[0] = (ForcedEvent::MaxX, root(tau_a, tau_b, v_a, v_b, rate));
             } else if v_a < 0.0 && v_b >= 0.0 {
-                let r = self.root(tau_a, tau_b, v_a, v_b, |tau| {
-                    let (x, v) = self.advance(t0, x0, v0, tau);
-                    (v, self.accel(t0 + tau, x, v))
-                });
-                evs[0] = (ForcedEvent::MinX, r);
+                evs[0] = (ForcedEvent::MinX, root(tau_a, tau_b, v_a, v_b, rate));
             }
             if x_a <= 0.0 && x_b > 0.0 {
-                evs[1] = (ForcedEvent::UpCross, self.root(tau_a, tau_b, x_a, x_b, |tau| self.advance(t0, x0, v0, tau)));
+                evs[1] = (ForcedEvent::UpCross, root(tau_a, tau_b, x_a, x_b, |tau| self.at(tau)));
             }
             if (a_a > 0.0 && a_b < 0.0) || (a_a < 0.0 && a_b > 0.0) {
-                let r = self.root(tau_a, tau_b, a_a, a_b, |tau| {
-                    let (x, v) = self.advance(t0, x0, v0, tau);
-                    let a = self.accel(t0 + tau, x, v);
-                    (a, self.jerk(t0 + tau, v, a))
+                let r = root(tau_a, tau_b, a_a, a_b, |tau| {
+                    let (x, v) = self.at(tau);
+                    let a = fo.accel(t0 + tau, x, v);
+                    (a, fo.jerk(t0 + tau, v, a))
                 });
                 evs[2] = (ForcedEvent::ZeroAccel, r);
             }
@@ -285,7 +311,7 @@ impl Forced {
                 evs.sort_by(|p, q| p.1.total_cmp(&q.1));
                 for (kind, tau) in evs {
                     if tau.is_finite() {
-                        let (x, v) = self.advance(t0, x0, v0, tau);
+                        let (x, v) = self.at(tau);
                         f(kind, tau, x, v);
                     }
                 }
@@ -293,48 +319,48 @@ impl Forced {
             (x_a, v_a, a_a, tau_a) = (x_b, v_b, a_b, tau_b);
         }
     }
+}
 
-    /// The zero of `g` in `[lo, hi]` given `g(lo) = g_lo` and `g(hi) = g_hi` of opposite signs
-    /// (or one of them 0); `g(τ)` returns the value and its derivative. Newton from the secant
-    /// point, kept inside the bracket by bisection, to a bracket of a few ulp.
-    fn root(&self, mut lo: f64, mut hi: f64, g_lo: f64, g_hi: f64, g: impl Fn(f64) -> (f64, f64)) -> f64 {
-        if g_lo == 0.0 {
-            return lo;
-        }
-        if g_hi == 0.0 {
-            return hi;
-        }
-        let up = g_lo < 0.0;
-        let mut t = lo + (hi - lo) * (g_lo / (g_lo - g_hi));
-        for _ in 0..100 {
-            if !(t > lo && t < hi) {
-                t = 0.5 * (lo + hi);
-            }
-            let (v, d) = g(t);
-            if v == 0.0 {
-                return t;
-            }
-            if (v < 0.0) == up {
-                lo = t;
-            } else {
-                hi = t;
-            }
-            if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1e-300) {
-                break;
-            }
-            let next = t - v / d;
-            if !next.is_finite() || (next - t).abs() <= f64::EPSILON * t.abs() {
-                // Newton has converged (or stalled): take the bracket end on the far side.
-                if next.is_finite() {
-                    return next.clamp(lo, hi);
-                }
-                t = 0.5 * (lo + hi);
-                continue;
-            }
-            t = next;
-        }
-        0.5 * (lo + hi)
+/// The zero of `g` in `[lo, hi]` given `g(lo) = g_lo` and `g(hi) = g_hi` of opposite signs
+/// (or one of them 0); `g(τ)` returns the value and its derivative. Newton from the secant
+/// point, kept inside the bracket by bisection, to a bracket of a few ulp.
+fn root(mut lo: f64, mut hi: f64, g_lo: f64, g_hi: f64, g: impl Fn(f64) -> (f64, f64)) -> f64 {
+    if g_lo == 0.0 {
+        return lo;
     }
+    if g_hi == 0.0 {
+        return hi;
+    }
+    let up = g_lo < 0.0;
+    let mut t = lo + (hi - lo) * (g_lo / (g_lo - g_hi));
+    for _ in 0..100 {
+        if !(t > lo && t < hi) {
+            t = 0.5 * (lo + hi);
+        }
+        let (v, d) = g(t);
+        if v == 0.0 {
+            return t;
+        }
+        if (v < 0.0) == up {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1e-300) {
+            break;
+        }
+        let next = t - v / d;
+        if !next.is_finite() || (next - t).abs() <= f64::EPSILON * t.abs() {
+            // Newton has converged (or stalled): take the bracket end on the far side.
+            if next.is_finite() {
+                return next.clamp(lo, hi);
+            }
+            t = 0.5 * (lo + hi);
+            continue;
+        }
+        t = next;
+    }
+    0.5 * (lo + hi)
 }
 
 #[cfg(test)]
@@ -441,7 +467,7 @@ mod tests {
         let (t0, x0, v0) = (0.2, 0.0, 0.4);
         let mut seen = [0; 4];
         let mut last = 0.0;
-        fo.for_each_event(t0, x0, v0, 1.5, |kind, tau, x, v| {
+        fo.segment(t0, x0, v0).for_each_event(1.5, |kind, tau, x, v| {
             assert!(tau >= last && tau <= 1.5);
             last = tau;
             match kind {

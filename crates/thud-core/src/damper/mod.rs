@@ -26,6 +26,8 @@ mod newmark;
 mod record;
 mod steady;
 
+#[cfg(feature = "timing")]
+pub use event::timing;
 pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 pub(crate) use steady::Start;
 

@@ -4,7 +4,7 @@
 use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run, Truncation};
 
 /// Probes of `x` per forcing period in a steady-state window (for the periodicity check).
-pub(crate) const PROBES_PER_PERIOD: usize = 64;
+pub(crate) const PROBES_PER_PERIOD: usize = 32;
 
 /// The steady-state windows of a forced run (docs/model.md §6.2): consecutive stretches of `N`
 /// forcing periods `L = N·T` laid back from the run's duration `D` to `t = 0` (the first may
@@ -122,6 +122,18 @@ impl Windows {
     #[inline]
     pub fn next_probe_time(&self) -> f64 {
         self.probe_time(self.next_probe)
+    }
+
+    /// Takes every probe due by `t1`, `x` (m) from `eval`.
+    #[cold]
+    fn probes_until(&mut self, t1: f64, mut eval: impl FnMut(f64) -> f64) {
+        loop {
+            let tp = self.next_probe_time();
+            if tp > t1 {
+                break;
+            }
+            self.probe(eval(tp));
+        }
     }
 
     /// Takes the next probe, `x` (m) at [`Windows::next_probe_time`]. A probe on the boundary
@@ -317,20 +329,14 @@ impl Recorder {
             self.next_hist += 1;
         }
         if let Some(w) = &mut self.windows {
-            loop {
-                let tp = w.next_probe_time();
-                if tp > t1 {
-                    break;
-                }
-                w.probe(eval(tp).0);
-            }
+            w.probes_until(t1, |t| eval(t).0);
         }
     }
 
     /// One step of a discrete integrator from `(t0, x0, v0)` to `(t1, x1, v1)` with relative
     /// velocity `zd1` at the end: maxima, crossings and `|z'|` from the step states. History is
     /// handled by the caller.
-    #[inline]
+    #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn step(&mut self, t0: f64, x0: f64, v0: f64, t1: f64, x1: f64, v1: f64, zd1: f64) {
         self.zdot(zd1);
@@ -345,14 +351,23 @@ impl Recorder {
             self.up_cross();
         }
         if let Some(w) = &mut self.windows {
-            w.x_at(t1, x1);
-            if (v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 >= 0.0) {
-                // The extremum inside the step, from the cubic through both ends' x and x'.
-                let h = t1 - t0;
-                if h > 0.0 {
-                    let p = cubic_extremum(x0, v0 * h, x1, v1 * h);
-                    w.x_at(t0 + p.0 * h, p.1);
-                }
+            w.step(t0, x0, v0, t1, x1, v1);
+        }
+    }
+}
+
+impl Windows {
+    /// One step of a discrete integrator (see [`Recorder::step`]): `|x|` at its end, and at the
+    /// extremum inside it if `x'` changes sign there.
+    #[cold]
+    fn step(&mut self, t0: f64, x0: f64, v0: f64, t1: f64, x1: f64, v1: f64) {
+        self.x_at(t1, x1);
+        if (v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 >= 0.0) {
+            // The extremum inside the step, from the cubic through both ends' x and x'.
+            let h = t1 - t0;
+            if h > 0.0 {
+                let p = cubic_extremum(x0, v0 * h, x1, v1 * h);
+                self.x_at(t0 + p.0 * h, p.1);
             }
         }
     }
