@@ -219,12 +219,16 @@ pub fn response(
     cancel: Option<&AtomicBool>,
     on_point: &(dyn Fn() + Sync),
 ) -> Result<Response, ThudError> {
-    base.validate()?;
-    let base = base.resolved()?;
-    check_positive("force", base.damper.force_n, "N")?;
     for &f in freqs_hz {
         check_positive("freqs", f, "Hz")?;
     }
+    let Some(&first) = freqs_hz.first() else {
+        return Ok(Response { force_n: base.damper.force_n, sweeps: vec![] });
+    };
+    check_positive("force", base.damper.force_n, "N")?;
+    // The base design need not have a frequency of its own: each point sets one.
+    at_frequency(base, first, opts.settle).validate()?;
+    let base = base.resolved()?;
     let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
     let design_at = |f: f64| at_frequency(&base, f, opts.settle);
     let start0 = Start::of(&base.damper);

@@ -9,7 +9,7 @@ pub(crate) const PROBES_PER_PERIOD: usize = 32;
 /// The steady-state windows of a forced run (docs/model.md §6.2): consecutive stretches of `N`
 /// forcing periods `L = N·T` laid back from the run's duration `D` to `t = 0` (the first may
 /// start before 0, and is then incomplete) and on past `D` for a settling run. Each window keeps
-/// the largest `|x|` seen in it (at extrema, step ends and probes) and `x` at `N·S + 1` uniform
+/// the largest `|x|` seen in it (at the extrema of x and at the probes) and `x` at `N·S + 1` uniform
 /// probe times (`S` = [`PROBES_PER_PERIOD`]), the first and last on its ends; when its last
 /// probe is taken it is closed: its figures are kept ([`WindowStats`] for the last three, the
 /// amplitude for all) and its probes freed.
@@ -350,25 +350,27 @@ impl Recorder {
         if x0 <= 0.0 && x1 > 0.0 {
             self.up_cross();
         }
-        if let Some(w) = &mut self.windows {
-            w.step(t0, x0, v0, t1, x1, v1);
+        // The largest |x| of a window is at an extremum of x inside it or at one of its ends
+        // (a probe): x' is continuous through contacts, so only steps where it changes sign
+        // can hold one.
+        if (v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 >= 0.0) {
+            if let Some(w) = &mut self.windows {
+                w.extremum_in_step(t0, x0, v0, t1, x1, v1);
+            }
         }
     }
 }
 
 impl Windows {
-    /// One step of a discrete integrator (see [`Recorder::step`]): `|x|` at its end, and at the
-    /// extremum inside it if `x'` changes sign there.
+    /// A step of a discrete integrator (see [`Recorder::step`]) across which `x'` changes sign:
+    /// `|x|` at the extremum inside it, from the cubic through both ends' `x` and `x'`.
     #[cold]
-    fn step(&mut self, t0: f64, x0: f64, v0: f64, t1: f64, x1: f64, v1: f64) {
+    fn extremum_in_step(&mut self, t0: f64, x0: f64, v0: f64, t1: f64, x1: f64, v1: f64) {
         self.x_at(t1, x1);
-        if (v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 >= 0.0) {
-            // The extremum inside the step, from the cubic through both ends' x and x'.
-            let h = t1 - t0;
-            if h > 0.0 {
-                let p = cubic_extremum(x0, v0 * h, x1, v1 * h);
-                self.x_at(t0 + p.0 * h, p.1);
-            }
+        let h = t1 - t0;
+        if h > 0.0 {
+            let p = cubic_extremum(x0, v0 * h, x1, v1 * h);
+            self.x_at(t0 + p.0 * h, p.1);
         }
     }
 }
