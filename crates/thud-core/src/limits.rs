@@ -563,8 +563,8 @@ pub const RESTITUTION_CONTACTS: Cap = Cap {
 /// [`crate::damper::SETTLE_PERIODS_MAX`] periods more), twice with `--continuation`.
 pub const RESPONSE_PERIODS: Cap = Cap {
     what: "forcing periods",
-    max: 2e7,
-    basis: "≈ 6 µs a period at 2 impacts a period on each of 2 cores: 2e7 periods is about a minute",
+    max: 2e6,
+    basis: "15 µs a period at ½ impact a period (thud response --force 1N: 112 638 periods, 1.7 s of CPU), up to ≈ 100 µs at 4 impacts a period: 2e6 periods is at most about 100 s on 2 cores",
 };
 
 /// Every cap, in the order `thud` lists them.
