@@ -234,7 +234,10 @@ fn the_ball_starts_where_it_is_put() {
     assert!((first.t_s - lo).abs() < 1e-12, "{} vs {lo}", first.t_s);
     // The centred ball at rest is the paper's start: the same run as before this option existed.
     let centred = DamperParams { ball_position_m: 0.0, ball_velocity_m_s: 0.0, ..p };
-    assert_eq!(simulate(&centred, Solver::Event, &opts()).unwrap(), simulate(&DamperParams { duration_s: 0.2, ..DamperParams::table2() }, Solver::Event, &opts()).unwrap());
+    assert_eq!(
+        simulate(&centred, Solver::Event, &opts()).unwrap(),
+        simulate(&DamperParams { duration_s: 0.2, ..DamperParams::table2() }, Solver::Event, &opts()).unwrap()
+    );
     // A ball outside the clearance is refused by name.
     let outside = DamperParams { ball_position_m: 0.02, ..p };
     assert_eq!(simulate(&outside, Solver::Event, &opts()).unwrap_err().param(), "ball-position");
@@ -256,7 +259,14 @@ fn leq_is_the_energy_average_of_the_pulses() {
     let d = Design::default();
     let impacts: Vec<ImpactEvent> = [(0.1, 1.2), (0.35, 0.8), (0.61, 1.9)]
         .iter()
-        .map(|&(t_s, u)| ImpactEvent { t_s, wall: Wall::Upper, u_in_m_s: u, u_out_m_s: u, t_end_s: t_s, penetration_max_m: 0.0 })
+        .map(|&(t_s, u)| ImpactEvent {
+            t_s,
+            wall: Wall::Upper,
+            u_in_m_s: u,
+            u_out_m_s: u,
+            t_end_s: t_s,
+            penetration_max_m: 0.0,
+        })
         .collect();
     let run = Run {
         impacts: impacts.clone(),
@@ -280,7 +290,10 @@ fn leq_is_the_energy_average_of_the_pulses() {
     // Two impacts at one instant are one pulse twice as loud in pressure: +6 dB on one.
     let twin = Run { impacts: vec![impacts[0], impacts[0]], ..run.clone() };
     let one = Run { impacts: vec![impacts[0]], ..run };
-    let (l2, l1) = (response::leq_db(&twin, &d, 0.0, 1.0).unwrap().unwrap(), response::leq_db(&one, &d, 0.0, 1.0).unwrap().unwrap());
+    let (l2, l1) = (
+        response::leq_db(&twin, &d, 0.0, 1.0).unwrap().unwrap(),
+        response::leq_db(&one, &d, 0.0, 1.0).unwrap().unwrap(),
+    );
     assert!((l2 - l1 - 20.0 * 2f64.log10()).abs() < 1e-6);
 }
 
@@ -327,11 +340,13 @@ fn a_continued_response_sweeps_up_then_down() {
     assert_eq!(up, freqs);
     assert_eq!(down, [5.2, 5.0, 4.8]);
     // The first point starts from rest, as a point of the response from rest does.
-    let rest = response::response(&d, &freqs[..1], &ResponseOptions { continuation: false, settle: false }, None, &|| {})
-        .unwrap();
+    let rest =
+        response::response(&d, &freqs[..1], &ResponseOptions { continuation: false, settle: false }, None, &|| {})
+            .unwrap();
     assert_eq!(r.sweeps[0].points[0], rest.sweeps[0].points[0]);
     // The next ones do not (they carry the state on).
-    let rest2 = response::response(&d, &freqs[1..2], &ResponseOptions { continuation: false, settle: false }, None, &|| {})
-        .unwrap();
+    let rest2 =
+        response::response(&d, &freqs[1..2], &ResponseOptions { continuation: false, settle: false }, None, &|| {})
+            .unwrap();
     assert_ne!(r.sweeps[0].points[1].steady, rest2.sweeps[0].points[0].steady);
 }

@@ -99,13 +99,30 @@ fn a_forced_simulation_reports_its_steady_state() {
         assert!(!v[key].is_null(), "{key}");
     }
     let text = ok(&["simulate", "--v0", "0", "--force", "1N", "--freq", "5.5Hz", "--duration", "6"]);
-    assert!(text.contains("steady    last 10 periods") && text.contains("Leq") && text.contains("force 1.0000 N at 5.5000 Hz"), "{text}");
+    assert!(
+        text.contains("steady    last 10 periods")
+            && text.contains("Leq")
+            && text.contains("force 1.0000 N at 5.5000 Hz"),
+        "{text}"
+    );
     // Without a force there is no steady object at all.
     let free: serde_json::Value = serde_json::from_str(&ok(&["simulate", "--json"])).unwrap();
     assert!(free.get("steady").is_none());
     // --settle runs on past --duration.
     let settled: serde_json::Value = serde_json::from_str(&ok(&[
-        "simulate", "--v0", "0", "--force", "1N", "--freq", "3Hz", "--gap", "1", "--duration", "5", "--settle", "--json",
+        "simulate",
+        "--v0",
+        "0",
+        "--force",
+        "1N",
+        "--freq",
+        "3Hz",
+        "--gap",
+        "1",
+        "--duration",
+        "5",
+        "--settle",
+        "--json",
     ]))
     .unwrap();
     assert!(settled["final_time_s"].as_f64().unwrap() > 5.0);
@@ -146,7 +163,11 @@ fn forcing_flags_keep_the_contract_at_their_bounds() {
     ] {
         for v in [range.min, range.max] {
             let text = format!("{v}");
-            for base in [vec!["simulate", "--json"], vec!["simulate"], vec!["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"]] {
+            for base in [
+                vec!["simulate", "--json"],
+                vec!["simulate"],
+                vec!["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"],
+            ] {
                 let flag_arg = format!("--{flag}");
                 let mut args: Vec<&str> = base.clone();
                 args.extend(extra.iter());
@@ -170,7 +191,10 @@ fn forcing_flags_keep_the_contract_at_their_bounds() {
 fn response_prints_a_table_a_plot_json_and_csv() {
     let base = ["response", "--force", "1N", "--freqs", "4.5Hz:5.5Hz:5", "--periods", "5"];
     let text = ok(&base);
-    assert!(text.contains("amplitude (mm, log scale) against f") && text.contains("4.500") && text.contains("5.500"), "{text}");
+    assert!(
+        text.contains("amplitude (mm, log scale) against f") && text.contains("4.500") && text.contains("5.500"),
+        "{text}"
+    );
     let json: serde_json::Value = serde_json::from_str(&ok(&[&base[..], &["--json"]].concat())).unwrap();
     let sweeps = json["sweeps"].as_array().unwrap();
     assert_eq!(sweeps.len(), 1);
@@ -205,10 +229,26 @@ fn response_exports_as_svg_and_csv() {
     let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap().text().unwrap();
     assert!(title.starts_with("Frequency response under F0 1"), "{title}");
     assert!(text.contains("steady amplitude (mm)") && text.contains("Leq at the observer (dB)"));
-    let clips: Vec<&str> = doc.descendants().filter(|n| n.has_tag_name("clipPath")).filter_map(|n| n.attribute("id")).collect();
+    let clips: Vec<&str> =
+        doc.descendants().filter(|n| n.has_tag_name("clipPath")).filter_map(|n| n.attribute("id")).collect();
     assert_eq!(clips, ["amplitude", "level"], "one clip path per panel");
     // The same response as CSV, to standard output, equals `thud response --csv`.
-    let csv = thud_in(home.path(), &["export", "csv", "response", "--force-amplitude", "1N", "--freqs", "4.6Hz:5.4Hz:4", "--periods", "4", "--out", "-"]);
+    let csv = thud_in(
+        home.path(),
+        &[
+            "export",
+            "csv",
+            "response",
+            "--force-amplitude",
+            "1N",
+            "--freqs",
+            "4.6Hz:5.4Hz:4",
+            "--periods",
+            "4",
+            "--out",
+            "-",
+        ],
+    );
     assert_eq!(csv.code, 0, "{}", csv.stderr);
     assert_eq!(csv.stdout, ok(&["response", "--force", "1N", "--freqs", "4.6Hz:5.4Hz:4", "--periods", "4", "--csv"]));
     // export's own --force still means "replace the file".

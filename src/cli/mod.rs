@@ -175,7 +175,12 @@ pub(crate) fn warn(line: &str) {
 /// The flags engine errors name bare, without dashes: the parameters of the range table, the
 /// sweep axes and the preset (the message names the flag).
 fn numeric_flags() -> Vec<String> {
-    crate::limits::RANGES.iter().map(|r| r.param).chain(["masses", "gaps", "preset", "freqs"]).map(str::to_string).collect()
+    crate::limits::RANGES
+        .iter()
+        .map(|r| r.param)
+        .chain(["masses", "gaps", "preset", "freqs"])
+        .map(str::to_string)
+        .collect()
 }
 
 /// The command path the user typed up to a command that needs a subcommand, and its

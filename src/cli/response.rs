@@ -44,7 +44,10 @@ struct ResponseJson<'a> {
 /// frequency (each point sets its own).
 pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<Design, ThudError> {
     if let Some(f) = args.freq_text() {
-        return Err(ThudError::invalid("--freq", format!("'{f}': a response sweeps the frequency; give --freqs FROM:TO:N")));
+        return Err(ThudError::invalid(
+            "--freq",
+            format!("'{f}': a response sweeps the frequency; give --freqs FROM:TO:N"),
+        ));
     }
     let from_rest = !args.start_typed();
     let d = args.design_with(|d| {
@@ -63,7 +66,13 @@ pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64)
 }
 
 /// Refuses a response whose work is over a cap.
-pub(crate) fn check_work(ctx: &Ctx, d: &Design, freqs: &[f64], freqs_text: &str, continuation: bool) -> Result<(), CliError> {
+pub(crate) fn check_work(
+    ctx: &Ctx,
+    d: &Design,
+    freqs: &[f64],
+    freqs_text: &str,
+    continuation: bool,
+) -> Result<(), CliError> {
     let [periods, steps] = limits::response_work(d, freqs, continuation);
     ctx.enforce(periods, "--freqs", freqs_text, "use fewer frequencies or a shorter --duration")?;
     if let crate::damper::Solver::Newmark { dt_s } = d.solver {
@@ -143,7 +152,8 @@ fn text(d: &Design, r: &Response, continuation: bool) -> String {
 }
 
 /// A text plot of the amplitude (log scale) against the frequency: `*` with the damper (`u`/`d`
-/// for the rising and falling sweeps of a continuation), `o` without it.
+/// for the rising and falling sweeps of a continuation, `d` drawn over `u` where they meet), `o`
+/// without it.
 pub fn plot(r: &Response, width: usize, height: usize) -> String {
     let all: Vec<&response::ResponsePoint> = r.sweeps.iter().flat_map(|s| &s.points).collect();
     let f_lo = all.iter().map(|p| p.freq_hz).fold(f64::INFINITY, f64::min);
@@ -159,7 +169,13 @@ pub fn plot(r: &Response, width: usize, height: usize) -> String {
     }
     let (lo, hi) = if hi - lo < 1e-9 { (lo - 0.5, hi + 0.5) } else { (lo, hi) };
     let mut grid = vec![vec![' '; width]; height];
-    let col = |f: f64| if f_hi > f_lo { (((f - f_lo) / (f_hi - f_lo)) * (width - 1) as f64).round() as usize } else { width / 2 };
+    let col = |f: f64| {
+        if f_hi > f_lo {
+            (((f - f_lo) / (f_hi - f_lo)) * (width - 1) as f64).round() as usize
+        } else {
+            width / 2
+        }
+    };
     let row = |a: f64| {
         let u = (a.log10() - lo) / (hi - lo);
         height - 1 - ((u * (height - 1) as f64).round() as usize).min(height - 1)
@@ -188,7 +204,12 @@ pub fn plot(r: &Response, width: usize, height: usize) -> String {
         }
     }
     let mm = |e: f64| crate::units::sig(10f64.powf(e) * 1e3, 3);
-    let mut s = String::from("amplitude (mm, log scale) against f: * with the damper, o without\n");
+    let with = if r.sweeps.iter().any(|s| s.direction != Direction::FromRest) {
+        "u rising and d falling sweep with the damper"
+    } else {
+        "* with the damper"
+    };
+    let mut s = format!("amplitude (mm, log scale) against f: {with}, o without\n");
     for (i, line) in grid.iter().enumerate() {
         let label = if i == 0 {
             mm(hi)

@@ -218,7 +218,8 @@ fn summary(d: &Design, e: &Evaluation, show: usize, truncated: Option<&str>) -> 
         m.zone.map_or("—".into(), |z| format!("{} ({})", z.number(), z.describe()))
     );
     let en = &e.run.energy;
-    let work = if d.damper.forced() { format!(", work of the force {} J", num(en.forcing_work_j)) } else { String::new() };
+    let work =
+        if d.damper.forced() { format!(", work of the force {} J", num(en.forcing_work_j)) } else { String::new() };
     s += &format!(
         "energy    initial {} J{work}, final {} J, dissipated {} J viscous + {} J in contacts\n",
         num(en.initial_j),

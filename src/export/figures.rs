@@ -454,7 +454,9 @@ pub fn response(r: &crate::response::Response, title: &str) -> String {
     let mut linear: Vec<(f64, f64)> = r
         .sweeps
         .first()
-        .map(|s| s.points.iter().map(|p| (p.freq_hz, p.steady.amplitude_linear_m.map_or(f64::NAN, |a| a * 1e3))).collect())
+        .map(|s| {
+            s.points.iter().map(|p| (p.freq_hz, p.steady.amplitude_linear_m.map_or(f64::NAN, |a| a * 1e3))).collect()
+        })
         .unwrap_or_default();
     linear.sort_by(|a, b| a.0.total_cmp(&b.0));
     amp.push(Series::new("without (closed form)", linear, Style::Dashed));
@@ -477,7 +479,14 @@ pub fn response(r: &crate::response::Response, title: &str) -> String {
     let bottom = Frame { left: 85.0, top: 500.0, width: WIDTH - 85.0 - 200.0, height: 190.0, x, y: y2 };
     bottom.draw_panel(&mut svg, None, "level");
     if levels.is_empty() {
-        svg.text(bottom.left + bottom.width / 2.0, bottom.top + bottom.height / 2.0, "no impact at any frequency", 13.0, Anchor::Middle, 0.0);
+        svg.text(
+            bottom.left + bottom.width / 2.0,
+            bottom.top + bottom.height / 2.0,
+            "no impact at any frequency",
+            13.0,
+            Anchor::Middle,
+            0.0,
+        );
     }
     draw_series_clipped(&mut svg, &bottom, &leq, "level");
     svg.finish()

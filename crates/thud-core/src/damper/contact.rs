@@ -536,8 +536,9 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
             let (v, r) = sys.raw_bracket(st, d);
             (sg * v, sg * r)
         };
-        let (hc, yc, kc, err_c) =
-            refine_root(sys, &self.load, self.s, self.t, &self.y, &self.k1, self.h, guess, &self.sc, budget, bracket, tol);
+        let (hc, yc, kc, err_c) = refine_root(
+            sys, &self.load, self.s, self.t, &self.y, &self.k1, self.h, guess, &self.sc, budget, bracket, tol,
+        );
         self.switches += 1;
         if err_c <= 1.0 || hc <= 1e-14 * self.tau {
             self.note_peak(hc, &yc, &kc);
@@ -835,7 +836,12 @@ mod tests {
             assert_eq!(end.outcome, ContactOutcome::Separated);
             assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);
             // The same contact to the integrator's tolerance (RTOL 3e-9 a step).
-            assert!((end.y[3] / whole.y[3] - 1.0).abs() < 1e-7 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-7, "{cut}: {:?} vs {:?}", end.y, whole.y);
+            assert!(
+                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-7 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-7,
+                "{cut}: {:?} vs {:?}",
+                end.y,
+                whole.y
+            );
             assert!((end.pen_max / whole.pen_max - 1.0).abs() < 1e-9);
         }
     }

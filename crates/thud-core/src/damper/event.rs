@@ -98,8 +98,17 @@ pub(crate) trait Flight: Copy {
     fn advance(&self, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64);
     /// The first contact of the flight from `(x0, v0, y0, w)` at `t0` within `(0, t_max]`.
     #[allow(clippy::too_many_arguments)]
-    fn find_contact(&self, hg: f64, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, t_max: f64, iters: &mut usize)
-        -> Search;
+    fn find_contact(
+        &self,
+        hg: f64,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        y0: f64,
+        w: f64,
+        t_max: f64,
+        iters: &mut usize,
+    ) -> Search;
     /// Records the flight segment `[t0, t0 + tf]`; history samples up to `t1`.
     #[allow(clippy::too_many_arguments)]
     fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64);

@@ -204,7 +204,17 @@ impl Forced {
     /// has determinant `|D|²`); where `|D|²` is too small for that to be accurate (light damping
     /// at resonance) the integral is taken by Gauss–Legendre quadrature instead.
     #[allow(clippy::too_many_arguments)]
-    pub fn flight_energies(&self, big_m: f64, k: f64, t0: f64, x0: f64, v0: f64, tf: f64, x1: f64, v1: f64) -> (f64, f64) {
+    pub fn flight_energies(
+        &self,
+        big_m: f64,
+        k: f64,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        tf: f64,
+        x1: f64,
+        v1: f64,
+    ) -> (f64, f64) {
         let e0 = 0.5 * big_m * v0 * v0 + 0.5 * k * x0 * x0;
         let e1 = 0.5 * big_m * v1 * v1 + 0.5 * k * x1 * x1;
         let g = self.osc.gamma;
@@ -231,9 +241,7 @@ impl Forced {
         } else {
             // Panels of a quarter of the integrand's fastest period (cos θ·x' carries Ω + ω_d).
             let n = ((tf * (om + self.w_fast) / std::f64::consts::FRAC_PI_2).ceil() as usize).max(1);
-            crate::acoustics::gauss_legendre(0.0, tf, n, |s| {
-                self.load.accel(t0 + s) * self.advance(t0, x0, v0, s).1
-            })
+            crate::acoustics::gauss_legendre(0.0, tf, n, |s| self.load.accel(t0 + s) * self.advance(t0, x0, v0, s).1)
         };
         let work = big_m * work_per_kg;
         (e0 - e1 + work, work)
@@ -446,7 +454,14 @@ mod tests {
 
     #[test]
     fn flight_energies_balance_the_mechanical_energy() {
-        for &(k, c, freq) in &[(500.0, 0.05, 3.0), (500.0, 0.05, 5.0329), (500.0, 0.001, 5.0329), (500.0, 25.0, 7.0), (0.0, 3.0, 2.0), (500.0, 0.0, 5.0)] {
+        for &(k, c, freq) in &[
+            (500.0, 0.05, 3.0),
+            (500.0, 0.05, 5.0329),
+            (500.0, 0.001, 5.0329),
+            (500.0, 25.0, 7.0),
+            (0.0, 3.0, 2.0),
+            (500.0, 0.0, 5.0),
+        ] {
             let fo = Forced::new(Oscillator::new(0.5, k, c), Harmonic::new(1.0, 0.5, freq, 0.2));
             let (t0, x0, v0, tf) = (0.37, 0.004, -0.3, 0.8);
             let (x1, v1) = fo.advance(t0, x0, v0, tf);
@@ -454,7 +469,10 @@ mod tests {
             // The energies the dissipation is the balance of (J).
             let e_scale = 0.25 * (v0 * v0 + v1 * v1) + 0.5 * k * (x0 * x0 + x1 * x1) + work.abs();
             // The work, by brute-force quadrature of F·x' on the closed form.
-            let w_ref = 0.5 * crate::acoustics::gauss_legendre(0.0, tf, 400, |s| fo.load.accel(t0 + s) * fo.advance(t0, x0, v0, s).1);
+            let w_ref = 0.5
+                * crate::acoustics::gauss_legendre(0.0, tf, 400, |s| {
+                    fo.load.accel(t0 + s) * fo.advance(t0, x0, v0, s).1
+                });
             let v_ref = c * crate::acoustics::gauss_legendre(0.0, tf, 400, |s| fo.advance(t0, x0, v0, s).1.powi(2));
             assert!((work - w_ref).abs() < 1e-10 * w_ref.abs().max(1e-6), "k {k} c {c} f {freq}: {work} vs {w_ref}");
             assert!((visc - v_ref).abs() < 1e-12 * e_scale, "k {k} c {c} f {freq}: {visc} vs {v_ref}");

@@ -28,8 +28,8 @@ mod steady;
 
 #[cfg(feature = "timing")]
 pub use event::timing;
-pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 pub(crate) use steady::Start;
+pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 
 use serde::{Deserialize, Serialize};
 

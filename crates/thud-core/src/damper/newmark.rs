@@ -339,10 +339,18 @@ struct NewmarkState {
 impl<'a> NewmarkSim<'a> {
     /// A run of `p` at step `dt` (s) from `start` under `load`, recording into `rec`. Parameters
     /// are assumed valid.
-    pub fn new(p: &DamperParams, dt: f64, load: Option<Harmonic>, opts: &RunOptions<'a>, start: &Start, rec: Recorder) -> Self {
+    pub fn new(
+        p: &DamperParams,
+        dt: f64,
+        load: Option<Harmonic>,
+        opts: &RunOptions<'a>,
+        start: &Start,
+        rec: Recorder,
+    ) -> Self {
         let sys = Sys::new(p);
         let zero = Vector2::zeros();
-        let mut st = St { pos: Vector2::new(start.x, start.y), vel: Vector2::new(start.v, start.w), acc: zero, load: 0.0 };
+        let mut st =
+            St { pos: Vector2::new(start.x, start.y), vel: Vector2::new(start.v, start.w), acc: zero, load: 0.0 };
         flight_accels(&sys, &mut st, load.map(|l| sys.big_m * l.accel(0.0)));
         let mut rec = rec;
         rec.zdot(st.vel[1] - st.vel[0]);
@@ -352,7 +360,14 @@ impl<'a> NewmarkSim<'a> {
         };
         NewmarkSim {
             sys,
-            nm: NewmarkState { load, st, t: 0.0, open: None, splits: 0, out: Ledger { rec, energy, impacts: Vec::new() } },
+            nm: NewmarkState {
+                load,
+                st,
+                t: 0.0,
+                open: None,
+                splits: 0,
+                out: Ledger { rec, energy, impacts: Vec::new() },
+            },
             dt,
             k_next: 1,
             t_reached: 0.0,

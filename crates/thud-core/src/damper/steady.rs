@@ -17,7 +17,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::event::{EventSim, Free, ForcedFlight};
+use super::event::{EventSim, ForcedFlight, Free};
 use super::flight::Oscillator;
 use super::forced::{Forced, Harmonic};
 use super::newmark::NewmarkSim;
@@ -131,7 +131,13 @@ fn settled(w: &Windows) -> bool {
 
 /// Runs `p` from `start` with `solver`: to its duration, then (forced, with `settle`) on until
 /// it settles. Returns the run and, if `want_end`, the state it ended in (for a continuation).
-pub(crate) fn run(p: &DamperParams, solver: Solver, opts: &RunOptions, start: &Start, want_end: bool) -> (Run, Option<Start>) {
+pub(crate) fn run(
+    p: &DamperParams,
+    solver: Solver,
+    opts: &RunOptions,
+    start: &Start,
+    want_end: bool,
+) -> (Run, Option<Start>) {
     let mut rec = Recorder::new(opts.history_samples, p.duration_s);
     let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
     if !p.forced() {
