@@ -298,28 +298,26 @@ fn leq_is_the_energy_average_of_the_pulses() {
 }
 
 #[test]
-fn a_forced_design_reports_its_steady_state_in_its_metrics() {
-    let mut d = Design::default();
-    d.damper = forced(1.0, 5.5, 4.0);
+fn a_forced_design_reports_its_steady_state_in_its_evaluation() {
+    let d = Design { damper: forced(1.0, 5.5, 4.0), ..Design::default() };
     let e = design::evaluate(&d, 0, None).unwrap();
-    let s = e.metrics.steady.expect("forced");
+    let s = e.steady.expect("forced");
     let m = e.run.steady.unwrap();
     assert_eq!((s.amplitude_m, s.impacts_per_period, s.periodic), (m.amplitude_m, m.impacts_per_period, m.periodic));
     assert!(s.leq_db.is_some() && s.impacts_per_period > 0.0);
-    assert!(design::evaluate(&Design::default(), 0, None).unwrap().metrics.steady.is_none());
+    assert!(design::evaluate(&Design::default(), 0, None).unwrap().steady.is_none());
 }
 
 #[test]
 fn a_response_from_rest_is_its_points_run_one_by_one() {
-    let mut d = Design::default();
-    d.damper = forced(1.0, 5.0, 2.0);
+    let d = Design { damper: forced(1.0, 5.0, 2.0), ..Design::default() };
     let freqs = [4.0, 5.2, 6.0];
     let r = response::response(&d, &freqs, &ResponseOptions::default(), None, &|| {}).unwrap();
     assert_eq!(r.sweeps.len(), 1);
     assert_eq!(r.sweeps[0].direction, Direction::FromRest);
     for (pt, &f) in r.sweeps[0].points.iter().zip(&freqs) {
         let one = design::evaluate(&response::at_frequency(&d, f, true), 0, None).unwrap();
-        assert_eq!(pt.steady, one.metrics.steady.unwrap(), "{f} Hz");
+        assert_eq!(pt.steady, one.steady.unwrap(), "{f} Hz");
         assert_eq!(pt.final_time_s, one.run.final_time_s);
         assert!(pt.final_time_s >= 2.0 * 10.0 / f);
     }
@@ -327,8 +325,7 @@ fn a_response_from_rest_is_its_points_run_one_by_one() {
 
 #[test]
 fn a_continued_response_sweeps_up_then_down() {
-    let mut d = Design::default();
-    d.damper = forced(1.0, 5.0, 2.0);
+    let mut d = Design { damper: forced(1.0, 5.0, 2.0), ..Design::default() };
     d.damper.steady_periods = 4;
     let freqs = [4.8, 5.0, 5.2];
     let opts = ResponseOptions { continuation: true, settle: false };

@@ -136,7 +136,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 final_time_s: eval.run.final_time_s,
                 truncated: truncated.is_some(),
                 truncation_reason: truncated,
-                steady: m.steady,
+                steady: eval.steady,
             };
             out.json(&j)?;
         }
@@ -227,7 +227,7 @@ fn summary(d: &Design, e: &Evaluation, show: usize, truncated: Option<&str>) -> 
         num(en.dissipated_viscous_j),
         num(en.dissipated_contact_j)
     );
-    if let Some(st) = &m.steady {
+    if let Some(st) = &e.steady {
         s += &steady_line(st);
     }
     if !e.run.impacts.is_empty() {

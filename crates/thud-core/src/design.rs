@@ -245,9 +245,6 @@ pub struct Metrics {
     pub restitution_mean: Option<f64>,
     /// The zone, when both e and SPLmax exist.
     pub zone: Option<Zone>,
-    /// The steady state of a forced design (absent without a force).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub steady: Option<crate::response::Steady>,
 }
 
 impl Metrics {
@@ -320,7 +317,6 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
         contact_duration_s,
         restitution_mean,
         zone: None,
-        steady: crate::response::steady(run, design)?,
     };
     m.zone = m.zone(&design.thresholds);
     Ok(m)
@@ -331,6 +327,10 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
 pub struct Evaluation {
     pub run: Run,
     pub metrics: Metrics,
+    /// The steady state of a forced design with the level of its rattle (absent without a
+    /// force; a chart cell's [`Metrics`] do not carry it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steady: Option<crate::response::Steady>,
 }
 
 /// Simulates `design` and computes its metrics. `history_samples` uniform samples of x and y
@@ -340,7 +340,8 @@ pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicB
     let d = design.resolved()?;
     let run = damper::simulate(&d.damper, d.solver, &RunOptions { history_samples, cancel })?;
     let metrics = metrics(&run, &d)?;
-    Ok(Evaluation { run, metrics })
+    let steady = crate::response::steady(&run, &d)?;
+    Ok(Evaluation { run, metrics, steady })
 }
 
 /// SPL (dB) of every impact of a run, in order.
@@ -550,7 +551,6 @@ mod tests {
             contact_duration_s: None,
             restitution_mean: None,
             zone: None,
-            steady: None,
         }
     }
 

@@ -377,6 +377,7 @@ mod tests {
 
     /// Reference: classical RK4 with a fine step on `x'' = −2γx' − ω0²x + f·cos(Ωt + φ)`,
     /// written here independently of the closed form, and Richardson-extrapolated from two steps.
+    #[allow(clippy::too_many_arguments)]
     fn rk4(big_m: f64, k: f64, c: f64, load: Harmonic, t0: f64, x0: f64, v0: f64, tau: f64, n: usize) -> (f64, f64) {
         let acc = |t: f64, x: f64, v: f64| (-c * v - k * x) / big_m + load.f * (load.omega * t + load.phase).cos();
         let h = tau / n as f64;
@@ -393,6 +394,7 @@ mod tests {
         (x, v)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn reference(big_m: f64, k: f64, c: f64, load: Harmonic, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64) {
         let n = 40_000;
         let (x1, v1) = rk4(big_m, k, c, load, t0, x0, v0, tau, n);
