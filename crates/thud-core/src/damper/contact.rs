@@ -491,7 +491,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
 
     #[inline(always)]
     fn end(&self, outcome: ContactOutcome) -> ContactEnd {
-        let resume = (outcome == ContactOutcome::EndOfRun).then_some(Resume {
+        let resume = (outcome == ContactOutcome::EndOfRun).then(|| Resume {
             s: self.s,
             sc: self.sc,
             tau: self.tau,

@@ -353,8 +353,8 @@ impl Recorder {
         // The largest |x| of a window is at an extremum of x inside it or at one of its ends
         // (a probe): x' is continuous through contacts, so only steps where it changes sign
         // can hold one.
-        if (v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 >= 0.0) {
-            if let Some(w) = &mut self.windows {
+        if let Some(w) = &mut self.windows {
+            if (v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 >= 0.0) {
                 w.extremum_in_step(t0, x0, v0, t1, x1, v1);
             }
         }
