@@ -5,7 +5,9 @@
 //! `thud-core` crate (no I/O, no terminal); its modules are re-exported here under their own
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
-pub use thud_core::{acoustics, contact, damper, design, ensemble, error, limits, paper, params, units, ThudError};
+pub use thud_core::{
+    acoustics, contact, damper, design, ensemble, error, limits, paper, params, response, units, ThudError,
+};
 
 pub mod config;
 pub mod export;

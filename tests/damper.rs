@@ -299,7 +299,8 @@ proptest! {
     ) {
         let p = DamperParams {
             main_mass_kg: big_m, stiffness_n_m: k, damping_n_s_m: c, impact_mass_kg: m, gap_m: d,
-            k_hz: 10f64.powf(khz_exp), c1_n_s_m: c1, no_tension: nt, v0_m_s: v0, duration_s: dur, ball_position_m: 0.0,
+            k_hz: 10f64.powf(khz_exp), c1_n_s_m: c1, no_tension: nt, v0_m_s: v0, duration_s: dur,
+            ..DamperParams::table2()
         };
         let run = simulate(&p, Solver::Event, &RunOptions { history_samples: 50, cancel: None }).unwrap();
         prop_assert!(run.zdot_abs_max_m_s.is_finite());

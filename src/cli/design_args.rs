@@ -19,9 +19,49 @@ pub enum SolverArg {
     Newmark,
 }
 
+/// The flag that sets the force amplitude F0: `--force` (with the alias `--force-amplitude`)
+/// everywhere but `export`, whose `--force` replaces an existing file; there it is
+/// `--force-amplitude` alone.
+pub trait ForceFlag: Args + Clone + std::fmt::Debug {
+    /// The flag's long name, without dashes.
+    const NAME: &'static str;
+    /// The value typed, if any.
+    fn typed(&self) -> Option<&String>;
+}
+
+/// `--force F0` (alias `--force-amplitude`).
+#[derive(Debug, Clone, Args)]
+pub struct Force {
+    /// Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq.
+    #[arg(long = "force", visible_alias = "force-amplitude", value_name = "F0", allow_hyphen_values = true)]
+    force: Option<String>,
+}
+
+impl ForceFlag for Force {
+    const NAME: &'static str = "force";
+    fn typed(&self) -> Option<&String> {
+        self.force.as_ref()
+    }
+}
+
+/// `--force-amplitude F0` (for `export`, where `--force` replaces a file).
+#[derive(Debug, Clone, Args)]
+pub struct ForceAmplitude {
+    /// Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq.
+    #[arg(long = "force-amplitude", value_name = "F0", allow_hyphen_values = true)]
+    force_amplitude: Option<String>,
+}
+
+impl ForceFlag for ForceAmplitude {
+    const NAME: &'static str = "force-amplitude";
+    fn typed(&self) -> Option<&String> {
+        self.force_amplitude.as_ref()
+    }
+}
+
 /// A design: a preset, then any flag given explicitly overrides the preset's value.
 #[derive(Debug, Clone, Args)]
-pub struct DesignArgs {
+pub struct DesignArgs<F: ForceFlag = Force> {
     /// Starting design (`thud presets` lists them: default, paper-fig9, paper-table3, quiet-nylon, …).
     #[arg(long, value_name = "P", default_value = "default")]
     preset: String,
@@ -94,17 +134,66 @@ pub struct DesignArgs {
     /// Zone threshold e* on the damping inclination (cm/s).
     #[arg(long, value_name = "CM_S", allow_hyphen_values = true)]
     e_star: Option<String>,
+    #[command(flatten)]
+    force: F,
+    /// Frequency f of the harmonic force (Hz, or e.g. 5Hz).
+    #[arg(long, value_name = "F", allow_hyphen_values = true)]
+    freq: Option<String>,
+    /// The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred].
+    #[arg(long, value_name = "Y0", allow_hyphen_values = true)]
+    ball_position: Option<String>,
+    /// The ball's initial velocity w0 (m/s) [default: 0].
+    #[arg(long, value_name = "W0", allow_hyphen_values = true)]
+    ball_velocity: Option<String>,
+    /// Forcing periods N of the steady-state window of a forced run [default: 10].
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    periods: Option<String>,
+    /// Run a forced run on past --duration, N periods at a time, until its steady amplitude settles.
+    #[arg(long)]
+    settle: bool,
 }
 
-impl DesignArgs {
+impl<F: ForceFlag> DesignArgs<F> {
     /// The design these flags describe, validated: each flag against its range (the error
     /// names the flag), then the whole design (preset values too) and its derived quantities.
     /// The mapping from flags to the design is the engine's ([`params::design`]), shared with
     /// the Python module.
     pub fn design(&self) -> Result<Design, ThudError> {
+        self.design_with(|_| {})
+    }
+
+    /// As [`DesignArgs::design`], with `adjust` applied to the design before it is checked as a
+    /// whole (a command that sets a parameter itself, as `response` sets the frequency).
+    pub fn design_with(&self, adjust: impl FnOnce(&mut Design)) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
-        params::design(d, &self.given(), Spelling::Flag)
+        let given = params::design(d, &self.given(), Spelling::Flag)?;
+        self.forcing(given, adjust)
+    }
+
+    /// The forcing and the ball's start (`--force`, `--freq`, `--ball-position`,
+    /// `--ball-velocity`, `--periods`, `--settle`) applied to `d`, each checked against its
+    /// range, then `adjust`, then the whole design checked again.
+    fn forcing(&self, mut d: Design, adjust: impl FnOnce(&mut Design)) -> Result<Design, ThudError> {
+        let p = &mut d.damper;
+        let set = |target: &mut f64, name: &str, text: &Option<String>, kind: Kind, range: &Range| {
+            if let Some(v) = super::quantity(name, text, kind, range)? {
+                *target = v;
+            }
+            Ok::<(), ThudError>(())
+        };
+        set(&mut p.force_n, F::NAME, &self.force.typed().cloned(), Kind::Force, &limits::FORCE)?;
+        set(&mut p.freq_hz, "freq", &self.freq, Kind::Frequency, &limits::FREQ)?;
+        set(&mut p.ball_position_m, "ball-position", &self.ball_position, Kind::Length, &limits::BALL_POSITION)?;
+        set(&mut p.ball_velocity_m_s, "ball-velocity", &self.ball_velocity, Kind::Speed, &limits::BALL_VELOCITY)?;
+        if let Some(n) = &self.periods {
+            p.steady_periods = limits::PERIODS.parse_count("--periods", n)? as u32;
+        }
+        p.settle |= self.settle;
+        adjust(&mut d);
+        limits::check_design(&d)?;
+        d.validate()?;
+        d.resolved()
     }
 
     /// The design flags given, as (name, value) pairs for [`params::design`].
@@ -162,6 +251,11 @@ impl DesignArgs {
             ("dt", &self.dt),
             ("density", &self.density),
             ("radius", &self.radius),
+            (F::NAME, &self.force.typed().cloned()),
+            ("freq", &self.freq),
+            ("ball-position", &self.ball_position),
+            ("ball-velocity", &self.ball_velocity),
+            ("periods", &self.periods),
         ];
         let typed: Vec<String> = all
             .iter()
@@ -173,6 +267,16 @@ impl DesignArgs {
     /// `--duration` as typed, if it was.
     pub(crate) fn duration_text(&self) -> Option<String> {
         self.duration.clone()
+    }
+
+    /// Whether the design's start was typed (`--v0`, `--ball-position`, `--ball-velocity`).
+    pub(crate) fn start_typed(&self) -> bool {
+        self.v0.is_some() || self.ball_position.is_some() || self.ball_velocity.is_some()
+    }
+
+    /// `--freq` as typed, if it was.
+    pub(crate) fn freq_text(&self) -> Option<&String> {
+        self.freq.as_ref()
     }
 
     /// What to show for a flag in a refusal: what the user typed, else the design's value.
@@ -253,7 +357,7 @@ impl DesignArgs {
     }
 }
 
-impl DesignArgs {
+impl<F: ForceFlag> DesignArgs<F> {
     /// Refuses `cells` cells of `d` with `runs` ensemble runs each (a chart, a chart's part, or
     /// one design with `cells` = 1) whose work is over a cap (see [`limits::ensemble_work`]):
     /// the runs (named by `flag` typed as `value`), the simulated run-seconds, and the Newmark

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::design_args::{parse_range, DesignArgs};
+use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
 use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::Design;
 use crate::error::ThudError;
@@ -22,9 +22,9 @@ pub struct ExportArgs {
 
 #[derive(Debug, Clone, Subcommand)]
 enum ExportCommand {
-    /// Data as CSV: waveform (t_s,p_pa), history (t_s,x_m,y_m,x_free_m), impacts, sweep.
+    /// Data as CSV: waveform (t_s,p_pa), history (t_s,x_m,y_m,x_free_m), impacts, sweep, response.
     Csv(CsvArgs),
-    /// Figures as SVG: waveform, directivity, history, restitution, chart, fig17.
+    /// Figures as SVG: waveform, directivity, history, restitution, chart, fig17, response.
     Svg(SvgArgs),
     /// The damper's sound at the observer: 48 kHz mono 32-bit float, 1.0 = --full-scale Pa.
     Wav(WavArgs),
@@ -36,6 +36,7 @@ enum CsvWhat {
     History,
     Impacts,
     Sweep,
+    Response,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -46,6 +47,7 @@ enum SvgWhat {
     Restitution,
     Chart,
     Fig17,
+    Response,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -77,7 +79,7 @@ struct WavArgs {
 #[derive(Debug, Clone, Args)]
 struct Common {
     #[command(flatten)]
-    design: DesignArgs,
+    design: DesignArgs<ForceAmplitude>,
     /// Impact speed U0 of waveform/directivity/restitution (m/s) [default: the design's largest impact speed; 1.4 for restitution].
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     u0: Option<String>,
@@ -87,6 +89,12 @@ struct Common {
     /// Gaps FROM:TO:N of sweep/chart/fig17 [default: 2cm:5cm:20].
     #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
     gaps: Option<String>,
+    /// Forcing frequencies FROM:TO:N of a response (Hz) [default: 3Hz:8Hz:101]; needs --force-amplitude.
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
+    freqs: Option<String>,
+    /// A response from each frequency's predecessor, rising then falling (else each from rest).
+    #[arg(long)]
+    continuation: bool,
     /// Points of a waveform or time history (at most 1000000).
     #[arg(long, value_name = "N", default_value = "2001", allow_hyphen_values = true)]
     points: String,
@@ -120,12 +128,24 @@ impl Common {
             gaps_m: self.gaps.as_deref().map(|g| parse_range("gaps", g, Unit::Length, &limits::GAP)).transpose()?,
             points,
             wav: WavOptions::default(),
+            freqs_hz: self
+                .freqs
+                .as_deref()
+                .map(|f| parse_range("freqs", f, Unit::Frequency, &limits::FREQ))
+                .transpose()?,
+            continuation: self.continuation,
         })
     }
 
     /// Refuses an export whose work is over a cap; says whether it is expected to be long.
     fn check_work(&self, ctx: &Ctx, kind: Kind, d: &Design, opts: &ExportOptions) -> Result<bool, CliError> {
         let points = &self.points;
+        if kind.is_response() {
+            let freqs = export::response_freqs(opts);
+            let text = self.freqs.clone().unwrap_or_else(|| "3Hz:8Hz:101".into());
+            super::response::check_work(ctx, d, &freqs, &text, opts.continuation)?;
+            return Ok(true);
+        }
         let runs = !kind.needs_sweep() && kind != Kind::SvgRestitution;
         let history = if matches!(kind, Kind::CsvHistory | Kind::SvgHistory) { opts.points } else { 0 };
         if runs {
@@ -190,7 +210,11 @@ fn check_contents(kind: Kind, bytes: &[u8]) -> Result<(), CliError> {
 /// checked before the work starts, so a refused --out or an over-cap run costs nothing, and the
 /// contents are checked for non-finite numbers before anything is written.
 fn write(ctx: &Ctx, kind: Kind, common: &Common, opts: &ExportOptions) -> Result<(), CliError> {
-    let design = common.design.design()?;
+    let design = if kind.is_response() {
+        super::response::response_design(&common.design, export::response_freqs(opts)[0])?
+    } else {
+        common.design.design()?
+    };
     let overwrite = Overwrite::from_force(common.force);
     let out = &common.out;
     let to_stdout = fsio::is_stdout(out);
@@ -248,6 +272,7 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 CsvWhat::History => Kind::CsvHistory,
                 CsvWhat::Impacts => Kind::CsvImpacts,
                 CsvWhat::Sweep => Kind::CsvSweep,
+                CsvWhat::Response => Kind::CsvResponse,
             };
             write(ctx, kind, &c.common, &c.common.options()?)
         }
@@ -259,6 +284,7 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 SvgWhat::Restitution => Kind::SvgRestitution,
                 SvgWhat::Chart => Kind::SvgChart,
                 SvgWhat::Fig17 => Kind::SvgFig17,
+                SvgWhat::Response => Kind::SvgResponse,
             };
             write(ctx, kind, &s.common, &s.common.options()?)
         }

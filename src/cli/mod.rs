@@ -11,6 +11,7 @@ mod output;
 mod paper;
 mod presets;
 mod pulse;
+mod response;
 mod restitution;
 mod settings;
 mod shell;
@@ -54,6 +55,8 @@ pub enum Command {
     Sweep(Box<sweep::SweepArgs>),
     /// Join the parts written by `thud sweep --shard K/N` into the whole chart.
     Merge(Box<merge::MergeArgs>),
+    /// The frequency response under a harmonic force: amplitude with and without the damper, Leq.
+    Response(Box<response::ResponseArgs>),
     /// Restitution against impact mass (Fig 13), and the c1 that gives a wanted restitution.
     Restitution(Box<restitution::RestitutionArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
@@ -180,7 +183,12 @@ pub(crate) fn warn(line: &str) {
 /// The flags engine errors name bare, without dashes: the parameters of the range table, the
 /// sweep axes and the preset (the message names the flag).
 fn numeric_flags() -> Vec<String> {
-    crate::limits::RANGES.iter().map(|r| r.param).chain(["masses", "gaps", "preset"]).map(str::to_string).collect()
+    crate::limits::RANGES
+        .iter()
+        .map(|r| r.param)
+        .chain(["masses", "gaps", "preset", "freqs"])
+        .map(str::to_string)
+        .collect()
 }
 
 /// The command path the user typed up to a command that needs a subcommand, and its
@@ -245,6 +253,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Simulate(a)) => simulate::run(&a, &ctx, &mut out),
         Some(Command::Sweep(a)) => sweep::run(&a, &ctx, &mut out),
         Some(Command::Merge(a)) => merge::run(&a, &ctx, &mut out),
+        Some(Command::Response(a)) => response::run(&a, &ctx, &mut out),
         Some(Command::Restitution(a)) => restitution::run(&a, &ctx, &mut out),
         Some(Command::Paper(a)) => paper::run(&a, &mut out),
         Some(Command::Export(a)) => export::run(&a, &ctx),

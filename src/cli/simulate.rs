@@ -65,6 +65,9 @@ struct SimulateJson<'a> {
     truncated: bool,
     /// Why, when it did.
     truncation_reason: Option<String>,
+    /// The steady state of a forced run (absent without a force).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    steady: Option<crate::response::Steady>,
 }
 
 /// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's
@@ -137,6 +140,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 final_time_s: eval.run.final_time_s,
                 truncated: truncated.is_some(),
                 truncation_reason: truncated,
+                steady: eval.steady,
             };
             out.json(&j)?;
         }
@@ -279,8 +283,18 @@ pub fn describe(d: &Design) -> String {
         Solver::Event => "event-driven solver".to_string(),
         Solver::Newmark { dt_s } => format!("Newmark-β solver, dt {} s", num(dt_s)),
     };
+    let mut extra = String::new();
+    if p.forced() {
+        extra += &format!("; force {} N at {} Hz", num(p.force_n), num(p.freq_hz));
+        if p.settle {
+            extra += ", settling";
+        }
+    }
+    if p.ball_position_m != 0.0 || p.ball_velocity_m_s != 0.0 {
+        extra += &format!("; ball from y0 {} cm at {} m/s", num(p.ball_position_m * 1e2), num(p.ball_velocity_m_s));
+    }
     format!(
-        "m {} g (a {} mm), d {} cm, v0 {} m/s; M {} kg, K {} N/m, C {} N·s/m; c1 {} N·s/m{}, K_HZ {:.4e} N/m^1.5; {solver}, {} s",
+        "m {} g (a {} mm), d {} cm, v0 {} m/s; M {} kg, K {} N/m, C {} N·s/m; c1 {} N·s/m{}, K_HZ {:.4e} N/m^1.5; {solver}, {} s{extra}",
         num(p.impact_mass_kg * 1e3),
         num(d.ball_radius_m() * 1e3),
         num(p.gap_m * 1e2),
@@ -327,13 +341,18 @@ fn summary(d: &Design, e: &Evaluation, show: usize, truncated: Option<&str>) -> 
         m.zone.map_or("—".into(), |z| format!("{} ({})", z.number(), z.describe()))
     );
     let en = &e.run.energy;
+    let work =
+        if d.damper.forced() { format!(", work of the force {} J", num(en.forcing_work_j)) } else { String::new() };
     s += &format!(
-        "energy    initial {} J, final {} J, dissipated {} J viscous + {} J in contacts\n",
+        "energy    initial {} J{work}, final {} J, dissipated {} J viscous + {} J in contacts\n",
         num(en.initial_j),
         num(en.final_mechanical_j),
         num(en.dissipated_viscous_j),
         num(en.dissipated_contact_j)
     );
+    if let Some(st) = &e.steady {
+        s += &steady_line(st);
+    }
     if !e.run.impacts.is_empty() {
         let spls = design::impact_spls(&e.run, d)?;
         s += &format!("impacts (first {} of {}):\n", show.min(e.run.impacts.len()), e.run.impacts.len());
@@ -359,4 +378,32 @@ fn summary(d: &Design, e: &Evaluation, show: usize, truncated: Option<&str>) -> 
         s += &format!("maxima    {}{}\n", list.join(", "), if e.run.maxima.len() > 6 { ", …" } else { "" });
     }
     Ok(s)
+}
+
+fn yes(b: bool) -> &'static str {
+    if b {
+        "yes"
+    } else {
+        "no"
+    }
+}
+
+/// The steady state of a forced run, in two lines.
+pub(crate) fn steady_line(st: &crate::response::Steady) -> String {
+    let linear = match (st.amplitude_linear_m, st.reduction_db) {
+        (Some(a), Some(r)) => format!("without the ball {} mm, the damper cuts {:.2} dB", num(a * 1e3), r),
+        _ => "without the ball unbounded (no damping at resonance)".into(),
+    };
+    format!(
+        "steady    last {} periods (t {}–{} s): amplitude {} mm ({linear})\n          {:.3} impacts/period, Leq {} dB; periodic {}, settled {}{}\n",
+        st.periods,
+        num(st.window_start_s),
+        num(st.window_end_s),
+        num(st.amplitude_m * 1e3),
+        st.impacts_per_period,
+        opt(st.leq_db, 2),
+        yes(st.periodic),
+        yes(st.settled),
+        if st.truncated { "; TRUNCATED" } else { "" }
+    )
 }

@@ -7,7 +7,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::budget;
-use super::design_args::{parse_range, DesignArgs};
+use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
 use super::format::num;
 use super::simulate::describe;
 use super::{count, quantity, CliError, Ctx, Out, OutputArgs, OutputFormat};
@@ -22,7 +22,7 @@ use crate::units::Kind;
 #[derive(Debug, Clone, Args)]
 pub struct SweepArgs {
     #[command(flatten)]
-    design: DesignArgs,
+    design: DesignArgs<ForceAmplitude>,
     /// Impact masses FROM:TO:N (e.g. 30g:100g:20).
     #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "30g:100g:20")]
     masses: String,

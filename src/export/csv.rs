@@ -272,6 +272,72 @@ pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, c
     )
 }
 
+#[derive(Serialize)]
+struct ResponseRow {
+    sweep: &'static str,
+    freq_hz: Num,
+    amplitude_m: Num,
+    amplitude_linear_m: Option<Num>,
+    reduction_db: Option<Num>,
+    impacts_per_period: Num,
+    leq_db: Option<Num>,
+    periodic: bool,
+    settled: bool,
+    truncated: bool,
+    window_start_s: Num,
+    window_end_s: Num,
+    final_time_s: Num,
+}
+const RESPONSE_HEADER: [&str; 13] = [
+    "sweep",
+    "freq_hz",
+    "amplitude_m",
+    "amplitude_linear_m",
+    "reduction_db",
+    "impacts_per_period",
+    "leq_db",
+    "periodic",
+    "settled",
+    "truncated",
+    "window_start_s",
+    "window_end_s",
+    "final_time_s",
+];
+
+/// A frequency response, one row per frequency and sweep (`from_rest`, or `up` and `down`);
+/// an empty cell where a value does not exist (no linear amplitude at an undamped resonance,
+/// no level without impacts).
+pub fn response(r: &crate::response::Response) -> Result<String, csv::Error> {
+    use crate::response::Direction;
+    to_csv(
+        &RESPONSE_HEADER,
+        r.sweeps.iter().flat_map(|sw| {
+            sw.points.iter().map(move |p| {
+                let st = &p.steady;
+                ResponseRow {
+                    sweep: match sw.direction {
+                        Direction::FromRest => "from_rest",
+                        Direction::Up => "up",
+                        Direction::Down => "down",
+                    },
+                    freq_hz: Num(p.freq_hz),
+                    amplitude_m: Num(st.amplitude_m),
+                    amplitude_linear_m: st.amplitude_linear_m.map(Num),
+                    reduction_db: st.reduction_db.map(Num),
+                    impacts_per_period: Num(st.impacts_per_period),
+                    leq_db: st.leq_db.map(Num),
+                    periodic: st.periodic,
+                    settled: st.settled,
+                    truncated: st.truncated,
+                    window_start_s: Num(st.window_start_s),
+                    window_end_s: Num(st.window_end_s),
+                    final_time_s: Num(p.final_time_s),
+                }
+            })
+        }),
+    )
+}
+
 /// One cell of a table: numbers in full, text as it is (the writer quotes it when needed),
 /// nothing for a missing value.
 fn cell(v: &Value) -> String {

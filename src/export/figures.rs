@@ -8,7 +8,7 @@ use crate::design::{Chart, Thresholds, Zone};
 use crate::paper::{Table, Value};
 use crate::units::sig;
 
-use super::svg::{legend, line_plot, Anchor, Axis, Frame, Series, Style, Svg, HEIGHT, WIDTH};
+use super::svg::{draw_series_clipped, legend, line_plot, Anchor, Axis, Frame, Series, Style, Svg, HEIGHT, WIDTH};
 
 /// The pressure of one impact against time after the direct wave arrives (ms, Pa).
 pub fn waveform(field: &Field, points: usize, title: &str) -> String {
@@ -429,5 +429,65 @@ fn cell_map(table: &Table, x: &str, y: &str, v: &str) -> String {
             );
         }
     }
+    svg.finish()
+}
+
+/// The frequency response (docs/model.md §6.4): the steady amplitude against the forcing
+/// frequency with the damper (one series per sweep) and without it (the closed form), on a log
+/// scale in mm; below, `Leq` at the observer against the frequency.
+pub fn response(r: &crate::response::Response, title: &str) -> String {
+    use crate::response::Direction;
+    let height = 760.0;
+    let mut svg = Svg::new(WIDTH, height, title);
+    let label = |d: Direction| match d {
+        Direction::FromRest => "with the damper".to_string(),
+        d => format!("damper, {} sweep", d.name()),
+    };
+    let mut amp: Vec<Series> = r
+        .sweeps
+        .iter()
+        .map(|s| {
+            let pts = s.points.iter().map(|p| (p.freq_hz, p.steady.amplitude_m * 1e3)).collect();
+            Series::new(&label(s.direction), pts, Style::LineMarkers)
+        })
+        .collect();
+    let mut linear: Vec<(f64, f64)> = r
+        .sweeps
+        .first()
+        .map(|s| {
+            s.points.iter().map(|p| (p.freq_hz, p.steady.amplitude_linear_m.map_or(f64::NAN, |a| a * 1e3))).collect()
+        })
+        .unwrap_or_default();
+    linear.sort_by(|a, b| a.0.total_cmp(&b.0));
+    amp.push(Series::new("without (closed form)", linear, Style::Dashed));
+    let leq: Vec<Series> = r
+        .sweeps
+        .iter()
+        .map(|s| {
+            let pts = s.points.iter().map(|p| (p.freq_hz, p.steady.leq_db.unwrap_or(f64::NAN))).collect();
+            Series::new(&label(s.direction), pts, Style::LineMarkers)
+        })
+        .collect();
+    let freqs = || r.sweeps.iter().flat_map(|s| s.points.iter().map(|p| p.freq_hz));
+    let x = Axis::fit("forcing frequency f (Hz)", freqs());
+    let y = Axis::fit_log("steady amplitude (mm)", amp.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+    let top = Frame { left: 85.0, top: 50.0, width: WIDTH - 85.0 - 200.0, height: 380.0, x: x.clone(), y };
+    top.draw_panel(&mut svg, Some(title), "amplitude");
+    draw_series_clipped(&mut svg, &top, &amp, "amplitude");
+    let levels: Vec<f64> = leq.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(|v| v.is_finite()).collect();
+    let y2 = Axis::fit("Leq at the observer (dB)", levels.iter().copied());
+    let bottom = Frame { left: 85.0, top: 500.0, width: WIDTH - 85.0 - 200.0, height: 190.0, x, y: y2 };
+    bottom.draw_panel(&mut svg, None, "level");
+    if levels.is_empty() {
+        svg.text(
+            bottom.left + bottom.width / 2.0,
+            bottom.top + bottom.height / 2.0,
+            "no impact at any frequency",
+            13.0,
+            Anchor::Middle,
+            0.0,
+        );
+    }
+    draw_series_clipped(&mut svg, &bottom, &leq, "level");
     svg.finish()
 }

@@ -60,10 +60,14 @@ pub enum Kind {
     SvgFig17,
     /// WAV: the damper's sound at the observer over the whole run.
     Wav,
+    /// CSV: the frequency response of a forced design (`thud response --csv`).
+    CsvResponse,
+    /// SVG: the frequency response, amplitude with and without the damper, and Leq.
+    SvgResponse,
 }
 
 impl Kind {
-    pub const ALL: [Kind; 11] = [
+    pub const ALL: [Kind; 13] = [
         Kind::CsvWaveform,
         Kind::CsvHistory,
         Kind::CsvImpacts,
@@ -75,6 +79,8 @@ impl Kind {
         Kind::SvgChart,
         Kind::SvgFig17,
         Kind::Wav,
+        Kind::CsvResponse,
+        Kind::SvgResponse,
     ];
 
     /// A file name to suggest, e.g. `thud-waveform.csv`.
@@ -91,12 +97,19 @@ impl Kind {
             Kind::SvgChart => "thud-chart.svg",
             Kind::SvgFig17 => "thud-fig17.svg",
             Kind::Wav => "thud-sound.wav",
+            Kind::CsvResponse => "thud-response.csv",
+            Kind::SvgResponse => "thud-response.svg",
         }
     }
 
     /// Whether this export needs the mass × gap grid (a sweep).
     pub fn needs_sweep(self) -> bool {
         matches!(self, Kind::CsvSweep | Kind::SvgChart | Kind::SvgFig17)
+    }
+
+    /// Whether this export is a frequency response (a forced design over `freqs_hz`).
+    pub fn is_response(self) -> bool {
+        matches!(self, Kind::CsvResponse | Kind::SvgResponse)
     }
 }
 
@@ -115,12 +128,29 @@ pub struct ExportOptions {
     pub points: usize,
     /// Sample rate and scale of WAV files.
     pub wav: wav::WavOptions,
+    /// Forcing frequencies (Hz) of a response; None: 3–8 Hz, 101 values.
+    pub freqs_hz: Option<Vec<f64>>,
+    /// A response from each frequency's predecessor, up then down (else each from rest).
+    pub continuation: bool,
 }
 
 impl Default for ExportOptions {
     fn default() -> Self {
-        Self { u0_m_s: None, masses_kg: None, gaps_m: None, points: 2001, wav: wav::WavOptions::default() }
+        Self {
+            u0_m_s: None,
+            masses_kg: None,
+            gaps_m: None,
+            points: 2001,
+            wav: wav::WavOptions::default(),
+            freqs_hz: None,
+            continuation: false,
+        }
     }
+}
+
+/// The forcing frequencies of a response export (defaults as documented on [`ExportOptions`]).
+pub fn response_freqs(opts: &ExportOptions) -> Vec<f64> {
+    opts.freqs_hz.clone().unwrap_or_else(|| linspace(3.0, 8.0, 101))
 }
 
 /// Runs `design` (with `points` history samples).
@@ -241,6 +271,23 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
         Kind::Wav => {
             let e = run(&d, 0)?;
             return Ok(wav::damper_sound(&d, &e.run, &opts.wav)?);
+        }
+        Kind::CsvResponse | Kind::SvgResponse => {
+            let freqs = response_freqs(opts);
+            let ro = crate::response::ResponseOptions { continuation: opts.continuation, settle: true };
+            let r = crate::response::response(&d, &freqs, &ro, None, &|| {})?;
+            if kind == Kind::CsvResponse {
+                csv::response(&r)?
+            } else {
+                let title = format!(
+                    "Frequency response under F0 {} N (m {} g, d {} cm, M {} kg)",
+                    crate::units::sig(r.force_n, 3),
+                    crate::units::sig(d.damper.impact_mass_kg * 1e3, 3),
+                    crate::units::sig(d.damper.gap_m * 1e2, 3),
+                    crate::units::sig(d.damper.main_mass_kg, 3)
+                );
+                figures::response(&r, &title)
+            }
         }
     };
     Ok(text.into_bytes())

@@ -341,15 +341,24 @@ impl Frame {
     /// Draws the title, the box, grid lines, ticks with labels and the axis labels, and
     /// defines the clip path [`CLIP`].
     pub fn draw(&self, svg: &mut Svg, title: &str) {
+        self.draw_panel(svg, Some(title), CLIP);
+    }
+
+    /// As [`Frame::draw`] for one panel of a figure of several: the title only if given, and
+    /// the clip path under the id `clip` (one per panel).
+    pub fn draw_panel(&self, svg: &mut Svg, title: Option<&str>, clip: &str) {
         svg.def(&format!(
-            r#"<clipPath id="{CLIP}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>"#,
+            r#"<clipPath id="{}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>"#,
+            escape(clip),
             n(self.left),
             n(self.top),
             n(self.width),
             n(self.height)
         ));
-        let size = (17.0 * 78.0 / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
-        svg.text(WIDTH / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
+        if let Some(title) = title {
+            let size = (17.0 * 78.0 / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
+            svg.text(WIDTH / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
+        }
         let bottom = self.top + self.height;
         for (v, label) in self.x.ticks() {
             let x = self.px(v);
@@ -410,6 +419,11 @@ impl Series {
 /// Draws the series into `frame` with the palette's colours, and a legend on the right when
 /// there is more than one series. Points that are not finite break the line.
 pub fn draw_series(svg: &mut Svg, frame: &Frame, series: &[Series]) {
+    draw_series_clipped(svg, frame, series, CLIP);
+}
+
+/// As [`draw_series`], clipped to the clip path `clip` (a panel's, see [`Frame::draw_panel`]).
+pub fn draw_series_clipped(svg: &mut Svg, frame: &Frame, series: &[Series], clip: &str) {
     for (k, s) in series.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let lines = matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers);
@@ -417,7 +431,7 @@ pub fn draw_series(svg: &mut Svg, frame: &Frame, series: &[Series]) {
         if lines {
             for run in s.points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
                 let px: Vec<(f64, f64)> = run.iter().map(|&(x, y)| (frame.px(x), frame.py(y))).collect();
-                svg.polyline(&px, color, 1.8, dash, Some(CLIP));
+                svg.polyline(&px, color, 1.8, dash, Some(clip));
             }
         }
         if matches!(s.style, Style::Markers | Style::LineMarkers) {

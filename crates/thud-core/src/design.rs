@@ -328,6 +328,10 @@ pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
 pub struct Evaluation {
     pub run: Run,
     pub metrics: Metrics,
+    /// The steady state of a forced design with the level of its rattle (absent without a
+    /// force; a chart cell's [`Metrics`] do not carry it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steady: Option<crate::response::Steady>,
 }
 
 /// Simulates `design` and computes its metrics. `history_samples` uniform samples of x and y
@@ -337,7 +341,8 @@ pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicB
     let d = design.resolved()?;
     let run = damper::simulate(&d.damper, d.solver, &RunOptions { history_samples, cancel })?;
     let metrics = metrics(&run, &d)?;
-    Ok(Evaluation { run, metrics })
+    let steady = crate::response::steady(&run, &d)?;
+    Ok(Evaluation { run, metrics, steady })
 }
 
 /// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's own

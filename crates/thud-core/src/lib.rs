@@ -16,6 +16,7 @@
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
 //! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
+//! - [`response`]: a forced design's steady state and level (`Leq`), and its frequency response.
 //! - [`units`]: parsing and formatting of quantities with units.
 
 pub mod acoustics;
@@ -27,6 +28,7 @@ pub mod error;
 pub mod limits;
 pub mod paper;
 pub mod params;
+pub mod response;
 pub mod units;
 
 pub use error::ThudError;

@@ -260,10 +260,85 @@ pub const ENSEMBLE: Range = range(
     "1 is the paper's single trajectory; at 1000 runs one run moves p10 or p90 by 0.1 %, finer than any decision needs",
 );
 
+/// Amplitude F0 of the harmonic force on the main mass (N).
+pub const FORCE: Range = range(
+    "force",
+    "force amplitude F0",
+    0.0,
+    1e6,
+    "N",
+    "0 is the paper's free decay; 1e6 N (a 100 t shaker) is beyond any structure in this table",
+);
+/// Frequency f of the harmonic force (Hz); 0 (no force) is allowed only without a force.
+pub const FREQ: Range = range(
+    "freq",
+    "forcing frequency f",
+    1e-3,
+    1e5,
+    "Hz",
+    "a period of 1000 s is a static load; at 100 kHz the period nears a contact's own µs",
+);
+/// The ball's initial offset y0 from the enclosure's centre (m); also |y0| < d/2.
+pub const BALL_POSITION: Range = range(
+    "ball-position",
+    "initial ball offset y0",
+    -5.0,
+    5.0,
+    "m",
+    "the ball starts inside the clearance, |y0| < d/2 (checked against --gap), and d ≤ 10 m",
+);
+/// The ball's initial velocity w0 (m/s).
+pub const BALL_VELOCITY: Range = range(
+    "ball-velocity",
+    "initial ball velocity w0",
+    -100.0,
+    100.0,
+    "m/s",
+    "as v0: beyond 100 m/s the elastic Hertz contact no longer holds",
+);
+/// Forcing periods N of a steady-state window.
+pub const PERIODS: Range = range(
+    "periods",
+    "steady-state window",
+    1.0,
+    1000.0,
+    "periods",
+    "a window holds at least one forcing period; 1000 outlasts any transient worth averaging over",
+);
+
 /// Every range, in the order `thud` lists them.
-pub const RANGES: [Range; 26] = [
-    MASS, GAP, V0, MAIN_MASS, STIFFNESS, DAMPING, C1, K_HZ, DURATION, DT, DENSITY, RADIUS, R, THETA, U0, RHO_C,
-    C_SOUND, L_STAR, E_STAR, FULL_SCALE, TARGET, BAND, POINTS, SAMPLES, SHOW, ENSEMBLE,
+pub const RANGES: [Range; 31] = [
+    MASS,
+    GAP,
+    V0,
+    MAIN_MASS,
+    STIFFNESS,
+    DAMPING,
+    C1,
+    K_HZ,
+    DURATION,
+    DT,
+    DENSITY,
+    RADIUS,
+    R,
+    THETA,
+    U0,
+    RHO_C,
+    C_SOUND,
+    L_STAR,
+    E_STAR,
+    FULL_SCALE,
+    TARGET,
+    BAND,
+    POINTS,
+    SAMPLES,
+    SHOW,
+    ENSEMBLE,
+    FORCE,
+    FREQ,
+    BALL_POSITION,
+    BALL_VELOCITY,
+    PERIODS,
 ];
 
 /// A number for messages, to 6 significant digits: plain in the ordinary range, scientific
@@ -359,6 +434,26 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
         K_HZ.check(p.k_hz)?;
     }
     DURATION.check(p.duration_s)?;
+    FORCE.check(p.force_n)?;
+    if p.freq_hz != 0.0 || p.force_n > 0.0 {
+        if p.freq_hz == 0.0 {
+            return Err(ThudError::invalid("freq", "a force needs a frequency; give --freq (Hz)"));
+        }
+        FREQ.check(p.freq_hz)?;
+    }
+    BALL_POSITION.check(p.ball_position_m)?;
+    if p.ball_position_m.abs() >= 0.5 * p.gap_m {
+        return Err(ThudError::invalid(
+            "ball-position",
+            format!(
+                "{} m puts the ball outside the clearance; |y0| must be < d/2 = {} m",
+                short(p.ball_position_m),
+                short(0.5 * p.gap_m)
+            ),
+        ));
+    }
+    BALL_VELOCITY.check(p.ball_velocity_m_s)?;
+    PERIODS.check(f64::from(p.steady_periods))?;
     if let Solver::Newmark { dt_s } = d.solver {
         DT.check(dt_s)?;
     }
@@ -495,8 +590,17 @@ pub const MERGED_RUNS: Cap = Cap {
     basis: "1e5 cells × 10 runs merged to 495 MB of JSON in 7.4 s with 730 MB peak memory (2e6 took 1.7 GB)",
 };
 
+/// Forcing periods simulated by one frequency response (`thud response`): over the
+/// frequencies, each run to its duration and then settled (at most
+/// [`crate::damper::SETTLE_PERIODS_MAX`] periods more), twice with `--continuation`.
+pub const RESPONSE_PERIODS: Cap = Cap {
+    what: "forcing periods",
+    max: 2e6,
+    basis: "15 µs a period at ½ impact a period (thud response --force 1N: 112 638 periods, 1.7 s of CPU), up to ≈ 100 µs at 4 impacts a period: 2e6 periods is at most about 100 s on 2 cores",
+};
+
 /// Every cap, in the order `thud` lists them.
-pub const CAPS: [Cap; 12] = [
+pub const CAPS: [Cap; 13] = [
     NEWMARK_STEPS,
     CYCLES,
     HISTORY_SAMPLES,
@@ -509,6 +613,7 @@ pub const CAPS: [Cap; 12] = [
     RUNS,
     RUN_SECONDS,
     MERGED_RUNS,
+    RESPONSE_PERIODS,
 ];
 
 /// One estimate of the work of a run, against its cap.
@@ -547,19 +652,54 @@ pub fn cycles(duration_s: f64, main_mass_kg: f64, stiffness_n_m: f64, damping_n_
     }
 }
 
+/// The longest a run of `d` can simulate (s): its duration, and for a forced run that settles
+/// the most periods settling adds ([`crate::damper::SETTLE_PERIODS_MAX`]).
+pub fn run_time_s(d: &Design) -> f64 {
+    let p = &d.damper;
+    if p.forced() && p.settle {
+        p.duration_s + f64::from(crate::damper::SETTLE_PERIODS_MAX) / p.freq_hz
+    } else {
+        p.duration_s
+    }
+}
+
 /// The work of one simulation of `d` keeping `history_samples` samples: its Newmark steps (0
-/// with the event-driven solver), main-mass cycles and history samples.
+/// with the event-driven solver), main-mass cycles and history samples. A forced run counts
+/// the forcing cycles where they are faster than the free ones, and its settling time.
 pub fn design_run(d: &Design, history_samples: usize) -> [Estimate; 3] {
     let p = &d.damper;
+    let time = run_time_s(d);
     let steps = match d.solver {
         Solver::Event => 0.0,
-        Solver::Newmark { dt_s } => newmark_steps(p.duration_s, dt_s),
+        Solver::Newmark { dt_s } => newmark_steps(time, dt_s),
     };
+    let mut cycles = cycles(time, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    if p.forced() {
+        cycles = cycles.max(time * p.freq_hz);
+    }
     [
         Estimate { cap: NEWMARK_STEPS, value: steps },
-        Estimate { cap: CYCLES, value: cycles(p.duration_s, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m) },
+        Estimate { cap: CYCLES, value: cycles },
         Estimate { cap: HISTORY_SAMPLES, value: history_samples as f64 },
     ]
+}
+
+/// The work of a frequency response of `d` over `freqs_hz` (each run at least two windows of
+/// `N` periods, then settled; twice with `continuation`): forcing periods, and Newmark steps.
+pub fn response_work(d: &Design, freqs_hz: &[f64], continuation: bool) -> [Estimate; 2] {
+    let p = &d.damper;
+    let n = f64::from(p.steady_periods);
+    let settle = f64::from(crate::damper::SETTLE_PERIODS_MAX);
+    let sweeps = if continuation { 2.0 } else { 1.0 };
+    let periods: f64 = freqs_hz.iter().map(|f| (p.duration_s * f).max(2.0 * n) + settle).sum::<f64>() * sweeps;
+    let steps = match d.solver {
+        Solver::Event => 0.0,
+        Solver::Newmark { dt_s } => {
+            freqs_hz.iter().map(|f| newmark_steps(((p.duration_s * f).max(2.0 * n) + settle) / f, dt_s)).sum::<f64>()
+                * sweeps
+        }
+    };
+    [Estimate { cap: RESPONSE_PERIODS, value: periods }, Estimate { cap: NEWMARK_STEPS, value: steps }]
 }
 
 /// Samples of a WAV file `duration_s` long at `rate_hz`.
@@ -760,5 +900,40 @@ mod tests {
         assert!(merged_runs(1000 * 1000, 16).exceeded() && !merged_runs(1000 * 1000, 1).exceeded());
         assert_eq!(ENSEMBLE.parse_count("--ensemble", "16").unwrap(), 16);
         assert!(ENSEMBLE.parse_count("--ensemble", "0").is_err());
+    }
+
+    #[test]
+    fn forced_runs_count_forcing_cycles_and_settling() {
+        let mut d = Design::default();
+        d.damper.force_n = 1.0;
+        d.damper.freq_hz = 50.0;
+        // 2 s at 50 Hz: 100 forcing cycles, more than the ≈ 10 free ones.
+        assert!((design_run(&d, 0)[1].value - 100.0).abs() < 1e-9);
+        d.damper.settle = true;
+        let settle = f64::from(crate::damper::SETTLE_PERIODS_MAX);
+        assert!((design_run(&d, 0)[1].value - (100.0 + settle)).abs() < 1e-6);
+        // Settling at 5 Hz may add 400 s: 4e9 Newmark steps at 1e-7 s.
+        d.damper.freq_hz = 5.0;
+        d.solver = Solver::Newmark { dt_s: 1e-7 };
+        assert!((design_run(&d, 0)[0].value - (2.0 + settle / 5.0) * 1e7).abs() < 1.0);
+        assert!(design_run(&d, 0)[0].exceeded(), "a settling Newmark run at 1e-7 s is over the cap");
+        let [periods, _] = response_work(&Design::default(), &[3.0, 8.0], true);
+        // 2 s at 3 Hz is 6 periods < 2N = 20; at 8 Hz 16 < 20: 2 × (20 + settle) per sweep, two sweeps.
+        assert!((periods.value - 4.0 * (20.0 + settle)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn forcing_and_ball_start_are_range_checked() {
+        let mut d = Design::default();
+        d.damper.force_n = 1.0;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid freq: "), "a force needs a frequency");
+        d.damper.freq_hz = 5.0;
+        check_design(&d).unwrap();
+        d.damper.ball_position_m = 0.02;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid ball-position: "), "on the wall");
+        d.damper.ball_position_m = -0.0199;
+        check_design(&d).unwrap();
+        d.damper.steady_periods = 0;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid periods: "));
     }
 }

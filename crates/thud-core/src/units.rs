@@ -34,6 +34,10 @@ pub enum Kind {
     Level,
     /// cm/s (plain) — the unit of the damping inclination the paper uses.
     Inclination,
+    /// N (plain), kN.
+    Force,
+    /// Hz (plain), kHz, rpm.
+    Frequency,
     /// A plain number.
     Number,
 }
@@ -54,6 +58,8 @@ impl Kind {
             Kind::Impedance => &[("", 1.0), ("rayl", 1.0), ("pa.s/m", 1.0), ("pas/m", 1.0)],
             Kind::Level => &[("", 1.0), ("db", 1.0)],
             Kind::Inclination => &[("", 1.0), ("cm/s", 1.0), ("mm/s", 0.1), ("m/s", 100.0)],
+            Kind::Force => &[("", 1.0), ("n", 1.0), ("kn", 1e3)],
+            Kind::Frequency => &[("", 1.0), ("hz", 1.0), ("khz", 1e3), ("rpm", 1.0 / 60.0)],
             Kind::Number => &[("", 1.0)],
         }
     }
@@ -73,6 +79,8 @@ impl Kind {
             Kind::Impedance => "Pa·s/m",
             Kind::Level => "dB",
             Kind::Inclination => "cm/s",
+            Kind::Force => "N",
+            Kind::Frequency => "Hz",
             Kind::Number => "",
         }
     }
@@ -129,6 +137,8 @@ fn example(kind: Kind) -> &'static str {
         Kind::Speed => "1.4 or 140cm/s",
         Kind::Angle => "45 or 45deg",
         Kind::Time => "2 or 250ms",
+        Kind::Force => "1 or 1N",
+        Kind::Frequency => "5 or 5Hz",
         _ => "1.5",
     }
 }
@@ -170,6 +180,11 @@ mod tests {
         assert_eq!(parse("k-hz", "5.6e8", Kind::HertzStiffness).unwrap(), 5.6e8);
         assert!((parse("dt", "1e-7", Kind::Time).unwrap() - 1e-7).abs() < 1e-22);
         assert!((parse("v0", "-1.5e-1 m/s", Kind::Speed).unwrap() + 0.15).abs() < 1e-15);
+        assert_eq!(parse("force", "2.5N", Kind::Force).unwrap(), 2.5);
+        assert_eq!(parse("force", "0.1kN", Kind::Force).unwrap(), 100.0);
+        assert_eq!(parse("freq", "5Hz", Kind::Frequency).unwrap(), 5.0);
+        assert_eq!(parse("freq", "3000rpm", Kind::Frequency).unwrap(), 50.0);
+        assert!(parse("freq", "5N", Kind::Frequency).is_err());
     }
 
     #[test]

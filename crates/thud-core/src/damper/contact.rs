@@ -6,11 +6,15 @@
 //! dissipated so far by the contact damping and by the viscous damper. With the bracket
 //! `F = K_HZ·δ₊^{3/2} + c1·δ'` (clamped at ≥ 0 under "no tension"), the force on the ball is
 //! `−s·F`, on the main mass `+s·F`, so
-//! `M·x'' = −C·x' − K·x + s·F` and `δ'' = −K*·F + s·(C·x' + K·x)/M`, `K* = (m+M)/(m·M)`.
+//! `M·x'' = −C·x' − K·x + F(t) + s·F` and `δ'' = −K*·F − s·(F(t) − C·x' − K·x)/M`, `K* = (m+M)/(m·M)`,
+//! where `F(t)` is the harmonic force on the main mass of a forced run ([`Load`]; none in the
+//! paper's free decay, where that code path is exactly the unforced one).
 //! The law is extended smoothly past the exit (`δ₊ = max(δ, 0)`) so the exit root is well posed.
 //!
 //! [`integrate`] runs one contact to one of its [`ContactOutcome`]s: separated (δ back to 0),
-//! grazed, cut by the end of the run, or stopped by the run's step budget (a work cap).
+//! grazed, cut by the end of the run, or stopped by the run's step budget (a work cap). A
+//! contact cut by the end of a stretch of a run ([`ContactEnd::resume`]) can be carried on by
+//! [`resume`] exactly where it stopped.
 //!
 //! Hand-written rather than taken from an ODE crate because the work is in the events, not in
 //! the Runge–Kutta stages: the exit and the clamp's switches are located inside a step (a root
@@ -23,7 +27,62 @@ use nalgebra::{Vector2, Vector4, Vector6};
 
 use crate::contact::{contact_duration, peak_approach};
 
+use super::forced::Harmonic;
 use super::DamperParams;
+
+/// A force on the main mass as a function of time, per unit main mass (m/s²): none (the
+/// paper's free decay; `ON` is false and every use of it compiles away), or [`Harmonic`].
+pub(crate) trait Load: Copy {
+    /// Whether there is a force at all.
+    const ON: bool;
+    /// The force per unit main mass at time `t` (s).
+    fn accel(&self, t: f64) -> f64;
+    /// The force at the Dormand–Prince stage times `t + c_i·h`, `i = 2 … 7`.
+    #[inline(always)]
+    fn stages(&self, t: f64, h: f64) -> [f64; 6] {
+        [C2, C3, C4, C5, 1.0, 1.0].map(|c| self.accel(t + c * h))
+    }
+}
+
+/// No force: the paper's free decay.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct NoLoad;
+
+impl Load for NoLoad {
+    const ON: bool = false;
+    #[inline(always)]
+    fn accel(&self, _: f64) -> f64 {
+        0.0
+    }
+}
+
+impl Load for Harmonic {
+    const ON: bool = true;
+    #[inline(always)]
+    fn accel(&self, t: f64) -> f64 {
+        Harmonic::accel(self, t)
+    }
+
+    /// One `sin_cos` a step: `cos(θ + a) = cos θ·cos a − sin θ·sin a` with `a = Ω·c_i·h`, whose
+    /// sine and cosine are short series while `|Ω·h| ≤ 0.05` (truncation below 1e-19).
+    #[inline(always)]
+    fn stages(&self, t: f64, h: f64) -> [f64; 6] {
+        let u = self.omega * h;
+        if u.abs() > 0.05 {
+            return [C2, C3, C4, C5, 1.0, 1.0].map(|c| self.accel(t + c * h));
+        }
+        let (s0, c0) = self.theta(t).sin_cos();
+        let at = |c: f64| {
+            let a = u * c;
+            let a2 = a * a;
+            let sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0 * (1.0 - a2 / 72.0))));
+            let ca = 1.0 - a2 / 2.0 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0 * (1.0 - a2 / 56.0)));
+            self.f * (c0 * ca - s0 * sa)
+        };
+        let end = at(1.0);
+        [at(C2), at(C3), at(C4), at(C5), end, end]
+    }
+}
 
 /// The physical constants of one design, in SI units.
 #[derive(Debug, Clone, Copy)]
@@ -99,15 +158,23 @@ pub(crate) type State = Vector6<f64>;
 /// of a step need.
 type Motion = Vector4<f64>;
 
+/// The rate of the whole state at `y`, with the force per unit main mass `g` (m/s²) at its time.
 #[inline]
-fn rhs(sys: &Sys, s: f64, y: &State) -> State {
+fn rhs<L: Load>(sys: &Sys, s: f64, y: &State, g: f64) -> State {
     let (x, v, del, dd) = (y[0], y[1], y[2], y[3]);
     let (f, hz, _) = sys.bracket(del, dd);
-    let spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+    let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+    if L::ON {
+        spring += g;
+    }
     State::new(v, spring + s * f * sys.inv_big_m, dd, -sys.kstar * f - s * spring, (f - hz) * dd, sys.c * v * v)
 }
 
-// Dormand–Prince 5(4) coefficients.
+// Dormand–Prince 5(4) coefficients: the stage times c_i, then the a_ij, b_i and error weights.
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
 const A21: f64 = 1.0 / 5.0;
 const A31: f64 = 3.0 / 40.0;
 const A32: f64 = 9.0 / 40.0;
@@ -138,50 +205,65 @@ const E7: f64 = -1.0 / 40.0;
 /// Relative tolerance of the contact integrator (on a state scaled by the contact's own sizes).
 pub(crate) const RTOL: f64 = 3e-9;
 
-/// The four non-trivial rates `(x'', δ'', P_contact, P_viscous)` at `(x, x', δ, δ')`.
+/// The four non-trivial rates `(x'', δ'', P_contact, P_viscous)` at `(x, x', δ, δ')`, with the
+/// force per unit main mass `g` (m/s²) there.
 #[inline(always)]
-fn acc(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64) -> (f64, f64, f64, f64) {
+fn acc<L: Load>(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64, g: f64) -> (f64, f64, f64, f64) {
     let dp = del.max(0.0);
     let hz = sys.k_hz * dp * dp.sqrt();
     let mut f = hz + sys.c1 * dd;
     if sys.no_tension && f < 0.0 {
         f = 0.0;
     }
-    let spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+    let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+    if L::ON {
+        spring += g;
+    }
     (spring + (s * sys.inv_big_m) * f, -sys.kstar * f - s * spring, (f - hz) * dd, sys.c * v * v)
 }
 
 /// The rate of the motion `[x', x'', δ', δ'']` at a stage state and the two dissipated powers
 /// `[P_contact, P_viscous]` (W) there.
 #[inline(always)]
-fn stage_rate(sys: &Sys, s: f64, m: &Motion) -> (Motion, Vector2<f64>) {
-    let (a, b, pc, pv) = acc(sys, s, m[0], m[1], m[2], m[3]);
+fn stage_rate<L: Load>(sys: &Sys, s: f64, m: &Motion, g: f64) -> (Motion, Vector2<f64>) {
+    let (a, b, pc, pv) = acc::<L>(sys, s, m[0], m[1], m[2], m[3], g);
     (Motion::new(m[1], a, m[3], b), Vector2::new(pc, pv))
 }
 
-/// One DOPRI5 step of length `h` from `y` (with `k1 = f(y)`): the new state, `f(new)` and the
-/// scaled error norm (max norm over the state with scales `sc`). The stages carry only the
-/// motion `[x, x', δ, δ']`: no stage rate depends on the dissipated energies, whose powers
+/// One DOPRI5 step of length `h` from `y` at time `t` (with `k1 = f(y)`): the new state, `f(new)`
+/// and the scaled error norm (max norm over the state with scales `sc`). The stages carry only
+/// the motion `[x, x', δ, δ']`: no stage rate depends on the dissipated energies, whose powers
 /// enter the final combination alone.
 #[inline(always)]
-fn step(sys: &Sys, s: f64, y: &State, k1: &State, h: f64, sc: &[f64; 6]) -> (State, State, f64) {
+#[allow(clippy::too_many_arguments)]
+fn step<L: Load>(
+    sys: &Sys,
+    load: &L,
+    s: f64,
+    t: f64,
+    y: &State,
+    k1: &State,
+    h: f64,
+    sc: &[f64; 6],
+) -> (State, State, f64) {
+    let g = if L::ON { load.stages(t, h) } else { [0.0; 6] };
     let (y0, e0): (Motion, Vector2<f64>) = (y.fixed_rows::<4>(0).into_owned(), y.fixed_rows::<2>(4).into_owned());
     let (r1, p1): (Motion, Vector2<f64>) = (k1.fixed_rows::<4>(0).into_owned(), k1.fixed_rows::<2>(4).into_owned());
     // Stage state = (y + h·Σ older terms) + (h·a_last)·k_last: the newest rate enters last, so the
     // sums over older stages overlap with the evaluation of the newest one.
     let stage = |older: Motion, a_last: f64, r_last: &Motion| (y0 + older * h) + r_last * (h * a_last);
 
-    let (r2, _) = stage_rate(sys, s, &stage(Motion::zeros(), A21, &r1));
-    let (r3, p3) = stage_rate(sys, s, &stage(r1 * A31, A32, &r2));
-    let (r4, p4) = stage_rate(sys, s, &stage(r1 * A41 + r2 * A42, A43, &r3));
-    let (r5, p5) = stage_rate(sys, s, &stage(r1 * A51 + r2 * A52 + r3 * A53, A54, &r4));
-    let (r6, p6) = stage_rate(sys, s, &stage(r1 * A61 + r2 * A62 + r3 * A63 + r4 * A64, A65, &r5));
+    let (r2, _) = stage_rate::<L>(sys, s, &stage(Motion::zeros(), A21, &r1), g[0]);
+    let (r3, p3) = stage_rate::<L>(sys, s, &stage(r1 * A31, A32, &r2), g[1]);
+    let (r4, p4) = stage_rate::<L>(sys, s, &stage(r1 * A41 + r2 * A42, A43, &r3), g[2]);
+    let (r5, p5) = stage_rate::<L>(sys, s, &stage(r1 * A51 + r2 * A52 + r3 * A53, A54, &r4), g[3]);
+    let (r6, p6) = stage_rate::<L>(sys, s, &stage(r1 * A61 + r2 * A62 + r3 * A63 + r4 * A64, A65, &r5), g[4]);
 
     // The fifth-order solution (B2 = 0), its rate (first-same-as-last) and the error estimate.
     let m7 = y0 + (r1 * B1 + r3 * B3 + r4 * B4 + r5 * B5 + r6 * B6) * h;
     let e7 = e0 + (p1 * B1 + p3 * B3 + p4 * B4 + p5 * B5 + p6 * B6) * h;
     let yn = State::new(m7[0], m7[1], m7[2], m7[3], e7[0], e7[1]);
-    let (r7, p7) = stage_rate(sys, s, &m7);
+    let (r7, p7) = stage_rate::<L>(sys, s, &m7, g[5]);
     let k7 = State::new(r7[0], r7[1], r7[2], r7[3], p7[0], p7[1]);
     let em = (r1 * E1 + r3 * E3 + r4 * E4 + r5 * E5 + r6 * E6 + r7 * E7) * h;
     let ep = (p1 * E1 + p3 * E3 + p4 * E4 + p5 * E5 + p6 * E6 + p7 * E7) * h;
@@ -216,6 +298,25 @@ pub(crate) struct ContactEnd {
     /// Peak penetration (m), refined where δ' = 0.
     pub pen_max: f64,
     pub outcome: ContactOutcome,
+    /// With [`ContactOutcome::EndOfRun`]: everything needed to carry the contact on.
+    pub resume: Option<Resume>,
+}
+
+/// A contact integration cut by its time limit, as it stood: the step-size controller, the
+/// state and what has been seen so far. [`resume`] carries it on.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Resume {
+    s: f64,
+    sc: [f64; 6],
+    tau: f64,
+    t: f64,
+    y: State,
+    k1: State,
+    h: f64,
+    had_pos: bool,
+    switches: usize,
+    pen: f64,
+    err_old: f64,
 }
 
 /// Clamp switches located exactly per contact. A ball pressed by the wall under "no tension"
@@ -237,8 +338,9 @@ enum Flow {
 
 /// One contact being integrated: the accepted state, the step-size controller and what has
 /// been seen so far. Units: s, m, m/s, J.
-struct Integration<'a, O> {
+struct Integration<'a, L, O> {
     sys: &'a Sys,
+    load: L,
     /// The wall's sign (±1).
     s: f64,
     /// Error scales of the six state components.
@@ -260,17 +362,21 @@ struct Integration<'a, O> {
     pen: f64,
     /// log2 of the previous step's error norm (floored at 1e-4).
     err_old: f64,
+    /// The trial step before it was shortened to end at the time limit (s).
+    h_full: f64,
     /// Sees every accepted step.
     obs: O,
 }
 
 /// Integrates one contact at wall `s` from `y0` (δ = 0, δ' > 0) at time `t0` until the exit
-/// (δ returns to 0), the time limit `t_limit`, or `budget` steps run out. `a_bound` (m/s²) bounds
-/// the non-contact relative acceleration (used to size the first step of slow contacts).
-/// `obs(t0, y0, k0, t1, y1, k1)` sees every accepted step (states and their derivatives).
+/// (δ returns to 0), the time limit `t_limit`, or `budget` steps run out, under the force `load`.
+/// `a_bound` (m/s²) bounds the non-contact relative acceleration (used to size the first step of
+/// slow contacts). `obs(t0, y0, k0, t1, y1, k1)` sees every accepted step (states and their
+/// derivatives).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate(
+pub(crate) fn integrate<L: Load>(
     sys: &Sys,
+    load: L,
     s: f64,
     t0: f64,
     y0: State,
@@ -279,16 +385,57 @@ pub(crate) fn integrate(
     a_bound: f64,
     obs: impl FnMut(f64, &State, &State, f64, &State, &State),
 ) -> ContactEnd {
-    let mut it = Integration::start(sys, s, t0, y0, t_limit, a_bound, obs);
+    run(Integration::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
+}
+
+/// Carries on a contact cut by its time limit (`r`, from [`ContactEnd::resume`]) up to the new
+/// time limit `t_limit`, as [`integrate`] would have had it not been cut.
+pub(crate) fn resume<L: Load>(
+    sys: &Sys,
+    load: L,
+    r: &Resume,
+    t_limit: f64,
+    budget: &mut usize,
+    obs: impl FnMut(f64, &State, &State, f64, &State, &State),
+) -> ContactEnd {
+    let it = Integration {
+        sys,
+        load,
+        s: r.s,
+        sc: r.sc,
+        tau: r.tau,
+        t_limit,
+        t: r.t,
+        y: r.y,
+        k1: r.k1,
+        h: r.h,
+        had_pos: r.had_pos,
+        switches: r.switches,
+        pen: r.pen,
+        err_old: r.err_old,
+        h_full: r.h,
+        obs,
+    };
+    run(it, budget)
+}
+
+/// The step loop of one contact integration.
+#[inline(always)]
+fn run<L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)>(
+    mut it: Integration<'_, L, O>,
+    budget: &mut usize,
+) -> ContactEnd {
+    let (sys, s, t_limit) = (it.sys, it.s, it.t_limit);
     loop {
         if *budget == 0 {
             return it.end(ContactOutcome::WorkCap);
         }
         let last = it.t + it.h >= t_limit;
         if last {
+            it.h_full = it.h;
             it.h = t_limit - it.t;
         }
-        let (yn, k7, err) = step(sys, s, &it.y, &it.k1, it.h, &it.sc);
+        let (yn, k7, err) = step(sys, &it.load, s, it.t, &it.y, &it.k1, it.h, &it.sc);
         *budget -= 1;
         let flow = match it.clamp_switch(&yn, &k7, budget) {
             Some(flow) => flow,
@@ -303,11 +450,12 @@ pub(crate) fn integrate(
     }
 }
 
-impl<'a, O: FnMut(f64, &State, &State, f64, &State, &State)> Integration<'a, O> {
+impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integration<'a, L, O> {
     /// The integration at the onset: error scales from the contact's own sizes and a first step
     /// that resolves the t^{3/2} growth of the force.
     #[inline(always)]
-    fn start(sys: &'a Sys, s: f64, t0: f64, y0: State, t_limit: f64, a_bound: f64, obs: O) -> Self {
+    #[allow(clippy::too_many_arguments)]
+    fn start(sys: &'a Sys, load: L, s: f64, t0: f64, y0: State, t_limit: f64, a_bound: f64, obs: O) -> Self {
         let u0 = y0[3].abs().max(1e-12);
         let amax = peak_approach(u0, sys.kstar, sys.k_hz);
         let tau = contact_duration(amax, u0);
@@ -320,27 +468,43 @@ impl<'a, O: FnMut(f64, &State, &State, f64, &State, &State)> Integration<'a, O> 
         if a_bound > 0.0 {
             h = h.min(0.1 * u0 / a_bound);
         }
+        let g0 = if L::ON { load.accel(t0) } else { 0.0 };
         Integration {
             sys,
+            load,
             s,
             sc,
             tau,
             t_limit,
             t: t0,
             y: y0,
-            k1: rhs(sys, s, &y0),
+            k1: rhs::<L>(sys, s, &y0, g0),
             h,
             had_pos: false,
             switches: 0,
             pen: 0.0,
             err_old: -13.3,
+            h_full: h,
             obs,
         }
     }
 
     #[inline(always)]
     fn end(&self, outcome: ContactOutcome) -> ContactEnd {
-        ContactEnd { t: self.t, y: self.y, pen_max: self.pen, outcome }
+        let resume = (outcome == ContactOutcome::EndOfRun).then(|| Resume {
+            s: self.s,
+            sc: self.sc,
+            tau: self.tau,
+            t: self.t,
+            y: self.y,
+            k1: self.k1,
+            h: self.h_full.max(self.h),
+            had_pos: self.had_pos,
+            switches: self.switches,
+            pen: self.pen,
+            err_old: self.err_old,
+        });
+        ContactEnd { t: self.t, y: self.y, pen_max: self.pen, outcome, resume }
     }
 
     /// The peak penetration inside a step of length `h` to `(yn, kn)` when δ' turns there.
@@ -372,8 +536,9 @@ impl<'a, O: FnMut(f64, &State, &State, f64, &State, &State)> Integration<'a, O> 
             let (v, r) = sys.raw_bracket(st, d);
             (sg * v, sg * r)
         };
-        let (hc, yc, kc, err_c) =
-            refine_root(sys, self.s, &self.y, &self.k1, self.h, guess, &self.sc, budget, bracket, tol);
+        let (hc, yc, kc, err_c) = refine_root(
+            sys, &self.load, self.s, self.t, &self.y, &self.k1, self.h, guess, &self.sc, budget, bracket, tol,
+        );
         self.switches += 1;
         if err_c <= 1.0 || hc <= 1e-14 * self.tau {
             self.note_peak(hc, &yc, &kc);
@@ -400,7 +565,9 @@ impl<'a, O: FnMut(f64, &State, &State, f64, &State, &State)> Integration<'a, O> 
         let pen_tol = 1e-14 * self.sc[2];
         let (he, mut ye, ke, err_e) = refine_root(
             self.sys,
+            &self.load,
             self.s,
+            self.t,
             &self.y,
             &self.k1,
             self.h,
@@ -555,9 +722,11 @@ fn refine_peak(y: &State, k1: &State, h: f64, yn: &State, k7: &State) -> f64 {
 /// Returns `(h*, state, f(state), error norm of that step)`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn refine_root(
+fn refine_root<L: Load>(
     sys: &Sys,
+    load: &L,
     s: f64,
+    t: f64,
     y: &State,
     k1: &State,
     h: f64,
@@ -574,7 +743,7 @@ fn refine_root(
         if !(hh > lo && hh < hi) {
             hh = 0.5 * (lo + hi);
         }
-        let (ys, ks, err) = step(sys, s, y, k1, hh, sc);
+        let (ys, ks, err) = step(sys, load, s, t, y, k1, hh, sc);
         *budget = budget.saturating_sub(1);
         out = (hh, ys, ks, err);
         let (gv, gd) = g(&ys, &ks);
@@ -608,7 +777,7 @@ mod tests {
     fn contact(sys: &Sys, t_limit: f64, budget: usize) -> (ContactEnd, usize) {
         let mut left = budget;
         let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
-        let end = integrate(sys, 1.0, 0.0, y0, t_limit, &mut left, 0.0, |_, _, _, _, _, _| {});
+        let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, |_, _, _, _, _, _| {});
         (end, budget - left)
     }
 
@@ -631,6 +800,50 @@ mod tests {
         assert_eq!(capped.outcome, ContactOutcome::WorkCap);
         assert_eq!(used, 5);
         assert!(capped.t < tau);
+    }
+
+    #[test]
+    fn stage_loads_by_rotation_are_the_cosines() {
+        let load = Harmonic { f: 2.0, omega: 31.4, phase: 0.7 };
+        for &(t, h) in &[(0.0, 1e-6), (123.456, 3e-5), (7.0, 1.5e-3)] {
+            let fast = load.stages(t, h);
+            for (g, c) in fast.iter().zip([C2, C3, C4, C5, 1.0, 1.0]) {
+                // The direct cosine carries the rounding of θ = Ω·(t + c·h) + φ.
+                let direct = load.accel(t + c * h);
+                let theta_ulp = 4.0 * f64::EPSILON * (load.theta(t) + 1.0);
+                assert!((g - direct).abs() < (theta_ulp + 1e-15) * load.f, "{g} vs {direct}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_cut_contact_resumes_where_it_stopped() {
+        let s = sys(20.0);
+        let tau = contact_duration(peak_approach(1.4, s.kstar, s.k_hz), 1.4);
+        let (whole, _) = contact(&s, 1.0, 10_000);
+        for cut in [0.1, 0.5, 0.93] {
+            let (first, _) = contact(&s, cut * tau, 10_000);
+            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
+            let r = first.resume.expect("a cut contact can resume");
+            let mut left = 10_000;
+            let mut seen_from = f64::NAN;
+            let end = resume(&s, NoLoad, &r, 1.0, &mut left, |t0, _, _, _, _, _| {
+                if seen_from.is_nan() {
+                    seen_from = t0;
+                }
+            });
+            assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
+            assert_eq!(end.outcome, ContactOutcome::Separated);
+            assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);
+            // The same contact to the integrator's tolerance (RTOL 3e-9 a step).
+            assert!(
+                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-7 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-7,
+                "{cut}: {:?} vs {:?}",
+                end.y,
+                whole.y
+            );
+            assert!((end.pen_max / whole.pen_max - 1.0).abs() < 1e-9);
+        }
     }
 
     #[test]

@@ -1,20 +1,70 @@
-//! The event-driven solver: exact flights (paper Eq 25 in closed form), contact instants by
-//! conservative advancement, and the adaptive in-contact integrator (Eq 26) between them.
-//! Step-size free: the only numerical parameters are internal tolerances. Two work caps bound a
-//! run ([`CONTACT_STEP_CAP`] in-contact steps, [`FLIGHT_SEARCH_CAP`] search iterations); a run
-//! stopped by one says which in [`Run::truncated`].
+//! The event-driven solver: exact flights (paper Eq 25 in closed form, forced or free), contact
+//! instants by conservative advancement, and the adaptive in-contact integrator (Eq 26) between
+//! them. Step-size free: the only numerical parameters are internal tolerances. Two work caps
+//! bound a run ([`CONTACT_STEP_CAP`] in-contact steps, [`FLIGHT_SEARCH_CAP`] search
+//! iterations); a run stopped by one says which in [`Run::truncated`].
+//!
+//! A run is an [`EventSim`] advanced to its end ([`EventSim::advance_to`]); a forced run that
+//! settles is advanced further, window by window, and a contact cut by one stretch's end is
+//! carried on by the next.
 
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::contact::{integrate, ContactOutcome, State, Sys};
+use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Resume, State, Sys};
 use super::flight::{FlightEvent, Oscillator};
+use super::forced::{Forced, ForcedEvent, Harmonic};
 use super::record::{hermite, Recorder};
+use super::steady::{Start, Stepper};
 use super::{
     DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, Truncation, Wall, CONTACT_STEP_CAP, FLIGHT_SEARCH_CAP,
 };
 
+/// Where the event solver's time goes, by phase (with the cargo feature `timing` only: the
+/// clock reads cost about 25 ns each, a few per impact; without the feature there is no timing
+/// code at all). Counted per thread over every run since the last [`timing::take`].
+#[cfg(feature = "timing")]
+pub mod timing {
+    use std::cell::Cell;
+    use std::time::Instant;
+
+    /// Nanoseconds spent per phase, and the counts that go with them.
+    #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+    pub struct Breakdown {
+        /// Contact search (conservative advancement on the closed-form flight).
+        pub search_ns: u64,
+        /// Recording flights: maxima, crossings, `|z'|` extrema, history and window probes.
+        pub flight_record_ns: u64,
+        /// Contacts: the adaptive integrator, with its own recording of each step.
+        pub contact_ns: u64,
+        /// Flights searched, contacts integrated.
+        pub flights: u64,
+        pub contacts: u64,
+    }
+
+    thread_local! {
+        static NOW: Cell<Breakdown> = Cell::new(Breakdown::default());
+    }
+
+    /// The breakdown so far on this thread; starts a new one.
+    pub fn take() -> Breakdown {
+        NOW.with(|c| c.replace(Breakdown::default()))
+    }
+
+    pub(crate) fn add(f: impl FnOnce(&mut Breakdown)) {
+        NOW.with(|c| {
+            let mut b = c.get();
+            f(&mut b);
+            c.set(b);
+        });
+    }
+
+    pub(crate) fn since(t: Instant) -> u64 {
+        t.elapsed().as_nanos() as u64
+    }
+}
+
 /// Outcome of the search for the next contact in one flight.
-enum Search {
+pub(crate) enum Search {
     /// Contact at this flight time (s) on this wall.
     Contact(f64, Wall),
     /// No contact before the end of the interval.
@@ -37,105 +87,302 @@ fn safe_step(g: f64, gd: f64, a: f64) -> f64 {
     }
 }
 
-/// Finds the first contact within `(0, t_max]` of the flight from `(x0, v0, y0, w)` by
-/// conservative advancement on both walls' gaps (never skips a grazing contact; converges
-/// quadratically onto a transversal one, to a gap below `1e-13·d/2`).
-#[allow(clippy::too_many_arguments)]
-fn find_contact(osc: &Oscillator, hg: f64, x0: f64, v0: f64, y0: f64, w: f64, t_max: f64, iters: &mut usize) -> Search {
-    let a = osc.accel_bound(x0, v0);
-    let gtol = 1e-13 * hg;
-    let s_min = 1e-15;
-    let mut tau = 0.0;
-    loop {
-        let (x, v) = if tau == 0.0 { (x0, v0) } else { osc.advance(x0, v0, tau) };
-        let z = y0 + w * tau - x;
-        let zd = w - v;
-        let gp = hg - z;
-        let gm = hg + z;
-        if gp <= gtol && zd > 0.0 {
-            return Search::Contact(tau, Wall::Upper);
+/// The main mass's motion between contacts, as the event solver needs it: the closed form, the
+/// contact search on it, what the recorder sees of it and its energy flows. [`Free`] is the
+/// paper's free decay, [`ForcedFlight`] the forced one.
+pub(crate) trait Flight: Copy {
+    /// The force on the main mass (none for [`Free`]).
+    type L: Load;
+    fn load(&self) -> Self::L;
+    /// `(x, x')` a time `tau` after `(x0, v0)` at time `t0`.
+    fn advance(&self, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64);
+    /// The first contact of the flight from `(x0, v0, y0, w)` at `t0` within `(0, t_max]`.
+    #[allow(clippy::too_many_arguments)]
+    fn find_contact(
+        &self,
+        hg: f64,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        y0: f64,
+        w: f64,
+        t_max: f64,
+        iters: &mut usize,
+    ) -> Search;
+    /// Records the flight segment `[t0, t0 + tf]`; history samples up to `t1`.
+    #[allow(clippy::too_many_arguments)]
+    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64);
+    /// A bound on the main mass's acceleration apart from the contact (m/s²), for the first
+    /// step of a contact starting at `(x, v)`.
+    fn contact_a_bound(&self, x: f64, v: f64) -> f64;
+    /// The viscous dissipation and the work of the force (J) over the flight from `(x0, v0)` at
+    /// `t0` to `(x1, v1)` at `t0 + tf`.
+    #[allow(clippy::too_many_arguments)]
+    fn energies(&self, sys: &Sys, t0: f64, x0: f64, v0: f64, tf: f64, x1: f64, v1: f64) -> (f64, f64);
+}
+
+/// The free flight of paper Eq 25.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Free(pub Oscillator);
+
+impl Flight for Free {
+    type L = NoLoad;
+
+    #[inline]
+    fn load(&self) -> NoLoad {
+        NoLoad
+    }
+
+    #[inline]
+    fn advance(&self, _t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64) {
+        self.0.advance(x0, v0, tau)
+    }
+
+    /// Conservative advancement on both walls' gaps (never skips a grazing contact; converges
+    /// quadratically onto a transversal one, to a gap below `1e-13·d/2`), with one acceleration
+    /// bound for the whole flight (the free oscillator's energy never grows).
+    #[inline]
+    fn find_contact(
+        &self,
+        hg: f64,
+        _t0: f64,
+        x0: f64,
+        v0: f64,
+        y0: f64,
+        w: f64,
+        t_max: f64,
+        iters: &mut usize,
+    ) -> Search {
+        let osc = &self.0;
+        let a = osc.accel_bound(x0, v0);
+        let gtol = 1e-13 * hg;
+        let s_min = 1e-15;
+        let mut tau = 0.0;
+        loop {
+            let (x, v) = if tau == 0.0 { (x0, v0) } else { osc.advance(x0, v0, tau) };
+            let z = y0 + w * tau - x;
+            let zd = w - v;
+            let gp = hg - z;
+            let gm = hg + z;
+            if gp <= gtol && zd > 0.0 {
+                return Search::Contact(tau, Wall::Upper);
+            }
+            if gm <= gtol && zd < 0.0 {
+                return Search::Contact(tau, Wall::Lower);
+            }
+            let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).max(s_min);
+            if tau + st >= t_max {
+                return Search::None;
+            }
+            tau += st;
+            if *iters == 0 {
+                return Search::Exhausted(tau);
+            }
+            *iters -= 1;
         }
-        if gm <= gtol && zd < 0.0 {
-            return Search::Contact(tau, Wall::Lower);
-        }
-        let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).max(s_min);
-        if tau + st >= t_max {
-            return Search::None;
-        }
-        tau += st;
-        if *iters == 0 {
-            return Search::Exhausted(tau);
-        }
-        *iters -= 1;
+    }
+
+    /// Analytic maxima, crossings, `|z'|` extrema, history.
+    #[inline]
+    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
+        let osc = &self.0;
+        osc.for_each_event(x0, v0, tf, |kind, tau| {
+            let (x, v) = osc.advance(x0, v0, tau);
+            match kind {
+                FlightEvent::MaxX => rec.local_max(t0 + tau, x),
+                FlightEvent::UpCross => rec.up_cross(),
+                FlightEvent::ZeroAccel => rec.zdot(w - v),
+            }
+        });
+        let (_, v1) = osc.advance(x0, v0, tf);
+        rec.zdot(w - v1);
+        rec.history_until(t1, |ts| {
+            let tau = (ts - t0).clamp(0.0, tf);
+            (osc.advance(x0, v0, tau).0, y0 + w * tau)
+        });
+    }
+
+    #[inline]
+    fn contact_a_bound(&self, x: f64, v: f64) -> f64 {
+        self.0.accel_bound(x, v)
+    }
+
+    /// The free main mass loses to the damper what its energy drops; no force does work.
+    #[inline]
+    fn energies(&self, sys: &Sys, _t0: f64, x0: f64, v0: f64, _tf: f64, x1: f64, v1: f64) -> (f64, f64) {
+        let osc_energy = |x: f64, v: f64| 0.5 * sys.big_m * v * v + 0.5 * sys.k * x * x;
+        (osc_energy(x0, v0) - osc_energy(x1, v1), 0.0)
     }
 }
 
-/// Records a flight segment `[t0, t0 + tf]`: analytic maxima, crossings, `|z'|` extrema, history.
-#[allow(clippy::too_many_arguments)]
-fn record_flight(osc: &Oscillator, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
-    osc.for_each_event(x0, v0, tf, |kind, tau| {
-        let (x, v) = osc.advance(x0, v0, tau);
-        match kind {
-            FlightEvent::MaxX => rec.local_max(t0 + tau, x),
-            FlightEvent::UpCross => rec.up_cross(),
-            FlightEvent::ZeroAccel => rec.zdot(w - v),
+/// The forced flight of paper Eq 25 with `F(t)` (docs/model.md §6.1).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ForcedFlight(pub Forced);
+
+impl Flight for ForcedFlight {
+    type L = Harmonic;
+
+    #[inline]
+    fn load(&self) -> Harmonic {
+        self.0.load
+    }
+
+    #[inline]
+    fn advance(&self, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64) {
+        self.0.advance(t0, x0, v0, tau)
+    }
+
+    /// Conservative advancement as for the free flight, but the force can feed the motion, so
+    /// the acceleration bound is taken afresh at each iterate and holds over the next
+    /// [`Forced::horizon`] only; no step is longer than that.
+    #[inline]
+    fn find_contact(
+        &self,
+        hg: f64,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        y0: f64,
+        w: f64,
+        t_max: f64,
+        iters: &mut usize,
+    ) -> Search {
+        let fo = &self.0;
+        let seg = fo.segment(t0, x0, v0);
+        let h = fo.horizon();
+        let gtol = 1e-13 * hg;
+        let s_min = 1e-15;
+        let mut tau = 0.0;
+        loop {
+            let (x, v) = if tau == 0.0 { (x0, v0) } else { seg.at(tau) };
+            let z = y0 + w * tau - x;
+            let zd = w - v;
+            let gp = hg - z;
+            let gm = hg + z;
+            if gp <= gtol && zd > 0.0 {
+                return Search::Contact(tau, Wall::Upper);
+            }
+            if gm <= gtol && zd < 0.0 {
+                return Search::Contact(tau, Wall::Lower);
+            }
+            let a = fo.accel_bound(x, v, h);
+            let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).min(h).max(s_min);
+            if tau + st >= t_max {
+                return Search::None;
+            }
+            tau += st;
+            if *iters == 0 {
+                return Search::Exhausted(tau);
+            }
+            *iters -= 1;
         }
-    });
-    let (_, v1) = osc.advance(x0, v0, tf);
-    rec.zdot(w - v1);
-    rec.history_until(t1, |ts| {
-        let tau = (ts - t0).clamp(0.0, tf);
-        (osc.advance(x0, v0, tau).0, y0 + w * tau)
-    });
+    }
+
+    /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
+    /// for the steady windows; history and window probes.
+    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
+        let seg = self.0.segment(t0, x0, v0);
+        rec.x_at(t0, x0);
+        seg.for_each_event(tf, |kind, tau, x, v| match kind {
+            ForcedEvent::MaxX => {
+                rec.local_max(t0 + tau, x);
+                rec.x_at(t0 + tau, x);
+            }
+            ForcedEvent::MinX => rec.x_at(t0 + tau, x),
+            ForcedEvent::UpCross => rec.up_cross(),
+            ForcedEvent::ZeroAccel => rec.zdot(w - v),
+        });
+        let (x1, v1) = seg.at(tf);
+        rec.zdot(w - v1);
+        rec.x_at(t0 + tf, x1);
+        rec.history_until(t1, |ts| {
+            let tau = (ts - t0).clamp(0.0, tf);
+            (seg.at(tau).0, y0 + w * tau)
+        });
+    }
+
+    #[inline]
+    fn contact_a_bound(&self, x: f64, v: f64) -> f64 {
+        self.0.accel_bound(x, v, 0.0)
+    }
+
+    #[inline]
+    fn energies(&self, sys: &Sys, t0: f64, x0: f64, v0: f64, tf: f64, x1: f64, v1: f64) -> (f64, f64) {
+        self.0.flight_energies(sys.big_m, sys.k, t0, x0, v0, tf, x1, v1)
+    }
 }
 
-/// Runs the event-driven solver. Parameters are assumed valid.
-pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
-    let sys = Sys::new(p);
-    let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
-    let t_end = p.duration_s;
-    let hg = sys.half_gap;
-    let mut rec = Recorder::new(opts.history_samples, t_end);
-    let (mut t, mut x, mut v, mut y, mut w) = (0.0, 0.0, p.v0_m_s, p.ball_position_m, 0.0);
-    rec.zdot(w - v);
-    let osc_energy = |x: f64, v: f64| 0.5 * sys.big_m * v * v + 0.5 * sys.k * x * x;
-    let mut energy = EnergyLedger { initial_j: osc_energy(x, v), ..Default::default() };
-    let mut impacts = Vec::new();
-    let mut budget = CONTACT_STEP_CAP;
-    let mut iters = FLIGHT_SEARCH_CAP;
-    let mut cancelled = false;
-    let mut truncated = None;
-    let mut del_end = 0.0;
-    while t < t_end {
-        if opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-            cancelled = true;
-            break;
+/// A contact cut by the end of a stretch of the run, to be carried on by the next.
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    wall: Wall,
+    /// Onset time (s) and incoming speed (m/s).
+    t_start: f64,
+    u_in: f64,
+    resume: Resume,
+    /// The contact and viscous dissipation (J) already in the ledger.
+    counted: (f64, f64),
+}
+
+/// An event-driven run in progress.
+pub(crate) struct EventSim<'a, F: Flight> {
+    sys: Sys,
+    flight: F,
+    /// Time (s) and state: main mass `(x, x')`, ball `(y, y')` (m, m/s).
+    t: f64,
+    x: f64,
+    v: f64,
+    y: f64,
+    w: f64,
+    rec: Recorder,
+    energy: EnergyLedger,
+    impacts: Vec<ImpactEvent>,
+    budget: usize,
+    iters: usize,
+    cancelled: bool,
+    truncated: Option<Truncation>,
+    /// Penetration (m) where the run stands, if it stands inside a contact.
+    del_end: f64,
+    open: Option<Open>,
+    cancel: Option<&'a AtomicBool>,
+}
+
+impl<'a, F: Flight> EventSim<'a, F> {
+    /// A run of `p` from `start` with the flight `flight`, recording into `rec`.
+    pub fn new(p: &DamperParams, flight: F, opts: &RunOptions<'a>, start: &Start, mut rec: Recorder) -> Self {
+        let sys = Sys::new(p);
+        let (x, v, y, w) = (start.x, start.v, start.y, start.w);
+        rec.zdot(w - v);
+        let energy = EnergyLedger { initial_j: sys.mechanical_energy(x, v, w, 0.0), ..Default::default() };
+        EventSim {
+            sys,
+            flight,
+            t: 0.0,
+            x,
+            v,
+            y,
+            w,
+            rec,
+            energy,
+            impacts: Vec::new(),
+            budget: CONTACT_STEP_CAP,
+            iters: FLIGHT_SEARCH_CAP,
+            cancelled: false,
+            truncated: None,
+            del_end: 0.0,
+            open: None,
+            cancel: opts.cancel,
         }
-        // Flight.
-        let search = find_contact(&osc, hg, x, v, y, w, t_end - t, &mut iters);
-        let (tf, wall) = match search {
-            Search::Contact(tau, wall) => (tau, Some(wall)),
-            Search::None => (t_end - t, None),
-            Search::Exhausted(tau) => {
-                truncated = Some(Truncation::FlightSearch);
-                (tau, None)
-            }
-        };
-        let t1 = if matches!(search, Search::None) { t_end } else { t + tf };
-        record_flight(&osc, &mut rec, t, x, v, y, w, tf, t1);
-        let (x1, v1) = osc.advance(x, v, tf);
-        energy.dissipated_viscous_j += osc_energy(x, v) - osc_energy(x1, v1);
-        x = x1;
-        v = v1;
-        t = t1;
-        let Some(wall) = wall else { break };
-        // Contact: start exactly at δ = 0.
+    }
+
+    /// One contact at `wall` from onset `t_start` with incoming speed `u_in`, or the rest of a
+    /// cut one (`open`), up to `t_stop`.
+    fn contact(&mut self, wall: Wall, t_start: f64, u_in: f64, open: Option<Open>, t_stop: f64) {
+        let sys = self.sys;
         let s = wall.sign();
-        let t_start = t;
-        let u_in = s * (w - v);
-        let y0 = State::new(x, v, 0.0, u_in, 0.0, 0.0);
-        let a_bound = osc.accel_bound(x, v);
-        let end = integrate(&sys, s, t, y0, t_end, &mut budget, a_bound, |ta, ya, ka, tb, yb, kb| {
+        let hg = sys.half_gap;
+        let rec = &mut self.rec;
+        let obs = |ta: f64, ya: &State, ka: &State, tb: f64, yb: &State, kb: &State| {
             rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
             rec.history_until(tb, |ts| {
                 let (h, q) = (tb - ta, ts - ta);
@@ -143,31 +390,139 @@ pub(crate) fn run(p: &DamperParams, opts: &RunOptions) -> Run {
                 let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
                 (xs, xs + s * (hg + ds))
             });
-        });
+        };
+        let (x0, v0, w0) = (self.x, self.v, self.w);
+        let (end, counted) = match open {
+            None => {
+                let y0 = State::new(self.x, self.v, 0.0, u_in, 0.0, 0.0);
+                let a_bound = self.flight.contact_a_bound(self.x, self.v);
+                let end = integrate(&sys, self.flight.load(), s, self.t, y0, t_stop, &mut self.budget, a_bound, obs);
+                (end, (0.0, 0.0))
+            }
+            Some(o) => (resume(&sys, self.flight.load(), &o.resume, t_stop, &mut self.budget, obs), o.counted),
+        };
         let ye = end.y;
-        energy.dissipated_contact_j += ye[4];
-        energy.dissipated_viscous_j += ye[5];
-        x = ye[0];
-        v = ye[1];
-        y = x + s * (hg + ye[2]);
-        w = v + s * ye[3];
-        t = end.t;
+        if <F::L as Load>::ON {
+            // The force's work during the contact is the balance of the energies the integrator
+            // integrates: W = ΔE_mech + ΔE_contact + ΔE_viscous (in flight it is computed on its
+            // own, by Forced::flight_energies).
+            let e0 = sys.mechanical_energy(x0, v0, w0, self.del_end);
+            let (x1, v1, w1) = (ye[0], ye[1], ye[1] + s * ye[3]);
+            let e1 = sys.mechanical_energy(x1, v1, w1, ye[2].max(0.0));
+            self.energy.forcing_work_j += e1 - e0 + (ye[4] - counted.0) + (ye[5] - counted.1);
+        }
+        self.energy.dissipated_contact_j += ye[4] - counted.0;
+        self.energy.dissipated_viscous_j += ye[5] - counted.1;
+        self.x = ye[0];
+        self.v = ye[1];
+        self.y = self.x + s * (hg + ye[2]);
+        self.w = self.v + s * ye[3];
+        self.t = end.t;
+        self.del_end = 0.0;
         match end.outcome {
             ContactOutcome::Separated => {
-                impacts.push(ImpactEvent::onset(t_start, wall, u_in, end.pen_max).ended(t, -ye[3]));
+                self.impacts.push(ImpactEvent::onset(t_start, wall, u_in, end.pen_max).ended(self.t, -ye[3]));
             }
             ContactOutcome::Grazed => {}
             ContactOutcome::EndOfRun => {
-                del_end = ye[2].max(0.0);
-                break;
+                self.del_end = ye[2].max(0.0);
+                if let Some(resume) = end.resume {
+                    self.open = Some(Open { wall, t_start, u_in, resume, counted: (ye[4], ye[5]) });
+                }
             }
             ContactOutcome::WorkCap => {
-                del_end = ye[2].max(0.0);
-                truncated = Some(Truncation::ContactSteps);
-                break;
+                self.del_end = ye[2].max(0.0);
+                self.truncated = Some(Truncation::ContactSteps);
             }
         }
     }
-    energy.final_mechanical_j = sys.mechanical_energy(x, v, w, del_end);
-    rec.into_run(impacts, energy, t, cancelled, truncated)
+}
+
+impl<F: Flight> Stepper for EventSim<'_, F> {
+    fn advance_to(&mut self, t_stop: f64) {
+        while self.t < t_stop && self.truncated.is_none() {
+            if self.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                self.cancelled = true;
+                break;
+            }
+            if let Some(open) = self.open.take() {
+                self.contact(open.wall, open.t_start, open.u_in, Some(open), t_stop);
+                continue;
+            }
+            // Flight.
+            let (t, x, v, y, w) = (self.t, self.x, self.v, self.y, self.w);
+            #[cfg(feature = "timing")]
+            let clock = std::time::Instant::now();
+            let search = self.flight.find_contact(self.sys.half_gap, t, x, v, y, w, t_stop - t, &mut self.iters);
+            #[cfg(feature = "timing")]
+            let (search_ns, clock) = (timing::since(clock), std::time::Instant::now());
+            let (tf, wall) = match search {
+                Search::Contact(tau, wall) => (tau, Some(wall)),
+                Search::None => (t_stop - t, None),
+                Search::Exhausted(tau) => {
+                    self.truncated = Some(Truncation::FlightSearch);
+                    (tau, None)
+                }
+            };
+            let t1 = if matches!(search, Search::None) { t_stop } else { t + tf };
+            self.flight.record(&mut self.rec, t, x, v, y, w, tf, t1);
+            #[cfg(feature = "timing")]
+            timing::add(|b| {
+                b.search_ns += search_ns;
+                b.flight_record_ns += timing::since(clock);
+                b.flights += 1;
+            });
+            let (x1, v1) = self.flight.advance(t, x, v, tf);
+            let (viscous, work) = self.flight.energies(&self.sys, t, x, v, tf, x1, v1);
+            self.energy.dissipated_viscous_j += viscous;
+            if <F::L as Load>::ON {
+                self.energy.forcing_work_j += work;
+            }
+            self.x = x1;
+            self.v = v1;
+            self.y = y + w * tf;
+            self.t = t1;
+            let Some(wall) = wall else { break };
+            // Contact: start exactly at δ = 0.
+            let u_in = wall.sign() * (self.w - self.v);
+            #[cfg(feature = "timing")]
+            let clock = std::time::Instant::now();
+            self.contact(wall, self.t, u_in, None, t_stop);
+            #[cfg(feature = "timing")]
+            timing::add(|b| {
+                b.contact_ns += timing::since(clock);
+                b.contacts += 1;
+            });
+        }
+    }
+
+    fn halted(&self) -> bool {
+        self.cancelled || self.truncated.is_some()
+    }
+
+    fn recorder(&mut self) -> &mut Recorder {
+        &mut self.rec
+    }
+
+    fn impacts(&self) -> &[ImpactEvent] {
+        &self.impacts
+    }
+
+    fn finish(&mut self) -> Run {
+        let mut energy = self.energy;
+        energy.final_mechanical_j = self.sys.mechanical_energy(self.x, self.v, self.w, self.del_end);
+        let rec = std::mem::replace(&mut self.rec, Recorder::new(0, 0.0));
+        rec.into_run(std::mem::take(&mut self.impacts), energy, self.t, self.cancelled, self.truncated)
+    }
+
+    fn end_state(&mut self, phase_at: impl Fn(f64) -> f64) -> Start {
+        if let Some(open) = self.open.take() {
+            // Off the record: carry the contact on until the ball leaves the wall.
+            self.rec = Recorder::new(0, 0.0);
+            self.budget = CONTACT_STEP_CAP;
+            let t_stop = self.t + 1e3;
+            self.contact(open.wall, open.t_start, open.u_in, Some(open), t_stop);
+        }
+        Start { x: self.x, v: self.v, y: self.y, w: self.w, phase: phase_at(self.t) }
+    }
 }

@@ -4,13 +4,15 @@
 //! enclosure of total clearance `d` (m, `d/2` each side of the centred ball) in which an impact
 //! mass `m` (kg) moves freely. `x` is the main mass's displacement, `y` the ball's, `z = y − x`.
 //!
-//! - Flight (Eq 25): `M·x'' + C·x' + K·x = 0`, `m·y'' = 0`.
+//! - Flight (Eq 25): `M·x'' + C·x' + K·x = F(t)`, `m·y'' = 0`, with the harmonic force
+//!   `F(t) = F0·cos(2π·f·t)` on the main mass of a forced run (`F0 = 0`, the default, is the
+//!   paper's free decay; docs/model.md §6.1).
 //! - Contact (Eq 26) when the penetration `δ = |z| − d/2 > 0`: force on the ball
 //!   `−sign(z)·(K_HZ·δ^{3/2} + c1·δ')` with `δ' = sign(z)·z'`, equal and opposite on `M`;
 //!   with `no_tension` the bracket is clamped at ≥ 0. The contact ends when `δ` returns to 0.
-//! - Initial state: `x(0) = 0`, `x'(0) = v0`, `y(0) = y0` (the ball's offset from the
-//!   enclosure's centre, [`DamperParams::ball_position_m`]; 0 = centred, the paper's case),
-//!   `y'(0) = 0`.
+//! - Initial state: `x(0) = 0`, `x'(0) = v0`, `y(0) = y0`, `y'(0) = w0` (the paper: `y0 = w0 = 0`).
+//! - A forced run reports its steady state over its last `N` forcing periods ([`SteadyMotion`],
+//!   docs/model.md §6.2), and can run on past its duration until that settles.
 //!
 //! Two solvers: [`Solver::Event`] (exact flights, root-found contact instants, an adaptive
 //! Dormand–Prince integrator inside contacts; fast and step-size free) and [`Solver::Newmark`]
@@ -19,8 +21,15 @@
 mod contact;
 mod event;
 mod flight;
+mod forced;
 mod newmark;
 mod record;
+mod steady;
+
+#[cfg(feature = "timing")]
+pub use event::timing;
+pub(crate) use steady::Start;
+pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 
 use serde::{Deserialize, Serialize};
 
@@ -50,10 +59,46 @@ pub struct DamperParams {
     pub v0_m_s: f64,
     /// Simulated time (s).
     pub duration_s: f64,
-    /// Initial offset y0 of the ball from the enclosure's centre (m), at rest; |y0| < d/2.
-    /// 0 (the default) is the paper's centred ball.
-    #[serde(default)]
+    /// Amplitude F0 (N, ≥ 0) of the harmonic force `F0·cos(2π·f·t)` on the main mass; 0 (the
+    /// default) is the paper's free decay.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub force_n: f64,
+    /// Frequency f (Hz) of the harmonic force; must be > 0 when `force_n` > 0 (0: no force).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub freq_hz: f64,
+    /// The ball's initial offset y0 (m) from the enclosure's centre, |y0| < d/2; 0: centred, as
+    /// the paper.
+    #[serde(default, skip_serializing_if = "is_zero")]
     pub ball_position_m: f64,
+    /// The ball's initial velocity w0 (m/s); 0: at rest, as the paper.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub ball_velocity_m_s: f64,
+    /// Forcing periods N (≥ 1) of each steady-state window of a forced run (default 10).
+    #[serde(default = "default_steady_periods", skip_serializing_if = "is_default_steady_periods")]
+    pub steady_periods: u32,
+    /// Run a forced run on past `duration_s`, N periods at a time, until the amplitude of
+    /// successive windows changes by less than 1e-3 (at most [`SETTLE_PERIODS_MAX`] periods more).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub settle: bool,
+}
+
+/// The steady-state window's length in forcing periods when none is given.
+pub const DEFAULT_STEADY_PERIODS: u32 = 10;
+
+fn default_steady_periods() -> u32 {
+    DEFAULT_STEADY_PERIODS
+}
+
+fn is_default_steady_periods(n: &u32) -> bool {
+    *n == DEFAULT_STEADY_PERIODS
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl DamperParams {
@@ -71,8 +116,19 @@ impl DamperParams {
             no_tension: false,
             v0_m_s: 2.0,
             duration_s: 2.0,
+            force_n: 0.0,
+            freq_hz: 0.0,
             ball_position_m: 0.0,
+            ball_velocity_m_s: 0.0,
+            steady_periods: DEFAULT_STEADY_PERIODS,
+            settle: false,
         }
+    }
+
+    /// Whether a harmonic force drives the main mass (`force_n > 0`).
+    #[must_use]
+    pub fn forced(&self) -> bool {
+        self.force_n > 0.0
     }
 
     /// Checks every parameter; the error names the command-line parameter.
@@ -88,6 +144,11 @@ impl DamperParams {
             return Err(ThudError::invalid("v0", format!("{} m/s; must be a finite number", self.v0_m_s)));
         }
         check_positive("duration", self.duration_s, "s")?;
+        check_non_negative("force", self.force_n, "N")?;
+        check_non_negative("freq", self.freq_hz, "Hz")?;
+        if self.force_n > 0.0 && self.freq_hz == 0.0 {
+            return Err(ThudError::invalid("freq", "0 Hz; a force needs a frequency > 0 (give --freq)"));
+        }
         if !(self.ball_position_m.is_finite() && self.ball_position_m.abs() < 0.5 * self.gap_m) {
             return Err(ThudError::invalid(
                 "ball-position",
@@ -97,6 +158,15 @@ impl DamperParams {
                     0.5 * self.gap_m
                 ),
             ));
+        }
+        if !self.ball_velocity_m_s.is_finite() {
+            return Err(ThudError::invalid(
+                "ball-velocity",
+                format!("{} m/s; must be a finite number", self.ball_velocity_m_s),
+            ));
+        }
+        if self.steady_periods == 0 {
+            return Err(ThudError::invalid("periods", "0; a steady-state window needs at least 1 period"));
         }
         Ok(())
     }
@@ -237,14 +307,19 @@ pub struct HistoryPoint {
     pub y_m: f64,
 }
 
-/// Energy bookkeeping (J): `initial = final_mechanical + dissipated_viscous + dissipated_contact`
-/// up to the solver's error. Mechanical energy is `½Mx'² + ½my'² + ½Kx² + (2/5)K_HZ·δ^{5/2}`.
+/// Energy bookkeeping (J): `initial + forcing_work = final_mechanical + dissipated_viscous +
+/// dissipated_contact` up to the solver's error. Mechanical energy is
+/// `½Mx'² + ½my'² + ½Kx² + (2/5)K_HZ·δ^{5/2}`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct EnergyLedger {
     pub initial_j: f64,
     pub final_mechanical_j: f64,
     pub dissipated_viscous_j: f64,
     pub dissipated_contact_j: f64,
+    /// Work done on the main mass by the harmonic force, `∫F(t)·x' dt` (J); absent from JSON
+    /// when there is no force.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub forcing_work_j: f64,
 }
 
 /// Total in-contact integrator steps the event solver allows per run (a work cap: past it the
@@ -302,6 +377,9 @@ pub struct Run {
     /// where it stopped). Absent from JSON when the run was not truncated.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncated: Option<Truncation>,
+    /// The steady state of a forced run over its last window (absent without a force).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steady: Option<SteadyMotion>,
 }
 
 /// Run options: history sampling and cooperative cancellation.
@@ -314,20 +392,36 @@ pub struct RunOptions<'a> {
     pub cancel: Option<&'a std::sync::atomic::AtomicBool>,
 }
 
-/// Simulates one design with the chosen solver.
+/// Simulates one design with the chosen solver. A forced design (`force_n > 0`) also gets its
+/// steady state ([`Run::steady`]), and with `settle` runs on past its duration until that settles.
 pub fn simulate(p: &DamperParams, solver: Solver, opts: &RunOptions) -> Result<Run, ThudError> {
     p.validate()?;
     solver.validate()?;
-    Ok(match solver {
-        Solver::Event => event::run(p, opts),
-        Solver::Newmark { dt_s } => newmark::run(p, dt_s, opts),
-    })
+    Ok(steady::run(p, solver, opts, &Start::of(p), false).0)
+}
+
+/// Simulates `p` from `start` (a continuation's state and force phase); with `want_end`, also
+/// the state the run ended in, off the record (a contact still open is finished first).
+pub(crate) fn run_from(
+    p: &DamperParams,
+    solver: Solver,
+    opts: &RunOptions,
+    start: &Start,
+    want_end: bool,
+) -> Result<(Run, Option<Start>), ThudError> {
+    p.validate()?;
+    solver.validate()?;
+    Ok(steady::run(p, solver, opts, start, want_end))
 }
 
 /// x(t) (m) of the same structure with no damper (closed form, Eq 25 alone): the Fig 9
-/// comparison curve, from x(0) = 0, x'(0) = v0.
+/// comparison curve, from x(0) = 0, x'(0) = v0, under the design's force if it has one.
 pub fn free_response(p: &DamperParams, t_s: f64) -> f64 {
     let osc = flight::Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    if p.forced() {
+        let load = forced::Harmonic::new(p.force_n, p.main_mass_kg, p.freq_hz, 0.0);
+        return forced::Forced::new(osc, load).advance(0.0, 0.0, p.v0_m_s, t_s).0;
+    }
     osc.advance(0.0, p.v0_m_s, t_s).0
 }
 
@@ -369,7 +463,7 @@ fn isolated_sys(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool) -> con
         no_tension,
         v0_m_s: 0.0,
         duration_s: 1.0,
-        ball_position_m: 0.0,
+        ..DamperParams::table2()
     };
     contact::Sys::new(&p)
 }
@@ -382,7 +476,8 @@ pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, 
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
     let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
-    let end = contact::integrate(&sys, 1.0, 0.0, y0, 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
+    let end =
+        contact::integrate(&sys, contact::NoLoad, 1.0, 0.0, y0, 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
     SingleContact {
         u_out_m_s: if end.outcome == contact::ContactOutcome::Separated { -end.y[3] } else { 0.0 },
         duration_s: end.t,

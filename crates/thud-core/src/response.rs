@@ -1,0 +1,275 @@
+//! The forced response of a design (docs/model.md §6.2–6.4): its steady state under the
+//! harmonic force with the level of its rattle ([`Steady`], with `Leq`), and the frequency
+//! response with and without the damper ([`response`]).
+//!
+//! `Leq` over a window `[a, b]` is the energy-average level of the sound at the observer:
+//! `Leq = 10·log10( ∫_a^b p(t)² dt / ((b − a)·p_ref²) )`, `p(t) = Σ_i p_i(t − t_i)`, where
+//! `p_i` is the pulse (§3–4) of impact `i` at its incoming speed and `t_i` its onset. Every
+//! impact of the run counts, also one before the window whose pulse reaches into it; pulses
+//! that overlap add as pressures before squaring.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::acoustics::{gauss_legendre, Field, PulseShape, P_REF_PA};
+use crate::damper::{self, Run, RunOptions, Start, SteadyMotion};
+use crate::design::Design;
+use crate::error::{check_positive, ThudError};
+
+/// The steady state of a forced run of a design: the motion over the last window
+/// ([`SteadyMotion`]) and the level of the rattle over it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Steady {
+    /// Forcing periods N in the window.
+    pub periods: u32,
+    /// The window (s).
+    pub window_start_s: f64,
+    pub window_end_s: f64,
+    /// Largest |x| in the window (m).
+    pub amplitude_m: f64,
+    /// The main mass without the ball: `F0/√((K − MΩ²)² + (CΩ)²)` (m); None where unbounded.
+    pub amplitude_linear_m: Option<f64>,
+    /// `20·log10(amplitude_linear/amplitude)` (dB, > 0 when the damper cuts the amplitude).
+    pub reduction_db: Option<f64>,
+    /// Impacts per forcing period in the window.
+    pub impacts_per_period: f64,
+    /// Energy-average level at the observer over the window (dB re 20 µPa); None when no
+    /// impact sounds in it.
+    pub leq_db: Option<f64>,
+    /// Whether x repeats from period to period within 1e-3 of the amplitude.
+    pub periodic: bool,
+    /// Whether the amplitude of the window is within 1e-3 of the window before's.
+    pub settled: bool,
+    /// Whether a work cap stopped the run before the window's end.
+    pub truncated: bool,
+}
+
+/// The steady state of `run` of the (resolved) `design`, if the design is forced.
+pub fn steady(run: &Run, design: &Design) -> Result<Option<Steady>, ThudError> {
+    let Some(m) = run.steady else { return Ok(None) };
+    Ok(Some(with_level(&m, leq_db(run, design, m.window_start_s, m.window_end_s)?)))
+}
+
+fn with_level(m: &SteadyMotion, leq_db: Option<f64>) -> Steady {
+    Steady {
+        periods: m.periods,
+        window_start_s: m.window_start_s,
+        window_end_s: m.window_end_s,
+        amplitude_m: m.amplitude_m,
+        amplitude_linear_m: m.amplitude_linear_m,
+        reduction_db: m.reduction_db,
+        impacts_per_period: m.impacts_per_period,
+        leq_db,
+        periodic: m.periodic,
+        settled: m.settled,
+        truncated: m.truncated,
+    }
+}
+
+/// `Leq` (dB re 20 µPa) of the impacts of `run` of the (resolved) `design` over `[a, b]` (s);
+/// None when no pulse reaches the window.
+pub fn leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>, ThudError> {
+    if b <= a {
+        return Ok(None);
+    }
+    // Pulses last about a millisecond; build the fields of the impacts near the window only.
+    // After the last source's forced part the pressure falls as e^(−λs), λ = c/a: 18/λ later
+    // its square is e^(−36) (2e-16) of what it was, and the rest of the integral no more.
+    let a_over_c = design.ball_radius_m() / design.radiation.air.c_m_s;
+    let mut pulses: Vec<(f64, f64, f64, Field)> = Vec::new();
+    for i in run.impacts.iter().filter(|i| i.t_s <= b && i.t_s >= a - 1.0) {
+        let f = design.impact_field(i.u_in_m_s)?;
+        let last = f.sources().map(|s| s.delay_s).fold(0.0, f64::max);
+        let (start, end) = (i.t_s + f.arrival_s(), i.t_s + last + f.tau_s() + 18.0 * a_over_c);
+        if end > a && start < b {
+            pulses.push((start, end, i.t_s, f));
+        }
+    }
+    if pulses.is_empty() {
+        return Ok(None);
+    }
+    pulses.sort_by(|p, q| p.0.total_cmp(&q.0));
+    // The waveform's shortest time scale: a/c and τ/(kπ) (k = 4 for the Hertz pulse's harmonics).
+    // Between kinks the pulse is smooth on that scale: a 10-point Gauss–Legendre panel five
+    // scales long integrates it to rounding (its error bound there is below 1e-15).
+    let k = if design.radiation.pulse == PulseShape::Hertz { 4.0 } else { 1.0 };
+    let mut exposure = 0.0;
+    let mut i = 0;
+    while i < pulses.len() {
+        // A cluster of pulses whose supports overlap.
+        let mut j = i + 1;
+        let mut end = pulses[i].1;
+        while j < pulses.len() && pulses[j].0 < end {
+            end = end.max(pulses[j].1);
+            j += 1;
+        }
+        let cluster = &pulses[i..j];
+        let (lo, hi) = (cluster[0].0.max(a), end.min(b));
+        let mut cuts = vec![lo, hi];
+        let mut scale = a_over_c;
+        for (_, _, t_i, f) in cluster {
+            scale = scale.min(f.tau_s() / (k * std::f64::consts::PI));
+            for s in f.sources() {
+                cuts.extend([t_i + s.delay_s, t_i + s.delay_s + f.tau_s()].into_iter().filter(|&c| c > lo && c < hi));
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        let p = |t: f64| cluster.iter().map(|(_, _, t_i, f)| f.pressure(t - t_i)).sum::<f64>();
+        for w in cuts.windows(2) {
+            let n = ((w[1] - w[0]) / (5.0 * scale)).ceil().clamp(1.0, 400.0) as usize;
+            exposure += gauss_legendre(w[0], w[1], n, |t| {
+                let v = p(t);
+                v * v
+            });
+        }
+        i = j;
+    }
+    if exposure <= 0.0 {
+        return Ok(None);
+    }
+    Ok(Some(10.0 * (exposure / ((b - a) * P_REF_PA * P_REF_PA)).log10()))
+}
+
+/// How the points of a frequency response start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    /// Every frequency from the design's own start (at rest unless the design says otherwise).
+    FromRest,
+    /// Frequencies rising, each from the previous one's final state.
+    Up,
+    /// Frequencies falling, each from the previous one's final state (after the rising sweep).
+    Down,
+}
+
+impl Direction {
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::FromRest => "from rest",
+            Direction::Up => "up",
+            Direction::Down => "down",
+        }
+    }
+}
+
+/// One frequency of a response: the steady state there.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ResponsePoint {
+    pub freq_hz: f64,
+    #[serde(flatten)]
+    pub steady: Steady,
+    /// Where the run ended (s): its duration, or later if it settled on.
+    pub final_time_s: f64,
+}
+
+/// One sweep over the frequencies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ResponseSweep {
+    pub direction: Direction,
+    pub points: Vec<ResponsePoint>,
+}
+
+/// The frequency response of a design under its force.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Response {
+    /// Force amplitude F0 (N).
+    pub force_n: f64,
+    /// One sweep from rest, or a rising and a falling sweep with continuation.
+    pub sweeps: Vec<ResponseSweep>,
+}
+
+/// How a response is run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ResponseOptions {
+    /// Each frequency from the previous one's final state, up then down (else each from rest).
+    pub continuation: bool,
+    /// Run each frequency on until its steady state settles (see [`damper::SETTLE_PERIODS_MAX`]).
+    pub settle: bool,
+}
+
+impl Default for ResponseOptions {
+    fn default() -> Self {
+        Self { continuation: false, settle: true }
+    }
+}
+
+/// The design `base` forced at `freq_hz`, run for at least two windows (its duration if longer).
+pub fn at_frequency(base: &Design, freq_hz: f64, settle: bool) -> Design {
+    let mut d = base.clone();
+    let p = &mut d.damper;
+    p.freq_hz = freq_hz;
+    p.settle = settle;
+    p.duration_s = p.duration_s.max(2.0 * f64::from(p.steady_periods) / freq_hz);
+    d
+}
+
+/// One frequency from `start`: the point and the state it ended in.
+fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Option<Start>), ThudError> {
+    let (run, end) = damper::run_from(&d.damper, d.solver, &RunOptions::default(), start, want_end)?;
+    let s = steady(&run, d)?.ok_or_else(|| ThudError::invalid("force", "a response needs a force > 0"))?;
+    Ok((ResponsePoint { freq_hz: d.damper.freq_hz, steady: s, final_time_s: run.final_time_s }, end))
+}
+
+/// The frequency response of `base` (which must have a force) over `freqs_hz`: per frequency
+/// the steady state with the damper, beside the closed-form steady amplitude without it. From
+/// rest the frequencies run in parallel on rayon's pool; with continuation a rising sweep (each
+/// from the previous final state) and then a falling one. `on_point` is called as each point
+/// finishes; `cancel` stops between points (the response then holds what was done).
+pub fn response(
+    base: &Design,
+    freqs_hz: &[f64],
+    opts: &ResponseOptions,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn() + Sync),
+) -> Result<Response, ThudError> {
+    for &f in freqs_hz {
+        check_positive("freqs", f, "Hz")?;
+    }
+    let Some(&first) = freqs_hz.first() else {
+        return Ok(Response { force_n: base.damper.force_n, sweeps: vec![] });
+    };
+    check_positive("force", base.damper.force_n, "N")?;
+    // The base design need not have a frequency of its own: each point sets one.
+    at_frequency(base, first, opts.settle).validate()?;
+    let base = base.resolved()?;
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let design_at = |f: f64| at_frequency(&base, f, opts.settle);
+    let start0 = Start::of(&base.damper);
+    let sweeps = if opts.continuation {
+        let mut up: Vec<f64> = freqs_hz.to_vec();
+        up.sort_by(f64::total_cmp);
+        let mut start = start0;
+        let mut sweeps = Vec::new();
+        for (direction, order) in [(Direction::Up, up.clone()), (Direction::Down, up.iter().rev().copied().collect())] {
+            let mut points = Vec::new();
+            for f in order {
+                if cancelled() {
+                    break;
+                }
+                let (pt, end) = point(&design_at(f), &start, true)?;
+                start = end.unwrap_or(start);
+                points.push(pt);
+                on_point();
+            }
+            sweeps.push(ResponseSweep { direction, points });
+        }
+        sweeps
+    } else {
+        let results: Vec<Option<Result<ResponsePoint, ThudError>>> = freqs_hz
+            .par_iter()
+            .map(|&f| {
+                if cancelled() {
+                    return None;
+                }
+                let r = point(&design_at(f), &start0, false).map(|(p, _)| p);
+                on_point();
+                Some(r)
+            })
+            .collect();
+        let points = results.into_iter().flatten().collect::<Result<Vec<_>, _>>()?;
+        vec![ResponseSweep { direction: Direction::FromRest, points }]
+    };
+    Ok(Response { force_n: base.damper.force_n, sweeps })
+}

@@ -1,0 +1,231 @@
+//! `thud response`: the frequency response of a design under a harmonic force — per frequency
+//! the steady amplitude with the damper and without it, the impacts per period and the level
+//! `Leq` of the rattle (docs/model.md §6.4).
+
+use clap::Args;
+use serde::Serialize;
+
+use super::budget;
+use super::design_args::{parse_range, DesignArgs, ForceFlag};
+use super::format::num;
+use super::simulate::describe;
+use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::design::Design;
+use crate::error::ThudError;
+use crate::limits::{self, short};
+use crate::response::{self, Direction, Response, ResponseOptions};
+use crate::units::Kind;
+
+#[derive(Debug, Clone, Args)]
+pub struct ResponseArgs {
+    #[command(flatten)]
+    design: DesignArgs,
+    /// Forcing frequencies FROM:TO:N (Hz, e.g. 3Hz:8Hz:101).
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "3Hz:8Hz:101")]
+    freqs: String,
+    /// Start each frequency from the previous one's final state, rising then falling (shows
+    /// jumps and hysteresis); without it every frequency starts from rest.
+    #[arg(long)]
+    continuation: bool,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+#[derive(Serialize)]
+struct ResponseJson<'a> {
+    design: &'a Design,
+    force_n: f64,
+    periods: u32,
+    continuation: bool,
+    sweeps: &'a [response::ResponseSweep],
+}
+
+/// The design of a response: the flags, from rest unless the start was typed, at the first
+/// frequency (each point sets its own).
+pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<Design, ThudError> {
+    if let Some(f) = args.freq_text() {
+        return Err(ThudError::invalid(
+            "--freq",
+            format!("'{f}': a response sweeps the frequency; give --freqs FROM:TO:N"),
+        ));
+    }
+    let from_rest = !args.start_typed();
+    let d = args.design_with(|d| {
+        d.damper.freq_hz = first_hz;
+        if from_rest {
+            d.damper.v0_m_s = 0.0;
+        }
+    })?;
+    if !d.damper.forced() {
+        return Err(ThudError::invalid(
+            format!("--{}", F::NAME),
+            format!("0 N: a response needs a force; give --{} F0 (N)", F::NAME),
+        ));
+    }
+    Ok(d)
+}
+
+/// Refuses a response whose work is over a cap.
+pub(crate) fn check_work(
+    ctx: &Ctx,
+    d: &Design,
+    freqs: &[f64],
+    freqs_text: &str,
+    continuation: bool,
+) -> Result<(), CliError> {
+    let [periods, steps] = limits::response_work(d, freqs, continuation);
+    ctx.enforce(periods, "--freqs", freqs_text, "use fewer frequencies or a shorter --duration")?;
+    if let crate::damper::Solver::Newmark { dt_s } = d.solver {
+        ctx.enforce(steps, "--dt", &format!("{} s", short(dt_s)), "use the event solver or a larger --dt")?;
+    }
+    let f_max = freqs.iter().copied().fold(0.0, f64::max);
+    let cycles = limits::design_run(&response::at_frequency(d, f_max, true), 0)[1];
+    ctx.enforce(cycles, "--freqs", freqs_text, "use lower frequencies or a shorter --duration")
+}
+
+pub fn run(a: &ResponseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let freqs = parse_range("freqs", &a.freqs, Kind::Frequency, &limits::FREQ)?;
+    let d = response_design(&a.design, freqs[0])?;
+    check_work(ctx, &d, &freqs, &a.freqs, a.continuation)?;
+    let n = freqs.len() as u64 * if a.continuation { 2 } else { 1 };
+    let bar = budget::bar(n, "response");
+    let opts = ResponseOptions { continuation: a.continuation, settle: true };
+    let r = response::response(&d, &freqs, &opts, None, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    match a.output.format() {
+        OutputFormat::Json => out.json(&ResponseJson {
+            design: &d,
+            force_n: r.force_n,
+            periods: d.damper.steady_periods,
+            continuation: a.continuation,
+            sweeps: &r.sweeps,
+        })?,
+        OutputFormat::Csv => out.text(
+            &crate::export::csv::response(&r).map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?,
+        )?,
+        OutputFormat::Text => {
+            super::output::check_finite(&r)?;
+            out.text(&text(&d, &r, a.continuation))?
+        }
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>, scale: f64, digits: usize) -> String {
+    v.map_or("—".into(), |x| format!("{:.digits$}", x * scale))
+}
+
+/// The response as a table and a plot.
+fn text(d: &Design, r: &Response, continuation: bool) -> String {
+    let mut s = format!("design    {}\n", describe(d));
+    s += &format!(
+        "forcing   F0 {} N on the main mass; steady state over the last {} periods, each frequency {}, settled\n",
+        num(r.force_n),
+        d.damper.steady_periods,
+        if continuation { "from the previous one's final state (up, then down)" } else { "from rest" }
+    );
+    s += "without   the main mass alone: F0/√((K − MΩ²)² + (CΩ)²), its steady state in closed form\n\n";
+    for sweep in &r.sweeps {
+        if continuation {
+            s += &format!("{} sweep\n", sweep.direction.name());
+        }
+        s += "   f (Hz)   with (mm)   without (mm)   cut (dB)  impacts/T   Leq (dB)  periodic  settled\n";
+        for p in &sweep.points {
+            let st = &p.steady;
+            s += &format!(
+                "  {:>7.3}  {:>10.4}  {:>13.4}  {:>9}  {:>9.3}  {:>9}  {:>8}  {:>7}{}\n",
+                p.freq_hz,
+                st.amplitude_m * 1e3,
+                opt(st.amplitude_linear_m, 1e3, 4),
+                opt(st.reduction_db, 1.0, 2),
+                st.impacts_per_period,
+                opt(st.leq_db, 1.0, 2),
+                if st.periodic { "yes" } else { "no" },
+                if st.settled { "yes" } else { "no" },
+                if st.truncated { "  TRUNCATED" } else { "" }
+            );
+        }
+        s += "\n";
+    }
+    s += &plot(r, 61, 14);
+    s
+}
+
+/// A text plot of the amplitude (log scale) against the frequency: `*` with the damper (`u`/`d`
+/// for the rising and falling sweeps of a continuation, `d` drawn over `u` where they meet), `o`
+/// without it.
+pub fn plot(r: &Response, width: usize, height: usize) -> String {
+    let all: Vec<&response::ResponsePoint> = r.sweeps.iter().flat_map(|s| &s.points).collect();
+    let f_lo = all.iter().map(|p| p.freq_hz).fold(f64::INFINITY, f64::min);
+    let f_hi = all.iter().map(|p| p.freq_hz).fold(f64::NEG_INFINITY, f64::max);
+    let values = all
+        .iter()
+        .flat_map(|p| [Some(p.steady.amplitude_m), p.steady.amplitude_linear_m])
+        .flatten()
+        .filter(|a| *a > 0.0 && a.is_finite());
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), a| (l.min(a.log10()), h.max(a.log10())));
+    if !(lo.is_finite() && hi.is_finite() && f_hi >= f_lo) {
+        return String::new();
+    }
+    let (lo, hi) = if hi - lo < 1e-9 { (lo - 0.5, hi + 0.5) } else { (lo, hi) };
+    let mut grid = vec![vec![' '; width]; height];
+    let col = |f: f64| {
+        if f_hi > f_lo {
+            (((f - f_lo) / (f_hi - f_lo)) * (width - 1) as f64).round() as usize
+        } else {
+            width / 2
+        }
+    };
+    let row = |a: f64| {
+        let u = (a.log10() - lo) / (hi - lo);
+        height - 1 - ((u * (height - 1) as f64).round() as usize).min(height - 1)
+    };
+    let mut put = |f: f64, a: f64, c: char, over: bool| {
+        if a > 0.0 && a.is_finite() {
+            let cell = &mut grid[row(a)][col(f)];
+            if over || *cell == ' ' {
+                *cell = c;
+            }
+        }
+    };
+    for p in &all {
+        if let Some(a) = p.steady.amplitude_linear_m {
+            put(p.freq_hz, a, 'o', false);
+        }
+    }
+    for sweep in &r.sweeps {
+        let c = match sweep.direction {
+            Direction::FromRest => '*',
+            Direction::Up => 'u',
+            Direction::Down => 'd',
+        };
+        for p in &sweep.points {
+            put(p.freq_hz, p.steady.amplitude_m, c, true);
+        }
+    }
+    let mm = |e: f64| crate::units::sig(10f64.powf(e) * 1e3, 3);
+    let with = if r.sweeps.iter().any(|s| s.direction != Direction::FromRest) {
+        "u rising and d falling sweep with the damper"
+    } else {
+        "* with the damper"
+    };
+    let mut s = format!("amplitude (mm, log scale) against f: {with}, o without\n");
+    for (i, line) in grid.iter().enumerate() {
+        let label = if i == 0 {
+            mm(hi)
+        } else if i == height - 1 {
+            mm(lo)
+        } else if i == height / 2 {
+            mm(hi - (hi - lo) * i as f64 / (height - 1) as f64)
+        } else {
+            String::new()
+        };
+        s += &format!("{label:>9} |{}\n", line.iter().collect::<String>().trim_end());
+    }
+    s += &format!("{:>9} +{}\n", "", "-".repeat(width));
+    let left = format!("{} Hz", crate::units::sig(f_lo, 3));
+    let right = format!("{} Hz", crate::units::sig(f_hi, 3));
+    let pad = (width + 1).saturating_sub(left.len() + right.len());
+    s += &format!("{:>9}  {left}{}{right}\n", "", " ".repeat(pad));
+    s
+}
