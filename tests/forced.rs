@@ -347,3 +347,17 @@ fn a_continued_response_sweeps_up_then_down() {
             .unwrap();
     assert_ne!(r.sweeps[0].points[1].steady, rest2.sweeps[0].points[0].steady);
 }
+
+#[test]
+fn a_forced_run_cut_by_a_work_cap_says_so_in_its_steady_state() {
+    // A long, hard-driven run in a small clearance: the in-contact step cap stops it.
+    let p = DamperParams { gap_m: 0.005, ..forced(5.0, 5.0, 5000.0) };
+    let run = simulate(&p, Solver::Event, &opts()).unwrap();
+    assert_eq!(run.truncated, Some(Truncation::ContactSteps));
+    let s = run.steady.unwrap();
+    assert!(s.truncated && !s.settled && !s.periodic, "{s:?}");
+    assert_eq!(s.window_end_s, run.final_time_s.min(5000.0));
+    // The window is the one the run stopped in, up to where it stopped.
+    assert!(s.window_end_s < 5000.0 && s.window_start_s < s.window_end_s, "{s:?}");
+    assert!(s.window_end_s - s.window_start_s <= 10.0 / 5.0 + 1e-9);
+}
