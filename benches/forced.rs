@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Benchmarks of forced vibration (issue 11) beside the Newmark reference design, measured in
 //! the same run so that every figure can be given as a ratio to it:
 //!
@@ -22,7 +23,7 @@ fn reference(c: &mut Criterion) {
     let mut g = c.benchmark_group("reference");
     g.sample_size(10);
     g.bench_function("newmark fig9 2 s dt 1e-7", |b| {
-        b.iter(|| simulate(black_box(&p), Solver::newmark_default(), &RunOptions::default()).unwrap())
+        b.iter(|| simulate(black_box(&p), Solver::newmark_default(), &RunOptions::default()).unwrap());
     });
     g.finish();
 }
@@ -42,10 +43,10 @@ fn per_impact(c: &mut Criterion) {
         eprintln!("{name}: {n} impacts a run");
     }
     c.bench_function("event fig9 2 s", |b| {
-        b.iter(|| simulate(black_box(&fig9), Solver::Event, &RunOptions::default()).unwrap())
+        b.iter(|| simulate(black_box(&fig9), Solver::Event, &RunOptions::default()).unwrap());
     });
     c.bench_function("event forced 5.5 Hz 8 s", |b| {
-        b.iter(|| simulate(black_box(&forced), Solver::Event, &RunOptions::default()).unwrap())
+        b.iter(|| simulate(black_box(&forced), Solver::Event, &RunOptions::default()).unwrap());
     });
     #[cfg(feature = "timing")]
     {
@@ -88,13 +89,13 @@ fn responses(c: &mut Criterion) {
     let mut g = c.benchmark_group("response");
     g.sample_size(10);
     g.bench_function("response 101 points 40 periods all cores", |b| {
-        b.iter(|| response(black_box(&d), &freqs, &fixed, None, &|| {}).unwrap())
+        b.iter(|| response(black_box(&d), &freqs, &fixed, None, &|| {}).unwrap());
     });
     let mut cli = Design::default();
     cli.damper.force_n = 1.0;
     cli.damper.v0_m_s = 0.0;
     g.bench_function("response 101 points settled (thud response --force 1N)", |b| {
-        b.iter(|| response(black_box(&cli), &freqs, &ResponseOptions::default(), None, &|| {}).unwrap())
+        b.iter(|| response(black_box(&cli), &freqs, &ResponseOptions::default(), None, &|| {}).unwrap());
     });
     g.finish();
 }

@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Forced vibration (issue 11): harmonic forcing of the main mass in both solvers, the ball's
 //! start, the steady state, its settling, its level and the frequency response.
 //! docs/model.md §6.1–6.4.
@@ -144,8 +145,8 @@ fn undamped_resonance_has_no_steady_state() {
     // golden-section search around its best sample.
     let x = |t: f64| (2.0 * t * (w0 * t).sin() / (2.0 * w0)).abs();
     let n = 20_000;
-    let dt = 2.0 / n as f64;
-    let best = (0..=n).map(|i| 2.0 + i as f64 * dt).fold(2.0, |b, t| if x(t) > x(b) { t } else { b });
+    let dt = 2.0 / f64::from(n);
+    let best = (0..=n).map(|i| 2.0 + f64::from(i) * dt).fold(2.0, |b, t| if x(t) > x(b) { t } else { b });
     let (mut lo, mut hi) = ((best - dt).max(2.0), (best + dt).min(4.0));
     for _ in 0..200 {
         let (m1, m2) = (lo + 0.382 * (hi - lo), hi - 0.382 * (hi - lo));

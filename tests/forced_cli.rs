@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! Forced vibration on the command line (issue 11): `--force`, `--freq`, `--ball-position`,
 //! `--ball-velocity`, `--periods`, `--settle` on simulate, sweep and export; `thud response`;
 //! the unforced outputs byte-for-byte those of v0.1. Runs the built binary with HOME and the

@@ -105,7 +105,7 @@ pub fn run(a: &ResponseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         )?,
         OutputFormat::Text => {
             super::output::check_finite(&r)?;
-            out.text(&text(&d, &r, a.continuation))?
+            out.text(&text(&d, &r, a.continuation))?;
         }
     }
     Ok(())

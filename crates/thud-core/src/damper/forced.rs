@@ -521,7 +521,7 @@ mod tests {
             for _ in 0..200 {
                 let bound = fo.accel_bound(x, v, h);
                 for j in 1..=50 {
-                    let s = h * j as f64 / 50.0;
+                    let s = h * f64::from(j) / 50.0;
                     let (xs, vs) = fo.advance(t, x, v, s);
                     assert!(fo.accel(t + s, xs, vs).abs() <= bound * (1.0 + 1e-12), "k {k} c {c}");
                 }

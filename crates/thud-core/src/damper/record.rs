@@ -98,12 +98,11 @@ impl Windows {
         if k < self.amplitudes.len() {
             return None;
         }
-        match self.open.iter().position(|(i, _)| *i == k) {
-            Some(at) => Some(&mut self.open[at].1),
-            None => {
-                self.open.push((k, WindowAcc::default()));
-                self.open.last_mut().map(|(_, w)| w)
-            }
+        if let Some(at) = self.open.iter().position(|(i, _)| *i == k) {
+            Some(&mut self.open[at].1)
+        } else {
+            self.open.push((k, WindowAcc::default()));
+            self.open.last_mut().map(|(_, w)| w)
         }
     }
 
@@ -382,15 +381,15 @@ fn cubic_extremum(f0: f64, d0: f64, f1: f64, d1: f64) -> (f64, f64) {
     let a = 6.0 * (f0 - f1) + 3.0 * (d0 + d1);
     let b = 6.0 * (f1 - f0) - 4.0 * d0 - 2.0 * d1;
     let u = if a.abs() < 1e-12 * (b.abs() + d0.abs()) {
-        if b != 0.0 {
-            -d0 / b
-        } else {
+        if b == 0.0 {
             0.5
+        } else {
+            -d0 / b
         }
     } else {
         let disc = (b * b - 4.0 * a * d0).max(0.0).sqrt();
         let q = -0.5 * (b + b.signum() * disc);
-        let (r1, r2) = (q / a, if q != 0.0 { d0 / q } else { f64::NAN });
+        let (r1, r2) = (q / a, if q == 0.0 { f64::NAN } else { d0 / q });
         if (0.0..=1.0).contains(&r1) {
             r1
         } else if (0.0..=1.0).contains(&r2) {

@@ -112,10 +112,7 @@ fn converged(a: &WindowStats, b: &WindowStats) -> bool {
 
 /// Whether the run has settled by its closed windows (see the module documentation).
 fn settled(w: &Windows) -> bool {
-    let [a, b, c] = match w.recent() {
-        [a, b, c] => [a, b, c],
-        _ => return false,
-    };
+    let [a, b, c] = w.recent() else { return false };
     if !(converged(a, b) && converged(b, c)) {
         return false;
     }
@@ -183,6 +180,8 @@ fn drive<S: Stepper>(mut s: S, p: &DamperParams, load: Option<Harmonic>, want_en
 /// The steady state of a forced run that has reached its duration: windows 0 and 1, then (with
 /// `settle`) further windows until two agree.
 fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
+    // Invariant: a forced run (F0 > 0, the only caller) is recorded with windows from its start.
+    #[allow(clippy::expect_used)]
     fn windows<S: Stepper>(s: &mut S) -> &mut Windows {
         s.recorder().windows.as_mut().expect("a forced run has windows")
     }
@@ -206,6 +205,8 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
     let w = windows(s);
     let is_settled = settled(w);
     let recent = w.recent();
+    // Invariant: the run reached its duration, so at least its first window is closed.
+    #[allow(clippy::expect_used)]
     let last = *recent.last().expect("a forced run closes at least its last window");
     let prev = recent.len().checked_sub(2).map(|i| recent[i]);
     let period = 1.0 / p.freq_hz;
