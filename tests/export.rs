@@ -11,7 +11,7 @@ use std::path::Path;
 use std::process::Command;
 
 use thud::design::{self, linspace};
-use thud::export::{self, report, wav, ExportOptions, Kind};
+use thud::export::{self, report, wav, Artifact, ExportOptions};
 use thud::presets;
 
 fn small_grid() -> ExportOptions {
@@ -27,7 +27,7 @@ fn small_grid() -> ExportOptions {
 fn wav_parses_back_with_rate_length_and_a_peak_at_each_impact() {
     let d = presets::preset("default").unwrap();
     let e = design::evaluate(&d, 0, None).unwrap();
-    let bytes = export::render(Kind::Wav, &d, &ExportOptions::default()).unwrap();
+    let bytes = export::render(Artifact::Wav, &d, &ExportOptions::default()).unwrap();
     let mut r = hound::WavReader::new(std::io::Cursor::new(bytes)).unwrap();
     let spec = r.spec();
     assert_eq!((spec.sample_rate, spec.channels, spec.bits_per_sample), (48_000, 1, 32));
@@ -67,12 +67,12 @@ fn svg_title(doc: &str) -> String {
 fn every_svg_export_is_well_formed_with_its_title() {
     let d = presets::preset("default").unwrap();
     for (kind, title, units) in [
-        (Kind::SvgWaveform, "Sound pressure of one impact", ["(ms)", "(Pa)"]),
-        (Kind::SvgDirectivity, "Directivity of one impact", ["(deg)", "(dB re 20 µPa)"]),
-        (Kind::SvgHistory, "Free vibration with and without the damper", ["(s)", "(cm)"]),
-        (Kind::SvgRestitution, "Restitution against impact mass", ["(g)", "u_out/U0"]),
-        (Kind::SvgChart, "Design chart: zone of each impact mass × gap", ["(g)", "(cm)"]),
-        (Kind::SvgFig17, "Design chart: damping inclination against SPLmax (Fig 17)", ["(dB re 20 µPa)", "(cm/s)"]),
+        (Artifact::SvgWaveform, "Sound pressure of one impact", ["(ms)", "(Pa)"]),
+        (Artifact::SvgDirectivity, "Directivity of one impact", ["(deg)", "(dB re 20 µPa)"]),
+        (Artifact::SvgHistory, "Free vibration with and without the damper", ["(s)", "(cm)"]),
+        (Artifact::SvgRestitution, "Restitution against impact mass", ["(g)", "u_out/U0"]),
+        (Artifact::SvgChart, "Design chart: zone of each impact mass × gap", ["(g)", "(cm)"]),
+        (Artifact::SvgFig17, "Design chart: damping inclination against SPLmax (Fig 17)", ["(dB re 20 µPa)", "(cm/s)"]),
     ] {
         let doc = String::from_utf8(export::render(kind, &d, &small_grid()).unwrap()).unwrap();
         let t = svg_title(&doc);
@@ -87,14 +87,14 @@ fn every_svg_export_is_well_formed_with_its_title() {
 fn csv_exports_have_their_headers_and_rows() {
     let d = presets::preset("paper-fig9").unwrap();
     for (kind, header, min_rows) in [
-        (Kind::CsvWaveform, "t_s,p_pa", 300),
-        (Kind::CsvHistory, "t_s,x_m,y_m,x_free_m", 300),
+        (Artifact::CsvWaveform, "t_s,p_pa", 300),
+        (Artifact::CsvHistory, "t_s,x_m,y_m,x_free_m", 300),
         (
-            Kind::CsvImpacts,
+            Artifact::CsvImpacts,
             "index,t_s,wall,u_in_m_s,u_out_m_s,restitution,t_end_s,duration_s,penetration_max_m,spl_db",
             10,
         ),
-        (Kind::CsvSweep, "mass_kg,gap_m,inclination_cm_s", 9),
+        (Artifact::CsvSweep, "mass_kg,gap_m,inclination_cm_s", 9),
     ] {
         let text = String::from_utf8(export::render(kind, &d, &small_grid()).unwrap()).unwrap();
         let lines: Vec<&str> = text.lines().collect();
@@ -103,7 +103,7 @@ fn csv_exports_have_their_headers_and_rows() {
         let cols = lines[0].split(',').count();
         assert!(lines.iter().all(|l| l.split(',').count() == cols), "{kind:?}");
     }
-    let impacts = String::from_utf8(export::render(Kind::CsvImpacts, &d, &small_grid()).unwrap()).unwrap();
+    let impacts = String::from_utf8(export::render(Artifact::CsvImpacts, &d, &small_grid()).unwrap()).unwrap();
     let first: Vec<f64> = impacts.lines().nth(1).unwrap().split(',').map(|x| x.parse().unwrap()).collect();
     assert!((first[1] - 0.01018).abs() < 1e-6 && (first[3] - 1.89529).abs() < 1e-4, "{first:?}");
 }

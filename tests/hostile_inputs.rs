@@ -612,7 +612,7 @@ fn explorer_refuses_runs_over_the_work_caps() {
     long.damper.duration_s = 2000.0;
     let mut app = thud::tui::App::new(long, "default", thud::tui::Palette::default());
     app.export_dir = dir.path().to_path_buf();
-    assert!(app.export(thud::export::Kind::Wav).is_none());
+    assert!(app.export(thud::export::Artifact::Wav).is_none());
     let status = app.status().map(|s| s.text.clone()).unwrap_or_default();
     assert!(status.contains("WAV samples exceed the limit"), "{status}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);

@@ -526,7 +526,7 @@ fn export_through_the_key_writes_the_file_and_names_it() {
     assert!(render(&mut app, 120, 40).contains("thud-waveform-1.csv"));
     // The chart SVG uses the chart's grid.
     press(&mut app, KeyCode::Char('e'));
-    let chart = thud::tui::files::EXPORTS.iter().position(|(k, _)| *k == thud::export::Kind::SvgChart).unwrap();
+    let chart = thud::tui::files::EXPORTS.iter().position(|(k, _)| *k == thud::export::Artifact::SvgChart).unwrap();
     for _ in 0..chart {
         press(&mut app, KeyCode::Down);
     }
@@ -545,7 +545,7 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     let worker = thud::tui::Worker::start(move |d| {
         let _ = tx.send(d);
     });
-    worker.submit(app.export(thud::export::Kind::Wav).unwrap());
+    worker.submit(app.export(thud::export::Artifact::Wav).unwrap());
     assert!(app.busy(), "the spinner turns while the file is written");
     assert!(render(&mut app, 120, 40).contains("exporting"));
     let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
@@ -559,7 +559,7 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     let file = out.path().join("plain-file");
     std::fs::write(&file, "x").unwrap();
     app.export_dir = file;
-    worker.submit(app.export(thud::export::Kind::CsvImpacts).unwrap());
+    worker.submit(app.export(thud::export::Artifact::CsvImpacts).unwrap());
     let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
     app.update(Msg::Work(done));
     let screen = render(&mut app, 120, 40);

@@ -9,7 +9,7 @@ use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
 use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::Design;
 use crate::error::ThudError;
-use crate::export::{self, wav::WavOptions, ExportError, ExportOptions, Kind};
+use crate::export::{self, wav::WavOptions, Artifact, ExportError, ExportOptions};
 use crate::fsio::{self, FsError, Overwrite};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
@@ -138,7 +138,7 @@ impl Common {
     }
 
     /// Refuses an export whose work is over a cap; says whether it is expected to be long.
-    fn check_work(&self, ctx: &Ctx, kind: Kind, d: &Design, opts: &ExportOptions) -> Result<bool, CliError> {
+    fn check_work(&self, ctx: &Ctx, kind: Artifact, d: &Design, opts: &ExportOptions) -> Result<bool, CliError> {
         let points = &self.points;
         if kind.is_response() {
             let freqs = export::response_freqs(opts);
@@ -146,8 +146,8 @@ impl Common {
             super::response::check_work(ctx, d, &freqs, &text, opts.continuation)?;
             return Ok(true);
         }
-        let runs = !kind.needs_sweep() && kind != Kind::SvgRestitution;
-        let history = if matches!(kind, Kind::CsvHistory | Kind::SvgHistory) { opts.points } else { 0 };
+        let runs = !kind.needs_sweep() && kind != Artifact::SvgRestitution;
+        let history = if matches!(kind, Artifact::CsvHistory | Artifact::SvgHistory) { opts.points } else { 0 };
         if runs {
             self.design.check_run(ctx, d, history, "--points")?;
         }
@@ -158,17 +158,17 @@ impl Common {
             self.design.check_sweep(ctx, d, m, g)?;
             long |= m * g >= 2000;
         }
-        if matches!(kind, Kind::CsvWaveform | Kind::SvgWaveform) {
+        if matches!(kind, Artifact::CsvWaveform | Artifact::SvgWaveform) {
             let e = limits::waveform_points(opts.points);
             ctx.enforce(e, "--points", points, &format!("use --points ≤ {}", short(e.cap.max)))?;
         }
-        if kind == Kind::SvgRestitution {
+        if kind == Artifact::SvgRestitution {
             let n = opts.masses_kg.as_ref().map_or(20, Vec::len);
             let e = limits::restitution_contacts(n, false);
             let masses = self.masses.clone().unwrap_or_default();
             ctx.enforce(e, "--masses", &masses, &format!("use at most {} masses", short(e.cap.max)))?;
         }
-        if kind == Kind::Wav {
+        if kind == Artifact::Wav {
             let e = limits::wav_samples(d.damper.duration_s, f64::from(opts.wav.sample_rate));
             let shown = self.design_duration_text(d);
             let max = e.cap.max / f64::from(opts.wav.sample_rate);
@@ -194,8 +194,8 @@ fn no_impact(e: ThudError, common: &Common) -> ThudError {
 }
 
 /// Checks rendered contents hold no non-finite number: WAV samples as floats, text as text.
-fn check_contents(kind: Kind, bytes: &[u8]) -> Result<(), CliError> {
-    if kind == Kind::Wav {
+fn check_contents(kind: Artifact, bytes: &[u8]) -> Result<(), CliError> {
+    if kind == Artifact::Wav {
         // 32-bit float samples after the 44-byte header of a mono float WAV.
         let bad = bytes.get(44..).unwrap_or_default().chunks_exact(4).find_map(|c| {
             let x = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
@@ -209,7 +209,7 @@ fn check_contents(kind: Kind, bytes: &[u8]) -> Result<(), CliError> {
 /// Renders and writes one export; says on stderr what was written. The target and the work are
 /// checked before the work starts, so a refused --out or an over-cap run costs nothing, and the
 /// contents are checked for non-finite numbers before anything is written.
-fn write(ctx: &Ctx, kind: Kind, common: &Common, opts: &ExportOptions) -> Result<(), CliError> {
+fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Result<(), CliError> {
     let design = if kind.is_response() {
         super::response::response_design(&common.design, export::response_freqs(opts)[0])?
     } else {
@@ -218,7 +218,7 @@ fn write(ctx: &Ctx, kind: Kind, common: &Common, opts: &ExportOptions) -> Result
     let overwrite = Overwrite::from_force(common.force);
     let out = &common.out;
     let to_stdout = fsio::is_stdout(out);
-    if to_stdout && kind == Kind::Wav && std::io::stdout().is_terminal() {
+    if to_stdout && kind == Artifact::Wav && std::io::stdout().is_terminal() {
         return Err(ThudError::invalid(
             "out",
             "-: a WAV file is binary; redirect standard output to a file or a player",
@@ -268,23 +268,23 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
     match &a.what {
         ExportCommand::Csv(c) => {
             let kind = match c.what {
-                CsvWhat::Waveform => Kind::CsvWaveform,
-                CsvWhat::History => Kind::CsvHistory,
-                CsvWhat::Impacts => Kind::CsvImpacts,
-                CsvWhat::Sweep => Kind::CsvSweep,
-                CsvWhat::Response => Kind::CsvResponse,
+                CsvWhat::Waveform => Artifact::CsvWaveform,
+                CsvWhat::History => Artifact::CsvHistory,
+                CsvWhat::Impacts => Artifact::CsvImpacts,
+                CsvWhat::Sweep => Artifact::CsvSweep,
+                CsvWhat::Response => Artifact::CsvResponse,
             };
             write(ctx, kind, &c.common, &c.common.options()?)
         }
         ExportCommand::Svg(s) => {
             let kind = match s.what {
-                SvgWhat::Waveform => Kind::SvgWaveform,
-                SvgWhat::Directivity => Kind::SvgDirectivity,
-                SvgWhat::History => Kind::SvgHistory,
-                SvgWhat::Restitution => Kind::SvgRestitution,
-                SvgWhat::Chart => Kind::SvgChart,
-                SvgWhat::Fig17 => Kind::SvgFig17,
-                SvgWhat::Response => Kind::SvgResponse,
+                SvgWhat::Waveform => Artifact::SvgWaveform,
+                SvgWhat::Directivity => Artifact::SvgDirectivity,
+                SvgWhat::History => Artifact::SvgHistory,
+                SvgWhat::Restitution => Artifact::SvgRestitution,
+                SvgWhat::Chart => Artifact::SvgChart,
+                SvgWhat::Fig17 => Artifact::SvgFig17,
+                SvgWhat::Response => Artifact::SvgResponse,
             };
             write(ctx, kind, &s.common, &s.common.options()?)
         }
@@ -293,7 +293,7 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
             opts.wav.full_scale_pa =
                 quantity("full-scale", &Some(w.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
             opts.wav.validate()?;
-            write(ctx, Kind::Wav, &w.common, &opts)
+            write(ctx, Artifact::Wav, &w.common, &opts)
         }
     }
 }

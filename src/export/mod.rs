@@ -2,7 +2,7 @@
 //!
 //! The building blocks ([`csv`], [`figures`], [`wav`], [`report`]) return the file's contents
 //! (`String` or `Vec<u8>`). [`render`] and [`export_to_path`] are the one-call front door used
-//! by the CLI and the TUI: a [`Kind`] of file, a design and [`ExportOptions`] in; the contents,
+//! by the CLI and the TUI: a [`Artifact`] of file, a design and [`ExportOptions`] in; the contents,
 //! or a file written through [`crate::fsio`] (atomic, never over an existing file), out.
 
 pub mod csv;
@@ -37,7 +37,7 @@ pub enum ExportError {
 
 /// Every file thud can export for a design.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
+pub enum Artifact {
     /// CSV `t_s,p_pa`: the pressure of one impact (the loudest, or at `u0_m_s`).
     CsvWaveform,
     /// CSV `t_s,x_m,y_m,x_free_m`: the time history with and without the damper.
@@ -66,50 +66,50 @@ pub enum Kind {
     SvgResponse,
 }
 
-impl Kind {
-    pub const ALL: [Kind; 13] = [
-        Kind::CsvWaveform,
-        Kind::CsvHistory,
-        Kind::CsvImpacts,
-        Kind::CsvSweep,
-        Kind::SvgWaveform,
-        Kind::SvgDirectivity,
-        Kind::SvgHistory,
-        Kind::SvgRestitution,
-        Kind::SvgChart,
-        Kind::SvgFig17,
-        Kind::Wav,
-        Kind::CsvResponse,
-        Kind::SvgResponse,
+impl Artifact {
+    pub const ALL: [Artifact; 13] = [
+        Artifact::CsvWaveform,
+        Artifact::CsvHistory,
+        Artifact::CsvImpacts,
+        Artifact::CsvSweep,
+        Artifact::SvgWaveform,
+        Artifact::SvgDirectivity,
+        Artifact::SvgHistory,
+        Artifact::SvgRestitution,
+        Artifact::SvgChart,
+        Artifact::SvgFig17,
+        Artifact::Wav,
+        Artifact::CsvResponse,
+        Artifact::SvgResponse,
     ];
 
     /// A file name to suggest, e.g. `thud-waveform.csv`.
     pub fn default_file_name(self) -> &'static str {
         match self {
-            Kind::CsvWaveform => "thud-waveform.csv",
-            Kind::CsvHistory => "thud-history.csv",
-            Kind::CsvImpacts => "thud-impacts.csv",
-            Kind::CsvSweep => "thud-sweep.csv",
-            Kind::SvgWaveform => "thud-waveform.svg",
-            Kind::SvgDirectivity => "thud-directivity.svg",
-            Kind::SvgHistory => "thud-history.svg",
-            Kind::SvgRestitution => "thud-restitution.svg",
-            Kind::SvgChart => "thud-chart.svg",
-            Kind::SvgFig17 => "thud-fig17.svg",
-            Kind::Wav => "thud-sound.wav",
-            Kind::CsvResponse => "thud-response.csv",
-            Kind::SvgResponse => "thud-response.svg",
+            Artifact::CsvWaveform => "thud-waveform.csv",
+            Artifact::CsvHistory => "thud-history.csv",
+            Artifact::CsvImpacts => "thud-impacts.csv",
+            Artifact::CsvSweep => "thud-sweep.csv",
+            Artifact::SvgWaveform => "thud-waveform.svg",
+            Artifact::SvgDirectivity => "thud-directivity.svg",
+            Artifact::SvgHistory => "thud-history.svg",
+            Artifact::SvgRestitution => "thud-restitution.svg",
+            Artifact::SvgChart => "thud-chart.svg",
+            Artifact::SvgFig17 => "thud-fig17.svg",
+            Artifact::Wav => "thud-sound.wav",
+            Artifact::CsvResponse => "thud-response.csv",
+            Artifact::SvgResponse => "thud-response.svg",
         }
     }
 
     /// Whether this export needs the mass × gap grid (a sweep).
     pub fn needs_sweep(self) -> bool {
-        matches!(self, Kind::CsvSweep | Kind::SvgChart | Kind::SvgFig17)
+        matches!(self, Artifact::CsvSweep | Artifact::SvgChart | Artifact::SvgFig17)
     }
 
     /// Whether this export is a frequency response (a forced design over `freqs_hz`).
     pub fn is_response(self) -> bool {
-        matches!(self, Kind::CsvResponse | Kind::SvgResponse)
+        matches!(self, Artifact::CsvResponse | Artifact::SvgResponse)
     }
 }
 
@@ -208,15 +208,15 @@ fn listener(d: &Design) -> String {
 }
 
 /// The contents of an export of `kind` for `design`.
-pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
     design.validate()?;
     let d = design.resolved()?;
     let points = opts.points.clamp(2, 1_000_000);
     let text = match kind {
-        Kind::CsvWaveform | Kind::SvgWaveform => {
+        Artifact::CsvWaveform | Artifact::SvgWaveform => {
             let u0 = impact_speed(&d, opts.u0_m_s)?;
             let field = d.impact_field(u0)?;
-            if kind == Kind::CsvWaveform {
+            if kind == Artifact::CsvWaveform {
                 csv::waveform(&field, points)?
             } else {
                 let title =
@@ -224,8 +224,8 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
                 figures::waveform(&field, points, &title)
             }
         }
-        Kind::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper)?,
-        Kind::SvgHistory => {
+        Artifact::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper)?,
+        Artifact::SvgHistory => {
             let title = format!(
                 "Free vibration with and without the damper (m {} g, d {} cm, v0 {} m/s)",
                 crate::units::sig(d.damper.impact_mass_kg * 1e3, 3),
@@ -234,11 +234,11 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
             );
             figures::history(&run(&d, points)?.run, &d.damper, &title)
         }
-        Kind::CsvImpacts => {
+        Artifact::CsvImpacts => {
             let e = run(&d, 0)?;
             csv::impacts(&e.run, &design::impact_spls(&e.run, &d)?)?
         }
-        Kind::SvgDirectivity => {
+        Artifact::SvgDirectivity => {
             let u0 = impact_speed(&d, opts.u0_m_s)?;
             let title = format!(
                 "Directivity of one impact, U0 {} m/s, r {} m",
@@ -247,7 +247,7 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
             );
             figures::directivity(&directivity_points(&d, u0)?, &title)
         }
-        Kind::SvgRestitution => {
+        Artifact::SvgRestitution => {
             let masses = opts.masses_kg.clone().unwrap_or_else(|| linspace(0.005, 0.100, 20));
             let u0 = opts.u0_m_s.unwrap_or(1.4);
             let curve = design::restitution_curve(&d, &masses, u0)?;
@@ -259,24 +259,24 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
             );
             figures::restitution(&curve, &title)
         }
-        Kind::CsvSweep | Kind::SvgChart | Kind::SvgFig17 => {
+        Artifact::CsvSweep | Artifact::SvgChart | Artifact::SvgFig17 => {
             let (masses, gaps) = grid(opts);
             let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {})?;
             match kind {
-                Kind::CsvSweep => csv::sweep(&chart)?,
-                Kind::SvgChart => figures::design_chart(&chart, "Design chart: zone of each impact mass × gap"),
+                Artifact::CsvSweep => csv::sweep(&chart)?,
+                Artifact::SvgChart => figures::design_chart(&chart, "Design chart: zone of each impact mass × gap"),
                 _ => figures::fig17(&chart, "Design chart: damping inclination against SPLmax (Fig 17)"),
             }
         }
-        Kind::Wav => {
+        Artifact::Wav => {
             let e = run(&d, 0)?;
             return Ok(wav::damper_sound(&d, &e.run, &opts.wav)?);
         }
-        Kind::CsvResponse | Kind::SvgResponse => {
+        Artifact::CsvResponse | Artifact::SvgResponse => {
             let freqs = response_freqs(opts);
             let ro = crate::response::ResponseOptions { continuation: opts.continuation, settle: true };
             let r = crate::response::response(&d, &freqs, &ro, None, &|| {})?;
-            if kind == Kind::CsvResponse {
+            if kind == Artifact::CsvResponse {
                 csv::response(&r)?
             } else {
                 let title = format!(
@@ -296,7 +296,7 @@ pub fn render(kind: Kind, design: &Design, opts: &ExportOptions) -> Result<Vec<u
 /// Renders an export of `kind` for `design` and writes it to `path` through [`fsio::write`]:
 /// atomically, and never over an existing file (the explorer picks a free name; a file that
 /// appears meanwhile is left alone and reported).
-pub fn export_to_path(kind: Kind, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ExportError> {
+pub fn export_to_path(kind: Artifact, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ExportError> {
     fsio::write(path, &render(kind, design, opts)?, Overwrite::Refuse)?;
     Ok(())
 }

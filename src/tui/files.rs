@@ -7,28 +7,28 @@ use std::path::{Path, PathBuf};
 use super::app::{App, Mode};
 use super::fields::Scope;
 use super::worker::{ExportJob, Request, WorkError};
-use crate::export::{wav::WavOptions, ExportOptions, Kind};
+use crate::export::{wav::WavOptions, Artifact, ExportOptions};
 use crate::store::{self, DesignFile};
 use crate::units::sig;
 
 /// What the export menu offers, in menu order, with how it is named there: the short name
 /// matches the file's (`thud-waveform.csv` is "waveform CSV"), then what the file holds.
-pub const EXPORTS: [(Kind, &str); 11] = [
-    (Kind::CsvWaveform, "waveform CSV — pressure of the loudest impact"),
-    (Kind::SvgWaveform, "waveform SVG — the same pressure pulse as a figure"),
-    (Kind::CsvHistory, "history CSV — x(t) with and without the damper"),
-    (Kind::SvgHistory, "history SVG — the same x(t) as a figure"),
-    (Kind::CsvImpacts, "impacts CSV — every impact of the run"),
-    (Kind::CsvSweep, "sweep CSV — the chart's mass × gap grid"),
-    (Kind::SvgChart, "chart SVG — zones over mass × gap"),
-    (Kind::SvgFig17, "fig17 SVG — e against SPLmax (Fig 17)"),
-    (Kind::SvgDirectivity, "directivity SVG — SPL against θ"),
-    (Kind::SvgRestitution, "restitution SVG — R against impact mass (Fig 13)"),
-    (Kind::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
+pub const EXPORTS: [(Artifact, &str); 11] = [
+    (Artifact::CsvWaveform, "waveform CSV — pressure of the loudest impact"),
+    (Artifact::SvgWaveform, "waveform SVG — the same pressure pulse as a figure"),
+    (Artifact::CsvHistory, "history CSV — x(t) with and without the damper"),
+    (Artifact::SvgHistory, "history SVG — the same x(t) as a figure"),
+    (Artifact::CsvImpacts, "impacts CSV — every impact of the run"),
+    (Artifact::CsvSweep, "sweep CSV — the chart's mass × gap grid"),
+    (Artifact::SvgChart, "chart SVG — zones over mass × gap"),
+    (Artifact::SvgFig17, "fig17 SVG — e against SPLmax (Fig 17)"),
+    (Artifact::SvgDirectivity, "directivity SVG — SPL against θ"),
+    (Artifact::SvgRestitution, "restitution SVG — R against impact mass (Fig 13)"),
+    (Artifact::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
 ];
 
 /// The short name of an export kind ("waveform CSV").
-pub fn export_name(kind: Kind) -> &'static str {
+pub fn export_name(kind: Artifact) -> &'static str {
     let label = EXPORTS.iter().find(|(k, _)| *k == kind).map_or("file", |(_, l)| l);
     label.split(" — ").next().unwrap_or(label)
 }
@@ -152,8 +152,8 @@ impl App {
 
     /// Asks the worker to write an export of `kind` into the export directory, under its
     /// default name (with -1, -2 … added if that file exists or is being written).
-    pub fn export(&mut self, kind: Kind) -> Option<Request> {
-        if kind == Kind::Wav {
+    pub fn export(&mut self, kind: Artifact) -> Option<Request> {
+        if kind == Artifact::Wav {
             let e =
                 crate::limits::wav_samples(self.design.damper.duration_s, f64::from(WavOptions::default().sample_rate));
             if e.exceeded() {
@@ -179,7 +179,7 @@ impl App {
     }
 
     /// An export ended: the file is no longer pending and the status line says how it went.
-    pub(crate) fn export_finished(&mut self, kind: Kind, path: &Path, result: Result<(), WorkError>) {
+    pub(crate) fn export_finished(&mut self, kind: Artifact, path: &Path, result: Result<(), WorkError>) {
         self.exports.retain(|p| p != path);
         let shown = self.shown_path(path);
         match result {
@@ -231,14 +231,14 @@ mod tests {
             let (stem, ext) = file.trim_start_matches("thud-").rsplit_once('.').unwrap();
             assert_eq!(export_name(kind), format!("{stem} {}", ext.to_uppercase()), "{label}");
         }
-        let restitution = EXPORTS.iter().find(|(k, _)| *k == Kind::SvgRestitution).unwrap().1;
+        let restitution = EXPORTS.iter().find(|(k, _)| *k == Artifact::SvgRestitution).unwrap().1;
         assert!(restitution.contains("R against impact mass"), "it plots R, not e");
     }
 
     #[test]
     fn export_names_are_the_menu_labels_short_form() {
-        assert_eq!(export_name(Kind::CsvWaveform), "waveform CSV");
-        assert_eq!(export_name(Kind::Wav), "sound WAV");
+        assert_eq!(export_name(Artifact::CsvWaveform), "waveform CSV");
+        assert_eq!(export_name(Artifact::Wav), "sound WAV");
         assert!(EXPORTS.iter().all(|(k, _)| !export_name(*k).contains(" — ")));
     }
 }

@@ -18,7 +18,7 @@ use super::compute::{
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
 use crate::design::{Cell, Chart, Design};
 use crate::error::ThudError;
-use crate::export::{self, ExportOptions, Kind};
+use crate::export::{self, Artifact, ExportOptions};
 
 /// Cache entries kept per job kind before the cache is cleared.
 const CACHE_MAX: usize = 256;
@@ -84,7 +84,7 @@ pub enum Done {
     },
     /// An export finished (or failed) writing `path`.
     Export {
-        kind: Kind,
+        kind: Artifact,
         path: PathBuf,
         result: Result<(), WorkError>,
     },
@@ -93,7 +93,7 @@ pub enum Done {
 /// One file to export.
 #[derive(Debug, Clone)]
 pub struct ExportJob {
-    pub kind: Kind,
+    pub kind: Artifact,
     pub design: Design,
     pub options: ExportOptions,
     pub path: PathBuf,
