@@ -448,27 +448,45 @@ pub fn sweep_cells(
     cancel: Option<&AtomicBool>,
     on_cell: &(dyn Fn(usize, &Cell) + Sync),
 ) -> Result<Vec<(usize, Cell)>, ThudError> {
+    grid_cells(masses_kg, gaps_m, range, cancel, on_cell, |mass_kg, gap_m| {
+        let d = variant(base, mass_kg, gap_m);
+        Some(evaluate(&d, 0, cancel).map(|e| Cell { mass_kg, gap_m, metrics: e.metrics }))
+    })
+}
+
+/// The cells `range` (row-major indices) of a mass × gap grid, each `cell(mass, gap)` evaluated
+/// on rayon's global pool, as `(index, cell)` in index order: the one scheduling of the plain
+/// and the ensemble charts. `cell` returns `None` for a cell it gave up on (cancelled); a cell
+/// is not started once `cancel` is set. `on_cell` sees each good cell as it finishes; the first
+/// failing cell in index order gives the error; a panic propagates.
+pub(crate) fn grid_cells<C: Send>(
+    masses_kg: &[f64],
+    gaps_m: &[f64],
+    range: Range<usize>,
+    cancel: Option<&AtomicBool>,
+    on_cell: &(dyn Fn(usize, &C) + Sync),
+    cell: impl Fn(f64, f64) -> Option<Result<C, ThudError>> + Sync,
+) -> Result<Vec<(usize, C)>, ThudError> {
     check_grid(masses_kg, gaps_m)?;
     let range = range.start..range.end.min(masses_kg.len() * gaps_m.len());
     // `par_bridge` hands the cells out in index order as threads come free, so the chart fills
     // row by row and a cancelled sweep leaves (about) a prefix.
-    let mut results: Vec<(usize, Result<Cell, ThudError>)> = range
+    let mut results: Vec<(usize, Result<C, ThudError>)> = range
         .par_bridge()
         .filter_map(|i| {
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return None;
             }
             let (mass_kg, gap_m) = grid_point(masses_kg, gaps_m, i);
-            let d = variant(base, mass_kg, gap_m);
-            let cell = evaluate(&d, 0, cancel).map(|e| Cell { mass_kg, gap_m, metrics: e.metrics });
-            if let Ok(c) = &cell {
+            let c = cell(mass_kg, gap_m)?;
+            if let Ok(c) = &c {
                 on_cell(i, c);
             }
-            Some((i, cell))
+            Some((i, c))
         })
         .collect();
     results.sort_unstable_by_key(|&(i, _)| i);
-    results.into_iter().map(|(i, cell)| Ok((i, cell?))).collect()
+    results.into_iter().map(|(i, c)| Ok((i, c?))).collect()
 }
 
 /// Checks the axes of a chart: every mass and gap finite and > 0.

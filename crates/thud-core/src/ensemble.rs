@@ -27,13 +27,13 @@
 //! cell all of that. Runs and cells are spread over rayon's global pool.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::damper::Truncation;
-use crate::design::{self, check_grid, grid_point, variant, Chart, Design, Metrics, Thresholds, Zone};
+use crate::design::{self, variant, Chart, Design, Metrics, Thresholds, Zone};
 use crate::error::ThudError;
 
 /// The N initial ball offsets (m) of an ensemble in a clearance of `gap_m`: `−d/2 + (k + ½)·d/N`,
@@ -354,29 +354,14 @@ pub fn sweep_cells(
     cancel: Option<&AtomicBool>,
     on_cell: &(dyn Fn(usize, &EnsembleCell) + Sync),
 ) -> Result<Vec<(usize, EnsembleCell)>, ThudError> {
-    check_grid(masses_kg, gaps_m)?;
     check_runs(n)?;
-    let range = range.start..range.end.min(masses_kg.len() * gaps_m.len());
-    let mut results: Vec<(usize, Result<EnsembleCell, ThudError>)> = range
-        .par_bridge()
-        .filter_map(|i| {
-            if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                return None;
-            }
-            let (mass_kg, gap_m) = grid_point(masses_kg, gaps_m, i);
-            let cell = match evaluate(&variant(base, mass_kg, gap_m), n, cancel) {
-                Ok(None) => return None,
-                Ok(Some(ensemble)) => Ok(EnsembleCell { mass_kg, gap_m, ensemble }),
-                Err(e) => Err(e),
-            };
-            if let Ok(c) = &cell {
-                on_cell(i, c);
-            }
-            Some((i, cell))
-        })
-        .collect();
-    results.sort_unstable_by_key(|&(i, _)| i);
-    results.into_iter().map(|(i, cell)| Ok((i, cell?))).collect()
+    design::grid_cells(masses_kg, gaps_m, range, cancel, on_cell, |mass_kg, gap_m| {
+        match evaluate(&variant(base, mass_kg, gap_m), n, cancel) {
+            Ok(None) => None,
+            Ok(Some(ensemble)) => Some(Ok(EnsembleCell { mass_kg, gap_m, ensemble })),
+            Err(e) => Some(Err(e)),
+        }
+    })
 }
 
 #[cfg(test)]
