@@ -21,6 +21,10 @@ pub type Term = Terminal<CrosstermBackend<Stdout>>;
 /// Writes the escape sequences that undo [`setup`]: leave the alternate screen, stop mouse
 /// capture, show the cursor. Separate from raw mode so it can be tested on a buffer.
 pub fn write_restore_sequence(out: &mut impl Write) -> io::Result<()> {
+    // CAN (0x18) first: a signal can stop a frame in the middle of an escape sequence, and
+    // without it the terminal would take the restore (or the shell's next character) as that
+    // sequence's end. In the ground state CAN does nothing.
+    out.write_all(b"\x18")?;
     queue!(out, DisableMouseCapture, LeaveAlternateScreen, Show)?;
     out.flush()
 }
@@ -29,7 +33,18 @@ pub fn write_restore_sequence(out: &mut impl Write) -> io::Result<()> {
 /// are ignored (there is nothing better to do on the way out).
 pub fn restore() {
     let _ = terminal::disable_raw_mode();
-    let _ = write_restore_sequence(&mut io::stdout());
+    let _ = write_restore_sequence(&mut io::stdout().lock());
+}
+
+/// Restores the terminal on the way out of a signal, and keeps standard output locked until
+/// the process exits, so the UI thread cannot draw one more frame (hiding the cursor again)
+/// over the restored screen.
+fn restore_for_exit() {
+    let _ = terminal::disable_raw_mode();
+    let mut out = io::stdout().lock();
+    let _ = write_restore_sequence(&mut out);
+    // Held until `exit`: the signal thread exits right after the clean-ups.
+    std::mem::forget(out);
 }
 
 /// Installs (once) a panic hook that restores the terminal before the default hook prints.
@@ -67,7 +82,7 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     install_panic_hook();
     // Registered before the terminal changes, so a signal at any point after is covered. If the
     // handler cannot be installed the explorer still runs (quit, errors and panics restore).
-    let (on_signal, _installed) = signals::on_signal(restore);
+    let (on_signal, _installed) = signals::on_signal(restore_for_exit);
     terminal::enable_raw_mode()?;
     let guard = Guard { _on_signal: on_signal };
     let mut out = io::stdout();
@@ -88,6 +103,7 @@ mod tests {
         let mut buf = Vec::new();
         write_restore_sequence(&mut buf).unwrap();
         let s = String::from_utf8(buf).unwrap();
+        assert!(s.starts_with('\x18'), "cancels a half-written escape sequence first: {s:?}");
         assert!(s.contains("\x1b[?1049l"), "leave alternate screen: {s:?}");
         assert!(s.contains("\x1b[?25h"), "show cursor: {s:?}");
         assert!(s.contains("\x1b[?1000l"), "mouse capture off: {s:?}");
