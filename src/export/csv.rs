@@ -10,7 +10,7 @@ use serde::{Serialize, Serializer};
 
 use crate::acoustics::Field;
 use crate::damper::{free_response, DamperParams, Run};
-use crate::design::Chart;
+use crate::design::{Chart, Metrics};
 use crate::ensemble::{EnsembleChart, Percentiles};
 use crate::paper::{Table, Value};
 
@@ -136,6 +136,24 @@ struct SweepRow {
     n_impacts: usize,
     zone: Option<u8>,
 }
+
+impl SweepRow {
+    /// The row of the cell at (`mass_kg`, `gap_m`) with metrics `m`.
+    fn new(mass_kg: f64, gap_m: f64, m: &Metrics) -> Self {
+        SweepRow {
+            mass_kg: Num(mass_kg),
+            gap_m: Num(gap_m),
+            inclination_cm_s: m.inclination_cm_s.map(Num),
+            inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
+            u0_max_m_s: Num(m.u0_max_m_s),
+            zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
+            spl_max_db: m.spl_max_db.map(Num),
+            n_impacts: m.n_impacts,
+            zone: m.zone.map(thud_core::design::Zone::number),
+        }
+    }
+}
+
 const SWEEP_HEADER: [&str; 9] = [
     "mass_kg",
     "gap_m",
@@ -152,20 +170,7 @@ const SWEEP_HEADER: [&str; 9] = [
 pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
     to_csv(
         &SWEEP_HEADER,
-        chart.cells.iter().flatten().map(|c| {
-            let m = &c.metrics;
-            SweepRow {
-                mass_kg: Num(c.mass_kg),
-                gap_m: Num(c.gap_m),
-                inclination_cm_s: m.inclination_cm_s.map(Num),
-                inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
-                u0_max_m_s: Num(m.u0_max_m_s),
-                zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
-                spl_max_db: m.spl_max_db.map(Num),
-                n_impacts: m.n_impacts,
-                zone: m.zone.map(thud_core::design::Zone::number),
-            }
-        }),
+        chart.cells.iter().flatten().map(|c| SweepRow::new(c.mass_kg, c.gap_m, &c.metrics)),
     )
 }
 
@@ -215,17 +220,7 @@ pub fn sweep_ensemble(chart: &EnsembleChart) -> Result<String, csv::Error> {
             let (u0_lo, u0_hi) = ends(&s.u0_max_m_s);
             let (spl_lo, spl_hi) = ends(&s.spl_max_db);
             EnsembleSweepRow {
-                medians: SweepRow {
-                    mass_kg: Num(c.mass_kg),
-                    gap_m: Num(c.gap_m),
-                    inclination_cm_s: m.inclination_cm_s.map(Num),
-                    inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
-                    u0_max_m_s: Num(m.u0_max_m_s),
-                    zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
-                    spl_max_db: m.spl_max_db.map(Num),
-                    n_impacts: m.n_impacts,
-                    zone: m.zone.map(thud_core::design::Zone::number),
-                },
+                medians: SweepRow::new(c.mass_kg, c.gap_m, m),
                 runs: e.runs,
                 zone3_probability: Num(e.zone3_probability),
                 agreement: Num(e.agreement),
