@@ -133,8 +133,8 @@ fn axis(py: Python<'_>, name: &str, value: &Bound<'_, PyAny>, kind: Kind, range:
         let mut out = Vec::with_capacity(seq.len());
         for v in &seq {
             let x = match args::to_value(v)? {
-                params::Value::Num(x) => x,
-                params::Value::Text(t) => thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?,
+                params::Input::Num(x) => x,
+                params::Input::Text(t) => thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?,
                 _ => {
                     let msg = format!("invalid {name}: expected numbers in {}, not {}", range.unit, args::kind_of(v));
                     return Err(parameter_error(py, name, msg));
