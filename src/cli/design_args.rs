@@ -159,16 +159,17 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
     /// shared with the Python module.
     pub fn design(&self) -> Result<Design, ThudError> {
-        self.design_with(|_| {})
-    }
-
-    /// As [`DesignArgs::design`], with `adjust` applied to the preset's design before the flags
-    /// (a command that sets a parameter itself, as `response` sets the frequency).
-    pub fn design_with(&self, adjust: impl FnOnce(&mut Design)) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
-        adjust(&mut d);
         params::design(d, &self.given(), Spelling::Flag)
+    }
+
+    /// The design of a frequency response from these flags at its first frequency
+    /// ([`params::response_design`]).
+    pub fn response_design(&self, first_hz: f64) -> Result<Design, ThudError> {
+        let mut d = presets::preset(&self.preset)?;
+        d.thresholds = super::settings::load().thresholds(d.thresholds);
+        params::response_design(d, &self.given(), Spelling::Flag, first_hz, F::NAME)
     }
 
     /// The design flags given, as (name, value) pairs for [`params::design`]; the force
@@ -248,20 +249,10 @@ impl<F: ForceFlag> DesignArgs<F> {
         self.duration.clone()
     }
 
-    /// Whether the design's start was typed (`--v0`, `--ball-position`, `--ball-velocity`).
-    pub(crate) fn start_typed(&self) -> bool {
-        self.v0.is_some() || self.ball_position.is_some() || self.ball_velocity.is_some()
-    }
-
     /// Refuses `--ensemble N` (N > 1) with `--ball-position`: the ensemble sets the offsets
     /// ([`params::check_ensemble`]).
     pub(crate) fn check_ensemble(&self, runs: usize) -> Result<(), ThudError> {
         params::check_ensemble(runs, self.ball_position.is_some(), Spelling::Flag)
-    }
-
-    /// `--freq` as typed, if it was.
-    pub(crate) fn freq_text(&self) -> Option<&String> {
-        self.freq.as_ref()
     }
 
     /// What to show for a flag in a refusal: what the user typed, else the design's value.

@@ -37,28 +37,9 @@ pub struct ResponseArgs {
 }
 
 /// The design of a response: the flags, from rest unless the start was typed, at the first
-/// frequency (each point sets its own).
+/// frequency (each point sets its own): the engine's [`crate::params::response_design`].
 pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<Design, ThudError> {
-    if let Some(f) = args.freq_text() {
-        return Err(ThudError::invalid(
-            "--freq",
-            format!("'{f}': a response sweeps the frequency; give --freqs FROM:TO:N"),
-        ));
-    }
-    let from_rest = !args.start_typed();
-    let d = args.design_with(|d| {
-        d.damper.freq_hz = first_hz;
-        if from_rest {
-            d.damper.v0_m_s = 0.0;
-        }
-    })?;
-    if !d.damper.forced() {
-        return Err(ThudError::invalid(
-            format!("--{}", F::NAME),
-            format!("0 N: a response needs a force; give --{} F0 (N)", F::NAME),
-        ));
-    }
-    Ok(d)
+    args.response_design(first_hz)
 }
 
 /// Refuses a response whose work is over a cap.

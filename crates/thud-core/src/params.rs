@@ -38,6 +38,14 @@ pub enum Input {
 }
 
 impl Input {
+    /// The value as typed, for a message: `'5Hz'` for text, the number otherwise.
+    fn shown(&self) -> String {
+        match self {
+            Input::Num(v) => short(*v),
+            other => other.describe(),
+        }
+    }
+
     /// What the value is, for a message about a value of the wrong type.
     fn describe(&self) -> String {
         match self {
@@ -386,6 +394,42 @@ pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Re
     limits::check_design(&d).map_err(|e| given.respell(e))?;
     d.validate().map_err(|e| blame_ball(&given, e, &d))?;
     d.resolved().map_err(|e| given.respell(e))
+}
+
+/// The design of a frequency response (`thud response`, Python's `thud.response`): `base`
+/// with the named parameters `given` applied as [`design`] does, at the first frequency
+/// `first_hz` (each point of the response sets its own), and from rest (v0 = 0) unless the
+/// start was given (`v0`, `ball-position`, `ball-velocity`). A frequency given is refused (the
+/// response sweeps it), and so is a design without a force; `force` names the force's
+/// parameter as this front end calls it when it was not given (`force`, `force-amplitude`).
+pub fn response_design(
+    mut base: Design,
+    given: &[(String, Input)],
+    spelling: Spelling,
+    first_hz: f64,
+    force: &str,
+) -> Result<Design, ThudError> {
+    let typed = |name: &str| given.iter().find(|(n, _)| *n == spelling.key(name)).map(|(_, v)| v);
+    if let Some(v) = typed("freq") {
+        let freqs = match spelling {
+            Spelling::Flag => "--freqs FROM:TO:N",
+            Spelling::Keyword => "the frequencies as freqs_hz",
+        };
+        return Err(ThudError::invalid(
+            spelling.spell("freq"),
+            format!("{}: a response sweeps the frequency; give {freqs}", v.shown()),
+        ));
+    }
+    base.damper.freq_hz = first_hz;
+    if ["v0", "ball-position", "ball-velocity"].iter().all(|n| typed(n).is_none()) {
+        base.damper.v0_m_s = 0.0;
+    }
+    let d = design(base, given, spelling)?;
+    if !d.damper.forced() {
+        let force = spelling.spell(force);
+        return Err(ThudError::invalid(&force, format!("0 N: a response needs a force; give {force} F0 (N)")));
+    }
+    Ok(d)
 }
 
 /// Refuses an ensemble of `runs` > 1 runs together with an initial ball offset given by the
