@@ -197,3 +197,27 @@ pub fn check_solver(
     let max_dur = dur * cycles.cap.max / cycles.value;
     enforce(py, cycles, "duration", &format!("use duration ≤ {} s{per}", short(max_dur)), no_limit)
 }
+
+/// Refuses `cells` cells of `d` with `runs` ensemble runs each whose work is over a cap, as the
+/// command line's `--ensemble` does: the runs, the simulated run-seconds, and the Newmark steps
+/// and main-mass cycles summed over the runs.
+pub fn check_runs(
+    py: Python<'_>,
+    d: &thud_core::design::Design,
+    given: &[(String, Input)],
+    cells: usize,
+    runs: usize,
+    no_limit: bool,
+) -> PyResult<()> {
+    let [n, seconds, steps, cycles] = limits::ensemble_work(d, cells, runs);
+    let hint = if cells > 1 {
+        format!("use fewer runs ({cells} cells × {runs}; at most {} runs)", short(n.cap.max))
+    } else {
+        format!("use at most {} runs", short(n.cap.max))
+    };
+    enforce(py, n, "ensemble", &hint, no_limit)?;
+    let per = format!(" with {} runs", short(n.value));
+    let hint = format!("use duration ≤ {} s{per} or fewer runs", short(seconds.cap.max / n.value));
+    enforce(py, seconds, "duration", &hint, no_limit)?;
+    check_solver(py, d, given, steps, cycles, &per, no_limit)
+}
