@@ -281,7 +281,7 @@ impl<'a, T> Given<'a, T> {
                 (Accepts::Switch { set }, Input::Switch(on)) => set(draft, *on),
                 (Accepts::Count { range, set }, Input::Text(t)) => set(draft, range.parse_count(&flag, t)?),
                 (Accepts::Count { range, set }, Input::Num(v)) => {
-                    set(draft, range.parse_count(&flag, &format!("{v}"))?)
+                    set(draft, range.parse_count(&flag, &format!("{v}"))?);
                 }
                 (accepts, v) => {
                     return Err(ThudError::invalid(
@@ -780,6 +780,67 @@ mod tests {
         let p = pulse(None, &text(&[("r", "1cm")]), Spelling::Keyword).unwrap();
         let e = p.field(&p.contact()).unwrap_err().to_string();
         assert!(e.starts_with("invalid r: "), "{e}");
+    }
+
+    #[test]
+    fn forcing_rows_apply_and_the_alias_names_itself() {
+        let d = design(
+            Design::default(),
+            &text(&[
+                ("force", "2N"),
+                ("freq", "5Hz"),
+                ("ball-position", "-1cm"),
+                ("periods", "1e1"),
+                ("ball-velocity", "0.5"),
+            ]),
+            Spelling::Flag,
+        )
+        .unwrap();
+        let p = &d.damper;
+        assert_eq!(
+            (p.force_n, p.freq_hz, p.ball_position_m, p.ball_velocity_m_s, p.steady_periods),
+            (2.0, 5.0, -0.01, 0.5, 10)
+        );
+        let on = design(Design::default(), &[("settle".into(), Input::Switch(true))], Spelling::Keyword).unwrap();
+        assert!(on.damper.settle);
+        let e = err(design(Design::default(), &text(&[("force-amplitude", "-1"), ("freq", "5")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --force-amplitude: -1 N is out of range"), "{e}");
+        let e = err(design(Design::default(), &text(&[("force", "1")]), Spelling::Flag));
+        assert_eq!(e, "invalid --freq: a force needs a frequency; give --freq (Hz)");
+        let e = err(design(Design::default(), &[("periods".into(), Input::Num(2.5))], Spelling::Keyword));
+        assert!(e.starts_with("invalid periods: '2.5' is not a whole number"), "{e}");
+        let e = err(design(Design::default(), &text(&[("ball-position", "2.5cm")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --ball-position: ") && e.contains("d/2"), "{e}");
+        let both = [("force".into(), Input::Num(1.0)), ("force_amplitude".into(), Input::Num(2.0))];
+        assert_eq!(err(design(Design::default(), &both, Spelling::Keyword)), "invalid force_amplitude: is given twice");
+    }
+
+    #[test]
+    fn a_response_design_starts_at_rest_and_needs_a_force() {
+        let d = response_design(Design::paper_fig9(), &text(&[("force", "1")]), Spelling::Flag, 4.0, "force").unwrap();
+        assert_eq!((d.damper.freq_hz, d.damper.v0_m_s), (4.0, 0.0));
+        let kept = response_design(
+            Design::paper_fig9(),
+            &text(&[("force", "1"), ("ball-velocity", "0")]),
+            Spelling::Flag,
+            4.0,
+            "force",
+        );
+        assert_eq!(kept.unwrap().damper.v0_m_s, Design::paper_fig9().damper.v0_m_s, "a typed start keeps v0");
+        let e =
+            response_design(Design::default(), &[], Spelling::Flag, 4.0, "force-amplitude").unwrap_err().to_string();
+        assert_eq!(e, "invalid --force-amplitude: 0 N: a response needs a force; give --force-amplitude F0 (N)");
+        let e = response_design(
+            Design::default(),
+            &text(&[("force", "1"), ("freq", "5Hz")]),
+            Spelling::Keyword,
+            4.0,
+            "force",
+        );
+        assert!(e.unwrap_err().to_string().starts_with("invalid freq: '5Hz': a response sweeps the frequency"));
+        assert!(check_ensemble(1, true, Spelling::Flag).is_ok() && check_ensemble(4, false, Spelling::Flag).is_ok());
+        let e = check_ensemble(4, true, Spelling::Keyword).unwrap_err().to_string();
+        assert!(e.starts_with("invalid ball_position: cannot be combined with ensemble 4"), "{e}");
     }
 
     #[test]
