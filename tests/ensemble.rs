@@ -213,3 +213,118 @@ fn bad_or_too_large_ensembles_are_refused_in_one_line() {
     assert_eq!(code, 2);
     assert!(err.starts_with("thud: --duration 1000: 1e6 simulated run-seconds exceed the limit of 2e5"), "{err}");
 }
+
+/// `simulate --ensemble N --json`: run k is exactly `simulate --ball-position y0_k --json`, the
+/// offsets y0_k = −d/2 + (k + ½)·d/N written out here (d = 4 cm of the Fig 9 preset).
+#[test]
+fn each_run_equals_a_separate_simulate_from_its_offset() {
+    let base = ["simulate", "--preset", "paper-fig9", "--duration", "0.6"];
+    let json = |extra: &[&str]| -> Value {
+        let args: Vec<&str> = base.iter().chain(extra).chain(&["--json"]).copied().collect();
+        serde_json::from_str(&ok(&args)).unwrap()
+    };
+    let d = 0.04;
+    for n in [3usize, 4] {
+        let n_text = n.to_string();
+        let v = json(&["--ensemble", &n_text]);
+        let runs = v["ensemble"].as_array().unwrap();
+        assert_eq!(runs.len(), n);
+        for (k, r) in runs.iter().enumerate() {
+            let y0 = -d / 2.0 + (k as f64 + 0.5) * d / n as f64;
+            assert_eq!(r["ball_position_m"].as_f64(), Some(y0), "N {n}, k {k}");
+            let alone = json(&["--ball-position", &format!("{y0:?}")]);
+            for key in ["u0_max_m_s", "spl_max_db", "inclination_cm_s", "inclination_fit_cm_s", "zone", "n_impacts"] {
+                assert_eq!(r[key], alone[key], "N {n}, k {k}: {key}");
+            }
+        }
+    }
+    // N = 1 is today's single run, whatever the output.
+    for format in [&[][..], &["--json"], &["--csv"]] {
+        let plain: Vec<&str> = base.iter().chain(format).copied().collect();
+        let one: Vec<&str> = plain.iter().chain(&["--ensemble", "1"]).copied().collect();
+        assert!(ok(&one) == ok(&plain), "simulate {format:?}");
+    }
+}
+
+#[test]
+fn an_ensemble_with_a_ball_position_is_refused_naming_both() {
+    for args in [
+        &["simulate", "--ensemble", "4", "--ball-position", "1cm"][..],
+        &["sweep", "--masses", "30g:40g:2", "--gaps", "3cm:4cm:2", "--ensemble", "2", "--ball-position", "0"],
+        &["response", "--force", "1N", "--freqs", "4Hz:5Hz:2", "--ensemble", "3", "--ball-position", "-1cm"],
+    ] {
+        let (code, out, err) = thud(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with("thud: invalid --ball-position: cannot be combined with --ensemble "), "{err}");
+    }
+    // One run is the single trajectory: the offset typed is kept.
+    let v: Value = serde_json::from_str(&ok(&[
+        "simulate",
+        "--duration",
+        "0.2",
+        "--ensemble",
+        "1",
+        "--ball-position",
+        "1cm",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(v["design"]["damper"]["ball_position_m"].as_f64(), Some(0.01));
+}
+
+/// `response --ensemble N`: every run at every frequency is `response --ball-position y0_k
+/// --v0 0` (from rest),
+/// and each frequency's p10/median/p90 are the nearest-rank percentiles of those runs.
+#[test]
+fn a_response_ensemble_is_its_runs_and_their_spread() {
+    let base = ["response", "--force", "1N", "--freqs", "4.6Hz:5.4Hz:3", "--periods", "4", "--duration", "1"];
+    let json = |extra: &[&str]| -> Value {
+        let args: Vec<&str> = base.iter().chain(extra).chain(&["--json"]).copied().collect();
+        serde_json::from_str(&ok(&args)).unwrap()
+    };
+    let n = 3;
+    let v = json(&["--ensemble", "3"]);
+    assert_eq!(v["runs"], 3);
+    let points = v["sweeps"][0]["points"].as_array().unwrap();
+    assert_eq!(points.len(), 3);
+    let d = v["design"]["damper"]["gap_m"].as_f64().unwrap();
+    let steady = ["amplitude_m", "reduction_db", "impacts_per_period", "leq_db", "periodic", "settled", "final_time_s"];
+    for k in 0..n {
+        let y0 = -d / 2.0 + (k as f64 + 0.5) * d / n as f64;
+        // From rest, as the ensemble's runs (a typed start otherwise keeps the preset's v0).
+        let alone = json(&["--ball-position", &format!("{y0:?}"), "--v0", "0"]);
+        for (p, q) in points.iter().zip(alone["sweeps"][0]["points"].as_array().unwrap()) {
+            let run = &p["ensemble"][k];
+            assert_eq!(run["ball_position_m"].as_f64(), Some(y0));
+            assert_eq!(p["freq_hz"], q["freq_hz"]);
+            for key in steady {
+                assert_eq!(run[key], q[key], "k {k}, f {}: {key}", p["freq_hz"]);
+            }
+        }
+    }
+    for p in points {
+        let runs = p["ensemble"].as_array().unwrap();
+        for key in ["amplitude_m", "reduction_db", "impacts_per_period", "leq_db"] {
+            let col: Vec<Option<f64>> = runs.iter().map(|r| r[key].as_f64()).collect();
+            for (pct, name) in [(10, "p10"), (50, "median"), (90, "p90")] {
+                assert_eq!(p["spread"][key][name].as_f64(), nearest_rank(&col, pct), "{key} {name}");
+            }
+        }
+    }
+    let runs_seen: Vec<f64> = points.iter().map(|p| p["spread"]["amplitude_m"]["p90"].as_f64().unwrap()).collect();
+    assert!(runs_seen.iter().all(|a| a.is_finite() && *a > 0.0));
+    // N = 1 is the plain response; text and CSV show the spread.
+    assert!(ok(&[&base[..], &["--ensemble", "1", "--json"]].concat()) == ok(&[&base[..], &["--json"]].concat()));
+    let text = ok(&[&base[..], &["--ensemble", "3"]].concat());
+    assert!(text.contains("ensemble  3 runs a frequency") && text.contains("median [p10–p90]"), "{text}");
+    let csv = ok(&[&base[..], &["--ensemble", "3", "--csv"]].concat());
+    assert!(csv.starts_with("sweep,freq_hz,runs,amplitude_linear_m,amplitude_m_p10,amplitude_m_median,"), "{csv}");
+    assert_eq!(csv.lines().count(), 4);
+    // The work is capped over all the runs, before any starts.
+    let (code, _, err) =
+        thud(&["response", "--force", "1", "--freqs", "3:8:1000", "--periods", "100", "--ensemble", "10"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("forcing periods"), "{err}");
+}

@@ -1,6 +1,7 @@
 """thud — design single-unit impact dampers from Python, on the engine of the `thud` app.
 
-pulse(**params) -> Pulse, simulate(**params) -> Run, sweep(masses_kg, gaps_m, **params) -> Chart.
+pulse(**params) -> Pulse, simulate(**params) -> Run (an Ensemble with ensemble=N > 1),
+sweep(masses_kg, gaps_m, **params) -> Chart, response(freqs_hz, **params) -> Response.
 
 Parameters are the command line's long flags as keywords (``--main-mass`` → ``main_mass=``).
 A plain number is in SI units (kg, m, s, m/s, N/m, N·s/m, N/m^1.5, kg/m³, Pa·s/m) except angles
@@ -10,7 +11,7 @@ range table as the command line (``thud.ranges()``); bad input raises ``Paramete
 ``ValueError``) with the command line's one-line message, the parameter spelled as typed.
 
 The GIL is released while the engine runs: Python threads run designs in parallel. Results are
-bit-for-bit those of ``thud pulse|simulate|sweep --json`` for the same design.
+bit-for-bit those of ``thud pulse|simulate|sweep|response --json`` for the same design.
 """
 
 from typing import Dict, List, Literal, Optional, Sequence, Union
@@ -130,6 +131,11 @@ class Run:
     truncated: bool
     """Whether the solver's work cap stopped the run before its duration."""
     truncation_reason: Optional[str]
+    steady: Optional[Dict[str, object]]
+    """The steady state of a forced run over its last ``periods`` forcing periods (the JSON
+    "steady" object): amplitude_m and amplitude_linear_m (m; without the ball, closed form),
+    reduction_db and leq_db (dB), impacts_per_period, periodic, settled, truncated, the
+    window (s). None without a force."""
     history: Dict[str, FloatArray]
     """Uniform time history: t_s (s), x_m (main mass, m), y_m (ball, m), x_free_m (no damper, m)."""
     def as_dict(self) -> Dict[str, object]:
@@ -161,9 +167,72 @@ class Chart:
     """Zone 1–4; 0 = none."""
     thresholds: Dict[str, object]
     """{"spl_db": L* (dB), "inclination_cm_s": e* (cm/s), "zone_by": "paper" | "fit"}."""
+    runs: int
+    """Runs per cell N (1: the single trajectory; with more the metrics are the medians)."""
+    zone3_probability: Optional[FloatArray]
+    """Fraction of each cell's runs in zone 3 (None without an ensemble)."""
+    agreement: Optional[FloatArray]
+    """Fraction of each cell's runs in the zone of its medians (None without an ensemble)."""
+    spread: Optional[Dict[str, Dict[str, FloatArray]]]
+    """{metric: {"p10", "median", "p90"}} of e, e_fit (cm/s), U0max (m/s), SPLmax (dB), each
+    2-D (None without an ensemble)."""
+    ensemble: Optional[Dict[str, np.ndarray]]
+    """Every run of every cell as 3-D arrays (gap, mass, run): ball_position_m (m), the metrics,
+    zone (int8, 0 = none) (None without an ensemble)."""
     def table5(self, band_cm_s: float = 0.2, no_limit: bool = False) -> Dict[str, np.ndarray]:
         """Table 5: the SPLmax spread per band of e of width band_cm_s (cm/s), as
         ``thud sweep --band``: e_lo_cm_s, e_hi_cm_s (cm/s), count, spl_min_db, spl_max_db (dB)."""
+    def as_dict(self) -> Dict[str, object]:
+        """Every field in one dict."""
+
+class Ensemble:
+    """One design from N ball offsets y0 = −d/2 + (k + ½)·d/N at rest (``simulate(ensemble=N)``):
+    the fields of ``thud simulate --ensemble N --json``."""
+
+    design: Dict[str, object]
+    ball_radius_m: float
+    """Ball radius (m)."""
+    runs: int
+    """Runs N."""
+    zone: Optional[int]
+    """The zone of the medians, 1–4."""
+    zone3_probability: float
+    """Fraction of the runs in zone 3."""
+    agreement: float
+    """Fraction of the runs in the zone of the medians."""
+    spread: Dict[str, Dict[str, Optional[float]]]
+    """{"inclination_cm_s" | "inclination_fit_cm_s" (cm/s) | "u0_max_m_s" (m/s) | "spl_max_db"
+    (dB): {"p10", "median", "p90"}}, by nearest rank (None: among runs without the value)."""
+    ensemble: Dict[str, np.ndarray]
+    """Every run in order of k: ball_position_m (m), n_impacts, u0_max_m_s, zdot_abs_max_m_s
+    (m/s), spl_max_db (dB), contact_duration_s (s), restitution_mean, inclination_cm_s,
+    inclination_fit_cm_s (cm/s), zone (int8, 0 = none)."""
+    truncated: bool
+    """Whether any run stopped at a solver work cap."""
+    truncation_reason: Optional[str]
+    def as_dict(self) -> Dict[str, object]:
+        """Every field in one dict."""
+
+class Response:
+    """The frequency response under the harmonic force: the fields of ``thud response --json``,
+    each sweep's points as arrays."""
+
+    design: Dict[str, object]
+    """The design at the first frequency."""
+    force_n: float
+    """Force amplitude F0 (N)."""
+    periods: int
+    """Forcing periods of each steady-state window."""
+    continuation: bool
+    runs: int
+    """Runs per frequency N (1: the single trajectory)."""
+    sweeps: List[Dict[str, object]]
+    """One sweep from rest, or "up" then "down" with continuation. Each: "direction" and per
+    frequency arrays freq_hz (Hz), amplitude_m, amplitude_linear_m (m; NaN: unbounded),
+    reduction_db, leq_db (dB; NaN: no impact), impacts_per_period, periodic, settled,
+    truncated (bool), window_start_s, window_end_s, final_time_s (s). With ensemble=N:
+    freq_hz, amplitude_linear_m, periodic_fraction, settled_fraction, truncated, "spread"
+    {metric: {"p10", "median", "p90"}} and "ensemble" (every run, 2-D: frequency × run)."""
     def as_dict(self) -> Dict[str, object]:
         """Every field in one dict."""
 
@@ -223,17 +292,28 @@ def simulate(
     pulse: Optional[PulseShape] = None,
     l_star: Optional[Quantity] = None,
     e_star: Optional[Quantity] = None,
+    force: Optional[Quantity] = None,
+    freq: Optional[Quantity] = None,
+    ball_position: Optional[Quantity] = None,
+    ball_velocity: Optional[Quantity] = None,
+    periods: Optional[Count] = None,
+    settle: Optional[bool] = None,
     samples: Count = 2001,
+    ensemble: Count = 1,
     no_limit: bool = False,
-) -> Run:
+) -> Union[Run, Ensemble]:
     """One impact-damper design through its impacts (Eqs 25–27), as ``thud simulate``.
 
     preset: the starting design (default "default"; ``thud.presets()``), then: mass (kg),
     gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m), k_hz (N/m^1.5),
     sphere/plate (materials), no_tension, duration (s), solver, dt (s, Newmark), density
     (kg/m³) or radius (m) of the ball, r (m), theta (degrees), source, quad_signs, pulse,
-    l_star (dB), e_star (cm/s); samples: time-history samples; no_limit: lift the work caps.
-    Ctrl-C stops the run (KeyboardInterrupt).
+    l_star (dB), e_star (cm/s); force (N) and freq (Hz): the harmonic force F0·cos(2π·f·t) on
+    the main mass; ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start;
+    periods: forcing periods of the steady-state window; settle: run on until it settles;
+    samples: time-history samples; ensemble: N runs from ball offsets spread over the
+    clearance (N > 1 returns an Ensemble; not with ball_position); no_limit: lift the work
+    caps. Ctrl-C stops the run (KeyboardInterrupt).
     """
 
 def sweep(
@@ -264,12 +344,65 @@ def sweep(
     pulse: Optional[PulseShape] = None,
     l_star: Optional[Quantity] = None,
     e_star: Optional[Quantity] = None,
+    force: Optional[Quantity] = None,
+    freq: Optional[Quantity] = None,
+    ball_position: Optional[Quantity] = None,
+    ball_velocity: Optional[Quantity] = None,
+    periods: Optional[Count] = None,
+    settle: Optional[bool] = None,
+    ensemble: Count = 1,
     no_limit: bool = False,
 ) -> Chart:
     """The design chart: the design run for every impact mass × gap on all cores, as
     ``thud sweep``. masses_kg (kg) and gaps_m (m): sequences, or "FROM:TO:N" text as on the
     command line ("30g:100g:20" — N evenly spaced values, the command line's very numbers).
-    Keywords as for ``simulate``. Ctrl-C stops the sweep.
+    Keywords as for ``simulate``; ensemble: N runs a cell (the metrics are then the medians,
+    with zone3_probability, agreement, spread and every run). Ctrl-C stops the sweep.
+    """
+
+def response(
+    freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str],
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,
+    gap: Optional[Quantity] = None,
+    v0: Optional[Quantity] = None,
+    main_mass: Optional[Quantity] = None,
+    k: Optional[Quantity] = None,
+    c: Optional[Quantity] = None,
+    c1: Optional[Quantity] = None,
+    k_hz: Optional[Quantity] = None,
+    sphere: Optional[str] = None,
+    plate: Optional[str] = None,
+    no_tension: Optional[bool] = None,
+    duration: Optional[Quantity] = None,
+    solver: Optional[Solver] = None,
+    dt: Optional[Quantity] = None,
+    density: Optional[Quantity] = None,
+    radius: Optional[Quantity] = None,
+    r: Optional[Quantity] = None,
+    theta: Optional[Quantity] = None,
+    source: Optional[Source] = None,
+    quad_signs: Optional[QuadSigns] = None,
+    pulse: Optional[PulseShape] = None,
+    l_star: Optional[Quantity] = None,
+    e_star: Optional[Quantity] = None,
+    force: Optional[Quantity] = None,
+    ball_position: Optional[Quantity] = None,
+    ball_velocity: Optional[Quantity] = None,
+    periods: Optional[Count] = None,
+    settle: Optional[bool] = None,
+    continuation: bool = False,
+    ensemble: Count = 1,
+    no_limit: bool = False,
+) -> Response:
+    """The frequency response under the harmonic force F0·cos(2π·f·t) on the main mass, as
+    ``thud response``: per frequency the steady amplitude with the damper beside the closed
+    form without it (m), the cut (dB), impacts per period and Leq (dB re 20 µPa), settled.
+    freqs_hz (Hz): a sequence, or "FROM:TO:N" text ("3Hz:8Hz:101"). force (N) is needed; each
+    frequency starts from rest unless v0, ball_position or ball_velocity is given;
+    continuation: each from the previous final state, up then down; ensemble: N runs a
+    frequency (p10/median/p90 of each figure). Ctrl-C stops the response.
     """
 
 def axis(name: Literal["masses", "gaps"], spec: str) -> FloatArray:

@@ -7,7 +7,7 @@ use crate::damper::Solver;
 use crate::design::Design;
 use crate::error::ThudError;
 use crate::limits::{self, short, Estimate, Range};
-use crate::params::{self, Spelling, Value};
+use crate::params::{self, Input, Spelling};
 use crate::presets;
 use crate::units::Kind;
 
@@ -26,7 +26,7 @@ pub trait ForceFlag: Args + Clone + std::fmt::Debug {
     /// The flag's long name, without dashes.
     const NAME: &'static str;
     /// The value typed, if any.
-    fn typed(&self) -> Option<&String>;
+    fn typed(&self) -> &Option<String>;
 }
 
 /// `--force F0` (alias `--force-amplitude`).
@@ -39,8 +39,8 @@ pub struct Force {
 
 impl ForceFlag for Force {
     const NAME: &'static str = "force";
-    fn typed(&self) -> Option<&String> {
-        self.force.as_ref()
+    fn typed(&self) -> &Option<String> {
+        &self.force
     }
 }
 
@@ -54,8 +54,8 @@ pub struct ForceAmplitude {
 
 impl ForceFlag for ForceAmplitude {
     const NAME: &'static str = "force-amplitude";
-    fn typed(&self) -> Option<&String> {
-        self.force_amplitude.as_ref()
+    fn typed(&self) -> &Option<String> {
+        &self.force_amplitude
     }
 }
 
@@ -155,49 +155,26 @@ pub struct DesignArgs<F: ForceFlag = Force> {
 
 impl<F: ForceFlag> DesignArgs<F> {
     /// The design these flags describe, validated: each flag against its range (the error
-    /// names the flag), then the whole design (preset values too) and its derived quantities.
-    /// The mapping from flags to the design is the engine's ([`params::design`]), shared with
-    /// the Python module.
+    /// names the flag as typed), then the whole design (preset values too) and its derived
+    /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
+    /// shared with the Python module.
     pub fn design(&self) -> Result<Design, ThudError> {
-        self.design_with(|_| {})
-    }
-
-    /// As [`DesignArgs::design`], with `adjust` applied to the design before it is checked as a
-    /// whole (a command that sets a parameter itself, as `response` sets the frequency).
-    pub fn design_with(&self, adjust: impl FnOnce(&mut Design)) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
-        let given = params::design(d, &self.given(), Spelling::Flag)?;
-        self.forcing(given, adjust)
+        params::design(d, &self.given(), Spelling::Flag)
     }
 
-    /// The forcing and the ball's start (`--force`, `--freq`, `--ball-position`,
-    /// `--ball-velocity`, `--periods`, `--settle`) applied to `d`, each checked against its
-    /// range, then `adjust`, then the whole design checked again.
-    fn forcing(&self, mut d: Design, adjust: impl FnOnce(&mut Design)) -> Result<Design, ThudError> {
-        let p = &mut d.damper;
-        let set = |target: &mut f64, name: &str, text: &Option<String>, kind: Kind, range: &Range| {
-            if let Some(v) = super::quantity(name, text, kind, range)? {
-                *target = v;
-            }
-            Ok::<(), ThudError>(())
-        };
-        set(&mut p.force_n, F::NAME, &self.force.typed().cloned(), Kind::Force, &limits::FORCE)?;
-        set(&mut p.freq_hz, "freq", &self.freq, Kind::Frequency, &limits::FREQ)?;
-        set(&mut p.ball_position_m, "ball-position", &self.ball_position, Kind::Length, &limits::BALL_POSITION)?;
-        set(&mut p.ball_velocity_m_s, "ball-velocity", &self.ball_velocity, Kind::Speed, &limits::BALL_VELOCITY)?;
-        if let Some(n) = &self.periods {
-            p.steady_periods = limits::PERIODS.parse_count("--periods", n)? as u32;
-        }
-        p.settle |= self.settle;
-        adjust(&mut d);
-        limits::check_design(&d)?;
-        d.validate()?;
-        d.resolved()
+    /// The design of a frequency response from these flags at its first frequency
+    /// ([`params::response_design`]).
+    pub fn response_design(&self, first_hz: f64) -> Result<Design, ThudError> {
+        let mut d = presets::preset(&self.preset)?;
+        d.thresholds = super::settings::load().thresholds(d.thresholds);
+        params::response_design(d, &self.given(), Spelling::Flag, first_hz, F::NAME)
     }
 
-    /// The design flags given, as (name, value) pairs for [`params::design`].
-    fn given(&self) -> Vec<(String, Value)> {
+    /// The design flags given, as (name, value) pairs for [`params::design`]; the force
+    /// amplitude under the name this command's flag has (`force` or `force-amplitude`).
+    fn given(&self) -> Vec<(String, Input)> {
         let texts = [
             ("mass", &self.mass),
             ("gap", &self.gap),
@@ -217,6 +194,11 @@ impl<F: ForceFlag> DesignArgs<F> {
             ("theta", &self.theta),
             ("l-star", &self.l_star),
             ("e-star", &self.e_star),
+            (F::NAME, self.force.typed()),
+            ("freq", &self.freq),
+            ("ball-position", &self.ball_position),
+            ("ball-velocity", &self.ball_velocity),
+            ("periods", &self.periods),
         ];
         let choices = [
             ("solver", choice_name(self.solver)),
@@ -224,15 +206,13 @@ impl<F: ForceFlag> DesignArgs<F> {
             ("quad-signs", choice_name(self.quad_signs)),
             ("pulse", choice_name(self.pulse)),
         ];
-        let mut given: Vec<(String, Value)> = texts
+        let switches = [("no-tension", self.no_tension), ("settle", self.settle)];
+        texts
             .into_iter()
-            .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Value::Text(t.clone()))))
-            .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Value::Text(c)))))
-            .collect();
-        if self.no_tension {
-            given.push(("no-tension".into(), Value::Switch(true)));
-        }
-        given
+            .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Input::Text(t.clone()))))
+            .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Input::Text(c)))))
+            .chain(switches.into_iter().filter(|(_, on)| *on).map(|(n, _)| (n.to_string(), Input::Switch(true))))
+            .collect()
     }
 
     /// The numeric flags the user typed, as `--name value`, for messages about the design as
@@ -251,7 +231,7 @@ impl<F: ForceFlag> DesignArgs<F> {
             ("dt", &self.dt),
             ("density", &self.density),
             ("radius", &self.radius),
-            (F::NAME, &self.force.typed().cloned()),
+            (F::NAME, self.force.typed()),
             ("freq", &self.freq),
             ("ball-position", &self.ball_position),
             ("ball-velocity", &self.ball_velocity),
@@ -269,14 +249,10 @@ impl<F: ForceFlag> DesignArgs<F> {
         self.duration.clone()
     }
 
-    /// Whether the design's start was typed (`--v0`, `--ball-position`, `--ball-velocity`).
-    pub(crate) fn start_typed(&self) -> bool {
-        self.v0.is_some() || self.ball_position.is_some() || self.ball_velocity.is_some()
-    }
-
-    /// `--freq` as typed, if it was.
-    pub(crate) fn freq_text(&self) -> Option<&String> {
-        self.freq.as_ref()
+    /// Refuses `--ensemble N` (N > 1) with `--ball-position`: the ensemble sets the offsets
+    /// ([`params::check_ensemble`]).
+    pub(crate) fn check_ensemble(&self, runs: usize) -> Result<(), ThudError> {
+        params::check_ensemble(runs, self.ball_position.is_some(), Spelling::Flag)
     }
 
     /// What to show for a flag in a refusal: what the user typed, else the design's value.

@@ -29,7 +29,7 @@ use crate::units::{self, Kind};
 pub use budget::Ctx;
 pub use errors::CliError;
 pub use format::OutputFormat;
-pub use output::Out;
+pub use output::{check_finite, Out};
 
 /// thud — design single-unit impact dampers: Hertz contact, impact noise and a live explorer.
 ///

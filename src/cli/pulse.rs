@@ -1,15 +1,15 @@
 //! `thud pulse`: one Hertzian impact heard at one observer.
 
 use clap::{Args, ValueEnum};
-use serde::Serialize;
 
 use super::format::num;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
-use crate::acoustics::{Extremum, Field, Levels};
+use crate::acoustics::{Field, Levels};
 use crate::contact::{Contact, Target};
 use crate::error::ThudError;
 use crate::limits::{self, short};
-use crate::params::{self, PulseInput, Spelling, Value};
+use crate::params::{self, Input, PulseInput, Spelling};
+use crate::report::PulseReport;
 
 /// Defaults are the paper's Fig 2 impact: an acrylic sphere, a 19.05 mm, m 40.5 g, U0 1.4 m/s,
 /// K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at r 0.7 m, θ 45°.
@@ -90,47 +90,12 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
         ("quad-signs", a.quad_signs.and_then(|v| v.to_possible_value())),
         ("pulse", a.pulse.and_then(|v| v.to_possible_value())),
     ];
-    let given: Vec<(String, Value)> = texts
+    let given: Vec<(String, Input)> = texts
         .into_iter()
-        .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Value::Text(t.clone()))))
-        .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Value::Text(c.get_name().into())))))
+        .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Input::Text(t.clone()))))
+        .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Input::Text(c.get_name().into())))))
         .collect();
     params::pulse(base.as_ref(), &given, Spelling::Flag)
-}
-
-#[derive(Serialize)]
-struct Waveform {
-    t_s: Vec<f64>,
-    p_pa: Vec<f64>,
-}
-
-#[derive(Serialize)]
-struct PulseJson<'a> {
-    radius_m: f64,
-    mass_kg: f64,
-    u0_m_s: f64,
-    k_hz: f64,
-    r_m: f64,
-    theta_deg: f64,
-    source: &'static str,
-    quad_signs: &'static str,
-    pulse: &'static str,
-    rho_c_pa_s_m: f64,
-    c_m_s: f64,
-    alpha_max_m: f64,
-    accel_max_m_s2: f64,
-    tau_s: f64,
-    force_max_n: f64,
-    arrival_s: f64,
-    spl_db: f64,
-    spl_definition: &'static str,
-    spl_peak_db: f64,
-    sel_db: f64,
-    p_rms_pa: f64,
-    p_max_pa: f64,
-    p_min_pa: f64,
-    extrema: &'a [Extremum],
-    waveform: Waveform,
 }
 
 pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
@@ -144,46 +109,15 @@ pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let input = resolve(a)?;
     let contact = input.contact();
     let field = input.field(&contact)?;
-    let (t, p) = field.waveform(points);
     match a.output.format() {
         OutputFormat::Csv => {
+            let (t, p) = field.waveform(points);
             out.text("t_s,p_pa\n")?;
             for (ti, pi) in t.iter().zip(&p) {
                 out.csv_row(&[*ti, *pi])?;
             }
         }
-        OutputFormat::Json => {
-            let lv = field.levels();
-            let ext = field.extrema();
-            let j = PulseJson {
-                radius_m: input.radius_m,
-                mass_kg: input.impact.mass_kg,
-                u0_m_s: input.impact.u0_m_s,
-                k_hz: input.impact.k_hz,
-                r_m: input.observer.r_m,
-                theta_deg: input.observer.theta_rad.to_degrees(),
-                source: input.radiation.source.name(),
-                quad_signs: input.radiation.quad_signs.name(),
-                pulse: input.radiation.pulse.name(),
-                rho_c_pa_s_m: input.radiation.air.rho_c_pa_s_m,
-                c_m_s: input.radiation.air.c_m_s,
-                alpha_max_m: contact.alpha_max_m,
-                accel_max_m_s2: contact.accel_max_m_s2,
-                tau_s: contact.tau_s,
-                force_max_n: contact.force_max_n,
-                arrival_s: field.arrival_s(),
-                spl_db: lv.spl_db,
-                spl_definition: "rms over one contact duration from the direct arrival",
-                spl_peak_db: lv.spl_peak_db,
-                sel_db: lv.sel_db,
-                p_rms_pa: lv.p_rms_pa,
-                p_max_pa: lv.p_max_pa,
-                p_min_pa: lv.p_min_pa,
-                extrema: &ext,
-                waveform: Waveform { t_s: t, p_pa: p },
-            };
-            out.json(&j)?;
-        }
+        OutputFormat::Json => out.json(&PulseReport::new(&input, &contact, &field, points))?,
         OutputFormat::Text => out.text(&summary(&input, &contact, &field, &field.levels()))?,
     }
     Ok(())

@@ -3,17 +3,17 @@
 //! `Leq` of the rattle (docs/model.md §6.4).
 
 use clap::Args;
-use serde::Serialize;
 
 use super::budget;
 use super::design_args::{parse_range, DesignArgs, ForceFlag};
 use super::format::num;
 use super::simulate::describe;
-use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
+use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::Design;
 use crate::error::ThudError;
-use crate::limits::{self, short};
-use crate::response::{self, Direction, Response, ResponseOptions};
+use crate::limits::{self, short, Estimate};
+use crate::report::{ResponseEnsembleReport, ResponseReport};
+use crate::response::{self, Direction, Response, ResponseEnsemble, ResponseOptions};
 use crate::units::Kind;
 
 #[derive(Debug, Clone, Args)]
@@ -27,42 +27,19 @@ pub struct ResponseArgs {
     /// jumps and hysteresis); without it every frequency starts from rest.
     #[arg(long)]
     continuation: bool,
+    /// Runs per frequency from ball offsets spread evenly over the clearance (y0 = −d/2 +
+    /// (k + ½)·d/N, at rest): each steady figure as median [p10–p90], with every run (1: the
+    /// single trajectory).
+    #[arg(long, value_name = "N", default_value = "1", allow_hyphen_values = true)]
+    ensemble: String,
     #[command(flatten)]
     output: OutputArgs,
 }
 
-#[derive(Serialize)]
-struct ResponseJson<'a> {
-    design: &'a Design,
-    force_n: f64,
-    periods: u32,
-    continuation: bool,
-    sweeps: &'a [response::ResponseSweep],
-}
-
 /// The design of a response: the flags, from rest unless the start was typed, at the first
-/// frequency (each point sets its own).
+/// frequency (each point sets its own): the engine's [`crate::params::response_design`].
 pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<Design, ThudError> {
-    if let Some(f) = args.freq_text() {
-        return Err(ThudError::invalid(
-            "--freq",
-            format!("'{f}': a response sweeps the frequency; give --freqs FROM:TO:N"),
-        ));
-    }
-    let from_rest = !args.start_typed();
-    let d = args.design_with(|d| {
-        d.damper.freq_hz = first_hz;
-        if from_rest {
-            d.damper.v0_m_s = 0.0;
-        }
-    })?;
-    if !d.damper.forced() {
-        return Err(ThudError::invalid(
-            format!("--{}", F::NAME),
-            format!("0 N: a response needs a force; give --{} F0 (N)", F::NAME),
-        ));
-    }
-    Ok(d)
+    args.response_design(first_hz)
 }
 
 /// Refuses a response whose work is over a cap.
@@ -73,7 +50,29 @@ pub(crate) fn check_work(
     freqs_text: &str,
     continuation: bool,
 ) -> Result<(), CliError> {
-    let [periods, steps] = limits::response_work(d, freqs, continuation);
+    check_runs_work(ctx, d, freqs, freqs_text, continuation, (1, "1"))
+}
+
+/// Refuses a response of `runs` runs per frequency (`runs_text` as typed) whose work is over
+/// a cap: the forcing periods and Newmark steps summed over the runs (blaming `--ensemble`
+/// when one run alone would be inside the cap), and the cycles of one run.
+fn check_runs_work(
+    ctx: &Ctx,
+    d: &Design,
+    freqs: &[f64],
+    freqs_text: &str,
+    continuation: bool,
+    (runs, runs_text): (usize, &str),
+) -> Result<(), CliError> {
+    let [one, one_steps] = limits::response_work(d, freqs, continuation);
+    let n = runs as f64;
+    let (periods, steps) =
+        (Estimate { value: n * one.value, ..one }, Estimate { value: n * one_steps.value, ..one_steps });
+    if runs > 1 && !one.exceeded() {
+        let hint =
+            format!("use fewer runs (at most {} for these frequencies)", short((one.cap.max / one.value).floor()));
+        ctx.enforce(periods, "--ensemble", runs_text, &hint)?;
+    }
     ctx.enforce(periods, "--freqs", freqs_text, "use fewer frequencies or a shorter --duration")?;
     if let crate::damper::Solver::Newmark { dt_s } = d.solver {
         ctx.enforce(steps, "--dt", &format!("{} s", short(dt_s)), "use the event solver or a larger --dt")?;
@@ -86,20 +85,21 @@ pub(crate) fn check_work(
 pub fn run(a: &ResponseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let freqs = parse_range("freqs", &a.freqs, Kind::Frequency, &limits::FREQ)?;
     let d = response_design(&a.design, freqs[0])?;
-    check_work(ctx, &d, &freqs, &a.freqs, a.continuation)?;
-    let n = freqs.len() as u64 * if a.continuation { 2 } else { 1 };
+    let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
+    a.design.check_ensemble(runs)?;
+    check_runs_work(ctx, &d, &freqs, &a.freqs, a.continuation, (runs, &a.ensemble))?;
+    let n = (freqs.len() * runs) as u64 * if a.continuation { 2 } else { 1 };
     let bar = budget::bar(n, "response");
     let opts = ResponseOptions { continuation: a.continuation, settle: true };
+    if runs > 1 {
+        let r = response::response_ensemble(&d, &freqs, runs, &opts, None, &|| bar.inc(1))?;
+        bar.finish_and_clear();
+        return print_ensemble(&d, &r, a.continuation, a.output.format(), out);
+    }
     let r = response::response(&d, &freqs, &opts, None, &|| bar.inc(1))?;
     bar.finish_and_clear();
     match a.output.format() {
-        OutputFormat::Json => out.json(&ResponseJson {
-            design: &d,
-            force_n: r.force_n,
-            periods: d.damper.steady_periods,
-            continuation: a.continuation,
-            sweeps: &r.sweeps,
-        })?,
+        OutputFormat::Json => out.json(&ResponseReport::new(&d, &r, a.continuation))?,
         OutputFormat::Csv => out.text(
             &crate::export::csv::response(&r).map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?,
         )?,
@@ -109,6 +109,80 @@ pub fn run(a: &ResponseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// `thud response --ensemble N` (N > 1) in `format`.
+fn print_ensemble(
+    d: &Design,
+    r: &ResponseEnsemble,
+    continuation: bool,
+    format: OutputFormat,
+    out: &mut Out,
+) -> Result<(), CliError> {
+    match format {
+        OutputFormat::Json => out.json(&ResponseEnsembleReport::new(d, r, continuation)),
+        OutputFormat::Csv => {
+            super::output::check_finite(r)?;
+            out.text(
+                &crate::export::csv::response_ensemble(r)
+                    .map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?,
+            )
+        }
+        OutputFormat::Text => {
+            super::output::check_finite(r)?;
+            out.text(&ensemble_text(d, r, continuation))
+        }
+    }
+}
+
+/// A response ensemble as a table per sweep (median [p10–p90] of each figure) and a plot of
+/// the median runs.
+fn ensemble_text(d: &Design, r: &ResponseEnsemble, continuation: bool) -> String {
+    let mut s = format!("design    {}\n", describe(d));
+    let half = 0.5 * d.damper.gap_m;
+    let edge = (half - half / r.runs as f64) * 1e2;
+    s += &format!(
+        "forcing   F0 {} N on the main mass; steady state over the last {} periods, each frequency {}, settled\n",
+        num(r.force_n),
+        d.damper.steady_periods,
+        if continuation { "from the previous one's final state (up, then down)" } else { "from rest" }
+    );
+    s += &format!(
+        "ensemble  {} runs a frequency, the ball at rest from y0 = −d/2 + (k + ½)·d/{} ({} to {} cm); median [p10–p90] by nearest rank\n\n",
+        r.runs,
+        r.runs,
+        num(-edge),
+        num(edge)
+    );
+    let spread = |p: &crate::ensemble::Percentiles, scale: f64, digits: usize| {
+        let f = |v: Option<f64>| v.map_or("—".into(), |x| format!("{:.digits$}", x * scale));
+        format!("{} [{}–{}]", f(p.median), f(p.p10), f(p.p90))
+    };
+    for sweep in &r.sweeps {
+        if continuation {
+            s += &format!("{} sweep\n", sweep.direction.name());
+        }
+        s += "   f (Hz)  with (mm) median [p10–p90]  without (mm)  cut (dB)  impacts/T  Leq (dB) median [p10–p90]  periodic  settled\n";
+        for p in &sweep.points {
+            let sp = &p.spread;
+            s += &format!(
+                "  {:>7.3}  {:>28}  {:>12}  {:>8}  {:>9}  {:>27}  {:>7.0}%  {:>6.0}%{}\n",
+                p.freq_hz,
+                spread(&sp.amplitude_m, 1e3, 4),
+                opt(p.amplitude_linear_m, 1e3, 4),
+                opt(sp.reduction_db.median, 1.0, 2),
+                opt(sp.impacts_per_period.median, 1.0, 3),
+                spread(&sp.leq_db, 1.0, 2),
+                100.0 * p.periodic_fraction,
+                100.0 * p.settled_fraction,
+                if p.truncated { "  TRUNCATED" } else { "" }
+            );
+        }
+        s += "\n";
+    }
+    s += "(the plot draws the run of median amplitude at each frequency)\n";
+    s += &plot(&r.medians(), 61, 14);
+    s
 }
 
 fn opt(v: Option<f64>, scale: f64, digits: usize) -> String {

@@ -1,17 +1,17 @@
 //! `thud simulate`: one damper design through its impacts.
 
 use clap::Args;
-use serde::Serialize;
 
 use super::budget;
 use super::design_args::DesignArgs;
 use super::format::num;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
-use crate::damper::{free_response, Maximum, Run, Solver};
+use crate::damper::{free_response, Run, Solver};
 use crate::design::{self, Design, Evaluation};
-use crate::ensemble::{self, Ensemble, Member, Percentiles, Spread};
+use crate::ensemble::{self, Ensemble, Percentiles};
 use crate::error::ThudError;
-use crate::limits::{self, short};
+use crate::limits;
+use crate::report::{EnsembleReport, RunReport};
 
 #[derive(Debug, Clone, Args)]
 pub struct SimulateArgs {
@@ -31,45 +31,6 @@ pub struct SimulateArgs {
     output: OutputArgs,
 }
 
-#[derive(Serialize)]
-struct ImpactJson {
-    t_s: f64,
-    wall: i8,
-    u_in_m_s: f64,
-    u_out_m_s: f64,
-    restitution: f64,
-    t_end_s: f64,
-    duration_s: f64,
-    penetration_max_m: f64,
-    spl_db: f64,
-}
-
-#[derive(Serialize)]
-struct SimulateJson<'a> {
-    design: &'a Design,
-    ball_radius_m: f64,
-    n_impacts: usize,
-    inclination_cm_s: Option<f64>,
-    inclination_fit_cm_s: Option<f64>,
-    u0_max_m_s: f64,
-    zdot_abs_max_m_s: f64,
-    spl_max_db: Option<f64>,
-    contact_duration_s: Option<f64>,
-    restitution_mean: Option<f64>,
-    zone: Option<u8>,
-    impacts: Vec<ImpactJson>,
-    maxima: &'a [Maximum],
-    energy: crate::damper::EnergyLedger,
-    final_time_s: f64,
-    /// Whether the run stopped before its duration (a solver work cap).
-    truncated: bool,
-    /// Why, when it did.
-    truncation_reason: Option<String>,
-    /// The steady state of a forced run (absent without a force).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    steady: Option<crate::response::Steady>,
-}
-
 /// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's
 /// [`design::truncation`] (shared with the Python module).
 pub(crate) fn truncation(run: &Run, duration_s: f64) -> Option<String> {
@@ -83,6 +44,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let samples = if a.output.csv { typed_samples } else { 0 };
     let show = count("show", &a.show, &limits::SHOW)?;
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
+    a.design.check_ensemble(runs)?;
     if runs > 1 {
         return run_ensemble(a, ctx, out, &d, runs);
     }
@@ -102,48 +64,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 out.csv_row(&[h.t_s, h.x_m, h.y_m, free_response(&d.damper, h.t_s)])?;
             }
         }
-        OutputFormat::Json => {
-            let spls = design::impact_spls(&eval.run, &d)?;
-            let impacts = eval
-                .run
-                .impacts
-                .iter()
-                .zip(spls)
-                .map(|(i, spl)| ImpactJson {
-                    t_s: i.t_s,
-                    wall: i.wall.into(),
-                    u_in_m_s: i.u_in_m_s,
-                    u_out_m_s: i.u_out_m_s,
-                    restitution: i.u_out_m_s / i.u_in_m_s,
-                    t_end_s: i.t_end_s,
-                    duration_s: i.t_end_s - i.t_s,
-                    penetration_max_m: i.penetration_max_m,
-                    spl_db: spl,
-                })
-                .collect();
-            let m = &eval.metrics;
-            let j = SimulateJson {
-                design: &d,
-                ball_radius_m: d.ball_radius_m(),
-                n_impacts: m.n_impacts,
-                inclination_cm_s: m.inclination_cm_s,
-                inclination_fit_cm_s: m.inclination_fit_cm_s,
-                u0_max_m_s: m.u0_max_m_s,
-                zdot_abs_max_m_s: m.zdot_abs_max_m_s,
-                spl_max_db: m.spl_max_db,
-                contact_duration_s: m.contact_duration_s,
-                restitution_mean: m.restitution_mean,
-                zone: m.zone.map(thud_core::design::Zone::number),
-                impacts,
-                maxima: &eval.run.maxima,
-                energy: eval.run.energy,
-                final_time_s: eval.run.final_time_s,
-                truncated: truncated.is_some(),
-                truncation_reason: truncated,
-                steady: eval.steady,
-            };
-            out.json(&j)?;
-        }
+        OutputFormat::Json => out.json(&RunReport::new(&d, &eval)?)?,
         OutputFormat::Text => {
             // The summary prints these; check them as data too (the text check is the backstop).
             super::output::check_finite(&(&eval.metrics, &eval.run.energy))?;
@@ -151,22 +72,6 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         }
     }
     Ok(())
-}
-
-#[derive(Serialize)]
-struct SimulateEnsembleJson<'a> {
-    design: &'a Design,
-    ball_radius_m: f64,
-    runs: usize,
-    /// The zone of the medians (number 1–4).
-    zone: Option<u8>,
-    zone3_probability: f64,
-    agreement: f64,
-    spread: &'a Spread,
-    ensemble: &'a [Member],
-    /// Whether any run stopped before its duration (a solver work cap).
-    truncated: bool,
-    truncation_reason: Option<String>,
 }
 
 /// `thud simulate --ensemble N` (N > 1): the design from N ball offsets.
@@ -178,16 +83,8 @@ fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &Design, runs: us
     let e = ensemble::evaluate(d, runs, None)?;
     spinner.finish_and_clear();
     let e = e.ok_or_else(|| ThudError::invalid("ensemble", "the runs were cancelled"))?;
-    let cut: Vec<&Member> = e.ensemble.iter().filter(|m| m.truncated.is_some()).collect();
-    let truncated = (!cut.is_empty()).then(|| {
-        format!(
-            "{} of {} runs stopped at a solver work cap before {} s (first at y0 = {} m); their results cover only part of the run",
-            cut.len(),
-            runs,
-            short(d.damper.duration_s),
-            short(cut[0].ball_position_m)
-        )
-    });
+    let report = EnsembleReport::new(d, &e);
+    let truncated = report.truncation_reason.clone();
     match a.output.format() {
         OutputFormat::Csv => {
             if let Some(why) = &truncated {
@@ -198,18 +95,7 @@ fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &Design, runs: us
                 .map_err(|err| ThudError::invalid("csv", format!("cannot write: {err}")))?;
             out.text(&csv)?;
         }
-        OutputFormat::Json => out.json(&SimulateEnsembleJson {
-            design: d,
-            ball_radius_m: d.ball_radius_m(),
-            runs,
-            zone: e.metrics.zone.map(thud_core::design::Zone::number),
-            zone3_probability: e.zone3_probability,
-            agreement: e.agreement,
-            spread: &e.spread,
-            ensemble: &e.ensemble,
-            truncated: truncated.is_some(),
-            truncation_reason: truncated,
-        })?,
+        OutputFormat::Json => out.json(&report)?,
         OutputFormat::Text => {
             super::output::check_finite(&e)?;
             out.text(&ensemble_summary(d, &e, truncated.as_deref()))?;

@@ -70,6 +70,7 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let gaps = parse_range("gaps", &a.gaps, Kind::Length, &limits::GAP)?;
     let band = quantity("band", &Some(a.band.clone()), Kind::Inclination, &limits::BAND)?.unwrap_or(0.2);
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
+    a.design.check_ensemble(runs)?;
     let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
         let (k, n) = parse_shard(text, masses.len() * gaps.len())?;

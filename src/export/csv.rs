@@ -303,18 +303,13 @@ const RESPONSE_HEADER: [&str; 13] = [
 /// an empty cell where a value does not exist (no linear amplitude at an undamped resonance,
 /// no level without impacts).
 pub fn response(r: &crate::response::Response) -> Result<String, csv::Error> {
-    use crate::response::Direction;
     to_csv(
         &RESPONSE_HEADER,
         r.sweeps.iter().flat_map(|sw| {
             sw.points.iter().map(move |p| {
                 let st = &p.steady;
                 ResponseRow {
-                    sweep: match sw.direction {
-                        Direction::FromRest => "from_rest",
-                        Direction::Up => "up",
-                        Direction::Down => "down",
-                    },
+                    sweep: sweep_name(sw.direction),
                     freq_hz: Num(p.freq_hz),
                     amplitude_m: Num(st.amplitude_m),
                     amplitude_linear_m: st.amplitude_linear_m.map(Num),
@@ -373,6 +368,86 @@ pub fn table(t: &Table) -> Result<String, csv::Error> {
     write_table(&mut bytes, t)?;
     String::from_utf8(bytes)
         .map_err(|e| csv::Error::from(std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error())))
+}
+
+/// The three figures of one metric: p10, median, p90 (an empty cell for "none").
+#[derive(Serialize)]
+struct Three(Option<Num>, Option<Num>, Option<Num>);
+
+impl From<&Percentiles> for Three {
+    fn from(p: &Percentiles) -> Self {
+        Three(p.p10.map(Num), p.median.map(Num), p.p90.map(Num))
+    }
+}
+
+#[derive(Serialize)]
+struct ResponseEnsembleRow {
+    sweep: &'static str,
+    freq_hz: Num,
+    runs: usize,
+    amplitude_linear_m: Option<Num>,
+    amplitude_m: Three,
+    reduction_db: Three,
+    impacts_per_period: Three,
+    leq_db: Three,
+    periodic_fraction: Num,
+    settled_fraction: Num,
+    truncated: bool,
+}
+
+const RESPONSE_ENSEMBLE_HEADER: [&str; 19] = [
+    "sweep",
+    "freq_hz",
+    "runs",
+    "amplitude_linear_m",
+    "amplitude_m_p10",
+    "amplitude_m_median",
+    "amplitude_m_p90",
+    "reduction_db_p10",
+    "reduction_db_median",
+    "reduction_db_p90",
+    "impacts_per_period_p10",
+    "impacts_per_period_median",
+    "impacts_per_period_p90",
+    "leq_db_p10",
+    "leq_db_median",
+    "leq_db_p90",
+    "periodic_fraction",
+    "settled_fraction",
+    "truncated",
+];
+
+/// A frequency response of ensembles, one row per frequency and sweep: the p10, median and p90
+/// of each steady figure over the runs (an empty cell where a value does not exist).
+pub fn response_ensemble(r: &crate::response::ResponseEnsemble) -> Result<String, csv::Error> {
+    to_csv(
+        &RESPONSE_ENSEMBLE_HEADER,
+        r.sweeps.iter().flat_map(|sw| {
+            sw.points.iter().map(move |p| ResponseEnsembleRow {
+                sweep: sweep_name(sw.direction),
+                freq_hz: Num(p.freq_hz),
+                runs: p.ensemble.len(),
+                amplitude_linear_m: p.amplitude_linear_m.map(Num),
+                amplitude_m: (&p.spread.amplitude_m).into(),
+                reduction_db: (&p.spread.reduction_db).into(),
+                impacts_per_period: (&p.spread.impacts_per_period).into(),
+                leq_db: (&p.spread.leq_db).into(),
+                periodic_fraction: Num(p.periodic_fraction),
+                settled_fraction: Num(p.settled_fraction),
+                truncated: p.truncated,
+            })
+        }),
+    )
+}
+
+/// The name of a sweep of a response in CSV files.
+fn sweep_name(d: crate::response::Direction) -> &'static str {
+    use crate::response::Direction;
+    match d {
+        Direction::FromRest => "from_rest",
+        Direction::Up => "up",
+        Direction::Down => "down",
+    }
 }
 
 #[cfg(test)]

@@ -28,6 +28,7 @@ pub mod error;
 pub mod limits;
 pub mod paper;
 pub mod params;
+pub mod report;
 pub mod response;
 pub mod units;
 

@@ -4,7 +4,7 @@
 //! [`crate::limits`] (the one range table), so every front end accepts and refuses the same
 //! values with the same one-line message.
 //!
-//! A front end hands in `(name, Value)` pairs, names as [`Spelling::key`] spells them: the long
+//! A front end hands in `(name, Input)` pairs, names as [`Spelling::key`] spells them: the long
 //! flags without dashes (`main-mass`) from the command line, keywords (`main_mass`) from Python. The tables [`DESIGN`] and [`PULSE`] list the known names; values are parsed
 //! and applied in table order (not the order given), so every front end reports the same first
 //! problem. Messages name the parameter the way the front end's user typed it ([`Spelling`]):
@@ -24,7 +24,7 @@ use crate::units::{self, Kind};
 
 /// A value as a front end received it.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Value {
+pub enum Input {
     /// A number in the plain unit of the parameter's range (SI; degrees, dB, cm/s where the
     /// range says so).
     Num(f64),
@@ -37,14 +37,22 @@ pub enum Value {
     Other(String),
 }
 
-impl Value {
+impl Input {
+    /// The value as typed, for a message: `'5Hz'` for text, the number otherwise.
+    fn shown(&self) -> String {
+        match self {
+            Input::Num(v) => short(*v),
+            other => other.describe(),
+        }
+    }
+
     /// What the value is, for a message about a value of the wrong type.
     fn describe(&self) -> String {
         match self {
-            Value::Num(_) => "a number".to_string(),
-            Value::Text(t) => format!("'{t}'"),
-            Value::Switch(_) => "a switch (True or False)".to_string(),
-            Value::Other(what) => what.clone(),
+            Input::Num(_) => "a number".to_string(),
+            Input::Text(t) => format!("'{t}'"),
+            Input::Switch(_) => "a switch (True or False)".to_string(),
+            Input::Other(what) => what.clone(),
         }
     }
 }
@@ -87,23 +95,38 @@ pub enum Accepts<T: 'static> {
     Name { set: fn(&mut T, &str) },
     /// On or off.
     Switch { set: fn(&mut T, bool) },
+    /// A whole number inside `range` (a number, or text such as `1e4`; see [`Range::parse_count`]).
+    Count { range: &'static Range, set: fn(&mut T, usize) },
 }
 
 /// One named parameter.
 pub struct Param<T: 'static> {
     /// The long flag without dashes (`main-mass`).
     pub name: &'static str,
+    /// Another name a front end may hand the parameter in under (`force-amplitude` for `force`,
+    /// on commands whose `--force` means "replace the file"); messages then name it as given.
+    pub alias: Option<&'static str>,
     pub accepts: Accepts<T>,
 }
 
 /// Shorthand for a quantity row of the tables.
 const fn quantity<T>(name: &'static str, kind: Kind, range: &'static Range, set: fn(&mut T, f64)) -> Param<T> {
-    Param { name, accepts: Accepts::Quantity { kind, range, set } }
+    Param { name, alias: None, accepts: Accepts::Quantity { kind, range, set } }
 }
 
 /// Shorthand for a choice row of the tables.
 const fn choice<T>(name: &'static str, names: &'static [&'static str], set: fn(&mut T, usize)) -> Param<T> {
-    Param { name, accepts: Accepts::Choice { names, set } }
+    Param { name, alias: None, accepts: Accepts::Choice { names, set } }
+}
+
+/// Shorthand for a row of the tables that takes a name.
+const fn named<T>(name: &'static str, set: fn(&mut T, &str)) -> Param<T> {
+    Param { name, alias: None, accepts: Accepts::Name { set } }
+}
+
+/// Shorthand for a switch row of the tables.
+const fn switch<T>(name: &'static str, set: fn(&mut T, bool)) -> Param<T> {
+    Param { name, alias: None, accepts: Accepts::Switch { set } }
 }
 
 /// The names of the solvers, as on the command line.
@@ -157,9 +180,9 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     quantity("c", Kind::Damping, &limits::DAMPING, |d, v| d.design.damper.damping_n_s_m = v),
     quantity("c1", Kind::Damping, &limits::C1, |d, v| d.design.damper.c1_n_s_m = v),
     quantity("k-hz", Kind::HertzStiffness, &limits::K_HZ, |d, v| d.design.damper.k_hz = v),
-    Param { name: "sphere", accepts: Accepts::Name { set: |d, s| d.sphere = Some(s.to_string()) } },
-    Param { name: "plate", accepts: Accepts::Name { set: |d, s| d.plate = Some(s.to_string()) } },
-    Param { name: "no-tension", accepts: Accepts::Switch { set: |d, on| d.design.damper.no_tension = on } },
+    named("sphere", |d, s| d.sphere = Some(s.to_string())),
+    named("plate", |d, s| d.plate = Some(s.to_string())),
+    switch("no-tension", |d, on| d.design.damper.no_tension = on),
     quantity("duration", Kind::Time, &limits::DURATION, |d, v| d.design.damper.duration_s = v),
     choice("solver", &SOLVERS, |d, i| d.solver = Some(i)),
     quantity("dt", Kind::Time, &limits::DT, |d, v| d.dt_s = Some(v)),
@@ -172,51 +195,80 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     choice("pulse", &PULSES, |d, i| d.design.radiation.pulse = pulse_shape(i)),
     quantity("l-star", Kind::Level, &limits::L_STAR, |d, v| d.design.thresholds.spl_db = v),
     quantity("e-star", Kind::Inclination, &limits::E_STAR, |d, v| d.design.thresholds.inclination_cm_s = v),
+    // The harmonic force F0·cos(2πft) on the main mass and the ball's start (docs/model.md §6).
+    Param {
+        name: "force",
+        alias: Some("force-amplitude"),
+        accepts: Accepts::Quantity {
+            kind: Kind::Force,
+            range: &limits::FORCE,
+            set: |d, v| d.design.damper.force_n = v,
+        },
+    },
+    quantity("freq", Kind::Frequency, &limits::FREQ, |d, v| d.design.damper.freq_hz = v),
+    quantity("ball-position", Kind::Length, &limits::BALL_POSITION, |d, v| d.design.damper.ball_position_m = v),
+    quantity("ball-velocity", Kind::Speed, &limits::BALL_VELOCITY, |d, v| d.design.damper.ball_velocity_m_s = v),
+    Param {
+        name: "periods",
+        alias: None,
+        accepts: Accepts::Count {
+            range: &limits::PERIODS,
+            set: |d, n| d.design.damper.steady_periods = u32::try_from(n).unwrap_or(u32::MAX),
+        },
+    },
+    switch("settle", |d, on| d.design.damper.settle = on),
 ];
 
 /// The named parameters a front end received, checked against a table: no unknown name, no
 /// name twice.
 struct Given<'a, T: 'static> {
     table: &'static [Param<T>],
-    values: Vec<(&'static Param<T>, &'a Value)>,
+    /// Each parameter given, its value, and the name it was given under (its name or alias).
+    values: Vec<(&'static Param<T>, &'a Input, &'static str)>,
     spelling: Spelling,
 }
 
 impl<'a, T> Given<'a, T> {
-    fn new(table: &'static [Param<T>], pairs: &'a [(String, Value)], spelling: Spelling) -> Result<Self, ThudError> {
-        let mut values: Vec<(&'static Param<T>, &'a Value)> = Vec::with_capacity(pairs.len());
+    fn new(table: &'static [Param<T>], pairs: &'a [(String, Input)], spelling: Spelling) -> Result<Self, ThudError> {
+        let mut values: Vec<(&'static Param<T>, &'a Input, &'static str)> = Vec::with_capacity(pairs.len());
         for (name, value) in pairs {
-            let Some(p) = table.iter().find(|p| spelling.key(p.name) == *name) else {
+            let found = table.iter().find_map(|p| {
+                std::iter::once(p.name).chain(p.alias).find(|n| spelling.key(n) == *name).map(|n| (p, n))
+            });
+            let Some((p, as_named)) = found else {
                 return Err(unknown(table, name, spelling));
             };
-            if values.iter().any(|(q, _)| q.name == p.name) {
-                return Err(ThudError::invalid(spelling.spell(name), "is given twice"));
+            if values.iter().any(|(q, _, _)| q.name == p.name) {
+                return Err(ThudError::invalid(spelling.spell(as_named), "is given twice"));
             }
-            values.push((p, value));
+            values.push((p, value, as_named));
         }
         // Table order, whatever the order given.
-        values.sort_by_key(|(p, _)| table.iter().position(|q| q.name == p.name));
+        values.sort_by_key(|(p, _, _)| table.iter().position(|q| q.name == p.name));
         Ok(Given { table, values, spelling })
     }
 
     fn has(&self, name: &str) -> bool {
-        self.values.iter().any(|(p, _)| p.name == name)
+        self.values.iter().any(|(p, _, _)| p.name == name)
     }
 
+    /// The parameter `name` (of the table) as the user typed it: under the alias they used,
+    /// if they did.
     fn spell(&self, name: &str) -> String {
-        self.spelling.spell(name)
+        let typed = self.values.iter().find(|(p, _, _)| p.name == name).map_or(name, |(_, _, n)| n);
+        self.spelling.spell(typed)
     }
 
     /// Parses every value and applies it to `draft`, in table order.
     fn apply(&self, draft: &mut T) -> Result<(), ThudError> {
-        for (p, value) in &self.values {
+        for (p, value, _) in &self.values {
             let flag = self.spell(p.name);
             match (&p.accepts, value) {
-                (Accepts::Quantity { range, set, .. }, Value::Num(v)) => set(draft, range.check_as(&flag, *v)?),
-                (Accepts::Quantity { kind, range, set }, Value::Text(t)) => {
+                (Accepts::Quantity { range, set, .. }, Input::Num(v)) => set(draft, range.check_as(&flag, *v)?),
+                (Accepts::Quantity { kind, range, set }, Input::Text(t)) => {
                     set(draft, range.check_as(&flag, units::parse(&flag, t, *kind)?)?);
                 }
-                (Accepts::Choice { names, set }, Value::Text(t)) => match names.iter().position(|n| n == t) {
+                (Accepts::Choice { names, set }, Input::Text(t)) => match names.iter().position(|n| n == t) {
                     Some(i) => set(draft, i),
                     None => {
                         return Err(ThudError::invalid(
@@ -225,8 +277,12 @@ impl<'a, T> Given<'a, T> {
                         ))
                     }
                 },
-                (Accepts::Name { set }, Value::Text(t)) => set(draft, t),
-                (Accepts::Switch { set }, Value::Switch(on)) => set(draft, *on),
+                (Accepts::Name { set }, Input::Text(t)) => set(draft, t),
+                (Accepts::Switch { set }, Input::Switch(on)) => set(draft, *on),
+                (Accepts::Count { range, set }, Input::Text(t)) => set(draft, range.parse_count(&flag, t)?),
+                (Accepts::Count { range, set }, Input::Num(v)) => {
+                    set(draft, range.parse_count(&flag, &format!("{v}"))?);
+                }
                 (accepts, v) => {
                     return Err(ThudError::invalid(
                         flag,
@@ -266,6 +322,7 @@ fn expected<T>(accepts: &Accepts<T>) -> String {
         Accepts::Choice { names, .. } => format!("one of: {}", names.join(", ")),
         Accepts::Name { .. } => "a name".to_string(),
         Accepts::Switch { .. } => "on or off (a switch)".to_string(),
+        Accepts::Count { .. } => "a whole number".to_string(),
     }
 }
 
@@ -305,7 +362,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// range (the error names the parameter as `spelling` spells it), then the whole design and its
 /// derived quantities (ball radius, K_HZ from materials, the observer outside the ball). The
 /// result has K_HZ resolved from its materials, if any.
-pub fn design(base: Design, given: &[(String, Value)], spelling: Spelling) -> Result<Design, ThudError> {
+pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<Design, ThudError> {
     let given = Given::new(DESIGN, given, spelling)?;
     given.conflict("density", "radius", "the radius follows from the mass and the density")?;
     given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
@@ -330,9 +387,65 @@ pub fn design(base: Design, given: &[(String, Value)], spelling: Spelling) -> Re
         }
         (None, None, s) => s,
     };
+    if d.damper.force_n > 0.0 && d.damper.freq_hz == 0.0 {
+        let freq = given.spell("freq");
+        return Err(ThudError::invalid(&freq, format!("a force needs a frequency; give {freq} (Hz)")));
+    }
     limits::check_design(&d).map_err(|e| given.respell(e))?;
     d.validate().map_err(|e| blame_ball(&given, e, &d))?;
     d.resolved().map_err(|e| given.respell(e))
+}
+
+/// The design of a frequency response (`thud response`, Python's `thud.response`): `base`
+/// with the named parameters `given` applied as [`design`] does, at the first frequency
+/// `first_hz` (each point of the response sets its own), and from rest (v0 = 0) unless the
+/// start was given (`v0`, `ball-position`, `ball-velocity`). A frequency given is refused (the
+/// response sweeps it), and so is a design without a force; `force` names the force's
+/// parameter as this front end calls it when it was not given (`force`, `force-amplitude`).
+pub fn response_design(
+    mut base: Design,
+    given: &[(String, Input)],
+    spelling: Spelling,
+    first_hz: f64,
+    force: &str,
+) -> Result<Design, ThudError> {
+    let typed = |name: &str| given.iter().find(|(n, _)| *n == spelling.key(name)).map(|(_, v)| v);
+    if let Some(v) = typed("freq") {
+        let freqs = match spelling {
+            Spelling::Flag => "--freqs FROM:TO:N",
+            Spelling::Keyword => "the frequencies as freqs_hz",
+        };
+        return Err(ThudError::invalid(
+            spelling.spell("freq"),
+            format!("{}: a response sweeps the frequency; give {freqs}", v.shown()),
+        ));
+    }
+    base.damper.freq_hz = first_hz;
+    if ["v0", "ball-position", "ball-velocity"].iter().all(|n| typed(n).is_none()) {
+        base.damper.v0_m_s = 0.0;
+    }
+    let d = design(base, given, spelling)?;
+    if !d.damper.forced() {
+        let force = spelling.spell(force);
+        return Err(ThudError::invalid(&force, format!("0 N: a response needs a force; give {force} F0 (N)")));
+    }
+    Ok(d)
+}
+
+/// Refuses an ensemble of `runs` > 1 runs together with an initial ball offset given by the
+/// user (`ball_position_given`): the ensemble sets the offsets itself
+/// ([`crate::ensemble::ball_positions`]). The message names both, as `spelling` spells them.
+pub fn check_ensemble(runs: usize, ball_position_given: bool, spelling: Spelling) -> Result<(), ThudError> {
+    if runs > 1 && ball_position_given {
+        return Err(ThudError::invalid(
+            spelling.spell("ball-position"),
+            format!(
+                "cannot be combined with {} {runs}: the ensemble sets the ball's initial offsets, y0 = −d/2 + (k + ½)·d/N",
+                spelling.spell("ensemble")
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// How to ask for the Newmark solver, as the front end's user types it.
@@ -398,8 +511,8 @@ pub struct PulseDraft {
 
 /// The parameters of one impact, in the order they are checked.
 pub const PULSE: &[Param<PulseDraft>] = &[
-    Param { name: "sphere", accepts: Accepts::Name { set: |d, s| d.sphere = Some(s.to_string()) } },
-    Param { name: "plate", accepts: Accepts::Name { set: |d, s| d.plate = Some(s.to_string()) } },
+    named("sphere", |d, s| d.sphere = Some(s.to_string())),
+    named("plate", |d, s| d.plate = Some(s.to_string())),
     quantity("radius", Kind::Length, &limits::RADIUS, |d, v| d.radius_m = Some(v)),
     quantity("mass", Kind::Mass, &limits::MASS, |d, v| d.mass_kg = Some(v)),
     quantity("k-hz", Kind::HertzStiffness, &limits::K_HZ, |d, v| d.k_hz = Some(v)),
@@ -430,7 +543,7 @@ pub struct PulseInput {
 /// a 19.05 mm, m 40.5 g, U0 1.4 m/s, K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at
 /// r 0.7 m, θ 45°), or taken from `base` (a preset: its ball, K_HZ, observer, source and air,
 /// and U0 = its v0; the target stays a fixed plate).
-pub fn pulse(base: Option<&Design>, given: &[(String, Value)], spelling: Spelling) -> Result<PulseInput, ThudError> {
+pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spelling) -> Result<PulseInput, ThudError> {
     let given = Given::new(PULSE, given, spelling)?;
     given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
     given.conflict("plate", "k-hz", "K_HZ follows from the materials")?;
@@ -555,8 +668,8 @@ impl PulseInput {
 mod tests {
     use super::*;
 
-    fn text(pairs: &[(&str, &str)]) -> Vec<(String, Value)> {
-        pairs.iter().map(|(n, v)| (n.to_string(), Value::Text(v.to_string()))).collect()
+    fn text(pairs: &[(&str, &str)]) -> Vec<(String, Input)> {
+        pairs.iter().map(|(n, v)| (n.to_string(), Input::Text(v.to_string()))).collect()
     }
 
     fn err(r: Result<Design, ThudError>) -> String {
@@ -568,7 +681,7 @@ mod tests {
         let a = design(Design::default(), &text(&[("mass", "0.05"), ("gap", "3cm")]), Spelling::Flag).unwrap();
         let b = design(
             Design::default(),
-            &[("gap".into(), Value::Num(0.03)), ("mass".into(), Value::Num(0.05))],
+            &[("gap".into(), Input::Num(0.03)), ("mass".into(), Input::Num(0.05))],
             Spelling::Keyword,
         )
         .unwrap();
@@ -586,28 +699,28 @@ mod tests {
     fn errors_name_the_parameter_as_the_front_end_spells_it() {
         let e = err(design(Design::default(), &text(&[("main-mass", "1e308")]), Spelling::Flag));
         assert!(e.starts_with("invalid --main-mass: 1e308 kg is out of range; the main mass M must be"), "{e}");
-        let e = err(design(Design::default(), &[("main_mass".into(), Value::Num(1e308))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("main_mass".into(), Input::Num(1e308))], Spelling::Keyword));
         assert!(e.starts_with("invalid main_mass: 1e308 kg is out of range; the main mass M must be"), "{e}");
-        let e = err(design(Design::default(), &[("gap".into(), Value::Num(f64::NAN))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("gap".into(), Input::Num(f64::NAN))], Spelling::Keyword));
         assert!(e.starts_with("invalid gap: NaN is not a finite number"), "{e}");
-        let e = err(design(Design::default(), &[("gap".into(), Value::Num(f64::INFINITY))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("gap".into(), Input::Num(f64::INFINITY))], Spelling::Keyword));
         assert!(e.starts_with("invalid gap: inf is not a finite number"), "{e}");
     }
 
     #[test]
     fn unknown_names_and_wrong_kinds_are_refused() {
-        let e = err(design(Design::default(), &[("mas".into(), Value::Num(1.0))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("mas".into(), Input::Num(1.0))], Spelling::Keyword));
         assert!(e.starts_with("invalid mas: unknown parameter; did you mean mass?"), "{e}");
         assert!(e.contains("main_mass") && e.contains("e_star"), "{e}");
-        let e = err(design(Design::default(), &[("mass".into(), Value::Switch(true))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("mass".into(), Input::Switch(true))], Spelling::Keyword));
         assert_eq!(e, "invalid mass: expected a number in kg or a text with a unit, not a switch (True or False)");
-        let e = err(design(Design::default(), &[("mass".into(), Value::Other("a list".into()))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("mass".into(), Input::Other("a list".into()))], Spelling::Keyword));
         assert_eq!(e, "invalid mass: expected a number in kg or a text with a unit, not a list");
-        let e = err(design(Design::default(), &[("main-mass".into(), Value::Num(1.0))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("main-mass".into(), Input::Num(1.0))], Spelling::Keyword));
         assert!(e.starts_with("invalid main-mass: unknown parameter; did you mean main_mass?"), "{e}");
         let e = err(design(Design::default(), &text(&[("source", "monopole")]), Spelling::Keyword));
         assert_eq!(e, "invalid source: unknown value 'monopole'; one of: single, dipole, quadrupole");
-        let e = err(design(Design::default(), &[("no_tension".into(), Value::Num(1.0))], Spelling::Keyword));
+        let e = err(design(Design::default(), &[("no_tension".into(), Input::Num(1.0))], Spelling::Keyword));
         assert!(e.starts_with("invalid no_tension: expected on or off"), "{e}");
     }
 
@@ -662,11 +775,72 @@ mod tests {
         let p = pulse(None, &[], Spelling::Flag).unwrap();
         assert_eq!((p.radius_m, p.impact.mass_kg, p.impact.u0_m_s, p.impact.k_hz), (0.01905, 0.0405, 1.4, 5.6e8));
         assert_eq!(p.radiation.source, Source::Dipole);
-        let e = pulse(None, &[("u0".into(), Value::Num(-1.0))], Spelling::Keyword).unwrap_err().to_string();
+        let e = pulse(None, &[("u0".into(), Input::Num(-1.0))], Spelling::Keyword).unwrap_err().to_string();
         assert!(e.starts_with("invalid u0: -1 m/s is out of range"), "{e}");
         let p = pulse(None, &text(&[("r", "1cm")]), Spelling::Keyword).unwrap();
         let e = p.field(&p.contact()).unwrap_err().to_string();
         assert!(e.starts_with("invalid r: "), "{e}");
+    }
+
+    #[test]
+    fn forcing_rows_apply_and_the_alias_names_itself() {
+        let d = design(
+            Design::default(),
+            &text(&[
+                ("force", "2N"),
+                ("freq", "5Hz"),
+                ("ball-position", "-1cm"),
+                ("periods", "1e1"),
+                ("ball-velocity", "0.5"),
+            ]),
+            Spelling::Flag,
+        )
+        .unwrap();
+        let p = &d.damper;
+        assert_eq!(
+            (p.force_n, p.freq_hz, p.ball_position_m, p.ball_velocity_m_s, p.steady_periods),
+            (2.0, 5.0, -0.01, 0.5, 10)
+        );
+        let on = design(Design::default(), &[("settle".into(), Input::Switch(true))], Spelling::Keyword).unwrap();
+        assert!(on.damper.settle);
+        let e = err(design(Design::default(), &text(&[("force-amplitude", "-1"), ("freq", "5")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --force-amplitude: -1 N is out of range"), "{e}");
+        let e = err(design(Design::default(), &text(&[("force", "1")]), Spelling::Flag));
+        assert_eq!(e, "invalid --freq: a force needs a frequency; give --freq (Hz)");
+        let e = err(design(Design::default(), &[("periods".into(), Input::Num(2.5))], Spelling::Keyword));
+        assert!(e.starts_with("invalid periods: '2.5' is not a whole number"), "{e}");
+        let e = err(design(Design::default(), &text(&[("ball-position", "2.5cm")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --ball-position: ") && e.contains("d/2"), "{e}");
+        let both = [("force".into(), Input::Num(1.0)), ("force_amplitude".into(), Input::Num(2.0))];
+        assert_eq!(err(design(Design::default(), &both, Spelling::Keyword)), "invalid force_amplitude: is given twice");
+    }
+
+    #[test]
+    fn a_response_design_starts_at_rest_and_needs_a_force() {
+        let d = response_design(Design::paper_fig9(), &text(&[("force", "1")]), Spelling::Flag, 4.0, "force").unwrap();
+        assert_eq!((d.damper.freq_hz, d.damper.v0_m_s), (4.0, 0.0));
+        let kept = response_design(
+            Design::paper_fig9(),
+            &text(&[("force", "1"), ("ball-velocity", "0")]),
+            Spelling::Flag,
+            4.0,
+            "force",
+        );
+        assert_eq!(kept.unwrap().damper.v0_m_s, Design::paper_fig9().damper.v0_m_s, "a typed start keeps v0");
+        let e =
+            response_design(Design::default(), &[], Spelling::Flag, 4.0, "force-amplitude").unwrap_err().to_string();
+        assert_eq!(e, "invalid --force-amplitude: 0 N: a response needs a force; give --force-amplitude F0 (N)");
+        let e = response_design(
+            Design::default(),
+            &text(&[("force", "1"), ("freq", "5Hz")]),
+            Spelling::Keyword,
+            4.0,
+            "force",
+        );
+        assert!(e.unwrap_err().to_string().starts_with("invalid freq: '5Hz': a response sweeps the frequency"));
+        assert!(check_ensemble(1, true, Spelling::Flag).is_ok() && check_ensemble(4, false, Spelling::Flag).is_ok());
+        let e = check_ensemble(4, true, Spelling::Keyword).unwrap_err().to_string();
+        assert!(e.starts_with("invalid ball_position: cannot be combined with ensemble 4"), "{e}");
     }
 
     #[test]

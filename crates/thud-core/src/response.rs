@@ -1,6 +1,7 @@
 //! The forced response of a design (docs/model.md §6.2–6.4): its steady state under the
 //! harmonic force with the level of its rattle ([`Steady`], with `Leq`), and the frequency
-//! response with and without the damper ([`response`]).
+//! response with and without the damper ([`response`]), and the same from N ball offsets
+//! ([`response_ensemble`]: p10/median/p90 of the steady figures per frequency).
 //!
 //! `Leq` over a window `[a, b]` is the energy-average level of the sound at the observer:
 //! `Leq = 10·log10( ∫_a^b p(t)² dt / ((b − a)·p_ref²) )`, `p(t) = Σ_i p_i(t − t_i)`, where
@@ -16,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use crate::acoustics::{gauss_legendre, Field, PulseShape, P_REF_PA};
 use crate::damper::{self, Run, RunOptions, Start, SteadyMotion};
 use crate::design::Design;
+use crate::ensemble::Percentiles;
 use crate::error::{check_positive, ThudError};
 
 /// The steady state of a forced run of a design: the motion over the last window
@@ -272,4 +274,159 @@ pub fn response(
         vec![ResponseSweep { direction: Direction::FromRest, points }]
     };
     Ok(Response { force_n: base.damper.force_n, sweeps })
+}
+
+/// One run of a response ensemble at one frequency: the ball's initial offset and the steady
+/// state that run reached there.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ResponseMember {
+    /// Initial offset y0 of the ball from the enclosure's centre (m).
+    pub ball_position_m: f64,
+    #[serde(flatten)]
+    pub steady: Steady,
+    /// Where the run ended (s).
+    pub final_time_s: f64,
+}
+
+/// The spread of the steady figures of a response ensemble at one frequency: p10, median and
+/// p90 by nearest rank over the runs ([`crate::ensemble`]'s percentiles).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SteadySpread {
+    /// Largest |x| in the window (m).
+    pub amplitude_m: Percentiles,
+    /// The cut of the damper (dB).
+    pub reduction_db: Percentiles,
+    pub impacts_per_period: Percentiles,
+    /// Energy-average level at the observer (dB re 20 µPa).
+    pub leq_db: Percentiles,
+}
+
+/// One frequency of a response ensemble.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EnsemblePoint {
+    pub freq_hz: f64,
+    /// The main mass without the ball (m; the same for every run); None where unbounded.
+    pub amplitude_linear_m: Option<f64>,
+    pub spread: SteadySpread,
+    /// Fractions of the runs whose steady state is periodic, and settled.
+    pub periodic_fraction: f64,
+    pub settled_fraction: f64,
+    /// Whether a work cap stopped any run before its window's end.
+    pub truncated: bool,
+    /// Every run, in order of k (of the initial offset).
+    pub ensemble: Vec<ResponseMember>,
+}
+
+impl EnsemblePoint {
+    /// The point of `runs` (one per offset `y0`, all at the same frequency).
+    fn of(offsets: &[f64], runs: &[&ResponsePoint]) -> Self {
+        let pct = |f: &dyn Fn(&Steady) -> Option<f64>| Percentiles::of(runs.iter().map(|p| f(&p.steady)));
+        let fraction = |f: &dyn Fn(&Steady) -> bool| {
+            runs.iter().filter(|p| f(&p.steady)).count() as f64 / runs.len().max(1) as f64
+        };
+        EnsemblePoint {
+            freq_hz: runs.first().map_or(0.0, |p| p.freq_hz),
+            amplitude_linear_m: runs.first().and_then(|p| p.steady.amplitude_linear_m),
+            spread: SteadySpread {
+                amplitude_m: pct(&|s| Some(s.amplitude_m)),
+                reduction_db: pct(&|s| s.reduction_db),
+                impacts_per_period: pct(&|s| Some(s.impacts_per_period)),
+                leq_db: pct(&|s| s.leq_db),
+            },
+            periodic_fraction: fraction(&|s| s.periodic),
+            settled_fraction: fraction(&|s| s.settled),
+            truncated: runs.iter().any(|p| p.steady.truncated),
+            ensemble: offsets
+                .iter()
+                .zip(runs)
+                .map(|(&y0, p)| ResponseMember { ball_position_m: y0, steady: p.steady, final_time_s: p.final_time_s })
+                .collect(),
+        }
+    }
+
+    /// The run whose amplitude is the median (nearest rank: an actual run), as a point of a
+    /// plain response: what a plot of the medians draws.
+    #[must_use]
+    pub fn median_run(&self) -> Option<ResponsePoint> {
+        let median = self.spread.amplitude_m.median?;
+        let m = self.ensemble.iter().find(|m| m.steady.amplitude_m.total_cmp(&median).is_eq())?;
+        Some(ResponsePoint { freq_hz: self.freq_hz, steady: m.steady, final_time_s: m.final_time_s })
+    }
+}
+
+/// One sweep of a response ensemble over the frequencies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EnsembleSweep {
+    pub direction: Direction,
+    pub points: Vec<EnsemblePoint>,
+}
+
+/// The frequency response of a design from N ball offsets (issue 11, item 3).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ResponseEnsemble {
+    /// Force amplitude F0 (N).
+    pub force_n: f64,
+    /// Runs per frequency N.
+    pub runs: usize,
+    pub sweeps: Vec<EnsembleSweep>,
+}
+
+impl ResponseEnsemble {
+    /// The response of the median runs ([`EnsemblePoint::median_run`]): what the text plot and
+    /// the SVG draw for an ensemble.
+    #[must_use]
+    pub fn medians(&self) -> Response {
+        let sweeps = self
+            .sweeps
+            .iter()
+            .map(|s| ResponseSweep {
+                direction: s.direction,
+                points: s.points.iter().filter_map(EnsemblePoint::median_run).collect(),
+            })
+            .collect();
+        Response { force_n: self.force_n, sweeps }
+    }
+}
+
+/// The frequency response of `base` from `n` ball offsets ([`crate::ensemble::ball_positions`],
+/// the only difference between the runs): run `k` is exactly [`response`] of `base` with
+/// [`DamperParams::ball_position_m`](crate::damper::DamperParams::ball_position_m) = y0_k, and
+/// each frequency reports the p10/median/p90 of the steady figures over the runs. Runs and
+/// frequencies are spread over rayon's pool; `on_point` is called as each run's point
+/// finishes; `cancel` stops between points (every sweep then holds the points all runs did).
+pub fn response_ensemble(
+    base: &Design,
+    freqs_hz: &[f64],
+    n: usize,
+    opts: &ResponseOptions,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn() + Sync),
+) -> Result<ResponseEnsemble, ThudError> {
+    if n == 0 {
+        return Err(ThudError::invalid("ensemble", "0 runs; an ensemble needs at least 1"));
+    }
+    let offsets = crate::ensemble::ball_positions(base.damper.gap_m, n);
+    let runs: Vec<Response> = offsets
+        .par_iter()
+        .map(|&y0| {
+            let mut d = base.clone();
+            d.damper.ball_position_m = y0;
+            response(&d, freqs_hz, opts, cancel, on_point)
+        })
+        .collect::<Result<_, _>>()?;
+    let n_sweeps = runs.iter().map(|r| r.sweeps.len()).min().unwrap_or(0);
+    let sweeps = (0..n_sweeps)
+        .map(|s| {
+            // A cancelled run may lack points: keep those every run has, at the same frequency.
+            let at = |i: usize| -> Option<Vec<&ResponsePoint>> {
+                let first = runs[0].sweeps[s].points.get(i)?;
+                runs.iter().map(|r| r.sweeps[s].points.get(i).filter(|p| p.freq_hz == first.freq_hz)).collect()
+            };
+            EnsembleSweep {
+                direction: runs[0].sweeps[s].direction,
+                points: (0..).map_while(at).map(|at| EnsemblePoint::of(&offsets, &at)).collect(),
+            }
+        })
+        .collect();
+    Ok(ResponseEnsemble { force_n: base.damper.force_n, runs: n, sweeps })
 }

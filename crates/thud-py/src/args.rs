@@ -6,7 +6,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyString};
 use thud_core::limits::{self, short, Estimate, Range};
-use thud_core::params::Value;
+use thud_core::params::Input;
 use thud_core::ThudError;
 
 pyo3::create_exception!(
@@ -46,7 +46,7 @@ pub fn non_finite(what: &str) -> PyErr {
 pub struct Kwargs<'py> {
     options: Vec<(String, Bound<'py, PyAny>)>,
     /// Engine parameters as (keyword, value).
-    pub params: Vec<(String, Value)>,
+    pub params: Vec<(String, Input)>,
 }
 
 impl<'py> Kwargs<'py> {
@@ -128,16 +128,16 @@ impl<'py> Kwargs<'py> {
 
 /// A Python value as an engine value: str → text (units allowed, `"40.5g"`), bool → switch,
 /// anything with `__float__` (int, float, NumPy scalars) → number, else "a <type>".
-pub fn to_value(v: &Bound<'_, PyAny>) -> PyResult<Value> {
+pub fn to_value(v: &Bound<'_, PyAny>) -> PyResult<Input> {
     if let Ok(b) = v.cast::<PyBool>() {
-        return Ok(Value::Switch(b.is_true()));
+        return Ok(Input::Switch(b.is_true()));
     }
     if let Ok(s) = v.cast::<PyString>() {
-        return Ok(Value::Text(s.to_cow()?.into_owned()));
+        return Ok(Input::Text(s.to_cow()?.into_owned()));
     }
     match v.extract::<f64>() {
-        Ok(x) => Ok(Value::Num(x)),
-        Err(_) => Ok(Value::Other(kind_of(v))),
+        Ok(x) => Ok(Input::Num(x)),
+        Err(_) => Ok(Input::Other(kind_of(v))),
     }
 }
 
@@ -162,7 +162,7 @@ pub fn enforce(py: Python<'_>, e: Estimate, param: &str, hint: &str, no_limit: b
 pub fn check_run(
     py: Python<'_>,
     d: &thud_core::design::Design,
-    given: &[(String, Value)],
+    given: &[(String, Input)],
     samples: usize,
     no_limit: bool,
 ) -> PyResult<()> {
@@ -175,7 +175,7 @@ pub fn check_run(
 pub fn check_solver(
     py: Python<'_>,
     d: &thud_core::design::Design,
-    given: &[(String, Value)],
+    given: &[(String, Input)],
     steps: Estimate,
     cycles: Estimate,
     per: &str,
@@ -196,4 +196,28 @@ pub fn check_solver(
     }
     let max_dur = dur * cycles.cap.max / cycles.value;
     enforce(py, cycles, "duration", &format!("use duration ≤ {} s{per}", short(max_dur)), no_limit)
+}
+
+/// Refuses `cells` cells of `d` with `runs` ensemble runs each whose work is over a cap, as the
+/// command line's `--ensemble` does: the runs, the simulated run-seconds, and the Newmark steps
+/// and main-mass cycles summed over the runs.
+pub fn check_runs(
+    py: Python<'_>,
+    d: &thud_core::design::Design,
+    given: &[(String, Input)],
+    cells: usize,
+    runs: usize,
+    no_limit: bool,
+) -> PyResult<()> {
+    let [n, seconds, steps, cycles] = limits::ensemble_work(d, cells, runs);
+    let hint = if cells > 1 {
+        format!("use fewer runs ({cells} cells × {runs}; at most {} runs)", short(n.cap.max))
+    } else {
+        format!("use at most {} runs", short(n.cap.max))
+    };
+    enforce(py, n, "ensemble", &hint, no_limit)?;
+    let per = format!(" with {} runs", short(n.value));
+    let hint = format!("use duration ≤ {} s{per} or fewer runs", short(seconds.cap.max / n.value));
+    enforce(py, seconds, "duration", &hint, no_limit)?;
+    check_solver(py, d, given, steps, cycles, &per, no_limit)
 }

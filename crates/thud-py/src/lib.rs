@@ -4,6 +4,10 @@
 //! - `thud.pulse(**params) -> Pulse`: one Hertzian impact heard at one observer (`thud pulse`).
 //! - `thud.simulate(**params) -> Run`: one damper design through its impacts (`thud simulate`).
 //! - `thud.sweep(masses_kg, gaps_m, **params) -> Chart`: the design chart (`thud sweep`).
+//! - `thud.response(freqs_hz, **params) -> Response`: the frequency response under the
+//!   harmonic force (`thud response`).
+//! - `ensemble=N` on `simulate` (then an `Ensemble`), `sweep` and `response`: N runs from
+//!   ball offsets spread over the clearance, as `--ensemble N`.
 //!
 //! Parameters are the command line's long flags as keywords (`--main-mass` → `main_mass=`), in
 //! the same SI units; the mapping and the range table are the engine's
@@ -22,12 +26,15 @@ mod objects;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use thud_core::design::{self, Design};
-use thud_core::limits::{self, short};
+use thud_core::limits::{self, short, Estimate};
 use thud_core::params::{self, Spelling};
+use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
+use thud_core::response::{self, ResponseOptions};
 use thud_core::units::Kind;
+use thud_core::{ensemble, ThudError};
 
 use args::{check_solver, enforce, engine_error, parameter_error, Kwargs};
-use objects::{Chart, Pulse, Run};
+use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
 
 /// The preset named by the `preset` option (default: "default"), as the command line loads it
 /// (the app's compiled-in preset files). The user's config file is not read: a script gives
@@ -69,7 +76,7 @@ fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Design> {
 /// type, NaN/inf or an out-of-range value — the command line's message and range table.
 #[pyfunction]
 #[pyo3(signature = (**params))]
-fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Pulse> {
+fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<PyPulse> {
     let kw = Kwargs::new(params, &["preset", "points", "no_limit"])?;
     let no_limit = kw.switch(py, "no_limit")?;
     let points = kw.count(py, "points", &limits::POINTS, 2000)?;
@@ -77,8 +84,8 @@ fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Pulse> 
     enforce(py, limits::waveform_points(points), "points", &format!("use points ≤ {}", short(cap)), no_limit)?;
     let base = preset(py, &kw, None)?;
     let input = params::pulse(base.as_ref(), &kw.params, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
-    let computed = detach::run(py, move |_| objects::PulseData::compute(input, points))?;
-    Pulse::new(py, computed.map_err(|e| engine_error(py, e))?)
+    let computed = detach::run(py, move |_| objects::PulseData::compute(&input, points))?;
+    PyPulse::new(py, computed.map_err(|e| engine_error(py, e))?)
 }
 
 /// simulate(**params) -> Run
@@ -95,7 +102,14 @@ fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Pulse> 
 ///     density (kg/m³) or radius (m) of the ball, r (m), theta (degrees),
 ///     source: "single" | "dipole" | "quadrupole", quad_signs: "paper" | "rigid",
 ///     pulse: "half-sine" | "hertz", l_star (dB), e_star (cm/s),
+///     force (N; alias force_amplitude) and freq (Hz): the harmonic force F0·cos(2π·f·t)
+///     on the main mass (default 0, the paper's free decay),
+///     ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start,
+///     periods: int — forcing periods of the steady-state window (default 10),
+///     settle: bool — run a forced design on until its steady amplitude settles,
 ///     samples: int — time-history samples (default 2001),
+///     ensemble: int — N runs from ball offsets y0 = −d/2 + (k + ½)·d/N at rest (default 1);
+///         N > 1 returns an Ensemble (not with ball_position),
 ///     no_limit: bool — lift the work caps.
 ///
 /// Raises ParameterError (a ValueError) naming the parameter for an unknown name, a wrong
@@ -103,17 +117,38 @@ fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Pulse> 
 /// (KeyboardInterrupt).
 #[pyfunction]
 #[pyo3(signature = (**params))]
-fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Run> {
-    let kw = Kwargs::new(params, &["preset", "samples", "no_limit"])?;
+fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Py<PyAny>> {
+    let kw = Kwargs::new(params, &["preset", "samples", "no_limit", "ensemble"])?;
     let no_limit = kw.switch(py, "no_limit")?;
     let d = design_of(py, &kw)?;
     let samples = kw.count(py, "samples", &limits::SAMPLES, 2001)?;
+    let runs = ensemble_runs(py, &kw)?;
+    if runs > 1 {
+        args::check_run(py, &d, &kw.params, 0, no_limit)?;
+        args::check_runs(py, &d, &kw.params, 1, runs, no_limit)?;
+        let e = {
+            let d = d.clone();
+            detach::run(py, move |cancel| ensemble::evaluate(&d, runs, Some(cancel)))?
+        };
+        let e = e.map_err(|e| engine_error(py, e))?.ok_or_else(|| cancelled(py))?;
+        return Ok(PyEnsemble::new(py, &EnsembleReport::new(&d, &e))?.into_pyobject(py)?.into_any().unbind());
+    }
     args::check_run(py, &d, &kw.params, samples, no_limit)?;
-    let data = {
-        let d = d.clone();
-        detach::run(py, move |cancel| objects::RunData::compute(d, samples, cancel))?
-    };
-    Run::new(py, &d, data.map_err(|e| engine_error(py, e))?)
+    let data = detach::run(py, |cancel| objects::RunData::compute(&d, samples, cancel))?;
+    Ok(PyRun::new(py, data.map_err(|e| engine_error(py, e))?)?.into_pyobject(py)?.into_any().unbind())
+}
+
+/// The `ensemble` option (a count, default 1), refused with `ball_position` when over 1.
+fn ensemble_runs(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<usize> {
+    let runs = kw.count(py, "ensemble", &limits::ENSEMBLE, 1)?;
+    let typed = kw.params.iter().any(|(n, _)| *n == Spelling::Keyword.key("ball-position"));
+    params::check_ensemble(runs, typed, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    Ok(runs)
+}
+
+/// The error of runs stopped without an interrupt (not expected: a stop comes from Ctrl-C).
+fn cancelled(py: Python<'_>) -> PyErr {
+    engine_error(py, ThudError::invalid("ensemble", "the runs were cancelled"))
 }
 
 /// An axis of a sweep: a sequence of numbers in SI units, or "FROM:TO:N" text as on the
@@ -133,8 +168,8 @@ fn axis(py: Python<'_>, name: &str, value: &Bound<'_, PyAny>, kind: Kind, range:
         let mut out = Vec::with_capacity(seq.len());
         for v in &seq {
             let x = match args::to_value(v)? {
-                params::Value::Num(x) => x,
-                params::Value::Text(t) => thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?,
+                params::Input::Num(x) => x,
+                params::Input::Text(t) => thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?,
                 _ => {
                     let msg = format!("invalid {name}: expected numbers in {}, not {}", range.unit, args::kind_of(v));
                     return Err(parameter_error(py, name, msg));
@@ -158,7 +193,9 @@ fn axis(py: Python<'_>, name: &str, value: &Bound<'_, PyAny>, kind: Kind, range:
 ///
 /// masses_kg, gaps_m: sequences of numbers (kg, m), or "FROM:TO:N" text as on the command line
 /// ("30g:100g:20", "2cm:5cm:20": N evenly spaced values, the command line's very numbers).
-/// Keywords: as for `simulate` (no `samples`), and no_limit: bool — lift the work caps.
+/// Keywords: as for `simulate` (no `samples`); ensemble: int — N runs a cell (the metrics are
+/// then the medians, with zone3_probability, agreement, spread and every run); no_limit: bool
+/// — lift the work caps.
 ///
 /// The chart's 2-D arrays have shape (len(gaps_m), len(masses_kg)): row = gap, column = mass.
 /// Raises ParameterError (a ValueError) as `simulate` does. Ctrl-C stops the sweep.
@@ -169,12 +206,13 @@ fn sweep(
     masses_kg: &Bound<'_, PyAny>,
     gaps_m: &Bound<'_, PyAny>,
     params: Option<&Bound<'_, PyDict>>,
-) -> PyResult<Chart> {
-    let kw = Kwargs::new(params, &["preset", "no_limit"])?;
+) -> PyResult<PyChart> {
+    let kw = Kwargs::new(params, &["preset", "no_limit", "ensemble"])?;
     let no_limit = kw.switch(py, "no_limit")?;
     let d = design_of(py, &kw)?;
     let masses = axis(py, "masses_kg", masses_kg, Kind::Mass, &limits::MASS)?;
     let gaps = axis(py, "gaps_m", gaps_m, Kind::Length, &limits::GAP)?;
+    let runs = ensemble_runs(py, &kw)?;
     let cells = limits::sweep_cells(masses.len(), gaps.len());
     let hint = format!("use fewer values on either axis (product ≤ {})", short(cells.cap.max));
     enforce(py, cells, "masses_kg", &hint, no_limit)?;
@@ -183,11 +221,84 @@ fn sweep(
     let hint = format!("use duration ≤ {} s with {n} cells or fewer cells", short(cell_seconds.cap.max / n as f64));
     enforce(py, cell_seconds, "duration", &hint, no_limit)?;
     check_solver(py, &d, &kw.params, steps, cycles, &format!(" with {n} cells"), no_limit)?;
-    let chart = {
-        let d = d.clone();
-        detach::run(py, move |cancel| design::sweep(&d, &masses, &gaps, Some(cancel), &|_, _| {}))?
-    };
-    Chart::new(py, &d, chart.map_err(|e| engine_error(py, e))?)
+    if runs > 1 {
+        args::check_runs(py, &d, &kw.params, n, runs, no_limit)?;
+        let chart = detach::run(py, |cancel| ensemble::sweep(&d, &masses, &gaps, runs, Some(cancel), &|_, _| {}))?;
+        return PyChart::of_ensembles(py, &d, &chart.map_err(|e| engine_error(py, e))?);
+    }
+    let chart = detach::run(py, |cancel| design::sweep(&d, &masses, &gaps, Some(cancel), &|_, _| {}))?;
+    PyChart::new(py, &d, chart.map_err(|e| engine_error(py, e))?)
+}
+
+/// response(freqs_hz, **params) -> Response
+///
+/// The frequency response of a design under the harmonic force F0·cos(2π·f·t) on the main
+/// mass, as `thud response --json`: per frequency the steady amplitude with the damper beside
+/// the closed form without it (m), the cut (dB), the impacts per period and the level Leq of
+/// the rattle (dB re 20 µPa), over the last `periods` forcing periods of a settled run.
+///
+/// freqs_hz: a sequence of frequencies (Hz), or "FROM:TO:N" text as on the command line
+/// ("3Hz:8Hz:101"). Keywords: as for `simulate` (force is needed; no freq, no samples; each
+/// frequency starts from rest unless v0, ball_position or ball_velocity is given), and
+/// continuation: bool — each frequency from the previous one's final state, rising then
+/// falling; ensemble: int — N runs a frequency from ball offsets y0 = −d/2 + (k + ½)·d/N
+/// (p10/median/p90 of each figure, and every run); no_limit: bool — lift the work caps.
+///
+/// Raises ParameterError (a ValueError) as `simulate` does. Ctrl-C stops the response.
+#[pyfunction]
+#[pyo3(name = "response", signature = (freqs_hz, **params))]
+fn response_curve(
+    py: Python<'_>,
+    freqs_hz: &Bound<'_, PyAny>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyResponse> {
+    let kw = Kwargs::new(params, &["preset", "no_limit", "ensemble", "continuation"])?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let continuation = kw.switch(py, "continuation")?;
+    let freqs = axis(py, "freqs_hz", freqs_hz, Kind::Frequency, &limits::FREQ)?;
+    let base = preset(py, &kw, Some("default"))?.unwrap_or_default();
+    let d = params::response_design(base, &kw.params, Spelling::Keyword, freqs[0], "force")
+        .map_err(|e| engine_error(py, e))?;
+    let runs = ensemble_runs(py, &kw)?;
+    check_response(py, &d, &freqs, continuation, runs, no_limit)?;
+    let opts = ResponseOptions { continuation, settle: true };
+    if runs > 1 {
+        let r = detach::run(py, |cancel| response::response_ensemble(&d, &freqs, runs, &opts, Some(cancel), &|| {}))?;
+        let r = r.map_err(|e| engine_error(py, e))?;
+        return PyResponse::of_ensembles(py, &ResponseEnsembleReport::new(&d, &r, continuation));
+    }
+    let r = detach::run(py, |cancel| response::response(&d, &freqs, &opts, Some(cancel), &|| {}))?;
+    let r = r.map_err(|e| engine_error(py, e))?;
+    PyResponse::new(py, &ResponseReport::new(&d, &r, continuation))
+}
+
+/// Refuses a response of `runs` runs a frequency whose work is over a cap, as the command
+/// line does: the forcing periods and Newmark steps over all runs, the cycles of one run.
+fn check_response(
+    py: Python<'_>,
+    d: &Design,
+    freqs: &[f64],
+    continuation: bool,
+    runs: usize,
+    no_limit: bool,
+) -> PyResult<()> {
+    let [one, one_steps] = limits::response_work(d, freqs, continuation);
+    let n = runs as f64;
+    let periods = Estimate { value: n * one.value, ..one };
+    if runs > 1 && !one.exceeded() {
+        let hint =
+            format!("use fewer runs (at most {} for these frequencies)", short((one.cap.max / one.value).floor()));
+        enforce(py, periods, "ensemble", &hint, no_limit)?;
+    }
+    enforce(py, periods, "freqs_hz", "use fewer frequencies or a shorter duration", no_limit)?;
+    if let thud_core::damper::Solver::Newmark { dt_s } = d.solver {
+        let steps = Estimate { value: n * one_steps.value, ..one_steps };
+        let _ = dt_s;
+        enforce(py, steps, "dt", "use the event solver or a larger dt", no_limit)?;
+    }
+    let f_max = freqs.iter().copied().fold(0.0, f64::max);
+    let cycles = limits::design_run(&response::at_frequency(d, f_max, true), 0)[1];
+    enforce(py, cycles, "freqs_hz", "use lower frequencies or a shorter duration", no_limit)
 }
 
 /// axis(name, spec) -> numpy.ndarray
@@ -244,8 +355,9 @@ fn ranges(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
 /// thud — design single-unit impact dampers: Hertz contact, impact noise, the damper and its
 /// design chart, on the engine of the `thud` terminal app (identical numbers).
 ///
-/// pulse(**params) -> Pulse, simulate(**params) -> Run, sweep(masses_kg, gaps_m, **params)
-/// -> Chart. Parameters are the command line's long flags as keywords (--main-mass →
+/// pulse(**params) -> Pulse, simulate(**params) -> Run (or Ensemble with ensemble=N),
+/// sweep(masses_kg, gaps_m, **params) -> Chart, response(freqs_hz, **params) -> Response.
+/// Parameters are the command line's long flags as keywords (--main-mass →
 /// main_mass=), SI units (angles in degrees), or strings with units ("40.5g"). Bad input
 /// raises ParameterError (a ValueError) naming the parameter. The GIL is released while the
 /// engine runs.
@@ -255,12 +367,15 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ParameterError", py.get_type::<args::ParameterError>())?;
-    m.add_class::<Pulse>()?;
-    m.add_class::<Run>()?;
-    m.add_class::<Chart>()?;
+    m.add_class::<PyPulse>()?;
+    m.add_class::<PyRun>()?;
+    m.add_class::<PyEnsemble>()?;
+    m.add_class::<PyChart>()?;
+    m.add_class::<PyResponse>()?;
     m.add_function(wrap_pyfunction!(pulse, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(response_curve, m)?)?;
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;

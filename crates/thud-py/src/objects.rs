@@ -1,38 +1,44 @@
-//! The results handed to Python: `Pulse`, `Run` and `Chart`, the very numbers of the command
-//! line's `pulse --json`, `simulate --json` and `sweep --json` (computed by the same engine
-//! calls), with sequences as NumPy arrays. Each number is checked finite before it is handed
-//! out; a value that does not exist (no impact, so no SPL) is `None`, or NaN in a chart array
-//! (zone 0).
+//! The results handed to Python: `Pulse`, `Run`, `Ensemble`, `Chart` and `Response`. Each is
+//! made from the engine's result record ([`thud_core::report`]) — the very record the command
+//! line prints with `--json` — so the two cannot drift: scalars are copied, lists of records
+//! become dicts of NumPy arrays by [`columns`] (one array per key of the record), nested
+//! objects become dicts. Every number is checked finite before it is handed out; a value that
+//! does not exist (no impact, so no SPL) is `None`, or NaN inside a float array (zone 0 in a
+//! zone array).
 
 use std::sync::atomic::AtomicBool;
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use serde::Serialize;
-use thud_core::acoustics::{Extremum, Levels};
-use thud_core::contact::Contact;
-use thud_core::damper::free_response;
-use thud_core::design::{self, Design, Evaluation};
+use serde_json::Value as Json;
+use thud_core::damper::{free_response, HistoryPoint};
+use thud_core::design::{self, Design};
+use thud_core::ensemble::EnsembleChart;
 use thud_core::limits::{self, short};
 use thud_core::params::PulseInput;
+use thud_core::report::{EnsembleReport, ImpactReport, PulseReport, ResponseEnsembleReport, ResponseReport, RunReport};
 use thud_core::ThudError;
 
 use crate::args::{engine_error, non_finite, parameter_error};
 
-/// `v` if finite, else the internal error naming `what`.
-fn finite(what: &str, v: f64) -> PyResult<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(non_finite(what))
-    }
+/// `record` checked finite (the command line's check of its JSON), then as a JSON value.
+fn checked<T: Serialize>(what: &str, record: &T) -> PyResult<Json> {
+    thud::cli::check_finite(record).map_err(|e| non_finite(&format!("{what}: {e:?}")))?;
+    serde_json::to_value(record).map_err(|e| non_finite(&format!("{what} ({e})")))
 }
 
-/// An optional number: None stays None, a number must be finite.
-fn finite_opt(what: &str, v: Option<f64>) -> PyResult<Option<f64>> {
-    v.map(|x| finite(what, x)).transpose()
+/// A JSON value as Python data (dicts, lists, numbers, strings, None).
+fn to_py(py: Python<'_>, v: &Json) -> PyResult<Py<PyAny>> {
+    let text = serde_json::to_string(v).map_err(|e| non_finite(&format!("{e}")))?;
+    Ok(py.import("json")?.call_method1("loads", (text,))?.unbind())
+}
+
+/// `record` as Python data through its JSON form (a design reads exactly as in `--json`).
+fn json_data<T: Serialize>(py: Python<'_>, what: &str, record: &T) -> PyResult<Py<PyAny>> {
+    to_py(py, &checked(what, record)?)
 }
 
 /// A NumPy array of `values`, each checked finite.
@@ -43,185 +49,262 @@ fn array(py: Python<'_>, what: &str, values: Vec<f64>) -> PyResult<Py<PyAny>> {
     Ok(PyArray1::from_vec(py, values).into_any().unbind())
 }
 
-/// A dict of NumPy arrays, one per (key, values), each checked finite.
-fn arrays(py: Python<'_>, what: &str, columns: Vec<(&str, Vec<f64>)>) -> PyResult<Py<PyDict>> {
+/// The key `key` of every object in `rows` (null where absent).
+fn column<'a>(rows: &'a [Json], key: &str) -> Vec<&'a Json> {
+    rows.iter().map(|r| r.get(key).unwrap_or(&Json::Null)).collect()
+}
+
+/// A list of records (JSON objects) as a dict of columns, one per key (the keys of
+/// `template` when there are no rows, so an empty list still has every key): a `zone` as int8
+/// (0 = none), the keys in `int8` as int8, other whole numbers as int64, numbers as float64
+/// (NaN = none), booleans as bool, nested objects as dicts of columns, lists of records as
+/// dicts of 2-D columns (row × item), anything else as a list.
+fn columns(py: Python<'_>, rows: &[Json], template: Option<&Json>, int8: &[&str]) -> PyResult<Py<PyDict>> {
     let d = PyDict::new(py);
-    for (key, values) in columns {
-        d.set_item(key, array(py, &format!("{what}.{key}"), values)?)?;
+    let mut keys: Vec<&String> = Vec::new();
+    for r in rows.iter().chain(template.filter(|_| rows.is_empty())) {
+        for k in r.as_object().into_iter().flat_map(|o| o.keys()) {
+            if !keys.contains(&k) {
+                keys.push(k);
+            }
+        }
+    }
+    for key in keys {
+        let col = column(rows, key);
+        let value: Py<PyAny> = if key == "zone" || int8.contains(&key.as_str()) {
+            let v: Vec<i8> = col.iter().map(|v| v.as_i64().map_or(0, |z| z as i8)).collect();
+            v.into_pyarray(py).into_any().unbind()
+        } else if !col.is_empty() && col.iter().all(|v| v.is_i64() || v.is_u64()) {
+            let v: Vec<i64> = col.iter().map(|v| v.as_i64().unwrap_or(i64::MAX)).collect();
+            v.into_pyarray(py).into_any().unbind()
+        } else if !col.is_empty() && col.iter().all(|v| v.is_boolean()) {
+            let v: Vec<bool> = col.iter().map(|v| v.as_bool() == Some(true)).collect();
+            v.into_pyarray(py).into_any().unbind()
+        } else if col.iter().all(|v| v.is_number() || v.is_null()) {
+            PyArray1::from_vec(py, col.iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect()).into_any().unbind()
+        } else if col.iter().all(|v| v.is_object() || v.is_null()) {
+            let inner: Vec<Json> = col.into_iter().cloned().collect();
+            columns(py, &inner, None, int8)?.into_any()
+        } else if col.iter().all(|v| v.as_array().is_some_and(|a| a.iter().all(Json::is_object))) {
+            stacked(py, &col, int8)?
+        } else {
+            let list = PyList::empty(py);
+            for v in col {
+                list.append(to_py(py, v)?)?;
+            }
+            list.into_any().unbind()
+        };
+        d.set_item(key, value)?;
     }
     Ok(d.unbind())
 }
 
-/// `value` as Python data (dicts, lists, numbers, strings) through its JSON form, so a
-/// design reads exactly as in the command line's `--json`.
-fn json_data<T: Serialize>(py: Python<'_>, what: &str, value: &T) -> PyResult<Py<PyAny>> {
-    let text = serde_json::to_string(value).map_err(|e| non_finite(&format!("{what} ({e})")))?;
-    Ok(py.import("json")?.call_method1("loads", (text,))?.unbind())
+/// Lists of records of equal length (one list per row) as a dict of 2-D columns (row × item).
+fn stacked(py: Python<'_>, lists: &[&Json], int8: &[&str]) -> PyResult<Py<PyAny>> {
+    let n = lists.first().and_then(|l| l.as_array()).map_or(0, Vec::len);
+    let flat: Vec<Json> = lists.iter().flat_map(|l| l.as_array().into_iter().flatten().cloned()).collect();
+    if flat.len() != n * lists.len() {
+        return Err(pyo3::exceptions::PyRuntimeError::new_err("internal error: ragged lists of records"));
+    }
+    let d = columns(py, &flat, None, int8)?;
+    reshape(py, d.bind(py).as_any(), &[lists.len(), n])
+}
+
+/// Every array in `value` (a dict of arrays, nested) with its first axis split into `front`.
+fn reshape(py: Python<'_>, value: &Bound<'_, PyAny>, front: &[usize]) -> PyResult<Py<PyAny>> {
+    if let Ok(d) = value.cast::<PyDict>() {
+        let out = PyDict::new(py);
+        for (k, v) in d.iter() {
+            out.set_item(k, reshape(py, &v, front)?)?;
+        }
+        return Ok(out.into_any().unbind());
+    }
+    if value.hasattr("reshape")? {
+        let rest: Vec<usize> = value.getattr("shape")?.extract::<Vec<usize>>()?.into_iter().skip(1).collect();
+        let shape: Vec<usize> = front.iter().chain(&rest).copied().collect();
+        return Ok(value.call_method1("reshape", (pyo3::types::PyTuple::new(py, shape)?,))?.unbind());
+    }
+    Ok(value.clone().unbind())
+}
+
+/// The JSON objects of the list `key` of `record`.
+fn rows_of(record: &Json, key: &str) -> Vec<Json> {
+    record.get(key).and_then(Json::as_array).cloned().unwrap_or_default()
+}
+
+/// A scalar of the record (`None` for null).
+fn field(py: Python<'_>, record: &Json, key: &str) -> PyResult<Py<PyAny>> {
+    to_py(py, record.get(key).unwrap_or(&Json::Null))
 }
 
 /// Everything a `Pulse` holds, computed without the GIL.
-pub struct PulseData {
-    input: PulseInput,
-    contact: Contact,
-    arrival_s: f64,
-    levels: Levels,
-    extrema: Vec<Extremum>,
-    t_s: Vec<f64>,
-    p_pa: Vec<f64>,
-}
+pub struct PulseData(PulseReport);
 
 impl PulseData {
-    /// The pulse of `input` with a waveform of `points` points — the engine calls of
+    /// The pulse of `input` with a waveform of `points` points — the record of
     /// `thud pulse --json`.
-    pub fn compute(input: PulseInput, points: usize) -> Result<PulseData, ThudError> {
+    pub fn compute(input: &PulseInput, points: usize) -> Result<PulseData, ThudError> {
         let contact = input.contact();
         let field = input.field(&contact)?;
-        let (t_s, p_pa) = field.waveform(points);
-        Ok(PulseData {
-            arrival_s: field.arrival_s(),
-            levels: field.levels(),
-            extrema: field.extrema(),
-            contact,
-            input,
-            t_s,
-            p_pa,
-        })
+        Ok(PulseData(PulseReport::new(input, &contact, &field, points)))
     }
 }
 
 /// One Hertzian impact heard at one observer (`thud.pulse`): the inputs as used, the contact
 /// (Eqs 5–7), the levels and the waveform. SI units; angles in degrees; levels in dB re 20 µPa.
-#[pyclass(module = "thud", frozen, get_all)]
-pub struct Pulse {
+#[pyclass(name = "Pulse", module = "thud", frozen)]
+pub struct PyPulse {
     /// Sphere radius a (m).
+    #[pyo3(get)]
     radius_m: f64,
     /// Sphere mass m (kg).
+    #[pyo3(get)]
     mass_kg: f64,
     /// Impact speed U0 (m/s).
+    #[pyo3(get)]
     u0_m_s: f64,
     /// Hertz stiffness K_HZ (N/m^1.5).
+    #[pyo3(get)]
     k_hz: f64,
     /// Observer distance r (m).
+    #[pyo3(get)]
     r_m: f64,
     /// Observer angle θ (degrees).
+    #[pyo3(get)]
     theta_deg: f64,
     /// "single", "dipole" or "quadrupole".
+    #[pyo3(get)]
     source: String,
     /// "paper" or "rigid".
+    #[pyo3(get)]
     quad_signs: String,
     /// "half-sine" or "hertz".
+    #[pyo3(get)]
     pulse: String,
     /// Air impedance ρ0·c (Pa·s/m).
+    #[pyo3(get)]
     rho_c_pa_s_m: f64,
     /// Speed of sound c (m/s).
+    #[pyo3(get)]
     c_m_s: f64,
     /// Peak approach α_max (m).
+    #[pyo3(get)]
     alpha_max_m: f64,
     /// Peak acceleration A_max (m/s²).
+    #[pyo3(get)]
     accel_max_m_s2: f64,
     /// Contact duration τ (s).
+    #[pyo3(get)]
     tau_s: f64,
     /// Peak contact force (N).
+    #[pyo3(get)]
     force_max_n: f64,
     /// Arrival of the direct wave (s after the contact starts).
+    #[pyo3(get)]
     arrival_s: f64,
     /// SPL (dB): rms over one contact duration from the direct arrival.
+    #[pyo3(get)]
     spl_db: f64,
     /// How spl_db is defined.
+    #[pyo3(get)]
     spl_definition: String,
     /// Peak level (dB).
+    #[pyo3(get)]
     spl_peak_db: f64,
     /// Sound exposure level (dB).
+    #[pyo3(get)]
     sel_db: f64,
     /// rms pressure over the SPL window (Pa).
+    #[pyo3(get)]
     p_rms_pa: f64,
     /// Largest pressure (Pa).
+    #[pyo3(get)]
     p_max_pa: f64,
     /// Smallest pressure (Pa).
+    #[pyo3(get)]
     p_min_pa: f64,
     /// Local extrema of the waveform: {"t_s": array (s), "p_pa": array (Pa)}.
+    #[pyo3(get)]
     extrema: Py<PyDict>,
     /// Waveform times (s), from the contact's start.
+    #[pyo3(get)]
     t_s: Py<PyAny>,
     /// Waveform pressure (Pa).
+    #[pyo3(get)]
     p_pa: Py<PyAny>,
+    /// The record, for `as_dict`.
+    record: Json,
 }
 
-impl Pulse {
-    pub fn new(py: Python<'_>, d: PulseData) -> PyResult<Pulse> {
-        let (c, lv, i) = (&d.contact, &d.levels, &d.input);
-        let (ext_t, ext_p) = d.extrema.iter().map(|e| (e.t_s, e.p_pa)).unzip();
-        Ok(Pulse {
-            radius_m: finite("radius_m", i.radius_m)?,
-            mass_kg: finite("mass_kg", i.impact.mass_kg)?,
-            u0_m_s: finite("u0_m_s", i.impact.u0_m_s)?,
-            k_hz: finite("k_hz", i.impact.k_hz)?,
-            r_m: finite("r_m", i.observer.r_m)?,
-            theta_deg: finite("theta_deg", i.observer.theta_rad.to_degrees())?,
-            source: i.radiation.source.name().to_string(),
-            quad_signs: i.radiation.quad_signs.name().to_string(),
-            pulse: i.radiation.pulse.name().to_string(),
-            rho_c_pa_s_m: finite("rho_c_pa_s_m", i.radiation.air.rho_c_pa_s_m)?,
-            c_m_s: finite("c_m_s", i.radiation.air.c_m_s)?,
-            alpha_max_m: finite("alpha_max_m", c.alpha_max_m)?,
-            accel_max_m_s2: finite("accel_max_m_s2", c.accel_max_m_s2)?,
-            tau_s: finite("tau_s", c.tau_s)?,
-            force_max_n: finite("force_max_n", c.force_max_n)?,
-            arrival_s: finite("arrival_s", d.arrival_s)?,
-            spl_db: finite("spl_db", lv.spl_db)?,
-            spl_definition: "rms over one contact duration from the direct arrival".to_string(),
-            spl_peak_db: finite("spl_peak_db", lv.spl_peak_db)?,
-            sel_db: finite("sel_db", lv.sel_db)?,
-            p_rms_pa: finite("p_rms_pa", lv.p_rms_pa)?,
-            p_max_pa: finite("p_max_pa", lv.p_max_pa)?,
-            p_min_pa: finite("p_min_pa", lv.p_min_pa)?,
-            extrema: arrays(py, "extrema", vec![("t_s", ext_t), ("p_pa", ext_p)])?,
-            t_s: array(py, "t_s", d.t_s)?,
-            p_pa: array(py, "p_pa", d.p_pa)?,
+impl PyPulse {
+    pub fn new(py: Python<'_>, data: PulseData) -> PyResult<PyPulse> {
+        let r = data.0;
+        let record = checked("pulse", &r)?;
+        let template = serde_json::json!({"t_s": 0.0, "p_pa": 0.0});
+        Ok(PyPulse {
+            extrema: columns(py, &rows_of(&record, "extrema"), Some(&template), &[])?,
+            t_s: array(py, "t_s", r.waveform.t_s)?,
+            p_pa: array(py, "p_pa", r.waveform.p_pa)?,
+            radius_m: r.radius_m,
+            mass_kg: r.mass_kg,
+            u0_m_s: r.u0_m_s,
+            k_hz: r.k_hz,
+            r_m: r.r_m,
+            theta_deg: r.theta_deg,
+            source: r.source,
+            quad_signs: r.quad_signs,
+            pulse: r.pulse,
+            rho_c_pa_s_m: r.rho_c_pa_s_m,
+            c_m_s: r.c_m_s,
+            alpha_max_m: r.alpha_max_m,
+            accel_max_m_s2: r.accel_max_m_s2,
+            tau_s: r.tau_s,
+            force_max_n: r.force_max_n,
+            arrival_s: r.arrival_s,
+            spl_db: r.spl_db,
+            spl_definition: r.spl_definition,
+            spl_peak_db: r.spl_peak_db,
+            sel_db: r.sel_db,
+            p_rms_pa: r.p_rms_pa,
+            p_max_pa: r.p_max_pa,
+            p_min_pa: r.p_min_pa,
+            record,
         })
     }
 }
 
+/// The scalars of `record` (every key but `skip`) into `d`, then `extra`.
+fn fill(
+    py: Python<'_>,
+    d: &Bound<'_, PyDict>,
+    record: &Json,
+    skip: &[&str],
+    extra: &[(&str, &Py<PyAny>)],
+) -> PyResult<()> {
+    for (k, v) in record.as_object().into_iter().flatten() {
+        if !skip.contains(&k.as_str()) {
+            d.set_item(k, to_py(py, v)?)?;
+        }
+    }
+    for (k, v) in extra {
+        d.set_item(k, v.clone_ref(py))?;
+    }
+    Ok(())
+}
+
 #[pymethods]
-impl Pulse {
+impl PyPulse {
     /// Every field in one dict (the command line's JSON keys; the waveform as "t_s"/"p_pa").
     fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let numbers = [
-            ("radius_m", self.radius_m),
-            ("mass_kg", self.mass_kg),
-            ("u0_m_s", self.u0_m_s),
-            ("k_hz", self.k_hz),
-            ("r_m", self.r_m),
-            ("theta_deg", self.theta_deg),
-            ("rho_c_pa_s_m", self.rho_c_pa_s_m),
-            ("c_m_s", self.c_m_s),
-            ("alpha_max_m", self.alpha_max_m),
-            ("accel_max_m_s2", self.accel_max_m_s2),
-            ("tau_s", self.tau_s),
-            ("force_max_n", self.force_max_n),
-            ("arrival_s", self.arrival_s),
-            ("spl_db", self.spl_db),
-            ("spl_peak_db", self.spl_peak_db),
-            ("sel_db", self.sel_db),
-            ("p_rms_pa", self.p_rms_pa),
-            ("p_max_pa", self.p_max_pa),
-            ("p_min_pa", self.p_min_pa),
-        ];
-        for (k, v) in numbers {
-            d.set_item(k, v)?;
-        }
-        for (k, v) in [
-            ("source", &self.source),
-            ("quad_signs", &self.quad_signs),
-            ("pulse", &self.pulse),
-            ("spl_definition", &self.spl_definition),
-        ] {
-            d.set_item(k, v)?;
-        }
-        d.set_item("extrema", self.extrema.clone_ref(py))?;
-        d.set_item("t_s", self.t_s.clone_ref(py))?;
-        d.set_item("p_pa", self.p_pa.clone_ref(py))?;
+        let extrema = self.extrema.clone_ref(py).into_any();
+        fill(
+            py,
+            &d,
+            &self.record,
+            &["waveform", "extrema"],
+            &[("extrema", &extrema), ("t_s", &self.t_s), ("p_pa", &self.p_pa)],
+        )?;
         Ok(d)
     }
 
@@ -243,28 +326,28 @@ impl Pulse {
 
 /// Everything a `Run` holds, computed without the GIL.
 pub struct RunData {
-    eval: Evaluation,
-    spls: Vec<f64>,
+    report: RunReport,
+    history: Vec<HistoryPoint>,
     x_free: Vec<f64>,
 }
 
 impl RunData {
-    /// `design` simulated with `samples` history samples — the engine calls of
-    /// `thud simulate --json` (and of `--csv` for the history).
-    pub fn compute(d: Design, samples: usize, cancel: &AtomicBool) -> Result<RunData, ThudError> {
-        let eval = design::evaluate(&d, samples, Some(cancel))?;
-        let spls = design::impact_spls(&eval.run, &d)?;
+    /// `design` simulated with `samples` history samples — the record of
+    /// `thud simulate --json`, and the history of `--csv`.
+    pub fn compute(d: &Design, samples: usize, cancel: &AtomicBool) -> Result<RunData, ThudError> {
+        let eval = design::evaluate(d, samples, Some(cancel))?;
+        let report = RunReport::new(d, &eval)?;
         let x_free = eval.run.history.iter().map(|h| free_response(&d.damper, h.t_s)).collect();
-        Ok(RunData { eval, spls, x_free })
+        Ok(RunData { report, history: eval.run.history, x_free })
     }
 }
 
 /// One damper design run through its impacts (`thud.simulate`): the metrics (Eq 27 e, e_fit,
-/// U0max, SPLmax, zone), every impact, the cycle maxima, the energy ledger and the time history.
-/// SI units; inclinations in cm/s; levels in dB re 20 µPa. None = no such value (too few
-/// maxima for e, no impact for SPLmax).
-#[pyclass(module = "thud", frozen, get_all)]
-pub struct Run {
+/// U0max, SPLmax, zone), every impact, the cycle maxima, the energy ledger, the steady state
+/// of a forced run and the time history. SI units; inclinations in cm/s; levels in dB re
+/// 20 µPa. None = no such value (too few maxima for e, no impact for SPLmax).
+#[pyclass(name = "Run", module = "thud", frozen, get_all)]
+pub struct PyRun {
     /// The design as run (the command line's JSON "design" object).
     design: Py<PyAny>,
     /// Ball radius (m).
@@ -292,91 +375,64 @@ pub struct Run {
     impacts: Py<PyDict>,
     /// Cycle maxima of the main mass: t_s (s), x_m (m).
     maxima: Py<PyDict>,
-    /// Energy ledger (J): initial_j, final_mechanical_j, dissipated_viscous_j, dissipated_contact_j.
-    energy: Py<PyDict>,
+    /// Energy ledger (J): initial_j, final_mechanical_j, dissipated_viscous_j,
+    /// dissipated_contact_j (and forcing_work_j of a forced run).
+    energy: Py<PyAny>,
     /// Time reached (s).
     final_time_s: f64,
     /// Whether the solver's work cap stopped the run before its duration.
     truncated: bool,
     /// Why, when it did.
     truncation_reason: Option<String>,
+    /// The steady state of a forced run over its last `periods` forcing periods (the JSON
+    /// "steady" object: amplitude_m, amplitude_linear_m (m), reduction_db, leq_db (dB), …);
+    /// None without a force.
+    steady: Option<Py<PyAny>>,
     /// Uniform time history: t_s (s), x_m (main mass, m), y_m (ball, m), x_free_m (no damper, m).
     history: Py<PyDict>,
 }
 
-impl Run {
-    pub fn new(py: Python<'_>, d: &Design, data: RunData) -> PyResult<Run> {
-        let RunData { eval, spls, x_free } = data;
-        let (run, m) = (&eval.run, &eval.metrics);
-        let col = |f: fn(&thud_core::damper::ImpactEvent) -> f64| run.impacts.iter().map(f).collect::<Vec<f64>>();
-        let impacts = arrays(
-            py,
-            "impacts",
-            vec![
-                ("t_s", col(|i| i.t_s)),
-                ("u_in_m_s", col(|i| i.u_in_m_s)),
-                ("u_out_m_s", col(|i| i.u_out_m_s)),
-                ("restitution", col(|i| i.u_out_m_s / i.u_in_m_s)),
-                ("t_end_s", col(|i| i.t_end_s)),
-                ("duration_s", col(|i| i.t_end_s - i.t_s)),
-                ("penetration_max_m", col(|i| i.penetration_max_m)),
-                ("spl_db", spls),
-            ],
-        )?;
-        let walls: Vec<i8> = run.impacts.iter().map(|i| i8::from(i.wall)).collect();
-        impacts.bind(py).set_item("wall", walls.into_pyarray(py))?;
-        let energy = PyDict::new(py);
-        let en = &run.energy;
+impl PyRun {
+    pub fn new(py: Python<'_>, data: RunData) -> PyResult<PyRun> {
+        let RunData { report: r, history, x_free } = data;
+        let record = checked("run", &r)?;
+        let template = serde_json::to_value(ImpactReport::default()).ok();
+        let history_dict = PyDict::new(py);
         for (k, v) in [
-            ("initial_j", en.initial_j),
-            ("final_mechanical_j", en.final_mechanical_j),
-            ("dissipated_viscous_j", en.dissipated_viscous_j),
-            ("dissipated_contact_j", en.dissipated_contact_j),
+            ("t_s", history.iter().map(|h| h.t_s).collect()),
+            ("x_m", history.iter().map(|h| h.x_m).collect()),
+            ("y_m", history.iter().map(|h| h.y_m).collect()),
+            ("x_free_m", x_free),
         ] {
-            energy.set_item(k, finite(&format!("energy.{k}"), v)?)?;
+            history_dict.set_item(k, array(py, &format!("history.{k}"), v)?)?;
         }
-        let truncation_reason = design::truncation(run, d.damper.duration_s);
-        Ok(Run {
-            design: json_data(py, "design", d)?,
-            ball_radius_m: finite("ball_radius_m", d.ball_radius_m())?,
-            n_impacts: m.n_impacts,
-            inclination_cm_s: finite_opt("inclination_cm_s", m.inclination_cm_s)?,
-            inclination_fit_cm_s: finite_opt("inclination_fit_cm_s", m.inclination_fit_cm_s)?,
-            u0_max_m_s: finite("u0_max_m_s", m.u0_max_m_s)?,
-            zdot_abs_max_m_s: finite("zdot_abs_max_m_s", m.zdot_abs_max_m_s)?,
-            spl_max_db: finite_opt("spl_max_db", m.spl_max_db)?,
-            contact_duration_s: finite_opt("contact_duration_s", m.contact_duration_s)?,
-            restitution_mean: finite_opt("restitution_mean", m.restitution_mean)?,
-            zone: m.zone.map(thud_core::design::Zone::number),
-            impacts,
-            maxima: arrays(
-                py,
-                "maxima",
-                vec![
-                    ("t_s", run.maxima.iter().map(|x| x.t_s).collect()),
-                    ("x_m", run.maxima.iter().map(|x| x.x_m).collect()),
-                ],
-            )?,
-            energy: energy.unbind(),
-            final_time_s: finite("final_time_s", run.final_time_s)?,
-            truncated: truncation_reason.is_some(),
-            truncation_reason,
-            history: arrays(
-                py,
-                "history",
-                vec![
-                    ("t_s", run.history.iter().map(|h| h.t_s).collect()),
-                    ("x_m", run.history.iter().map(|h| h.x_m).collect()),
-                    ("y_m", run.history.iter().map(|h| h.y_m).collect()),
-                    ("x_free_m", x_free),
-                ],
-            )?,
+        let maxima_template = serde_json::json!({"t_s": 0.0, "x_m": 0.0});
+        Ok(PyRun {
+            design: field(py, &record, "design")?,
+            ball_radius_m: r.ball_radius_m,
+            n_impacts: r.n_impacts,
+            inclination_cm_s: r.inclination_cm_s,
+            inclination_fit_cm_s: r.inclination_fit_cm_s,
+            u0_max_m_s: r.u0_max_m_s,
+            zdot_abs_max_m_s: r.zdot_abs_max_m_s,
+            spl_max_db: r.spl_max_db,
+            contact_duration_s: r.contact_duration_s,
+            restitution_mean: r.restitution_mean,
+            zone: r.zone,
+            impacts: columns(py, &rows_of(&record, "impacts"), template.as_ref(), &["wall"])?,
+            maxima: columns(py, &rows_of(&record, "maxima"), Some(&maxima_template), &[])?,
+            energy: field(py, &record, "energy")?,
+            final_time_s: r.final_time_s,
+            truncated: r.truncated,
+            truncation_reason: r.truncation_reason,
+            steady: record.get("steady").map(|s| to_py(py, s)).transpose()?,
+            history: history_dict.unbind(),
         })
     }
 }
 
 #[pymethods]
-impl Run {
+impl PyRun {
     /// Every field in one dict (the command line's JSON keys, plus "history").
     fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
@@ -397,6 +453,7 @@ impl Run {
         d.set_item("final_time_s", self.final_time_s)?;
         d.set_item("truncated", self.truncated)?;
         d.set_item("truncation_reason", self.truncation_reason.clone())?;
+        d.set_item("steady", self.steady.as_ref().map(|s| s.clone_ref(py)))?;
         d.set_item("history", self.history.clone_ref(py))?;
         Ok(d)
     }
@@ -416,12 +473,95 @@ impl Run {
     }
 }
 
+/// One design run from N ball offsets (`thud.simulate(ensemble=N)`, N > 1): the zone of the
+/// medians, how many runs are in zone 3 and agree with it, the p10/median/p90 of each metric
+/// and every run — the fields of `thud simulate --ensemble N --json`.
+#[pyclass(name = "Ensemble", module = "thud", frozen)]
+pub struct PyEnsemble {
+    /// The design (the JSON "design" object; its ball offset is each run's own).
+    #[pyo3(get)]
+    design: Py<PyAny>,
+    /// Ball radius (m).
+    #[pyo3(get)]
+    ball_radius_m: f64,
+    /// Runs N.
+    #[pyo3(get)]
+    runs: usize,
+    /// The zone of the medians, 1–4.
+    #[pyo3(get)]
+    zone: Option<u8>,
+    /// Fraction of the runs in zone 3.
+    #[pyo3(get)]
+    zone3_probability: f64,
+    /// Fraction of the runs whose zone is the zone of the medians.
+    #[pyo3(get)]
+    agreement: f64,
+    /// {"inclination_cm_s" | "inclination_fit_cm_s" (cm/s) | "u0_max_m_s" (m/s) |
+    /// "spl_max_db" (dB): {"p10", "median", "p90"}} (None: the percentile falls among runs
+    /// without the value).
+    #[pyo3(get)]
+    spread: Py<PyAny>,
+    /// Every run, as arrays in order of k: ball_position_m (m), n_impacts, u0_max_m_s,
+    /// zdot_abs_max_m_s (m/s), spl_max_db (dB), contact_duration_s (s), restitution_mean,
+    /// inclination_cm_s, inclination_fit_cm_s (cm/s), zone (int8, 0 = none).
+    #[pyo3(get)]
+    ensemble: Py<PyDict>,
+    /// Whether any run stopped at a solver work cap.
+    #[pyo3(get)]
+    truncated: bool,
+    #[pyo3(get)]
+    truncation_reason: Option<String>,
+    record: Json,
+}
+
+impl PyEnsemble {
+    pub fn new(py: Python<'_>, r: &EnsembleReport) -> PyResult<PyEnsemble> {
+        let record = checked("ensemble", r)?;
+        Ok(PyEnsemble {
+            design: field(py, &record, "design")?,
+            ball_radius_m: r.ball_radius_m,
+            runs: r.runs,
+            zone: r.zone,
+            zone3_probability: r.zone3_probability,
+            agreement: r.agreement,
+            spread: field(py, &record, "spread")?,
+            ensemble: columns(py, &rows_of(&record, "ensemble"), None, &[])?,
+            truncated: r.truncated,
+            truncation_reason: r.truncation_reason.clone(),
+            record,
+        })
+    }
+}
+
+#[pymethods]
+impl PyEnsemble {
+    /// Every field in one dict (the command line's JSON keys; the runs as arrays).
+    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let runs = self.ensemble.clone_ref(py).into_any();
+        fill(py, &d, &self.record, &["ensemble"], &[("ensemble", &runs)])?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Ensemble({} runs, zone of the medians {}, zone 3 in {:.0} % of the runs, {:.0} % agree{})",
+            self.runs,
+            self.zone.map_or("None".into(), |z| z.to_string()),
+            100.0 * self.zone3_probability,
+            100.0 * self.agreement,
+            if self.truncated { ", truncated" } else { "" }
+        )
+    }
+}
+
 /// The design chart of a sweep (`thud.sweep`): every metric as a 2-D array of shape
 /// (len(gaps_m), len(masses_kg)) — row = gap, column = mass, as `pcolormesh(masses_kg, gaps_m,
 /// chart.zone)` wants. NaN marks a value that does not exist (no impact: no SPLmax; too few
-/// maxima: no e); zone 0 marks no zone.
-#[pyclass(module = "thud", frozen)]
-pub struct Chart {
+/// maxima: no e); zone 0 marks no zone. With `ensemble=N` the metrics are the medians of each
+/// cell's runs and the ensemble fields are set.
+#[pyclass(name = "Chart", module = "thud", frozen)]
+pub struct PyChart {
     /// The design every cell varies (the command line's JSON "design" object).
     #[pyo3(get)]
     design: Py<PyAny>,
@@ -461,12 +601,64 @@ pub struct Chart {
     /// Zone thresholds: {"spl_db": L* (dB), "inclination_cm_s": e* (cm/s), "zone_by": "paper" | "fit"}.
     #[pyo3(get)]
     thresholds: Py<PyAny>,
-    /// The engine's chart, kept for `Chart.table5`.
+    /// Runs per cell N (1: the single trajectory).
+    #[pyo3(get)]
+    runs: usize,
+    /// Fraction of each cell's runs in zone 3 (2-D; None without an ensemble).
+    #[pyo3(get)]
+    zone3_probability: Option<Py<PyAny>>,
+    /// Fraction of each cell's runs in the zone of its medians (2-D; None without an ensemble).
+    #[pyo3(get)]
+    agreement: Option<Py<PyAny>>,
+    /// {metric: {"p10", "median", "p90"}} of e, e_fit, U0max and SPLmax, each 2-D (None
+    /// without an ensemble).
+    #[pyo3(get)]
+    spread: Option<Py<PyAny>>,
+    /// Every run of every cell: {"ball_position_m", metric…} as 3-D arrays (gap, mass, run)
+    /// (None without an ensemble).
+    #[pyo3(get)]
+    ensemble: Option<Py<PyAny>>,
+    /// The engine's chart (of the medians), kept for `Chart.table5`.
     chart: design::Chart,
 }
 
-impl Chart {
-    pub fn new(py: Python<'_>, d: &Design, chart: design::Chart) -> PyResult<Chart> {
+/// The parts of an ensemble chart beyond its medians, as arrays shaped (gap, mass, …).
+struct EnsembleParts {
+    zone3_probability: Py<PyAny>,
+    agreement: Py<PyAny>,
+    spread: Py<PyAny>,
+    ensemble: Py<PyAny>,
+}
+
+impl EnsembleParts {
+    fn new(py: Python<'_>, chart: &EnsembleChart) -> PyResult<EnsembleParts> {
+        let record = checked("chart", chart)?;
+        let cells = rows_of(&record, "cells");
+        if cells.iter().any(Json::is_null) {
+            return Err(pyo3::exceptions::PyRuntimeError::new_err("internal error: a cell of the chart is missing"));
+        }
+        let all = columns(py, &cells, None, &[])?;
+        let shaped = reshape(py, all.bind(py).as_any(), &[chart.gaps_m.len(), chart.masses_kg.len()])?;
+        let shaped = shaped.bind(py);
+        let get = |k: &str| -> PyResult<Py<PyAny>> { Ok(shaped.get_item(k)?.unbind()) };
+        Ok(EnsembleParts {
+            zone3_probability: get("zone3_probability")?,
+            agreement: get("agreement")?,
+            spread: get("spread")?,
+            ensemble: get("ensemble")?,
+        })
+    }
+}
+
+impl PyChart {
+    /// The chart `chart` of `d`; with the parts of an ensemble chart of `runs` runs a cell.
+    fn with(
+        py: Python<'_>,
+        d: &Design,
+        chart: design::Chart,
+        runs: usize,
+        parts: Option<EnsembleParts>,
+    ) -> PyResult<PyChart> {
         let (rows, cols) = (chart.gaps_m.len(), chart.masses_kg.len());
         let grid = |what: &str, f: &dyn Fn(&design::Metrics) -> Option<f64>| -> PyResult<Py<PyAny>> {
             let mut v = Vec::with_capacity(rows * cols);
@@ -486,7 +678,11 @@ impl Chart {
             .iter()
             .map(|c| c.as_ref().and_then(|c| c.metrics.zone).map_or(0, |z| z.number() as i8))
             .collect();
-        Ok(Chart {
+        let (zone3_probability, agreement, spread, ensemble) = match parts {
+            Some(p) => (Some(p.zone3_probability), Some(p.agreement), Some(p.spread), Some(p.ensemble)),
+            None => (None, None, None, None),
+        };
+        Ok(PyChart {
             design: json_data(py, "design", d)?,
             masses_kg: array(py, "masses_kg", chart.masses_kg.clone())?,
             gaps_m: array(py, "gaps_m", chart.gaps_m.clone())?,
@@ -500,8 +696,24 @@ impl Chart {
             restitution_mean: grid("restitution_mean", &|m| m.restitution_mean)?,
             zone: to_2d(py, rows, cols, zone)?,
             thresholds: json_data(py, "thresholds", &chart.thresholds)?,
+            runs,
+            zone3_probability,
+            agreement,
+            spread,
+            ensemble,
             chart,
         })
+    }
+
+    /// The plain chart `chart` of `d`.
+    pub fn new(py: Python<'_>, d: &Design, chart: design::Chart) -> PyResult<PyChart> {
+        Self::with(py, d, chart, 1, None)
+    }
+
+    /// The chart of ensembles `chart` of `d`: its medians, and the ensemble fields.
+    pub fn of_ensembles(py: Python<'_>, d: &Design, chart: &EnsembleChart) -> PyResult<PyChart> {
+        let parts = EnsembleParts::new(py, chart)?;
+        Self::with(py, d, chart.medians(), chart.runs, Some(parts))
     }
 }
 
@@ -513,7 +725,7 @@ fn to_2d<T: numpy::Element>(py: Python<'_>, rows: usize, cols: usize, v: Vec<T>)
 }
 
 #[pymethods]
-impl Chart {
+impl PyChart {
     /// table5(band_cm_s=0.2) -> dict of arrays
     ///
     /// Table 5 of the paper: the spread of SPLmax among the designs in each band of the
@@ -536,19 +748,10 @@ impl Chart {
             }
         }
         let rows = design::spl_range_by_inclination(chart, band, zone_by);
-        let d = PyDict::new(py);
-        let col = |f: fn(&design::Band) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
-        for (k, v) in [
-            ("e_lo_cm_s", col(|b| b.e_lo_cm_s)),
-            ("e_hi_cm_s", col(|b| b.e_hi_cm_s)),
-            ("spl_min_db", col(|b| b.spl_min_db)),
-            ("spl_max_db", col(|b| b.spl_max_db)),
-        ] {
-            d.set_item(k, array(py, &format!("table5.{k}"), v)?)?;
-        }
-        let counts: Vec<i64> = rows.iter().map(|b| b.count as i64).collect();
-        d.set_item("count", counts.into_pyarray(py))?;
-        Ok(d)
+        let records: Vec<Json> = rows.iter().map(|b| checked("table5", b)).collect::<PyResult<_>>()?;
+        let template =
+            serde_json::json!({"e_lo_cm_s": 0.0, "e_hi_cm_s": 0.0, "count": 0, "spl_min_db": 0.0, "spl_max_db": 0.0});
+        Ok(columns(py, &records, Some(&template), &[])?.into_bound(py))
     }
 
     /// Every field in one dict (the 2-D arrays by metric name).
@@ -571,12 +774,113 @@ impl Chart {
         ] {
             d.set_item(k, v.clone_ref(py))?;
         }
+        d.set_item("runs", self.runs)?;
+        for (k, v) in [
+            ("zone3_probability", &self.zone3_probability),
+            ("agreement", &self.agreement),
+            ("spread", &self.spread),
+            ("ensemble", &self.ensemble),
+        ] {
+            d.set_item(k, v.as_ref().map(|v| v.clone_ref(py)))?;
+        }
         Ok(d)
     }
 
     fn __repr__(&self) -> String {
         let c = &self.chart;
         let zone3 = c.cells.iter().flatten().filter(|c| c.metrics.zone.is_some_and(|z| z.number() == 3)).count();
-        format!("Chart({} masses × {} gaps, {} cells in zone 3)", c.masses_kg.len(), c.gaps_m.len(), zone3)
+        let runs =
+            if self.runs > 1 { format!(", {} runs a cell (zones of the medians)", self.runs) } else { String::new() };
+        format!("Chart({} masses × {} gaps, {} cells in zone 3{runs})", c.masses_kg.len(), c.gaps_m.len(), zone3)
+    }
+}
+
+/// The frequency response of a forced design (`thud.response`): per frequency the steady state
+/// with the damper beside the closed form without it — the fields of `thud response --json`,
+/// each sweep's points as arrays.
+#[pyclass(name = "Response", module = "thud", frozen)]
+pub struct PyResponse {
+    /// The design at the first frequency (the JSON "design" object).
+    #[pyo3(get)]
+    design: Py<PyAny>,
+    /// Force amplitude F0 (N).
+    #[pyo3(get)]
+    force_n: f64,
+    /// Forcing periods N of each steady-state window.
+    #[pyo3(get)]
+    periods: u32,
+    /// Whether each frequency started from the previous one's final state.
+    #[pyo3(get)]
+    continuation: bool,
+    /// Runs per frequency N (1: the single trajectory).
+    #[pyo3(get)]
+    runs: usize,
+    /// The sweeps: one from rest, or "up" then "down" with continuation. Each a dict:
+    /// "direction" and, per frequency, arrays: freq_hz (Hz), amplitude_m and
+    /// amplitude_linear_m (m; NaN: unbounded), reduction_db, leq_db (dB; NaN: no impact),
+    /// impacts_per_period, periodic, settled, truncated (bool), window_start_s, window_end_s,
+    /// final_time_s (s), periods. With ensemble=N: freq_hz, amplitude_linear_m,
+    /// periodic_fraction, settled_fraction, truncated, "spread" {amplitude_m | reduction_db |
+    /// impacts_per_period | leq_db: {"p10", "median", "p90"}} and "ensemble" (every run: 2-D
+    /// arrays, frequency × run).
+    #[pyo3(get)]
+    sweeps: Py<PyList>,
+    record: Json,
+}
+
+impl PyResponse {
+    fn from_record(py: Python<'_>, record: Json, runs: usize) -> PyResult<PyResponse> {
+        let sweeps = PyList::empty(py);
+        for sweep in rows_of(&record, "sweeps") {
+            let d = columns(py, &rows_of(&sweep, "points"), None, &[])?.into_bound(py);
+            d.set_item("direction", field(py, &sweep, "direction")?)?;
+            sweeps.append(d)?;
+        }
+        let number = |k: &str| record.get(k).and_then(Json::as_f64).unwrap_or(f64::NAN);
+        Ok(PyResponse {
+            design: field(py, &record, "design")?,
+            force_n: number("force_n"),
+            periods: record.get("periods").and_then(Json::as_u64).map_or(0, |p| u32::try_from(p).unwrap_or(u32::MAX)),
+            continuation: record.get("continuation").and_then(Json::as_bool).unwrap_or(false),
+            runs,
+            sweeps: sweeps.unbind(),
+            record,
+        })
+    }
+
+    pub fn new(py: Python<'_>, r: &ResponseReport) -> PyResult<PyResponse> {
+        Self::from_record(py, checked("response", r)?, 1)
+    }
+
+    pub fn of_ensembles(py: Python<'_>, r: &ResponseEnsembleReport) -> PyResult<PyResponse> {
+        Self::from_record(py, checked("response", r)?, r.runs)
+    }
+}
+
+#[pymethods]
+impl PyResponse {
+    /// Every field in one dict (the command line's JSON keys; each sweep's points as arrays).
+    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let sweeps = self.sweeps.clone_ref(py).into_any();
+        fill(py, &d, &self.record, &["sweeps"], &[("sweeps", &sweeps)])?;
+        d.set_item("runs", self.runs)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        let points = self
+            .record
+            .get("sweeps")
+            .and_then(Json::as_array)
+            .and_then(|s| s.first())
+            .map_or(0, |s| s.get("points").and_then(Json::as_array).map_or(0, Vec::len));
+        let runs = if self.runs > 1 { format!(", {} runs a frequency", self.runs) } else { String::new() };
+        format!(
+            "Response(F0={} N, {} frequencies{}{runs})",
+            short(self.force_n),
+            points,
+            if self.continuation { ", up and down" } else { "" }
+        )
     }
 }
