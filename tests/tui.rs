@@ -213,9 +213,9 @@ fn stale_results_are_dropped() {
 }
 
 /// The kinds of work a key asks for, after moving the selection to `field`.
-fn work_for_step(field: thud::tui::fields::Param) -> Vec<&'static str> {
+fn work_for_step(field: thud::tui::fields::Knob) -> Vec<&'static str> {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Param::ALL.iter().position(|f| *f == field).unwrap();
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|f| *f == field).unwrap();
     let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
     let kinds = reqs
         .iter()
@@ -234,19 +234,19 @@ fn work_for_step(field: thud::tui::fields::Param) -> Vec<&'static str> {
 
 #[test]
 fn each_change_recomputes_only_what_it_must() {
-    use thud::tui::fields::Param;
-    assert_eq!(work_for_step(Param::Theta), ["acoustic", "relevel"], "θ: acoustics only");
-    assert_eq!(work_for_step(Param::R), ["acoustic", "relevel"], "r: acoustics only");
-    assert_eq!(work_for_step(Param::Mass), ["sim"], "m: this design only");
-    assert_eq!(work_for_step(Param::Gap), ["sim"], "d: this design only");
-    assert_eq!(work_for_step(Param::K), ["sim", "chart"], "K: design and sweep");
-    assert!(work_for_step(Param::LStar).is_empty(), "L*: zones are reclassified on draw");
+    use thud::tui::fields::Knob;
+    assert_eq!(work_for_step(Knob::Theta), ["acoustic", "relevel"], "θ: acoustics only");
+    assert_eq!(work_for_step(Knob::R), ["acoustic", "relevel"], "r: acoustics only");
+    assert_eq!(work_for_step(Knob::Mass), ["sim"], "m: this design only");
+    assert_eq!(work_for_step(Knob::Gap), ["sim"], "d: this design only");
+    assert_eq!(work_for_step(Knob::K), ["sim", "chart"], "K: design and sweep");
+    assert!(work_for_step(Knob::LStar).is_empty(), "L*: zones are reclassified on draw");
 }
 
 #[test]
 fn theta_change_relevels_the_chart_like_a_fresh_sweep() {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Param::ALL.iter().position(|f| *f == thud::tui::fields::Param::Theta).unwrap();
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|f| *f == thud::tui::fields::Knob::Theta).unwrap();
     press(&mut app, KeyCode::Left);
     let fresh = computed_with(app.design.clone());
     for (a, b) in app.chart.fine.cells.iter().zip(&fresh.chart.fine.cells) {
@@ -898,7 +898,7 @@ fn the_status_line_explains_the_selected_field() {
     for _ in 0..8 {
         press(&mut app, KeyCode::Down);
     }
-    assert_eq!(app.param(), thud::tui::fields::Param::C1);
+    assert_eq!(app.param(), thud::tui::fields::Knob::C1);
     let status = status_of(&render(&mut app, 120, 40)).to_string();
     assert!(status.contains("c1 — contact damping in the Hertz contact force (Eq 26), N·s/m, 0–"), "{status}");
 }

@@ -15,7 +15,7 @@ use super::compute::{
     acoustic_key, chart_key, nearest, sim_key, sound_key, AcousticResult, ChartPasses, Grids, SimResult, Stage,
 };
 use super::explain;
-use super::fields::{Param, Scope};
+use super::fields::{Knob, Scope};
 use super::keys::{Action, Keymap};
 use super::theme::Palette;
 use super::tour::{Tour, TourSource};
@@ -252,7 +252,7 @@ pub struct App {
     pub design: Design,
     /// The name of the preset or saved design the live one came from.
     pub preset: String,
-    /// The selected parameter (index into [`Param::ALL`]).
+    /// The selected parameter (index into [`Knob::ALL`]).
     pub selected: usize,
     pub focus: Panel,
     pub mode: Mode,
@@ -502,8 +502,8 @@ impl App {
     }
 
     /// The selected parameter.
-    pub fn param(&self) -> Param {
-        Param::ALL[self.selected.min(Param::ALL.len() - 1)]
+    pub fn param(&self) -> Knob {
+        Knob::ALL[self.selected.min(Knob::ALL.len() - 1)]
     }
 
     /// The status line's message, if any.
@@ -572,11 +572,11 @@ impl App {
     }
 
     /// " — off the chart (…)" if field `f` of `d` (mass or gap) lies outside the chart's grid.
-    fn off_chart(&self, f: Param, d: &Design) -> String {
+    fn off_chart(&self, f: Knob, d: &Design) -> String {
         let g = &self.grids.fine;
         let (values, v, unit, k) = match f {
-            Param::Mass => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
-            Param::Gap => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
+            Knob::Mass => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
+            Knob::Gap => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
             _ => return String::new(),
         };
         let (Some(lo), Some(hi)) = (values.first(), values.last()) else { return String::new() };
@@ -616,8 +616,8 @@ impl App {
         let d = design::variant(&self.design, mass_kg, gap_m);
         let msg = format!(
             "m {} g, d {} cm",
-            Param::Mass.display(&d).trim_end_matches(" g"),
-            Param::Gap.display(&d).trim_end_matches(" cm")
+            Knob::Mass.display(&d).trim_end_matches(" g"),
+            Knob::Gap.display(&d).trim_end_matches(" cm")
         );
         self.apply(d, Scope::Design, msg)
     }
@@ -878,7 +878,7 @@ pub fn changes(now: &Design, now_preset: &str, then: &Design, then_preset: &str)
     if now_preset != then_preset {
         parts.push(format!("preset {now_preset} → {then_preset}"));
     }
-    let fields: Vec<String> = Param::ALL
+    let fields: Vec<String> = Knob::ALL
         .iter()
         .filter_map(|p| {
             let (a, b) = (p.display(now), p.display(then));

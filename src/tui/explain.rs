@@ -2,39 +2,39 @@
 //! (what it is, its equation, its unit and range from the one range table) and the glossary
 //! of the help's second page (zones, e and e_fit, U0max, SPLmax, τ, R, K_HZ, c1, the sources).
 
-use super::fields::Param;
+use super::fields::Knob;
 use crate::design::{Design, ZoneBy};
 use crate::limits;
 
 /// What a parameter is, with the paper's equation where it has one.
-pub fn what(p: Param) -> &'static str {
+pub fn what(p: Knob) -> &'static str {
     match p {
-        Param::Mass => "the ball (impact mass) rattling in the enclosure",
-        Param::Gap => "total clearance of the ball in its enclosure (d/2 each side)",
-        Param::R => "distance of the listener from the contact point",
-        Param::Theta => "listener angle from the plate's normal (0 = along the normal)",
-        Param::V0 => "initial speed of the main mass, the blow that starts the ring-down (Eq 25)",
-        Param::MainMass => "the structure being damped (Eq 25)",
-        Param::K => "stiffness of the structure's spring (Eq 25)",
-        Param::C => "viscous damping of the structure (Eq 25)",
-        Param::C1 => "contact damping in the Hertz contact force (Eq 26)",
-        Param::KHz => "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)",
-        Param::Materials => "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed",
-        Param::Source => "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)",
-        Param::QuadSigns => "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)",
-        Param::Pulse => "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse",
-        Param::Clamp => "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)",
-        Param::Solver => "event-driven (exact flight) or the paper's Newmark-β at a fixed step",
-        Param::Duration => "simulated time of the ring-down",
-        Param::LStar => "zone threshold on SPLmax: below L* is quiet",
-        Param::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
+        Knob::Mass => "the ball (impact mass) rattling in the enclosure",
+        Knob::Gap => "total clearance of the ball in its enclosure (d/2 each side)",
+        Knob::R => "distance of the listener from the contact point",
+        Knob::Theta => "listener angle from the plate's normal (0 = along the normal)",
+        Knob::V0 => "initial speed of the main mass, the blow that starts the ring-down (Eq 25)",
+        Knob::MainMass => "the structure being damped (Eq 25)",
+        Knob::K => "stiffness of the structure's spring (Eq 25)",
+        Knob::C => "viscous damping of the structure (Eq 25)",
+        Knob::C1 => "contact damping in the Hertz contact force (Eq 26)",
+        Knob::KHz => "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)",
+        Knob::Materials => "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed",
+        Knob::Source => "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)",
+        Knob::QuadSigns => "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)",
+        Knob::Pulse => "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse",
+        Knob::Clamp => "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)",
+        Knob::Solver => "event-driven (exact flight) or the paper's Newmark-β at a fixed step",
+        Knob::Duration => "simulated time of the ring-down",
+        Knob::LStar => "zone threshold on SPLmax: below L* is quiet",
+        Knob::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
     }
 }
 
 /// The status-line hint of parameter `p`: "c1 — contact damping in the Hertz contact force
 /// (Eq 26), N·s/m, 0–1e+06". The range is the one table's ([`crate::limits`]), in the unit
 /// the field shows; θ's is the current source's open side.
-pub fn field_hint(p: Param, d: &Design) -> String {
+pub fn field_hint(p: Knob, d: &Design) -> String {
     match (p.display_unit(), p.display_range(d)) {
         (Some((unit, _)), Some((lo, hi))) => {
             format!("{} — {}, {unit}, {}–{}", p.label(), what(p), limits::short(lo), limits::short(hi))
@@ -107,7 +107,7 @@ mod tests {
 
     #[test]
     fn the_c1_hint_says_what_unit_and_range() {
-        let h = field_hint(Param::C1, &Design::default());
+        let h = field_hint(Knob::C1, &Design::default());
         assert!(h.starts_with("c1 — contact damping"), "{h}");
         assert!(h.contains("(Eq 26)") && h.contains("N·s/m") && h.contains(&limits::short(limits::C1.max)), "{h}");
     }
@@ -115,13 +115,13 @@ mod tests {
     #[test]
     fn the_mass_hint_is_in_grams_and_theta_follows_the_source() {
         let d = Design::default();
-        let h = field_hint(Param::Mass, &d);
+        let h = field_hint(Knob::Mass, &d);
         assert!(h.contains(", g, 0.1–"), "{h}");
-        assert!(field_hint(Param::Theta, &d).contains("deg, 0–90"));
+        assert!(field_hint(Knob::Theta, &d).contains("deg, 0–90"));
         let mut dip = d.clone();
         dip.radiation.source = crate::acoustics::Source::Dipole;
-        assert!(field_hint(Param::Theta, &dip).contains("deg, -90–90"));
-        assert!(field_hint(Param::Source, &d).contains("quadrupole"));
+        assert!(field_hint(Knob::Theta, &dip).contains("deg, -90–90"));
+        assert!(field_hint(Knob::Source, &d).contains("quadrupole"));
     }
 
     #[test]

@@ -5,7 +5,7 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::app::{App, Mode, Panel, PulseView};
-use super::fields::{Param, Scope};
+use super::fields::{Knob, Scope};
 use super::files::EXPORTS;
 use super::keys::Action;
 use super::worker::Request;
@@ -111,11 +111,11 @@ impl App {
             Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
             Action::Up | Action::Down if self.focus == Panel::Chart => return self.chart_move(0, a == Action::Up),
             Action::Up => {
-                self.selected = (self.selected + Param::ALL.len() - 1) % Param::ALL.len();
+                self.selected = (self.selected + Knob::ALL.len() - 1) % Knob::ALL.len();
                 self.show_hint();
             }
             Action::Down => {
-                self.selected = (self.selected + 1) % Param::ALL.len();
+                self.selected = (self.selected + 1) % Knob::ALL.len();
                 self.show_hint();
             }
             Action::Decrease { .. } | Action::Increase { .. } if self.focus == Panel::Chart => {

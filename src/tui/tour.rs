@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use super::app::{Panel, PulseView};
-use super::fields::Param;
+use super::fields::Knob;
 use crate::design::Design;
 use crate::{fsio, presets};
 
@@ -56,7 +56,7 @@ pub struct TourError {
 
 /// One step, checked: the design it shows and what it says.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Step {
+pub struct TourStep {
     pub title: String,
     pub caption: String,
     pub panel: Panel,
@@ -73,7 +73,7 @@ pub struct Step {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tour {
     pub title: String,
-    pub steps: Vec<Step>,
+    pub steps: Vec<TourStep>,
 }
 
 #[derive(Deserialize)]
@@ -182,7 +182,7 @@ impl Tour {
                 return Err(at("a step title has 1 to 60 characters".into()));
             }
             let sets_thresholds = s.set.keys().any(|k| matches!(k.as_str(), "L*" | "e*" | "l-star" | "e-star"));
-            steps.push(Step {
+            steps.push(TourStep {
                 title: s.title.trim().to_string(),
                 caption,
                 panel,
@@ -198,13 +198,13 @@ impl Tour {
 }
 
 /// The field a step's `set` key names (its name in messages, e.g. `mass`, `theta`, `L*`).
-fn field(key: &str) -> Option<Param> {
+fn field(key: &str) -> Option<Knob> {
     let key = match key {
         "l-star" => "L*",
         "e-star" => "e*",
         k => k,
     };
-    Param::ALL.into_iter().find(|p| p.param() == key)
+    Knob::ALL.into_iter().find(|p| p.param() == key)
 }
 
 /// `d` with the step's fields set, choices (like the source) first so that a value checked
@@ -213,7 +213,7 @@ fn apply_sets(d: &Design, sets: &BTreeMap<String, toml::Value>) -> Result<Design
     let mut fields = Vec::new();
     for (key, value) in sets {
         let p = field(key).ok_or_else(|| {
-            let names: Vec<&str> = Param::ALL.iter().map(|p| p.param()).collect();
+            let names: Vec<&str> = Knob::ALL.iter().map(|p| p.param()).collect();
             format!("unknown field '{key}'; one of: {}", names.join(", "))
         })?;
         let text = match value {
@@ -225,7 +225,7 @@ fn apply_sets(d: &Design, sets: &BTreeMap<String, toml::Value>) -> Result<Design
         };
         fields.push((p, text));
     }
-    fields.sort_by_key(|(p, _)| (p.kind().is_some(), Param::ALL.iter().position(|q| q == p)));
+    fields.sort_by_key(|(p, _)| (p.kind().is_some(), Knob::ALL.iter().position(|q| q == p)));
     let mut d = d.clone();
     for (p, text) in fields {
         d = p.parsed(&d, &text).map_err(|e| e.to_string())?;

@@ -24,7 +24,7 @@ use super::app::{App, ChartView, Mode, Panel, PulseView};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
 use super::compute::nearest;
 use super::explain;
-use super::fields::Param;
+use super::fields::Knob;
 use super::files::EXPORTS;
 use super::history::{self, HistoryView};
 use super::keys::Action;
@@ -115,7 +115,7 @@ pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
 
 /// Lays out the body by size class.
 fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
-    let params_h = Param::ALL.len() as u16 + 2;
+    let params_h = Knob::ALL.len() as u16 + 2;
     if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
@@ -195,7 +195,7 @@ fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
 
 fn params_widget(f: &mut Frame, app: &App, area: Rect) {
     let rows: Vec<(String, String)> =
-        Param::ALL.iter().map(|p| (p.label().to_string(), p.display(&app.design))).collect();
+        Knob::ALL.iter().map(|p| (p.label().to_string(), p.display(&app.design))).collect();
     let view = ParamsView {
         block: panel_block(app, Panel::Params, " parameters "),
         rows: &rows,
