@@ -28,6 +28,16 @@ pub fn what(p: Knob) -> &'static str {
         Knob::Duration => "simulated time of the ring-down",
         Knob::LStar => "zone threshold on SPLmax: below L* is quiet",
         Knob::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
+        Knob::Force => {
+            "harmonic force F0·cos(2πft) on the main mass (Eq 25 forced); 0 is the paper's free decay, > 0 adds the steady-state readout and the response view (f)"
+        }
+        Knob::Freq => {
+            "forcing frequency f; moves the marker on the response curve (f view) without recomputing it; a force switched on starts at the natural frequency"
+        }
+        Knob::BallPosition => "the ball's start offset from the enclosure's centre, |y0| < d/2 (0: centred, as the paper)",
+        Knob::Runs => {
+            "runs from N ball offsets spread over the clearance (y0 = −d/2 + (k + ½)·d/N): the readout shows median [p10–p90], the chart shades cells where < 70 % of runs agree"
+        }
     }
 }
 

@@ -1,5 +1,7 @@
 //! The editable parameters of the panel: how each one is shown (display units), stepped and
 //! typed. Values live in the `Design` in SI units; conversions happen only here, at the edge.
+//! The knobs turn a [`Tunable`]: a design alone, or a [`Setup`] (a design and the explorer's
+//! ensemble size N, which is not part of a design: the command line's `--ensemble`).
 
 use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::contact::MATERIALS;
@@ -31,6 +33,76 @@ pub enum Knob {
     Duration,
     LStar,
     EStar,
+    /// Amplitude F0 of the harmonic force on the main mass (`--force`).
+    Force,
+    /// Frequency f of the harmonic force (`--freq`).
+    Freq,
+    /// The ball's initial offset y0 from the enclosure's centre (`--ball-position`).
+    BallPosition,
+    /// Runs N of the ensemble (`--ensemble`): the readout's spread and the chart's shading.
+    Runs,
+}
+
+/// What the knobs turn: a design, or a design with the explorer's ensemble size.
+pub trait Tunable: Clone {
+    fn design(&self) -> &Design;
+    fn design_mut(&mut self) -> &mut Design;
+    /// Runs per design N (1 for a design alone: the single trajectory).
+    fn runs(&self) -> usize;
+    /// Sets N; false if this has no ensemble size (a design alone).
+    fn set_runs(&mut self, n: usize) -> bool;
+}
+
+impl Tunable for Design {
+    fn design(&self) -> &Design {
+        self
+    }
+
+    fn design_mut(&mut self) -> &mut Design {
+        self
+    }
+
+    fn runs(&self) -> usize {
+        1
+    }
+
+    fn set_runs(&mut self, _: usize) -> bool {
+        false
+    }
+}
+
+/// What the explorer runs: the design and the ensemble size N (runs from N ball offsets spread
+/// over the clearance, [`crate::ensemble`]; 1 is the single trajectory).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    pub design: Design,
+    pub runs: usize,
+}
+
+impl Tunable for Setup {
+    fn design(&self) -> &Design {
+        &self.design
+    }
+
+    fn design_mut(&mut self) -> &mut Design {
+        &mut self.design
+    }
+
+    fn runs(&self) -> usize {
+        self.runs
+    }
+
+    fn set_runs(&mut self, n: usize) -> bool {
+        self.runs = n;
+        true
+    }
+}
+
+/// The main mass's damped natural frequency (Hz) of `d`: the engine's cycles per second of
+/// Eq 25 alone ([`limits::cycles`]); 0 without a spring or when overdamped.
+pub fn natural_frequency_hz(d: &Design) -> f64 {
+    let p = &d.damper;
+    limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
 }
 
 /// What kind of change a field takes.
@@ -42,6 +114,8 @@ pub enum Stepping {
     Mul(f64, f64),
     /// Cycle through choices.
     Cycle,
+    /// A count: double or halve (coarse), or ± 1 (fine).
+    Count,
 }
 
 /// Which recomputation a change of this field needs.
@@ -70,7 +144,7 @@ fn material_choices() -> Vec<Option<Materials>> {
 
 impl Knob {
     /// All fields, in panel order.
-    pub const ALL: [Knob; 19] = [
+    pub const ALL: [Knob; 23] = [
         Knob::Mass,
         Knob::Gap,
         Knob::R,
@@ -90,6 +164,10 @@ impl Knob {
         Knob::Duration,
         Knob::LStar,
         Knob::EStar,
+        Knob::Force,
+        Knob::Freq,
+        Knob::BallPosition,
+        Knob::Runs,
     ];
 
     /// Short label for the panel.
@@ -114,6 +192,10 @@ impl Knob {
             Knob::Duration => "duration",
             Knob::LStar => "L*",
             Knob::EStar => "e*",
+            Knob::Force => "force F0",
+            Knob::Freq => "freq f",
+            Knob::BallPosition => "ball y0",
+            Knob::Runs => "ensemble N",
         }
     }
 
@@ -139,6 +221,10 @@ impl Knob {
             Knob::Duration => "duration",
             Knob::LStar => "L*",
             Knob::EStar => "e*",
+            Knob::Force => "force",
+            Knob::Freq => "freq",
+            Knob::BallPosition => "ball-position",
+            Knob::Runs => "ensemble",
         }
     }
 
@@ -156,6 +242,9 @@ impl Knob {
             Knob::Duration => Kind::Time,
             Knob::LStar => Kind::Level,
             Knob::EStar => Kind::Inclination,
+            Knob::Force => Kind::Force,
+            Knob::Freq => Kind::Frequency,
+            Knob::BallPosition => Kind::Length,
             _ => return None,
         })
     }
@@ -176,6 +265,10 @@ impl Knob {
             Knob::Duration => limits::DURATION,
             Knob::LStar => limits::L_STAR,
             Knob::EStar => limits::E_STAR,
+            Knob::Force => limits::FORCE,
+            Knob::Freq => limits::FREQ,
+            Knob::BallPosition => limits::BALL_POSITION,
+            Knob::Runs => limits::ENSEMBLE,
             _ => return None,
         })
     }
@@ -197,40 +290,54 @@ impl Knob {
             Knob::Duration => ("s", 1.0),
             Knob::LStar => ("dB", 1.0),
             Knob::EStar => ("cm/s", 1.0),
+            Knob::Force => ("N", 1.0),
+            Knob::Freq => ("Hz", 1.0),
+            Knob::BallPosition => ("cm", 1e-2),
+            Knob::Runs => ("runs", 1.0),
             _ => return None,
         })
     }
-
     /// The valid range in the display unit: (lowest, highest). θ's is the current source's
-    /// open side.
+    /// open side; y0's is inside the clearance, −d/2 to d/2 (both excluded).
     pub fn display_range(self, d: &Design) -> Option<(f64, f64)> {
         let (_, k) = self.display_unit()?;
         if self == Knob::Theta {
             let r = limits::theta_deg(d.radiation.source);
             return Some((r.min, r.max));
         }
+        if self == Knob::BallPosition {
+            let half = 0.5 * d.damper.gap_m;
+            return Some((-half / k, half / k));
+        }
         let r = self.range()?;
         Some((r.min / k, r.max / k))
     }
 
-    /// Checks this field's value in `d` against its range; the refusal names the field and
-    /// gives the value and the range in the unit the field is shown in.
     /// Refuses a design whose runs in the explorer would exceed the work caps the command line
     /// uses ([`limits::design_run`] for the live design, [`limits::sweep_work`] for the chart's
-    /// fine grid): the same estimate and limit, worded for the status line. This is what keeps a
-    /// duration or a Newmark step typed here from running for hours or out of memory.
-    fn check_work(self, d: &Design) -> Result<(), ThudError> {
+    /// fine grid, and with N > 1 [`limits::ensemble_work`] for the live design's N runs and
+    /// the chart's N runs a cell): the same estimates and limits, worded for the status line.
+    /// This is what keeps a duration, a Newmark step or an ensemble typed here from running
+    /// for hours or out of memory.
+    fn check_work<S: Tunable>(self, s: &S) -> Result<(), ThudError> {
+        let d = s.design();
         let cells = crate::tui::compute::Grids::default().fine.len();
+        let runs = s.runs();
+        let ensembles = (runs > 1)
+            .then(|| limits::ensemble_work(d, 1, runs).into_iter().chain(limits::ensemble_work(d, cells, runs)))
+            .into_iter()
+            .flatten();
         let over = limits::design_run(d, crate::tui::compute::HISTORY_SAMPLES)
             .into_iter()
             .chain(limits::sweep_work(d, cells))
+            .chain(ensembles)
             .find(limits::Estimate::exceeded);
         match over {
             Some(e) => {
                 // The solver field is named by its step, as the command line's --dt.
                 let (name, shown) = match (self, d.solver) {
                     (Knob::Solver, Solver::Newmark { dt_s }) => ("dt", format!("{} s", limits::short(dt_s))),
-                    _ => (self.param(), self.display(d)),
+                    _ => (self.param(), self.display(s)),
                 };
                 Err(ThudError::invalid(name, format!("{shown}: {}", e.describe())))
             }
@@ -238,8 +345,9 @@ impl Knob {
         }
     }
 
-    fn check_range(self, d: &Design) -> Result<(), ThudError> {
-        if let (Some(r), Some(v), Some((unit, k))) = (self.range(), self.get(d), self.display_unit()) {
+    fn check_range<S: Tunable>(self, s: &S) -> Result<(), ThudError> {
+        let d = s.design();
+        if let (Some(r), Some(v), Some((unit, k))) = (self.range(), self.value(s), self.display_unit()) {
             if !r.contains(v) {
                 let (lo, hi) = (r.min / k, r.max / k);
                 let shown = if v.is_finite() { format!("{} {unit}", limits::short(v / k)) } else { format!("{v}") };
@@ -259,6 +367,22 @@ impl Knob {
             limits::DT.check(dt_s)?;
         }
         Ok(())
+    }
+
+    /// The checks every new value passes, in order: the field's own range (in the unit shown),
+    /// the work caps, and the design's own validation — the one range table over the whole
+    /// design ([`limits::check_design`]: what the command line checks, e.g. |y0| < d/2 and a
+    /// force's frequency) and the engine's ([`Design::validate`], [`Design::resolved`]).
+    fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
+        self.check_range(&next)?;
+        self.check_work(&next)?;
+        let d = next.design();
+        d.validate()?;
+        d.resolved()?;
+        if matches!(self, Knob::Force | Knob::Freq | Knob::BallPosition | Knob::Gap) {
+            limits::check_design(d)?;
+        }
+        Ok(next)
     }
 
     /// What a change of this field invalidates.
@@ -284,11 +408,16 @@ impl Knob {
             Knob::Duration => Stepping::Add(0.5, 0.1),
             Knob::LStar => Stepping::Add(1.0, 0.1),
             Knob::EStar => Stepping::Add(0.1, 0.01),
+            Knob::Force => Stepping::Add(0.1, 0.01),
+            Knob::Freq => Stepping::Mul(0.02, 0.002),
+            Knob::BallPosition => Stepping::Add(1e-3, 1e-4),
+            Knob::Runs => Stepping::Count,
             _ => Stepping::Cycle,
         }
     }
 
-    /// The numeric value in internal units (SI; degrees; dB; cm/s), if the field is numeric.
+    /// The numeric value in internal units (SI; degrees; dB; cm/s), if the field is numeric
+    /// and part of a design (the ensemble size is not: see [`Knob::value`]).
     pub fn get(self, d: &Design) -> Option<f64> {
         let p = &d.damper;
         Some(match self {
@@ -305,13 +434,34 @@ impl Knob {
             Knob::Duration => p.duration_s,
             Knob::LStar => d.thresholds.spl_db,
             Knob::EStar => d.thresholds.inclination_cm_s,
+            Knob::Force => p.force_n,
+            Knob::Freq => p.freq_hz,
+            Knob::BallPosition => p.ball_position_m,
             _ => return None,
         })
     }
 
-    /// Sets the numeric value (internal units) on a copy of the design.
-    fn set(self, d: &Design, v: f64) -> Design {
-        let mut d = d.clone();
+    /// The numeric value of this field of `s` (internal units), the ensemble size included.
+    pub fn value<S: Tunable>(self, s: &S) -> Option<f64> {
+        match self {
+            Knob::Runs => Some(s.runs() as f64),
+            _ => self.get(s.design()),
+        }
+    }
+
+    /// Sets the numeric value (internal units) on a copy; the ensemble size is refused by a
+    /// design alone (it is the explorer's, not the design's).
+    fn set<S: Tunable>(self, s: &S, v: f64) -> Result<S, ThudError> {
+        let mut s = s.clone();
+        if self == Knob::Runs {
+            // A count: rounded, and kept inside 1.. (the range check names a bad one).
+            let n = if v.is_finite() && v >= 1.0 { v.round() as usize } else { 0 };
+            if !s.set_runs(n) {
+                return Err(ThudError::invalid(self.param(), "the ensemble size is the explorer's, not a design's"));
+            }
+            return Ok(s);
+        }
+        let d = s.design_mut();
         let p = &mut d.damper;
         match self {
             Knob::Mass => p.impact_mass_kg = v,
@@ -330,13 +480,17 @@ impl Knob {
             Knob::Duration => p.duration_s = v,
             Knob::LStar => d.thresholds.spl_db = v,
             Knob::EStar => d.thresholds.inclination_cm_s = v,
+            Knob::Force => p.force_n = v,
+            Knob::Freq => p.freq_hz = v,
+            Knob::BallPosition => p.ball_position_m = v,
             _ => {}
         }
-        d
+        Ok(s)
     }
 
     /// The value as people read it: display units, a few significant digits.
-    pub fn display(self, d: &Design) -> String {
+    pub fn display<S: Tunable>(self, s: &S) -> String {
+        let d = s.design();
         let p = &d.damper;
         match self {
             Knob::Mass => format!("{} g", sig(p.impact_mass_kg * 1e3, 4)),
@@ -364,41 +518,64 @@ impl Knob {
             Knob::Duration => format!("{} s", sig(p.duration_s, 3)),
             Knob::LStar => format!("{} dB", sig(d.thresholds.spl_db, 4)),
             Knob::EStar => format!("{} cm/s", sig(d.thresholds.inclination_cm_s, 3)),
+            Knob::Force if p.force_n == 0.0 => "0 (free decay)".into(),
+            Knob::Force => format!("{} N", sig(p.force_n, 3)),
+            Knob::Freq if p.freq_hz == 0.0 => "— (no force)".into(),
+            Knob::Freq => format!("{} Hz", sig(p.freq_hz, 4)),
+            Knob::BallPosition if p.ball_position_m == 0.0 => "0 (centred)".into(),
+            Knob::BallPosition => format!("{} cm", sig(p.ball_position_m * 1e2, 3)),
+            Knob::Runs if s.runs() == 1 => "1 (single run)".into(),
+            Knob::Runs => format!("{} runs", s.runs()),
         }
     }
 
-    /// The design with this field stepped once (`up`: increase), validated.
-    pub fn stepped(self, d: &Design, up: bool, fine: bool) -> Result<Design, ThudError> {
-        let next = match (self.step(), self.get(d)) {
+    /// The design (or setup) with this field stepped once (`up`: increase), validated. A force
+    /// stepped up from 0 while f is unset gets f at the structure's natural frequency (the
+    /// engine's damped frequency of Eq 25), so that a force always has its frequency.
+    pub fn stepped<S: Tunable>(self, s: &S, up: bool, fine: bool) -> Result<S, ThudError> {
+        let next = match (self.step(), self.value(s)) {
             (Stepping::Add(c, f), Some(v)) => {
-                let s = if fine { f } else { c };
+                let st = if fine { f } else { c };
                 // Snap to the step grid so repeated steps give round numbers.
-                let n = (v / s).round() + if up { 1.0 } else { -1.0 };
-                self.set(d, if ((v / s) - (v / s).round()).abs() < 1e-6 { n * s } else { v + if up { s } else { -s } })
+                let n = (v / st).round() + if up { 1.0 } else { -1.0 };
+                let v = if ((v / st) - (v / st).round()).abs() < 1e-6 { n * st } else { v + if up { st } else { -st } };
+                // A force stepped down to (near) zero is off, exactly.
+                let v = if self == Knob::Force && v.abs() < 1e-9 { 0.0 } else { v };
+                self.set(s, v)?
+            }
+            (Stepping::Mul(_, _), Some(v)) if self == Knob::Freq && v == 0.0 => {
+                self.set(s, start_frequency_hz(s.design()))?
             }
             (Stepping::Mul(c, f), Some(v)) => {
                 let k = 1.0 + if fine { f } else { c };
-                self.set(d, if up { v * k } else { v / k })
+                self.set(s, if up { v * k } else { v / k })?
             }
-            _ => self.cycled(d, up),
+            (Stepping::Count, Some(v)) => {
+                let n = v.round();
+                let next = match (up, fine) {
+                    (true, false) => 2.0 * n,
+                    (false, false) => (n / 2.0).floor(),
+                    (true, true) => n + 1.0,
+                    (false, true) => n - 1.0,
+                };
+                self.set(s, next)?
+            }
+            _ => self.cycled(s, up),
         };
-        self.check_range(&next)?;
-        self.check_work(&next)?;
-        next.validate()?;
-        next.resolved()?;
-        Ok(next)
+        self.checked(with_frequency(self, next))
     }
 
     /// The design with a choice field moved to the next (`up`) or previous option.
-    fn cycled(self, d: &Design, up: bool) -> Design {
-        let mut d = d.clone();
+    fn cycled<S: Tunable>(self, s: &S, up: bool) -> S {
+        let mut s = s.clone();
+        let d = s.design_mut();
         let turn = |i: usize, n: usize| if up { (i + 1) % n } else { (i + n - 1) % n };
         match self {
             Knob::Source => {
                 let all = Source::ALL;
                 let i = all.iter().position(|s| *s == d.radiation.source).unwrap_or(0);
                 d.radiation.source = all[turn(i, all.len())];
-                clamp_theta(&mut d);
+                clamp_theta(d);
             }
             Knob::QuadSigns => {
                 d.radiation.quad_signs = match d.radiation.quad_signs {
@@ -426,30 +603,32 @@ impl Knob {
             }
             _ => {}
         }
-        d
+        s
     }
 
-    /// The design with this field set from typed text (units allowed), validated.
-    pub fn parsed(self, d: &Design, text: &str) -> Result<Design, ThudError> {
+    /// The design (or setup) with this field set from typed text (units allowed), validated.
+    pub fn parsed<S: Tunable>(self, s: &S, text: &str) -> Result<S, ThudError> {
         let t = text.trim();
-        let next = match (self.kind(), self.display_unit()) {
-            // A plain number is in the unit shown.
-            (Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
-                self.set(d, t.parse::<f64>().unwrap_or(f64::NAN) * k)
+        let next = match (self, self.kind(), self.display_unit()) {
+            // A count, read as the command line reads --ensemble.
+            (Knob::Runs, _, _) => {
+                let n = limits::ENSEMBLE.parse_count(self.param(), t)?;
+                self.set(s, n as f64)?
             }
-            (Some(kind), _) => self.set(d, units::parse(self.param(), t, kind)?),
-            (None, _) => self.parse_choice(d, t)?,
+            // A plain number is in the unit shown.
+            (_, Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
+                self.set(s, t.parse::<f64>().unwrap_or(f64::NAN) * k)?
+            }
+            (_, Some(kind), _) => self.set(s, units::parse(self.param(), t, kind)?)?,
+            (_, None, _) => self.parse_choice(s, t)?,
         };
-        self.check_range(&next)?;
-        self.check_work(&next)?;
-        next.validate()?;
-        next.resolved()?;
-        Ok(next)
+        self.checked(with_frequency(self, next))
     }
 
     /// Parses a choice field: source names, signs, on/off, event/newmark/a time step, materials.
-    fn parse_choice(self, d: &Design, t: &str) -> Result<Design, ThudError> {
-        let mut d = d.clone();
+    fn parse_choice<S: Tunable>(self, s: &S, t: &str) -> Result<S, ThudError> {
+        let mut s = s.clone();
+        let d = s.design_mut();
         let low = t.to_ascii_lowercase();
         let bad = |what: &str| ThudError::invalid(self.param(), format!("'{t}'; expected {what}"));
         match self {
@@ -501,8 +680,29 @@ impl Knob {
             }
             _ => return Err(bad("a number")),
         }
-        Ok(d)
+        Ok(s)
     }
+}
+
+/// The forcing frequency a force starts at when none is set: the structure's natural
+/// frequency rounded to 3 significant digits, or 1 Hz without one (no spring, overdamped).
+fn start_frequency_hz(d: &Design) -> f64 {
+    let f = natural_frequency_hz(d);
+    if f > 0.0 {
+        sig(f, 3).parse().unwrap_or(f)
+    } else {
+        1.0
+    }
+}
+
+/// `s` after a change of `knob`: a force switched on while f is unset gets f at
+/// [`start_frequency_hz`] (a force needs a frequency; the status line shows both).
+fn with_frequency<S: Tunable>(knob: Knob, mut s: S) -> S {
+    let d = s.design_mut();
+    if knob == Knob::Force && d.damper.force_n > 0.0 && d.damper.freq_hz == 0.0 {
+        d.damper.freq_hz = start_frequency_hz(d);
+    }
+    s
 }
 
 /// Puts θ back inside the valid range of the source type after the source changed.

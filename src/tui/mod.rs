@@ -34,6 +34,7 @@ pub mod params;
 pub mod plot;
 pub mod polar;
 pub mod readout;
+pub mod response;
 pub mod terminal;
 pub mod theme;
 pub mod tour;

@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use super::app::{Panel, PulseView};
-use super::fields::Knob;
+use super::fields::{Knob, Setup};
 use crate::design::Design;
 use crate::{fsio, presets};
 
@@ -65,6 +65,8 @@ pub struct TourStep {
     /// The preset named by the step (or the one before it): the explorer's preset name.
     pub preset: String,
     pub design: Design,
+    /// The ensemble size N the step runs (its `ensemble` field; else the step before's, 1 first).
+    pub runs: usize,
     /// True if the step sets L* or e* itself (else the user's configured thresholds apply).
     pub sets_thresholds: bool,
 }
@@ -155,14 +157,14 @@ impl Tour {
             return Err(err(format!("{} steps; a tour has 1 to {MAX_STEPS}", parsed.steps.len())));
         }
         let mut steps = Vec::new();
-        let (mut design, mut preset) = (Design::default(), "default".to_string());
+        let (mut setup, mut preset) = (Setup { design: Design::default(), runs: 1 }, "default".to_string());
         for (i, s) in parsed.steps.into_iter().enumerate() {
             let at = |m: String| err(format!("step {} ({}): {m}", i + 1, s.title));
             if let Some(p) = &s.preset {
-                design = presets::preset(p).map_err(|e| at(e.to_string()))?;
+                setup.design = presets::preset(p).map_err(|e| at(e.to_string()))?;
                 preset = p.trim().to_ascii_lowercase();
             }
-            design = apply_sets(&design, &s.set).map_err(at)?;
+            setup = apply_sets(&setup, &s.set).map_err(at)?;
             let panel = panel(&s.panel).ok_or_else(|| {
                 at(format!("panel '{}'; one of params, readout, waveform, polar, history, chart", s.panel))
             })?;
@@ -189,7 +191,8 @@ impl Tour {
                 pulse,
                 best: s.best,
                 preset: preset.clone(),
-                design: design.clone(),
+                design: setup.design.clone(),
+                runs: setup.runs,
                 sets_thresholds,
             });
         }
@@ -209,7 +212,7 @@ fn field(key: &str) -> Option<Knob> {
 
 /// `d` with the step's fields set, choices (like the source) first so that a value checked
 /// against them (θ against the source's open side) sees the new choice.
-fn apply_sets(d: &Design, sets: &BTreeMap<String, toml::Value>) -> Result<Design, String> {
+fn apply_sets(d: &Setup, sets: &BTreeMap<String, toml::Value>) -> Result<Setup, String> {
     let mut fields = Vec::new();
     for (key, value) in sets {
         let p = field(key).ok_or_else(|| {
