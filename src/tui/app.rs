@@ -749,7 +749,7 @@ impl App {
             ChartView::Response if self.design.damper.forced() => {
                 let b = default_band(&self.design);
                 format!(
-                    "frequency response, {}–{} Hz around the natural frequency, each frequency from rest and settled; f is marked",
+                    "response over {}–{} Hz (0.6–1.6 × the natural frequency), f marked",
                     sig(b.from_hz, 3),
                     sig(b.to_hz, 3)
                 )

@@ -96,7 +96,7 @@ impl ReadoutView<'_> {
             return lines;
         }
         let pairs = if get("amp").is_some() {
-            [("amp", "alone"), ("cut", "Leq"), ("imp/T", "e")]
+            [("amp", "alone"), ("cut", "Leq"), ("imp/T", "SPLmax")]
         } else {
             [("e", "e_fit"), ("SPLmax", "U0max"), ("τ@U0max", "R mean")]
         };

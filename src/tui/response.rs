@@ -56,30 +56,36 @@ pub fn nearest_point(r: &Response, f: f64) -> Option<&ResponsePoint> {
     points(r).into_iter().min_by(|a, b| (a.freq_hz - f).abs().total_cmp(&(b.freq_hz - f).abs()))
 }
 
-/// The line under the plots: the engine's steady figures at the point nearest f, or where f
-/// lies off the band.
-pub fn marker_line(r: &Response, band: &Band, f: f64) -> String {
-    if !band.contains(f) {
+/// The line under the plots, the longest of its wordings that fits `width` columns: the
+/// engine's steady figures at the point nearest f, or where f lies off the band.
+pub fn marker_line(r: &Response, band: &Band, f: f64, width: usize) -> String {
+    let options = if band.contains(f) {
+        let Some(p) = nearest_point(r, f) else { return String::new() };
+        let s = &p.steady;
+        let mm = |x: f64| sig(x * 1e3, 3);
+        let alone = s.amplitude_linear_m.map_or("—".to_string(), mm);
+        let cut = s.reduction_db.map_or("—".to_string(), |c| format!("{} dB", sig(c, 3)));
+        let leq = s.leq_db.map_or("—".to_string(), |l| format!("{} dB", sig(l, 4)));
+        let (at, x) = (sig(p.freq_hz, 4), mm(s.amplitude_m));
+        vec![
+            format!(
+                "at {at} Hz: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}, {} impacts/T",
+                sig(s.impacts_per_period, 3)
+            ),
+            format!("at {at} Hz: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}"),
+            format!("{at} Hz: {x} mm, alone {alone}, Leq {leq}"),
+            format!("{at} Hz: {x} mm, alone {alone}"),
+        ]
+    } else {
         let side = if f < band.from_hz { "below" } else { "above" };
-        return format!(
-            "f {} Hz is {side} the band {}–{} Hz (arrow at the edge)",
-            sig(f, 4),
-            sig(band.from_hz, 3),
-            sig(band.to_hz, 3)
-        );
-    }
-    let Some(p) = nearest_point(r, f) else { return String::new() };
-    let s = &p.steady;
-    let mm = |x: f64| format!("{} mm", sig(x * 1e3, 3));
-    let alone = s.amplitude_linear_m.map_or("—".to_string(), mm);
-    let cut = s.reduction_db.map_or("—".to_string(), |c| format!("{} dB", sig(c, 3)));
-    let leq = s.leq_db.map_or("—".to_string(), |l| format!("{} dB", sig(l, 4)));
-    format!(
-        "at {} Hz: {} (alone {alone}), cut {cut}, Leq {leq}, {} impacts/T",
-        sig(p.freq_hz, 4),
-        mm(s.amplitude_m),
-        sig(s.impacts_per_period, 3)
-    )
+        let (lo, hi) = (sig(band.from_hz, 3), sig(band.to_hz, 3));
+        vec![
+            format!("f {} Hz is {side} the band {lo}–{hi} Hz (arrow at the edge)", sig(f, 4)),
+            format!("f {} Hz is {side} {lo}–{hi} Hz", sig(f, 4)),
+            format!("f {side} the band"),
+        ]
+    };
+    options.iter().find(|o| o.chars().count() <= width).unwrap_or(&options[options.len() - 1]).clone()
 }
 
 impl ResponseView<'_> {
@@ -189,7 +195,7 @@ impl Widget for ResponseView<'_> {
             }
             .render(bottom, buf);
         }
-        let line = th.text(&marker_line(r, &self.band, self.freq_hz)).into_owned();
+        let line = th.text(&marker_line(r, &self.band, self.freq_hz, info.width as usize)).into_owned();
         buf.set_stringn(info.x, info.y, &line, info.width as usize, Style::default());
     }
 }

@@ -285,7 +285,7 @@ fn readout_values(a: &AcousticResult, d: &Design) -> Vec<(&'static str, String)>
             ("e", negative(s.inclination_cm_s.median, spread(&s.inclination_cm_s, 3, "cm/s"))),
             ("e_fit", spread(&s.inclination_fit_cm_s, 3, "cm/s")),
             ("SPLmax", spread(&s.spl_max_db, 4, "dB")),
-            ("zone", format!("{}, {:.0} % agree", zone(mm), 100.0 * e.agreement)),
+            ("zone", format!("{}, {:.0}%", zone(mm), 100.0 * e.agreement)),
             ("impacts", mm.n_impacts.to_string()),
             ("τ@U0max", opt(mm.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
             ("R mean", opt(mm.restitution_mean, 3, "")),
@@ -344,7 +344,7 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
     } else if let Some(n) = live_a.and_then(steady_note) {
         n
     } else if let Some(e) = live_a.and_then(|a| a.ensemble.as_ref()) {
-        format!("median [p10–p90] of {} runs, y0 spread over d", e.runs)
+        format!("median [p10–p90] of {} runs; % agree", e.runs)
     } else {
         format!(
             "SPL: rms over τ at r {} m, θ {}°",
