@@ -1166,7 +1166,7 @@ fn response_view_snapshots_and_the_marker_moves_without_a_new_curve_job() {
     assert_eq!(reqs.iter().filter(|r| is_response_job(r)).count(), 1, "the curve is asked for once");
     compute_sync(&mut app, reqs);
     assert!(!app.busy());
-    let curve = app.response().expect("curve computed") as *const _;
+    let curve = std::ptr::from_ref(app.response().expect("curve computed"));
     insta::assert_snapshot!("response_120x40", render(&mut app, 120, 40));
     let before = render(&mut app, 120, 40);
     // Changing f re-simulates the design but never asks for the curve again: it does not

@@ -111,6 +111,56 @@ pub fn glossary(zone_by: ZoneBy) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// What is on screen beyond the paper's free decay: a force, an ensemble, the response view.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Context {
+    pub forced: bool,
+    pub runs: usize,
+    pub response_view: bool,
+}
+
+/// The glossary for what is on screen: [`glossary`], then the terms of a forced design (the
+/// steady figures), of the response view and of an ensemble, when they are shown (so the page
+/// of the paper's free decay stays as it was).
+pub fn glossary_for(zone_by: ZoneBy, cx: Context) -> Vec<(&'static str, String)> {
+    let mut g = glossary(zone_by);
+    if cx.forced || cx.response_view {
+        g.push((
+            "steady",
+            "A forced design (F0 > 0, F0·cos 2πft on the main mass) over its last N = 10 forcing periods: amp, the \
+             largest |x|; alone, the main mass without the ball, F0/√((K − MΩ²)² + (CΩ)²); cut, 20·log10(alone/amp) \
+             dB (> 0: the damper cuts it); Leq, the energy-average level of every impact's pulse at the listener \
+             over that window; imp/T, impacts per period; periodic (x repeats period to period within 1e-3) and \
+             settled (the window's amplitude changed by < 1e-3 from the one before; raise the duration if not)."
+                .into(),
+        ));
+    }
+    if cx.response_view {
+        g.push((
+            "f view",
+            "The f view (key f): the steady amplitude with the damper and alone (in dB re 1 mm) and Leq against \
+             the forcing frequency, over 0.6–1.6 × the structure's natural frequency (1–10 Hz without one), 61 \
+             frequencies, each from rest (v0 = 0, the ball at y0) and run until it settles, as thud response. The \
+             curve does not depend on f: changing f moves the marker (│) only; the line under it gives the point \
+             nearest f. The readout is the run as set (with v0, for the duration), so it may differ until settled."
+                .into(),
+        ));
+    }
+    if cx.runs > 1 {
+        g.push((
+            "N runs",
+            format!(
+                "N = {} runs of the design from ball offsets y0 = −d/2 + (k + ½)·d/N spread over the clearance, at \
+                 rest: the readout shows each number's median [p10–p90] (nearest rank: each is one run's value) and \
+                 the % of runs in the zone of the medians. The chart gives each cell the zone of its medians; a \
+                 cell where fewer than 70 % of its runs agree is shaded ░ (: in ASCII) — that zone is luck.",
+                cx.runs
+            ),
+        ));
+    }
+    g
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -132,6 +182,19 @@ mod tests {
         dip.radiation.source = crate::acoustics::Source::Dipole;
         assert!(field_hint(Knob::Theta, &dip).contains("deg, -90–90"));
         assert!(field_hint(Knob::Source, &d).contains("quadrupole"));
+    }
+
+    #[test]
+    fn the_glossary_adds_the_terms_on_screen_only() {
+        let plain = glossary_for(ZoneBy::Paper, Context { runs: 1, ..Context::default() });
+        assert_eq!(plain, glossary(ZoneBy::Paper));
+        let all = glossary_for(ZoneBy::Paper, Context { forced: true, runs: 16, response_view: true });
+        for term in ["steady", "f view", "N runs"] {
+            assert!(all.iter().any(|(t, _)| *t == term), "{term}");
+        }
+        assert!(all.iter().any(|(_, x)| x.contains("N = 16 runs") && x.contains("70 %")));
+        assert!(field_hint(Knob::Runs, &Design::default()).contains("runs, 1–1000"));
+        assert!(field_hint(Knob::BallPosition, &Design::default()).contains("cm, -2–2"));
     }
 
     #[test]

@@ -813,7 +813,12 @@ fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
     let text_w = (width as usize).saturating_sub(term_w + 3).max(10);
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let mut lines: Vec<Line> = Vec::new();
-    for (term, text) in explain::glossary(app.design.thresholds.zone_by) {
+    let cx = explain::Context {
+        forced: app.design.damper.forced(),
+        runs: app.runs,
+        response_view: app.chart_view == ChartView::Response,
+    };
+    for (term, text) in explain::glossary_for(app.design.thresholds.zone_by, cx) {
         let text = th.text(&text).into_owned();
         for (i, l) in wrap(&text, text_w).into_iter().enumerate() {
             let head = if i == 0 { th.text(term).into_owned() } else { String::new() };

@@ -388,20 +388,19 @@ impl Job for ResponseJob {
     }
 
     fn run(&self, cache: &mut Cache<Response>, cx: &Context<'_, Done>) {
-        let result = match cache.get(&self.key) {
-            Some(hit) => Ok(hit),
-            None => {
-                let done = AtomicUsize::new(0);
-                let total = self.band.points;
-                let on_point = || {
-                    let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    cx.report(Done::ResponseProgress { key: self.key.clone(), done: n, total });
-                };
-                match compute_response(&self.design, &self.band, Some(cx.cancel_flag()), &on_point) {
-                    Ok(None) => return,
-                    Ok(Some(r)) => Ok(cache.insert(self.key.clone(), r)),
-                    Err(e) => Err(e.into()),
-                }
+        let result = if let Some(hit) = cache.get(&self.key) {
+            Ok(hit)
+        } else {
+            let done = AtomicUsize::new(0);
+            let total = self.band.points;
+            let on_point = || {
+                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                cx.report(Done::ResponseProgress { key: self.key.clone(), done: n, total });
+            };
+            match compute_response(&self.design, &self.band, Some(cx.cancel_flag()), &on_point) {
+                Ok(None) => return,
+                Ok(Some(r)) => Ok(cache.insert(self.key.clone(), r)),
+                Err(e) => Err(e.into()),
             }
         };
         cx.report(Done::Response { key: self.key.clone(), result });
