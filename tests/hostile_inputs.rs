@@ -566,25 +566,25 @@ proptest! {
 #[test]
 fn explorer_fields_use_the_same_ranges() {
     use thud::design::Design;
-    use thud::tui::fields::Param;
+    use thud::tui::fields::Knob;
     let d = Design::default();
     for (field, text, name) in [
-        (Param::Mass, "1e308", "mass"),
-        (Param::Gap, "1e-308", "gap"),
-        (Param::K, "1e308", "k"),
-        (Param::R, "2km", "r"),
-        (Param::EStar, "-5", "e*"),
-        (Param::LStar, "1e308", "L*"),
-        (Param::Solver, "1e-308", "dt"),
+        (Knob::Mass, "1e308", "mass"),
+        (Knob::Gap, "1e-308", "gap"),
+        (Knob::K, "1e308", "k"),
+        (Knob::R, "2km", "r"),
+        (Knob::EStar, "-5", "e*"),
+        (Knob::LStar, "1e308", "L*"),
+        (Knob::Solver, "1e-308", "dt"),
     ] {
         let e = field.parsed(&d, text).unwrap_err().to_string();
         assert!(e.starts_with(&format!("invalid {name}: ")), "{text}: {e}");
     }
-    assert!(Param::Mass.parsed(&d, "100kg").is_ok());
+    assert!(Knob::Mass.parsed(&d, "100kg").is_ok());
     // Stepping past a bound is refused too.
     let mut big = d.clone();
     big.damper.stiffness_n_m = 1e10;
-    assert!(Param::K.stepped(&big, true, false).is_err());
+    assert!(Knob::K.stepped(&big, true, false).is_err());
 }
 
 /// The explorer refuses a duration or a Newmark step whose runs exceed the command line's work
@@ -593,17 +593,17 @@ fn explorer_fields_use_the_same_ranges() {
 #[test]
 fn explorer_refuses_runs_over_the_work_caps() {
     use thud::design::Design;
-    use thud::tui::fields::Param;
+    use thud::tui::fields::Knob;
     let d = Design::default();
     // 1e6 s is inside the duration's range, but the chart's 192 cells × 1e6 s exceed the
     // sweep's cell-seconds cap.
-    let e = Param::Duration.parsed(&d, "1e6").unwrap_err().to_string();
+    let e = Knob::Duration.parsed(&d, "1e6").unwrap_err().to_string();
     assert!(e.starts_with("invalid duration: ") && e.contains("exceed the limit"), "{e}");
     // A Newmark step of 1e-12 s over 2 s is 2e12 steps.
-    let e = Param::Solver.parsed(&d, "1e-12").unwrap_err().to_string();
+    let e = Knob::Solver.parsed(&d, "1e-12").unwrap_err().to_string();
     assert!(e.starts_with("invalid dt: ") && e.contains("Newmark steps exceed the limit"), "{e}");
     // An ordinary duration is fine.
-    assert!(Param::Duration.parsed(&d, "5").is_ok());
+    assert!(Knob::Duration.parsed(&d, "5").is_ok());
     // A WAV of 1000 s of a 1000-s design is over the 4.8e7-sample cap only past 1000 s; the
     // chart's cap (192 cells × duration ≤ 2e5 s) already refuses durations past ~1041 s, so
     // the export check is reached with a design built directly.

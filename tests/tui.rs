@@ -213,9 +213,9 @@ fn stale_results_are_dropped() {
 }
 
 /// The kinds of work a key asks for, after moving the selection to `field`.
-fn work_for_step(field: thud::tui::fields::Param) -> Vec<&'static str> {
+fn work_for_step(field: thud::tui::fields::Knob) -> Vec<&'static str> {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Param::ALL.iter().position(|f| *f == field).unwrap();
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|f| *f == field).unwrap();
     let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
     let kinds = reqs
         .iter()
@@ -234,19 +234,19 @@ fn work_for_step(field: thud::tui::fields::Param) -> Vec<&'static str> {
 
 #[test]
 fn each_change_recomputes_only_what_it_must() {
-    use thud::tui::fields::Param;
-    assert_eq!(work_for_step(Param::Theta), ["acoustic", "relevel"], "θ: acoustics only");
-    assert_eq!(work_for_step(Param::R), ["acoustic", "relevel"], "r: acoustics only");
-    assert_eq!(work_for_step(Param::Mass), ["sim"], "m: this design only");
-    assert_eq!(work_for_step(Param::Gap), ["sim"], "d: this design only");
-    assert_eq!(work_for_step(Param::K), ["sim", "chart"], "K: design and sweep");
-    assert!(work_for_step(Param::LStar).is_empty(), "L*: zones are reclassified on draw");
+    use thud::tui::fields::Knob;
+    assert_eq!(work_for_step(Knob::Theta), ["acoustic", "relevel"], "θ: acoustics only");
+    assert_eq!(work_for_step(Knob::R), ["acoustic", "relevel"], "r: acoustics only");
+    assert_eq!(work_for_step(Knob::Mass), ["sim"], "m: this design only");
+    assert_eq!(work_for_step(Knob::Gap), ["sim"], "d: this design only");
+    assert_eq!(work_for_step(Knob::K), ["sim", "chart"], "K: design and sweep");
+    assert!(work_for_step(Knob::LStar).is_empty(), "L*: zones are reclassified on draw");
 }
 
 #[test]
 fn theta_change_relevels_the_chart_like_a_fresh_sweep() {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Param::ALL.iter().position(|f| *f == thud::tui::fields::Param::Theta).unwrap();
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|f| *f == thud::tui::fields::Knob::Theta).unwrap();
     press(&mut app, KeyCode::Left);
     let fresh = computed_with(app.design.clone());
     for (a, b) in app.chart.fine.cells.iter().zip(&fresh.chart.fine.cells) {
@@ -898,7 +898,7 @@ fn the_status_line_explains_the_selected_field() {
     for _ in 0..8 {
         press(&mut app, KeyCode::Down);
     }
-    assert_eq!(app.param(), thud::tui::fields::Param::C1);
+    assert_eq!(app.param(), thud::tui::fields::Knob::C1);
     let status = status_of(&render(&mut app, 120, 40)).to_string();
     assert!(status.contains("c1 — contact damping in the Hertz contact force (Eq 26), N·s/m, 0–"), "{status}");
 }
@@ -1113,5 +1113,231 @@ fn the_polar_curve_is_never_covered_and_its_parts_have_their_own_glyphs() {
                 assert!(symbols.contains(ring) && symbols.contains(ray), "{w}x{h}: rings and ray have their glyphs");
             }
         }
+    }
+}
+
+// ---- Forcing, the response view and ensembles (issue 11) ----
+
+/// Selects field `knob` and types `text` into it, computing what it asks for.
+fn set_field(app: &mut App, knob: thud::tui::fields::Knob, text: &str) {
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|k| *k == knob).unwrap();
+    press(app, KeyCode::Enter);
+    type_text(app, text);
+    press(app, KeyCode::Enter);
+}
+
+/// The default design under a 1 N force (f starts at the natural frequency), small chart grid.
+fn forced_app(theme: Palette) -> App {
+    let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
+    let mut app = App::with_grids(Design::default(), "default", theme, grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    set_field(&mut app, thud::tui::fields::Knob::Force, "1");
+    app
+}
+
+/// Whether a request is the response curve's job.
+fn is_response_job(r: &thud::tui::Request) -> bool {
+    matches!(r, thud::tui::Request::Chart(_, thud::tui::worker::ChartWork::Response(_)))
+}
+
+#[test]
+fn a_force_switched_on_gets_the_natural_frequency_and_the_steady_readout() {
+    let mut app = forced_app(Palette::default());
+    assert_eq!(app.design.damper.force_n, 1.0);
+    // Table 2: √(K/M − (C/2M)²)/2π = 5.033 Hz, to 3 digits.
+    assert_eq!(app.design.damper.freq_hz, 5.03);
+    let screen = render(&mut app, 120, 40);
+    for label in ["amp", "alone", "cut", "Leq", "imp/T"] {
+        row(&screen, label);
+    }
+    // The y0 field refuses what the command line refuses: outside the clearance.
+    set_field(&mut app, thud::tui::fields::Knob::BallPosition, "2.5");
+    assert!(render(&mut app, 120, 40).contains("error: invalid ball-position"));
+    assert_eq!(app.design.damper.ball_position_m, 0.0);
+    set_field(&mut app, thud::tui::fields::Knob::BallPosition, "5mm");
+    assert_eq!(app.design.damper.ball_position_m, 0.005);
+}
+
+#[test]
+fn response_view_snapshots_and_the_marker_moves_without_a_new_curve_job() {
+    let mut app = forced_app(Palette::default());
+    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('f'), KeyModifiers::NONE))));
+    assert_eq!(reqs.iter().filter(|r| is_response_job(r)).count(), 1, "the curve is asked for once");
+    compute_sync(&mut app, reqs);
+    assert!(!app.busy());
+    let curve = std::ptr::from_ref(app.response().expect("curve computed"));
+    insta::assert_snapshot!("response_120x40", render(&mut app, 120, 40));
+    let before = render(&mut app, 120, 40);
+    // Changing f re-simulates the design but never asks for the curve again: it does not
+    // depend on f; only the marker (and the line under the plots) moves.
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|k| *k == thud::tui::fields::Knob::Freq).unwrap();
+    for _ in 0..3 {
+        let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
+        assert!(!reqs.iter().any(is_response_job), "no new curve job for a new f");
+        compute_sync(&mut app, reqs);
+    }
+    assert!(app.design.damper.freq_hz > 5.3, "{}", app.design.damper.freq_hz);
+    assert!(std::ptr::eq(app.response().expect("curve kept"), curve), "the same curve");
+    let after = render(&mut app, 120, 40);
+    let marker_line = |s: &str| s.lines().find(|l| l.contains(" Hz: ")).map(str::to_string);
+    assert!(marker_line(&before).is_some(), "{before}");
+    assert_ne!(marker_line(&before), marker_line(&after), "the marker moved:\n{after}");
+    // The chart panel focused: ←→ move f too, still without a curve job.
+    while app.focus != thud::tui::app::Panel::Chart {
+        press(&mut app, KeyCode::Tab);
+    }
+    let f = app.design.damper.freq_hz;
+    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Left, KeyModifiers::NONE))));
+    assert!(!reqs.iter().any(is_response_job));
+    compute_sync(&mut app, reqs);
+    assert!(app.design.damper.freq_hz < f);
+    // A change of the design itself (the mass) does ask for a new curve.
+    app.focus = thud::tui::app::Panel::Params;
+    app.selected = 0;
+    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
+    assert!(reqs.iter().any(is_response_job), "a new design needs a new curve");
+}
+
+#[test]
+fn response_view_at_80x24_in_colour_no_color_and_ascii() {
+    for (name, theme) in [
+        ("response_80x24", Palette::default()),
+        ("response_no_color_80x24", Palette { color: false, ascii: false }),
+        ("response_ascii_80x24", Palette { color: true, ascii: true }),
+    ] {
+        let mut app = forced_app(theme);
+        press(&mut app, KeyCode::Char('f'));
+        show_chart(&mut app);
+        let screen = render(&mut app, 80, 24);
+        assert!(screen.contains("response"), "{screen}");
+        if theme.ascii {
+            assert!(screen.is_ascii(), "{screen}");
+        }
+        insta::assert_snapshot!(name, screen);
+    }
+    // Without a force the view says what to do instead of drawing a curve.
+    let mut app = computed_app();
+    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('f'), KeyModifiers::NONE))));
+    assert!(!reqs.iter().any(is_response_job));
+    assert!(render(&mut app, 120, 40).contains("No force"));
+}
+
+/// The default design with an ensemble of `n` runs on the small chart grid.
+fn ensemble_app(n: usize, theme: Palette) -> App {
+    let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
+    let mut app = App::with_grids(Design::default(), "default", theme, grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    set_field(&mut app, thud::tui::fields::Knob::Runs, &n.to_string());
+    assert_eq!(app.runs, n);
+    assert!(!app.busy());
+    app
+}
+
+#[test]
+fn an_ensemble_readout_shows_the_engines_median_and_p10_p90() {
+    let mut app = ensemble_app(8, Palette::default());
+    let screen = render(&mut app, 120, 40);
+    let e = thud::ensemble::evaluate(&app.design, 8, None).unwrap().unwrap();
+    let sig = thud::units::sig;
+    let p = e.spread.inclination_fit_cm_s;
+    let want = format!("{} cm/s [{}–{}]", sig(p.median.unwrap(), 3), sig(p.p10.unwrap(), 3), sig(p.p90.unwrap(), 3));
+    assert!(row(&screen, "e_fit").contains(&want), "{want} in\n{screen}");
+    let s = e.spread.spl_max_db;
+    let want = format!("{} dB [{}–{}]", sig(s.median.unwrap(), 4), sig(s.p10.unwrap(), 4), sig(s.p90.unwrap(), 4));
+    assert!(row(&screen, "SPLmax").contains(&want), "{want} in\n{screen}");
+    assert!(row(&screen, "zone").contains(&format!(", {:.0}%", 100.0 * e.agreement)), "{screen}");
+    // The compact readout (80×24) keeps the spread.
+    let screen = render(&mut app, 80, 24);
+    assert!(screen.contains(&format!("[{}–", sig(p.p10.unwrap(), 3))), "{screen}");
+    // N back to 1 is today's single trajectory.
+    set_field(&mut app, thud::tui::fields::Knob::Runs, "1");
+    let screen = render(&mut app, 120, 40);
+    assert!(!row(&screen, "e_fit").split("││").next().unwrap().contains('['), "{screen}");
+}
+
+#[test]
+fn an_ensemble_chart_shades_the_cells_where_runs_disagree() {
+    for (name, theme) in [
+        ("ensemble", Palette::default()),
+        ("ensemble_no_color", Palette { color: false, ascii: false }),
+        ("ensemble_ascii", Palette { color: true, ascii: true }),
+    ] {
+        let mut app = ensemble_app(4, theme);
+        // Every cell in the zone of its medians; shaded where fewer than 70 % of its runs agree.
+        let unsure: Vec<bool> = app
+            .chart
+            .ensembles
+            .iter()
+            .map(|e| thud::tui::compute::ensemble_under(e.as_ref().unwrap(), &app.design.thresholds).agreement < 0.7)
+            .collect();
+        assert!(unsure.iter().any(|u| *u), "the default chart has a cell where the runs disagree");
+        assert!(unsure.iter().any(|u| !*u));
+        let screen = render(&mut app, 120, 40);
+        let shade = if theme.ascii { ":" } else { "░" };
+        assert!(screen.contains(&format!("{shade} <70% of runs agree")), "legend:\n{screen}");
+        insta::assert_snapshot!(format!("{name}_120x40"), screen);
+        show_chart(&mut app);
+        let screen = render(&mut app, 80, 24);
+        assert!(screen.contains(shade), "{screen}");
+        if theme.ascii {
+            assert!(screen.is_ascii(), "{screen}");
+        }
+        insta::assert_snapshot!(format!("{name}_80x24"), screen);
+    }
+}
+
+/// Issue 12: the readout of a design shows the same numbers as `thud simulate --json` for
+/// it, at the readout's precision (the test fails if the readout showed another number).
+#[test]
+fn the_readout_shows_the_clis_json_numbers() {
+    let sig = thud::units::sig;
+    let json = |args: &[&str]| -> serde_json::Value {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let num = |v: &serde_json::Value, k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k} in {v}"));
+    // The paper's Fig 9 design.
+    let cli = json(&["simulate", "--preset", "paper-fig9", "--json"]);
+    let grids = Grids { coarse: None, fine: Grid::standard(2, 2) };
+    let d = thud::presets::preset("paper-fig9").unwrap();
+    let mut app = App::with_grids(d.clone(), "paper-fig9", Palette::default(), grids.clone());
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    let screen = render(&mut app, 120, 40);
+    for (label, want) in [
+        ("U0max", format!("{} m/s", sig(num(&cli, "u0_max_m_s"), 5))),
+        ("e", format!("{} cm/s", sig(num(&cli, "inclination_cm_s"), 3))),
+        ("e_fit", format!("{} cm/s", sig(num(&cli, "inclination_fit_cm_s"), 3))),
+        ("SPLmax", format!("{} dB", sig(num(&cli, "spl_max_db"), 4))),
+        ("impacts", cli["n_impacts"].to_string()),
+        ("τ@U0max", format!("{} µs", sig(num(&cli, "contact_duration_s") * 1e6, 4))),
+        ("R mean", sig(num(&cli, "restitution_mean"), 3)),
+    ] {
+        assert!(row(&screen, label).contains(&format!("{label:<8}{want} ")), "{label}: {want} in\n{screen}");
+    }
+    let zone = cli["zone"].as_u64().unwrap();
+    assert!(row(&screen, "zone").contains(&format!("zone    {zone} ")), "{screen}");
+    // A forced design: the steady figures.
+    let cli = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--json"]);
+    let st = &cli["steady"];
+    let mut forced = d;
+    forced.damper.force_n = 1.0;
+    forced.damper.freq_hz = 5.0;
+    let mut app = App::with_grids(forced, "paper-fig9", Palette::default(), grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    let screen = render(&mut app, 120, 40);
+    for (label, want) in [
+        ("U0max", format!("{} m/s", sig(num(&cli, "u0_max_m_s"), 5))),
+        ("amp", format!("{} mm", sig(num(st, "amplitude_m") * 1e3, 4))),
+        ("alone", format!("{} mm", sig(num(st, "amplitude_linear_m") * 1e3, 4))),
+        ("cut", format!("{} dB", sig(num(st, "reduction_db"), 3))),
+        ("Leq", format!("{} dB", sig(num(st, "leq_db"), 4))),
+        ("imp/T", sig(num(st, "impacts_per_period"), 3)),
+    ] {
+        assert!(row(&screen, label).contains(&format!(" {want} ")), "{label}: {want} in\n{screen}");
     }
 }

@@ -12,17 +12,20 @@ use crossterm::event::{Event, MouseButton, MouseEventKind};
 
 use super::chart::{DesignZone, Geometry};
 use super::compute::{
-    acoustic_key, chart_key, nearest, sim_key, sound_key, AcousticResult, ChartPasses, Grids, SimResult, Stage,
+    chart_key_runs, default_band, nearest, readout_key, response_key, sim_key, sound_key, AcousticResult, ChartPasses,
+    Grids, SimResult, Stage,
 };
 use super::explain;
-use super::fields::{Param, Scope};
+use super::fields::{Knob, Scope, Setup};
 use super::keys::{Action, Keymap};
 use super::theme::Palette;
 use super::tour::{Tour, TourSource};
-use super::worker::{Done, Request};
+use super::worker::{ChartWork, Done, Request};
 use crate::config::{self, Config, ConfigLoad, MarkerStyle};
 use crate::design::{self, Chart, Design, Metrics, Thresholds, Zone};
+use crate::ensemble::Ensemble;
 use crate::presets::{self, PresetInfo};
+use crate::response::Response;
 use crate::store::DesignList;
 use crate::units::sig;
 
@@ -86,10 +89,11 @@ pub struct TourState {
     pub step: usize,
 }
 
-/// A design as it was before a change, for undo.
+/// A design (with its ensemble size) as it was before a change, for undo.
 #[derive(Debug, Clone)]
 pub(crate) struct UndoEntry {
     pub design: Design,
+    pub runs: usize,
     pub preset: String,
 }
 
@@ -149,6 +153,9 @@ pub enum ChartView {
     Zones,
     /// e against SPLmax (Fig 17).
     Scatter,
+    /// The frequency response of the forced design: amplitude with and without the damper,
+    /// and Leq, against the forcing frequency, f marked.
+    Response,
 }
 
 /// Modal state: the normal screen, or one popup / input line on top of it.
@@ -196,18 +203,25 @@ pub struct ChartState {
     pub levels_for: String,
     pub coarse: Option<Chart>,
     pub fine: Chart,
+    /// Runs a cell N; with N > 1 the cells hold the medians of their ensembles.
+    pub runs: usize,
+    /// The ensembles of the fine pass's cells (N > 1), index as in `fine.cells`.
+    pub ensembles: Vec<Option<Arc<Ensemble>>>,
 }
 
 impl ChartState {
-    fn empty(design: &Design, grids: &Grids) -> Self {
+    fn empty(design: &Design, grids: &Grids, runs: usize) -> Self {
+        let fine = Chart::empty(grids.fine.masses_kg.clone(), grids.fine.gaps_m.clone(), design.thresholds);
         Self {
-            key: chart_key(design, grids),
+            key: chart_key_runs(design, grids, runs),
             levels_for: sound_key(design),
             coarse: grids
                 .coarse
                 .as_ref()
                 .map(|g| Chart::empty(g.masses_kg.clone(), g.gaps_m.clone(), design.thresholds)),
-            fine: Chart::empty(grids.fine.masses_kg.clone(), grids.fine.gaps_m.clone(), design.thresholds),
+            ensembles: vec![None; fine.cells.len()],
+            fine,
+            runs,
         }
     }
 
@@ -250,9 +264,11 @@ const UNDO_MAX: usize = 200;
 /// or inspect; the rest is the app's own.
 pub struct App {
     pub design: Design,
+    /// Runs per design N (the ensemble field; 1: the single trajectory).
+    pub runs: usize,
     /// The name of the preset or saved design the live one came from.
     pub preset: String,
-    /// The selected parameter (index into [`Param::ALL`]).
+    /// The selected parameter (index into [`Knob::ALL`]).
     pub selected: usize,
     pub focus: Panel,
     pub mode: Mode,
@@ -303,6 +319,15 @@ pub struct App {
     pub chart_shown: bool,
     /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
     pub(crate) pending_best: bool,
+    /// The response curve shown by the response view, and the key it was computed for.
+    pub(crate) response: Option<Arc<Response>>,
+    pub(crate) response_for: Option<String>,
+    /// The key of the response curve last asked for (not asked again while it computes).
+    pub(crate) response_asked: Option<String>,
+    /// Why the response curve for `response_asked` could not be computed.
+    pub(crate) response_error: Option<String>,
+    /// (frequencies done, all) of the response curve being computed.
+    pub(crate) response_progress: (usize, usize),
 }
 
 impl App {
@@ -313,9 +338,10 @@ impl App {
 
     /// A new app with given chart grids (tests use a small one).
     pub fn with_grids(design: Design, preset: &str, theme: Palette, grids: Grids) -> Self {
-        let chart = ChartState::empty(&design, &grids);
+        let chart = ChartState::empty(&design, &grids, 1);
         Self {
             design,
+            runs: 1,
             preset: preset.to_string(),
             selected: 0,
             focus: Panel::Params,
@@ -354,6 +380,11 @@ impl App {
             tour_def: None,
             chart_shown: false,
             pending_best: false,
+            response: None,
+            response_for: None,
+            response_asked: None,
+            response_error: None,
+            response_progress: (0, 0),
         }
     }
 
@@ -382,7 +413,15 @@ impl App {
 
     /// The work to start with: simulate the design and sweep the chart.
     pub fn initial_requests(&self) -> Vec<Request> {
-        vec![Request::Sim(self.design.clone()), Request::Chart(self.design.clone(), self.grids.clone())]
+        vec![
+            Request::Sim(self.design.clone()),
+            Request::Chart(self.design.clone(), ChartWork::Zones(self.grids.clone(), self.runs)),
+        ]
+    }
+
+    /// The live design with the ensemble size: what the knobs turn.
+    pub fn setup(&self) -> Setup {
+        Setup { design: self.design.clone(), runs: self.runs }
     }
 
     /// Starts the guided tour (`tour_def`, else the built-in one) at its first step; returns
@@ -416,7 +455,7 @@ impl App {
         self.pulse = step.pulse;
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
         self.mode = Mode::Normal;
-        let mut reqs = self.apply(d, Scope::All, String::new());
+        let mut reqs = self.apply_setup(Setup { design: d, runs: step.runs }, Scope::All, String::new());
         self.preset.clone_from(&step.preset);
         self.set_status(&format!("tour {}/{n}: {} — → next, ← back, Esc explores from here", i + 1, step.title), false);
         self.pending_best = step.best;
@@ -502,8 +541,8 @@ impl App {
     }
 
     /// The selected parameter.
-    pub fn param(&self) -> Param {
-        Param::ALL[self.selected.min(Param::ALL.len() - 1)]
+    pub fn param(&self) -> Knob {
+        Knob::ALL[self.selected.min(Knob::ALL.len() - 1)]
     }
 
     /// The status line's message, if any.
@@ -513,12 +552,28 @@ impl App {
 
     /// True while results for the current design are missing or being recomputed.
     pub fn busy(&self) -> bool {
-        !self.exports.is_empty() || (self.work_error.is_none() && (self.design_busy() || self.chart_busy()))
+        !self.exports.is_empty()
+            || (self.work_error.is_none() && (self.design_busy() || self.chart_busy() || self.response_busy()))
     }
 
     /// True while the live design's readout is not for its current parameters.
     pub fn design_busy(&self) -> bool {
-        self.acoustic_for.as_deref() != Some(acoustic_key(&self.design).as_str())
+        self.acoustic_for.as_deref() != Some(readout_key(&self.design, self.runs).as_str())
+    }
+
+    /// The response curve of the live design, if computed for it (f aside: the curve does
+    /// not depend on it).
+    pub fn response(&self) -> Option<&Response> {
+        let key = response_key(&self.design, &default_band(&self.design));
+        self.response.as_deref().filter(|_| self.response_for.as_deref() == Some(key.as_str()))
+    }
+
+    /// True while the response view waits for its curve.
+    pub fn response_busy(&self) -> bool {
+        self.chart_view == ChartView::Response
+            && self.design.damper.forced()
+            && self.response().is_none()
+            && self.response_error.is_none()
     }
 
     /// True while the chart is still filling in.
@@ -546,11 +601,15 @@ impl App {
 
     /// Steps the selected parameter once (`up`: increase; `fine`: a small step).
     pub(crate) fn step(&mut self, up: bool, fine: bool) -> Vec<Request> {
-        let f = self.param();
-        match f.stepped(&self.design, up, fine) {
-            Ok(d) => {
-                let shown = f.display(&d);
-                self.apply(d, f.scope(), format!("{} {}", f.label(), shown))
+        self.step_knob(self.param(), up, fine)
+    }
+
+    /// Steps field `f` once (`up`: increase; `fine`: a small step).
+    pub(crate) fn step_knob(&mut self, f: Knob, up: bool, fine: bool) -> Vec<Request> {
+        match f.stepped(&self.setup(), up, fine) {
+            Ok(s) => {
+                let message = self.change_message(f, &s, "");
+                self.apply_setup(s, f.scope(), message)
             }
             Err(e) => self.error(e),
         }
@@ -561,22 +620,43 @@ impl App {
     /// chart's range is accepted with a word saying so.
     pub fn submit_text(&mut self, text: &str) -> Vec<Request> {
         let f = self.param();
-        match f.parsed(&self.design, text) {
-            Ok(d) => {
-                let shown = f.display(&d);
-                let off = self.off_chart(f, &d);
-                self.apply(d, f.scope(), format!("{} {}{off}", f.label(), shown))
+        match f.parsed(&self.setup(), text) {
+            Ok(s) => {
+                let off = self.off_chart(f, &s.design);
+                let message = self.change_message(f, &s, &off);
+                self.apply_setup(s, f.scope(), message)
             }
             Err(e) => self.error(e),
         }
     }
 
+    /// The status line after field `f` changed to give `s`: "label value", with f when a force
+    /// was switched on with it, and where f falls on the response curve's band.
+    fn change_message(&self, f: Knob, s: &Setup, extra: &str) -> String {
+        let mut m = format!("{} {}{extra}", f.label(), f.display(s));
+        let (was, now) = (&self.design.damper, &s.design.damper);
+        if f == Knob::Force && now.freq_hz != was.freq_hz {
+            m += &format!("; {} {} (the natural frequency)", Knob::Freq.label(), Knob::Freq.display(s));
+        }
+        if f == Knob::Freq && self.chart_view == ChartView::Response {
+            let band = default_band(&s.design);
+            if !band.contains(now.freq_hz) {
+                m += &format!(
+                    " — off the response curve's band ({}–{} Hz): its marker is an arrow at the edge",
+                    sig(band.from_hz, 3),
+                    sig(band.to_hz, 3)
+                );
+            }
+        }
+        m
+    }
+
     /// " — off the chart (…)" if field `f` of `d` (mass or gap) lies outside the chart's grid.
-    fn off_chart(&self, f: Param, d: &Design) -> String {
+    fn off_chart(&self, f: Knob, d: &Design) -> String {
         let g = &self.grids.fine;
         let (values, v, unit, k) = match f {
-            Param::Mass => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
-            Param::Gap => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
+            Knob::Mass => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
+            Knob::Gap => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
             _ => return String::new(),
         };
         let (Some(lo), Some(hi)) = (values.first(), values.last()) else { return String::new() };
@@ -616,8 +696,8 @@ impl App {
         let d = design::variant(&self.design, mass_kg, gap_m);
         let msg = format!(
             "m {} g, d {} cm",
-            Param::Mass.display(&d).trim_end_matches(" g"),
-            Param::Gap.display(&d).trim_end_matches(" cm")
+            Knob::Mass.display(&d).trim_end_matches(" g"),
+            Knob::Gap.display(&d).trim_end_matches(" cm")
         );
         self.apply(d, Scope::Design, msg)
     }
@@ -645,11 +725,38 @@ impl App {
     pub(crate) fn toggle_chart_view(&mut self) {
         self.chart_view = match self.chart_view {
             ChartView::Zones => ChartView::Scatter,
-            ChartView::Scatter => ChartView::Zones,
+            ChartView::Scatter | ChartView::Response => ChartView::Zones,
         };
+        self.say_chart_view();
+    }
+
+    /// Switches the chart panel to the response curve and back to the zones; returns the work
+    /// the curve needs (none if it is cached, or without a force).
+    pub(crate) fn toggle_response(&mut self) -> Vec<Request> {
+        self.chart_view = match self.chart_view {
+            ChartView::Response => ChartView::Zones,
+            ChartView::Zones | ChartView::Scatter => ChartView::Response,
+        };
+        self.say_chart_view();
+        self.response_request().into_iter().collect()
+    }
+
+    /// Says which picture the chart panel shows (and how to bring it on screen).
+    fn say_chart_view(&mut self) {
         let view = match self.chart_view {
-            ChartView::Zones => "zones over mass × gap",
-            ChartView::Scatter => "e vs SPLmax (Fig 17)",
+            ChartView::Zones => "zones over mass × gap".to_string(),
+            ChartView::Scatter => "e vs SPLmax (Fig 17)".to_string(),
+            ChartView::Response if self.design.damper.forced() => {
+                let b = default_band(&self.design);
+                format!(
+                    "response over {}–{} Hz (0.6–1.6 × the natural frequency), f marked",
+                    sig(b.from_hz, 3),
+                    sig(b.to_hz, 3)
+                )
+            }
+            ChartView::Response => {
+                format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::Force.label())
+            }
         };
         let text = if self.chart_shown {
             format!("chart view: {view}")
@@ -677,8 +784,10 @@ impl App {
 
     pub(crate) fn undo(&mut self) -> Vec<Request> {
         if let Some(entry) = self.undo.pop() {
-            let what = changes(&self.design, &self.preset, &entry.design, &entry.preset);
-            self.design = entry.design;
+            let then = Setup { design: entry.design, runs: entry.runs };
+            let what = changes(&self.setup(), &self.preset, &then, &entry.preset);
+            self.design = then.design;
+            self.runs = then.runs;
             self.preset = entry.preset;
             self.set_status(&format!("undo: {what}"), false);
             self.requests(Scope::All)
@@ -690,12 +799,19 @@ impl App {
 
     /// Makes `new` the live design (pushing the old one for undo) and asks for what it needs.
     pub(crate) fn apply(&mut self, new: Design, scope: Scope, message: String) -> Vec<Request> {
-        if new == self.design {
+        self.apply_setup(Setup { design: new, runs: self.runs }, scope, message)
+    }
+
+    /// Makes `new` the live design and ensemble size (pushing the old ones for undo) and asks
+    /// for what they need.
+    pub(crate) fn apply_setup(&mut self, new: Setup, scope: Scope, message: String) -> Vec<Request> {
+        if new.design == self.design && new.runs == self.runs {
             self.set_status(&message, false);
             return vec![];
         }
-        let old = std::mem::replace(&mut self.design, new);
-        self.undo.push(UndoEntry { design: old, preset: self.preset.clone() });
+        let old = std::mem::replace(&mut self.design, new.design);
+        let old_runs = std::mem::replace(&mut self.runs, new.runs);
+        self.undo.push(UndoEntry { design: old, runs: old_runs, preset: self.preset.clone() });
         if self.undo.len() > UNDO_MAX {
             self.undo.remove(0);
         }
@@ -710,18 +826,38 @@ impl App {
         let sim_fresh = self.sim_for.as_deref() == Some(sim_key(&self.design).as_str());
         match (scope, &self.sim) {
             (Scope::Thresholds, _) => {}
-            (Scope::Acoustics, Some(sim)) if sim_fresh => out.push(Request::Acoustic(self.design.clone(), sim.clone())),
+            (Scope::Acoustics, Some(sim)) if sim_fresh => {
+                out.push(Request::Acoustic(self.design.clone(), sim.clone(), self.runs));
+            }
             _ => out.push(Request::Sim(self.design.clone())),
         }
-        let key = chart_key(&self.design, &self.grids);
+        let key = chart_key_runs(&self.design, &self.grids, self.runs);
         if key != self.chart.key {
-            self.chart = ChartState::empty(&self.design, &self.grids);
+            self.chart = ChartState::empty(&self.design, &self.grids, self.runs);
             self.chart_error = None;
-            out.push(Request::Chart(self.design.clone(), self.grids.clone()));
+            out.push(Request::Chart(self.design.clone(), ChartWork::Zones(self.grids.clone(), self.runs)));
         } else if self.chart.levels_for != sound_key(&self.design) {
             out.push(self.relevel());
         }
+        out.extend(self.response_request());
         out
+    }
+
+    /// The response curve's job, if the response view is shown, the design is forced and its
+    /// curve (which does not depend on f) is neither in nor already asked for.
+    fn response_request(&mut self) -> Option<Request> {
+        if self.chart_view != ChartView::Response || !self.design.damper.forced() {
+            return None;
+        }
+        let band = default_band(&self.design);
+        let key = response_key(&self.design, &band);
+        if self.response_for.as_deref() == Some(key.as_str()) || self.response_asked.as_deref() == Some(key.as_str()) {
+            return None;
+        }
+        self.response_asked = Some(key);
+        self.response_error = None;
+        self.response_progress = (0, band.points);
+        Some(Request::Chart(self.design.clone(), ChartWork::Response(band)))
     }
 
     /// Asks for the chart's levels at the current observer (acoustics only).
@@ -749,13 +885,13 @@ impl App {
                         }
                         self.sim = Some(sim.clone());
                         self.sim_for = Some(key);
-                        return vec![Request::Acoustic(self.design.clone(), sim)];
+                        return vec![Request::Acoustic(self.design.clone(), sim, self.runs)];
                     }
                     Err(e) => self.fail(e),
                 }
             }
             Done::Acoustic { key, result } => {
-                if key != acoustic_key(&self.design) {
+                if key != readout_key(&self.design, self.runs) {
                     return vec![];
                 }
                 match result {
@@ -766,18 +902,27 @@ impl App {
                     Err(e) => self.fail(e),
                 }
             }
-            Done::ChartCell { key, sound, stage, index, cell } if key == self.chart.key => {
+            Done::ChartCell { key, sound, stage, index, cell, ensemble } if key == self.chart.key => {
                 if let Some(slot) = self.stage_chart(stage).and_then(|c| c.cells.get_mut(index)) {
                     *slot = Some(cell);
+                }
+                if let (Stage::Fine, Some(e)) = (stage, ensemble) {
+                    if let Some(slot) = self.chart.ensembles.get_mut(index) {
+                        *slot = Some(e);
+                    }
                 }
                 if sound != sound_key(&self.design) {
                     self.chart.levels_for = sound;
                 }
             }
-            Done::Chart { key, sound, stage, result } if key == self.chart.key => match result {
+            Done::Chart { key, sound, stage, result, ensembles } if key == self.chart.key => match result {
                 Ok(chart) => {
                     if let Some(c) = self.stage_chart(stage) {
                         *c = (*chart).clone();
+                    }
+                    if let (Stage::Fine, Some(e)) = (stage, ensembles) {
+                        self.chart.ensembles =
+                            e.cells.iter().map(|c| c.as_ref().map(|c| Arc::new(c.ensemble.clone()))).collect();
                     }
                     if sound != sound_key(&self.design) {
                         self.chart.levels_for = sound;
@@ -796,6 +941,26 @@ impl App {
                 }
             }
             Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
+            Done::Response { key, result } => {
+                if self.response_asked.as_deref() != Some(key.as_str()) {
+                    return vec![];
+                }
+                match result {
+                    Ok(r) => {
+                        self.response = Some(r);
+                        self.response_for = Some(key);
+                    }
+                    Err(e) => {
+                        self.response_error = Some(e.to_string());
+                        self.error(format_args!("response curve: {e}"));
+                    }
+                }
+            }
+            Done::ResponseProgress { key, done, total } => {
+                if self.response_asked.as_deref() == Some(key.as_str()) {
+                    self.response_progress = (done, total);
+                }
+            }
             Done::Export { kind, path, result } => self.export_finished(kind, &path, result),
         }
         if self.pending_best && !self.chart_busy() {
@@ -873,12 +1038,12 @@ impl App {
 
 /// What differs between the live design (`now`, from preset `now_preset`) and `then`, as
 /// "mass 45.50 g → 40.50 g" (at most three fields, then how many more).
-pub fn changes(now: &Design, now_preset: &str, then: &Design, then_preset: &str) -> String {
+pub fn changes(now: &Setup, now_preset: &str, then: &Setup, then_preset: &str) -> String {
     let mut parts = Vec::new();
     if now_preset != then_preset {
         parts.push(format!("preset {now_preset} → {then_preset}"));
     }
-    let fields: Vec<String> = Param::ALL
+    let fields: Vec<String> = Knob::ALL
         .iter()
         .filter_map(|p| {
             let (a, b) = (p.display(now), p.display(then));

@@ -6,6 +6,11 @@
 //! design between cells is drawn between them, one off the chart's range as an arrow at the
 //! edge with a line saying so. The axes have titles with units and round ticks; the legend
 //! (zones 1–4, no impact, pending) is always drawn, below or beside the grid as space allows.
+//!
+//! An ensemble chart (N > 1 runs a cell) draws each cell in the zone of its medians; a cell
+//! where fewer than 70 % of its runs are in that zone is shaded — its blank filled with `░`
+//! (`:` in ASCII) and dim, or underlined where the cell is one character — so it reads without
+//! colour too, and the legend says what the shading means.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -26,6 +31,8 @@ pub enum CellView {
     Approx(Option<Zone>),
     /// Computed on this grid. `None`: no zone (no impacts or fewer than two maxima).
     Exact(Option<Zone>),
+    /// An ensemble cell in the zone of its medians where fewer than 70 % of its runs agree.
+    Unsure(Option<Zone>),
 }
 
 /// What the marker of the live design shows: its own zone (the readout's), or that it is
@@ -162,11 +169,22 @@ fn glyph(z: Option<Zone>) -> String {
 
 /// True while some cell is not computed on the fine grid yet (the legend then explains `·`).
 pub fn pending(cells: &[CellView]) -> bool {
-    cells.iter().any(|c| !matches!(c, CellView::Exact(_)))
+    cells.iter().any(|c| !matches!(c, CellView::Exact(_) | CellView::Unsure(_)))
 }
 
-/// The legend's entries (text, zone for its colour); "pending" only while cells are.
-fn legend_items(theme: &Palette, pending: bool) -> Vec<(String, Option<Zone>)> {
+/// True if some cell is shaded as unsure (the legend then explains the shading).
+pub fn unsure(cells: &[CellView]) -> bool {
+    cells.iter().any(|c| matches!(c, CellView::Unsure(_)))
+}
+
+/// The legend's entry for the shading of unsure ensemble cells.
+pub fn unsure_legend(theme: &Palette) -> String {
+    format!("{} <70% of runs agree", theme.sym("░", ":"))
+}
+
+/// The legend's entries (text, zone for its colour); "pending" only while cells are, the
+/// shading only when a cell is unsure.
+fn legend_items(theme: &Palette, pending: bool, unsure: bool) -> Vec<(String, Option<Zone>)> {
     let mut v: Vec<(String, Option<Zone>)> = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak]
         .iter()
         .map(|z| (format!("{} {}", z.number(), z.describe().replace(", ", ",")), Some(*z)))
@@ -174,6 +192,9 @@ fn legend_items(theme: &Palette, pending: bool) -> Vec<(String, Option<Zone>)> {
     v.push(("- no impact".into(), None));
     if pending {
         v.push((format!("{} pending", theme.sym("·", ".")), None));
+    }
+    if unsure {
+        v.push((unsure_legend(theme), None));
     }
     v
 }
@@ -227,9 +248,16 @@ pub enum LegendPlace {
 
 /// Lays out the zone grid, its axes, legend and the design's line in the panel's inner area;
 /// None if the grid does not fit.
-pub fn layout(inner: Rect, masses: &[f64], gaps: &[f64], theme: &Palette, pending: bool) -> Option<ChartLayout> {
+pub fn layout(
+    inner: Rect,
+    masses: &[f64],
+    gaps: &[f64],
+    theme: &Palette,
+    pending: bool,
+    unsure: bool,
+) -> Option<ChartLayout> {
     let (nm, ng) = (masses.len(), gaps.len());
-    let items = legend_items(theme, pending);
+    let items = legend_items(theme, pending, unsure);
     let legend_w = items.iter().map(|(t, _)| t.chars().count() as u16).max().unwrap_or(0) + 1;
     // Fixed rows: y title, x labels, the design's line.
     let fixed = 3u16;
@@ -274,21 +302,27 @@ pub fn layout(inner: Rect, masses: &[f64], gaps: &[f64], theme: &Palette, pendin
 
 impl ZoneGridView<'_> {
     fn draw_cell(&self, buf: &mut Buffer, r: Rect, cell: CellView) {
-        let (zone, known, exact) = match cell {
-            CellView::Empty => (None, false, false),
-            CellView::Approx(z) => (z, true, false),
-            CellView::Exact(z) => (z, true, true),
+        let (zone, known, exact, unsure) = match cell {
+            CellView::Empty => (None, false, false, false),
+            CellView::Approx(z) => (z, true, false, false),
+            CellView::Exact(z) => (z, true, true, false),
+            CellView::Unsure(z) => (z, true, true, true),
         };
         let mut style = match zone {
             Some(z) if known => self.theme.zone(z),
             _ => Style::default(),
         };
-        style = if exact { style.add_modifier(Modifier::BOLD) } else { style.add_modifier(Modifier::DIM) };
+        style = if exact && !unsure { style.add_modifier(Modifier::BOLD) } else { style.add_modifier(Modifier::DIM) };
         let text = if known { glyph(zone) } else { self.theme.sym("·", ".").to_string() };
+        let fill = if unsure { self.theme.sym("░", ":") } else { " " };
         for y in r.y..r.y + r.height {
             for x in r.x..r.x + r.width {
-                buf[(x, y)].set_symbol(" ").set_style(style);
+                buf[(x, y)].set_symbol(fill).set_style(style);
             }
+        }
+        if unsure && r.width == 1 && r.height == 1 {
+            // No room for the shade: the digit itself is marked.
+            style = style.add_modifier(Modifier::UNDERLINED);
         }
         let x = r.x + r.width.saturating_sub(1) / 2;
         let y = r.y + r.height.saturating_sub(1) / 2;
@@ -345,7 +379,7 @@ impl ZoneGridView<'_> {
     }
 
     fn draw_legend(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
-        let items = legend_items(&self.theme, pending(self.cells));
+        let items = legend_items(&self.theme, pending(self.cells), unsure(self.cells));
         let style = |z: Option<Zone>| z.map_or(Style::default(), |z| self.theme.zone(z));
         let put = |buf: &mut Buffer, x: u16, y: u16, i: usize| {
             let (text, z) = &items[i];
@@ -441,7 +475,9 @@ impl ZoneGridView<'_> {
         };
         // Beside a legend that reaches this row the line stops at the grid's edge.
         let right = match &l.legend {
-            LegendPlace::Beside(_, y) if l.info_y < y + legend_items(th, pending(self.cells)).len() as u16 => {
+            LegendPlace::Beside(_, y)
+                if l.info_y < y + legend_items(th, pending(self.cells), unsure(self.cells)).len() as u16 =>
+            {
                 l.grid_right
             }
             _ => inner.right(),
@@ -463,7 +499,8 @@ impl Widget for ZoneGridView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let inner = self.block.inner(area);
         (&self.block).render(area, buf);
-        let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme, pending(self.cells)) else {
+        let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme, pending(self.cells), unsure(self.cells))
+        else {
             Paragraph::new("too small for the chart").render(inner, buf);
             return;
         };
@@ -587,9 +624,9 @@ mod tests {
 
     #[test]
     fn the_legend_flows_into_lines_that_fit() {
-        let items = legend_items(&Palette::default(), true);
+        let items = legend_items(&Palette::default(), true, true);
         assert!(items.iter().any(|(t, _)| t == "- no impact"));
-        assert!(legend_items(&Palette::default(), false).iter().all(|(t, _)| !t.contains("pending")));
+        assert!(legend_items(&Palette::default(), false, false).iter().all(|(t, _)| !t.contains("pending")));
         for w in [20usize, 38, 60, 120] {
             let lines = flow(&items, w);
             assert_eq!(lines.iter().map(Vec::len).sum::<usize>(), items.len());

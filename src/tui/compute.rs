@@ -1,7 +1,9 @@
 //! What the explorer's jobs compute: one design simulated with its history, its sound (metrics,
-//! loudest-impact waveform, directivity), the chart sweep over mass × gap and the chart's levels
-//! at a new observer. Calls into the engine only; no threads, no slots, no messages — the worker
-//! (`worker.rs`) runs these on its threads and `tui::compute_sync` on the caller's.
+//! loudest-impact waveform, directivity, a forced run's steady state with its Leq, and with
+//! N > 1 the ensemble's spread), the chart sweep over mass × gap (of single runs, or of
+//! ensembles of N runs a cell), the chart's levels at a new observer, and the frequency
+//! response of a forced design. Calls into the engine only; no threads, no slots, no messages
+//! — the worker (`worker.rs`) runs these on its threads and `tui::compute_sync` on the caller's.
 //!
 //! Each result is tagged with a key: the serialized parameters it depends on. A result whose
 //! key differs from the live design's is stale, and equal keys let the worker's caches answer.
@@ -12,7 +14,10 @@ use crate::acoustics::{Field, Observer};
 use crate::contact::{Impact, Target};
 use crate::damper;
 use crate::design::{self, linspace, Cell, Chart, Design, Evaluation, Metrics, Thresholds};
+use crate::ensemble::{self, Ensemble, EnsembleCell, EnsembleChart, Member};
 use crate::error::ThudError;
+use crate::limits;
+use crate::response::{self, Response, ResponseOptions, Steady};
 
 /// History samples kept for the x(t) plot.
 pub const HISTORY_SAMPLES: usize = 600;
@@ -89,6 +94,11 @@ pub struct AcousticResult {
     /// One impact of the ball at U0 = v0 on a fixed plate (what `thud pulse` computes for the
     /// design: Fig 2, Table 1); an error text when v0 gives no impact.
     pub single: Result<SingleImpact, String>,
+    /// A forced design's steady state over its last N periods with the Leq of its rattle at
+    /// this observer ([`response::steady`]); None without a force.
+    pub steady: Option<Steady>,
+    /// With N > 1 runs: the ensemble of the design (its runs from N spread ball offsets).
+    pub ensemble: Option<Ensemble>,
 }
 
 /// One impact at U0 = v0 on a fixed plate (K* = 1/m, Eq 8), heard at the design's observer.
@@ -140,9 +150,29 @@ pub fn acoustic_key(d: &Design) -> String {
     json(&d)
 }
 
+/// Key of the readout of `d` with `runs` runs: the acoustics, and the ensemble size when N > 1.
+pub fn readout_key(d: &Design, runs: usize) -> String {
+    if runs > 1 {
+        format!("{}|ensemble {runs}", acoustic_key(d))
+    } else {
+        acoustic_key(d)
+    }
+}
+
 /// Key of what the sound at the observer depends on beyond each impact: observer and radiation.
 pub fn sound_key(d: &Design) -> String {
     json(&(&d.observer, &d.radiation))
+}
+
+/// Key of the chart of `runs` runs a cell: [`chart_key`]; with N > 1 also the ensemble size and
+/// the sound (an ensemble chart is swept again for a new observer: its runs' zones, and so
+/// how many agree, depend on it).
+pub fn chart_key_runs(d: &Design, grids: &Grids, runs: usize) -> String {
+    if runs > 1 {
+        format!("{}|ensemble {runs}|{}", chart_key(d, grids), sound_key(d))
+    } else {
+        chart_key(d, grids)
+    }
 }
 
 /// Key of the chart's simulations: everything but the mass, the gap, the thresholds and the
@@ -175,10 +205,11 @@ pub fn compute_sim(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<Sim
     Ok(Some(SimResult { eval, history_cm, free_cm, maxima_cm, free_maxima_cm }))
 }
 
-/// Metrics, loudest-impact waveform and directivity of `d` from its cached run.
+/// Metrics, loudest-impact waveform, directivity and steady state of `d` from its cached run.
 pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, ThudError> {
     let r = d.resolved()?;
     let metrics = design::metrics(&sim.eval.run, &r)?;
+    let steady = response::steady(&sim.eval.run, &r)?;
     let (mut waveform, mut polar) = (Vec::new(), Vec::new());
     if metrics.spl_max_db.is_some() {
         let u0 = metrics.u0_max_m_s;
@@ -189,7 +220,122 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         polar = directivity(&r, u0);
     }
     let single = single_impact(&r).map_err(|e| e.to_string());
-    Ok(AcousticResult { metrics, waveform, polar, single })
+    Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None })
+}
+
+/// The readout of `d` with `runs` runs: [`compute_acoustic`], and with N > 1 the ensemble of
+/// N runs ([`ensemble::evaluate`]). `None` if cancelled.
+pub fn compute_readout(
+    d: &Design,
+    sim: &SimResult,
+    runs: usize,
+    cancel: Option<&AtomicBool>,
+) -> Result<Option<AcousticResult>, ThudError> {
+    let mut a = compute_acoustic(d, sim)?;
+    if runs > 1 {
+        match ensemble::evaluate(d, runs, cancel)? {
+            Some(e) => a.ensemble = Some(e),
+            None => return Ok(None),
+        }
+    }
+    Ok(Some(a))
+}
+
+/// The ensemble `e` under thresholds `t`: each run's zone and the zone of the medians
+/// reclassified ([`Ensemble::from_members`]), so threshold edits need no new runs.
+pub fn ensemble_under(e: &Ensemble, t: &Thresholds) -> Ensemble {
+    let members = e.ensemble.iter().map(|m| Member { zone: m.metrics().zone(t), ..*m }).collect();
+    Ensemble::from_members(members, t)
+}
+
+/// Fraction of the runs that must agree with the zone of the medians for a chart cell to be
+/// drawn as sure (issue 11: shaded when fewer than 70 % agree).
+pub const AGREEMENT_SURE: f64 = 0.7;
+
+/// The frequencies of a response curve: `points` from `from_hz` to `to_hz`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Band {
+    pub from_hz: f64,
+    pub to_hz: f64,
+    pub points: usize,
+}
+
+impl Band {
+    /// The frequencies (Hz).
+    pub fn freqs(&self) -> Vec<f64> {
+        linspace(self.from_hz, self.to_hz, self.points)
+    }
+
+    /// Whether `f` lies inside the band.
+    pub fn contains(&self, f: f64) -> bool {
+        f >= self.from_hz && f <= self.to_hz
+    }
+}
+
+/// Points of the explorer's response curve.
+pub const RESPONSE_POINTS: usize = 61;
+
+/// The band a response curve spans for `d`: 0.6 to 1.6 times the structure's natural
+/// frequency (its resonance and both flanks; 3–8 Hz, `thud response`'s default, for Table 2's
+/// 5.03 Hz), or 1–10 Hz without one (no spring, or overdamped). It does not depend on the
+/// forcing frequency f, so changing f only moves the marker.
+pub fn default_band(d: &Design) -> Band {
+    let f = super::fields::natural_frequency_hz(d);
+    let (from_hz, to_hz) = if f > 0.0 { (0.6 * f, 1.6 * f) } else { (1.0, 10.0) };
+    Band { from_hz, to_hz, points: RESPONSE_POINTS }
+}
+
+/// The design a response curve runs: `d` from rest (v0 = 0), as `thud response` runs a design
+/// whose start is not typed; each frequency sets its own f. The ball starts at the design's y0.
+pub fn response_design(d: &Design) -> Design {
+    let mut r = d.clone();
+    r.damper.v0_m_s = 0.0;
+    r.damper.freq_hz = 0.0;
+    r.thresholds = Thresholds::default();
+    r
+}
+
+/// Key of a response curve: the design from rest without its forcing frequency (the curve
+/// does not depend on f: changing it moves the marker only), and the band.
+pub fn response_key(d: &Design, band: &Band) -> String {
+    format!("{}|{:?}", json(&response_design(d)), band)
+}
+
+/// The work of the response curve of `d` over `band`, checked against the caps `thud
+/// response` uses ([`limits::response_work`], and the cycles of the highest frequency's
+/// settled run): the first estimate over its cap, as an error naming the force.
+pub fn check_response_work(d: &Design, band: &Band) -> Result<(), ThudError> {
+    let freqs = band.freqs();
+    let rd = response_design(d);
+    let f_max = freqs.iter().copied().fold(0.0, f64::max);
+    let over = limits::response_work(&rd, &freqs, false)
+        .into_iter()
+        .chain([limits::design_run(&response::at_frequency(&rd, f_max, true), 0)[1]])
+        .find(limits::Estimate::exceeded);
+    match over {
+        Some(e) => Err(ThudError::invalid("response", format!("{} points: {}", band.points, e.describe()))),
+        None => Ok(()),
+    }
+}
+
+/// The frequency response of `d` over `band` (every frequency from rest, settled, as `thud
+/// response`): `on_point` hears each finished point. Refused without a force or over the work
+/// caps; `None` if cancelled.
+pub fn compute_response(
+    d: &Design,
+    band: &Band,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn() + Sync),
+) -> Result<Option<Response>, ThudError> {
+    if !d.damper.forced() {
+        return Err(ThudError::invalid("force", "0 N: a response needs a force; set F0 > 0"));
+    }
+    check_response_work(d, band)?;
+    let r = response::response(&response_design(d), &band.freqs(), &ResponseOptions::default(), cancel, on_point)?;
+    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return Ok(None);
+    }
+    Ok(Some(r))
 }
 
 /// The impact of the design's ball at U0 = v0 on a fixed plate (as `thud pulse --preset`).
@@ -255,6 +401,28 @@ pub fn compute_chart(
     let passes = grids.coarse.iter().map(|g| (Stage::Coarse, g)).chain([(Stage::Fine, &grids.fine)]);
     for (stage, grid) in passes {
         let result = design::sweep(d, &grid.masses_kg, &grid.gaps_m, cancel, &|i, cell| on_cell(stage, i, cell));
+        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return false;
+        }
+        on_pass(stage, result);
+    }
+    true
+}
+
+/// Sweeps the coarse grid (if any) then the fine one with `runs` runs a cell
+/// ([`ensemble::sweep`]); reports as [`compute_chart`] does. Returns false if cancelled.
+pub fn compute_ensemble_chart(
+    d: &Design,
+    grids: &Grids,
+    runs: usize,
+    cancel: Option<&AtomicBool>,
+    on_cell: &(dyn Fn(Stage, usize, &EnsembleCell) + Sync),
+    on_pass: &mut dyn FnMut(Stage, Result<EnsembleChart, ThudError>),
+) -> bool {
+    let passes = grids.coarse.iter().map(|g| (Stage::Coarse, g)).chain([(Stage::Fine, &grids.fine)]);
+    for (stage, grid) in passes {
+        let result =
+            ensemble::sweep(d, &grid.masses_kg, &grid.gaps_m, runs, cancel, &|i, cell| on_cell(stage, i, cell));
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             return false;
         }

@@ -2,39 +2,49 @@
 //! (what it is, its equation, its unit and range from the one range table) and the glossary
 //! of the help's second page (zones, e and e_fit, U0max, SPLmax, τ, R, K_HZ, c1, the sources).
 
-use super::fields::Param;
+use super::fields::Knob;
 use crate::design::{Design, ZoneBy};
 use crate::limits;
 
 /// What a parameter is, with the paper's equation where it has one.
-pub fn what(p: Param) -> &'static str {
+pub fn what(p: Knob) -> &'static str {
     match p {
-        Param::Mass => "the ball (impact mass) rattling in the enclosure",
-        Param::Gap => "total clearance of the ball in its enclosure (d/2 each side)",
-        Param::R => "distance of the listener from the contact point",
-        Param::Theta => "listener angle from the plate's normal (0 = along the normal)",
-        Param::V0 => "initial speed of the main mass, the blow that starts the ring-down (Eq 25)",
-        Param::MainMass => "the structure being damped (Eq 25)",
-        Param::K => "stiffness of the structure's spring (Eq 25)",
-        Param::C => "viscous damping of the structure (Eq 25)",
-        Param::C1 => "contact damping in the Hertz contact force (Eq 26)",
-        Param::KHz => "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)",
-        Param::Materials => "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed",
-        Param::Source => "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)",
-        Param::QuadSigns => "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)",
-        Param::Pulse => "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse",
-        Param::Clamp => "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)",
-        Param::Solver => "event-driven (exact flight) or the paper's Newmark-β at a fixed step",
-        Param::Duration => "simulated time of the ring-down",
-        Param::LStar => "zone threshold on SPLmax: below L* is quiet",
-        Param::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
+        Knob::Mass => "the ball (impact mass) rattling in the enclosure",
+        Knob::Gap => "total clearance of the ball in its enclosure (d/2 each side)",
+        Knob::R => "distance of the listener from the contact point",
+        Knob::Theta => "listener angle from the plate's normal (0 = along the normal)",
+        Knob::V0 => "initial speed of the main mass, the blow that starts the ring-down (Eq 25)",
+        Knob::MainMass => "the structure being damped (Eq 25)",
+        Knob::K => "stiffness of the structure's spring (Eq 25)",
+        Knob::C => "viscous damping of the structure (Eq 25)",
+        Knob::C1 => "contact damping in the Hertz contact force (Eq 26)",
+        Knob::KHz => "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)",
+        Knob::Materials => "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed",
+        Knob::Source => "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)",
+        Knob::QuadSigns => "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)",
+        Knob::Pulse => "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse",
+        Knob::Clamp => "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)",
+        Knob::Solver => "event-driven (exact flight) or the paper's Newmark-β at a fixed step",
+        Knob::Duration => "simulated time of the ring-down",
+        Knob::LStar => "zone threshold on SPLmax: below L* is quiet",
+        Knob::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
+        Knob::Force => {
+            "harmonic force F0·cos(2πft) on the main mass (Eq 25 forced); 0 is the paper's free decay, > 0 adds the steady-state readout and the response view (f)"
+        }
+        Knob::Freq => {
+            "forcing frequency f; moves the marker on the response curve (f view) without recomputing it; a force switched on starts at the natural frequency"
+        }
+        Knob::BallPosition => "the ball's start offset from the enclosure's centre, |y0| < d/2 (0: centred, as the paper)",
+        Knob::Runs => {
+            "runs from N ball offsets spread over the clearance (y0 = −d/2 + (k + ½)·d/N): the readout shows median [p10–p90], the chart shades cells where < 70 % of runs agree"
+        }
     }
 }
 
 /// The status-line hint of parameter `p`: "c1 — contact damping in the Hertz contact force
 /// (Eq 26), N·s/m, 0–1e+06". The range is the one table's ([`crate::limits`]), in the unit
 /// the field shows; θ's is the current source's open side.
-pub fn field_hint(p: Param, d: &Design) -> String {
+pub fn field_hint(p: Knob, d: &Design) -> String {
     match (p.display_unit(), p.display_range(d)) {
         (Some((unit, _)), Some((lo, hi))) => {
             format!("{} — {}, {unit}, {}–{}", p.label(), what(p), limits::short(lo), limits::short(hi))
@@ -101,13 +111,63 @@ pub fn glossary(zone_by: ZoneBy) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// What is on screen beyond the paper's free decay: a force, an ensemble, the response view.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Context {
+    pub forced: bool,
+    pub runs: usize,
+    pub response_view: bool,
+}
+
+/// The glossary for what is on screen: [`glossary`], then the terms of a forced design (the
+/// steady figures), of the response view and of an ensemble, when they are shown (so the page
+/// of the paper's free decay stays as it was).
+pub fn glossary_for(zone_by: ZoneBy, cx: Context) -> Vec<(&'static str, String)> {
+    let mut g = glossary(zone_by);
+    if cx.forced || cx.response_view {
+        g.push((
+            "steady",
+            "A forced design (F0 > 0, F0·cos 2πft on the main mass) over its last N = 10 forcing periods: amp, the \
+             largest |x|; alone, the main mass without the ball, F0/√((K − MΩ²)² + (CΩ)²); cut, 20·log10(alone/amp) \
+             dB (> 0: the damper cuts it); Leq, the energy-average level of every impact's pulse at the listener \
+             over that window; imp/T, impacts per period; periodic (x repeats period to period within 1e-3) and \
+             settled (the window's amplitude changed by < 1e-3 from the one before; raise the duration if not)."
+                .into(),
+        ));
+    }
+    if cx.response_view {
+        g.push((
+            "f view",
+            "The f view (key f): the steady amplitude with the damper and alone (in dB re 1 mm) and Leq against \
+             the forcing frequency, over 0.6–1.6 × the structure's natural frequency (1–10 Hz without one), 61 \
+             frequencies, each from rest (v0 = 0, the ball at y0) and run until it settles, as thud response. The \
+             curve does not depend on f: changing f moves the marker (│) only; the line under it gives the point \
+             nearest f. The readout is the run as set (with v0, for the duration), so it may differ until settled."
+                .into(),
+        ));
+    }
+    if cx.runs > 1 {
+        g.push((
+            "N runs",
+            format!(
+                "N = {} runs of the design from ball offsets y0 = −d/2 + (k + ½)·d/N spread over the clearance, at \
+                 rest: the readout shows each number's median [p10–p90] (nearest rank: each is one run's value) and \
+                 the % of runs in the zone of the medians. The chart gives each cell the zone of its medians; a \
+                 cell where fewer than 70 % of its runs agree is shaded ░ (: in ASCII) — that zone is luck.",
+                cx.runs
+            ),
+        ));
+    }
+    g
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn the_c1_hint_says_what_unit_and_range() {
-        let h = field_hint(Param::C1, &Design::default());
+        let h = field_hint(Knob::C1, &Design::default());
         assert!(h.starts_with("c1 — contact damping"), "{h}");
         assert!(h.contains("(Eq 26)") && h.contains("N·s/m") && h.contains(&limits::short(limits::C1.max)), "{h}");
     }
@@ -115,13 +175,26 @@ mod tests {
     #[test]
     fn the_mass_hint_is_in_grams_and_theta_follows_the_source() {
         let d = Design::default();
-        let h = field_hint(Param::Mass, &d);
+        let h = field_hint(Knob::Mass, &d);
         assert!(h.contains(", g, 0.1–"), "{h}");
-        assert!(field_hint(Param::Theta, &d).contains("deg, 0–90"));
+        assert!(field_hint(Knob::Theta, &d).contains("deg, 0–90"));
         let mut dip = d.clone();
         dip.radiation.source = crate::acoustics::Source::Dipole;
-        assert!(field_hint(Param::Theta, &dip).contains("deg, -90–90"));
-        assert!(field_hint(Param::Source, &d).contains("quadrupole"));
+        assert!(field_hint(Knob::Theta, &dip).contains("deg, -90–90"));
+        assert!(field_hint(Knob::Source, &d).contains("quadrupole"));
+    }
+
+    #[test]
+    fn the_glossary_adds_the_terms_on_screen_only() {
+        let plain = glossary_for(ZoneBy::Paper, Context { runs: 1, ..Context::default() });
+        assert_eq!(plain, glossary(ZoneBy::Paper));
+        let all = glossary_for(ZoneBy::Paper, Context { forced: true, runs: 16, response_view: true });
+        for term in ["steady", "f view", "N runs"] {
+            assert!(all.iter().any(|(t, _)| *t == term), "{term}");
+        }
+        assert!(all.iter().any(|(_, x)| x.contains("N = 16 runs") && x.contains("70 %")));
+        assert!(field_hint(Knob::Runs, &Design::default()).contains("runs, 1–1000"));
+        assert!(field_hint(Knob::BallPosition, &Design::default()).contains("cm, -2–2"));
     }
 
     #[test]

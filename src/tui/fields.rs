@@ -1,5 +1,7 @@
 //! The editable parameters of the panel: how each one is shown (display units), stepped and
 //! typed. Values live in the `Design` in SI units; conversions happen only here, at the edge.
+//! The knobs turn a [`Tunable`]: a design alone, or a [`Setup`] (a design and the explorer's
+//! ensemble size N, which is not part of a design: the command line's `--ensemble`).
 
 use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::contact::MATERIALS;
@@ -11,7 +13,7 @@ use crate::units::{self, sig, Kind};
 
 /// One editable parameter of the design (a row of the parameter panel).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Param {
+pub enum Knob {
     Mass,
     Gap,
     R,
@@ -31,17 +33,89 @@ pub enum Param {
     Duration,
     LStar,
     EStar,
+    /// Amplitude F0 of the harmonic force on the main mass (`--force`).
+    Force,
+    /// Frequency f of the harmonic force (`--freq`).
+    Freq,
+    /// The ball's initial offset y0 from the enclosure's centre (`--ball-position`).
+    BallPosition,
+    /// Runs N of the ensemble (`--ensemble`): the readout's spread and the chart's shading.
+    Runs,
+}
+
+/// What the knobs turn: a design, or a design with the explorer's ensemble size.
+pub trait Tunable: Clone {
+    fn design(&self) -> &Design;
+    fn design_mut(&mut self) -> &mut Design;
+    /// Runs per design N (1 for a design alone: the single trajectory).
+    fn runs(&self) -> usize;
+    /// Sets N; false if this has no ensemble size (a design alone).
+    fn set_runs(&mut self, n: usize) -> bool;
+}
+
+impl Tunable for Design {
+    fn design(&self) -> &Design {
+        self
+    }
+
+    fn design_mut(&mut self) -> &mut Design {
+        self
+    }
+
+    fn runs(&self) -> usize {
+        1
+    }
+
+    fn set_runs(&mut self, _: usize) -> bool {
+        false
+    }
+}
+
+/// What the explorer runs: the design and the ensemble size N (runs from N ball offsets spread
+/// over the clearance, [`crate::ensemble`]; 1 is the single trajectory).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    pub design: Design,
+    pub runs: usize,
+}
+
+impl Tunable for Setup {
+    fn design(&self) -> &Design {
+        &self.design
+    }
+
+    fn design_mut(&mut self) -> &mut Design {
+        &mut self.design
+    }
+
+    fn runs(&self) -> usize {
+        self.runs
+    }
+
+    fn set_runs(&mut self, n: usize) -> bool {
+        self.runs = n;
+        true
+    }
+}
+
+/// The main mass's damped natural frequency (Hz) of `d`: the engine's cycles per second of
+/// Eq 25 alone ([`limits::cycles`]); 0 without a spring or when overdamped.
+pub fn natural_frequency_hz(d: &Design) -> f64 {
+    let p = &d.damper;
+    limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
 }
 
 /// What kind of change a field takes.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Step {
+pub enum Stepping {
     /// Add ± coarse or ± fine (internal units).
     Add(f64, f64),
     /// Multiply or divide by (1 + coarse) or (1 + fine).
     Mul(f64, f64),
     /// Cycle through choices.
     Cycle,
+    /// A count: double or halve (coarse), or ± 1 (fine).
+    Count,
 }
 
 /// Which recomputation a change of this field needs.
@@ -68,94 +142,109 @@ fn material_choices() -> Vec<Option<Materials>> {
         .collect()
 }
 
-impl Param {
+impl Knob {
     /// All fields, in panel order.
-    pub const ALL: [Param; 19] = [
-        Param::Mass,
-        Param::Gap,
-        Param::R,
-        Param::Theta,
-        Param::V0,
-        Param::MainMass,
-        Param::K,
-        Param::C,
-        Param::C1,
-        Param::KHz,
-        Param::Materials,
-        Param::Source,
-        Param::QuadSigns,
-        Param::Pulse,
-        Param::Clamp,
-        Param::Solver,
-        Param::Duration,
-        Param::LStar,
-        Param::EStar,
+    pub const ALL: [Knob; 23] = [
+        Knob::Mass,
+        Knob::Gap,
+        Knob::R,
+        Knob::Theta,
+        Knob::V0,
+        Knob::MainMass,
+        Knob::K,
+        Knob::C,
+        Knob::C1,
+        Knob::KHz,
+        Knob::Materials,
+        Knob::Source,
+        Knob::QuadSigns,
+        Knob::Pulse,
+        Knob::Clamp,
+        Knob::Solver,
+        Knob::Duration,
+        Knob::LStar,
+        Knob::EStar,
+        Knob::Force,
+        Knob::Freq,
+        Knob::BallPosition,
+        Knob::Runs,
     ];
 
     /// Short label for the panel.
     pub fn label(self) -> &'static str {
         match self {
-            Param::Mass => "mass m",
-            Param::Gap => "gap d",
-            Param::R => "r",
-            Param::Theta => "θ",
-            Param::V0 => "v0",
-            Param::MainMass => "M",
-            Param::K => "K",
-            Param::C => "C",
-            Param::C1 => "c1",
-            Param::KHz => "K_HZ",
-            Param::Materials => "materials",
-            Param::Source => "source",
-            Param::QuadSigns => "quad signs",
-            Param::Pulse => "pulse",
-            Param::Clamp => "clamp",
-            Param::Solver => "solver",
-            Param::Duration => "duration",
-            Param::LStar => "L*",
-            Param::EStar => "e*",
+            Knob::Mass => "mass m",
+            Knob::Gap => "gap d",
+            Knob::R => "r",
+            Knob::Theta => "θ",
+            Knob::V0 => "v0",
+            Knob::MainMass => "M",
+            Knob::K => "K",
+            Knob::C => "C",
+            Knob::C1 => "c1",
+            Knob::KHz => "K_HZ",
+            Knob::Materials => "materials",
+            Knob::Source => "source",
+            Knob::QuadSigns => "quad signs",
+            Knob::Pulse => "pulse",
+            Knob::Clamp => "clamp",
+            Knob::Solver => "solver",
+            Knob::Duration => "duration",
+            Knob::LStar => "L*",
+            Knob::EStar => "e*",
+            Knob::Force => "force F0",
+            Knob::Freq => "freq f",
+            Knob::BallPosition => "ball y0",
+            Knob::Runs => "ensemble N",
         }
     }
 
     /// The parameter's name in messages (as on the command line).
     pub fn param(self) -> &'static str {
         match self {
-            Param::Mass => "mass",
-            Param::Gap => "gap",
-            Param::R => "r",
-            Param::Theta => "theta",
-            Param::V0 => "v0",
-            Param::MainMass => "main-mass",
-            Param::K => "k",
-            Param::C => "c",
-            Param::C1 => "c1",
-            Param::KHz => "k-hz",
-            Param::Materials => "materials",
-            Param::Source => "source",
-            Param::QuadSigns => "quad-signs",
-            Param::Pulse => "pulse",
-            Param::Clamp => "no-tension",
-            Param::Solver => "solver",
-            Param::Duration => "duration",
-            Param::LStar => "L*",
-            Param::EStar => "e*",
+            Knob::Mass => "mass",
+            Knob::Gap => "gap",
+            Knob::R => "r",
+            Knob::Theta => "theta",
+            Knob::V0 => "v0",
+            Knob::MainMass => "main-mass",
+            Knob::K => "k",
+            Knob::C => "c",
+            Knob::C1 => "c1",
+            Knob::KHz => "k-hz",
+            Knob::Materials => "materials",
+            Knob::Source => "source",
+            Knob::QuadSigns => "quad-signs",
+            Knob::Pulse => "pulse",
+            Knob::Clamp => "no-tension",
+            Knob::Solver => "solver",
+            Knob::Duration => "duration",
+            Knob::LStar => "L*",
+            Knob::EStar => "e*",
+            Knob::Force => "force",
+            Knob::Freq => "freq",
+            Knob::BallPosition => "ball-position",
+            Knob::Runs => "ensemble",
         }
     }
 
     /// The unit a typed plain number is read in, and the unit the value is shown in.
     pub fn kind(self) -> Option<Kind> {
         Some(match self {
-            Param::Mass => Kind::Mass,
-            Param::Gap | Param::R => Kind::Length,
-            Param::Theta => Kind::Angle,
-            Param::V0 => Kind::Speed,
-            Param::MainMass => Kind::Mass,
-            Param::K => Kind::Stiffness,
-            Param::C | Param::C1 => Kind::Damping,
-            Param::KHz => Kind::HertzStiffness,
-            Param::Duration => Kind::Time,
-            Param::LStar => Kind::Level,
-            Param::EStar => Kind::Inclination,
+            Knob::Mass => Kind::Mass,
+            Knob::Gap | Knob::R => Kind::Length,
+            Knob::Theta => Kind::Angle,
+            Knob::V0 => Kind::Speed,
+            Knob::MainMass => Kind::Mass,
+            Knob::K => Kind::Stiffness,
+            Knob::C | Knob::C1 => Kind::Damping,
+            Knob::KHz => Kind::HertzStiffness,
+            Knob::Duration => Kind::Time,
+            Knob::LStar => Kind::Level,
+            Knob::EStar => Kind::Inclination,
+            Knob::Force => Kind::Force,
+            Knob::Freq => Kind::Frequency,
+            Knob::BallPosition => Kind::Length,
             _ => return None,
         })
     }
@@ -163,19 +252,23 @@ impl Param {
     /// The field's valid range, from the one table of ranges ([`crate::limits`]).
     pub fn range(self) -> Option<limits::Range> {
         Some(match self {
-            Param::Mass => limits::MASS,
-            Param::Gap => limits::GAP,
-            Param::R => limits::R,
-            Param::Theta => limits::THETA,
-            Param::V0 => limits::V0,
-            Param::MainMass => limits::MAIN_MASS,
-            Param::K => limits::STIFFNESS,
-            Param::C => limits::DAMPING,
-            Param::C1 => limits::C1,
-            Param::KHz => limits::K_HZ,
-            Param::Duration => limits::DURATION,
-            Param::LStar => limits::L_STAR,
-            Param::EStar => limits::E_STAR,
+            Knob::Mass => limits::MASS,
+            Knob::Gap => limits::GAP,
+            Knob::R => limits::R,
+            Knob::Theta => limits::THETA,
+            Knob::V0 => limits::V0,
+            Knob::MainMass => limits::MAIN_MASS,
+            Knob::K => limits::STIFFNESS,
+            Knob::C => limits::DAMPING,
+            Knob::C1 => limits::C1,
+            Knob::KHz => limits::K_HZ,
+            Knob::Duration => limits::DURATION,
+            Knob::LStar => limits::L_STAR,
+            Knob::EStar => limits::E_STAR,
+            Knob::Force => limits::FORCE,
+            Knob::Freq => limits::FREQ,
+            Knob::BallPosition => limits::BALL_POSITION,
+            Knob::Runs => limits::ENSEMBLE,
             _ => return None,
         })
     }
@@ -185,52 +278,66 @@ impl Param {
     /// 45 g, as shown), not in the internal one.
     pub fn display_unit(self) -> Option<(&'static str, f64)> {
         Some(match self {
-            Param::Mass => ("g", 1e-3),
-            Param::Gap => ("cm", 1e-2),
-            Param::R => ("m", 1.0),
-            Param::Theta => ("deg", 1.0),
-            Param::V0 => ("m/s", 1.0),
-            Param::MainMass => ("kg", 1.0),
-            Param::K => ("N/m", 1.0),
-            Param::C | Param::C1 => ("N·s/m", 1.0),
-            Param::KHz => ("N/m^1.5", 1.0),
-            Param::Duration => ("s", 1.0),
-            Param::LStar => ("dB", 1.0),
-            Param::EStar => ("cm/s", 1.0),
+            Knob::Mass => ("g", 1e-3),
+            Knob::Gap => ("cm", 1e-2),
+            Knob::R => ("m", 1.0),
+            Knob::Theta => ("deg", 1.0),
+            Knob::V0 => ("m/s", 1.0),
+            Knob::MainMass => ("kg", 1.0),
+            Knob::K => ("N/m", 1.0),
+            Knob::C | Knob::C1 => ("N·s/m", 1.0),
+            Knob::KHz => ("N/m^1.5", 1.0),
+            Knob::Duration => ("s", 1.0),
+            Knob::LStar => ("dB", 1.0),
+            Knob::EStar => ("cm/s", 1.0),
+            Knob::Force => ("N", 1.0),
+            Knob::Freq => ("Hz", 1.0),
+            Knob::BallPosition => ("cm", 1e-2),
+            Knob::Runs => ("runs", 1.0),
             _ => return None,
         })
     }
-
     /// The valid range in the display unit: (lowest, highest). θ's is the current source's
-    /// open side.
+    /// open side; y0's is inside the clearance, −d/2 to d/2 (both excluded).
     pub fn display_range(self, d: &Design) -> Option<(f64, f64)> {
         let (_, k) = self.display_unit()?;
-        if self == Param::Theta {
+        if self == Knob::Theta {
             let r = limits::theta_deg(d.radiation.source);
             return Some((r.min, r.max));
+        }
+        if self == Knob::BallPosition {
+            let half = 0.5 * d.damper.gap_m;
+            return Some((-half / k, half / k));
         }
         let r = self.range()?;
         Some((r.min / k, r.max / k))
     }
 
-    /// Checks this field's value in `d` against its range; the refusal names the field and
-    /// gives the value and the range in the unit the field is shown in.
     /// Refuses a design whose runs in the explorer would exceed the work caps the command line
     /// uses ([`limits::design_run`] for the live design, [`limits::sweep_work`] for the chart's
-    /// fine grid): the same estimate and limit, worded for the status line. This is what keeps a
-    /// duration or a Newmark step typed here from running for hours or out of memory.
-    fn check_work(self, d: &Design) -> Result<(), ThudError> {
+    /// fine grid, and with N > 1 [`limits::ensemble_work`] for the live design's N runs and
+    /// the chart's N runs a cell): the same estimates and limits, worded for the status line.
+    /// This is what keeps a duration, a Newmark step or an ensemble typed here from running
+    /// for hours or out of memory.
+    fn check_work<S: Tunable>(self, s: &S) -> Result<(), ThudError> {
+        let d = s.design();
         let cells = crate::tui::compute::Grids::default().fine.len();
+        let runs = s.runs();
+        let ensembles = (runs > 1)
+            .then(|| limits::ensemble_work(d, 1, runs).into_iter().chain(limits::ensemble_work(d, cells, runs)))
+            .into_iter()
+            .flatten();
         let over = limits::design_run(d, crate::tui::compute::HISTORY_SAMPLES)
             .into_iter()
             .chain(limits::sweep_work(d, cells))
+            .chain(ensembles)
             .find(limits::Estimate::exceeded);
         match over {
             Some(e) => {
                 // The solver field is named by its step, as the command line's --dt.
                 let (name, shown) = match (self, d.solver) {
-                    (Param::Solver, Solver::Newmark { dt_s }) => ("dt", format!("{} s", limits::short(dt_s))),
-                    _ => (self.param(), self.display(d)),
+                    (Knob::Solver, Solver::Newmark { dt_s }) => ("dt", format!("{} s", limits::short(dt_s))),
+                    _ => (self.param(), self.display(s)),
                 };
                 Err(ThudError::invalid(name, format!("{shown}: {}", e.describe())))
             }
@@ -238,8 +345,9 @@ impl Param {
         }
     }
 
-    fn check_range(self, d: &Design) -> Result<(), ThudError> {
-        if let (Some(r), Some(v), Some((unit, k))) = (self.range(), self.get(d), self.display_unit()) {
+    fn check_range<S: Tunable>(self, s: &S) -> Result<(), ThudError> {
+        let d = s.design();
+        if let (Some(r), Some(v), Some((unit, k))) = (self.range(), self.value(s), self.display_unit()) {
             if !r.contains(v) {
                 let (lo, hi) = (r.min / k, r.max / k);
                 let shown = if v.is_finite() { format!("{} {unit}", limits::short(v / k)) } else { format!("{v}") };
@@ -261,226 +369,297 @@ impl Param {
         Ok(())
     }
 
+    /// The checks every new value passes, in order: the field's own range (in the unit shown),
+    /// the work caps, and the design's own validation — the one range table over the whole
+    /// design ([`limits::check_design`]: what the command line checks, e.g. |y0| < d/2 and a
+    /// force's frequency) and the engine's ([`Design::validate`], [`Design::resolved`]).
+    fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
+        self.check_range(&next)?;
+        self.check_work(&next)?;
+        let d = next.design();
+        d.validate()?;
+        d.resolved()?;
+        if matches!(self, Knob::Force | Knob::Freq | Knob::BallPosition | Knob::Gap) {
+            limits::check_design(d)?;
+        }
+        Ok(next)
+    }
+
     /// What a change of this field invalidates.
     pub fn scope(self) -> Scope {
         match self {
-            Param::R | Param::Theta | Param::Source | Param::QuadSigns | Param::Pulse => Scope::Acoustics,
-            Param::Mass | Param::Gap => Scope::Design,
-            Param::LStar | Param::EStar => Scope::Thresholds,
+            Knob::R | Knob::Theta | Knob::Source | Knob::QuadSigns | Knob::Pulse => Scope::Acoustics,
+            Knob::Mass | Knob::Gap => Scope::Design,
+            Knob::LStar | Knob::EStar => Scope::Thresholds,
             _ => Scope::All,
         }
     }
 
     /// How the field is stepped.
-    pub fn step(self) -> Step {
+    pub fn step(self) -> Stepping {
         match self {
-            Param::Mass => Step::Add(1e-3, 1e-4),
-            Param::Gap => Step::Add(2e-3, 2e-4),
-            Param::R => Step::Add(0.05, 0.01),
-            Param::Theta => Step::Add(5.0, 1.0),
-            Param::V0 => Step::Add(0.1, 0.01),
-            Param::MainMass => Step::Add(0.05, 0.005),
-            Param::K | Param::C | Param::C1 | Param::KHz => Step::Mul(0.1, 0.01),
-            Param::Duration => Step::Add(0.5, 0.1),
-            Param::LStar => Step::Add(1.0, 0.1),
-            Param::EStar => Step::Add(0.1, 0.01),
-            _ => Step::Cycle,
+            Knob::Mass => Stepping::Add(1e-3, 1e-4),
+            Knob::Gap => Stepping::Add(2e-3, 2e-4),
+            Knob::R => Stepping::Add(0.05, 0.01),
+            Knob::Theta => Stepping::Add(5.0, 1.0),
+            Knob::V0 => Stepping::Add(0.1, 0.01),
+            Knob::MainMass => Stepping::Add(0.05, 0.005),
+            Knob::K | Knob::C | Knob::C1 | Knob::KHz => Stepping::Mul(0.1, 0.01),
+            Knob::Duration => Stepping::Add(0.5, 0.1),
+            Knob::LStar => Stepping::Add(1.0, 0.1),
+            Knob::EStar => Stepping::Add(0.1, 0.01),
+            Knob::Force => Stepping::Add(0.1, 0.01),
+            Knob::Freq => Stepping::Mul(0.02, 0.002),
+            Knob::BallPosition => Stepping::Add(1e-3, 1e-4),
+            Knob::Runs => Stepping::Count,
+            _ => Stepping::Cycle,
         }
     }
 
-    /// The numeric value in internal units (SI; degrees; dB; cm/s), if the field is numeric.
+    /// The numeric value in internal units (SI; degrees; dB; cm/s), if the field is numeric
+    /// and part of a design (the ensemble size is not: see [`Knob::value`]).
     pub fn get(self, d: &Design) -> Option<f64> {
         let p = &d.damper;
         Some(match self {
-            Param::Mass => p.impact_mass_kg,
-            Param::Gap => p.gap_m,
-            Param::R => d.observer.r_m,
-            Param::Theta => d.observer.theta_rad.to_degrees(),
-            Param::V0 => p.v0_m_s,
-            Param::MainMass => p.main_mass_kg,
-            Param::K => p.stiffness_n_m,
-            Param::C => p.damping_n_s_m,
-            Param::C1 => p.c1_n_s_m,
-            Param::KHz => d.resolved().map_or(p.k_hz, |r| r.damper.k_hz),
-            Param::Duration => p.duration_s,
-            Param::LStar => d.thresholds.spl_db,
-            Param::EStar => d.thresholds.inclination_cm_s,
+            Knob::Mass => p.impact_mass_kg,
+            Knob::Gap => p.gap_m,
+            Knob::R => d.observer.r_m,
+            Knob::Theta => d.observer.theta_rad.to_degrees(),
+            Knob::V0 => p.v0_m_s,
+            Knob::MainMass => p.main_mass_kg,
+            Knob::K => p.stiffness_n_m,
+            Knob::C => p.damping_n_s_m,
+            Knob::C1 => p.c1_n_s_m,
+            Knob::KHz => d.resolved().map_or(p.k_hz, |r| r.damper.k_hz),
+            Knob::Duration => p.duration_s,
+            Knob::LStar => d.thresholds.spl_db,
+            Knob::EStar => d.thresholds.inclination_cm_s,
+            Knob::Force => p.force_n,
+            Knob::Freq => p.freq_hz,
+            Knob::BallPosition => p.ball_position_m,
             _ => return None,
         })
     }
 
-    /// Sets the numeric value (internal units) on a copy of the design.
-    fn set(self, d: &Design, v: f64) -> Design {
-        let mut d = d.clone();
+    /// The numeric value of this field of `s` (internal units), the ensemble size included.
+    pub fn value<S: Tunable>(self, s: &S) -> Option<f64> {
+        match self {
+            Knob::Runs => Some(s.runs() as f64),
+            _ => self.get(s.design()),
+        }
+    }
+
+    /// Sets the numeric value (internal units) on a copy; the ensemble size is refused by a
+    /// design alone (it is the explorer's, not the design's).
+    fn set<S: Tunable>(self, s: &S, v: f64) -> Result<S, ThudError> {
+        let mut s = s.clone();
+        if self == Knob::Runs {
+            // A count: rounded, and kept inside 1.. (the range check names a bad one).
+            let n = if v.is_finite() && v >= 1.0 { v.round() as usize } else { 0 };
+            if !s.set_runs(n) {
+                return Err(ThudError::invalid(self.param(), "the ensemble size is the explorer's, not a design's"));
+            }
+            return Ok(s);
+        }
+        let d = s.design_mut();
         let p = &mut d.damper;
         match self {
-            Param::Mass => p.impact_mass_kg = v,
-            Param::Gap => p.gap_m = v,
-            Param::R => d.observer.r_m = v,
-            Param::Theta => d.observer.theta_rad = v.to_radians(),
-            Param::V0 => p.v0_m_s = v,
-            Param::MainMass => p.main_mass_kg = v,
-            Param::K => p.stiffness_n_m = v,
-            Param::C => p.damping_n_s_m = v,
-            Param::C1 => p.c1_n_s_m = v,
-            Param::KHz => {
+            Knob::Mass => p.impact_mass_kg = v,
+            Knob::Gap => p.gap_m = v,
+            Knob::R => d.observer.r_m = v,
+            Knob::Theta => d.observer.theta_rad = v.to_radians(),
+            Knob::V0 => p.v0_m_s = v,
+            Knob::MainMass => p.main_mass_kg = v,
+            Knob::K => p.stiffness_n_m = v,
+            Knob::C => p.damping_n_s_m = v,
+            Knob::C1 => p.c1_n_s_m = v,
+            Knob::KHz => {
                 p.k_hz = v;
                 d.materials = None;
             }
-            Param::Duration => p.duration_s = v,
-            Param::LStar => d.thresholds.spl_db = v,
-            Param::EStar => d.thresholds.inclination_cm_s = v,
+            Knob::Duration => p.duration_s = v,
+            Knob::LStar => d.thresholds.spl_db = v,
+            Knob::EStar => d.thresholds.inclination_cm_s = v,
+            Knob::Force => p.force_n = v,
+            Knob::Freq => p.freq_hz = v,
+            Knob::BallPosition => p.ball_position_m = v,
             _ => {}
         }
-        d
+        Ok(s)
     }
 
     /// The value as people read it: display units, a few significant digits.
-    pub fn display(self, d: &Design) -> String {
+    pub fn display<S: Tunable>(self, s: &S) -> String {
+        let d = s.design();
         let p = &d.damper;
         match self {
-            Param::Mass => format!("{} g", sig(p.impact_mass_kg * 1e3, 4)),
-            Param::Gap => format!("{} cm", sig(p.gap_m * 1e2, 3)),
-            Param::R => format!("{} m", sig(d.observer.r_m, 3)),
-            Param::Theta => format!("{} deg", sig(d.observer.theta_rad.to_degrees(), 3)),
-            Param::V0 => format!("{} m/s", sig(p.v0_m_s, 3)),
-            Param::MainMass => format!("{} kg", sig(p.main_mass_kg, 3)),
-            Param::K => format!("{} N/m", sig(p.stiffness_n_m, 4)),
-            Param::C => format!("{} N·s/m", sig(p.damping_n_s_m, 3)),
-            Param::C1 => format!("{} N·s/m", sig(p.c1_n_s_m, 4)),
-            Param::KHz => format!("{:.3e}", self.get(d).unwrap_or(p.k_hz)),
-            Param::Materials => match &d.materials {
+            Knob::Mass => format!("{} g", sig(p.impact_mass_kg * 1e3, 4)),
+            Knob::Gap => format!("{} cm", sig(p.gap_m * 1e2, 3)),
+            Knob::R => format!("{} m", sig(d.observer.r_m, 3)),
+            Knob::Theta => format!("{} deg", sig(d.observer.theta_rad.to_degrees(), 3)),
+            Knob::V0 => format!("{} m/s", sig(p.v0_m_s, 3)),
+            Knob::MainMass => format!("{} kg", sig(p.main_mass_kg, 3)),
+            Knob::K => format!("{} N/m", sig(p.stiffness_n_m, 4)),
+            Knob::C => format!("{} N·s/m", sig(p.damping_n_s_m, 3)),
+            Knob::C1 => format!("{} N·s/m", sig(p.c1_n_s_m, 4)),
+            Knob::KHz => format!("{:.3e}", self.get(d).unwrap_or(p.k_hz)),
+            Knob::Materials => match &d.materials {
                 None => "off (K_HZ)".into(),
                 Some(m) => format!("{}/{}", m.sphere, m.plate),
             },
-            Param::Source => d.radiation.source.name().into(),
-            Param::QuadSigns => d.radiation.quad_signs.name().into(),
-            Param::Pulse => d.radiation.pulse.name().into(),
-            Param::Clamp => if p.no_tension { "no tension" } else { "off" }.into(),
-            Param::Solver => match d.solver {
+            Knob::Source => d.radiation.source.name().into(),
+            Knob::QuadSigns => d.radiation.quad_signs.name().into(),
+            Knob::Pulse => d.radiation.pulse.name().into(),
+            Knob::Clamp => if p.no_tension { "no tension" } else { "off" }.into(),
+            Knob::Solver => match d.solver {
                 Solver::Event => "event".into(),
                 Solver::Newmark { dt_s } => format!("newmark {}µs", sig(dt_s * 1e6, 2)),
             },
-            Param::Duration => format!("{} s", sig(p.duration_s, 3)),
-            Param::LStar => format!("{} dB", sig(d.thresholds.spl_db, 4)),
-            Param::EStar => format!("{} cm/s", sig(d.thresholds.inclination_cm_s, 3)),
+            Knob::Duration => format!("{} s", sig(p.duration_s, 3)),
+            Knob::LStar => format!("{} dB", sig(d.thresholds.spl_db, 4)),
+            Knob::EStar => format!("{} cm/s", sig(d.thresholds.inclination_cm_s, 3)),
+            Knob::Force if p.force_n == 0.0 => "0 (free decay)".into(),
+            Knob::Force => format!("{} N", sig(p.force_n, 3)),
+            Knob::Freq if p.freq_hz == 0.0 => "— (no force)".into(),
+            Knob::Freq => format!("{} Hz", sig(p.freq_hz, 4)),
+            Knob::BallPosition if p.ball_position_m == 0.0 => "0 (centred)".into(),
+            Knob::BallPosition => format!("{} cm", sig(p.ball_position_m * 1e2, 3)),
+            Knob::Runs if s.runs() == 1 => "1 (single run)".into(),
+            Knob::Runs => format!("{} runs", s.runs()),
         }
     }
 
-    /// The design with this field stepped once (`up`: increase), validated.
-    pub fn stepped(self, d: &Design, up: bool, fine: bool) -> Result<Design, ThudError> {
-        let next = match (self.step(), self.get(d)) {
-            (Step::Add(c, f), Some(v)) => {
-                let s = if fine { f } else { c };
+    /// The design (or setup) with this field stepped once (`up`: increase), validated. A force
+    /// stepped up from 0 while f is unset gets f at the structure's natural frequency (the
+    /// engine's damped frequency of Eq 25), so that a force always has its frequency.
+    pub fn stepped<S: Tunable>(self, s: &S, up: bool, fine: bool) -> Result<S, ThudError> {
+        let next = match (self.step(), self.value(s)) {
+            (Stepping::Add(c, f), Some(v)) => {
+                let st = if fine { f } else { c };
                 // Snap to the step grid so repeated steps give round numbers.
-                let n = (v / s).round() + if up { 1.0 } else { -1.0 };
-                self.set(d, if ((v / s) - (v / s).round()).abs() < 1e-6 { n * s } else { v + if up { s } else { -s } })
+                let n = (v / st).round() + if up { 1.0 } else { -1.0 };
+                let v = if ((v / st) - (v / st).round()).abs() < 1e-6 { n * st } else { v + if up { st } else { -st } };
+                // A force stepped down to (near) zero is off, exactly.
+                let v = if self == Knob::Force && v.abs() < 1e-9 { 0.0 } else { v };
+                self.set(s, v)?
             }
-            (Step::Mul(c, f), Some(v)) => {
+            (Stepping::Mul(_, _), Some(v)) if self == Knob::Freq && v == 0.0 => {
+                self.set(s, start_frequency_hz(s.design()))?
+            }
+            (Stepping::Mul(c, f), Some(v)) => {
                 let k = 1.0 + if fine { f } else { c };
-                self.set(d, if up { v * k } else { v / k })
+                self.set(s, if up { v * k } else { v / k })?
             }
-            _ => self.cycled(d, up),
+            (Stepping::Count, Some(v)) => {
+                let n = v.round();
+                let next = match (up, fine) {
+                    (true, false) => 2.0 * n,
+                    (false, false) => (n / 2.0).floor(),
+                    (true, true) => n + 1.0,
+                    (false, true) => n - 1.0,
+                };
+                self.set(s, next)?
+            }
+            _ => self.cycled(s, up),
         };
-        self.check_range(&next)?;
-        self.check_work(&next)?;
-        next.validate()?;
-        next.resolved()?;
-        Ok(next)
+        self.checked(with_frequency(self, next))
     }
 
     /// The design with a choice field moved to the next (`up`) or previous option.
-    fn cycled(self, d: &Design, up: bool) -> Design {
-        let mut d = d.clone();
+    fn cycled<S: Tunable>(self, s: &S, up: bool) -> S {
+        let mut s = s.clone();
+        let d = s.design_mut();
         let turn = |i: usize, n: usize| if up { (i + 1) % n } else { (i + n - 1) % n };
         match self {
-            Param::Source => {
+            Knob::Source => {
                 let all = Source::ALL;
                 let i = all.iter().position(|s| *s == d.radiation.source).unwrap_or(0);
                 d.radiation.source = all[turn(i, all.len())];
-                clamp_theta(&mut d);
+                clamp_theta(d);
             }
-            Param::QuadSigns => {
+            Knob::QuadSigns => {
                 d.radiation.quad_signs = match d.radiation.quad_signs {
                     QuadSigns::Paper => QuadSigns::Rigid,
                     QuadSigns::Rigid => QuadSigns::Paper,
                 }
             }
-            Param::Pulse => {
+            Knob::Pulse => {
                 d.radiation.pulse = match d.radiation.pulse {
                     PulseShape::HalfSine => PulseShape::Hertz,
                     PulseShape::Hertz => PulseShape::HalfSine,
                 }
             }
-            Param::Clamp => d.damper.no_tension = !d.damper.no_tension,
-            Param::Solver => {
+            Knob::Clamp => d.damper.no_tension = !d.damper.no_tension,
+            Knob::Solver => {
                 d.solver = match d.solver {
                     Solver::Event => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
                     Solver::Newmark { .. } => Solver::Event,
                 }
             }
-            Param::Materials => {
+            Knob::Materials => {
                 let all = material_choices();
                 let i = all.iter().position(|m| *m == d.materials).unwrap_or(0);
                 d.materials.clone_from(&all[turn(i, all.len())]);
             }
             _ => {}
         }
-        d
+        s
     }
 
-    /// The design with this field set from typed text (units allowed), validated.
-    pub fn parsed(self, d: &Design, text: &str) -> Result<Design, ThudError> {
+    /// The design (or setup) with this field set from typed text (units allowed), validated.
+    pub fn parsed<S: Tunable>(self, s: &S, text: &str) -> Result<S, ThudError> {
         let t = text.trim();
-        let next = match (self.kind(), self.display_unit()) {
-            // A plain number is in the unit shown.
-            (Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
-                self.set(d, t.parse::<f64>().unwrap_or(f64::NAN) * k)
+        let next = match (self, self.kind(), self.display_unit()) {
+            // A count, read as the command line reads --ensemble.
+            (Knob::Runs, _, _) => {
+                let n = limits::ENSEMBLE.parse_count(self.param(), t)?;
+                self.set(s, n as f64)?
             }
-            (Some(kind), _) => self.set(d, units::parse(self.param(), t, kind)?),
-            (None, _) => self.parse_choice(d, t)?,
+            // A plain number is in the unit shown.
+            (_, Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
+                self.set(s, t.parse::<f64>().unwrap_or(f64::NAN) * k)?
+            }
+            (_, Some(kind), _) => self.set(s, units::parse(self.param(), t, kind)?)?,
+            (_, None, _) => self.parse_choice(s, t)?,
         };
-        self.check_range(&next)?;
-        self.check_work(&next)?;
-        next.validate()?;
-        next.resolved()?;
-        Ok(next)
+        self.checked(with_frequency(self, next))
     }
 
     /// Parses a choice field: source names, signs, on/off, event/newmark/a time step, materials.
-    fn parse_choice(self, d: &Design, t: &str) -> Result<Design, ThudError> {
-        let mut d = d.clone();
+    fn parse_choice<S: Tunable>(self, s: &S, t: &str) -> Result<S, ThudError> {
+        let mut s = s.clone();
+        let d = s.design_mut();
         let low = t.to_ascii_lowercase();
         let bad = |what: &str| ThudError::invalid(self.param(), format!("'{t}'; expected {what}"));
         match self {
-            Param::Source => {
+            Knob::Source => {
                 d.radiation.source = Source::ALL
                     .into_iter()
                     .find(|s| s.name().starts_with(&low) && !low.is_empty())
                     .ok_or_else(|| bad("single, dipole or quadrupole"))?;
             }
-            Param::QuadSigns => {
+            Knob::QuadSigns => {
                 d.radiation.quad_signs = match low.as_str() {
                     "paper" => QuadSigns::Paper,
                     "rigid" => QuadSigns::Rigid,
                     _ => return Err(bad("paper or rigid")),
                 }
             }
-            Param::Pulse => {
+            Knob::Pulse => {
                 d.radiation.pulse = match low.as_str() {
                     "half-sine" | "halfsine" | "sine" | "half sine" => PulseShape::HalfSine,
                     "hertz" | "exact" => PulseShape::Hertz,
                     _ => return Err(bad("half-sine or hertz")),
                 }
             }
-            Param::Clamp => {
+            Knob::Clamp => {
                 d.damper.no_tension = match low.as_str() {
                     "on" | "yes" | "true" | "no tension" | "no-tension" => true,
                     "off" | "no" | "false" => false,
                     _ => return Err(bad("on or off")),
                 }
             }
-            Param::Solver => {
+            Knob::Solver => {
                 d.solver = match low.as_str() {
                     "event" => Solver::Event,
                     "newmark" => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
@@ -489,7 +668,7 @@ impl Param {
                     },
                 }
             }
-            Param::Materials => {
+            Knob::Materials => {
                 d.materials = match low.as_str() {
                     "off" | "none" | "" => None,
                     _ => {
@@ -501,8 +680,29 @@ impl Param {
             }
             _ => return Err(bad("a number")),
         }
-        Ok(d)
+        Ok(s)
     }
+}
+
+/// The forcing frequency a force starts at when none is set: the structure's natural
+/// frequency rounded to 3 significant digits, or 1 Hz without one (no spring, overdamped).
+fn start_frequency_hz(d: &Design) -> f64 {
+    let f = natural_frequency_hz(d);
+    if f > 0.0 {
+        sig(f, 3).parse().unwrap_or(f)
+    } else {
+        1.0
+    }
+}
+
+/// `s` after a change of `knob`: a force switched on while f is unset gets f at
+/// [`start_frequency_hz`] (a force needs a frequency; the status line shows both).
+fn with_frequency<S: Tunable>(knob: Knob, mut s: S) -> S {
+    let d = s.design_mut();
+    if knob == Knob::Force && d.damper.force_n > 0.0 && d.damper.freq_hz == 0.0 {
+        d.damper.freq_hz = start_frequency_hz(d);
+    }
+    s
 }
 
 /// Puts θ back inside the valid range of the source type after the source changed.
@@ -519,22 +719,22 @@ mod tests {
     #[test]
     fn mass_steps_in_grams_and_snaps() {
         let d = Design::default();
-        let up = Param::Mass.stepped(&d, true, false).unwrap();
+        let up = Knob::Mass.stepped(&d, true, false).unwrap();
         assert!((up.damper.impact_mass_kg - 0.0415).abs() < 1e-12, "{}", up.damper.impact_mass_kg);
-        let fine = Param::Mass.stepped(&d, true, true).unwrap();
+        let fine = Knob::Mass.stepped(&d, true, true).unwrap();
         assert!((fine.damper.impact_mass_kg - 0.0406).abs() < 1e-12);
-        assert_eq!(Param::Mass.display(&d), "40.50 g");
+        assert_eq!(Knob::Mass.display(&d), "40.50 g");
     }
 
     #[test]
     fn typed_values_with_units_and_refusals() {
         let d = Design::default();
-        assert!((Param::Gap.parsed(&d, "3cm").unwrap().damper.gap_m - 0.03).abs() < 1e-15);
-        assert!(Param::Gap.parsed(&d, "-3cm").is_err());
-        assert!(Param::Mass.parsed(&d, "abc").is_err());
-        assert!(Param::Theta.parsed(&d, "120").is_err(), "quadrupole θ is 0–90°");
-        assert_eq!(Param::Source.parsed(&d, "dip").unwrap().radiation.source, Source::Dipole);
-        let m = Param::Materials.parsed(&d, "brass/steel").unwrap();
+        assert!((Knob::Gap.parsed(&d, "3cm").unwrap().damper.gap_m - 0.03).abs() < 1e-15);
+        assert!(Knob::Gap.parsed(&d, "-3cm").is_err());
+        assert!(Knob::Mass.parsed(&d, "abc").is_err());
+        assert!(Knob::Theta.parsed(&d, "120").is_err(), "quadrupole θ is 0–90°");
+        assert_eq!(Knob::Source.parsed(&d, "dip").unwrap().radiation.source, Source::Dipole);
+        let m = Knob::Materials.parsed(&d, "brass/steel").unwrap();
         assert_eq!(m.materials.as_ref().unwrap().sphere, "brass");
     }
 
@@ -543,7 +743,7 @@ mod tests {
         let mut d = Design::default();
         d.radiation.source = Source::Single;
         d.observer.theta_rad = 150f64.to_radians();
-        let q = Param::Source.stepped(&d, false, false).unwrap();
+        let q = Knob::Source.stepped(&d, false, false).unwrap();
         assert_eq!(q.radiation.source, Source::Quadrupole);
         assert!((q.observer.theta_rad.to_degrees() - 90.0).abs() < 1e-9);
     }
@@ -552,6 +752,6 @@ mod tests {
     fn step_below_zero_is_refused() {
         let mut d = Design::default();
         d.damper.impact_mass_kg = 0.001;
-        assert!(Param::Mass.stepped(&d, false, false).is_err());
+        assert!(Knob::Mass.stepped(&d, false, false).is_err());
     }
 }

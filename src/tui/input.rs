@@ -4,8 +4,8 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use super::app::{App, Mode, Panel, PulseView};
-use super::fields::{Param, Scope};
+use super::app::{App, ChartView, Mode, Panel, PulseView};
+use super::fields::{Knob, Scope};
 use super::files::EXPORTS;
 use super::keys::Action;
 use super::worker::Request;
@@ -109,13 +109,21 @@ impl App {
             Action::Quit => self.quit = true,
             Action::Help => self.mode = Mode::Help,
             Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
-            Action::Up | Action::Down if self.focus == Panel::Chart => return self.chart_move(0, a == Action::Up),
+            // The response curve focused: ←→ move the forcing frequency (the marker), ↑↓ select.
+            Action::Decrease { fine } | Action::Increase { fine }
+                if self.focus == Panel::Chart && self.chart_view == ChartView::Response =>
+            {
+                return self.step_knob(Knob::Freq, matches!(a, Action::Increase { .. }), fine)
+            }
+            Action::Up | Action::Down if self.focus == Panel::Chart && self.chart_view != ChartView::Response => {
+                return self.chart_move(0, a == Action::Up)
+            }
             Action::Up => {
-                self.selected = (self.selected + Param::ALL.len() - 1) % Param::ALL.len();
+                self.selected = (self.selected + Knob::ALL.len() - 1) % Knob::ALL.len();
                 self.show_hint();
             }
             Action::Down => {
-                self.selected = (self.selected + 1) % Param::ALL.len();
+                self.selected = (self.selected + 1) % Knob::ALL.len();
                 self.show_hint();
             }
             Action::Decrease { .. } | Action::Increase { .. } if self.focus == Panel::Chart => {
@@ -137,6 +145,7 @@ impl App {
             Action::Tour => return self.start_tour(),
             Action::Best => return self.best(),
             Action::PulseView => self.toggle_pulse(),
+            Action::ResponseView => return self.toggle_response(),
             Action::TourNext => {
                 let next = self.tour.as_ref().map(|t| (t.step + 1, t.tour.steps.len()));
                 match next {

@@ -45,6 +45,8 @@ pub enum Action {
     Best,
     /// The pulse panel: the loudest impact of the run, or one impact on a plate.
     PulseView,
+    /// The chart panel: the frequency response of the forced design (f marked) / the zones.
+    ResponseView,
     /// Tour: the next step (after the last: leave the tour).
     TourNext,
     /// Tour: the previous step.
@@ -239,6 +241,15 @@ pub const KEYS: &[Binding] = &[
         "impact",
         "i",
         "pulse panel: the run's loudest impact / one impact at v0 on a plate (Fig 2)",
+        "",
+    ),
+    bind(
+        KeyCode::Char('f'),
+        NONE,
+        Action::ResponseView,
+        "response",
+        "f",
+        "chart: frequency response (F0 > 0), f marked (chart focused: ←→ move f) / zones",
         "",
     ),
 ];

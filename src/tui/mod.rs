@@ -13,10 +13,10 @@
 //! --tour [FILE]`) tells the paper's story step by step with the real computations.
 //!
 //! The modules, from the state out: `app` (state and update) with `input` (keys per mode)
-//! and `files` (save, load, export); `worker` (requests, results, the four job slots) on
+//! and `files` (save, load, export); `worker` (requests, results, the five job slots) on
 //! `job` (the generic single-slot runner) calling `compute` (the physics each job does);
 //! `ui` (layout, one function per area) drawing the widgets `params`, `readout`, `waveform`,
-//! `polar`, `history`, `chart` (on `plot` and `theme`); `fields` (the editable parameters),
+//! `polar`, `history`, `chart`, `response` (on `plot` and `theme`); `fields` (the editable parameters),
 //! `explain` (what each field and number means), `tour` (the guided tour's steps), `keys`
 //! (the key table) and `terminal` (setup and restore).
 
@@ -34,6 +34,7 @@ pub mod params;
 pub mod plot;
 pub mod polar;
 pub mod readout;
+pub mod response;
 pub mod terminal;
 pub mod theme;
 pub mod tour;

@@ -1,5 +1,8 @@
 //! The readout: what the design is worth, live beside pinned. Tall (one row per number) where
 //! there is room, compact (two numbers a row, the zone first) in the teaching layout at 80×24.
+//! A forced design's compact readout pairs its steady figures instead (amplitude with and
+//! without the damper, cut, Leq, impacts a period); an ensemble's gives e, e_fit and SPLmax
+//! a row each, with their [p10–p90].
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -86,7 +89,17 @@ impl ReadoutView<'_> {
             return lines;
         }
         lines.push(Line::from(cell(get("zone"), w)));
-        let pairs = [("e", "e_fit"), ("SPLmax", "U0max"), ("τ@U0max", "R mean")];
+        if get("amp").is_none() && self.rows.iter().any(|r| r.live.contains(" [")) {
+            for label in ["e", "e_fit", "SPLmax"] {
+                lines.push(Line::from(cell(get(label), w)));
+            }
+            return lines;
+        }
+        let pairs = if get("amp").is_some() {
+            [("amp", "alone"), ("cut", "Leq"), ("imp/T", "SPLmax")]
+        } else {
+            [("e", "e_fit"), ("SPLmax", "U0max"), ("τ@U0max", "R mean")]
+        };
         // The left column as wide as its widest entry (a negative e carries its marker).
         let width = |r: Option<&Row>| {
             r.map_or(0, |r| th.text(r.label).chars().count().max(6) + 1 + th.text(&r.live).chars().count())

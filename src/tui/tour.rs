@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use super::app::{Panel, PulseView};
-use super::fields::Param;
+use super::fields::{Knob, Setup};
 use crate::design::Design;
 use crate::{fsio, presets};
 
@@ -56,7 +56,7 @@ pub struct TourError {
 
 /// One step, checked: the design it shows and what it says.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Step {
+pub struct TourStep {
     pub title: String,
     pub caption: String,
     pub panel: Panel,
@@ -65,6 +65,8 @@ pub struct Step {
     /// The preset named by the step (or the one before it): the explorer's preset name.
     pub preset: String,
     pub design: Design,
+    /// The ensemble size N the step runs (its `ensemble` field; else the step before's, 1 first).
+    pub runs: usize,
     /// True if the step sets L* or e* itself (else the user's configured thresholds apply).
     pub sets_thresholds: bool,
 }
@@ -73,7 +75,7 @@ pub struct Step {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tour {
     pub title: String,
-    pub steps: Vec<Step>,
+    pub steps: Vec<TourStep>,
 }
 
 #[derive(Deserialize)]
@@ -155,14 +157,14 @@ impl Tour {
             return Err(err(format!("{} steps; a tour has 1 to {MAX_STEPS}", parsed.steps.len())));
         }
         let mut steps = Vec::new();
-        let (mut design, mut preset) = (Design::default(), "default".to_string());
+        let (mut setup, mut preset) = (Setup { design: Design::default(), runs: 1 }, "default".to_string());
         for (i, s) in parsed.steps.into_iter().enumerate() {
             let at = |m: String| err(format!("step {} ({}): {m}", i + 1, s.title));
             if let Some(p) = &s.preset {
-                design = presets::preset(p).map_err(|e| at(e.to_string()))?;
+                setup.design = presets::preset(p).map_err(|e| at(e.to_string()))?;
                 preset = p.trim().to_ascii_lowercase();
             }
-            design = apply_sets(&design, &s.set).map_err(at)?;
+            setup = apply_sets(&setup, &s.set).map_err(at)?;
             let panel = panel(&s.panel).ok_or_else(|| {
                 at(format!("panel '{}'; one of params, readout, waveform, polar, history, chart", s.panel))
             })?;
@@ -182,14 +184,15 @@ impl Tour {
                 return Err(at("a step title has 1 to 60 characters".into()));
             }
             let sets_thresholds = s.set.keys().any(|k| matches!(k.as_str(), "L*" | "e*" | "l-star" | "e-star"));
-            steps.push(Step {
+            steps.push(TourStep {
                 title: s.title.trim().to_string(),
                 caption,
                 panel,
                 pulse,
                 best: s.best,
                 preset: preset.clone(),
-                design: design.clone(),
+                design: setup.design.clone(),
+                runs: setup.runs,
                 sets_thresholds,
             });
         }
@@ -198,22 +201,22 @@ impl Tour {
 }
 
 /// The field a step's `set` key names (its name in messages, e.g. `mass`, `theta`, `L*`).
-fn field(key: &str) -> Option<Param> {
+fn field(key: &str) -> Option<Knob> {
     let key = match key {
         "l-star" => "L*",
         "e-star" => "e*",
         k => k,
     };
-    Param::ALL.into_iter().find(|p| p.param() == key)
+    Knob::ALL.into_iter().find(|p| p.param() == key)
 }
 
 /// `d` with the step's fields set, choices (like the source) first so that a value checked
 /// against them (θ against the source's open side) sees the new choice.
-fn apply_sets(d: &Design, sets: &BTreeMap<String, toml::Value>) -> Result<Design, String> {
+fn apply_sets(d: &Setup, sets: &BTreeMap<String, toml::Value>) -> Result<Setup, String> {
     let mut fields = Vec::new();
     for (key, value) in sets {
         let p = field(key).ok_or_else(|| {
-            let names: Vec<&str> = Param::ALL.iter().map(|p| p.param()).collect();
+            let names: Vec<&str> = Knob::ALL.iter().map(|p| p.param()).collect();
             format!("unknown field '{key}'; one of: {}", names.join(", "))
         })?;
         let text = match value {
@@ -225,7 +228,7 @@ fn apply_sets(d: &Design, sets: &BTreeMap<String, toml::Value>) -> Result<Design
         };
         fields.push((p, text));
     }
-    fields.sort_by_key(|(p, _)| (p.kind().is_some(), Param::ALL.iter().position(|q| q == p)));
+    fields.sort_by_key(|(p, _)| (p.kind().is_some(), Knob::ALL.iter().position(|q| q == p)));
     let mut d = d.clone();
     for (p, text) in fields {
         d = p.parsed(&d, &text).map_err(|e| e.to_string())?;

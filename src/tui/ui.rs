@@ -22,9 +22,9 @@ use std::path::PathBuf;
 
 use super::app::{App, ChartView, Mode, Panel, PulseView};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
-use super::compute::nearest;
+use super::compute::{default_band, ensemble_under, nearest, AcousticResult, AGREEMENT_SURE};
 use super::explain;
-use super::fields::Param;
+use super::fields::Knob;
 use super::files::EXPORTS;
 use super::history::{self, HistoryView};
 use super::keys::Action;
@@ -32,12 +32,18 @@ use super::keys::Keymap;
 use super::params::ParamsView;
 use super::polar::PolarView;
 use super::readout::{ReadoutView, Row};
+use super::response::{ResponseState, ResponseView};
 use super::theme::{fold_buffer, Palette};
 use super::tour::wrap;
 use super::waveform::{self, WaveformView};
 use crate::design::{Chart, Design, Metrics, Zone, ZoneBy};
+use crate::ensemble::{Ensemble, Percentiles};
 use crate::store;
 use crate::units::sig;
+
+/// Rows of the wide layout's parameter panel: the design's fields. The forcing and ensemble
+/// fields come last and scroll into view when selected (↑ from the first field reaches them).
+const PARAMS_ROWS: u16 = 19;
 
 /// Smallest terminal that gets more than the one-line message.
 pub const MIN_W: u16 = 30;
@@ -115,7 +121,7 @@ pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
 
 /// Lays out the body by size class.
 fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
-    let params_h = Param::ALL.len() as u16 + 2;
+    let params_h = PARAMS_ROWS.min(Knob::ALL.len() as u16) + 2;
     if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
@@ -194,8 +200,8 @@ fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
 }
 
 fn params_widget(f: &mut Frame, app: &App, area: Rect) {
-    let rows: Vec<(String, String)> =
-        Param::ALL.iter().map(|p| (p.label().to_string(), p.display(&app.design))).collect();
+    let setup = app.setup();
+    let rows: Vec<(String, String)> = Knob::ALL.iter().map(|p| (p.label().to_string(), p.display(&setup))).collect();
     let view = ParamsView {
         block: panel_block(app, Panel::Params, " parameters "),
         rows: &rows,
@@ -212,56 +218,133 @@ type Format<'a> = &'a dyn Fn(&Metrics, &Design) -> String;
 /// The marker put after a negative e: the glossary (help page 2) explains it.
 pub const NEGATIVE_E: &str = "(!)";
 
-/// The readout rows of the live (and pinned) design, and the note under them.
-pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
-    let live = app.metrics().filter(|_| !app.design_busy());
-    let pinned = app.pinned.as_ref().and_then(|p| p.acoustic.as_ref().map(|a| (a.metrics, p.design.clone())));
-    let cols = |f: Format| {
-        let l = live.map_or_else(|| "…".to_string(), |m| f(m, &app.design));
-        let p = pinned.as_ref().map(|(m, d)| f(m, d));
-        (l, p)
-    };
+/// "0.597 cm/s [0.512–0.702]": a median with its p10–p90 (the engine's nearest-rank
+/// percentiles of the ensemble), each to `digits` significant digits.
+pub fn spread(p: &Percentiles, digits: usize, unit: &str) -> String {
+    let v = |x: Option<f64>| x.map_or("—".to_string(), |x| sig(x, digits));
+    match p.median {
+        None => "—".to_string(),
+        Some(_) => format!("{} {unit} [{}–{}]", v(p.median), v(p.p10), v(p.p90)),
+    }
+}
+
+/// The readout's extra rows of a forced design: its steady state over the last N periods
+/// (the engine's [`crate::response::Steady`]), in the units people read.
+fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
+    let Some(s) = &a.steady else { return vec![] };
     let opt = |v: Option<f64>, digits: usize, unit: &str| {
         v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
     };
-    let spec: [(&'static str, Format); 8] = [
-        ("U0max", &|m, _| format!("{} m/s", sig(m.u0_max_m_s, 5))),
-        ("e", &|m, _| {
-            let v = opt(m.inclination_cm_s, 3, "cm/s");
-            if m.inclination_cm_s.is_some_and(|e| e < 0.0) {
-                format!("{v} {NEGATIVE_E}")
-            } else {
-                v
-            }
-        }),
-        ("e_fit", &|m, _| opt(m.inclination_fit_cm_s, 3, "cm/s")),
-        ("SPLmax", &|m, _| opt(m.spl_max_db, 4, "dB")),
-        ("zone", &|m, d| {
-            let by = match d.thresholds.zone_by {
-                ZoneBy::Paper => "by e",
-                ZoneBy::Fit => "by e_fit",
-            };
-            m.zone(&d.thresholds)
-                .map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {} ({by})", z.number(), z.describe()))
-        }),
-        ("impacts", &|m, _| m.n_impacts.to_string()),
-        ("τ@U0max", &|m, _| opt(m.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
-        ("R mean", &|m, _| opt(m.restitution_mean, 3, "")),
-    ];
-    let rows = spec
+    vec![
+        ("amp", format!("{} mm", sig(s.amplitude_m * 1e3, 4))),
+        ("alone", opt(s.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
+        ("cut", opt(s.reduction_db, 3, "dB")),
+        ("Leq", opt(s.leq_db, 4, "dB")),
+        ("imp/T", sig(s.impacts_per_period, 3)),
+    ]
+}
+
+/// The note of a forced design: its window and whether it is periodic and settled.
+fn steady_note(a: &AcousticResult) -> Option<String> {
+    let s = a.steady.as_ref()?;
+    let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("not {word}") };
+    let cut = if s.truncated { ", TRUNCATED" } else { "" };
+    Some(format!(
+        "steady: last {} periods, {}, {}{cut}",
+        s.periods,
+        yes(s.periodic, "periodic"),
+        yes(s.settled, "settled")
+    ))
+}
+
+/// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
+fn ensemble_of(a: &AcousticResult, d: &Design) -> Option<Ensemble> {
+    a.ensemble.as_ref().map(|e| ensemble_under(e, &d.thresholds))
+}
+
+/// The readout values of one design: (label, value) per row.
+fn readout_values(a: &AcousticResult, d: &Design) -> Vec<(&'static str, String)> {
+    let m = &a.metrics;
+    let opt = |v: Option<f64>, digits: usize, unit: &str| {
+        v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
+    };
+    let by = match d.thresholds.zone_by {
+        ZoneBy::Paper => "by e",
+        ZoneBy::Fit => "by e_fit",
+    };
+    let zone = |m: &Metrics| {
+        m.zone(&d.thresholds)
+            .map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {} ({by})", z.number(), z.describe()))
+    };
+    let negative = |e: Option<f64>, v: String| if e.is_some_and(|e| e < 0.0) { format!("{v} {NEGATIVE_E}") } else { v };
+    let mut rows = if let Some(e) = ensemble_of(a, d) {
+        let s = &e.spread;
+        let mm = &e.metrics;
+        vec![
+            ("U0max", spread(&s.u0_max_m_s, 5, "m/s")),
+            ("e", negative(s.inclination_cm_s.median, spread(&s.inclination_cm_s, 3, "cm/s"))),
+            ("e_fit", spread(&s.inclination_fit_cm_s, 3, "cm/s")),
+            ("SPLmax", spread(&s.spl_max_db, 4, "dB")),
+            ("zone", format!("{}, {:.0}%", zone(mm), 100.0 * e.agreement)),
+            ("impacts", mm.n_impacts.to_string()),
+            ("τ@U0max", opt(mm.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
+            ("R mean", opt(mm.restitution_mean, 3, "")),
+        ]
+    } else {
+        let spec: [(&'static str, Format); 8] = [
+            ("U0max", &|m, _| format!("{} m/s", sig(m.u0_max_m_s, 5))),
+            ("e", &|m, _| negative(m.inclination_cm_s, opt(m.inclination_cm_s, 3, "cm/s"))),
+            ("e_fit", &|m, _| opt(m.inclination_fit_cm_s, 3, "cm/s")),
+            ("SPLmax", &|m, _| opt(m.spl_max_db, 4, "dB")),
+            ("zone", &|m, _| zone(m)),
+            ("impacts", &|m, _| m.n_impacts.to_string()),
+            ("τ@U0max", &|m, _| opt(m.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
+            ("R mean", &|m, _| opt(m.restitution_mean, 3, "")),
+        ];
+        spec.iter().map(|(label, f)| (*label, f(m, d))).collect()
+    };
+    rows.extend(steady_rows(a));
+    rows
+}
+
+/// The readout rows of the live (and pinned) design, and the note under them.
+pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
+    let live_a = app.acoustic().filter(|_| !app.design_busy());
+    let live = live_a.map(|a| readout_values(a, &app.design));
+    let pinned = app.pinned.as_ref().and_then(|p| p.acoustic.as_ref().map(|a| readout_values(a, &p.design)));
+    // The rows the live design has (its last results' while it computes; the plain eight at first).
+    let labels: Vec<&'static str> = match (&live, app.acoustic()) {
+        (Some(v), _) => v.iter().map(|r| r.0).collect(),
+        (None, Some(a)) if app.design.damper.forced() == a.steady.is_some() => {
+            readout_values(a, &app.design).iter().map(|r| r.0).collect()
+        }
+        _ => ["U0max", "e", "e_fit", "SPLmax", "zone", "impacts", "τ@U0max", "R mean"].to_vec(),
+    };
+    let find = |v: &Option<Vec<(&'static str, String)>>, label: &str| {
+        v.as_ref().map(|v| v.iter().find(|r| r.0 == label).map_or(String::new(), |r| r.1.clone()))
+    };
+    let rows = labels
         .iter()
-        .map(|(label, f)| {
-            let (live, pinned) = cols(*f);
-            Row { label, live: live.trim_end().to_string(), pinned: pinned.map(|p| p.trim_end().to_string()) }
+        .map(|label| Row {
+            label,
+            live: find(&live, label).unwrap_or_else(|| "…".to_string()).trim_end().to_string(),
+            pinned: find(&pinned, label).map(|p| p.trim_end().to_string()),
         })
         .collect();
-    let negative = live.is_some_and(|m| m.inclination_cm_s.is_some_and(|e| e < 0.0));
+    let negative = live_a.is_some_and(|a| match ensemble_of(a, &app.design) {
+        Some(e) => e.spread.inclination_cm_s.median.is_some_and(|e| e < 0.0),
+        None => a.metrics.inclination_cm_s.is_some_and(|e| e < 0.0),
+    });
     let note = if let Some(e) = &app.work_error {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
     } else if negative {
         format!("{NEGATIVE_E} e < 0: see ? page 2")
+    } else if let Some(n) = live_a.and_then(steady_note) {
+        n
+    } else if let Some(e) = live_a.and_then(|a| a.ensemble.as_ref()) {
+        format!("median [p10–p90] of {} runs; % agree", e.runs)
     } else {
         format!(
             "SPL: rms over τ at r {} m, θ {}°",
@@ -410,6 +493,20 @@ fn chart_title(app: &App, width: u16) -> String {
             ],
             width,
         ),
+        ChartView::Response => {
+            let p = &app.design.damper;
+            let (f0, f) = (sig(p.force_n, 3), sig(p.freq_hz, 4));
+            fit(
+                th,
+                &[
+                    format!(" frequency response: F0 {f0} N, from rest, settled; f {f} Hz "),
+                    format!(" response: F0 {f0} N, f {f} Hz "),
+                    format!(" response F0 {f0} N "),
+                    " response ".into(),
+                ],
+                width,
+            )
+        }
     }
 }
 
@@ -419,6 +516,21 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
     let inner = block.inner(area);
     let fine = &app.chart.fine;
     match app.chart_view {
+        ChartView::Response => {
+            let band = default_band(&app.design);
+            let state = if !app.design.damper.forced() {
+                ResponseState::NoForce
+            } else if let Some(r) = app.response() {
+                ResponseState::Ready(r)
+            } else if let Some(e) = app.response_error.as_deref() {
+                ResponseState::Failed(e)
+            } else {
+                ResponseState::Computing(app.response_progress.0, app.response_progress.1)
+            };
+            let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, theme: app.theme };
+            f.render_widget(view, area);
+            None
+        }
         ChartView::Zones => {
             let cells = chart_cells(app);
             let masses_g: Vec<f64> = fine.masses_kg.iter().map(|m| m * 1e3).collect();
@@ -434,7 +546,8 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
                 theme: app.theme,
             };
             f.render_widget(view, area);
-            chart::layout(inner, &masses_g, &gaps_cm, &app.theme, chart::pending(&cells)).map(|l| l.geometry)
+            chart::layout(inner, &masses_g, &gaps_cm, &app.theme, chart::pending(&cells), chart::unsure(&cells))
+                .map(|l| l.geometry)
         }
         ChartView::Scatter => {
             let pts = scatter_points(app);
@@ -462,9 +575,17 @@ pub fn chart_cells(app: &App) -> Vec<CellView> {
     fine.cells
         .iter()
         .enumerate()
-        .map(|(i, c)| match c {
-            Some(c) => CellView::Exact(app.zone(&c.metrics)),
-            None => coarse_zone(app.chart.coarse.as_ref(), fine.masses_kg[i % nm], fine.gaps_m[i / nm], app),
+        .map(|(i, c)| match (c, app.chart.ensembles.get(i).and_then(Option::as_ref)) {
+            (Some(_), Some(e)) => {
+                let e = ensemble_under(e, &app.design.thresholds);
+                if e.agreement < AGREEMENT_SURE {
+                    CellView::Unsure(e.metrics.zone)
+                } else {
+                    CellView::Exact(e.metrics.zone)
+                }
+            }
+            (Some(c), None) => CellView::Exact(app.zone(&c.metrics)),
+            (None, _) => coarse_zone(app.chart.coarse.as_ref(), fine.masses_kg[i % nm], fine.gaps_m[i / nm], app),
         })
         .collect()
 }
@@ -692,7 +813,12 @@ fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
     let text_w = (width as usize).saturating_sub(term_w + 3).max(10);
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let mut lines: Vec<Line> = Vec::new();
-    for (term, text) in explain::glossary(app.design.thresholds.zone_by) {
+    let cx = explain::Context {
+        forced: app.design.damper.forced(),
+        runs: app.runs,
+        response_view: app.chart_view == ChartView::Response,
+    };
+    for (term, text) in explain::glossary_for(app.design.thresholds.zone_by, cx) {
         let text = th.text(&text).into_owned();
         for (i, l) in wrap(&text, text_w).into_iter().enumerate() {
             let head = if i == 0 { th.text(term).into_owned() } else { String::new() };

@@ -1,6 +1,7 @@
 //! The background worker: what the app asks for ([`Request`]) and what comes back ([`Done`]).
-//! Four kinds of job — simulate the live design, its acoustics, the chart sweep, the chart's
-//! levels at a new observer — each in its own [`SingleJob`] slot and thread (newest wins; see
+//! Five kinds of job — simulate the live design, its readout (acoustics, steady state, the
+//! ensemble of N runs), the chart sweep, the chart's levels at a new observer, the frequency
+//! response curve — each in its own [`SingleJob`] slot and thread (newest wins; see
 //! [`super::job`]); exports run each on a short-lived thread of their own, never cancelled.
 //! Results are tagged with the key (serialized parameters) they were computed for, so the app
 //! drops stale ones, and cached by that key so going back (undo, presets) is instant. What
@@ -11,14 +12,19 @@ use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use super::compute::{
-    acoustic_key, chart_key, compute_acoustic, compute_chart, compute_relevel, compute_sim, grids_of, sound_key,
-    AcousticResult, ChartPasses, Grids, SimResult, Stage,
+    chart_key, chart_key_runs, compute_chart, compute_ensemble_chart, compute_readout, compute_relevel,
+    compute_response, compute_sim, grids_of, readout_key, response_key, sound_key, AcousticResult, Band, ChartPasses,
+    Grids, SimResult, Stage,
 };
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
 use crate::design::{Cell, Chart, Design};
+use crate::ensemble::{Ensemble, EnsembleCell, EnsembleChart};
 use crate::error::ThudError;
 use crate::export::{self, Artifact, ExportOptions};
+use crate::response::Response;
 
 /// Cache entries kept per job kind before the cache is cleared.
 const CACHE_MAX: usize = 256;
@@ -27,14 +33,27 @@ const CACHE_MAX: usize = 256;
 #[derive(Debug, Clone)]
 pub enum Request {
     Sim(Design),
-    Acoustic(Design, Arc<SimResult>),
-    Chart(Design, Grids),
+    /// The readout of a simulated design: its sound and steady state, and with N > 1 runs
+    /// (the last field) its ensemble.
+    Acoustic(Design, Arc<SimResult>, usize),
+    /// A picture of the chart panel: the zone chart or the response curve.
+    Chart(Design, ChartWork),
     /// The chart's SPLmax for the design's observer and radiation, from each cell's U0max:
     /// acoustics only, no simulation. Carries the chart passes to relevel.
     Relevel(Design, Arc<ChartPasses>),
     /// Write an export file (CSV, SVG or WAV) of the design: never cancelled, never cached;
     /// each one runs on its own short-lived thread.
     Export(Box<ExportJob>),
+}
+
+/// What the chart panel's job computes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ChartWork {
+    /// The design chart over the grids, with N runs a cell (1: single runs; more: ensembles).
+    Zones(Grids, usize),
+    /// The frequency response of a forced design over a band (its own slot: it never cancels
+    /// the zone chart, nor is cancelled by it).
+    Response(Band),
 }
 
 /// Why a job has no result.
@@ -62,19 +81,34 @@ pub enum Done {
         key: String,
         result: Result<Arc<AcousticResult>, WorkError>,
     },
-    /// `sound` is the [`sound_key`] the cell's SPLmax was computed for.
+    /// `sound` is the [`sound_key`] the cell's SPLmax was computed for. In an ensemble chart
+    /// `cell` holds the medians and `ensemble` the cell's runs.
     ChartCell {
         key: String,
         sound: String,
         stage: Stage,
         index: usize,
         cell: Cell,
+        ensemble: Option<Arc<Ensemble>>,
     },
+    /// A finished pass (of medians, with the ensembles, in an ensemble chart).
     Chart {
         key: String,
         sound: String,
         stage: Stage,
         result: Result<Arc<Chart>, WorkError>,
+        ensembles: Option<Arc<EnsembleChart>>,
+    },
+    /// The response curve for `key` ([`response_key`]).
+    Response {
+        key: String,
+        result: Result<Arc<Response>, WorkError>,
+    },
+    /// `done` of `total` frequencies of the response curve for `key` are in.
+    ResponseProgress {
+        key: String,
+        done: usize,
+        total: usize,
     },
     /// The chart's passes relevelled for `sound`; `key` is the chart key.
     Relevel {
@@ -116,8 +150,9 @@ impl ExportJob {
 pub fn request_key(r: &Request) -> String {
     match r {
         Request::Sim(d) => super::compute::sim_key(d),
-        Request::Acoustic(d, _) => acoustic_key(d),
-        Request::Chart(d, g) => chart_key(d, g),
+        Request::Acoustic(d, _, runs) => readout_key(d, *runs),
+        Request::Chart(d, ChartWork::Zones(g, runs)) => chart_key_runs(d, g, *runs),
+        Request::Chart(d, ChartWork::Response(band)) => response_key(d, band),
         Request::Relevel(d, _) => sound_key(d),
         Request::Export(job) => job.path.display().to_string(),
     }
@@ -177,11 +212,12 @@ impl Job for SimJob {
     }
 }
 
-/// The sound of a simulated design: metrics, waveform, directivity.
+/// The readout of a simulated design: metrics, waveform, directivity, steady state, ensemble.
 struct AcousticJob {
     key: String,
     design: Design,
     sim: Arc<SimResult>,
+    runs: usize,
 }
 
 impl Job for AcousticJob {
@@ -196,9 +232,11 @@ impl Job for AcousticJob {
     fn run(&self, cache: &mut Cache<AcousticResult>, cx: &Context<'_, Done>) {
         let result = match cache.get(&self.key) {
             Some(hit) => Ok(hit),
-            None => {
-                compute_acoustic(&self.design, &self.sim).map(|r| cache.insert(self.key.clone(), r)).map_err(Into::into)
-            }
+            None => match compute_readout(&self.design, &self.sim, self.runs, Some(cx.cancel_flag())) {
+                Ok(None) => return,
+                Ok(Some(r)) => Ok(cache.insert(self.key.clone(), r)),
+                Err(e) => Err(e.into()),
+            },
         };
         cx.report(Done::Acoustic { key: self.key.clone(), result });
     }
@@ -208,10 +246,13 @@ impl Job for AcousticJob {
     }
 }
 
+/// A finished pass: the chart (of medians in an ensemble chart) and the ensembles.
+type Pass = (Stage, Arc<Chart>, Option<Arc<EnsembleChart>>);
+
 /// A finished chart: the sound key its levels are for, and its passes.
 struct CachedChart {
     sound: String,
-    passes: Vec<(Stage, Arc<Chart>)>,
+    passes: Vec<Pass>,
 }
 
 /// The chart sweep: every cell as it is done, then each pass.
@@ -219,6 +260,32 @@ struct ChartJob {
     key: String,
     design: Design,
     grids: Grids,
+    /// Runs a cell (1: single runs).
+    runs: usize,
+}
+
+impl ChartJob {
+    /// The ensemble sweep: each cell reported as its medians with its runs.
+    fn run_ensembles(&self, cx: &Context<'_, Done>, passes: &mut Vec<Pass>) -> bool {
+        let (key, sound) = (&self.key, sound_key(&self.design));
+        let on_cell = |stage: Stage, index: usize, c: &EnsembleCell| {
+            let cell = Cell { mass_kg: c.mass_kg, gap_m: c.gap_m, metrics: c.ensemble.metrics };
+            let ensemble = Some(Arc::new(c.ensemble.clone()));
+            cx.report(Done::ChartCell { key: key.clone(), sound: sound.clone(), stage, index, cell, ensemble });
+        };
+        let mut on_pass = |stage: Stage, result: Result<EnsembleChart, ThudError>| {
+            let (result, ensembles) = match result {
+                Ok(e) => {
+                    let (chart, e) = (Arc::new(e.medians()), Arc::new(e));
+                    passes.push((stage, chart.clone(), Some(e.clone())));
+                    (Ok(chart), Some(e))
+                }
+                Err(e) => (Err(WorkError::from(e)), None),
+            };
+            cx.report(Done::Chart { key: key.clone(), sound: sound.clone(), stage, result, ensembles });
+        };
+        compute_ensemble_chart(&self.design, &self.grids, self.runs, Some(cx.cancel_flag()), &on_cell, &mut on_pass)
+    }
 }
 
 impl Job for ChartJob {
@@ -233,32 +300,39 @@ impl Job for ChartJob {
     fn run(&self, cache: &mut Cache<CachedChart>, cx: &Context<'_, Done>) {
         let key = &self.key;
         if let Some(hit) = cache.get(key) {
-            for (stage, chart) in &hit.passes {
+            for (stage, chart, ensembles) in &hit.passes {
                 let (key, sound, stage) = (key.clone(), hit.sound.clone(), *stage);
-                cx.report(Done::Chart { key, sound, stage, result: Ok(chart.clone()) });
+                let ensembles = ensembles.clone();
+                cx.report(Done::Chart { key, sound, stage, result: Ok(chart.clone()), ensembles });
             }
             return;
         }
         let sound = sound_key(&self.design);
-        let on_cell = |stage: Stage, index: usize, cell: &Cell| {
-            cx.report(Done::ChartCell { key: key.clone(), sound: sound.clone(), stage, index, cell: *cell });
-        };
         let mut passes = Vec::new();
-        let mut on_pass = |stage: Stage, result: Result<Chart, ThudError>| {
-            let result = result.map(Arc::new).map_err(WorkError::from);
-            if let Ok(c) = &result {
-                passes.push((stage, c.clone()));
-            }
-            cx.report(Done::Chart { key: key.clone(), sound: sound.clone(), stage, result });
+        let finished = if self.runs > 1 {
+            self.run_ensembles(cx, &mut passes)
+        } else {
+            let on_cell = |stage: Stage, index: usize, cell: &Cell| {
+                let (key, sound, cell) = (key.clone(), sound.clone(), *cell);
+                cx.report(Done::ChartCell { key, sound, stage, index, cell, ensemble: None });
+            };
+            let mut on_pass = |stage: Stage, result: Result<Chart, ThudError>| {
+                let result = result.map(Arc::new).map_err(WorkError::from);
+                if let Ok(c) = &result {
+                    passes.push((stage, c.clone(), None));
+                }
+                cx.report(Done::Chart { key: key.clone(), sound: sound.clone(), stage, result, ensembles: None });
+            };
+            compute_chart(&self.design, &self.grids, Some(cx.cancel_flag()), &on_cell, &mut on_pass)
         };
-        if compute_chart(&self.design, &self.grids, Some(cx.cancel_flag()), &on_cell, &mut on_pass) {
-            cache.insert(key.clone(), CachedChart { sound: sound.clone(), passes });
+        if finished {
+            cache.insert(key.clone(), CachedChart { sound, passes });
         }
     }
 
     fn failed(&self, error: JobError) -> Done {
         let (key, sound) = (self.key.clone(), sound_key(&self.design));
-        Done::Chart { key, sound, stage: Stage::Fine, result: Err(error.into()) }
+        Done::Chart { key, sound, stage: Stage::Fine, result: Err(error.into()), ensembles: None }
     }
 }
 
@@ -296,12 +370,54 @@ impl Job for RelevelJob {
     }
 }
 
+/// The frequency response curve of a forced design (the key leaves out f: see
+/// [`response_key`]); progress as each frequency is done.
+struct ResponseJob {
+    key: String,
+    design: Design,
+    band: Band,
+}
+
+impl Job for ResponseJob {
+    const NAME: &'static str = "response";
+    type Report = Done;
+    type State = Cache<Response>;
+
+    fn key(&self) -> &str {
+        &self.key
+    }
+
+    fn run(&self, cache: &mut Cache<Response>, cx: &Context<'_, Done>) {
+        let result = if let Some(hit) = cache.get(&self.key) {
+            Ok(hit)
+        } else {
+            let done = AtomicUsize::new(0);
+            let total = self.band.points;
+            let on_point = || {
+                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                cx.report(Done::ResponseProgress { key: self.key.clone(), done: n, total });
+            };
+            match compute_response(&self.design, &self.band, Some(cx.cancel_flag()), &on_point) {
+                Ok(None) => return,
+                Ok(Some(r)) => Ok(cache.insert(self.key.clone(), r)),
+                Err(e) => Err(e.into()),
+            }
+        };
+        cx.report(Done::Response { key: self.key.clone(), result });
+    }
+
+    fn failed(&self, error: JobError) -> Done {
+        Done::Response { key: self.key.clone(), result: Err(error.into()) }
+    }
+}
+
 /// A request as the job that answers it (an export is not a slot's job).
 enum Work {
     Sim(SimJob),
     Acoustic(AcousticJob),
     Chart(ChartJob),
     Relevel(RelevelJob),
+    Response(ResponseJob),
     Export(Box<ExportJob>),
 }
 
@@ -310,8 +426,9 @@ impl From<Request> for Work {
         let key = request_key(&req);
         match req {
             Request::Sim(design) => Work::Sim(SimJob { key, design }),
-            Request::Acoustic(design, sim) => Work::Acoustic(AcousticJob { key, design, sim }),
-            Request::Chart(design, grids) => Work::Chart(ChartJob { key, design, grids }),
+            Request::Acoustic(design, sim, runs) => Work::Acoustic(AcousticJob { key, design, sim, runs }),
+            Request::Chart(design, ChartWork::Zones(grids, runs)) => Work::Chart(ChartJob { key, design, grids, runs }),
+            Request::Chart(design, ChartWork::Response(band)) => Work::Response(ResponseJob { key, design, band }),
             Request::Relevel(design, passes) => Work::Relevel(RelevelJob { sound: key, design, passes }),
             Request::Export(job) => Work::Export(job),
         }
@@ -330,6 +447,7 @@ pub fn run_sync(req: &Request, notify: &(dyn Fn(Done) + Sync)) {
         Work::Acoustic(j) => once(&j, &cx),
         Work::Chart(j) => once(&j, &cx),
         Work::Relevel(j) => once(&j, &cx),
+        Work::Response(j) => once(&j, &cx),
         Work::Export(j) => notify(j.run()),
     }
 }
@@ -341,10 +459,11 @@ pub struct Worker {
     acoustic: SingleJob<AcousticJob>,
     chart: SingleJob<ChartJob>,
     levels: SingleJob<RelevelJob>,
+    response: SingleJob<ResponseJob>,
 }
 
 impl Worker {
-    /// Starts the four threads; results go to `notify` (called from the worker threads). A
+    /// Starts the five threads; results go to `notify` (called from the worker threads). A
     /// thread that cannot start answers each of its requests with that error.
     pub fn start(notify: impl Fn(Done) + Send + Sync + 'static) -> Self {
         let notify: Arc<Sink<Done>> = Arc::new(notify);
@@ -353,6 +472,7 @@ impl Worker {
             acoustic: SingleJob::start(notify.clone()),
             chart: SingleJob::start(notify.clone()),
             levels: SingleJob::start(notify.clone()),
+            response: SingleJob::start(notify.clone()),
             notify,
         }
     }
@@ -364,6 +484,7 @@ impl Worker {
             Work::Acoustic(j) => self.acoustic.spawn(j),
             Work::Chart(j) => self.chart.spawn(j),
             Work::Relevel(j) => self.levels.spawn(j),
+            Work::Response(j) => self.response.spawn(j),
             Work::Export(j) => self.export(j),
         }
     }
@@ -381,7 +502,11 @@ impl Worker {
 
     /// True while any slot has work queued or running (exports not counted).
     pub fn is_pending(&self) -> bool {
-        self.sim.is_pending() || self.acoustic.is_pending() || self.chart.is_pending() || self.levels.is_pending()
+        self.sim.is_pending()
+            || self.acoustic.is_pending()
+            || self.chart.is_pending()
+            || self.levels.is_pending()
+            || self.response.is_pending()
     }
 }
 
