@@ -168,10 +168,7 @@ const SWEEP_HEADER: [&str; 9] = [
 
 /// The design chart, one row per computed cell (mass × gap).
 pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
-    to_csv(
-        &SWEEP_HEADER,
-        chart.cells.iter().flatten().map(|c| SweepRow::new(c.mass_kg, c.gap_m, &c.metrics)),
-    )
+    to_csv(&SWEEP_HEADER, chart.cells.iter().flatten().map(|c| SweepRow::new(c.mass_kg, c.gap_m, &c.metrics)))
 }
 
 #[derive(Serialize)]

@@ -20,6 +20,7 @@ use super::fields::{Knob, Scope, Setup};
 use super::keys::{Action, Keymap};
 use super::theme::Palette;
 use super::tour::{Tour, TourSource};
+pub use super::view::{Panel, PulseView};
 use super::worker::{ChartWork, Done, Request};
 use crate::config::{self, Config, ConfigLoad, MarkerStyle};
 use crate::design::{self, Chart, Design, Metrics, Thresholds, Zone};
@@ -38,48 +39,6 @@ pub enum Msg {
     Work(Done),
     /// Spinner tick (only sent while work is in flight).
     Tick,
-}
-
-/// The panels; Tab cycles through them (not the readout, which a tour step may point at).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Panel {
-    Params,
-    Waveform,
-    Polar,
-    History,
-    Chart,
-    Readout,
-}
-
-impl Panel {
-    pub const ALL: [Panel; 5] = [Panel::Params, Panel::Waveform, Panel::Polar, Panel::History, Panel::Chart];
-
-    pub(crate) fn cycle(self, forward: bool) -> Panel {
-        let i = Self::ALL.iter().position(|p| *p == self).unwrap_or(0);
-        let n = Self::ALL.len();
-        Self::ALL[if forward { (i + 1) % n } else { (i + n - 1) % n }]
-    }
-}
-
-/// Which impact the pulse panel and the polar show.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum PulseView {
-    /// The loudest impact of the run (at U0max, against the main mass).
-    #[default]
-    Loudest,
-    /// One impact at U0 = v0 on a fixed plate: what `thud pulse` computes (Fig 2, Table 1).
-    Single,
-}
-
-impl PulseView {
-    /// The view a preset opens on: the single-impact presets (the paper's Fig 2 and Table 1)
-    /// show their one impact, every other preset the run's loudest.
-    pub fn for_preset(name: &str) -> Self {
-        match name {
-            "paper-fig2" | "paper-table1" => PulseView::Single,
-            _ => PulseView::Loudest,
-        }
-    }
 }
 
 /// The guided tour while it runs: the tour and the step shown.

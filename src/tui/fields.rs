@@ -3,6 +3,7 @@
 //! The knobs turn a [`Tunable`]: a design alone, or a [`Setup`] (a design and the explorer's
 //! ensemble size N, which is not part of a design: the command line's `--ensemble`).
 
+use super::compute;
 use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::contact::MATERIALS;
 use crate::damper::Solver;
@@ -96,13 +97,6 @@ impl Tunable for Setup {
         self.runs = n;
         true
     }
-}
-
-/// The main mass's damped natural frequency (Hz) of `d`: the engine's cycles per second of
-/// Eq 25 alone ([`limits::cycles`]); 0 without a spring or when overdamped.
-pub fn natural_frequency_hz(d: &Design) -> f64 {
-    let p = &d.damper;
-    limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
 }
 
 /// What kind of change a field takes.
@@ -321,13 +315,13 @@ impl Knob {
     /// for hours or out of memory.
     fn check_work<S: Tunable>(self, s: &S) -> Result<(), ThudError> {
         let d = s.design();
-        let cells = crate::tui::compute::Grids::default().fine.len();
+        let cells = compute::Grids::default().fine.len();
         let runs = s.runs();
         let ensembles = (runs > 1)
             .then(|| limits::ensemble_work(d, 1, runs).into_iter().chain(limits::ensemble_work(d, cells, runs)))
             .into_iter()
             .flatten();
-        let over = limits::design_run(d, crate::tui::compute::HISTORY_SAMPLES)
+        let over = limits::design_run(d, compute::HISTORY_SAMPLES)
             .into_iter()
             .chain(limits::sweep_work(d, cells))
             .chain(ensembles)
@@ -687,7 +681,7 @@ impl Knob {
 /// The forcing frequency a force starts at when none is set: the structure's natural
 /// frequency rounded to 3 significant digits, or 1 Hz without one (no spring, overdamped).
 fn start_frequency_hz(d: &Design) -> f64 {
-    let f = natural_frequency_hz(d);
+    let f = compute::natural_frequency_hz(d);
     if f > 0.0 {
         sig(f, 3).parse().unwrap_or(f)
     } else {

@@ -39,6 +39,7 @@ pub mod terminal;
 pub mod theme;
 pub mod tour;
 pub mod ui;
+pub mod view;
 pub mod waveform;
 pub mod worker;
 

@@ -24,8 +24,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::app::{Panel, PulseView};
 use super::fields::{Knob, Setup};
+use super::view::{Panel, PulseView};
 use crate::design::Design;
 use crate::{fsio, presets};
 

@@ -7,9 +7,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::acoustics::{Field, Observer, QuadSigns, Radiation, Source};
+use crate::acoustics::{gauss_legendre, Field, Observer, PulseShape, QuadSigns, Radiation, Source, P_REF_PA};
 use crate::contact::{self, Impact, Target};
-use crate::damper::{self, DamperParams, Run, RunOptions, Solver};
+use crate::damper::{self, DamperParams, Run, RunOptions, Solver, SteadyMotion};
 use crate::error::{check_positive, ThudError};
 
 /// How the impact mass's radius is found (it sets the sound, Eq 15, and K_HZ from materials).
@@ -331,7 +331,7 @@ pub struct Evaluation {
     /// The steady state of a forced design with the level of its rattle (absent without a
     /// force; a chart cell's [`Metrics`] do not carry it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub steady: Option<crate::response::Steady>,
+    pub steady: Option<Steady>,
 }
 
 /// Simulates `design` and computes its metrics. `history_samples` uniform samples of x and y
@@ -341,8 +341,122 @@ pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicB
     let d = design.resolved()?;
     let run = damper::simulate(&d.damper, d.solver, &RunOptions { history_samples, cancel })?;
     let metrics = metrics(&run, &d)?;
-    let steady = crate::response::steady(&run, &d)?;
+    let steady = steady(&run, &d)?;
     Ok(Evaluation { run, metrics, steady })
+}
+
+/// The steady state of a forced run of a design: the motion over the last window
+/// ([`SteadyMotion`](crate::damper::SteadyMotion)) and the level of the rattle over it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Steady {
+    /// Forcing periods N in the window.
+    pub periods: u32,
+    /// The window (s).
+    pub window_start_s: f64,
+    pub window_end_s: f64,
+    /// Largest |x| in the window (m).
+    pub amplitude_m: f64,
+    /// The main mass without the ball: `F0/√((K − MΩ²)² + (CΩ)²)` (m); None where unbounded.
+    pub amplitude_linear_m: Option<f64>,
+    /// `20·log10(amplitude_linear/amplitude)` (dB, > 0 when the damper cuts the amplitude).
+    pub reduction_db: Option<f64>,
+    /// Impacts per forcing period in the window.
+    pub impacts_per_period: f64,
+    /// Energy-average level at the observer over the window (dB re 20 µPa); None when no
+    /// impact sounds in it.
+    pub leq_db: Option<f64>,
+    /// Whether x repeats from period to period within 1e-3 of the amplitude.
+    pub periodic: bool,
+    /// Whether the amplitude of the window is within 1e-3 of the window before's.
+    pub settled: bool,
+    /// Whether a work cap stopped the run before the window's end.
+    pub truncated: bool,
+}
+
+/// The steady state of `run` of the (resolved) `design`, if the design is forced.
+pub fn steady(run: &Run, design: &Design) -> Result<Option<Steady>, ThudError> {
+    let Some(m) = run.steady else { return Ok(None) };
+    Ok(Some(with_level(&m, leq_db(run, design, m.window_start_s, m.window_end_s)?)))
+}
+
+fn with_level(m: &SteadyMotion, leq_db: Option<f64>) -> Steady {
+    Steady {
+        periods: m.periods,
+        window_start_s: m.window_start_s,
+        window_end_s: m.window_end_s,
+        amplitude_m: m.amplitude_m,
+        amplitude_linear_m: m.amplitude_linear_m,
+        reduction_db: m.reduction_db,
+        impacts_per_period: m.impacts_per_period,
+        leq_db,
+        periodic: m.periodic,
+        settled: m.settled,
+        truncated: m.truncated,
+    }
+}
+
+/// `Leq` (dB re 20 µPa) of the impacts of `run` of the (resolved) `design` over `[a, b]` (s);
+/// None when no pulse reaches the window.
+pub fn leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>, ThudError> {
+    if b <= a {
+        return Ok(None);
+    }
+    // Pulses last about a millisecond; build the fields of the impacts near the window only.
+    // After the last source's forced part the pressure falls as e^(−λs), λ = c/a: 18/λ later
+    // its square is e^(−36) (2e-16) of what it was, and the rest of the integral no more.
+    let a_over_c = design.ball_radius_m() / design.radiation.air.c_m_s;
+    let mut pulses: Vec<(f64, f64, f64, Field)> = Vec::new();
+    for i in run.impacts.iter().filter(|i| i.t_s <= b && i.t_s >= a - 1.0) {
+        let f = design.impact_field(i.u_in_m_s)?;
+        let last = f.sources().map(|s| s.delay_s).fold(0.0, f64::max);
+        let (start, end) = (i.t_s + f.arrival_s(), i.t_s + last + f.tau_s() + 18.0 * a_over_c);
+        if end > a && start < b {
+            pulses.push((start, end, i.t_s, f));
+        }
+    }
+    if pulses.is_empty() {
+        return Ok(None);
+    }
+    pulses.sort_by(|p, q| p.0.total_cmp(&q.0));
+    // The waveform's shortest time scale: a/c and τ/(kπ) (k = 4 for the Hertz pulse's harmonics).
+    // Between kinks the pulse is smooth on that scale: a 10-point Gauss–Legendre panel five
+    // scales long integrates it to rounding (its error bound there is below 1e-15).
+    let k = if design.radiation.pulse == PulseShape::Hertz { 4.0 } else { 1.0 };
+    let mut exposure = 0.0;
+    let mut i = 0;
+    while i < pulses.len() {
+        // A cluster of pulses whose supports overlap.
+        let mut j = i + 1;
+        let mut end = pulses[i].1;
+        while j < pulses.len() && pulses[j].0 < end {
+            end = end.max(pulses[j].1);
+            j += 1;
+        }
+        let cluster = &pulses[i..j];
+        let (lo, hi) = (cluster[0].0.max(a), end.min(b));
+        let mut cuts = vec![lo, hi];
+        let mut scale = a_over_c;
+        for (_, _, t_i, f) in cluster {
+            scale = scale.min(f.tau_s() / (k * std::f64::consts::PI));
+            for s in f.sources() {
+                cuts.extend([t_i + s.delay_s, t_i + s.delay_s + f.tau_s()].into_iter().filter(|&c| c > lo && c < hi));
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        let p = |t: f64| cluster.iter().map(|(_, _, t_i, f)| f.pressure(t - t_i)).sum::<f64>();
+        for w in cuts.windows(2) {
+            let n = ((w[1] - w[0]) / (5.0 * scale)).ceil().clamp(1.0, 400.0) as usize;
+            exposure += gauss_legendre(w[0], w[1], n, |t| {
+                let v = p(t);
+                v * v
+            });
+        }
+        i = j;
+    }
+    if exposure <= 0.0 {
+        return Ok(None);
+    }
+    Ok(Some(10.0 * (exposure / ((b - a) * P_REF_PA * P_REF_PA)).log10()))
 }
 
 /// Why `run` stopped before the design's duration `duration_s`, if it did: the engine's own
@@ -352,8 +466,8 @@ pub fn truncation(run: &Run, duration_s: f64) -> Option<String> {
         format!(
             "{} at t = {} s of {} s; the results cover only that time",
             why.describe(),
-            crate::limits::short(run.final_time_s),
-            crate::limits::short(duration_s)
+            crate::units::short(run.final_time_s),
+            crate::units::short(duration_s)
         )
     })
 }

@@ -22,6 +22,7 @@ use crate::contact;
 use crate::damper::Solver;
 use crate::design::{BallSize, Design};
 use crate::error::ThudError;
+pub use crate::units::short;
 
 /// The physically meaningful range of one parameter.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -340,20 +341,6 @@ pub const RANGES: [Range; 31] = [
     BALL_VELOCITY,
     PERIODS,
 ];
-
-/// A number for messages, to 6 significant digits: plain in the ordinary range, scientific
-/// outside it (`0.0405`, `1.33651`, `1e-14`, `1e308`, `5.03292e11`).
-pub fn short(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let r: f64 = format!("{v:.5e}").parse().unwrap_or(v);
-    if (1e-4..1e5).contains(&r.abs()) {
-        format!("{r}")
-    } else {
-        format!("{r:e}")
-    }
-}
 
 impl Range {
     /// Whether `value` is finite and inside the range, to a relative 1e-9 (so `10um`, which

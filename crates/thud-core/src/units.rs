@@ -166,6 +166,20 @@ pub fn sig(value: f64, digits: usize) -> String {
     format!("{value:.decimals$}")
 }
 
+/// A number for messages, to 6 significant digits: plain in the ordinary range, scientific
+/// outside it (`0.0405`, `1.33651`, `1e-14`, `1e308`, `5.03292e11`).
+pub fn short(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let r: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    if (1e-4..1e5).contains(&r.abs()) {
+        format!("{r}")
+    } else {
+        format!("{r:e}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
