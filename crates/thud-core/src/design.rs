@@ -346,7 +346,7 @@ pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicB
 }
 
 /// The steady state of a forced run of a design: the motion over the last window
-/// ([`SteadyMotion`](crate::damper::SteadyMotion)) and the level of the rattle over it.
+/// ([`SteadyMotion`]) and the level of the rattle over it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Steady {
     /// Forcing periods N in the window.
