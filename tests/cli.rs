@@ -1,16 +1,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! The command line: output shapes and clear errors for bad input.
 
-use std::process::Command;
-
-fn thud(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().expect("run thud");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+mod common;
+use common::thud;
 
 #[test]
 fn pulse_json_has_the_documented_keys() {

@@ -4,20 +4,12 @@
 //! zone, zone-3 probability and agreement are what the runs say (recomputed here from the
 //! per-run values with an independent nearest-rank percentile).
 
-use std::process::Command;
+mod common;
+use common::thud;
 
 use serde_json::Value;
 use thud::design::{self, Design, Thresholds, Zone};
 use thud::ensemble;
-
-fn thud(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().expect("run thud");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn ok(args: &[&str]) -> String {
     let (code, out, err) = thud(args);

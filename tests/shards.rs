@@ -3,17 +3,9 @@
 //! give the chart one `thud sweep` gives, byte for byte; a missing, doubled, foreign or cut part
 //! is refused with one line naming it.
 
+mod common;
+use common::thud;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn thud(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().expect("run thud");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 /// A small study: 5 masses × 4 gaps = 20 cells of 0.5 s.
 const GRID: [&str; 6] = ["--masses", "30g:100g:5", "--gaps", "2cm:5cm:4", "--duration", "0.5"];

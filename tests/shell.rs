@@ -2,16 +2,8 @@
 //! Shell integration: completion scripts and man pages generated from the command line's own
 //! definitions, naming every command and flag.
 
-use std::process::Command;
-
-fn thud(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().expect("run thud");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+mod common;
+use common::thud;
 
 const COMMANDS: [&str; 11] =
     ["pulse", "simulate", "sweep", "restitution", "paper", "export", "presets", "tui", "limits", "completions", "man"];
