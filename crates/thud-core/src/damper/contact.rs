@@ -288,6 +288,29 @@ fn worse(acc: f64, q: f64) -> f64 {
     }
 }
 
+/// Sees every accepted step of a contact integration: `step(t0, y0, k0, t1, y1, k1)` with the
+/// states at both ends and their derivatives. A closure is one; the event solver's recording is
+/// another, whose `step` is inlined into the step loop (a closure's call is not, and then the
+/// states must be written out to memory for it at every step).
+pub(crate) trait Observer {
+    fn step(&mut self, t0: f64, y0: &State, k0: &State, t1: f64, y1: &State, k1: &State);
+}
+
+impl<F: FnMut(f64, &State, &State, f64, &State, &State)> Observer for F {
+    #[inline(always)]
+    fn step(&mut self, t0: f64, y0: &State, k0: &State, t1: f64, y1: &State, k1: &State) {
+        self(t0, y0, k0, t1, y1, k1);
+    }
+}
+
+/// The observer that sees nothing (an isolated contact).
+pub(crate) struct Unobserved;
+
+impl Observer for Unobserved {
+    #[inline(always)]
+    fn step(&mut self, _: f64, _: &State, _: &State, _: f64, _: &State, _: &State) {}
+}
+
 /// How a contact integration ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum ContactOutcome {
@@ -395,7 +418,7 @@ pub(crate) fn integrate<L: Load>(
     t_limit: f64,
     budget: &mut usize,
     a_bound: f64,
-    obs: impl FnMut(f64, &State, &State, f64, &State, &State),
+    obs: impl Observer,
 ) -> ContactEnd {
     if sys.no_tension {
         run(Integration::<L, _, true>::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
@@ -412,7 +435,7 @@ pub(crate) fn resume<L: Load>(
     r: &Resume,
     t_limit: f64,
     budget: &mut usize,
-    obs: impl FnMut(f64, &State, &State, f64, &State, &State),
+    obs: impl Observer,
 ) -> ContactEnd {
     if sys.no_tension {
         run(Integration::<L, _, true>::resumed(sys, load, r, t_limit, obs), budget)
@@ -423,10 +446,7 @@ pub(crate) fn resume<L: Load>(
 
 /// The step loop of one contact integration.
 #[inline(always)]
-fn run<L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: bool>(
-    mut it: Integration<'_, L, O, NT>,
-    budget: &mut usize,
-) -> ContactEnd {
+fn run<L: Load, O: Observer, const NT: bool>(mut it: Integration<'_, L, O, NT>, budget: &mut usize) -> ContactEnd {
     let (sys, s, t_limit) = (it.sys, it.s, it.t_limit);
     loop {
         if *budget == 0 {
@@ -452,7 +472,7 @@ fn run<L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: bo
     }
 }
 
-impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: bool> Integration<'a, L, O, NT> {
+impl<'a, L: Load, O: Observer, const NT: bool> Integration<'a, L, O, NT> {
     /// The integration at the onset: error scales from the contact's own sizes and a first step
     /// that resolves the t^{3/2} growth of the force.
     #[inline(always)]
@@ -568,7 +588,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: 
         if err_c <= 1.0 || hc <= 1e-14 * self.tau {
             self.note_peak(hc, &yc, &kc);
             self.pen = self.pen.max(yc[2]);
-            (self.obs)(self.t, &self.y, &self.k1, self.t + hc, &yc, &kc);
+            self.obs.step(self.t, &self.y, &self.k1, self.t + hc, &yc, &kc);
             self.t += hc;
             self.y = yc;
             self.k1 = kc;
@@ -605,7 +625,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: 
         if err_e <= 1.0 || he <= 1e-14 * self.tau {
             self.note_peak(he, &ye, &ke);
             ye[2] = 0.0;
-            (self.obs)(self.t, &self.y, &self.k1, self.t + he, &ye, &ke);
+            self.obs.step(self.t, &self.y, &self.k1, self.t + he, &ye, &ke);
             self.t += he;
             self.y = ye;
             self.k1 = ke;
@@ -628,7 +648,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: 
     #[inline(always)]
     fn first_step_overshoot(&mut self, last: bool, yn: State, k7: State) -> Flow {
         if self.h <= 1e-14 * self.tau.max(1e-12) || last {
-            (self.obs)(self.t, &self.y, &self.k1, self.t + self.h, &yn, &k7);
+            self.obs.step(self.t, &self.y, &self.k1, self.t + self.h, &yn, &k7);
             self.t = if last { self.t_limit } else { self.t + self.h };
             self.y = yn;
             self.k1 = k7;
@@ -649,7 +669,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State), const NT: 
         self.note_peak(self.h, &yn, &k7);
         self.pen = self.pen.max(yn[2]);
         let t1 = if last { self.t_limit } else { self.t + self.h };
-        (self.obs)(self.t, &self.y, &self.k1, t1, &yn, &k7);
+        self.obs.step(self.t, &self.y, &self.k1, t1, &yn, &k7);
         self.t = t1;
         self.y = yn;
         self.k1 = k7;
@@ -803,7 +823,7 @@ mod tests {
     fn contact(sys: &Sys, t_limit: f64, budget: usize) -> (ContactEnd, usize) {
         let mut left = budget;
         let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
-        let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, |_, _, _, _, _, _| {});
+        let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, Unobserved);
         (end, budget - left)
     }
 
@@ -853,11 +873,18 @@ mod tests {
             let r = first.resume.expect("a cut contact can resume");
             let mut left = 10_000;
             let mut seen_from = f64::NAN;
-            let end = resume(&s, NoLoad, &r, 1.0, &mut left, |t0, _, _, _, _, _| {
-                if seen_from.is_nan() {
-                    seen_from = t0;
-                }
-            });
+            let end = resume(
+                &s,
+                NoLoad,
+                &r,
+                1.0,
+                &mut left,
+                |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
+                    if seen_from.is_nan() {
+                        seen_from = t0;
+                    }
+                },
+            );
             assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
             assert_eq!(end.outcome, ContactOutcome::Separated);
             assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);

@@ -10,7 +10,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Resume, State, Sys};
+use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
 use super::record::{hermite, Recorder};
@@ -294,6 +294,29 @@ impl Flight for ForcedFlight {
     }
 }
 
+/// What the recorder sees of a contact at wall `s` (±1) with the walls `hg` (m) either side of
+/// the centre: each accepted step of the integrator, and history samples inside it (cubic
+/// Hermite on the step's ends).
+struct Track<'r> {
+    rec: &'r mut Recorder,
+    s: f64,
+    hg: f64,
+}
+
+impl Observer for Track<'_> {
+    #[inline(always)]
+    fn step(&mut self, ta: f64, ya: &State, ka: &State, tb: f64, yb: &State, kb: &State) {
+        let (s, hg) = (self.s, self.hg);
+        self.rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
+        self.rec.history_until(tb, |ts| {
+            let (h, q) = (tb - ta, ts - ta);
+            let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
+            let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
+            (xs, xs + s * (hg + ds))
+        });
+    }
+}
+
 /// A contact cut by the end of a stretch of the run, to be carried on by the next.
 #[derive(Debug, Clone, Copy)]
 struct Open {
@@ -363,16 +386,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
         let sys = self.sys;
         let s = wall.sign();
         let hg = sys.half_gap;
-        let rec = &mut self.rec;
-        let obs = |ta: f64, ya: &State, ka: &State, tb: f64, yb: &State, kb: &State| {
-            rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
-            rec.history_until(tb, |ts| {
-                let (h, q) = (tb - ta, ts - ta);
-                let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
-                let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
-                (xs, xs + s * (hg + ds))
-            });
-        };
+        let obs = Track { rec: &mut self.rec, s, hg };
         let (x0, v0, w0) = (self.x, self.v, self.w);
         let (end, counted) = match open {
             None => {
