@@ -406,7 +406,7 @@ struct Integration<'a, L, O, const NT: bool> {
 /// Integrates one contact at wall `s` from `y0` (δ = 0, δ' > 0) at time `t0` until the exit
 /// (δ returns to 0), the time limit `t_limit`, or `budget` steps run out, under the force `load`.
 /// `a_bound` (m/s²) bounds the non-contact relative acceleration (used to size the first step of
-/// slow contacts). `obs(t0, y0, k0, t1, y1, k1)` sees every accepted step (states and their
+/// slow contacts). `obs` sees every accepted step ([`Observer::step`]: states and their
 /// derivatives).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn integrate<L: Load>(
