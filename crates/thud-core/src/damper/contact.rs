@@ -206,13 +206,14 @@ const E7: f64 = -1.0 / 40.0;
 pub(crate) const RTOL: f64 = 3e-9;
 
 /// The four non-trivial rates `(x'', δ'', P_contact, P_viscous)` at `(x, x', δ, δ')`, with the
-/// force per unit main mass `g` (m/s²) there.
+/// force per unit main mass `g` (m/s²) there. `NT` is [`Sys::no_tension`], fixed at compile time
+/// so that a contact without the clamp does not carry its select in every stage.
 #[inline(always)]
-fn acc<L: Load>(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64, g: f64) -> (f64, f64, f64, f64) {
+fn acc<L: Load, const NT: bool>(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64, g: f64) -> (f64, f64, f64, f64) {
     let dp = del.max(0.0);
     let hz = sys.k_hz * dp * dp.sqrt();
     let mut f = hz + sys.c1 * dd;
-    if sys.no_tension && f < 0.0 {
+    if NT && f < 0.0 {
         f = 0.0;
     }
     let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
@@ -225,8 +226,8 @@ fn acc<L: Load>(sys: &Sys, s: f64, x: f64, v: f64, del: f64, dd: f64, g: f64) ->
 /// The rate of the motion `[x', x'', δ', δ'']` at a stage state and the two dissipated powers
 /// `[P_contact, P_viscous]` (W) there.
 #[inline(always)]
-fn stage_rate<L: Load>(sys: &Sys, s: f64, m: &Motion, g: f64) -> (Motion, Vector2<f64>) {
-    let (a, b, pc, pv) = acc::<L>(sys, s, m[0], m[1], m[2], m[3], g);
+fn stage_rate<L: Load, const NT: bool>(sys: &Sys, s: f64, m: &Motion, g: f64) -> (Motion, Vector2<f64>) {
+    let (a, b, pc, pv) = acc::<L, NT>(sys, s, m[0], m[1], m[2], m[3], g);
     (Motion::new(m[1], a, m[3], b), Vector2::new(pc, pv))
 }
 
@@ -236,7 +237,7 @@ fn stage_rate<L: Load>(sys: &Sys, s: f64, m: &Motion, g: f64) -> (Motion, Vector
 /// enter the final combination alone.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn step<L: Load>(
+fn step<L: Load, const NT: bool>(
     sys: &Sys,
     load: &L,
     s: f64,
@@ -253,27 +254,61 @@ fn step<L: Load>(
     // sums over older stages overlap with the evaluation of the newest one.
     let stage = |older: Motion, a_last: f64, r_last: &Motion| (y0 + older * h) + r_last * (h * a_last);
 
-    let (r2, _) = stage_rate::<L>(sys, s, &stage(Motion::zeros(), A21, &r1), g[0]);
-    let (r3, p3) = stage_rate::<L>(sys, s, &stage(r1 * A31, A32, &r2), g[1]);
-    let (r4, p4) = stage_rate::<L>(sys, s, &stage(r1 * A41 + r2 * A42, A43, &r3), g[2]);
-    let (r5, p5) = stage_rate::<L>(sys, s, &stage(r1 * A51 + r2 * A52 + r3 * A53, A54, &r4), g[3]);
-    let (r6, p6) = stage_rate::<L>(sys, s, &stage(r1 * A61 + r2 * A62 + r3 * A63 + r4 * A64, A65, &r5), g[4]);
+    let (r2, _) = stage_rate::<L, NT>(sys, s, &stage(Motion::zeros(), A21, &r1), g[0]);
+    let (r3, p3) = stage_rate::<L, NT>(sys, s, &stage(r1 * A31, A32, &r2), g[1]);
+    let (r4, p4) = stage_rate::<L, NT>(sys, s, &stage(r1 * A41 + r2 * A42, A43, &r3), g[2]);
+    let (r5, p5) = stage_rate::<L, NT>(sys, s, &stage(r1 * A51 + r2 * A52 + r3 * A53, A54, &r4), g[3]);
+    let (r6, p6) = stage_rate::<L, NT>(sys, s, &stage(r1 * A61 + r2 * A62 + r3 * A63 + r4 * A64, A65, &r5), g[4]);
 
     // The fifth-order solution (B2 = 0), its rate (first-same-as-last) and the error estimate.
     let m7 = y0 + (r1 * B1 + r3 * B3 + r4 * B4 + r5 * B5 + r6 * B6) * h;
     let e7 = e0 + (p1 * B1 + p3 * B3 + p4 * B4 + p5 * B5 + p6 * B6) * h;
     let yn = State::new(m7[0], m7[1], m7[2], m7[3], e7[0], e7[1]);
-    let (r7, p7) = stage_rate::<L>(sys, s, &m7, g[5]);
+    let (r7, p7) = stage_rate::<L, NT>(sys, s, &m7, g[5]);
     let k7 = State::new(r7[0], r7[1], r7[2], r7[3], p7[0], p7[1]);
     let em = (r1 * E1 + r3 * E3 + r4 * E4 + r5 * E5 + r6 * E6 + r7 * E7) * h;
     let ep = (p1 * E1 + p3 * E3 + p4 * E4 + p5 * E5 + p6 * E6 + p7 * E7) * h;
     let errs = [em[0], em[1], em[2], em[3], ep[0], ep[1]];
-    let mut err: f64 = 0.0;
-    for i in 0..6 {
-        let tol = RTOL * (sc[i] + y[i].abs().max(yn[i].abs()));
-        err = err.max(errs[i].abs() / tol);
-    }
+    let q = |i: usize| errs[i].abs() / (RTOL * (sc[i] + y[i].abs().max(yn[i].abs())));
+    // The max norm from 0 over the six quotients, two chains of three joined at the end: a max
+    // is exact, so the grouping cannot change it (and `worse` skips a quotient that is not a
+    // number, as `f64::max` does), but the step-size controller waits on it one max sooner.
+    let err = worse(worse(worse(worse(0.0, q(0)), q(1)), q(2)), worse(worse(worse(0.0, q(3)), q(4)), q(5)));
     (yn, k7, err)
+}
+
+/// `max(acc, q)` for an `acc` that is a number: `q` if it is larger, else `acc` (so a `q` that
+/// is not a number is skipped). One `maxsd`, where `f64::max` also tests `acc` for NaN.
+#[inline(always)]
+fn worse(acc: f64, q: f64) -> f64 {
+    if q > acc {
+        q
+    } else {
+        acc
+    }
+}
+
+/// Sees every accepted step of a contact integration: `step(t0, y0, k0, t1, y1, k1)` with the
+/// states at both ends and their derivatives. A closure is one; the event solver's recording is
+/// another, whose `step` is inlined into the step loop (a closure's call is not, and then the
+/// states must be written out to memory for it at every step).
+pub(crate) trait Observer {
+    fn step(&mut self, t0: f64, y0: &State, k0: &State, t1: f64, y1: &State, k1: &State);
+}
+
+impl<F: FnMut(f64, &State, &State, f64, &State, &State)> Observer for F {
+    #[inline(always)]
+    fn step(&mut self, t0: f64, y0: &State, k0: &State, t1: f64, y1: &State, k1: &State) {
+        self(t0, y0, k0, t1, y1, k1);
+    }
+}
+
+/// The observer that sees nothing (an isolated contact).
+pub(crate) struct Unobserved;
+
+impl Observer for Unobserved {
+    #[inline(always)]
+    fn step(&mut self, _: f64, _: &State, _: &State, _: f64, _: &State, _: &State) {}
 }
 
 /// How a contact integration ended.
@@ -337,8 +372,8 @@ enum Flow {
 }
 
 /// One contact being integrated: the accepted state, the step-size controller and what has
-/// been seen so far. Units: s, m, m/s, J.
-struct Integration<'a, L, O> {
+/// been seen so far. Units: s, m, m/s, J. `NT` is [`Sys::no_tension`] (see [`acc`]).
+struct Integration<'a, L, O, const NT: bool> {
     sys: &'a Sys,
     load: L,
     /// The wall's sign (±1).
@@ -371,7 +406,7 @@ struct Integration<'a, L, O> {
 /// Integrates one contact at wall `s` from `y0` (δ = 0, δ' > 0) at time `t0` until the exit
 /// (δ returns to 0), the time limit `t_limit`, or `budget` steps run out, under the force `load`.
 /// `a_bound` (m/s²) bounds the non-contact relative acceleration (used to size the first step of
-/// slow contacts). `obs(t0, y0, k0, t1, y1, k1)` sees every accepted step (states and their
+/// slow contacts). `obs` sees every accepted step ([`Observer::step`]: states and their
 /// derivatives).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn integrate<L: Load>(
@@ -383,9 +418,13 @@ pub(crate) fn integrate<L: Load>(
     t_limit: f64,
     budget: &mut usize,
     a_bound: f64,
-    obs: impl FnMut(f64, &State, &State, f64, &State, &State),
+    obs: impl Observer,
 ) -> ContactEnd {
-    run(Integration::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
+    if sys.no_tension {
+        run(Integration::<L, _, true>::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
+    } else {
+        run(Integration::<L, _, false>::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
+    }
 }
 
 /// Carries on a contact cut by its time limit (`r`, from [`ContactEnd::resume`]) up to the new
@@ -396,35 +435,18 @@ pub(crate) fn resume<L: Load>(
     r: &Resume,
     t_limit: f64,
     budget: &mut usize,
-    obs: impl FnMut(f64, &State, &State, f64, &State, &State),
+    obs: impl Observer,
 ) -> ContactEnd {
-    let it = Integration {
-        sys,
-        load,
-        s: r.s,
-        sc: r.sc,
-        tau: r.tau,
-        t_limit,
-        t: r.t,
-        y: r.y,
-        k1: r.k1,
-        h: r.h,
-        had_pos: r.had_pos,
-        switches: r.switches,
-        pen: r.pen,
-        err_old: r.err_old,
-        h_full: r.h,
-        obs,
-    };
-    run(it, budget)
+    if sys.no_tension {
+        run(Integration::<L, _, true>::resumed(sys, load, r, t_limit, obs), budget)
+    } else {
+        run(Integration::<L, _, false>::resumed(sys, load, r, t_limit, obs), budget)
+    }
 }
 
 /// The step loop of one contact integration.
 #[inline(always)]
-fn run<L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)>(
-    mut it: Integration<'_, L, O>,
-    budget: &mut usize,
-) -> ContactEnd {
+fn run<L: Load, O: Observer, const NT: bool>(mut it: Integration<'_, L, O, NT>, budget: &mut usize) -> ContactEnd {
     let (sys, s, t_limit) = (it.sys, it.s, it.t_limit);
     loop {
         if *budget == 0 {
@@ -435,7 +457,7 @@ fn run<L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)>(
             it.h_full = it.h;
             it.h = t_limit - it.t;
         }
-        let (yn, k7, err) = step(sys, &it.load, s, it.t, &it.y, &it.k1, it.h, &it.sc);
+        let (yn, k7, err) = step::<L, NT>(sys, &it.load, s, it.t, &it.y, &it.k1, it.h, &it.sc);
         *budget -= 1;
         let flow = match it.clamp_switch(&yn, &k7, budget) {
             Some(flow) => flow,
@@ -450,7 +472,7 @@ fn run<L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)>(
     }
 }
 
-impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integration<'a, L, O> {
+impl<'a, L: Load, O: Observer, const NT: bool> Integration<'a, L, O, NT> {
     /// The integration at the onset: error scales from the contact's own sizes and a first step
     /// that resolves the t^{3/2} growth of the force.
     #[inline(always)]
@@ -489,6 +511,29 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
         }
     }
 
+    /// The integration of a cut contact `r`, to be carried on up to `t_limit`.
+    #[inline(always)]
+    fn resumed(sys: &'a Sys, load: L, r: &Resume, t_limit: f64, obs: O) -> Self {
+        Integration {
+            sys,
+            load,
+            s: r.s,
+            sc: r.sc,
+            tau: r.tau,
+            t_limit,
+            t: r.t,
+            y: r.y,
+            k1: r.k1,
+            h: r.h,
+            had_pos: r.had_pos,
+            switches: r.switches,
+            pen: r.pen,
+            err_old: r.err_old,
+            h_full: r.h,
+            obs,
+        }
+    }
+
     #[inline(always)]
     fn end(&self, outcome: ContactOutcome) -> ContactEnd {
         let resume = (outcome == ContactOutcome::EndOfRun).then(|| Resume {
@@ -521,7 +566,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
     #[inline(always)]
     fn clamp_switch(&mut self, yn: &State, k7: &State, budget: &mut usize) -> Option<Flow> {
         let sys = self.sys;
-        if !(sys.no_tension && sys.c1 > 0.0 && self.had_pos && self.switches < MAX_SWITCHES) {
+        if !(NT && sys.c1 > 0.0 && self.had_pos && self.switches < MAX_SWITCHES) {
             return None;
         }
         let b0 = sys.raw_bracket(&self.y, &self.k1).0;
@@ -536,14 +581,14 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
             let (v, r) = sys.raw_bracket(st, d);
             (sg * v, sg * r)
         };
-        let (hc, yc, kc, err_c) = refine_root(
+        let (hc, yc, kc, err_c) = refine_root::<L, NT>(
             sys, &self.load, self.s, self.t, &self.y, &self.k1, self.h, guess, &self.sc, budget, bracket, tol,
         );
         self.switches += 1;
         if err_c <= 1.0 || hc <= 1e-14 * self.tau {
             self.note_peak(hc, &yc, &kc);
             self.pen = self.pen.max(yc[2]);
-            (self.obs)(self.t, &self.y, &self.k1, self.t + hc, &yc, &kc);
+            self.obs.step(self.t, &self.y, &self.k1, self.t + hc, &yc, &kc);
             self.t += hc;
             self.y = yc;
             self.k1 = kc;
@@ -561,9 +606,9 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
     /// error of the step that ends there (the extended force law is non-smooth only beyond it).
     #[inline(always)]
     fn exit_in_step(&mut self, yn: &State, k7: &State, budget: &mut usize) -> Flow {
-        let guess = quintic_root(&self.y, &self.k1, yn, k7, self.h, 0);
+        let guess = quintic_root::<0>(&self.y, &self.k1, yn, k7, self.h);
         let pen_tol = 1e-14 * self.sc[2];
-        let (he, mut ye, ke, err_e) = refine_root(
+        let (he, mut ye, ke, err_e) = refine_root::<L, NT>(
             self.sys,
             &self.load,
             self.s,
@@ -580,7 +625,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
         if err_e <= 1.0 || he <= 1e-14 * self.tau {
             self.note_peak(he, &ye, &ke);
             ye[2] = 0.0;
-            (self.obs)(self.t, &self.y, &self.k1, self.t + he, &ye, &ke);
+            self.obs.step(self.t, &self.y, &self.k1, self.t + he, &ye, &ke);
             self.t += he;
             self.y = ye;
             self.k1 = ke;
@@ -603,7 +648,7 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
     #[inline(always)]
     fn first_step_overshoot(&mut self, last: bool, yn: State, k7: State) -> Flow {
         if self.h <= 1e-14 * self.tau.max(1e-12) || last {
-            (self.obs)(self.t, &self.y, &self.k1, self.t + self.h, &yn, &k7);
+            self.obs.step(self.t, &self.y, &self.k1, self.t + self.h, &yn, &k7);
             self.t = if last { self.t_limit } else { self.t + self.h };
             self.y = yn;
             self.k1 = k7;
@@ -616,20 +661,21 @@ impl<'a, L: Load, O: FnMut(f64, &State, &State, f64, &State, &State)> Integratio
     /// An accepted step inside the contact; the next step from the PI controller.
     #[inline(always)]
     fn accept(&mut self, last: bool, yn: State, k7: State, err: f64) -> Flow {
+        // PI step-size control (Hairer's dopri5: α = 0.17, β = 0.04). The next step waits on
+        // it, so it comes first; the bookkeeping below runs beside it.
+        let le = err.max(1e-10).log2();
+        let fac = (0.9 * (-0.17 * le + 0.04 * self.err_old).exp2()).clamp(0.2, 5.0);
         self.had_pos = true;
         self.note_peak(self.h, &yn, &k7);
         self.pen = self.pen.max(yn[2]);
         let t1 = if last { self.t_limit } else { self.t + self.h };
-        (self.obs)(self.t, &self.y, &self.k1, t1, &yn, &k7);
+        self.obs.step(self.t, &self.y, &self.k1, t1, &yn, &k7);
         self.t = t1;
         self.y = yn;
         self.k1 = k7;
         if last {
             return Flow::Done(ContactOutcome::EndOfRun);
         }
-        // PI step-size control (Hairer's dopri5: α = 0.17, β = 0.04).
-        let le = err.max(1e-10).log2();
-        let fac = (0.9 * (-0.17 * le + 0.04 * self.err_old).exp2()).clamp(0.2, 5.0);
         self.err_old = le.max(-13.3);
         self.h *= fac;
         Flow::Continue
@@ -663,19 +709,19 @@ fn quintic(y: &State, k1: &State, yn: &State, k7: &State, h: f64, q: f64) -> (f6
     (val, der)
 }
 
-/// Root in `(0, h)` of the quintic interpolant's δ (`which = 0`) or δ' (`which = 1`), by the
+/// Root in `(0, h)` of the quintic interpolant's δ (`WHICH = 0`) or δ' (`WHICH = 1`), by the
 /// Illinois regula falsi on the sign change between the step ends.
-fn quintic_root(y: &State, k1: &State, yn: &State, k7: &State, h: f64, which: usize) -> f64 {
+fn quintic_root<const WHICH: usize>(y: &State, k1: &State, yn: &State, k7: &State, h: f64) -> f64 {
     let g = |q: f64| {
         let (v, d) = quintic(y, k1, yn, k7, h, q);
-        if which == 0 {
+        if WHICH == 0 {
             v
         } else {
             d
         }
     };
     let (mut lo, mut hi) = (0.0, h);
-    let (mut glo, mut ghi) = if which == 0 { (y[2], yn[2]) } else { (y[3], yn[3]) };
+    let (mut glo, mut ghi) = if WHICH == 0 { (y[2], yn[2]) } else { (y[3], yn[3]) };
     let scale = glo.abs().max(ghi.abs());
     let mut side = 0;
     let mut q = 0.5 * h;
@@ -713,7 +759,7 @@ fn quintic_root(y: &State, k1: &State, yn: &State, k7: &State, h: f64, which: us
 /// The peak penetration inside a step where δ' goes from > 0 to ≤ 0, from the quintic Hermite
 /// interpolant: no extra force evaluations.
 fn refine_peak(y: &State, k1: &State, h: f64, yn: &State, k7: &State) -> f64 {
-    let q = quintic_root(y, k1, yn, k7, h, 1);
+    let q = quintic_root::<1>(y, k1, yn, k7, h);
     quintic(y, k1, yn, k7, h, q).0.max(y[2]).max(yn[2])
 }
 
@@ -722,7 +768,7 @@ fn refine_peak(y: &State, k1: &State, h: f64, yn: &State, k7: &State) -> f64 {
 /// Returns `(h*, state, f(state), error norm of that step)`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn refine_root<L: Load>(
+fn refine_root<L: Load, const NT: bool>(
     sys: &Sys,
     load: &L,
     s: f64,
@@ -743,7 +789,7 @@ fn refine_root<L: Load>(
         if !(hh > lo && hh < hi) {
             hh = 0.5 * (lo + hi);
         }
-        let (ys, ks, err) = step(sys, load, s, t, y, k1, hh, sc);
+        let (ys, ks, err) = step::<L, NT>(sys, load, s, t, y, k1, hh, sc);
         *budget = budget.saturating_sub(1);
         out = (hh, ys, ks, err);
         let (gv, gd) = g(&ys, &ks);
@@ -777,7 +823,7 @@ mod tests {
     fn contact(sys: &Sys, t_limit: f64, budget: usize) -> (ContactEnd, usize) {
         let mut left = budget;
         let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
-        let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, |_, _, _, _, _, _| {});
+        let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, Unobserved);
         (end, budget - left)
     }
 
@@ -827,11 +873,18 @@ mod tests {
             let r = first.resume.expect("a cut contact can resume");
             let mut left = 10_000;
             let mut seen_from = f64::NAN;
-            let end = resume(&s, NoLoad, &r, 1.0, &mut left, |t0, _, _, _, _, _| {
-                if seen_from.is_nan() {
-                    seen_from = t0;
-                }
-            });
+            let end = resume(
+                &s,
+                NoLoad,
+                &r,
+                1.0,
+                &mut left,
+                |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
+                    if seen_from.is_nan() {
+                        seen_from = t0;
+                    }
+                },
+            );
             assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
             assert_eq!(end.outcome, ContactOutcome::Separated);
             assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);

@@ -10,7 +10,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Resume, State, Sys};
+use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
 use super::record::{hermite, Recorder};
@@ -87,6 +87,67 @@ fn safe_step(g: f64, gd: f64, a: f64) -> f64 {
     }
 }
 
+/// Where a flight starts: its time (s), the main mass's `(x, x')` and the ball's `(y, y')`
+/// (m, m/s) there.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Launch {
+    pub t0: f64,
+    pub x0: f64,
+    pub v0: f64,
+    pub y0: f64,
+    pub w: f64,
+}
+
+/// The contact search of one flight by conservative advancement on both walls' gaps: from
+/// `from` (flight time 0), the first contact within flight time `(0, t_max]` (s) where a gap
+/// (m, to the walls `hg` either side of the centre) is below `1e-13·hg` and closing.
+/// `flight(τ)` is the main mass's `(x, x')` at flight time `τ`; `bound(x, x')` bounds `|x''|`
+/// (m/s²) over the step from there, which is no longer than `h_max` (s) if given. Never skips a
+/// grazing contact; converges quadratically onto a transversal one. Each step spends one of
+/// `iters`.
+#[inline(always)]
+fn conservative_advance(
+    hg: f64,
+    from: &Launch,
+    t_max: f64,
+    iters: &mut usize,
+    flight: impl Fn(f64) -> (f64, f64),
+    mut bound: impl FnMut(f64, f64) -> f64,
+    h_max: Option<f64>,
+) -> Search {
+    let Launch { x0, v0, y0, w, .. } = *from;
+    let gtol = 1e-13 * hg;
+    let s_min = 1e-15;
+    let mut tau = 0.0;
+    loop {
+        let (x, v) = if tau == 0.0 { (x0, v0) } else { flight(tau) };
+        let z = y0 + w * tau - x;
+        let zd = w - v;
+        let gp = hg - z;
+        let gm = hg + z;
+        if gp <= gtol && zd > 0.0 {
+            return Search::Contact(tau, Wall::Upper);
+        }
+        if gm <= gtol && zd < 0.0 {
+            return Search::Contact(tau, Wall::Lower);
+        }
+        let a = bound(x, v);
+        let mut st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a));
+        if let Some(h) = h_max {
+            st = st.min(h);
+        }
+        let st = st.max(s_min);
+        if tau + st >= t_max {
+            return Search::None;
+        }
+        tau += st;
+        if *iters == 0 {
+            return Search::Exhausted(tau);
+        }
+        *iters -= 1;
+    }
+}
+
 /// The main mass's motion between contacts, as the event solver needs it: the closed form, the
 /// contact search on it, what the recorder sees of it and its energy flows. [`Free`] is the
 /// paper's free decay, [`ForcedFlight`] the forced one.
@@ -96,19 +157,9 @@ pub(crate) trait Flight: Copy {
     fn load(&self) -> Self::L;
     /// `(x, x')` a time `tau` after `(x0, v0)` at time `t0`.
     fn advance(&self, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64);
-    /// The first contact of the flight from `(x0, v0, y0, w)` at `t0` within `(0, t_max]`.
-    #[allow(clippy::too_many_arguments)]
-    fn find_contact(
-        &self,
-        hg: f64,
-        t0: f64,
-        x0: f64,
-        v0: f64,
-        y0: f64,
-        w: f64,
-        t_max: f64,
-        iters: &mut usize,
-    ) -> Search;
+    /// The first contact of the flight from `from` within flight time `(0, t_max]` (s), on
+    /// walls `hg` (m) either side of the centre (see [`conservative_advance`]).
+    fn find_contact(&self, hg: f64, from: &Launch, t_max: f64, iters: &mut usize) -> Search;
     /// Records the flight segment `[t0, t0 + tf]`; history samples up to `t1`.
     #[allow(clippy::too_many_arguments)]
     fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64);
@@ -142,44 +193,10 @@ impl Flight for Free {
     /// quadratically onto a transversal one, to a gap below `1e-13·d/2`), with one acceleration
     /// bound for the whole flight (the free oscillator's energy never grows).
     #[inline]
-    fn find_contact(
-        &self,
-        hg: f64,
-        _t0: f64,
-        x0: f64,
-        v0: f64,
-        y0: f64,
-        w: f64,
-        t_max: f64,
-        iters: &mut usize,
-    ) -> Search {
+    fn find_contact(&self, hg: f64, from: &Launch, t_max: f64, iters: &mut usize) -> Search {
         let osc = &self.0;
-        let a = osc.accel_bound(x0, v0);
-        let gtol = 1e-13 * hg;
-        let s_min = 1e-15;
-        let mut tau = 0.0;
-        loop {
-            let (x, v) = if tau == 0.0 { (x0, v0) } else { osc.advance(x0, v0, tau) };
-            let z = y0 + w * tau - x;
-            let zd = w - v;
-            let gp = hg - z;
-            let gm = hg + z;
-            if gp <= gtol && zd > 0.0 {
-                return Search::Contact(tau, Wall::Upper);
-            }
-            if gm <= gtol && zd < 0.0 {
-                return Search::Contact(tau, Wall::Lower);
-            }
-            let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).max(s_min);
-            if tau + st >= t_max {
-                return Search::None;
-            }
-            tau += st;
-            if *iters == 0 {
-                return Search::Exhausted(tau);
-            }
-            *iters -= 1;
-        }
+        let a = osc.accel_bound(from.x0, from.v0);
+        conservative_advance(hg, from, t_max, iters, |tau| osc.advance(from.x0, from.v0, tau), |_, _| a, None)
     }
 
     /// Analytic maxima, crossings, `|z'|` extrema, history.
@@ -236,46 +253,11 @@ impl Flight for ForcedFlight {
     /// the acceleration bound is taken afresh at each iterate and holds over the next
     /// [`Forced::horizon`] only; no step is longer than that.
     #[inline]
-    fn find_contact(
-        &self,
-        hg: f64,
-        t0: f64,
-        x0: f64,
-        v0: f64,
-        y0: f64,
-        w: f64,
-        t_max: f64,
-        iters: &mut usize,
-    ) -> Search {
+    fn find_contact(&self, hg: f64, from: &Launch, t_max: f64, iters: &mut usize) -> Search {
         let fo = &self.0;
-        let seg = fo.segment(t0, x0, v0);
+        let seg = fo.segment(from.t0, from.x0, from.v0);
         let h = fo.horizon();
-        let gtol = 1e-13 * hg;
-        let s_min = 1e-15;
-        let mut tau = 0.0;
-        loop {
-            let (x, v) = if tau == 0.0 { (x0, v0) } else { seg.at(tau) };
-            let z = y0 + w * tau - x;
-            let zd = w - v;
-            let gp = hg - z;
-            let gm = hg + z;
-            if gp <= gtol && zd > 0.0 {
-                return Search::Contact(tau, Wall::Upper);
-            }
-            if gm <= gtol && zd < 0.0 {
-                return Search::Contact(tau, Wall::Lower);
-            }
-            let a = fo.accel_bound(x, v, h);
-            let st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a)).min(h).max(s_min);
-            if tau + st >= t_max {
-                return Search::None;
-            }
-            tau += st;
-            if *iters == 0 {
-                return Search::Exhausted(tau);
-            }
-            *iters -= 1;
-        }
+        conservative_advance(hg, from, t_max, iters, |tau| seg.at(tau), |x, v| fo.accel_bound(x, v, h), Some(h))
     }
 
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
@@ -309,6 +291,29 @@ impl Flight for ForcedFlight {
     #[inline]
     fn energies(&self, sys: &Sys, t0: f64, x0: f64, v0: f64, tf: f64, x1: f64, v1: f64) -> (f64, f64) {
         self.0.flight_energies(sys.big_m, sys.k, t0, x0, v0, tf, x1, v1)
+    }
+}
+
+/// What the recorder sees of a contact at wall `s` (±1) with the walls `hg` (m) either side of
+/// the centre: each accepted step of the integrator, and history samples inside it (cubic
+/// Hermite on the step's ends).
+struct Track<'r> {
+    rec: &'r mut Recorder,
+    s: f64,
+    hg: f64,
+}
+
+impl Observer for Track<'_> {
+    #[inline(always)]
+    fn step(&mut self, ta: f64, ya: &State, ka: &State, tb: f64, yb: &State, kb: &State) {
+        let (s, hg) = (self.s, self.hg);
+        self.rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
+        self.rec.history_until(tb, |ts| {
+            let (h, q) = (tb - ta, ts - ta);
+            let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
+            let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
+            (xs, xs + s * (hg + ds))
+        });
     }
 }
 
@@ -381,16 +386,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
         let sys = self.sys;
         let s = wall.sign();
         let hg = sys.half_gap;
-        let rec = &mut self.rec;
-        let obs = |ta: f64, ya: &State, ka: &State, tb: f64, yb: &State, kb: &State| {
-            rec.step(ta, ya[0], ya[1], tb, yb[0], yb[1], s * yb[3]);
-            rec.history_until(tb, |ts| {
-                let (h, q) = (tb - ta, ts - ta);
-                let xs = hermite(ya[0], ka[0], yb[0], kb[0], h, q);
-                let ds = hermite(ya[2], ka[2], yb[2], kb[2], h, q);
-                (xs, xs + s * (hg + ds))
-            });
-        };
+        let obs = Track { rec: &mut self.rec, s, hg };
         let (x0, v0, w0) = (self.x, self.v, self.w);
         let (end, counted) = match open {
             None => {
@@ -453,7 +449,8 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             let (t, x, v, y, w) = (self.t, self.x, self.v, self.y, self.w);
             #[cfg(feature = "timing")]
             let clock = std::time::Instant::now();
-            let search = self.flight.find_contact(self.sys.half_gap, t, x, v, y, w, t_stop - t, &mut self.iters);
+            let from = Launch { t0: t, x0: x, v0: v, y0: y, w };
+            let search = self.flight.find_contact(self.sys.half_gap, &from, t_stop - t, &mut self.iters);
             #[cfg(feature = "timing")]
             let (search_ns, clock) = (timing::since(clock), std::time::Instant::now());
             let (tf, wall) = match search {

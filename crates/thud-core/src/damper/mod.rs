@@ -476,8 +476,7 @@ pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, 
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
     let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
-    let end =
-        contact::integrate(&sys, contact::NoLoad, 1.0, 0.0, y0, 1e4 * tau, &mut budget, 0.0, |_, _, _, _, _, _| {});
+    let end = contact::integrate(&sys, contact::NoLoad, 1.0, 0.0, y0, 1e4 * tau, &mut budget, 0.0, contact::Unobserved);
     SingleContact {
         u_out_m_s: if end.outcome == contact::ContactOutcome::Separated { -end.y[3] } else { 0.0 },
         duration_s: end.t,

@@ -316,9 +316,17 @@ impl Recorder {
     }
 
     /// Emits every pending history sample (and steady-window probe) with time `≤ t1`,
-    /// evaluating `(x, y)` with `eval`.
-    #[inline]
-    pub fn history_until(&mut self, t1: f64, mut eval: impl FnMut(f64) -> (f64, f64)) {
+    /// evaluating `(x, y)` with `eval`. Inlined down to the test of whether there is any
+    /// sampling at all (a chart's run has none), as it is called at every integrator step.
+    #[inline(always)]
+    pub fn history_until(&mut self, t1: f64, eval: impl FnMut(f64) -> (f64, f64)) {
+        if self.next_hist < self.n_hist || self.windows.is_some() {
+            self.samples_until(t1, eval);
+        }
+    }
+
+    /// [`Recorder::history_until`] when there are samples or probes still to take.
+    fn samples_until(&mut self, t1: f64, mut eval: impl FnMut(f64) -> (f64, f64)) {
         while let Some(ts) = self.next_hist_time() {
             if ts > t1 {
                 break;
