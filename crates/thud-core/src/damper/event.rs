@@ -14,7 +14,7 @@ use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, 
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
 use super::record::{hermite, Recorder};
-use super::steady::{Start, Stepper};
+use super::stepper::{Start, Stepper};
 use super::{
     DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, Truncation, Wall, CONTACT_STEP_CAP, FLIGHT_SEARCH_CAP,
 };

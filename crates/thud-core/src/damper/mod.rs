@@ -25,11 +25,12 @@ mod forced;
 mod newmark;
 mod record;
 mod steady;
+mod stepper;
 
 #[cfg(feature = "timing")]
 pub use event::timing;
-pub(crate) use steady::Start;
 pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
+pub(crate) use stepper::Start;
 
 use serde::{Deserialize, Serialize};
 

@@ -16,7 +16,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::contact::Sys;
 use super::forced::Harmonic;
 use super::record::Recorder;
-use super::steady::{Start, Stepper};
+use super::stepper::{Start, Stepper};
 use super::{
     DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, SingleContact, Truncation, Wall, NEWMARK_STEP_CAP,
 };

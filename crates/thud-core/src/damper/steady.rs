@@ -22,7 +22,8 @@ use super::flight::Oscillator;
 use super::forced::{Forced, Harmonic};
 use super::newmark::NewmarkSim;
 use super::record::{Recorder, WindowStats, Windows};
-use super::{DamperParams, ImpactEvent, Run, RunOptions, Solver};
+pub(crate) use super::stepper::{Start, Stepper};
+use super::{DamperParams, Run, RunOptions, Solver};
 
 /// The most forcing periods a settling run adds past its duration.
 pub const SETTLE_PERIODS_MAX: u32 = 2000;
@@ -30,23 +31,6 @@ pub const SETTLE_PERIODS_MAX: u32 = 2000;
 /// How much the amplitude of one window may differ from the one before for the run to count as
 /// settled (relative).
 const SETTLED_TOLERANCE: f64 = 1e-3;
-
-/// The state a run starts from (m, m/s) and the phase of its force at `t = 0` (rad).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Start {
-    pub x: f64,
-    pub v: f64,
-    pub y: f64,
-    pub w: f64,
-    pub phase: f64,
-}
-
-impl Start {
-    /// The design's own start: `x = 0`, `x' = v0`, `y = y0`, `y' = w0`, force in phase 0.
-    pub fn of(p: &DamperParams) -> Self {
-        Start { x: 0.0, v: p.v0_m_s, y: p.ball_position_m, w: p.ball_velocity_m_s, phase: 0.0 }
-    }
-}
 
 /// The steady state of a forced run over its last window of `periods` forcing periods.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -87,22 +71,6 @@ pub fn linear_amplitude_m(p: &DamperParams) -> Option<f64> {
     let den = (p.stiffness_n_m - p.main_mass_kg * om * om).hypot(p.damping_n_s_m * om);
     let a = p.force_n / den;
     (den > 0.0 && a.is_finite()).then_some(a)
-}
-
-/// A run in progress that can be advanced stretch by stretch: both solvers.
-pub(crate) trait Stepper {
-    /// Runs on to time `t` (s), or until a work cap or cancellation stops the run.
-    fn advance_to(&mut self, t: f64);
-    /// Whether a work cap or cancellation has stopped the run.
-    fn halted(&self) -> bool;
-    fn recorder(&mut self) -> &mut Recorder;
-    /// The completed impacts so far.
-    fn impacts(&self) -> &[ImpactEvent];
-    /// The run as it stands (the stepper is spent for recording afterwards).
-    fn finish(&mut self) -> Run;
-    /// The state at the end of the run, off the record: a contact still open is carried on to
-    /// its end first. `phase_at(t)` is the force's phase at time `t`.
-    fn end_state(&mut self, phase_at: impl Fn(f64) -> f64) -> Start;
 }
 
 /// Whether window `b` has settled after window `a`.

@@ -1,0 +1,179 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
+//! The layering ARCHITECTURE.md describes, checked rather than kept by convention: the engine
+//! crate depends on no UI, file or terminal crate, and no two modules of a crate import each
+//! other, directly or round a circle (a module may use its own submodules and its parents).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// The crates whose modules are checked, as (name, source root).
+const CRATES: [(&str, &str); 3] =
+    [("thud", "src"), ("thud-core", "crates/thud-core/src"), ("thud-py", "crates/thud-py/src")];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The module path of a source file (`tui/app.rs` → `["tui", "app"]`, `damper/mod.rs` →
+/// `["damper"]`, `lib.rs` → `[]`).
+fn module_of(src: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(src).unwrap().with_extension("");
+    let mut parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+    if matches!(parts.last().map(String::as_str), Some("mod" | "lib" | "main")) {
+        parts.pop();
+    }
+    parts
+}
+
+/// The code of a file without its unit tests and comment lines.
+fn code(text: &str) -> String {
+    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap_or_default();
+    text.lines().filter(|l| !l.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n")
+}
+
+/// Every path a file names through `crate::` or `super::`, resolved to absolute module
+/// segments (`super::app::Panel` in `tui/tour.rs` → `["tui", "app", "Panel"]`).
+fn named_paths(module: &[String], code: &str) -> Vec<Vec<String>> {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let mut out = Vec::new();
+    for (i, _) in code.match_indices("::") {
+        let head_start = code[..i].rfind(|c: char| !ident(c)).map_or(0, |j| j + 1);
+        let head = &code[head_start..i];
+        if !(head == "crate" || head == "super") || code[..head_start].ends_with("::") {
+            continue;
+        }
+        // `super` is the parent module (of x::y, in `x/y.rs` or `x/y/mod.rs`, it is x).
+        let mut segs: Vec<String> =
+            if head == "crate" { Vec::new() } else { module[..module.len().saturating_sub(1)].to_vec() };
+        let mut rest = &code[i + 2..];
+        loop {
+            let end = rest.find(|c: char| !ident(c)).unwrap_or(rest.len());
+            if end == 0 {
+                break;
+            }
+            let seg = &rest[..end];
+            if seg == "super" {
+                segs.pop();
+            } else {
+                segs.push(seg.to_string());
+            }
+            if !rest[end..].starts_with("::") {
+                break;
+            }
+            rest = &rest[end + 2..];
+        }
+        out.push(segs);
+    }
+    out
+}
+
+/// The module graph of a crate: each module and the modules of the same crate it imports
+/// (not its own submodules or parents, which may use each other freely).
+fn graph(src: &Path) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_of(src, f)).collect();
+    let mut g = BTreeMap::new();
+    for file in &files {
+        let m = module_of(src, file);
+        let text = fs::read_to_string(file).unwrap();
+        let mut deps = BTreeSet::new();
+        for path in named_paths(&m, &code(&text)) {
+            // The longest module the path starts with.
+            let Some(target) = (1..=path.len()).rev().map(|n| path[..n].to_vec()).find(|p| modules.contains(p)) else {
+                continue;
+            };
+            let related = target.starts_with(&m) || m.starts_with(&target);
+            if !related {
+                deps.insert(target);
+            }
+        }
+        g.insert(m, deps);
+    }
+    g
+}
+
+/// The circles of a graph: its strongly connected components with more than one module.
+fn circles(g: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>) -> Vec<Vec<String>> {
+    let reach = |from: &Vec<String>| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![from.clone()];
+        while let Some(m) = stack.pop() {
+            for d in g.get(&m).into_iter().flatten() {
+                if seen.insert(d.clone()) {
+                    stack.push(d.clone());
+                }
+            }
+        }
+        seen
+    };
+    let reachable: BTreeMap<_, _> = g.keys().map(|m| (m.clone(), reach(m))).collect();
+    let mut out: Vec<Vec<String>> = Vec::new();
+    for m in g.keys() {
+        let circle: Vec<String> = g
+            .keys()
+            .filter(|n| *n == m || (reachable[m].contains(*n) && reachable[*n].contains(m)))
+            .map(|n| n.join("::"))
+            .collect();
+        if circle.len() > 1 && !out.contains(&circle) {
+            out.push(circle);
+        }
+    }
+    out
+}
+
+#[test]
+fn no_module_imports_another_that_imports_it_back() {
+    for (name, src) in CRATES {
+        let g = graph(&root().join(src));
+        assert!(g.len() > 3, "{name}: found only {} modules under {src}", g.len());
+        let found = circles(&g);
+        assert!(found.is_empty(), "{name}: modules that import each other (directly or round a circle): {found:?}");
+    }
+}
+
+#[test]
+fn the_circle_check_finds_a_planted_circle() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path();
+    fs::create_dir(src.join("tui")).unwrap();
+    fs::write(src.join("lib.rs"), "pub mod tui;\npub mod design;\n").unwrap();
+    fs::write(src.join("design.rs"), "use crate::units::Kind;\n").unwrap();
+    fs::write(src.join("units.rs"), "// use crate::design::Design; (a comment is no import)\n").unwrap();
+    fs::write(src.join("tui/mod.rs"), "pub mod app;\npub mod tour;\nuse crate::design;\n").unwrap();
+    fs::write(src.join("tui/app.rs"), "use super::tour::{Tour, TourSource};\n").unwrap();
+    fs::write(src.join("tui/tour.rs"), "fn f() -> super::app::Panel { todo!() }\n").unwrap();
+    assert_eq!(circles(&graph(src)), vec![vec!["tui::app".to_string(), "tui::tour".to_string()]]);
+    fs::write(src.join("tui/tour.rs"), "use super::view::Panel;\n").unwrap();
+    assert!(circles(&graph(src)).is_empty());
+}
+
+#[test]
+fn the_engine_depends_on_no_ui_file_or_terminal_crate() {
+    let manifest = fs::read_to_string(root().join("crates/thud-core/Cargo.toml")).unwrap();
+    let deps: Vec<&str> = manifest
+        .split("[dependencies]")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .take_while(|l| !l.starts_with('['))
+        .filter_map(|l| l.split('=').next().map(str::trim).filter(|n| !n.is_empty() && !n.starts_with('#')))
+        .collect();
+    assert!(deps.contains(&"nalgebra") && deps.contains(&"serde"), "{deps:?}");
+    for ui in ["ratatui", "crossterm", "clap", "hound", "directories", "toml", "pyo3", "csv", "signal-hook"] {
+        assert!(!deps.contains(&ui), "thud-core depends on {ui}: {deps:?}");
+    }
+}
