@@ -177,18 +177,23 @@ struct Ledger {
     rec: Recorder,
     energy: EnergyLedger,
     impacts: Vec<ImpactEvent>,
+    /// Whether the run has a force (without one its work is 0 at every step and not summed).
+    forced: bool,
 }
 
 impl Ledger {
     /// Commits a step from `a` (time `t0`) to `b` (time `t1`), in contact with `wall` if any:
     /// maxima and `|z'|`, the viscous and contact dissipation and the force's work
     /// (trapezoidal), history samples.
+    #[inline(always)]
     fn commit(&mut self, sys: &Sys, wall: Option<Wall>, t0: f64, a: &St, t1: f64, b: &St) {
         self.rec.step(t0, a.pos[0], a.vel[0], t1, b.pos[0], b.vel[0], b.vel[1] - b.vel[0]);
         let h = t1 - t0;
         let vm = 0.5 * (a.vel[0] + b.vel[0]);
         self.energy.dissipated_viscous_j += sys.c * vm * vm * h;
-        self.energy.forcing_work_j += 0.5 * (a.load * a.vel[0] + b.load * b.vel[0]) * h;
+        if self.forced {
+            self.energy.forcing_work_j += 0.5 * (a.load * a.vel[0] + b.load * b.vel[0]) * h;
+        }
         if let Some(wall) = wall {
             let s = wall.sign();
             let (da, dda) = a.pen(sys, s);
@@ -366,7 +371,7 @@ impl<'a> NewmarkSim<'a> {
                 t: 0.0,
                 open: None,
                 splits: 0,
-                out: Ledger { rec, energy, impacts: Vec::new() },
+                out: Ledger { rec, energy, impacts: Vec::new(), forced: load.is_some() },
             },
             dt,
             k_next: 1,
@@ -491,7 +496,7 @@ impl NewmarkState {
 
 impl Ledger {
     fn empty() -> Self {
-        Ledger { rec: Recorder::new(0, 0.0), energy: EnergyLedger::default(), impacts: Vec::new() }
+        Ledger { rec: Recorder::new(0, 0.0), energy: EnergyLedger::default(), impacts: Vec::new(), forced: false }
     }
 }
 
