@@ -254,13 +254,13 @@ pub const AGREEMENT_SURE: f64 = 0.7;
 
 /// The frequencies of a response curve: `points` from `from_hz` to `to_hz`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Band {
+pub struct FreqBand {
     pub from_hz: f64,
     pub to_hz: f64,
     pub points: usize,
 }
 
-impl Band {
+impl FreqBand {
     /// The frequencies (Hz).
     pub fn freqs(&self) -> Vec<f64> {
         linspace(self.from_hz, self.to_hz, self.points)
@@ -279,10 +279,10 @@ pub const RESPONSE_POINTS: usize = 61;
 /// frequency (its resonance and both flanks; 3–8 Hz, `thud response`'s default, for Table 2's
 /// 5.03 Hz), or 1–10 Hz without one (no spring, or overdamped). It does not depend on the
 /// forcing frequency f, so changing f only moves the marker.
-pub fn default_band(d: &Design) -> Band {
+pub fn default_band(d: &Design) -> FreqBand {
     let f = natural_frequency_hz(d);
     let (from_hz, to_hz) = if f > 0.0 { (0.6 * f, 1.6 * f) } else { (1.0, 10.0) };
-    Band { from_hz, to_hz, points: RESPONSE_POINTS }
+    FreqBand { from_hz, to_hz, points: RESPONSE_POINTS }
 }
 
 /// The design a response curve runs: `d` from rest (v0 = 0), as `thud response` runs a design
@@ -297,14 +297,14 @@ pub fn response_design(d: &Design) -> Design {
 
 /// Key of a response curve: the design from rest without its forcing frequency (the curve
 /// does not depend on f: changing it moves the marker only), and the band.
-pub fn response_key(d: &Design, band: &Band) -> String {
+pub fn response_key(d: &Design, band: &FreqBand) -> String {
     format!("{}|{:?}", json(&response_design(d)), band)
 }
 
 /// The work of the response curve of `d` over `band`, checked against the caps `thud
 /// response` uses ([`limits::response_work`], and the cycles of the highest frequency's
 /// settled run): the first estimate over its cap, as an error naming the force.
-pub fn check_response_work(d: &Design, band: &Band) -> Result<(), ThudError> {
+pub fn check_response_work(d: &Design, band: &FreqBand) -> Result<(), ThudError> {
     let freqs = band.freqs();
     let rd = response_design(d);
     let f_max = freqs.iter().copied().fold(0.0, f64::max);
@@ -323,7 +323,7 @@ pub fn check_response_work(d: &Design, band: &Band) -> Result<(), ThudError> {
 /// caps; `None` if cancelled.
 pub fn compute_response(
     d: &Design,
-    band: &Band,
+    band: &FreqBand,
     cancel: Option<&AtomicBool>,
     on_point: &(dyn Fn() + Sync),
 ) -> Result<Option<Response>, ThudError> {

@@ -113,7 +113,7 @@ pub fn glossary(zone_by: ZoneBy) -> Vec<(&'static str, String)> {
 
 /// What is on screen beyond the paper's free decay: a force, an ensemble, the response view.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Context {
+pub struct OnScreen {
     pub forced: bool,
     pub runs: usize,
     pub response_view: bool,
@@ -122,7 +122,7 @@ pub struct Context {
 /// The glossary for what is on screen: [`glossary`], then the terms of a forced design (the
 /// steady figures), of the response view and of an ensemble, when they are shown (so the page
 /// of the paper's free decay stays as it was).
-pub fn glossary_for(zone_by: ZoneBy, cx: Context) -> Vec<(&'static str, String)> {
+pub fn glossary_for(zone_by: ZoneBy, cx: OnScreen) -> Vec<(&'static str, String)> {
     let mut g = glossary(zone_by);
     if cx.forced || cx.response_view {
         g.push((
@@ -186,9 +186,9 @@ mod tests {
 
     #[test]
     fn the_glossary_adds_the_terms_on_screen_only() {
-        let plain = glossary_for(ZoneBy::Paper, Context { runs: 1, ..Context::default() });
+        let plain = glossary_for(ZoneBy::Paper, OnScreen { runs: 1, ..OnScreen::default() });
         assert_eq!(plain, glossary(ZoneBy::Paper));
-        let all = glossary_for(ZoneBy::Paper, Context { forced: true, runs: 16, response_view: true });
+        let all = glossary_for(ZoneBy::Paper, OnScreen { forced: true, runs: 16, response_view: true });
         for term in ["steady", "f view", "N runs"] {
             assert!(all.iter().any(|(t, _)| *t == term), "{term}");
         }

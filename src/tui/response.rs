@@ -13,7 +13,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::compute::Band;
+use super::compute::FreqBand;
 use super::plot::{fit_bounds, Curve, LinePlot};
 use super::theme::Palette;
 use crate::response::{Response, ResponsePoint};
@@ -35,7 +35,7 @@ pub struct ResponseView<'a> {
     pub block: Block<'a>,
     pub state: ResponseState<'a>,
     /// The band the curve spans (Hz).
-    pub band: Band,
+    pub band: FreqBand,
     /// The forcing frequency f of the live design (Hz), marked on the curve.
     pub freq_hz: f64,
     pub theme: Palette,
@@ -58,7 +58,7 @@ pub fn nearest_point(r: &Response, f: f64) -> Option<&ResponsePoint> {
 
 /// The line under the plots, the longest of its wordings that fits `width` columns: the
 /// engine's steady figures at the point nearest f, or where f lies off the band.
-pub fn marker_line(r: &Response, band: &Band, f: f64, width: usize) -> String {
+pub fn marker_line(r: &Response, band: &FreqBand, f: f64, width: usize) -> String {
     let options = if band.contains(f) {
         let Some(p) = nearest_point(r, f) else { return String::new() };
         let s = &p.steady;

@@ -813,7 +813,7 @@ fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
     let text_w = (width as usize).saturating_sub(term_w + 3).max(10);
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let mut lines: Vec<Line> = Vec::new();
-    let cx = explain::Context {
+    let cx = explain::OnScreen {
         forced: app.design.damper.forced(),
         runs: app.runs,
         response_view: app.chart_view == ChartView::Response,

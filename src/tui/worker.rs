@@ -16,7 +16,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::compute::{
     chart_key, chart_key_runs, compute_chart, compute_ensemble_chart, compute_readout, compute_relevel,
-    compute_response, compute_sim, grids_of, readout_key, response_key, sound_key, AcousticResult, Band, ChartPasses,
+    compute_response, compute_sim, grids_of, readout_key, response_key, sound_key, AcousticResult, FreqBand, ChartPasses,
     Grids, SimResult, Stage,
 };
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
@@ -53,7 +53,7 @@ pub enum ChartWork {
     Zones(Grids, usize),
     /// The frequency response of a forced design over a band (its own slot: it never cancels
     /// the zone chart, nor is cancelled by it).
-    Response(Band),
+    Response(FreqBand),
 }
 
 /// Why a job has no result.
@@ -375,7 +375,7 @@ impl Job for RelevelJob {
 struct ResponseJob {
     key: String,
     design: Design,
-    band: Band,
+    band: FreqBand,
 }
 
 impl Job for ResponseJob {
