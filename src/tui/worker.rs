@@ -16,8 +16,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::compute::{
     chart_key, chart_key_runs, compute_chart, compute_ensemble_chart, compute_readout, compute_relevel,
-    compute_response, compute_sim, grids_of, readout_key, response_key, sound_key, AcousticResult, FreqBand, ChartPasses,
-    Grids, SimResult, Stage,
+    compute_response, compute_sim, grids_of, readout_key, response_key, sound_key, AcousticResult, ChartPasses,
+    FreqBand, Grids, SimResult, Stage,
 };
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
 use crate::design::{Cell, Chart, Design};
