@@ -62,6 +62,7 @@ pub fn run(a: &MergeArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     };
     let charted =
         if s.ensemble == 1 { Charted::Plain(merged.chart()) } else { Charted::Ensemble(merged.into_ensemble_chart()) };
-    let text = render(ctx, &s.design, &charted, s.band_cm_s, &short(s.band_cm_s), format)?;
+    let text =
+        render(ctx, &s.design, &charted, s.band_cm_s, &format!("{} (the parts' band)", short(s.band_cm_s)), format)?;
     target.write(&text, out)
 }

@@ -29,9 +29,9 @@ pub struct SweepArgs {
     /// Gaps FROM:TO:N (e.g. 2cm:5cm:20).
     #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "2cm:5cm:20")]
     gaps: String,
-    /// Width of the inclination bands of the Table 5 summary (cm/s).
-    #[arg(long, value_name = "CM_S", default_value = "0.2", allow_hyphen_values = true)]
-    band: String,
+    /// Width of the inclination bands of the Table 5 summary (cm/s) [default: 0.2].
+    #[arg(long, value_name = "CM_S", allow_hyphen_values = true)]
+    band: Option<String>,
     /// Runs per cell, from ball offsets spread evenly over the clearance: each cell's zone is
     /// that of its medians, with its zone-3 probability (1: the single trajectory).
     #[arg(long, value_name = "N", default_value = "1", allow_hyphen_values = true)]
@@ -64,11 +64,14 @@ fn inclination_span(chart: &Chart, zone_by: ZoneBy) -> Option<(f64, f64)> {
     design::inclination_span(chart, zone_by)
 }
 
+/// The width of Table 5's bands when `--band` is not given (cm/s): the paper's.
+const DEFAULT_BAND_CM_S: f64 = 0.2;
+
 pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
     let masses = parse_range("masses", &a.masses, Kind::Mass, &limits::MASS)?;
     let gaps = parse_range("gaps", &a.gaps, Kind::Length, &limits::GAP)?;
-    let band = quantity("band", &Some(a.band.clone()), Kind::Inclination, &limits::BAND)?.unwrap_or(0.2);
+    let band = quantity("band", &a.band, Kind::Inclination, &limits::BAND)?.unwrap_or(DEFAULT_BAND_CM_S);
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
     a.design.check_ensemble(runs)?;
     let target = Target::new(a.out.as_deref(), a.force)?;
@@ -91,7 +94,8 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         bar.finish_and_clear();
         Charted::Ensemble(chart)
     };
-    let text = render(ctx, &d, &chart, band, &a.band, a.output.format())?;
+    let band_text = a.band.clone().unwrap_or_else(|| format!("{DEFAULT_BAND_CM_S} (the default)"));
+    let text = render(ctx, &d, &chart, band, &band_text, a.output.format())?;
     target.write(&text, out)
 }
 
