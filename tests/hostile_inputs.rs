@@ -621,6 +621,22 @@ fn explorer_fields_use_the_same_ranges() {
         assert!(e.starts_with(&format!("invalid {name}: ")), "{text}: {e}");
     }
     assert!(Knob::Mass.parsed(&d, "100kg").is_ok());
+    // The forcing and the ball's start: the same ranges and the same whole-design checks.
+    for (field, text) in [
+        (Knob::Force, "1e9"),
+        (Knob::Force, "-1"),
+        (Knob::Freq, "1e9"),
+        (Knob::Freq, "nan"),
+        (Knob::BallPosition, "3cm"),
+        (Knob::BallPosition, "1e308"),
+        (Knob::Runs, "0"),
+        (Knob::Runs, "1e9"),
+    ] {
+        let e = field.parsed(&d, text).expect_err(text).to_string();
+        assert!(e.starts_with("invalid "), "{text}: {e}");
+        assert!(!e.contains('\n'), "{text}: {e}");
+    }
+    assert!(Knob::BallPosition.parsed(&d, "1cm").is_ok(), "inside d/2 = 2 cm");
     // Stepping past a bound is refused too.
     let mut big = d.clone();
     big.damper.stiffness_n_m = 1e10;
