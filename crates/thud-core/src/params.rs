@@ -482,7 +482,13 @@ fn blame_ball(given: &Given<DesignDraft>, e: ThudError, d: &Design) -> ThudError
 pub fn parse_range(param: &str, text: &str, kind: Kind, range: &Range) -> Result<Vec<f64>, ThudError> {
     let parts: Vec<&str> = text.split(':').collect();
     let [from, to, n] = parts[..] else {
-        return Err(ThudError::invalid(param, format!("'{text}'; expected FROM:TO:N, e.g. 30g:100g:20")));
+        let example = match kind {
+            Kind::Mass => "30g:100g:20",
+            Kind::Length => "2cm:5cm:20",
+            Kind::Frequency => "3Hz:8Hz:101",
+            _ => "1:10:10",
+        };
+        return Err(ThudError::invalid(param, format!("'{text}'; expected FROM:TO:N, e.g. {example}")));
     };
     let from = range.check_as(param, units::parse(param, from, kind)?)?;
     let to = range.check_as(param, units::parse(param, to, kind)?)?;
