@@ -577,11 +577,11 @@ pub fn chart_cells(app: &App) -> Vec<CellView> {
         .enumerate()
         .map(|(i, c)| match (c, app.chart.ensembles.get(i).and_then(Option::as_ref)) {
             (Some(_), Some(e)) => {
-                let e = ensemble_under(e, &app.design.thresholds);
-                if e.agreement < AGREEMENT_SURE {
-                    CellView::Unsure(e.metrics.zone)
+                let (zone, agreement) = e.zone_under(&app.design.thresholds);
+                if agreement < AGREEMENT_SURE {
+                    CellView::Unsure(zone)
                 } else {
-                    CellView::Exact(e.metrics.zone)
+                    CellView::Exact(zone)
                 }
             }
             (Some(c), None) => CellView::Exact(app.zone(&c.metrics)),

@@ -195,6 +195,18 @@ pub struct Ensemble {
 }
 
 impl Ensemble {
+    /// The zone of the medians under thresholds `t`, and the fraction of runs whose own zone
+    /// under `t` is that zone: what [`Ensemble::from_members`] gives for the same runs under
+    /// `t`, without rebuilding the spread (thresholds move zones only). O(runs), no allocation:
+    /// cheap enough for every chart cell on every frame.
+    #[must_use]
+    pub fn zone_under(&self, t: &Thresholds) -> (Option<Zone>, f64) {
+        let zone = self.metrics.zone(t);
+        let n = self.ensemble.len();
+        let agree = self.ensemble.iter().filter(|m| m.metrics().zone(t) == zone).count();
+        (zone, if n == 0 { 0.0 } else { agree as f64 / n as f64 })
+    }
+
     /// What the runs `members` of a design with thresholds `t` say together.
     #[must_use]
     pub fn from_members(members: Vec<Member>, t: &Thresholds) -> Self {
@@ -436,6 +448,29 @@ mod tests {
         assert_eq!(e.zone3_probability, 0.5);
         assert_eq!(e.agreement, 0.5);
         assert_eq!(e.runs, 4);
+    }
+
+    #[test]
+    fn zone_under_is_the_ensemble_rebuilt_under_other_thresholds() {
+        let t = Thresholds { spl_db: 100.0, inclination_cm_s: 1.0, ..Thresholds::default() };
+        let runs: Vec<Member> = [(0.5, 99.0), (1.5, 99.0), (2.0, 102.0), (3.0, 101.0), (0.2, 98.0)]
+            .into_iter()
+            .map(|(e, spl)| member_with(None, e, spl))
+            .map(|m| Member { zone: m.metrics().zone(&t), ..m })
+            .collect();
+        let e = Ensemble::from_members(runs, &t);
+        for (spl_db, inclination_cm_s) in [(100.0, 1.0), (98.5, 0.4), (101.5, 2.5), (110.0, 0.1), (90.0, 5.0)] {
+            let u = Thresholds { spl_db, inclination_cm_s, ..t };
+            let rebuilt = Ensemble::from_members(
+                e.ensemble.iter().map(|m| Member { zone: m.metrics().zone(&u), ..*m }).collect(),
+                &u,
+            );
+            assert_eq!(
+                e.zone_under(&u),
+                (rebuilt.metrics.zone, rebuilt.agreement),
+                "L* {spl_db}, e* {inclination_cm_s}"
+            );
+        }
     }
 
     #[test]
