@@ -42,7 +42,7 @@ use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
 fn preset(py: Python<'_>, kw: &Kwargs<'_>, default: Option<&str>) -> PyResult<Option<Design>> {
     match kw.text(py, "preset")?.as_deref().or(default) {
         None => Ok(None),
-        Some(name) => thud::presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
+        Some(name) => thud_presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
     }
 }
 
@@ -325,7 +325,7 @@ fn axis_values<'py>(py: Python<'py>, name: &str, spec: &str) -> PyResult<Bound<'
 #[pyfunction]
 fn presets(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    for p in thud::presets::list().map_err(|e| engine_error(py, e))? {
+    for p in thud_presets::list().map_err(|e| engine_error(py, e))? {
         d.set_item(p.name, p.description)?;
     }
     Ok(d)
