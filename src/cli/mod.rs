@@ -232,12 +232,16 @@ pub fn main() -> i32 {
     }
 }
 
-/// The exit code of the explorer: 0, or 2 with the error on stderr.
-fn tui_exit(r: Result<(), String>) -> i32 {
+/// The exit code of the explorer: 0, or the error's ([`CliError::report`]) with its line on
+/// stderr.
+fn tui_exit(r: Result<(), CliError>) -> i32 {
     r.map_or_else(
         |e| {
-            warn(&e);
-            2
+            let (code, line) = e.report(&[]);
+            if let Some(line) = line {
+                warn(&line);
+            }
+            code
         },
         |()| 0,
     )

@@ -33,7 +33,7 @@ use thud_core::response::{self, ResponseOptions};
 use thud_core::units::Kind;
 use thud_core::{ensemble, ThudError};
 
-use args::{check_solver, enforce, engine_error, parameter_error, Kwargs};
+use args::{enforce, engine_error, parameter_error, refuse, Kwargs};
 use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
 
 /// The preset named by the `preset` option (default: "default"), as the command line loads it
@@ -123,9 +123,10 @@ fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Py<P
     let d = design_of(py, &kw)?;
     let samples = kw.count(py, "samples", &limits::SAMPLES, 2001)?;
     let runs = ensemble_runs(py, &kw)?;
+    let given = |n: &str| args::given(&kw.params, n);
     if runs > 1 {
-        args::check_run(py, &d, &kw.params, 0, no_limit)?;
-        args::check_runs(py, &d, &kw.params, 1, runs, no_limit)?;
+        refuse(py, limits::check_run(&d, &given, 0), "samples", no_limit)?;
+        refuse(py, limits::check_runs(&d, &given, 1, runs), "ensemble", no_limit)?;
         let e = {
             let d = d.clone();
             detach::run(py, move |cancel| ensemble::evaluate(&d, runs, Some(cancel)))?
@@ -133,7 +134,7 @@ fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Py<P
         let e = e.map_err(|e| engine_error(py, e))?.ok_or_else(|| cancelled(py))?;
         return Ok(PyEnsemble::new(py, &EnsembleReport::new(&d, &e))?.into_pyobject(py)?.into_any().unbind());
     }
-    args::check_run(py, &d, &kw.params, samples, no_limit)?;
+    refuse(py, limits::check_run(&d, &given, samples), "samples", no_limit)?;
     let data = detach::run(py, |cancel| objects::RunData::compute(&d, samples, cancel))?;
     Ok(PyRun::new(py, data.map_err(|e| engine_error(py, e))?)?.into_pyobject(py)?.into_any().unbind())
 }
@@ -148,7 +149,7 @@ fn ensemble_runs(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<usize> {
 
 /// The error of runs stopped without an interrupt (not expected: a stop comes from Ctrl-C).
 fn cancelled(py: Python<'_>) -> PyErr {
-    engine_error(py, ThudError::invalid("ensemble", "the runs were cancelled"))
+    engine_error(py, ThudError::Cancelled)
 }
 
 /// An axis of a sweep: a sequence of numbers in SI units, or "FROM:TO:N" text as on the
@@ -213,16 +214,11 @@ fn sweep(
     let masses = axis(py, "masses_kg", masses_kg, Kind::Mass, &limits::MASS)?;
     let gaps = axis(py, "gaps_m", gaps_m, Kind::Length, &limits::GAP)?;
     let runs = ensemble_runs(py, &kw)?;
-    let cells = limits::sweep_cells(masses.len(), gaps.len());
-    let hint = format!("use fewer values on either axis (product ≤ {})", short(cells.cap.max));
-    enforce(py, cells, "masses_kg", &hint, no_limit)?;
+    let given = |n: &str| args::given(&kw.params, n);
+    refuse(py, limits::check_sweep(&d, &given, masses.len(), gaps.len()), "masses_kg", no_limit)?;
     let n = masses.len() * gaps.len();
-    let [cell_seconds, steps, cycles] = limits::sweep_work(&d, n);
-    let hint = format!("use duration ≤ {} s with {n} cells or fewer cells", short(cell_seconds.cap.max / n as f64));
-    enforce(py, cell_seconds, "duration", &hint, no_limit)?;
-    check_solver(py, &d, &kw.params, steps, cycles, &format!(" with {n} cells"), no_limit)?;
     if runs > 1 {
-        args::check_runs(py, &d, &kw.params, n, runs, no_limit)?;
+        refuse(py, limits::check_runs(&d, &given, n, runs), "ensemble", no_limit)?;
         let chart = detach::run(py, |cancel| ensemble::sweep(&d, &masses, &gaps, runs, Some(cancel), &|_, _| {}))?;
         return PyChart::of_ensembles(py, &d, &chart.map_err(|e| engine_error(py, e))?);
     }
