@@ -50,7 +50,8 @@ fn every_row_is_a_flag_of_every_design_command_with_its_help() {
 fn every_numeric_row_is_listed_by_thud_limits_with_its_range() {
     for p in DESIGN {
         if let Some(range) = p.range() {
-            let listed = RANGES.iter().find(|r| r.param == p.name).unwrap_or_else(|| panic!("{} is not listed", p.name));
+            let listed =
+                RANGES.iter().find(|r| r.param == p.name).unwrap_or_else(|| panic!("{} is not listed", p.name));
             assert_eq!(listed, range, "{}", p.name);
         }
     }
@@ -62,12 +63,13 @@ fn every_row_has_an_explorer_field_with_its_range_and_help() {
         let fields: Vec<Knob> = Knob::ALL.into_iter().filter(|k| k.rows().contains(&p.name)).collect();
         assert_eq!(fields.len(), 1, "{}: fields {fields:?}", p.name);
         let k = fields[0];
+        assert!(p.label.chars().count() <= 10, "{}: the panel's label column is 10 wide", p.name);
         if k.rows().len() == 1 {
             assert_eq!(k.range().as_ref(), p.range(), "{}", p.name);
         }
         if let Knob::Row(_) = k {
             // A field made from the row: its name, help and range are the row's.
-            assert_eq!(k.label(), p.name);
+            assert_eq!((k.label(), k.param()), (p.label, p.name));
             let hint = explain::field_hint(k, &thud::design::Design::default());
             assert!(hint.contains(p.help), "{hint}");
         }
@@ -83,13 +85,19 @@ fn every_row_has_an_explorer_field_with_its_range_and_help() {
 #[test]
 fn the_python_stub_lists_every_row_as_the_table_says() {
     let text = std::fs::read_to_string(stub_path()).unwrap();
-    let blocks = [("simulate", params::stub_keywords(&[])), ("sweep", params::stub_keywords(&[])), ("response", params::stub_keywords(&["freq"]))];
+    let blocks = [
+        ("simulate", params::stub_keywords(&[])),
+        ("sweep", params::stub_keywords(&[])),
+        ("response", params::stub_keywords(&["freq"])),
+    ];
     if std::env::var_os("THUD_BLESS").is_some() {
         let mut out = String::new();
         let mut rest = text.as_str();
         for (function, block) in &blocks {
             let at = rest.find(&format!("def {function}(")).unwrap();
-            let open = at + rest[at..].find("    preset: Optional[str] = None,\n").unwrap() + "    preset: Optional[str] = None,\n".len();
+            let open = at
+                + rest[at..].find("    preset: Optional[str] = None,\n").unwrap()
+                + "    preset: Optional[str] = None,\n".len();
             let end = open + rest[open..].find("    settle: Optional[bool] = None,").unwrap();
             let end = end + rest[end..].find('\n').unwrap() + 1;
             out += &rest[..open];

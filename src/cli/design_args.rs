@@ -81,7 +81,9 @@ fn flag<F: ForceFlag>(p: &Param<params::DesignDraft>) -> Arg {
                 None => PossibleValue::new(*n),
             });
             // The placeholder clap's derive gives a choice: the id in capitals (`QUAD_SIGNS`).
-            arg.action(ArgAction::Set).value_name(id(p.name).to_uppercase()).value_parser(PossibleValuesParser::new(values))
+            arg.action(ArgAction::Set)
+                .value_name(id(p.name).to_uppercase())
+                .value_parser(PossibleValuesParser::new(values))
         }
         Accepts::Quantity { .. } | Accepts::Count { .. } => {
             arg.action(ArgAction::Set).allow_hyphen_values(true).value_parser(clap::value_parser!(String))
@@ -176,7 +178,9 @@ impl<F: ForceFlag> DesignArgs<F> {
         let typed: Vec<String> = params::DESIGN
             .iter()
             .filter(|p| p.range().is_some() && !matches!(p.group, Group::Listener | Group::Study))
-            .filter_map(|p| self.text(p.name).map(|t| format!("--{} {}", long::<F>(p), super::errors::cut_chars(&t, 20))))
+            .filter_map(|p| {
+                self.text(p.name).map(|t| format!("--{} {}", long::<F>(p), super::errors::cut_chars(&t, 20)))
+            })
             .collect();
         typed.join(", ")
     }
@@ -274,4 +278,3 @@ impl<F: ForceFlag> DesignArgs<F> {
 pub fn parse_range(name: &str, text: &str, kind: Kind, range: &Range) -> Result<Vec<f64>, ThudError> {
     params::parse_range(&format!("--{name}"), text, kind, range)
 }
-

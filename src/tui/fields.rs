@@ -329,7 +329,7 @@ impl Knob {
             Knob::Freq => "freq f",
             Knob::BallPosition => "ball y0",
             Knob::Runs => "ensemble N",
-            Knob::Row(_) => self.rows().first().copied().unwrap_or("?"),
+            Knob::Row(_) => self.row().map_or("?", |r| r.label),
         }
     }
 
@@ -861,7 +861,7 @@ impl Knob {
         let Some(row) = self.row() else { return "—".into() };
         let v = row.get.map_or(f64::NAN, |get| get(d));
         match row.accepts {
-            Accepts::Switch { .. } => if v != 0.0 { "on" } else { "off" }.into(),
+            Accepts::Switch { .. } => if v == 0.0 { "off" } else { "on" }.into(),
             _ if !v.is_finite() => "—".into(),
             Accepts::Count { .. } => format!("{}", v.round()),
             _ => match row.unit() {

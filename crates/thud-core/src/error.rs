@@ -161,7 +161,14 @@ mod tests {
             ThudError::UnknownMaterial { name: "unobtainium".into(), known: "steel, acrylic".into() },
             ThudError::RestitutionUnreachable { restitution: 0.5 },
             ThudError::NoImpact,
-            ThudError::OutOfRange { param: "gap".into(), value: -1.0, shown: "-1".into(), unit: "m", what: "clearance d", range: "1 to 2 m".into() },
+            ThudError::OutOfRange {
+                param: "gap".into(),
+                value: -1.0,
+                shown: "-1".into(),
+                unit: "m",
+                what: "clearance d",
+                range: "1 to 2 m".into(),
+            },
             ThudError::Conflict { param: "radius".into(), with: "density".into(), why: "the radius follows" },
             ThudError::Requires { param: "plate".into(), needs: "sphere".into() },
         ];

@@ -802,10 +802,7 @@ fn newmark(d: &Design, given: &dyn Fn(&str) -> bool, steps: Estimate, per: &str)
 /// was given and the duration was not (they set the cycles' rate), else the duration.
 fn main_cycles(d: &Design, given: &dyn Fn(&str) -> bool, cycles: Estimate, per: &str) -> Result<(), Refusal> {
     let max_s = d.damper.duration_s * cycles.cap.max / cycles.value;
-    let param = match ["k", "main-mass"].into_iter().find(|n| !given("duration") && given(n)) {
-        Some(n) => n,
-        None => "duration",
-    };
+    let param = ["k", "main-mass"].into_iter().find(|n| !given("duration") && given(n)).unwrap_or("duration");
     over(cycles, param, Remedy::ShorterDuration { max_s }, per)
 }
 

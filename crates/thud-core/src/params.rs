@@ -163,6 +163,8 @@ pub struct Param<T: 'static> {
     pub help: &'static str,
     /// The value's placeholder in usage lines (`M` in `--mass <M>`; empty: the name in capitals).
     pub value_name: &'static str,
+    /// A label of at most 10 characters for a panel row (`ball w0`); the name if it is short.
+    pub label: &'static str,
     pub group: Group,
     /// Another parameter this one cannot be given with ([`Conflict`]).
     pub conflicts: Option<Conflict>,
@@ -176,12 +178,29 @@ pub struct Param<T: 'static> {
 impl<T> Param<T> {
     /// Shorthand: a row of `group` with no placeholder, relation or accessor yet.
     const fn new(name: &'static str, group: Group, accepts: Accepts<T>, help: &'static str) -> Self {
-        Param { name, alias: None, accepts, help, value_name: "", group, conflicts: None, requires: None, get: None }
+        Param {
+            name,
+            alias: None,
+            accepts,
+            help,
+            value_name: "",
+            label: name,
+            group,
+            conflicts: None,
+            requires: None,
+            get: None,
+        }
     }
 
     /// The row with the placeholder `value_name`.
     const fn value(mut self, value_name: &'static str) -> Self {
         self.value_name = value_name;
+        self
+    }
+
+    /// The row with the panel label `label`.
+    const fn label(mut self, label: &'static str) -> Self {
+        self.label = label;
         self
     }
 
@@ -277,7 +296,9 @@ impl DesignDraft {
     }
 }
 
-/// A row of [`DESIGN`]: a quantity with its help, placeholder, group and accessor.
+/// A row of [`DESIGN`]: a quantity with its help, placeholder, group and accessor (one
+/// argument per column of the table, so each row reads as one line of it).
+#[allow(clippy::too_many_arguments)]
 const fn q(
     name: &'static str,
     kind: Kind,
@@ -359,9 +380,10 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         conflicts: Some(Conflict { with: "radius", why: "the radius follows from the mass and the density", names_other: true }),
         ..q("density", Kind::Density, &limits::DENSITY, Group::Design, "RHO", "Ball density (kg/m³): the radius follows from the mass",
             |d| match d.ball { BallSize::Density(rho) => rho, BallSize::Radius(_) => f64::NAN }, |d, v| d.design.ball = BallSize::Density(v))
+            .label("ball ρ")
     },
     q("radius", Kind::Length, &limits::RADIUS, Group::Design, "A", "Ball radius (m), whatever the mass",
-        Design::ball_radius_m, |d, v| d.design.ball = BallSize::Radius(v)),
+        Design::ball_radius_m, |d, v| d.design.ball = BallSize::Radius(v)).label("ball a"),
     q("r", Kind::Length, &limits::R, Group::Listener, "R", "Observer distance (m)",
         |d| d.observer.r_m, |d, v| d.design.observer.r_m = v),
     q("theta", Kind::Angle, &limits::THETA, Group::Listener, "DEG", "Observer angle (degrees)",
@@ -390,12 +412,12 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         "The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]",
         |d| d.damper.ball_position_m, |d, v| d.design.damper.ball_position_m = v),
     q("ball-velocity", Kind::Speed, &limits::BALL_VELOCITY, Group::Forcing, "W0", "The ball's initial velocity w0 (m/s) [default: 0]",
-        |d| d.damper.ball_velocity_m_s, |d, v| d.design.damper.ball_velocity_m_s = v),
+        |d| d.damper.ball_velocity_m_s, |d, v| d.design.damper.ball_velocity_m_s = v).label("ball w0"),
     Param::new("periods", Group::Solver, Accepts::Count {
             range: &limits::PERIODS,
             set: |d: &mut DesignDraft, n| d.design.damper.steady_periods = u32::try_from(n).unwrap_or(u32::MAX),
         }, "Forcing periods N of the steady-state window of a forced run [default: 10]")
-        .value("N").get(|d| f64::from(d.damper.steady_periods)),
+        .value("N").label("periods N").get(|d| f64::from(d.damper.steady_periods)),
     sw("settle", Group::Solver, "Run a forced run on past --duration, N periods at a time, until its steady amplitude settles",
         |d| f64::from(u8::from(d.damper.settle)), |d, on| d.design.damper.settle = on),
 ];
@@ -439,7 +461,9 @@ pub fn set_number(design: &Design, p: &Param<DesignDraft>, value: f64) -> Design
     let mut draft = DesignDraft::of(design.clone());
     match p.accepts {
         Accepts::Quantity { set, .. } => set(&mut draft, value),
-        Accepts::Count { set, .. } => set(&mut draft, if value.is_finite() && value >= 0.0 { value.round() as usize } else { 0 }),
+        Accepts::Count { set, .. } => {
+            set(&mut draft, if value.is_finite() && value >= 0.0 { value.round() as usize } else { 0 });
+        }
         Accepts::Switch { set } => set(&mut draft, value != 0.0),
         Accepts::Choice { .. } | Accepts::Name { .. } => {}
     }

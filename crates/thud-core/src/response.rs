@@ -83,6 +83,25 @@ impl Default for ResponseOptions {
     }
 }
 
+/// The main mass's damped natural frequency (Hz) of `d`: the cycles per second of Eq 25 alone
+/// ([`crate::limits::cycles`]); 0 without a spring or when overdamped. The one definition the
+/// explorer (a force switched on starts here) and the default response band use.
+pub fn natural_frequency_hz(d: &Design) -> f64 {
+    let p = &d.damper;
+    crate::limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
+}
+
+/// The band a response of `d` spans by default (Hz): 0.6 to 1.6 times its natural frequency
+/// (the resonance and both flanks), or 1 to 10 Hz without one (no spring, or overdamped).
+pub fn default_band_hz(d: &Design) -> (f64, f64) {
+    let f = natural_frequency_hz(d);
+    if f > 0.0 {
+        (0.6 * f, 1.6 * f)
+    } else {
+        (1.0, 10.0)
+    }
+}
+
 /// The design `base` forced at `freq_hz`, run for at least two windows (its duration if longer).
 pub fn at_frequency(base: &Design, freq_hz: f64, settle: bool) -> Design {
     let mut d = base.clone();
@@ -315,4 +334,22 @@ pub fn response_ensemble(
         })
         .collect();
     Ok(ResponseEnsemble { force_n: base.damper.force_n, runs: n, sweeps })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_band_spans_the_resonance_of_table_2() {
+        // Table 2: √(K/M − (C/2M)²)/2π with K 500 N/m, M 0.5 kg, C 0.05 N·s/m.
+        let d = Design::default();
+        let f = (1000.0f64 - 0.0025).sqrt() / (2.0 * std::f64::consts::PI);
+        assert!((natural_frequency_hz(&d) - f).abs() < 1e-12);
+        let (lo, hi) = default_band_hz(&d);
+        assert!((lo - 0.6 * f).abs() < 1e-12 && (hi - 1.6 * f).abs() < 1e-12);
+        let mut free = d;
+        free.damper.stiffness_n_m = 0.0;
+        assert_eq!(default_band_hz(&free), (1.0, 10.0), "no spring: no natural frequency");
+    }
 }

@@ -174,10 +174,14 @@ pub fn refuse(py: Python<'_>, r: Result<(), Refusal>, counted: &str, no_limit: b
     let hint = match r.remedy {
         Remedy::ShorterDuration { max_s } => format!("use duration ≤ {} s{per}", short(max_s)),
         Remedy::ShorterDurationOrLargerDt { max_s } => format!("use duration ≤ {} s{per} or a larger dt", short(max_s)),
-        Remedy::LargerDtOrShorterDuration { min_s } => format!("use dt ≥ {} s{per} or a shorter duration", short(min_s)),
+        Remedy::LargerDtOrShorterDuration { min_s } => {
+            format!("use dt ≥ {} s{per} or a shorter duration", short(min_s))
+        }
         Remedy::FewerSamples { max } => format!("use {counted} ≤ {}", short(max)),
         Remedy::FewerCells { max } => format!("use fewer values on either axis (product ≤ {})", short(max)),
-        Remedy::ShorterDurationOrFewerCells { max_s } => format!("use duration ≤ {} s{per} or fewer cells", short(max_s)),
+        Remedy::ShorterDurationOrFewerCells { max_s } => {
+            format!("use duration ≤ {} s{per} or fewer cells", short(max_s))
+        }
         Remedy::FewerRuns { max, cells, runs } if cells > 1 => {
             format!("use fewer runs ({cells} cells × {runs}; at most {} runs)", short(max))
         }
