@@ -211,28 +211,7 @@ impl<F: ForceFlag> DesignArgs<F> {
             Some((v, unit)) => (format!("--{}", r.param), self.shown(r.param, v, unit)),
             None => (counted.0.to_string(), counted.1.to_string()),
         };
-        let per = &r.per;
-        let hint = match r.remedy {
-            Remedy::ShorterDuration { max_s } => format!("use --duration ≤ {} s{per}", short(max_s)),
-            Remedy::ShorterDurationOrLargerDt { max_s } => {
-                format!("use --duration ≤ {} s{per} or a larger --dt", short(max_s))
-            }
-            Remedy::LargerDtOrShorterDuration { min_s } => {
-                format!("use --dt ≥ {} s{per} or a shorter --duration", short(min_s))
-            }
-            Remedy::FewerSamples { max } => format!("use {} ≤ {}", counted.0, short(max)),
-            Remedy::FewerCells { max } => format!("use fewer values N on either axis (product ≤ {})", short(max)),
-            Remedy::ShorterDurationOrFewerCells { max_s } => {
-                format!("use --duration ≤ {} s{per} or fewer cells", short(max_s))
-            }
-            Remedy::FewerRuns { max, cells, runs } if cells > 1 => {
-                format!("use fewer runs ({cells} cells × {runs}; at most {} runs), e.g. more shards", short(max))
-            }
-            Remedy::FewerRuns { max, .. } => format!("use at most {} runs", short(max)),
-            Remedy::ShorterDurationOrFewerRuns { max_s } => {
-                format!("use --duration ≤ {} s{per} or fewer runs", short(max_s))
-            }
-        };
+        let hint = hint(&r, counted.0);
         ctx.enforce(r.estimate, &flag, &value, &hint)
     }
 
@@ -270,6 +249,39 @@ impl<F: ForceFlag> DesignArgs<F> {
     ) -> Result<(), CliError> {
         let r = limits::check_runs(d, &|n| self.has(n), cells, runs);
         self.refuse(ctx, d, r, (flag, value))
+    }
+}
+
+/// What to change to bring a refused run under its cap, in the command line's words;
+/// `counted` is the flag of what the caller counts (`--samples`).
+pub(crate) fn hint(r: &Refusal, counted: &str) -> String {
+    let per = &r.per;
+    match r.remedy {
+        Remedy::ShorterDuration { max_s } => format!("use --duration ≤ {} s{per}", short(max_s)),
+        Remedy::ShorterDurationOrLargerDt { max_s } => {
+            format!("use --duration ≤ {} s{per} or a larger --dt", short(max_s))
+        }
+        Remedy::LargerDtOrShorterDuration { min_s } => {
+            format!("use --dt ≥ {} s{per} or a shorter --duration", short(min_s))
+        }
+        Remedy::FewerSamples { max } => format!("use {counted} ≤ {}", short(max)),
+        Remedy::FewerCells { max } => format!("use fewer values N on either axis (product ≤ {})", short(max)),
+        Remedy::ShorterDurationOrFewerCells { max_s } => {
+            format!("use --duration ≤ {} s{per} or fewer cells", short(max_s))
+        }
+        Remedy::FewerRuns { max, cells, runs } if cells > 1 => {
+            format!("use fewer runs ({cells} cells × {runs}; at most {} runs), e.g. more shards", short(max))
+        }
+        Remedy::FewerRuns { max, .. } => format!("use at most {} runs", short(max)),
+        Remedy::ShorterDurationOrFewerRuns { max_s } => {
+            format!("use --duration ≤ {} s{per} or fewer runs", short(max_s))
+        }
+        Remedy::FewerRunsPerFrequency { max } => {
+            format!("use fewer runs (at most {} for these frequencies)", short(max))
+        }
+        Remedy::FewerFrequencies => "use fewer frequencies or a shorter --duration".to_string(),
+        Remedy::LowerFrequencies => "use lower frequencies or a shorter --duration".to_string(),
+        Remedy::EventSolverOrLargerDt => "use the event solver or a larger --dt".to_string(),
     }
 }
 

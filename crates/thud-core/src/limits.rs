@@ -751,6 +751,14 @@ pub enum Remedy {
     FewerRuns { max: f64, cells: usize, runs: usize },
     /// A duration of at most `max_s` (s), or fewer runs.
     ShorterDurationOrFewerRuns { max_s: f64 },
+    /// A response: at most `max` runs a frequency.
+    FewerRunsPerFrequency { max: f64 },
+    /// A response: fewer frequencies, or a shorter duration.
+    FewerFrequencies,
+    /// A response: lower frequencies, or a shorter duration.
+    LowerFrequencies,
+    /// Newmark steps of a response: the event solver, or a larger time step.
+    EventSolverOrLargerDt,
 }
 
 /// The quantity a refusal asks the user to change, when it is not a row of the parameter
@@ -760,6 +768,8 @@ pub const SAMPLES_PARAM: &str = "samples";
 pub const CELLS_PARAM: &str = "cells";
 /// See [`SAMPLES_PARAM`]: the ensemble's runs.
 pub const RUNS_PARAM: &str = "runs";
+/// See [`SAMPLES_PARAM`]: the frequencies of a response.
+pub const FREQS_PARAM: &str = "freqs";
 
 /// A run refused before it starts: one estimate over its cap, the parameter the user can
 /// change (a row name of [`crate::params::DESIGN`] such as `duration`, `dt`, `k`, or one of
@@ -777,7 +787,7 @@ pub struct Refusal {
 }
 
 /// `Err` of `e` over its cap.
-fn over(e: Estimate, param: &'static str, remedy: Remedy, per: &str) -> Result<(), Refusal> {
+pub(crate) fn over(e: Estimate, param: &'static str, remedy: Remedy, per: &str) -> Result<(), Refusal> {
     if e.exceeded() {
         Err(Refusal { param, estimate: e, remedy, per: per.to_string() })
     } else {
@@ -1031,6 +1041,27 @@ mod tests {
         let [periods, _] = response_work(&Design::default(), &[3.0, 8.0], true);
         // 2 s at 3 Hz is 6 periods < 2N = 20; at 8 Hz 16 < 20: 2 × (20 + settle) per sweep, two sweeps.
         assert!((periods.value - 4.0 * (20.0 + settle)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_refusal_names_the_parameter_the_user_can_change() {
+        let mut d = Design::default();
+        d.damper.stiffness_n_m = 1e10;
+        let per_second = cycles(1.0, d.damper.main_mass_kg, 1e10, d.damper.damping_n_s_m);
+        d.damper.duration_s = 2.0 * CYCLES.max / per_second;
+        let param = |given: &[&str]| check_run(&d, &|n| given.contains(&n), 0).unwrap_err().param;
+        assert_eq!(param(&["k"]), "k", "the stiffness typed alone sets the cycles' rate");
+        assert_eq!(param(&["main-mass"]), "main-mass");
+        assert_eq!(param(&["k", "duration"]), "duration");
+        assert_eq!(param(&[]), "duration");
+        let r = check_run(&d, &|_| false, 0).unwrap_err();
+        assert!(matches!(r.remedy, Remedy::ShorterDuration { max_s } if max_s < d.damper.duration_s));
+        let d = Design { solver: Solver::Newmark { dt_s: 1e-12 }, ..Design::default() };
+        let r = check_run(&d, &|n| n == "duration", 0).unwrap_err();
+        assert_eq!((r.param, r.estimate.cap.what), ("duration", NEWMARK_STEPS.what));
+        assert_eq!(check_run(&d, &|_| false, 0).unwrap_err().param, "dt");
+        assert!(check_sweep(&Design::default(), &|_| false, 1000, 1000).is_err_and(|r| r.param == CELLS_PARAM));
+        assert!(check_runs(&Design::default(), &|_| false, 1, 4).is_ok());
     }
 
     #[test]

@@ -19,6 +19,7 @@ use crate::design::Design;
 pub use crate::design::{leq_db, steady, Steady};
 use crate::ensemble::Percentiles;
 use crate::error::{check_positive, ThudError};
+use crate::limits::{self, Estimate, Refusal, Remedy};
 
 /// How the points of a frequency response start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -81,6 +82,29 @@ impl Default for ResponseOptions {
     fn default() -> Self {
         Self { continuation: false, settle: true }
     }
+}
+
+/// Refuses a frequency response of `d` over `freqs_hz` (twice with `continuation`) with
+/// `runs` runs a frequency whose work is over a cap ([`limits::response_work`]): the forcing
+/// periods summed over the runs (blaming the runs when one run alone is inside the cap, else
+/// the frequencies), the Newmark steps, and the main-mass cycles of one run at the highest
+/// frequency.
+pub fn check_response(d: &Design, freqs_hz: &[f64], continuation: bool, runs: usize) -> Result<(), Refusal> {
+    let [one, one_steps] = limits::response_work(d, freqs_hz, continuation);
+    let n = runs as f64;
+    let (periods, steps) =
+        (Estimate { value: n * one.value, ..one }, Estimate { value: n * one_steps.value, ..one_steps });
+    if runs > 1 && !one.exceeded() {
+        let max = (one.cap.max / one.value).floor();
+        limits::over(periods, limits::RUNS_PARAM, Remedy::FewerRunsPerFrequency { max }, "")?;
+    }
+    limits::over(periods, limits::FREQS_PARAM, Remedy::FewerFrequencies, "")?;
+    if let damper::Solver::Newmark { .. } = d.solver {
+        limits::over(steps, "dt", Remedy::EventSolverOrLargerDt, "")?;
+    }
+    let f_max = freqs_hz.iter().copied().fold(0.0, f64::max);
+    let cycles = limits::design_run(&at_frequency(d, f_max, true), 0)[1];
+    limits::over(cycles, limits::FREQS_PARAM, Remedy::LowerFrequencies, "")
 }
 
 /// The main mass's damped natural frequency (Hz) of `d`: the cycles per second of Eq 25 alone

@@ -167,7 +167,7 @@ pub fn enforce(py: Python<'_>, e: Estimate, param: &str, hint: &str, no_limit: b
 pub fn refuse(py: Python<'_>, r: Result<(), Refusal>, counted: &str, no_limit: bool) -> PyResult<()> {
     let Err(r) = r else { return Ok(()) };
     let param = match r.param {
-        limits::SAMPLES_PARAM | limits::CELLS_PARAM | limits::RUNS_PARAM => counted.to_string(),
+        limits::SAMPLES_PARAM | limits::CELLS_PARAM | limits::RUNS_PARAM | limits::FREQS_PARAM => counted.to_string(),
         row => Spelling::Keyword.spell(row),
     };
     let per = &r.per;
@@ -187,6 +187,12 @@ pub fn refuse(py: Python<'_>, r: Result<(), Refusal>, counted: &str, no_limit: b
         }
         Remedy::FewerRuns { max, .. } => format!("use at most {} runs", short(max)),
         Remedy::ShorterDurationOrFewerRuns { max_s } => format!("use duration ≤ {} s{per} or fewer runs", short(max_s)),
+        Remedy::FewerRunsPerFrequency { max } => {
+            format!("use fewer runs (at most {} for these frequencies)", short(max))
+        }
+        Remedy::FewerFrequencies => "use fewer frequencies or a shorter duration".to_string(),
+        Remedy::LowerFrequencies => "use lower frequencies or a shorter duration".to_string(),
+        Remedy::EventSolverOrLargerDt => "use the event solver or a larger dt".to_string(),
     };
     enforce(py, r.estimate, &param, &hint, no_limit)
 }

@@ -26,7 +26,7 @@ mod objects;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use thud_core::design::{self, Design};
-use thud_core::limits::{self, short, Estimate};
+use thud_core::limits::{self, short};
 use thud_core::params::{self, Spelling};
 use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
 use thud_core::response::{self, ResponseOptions};
@@ -278,23 +278,12 @@ fn check_response(
     runs: usize,
     no_limit: bool,
 ) -> PyResult<()> {
-    let [one, one_steps] = limits::response_work(d, freqs, continuation);
-    let n = runs as f64;
-    let periods = Estimate { value: n * one.value, ..one };
-    if runs > 1 && !one.exceeded() {
-        let hint =
-            format!("use fewer runs (at most {} for these frequencies)", short((one.cap.max / one.value).floor()));
-        enforce(py, periods, "ensemble", &hint, no_limit)?;
-    }
-    enforce(py, periods, "freqs_hz", "use fewer frequencies or a shorter duration", no_limit)?;
-    if let thud_core::damper::Solver::Newmark { dt_s } = d.solver {
-        let steps = Estimate { value: n * one_steps.value, ..one_steps };
-        let _ = dt_s;
-        enforce(py, steps, "dt", "use the event solver or a larger dt", no_limit)?;
-    }
-    let f_max = freqs.iter().copied().fold(0.0, f64::max);
-    let cycles = limits::design_run(&response::at_frequency(d, f_max, true), 0)[1];
-    enforce(py, cycles, "freqs_hz", "use lower frequencies or a shorter duration", no_limit)
+    let r = response::check_response(d, freqs, continuation, runs);
+    let counted = match &r {
+        Err(e) if e.param == limits::RUNS_PARAM => "ensemble",
+        _ => "freqs_hz",
+    };
+    refuse(py, r, counted, no_limit)
 }
 
 /// axis(name, spec) -> numpy.ndarray
