@@ -936,6 +936,28 @@ mod tests {
         assert!((q.observer.theta_rad.to_degrees() - 90.0).abs() < 1e-9);
     }
 
+    /// The field of the engine's row `name` (a [`Knob::Row`]).
+    fn row_field(name: &str) -> Knob {
+        Knob::ALL.into_iter().find(|k| matches!(k, Knob::Row(_)) && k.rows() == [name]).unwrap()
+    }
+
+    #[test]
+    fn fields_made_from_table_rows_set_the_design() {
+        let d = Design::default();
+        let w0 = row_field("ball-velocity");
+        assert_eq!(w0.parsed(&d, "0.5").unwrap().damper.ball_velocity_m_s, 0.5);
+        assert!(w0.parsed(&d, "1e3").is_err(), "out of the row's range");
+        let rho = row_field("density");
+        assert_eq!(rho.parsed(&d, "1000").unwrap().ball, crate::design::BallSize::Density(1000.0));
+        let n = row_field("periods");
+        assert_eq!(n.stepped(&d, true, false).unwrap().damper.steady_periods, 2 * d.damper.steady_periods);
+        assert!(n.parsed(&d, "2.5").is_err(), "a count");
+        let settle = row_field("settle");
+        assert!(settle.stepped(&d, true, false).unwrap().damper.settle);
+        assert_eq!(settle.display(&d), "off");
+        assert_eq!(w0.display(&d), "0 m/s");
+    }
+
     #[test]
     fn step_below_zero_is_refused() {
         let mut d = Design::default();
