@@ -10,11 +10,9 @@ use std::sync::Arc;
 
 use crossterm::event::{Event, MouseButton, MouseEventKind};
 
+use super::cache_key::{ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
 use super::chart::{DesignZone, Geometry};
-use super::compute::{
-    chart_key_runs, default_band, nearest, readout_key, response_key, sim_key, sound_key, AcousticResult, ChartPasses,
-    Grids, SimResult, Stage,
-};
+use super::compute::{default_band, nearest, AcousticResult, ChartPasses, Grids, SimResult, Stage};
 use super::explain;
 use super::fields::{Knob, Scope, Setup};
 use super::keys::{Action, Keymap};
@@ -157,9 +155,9 @@ pub struct Pinned {
 /// The chart as it fills in: the coarse pass and the fine pass, cell by cell.
 #[derive(Debug, Clone)]
 pub struct ChartState {
-    pub key: String,
-    /// The sound key (observer, radiation) the cells' SPLmax were computed for.
-    pub levels_for: String,
+    pub key: ChartKey,
+    /// The sound (observer, radiation) the cells' SPLmax were computed for.
+    pub levels_for: SoundKey,
     pub coarse: Option<Chart>,
     pub fine: Chart,
     /// Runs a cell N; with N > 1 the cells hold the medians of their ensembles.
@@ -172,8 +170,8 @@ impl ChartState {
     fn empty(design: &Design, grids: &Grids, runs: usize) -> Self {
         let fine = Chart::empty(grids.fine.masses_kg.clone(), grids.fine.gaps_m.clone(), design.thresholds);
         Self {
-            key: chart_key_runs(design, grids, runs),
-            levels_for: sound_key(design),
+            key: ChartKey::with_runs(design, grids, runs),
+            levels_for: SoundKey::of(design),
             coarse: grids
                 .coarse
                 .as_ref()
@@ -238,10 +236,10 @@ pub struct App {
     pub(crate) grids: Grids,
     pub(crate) sim: Option<Arc<SimResult>>,
     /// The simulation key `sim` was computed for.
-    pub(crate) sim_for: Option<String>,
+    pub(crate) sim_for: Option<SimKey>,
     pub(crate) acoustic: Option<Arc<AcousticResult>>,
     /// The acoustics key `acoustic` was computed for.
-    pub(crate) acoustic_for: Option<String>,
+    pub(crate) acoustic_for: Option<ReadoutKey>,
     pub chart: ChartState,
     /// An error from the chart sweep, if it failed.
     pub(crate) chart_error: Option<String>,
@@ -280,9 +278,9 @@ pub struct App {
     pub(crate) pending_best: bool,
     /// The response curve shown by the response view, and the key it was computed for.
     pub(crate) response: Option<Arc<Response>>,
-    pub(crate) response_for: Option<String>,
+    pub(crate) response_for: Option<ResponseKey>,
     /// The key of the response curve last asked for (not asked again while it computes).
-    pub(crate) response_asked: Option<String>,
+    pub(crate) response_asked: Option<ResponseKey>,
     /// Why the response curve for `response_asked` could not be computed.
     pub(crate) response_error: Option<String>,
     /// (frequencies done, all) of the response curve being computed.
@@ -517,14 +515,14 @@ impl App {
 
     /// True while the live design's readout is not for its current parameters.
     pub fn design_busy(&self) -> bool {
-        self.acoustic_for.as_deref() != Some(readout_key(&self.design, self.runs).as_str())
+        self.acoustic_for.as_ref() != Some(&ReadoutKey::of(&self.design, self.runs))
     }
 
     /// The response curve of the live design, if computed for it (f aside: the curve does
     /// not depend on it).
     pub fn response(&self) -> Option<&Response> {
-        let key = response_key(&self.design, &default_band(&self.design));
-        self.response.as_deref().filter(|_| self.response_for.as_deref() == Some(key.as_str()))
+        let key = ResponseKey::of(&self.design, &default_band(&self.design));
+        self.response.as_deref().filter(|_| self.response_for.as_ref() == Some(&key))
     }
 
     /// True while the response view waits for its curve.
@@ -538,7 +536,7 @@ impl App {
     /// True while the chart is still filling in.
     pub fn chart_busy(&self) -> bool {
         let (done, total) = self.chart.progress();
-        (done < total || self.chart.levels_for != sound_key(&self.design)) && self.chart_error.is_none()
+        (done < total || self.chart.levels_for != SoundKey::of(&self.design)) && self.chart_error.is_none()
     }
 
     /// Handles one message; returns the work to ask the worker for.
@@ -782,7 +780,7 @@ impl App {
     /// The work a change of `scope` needs (the worker's caches make repeats cheap).
     fn requests(&mut self, scope: Scope) -> Vec<Request> {
         let mut out = Vec::new();
-        let sim_fresh = self.sim_for.as_deref() == Some(sim_key(&self.design).as_str());
+        let sim_fresh = self.sim_for.as_ref() == Some(&SimKey::of(&self.design));
         match (scope, &self.sim) {
             (Scope::Thresholds, _) => {}
             (Scope::Acoustics, Some(sim)) if sim_fresh => {
@@ -790,12 +788,12 @@ impl App {
             }
             _ => out.push(Request::Sim(self.design.clone())),
         }
-        let key = chart_key_runs(&self.design, &self.grids, self.runs);
+        let key = ChartKey::with_runs(&self.design, &self.grids, self.runs);
         if key != self.chart.key {
             self.chart = ChartState::empty(&self.design, &self.grids, self.runs);
             self.chart_error = None;
             out.push(Request::Chart(self.design.clone(), ChartWork::Zones(self.grids.clone(), self.runs)));
-        } else if self.chart.levels_for != sound_key(&self.design) {
+        } else if self.chart.levels_for != SoundKey::of(&self.design) {
             out.push(self.relevel());
         }
         out.extend(self.response_request());
@@ -809,8 +807,8 @@ impl App {
             return None;
         }
         let band = default_band(&self.design);
-        let key = response_key(&self.design, &band);
-        if self.response_for.as_deref() == Some(key.as_str()) || self.response_asked.as_deref() == Some(key.as_str()) {
+        let key = ResponseKey::of(&self.design, &band);
+        if self.response_for.as_ref() == Some(&key) || self.response_asked.as_ref() == Some(&key) {
             return None;
         }
         self.response_asked = Some(key);
@@ -829,7 +827,7 @@ impl App {
     fn work(&mut self, done: Done) -> Vec<Request> {
         match done {
             Done::Sim { key, result } => {
-                if key != sim_key(&self.design) {
+                if key != SimKey::of(&self.design) {
                     return vec![];
                 }
                 match result {
@@ -850,7 +848,7 @@ impl App {
                 }
             }
             Done::Acoustic { key, result } => {
-                if key != readout_key(&self.design, self.runs) {
+                if key != ReadoutKey::of(&self.design, self.runs) {
                     return vec![];
                 }
                 match result {
@@ -870,7 +868,7 @@ impl App {
                         *slot = Some(e);
                     }
                 }
-                if sound != sound_key(&self.design) {
+                if sound != SoundKey::of(&self.design) {
                     self.chart.levels_for = sound;
                 }
             }
@@ -883,14 +881,14 @@ impl App {
                         self.chart.ensembles =
                             e.cells.iter().map(|c| c.as_ref().map(|c| Arc::new(c.ensemble.clone()))).collect();
                     }
-                    if sound != sound_key(&self.design) {
+                    if sound != SoundKey::of(&self.design) {
                         self.chart.levels_for = sound;
                         return vec![self.relevel()];
                     }
                 }
                 Err(e) => self.chart_failed(e),
             },
-            Done::Relevel { key, sound, result } if key == self.chart.key && sound == sound_key(&self.design) => {
+            Done::Relevel { key, sound, result } if key == self.chart.key && sound == SoundKey::of(&self.design) => {
                 match result {
                     Ok(passes) => {
                         self.merge_levels(&passes);
@@ -901,7 +899,7 @@ impl App {
             }
             Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
             Done::Response { key, result } => {
-                if self.response_asked.as_deref() != Some(key.as_str()) {
+                if self.response_asked.as_ref() != Some(&key) {
                     return vec![];
                 }
                 match result {
@@ -916,7 +914,7 @@ impl App {
                 }
             }
             Done::ResponseProgress { key, done, total } => {
-                if self.response_asked.as_deref() == Some(key.as_str()) {
+                if self.response_asked.as_ref() == Some(&key) {
                     self.response_progress = (done, total);
                 }
             }

@@ -21,6 +21,7 @@
 //! (the key table) and `terminal` (setup and restore).
 
 pub mod app;
+pub mod cache_key;
 pub mod chart;
 pub mod compute;
 pub mod explain;

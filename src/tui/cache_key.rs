@@ -1,0 +1,332 @@
+//! The keys the explorer's results are tagged and cached with: small hashable structs of the
+//! inputs each result depends on (every `f64` held as its bits), one per kind of result. A
+//! result whose key differs from the live design's is stale; equal keys let the worker's caches
+//! answer.
+//!
+//! Each engine struct is taken apart by an exhaustive pattern (no `..`), so a field added to
+//! the engine's `DamperParams`, `Observer`, `Radiation` or `Air` does not compile until its
+//! key says whether it counts: no new parameter can be left out of a key by forgetting it.
+//! Hand-written rather than derived because the engine's types hold `f64`s, which are not
+//! `Hash`, and the engine stays free of the explorer's needs.
+
+use std::mem::{discriminant, Discriminant};
+use std::sync::Arc;
+
+use super::compute::{response_design, FreqBand, Grids};
+use crate::acoustics::{Air, Observer, PulseShape, QuadSigns, Radiation, Source};
+use crate::damper::{DamperParams, Solver};
+use crate::design::{self, BallSize, Design, Materials, U0MaxRule};
+
+/// An `f64` as its bits, −0 taken as +0 (equal values give equal keys; the values keyed are
+/// checked finite before any work starts).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Bits(u64);
+
+impl From<f64> for Bits {
+    fn from(x: f64) -> Self {
+        Self(if x == 0.0 { 0 } else { x.to_bits() })
+    }
+}
+
+/// The damper and its run: every field of [`DamperParams`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct DamperKey {
+    /// M, K, C, m, d, K_HZ, c1, v0, duration, F0, f, y0, w0 (SI, as in [`DamperParams`]).
+    values: [Bits; 13],
+    no_tension: bool,
+    steady_periods: u32,
+    settle: bool,
+}
+
+impl From<&DamperParams> for DamperKey {
+    fn from(p: &DamperParams) -> Self {
+        let DamperParams {
+            main_mass_kg,
+            stiffness_n_m,
+            damping_n_s_m,
+            impact_mass_kg,
+            gap_m,
+            k_hz,
+            c1_n_s_m,
+            no_tension,
+            v0_m_s,
+            duration_s,
+            force_n,
+            freq_hz,
+            ball_position_m,
+            ball_velocity_m_s,
+            steady_periods,
+            settle,
+        } = *p;
+        let values = [
+            main_mass_kg,
+            stiffness_n_m,
+            damping_n_s_m,
+            impact_mass_kg,
+            gap_m,
+            k_hz,
+            c1_n_s_m,
+            v0_m_s,
+            duration_s,
+            force_n,
+            freq_hz,
+            ball_position_m,
+            ball_velocity_m_s,
+        ];
+        Self { values: values.map(Bits::from), no_tension, steady_periods, settle }
+    }
+}
+
+/// How the ball's size is given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum BallKey {
+    Density(Bits),
+    Radius(Bits),
+}
+
+impl From<BallSize> for BallKey {
+    fn from(b: BallSize) -> Self {
+        match b {
+            BallSize::Density(rho) => BallKey::Density(rho.into()),
+            BallSize::Radius(r) => BallKey::Radius(r.into()),
+        }
+    }
+}
+
+/// The solver (and its step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum SolverKey {
+    Event,
+    Newmark(Bits),
+}
+
+impl From<Solver> for SolverKey {
+    fn from(s: Solver) -> Self {
+        match s {
+            Solver::Event => SolverKey::Event,
+            Solver::Newmark { dt_s } => SolverKey::Newmark(dt_s.into()),
+        }
+    }
+}
+
+/// What a simulation depends on: the damper, the ball, the materials and the solver (shared:
+/// every report of a job carries its key, so a clone is a count).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct SimKey(Arc<SimParts>);
+
+#[derive(Debug, PartialEq, Eq, Hash)]
+struct SimParts {
+    damper: DamperKey,
+    ball: BallKey,
+    materials: Option<(String, String)>,
+    solver: SolverKey,
+}
+
+impl SimKey {
+    /// The key of the simulation of `d`.
+    pub fn of(d: &Design) -> Self {
+        let materials = d.materials.as_ref().map(|Materials { sphere, plate }| (sphere.clone(), plate.clone()));
+        Self(Arc::new(SimParts { damper: (&d.damper).into(), ball: d.ball.into(), materials, solver: d.solver.into() }))
+    }
+}
+
+/// What the sound at the observer depends on beyond each impact: the observer and the
+/// radiation (source, quadrupole signs, air, pulse shape).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SoundKey {
+    /// r (m), θ (rad), ρ0·c (Pa·s/m), c (m/s).
+    values: [Bits; 4],
+    source: Discriminant<Source>,
+    quad_signs: Discriminant<QuadSigns>,
+    pulse: Discriminant<PulseShape>,
+}
+
+impl SoundKey {
+    /// The key of the sound of `d` at its observer.
+    pub fn of(d: &Design) -> Self {
+        let Observer { r_m, theta_rad } = d.observer;
+        let Radiation { source, quad_signs, air, pulse } = d.radiation;
+        let Air { rho_c_pa_s_m, c_m_s } = air;
+        Self {
+            values: [r_m, theta_rad, rho_c_pa_s_m, c_m_s].map(Bits::from),
+            source: discriminant(&source),
+            quad_signs: discriminant(&quad_signs),
+            pulse: discriminant(&pulse),
+        }
+    }
+}
+
+/// A whole design but its zone thresholds (zones are classified on draw, so a threshold edit
+/// asks for nothing): what its acoustics depend on.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct DesignKey {
+    sim: SimKey,
+    sound: SoundKey,
+    u0max_rule: Discriminant<U0MaxRule>,
+}
+
+impl DesignKey {
+    /// The key of `d` without its thresholds.
+    pub fn of(d: &Design) -> Self {
+        // Every field named: a new one must say here whether the acoustics depend on it.
+        let Design {
+            damper: _,
+            ball: _,
+            materials: _,
+            observer: _,
+            radiation: _,
+            solver: _,
+            u0max_rule,
+            thresholds: _,
+        } = d;
+        Self { sim: SimKey::of(d), sound: SoundKey::of(d), u0max_rule: discriminant(u0max_rule) }
+    }
+}
+
+/// What the readout of a design depends on: the design (thresholds aside) and, with N > 1,
+/// the ensemble size (N = 0 and 1 both mean the single run).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct ReadoutKey {
+    design: DesignKey,
+    ensemble: Option<usize>,
+}
+
+impl ReadoutKey {
+    /// The key of the readout of `d` with `runs` runs.
+    pub fn of(d: &Design, runs: usize) -> Self {
+        Self { design: DesignKey::of(d), ensemble: (runs > 1).then_some(runs) }
+    }
+}
+
+/// What a chart depends on: the design but its mass, gap, thresholds and sound (a change of
+/// observer relevels the chart instead of sweeping it again), the sizes of the grids, and with
+/// N > 1 runs a cell the ensemble size and the sound (an ensemble chart is swept again for a new
+/// observer: its runs' zones, and so how many agree, depend on it). Shared, as [`SimKey`].
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct ChartKey(Arc<ChartParts>);
+
+#[derive(Debug, PartialEq, Eq, Hash)]
+struct ChartParts {
+    /// The damper with mass and gap zeroed; the ball, materials, solver.
+    sweep: SimKey,
+    u0max_rule: Discriminant<U0MaxRule>,
+    /// (masses, gaps) of the coarse pass, if any.
+    coarse: Option<(usize, usize)>,
+    /// (masses, gaps) of the fine pass.
+    fine: (usize, usize),
+    ensemble: Option<(usize, SoundKey)>,
+}
+
+impl ChartKey {
+    /// The key of the single-run chart of `d` over `grids` (what a relevel keeps).
+    pub fn of(d: &Design, grids: &Grids) -> Self {
+        Self::with_ensemble(d, grids, None)
+    }
+
+    /// The key of the chart of `d` over `grids` with `runs` runs a cell.
+    pub fn with_runs(d: &Design, grids: &Grids, runs: usize) -> Self {
+        Self::with_ensemble(d, grids, (runs > 1).then(|| (runs, SoundKey::of(d))))
+    }
+
+    fn with_ensemble(d: &Design, grids: &Grids, ensemble: Option<(usize, SoundKey)>) -> Self {
+        let size = |masses: &[f64], gaps: &[f64]| (masses.len(), gaps.len());
+        Self(Arc::new(ChartParts {
+            sweep: SimKey::of(&design::variant(d, 0.0, 0.0)),
+            u0max_rule: discriminant(&d.u0max_rule),
+            coarse: grids.coarse.as_ref().map(|g| size(&g.masses_kg, &g.gaps_m)),
+            fine: size(&grids.fine.masses_kg, &grids.fine.gaps_m),
+            ensemble,
+        }))
+    }
+}
+
+/// What a response curve depends on: the design from rest without its forcing frequency
+/// ([`response_design`]: the curve does not depend on f, so a change of f moves the marker
+/// only) and the band.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct ResponseKey {
+    design: DesignKey,
+    /// From and to (Hz).
+    band: [Bits; 2],
+    points: usize,
+}
+
+impl ResponseKey {
+    /// The key of the response curve of `d` over `band`.
+    pub fn of(d: &Design, band: &FreqBand) -> Self {
+        let FreqBand { from_hz, to_hz, points } = *band;
+        Self { design: DesignKey::of(&response_design(d)), band: [from_hz, to_hz].map(Bits::from), points }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::compute::default_band;
+
+    #[test]
+    fn equal_designs_give_equal_keys() {
+        let (a, b) = (Design::default(), Design::default());
+        assert_eq!(SimKey::of(&a), SimKey::of(&b));
+        assert_eq!(ReadoutKey::of(&a, 4), ReadoutKey::of(&b, 4));
+        assert_eq!(ChartKey::with_runs(&a, &Grids::default(), 3), ChartKey::with_runs(&b, &Grids::default(), 3));
+        assert_eq!(ResponseKey::of(&a, &default_band(&a)), ResponseKey::of(&b, &default_band(&b)));
+        let mut c = Design::default();
+        c.damper.force_n = -0.0;
+        assert_eq!(SimKey::of(&a), SimKey::of(&c), "−0 is 0");
+    }
+
+    #[test]
+    fn a_change_of_f_keeps_the_response_key_and_changes_the_sim_key() {
+        let mut a = Design::default();
+        a.damper.force_n = 1.0;
+        a.damper.freq_hz = 5.0;
+        let mut b = a.clone();
+        b.damper.freq_hz = 6.5;
+        let band = default_band(&a);
+        assert_eq!(ResponseKey::of(&a, &band), ResponseKey::of(&b, &band), "the curve does not depend on f");
+        assert_ne!(SimKey::of(&a), SimKey::of(&b), "the run does");
+        let mut c = a.clone();
+        c.damper.force_n = 2.0;
+        assert_ne!(ResponseKey::of(&a, &band), ResponseKey::of(&c, &band), "the curve depends on F0");
+    }
+
+    #[test]
+    fn a_change_of_mass_changes_the_sim_key_not_the_chart_key() {
+        let a = Design::default();
+        let b = design::variant(&a, a.damper.impact_mass_kg + 1e-3, a.damper.gap_m);
+        assert_ne!(SimKey::of(&a), SimKey::of(&b));
+        assert_ne!(ReadoutKey::of(&a, 1), ReadoutKey::of(&b, 1));
+        assert_eq!(ChartKey::of(&a, &Grids::default()), ChartKey::of(&b, &Grids::default()), "a chart spans masses");
+        let mut heavy = a.clone();
+        heavy.damper.main_mass_kg *= 2.0;
+        assert_ne!(ChartKey::of(&a, &Grids::default()), ChartKey::of(&heavy, &Grids::default()));
+    }
+
+    #[test]
+    fn keys_separate_what_they_should() {
+        let d = Design::default();
+        let mut heard = d.clone();
+        heard.observer.r_m = 1.0;
+        assert_eq!(SimKey::of(&d), SimKey::of(&heard));
+        assert_ne!(DesignKey::of(&d), DesignKey::of(&heard));
+        assert_ne!(SoundKey::of(&d), SoundKey::of(&heard));
+        assert_eq!(ChartKey::of(&d, &Grids::default()), ChartKey::of(&heard, &Grids::default()), "observer relevels");
+        assert_ne!(
+            ChartKey::with_runs(&d, &Grids::default(), 4),
+            ChartKey::with_runs(&heard, &Grids::default(), 4),
+            "an ensemble chart is swept again for a new observer"
+        );
+        assert_eq!(ReadoutKey::of(&d, 0), ReadoutKey::of(&d, 1), "N 0 and 1 are the single run");
+        assert_ne!(ReadoutKey::of(&d, 1), ReadoutKey::of(&d, 2));
+        let mut strict = d.clone();
+        strict.thresholds.spl_db -= 10.0;
+        assert_eq!(ReadoutKey::of(&d, 1), ReadoutKey::of(&strict, 1), "thresholds are applied on draw");
+        let mut newmark = d.clone();
+        newmark.solver = Solver::newmark_default();
+        assert_ne!(SimKey::of(&d), SimKey::of(&newmark));
+        let mut dipole = d.clone();
+        dipole.radiation.source = Source::Dipole;
+        assert_ne!(SoundKey::of(&d), SoundKey::of(&dipole));
+    }
+}
