@@ -28,7 +28,6 @@ pub mod explain;
 pub mod fields;
 pub mod files;
 pub mod history;
-pub mod input;
 pub mod job;
 pub mod keys;
 pub mod params;
