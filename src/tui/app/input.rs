@@ -167,6 +167,7 @@ impl App {
         vec![]
     }
 
+    /// A key in the value line of the selected field.
     fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
         match line_key(k, buf, VALUE_MAX) {
             Line::Typing(buf) => self.mode = Mode::Editing(buf),
@@ -182,6 +183,7 @@ impl App {
         vec![]
     }
 
+    /// A key in the save line (the name to save under).
     fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
         match line_key(k, buf, NAME_MAX) {
             Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
@@ -232,6 +234,7 @@ impl App {
         ListNav::Stay
     }
 
+    /// A key in the preset list; Enter loads the preset (undoable).
     fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
         let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
@@ -247,12 +250,14 @@ impl App {
         }
     }
 
+    /// A key in the saved-designs list; Enter loads the design (undoable).
     fn saved_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let n = self.saved.designs.len() + self.saved.problems.len();
         let ListNav::Choose(i) = self.list_nav(k, i, n, Mode::Saved) else { return vec![] };
         self.load_saved(i)
     }
 
+    /// A key in the export menu; Enter asks for that export.
     fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
         let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };

@@ -12,6 +12,7 @@ use crate::units::sig;
 
 /// The views and the hint.
 impl App {
+    /// Pins the live design with its results (drawn dim beside it), or unpins it.
     pub(crate) fn toggle_pin(&mut self) {
         if self.pinned.take().is_some() {
             self.set_status("unpinned", false);
@@ -25,6 +26,7 @@ impl App {
         }
     }
 
+    /// Switches the chart panel between the zones and the scatter (from the response: zones).
     pub(crate) fn toggle_chart_view(&mut self) {
         self.chart_view = match self.chart_view {
             ChartView::Zones => ChartView::Scatter,

@@ -487,6 +487,7 @@ impl App {
         vec![]
     }
 
+    /// Shows `text` in the status line (red if `error`).
     pub(crate) fn set_status(&mut self, text: &str, error: bool) {
         self.status = Some(Status { text: text.to_string(), error });
     }

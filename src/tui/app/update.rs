@@ -171,6 +171,7 @@ impl App {
         merge(&mut self.chart.fine, &p.fine);
     }
 
+    /// The chart of a pass.
     fn stage_chart(&mut self, stage: Stage) -> Option<&mut Chart> {
         match stage {
             Stage::Coarse => self.chart.coarse.as_mut(),
