@@ -1,7 +1,7 @@
 //! The explorer's state: the live design and what was computed for it, what the screen shows,
 //! and the host's set-up, grouped by concern in small structs; with the queries the view
-//! (`ui.rs`) draws from. Nothing here asks for work or reads a file: the changes are in
-//! `change.rs`, `files.rs`, `input.rs` and `update.rs`.
+//! (`ui.rs`) draws from. Nothing here asks for work or reads a file: the changes are the
+//! other modules' (`change`, `screen`, `guide`, `files`, `input`, `update`).
 
 use std::fmt::Display;
 use std::path::PathBuf;
