@@ -303,6 +303,134 @@ mod tests {
         assert_ne!(ChartKey::of(&a, &Grids::default()), ChartKey::of(&heavy, &Grids::default()));
     }
 
+    /// The keys as they were before they were typed: the serialized parameters.
+    mod json_keys {
+        use super::*;
+        use crate::acoustics::Observer;
+        use crate::design::Thresholds;
+
+        fn json<T: serde::Serialize>(v: &T) -> String {
+            serde_json::to_string(v).unwrap()
+        }
+
+        pub fn sim(d: &Design) -> String {
+            json(&(&d.damper, &d.ball, &d.materials, &d.solver))
+        }
+
+        pub fn readout(d: &Design, runs: usize) -> String {
+            let mut a = d.clone();
+            a.thresholds = Thresholds::default();
+            if runs > 1 {
+                format!("{}|ensemble {runs}", json(&a))
+            } else {
+                json(&a)
+            }
+        }
+
+        pub fn sound(d: &Design) -> String {
+            json(&(&d.observer, &d.radiation))
+        }
+
+        pub fn chart(d: &Design, grids: &Grids, runs: usize) -> String {
+            let mut c = design::variant(d, 0.0, 0.0);
+            c.thresholds = Thresholds::default();
+            c.observer = Observer::new(0.0, 0.0);
+            c.radiation = Radiation::default();
+            let sizes = |g: &crate::tui::compute::Grid| (g.masses_kg.len(), g.gaps_m.len());
+            let key = format!("{}|{:?}|{:?}", json(&c), grids.coarse.as_ref().map(sizes), sizes(&grids.fine));
+            if runs > 1 {
+                format!("{key}|ensemble {runs}|{}", sound(d))
+            } else {
+                key
+            }
+        }
+
+        pub fn response(d: &Design, band: &FreqBand) -> String {
+            format!("{}|{:?}", json(&response_design(d)), band)
+        }
+    }
+
+    /// The base design (forced, so that f and F0 count) and one change of each of its inputs.
+    fn changed_designs() -> (Design, Vec<(&'static str, Design)>) {
+        let mut base = Design::default();
+        base.damper.force_n = 1.0;
+        base.damper.freq_hz = 5.0;
+        let change = |what: &'static str, f: &dyn Fn(&mut Design)| {
+            let mut d = base.clone();
+            f(&mut d);
+            (what, d)
+        };
+        let changes = vec![
+            change("nothing", &|_| {}),
+            change("M", &|d| d.damper.main_mass_kg *= 1.5),
+            change("K", &|d| d.damper.stiffness_n_m *= 1.5),
+            change("C", &|d| d.damper.damping_n_s_m *= 1.5),
+            change("m", &|d| d.damper.impact_mass_kg *= 1.5),
+            change("d", &|d| d.damper.gap_m *= 1.5),
+            change("K_HZ", &|d| d.damper.k_hz *= 1.5),
+            change("c1", &|d| d.damper.c1_n_s_m *= 1.5),
+            change("no tension", &|d| d.damper.no_tension = !d.damper.no_tension),
+            change("v0", &|d| d.damper.v0_m_s *= 1.5),
+            change("duration", &|d| d.damper.duration_s *= 1.5),
+            change("F0", &|d| d.damper.force_n *= 1.5),
+            change("f", &|d| d.damper.freq_hz *= 1.5),
+            change("y0", &|d| d.damper.ball_position_m = 0.001),
+            change("w0", &|d| d.damper.ball_velocity_m_s = 0.1),
+            change("periods", &|d| d.damper.steady_periods += 1),
+            change("settle", &|d| d.damper.settle = !d.damper.settle),
+            change("radius", &|d| d.ball = BallSize::Radius(0.01)),
+            change("materials", &|d| {
+                d.materials = Some(Materials { sphere: "steel".into(), plate: "steel".into() });
+            }),
+            change("solver", &|d| d.solver = Solver::newmark_default()),
+            change("r", &|d| d.observer.r_m *= 1.5),
+            change("θ", &|d| d.observer.theta_rad *= 0.5),
+            change("source", &|d| d.radiation.source = Source::Dipole),
+            change("quad signs", &|d| d.radiation.quad_signs = QuadSigns::Paper),
+            change("ρc", &|d| d.radiation.air.rho_c_pa_s_m *= 1.1),
+            change("c", &|d| d.radiation.air.c_m_s *= 1.1),
+            change("pulse", &|d| d.radiation.pulse = PulseShape::Hertz),
+            change("U0max rule", &|d| d.u0max_rule = U0MaxRule::WholeRun),
+            change("L*", &|d| d.thresholds.spl_db -= 5.0),
+            change("e*", &|d| d.thresholds.inclination_cm_s *= 2.0),
+        ];
+        (base, changes)
+    }
+
+    #[test]
+    fn typed_keys_tell_designs_apart_exactly_as_the_serialized_keys_did() {
+        let (base, changes) = changed_designs();
+        let grids = Grids::default();
+        let band = default_band(&base);
+        for (what, d) in &changes {
+            let same = |typed: bool, json: bool, key: &str| {
+                assert_eq!(typed, json, "{key} key after a change of {what}: typed equal {typed}, serialized {json}");
+            };
+            same(SimKey::of(&base) == SimKey::of(d), json_keys::sim(&base) == json_keys::sim(d), "sim");
+            same(SoundKey::of(&base) == SoundKey::of(d), json_keys::sound(&base) == json_keys::sound(d), "sound");
+            for runs in [1, 3] {
+                same(
+                    ReadoutKey::of(&base, runs) == ReadoutKey::of(d, runs),
+                    json_keys::readout(&base, runs) == json_keys::readout(d, runs),
+                    "readout",
+                );
+                same(
+                    ChartKey::with_runs(&base, &grids, runs) == ChartKey::with_runs(d, &grids, runs),
+                    json_keys::chart(&base, &grids, runs) == json_keys::chart(d, &grids, runs),
+                    "chart",
+                );
+            }
+            same(
+                ResponseKey::of(&base, &band) == ResponseKey::of(d, &band),
+                json_keys::response(&base, &band) == json_keys::response(d, &band),
+                "response",
+            );
+        }
+        // Each change is a change of something: the keys as a whole see every one but the thresholds.
+        let seen = changes.iter().filter(|(_, d)| ReadoutKey::of(&base, 1) != ReadoutKey::of(d, 1)).count();
+        assert_eq!(seen, changes.len() - 3, "all but nothing, L* and e*");
+    }
+
     #[test]
     fn keys_separate_what_they_should() {
         let d = Design::default();
