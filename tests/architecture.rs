@@ -160,24 +160,6 @@ fn the_circle_check_finds_a_planted_circle() {
     assert!(circles(&graph(src)).is_empty());
 }
 
-#[test]
-fn the_engine_depends_on_no_ui_file_or_terminal_crate() {
-    let manifest = fs::read_to_string(root().join("crates/thud-core/Cargo.toml")).unwrap();
-    let deps: Vec<&str> = manifest
-        .split("[dependencies]")
-        .nth(1)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .take_while(|l| !l.starts_with('['))
-        .filter_map(|l| l.split('=').next().map(str::trim).filter(|n| !n.is_empty() && !n.starts_with('#')))
-        .collect();
-    assert!(deps.contains(&"nalgebra") && deps.contains(&"serde"), "{deps:?}");
-    for ui in ["ratatui", "crossterm", "clap", "hound", "directories", "toml", "pyo3", "csv", "signal-hook"] {
-        assert!(!deps.contains(&ui), "thud-core depends on {ui}: {deps:?}");
-    }
-}
-
 /// The explorer's app modules (`src/tui/app/`) in order: each calls methods of `App` defined in
 /// itself or the modules before it, never after, so no two of them call each other.
 const APP_LAYERS: [&str; 7] = ["state", "change", "screen", "guide", "files", "input", "update"];
@@ -252,4 +234,22 @@ fn the_layer_check_finds_a_call_up() {
         ("update", "fn work(&mut self) -> Vec<u8> { self.busy(); vec![] }".to_string()),
     ];
     assert_eq!(calls_up(&planted), vec!["state calls self.work() of update".to_string()]);
+}
+
+#[test]
+fn the_engine_depends_on_no_ui_file_or_terminal_crate() {
+    let manifest = fs::read_to_string(root().join("crates/thud-core/Cargo.toml")).unwrap();
+    let deps: Vec<&str> = manifest
+        .split("[dependencies]")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .take_while(|l| !l.starts_with('['))
+        .filter_map(|l| l.split('=').next().map(str::trim).filter(|n| !n.is_empty() && !n.starts_with('#')))
+        .collect();
+    assert!(deps.contains(&"nalgebra") && deps.contains(&"serde"), "{deps:?}");
+    for ui in ["ratatui", "crossterm", "clap", "hound", "directories", "toml", "pyo3", "csv", "signal-hook"] {
+        assert!(!deps.contains(&ui), "thud-core depends on {ui}: {deps:?}");
+    }
 }
