@@ -1,185 +1,56 @@
-//! The keys the explorer's results are tagged and cached with: small hashable structs of the
-//! inputs each result depends on (every `f64` held as its bits), one per kind of result. A
-//! result whose key differs from the live design's is stale; equal keys let the worker's caches
-//! answer.
+//! The keys the explorer's results are tagged and cached with: small hashable structs of what
+//! each result depends on, one type per kind of result. A result whose key differs from the
+//! live design's is stale; equal keys let the worker's caches answer.
 //!
-//! Each engine struct is taken apart by an exhaustive pattern (no `..`), so a field added to
-//! the engine's `DamperParams`, `Observer`, `Radiation` or `Air` does not compile until its
-//! key says whether it counts: no new parameter can be left out of a key by forgetting it.
-//! Hand-written rather than derived because the engine's types hold `f64`s, which are not
-//! `Hash`, and the engine stays free of the explorer's needs.
+//! Each key is built from the design's serialized form ([`Fingerprint`]: serde's fields as
+//! tokens, every `f64` as its bits), with what the result does not depend on set aside first
+//! (the thresholds, which are applied on draw; a chart's mass and gap; a response curve's f).
+//! So a parameter added to the engine's structs counts in every key without an edit here, as
+//! it did when the keys were JSON texts, and two keys compare without formatting any text.
 
-use std::mem::{discriminant, Discriminant};
 use std::sync::Arc;
 
 use super::compute::{response_design, FreqBand, Grids};
-use crate::acoustics::{Air, Observer, PulseShape, QuadSigns, Radiation, Source};
-use crate::damper::{DamperParams, Solver};
-use crate::design::{self, BallSize, Design, Materials, U0MaxRule};
-
-/// An `f64` as its bits, −0 taken as +0 (equal values give equal keys; the values keyed are
-/// checked finite before any work starts).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct Bits(u64);
-
-impl From<f64> for Bits {
-    fn from(x: f64) -> Self {
-        Self(if x == 0.0 { 0 } else { x.to_bits() })
-    }
-}
-
-/// The damper and its run: every field of [`DamperParams`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct DamperKey {
-    /// M, K, C, m, d, K_HZ, c1, v0, duration, F0, f, y0, w0 (SI, as in [`DamperParams`]).
-    values: [Bits; 13],
-    no_tension: bool,
-    steady_periods: u32,
-    settle: bool,
-}
-
-impl From<&DamperParams> for DamperKey {
-    fn from(p: &DamperParams) -> Self {
-        let DamperParams {
-            main_mass_kg,
-            stiffness_n_m,
-            damping_n_s_m,
-            impact_mass_kg,
-            gap_m,
-            k_hz,
-            c1_n_s_m,
-            no_tension,
-            v0_m_s,
-            duration_s,
-            force_n,
-            freq_hz,
-            ball_position_m,
-            ball_velocity_m_s,
-            steady_periods,
-            settle,
-        } = *p;
-        let values = [
-            main_mass_kg,
-            stiffness_n_m,
-            damping_n_s_m,
-            impact_mass_kg,
-            gap_m,
-            k_hz,
-            c1_n_s_m,
-            v0_m_s,
-            duration_s,
-            force_n,
-            freq_hz,
-            ball_position_m,
-            ball_velocity_m_s,
-        ];
-        Self { values: values.map(Bits::from), no_tension, steady_periods, settle }
-    }
-}
-
-/// How the ball's size is given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum BallKey {
-    Density(Bits),
-    Radius(Bits),
-}
-
-impl From<BallSize> for BallKey {
-    fn from(b: BallSize) -> Self {
-        match b {
-            BallSize::Density(rho) => BallKey::Density(rho.into()),
-            BallSize::Radius(r) => BallKey::Radius(r.into()),
-        }
-    }
-}
-
-/// The solver (and its step).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum SolverKey {
-    Event,
-    Newmark(Bits),
-}
-
-impl From<Solver> for SolverKey {
-    fn from(s: Solver) -> Self {
-        match s {
-            Solver::Event => SolverKey::Event,
-            Solver::Newmark { dt_s } => SolverKey::Newmark(dt_s.into()),
-        }
-    }
-}
+pub use super::fingerprint::Bits;
+use super::fingerprint::Fingerprint;
+use crate::acoustics::{Observer, Radiation};
+use crate::design::{self, Design, Thresholds};
 
 /// What a simulation depends on: the damper, the ball, the materials and the solver (shared:
 /// every report of a job carries its key, so a clone is a count).
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
-pub struct SimKey(Arc<SimParts>);
-
-#[derive(Debug, PartialEq, Eq, Hash)]
-struct SimParts {
-    damper: DamperKey,
-    ball: BallKey,
-    materials: Option<(String, String)>,
-    solver: SolverKey,
-}
+pub struct SimKey(Arc<Fingerprint>);
 
 impl SimKey {
     /// The key of the simulation of `d`.
     pub fn of(d: &Design) -> Self {
-        let materials = d.materials.as_ref().map(|Materials { sphere, plate }| (sphere.clone(), plate.clone()));
-        Self(Arc::new(SimParts { damper: (&d.damper).into(), ball: d.ball.into(), materials, solver: d.solver.into() }))
+        Self(Arc::new(Fingerprint::of(&(&d.damper, &d.ball, &d.materials, &d.solver))))
     }
 }
 
 /// What the sound at the observer depends on beyond each impact: the observer and the
-/// radiation (source, quadrupole signs, air, pulse shape).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct SoundKey {
-    /// r (m), θ (rad), ρ0·c (Pa·s/m), c (m/s).
-    values: [Bits; 4],
-    source: Discriminant<Source>,
-    quad_signs: Discriminant<QuadSigns>,
-    pulse: Discriminant<PulseShape>,
-}
+/// radiation (source, quadrupole signs, air, pulse shape). Shared, as [`SimKey`].
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct SoundKey(Arc<Fingerprint>);
 
 impl SoundKey {
     /// The key of the sound of `d` at its observer.
     pub fn of(d: &Design) -> Self {
-        let Observer { r_m, theta_rad } = d.observer;
-        let Radiation { source, quad_signs, air, pulse } = d.radiation;
-        let Air { rho_c_pa_s_m, c_m_s } = air;
-        Self {
-            values: [r_m, theta_rad, rho_c_pa_s_m, c_m_s].map(Bits::from),
-            source: discriminant(&source),
-            quad_signs: discriminant(&quad_signs),
-            pulse: discriminant(&pulse),
-        }
+        Self(Arc::new(Fingerprint::of(&(&d.observer, &d.radiation))))
     }
 }
 
 /// A whole design but its zone thresholds (zones are classified on draw, so a threshold edit
 /// asks for nothing): what its acoustics depend on.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
-pub struct DesignKey {
-    sim: SimKey,
-    sound: SoundKey,
-    u0max_rule: Discriminant<U0MaxRule>,
-}
+pub struct DesignKey(Arc<Fingerprint>);
 
 impl DesignKey {
     /// The key of `d` without its thresholds.
     pub fn of(d: &Design) -> Self {
-        // Every field named: a new one must say here whether the acoustics depend on it.
-        let Design {
-            damper: _,
-            ball: _,
-            materials: _,
-            observer: _,
-            radiation: _,
-            solver: _,
-            u0max_rule,
-            thresholds: _,
-        } = d;
-        Self { sim: SimKey::of(d), sound: SoundKey::of(d), u0max_rule: discriminant(u0max_rule) }
+        let mut d = d.clone();
+        d.thresholds = Thresholds::default();
+        Self(Arc::new(Fingerprint::of(&d)))
     }
 }
 
@@ -201,15 +72,11 @@ impl ReadoutKey {
 /// What a chart depends on: the design but its mass, gap, thresholds and sound (a change of
 /// observer relevels the chart instead of sweeping it again), the sizes of the grids, and with
 /// N > 1 runs a cell the ensemble size and the sound (an ensemble chart is swept again for a new
-/// observer: its runs' zones, and so how many agree, depend on it). Shared, as [`SimKey`].
+/// observer: its runs' zones, and so how many agree, depend on it).
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
-pub struct ChartKey(Arc<ChartParts>);
-
-#[derive(Debug, PartialEq, Eq, Hash)]
-struct ChartParts {
-    /// The damper with mass and gap zeroed; the ball, materials, solver.
-    sweep: SimKey,
-    u0max_rule: Discriminant<U0MaxRule>,
+pub struct ChartKey {
+    /// The design with mass and gap zeroed, thresholds and sound at their defaults.
+    sweep: DesignKey,
     /// (masses, gaps) of the coarse pass, if any.
     coarse: Option<(usize, usize)>,
     /// (masses, gaps) of the fine pass.
@@ -220,23 +87,21 @@ struct ChartParts {
 impl ChartKey {
     /// The key of the single-run chart of `d` over `grids` (what a relevel keeps).
     pub fn of(d: &Design, grids: &Grids) -> Self {
-        Self::with_ensemble(d, grids, None)
+        let mut swept = design::variant(d, 0.0, 0.0);
+        swept.observer = Observer::new(0.0, 0.0);
+        swept.radiation = Radiation::default();
+        let size = |masses: &[f64], gaps: &[f64]| (masses.len(), gaps.len());
+        Self {
+            sweep: DesignKey::of(&swept),
+            coarse: grids.coarse.as_ref().map(|g| size(&g.masses_kg, &g.gaps_m)),
+            fine: size(&grids.fine.masses_kg, &grids.fine.gaps_m),
+            ensemble: None,
+        }
     }
 
     /// The key of the chart of `d` over `grids` with `runs` runs a cell.
     pub fn with_runs(d: &Design, grids: &Grids, runs: usize) -> Self {
-        Self::with_ensemble(d, grids, (runs > 1).then(|| (runs, SoundKey::of(d))))
-    }
-
-    fn with_ensemble(d: &Design, grids: &Grids, ensemble: Option<(usize, SoundKey)>) -> Self {
-        let size = |masses: &[f64], gaps: &[f64]| (masses.len(), gaps.len());
-        Self(Arc::new(ChartParts {
-            sweep: SimKey::of(&design::variant(d, 0.0, 0.0)),
-            u0max_rule: discriminant(&d.u0max_rule),
-            coarse: grids.coarse.as_ref().map(|g| size(&g.masses_kg, &g.gaps_m)),
-            fine: size(&grids.fine.masses_kg, &grids.fine.gaps_m),
-            ensemble,
-        }))
+        Self { ensemble: (runs > 1).then(|| (runs, SoundKey::of(d))), ..Self::of(d, grids) }
     }
 }
 
@@ -262,6 +127,9 @@ impl ResponseKey {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::acoustics::{PulseShape, QuadSigns, Source};
+    use crate::damper::Solver;
+    use crate::design::{BallSize, Materials, U0MaxRule};
     use crate::tui::compute::default_band;
 
     #[test]
@@ -306,8 +174,6 @@ mod tests {
     /// The keys as they were before they were typed: the serialized parameters.
     mod json_keys {
         use super::*;
-        use crate::acoustics::Observer;
-        use crate::design::Thresholds;
 
         fn json<T: serde::Serialize>(v: &T) -> String {
             serde_json::to_string(v).unwrap()

@@ -16,7 +16,7 @@
 //! message makes to it: `app/state.rs`, `change`, `screen`, `guide`, `files`, `input`,
 //! `update`); `worker` (requests, results, the five job slots) on `job` (the generic
 //! single-slot runner) calling `compute` (the physics each job does), results tagged with the
-//! typed keys of `cache_key`; `ui` (layout, one function per area, reading the state only)
+//! typed keys of `cache_key` (built on `fingerprint`); `ui` (layout, one function per area, reading the state only)
 //! drawing the widgets `params`, `readout`, `waveform`, `polar`, `history`, `chart`,
 //! `response` (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
 //! each field and number means), `files` (the export menu), `tour` (the guided tour's
@@ -29,6 +29,7 @@ pub mod compute;
 pub mod explain;
 pub mod fields;
 pub mod files;
+pub mod fingerprint;
 pub mod history;
 pub mod job;
 pub mod keys;

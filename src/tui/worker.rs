@@ -263,7 +263,7 @@ impl ChartJob {
         let on_cell = |stage: Stage, index: usize, c: &EnsembleCell| {
             let cell = Cell { mass_kg: c.mass_kg, gap_m: c.gap_m, metrics: c.ensemble.metrics };
             let ensemble = Some(Arc::new(c.ensemble.clone()));
-            cx.report(Done::ChartCell { key: key.clone(), sound, stage, index, cell, ensemble });
+            cx.report(Done::ChartCell { key: key.clone(), sound: sound.clone(), stage, index, cell, ensemble });
         };
         let mut on_pass = |stage: Stage, result: Result<EnsembleChart, ThudError>| {
             let (result, ensembles) = match result {
@@ -274,7 +274,7 @@ impl ChartJob {
                 }
                 Err(e) => (Err(WorkError::from(e)), None),
             };
-            cx.report(Done::Chart { key: key.clone(), sound, stage, result, ensembles });
+            cx.report(Done::Chart { key: key.clone(), sound: sound.clone(), stage, result, ensembles });
         };
         compute_ensemble_chart(&self.design, &self.grids, self.runs, Some(cx.cancel_flag()), &on_cell, &mut on_pass)
     }
@@ -294,7 +294,7 @@ impl Job for ChartJob {
         let key = &self.key;
         if let Some(hit) = cache.get(key) {
             for (stage, chart, ensembles) in &hit.passes {
-                let (key, sound, stage) = (key.clone(), hit.sound, *stage);
+                let (key, sound, stage) = (key.clone(), hit.sound.clone(), *stage);
                 let ensembles = ensembles.clone();
                 cx.report(Done::Chart { key, sound, stage, result: Ok(chart.clone()), ensembles });
             }
@@ -306,7 +306,7 @@ impl Job for ChartJob {
             self.run_ensembles(cx, &mut passes)
         } else {
             let on_cell = |stage: Stage, index: usize, cell: &Cell| {
-                let (key, sound, cell) = (key.clone(), sound, *cell);
+                let (key, sound, cell) = (key.clone(), sound.clone(), *cell);
                 cx.report(Done::ChartCell { key, sound, stage, index, cell, ensemble: None });
             };
             let mut on_pass = |stage: Stage, result: Result<Chart, ThudError>| {
@@ -314,7 +314,7 @@ impl Job for ChartJob {
                 if let Ok(c) = &result {
                     passes.push((stage, c.clone(), None));
                 }
-                cx.report(Done::Chart { key: key.clone(), sound, stage, result, ensembles: None });
+                cx.report(Done::Chart { key: key.clone(), sound: sound.clone(), stage, result, ensembles: None });
             };
             compute_chart(&self.design, &self.grids, Some(cx.cancel_flag()), &on_cell, &mut on_pass)
         };
@@ -356,11 +356,11 @@ impl Job for RelevelJob {
 
     fn run(&self, (): &mut (), cx: &Context<'_, Done>) {
         let result = Ok(Arc::new(compute_relevel(&self.design, &self.passes)));
-        cx.report(Done::Relevel { key: self.chart_key(), sound: self.sound, result });
+        cx.report(Done::Relevel { key: self.chart_key(), sound: self.sound.clone(), result });
     }
 
     fn failed(&self, error: JobError) -> Done {
-        Done::Relevel { key: self.chart_key(), sound: self.sound, result: Err(error.into()) }
+        Done::Relevel { key: self.chart_key(), sound: self.sound.clone(), result: Err(error.into()) }
     }
 }
 
