@@ -213,8 +213,10 @@ fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
 /// The whole command line: parses the arguments (a clap error becomes one line, exit 2; help
 /// and version print and exit 0), runs the command, returns the exit code.
 pub fn main() -> i32 {
-    let args: Vec<String> = std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect();
-    match Cli::try_parse_from(&args) {
+    // Parsed as the OS gave them: a file name is bytes, not necessarily UTF-8 (issue 18, item 9).
+    let raw: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let args: Vec<String> = raw.iter().map(|a| a.to_string_lossy().into_owned()).collect();
+    match Cli::try_parse_from(&raw) {
         Ok(cli) => run(cli),
         Err(e) => {
             use clap::error::ErrorKind;

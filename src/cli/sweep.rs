@@ -216,7 +216,7 @@ impl<'a> Target<'a> {
             Some(p) => {
                 super::output::check_text(text)?;
                 fsio::write(p, text.as_bytes(), self.overwrite).map_err(|e| super::export::out_error(p, &e))?;
-                super::warn(&format!("wrote {}", p.display()));
+                super::warn(&format!("wrote {}", fsio::shown(p)));
                 Ok(())
             }
         }
