@@ -627,14 +627,21 @@ fn sync_dir(dir: &Path) {
     }
 }
 
-/// Reads `path` as UTF-8 text if it is a regular file (or a symlink to one) of at most
+/// Opens `path` for reading if it is a regular file (or a symlink to one) of at most
 /// `limit_bytes`. The path is checked before it is opened (a device is never opened), opened
 /// non-blocking (a FIFO swapped in meanwhile does not hang) and checked again on the open file.
-pub fn read_to_string(path: &Path, limit_bytes: u64) -> Result<String, FsError> {
+pub fn open_regular(path: &Path, limit_bytes: u64) -> Result<File, FsError> {
     check_readable(path, &fs::metadata(path).map_err(io_at(path))?, limit_bytes)?;
     let flags = OFlags::RDONLY | OFlags::NONBLOCK | OFlags::CLOEXEC | OFlags::NOCTTY;
     let file = File::from(rustix::fs::open(path, flags, Mode::empty()).map_err(|e| io_at(path)(e.into()))?);
     check_readable(path, &file.metadata().map_err(io_at(path))?, limit_bytes)?;
+    Ok(file)
+}
+
+/// Reads `path` as UTF-8 text if it is a regular file (or a symlink to one) of at most
+/// `limit_bytes` (see [`open_regular`]).
+pub fn read_to_string(path: &Path, limit_bytes: u64) -> Result<String, FsError> {
+    let file = open_regular(path, limit_bytes)?;
     let mut bytes = Vec::new();
     file.take(limit_bytes + 1).read_to_end(&mut bytes).map_err(io_at(path))?;
     if bytes.len() as u64 > limit_bytes {
