@@ -107,7 +107,8 @@ pub enum FileKind {
 
 impl FileKind {
     /// The kind of `t`, or `None` for a regular file (and for a symlink, which callers handle).
-    fn of(t: fs::FileType) -> Option<FileKind> {
+    #[must_use]
+    pub fn of(t: fs::FileType) -> Option<FileKind> {
         if t.is_file() || t.is_symlink() {
             None
         } else if t.is_dir() {
@@ -593,6 +594,91 @@ fn exchange_into_place(temp: &Path, path: &Path) -> Result<(), FsError> {
         }
         Err(e) => Err(io_at(path)(e.into())),
     }
+}
+
+/// A temporary folder beside a target folder (`.NAME.thud-XXXXXX.tmp`), `flock`ed for its
+/// life, removed when dropped and on SIGINT/SIGTERM/SIGHUP (after SIGKILL, by the next write
+/// beside it), until [`TempFolder::put_in_place`] gives it the target's name.
+#[derive(Debug)]
+pub struct TempFolder {
+    dir: tempfile::TempDir,
+    _lock: File,
+    _registration: signals::Registration,
+}
+
+impl TempFolder {
+    /// A new temporary folder in `parent` for the folder `target`.
+    pub fn new(parent: &Path, target: &Path) -> io::Result<Self> {
+        let prefix = temp_prefix(target);
+        signals::guarded(|| {
+            let dir = temp_builder(&prefix).tempdir_in(parent)?;
+            let lock = File::open(dir.path())?;
+            rustix::fs::flock(&lock, FlockOperation::LockExclusive)?;
+            let path = dir.path().to_path_buf();
+            let registration = signals::on_signal(move || {
+                let _ = fs::remove_dir_all(&path);
+            })
+            .0;
+            Ok(TempFolder { dir, _lock: lock, _registration: registration })
+        })
+    }
+
+    /// Where the files go.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        self.dir.path()
+    }
+
+    /// Makes the names in the folder durable (best effort).
+    pub fn sync(&self) {
+        sync_dir(self.path());
+    }
+
+    /// Gives the folder the name `target`: over nothing or an empty folder; with `replace`, by
+    /// an atomic exchange with the folder there, which is then removed — if it still holds only
+    /// regular files named in `names` (else it is swapped back and nothing is replaced).
+    pub fn put_in_place(self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
+        let temp = self.path();
+        let changed = || FsError::Changed(target.to_path_buf());
+        if replace {
+            match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE) {
+                Ok(()) => {
+                    if only_named_files(temp, names) {
+                        return Ok(()); // `temp` now names the old set: removed on drop.
+                    }
+                    rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE)
+                        .map_err(|e| io_at(target)(e.into()))?;
+                    return Err(changed());
+                }
+                Err(Errno::NOENT) => {}
+                Err(e) => return Err(io_at(target)(e.into())),
+            }
+        }
+        match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::NOREPLACE) {
+            Ok(()) => Ok(()),
+            // An empty folder is there: rename(2) replaces only an empty folder.
+            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match e.raw_os_error() {
+                Some(c) if c == Errno::NOTEMPTY.raw_os_error() || c == Errno::NOTDIR.raw_os_error() => changed(),
+                Some(c) if c == Errno::EXIST.raw_os_error() => changed(),
+                _ => io_at(target)(e),
+            }),
+            Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) if !target.exists() => {
+                fs::rename(temp, target).map_err(io_at(target))
+            }
+            Err(e) => Err(io_at(target)(e.into())),
+        }
+    }
+}
+
+/// Whether the folder `dir` holds only regular files (no links) named in `names`.
+fn only_named_files(dir: &Path, names: &[&str]) -> bool {
+    let Ok(entries) = fs::read_dir(dir) else { return false };
+    entries.into_iter().all(|e| {
+        e.is_ok_and(|e| {
+            names.iter().any(|n| e.file_name() == std::ffi::OsStr::new(n))
+                && e.file_type().is_ok_and(|t| t.is_file())
+        })
+    })
 }
 
 /// Removes `path` if a signal ends the process while the registration lives.

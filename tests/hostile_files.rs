@@ -314,3 +314,96 @@ fn a_very_long_out_path_keeps_the_reason_in_the_message() {
     assert!(err.ends_with("e.csv exists; add --force to replace it\n"), "the reason is cut away: {err}");
     assert!(err.contains('…'), "{err}");
 }
+
+/// The files of a complete `paper all` set, sorted.
+fn full_set() -> Vec<Vec<u8>> {
+    let mut v: Vec<Vec<u8>> = thud::export::report::expected_files().into_iter().map(String::into_bytes).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn paper_all_writes_a_complete_set_or_nothing_and_a_rerun_after_a_failure_works() {
+    let home = tempfile::tempdir().unwrap();
+    // A file size limit (as a full disk would) stops it at its first larger file: nothing is
+    // left, neither a partial set nor a temporary folder.
+    let script = format!("trap '' XFSZ; ulimit -f 16; exec '{BIN}' paper all --out paper");
+    let mut child = command("sh", &os(&["-c", &script]), home.path(), &[]);
+    let child = child.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let out = wait_within(child, TIMEOUT, "limited paper all");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert_eq!(names(home.path()), Vec::<Vec<u8>>::new(), "{err}");
+    // The same run again, without the limit, writes the whole set.
+    let (code, _, err) = thud(&os(&["paper", "all", "--out", "paper"]), home.path());
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(names(&home.path().join("paper")), full_set());
+    assert_eq!(names(home.path()), [b"paper".to_vec()]);
+    // A second run keeps it without --force and replaces it whole with it.
+    let (code, _, err) = thud(&os(&["paper", "all", "--out", "paper"]), home.path());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("exists; add --force"), "{err}");
+    fs::write(home.path().join("paper/table1.csv"), "old").unwrap();
+    let (code, _, err) = thud(&os(&["paper", "all", "--out", "paper", "--force"]), home.path());
+    assert_eq!(code, 0, "{err}");
+    assert!(fs::read_to_string(home.path().join("paper/table1.csv")).unwrap().starts_with("radius_mm,"));
+    assert_eq!(names(home.path()), [b"paper".to_vec()], "no temporary folder left");
+    // A folder with other files is never mixed with a set, even with --force.
+    fs::write(home.path().join("paper/notes.txt"), "mine").unwrap();
+    let (code, _, err) = thud(&os(&["paper", "all", "--out", "paper", "--force"]), home.path());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.starts_with("thud: invalid --out: paper holds notes.txt"), "{err}");
+    assert_eq!(fs::read_to_string(home.path().join("paper/notes.txt")).unwrap(), "mine");
+}
+
+#[test]
+fn paper_all_killed_leaves_no_partial_set_and_the_next_run_clears_its_folder() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path().canonicalize().unwrap();
+    let env = [(HOLD_TEMP_FOR_TEST, "30000")];
+    let mut child = command(BIN, &os(&["paper", "all", "--out", "paper"]), &dir, &env)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait until its temporary folder exists and holds a file being written.
+    let start = Instant::now();
+    let temp = loop {
+        let found = names(&dir).into_iter().find(|n| n.starts_with(b".paper.thud-"));
+        if let Some(t) = found.filter(|t| holds_temp(child.id(), &dir.join(OsStr::from_bytes(t)))) {
+            break dir.join(OsStr::from_bytes(&t));
+        }
+        assert!(start.elapsed() < TIMEOUT, "no temporary folder appeared: {:?}", names(&dir));
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(!dir.join("paper").exists(), "no partial set");
+    assert!(temp.is_dir(), "SIGKILL leaves the temporary folder (recognisable by its name)");
+    std::thread::sleep(Duration::from_millis(1100));
+    let (code, _, err) = thud(&os(&["paper", "all", "--out", "paper"]), &dir);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(names(&dir), [b"paper".to_vec()], "the killed run's folder is removed");
+    assert_eq!(names(&dir.join("paper")), full_set());
+}
+
+#[test]
+fn paper_one_item_honours_out() {
+    let home = tempfile::tempdir().unwrap();
+    let (code, table, err) = thud(&os(&["paper", "fig2", "--csv"]), home.path());
+    assert_eq!(code, 0, "{err}");
+    let (code, out, err) = thud(&os(&["paper", "fig2", "--csv", "--out", "x"]), home.path());
+    assert_eq!(code, 0, "{err}");
+    assert!(out.is_empty(), "{out}");
+    assert_eq!(fs::read_to_string(home.path().join("x")).unwrap(), table);
+    let (code, _, err) = thud(&os(&["paper", "fig2", "--out", "x"]), home.path());
+    assert_eq!(code, 2);
+    assert_eq!(err, "thud: invalid --out: x exists; add --force to replace it\n");
+    let (code, _, err) = thud(&os(&["paper", "fig2", "--json", "--out", "x", "--force"]), home.path());
+    assert_eq!(code, 0, "{err}");
+    assert!(fs::read_to_string(home.path().join("x")).unwrap().starts_with('{'));
+    let (code, out, err) = thud(&os(&["paper", "fig2", "--csv", "--out", "-"]), home.path());
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, table);
+}
