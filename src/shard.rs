@@ -241,6 +241,24 @@ fn missing_message(missing: &[usize], n: usize) -> String {
     )
 }
 
+/// What serde_json says is wrong, without its "at line L column C" (the line is the file's, not
+/// its) and with every quoted value cut to 40 characters, so the reason after a long value
+/// stays on the message's one line.
+fn serde_reason(e: &serde_json::Error) -> String {
+    let text = e.to_string();
+    let what = text.split(" at line ").next().unwrap_or(&text);
+    let mut out = String::new();
+    let mut parts = what.split('"');
+    if let Some(first) = parts.next() {
+        out.push_str(first);
+    }
+    for (i, p) in parts.enumerate() {
+        out.push('"');
+        out.push_str(&if i % 2 == 0 { cut(p, 40) } else { p.to_string() });
+    }
+    out
+}
+
 /// `s` cut to `max` characters with "…" when longer.
 fn cut(s: &str, max: usize) -> String {
     if s.chars().count() <= max {
@@ -342,7 +360,7 @@ pub fn parse_header(file: &str, first: &str) -> Result<(Format, Header), ShardEr
         return Err(ShardError::FormatVersion { file: file.to_string(), found });
     }
     let header: Header = serde_json::from_value(value)
-        .map_err(|e| ShardError::Invalid { file: file.to_string(), why: format!("the header does not read: {e}") })?;
+        .map_err(|e| ShardError::Invalid { file: file.to_string(), why: format!("the header does not read: {}", serde_reason(&e)) })?;
     check_ranges(file, &header.study)?;
     check_header(file, &header)?;
     Ok((format, header))
@@ -439,12 +457,8 @@ fn read_json_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> 
         .filter(|(_, l)| !l.trim().is_empty())
         .map(|(i, l)| {
             let bad = |why: String| ShardError::BadCell { file: file.to_string(), line: i + 2, why };
-            let cell: PartCell = serde_json::from_str(l).map_err(|e| {
-                // serde_json says "… at line 1 column C": the line is ours, the column its.
-                let text = e.to_string();
-                let what = text.split(" at line ").next().unwrap_or(&text);
-                bad(format!("not a cell ({what}, column {})", e.column()))
-            })?;
+            let cell: PartCell =
+                serde_json::from_str(l).map_err(|e| bad(format!("not a cell ({}, column {})", serde_reason(&e), e.column())))?;
             cell.runs.iter().try_for_each(check_member).map_err(bad)?;
             Ok(cell)
         })

@@ -310,6 +310,13 @@ fn non_finite_or_out_of_range_cells_are_refused_naming_the_file_and_line() {
         let (code, out, err) = merge(std::slice::from_ref(&forged), &[]);
         one_line_refusal(code, &out, &err, &[&format!("{p} line 5: "), "u0_max_m_s"]);
     }
+    // A long string where a number belongs: the value is cut, the reason kept.
+    let forged = dir.path().join("long.jsonl");
+    let long = format!("\"u0_max_m_s\":\"{}\"", "x".repeat(5000));
+    std::fs::write(&forged, json_text.replacen(line4, &line4.replacen(&format!("\"u0_max_m_s\":{u0}"), &long, 1), 1))
+        .unwrap();
+    let (code, out, err) = merge(std::slice::from_ref(&forged), &[]);
+    one_line_refusal(code, &out, &err, &[&format!("{} line 4: not a cell (invalid type: string", forged.display()), "…\", expected f64, column"]);
     // Blank lines count: the same bad row after two blank lines is on line 7.
     let forged = dir.path().join("blank.csv");
     let mut f = fields.clone();
