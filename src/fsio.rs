@@ -70,7 +70,7 @@ pub const TEMP_MARK: &str = ".thud-";
 
 /// A temporary name whose lock is free is removed only once it is this old, so a file another
 /// thud has just created (and not yet locked) is never taken for a leftover.
-const STALE_AFTER: Duration = Duration::from_secs(1);
+pub const STALE_AFTER: Duration = Duration::from_secs(1);
 
 /// What to do when the target of a write exists.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -512,7 +512,8 @@ fn remove_if_stale(path: &Path) {
     let Ok(fd) = rustix::fs::open(path, flags, Mode::empty()) else { return };
     let file = File::from(fd);
     let Ok(meta) = file.metadata() else { return };
-    let old = meta.modified().ok().and_then(|t| SystemTime::now().duration_since(t).ok()).is_some_and(|a| a >= STALE_AFTER);
+    let old =
+        meta.modified().ok().and_then(|t| SystemTime::now().duration_since(t).ok()).is_some_and(|a| a >= STALE_AFTER);
     if !old || rustix::fs::flock(&file, FlockOperation::NonBlockingLockExclusive).is_err() {
         return;
     }
@@ -569,7 +570,7 @@ fn exchange_into_place(temp: &Path, path: &Path) -> Result<(), FsError> {
     match rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE) {
         Ok(()) => {
             let old = fs::symlink_metadata(temp);
-            if old.as_ref().is_ok_and(|m| m.is_file()) {
+            if old.as_ref().is_ok_and(fs::Metadata::is_file) {
                 let _ = fs::remove_file(temp);
                 return Ok(());
             }
@@ -675,8 +676,7 @@ fn only_named_files(dir: &Path, names: &[&str]) -> bool {
     let Ok(entries) = fs::read_dir(dir) else { return false };
     entries.into_iter().all(|e| {
         e.is_ok_and(|e| {
-            names.iter().any(|n| e.file_name() == std::ffi::OsStr::new(n))
-                && e.file_type().is_ok_and(|t| t.is_file())
+            names.iter().any(|n| e.file_name() == std::ffi::OsStr::new(n)) && e.file_type().is_ok_and(|t| t.is_file())
         })
     })
 }

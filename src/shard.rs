@@ -57,9 +57,9 @@ pub const MAX_PART_BYTES: u64 = 1 << 30;
 /// it checks the parts together and the merged chart against its cap.
 pub const MAX_HEADER_BYTES: usize = 1 << 20;
 /// The most bytes a run takes in a part (a JSON run is about 330 bytes, a CSV row about 250).
-const MAX_BYTES_PER_RUN: u64 = 1024;
+pub const MAX_BYTES_PER_RUN: u64 = 1024;
 /// The most bytes a cell takes in a part besides its runs (index, mass and gap).
-const MAX_BYTES_PER_CELL: u64 = 256;
+pub const MAX_BYTES_PER_CELL: u64 = 256;
 /// The largest magnitude of a number in a part's cell: far beyond anything thud computes within
 /// its ranges (a forced run's inclination reaches about 1e7 cm/s), and small enough that sums,
 /// spans and squares of any cells stay finite.
@@ -359,8 +359,10 @@ pub fn parse_header(file: &str, first: &str) -> Result<(Format, Header), ShardEr
         let found = version.map_or_else(|| "none".to_string(), |v| cut(&v.to_string(), 40));
         return Err(ShardError::FormatVersion { file: file.to_string(), found });
     }
-    let header: Header = serde_json::from_value(value)
-        .map_err(|e| ShardError::Invalid { file: file.to_string(), why: format!("the header does not read: {}", serde_reason(&e)) })?;
+    let header: Header = serde_json::from_value(value).map_err(|e| ShardError::Invalid {
+        file: file.to_string(),
+        why: format!("the header does not read: {}", serde_reason(&e)),
+    })?;
     check_ranges(file, &header.study)?;
     check_header(file, &header)?;
     Ok((format, header))
@@ -457,8 +459,8 @@ fn read_json_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> 
         .filter(|(_, l)| !l.trim().is_empty())
         .map(|(i, l)| {
             let bad = |why: String| ShardError::BadCell { file: file.to_string(), line: i + 2, why };
-            let cell: PartCell =
-                serde_json::from_str(l).map_err(|e| bad(format!("not a cell ({}, column {})", serde_reason(&e), e.column())))?;
+            let cell: PartCell = serde_json::from_str(l)
+                .map_err(|e| bad(format!("not a cell ({}, column {})", serde_reason(&e), e.column())))?;
             cell.runs.iter().try_for_each(check_member).map_err(bad)?;
             Ok(cell)
         })

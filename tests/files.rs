@@ -199,8 +199,8 @@ fn a_symlink_at_the_target_is_refused_with_or_without_force_and_never_replaced()
         let link = home.path().join("out.csv");
         std::os::unix::fs::symlink(&victim, &link).unwrap();
         for force in [false, true] {
-            let args =
-                [&["export", "csv", "history", "--out", "out.csv"][..], if force { &["--force"] } else { &[] }].concat();
+            let args = [&["export", "csv", "history", "--out", "out.csv"][..], if force { &["--force"] } else { &[] }]
+                .concat();
             let (code, out, err) = run(&args, home.path(), env);
             one_line_exit_2(code, &out, &err, &["invalid --out", "out.csv", "symbolic link"]);
             assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link is left");

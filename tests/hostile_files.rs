@@ -213,10 +213,8 @@ fn kill_9_leaves_nothing_even_without_proc() {
     }
     let target = dir.join("e.csv");
     // /proc hidden from thud (a tmpfs over it): the anonymous file is linked with AT_EMPTY_PATH.
-    let script = format!(
-        "mount -t tmpfs none /proc || exit 99; exec \"$T\" export csv history --out '{}'",
-        target.display()
-    );
+    let script =
+        format!("mount -t tmpfs none /proc || exit 99; exec \"$T\" export csv history --out '{}'", target.display());
     let args = os(&["-m", "sh", "-c", &script]);
     let cmd_env = [("T", BIN)];
     let left = kill_9_mid_write("unshare", &args, home.path(), &dir, &cmd_env);
@@ -249,7 +247,8 @@ fn a_named_temporary_left_by_kill_9_is_removed_by_the_next_write() {
         // Over a second later (a name younger than that may be another run's, not yet locked),
         // any write into the folder removes it; the old file is all that is left of the kill.
         std::thread::sleep(Duration::from_millis(1100));
-        let (code, _, err) = thud(&os(&["export", "csv", "waveform", "--points", "5", "--out", "out/w.csv"]), home.path());
+        let (code, _, err) =
+            thud(&os(&["export", "csv", "waveform", "--points", "5", "--out", "out/w.csv"]), home.path());
         assert_eq!(code, 0, "{err}");
         let mut expected = vec![b"w.csv".to_vec()];
         if force {

@@ -696,16 +696,27 @@ fn written_files_and_merged_parts_keep_the_contract() {
     std::os::unix::fs::symlink(h.join("victim"), h.join("link.csv")).unwrap();
     let link = h.join("link.csv");
     let link = link.to_str().unwrap();
-    assert_refused_in(h, &["export", "csv", "waveform", "--out", link, "--force"], &["invalid --out: ", "symbolic link"]);
+    assert_refused_in(
+        h,
+        &["export", "csv", "waveform", "--out", link, "--force"],
+        &["invalid --out: ", "symbolic link"],
+    );
     assert!(std::fs::symlink_metadata(link).unwrap().file_type().is_symlink());
     // Item 14: `paper ID --out` honours --out, and its refusal names --out.
     std::fs::write(h.join("fig2.txt"), "mine").unwrap();
     let fig = h.join("fig2.txt");
-    assert_refused_in(h, &["paper", "fig2", "--out", fig.to_str().unwrap()], &["invalid --out: ", "exists; add --force"]);
+    assert_refused_in(
+        h,
+        &["paper", "fig2", "--out", fig.to_str().unwrap()],
+        &["invalid --out: ", "exists; add --force"],
+    );
     // Items 2, 3, 11: a part with a forged ensemble (valid hash) and a merge over its cap.
     let part = h.join("p.jsonl");
     let p = part.to_str().unwrap();
-    let r = thud_in(h, &["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2", "--duration", "0.2", "--shard", "0/1", "--out", p]);
+    let r = thud_in(
+        h,
+        &["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2", "--duration", "0.2", "--shard", "0/1", "--out", p],
+    );
     assert_eq!(r.code, 0, "{}", r.stderr);
     let text = std::fs::read_to_string(&part).unwrap();
     let (first, rest) = text.split_once('\n').unwrap();
@@ -715,7 +726,11 @@ fn written_files_and_merged_parts_keep_the_contract() {
     let forged = serde_json::to_string(&thud::shard::Header::new(study, 0, 1)).unwrap() + "\n" + rest;
     std::fs::write(h.join("forged.jsonl"), forged).unwrap();
     let f = h.join("forged.jsonl");
-    assert_refused_in(h, &["--no-limit", "merge", f.to_str().unwrap(), "--out", "-"], &["out of range (invalid ensemble"]);
+    assert_refused_in(
+        h,
+        &["--no-limit", "merge", f.to_str().unwrap(), "--out", "-"],
+        &["out of range (invalid ensemble"],
+    );
     assert_refused_in(h, &["merge", p, "--out", "-", "--band", "nan"], &["--band"]);
     let v = h.join("v.jsonl");
     std::fs::write(&v, text.replacen("\"format_version\":1", "\"format_version\":1.0", 1)).unwrap();

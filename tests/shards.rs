@@ -206,7 +206,11 @@ fn sh(script: &str) -> (i32, String, String) {
         .env("T", env!("CARGO_BIN_EXE_thud"))
         .output()
         .expect("run sh");
-    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
 }
 
 /// The header of `part` as read back, and the rest of its text.
@@ -316,7 +320,12 @@ fn non_finite_or_out_of_range_cells_are_refused_naming_the_file_and_line() {
     std::fs::write(&forged, json_text.replacen(line4, &line4.replacen(&format!("\"u0_max_m_s\":{u0}"), &long, 1), 1))
         .unwrap();
     let (code, out, err) = merge(std::slice::from_ref(&forged), &[]);
-    one_line_refusal(code, &out, &err, &[&format!("{} line 4: not a cell (invalid type: string", forged.display()), "…\", expected f64, column"]);
+    one_line_refusal(
+        code,
+        &out,
+        &err,
+        &[&format!("{} line 4: not a cell (invalid type: string", forged.display()), "…\", expected f64, column"],
+    );
     // Blank lines count: the same bad row after two blank lines is on line 7.
     let forged = dir.path().join("blank.csv");
     let mut f = fields.clone();
@@ -340,7 +349,12 @@ fn a_format_version_is_reported_as_written() {
         std::fs::write(&forged, text.replacen("\"format_version\":1", &format!("\"format_version\":{written}"), 1))
             .unwrap();
         let (code, out, err) = merge(std::slice::from_ref(&forged), &[]);
-        one_line_refusal(code, &out, &err, &[&format!("is a part of format version {written}; this thud reads version 1")]);
+        one_line_refusal(
+            code,
+            &out,
+            &err,
+            &[&format!("is a part of format version {written}; this thud reads version 1")],
+        );
     }
 }
 
@@ -386,8 +400,12 @@ fn a_forced_study_that_shards_also_merges_with_band() {
 
 #[test]
 fn sweep_shard_refuses_a_study_merge_could_never_join() {
-    let (code, out, err) = thud(&[
-        "sweep", "--masses", "30g:100g:1000", "--gaps", "2cm:5cm:100", "--ensemble", "20", "--shard", "0/1000",
-    ]);
-    one_line_refusal(code, &out, &err, &["--ensemble 20", "exceed the limit of 1e6", "`thud merge` joins", "100000 cells × 20 runs"]);
+    let (code, out, err) =
+        thud(&["sweep", "--masses", "30g:100g:1000", "--gaps", "2cm:5cm:100", "--ensemble", "20", "--shard", "0/1000"]);
+    one_line_refusal(
+        code,
+        &out,
+        &err,
+        &["--ensemble 20", "exceed the limit of 1e6", "`thud merge` joins", "100000 cells × 20 runs"],
+    );
 }

@@ -59,7 +59,8 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
         OutputFormat::Text => super::format::write_text(&mut bytes, &table)?,
         OutputFormat::Csv => super::format::write_csv(&mut bytes, &table)?,
         OutputFormat::Json => {
-            serde_json::to_writer_pretty(&mut bytes, &super::format::table_json(&table)).map_err(std::io::Error::from)?;
+            serde_json::to_writer_pretty(&mut bytes, &super::format::table_json(&table))
+                .map_err(std::io::Error::from)?;
             bytes.push(b'\n');
         }
     }
