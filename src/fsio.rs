@@ -249,8 +249,10 @@ fn parent_dir(path: &Path) -> PathBuf {
 pub enum Sink {
     /// thud's own standard output: `-`, or a path that is the very file of file descriptor 1.
     Stdout,
-    /// A FIFO, a terminal or `/dev/null` at the path, opened for writing as it is.
-    Stream,
+    /// A FIFO, a terminal or `/dev/null` at the path, opened for writing as it is; `link` when
+    /// the path is a symbolic link to it (else it is opened with `O_NOFOLLOW`, so a link swapped
+    /// in after the check is not followed).
+    Stream { link: bool },
 }
 
 /// What a write to a path will do, decided from what is there now.
@@ -305,7 +307,7 @@ pub fn check_target(path: &Path, overwrite: Overwrite) -> Result<Plan, FsError> 
     if is_own_stdout(&target) {
         Ok(Plan::Through(Sink::Stdout))
     } else if is_stream(&target) {
-        Ok(Plan::Through(Sink::Stream))
+        Ok(Plan::Through(Sink::Stream { link }))
     } else if link {
         Err(FsError::Link(path.to_path_buf()))
     } else {
@@ -365,12 +367,17 @@ fn prepare_dir(path: &Path) -> Result<PathBuf, FsError> {
 
 /// Writes `bytes` through the stream at `path` (checked again on the opened file).
 fn write_through(path: &Path, sink: Sink, bytes: &[u8]) -> Result<(), FsError> {
-    if sink == Sink::Stdout {
-        return write_stdout(bytes).map_err(io_at(path));
+    let link = match sink {
+        Sink::Stdout => return write_stdout(bytes).map_err(io_at(path)),
+        Sink::Stream { link } => link,
+    };
+    let mut flags = OFlags::WRONLY | OFlags::NOCTTY | OFlags::CLOEXEC | OFlags::NONBLOCK;
+    if !link {
+        flags |= OFlags::NOFOLLOW;
     }
-    let flags = OFlags::WRONLY | OFlags::NOCTTY | OFlags::CLOEXEC | OFlags::NONBLOCK;
     let fd = rustix::fs::open(path, flags, Mode::empty()).map_err(|e| match e {
         Errno::NXIO => FsError::NoReader(path.to_path_buf()),
+        Errno::LOOP => FsError::Changed(path.to_path_buf()),
         e => io_at(path)(e.into()),
     })?;
     let mut file = File::from(fd);
