@@ -406,3 +406,13 @@ fn paper_one_item_honours_out() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(out, table);
 }
+
+#[test]
+fn a_tour_file_name_that_is_not_utf8_is_shown_escaped() {
+    let home = tempfile::tempdir().unwrap();
+    let mut args = os(&["tui", "--tour"]);
+    args.push(OsStr::from_bytes(b"nope\xe9.toml"));
+    let (code, _, err) = thud(&args, home.path());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("nope\\xe9.toml") && err.lines().count() == 1, "{err}");
+}
