@@ -416,3 +416,13 @@ fn a_tour_file_name_that_is_not_utf8_is_shown_escaped() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("nope\\xe9.toml") && err.lines().count() == 1, "{err}");
 }
+
+#[test]
+fn a_value_that_is_not_utf8_where_text_is_expected_names_its_flag() {
+    let home = tempfile::tempdir().unwrap();
+    let mut args = os(&["simulate", "--mass"]);
+    args.push(OsStr::from_bytes(b"4\xe9g"));
+    let (code, out, err) = thud(&args, home.path());
+    assert_eq!((code, out.as_str()), (2, ""));
+    assert_eq!(err, "thud: invalid --mass: '4\\xe9g' is not UTF-8 text (only a file name may be any bytes)\n");
+}

@@ -225,12 +225,27 @@ pub fn main() -> i32 {
                     let _ = e.print();
                     0
                 }
+                ErrorKind::InvalidUtf8 => {
+                    warn(&not_utf8(&raw));
+                    2
+                }
                 _ => {
                     warn(&errors::clap_line(&e, missing_subcommand(&args)));
                     2
                 }
             }
         }
+    }
+}
+
+/// The one line for an argument that is not UTF-8 where text is expected (only file names may
+/// be any bytes): the flag before it and the value, escaped.
+fn not_utf8(raw: &[std::ffi::OsString]) -> String {
+    let at = raw.iter().position(|a| a.to_str().is_none()).unwrap_or(0);
+    let value = crate::fsio::shown(std::path::Path::new(&raw[at]));
+    match raw[..at].last().and_then(|f| f.to_str()).filter(|f| f.starts_with('-')) {
+        Some(flag) => format!("invalid {flag}: '{value}' is not UTF-8 text (only a file name may be any bytes)"),
+        None => format!("invalid argument '{value}': not UTF-8 text (only a file name may be any bytes)"),
     }
 }
 
