@@ -673,3 +673,97 @@ fn explorer_refuses_runs_over_the_work_caps() {
     assert!(status.contains("WAV samples exceed the limit"), "{status}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+// Issue 18, round 2 (thread pools, dead terminals, config problems, loaded files, huge
+// terminals, help to a full disk).
+
+/// Item 4: `RAYON_NUM_THREADS` far past what the system gives is held to the thread range with
+/// one warning; the run completes (it used to try 100000 threads and never finish in time).
+#[test]
+fn a_huge_rayon_num_threads_is_held_to_the_range_with_one_warning() {
+    let home = tempfile::tempdir().unwrap();
+    let mut c = command(home.path(), &["sweep", "--masses", "10g:50g:6", "--gaps", "1cm:3cm:4"]);
+    let out = c.env("RAYON_NUM_THREADS", "100000").output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("RAYON_NUM_THREADS=100000") && err.contains("using 1024"), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("zone"));
+    // --threads is range-checked like every count.
+    assert_refused(&["sweep", "--threads", "0"], &["--threads", "1 to 1024"]);
+    assert_refused(&["--threads", "2000", "sweep"], &["--threads", "2000"]);
+}
+
+/// Item 4: under a pids limit every parallel command runs on the threads it gets (down to the
+/// calling thread alone) with one warning, instead of panicking with ThreadPoolBuildError.
+/// Root ignores RLIMIT_NPROC, so the runs are made as `nobody` with `setpriv` (skipped, with
+/// the reason printed, where that is not possible).
+#[test]
+fn thread_pools_fall_back_under_a_pids_limit() {
+    let root = Command::new("id").arg("-u").output().is_ok_and(|o| o.stdout.starts_with(b"0\n"));
+    let setpriv = Command::new("setpriv").arg("--version").output().is_ok_and(|o| o.status.success());
+    if !root || !setpriv {
+        eprintln!("skipped: needs root and setpriv to run as nobody under ulimit -u (root ignores the limit)");
+        return;
+    }
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o777)).unwrap();
+    let bin = dir.path().join("thud");
+    std::fs::copy(env!("CARGO_BIN_EXE_thud"), &bin).unwrap();
+    std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let part = dir.path().join("part1.json");
+    let part = part.to_str().unwrap();
+    let grid = ["--masses", "10g:50g:6", "--gaps", "1cm:3cm:4"];
+    let commands: Vec<Vec<&str>> = vec![
+        [&["sweep"][..], &grid].concat(),
+        vec!["response", "--force", "5", "--freqs", "4:6:5"],
+        vec!["simulate", "--ensemble", "8"],
+        vec!["paper", "table3"],
+        [&["sweep"][..], &grid, &["--shard", "1/2", "--out", part]].concat(),
+    ];
+    // `exec` leaves one process: with -u 2 one more thread at most, with -u 1 none at all.
+    for (limit, threads, expect) in [("1", "4", "calling thread alone"), ("3", "8", "only 2 of 8")] {
+        for args in &commands {
+            let _ = std::fs::remove_file(part);
+            let out = Command::new("timeout")
+                .args(["20", "setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups", "bash", "-c"])
+                .arg(format!("ulimit -u {limit} && exec \"$0\" \"$@\""))
+                .arg(&bin)
+                .args(args)
+                .env("HOME", dir.path())
+                .env("XDG_CONFIG_HOME", dir.path().join("config"))
+                .env("RAYON_NUM_THREADS", threads)
+                .current_dir(dir.path())
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(0), "ulimit -u {limit}, {args:?}: {err}");
+            let warning = err.lines().next().unwrap_or("");
+            assert!(warning.starts_with("thud: warning: ") && warning.contains(expect), "{args:?}: {err}");
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+            assert!(!out.stdout.is_empty() || std::path::Path::new(part).exists(), "{args:?} gave no result");
+        }
+    }
+}
+
+/// Item 14: help and version to a full disk fail with exit 1 and one line; to a closed pipe
+/// they end quietly.
+#[test]
+fn help_and_version_to_a_full_disk_exit_1_with_one_line() {
+    for args in [&["--help"][..], &["--version"], &["sweep", "--help"]] {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let home = tempfile::tempdir().unwrap();
+        let out = command(home.path(), args).stdout(full).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("thud: cannot write the ") && err.contains("No space left"), "{args:?}: {err}");
+    }
+}
+
+/// Item 14: an unknown preset for the explorer names `--preset`, as for every other command.
+#[test]
+fn the_explorer_s_unknown_preset_names_the_flag() {
+    assert_refused(&["tui", "--preset", "bogus"], &["invalid --preset: ", "'bogus'"]);
+}
