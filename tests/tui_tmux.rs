@@ -253,6 +253,17 @@ fn sigint_restores_the_terminal() {
     a_signal_restores_the_terminal("INT", 2);
 }
 
+/// Every other signal whose default action ends the process restores the terminal too, and
+/// exits with 128 + its number (one test, one pane after another, to keep the time small).
+#[test]
+fn every_ending_signal_restores_the_terminal() {
+    for (signal, number) in
+        [("QUIT", 3), ("USR1", 10), ("USR2", 12), ("ALRM", 14), ("XCPU", 24), ("VTALRM", 26), ("PROF", 27)]
+    {
+        a_signal_restores_the_terminal(signal, number);
+    }
+}
+
 /// The explorer in a `w × h` pane with its own config and data folders, `args` after `tui`.
 fn explorer(args: &str, w: u16, h: u16) -> Tmux {
     let bin = env!("CARGO_BIN_EXE_thud");
