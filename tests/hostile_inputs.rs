@@ -767,3 +767,52 @@ fn help_and_version_to_a_full_disk_exit_1_with_one_line() {
 fn the_explorer_s_unknown_preset_names_the_flag() {
     assert_refused(&["tui", "--preset", "bogus"], &["invalid --preset: ", "'bogus'"]);
 }
+
+/// Item 5: a pty whose master side closes without a SIGHUP (a new session, no controlling
+/// terminal), as with `setsid` + `openpty`. Prints "exit CODE" or "STILL RUNNING".
+const DEAD_PTY: &str = r#"
+import fcntl, os, pty, select, struct, subprocess, sys, termios, time
+m, s = pty.openpty()
+fcntl.ioctl(s, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
+p = subprocess.Popen([sys.argv[1], "tui"], stdin=s, stdout=s, stderr=s, start_new_session=True,
+                     env=dict(os.environ, TERM="xterm-256color"))
+os.close(s)
+seen, last, start = b"", time.time(), time.time()
+while time.time() - last < 1.0 and time.time() - start < 15:
+    if select.select([m], [], [], 0.1)[0]:
+        try:
+            chunk = os.read(m, 65536)
+        except OSError:
+            break
+        seen += chunk
+        last = time.time()
+if b"parameters" not in seen or p.poll() is not None:
+    print("NO SCREEN", p.poll(), seen[-200:])
+    sys.exit(0)
+os.close(m)
+try:
+    print("exit", p.wait(timeout=1.5))
+except subprocess.TimeoutExpired:
+    p.kill()
+    p.wait()
+    print("STILL RUNNING")
+"#;
+
+/// Item 5: when the explorer's terminal is gone without SIGHUP, the explorer ends (exit 1)
+/// within a second instead of spinning on EIO forever.
+#[test]
+fn a_dead_terminal_ends_the_explorer_within_a_second() {
+    let home = tempfile::tempdir().unwrap();
+    let Ok(out) = Command::new("python3")
+        .args(["-c", DEAD_PTY, env!("CARGO_BIN_EXE_thud")])
+        .env("HOME", home.path())
+        .env("XDG_CONFIG_HOME", home.path().join("config"))
+        .env("XDG_DATA_HOME", home.path().join("data"))
+        .output()
+    else {
+        eprintln!("skipped: python3 (for its pty module) is not installed");
+        return;
+    };
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(said.trim(), "exit 1", "{said}{}", String::from_utf8_lossy(&out.stderr));
+}

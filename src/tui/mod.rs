@@ -138,6 +138,9 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
         }
     }
     let ended = event_loop(&mut term, &mut app, &worker, &rx, &busy);
+    // The guard restores the cursor; ratatui's own drop would print (and, with stderr on the
+    // same dead terminal, panic) when it cannot show it.
+    std::mem::forget(term);
     if gone.is_some_and(|g| g.load(Ordering::SeqCst)) {
         return Err(TuiError::TerminalGone);
     }
