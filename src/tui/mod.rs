@@ -22,6 +22,7 @@
 
 pub mod app;
 pub mod chart;
+pub mod clamp;
 pub mod compute;
 pub mod explain;
 pub mod fields;
