@@ -816,3 +816,44 @@ fn a_dead_terminal_ends_the_explorer_within_a_second() {
     let said = String::from_utf8_lossy(&out.stdout);
     assert_eq!(said.trim(), "exit 1", "{said}{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// Item 6: a config problem is a warning, apart from errors: a failing command prints only its
+/// one error line; `thud config check` lists every problem with file:line:col and exits 2; a
+/// wrong shape such as `thresholds = [1, 2]` is a problem, not read by position.
+#[test]
+fn config_warnings_stay_apart_from_errors_and_config_check_lists_every_problem() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path().join("config").join("thud");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("config.toml");
+    std::fs::write(&file, "thresholds = [100, 1]\ntheme = \"purple\"\n[keys]\nsave = \"ctrl-\"\n").unwrap();
+    let r = thud_in(home.path(), &["simulate", "--mass", "1e308"]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "only the error: {}", r.stderr);
+    assert!(r.stderr.contains("--mass") && !r.stderr.contains("warning"), "{}", r.stderr);
+
+    let r = thud_in(home.path(), &["config", "check"]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+    assert!(r.stderr.contains("3 problems"), "{}", r.stderr);
+    let f = file.display().to_string();
+    let lines: Vec<&str> = r.stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{}", r.stdout);
+    assert!(lines[0].starts_with(&format!("{f}:1:14: ")) && lines[0].contains("expected a table"), "{}", r.stdout);
+    assert!(lines[1].starts_with(&format!("{f}:2:9: ")) && lines[1].contains("purple"), "{}", r.stdout);
+    assert!(lines[2].starts_with(&format!("{f}:4:8: ")) && lines[2].contains("'ctrl-' is not a key"), "{}", r.stdout);
+
+    // The thresholds were not read by position: a successful run warns once and uses the
+    // defaults (L* = 103 dB, not 100).
+    let r = thud_in(home.path(), &["simulate", "--json"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["design"]["thresholds"]["spl_db"].as_f64(), Some(103.0));
+
+    // A good file: no problems, exit 0.
+    std::fs::write(&file, "theme = \"mono\"\n[thresholds]\nl_star_db = 100\n").unwrap();
+    let r = thud_in(home.path(), &["config", "check"]);
+    assert_eq!((r.code, r.stderr.as_str()), (0, ""), "{}", r.stdout);
+    assert!(r.stdout.contains("no problems"), "{}", r.stdout);
+}

@@ -78,6 +78,8 @@ pub enum Command {
     Completions(shell::CompletionsArgs),
     /// Print the man page (roff) of thud, or of one command (`thud man pulse`).
     Man(shell::ManArgs),
+    /// The settings file (config.toml): `thud config check` lists every problem in it.
+    Config(settings::ConfigArgs),
 }
 
 /// Options of `thud limits`.
@@ -261,6 +263,7 @@ pub fn run(cli: Cli) -> i32 {
         return fail(&e);
     }
     settings::load();
+    let checking_config = matches!(cli.command, Some(Command::Config(_)));
     let ctx = Ctx { no_limit: cli.no_limit };
     let mut out = Out::new();
     let result = match cli.command {
@@ -276,11 +279,18 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Limits(a)) => limits(&a, &mut out),
         Some(Command::Completions(a)) => shell::completions(&a, &mut out),
         Some(Command::Man(a)) => shell::man(&a, &mut out),
+        Some(Command::Config(a)) => settings::run(&a, &mut out),
         Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
         None => return tui_exit(tui::run_default()),
     };
     match result.and_then(|()| out.flush()) {
-        Ok(()) => 0,
+        Ok(()) => {
+            // A config warning only beside a success: a failure is its one error line.
+            if let Some(w) = settings::warning().filter(|_| !checking_config) {
+                warn(w);
+            }
+            0
+        }
         Err(e) => fail(&e),
     }
 }
