@@ -857,3 +857,35 @@ fn config_warnings_stay_apart_from_errors_and_config_check_lists_every_problem()
     assert_eq!((r.code, r.stderr.as_str()), (0, ""), "{}", r.stdout);
     assert!(r.stdout.contains("no problems"), "{}", r.stdout);
 }
+
+/// Item 10: a saved design is held to the caps of typed values: a duration of 1e6 s (inside
+/// the duration's range, over the chart's work cap) is refused on load with the cap's line, as
+/// typing it is, and the live design stays. Every preset and the built-in tour pass.
+#[test]
+fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
+    use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+    use thud::design::Design;
+    use thud::tui::{fields, App, Msg, Palette};
+    let data = tempfile::tempdir().unwrap();
+    let mut long = Design::default();
+    long.damper.duration_s = 1e6;
+    let file = thud::store::DesignFile { description: "a long one".into(), design: long };
+    thud::store::save_design(data.path(), "long", &file, false).unwrap();
+    let mut app = App::new(Design::default(), "default", Palette::default());
+    app.data_dir = Some(data.path().to_path_buf());
+    let before = app.design.clone();
+    for key in [KeyCode::Char('L'), KeyCode::Enter] {
+        app.update(Msg::Input(Event::Key(KeyEvent::new(key, KeyModifiers::NONE))));
+    }
+    let status = app.status().map(|s| s.text.clone()).unwrap_or_default();
+    assert!(status.contains("cannot load long") && status.contains("invalid duration: "), "{status}");
+    assert!(status.contains("exceed the limit"), "{status}");
+    assert_eq!(app.design, before, "nothing loaded");
+    // The same line as typing the value.
+    let typed = fields::Knob::Duration.parsed(&Design::default(), "1e6").unwrap_err().to_string();
+    assert!(status.contains(&typed), "{status} / {typed}");
+    for name in thud::presets::names() {
+        fields::check_loaded(&thud::presets::preset(name).unwrap()).unwrap();
+    }
+    assert!(thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).is_ok());
+}

@@ -105,6 +105,7 @@ const TICK: Duration = Duration::from_millis(120);
 /// problem with it is shown in the status line and the defaults are used.
 pub fn run(opts: &Options) -> Result<(), TuiError> {
     let design = presets::preset(&opts.preset)?;
+    fields::check_loaded(&design)?;
     let tour_def = opts.tour.as_ref().map(tour::Tour::load).transpose()?;
     let theme = Palette::from_env(opts.ascii);
     let mut app = App::new(design, &opts.preset, theme);
