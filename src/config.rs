@@ -343,13 +343,11 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
             "theme" => field(value, &mut |v| Theme::deserialize(v.into_deserializer()).map(drop)),
             "markers" => field(value, &mut |v| MarkerStyle::deserialize(v.into_deserializer()).map(drop)),
             "thresholds" => {
-                match field(value, &mut |v| table_only::<_, ThresholdDefaults>(v.into_deserializer()).map(drop)) {
-                    Some(p) => Some(p),
-                    None => {
-                        found.extend(threshold_problems(value, &at));
-                        None
-                    }
+                let shape = field(value, &mut |v| table_only::<_, ThresholdDefaults>(v.into_deserializer()).map(drop));
+                if shape.is_none() {
+                    found.extend(threshold_problems(value, &at));
                 }
+                shape
             }
             "keys" => {
                 found.extend(key_problems(value, &at));

@@ -700,13 +700,13 @@ fn a_huge_rayon_num_threads_is_held_to_the_range_with_one_warning() {
 /// the reason printed, where that is not possible).
 #[test]
 fn thread_pools_fall_back_under_a_pids_limit() {
+    use std::os::unix::fs::PermissionsExt;
     let root = Command::new("id").arg("-u").output().is_ok_and(|o| o.stdout.starts_with(b"0\n"));
     let setpriv = Command::new("setpriv").arg("--version").output().is_ok_and(|o| o.status.success());
     if !root || !setpriv {
         eprintln!("skipped: needs root and setpriv to run as nobody under ulimit -u (root ignores the limit)");
         return;
     }
-    use std::os::unix::fs::PermissionsExt;
     let dir = tempfile::tempdir().unwrap();
     std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o777)).unwrap();
     let bin = dir.path().join("thud");
