@@ -56,12 +56,18 @@ pub fn wanted(flag: Option<usize>, env: Option<&str>) -> (usize, Option<String>)
     }
 }
 
-/// Starts up to `n` threads, each waiting for the rayon worker it will become; returns their
-/// channels and, if fewer than `n` could be started, why the next one could not.
-fn park(n: usize) -> (Vec<Sender<ThreadBuilder>>, Option<std::io::Error>) {
+/// A started thread waiting for the rayon worker it will become.
+struct Parked {
+    slot: Sender<ThreadBuilder>,
+    thread: std::thread::JoinHandle<()>,
+}
+
+/// Starts up to `n` threads, each waiting for the rayon worker it will become; returns them
+/// and, if fewer than `n` could be started, why the next one could not.
+fn park(n: usize) -> (Vec<Parked>, Option<std::io::Error>) {
     let mut parked = Vec::with_capacity(n);
     for i in 0..n {
-        let (tx, rx) = mpsc::channel::<ThreadBuilder>();
+        let (slot, rx) = mpsc::channel::<ThreadBuilder>();
         let spawned = std::thread::Builder::new().name(format!("thud-pool-{i}")).spawn(move || {
             // Unused threads see their channel closed and end.
             if let Ok(worker) = rx.recv() {
@@ -69,24 +75,38 @@ fn park(n: usize) -> (Vec<Sender<ThreadBuilder>>, Option<std::io::Error>) {
             }
         });
         match spawned {
-            Ok(_) => parked.push(tx),
+            Ok(thread) => parked.push(Parked { slot, thread }),
             Err(e) => return (parked, Some(e)),
         }
     }
     (parked, None)
 }
 
-/// Builds the global pool with `wanted` threads, or as many as the system allows, or the
-/// calling thread alone. Call once, before any parallel work; a second call changes nothing
-/// and returns the pool as it is.
-pub fn init(wanted: usize) -> Pool {
+/// Ends parked threads that will not be used, and waits until they are gone, so the threads
+/// they leave room for can be started right after.
+fn release(unused: Vec<Parked>) {
+    let threads: Vec<_> = unused.into_iter().map(|p| p.thread).collect();
+    for t in threads {
+        let _ = t.join();
+    }
+}
+
+/// Builds the global pool with `wanted` threads, or as many as the system allows while
+/// leaving room for `reserve` other threads (the explorer's input and job threads, the signal
+/// thread), or the calling thread alone. Call once, before any parallel work; a second call
+/// changes nothing and returns the pool as it is.
+pub fn init(wanted: usize, reserve: usize) -> Pool {
     let wanted = wanted.max(1);
-    let (parked, failure) = park(wanted);
+    let (mut parked, failure) = park(wanted + reserve);
+    // Without a failure the reserve was there and is given back; with one, the reserve comes
+    // out of what was started.
+    let keep = if failure.is_some() { parked.len().saturating_sub(reserve) } else { wanted };
+    release(parked.split_off(keep.min(parked.len())));
     let started = parked.len();
     let built = if started == 0 {
         rayon::ThreadPoolBuilder::new().num_threads(1).use_current_thread().build_global()
     } else {
-        let mut slots = parked.into_iter();
+        let mut slots = parked.into_iter().map(|p| p.slot);
         rayon::ThreadPoolBuilder::new()
             .num_threads(started)
             .thread_name(|i| format!("thud-pool-{i}"))
@@ -138,9 +158,10 @@ mod tests {
     }
 
     #[test]
-    fn parked_threads_are_counted() {
+    fn parked_threads_are_counted_and_released() {
         let (parked, failure) = park(3);
         assert_eq!(parked.len(), 3);
         assert!(failure.is_none());
+        release(parked);
     }
 }

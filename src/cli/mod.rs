@@ -259,7 +259,9 @@ fn tui_exit(r: Result<(), (i32, String)>) -> i32 {
 
 /// Runs the CLI on `args`; returns the process exit code. Errors are one line on stderr.
 pub fn run(cli: Cli) -> i32 {
-    if let Err(e) = start_threads(cli.threads.as_deref()) {
+    // The explorer's own threads: input, hang-up watch, signals, five job slots, an export.
+    let reserve = if matches!(cli.command, Some(Command::Tui(_)) | None) { 9 } else { 1 };
+    if let Err(e) = start_threads(cli.threads.as_deref(), reserve) {
         return fail(&e);
     }
     settings::load();
@@ -304,13 +306,14 @@ fn fail(e: &CliError) -> i32 {
     code
 }
 
-/// Builds the parallel pool ([`crate::threads`]) from `--threads` or `RAYON_NUM_THREADS`;
+/// Builds the parallel pool ([`crate::threads`]) from `--threads` or `RAYON_NUM_THREADS`,
+/// leaving room for `reserve` other threads;
 /// a pool smaller than wanted is a one-line warning, a bad `--threads` an error.
-fn start_threads(flag: Option<&str>) -> Result<(), CliError> {
+fn start_threads(flag: Option<&str>, reserve: usize) -> Result<(), CliError> {
     let flag = flag.map(|t| count("threads", t, &crate::limits::THREADS)).transpose()?;
     let env = std::env::var(crate::threads::ENV).ok();
     let (wanted, too_many) = crate::threads::wanted(flag, env.as_deref());
-    let pool = crate::threads::init(wanted);
+    let pool = crate::threads::init(wanted, reserve);
     for w in too_many.iter().chain(&pool.warning) {
         warn(w);
     }
