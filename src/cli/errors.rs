@@ -28,7 +28,8 @@ pub enum CliError {
     Output(io::Error),
     /// Writing a file failed (the disk, the file system), already worded: exit 1.
     Io(String),
-    /// The explorer could not start or run (a bad preset or tour, no terminal): exit 2.
+    /// The explorer could not start or run: a bad preset or tour (exit 2), no terminal or a
+    /// failed draw (exit 1; [`crate::tui::TuiError::exit_code`]).
     Tui(crate::tui::TuiError),
 }
 
@@ -53,7 +54,8 @@ impl CliError {
             CliError::Input(e @ ThudError::Cancelled) => (1, Some(e.to_string())),
             CliError::Input(e) => (2, Some(name_flag(e, flags))),
             CliError::Io(m) => (1, Some(m.clone())),
-            CliError::Tui(e) => (2, Some(e.to_string())),
+            CliError::Tui(crate::tui::TuiError::Preset(e)) => (2, Some(name_flag(e, flags))),
+            CliError::Tui(e) => (e.exit_code(), Some(e.to_string())),
             CliError::Refused(m) => (2, Some(m.clone())),
             CliError::NonFinite(what) => (
                 1,

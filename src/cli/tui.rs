@@ -34,7 +34,7 @@ pub fn run_default() -> Result<(), CliError> {
         run(&TuiArgs { preset: "default".into(), ..Default::default() })
     } else {
         use clap::CommandFactory;
-        Ok(super::Cli::command().print_help()?)
+        Ok(super::Cli::command().print_help().map_err(|e| CliError::Io(format!("cannot write the help: {e}")))?)
     }
 }
 
