@@ -589,8 +589,11 @@ impl Knob {
             Knob::Force => p.force_n,
             Knob::Freq => p.freq_hz,
             Knob::BallPosition => p.ball_position_m,
+            // NaN: the design does not use the row (a density while the radius is set).
             Knob::Row(_) => match self.row()? {
-                row if matches!(row.accepts, Accepts::Quantity { .. } | Accepts::Count { .. }) => (row.get?)(d),
+                row if matches!(row.accepts, Accepts::Quantity { .. } | Accepts::Count { .. }) => {
+                    Some((row.get?)(d)).filter(|v| !v.is_nan())?
+                }
                 _ => return None,
             },
             _ => return None,
