@@ -23,7 +23,7 @@ const COMMANDS: [(&[&str], &str); 5] = [
 ];
 
 fn stub_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("crates/thud-py/thud.pyi")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("crates/thud-py/python/thud/__init__.pyi")
 }
 
 #[test]
@@ -80,6 +80,17 @@ fn every_row_has_an_explorer_field_with_its_range_and_help() {
     }
 }
 
+/// The line after which a stub function's keyword block starts.
+const PRESET_LINE: &str = "    preset: Optional[str] = None,\n";
+
+/// The next `def NAME(` in `text` of one of `blocks`' functions: its offset and its block.
+fn next_def<'a>(text: &str, blocks: &'a [(&str, String)]) -> Option<(usize, &'a String)> {
+    blocks
+        .iter()
+        .filter_map(|(function, block)| text.find(&format!("def {function}(")).map(|at| (at, block)))
+        .min_by_key(|(at, _)| *at)
+}
+
 /// Python's keywords are the table's rows (the engine resolves them by name); the stub lists
 /// each with its help and range. `THUD_BLESS=1` rewrites the stub's blocks from the table.
 #[test]
@@ -87,17 +98,15 @@ fn the_python_stub_lists_every_row_as_the_table_says() {
     let text = std::fs::read_to_string(stub_path()).unwrap();
     let blocks = [
         ("simulate", params::stub_keywords(&[])),
+        ("simulate_ensemble", params::stub_keywords(&["ball-position"])),
         ("sweep", params::stub_keywords(&[])),
         ("response", params::stub_keywords(&["freq"])),
     ];
     if std::env::var_os("THUD_BLESS").is_some() {
         let mut out = String::new();
         let mut rest = text.as_str();
-        for (function, block) in &blocks {
-            let at = rest.find(&format!("def {function}(")).unwrap();
-            let open = at
-                + rest[at..].find("    preset: Optional[str] = None,\n").unwrap()
-                + "    preset: Optional[str] = None,\n".len();
+        while let Some((at, block)) = next_def(rest, &blocks) {
+            let open = at + rest[at..].find(PRESET_LINE).unwrap() + PRESET_LINE.len();
             let end = open + rest[open..].find("    settle: Optional[bool] = None,").unwrap();
             let end = end + rest[end..].find('\n').unwrap() + 1;
             out += &rest[..open];
@@ -108,12 +117,18 @@ fn the_python_stub_lists_every_row_as_the_table_says() {
         std::fs::write(stub_path(), out).unwrap();
         return;
     }
-    for (function, block) in &blocks {
-        let at = text.find(&format!("def {function}(")).unwrap();
-        let body = &text[at..];
-        let body = &body[..body.find("\"\"\"").unwrap()];
-        assert!(body.contains(block.as_str()), "thud.pyi's {function} keywords differ from the table:\n{block}");
+    // Every definition of each function (the overloads of `simulate` too) carries the block.
+    let mut rest = text.as_str();
+    let mut seen = 0;
+    while let Some((at, block)) = next_def(rest, &blocks) {
+        let body = &rest[at..];
+        let body = &body[..body.find("\"\"\"").unwrap_or(body.len())];
+        let name = &body[..body.find('(').unwrap()];
+        assert!(body.contains(block.as_str()), "the stub's {name} keywords differ from the table:\n{block}");
+        rest = &rest[at + 4..];
+        seen += 1;
     }
+    assert!(seen >= blocks.len(), "the stub defines {seen} of the table's functions");
     for p in DESIGN {
         let keyword = format!("    {}: Optional[", p.name.replace('-', "_"));
         assert!(text.contains(&keyword), "{}", p.name);

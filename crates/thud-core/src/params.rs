@@ -431,7 +431,7 @@ pub fn design_param(name: &str) -> Option<&'static Param<DesignDraft>> {
     DESIGN.iter().find(|p| p.name == name)
 }
 
-/// The keyword lines of Python's stub (`crates/thud-py/thud.pyi`) for the rows of [`DESIGN`]
+/// The keyword lines of Python's stub (`crates/thud-py/python/thud/__init__.pyi`) for the rows of [`DESIGN`]
 /// not in `skip`, in table order, each with its help and range as a comment:
 /// `    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg`.
 /// A test keeps the checked-in stub equal to this.

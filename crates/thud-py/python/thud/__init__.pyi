@@ -1,7 +1,8 @@
 """thud — design single-unit impact dampers from Python, on the engine of the `thud` app.
 
 pulse(**params) -> Pulse, simulate(**params) -> Run (an Ensemble with ensemble=N > 1),
-sweep(masses_kg, gaps_m, **params) -> Chart, response(freqs_hz, **params) -> Response.
+simulate_ensemble(runs, **params) -> Ensemble, sweep(masses_kg, gaps_m, **params) -> Chart,
+response(freqs_hz, **params) -> Response. Every result pickles; tables with pandas/xarray.
 
 Parameters are the command line's long flags as keywords (``--main-mass`` → ``main_mass=``).
 A plain number is in SI units (kg, m, s, m/s, N/m, N·s/m, N/m^1.5, kg/m³, Pa·s/m) except angles
@@ -14,7 +15,7 @@ The GIL is released while the engine runs: Python threads run designs in paralle
 bit-for-bit those of ``thud pulse|simulate|sweep|response --json`` for the same design.
 """
 
-from typing import Dict, List, Literal, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -30,6 +31,8 @@ QuadSigns = Literal["paper", "rigid"]
 PulseShape = Literal["half-sine", "hertz"]
 Solver = Literal["event", "newmark"]
 FloatArray = npt.NDArray[np.float64]
+#: progress=: True for a bar on stderr (tqdm if installed), or a callable progress(done, total).
+ProgressArg = Union[bool, Callable[[int, int], object], None]
 
 class ParameterError(ValueError):
     """A parameter thud cannot accept: unknown, of the wrong type, NaN/inf, out of its range,
@@ -91,8 +94,11 @@ class Pulse:
     """Waveform times (s) from the contact's start."""
     p_pa: FloatArray
     """Waveform pressure (Pa)."""
-    def as_dict(self) -> Dict[str, object]:
-        """Every field in one dict."""
+    def to_dataframe(self) -> Any:
+        """The waveform as a pandas.DataFrame: t_s (s), p_pa (Pa); the scalars in .attrs."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
 
 class Run:
     """One damper design run through its impacts: the fields of ``thud simulate --json`` and
@@ -138,8 +144,13 @@ class Run:
     window (s). None without a force."""
     history: Dict[str, FloatArray]
     """Uniform time history: t_s (s), x_m (main mass, m), y_m (ball, m), x_free_m (no damper, m)."""
-    def as_dict(self) -> Dict[str, object]:
-        """Every field in one dict."""
+    def impacts_frame(self) -> Any:
+        """Every impact as a row of a pandas.DataFrame, t_s first (units in the names)."""
+    def history_frame(self) -> Any:
+        """The time history as a pandas.DataFrame: t_s, x_m, y_m, x_free_m."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
 
 class Chart:
     """The design chart of a sweep. Every metric is a 2-D array of shape
@@ -179,11 +190,18 @@ class Chart:
     ensemble: Optional[Dict[str, np.ndarray]]
     """Every run of every cell as 3-D arrays (gap, mass, run): ball_position_m (m), the metrics,
     zone (int8, 0 = none) (None without an ensemble)."""
+    def to_dataframe(self) -> Any:
+        """A tidy pandas.DataFrame: one row per cell (gap_m, mass_kg, the metrics), or with an
+        ensemble one row per run of each cell (gap_m, mass_kg, run, its metrics, the cell's
+        median_* metrics, zone3_probability, agreement)."""
+    def to_xarray(self) -> Any:
+        """An xarray.Dataset on gap_m × mass_kg (× run with an ensemble), units in attrs."""
     def table5(self, band_cm_s: float = 0.2, no_limit: bool = False) -> Dict[str, np.ndarray]:
         """Table 5: the SPLmax spread per band of e of width band_cm_s (cm/s), as
         ``thud sweep --band``: e_lo_cm_s, e_hi_cm_s (cm/s), count, spl_min_db, spl_max_db (dB)."""
-    def as_dict(self) -> Dict[str, object]:
-        """Every field in one dict."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
 
 class Ensemble:
     """One design from N ball offsets y0 = −d/2 + (k + ½)·d/N at rest (``simulate(ensemble=N)``):
@@ -210,8 +228,11 @@ class Ensemble:
     truncated: bool
     """Whether any run stopped at a solver work cap."""
     truncation_reason: Optional[str]
-    def as_dict(self) -> Dict[str, object]:
-        """Every field in one dict."""
+    def to_dataframe(self) -> Any:
+        """One row per run as a pandas.DataFrame: run, ball_position_m, the run's metrics."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
 
 class Response:
     """The frequency response under the harmonic force: the fields of ``thud response --json``,
@@ -226,15 +247,18 @@ class Response:
     continuation: bool
     runs: int
     """Runs per frequency N (1: the single trajectory)."""
-    sweeps: List[Dict[str, object]]
+    sweeps: List[Dict[str, Any]]
     """One sweep from rest, or "up" then "down" with continuation. Each: "direction" and per
     frequency arrays freq_hz (Hz), amplitude_m, amplitude_linear_m (m; NaN: unbounded),
     reduction_db, leq_db (dB; NaN: no impact), impacts_per_period, periodic, settled,
     truncated (bool), window_start_s, window_end_s, final_time_s (s). With ensemble=N:
     freq_hz, amplitude_linear_m, periodic_fraction, settled_fraction, truncated, "spread"
     {metric: {"p10", "median", "p90"}} and "ensemble" (every run, 2-D: frequency × run)."""
-    def as_dict(self) -> Dict[str, object]:
-        """Every field in one dict."""
+    def to_dataframe(self) -> Any:
+        """One row per frequency of each sweep as a pandas.DataFrame: direction, freq_hz, …"""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
 
 def pulse(
     *,
@@ -266,6 +290,58 @@ def pulse(
     points: waveform points; no_limit: lift the work cap.
     """
 
+@overload
+def simulate(
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    samples: Count = 2001,
+    ensemble: Literal[1] = 1,
+    no_limit: bool = False,
+) -> Run:
+    """One impact-damper design through its impacts (Eqs 25–27), as ``thud simulate``.
+
+    preset: the starting design (default "default"; ``thud.presets()``), then: mass (kg),
+    gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m), k_hz (N/m^1.5),
+    sphere/plate (materials), no_tension, duration (s), solver, dt (s, Newmark), density
+    (kg/m³) or radius (m) of the ball, r (m), theta (degrees), source, quad_signs, pulse,
+    l_star (dB), e_star (cm/s); force (N) and freq (Hz): the harmonic force F0·cos(2π·f·t) on
+    the main mass; ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start;
+    periods: forcing periods of the steady-state window; settle: run on until it settles;
+    samples: time-history samples; ensemble: N runs from ball offsets spread over the
+    clearance (N > 1 returns an Ensemble; not with ball_position); no_limit: lift the work
+    caps. Ctrl-C stops the run (KeyboardInterrupt).
+    """
+
+@overload
 def simulate(
     *,
     preset: Optional[str] = None,
@@ -301,20 +377,43 @@ def simulate(
     samples: Count = 2001,
     ensemble: Count = 1,
     no_limit: bool = False,
-) -> Union[Run, Ensemble]:
-    """One impact-damper design through its impacts (Eqs 25–27), as ``thud simulate``.
-
-    preset: the starting design (default "default"; ``thud.presets()``), then: mass (kg),
-    gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m), k_hz (N/m^1.5),
-    sphere/plate (materials), no_tension, duration (s), solver, dt (s, Newmark), density
-    (kg/m³) or radius (m) of the ball, r (m), theta (degrees), source, quad_signs, pulse,
-    l_star (dB), e_star (cm/s); force (N) and freq (Hz): the harmonic force F0·cos(2π·f·t) on
-    the main mass; ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start;
-    periods: forcing periods of the steady-state window; settle: run on until it settles;
-    samples: time-history samples; ensemble: N runs from ball offsets spread over the
-    clearance (N > 1 returns an Ensemble; not with ball_position); no_limit: lift the work
-    caps. Ctrl-C stops the run (KeyboardInterrupt).
-    """
+) -> Union[Run, Ensemble]: ...
+def simulate_ensemble(
+    runs: Count,
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    no_limit: bool = False,
+) -> Ensemble:
+    """One design from ``runs`` ball offsets y0 = −d/2 + (k + ½)·d/N at rest: always an
+    Ensemble (even of one run), as ``simulate(ensemble=N)``; keywords as for ``simulate``."""
 
 def sweep(
     masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str],
@@ -351,6 +450,7 @@ def sweep(
     periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
     settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
     ensemble: Count = 1,
+    progress: ProgressArg = None,
     no_limit: bool = False,
 ) -> Chart:
     """The design chart: the design run for every impact mass × gap on all cores, as
@@ -394,6 +494,7 @@ def response(
     settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
     continuation: bool = False,
     ensemble: Count = 1,
+    progress: ProgressArg = None,
     no_limit: bool = False,
 ) -> Response:
     """The frequency response under the harmonic force F0·cos(2π·f·t) on the main mass, as
