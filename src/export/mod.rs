@@ -30,6 +30,9 @@ pub enum ExportError {
     /// The table could not be written as CSV.
     #[error("cannot write the CSV: {0}")]
     Csv(#[from] ::csv::Error),
+    /// The sound could not be encoded (a non-finite pressure: a bug).
+    #[error("cannot write the WAV: {0}")]
+    Wav(wav::WavError),
     /// The file could not be written (it exists, is not a regular file, or the system refused).
     #[error("cannot write {0}")]
     File(#[from] FsError),
@@ -270,7 +273,10 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
         }
         Artifact::Wav => {
             let e = run(&d, 0)?;
-            return Ok(wav::damper_sound(&d, &e.run, &opts.wav)?);
+            return wav::damper_sound(&d, &e.run, &opts.wav).map_err(|e| match e {
+                wav::WavError::Invalid(t) => ExportError::Invalid(t),
+                other => ExportError::Wav(other),
+            });
         }
         Artifact::CsvResponse | Artifact::SvgResponse => {
             let freqs = response_freqs(opts);
