@@ -240,7 +240,7 @@ fn plot_of(id: &str) -> Option<Plot> {
         "fig12" => lines("r_m", &[("p_max_pa", LineMarkers), ("p_min_pa", LineMarkers)], None, "pressure (Pa)", true),
         "table3" => lines(
             "mass_g",
-            &[("splmax_paper_db", Markers), ("splmax_model_db", Line)],
+            &[("spl_max_paper_db", Markers), ("spl_max_model_db", Line)],
             Some("gap_cm"),
             "SPLmax (dB re 20 µPa)",
             false,
@@ -270,7 +270,7 @@ fn plot_of(id: &str) -> Option<Plot> {
             lines("t_s", &[("x_damper_m", Line), ("x_free_m", Dashed)], None, "main-mass displacement x (m)", false)
         }
         "fig10" => lines("gap_cm", &[("inclination_cm_s", LineMarkers)], Some("mass_g"), "e (cm/s)", false),
-        "fig11" => lines("mass_g", &[("splmax_db", LineMarkers)], Some("gap_cm"), "SPLmax (dB re 20 µPa)", false),
+        "fig11" => lines("mass_g", &[("spl_max_db", LineMarkers)], Some("gap_cm"), "SPLmax (dB re 20 µPa)", false),
         "fig13" => lines(
             "mass_g",
             &[("restitution", LineMarkers), ("restitution_reference", Markers)],
@@ -280,7 +280,7 @@ fn plot_of(id: &str) -> Option<Plot> {
         ),
         "fig14" => lines("mass_g", &[("inclination_cm_s", LineMarkers)], Some("gap_cm"), "e (cm/s)", false),
         "fig15" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "inclination_cm_s" }),
-        "fig16" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "splmax_db" }),
+        "fig16" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "spl_max_db" }),
         "fig17" => Some(Plot::Zones),
         _ => None,
     }
@@ -355,7 +355,7 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
         }
         Plot::Cells { x, y, v } => Some(cell_map(table, x, y, v)),
         Plot::Zones => {
-            let (s, e, z) = (column(table, "splmax_db")?, column(table, "inclination_cm_s")?, column(table, "zone")?);
+            let (s, e, z) = (column(table, "spl_max_db")?, column(table, "inclination_cm_s")?, column(table, "zone")?);
             let pts: Vec<ZonePoint> = (0..s.len())
                 .filter(|&i| s[i].is_finite() && e[i].is_finite())
                 .map(|i| ZonePoint {
