@@ -94,7 +94,7 @@ fn csv_exports_have_their_headers_and_rows() {
             "index,t_s,wall,u_in_m_s,u_out_m_s,restitution,t_end_s,duration_s,penetration_max_m,spl_db",
             10,
         ),
-        (Artifact::CsvSweep, "mass_kg,gap_m,inclination_cm_s", 9),
+        (Artifact::CsvSweep, "mass_kg,gap_m,n_impacts,inclination_cm_s", 9),
     ] {
         let text = String::from_utf8(export::render(kind, &d, &small_grid()).unwrap()).unwrap();
         let lines: Vec<&str> = text.lines().collect();
