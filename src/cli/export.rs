@@ -10,7 +10,7 @@ use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::Design;
 use crate::error::ThudError;
 use crate::export::wav::{SampleFormat, WavError, WavOptions};
-use crate::export::{self, Artifact, ExportError, ExportOptions};
+use crate::export::{self, svg, Artifact, ExportError, ExportOptions};
 use crate::fsio::{self, FsError, Overwrite};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
@@ -63,8 +63,30 @@ struct CsvArgs {
 struct SvgArgs {
     #[arg(value_enum)]
     what: SvgWhat,
+    /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
+    size: Option<String>,
+    /// Leave the title off the figure (for a caption of its own); the SVG keeps it as <title>.
+    #[arg(long)]
+    no_title: bool,
     #[command(flatten)]
     common: Common,
+}
+
+/// The figure size `--size WxH` asks for (px), each side within [`svg::MIN_SIZE`] and
+/// [`svg::MAX_SIZE`].
+fn parse_size(text: &str) -> Result<(f64, f64), ThudError> {
+    let (min, max) = (svg::MIN_SIZE, svg::MAX_SIZE);
+    let range = format!("WxH in px, width {} to {}, height {} to {} (e.g. 1200x800)", min.0, max.0, min.1, max.1);
+    let side = |t: &str| t.trim().parse::<u32>().ok().map(f64::from);
+    let (w, h) = text
+        .split_once(['x', 'X', '×'])
+        .and_then(|(w, h)| Some((side(w)?, side(h)?)))
+        .ok_or_else(|| ThudError::invalid("--size", format!("{text}: must be {range}")))?;
+    if !(min.0..=max.0).contains(&w) || !(min.1..=max.1).contains(&h) {
+        return Err(ThudError::invalid("--size", format!("{text}: must be {range}")));
+    }
+    Ok((w, h))
 }
 
 /// How the samples of a WAV are stored (`--format`).
@@ -155,6 +177,7 @@ impl Common {
             gaps_m: self.gaps.as_deref().map(|g| parse_range("gaps", g, Unit::Length, &limits::GAP)).transpose()?,
             points,
             wav: WavOptions::default(),
+            look: svg::Look::default(),
             freqs_hz: self
                 .freqs
                 .as_deref()
@@ -335,7 +358,9 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 SvgWhat::Fig17 => Artifact::SvgFig17,
                 SvgWhat::Response => Artifact::SvgResponse,
             };
-            write(ctx, kind, &s.common, &s.common.options()?)
+            let mut opts = s.common.options()?;
+            opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
+            write(ctx, kind, &s.common, &opts)
         }
         ExportCommand::Wav(w) => {
             let mut opts = w.common.options()?;
