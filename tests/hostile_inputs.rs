@@ -673,3 +673,32 @@ fn explorer_refuses_runs_over_the_work_caps() {
     assert!(status.contains("WAV samples exceed the limit"), "{status}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+/// The new flags of the exports and of `thud man`: `export wav --format` takes only pcm16,
+/// pcm24 or float; `export svg --size` only WxH within 480–4000 × 320–4000 px; `--no-title` takes
+/// no value; `man --all` refuses a path that is a file and takes no COMMAND beside it. Each is
+/// refused with exit 2, one line naming the flag and what was typed, and no file.
+#[test]
+fn new_export_and_man_flags_are_checked_and_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = |n: &str| dir.path().join(n).to_string_lossy().into_owned();
+    let (wav, svg) = (f("s.wav"), f("s.svg"));
+    for bad in ["pcm8", "PCM", "", "float64", "1e308"] {
+        assert_refused(&["export", "wav", "--format", bad, "--out", &wav], &["--format", "pcm16"]);
+    }
+    for bad in ["479x320", "480x319", "4001x800", "800x4001", "-800x600", "1e308x600", "NaNxNaN", "800x", "x600", "800*600"] {
+        assert_refused(&["export", "svg", "chart", "--size", bad, "--out", &svg], &["--size", bad, "480 to 4000"]);
+    }
+    assert_refused(&["export", "svg", "chart", "--no-title=yes", "--out", &svg], &["--no-title"]);
+    let file = f("a-file");
+    std::fs::write(&file, "x").unwrap();
+    assert_refused(&["man", "--all", &file], &["a-file"]);
+    assert_refused(&["man", "pulse", "--all", &f("m")], &["--all"]);
+    assert_refused(&["man", "--force"], &["--all"]);
+    assert!(!Path::new(&wav).exists() && !Path::new(&svg).exists() && !Path::new(&f("m")).exists());
+    // The bounds themselves are taken.
+    let r = thud(&["export", "svg", "waveform", "--size", "480x320", "--no-title", "--out", &svg]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let r = thud(&["export", "wav", "--format", "pcm24", "--duration", "0.05", "--out", &wav]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+}
