@@ -278,7 +278,7 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
             let e = run(&d, 0)?;
             return wav::damper_sound(&d, &e.run, &opts.wav).map_err(|e| match e {
                 wav::WavError::Invalid(t) => ExportError::Invalid(t),
-                other => ExportError::Wav(other),
+                other @ wav::WavError::NonFinite(_) => ExportError::Wav(other),
             });
         }
         Artifact::CsvResponse | Artifact::SvgResponse => {
