@@ -178,7 +178,9 @@ fn each_sweep_cell_is_the_zone_of_its_medians_with_its_zone3_probability() {
         "--csv",
     ]);
     let head = csv.lines().next().unwrap();
-    assert!(head.starts_with("mass_kg,gap_m,n_impacts,inclination_cm_s,") && head.contains(",zone3_probability,agreement,"));
+    assert!(
+        head.starts_with("mass_kg,gap_m,n_impacts,inclination_cm_s,") && head.contains(",zone3_probability,agreement,")
+    );
     assert_eq!(csv.lines().count(), 10);
 }
 

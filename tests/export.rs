@@ -292,8 +292,7 @@ fn cli_wav_formats_parse_back_and_pcm_clips_with_a_warning() {
     let mut r24 = hound::WavReader::open(p("p24.wav")).unwrap();
     assert_eq!((r24.spec().bits_per_sample, r24.spec().sample_format), (24, hound::SampleFormat::Int));
     let pcm24: Vec<i32> = r24.samples::<i32>().map(Result::unwrap).collect();
-    let pcm16: Vec<i16> =
-        hound::WavReader::open(p("p16.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
+    let pcm16: Vec<i16> = hound::WavReader::open(p("p16.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
     assert_eq!((float.len(), pcm24.len(), pcm16.len()), (9600, 9600, 9600));
     assert!(float.iter().any(|&v| v != 0.0), "the sound is not silence");
     for ((&f, &a), &b) in float.iter().zip(&pcm24).zip(&pcm16) {
@@ -306,8 +305,7 @@ fn cli_wav_formats_parse_back_and_pcm_clips_with_a_warning() {
     let err = write("loud.wav", &["--full-scale", "0.01"]);
     assert!(err.contains("clipped") && err.contains("--full-scale"), "{err}");
     assert_eq!(err.lines().count(), 2, "the warning and `wrote`: {err}");
-    let loud: Vec<i16> =
-        hound::WavReader::open(p("loud.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
+    let loud: Vec<i16> = hound::WavReader::open(p("loud.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
     assert!(loud.iter().any(|&v| v == i16::MAX || v == -i16::MAX) && !loud.contains(&i16::MIN));
     if !python3() {
         eprintln!("python3 not found: Python's wave check skipped");
@@ -325,7 +323,11 @@ fn cli_wav_formats_parse_back_and_pcm_clips_with_a_warning() {
         let mut lines = text.lines();
         assert_eq!(lines.next(), Some(format!("1 {width} 48000 9600").as_str()), "{name}");
         let nonzero: usize = lines.next().unwrap().parse().unwrap();
-        let want = if width == 2 { pcm16.iter().filter(|&&v| v != 0).count() } else { pcm24.iter().filter(|&&v| v != 0).count() };
+        let want = if width == 2 {
+            pcm16.iter().filter(|&&v| v != 0).count()
+        } else {
+            pcm24.iter().filter(|&&v| v != 0).count()
+        };
         assert_eq!(nonzero, want, "{name}");
     }
 }

@@ -14,7 +14,11 @@ use thud::export::{self, figures, Artifact, ExportOptions};
 use thud::{paper, presets};
 
 fn small_grid() -> ExportOptions {
-    ExportOptions { masses_kg: Some(linspace(0.03, 0.06, 4)), gaps_m: Some(linspace(0.02, 0.04, 3)), ..Default::default() }
+    ExportOptions {
+        masses_kg: Some(linspace(0.03, 0.06, 4)),
+        gaps_m: Some(linspace(0.02, 0.04, 3)),
+        ..Default::default()
+    }
 }
 
 fn svg_of(kind: Artifact) -> String {
@@ -171,8 +175,7 @@ fn svg_no_title_and_size_change_the_figure_and_bad_sizes_are_refused() {
     assert!(boxes.iter().any(|&r| r > 900.0 && r <= 1200.0), "{boxes:?}");
     for bad in ["0x0", "100x100", "5000x800", "1200", "wide", "1200x-8", "nanxnan"] {
         let path = dir.path().join("bad.svg");
-        let (code, out, err) =
-            thud(&["export", "svg", "waveform", "--size", bad, "--out", path.to_str().unwrap()]);
+        let (code, out, err) = thud(&["export", "svg", "waveform", "--size", bad, "--out", path.to_str().unwrap()]);
         assert_eq!((code, out.as_str()), (2, ""), "{bad}: {err}");
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.contains("--size") && err.contains(bad) && err.contains("480 to 4000"), "{err}");

@@ -686,7 +686,9 @@ fn new_export_and_man_flags_are_checked_and_named() {
     for bad in ["pcm8", "PCM", "", "float64", "1e308"] {
         assert_refused(&["export", "wav", "--format", bad, "--out", &wav], &["--format", "pcm16"]);
     }
-    for bad in ["479x320", "480x319", "4001x800", "800x4001", "-800x600", "1e308x600", "NaNxNaN", "800x", "x600", "800*600"] {
+    for bad in
+        ["479x320", "480x319", "4001x800", "800x4001", "-800x600", "1e308x600", "NaNxNaN", "800x", "x600", "800*600"]
+    {
         assert_refused(&["export", "svg", "chart", "--size", bad, "--out", &svg], &["--size", bad, "480 to 4000"]);
     }
     assert_refused(&["export", "svg", "chart", "--no-title=yes", "--out", &svg], &["--no-title"]);

@@ -61,7 +61,10 @@ fn every_csv_column_is_in_the_readme_schema_table() {
     let response = ["--force-amplitude", "1N", "--freqs", "5Hz:6Hz:2", "--duration", "2", "--csv"];
     for (name, args) in [
         ("sweep --csv", [&["sweep", "--csv"][..], &GRID[..]].concat()),
-        ("sweep --ensemble --csv", [&["sweep", "--csv", "--ensemble", "2", "--duration", "0.5"][..], &GRID[..]].concat()),
+        (
+            "sweep --ensemble --csv",
+            [&["sweep", "--csv", "--ensemble", "2", "--duration", "0.5"][..], &GRID[..]].concat(),
+        ),
         ("simulate --csv", vec!["simulate", "--csv", "--samples", "3"]),
         ("simulate --ensemble --csv", vec!["simulate", "--csv", "--ensemble", "3", "--duration", "0.5"]),
         ("pulse --csv", vec!["pulse", "--csv", "--points", "3"]),
@@ -71,7 +74,11 @@ fn every_csv_column_is_in_the_readme_schema_table() {
         headers.push((name.to_string(), header(&ok(&args))));
     }
     let list = ok(&["paper", "--list"]);
-    for id in list.lines().filter_map(|l| l.split_whitespace().next()).filter(|id| id.starts_with("table") || id.starts_with("fig")) {
+    for id in list
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|id| id.starts_with("table") || id.starts_with("fig"))
+    {
         headers.push((format!("paper {id}"), header(&ok(&["paper", id, "--csv"]))));
     }
     assert!(headers.len() > 25);
@@ -107,7 +114,10 @@ fn sweep_csv_has_every_key_of_a_sweep_json_cell_with_zones_as_numbers() {
     for (row, cell) in rows.records().map(Result::unwrap).zip(cells) {
         let zone = &cell["metrics"]["zone"];
         assert!(zone.is_u64() || zone.is_null(), "a zone is a number: {zone}");
-        assert_eq!(&row[want.iter().position(|k| k == "zone").unwrap()], zone.as_u64().map_or(String::new(), |z| z.to_string()));
+        assert_eq!(
+            &row[want.iter().position(|k| k == "zone").unwrap()],
+            zone.as_u64().map_or(String::new(), |z| z.to_string())
+        );
         for (i, key) in want.iter().enumerate().take(want.len() - 1) {
             let v = cell.get(key).unwrap_or(&cell["metrics"][key]);
             assert_eq!(row[i].parse::<f64>().ok(), v.as_f64(), "{key}");

@@ -256,7 +256,9 @@ fn check_contents(kind: Artifact, bytes: &[u8]) -> Result<(), CliError> {
 fn samples_at_full_scale(bytes: &[u8], format: SampleFormat) -> usize {
     let data = bytes.get(44..).unwrap_or_default();
     match format {
-        SampleFormat::Pcm16 => data.chunks_exact(2).filter(|c| i16::from_le_bytes([c[0], c[1]]).abs() == i16::MAX).count(),
+        SampleFormat::Pcm16 => {
+            data.chunks_exact(2).filter(|c| i16::from_le_bytes([c[0], c[1]]).abs() == i16::MAX).count()
+        }
         SampleFormat::Pcm24 => data
             .chunks_exact(3)
             .filter(|c| (i32::from_le_bytes([0, c[0], c[1], c[2]]) >> 8).abs() == (1 << 23) - 1)
@@ -292,7 +294,9 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
     let bytes = export::render(kind, &design, opts);
     spinner.finish_and_clear();
     let bytes = match bytes {
-        Err(ExportError::Wav(WavError::NonFinite(p))) => return Err(CliError::NonFinite(format!("{p} Pa in a WAV sample"))),
+        Err(ExportError::Wav(WavError::NonFinite(p))) => {
+            return Err(CliError::NonFinite(format!("{p} Pa in a WAV sample")))
+        }
         other => other.map_err(|e| export_error(out, e, common))?,
     };
     check_contents(kind, &bytes)?;

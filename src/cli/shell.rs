@@ -46,8 +46,7 @@ pub struct ManArgs {
 pub fn with_hints(cmd: Command) -> Command {
     let presets: Vec<&'static str> = crate::presets::names().collect();
     let materials: Vec<&'static str> = crate::contact::MATERIALS.iter().map(|m| m.name).collect();
-    let items: Vec<&'static str> =
-        crate::paper::items().map(|i| i.id).chain(std::iter::once("all")).collect();
+    let items: Vec<&'static str> = crate::paper::items().map(|i| i.id).chain(std::iter::once("all")).collect();
     let commands: Vec<String> = cmd.get_subcommands().map(|c| c.get_name().to_string()).collect();
     hint(cmd, &|path: &[&str], arg: Arg| match (path, arg.get_id().as_str()) {
         (_, "preset") => arg.value_parser(PossibleValuesParser::new(presets.clone())),
@@ -238,11 +237,7 @@ fn extra_sections(cmd: &Command, path: &[String]) -> String {
     );
     s += ".SH ENVIRONMENT\n";
     item(&mut s, "NO_COLOR", "When set to anything non-empty, the explorer draws without colour.");
-    item(
-        &mut s,
-        "RAYON_NUM_THREADS",
-        "Threads for sweeps, ensembles and responses (default: one per core).",
-    );
+    item(&mut s, "RAYON_NUM_THREADS", "Threads for sweeps, ensembles and responses (default: one per core).");
     item(&mut s, "XDG_CONFIG_HOME", "Where thud/config.toml is read from (default ~/.config).");
     item(&mut s, "XDG_DATA_HOME", "Where saved designs are kept, in thud/designs/ (default ~/.local/share).");
     s += ".SH FILES\n";
@@ -251,7 +246,11 @@ fn extra_sections(cmd: &Command, path: &[String]) -> String {
         "$XDG_CONFIG_HOME/thud/config.toml",
         "Settings: theme, markers, zone thresholds, key overrides. A file that fails to parse is reported and never overwritten.",
     );
-    item(&mut s, "$XDG_DATA_HOME/thud/designs/NAME.toml", "Designs saved from the explorer, in the format of the presets.");
+    item(
+        &mut s,
+        "$XDG_DATA_HOME/thud/designs/NAME.toml",
+        "Designs saved from the explorer, in the format of the presets.",
+    );
     s += &format!(
         ".PP\n{}\n",
         roff("Every file thud writes is written whole or not at all; an existing file is kept unless --force.")

@@ -9,8 +9,8 @@ use crate::paper::{Table, Value};
 use crate::units::sig;
 
 use super::svg::{
-    draw_series_clipped, legend, line_plot, nice_step, series_color, Anchor, Axis, Frame, Look, Series, Shape, Style, Svg,
-    HEIGHT, WIDTH,
+    draw_series_clipped, legend, line_plot, nice_step, series_color, Anchor, Axis, Frame, Look, Series, Shape, Style,
+    Svg, HEIGHT, WIDTH,
 };
 
 /// The pressure of one impact against time after the direct wave arrives (ms, Pa).

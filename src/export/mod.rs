@@ -270,7 +270,9 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
             let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {})?;
             match kind {
                 Artifact::CsvSweep => csv::sweep(&chart)?,
-                Artifact::SvgChart => figures::design_chart(&chart, "Design chart: zone of each impact mass × gap", &opts.look),
+                Artifact::SvgChart => {
+                    figures::design_chart(&chart, "Design chart: zone of each impact mass × gap", &opts.look)
+                }
                 _ => figures::fig17(&chart, "Design chart: damping inclination against SPLmax (Fig 17)", &opts.look),
             }
         }

@@ -211,15 +211,27 @@ impl Svg {
 
     /// Marker `shape` (see [`Shape`]) of size `r` px at (`cx`, `cy`), filled with `fill`.
     pub fn marker(&mut self, shape: Shape, cx: f64, cy: f64, r: f64, fill: &str) {
-        let poly = |pts: &[(f64, f64)]| pts.iter().map(|(x, y)| format!("{},{}", n(cx + x * r), n(cy + y * r))).collect::<Vec<_>>().join(" ");
+        let poly = |pts: &[(f64, f64)]| {
+            pts.iter().map(|(x, y)| format!("{},{}", n(cx + x * r), n(cy + y * r))).collect::<Vec<_>>().join(" ")
+        };
         match shape {
             Shape::Circle => self.circle(cx, cy, r, fill),
             Shape::Square => self.rect(cx - 0.85 * r, cy - 0.85 * r, 1.7 * r, 1.7 * r, fill, None),
             Shape::Triangle => {
-                let _ = writeln!(self.body, r#"<polygon points="{}" fill="{}"/>"#, poly(&[(0.0, -1.2), (1.1, 0.9), (-1.1, 0.9)]), escape(fill));
+                let _ = writeln!(
+                    self.body,
+                    r#"<polygon points="{}" fill="{}"/>"#,
+                    poly(&[(0.0, -1.2), (1.1, 0.9), (-1.1, 0.9)]),
+                    escape(fill)
+                );
             }
             Shape::Diamond => {
-                let _ = writeln!(self.body, r#"<polygon points="{}" fill="{}"/>"#, poly(&[(0.0, -1.25), (1.1, 0.0), (0.0, 1.25), (-1.1, 0.0)]), escape(fill));
+                let _ = writeln!(
+                    self.body,
+                    r#"<polygon points="{}" fill="{}"/>"#,
+                    poly(&[(0.0, -1.25), (1.1, 0.0), (0.0, 1.25), (-1.1, 0.0)]),
+                    escape(fill)
+                );
             }
         }
     }
