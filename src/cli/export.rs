@@ -112,7 +112,7 @@ impl From<WavFormat> for SampleFormat {
 
 #[derive(Debug, Clone, Args)]
 struct WavArgs {
-    /// Pressure written as sample value 1.0 (Pa, 1e-6 to 1e6); the same for every design, so files
+    /// Pressure written as sample value 1.0 (Pa; its range: `thud limits`); the same for every design, so files
     /// compare by ear (never normalised to the loudest sample).
     #[arg(long, value_name = "PA", default_value = "20", allow_hyphen_values = true)]
     full_scale: String,
