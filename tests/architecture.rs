@@ -160,6 +160,82 @@ fn the_circle_check_finds_a_planted_circle() {
     assert!(circles(&graph(src)).is_empty());
 }
 
+/// The explorer's app modules (`src/tui/app/`) in order: each calls methods of `App` defined in
+/// itself or the modules before it, never after, so no two of them call each other.
+const APP_LAYERS: [&str; 7] = ["state", "change", "screen", "guide", "files", "input", "update"];
+
+/// The names of the functions a piece of code defines.
+fn defined_fns(code: &str) -> BTreeSet<String> {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    code.match_indices("fn ")
+        .filter(|(i, _)| *i == 0 || !code[..*i].ends_with(ident))
+        .map(|(i, _)| code[i + 3..].chars().take_while(|c| ident(*c)).collect::<String>())
+        .filter(|n| !n.is_empty())
+        .collect()
+}
+
+/// The methods a piece of code calls on `self`.
+fn self_calls(code: &str) -> BTreeSet<String> {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    code.match_indices("self.")
+        .filter_map(|(i, _)| {
+            let rest = &code[i + 5..];
+            let end = rest.find(|c: char| !ident(c)).unwrap_or(rest.len());
+            rest[end..].starts_with('(').then(|| rest[..end].to_string())
+        })
+        .collect()
+}
+
+/// The calls up of layered code, given as (module, code) in order: "M calls self.f() of N" for
+/// each method `f` that M calls and only a later module N defines.
+fn calls_up(layers: &[(&str, String)]) -> Vec<String> {
+    let defs: Vec<BTreeSet<String>> = layers.iter().map(|(_, c)| defined_fns(c)).collect();
+    let mut out = Vec::new();
+    for (i, (module, code)) in layers.iter().enumerate() {
+        for called in self_calls(code) {
+            if defs[..=i].iter().any(|d| d.contains(&called)) {
+                continue;
+            }
+            if let Some(j) = (i + 1..layers.len()).find(|&j| defs[j].contains(&called)) {
+                out.push(format!("{module} calls self.{called}() of {}", layers[j].0));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_explorers_app_modules_call_only_the_ones_above_them() {
+    let dir = root().join("src/tui/app");
+    let mut files: Vec<String> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path().file_stem().unwrap().to_string_lossy().into_owned())
+        .filter(|m| m != "mod")
+        .collect();
+    files.sort_unstable();
+    let mut layers = APP_LAYERS.map(String::from).to_vec();
+    layers.sort_unstable();
+    assert_eq!(files, layers, "every module of src/tui/app has its place in APP_LAYERS");
+    let layers: Vec<(&str, String)> =
+        APP_LAYERS.iter().map(|m| (*m, code(&fs::read_to_string(dir.join(format!("{m}.rs"))).unwrap()))).collect();
+    assert_eq!(calls_up(&layers), Vec::<String>::new());
+    let mut all = Vec::new();
+    rust_files(&root().join("src"), &mut all);
+    for f in all.iter().filter(|f| !f.starts_with(&dir)) {
+        let text = code(&fs::read_to_string(f).unwrap());
+        assert!(!text.contains("impl App {"), "{} adds to App outside src/tui/app", f.display());
+    }
+}
+
+#[test]
+fn the_layer_check_finds_a_call_up() {
+    let planted = [
+        ("state", "fn busy(&self) -> bool { self.ready() && self.work().is_empty() }\nfn ready(&self) {}".to_string()),
+        ("update", "fn work(&mut self) -> Vec<u8> { self.busy(); vec![] }".to_string()),
+    ];
+    assert_eq!(calls_up(&planted), vec!["state calls self.work() of update".to_string()]);
+}
+
 #[test]
 fn the_engine_depends_on_no_ui_file_or_terminal_crate() {
     let manifest = fs::read_to_string(root().join("crates/thud-core/Cargo.toml")).unwrap();

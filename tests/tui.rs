@@ -611,15 +611,16 @@ fn saving_over_an_existing_name_asks_first_and_only_y_overwrites() {
 
 /// A job that panics, standing in for the simulation of the design with `key`.
 struct Crash {
-    key: String,
+    key: thud::tui::cache_key::SimKey,
 }
 
 impl thud::tui::job::Job for Crash {
     const NAME: &'static str = "simulation";
     type Report = thud::tui::worker::Done;
     type State = ();
+    type Key = thud::tui::cache_key::SimKey;
 
-    fn key(&self) -> &str {
+    fn key(&self) -> &Self::Key {
         &self.key
     }
 
@@ -643,7 +644,7 @@ fn a_panicking_job_is_an_error_in_the_status_line_and_frees_its_slot() {
     let runner = thud::tui::job::SingleJob::start(std::sync::Arc::new(move |d| {
         let _ = tx.send(d);
     }));
-    let key = thud::tui::compute::sim_key(&app.design);
+    let key = thud::tui::cache_key::SimKey::of(&app.design);
     runner.spawn(Crash { key: key.clone() });
     let done = rx.recv_timeout(Duration::from_secs(30)).expect("the runner answered the crashed job");
     assert!(!runner.is_pending(), "the slot is free, not stuck running");

@@ -5,8 +5,7 @@
 //! response of a forced design. Calls into the engine only; no threads, no slots, no messages
 //! — the worker (`worker.rs`) runs these on its threads and `tui::compute_sync` on the caller's.
 //!
-//! Each result is tagged with a key: the serialized parameters it depends on. A result whose
-//! key differs from the live design's is stale, and equal keys let the worker's caches answer.
+//! Each result is tagged with a key of the parameters it depends on (`cache_key.rs`).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -134,62 +133,6 @@ pub fn grids_of(p: &ChartPasses) -> Grids {
     Grids { coarse: p.coarse.as_ref().map(grid), fine: grid(&p.fine) }
 }
 
-fn json<T: serde::Serialize>(v: &T) -> String {
-    serde_json::to_string(v).unwrap_or_default()
-}
-
-/// Key of what a simulation depends on: the damper, the ball, materials and solver.
-pub fn sim_key(d: &Design) -> String {
-    json(&(&d.damper, &d.ball, &d.materials, &d.solver))
-}
-
-/// Key of the acoustics: everything but the zone thresholds (zones are classified on draw).
-pub fn acoustic_key(d: &Design) -> String {
-    let mut d = d.clone();
-    d.thresholds = Thresholds::default();
-    json(&d)
-}
-
-/// Key of the readout of `d` with `runs` runs: the acoustics, and the ensemble size when N > 1.
-pub fn readout_key(d: &Design, runs: usize) -> String {
-    if runs > 1 {
-        format!("{}|ensemble {runs}", acoustic_key(d))
-    } else {
-        acoustic_key(d)
-    }
-}
-
-/// Key of what the sound at the observer depends on beyond each impact: observer and radiation.
-pub fn sound_key(d: &Design) -> String {
-    json(&(&d.observer, &d.radiation))
-}
-
-/// Key of the chart of `runs` runs a cell: [`chart_key`]; with N > 1 also the ensemble size and
-/// the sound (an ensemble chart is swept again for a new observer: its runs' zones, and so
-/// how many agree, depend on it).
-pub fn chart_key_runs(d: &Design, grids: &Grids, runs: usize) -> String {
-    if runs > 1 {
-        format!("{}|ensemble {runs}|{}", chart_key(d, grids), sound_key(d))
-    } else {
-        chart_key(d, grids)
-    }
-}
-
-/// Key of the chart's simulations: everything but the mass, the gap, the thresholds and the
-/// sound (a change of observer relevels the chart instead of re-sweeping it), plus the grids.
-pub fn chart_key(d: &Design, grids: &Grids) -> String {
-    let mut d = design::variant(d, 0.0, 0.0);
-    d.thresholds = Thresholds::default();
-    d.observer = Observer::new(0.0, 0.0);
-    d.radiation = crate::acoustics::Radiation::default();
-    format!(
-        "{}|{:?}|{:?}",
-        json(&d),
-        grids.coarse.as_ref().map(|g| (g.masses_kg.len(), g.gaps_m.len())),
-        (grids.fine.masses_kg.len(), grids.fine.gaps_m.len())
-    )
-}
-
 /// Simulates `d` with history; `None` if cancelled.
 pub fn compute_sim(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<SimResult>, ThudError> {
     let eval = design::evaluate(d, HISTORY_SAMPLES, cancel)?;
@@ -293,12 +236,6 @@ pub fn response_design(d: &Design) -> Design {
     r.damper.freq_hz = 0.0;
     r.thresholds = Thresholds::default();
     r
-}
-
-/// Key of a response curve: the design from rest without its forcing frequency (the curve
-/// does not depend on f: changing it moves the marker only), and the band.
-pub fn response_key(d: &Design, band: &FreqBand) -> String {
-    format!("{}|{:?}", json(&response_design(d)), band)
 }
 
 /// The work of the response curve of `d` over `band`, checked against the caps `thud
@@ -459,20 +396,6 @@ pub fn natural_frequency_hz(d: &Design) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn keys_separate_what_they_should() {
-        let d = Design::default();
-        let moved = design::variant(&d, 0.05, 0.03);
-        assert_ne!(sim_key(&d), sim_key(&moved));
-        assert_eq!(chart_key(&d, &Grids::default()), chart_key(&moved, &Grids::default()));
-        let mut heard = d.clone();
-        heard.observer.r_m = 1.0;
-        assert_eq!(sim_key(&d), sim_key(&heard));
-        assert_ne!(acoustic_key(&d), acoustic_key(&heard));
-        assert_eq!(chart_key(&d, &Grids::default()), chart_key(&heard, &Grids::default()), "observer relevels");
-        assert_ne!(sound_key(&d), sound_key(&heard));
-    }
 
     #[test]
     fn relevel_equals_a_fresh_sweep_at_the_new_observer() {

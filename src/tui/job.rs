@@ -42,7 +42,10 @@ pub trait Job: Send + 'static {
     type State: Default;
 
     /// The work's identity: jobs with equal keys compute the same thing.
-    fn key(&self) -> &str;
+    type Key: PartialEq + Clone + Send + 'static;
+
+    /// This job's key.
+    fn key(&self) -> &Self::Key;
 
     /// Does the work, sending its reports through `cx`. A cancelled job may stop early and
     /// report nothing.
@@ -82,14 +85,14 @@ impl<'a, R> Context<'a, R> {
 }
 
 /// The slot: the queued job with its cancel flag, and the key and flag of the running one.
-struct Slot<J> {
+struct Slot<J: Job> {
     state: Mutex<SlotState<J>>,
     ready: Condvar,
 }
 
-struct SlotState<J> {
+struct SlotState<J: Job> {
     queued: Option<(J, Arc<AtomicBool>)>,
-    running: Option<(String, Arc<AtomicBool>)>,
+    running: Option<(J::Key, Arc<AtomicBool>)>,
     closed: bool,
 }
 
@@ -126,7 +129,7 @@ impl<J: Job> Slot<J> {
                 return None;
             }
             if let Some((job, flag)) = s.queued.take() {
-                s.running = Some((job.key().to_string(), flag.clone()));
+                s.running = Some((job.key().clone(), flag.clone()));
                 return Some((job, flag));
             }
             s = self.ready.wait(s).unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -315,7 +318,9 @@ mod tests {
         /// Jobs run so far on this thread.
         type State = usize;
 
-        fn key(&self) -> &str {
+        type Key = String;
+
+        fn key(&self) -> &String {
             &self.key
         }
 

@@ -12,22 +12,25 @@
 //! the help's second page says what the numbers mean, and a guided tour (`T`, `thud tui
 //! --tour [FILE]`) tells the paper's story step by step with the real computations.
 //!
-//! The modules, from the state out: `app` (state and update) with `input` (keys per mode)
-//! and `files` (save, load, export); `worker` (requests, results, the five job slots) on
-//! `job` (the generic single-slot runner) calling `compute` (the physics each job does);
-//! `ui` (layout, one function per area) drawing the widgets `params`, `readout`, `waveform`,
-//! `polar`, `history`, `chart`, `response` (on `plot` and `theme`); `fields` (the editable parameters),
-//! `explain` (what each field and number means), `tour` (the guided tour's steps), `keys`
-//! (the key table) and `terminal` (setup and restore).
+//! The modules, from the state out: `app` (the state, grouped by concern, and the changes a
+//! message makes to it: `app/state.rs`, `change`, `screen`, `guide`, `files`, `input`,
+//! `update`); `worker` (requests, results, the five job slots) on `job` (the generic
+//! single-slot runner) calling `compute` (the physics each job does), results tagged with the
+//! typed keys of `cache_key` (built on `fingerprint`); `ui` (layout, one function per area, reading the state only)
+//! drawing the widgets `params`, `readout`, `waveform`, `polar`, `history`, `chart`,
+//! `response` (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
+//! each field and number means), `files` (the export menu), `tour` (the guided tour's
+//! steps), `keys` (the key table) and `terminal` (setup and restore).
 
 pub mod app;
+pub mod cache_key;
 pub mod chart;
 pub mod compute;
 pub mod explain;
 pub mod fields;
 pub mod files;
+pub mod fingerprint;
 pub mod history;
-pub mod input;
 pub mod job;
 pub mod keys;
 pub mod params;

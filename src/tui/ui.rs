@@ -88,10 +88,10 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     }
     f.render_widget(status_line(app), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(&app.keys, footer.width, touring, &app.theme), footer);
+        f.render_widget(footer_line(&app.settings.keys, footer.width, touring, &app.theme), footer);
     }
     match app.mode {
-        Mode::Help => help_popup(f, &app.keys, &app.theme, area),
+        Mode::Help => help_popup(f, &app.settings.keys, &app.theme, area),
         Mode::Glossary(scroll) => glossary_popup(f, app, scroll, area),
         _ => {
             if let Some(list) = list_view(app) {
@@ -335,7 +335,7 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         Some(e) => e.spread.inclination_cm_s.median.is_some_and(|e| e < 0.0),
         None => a.metrics.inclination_cm_s.is_some_and(|e| e < 0.0),
     });
-    let note = if let Some(e) = &app.work_error {
+    let note = if let Some(e) = &app.results.error {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
@@ -401,7 +401,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
     let pin_sound = pinned.and_then(|p| p.acoustic.as_deref());
     match which {
         Panel::Waveform | Panel::Params | Panel::Readout => {
-            let Sound { pulse: live, peaks, empty, .. } = sound_of(app.acoustic.as_deref(), app.pulse);
+            let Sound { pulse: live, peaks, empty, .. } = sound_of(app.results.acoustic.as_deref(), app.pulse);
             let pin = pin_sound.map(|a| sound_of(Some(a), app.pulse).pulse);
             let u0 = match app.pulse {
                 PulseView::Single => Some(app.design.damper.v0_m_s),
@@ -419,7 +419,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
             f.render_widget(view, area);
         }
         Panel::Polar => {
-            let live = sound_of(app.acoustic.as_deref(), app.pulse).polar;
+            let live = sound_of(app.results.acoustic.as_deref(), app.pulse).polar;
             let pin = pin_sound.map(|a| sound_of(Some(a), app.pulse).polar);
             let d = &app.design;
             let r = sig(d.observer.r_m, 3);
@@ -446,7 +446,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
         }
         Panel::History => {
             let empty: &[(f64, f64)] = &[];
-            let s = app.sim.as_deref();
+            let s = app.results.sim.as_deref();
             let view = HistoryView {
                 block: panel_block(app, Panel::History, history::title(title_width(app, Panel::History, area))),
                 with_damper: s.map_or(empty, |s| &s.history_cm),
@@ -522,10 +522,10 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
                 ResponseState::NoForce
             } else if let Some(r) = app.response() {
                 ResponseState::Ready(r)
-            } else if let Some(e) = app.response_error.as_deref() {
+            } else if let Some(e) = app.response.error.as_deref() {
                 ResponseState::Failed(e)
             } else {
-                ResponseState::Computing(app.response_progress.0, app.response_progress.1)
+                ResponseState::Computing(app.response.progress.0, app.response.progress.1)
             };
             let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, theme: app.theme };
             f.render_widget(view, area);

@@ -3,21 +3,23 @@
 //! ensemble of N runs), the chart sweep, the chart's levels at a new observer, the frequency
 //! response curve — each in its own [`SingleJob`] slot and thread (newest wins; see
 //! [`super::job`]); exports run each on a short-lived thread of their own, never cancelled.
-//! Results are tagged with the key (serialized parameters) they were computed for, so the app
-//! drops stale ones, and cached by that key so going back (undo, presets) is instant. What
+//! Results are tagged with the key of the parameters they were computed for (typed, see
+//! [`super::cache_key`]), so the app drops stale ones, and cached by that key so going back
+//! (undo, presets) is instant. What
 //! the jobs compute is in [`super::compute`].
 
 use std::collections::HashMap;
+use std::hash::Hash;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use super::cache_key::{ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
 use super::compute::{
-    chart_key, chart_key_runs, compute_chart, compute_ensemble_chart, compute_readout, compute_relevel,
-    compute_response, compute_sim, grids_of, readout_key, response_key, sound_key, AcousticResult, ChartPasses,
-    FreqBand, Grids, SimResult, Stage,
+    compute_chart, compute_ensemble_chart, compute_readout, compute_relevel, compute_response, compute_sim, grids_of,
+    AcousticResult, ChartPasses, FreqBand, Grids, SimResult, Stage,
 };
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
 use crate::design::{Cell, Chart, Design};
@@ -74,18 +76,18 @@ pub enum WorkError {
 #[derive(Debug)]
 pub enum Done {
     Sim {
-        key: String,
+        key: SimKey,
         result: Result<Arc<SimResult>, WorkError>,
     },
     Acoustic {
-        key: String,
+        key: ReadoutKey,
         result: Result<Arc<AcousticResult>, WorkError>,
     },
-    /// `sound` is the [`sound_key`] the cell's SPLmax was computed for. In an ensemble chart
+    /// `sound` is the [`SoundKey`] the cell's SPLmax was computed for. In an ensemble chart
     /// `cell` holds the medians and `ensemble` the cell's runs.
     ChartCell {
-        key: String,
-        sound: String,
+        key: ChartKey,
+        sound: SoundKey,
         stage: Stage,
         index: usize,
         cell: Cell,
@@ -93,27 +95,27 @@ pub enum Done {
     },
     /// A finished pass (of medians, with the ensembles, in an ensemble chart).
     Chart {
-        key: String,
-        sound: String,
+        key: ChartKey,
+        sound: SoundKey,
         stage: Stage,
         result: Result<Arc<Chart>, WorkError>,
         ensembles: Option<Arc<EnsembleChart>>,
     },
-    /// The response curve for `key` ([`response_key`]).
+    /// The response curve for `key`.
     Response {
-        key: String,
+        key: ResponseKey,
         result: Result<Arc<Response>, WorkError>,
     },
     /// `done` of `total` frequencies of the response curve for `key` are in.
     ResponseProgress {
-        key: String,
+        key: ResponseKey,
         done: usize,
         total: usize,
     },
     /// The chart's passes relevelled for `sound`; `key` is the chart key.
     Relevel {
-        key: String,
-        sound: String,
+        key: ChartKey,
+        sound: SoundKey,
         result: Result<Arc<ChartPasses>, WorkError>,
     },
     /// An export finished (or failed) writing `path`.
@@ -146,33 +148,21 @@ impl ExportJob {
     }
 }
 
-/// The key a request's result will carry (for a relevel: the slot's key, the sound).
-pub fn request_key(r: &Request) -> String {
-    match r {
-        Request::Sim(d) => super::compute::sim_key(d),
-        Request::Acoustic(d, _, runs) => readout_key(d, *runs),
-        Request::Chart(d, ChartWork::Zones(g, runs)) => chart_key_runs(d, g, *runs),
-        Request::Chart(d, ChartWork::Response(band)) => response_key(d, band),
-        Request::Relevel(d, _) => sound_key(d),
-        Request::Export(job) => job.path.display().to_string(),
-    }
-}
-
 /// Finished results kept on a job's thread, keyed by their parameters; cleared when full.
-struct Cache<V>(HashMap<String, Arc<V>>);
+struct Cache<K, V>(HashMap<K, Arc<V>>);
 
-impl<V> Default for Cache<V> {
+impl<K, V> Default for Cache<K, V> {
     fn default() -> Self {
         Self(HashMap::new())
     }
 }
 
-impl<V> Cache<V> {
-    fn get(&self, key: &str) -> Option<Arc<V>> {
+impl<K: Hash + Eq, V> Cache<K, V> {
+    fn get(&self, key: &K) -> Option<Arc<V>> {
         self.0.get(key).cloned()
     }
 
-    fn insert(&mut self, key: String, value: V) -> Arc<V> {
+    fn insert(&mut self, key: K, value: V) -> Arc<V> {
         if self.0.len() >= CACHE_MAX {
             self.0.clear();
         }
@@ -182,20 +172,21 @@ impl<V> Cache<V> {
 
 /// Simulate one design with its history.
 struct SimJob {
-    key: String,
+    key: SimKey,
     design: Design,
 }
 
 impl Job for SimJob {
     const NAME: &'static str = "simulation";
     type Report = Done;
-    type State = Cache<SimResult>;
+    type State = Cache<SimKey, SimResult>;
+    type Key = SimKey;
 
-    fn key(&self) -> &str {
+    fn key(&self) -> &SimKey {
         &self.key
     }
 
-    fn run(&self, cache: &mut Cache<SimResult>, cx: &Context<'_, Done>) {
+    fn run(&self, cache: &mut Cache<SimKey, SimResult>, cx: &Context<'_, Done>) {
         let result = match cache.get(&self.key) {
             Some(hit) => Ok(hit),
             None => match compute_sim(&self.design, Some(cx.cancel_flag())) {
@@ -214,7 +205,7 @@ impl Job for SimJob {
 
 /// The readout of a simulated design: metrics, waveform, directivity, steady state, ensemble.
 struct AcousticJob {
-    key: String,
+    key: ReadoutKey,
     design: Design,
     sim: Arc<SimResult>,
     runs: usize,
@@ -223,13 +214,14 @@ struct AcousticJob {
 impl Job for AcousticJob {
     const NAME: &'static str = "acoustics";
     type Report = Done;
-    type State = Cache<AcousticResult>;
+    type State = Cache<ReadoutKey, AcousticResult>;
+    type Key = ReadoutKey;
 
-    fn key(&self) -> &str {
+    fn key(&self) -> &ReadoutKey {
         &self.key
     }
 
-    fn run(&self, cache: &mut Cache<AcousticResult>, cx: &Context<'_, Done>) {
+    fn run(&self, cache: &mut Cache<ReadoutKey, AcousticResult>, cx: &Context<'_, Done>) {
         let result = match cache.get(&self.key) {
             Some(hit) => Ok(hit),
             None => match compute_readout(&self.design, &self.sim, self.runs, Some(cx.cancel_flag())) {
@@ -251,13 +243,13 @@ type Pass = (Stage, Arc<Chart>, Option<Arc<EnsembleChart>>);
 
 /// A finished chart: the sound key its levels are for, and its passes.
 struct CachedChart {
-    sound: String,
+    sound: SoundKey,
     passes: Vec<Pass>,
 }
 
 /// The chart sweep: every cell as it is done, then each pass.
 struct ChartJob {
-    key: String,
+    key: ChartKey,
     design: Design,
     grids: Grids,
     /// Runs a cell (1: single runs).
@@ -267,7 +259,7 @@ struct ChartJob {
 impl ChartJob {
     /// The ensemble sweep: each cell reported as its medians with its runs.
     fn run_ensembles(&self, cx: &Context<'_, Done>, passes: &mut Vec<Pass>) -> bool {
-        let (key, sound) = (&self.key, sound_key(&self.design));
+        let (key, sound) = (&self.key, SoundKey::of(&self.design));
         let on_cell = |stage: Stage, index: usize, c: &EnsembleCell| {
             let cell = Cell { mass_kg: c.mass_kg, gap_m: c.gap_m, metrics: c.ensemble.metrics };
             let ensemble = Some(Arc::new(c.ensemble.clone()));
@@ -291,13 +283,14 @@ impl ChartJob {
 impl Job for ChartJob {
     const NAME: &'static str = "chart";
     type Report = Done;
-    type State = Cache<CachedChart>;
+    type State = Cache<ChartKey, CachedChart>;
+    type Key = ChartKey;
 
-    fn key(&self) -> &str {
+    fn key(&self) -> &ChartKey {
         &self.key
     }
 
-    fn run(&self, cache: &mut Cache<CachedChart>, cx: &Context<'_, Done>) {
+    fn run(&self, cache: &mut Cache<ChartKey, CachedChart>, cx: &Context<'_, Done>) {
         let key = &self.key;
         if let Some(hit) = cache.get(key) {
             for (stage, chart, ensembles) in &hit.passes {
@@ -307,7 +300,7 @@ impl Job for ChartJob {
             }
             return;
         }
-        let sound = sound_key(&self.design);
+        let sound = SoundKey::of(&self.design);
         let mut passes = Vec::new();
         let finished = if self.runs > 1 {
             self.run_ensembles(cx, &mut passes)
@@ -331,7 +324,7 @@ impl Job for ChartJob {
     }
 
     fn failed(&self, error: JobError) -> Done {
-        let (key, sound) = (self.key.clone(), sound_key(&self.design));
+        let (key, sound) = (self.key.clone(), SoundKey::of(&self.design));
         Done::Chart { key, sound, stage: Stage::Fine, result: Err(error.into()), ensembles: None }
     }
 }
@@ -339,15 +332,15 @@ impl Job for ChartJob {
 /// The chart's levels at the design's observer, from each cell's U0max.
 struct RelevelJob {
     /// The slot's key: the sound it relevels for.
-    sound: String,
+    sound: SoundKey,
     design: Design,
     passes: Arc<ChartPasses>,
 }
 
 impl RelevelJob {
     /// The chart key its result carries.
-    fn chart_key(&self) -> String {
-        chart_key(&self.design, &grids_of(&self.passes))
+    fn chart_key(&self) -> ChartKey {
+        ChartKey::of(&self.design, &grids_of(&self.passes))
     }
 }
 
@@ -355,8 +348,9 @@ impl Job for RelevelJob {
     const NAME: &'static str = "relevel";
     type Report = Done;
     type State = ();
+    type Key = SoundKey;
 
-    fn key(&self) -> &str {
+    fn key(&self) -> &SoundKey {
         &self.sound
     }
 
@@ -371,9 +365,9 @@ impl Job for RelevelJob {
 }
 
 /// The frequency response curve of a forced design (the key leaves out f: see
-/// [`response_key`]); progress as each frequency is done.
+/// [`ResponseKey`]); progress as each frequency is done.
 struct ResponseJob {
-    key: String,
+    key: ResponseKey,
     design: Design,
     band: FreqBand,
 }
@@ -381,13 +375,14 @@ struct ResponseJob {
 impl Job for ResponseJob {
     const NAME: &'static str = "response";
     type Report = Done;
-    type State = Cache<Response>;
+    type State = Cache<ResponseKey, Response>;
+    type Key = ResponseKey;
 
-    fn key(&self) -> &str {
+    fn key(&self) -> &ResponseKey {
         &self.key
     }
 
-    fn run(&self, cache: &mut Cache<Response>, cx: &Context<'_, Done>) {
+    fn run(&self, cache: &mut Cache<ResponseKey, Response>, cx: &Context<'_, Done>) {
         let result = if let Some(hit) = cache.get(&self.key) {
             Ok(hit)
         } else {
@@ -423,13 +418,20 @@ enum Work {
 
 impl From<Request> for Work {
     fn from(req: Request) -> Self {
-        let key = request_key(&req);
         match req {
-            Request::Sim(design) => Work::Sim(SimJob { key, design }),
-            Request::Acoustic(design, sim, runs) => Work::Acoustic(AcousticJob { key, design, sim, runs }),
-            Request::Chart(design, ChartWork::Zones(grids, runs)) => Work::Chart(ChartJob { key, design, grids, runs }),
-            Request::Chart(design, ChartWork::Response(band)) => Work::Response(ResponseJob { key, design, band }),
-            Request::Relevel(design, passes) => Work::Relevel(RelevelJob { sound: key, design, passes }),
+            Request::Sim(design) => Work::Sim(SimJob { key: SimKey::of(&design), design }),
+            Request::Acoustic(design, sim, runs) => {
+                Work::Acoustic(AcousticJob { key: ReadoutKey::of(&design, runs), design, sim, runs })
+            }
+            Request::Chart(design, ChartWork::Zones(grids, runs)) => {
+                Work::Chart(ChartJob { key: ChartKey::with_runs(&design, &grids, runs), design, grids, runs })
+            }
+            Request::Chart(design, ChartWork::Response(band)) => {
+                Work::Response(ResponseJob { key: ResponseKey::of(&design, &band), design, band })
+            }
+            Request::Relevel(design, passes) => {
+                Work::Relevel(RelevelJob { sound: SoundKey::of(&design), design, passes })
+            }
             Request::Export(job) => Work::Export(job),
         }
     }
@@ -514,7 +516,7 @@ impl Worker {
 mod tests {
     use super::*;
     use crate::design;
-    use crate::tui::compute::sim_key;
+
     use std::sync::mpsc;
     use std::time::Duration;
 
@@ -528,7 +530,7 @@ mod tests {
         let b = design::variant(&a, 0.06, 0.03);
         w.submit(Request::Sim(a));
         w.submit(Request::Sim(b.clone()));
-        let want = sim_key(&b);
+        let want = SimKey::of(&b);
         let got = loop {
             match rx.recv_timeout(Duration::from_secs(20)).expect("worker answered") {
                 Done::Sim { key, result } if key == want => break result,

@@ -1,15 +1,16 @@
-//! What a key does in each mode: the key table's actions on the normal screen, typing in the
-//! input lines (a value, a name to save under), the overwrite question, and moving through
-//! the list popups (presets, saved designs, exports).
+//! What a key or a click does in each mode: the key table's actions on the normal screen,
+//! typing in the input lines (a value, a name to save under), the overwrite question, moving
+//! through the list popups (presets, saved designs, exports), and a click on a chart cell.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use super::app::{App, ChartView, Mode, Panel, PulseView};
-use super::fields::{Knob, Scope};
-use super::files::EXPORTS;
-use super::keys::Action;
-use super::worker::Request;
+use super::state::{App, ChartView, Mode};
 use crate::presets;
+use crate::tui::fields::{Knob, Scope};
+use crate::tui::files::EXPORTS;
+use crate::tui::keys::Action;
+use crate::tui::view::{Panel, PulseView};
+use crate::tui::worker::Request;
 
 /// What a key did to an input line.
 enum Line {
@@ -50,6 +51,7 @@ const VALUE_MAX: usize = 40;
 /// Longest name typed in the save line (characters).
 const NAME_MAX: usize = 64;
 
+/// Keys and clicks.
 impl App {
     /// One key press, in the current mode. Ctrl-C quits from every mode.
     pub(crate) fn key(&mut self, k: KeyEvent) -> Vec<Request> {
@@ -73,7 +75,7 @@ impl App {
             }
             Mode::Normal => {
                 let touring = self.tour.is_some();
-                self.keys.action_in(&k, touring).map_or_else(Vec::new, |a| self.act(a))
+                self.settings.keys.action_in(&k, touring).map_or_else(Vec::new, |a| self.act(a))
             }
         }
     }
@@ -96,7 +98,7 @@ impl App {
             KeyCode::Up | KeyCode::Char('k') if self.mode != Mode::Help => {
                 self.mode = Mode::Glossary(scroll.saturating_sub(1));
             }
-            _ => match self.keys.action_for(&k) {
+            _ => match self.settings.keys.action_for(&k) {
                 Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
                 _ => self.mode = Mode::Normal,
             },
@@ -165,6 +167,7 @@ impl App {
         vec![]
     }
 
+    /// A key in the value line of the selected field.
     fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
         match line_key(k, buf, VALUE_MAX) {
             Line::Typing(buf) => self.mode = Mode::Editing(buf),
@@ -180,6 +183,7 @@ impl App {
         vec![]
     }
 
+    /// A key in the save line (the name to save under).
     fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
         match line_key(k, buf, NAME_MAX) {
             Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
@@ -230,12 +234,13 @@ impl App {
         ListNav::Stay
     }
 
+    /// A key in the preset list; Enter loads the preset (undoable).
     fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
         let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
         match presets::preset(name) {
             Ok(mut d) => {
-                d.thresholds = self.config.thresholds(d.thresholds);
+                d.thresholds = self.settings.config.thresholds(d.thresholds);
                 self.pulse = PulseView::for_preset(name);
                 let reqs = self.apply(d, Scope::All, format!("preset {name}"));
                 self.preset = name.to_string();
@@ -245,15 +250,28 @@ impl App {
         }
     }
 
+    /// A key in the saved-designs list; Enter loads the design (undoable).
     fn saved_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let n = self.saved.designs.len() + self.saved.problems.len();
         let ListNav::Choose(i) = self.list_nav(k, i, n, Mode::Saved) else { return vec![] };
         self.load_saved(i)
     }
 
+    /// A key in the export menu; Enter asks for that export.
     fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
         let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
         self.export(kind).into_iter().collect()
+    }
+
+    /// A left click: the chart cell under it becomes the live design.
+    pub(crate) fn click(&mut self, x: u16, y: u16) -> Vec<Request> {
+        let Some((m, g)) = self.chart_geometry.as_ref().and_then(|geo| geo.hit(x, y)) else {
+            return vec![];
+        };
+        self.focus = Panel::Chart;
+        let grid = &self.chart.grids.fine;
+        let (mass, gap) = (grid.masses_kg[m], grid.gaps_m[g]);
+        self.select_design(mass, gap)
     }
 }

@@ -1,0 +1,175 @@
+//! The explorer's file actions: save the live design under a name (asking before one is
+//! overwritten), list and load saved designs (small TOML files in the data directory, read
+//! on the UI thread), and ask the worker for exports (written on their own threads).
+
+use std::path::Path;
+
+use super::state::{App, Mode};
+use crate::export::{wav::WavOptions, Artifact, ExportOptions};
+use crate::store::{self, DesignFile};
+use crate::tui::fields::Scope;
+use crate::tui::files::{export_name, unique_path};
+use crate::tui::worker::{ExportJob, Request, WorkError};
+use crate::units::sig;
+
+/// Saving, loading and exporting.
+impl App {
+    /// The name offered when saving: the preset's or saved design's name, or the first free
+    /// `design-N`.
+    pub fn suggested_name(&self) -> String {
+        if self.preset != "default" && store::check_design_name(&self.preset).is_ok() {
+            return self.preset.clone();
+        }
+        (1..).map(|n| format!("design-{n}")).find(|n| !self.is_saved(n)).unwrap_or_else(|| "design-1".into())
+    }
+
+    /// True if something (a saved design, or anything else) is at `name`'s path in the data
+    /// directory. A dangling link counts: saving would replace it.
+    fn is_saved(&self, name: &str) -> bool {
+        let path = self.data_dir.as_deref().and_then(|d| store::design_path(d, name).ok());
+        path.is_some_and(|p| p.symlink_metadata().is_ok())
+    }
+
+    /// Saves the live design as `name`, but first asks if that would replace a saved design.
+    pub(crate) fn save_or_ask(&mut self, name: &str) {
+        if self.is_saved(name) {
+            self.mode = Mode::ConfirmOverwrite(name.to_string());
+        } else {
+            self.write_design(name, false);
+        }
+    }
+
+    /// Saves the live design as `name` in the data directory (a small file, written
+    /// atomically on this thread), replacing any design of that name; the outcome goes to the
+    /// status line. The keys ask first ([`Mode::ConfirmOverwrite`]) before replacing one.
+    pub fn save_as(&mut self, name: &str) {
+        self.write_design(name, true);
+    }
+
+    /// Writes the live design as `name`; an existing file is replaced only if `overwrite`
+    /// (without it, one that appeared since the question is reported, not replaced).
+    fn write_design(&mut self, name: &str, overwrite: bool) {
+        if let Err(e) = store::check_design_name(name) {
+            self.error(format_args!("cannot save: {e}"));
+            return;
+        }
+        let Some(dir) = self.data_dir.clone() else {
+            self.error("cannot save: no home directory, so no data directory");
+            return;
+        };
+        let p = &self.design.damper;
+        let description = format!(
+            "saved from the explorer: m {} g, d {} cm (from {})",
+            sig(p.impact_mass_kg * 1e3, 4),
+            sig(p.gap_m * 1e2, 3),
+            self.preset
+        );
+        let file = DesignFile { description, design: self.design.clone() };
+        match store::save_design(&dir, name, &file, overwrite) {
+            Ok(path) => {
+                self.preset = name.to_string();
+                self.set_status(&format!("saved {name} to {}", path.display()), false);
+            }
+            Err(e) => {
+                self.error(format_args!("cannot save {name}: {e}"));
+            }
+        }
+    }
+
+    /// Opens the list of saved designs (read from the data directory now: a few small files).
+    pub(crate) fn open_saved(&mut self) {
+        let Some(dir) = self.data_dir.clone() else {
+            self.error("cannot load: no home directory, so no data directory");
+            return;
+        };
+        match store::list_designs(&dir) {
+            Ok(list) => {
+                let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
+                self.saved = list;
+                self.mode = Mode::Saved(i);
+            }
+            Err(e) => {
+                self.error(format_args!("cannot list saved designs: {e}"));
+            }
+        }
+    }
+
+    /// Loads row `i` of the saved-designs list (the good designs, then the problem files).
+    pub(crate) fn load_saved(&mut self, i: usize) -> Vec<Request> {
+        if let Some(entry) = self.saved.designs.get(i) {
+            let name = entry.name.clone();
+            let Some(dir) = self.data_dir.clone() else { return vec![] };
+            return match store::load_design(&dir, &name) {
+                Ok(file) => {
+                    let reqs = self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"));
+                    self.preset.clone_from(&name);
+                    reqs
+                }
+                Err(e) => self.error(format_args!("cannot load {name}: {e}")),
+            };
+        }
+        let problem = i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j));
+        match problem.map(ToString::to_string) {
+            Some(p) => self.error(format_args!("cannot load {p}")),
+            None => vec![],
+        }
+    }
+
+    /// Asks the worker to write an export of `kind` into the export directory, under its
+    /// default name (with -1, -2 … added if that file exists or is being written).
+    pub fn export(&mut self, kind: Artifact) -> Option<Request> {
+        if kind == Artifact::Wav {
+            let e =
+                crate::limits::wav_samples(self.design.damper.duration_s, f64::from(WavOptions::default().sample_rate));
+            if e.exceeded() {
+                self.error(format_args!("cannot export {}: {}; shorten the duration", export_name(kind), e.describe()));
+                return None;
+            }
+        }
+        let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
+        self.exports.push(path.clone());
+        // Sweeps use the chart's grid, so the file shows what the screen does.
+        let g = &self.chart.grids.fine;
+        let options = if kind.needs_sweep() {
+            ExportOptions {
+                masses_kg: Some(g.masses_kg.clone()),
+                gaps_m: Some(g.gaps_m.clone()),
+                ..ExportOptions::default()
+            }
+        } else {
+            ExportOptions::default()
+        };
+        self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
+        Some(Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path })))
+    }
+
+    /// An export ended: the file is no longer pending and the status line says how it went.
+    pub(crate) fn export_finished(&mut self, kind: Artifact, path: &Path, result: Result<(), WorkError>) {
+        self.exports.retain(|p| p != path);
+        let shown = self.shown_path(path);
+        match result {
+            Ok(()) => self.set_status(&format!("exported {} to {shown}", export_name(kind)), false),
+            Err(e) => {
+                self.error(format_args!("export of {} failed: {e}", export_name(kind)));
+            }
+        }
+    }
+
+    /// The export directory as shown.
+    pub(crate) fn export_dir_name(&self) -> String {
+        if self.export_dir == Path::new(".") {
+            "the current directory".into()
+        } else {
+            self.export_dir.display().to_string()
+        }
+    }
+
+    /// An export path as shown: the file name alone in the current directory.
+    fn shown_path(&self, path: &Path) -> String {
+        if self.export_dir == Path::new(".") {
+            path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+        } else {
+            path.display().to_string()
+        }
+    }
+}

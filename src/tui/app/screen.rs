@@ -1,0 +1,95 @@
+//! What the screen shows beside the design: the pin, the chart panel's picture (zones,
+//! scatter, response curve), the pulse panel's impact, the selected field's hint.
+
+use super::state::{App, ChartView, Pinned};
+use crate::tui::compute::default_band;
+use crate::tui::explain;
+use crate::tui::fields::Knob;
+use crate::tui::keys::Action;
+use crate::tui::view::PulseView;
+use crate::tui::worker::Request;
+use crate::units::sig;
+
+/// The views and the hint.
+impl App {
+    /// Pins the live design with its results (drawn dim beside it), or unpins it.
+    pub(crate) fn toggle_pin(&mut self) {
+        if self.pinned.take().is_some() {
+            self.set_status("unpinned", false);
+        } else {
+            self.pinned = Some(Pinned {
+                design: self.design.clone(),
+                sim: self.results.sim.clone(),
+                acoustic: self.results.acoustic.clone(),
+            });
+            self.set_status("pinned this design: it stays on the plots (dim) while you change the live one", false);
+        }
+    }
+
+    /// Switches the chart panel between the zones and the scatter (from the response: zones).
+    pub(crate) fn toggle_chart_view(&mut self) {
+        self.chart_view = match self.chart_view {
+            ChartView::Zones => ChartView::Scatter,
+            ChartView::Scatter | ChartView::Response => ChartView::Zones,
+        };
+        self.say_chart_view();
+    }
+
+    /// Switches the chart panel to the response curve and back to the zones; returns the work
+    /// the curve needs (none if it is cached, or without a force).
+    pub(crate) fn toggle_response(&mut self) -> Vec<Request> {
+        self.chart_view = match self.chart_view {
+            ChartView::Response => ChartView::Zones,
+            ChartView::Zones | ChartView::Scatter => ChartView::Response,
+        };
+        self.say_chart_view();
+        self.response_request().into_iter().collect()
+    }
+
+    /// Says which picture the chart panel shows (and how to bring it on screen).
+    fn say_chart_view(&mut self) {
+        let view = match self.chart_view {
+            ChartView::Zones => "zones over mass × gap".to_string(),
+            ChartView::Scatter => "e vs SPLmax (Fig 17)".to_string(),
+            ChartView::Response if self.design.damper.forced() => {
+                let b = default_band(&self.design);
+                format!(
+                    "response over {}–{} Hz (0.6–1.6 × the natural frequency), f marked",
+                    sig(b.from_hz, 3),
+                    sig(b.to_hz, 3)
+                )
+            }
+            ChartView::Response => {
+                format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::Force.label())
+            }
+        };
+        let text = if self.chart_shown {
+            format!("chart view: {view}")
+        } else {
+            format!("chart view: {view}; not on screen: press {} to show the chart", self.key_label(Action::FocusNext))
+        };
+        self.set_status(&text, false);
+    }
+
+    /// Switches the pulse panel between the run's loudest impact and one impact on a plate.
+    pub(crate) fn toggle_pulse(&mut self) {
+        self.pulse = match self.pulse {
+            PulseView::Loudest => PulseView::Single,
+            PulseView::Single => PulseView::Loudest,
+        };
+        let text = match self.pulse {
+            PulseView::Loudest => "pulse: the loudest impact of the run (at U0max, against the main mass)".to_string(),
+            PulseView::Single => format!(
+                "pulse: one impact at U0 = v0 = {} m/s on a fixed plate (as thud pulse; the paper's Fig 2)",
+                sig(self.design.damper.v0_m_s, 3)
+            ),
+        };
+        self.set_status(&text, false);
+    }
+
+    /// The status line's hint for the selected field (what it is, unit, range).
+    pub(crate) fn show_hint(&mut self) {
+        let h = explain::field_hint(self.param(), &self.design);
+        self.set_status(&h, false);
+    }
+}
