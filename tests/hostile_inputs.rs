@@ -707,3 +707,66 @@ fn new_export_and_man_flags_are_checked_and_named() {
     let r = thud(&["export", "wav", "--format", "pcm24", "--duration", "0.05", "--out", &wav]);
     assert_eq!(r.code, 0, "{}", r.stderr);
 }
+
+// ---- Issue 18 (lane a): files written and parts merged -------------------------------------
+
+/// Asserts a refusal run in `home`: exit 2, one stderr line naming every one of `needles`.
+fn assert_refused_in(home: &Path, args: &[&str], needles: &[&str]) {
+    let r = thud_in(home, args);
+    assert_eq!(r.code, 2, "{args:?}: exit {} stderr {}", r.code, r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+    assert!(r.stdout.is_empty(), "{args:?} printed: {}", r.stdout);
+    for n in needles {
+        assert!(r.stderr.contains(n), "{args:?}: '{n}' not in: {}", r.stderr);
+    }
+}
+
+#[test]
+fn written_files_and_merged_parts_keep_the_contract() {
+    let home = tempfile::tempdir().unwrap();
+    let h = home.path();
+    // Item 1: a link at --out is neither followed nor replaced, with --force too.
+    std::fs::write(h.join("victim"), "keep").unwrap();
+    std::os::unix::fs::symlink(h.join("victim"), h.join("link.csv")).unwrap();
+    let link = h.join("link.csv");
+    let link = link.to_str().unwrap();
+    assert_refused_in(
+        h,
+        &["export", "csv", "waveform", "--out", link, "--force"],
+        &["invalid --out: ", "symbolic link"],
+    );
+    assert!(std::fs::symlink_metadata(link).unwrap().file_type().is_symlink());
+    // Item 14: `paper ID --out` honours --out, and its refusal names --out.
+    std::fs::write(h.join("fig2.txt"), "mine").unwrap();
+    let fig = h.join("fig2.txt");
+    assert_refused_in(
+        h,
+        &["paper", "fig2", "--out", fig.to_str().unwrap()],
+        &["invalid --out: ", "exists; add --force"],
+    );
+    // Items 2, 3, 11: a part with a forged ensemble (valid hash) and a merge over its cap.
+    let part = h.join("p.jsonl");
+    let p = part.to_str().unwrap();
+    let r = thud_in(
+        h,
+        &["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2", "--duration", "0.2", "--shard", "0/1", "--out", p],
+    );
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let text = std::fs::read_to_string(&part).unwrap();
+    let (first, rest) = text.split_once('\n').unwrap();
+    let header: thud::shard::Header = serde_json::from_str(first).unwrap();
+    let mut study = header.study.clone();
+    study.ensemble = 1 << 63;
+    let forged = serde_json::to_string(&thud::shard::Header::new(study, 0, 1)).unwrap() + "\n" + rest;
+    std::fs::write(h.join("forged.jsonl"), forged).unwrap();
+    let f = h.join("forged.jsonl");
+    assert_refused_in(
+        h,
+        &["--no-limit", "merge", f.to_str().unwrap(), "--out", "-"],
+        &["out of range (invalid ensemble"],
+    );
+    assert_refused_in(h, &["merge", p, "--out", "-", "--band", "nan"], &["--band"]);
+    let v = h.join("v.jsonl");
+    std::fs::write(&v, text.replacen("\"format_version\":1", "\"format_version\":1.0", 1)).unwrap();
+    assert_refused_in(h, &["merge", v.to_str().unwrap(), "--out", "-"], &["format version 1.0;"]);
+}

@@ -213,8 +213,10 @@ fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
 /// The whole command line: parses the arguments (a clap error becomes one line, exit 2; help
 /// and version print and exit 0), runs the command, returns the exit code.
 pub fn main() -> i32 {
-    let args: Vec<String> = std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect();
-    match Cli::try_parse_from(&args) {
+    // Parsed as the OS gave them: a file name is bytes, not necessarily UTF-8 (issue 18, item 9).
+    let raw: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let args: Vec<String> = raw.iter().map(|a| a.to_string_lossy().into_owned()).collect();
+    match Cli::try_parse_from(&raw) {
         Ok(cli) => run(cli),
         Err(e) => {
             use clap::error::ErrorKind;
@@ -223,12 +225,27 @@ pub fn main() -> i32 {
                     let _ = e.print();
                     0
                 }
+                ErrorKind::InvalidUtf8 => {
+                    warn(&not_utf8(&raw));
+                    2
+                }
                 _ => {
                     warn(&errors::clap_line(&e, missing_subcommand(&args)));
                     2
                 }
             }
         }
+    }
+}
+
+/// The one line for an argument that is not UTF-8 where text is expected (only file names may
+/// be any bytes): the flag before it and the value, escaped.
+fn not_utf8(raw: &[std::ffi::OsString]) -> String {
+    let at = raw.iter().position(|a| a.to_str().is_none()).unwrap_or(0);
+    let value = crate::fsio::shown(std::path::Path::new(&raw[at]));
+    match raw[..at].last().and_then(|f| f.to_str()).filter(|f| f.starts_with('-')) {
+        Some(flag) => format!("invalid {flag}: '{value}' is not UTF-8 text (only a file name may be any bytes)"),
+        None => format!("invalid argument '{value}': not UTF-8 text (only a file name may be any bytes)"),
     }
 }
 

@@ -144,14 +144,19 @@ fn write_all(dir: &Path, overwrite: Overwrite) -> Result<(), CliError> {
     let pages = all_pages();
     for (file, _, _) in &pages {
         let target = dir.join(file);
-        fsio::check_target(&target, overwrite).map_err(|e| super::export::out_error(&target, &e))?;
+        fsio::check_target(&target, overwrite).map_err(|e| page_error(&target, &e))?;
     }
     for (file, path, cmd) in &pages {
         let target = dir.join(file);
-        fsio::write(&target, &page(cmd, path)?, overwrite).map_err(|e| super::export::out_error(&target, &e))?;
+        fsio::write(&target, &page(cmd, path)?, overwrite).map_err(|e| page_error(&target, &e))?;
     }
     super::warn(&format!("wrote {} man pages to {}", pages.len(), dir.display()));
     Ok(())
+}
+
+/// A refused or failed page as the one-line error of `--out` writes, naming `--all`.
+fn page_error(target: &Path, e: &fsio::FsError) -> ThudError {
+    super::export::out_error(target, e).renamed("--all")
 }
 
 /// The page of `cmd` (at `path` below thud): clap_mangen's sections, then [`extra_sections`].

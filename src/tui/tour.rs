@@ -20,7 +20,7 @@
 //! ```
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Deserialize;
 
@@ -140,8 +140,8 @@ impl Tour {
             TourSource::BuiltIn => Tour::parse("assets/tour.toml", BUILT_IN),
             TourSource::File(path) => {
                 let text = fsio::read_to_string(path, fsio::MAX_READ_BYTES)
-                    .map_err(|e| TourError { file: path.display().to_string(), message: e.reason() })?;
-                Tour::parse(&path.display().to_string(), &text)
+                    .map_err(|e| TourError { file: fsio::shown(path), message: e.reason() })?;
+                Tour::parse(&fsio::shown(path), &text)
             }
         }
     }
@@ -248,7 +248,7 @@ fn line_col(text: &str, at: usize) -> (usize, usize) {
 pub fn source_name(source: &TourSource) -> String {
     match source {
         TourSource::BuiltIn => "the built-in tour".into(),
-        TourSource::File(p) => Path::new(p).display().to_string(),
+        TourSource::File(p) => fsio::shown(p),
     }
 }
 
