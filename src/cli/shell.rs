@@ -242,7 +242,11 @@ fn extra_sections(cmd: &Command, path: &[String]) -> String {
     );
     s += ".SH ENVIRONMENT\n";
     item(&mut s, "NO_COLOR", "When set to anything non-empty, the explorer draws without colour.");
-    item(&mut s, "RAYON_NUM_THREADS", "Threads for sweeps, ensembles and responses (default: one per core).");
+    item(
+        &mut s,
+        "RAYON_NUM_THREADS",
+        "Worker threads for sweeps, ensembles and responses when --threads is not given (else one per CPU).",
+    );
     item(&mut s, "XDG_CONFIG_HOME", "Where thud/config.toml is read from (default ~/.config).");
     item(&mut s, "XDG_DATA_HOME", "Where saved designs are kept, in thud/designs/ (default ~/.local/share).");
     s += ".SH FILES\n";

@@ -165,6 +165,7 @@ impl Tour {
                 preset = p.trim().to_ascii_lowercase();
             }
             setup = apply_sets(&setup, &s.set).map_err(at)?;
+            crate::tui::fields::check_loaded(&setup).map_err(|e| at(e.to_string()))?;
             let panel = panel(&s.panel).ok_or_else(|| {
                 at(format!("panel '{}'; one of params, readout, waveform, polar, history, chart", s.panel))
             })?;
