@@ -307,7 +307,7 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
     if to_stdout {
         return Ok(fsio::write_stdout(&bytes)?);
     }
-    fsio::write(out, &bytes, overwrite).map_err(|e| out_error(out, &e))?;
+    fsio::write(out, &bytes, overwrite).map_err(|e| write_error(out, &e))?;
     super::warn(&format!("wrote {}", fsio::shown(out)));
     Ok(())
 }
@@ -322,9 +322,23 @@ fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
     }
 }
 
-/// A refused or failed write of `out` as the CLI's one-line error (exit 2) naming `--out`:
-/// what is at the path and what to do. Paths are [`fsio::shown`] (escaped, a long one cut in
-/// its middle), so the reason always survives.
+/// A write of `out` that failed or was refused, as the CLI's error: a refusal (the file exists,
+/// is a link, is not writable through, a FIFO without a reader) is bad input (exit 2), a
+/// failure of the write itself is I/O (exit 1); the line is [`out_error`]'s.
+pub(super) fn write_error(out: &Path, e: &FsError) -> CliError {
+    match e {
+        FsError::Exists(_) | FsError::NotRegular { .. } | FsError::Link(_) | FsError::NoReader(_) => {
+            CliError::Input(out_error(out, e))
+        }
+        FsError::Changed(_) | FsError::TooLarge { .. } | FsError::Io { .. } => {
+            CliError::Io(out_error(out, e).to_string())
+        }
+    }
+}
+
+/// A refused or failed write of `out` as the CLI's one-line error naming `--out`: what is at
+/// the path and what to do. Paths are [`fsio::shown`] (escaped, a long one cut in its middle),
+/// so the reason always survives.
 pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
     let message = match e {
         FsError::Exists(p) => format!("{} exists; add --force to replace it", fsio::shown(p)),
