@@ -9,7 +9,6 @@ import pytest
 import thud
 
 FIGS = ["paper-fig2", "paper-fig9"]
-#: The engine's zone names in the command line's sweep JSON, and their numbers.
 
 
 def same(a, b):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import thud
-from test_agreement import ZONES, check_chart, check_run, same
+from test_agreement import check_chart, check_run, same
 from test_errors import keyword
 
 #: A short forced case: 3 frequencies around the Fig 9 resonance, windows of 4 periods.
