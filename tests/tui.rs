@@ -1146,8 +1146,16 @@ fn is_response_job(r: &thud::tui::Request) -> bool {
 fn a_force_switched_on_gets_the_natural_frequency_and_the_steady_readout() {
     let mut app = forced_app(Palette::default());
     assert_eq!(app.design.damper.force_n, 1.0);
-    // Table 2: √(K/M − (C/2M)²)/2π = 5.033 Hz, to 3 digits.
-    assert_eq!(app.design.damper.freq_hz, 5.03);
+    // Issue 17 item 6: Table 2's exact natural frequency √(K/M − (C/2M)²)/2π = 5.0329 Hz
+    // (not rounded to 5.03), the value the response band is centred on.
+    let p = &app.design.damper;
+    let g = p.damping_n_s_m / (2.0 * p.main_mass_kg);
+    let fn_hz = (p.stiffness_n_m / p.main_mass_kg - g * g).sqrt() / (2.0 * std::f64::consts::PI);
+    assert!((fn_hz - 5.0329).abs() < 5e-5, "{fn_hz}");
+    assert!((p.freq_hz - fn_hz).abs() < 1e-12, "f {} is the natural frequency {fn_hz}", p.freq_hz);
+    let band = thud::tui::compute::default_band(&app.design);
+    assert!((band.from_hz - 0.6 * p.freq_hz).abs() < 1e-12 && (band.to_hz - 1.6 * p.freq_hz).abs() < 1e-12);
+    assert!(render(&mut app, 120, 40).contains("5.033 Hz"));
     let screen = render(&mut app, 120, 40);
     for label in ["amp", "alone", "cut", "Leq", "imp/T"] {
         row(&screen, label);
@@ -1340,5 +1348,39 @@ fn the_readout_shows_the_clis_json_numbers() {
         ("imp/T", sig(num(st, "impacts_per_period"), 3)),
     ] {
         assert!(row(&screen, label).contains(&format!(" {want} ")), "{label}: {want} in\n{screen}");
+    }
+}
+
+/// Issue 17 item 2: the polar's listener level is the level at the exact θ, as `thud simulate`
+/// (the loudest impact, SPLmax) and `thud pulse` (one impact) report it, at angles off the
+/// polar's 5° grid too (it used to show the nearest grid angle's level).
+#[test]
+fn the_polars_listener_level_is_the_clis_at_non_grid_angles() {
+    let sig = thud::units::sig;
+    let json = |args: &[&str]| -> serde_json::Value {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let listener = |screen: &str| -> String {
+        let line =
+            screen.lines().find(|l| l.contains("θ ") && l.contains("° → ")).unwrap_or_else(|| panic!("{screen}"));
+        let at = line.split("° → ").nth(1).unwrap();
+        at.split(" dB").next().unwrap().to_string()
+    };
+    let mut app = computed_app();
+    for theta in ["47", "51", "12.5", "83"] {
+        set_field(&mut app, thud::tui::fields::Knob::Theta, theta);
+        let loud = json(&["simulate", "--theta", theta, "--json"]);
+        let pulse = json(&["pulse", "--preset", "default", "--theta", theta, "--json"]);
+        let screen = render(&mut app, 120, 40);
+        assert!(screen.contains(&format!("θ {}° → ", sig(theta.parse().unwrap(), 3))), "{screen}");
+        assert_eq!(listener(&screen), sig(loud["spl_max_db"].as_f64().unwrap(), 4), "θ {theta}: SPLmax\n{screen}");
+        // The readout's SPLmax is the same number.
+        assert!(row(&screen, "SPLmax").contains(&format!("{} dB", listener(&screen))), "{screen}");
+        press(&mut app, KeyCode::Char('i'));
+        let screen = render(&mut app, 120, 40);
+        assert_eq!(listener(&screen), sig(pulse["spl_db"].as_f64().unwrap(), 4), "θ {theta}: one impact\n{screen}");
+        press(&mut app, KeyCode::Char('i'));
     }
 }

@@ -299,27 +299,51 @@ pub fn single_impact(d: &Design) -> Result<SingleImpact, ThudError> {
     let (t, p) = field.waveform(WAVEFORM_SAMPLES);
     let waveform = t.iter().zip(&p).map(|(t, p)| (1e3 * (t - arrival), *p)).collect();
     let peaks = field.significant_extrema(0.02).iter().map(|e| (1e3 * (e.t_s - arrival), e.p_pa)).collect();
-    let (lo, hi) = d.radiation.source.theta_range_deg();
-    let n = ((hi - lo) / POLAR_STEP_DEG).round() as usize;
-    let polar = (0..=n)
-        .filter_map(|i| {
-            let deg = lo + i as f64 * POLAR_STEP_DEG;
-            let at = Observer { theta_rad: deg.to_radians(), ..d.observer };
+    let polar = polar_angles(d)
+        .into_iter()
+        .filter_map(|(deg, theta_rad)| {
+            let at = Observer { theta_rad, ..d.observer };
             plate_field(d, &at).ok().map(|f| (deg, f.spl_db()))
         })
         .collect();
     Ok(SingleImpact { u0_m_s: d.damper.v0_m_s, spl_db: field.spl_db(), waveform, polar, peaks })
 }
 
-/// SPL (dB) every [`POLAR_STEP_DEG`] over the valid angles of the source, at the design's r.
-fn directivity(d: &Design, u0: f64) -> Vec<(f64, f64)> {
+/// The angles a polar is computed at, as (deg, rad): every [`POLAR_STEP_DEG`] over the valid
+/// angles of the source, and the observer's own θ exactly (its radians as the design holds
+/// them, its degrees as [`listener_deg`] gives them), so the listener's level is the level at
+/// θ, the one `thud simulate`/`thud pulse` report, not the nearest grid angle's.
+fn polar_angles(d: &Design) -> Vec<(f64, f64)> {
     let (lo, hi) = d.radiation.source.theta_range_deg();
     let n = ((hi - lo) / POLAR_STEP_DEG).round() as usize;
-    (0..=n)
-        .filter_map(|i| {
+    let mut angles: Vec<(f64, f64)> = (0..=n)
+        .map(|i| {
             let deg = lo + i as f64 * POLAR_STEP_DEG;
+            (deg, deg.to_radians())
+        })
+        .collect();
+    let own = listener_deg(d);
+    if (lo..=hi).contains(&own) {
+        angles.retain(|a| a.0 != own);
+        angles.push((own, d.observer.theta_rad));
+        angles.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    angles
+}
+
+/// The listener's θ in degrees as the polar is keyed on it: the design's radians in degrees.
+pub fn listener_deg(d: &Design) -> f64 {
+    d.observer.theta_rad.to_degrees()
+}
+
+/// SPL (dB) every [`POLAR_STEP_DEG`] over the valid angles of the source and at the observer's
+/// own θ ([`polar_angles`]), at the design's r.
+fn directivity(d: &Design, u0: f64) -> Vec<(f64, f64)> {
+    polar_angles(d)
+        .into_iter()
+        .filter_map(|(deg, theta_rad)| {
             let mut v = d.clone();
-            v.observer.theta_rad = deg.to_radians();
+            v.observer.theta_rad = theta_rad;
             v.impact_spl_db(u0).ok().map(|l| (deg, l))
         })
         .collect()
@@ -386,11 +410,11 @@ pub fn compute_relevel(d: &Design, passes: &ChartPasses) -> ChartPasses {
     ChartPasses { coarse: passes.coarse.as_ref().map(re), fine: re(&passes.fine) }
 }
 
-/// The main mass's damped natural frequency (Hz) of `d`: the engine's cycles per second of
-/// Eq 25 alone ([`thud_core::limits::cycles`]); 0 without a spring or when overdamped.
+/// The main mass's damped natural frequency (Hz) of `d`: the engine's
+/// [`thud_core::damper::DamperParams::natural_frequency_hz`] (Eq 25), unrounded; 0 without a
+/// spring or when overdamped.
 pub fn natural_frequency_hz(d: &Design) -> f64 {
-    let p = &d.damper;
-    thud_core::limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
+    d.damper.natural_frequency_hz()
 }
 
 #[cfg(test)]

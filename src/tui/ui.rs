@@ -438,7 +438,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 block: panel_block(app, Panel::Polar, &title),
                 live,
                 pinned: pin,
-                theta_deg: d.observer.theta_rad.to_degrees(),
+                theta_deg: super::compute::listener_deg(d),
                 range_deg: d.radiation.source.theta_range_deg(),
                 theme,
             };

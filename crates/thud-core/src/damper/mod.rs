@@ -126,6 +126,14 @@ impl DamperParams {
         }
     }
 
+    /// The main structure's natural frequency (Hz): its damped cycles per second of Eq 25,
+    /// √(K/M − (C/2M)²)/2π (5.0329 Hz for Table 2), or 0 without a spring or when overdamped.
+    /// The explorer's default forcing frequency and its response band both take this value.
+    #[must_use]
+    pub fn natural_frequency_hz(&self) -> f64 {
+        crate::limits::cycles(1.0, self.main_mass_kg, self.stiffness_n_m, self.damping_n_s_m)
+    }
+
     /// Whether a harmonic force drives the main mass (`force_n > 0`).
     #[must_use]
     pub fn forced(&self) -> bool {
