@@ -1415,3 +1415,43 @@ fn the_chart_draws_every_computed_row_with_the_unsure_legend_too() {
     assert!(lost.is_empty(), "a row lost to the ░ entry at {lost:?}");
     assert!(checked > 1000, "{checked}");
 }
+
+/// Issue 17 item 4: the export is what is on screen: with N > 1 the sweep CSV is the ensemble
+/// chart (`thud sweep --ensemble N --csv` over the chart's grid), and while the frequency
+/// response is shown the menu offers it as CSV and SVG, the curve the view draws.
+#[test]
+fn exports_are_the_ensemble_chart_and_the_response_on_screen() {
+    let out = tempfile::tempdir().unwrap();
+    let mut app = ensemble_app(2, Palette::default());
+    app.export_dir = out.path().to_path_buf();
+    let export = |app: &mut App, kind: thud::export::Artifact| {
+        press(app, KeyCode::Char('e'));
+        let at =
+            app.export_menu().iter().position(|(k, _)| *k == kind).unwrap_or_else(|| panic!("{kind:?} in the menu"));
+        for _ in 0..at {
+            press(app, KeyCode::Down);
+        }
+        press(app, KeyCode::Enter);
+    };
+    export(&mut app, thud::export::Artifact::CsvSweep);
+    let file = std::fs::read_to_string(out.path().join("thud-sweep.csv")).unwrap();
+    let cli = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(["sweep", "--ensemble", "2", "--masses", "20g:100g:6", "--gaps", "1cm:7cm:5", "--csv"])
+        .output()
+        .unwrap();
+    assert!(cli.status.success(), "{}", String::from_utf8_lossy(&cli.stderr));
+    assert_eq!(file, String::from_utf8(cli.stdout).unwrap(), "the ensemble chart's CSV");
+    assert!(file.lines().next().unwrap().contains("agreement"), "{file}");
+    // The response: not in the menu until it is shown, then the curve on screen.
+    let mut app = forced_app(Palette::default());
+    app.export_dir = out.path().to_path_buf();
+    assert!(!app.export_menu().iter().any(|(k, _)| k.is_response()));
+    press(&mut app, KeyCode::Char('f'));
+    export(&mut app, thud::export::Artifact::CsvResponse);
+    let file = std::fs::read_to_string(out.path().join("thud-response.csv"))
+        .unwrap_or_else(|e| panic!("{e}: {}", status_of(&render(&mut app, 120, 40))));
+    assert_eq!(file, thud::export::csv::response(app.response().expect("curve")).unwrap());
+    export(&mut app, thud::export::Artifact::SvgResponse);
+    assert!(std::fs::read_to_string(out.path().join("thud-response.svg")).unwrap().contains("<svg"));
+    assert!(render(&mut app, 120, 40).contains("exported response SVG"));
+}

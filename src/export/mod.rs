@@ -132,6 +132,9 @@ pub struct ExportOptions {
     pub freqs_hz: Option<Vec<f64>>,
     /// A response from each frequency's predecessor, up then down (else each from rest).
     pub continuation: bool,
+    /// Runs a cell of a sweep CSV: 1 the single trajectory; N > 1 the ensemble chart of N runs
+    /// from spread ball offsets (the columns of `thud sweep --ensemble N --csv`).
+    pub ensemble_runs: usize,
 }
 
 impl Default for ExportOptions {
@@ -144,6 +147,7 @@ impl Default for ExportOptions {
             wav: wav::WavOptions::default(),
             freqs_hz: None,
             continuation: false,
+            ensemble_runs: 1,
         }
     }
 }
@@ -258,6 +262,11 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
                 crate::units::sig(d.damper.main_mass_kg, 3)
             );
             figures::restitution(&curve, &title)
+        }
+        Artifact::CsvSweep if opts.ensemble_runs > 1 => {
+            let (masses, gaps) = grid(opts);
+            let chart = crate::ensemble::sweep(&d, &masses, &gaps, opts.ensemble_runs, None, &|_, _| {})?;
+            csv::sweep_ensemble(&chart)?
         }
         Artifact::CsvSweep | Artifact::SvgChart | Artifact::SvgFig17 => {
             let (masses, gaps) = grid(opts);

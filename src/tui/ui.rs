@@ -25,7 +25,6 @@ use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
 use super::compute::{default_band, ensemble_under, nearest, AcousticResult, AGREEMENT_SURE};
 use super::explain;
 use super::fields::Knob;
-use super::files::EXPORTS;
 use super::history::{self, HistoryView};
 use super::keys::Action;
 use super::keys::Keymap;
@@ -928,7 +927,7 @@ pub fn list_view(app: &App) -> Option<ListView> {
         }
         Mode::Export(i) => (
             " export (↑↓, Enter writes the file, Esc closes) ".to_string(),
-            EXPORTS
+            app.export_menu()
                 .iter()
                 .map(|(k, label)| ListItem {
                     label: format!("{label}  [{}]", k.default_file_name()),

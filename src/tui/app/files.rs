@@ -4,11 +4,12 @@
 
 use std::path::Path;
 
-use super::state::{App, Mode};
+use super::state::{App, ChartView, Mode};
 use crate::export::{wav::WavOptions, Artifact, ExportOptions};
 use crate::store::{self, DesignFile};
+use crate::tui::compute::{default_band, response_design};
 use crate::tui::fields::Scope;
-use crate::tui::files::{export_name, unique_path};
+use crate::tui::files::{export_menu, export_name, unique_path};
 use crate::tui::worker::{ExportJob, Request, WorkError};
 use crate::units::sig;
 
@@ -128,19 +129,33 @@ impl App {
         }
         let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
         self.exports.push(path.clone());
-        // Sweeps use the chart's grid, so the file shows what the screen does.
+        // Sweeps use the chart's grid and its N runs a cell, and a response the curve's band
+        // and design (from rest, as the view runs it), so the file shows what the screen does.
         let g = &self.chart.grids.fine;
-        let options = if kind.needs_sweep() {
-            ExportOptions {
+        let (design, options) = if kind.needs_sweep() {
+            let options = ExportOptions {
                 masses_kg: Some(g.masses_kg.clone()),
                 gaps_m: Some(g.gaps_m.clone()),
+                ensemble_runs: self.runs,
                 ..ExportOptions::default()
-            }
+            };
+            (self.design.clone(), options)
+        } else if kind.is_response() {
+            let freqs = default_band(&self.design).freqs();
+            // The curve's design keeps f (a forced design is checked with it); each point sets its own.
+            let mut design = response_design(&self.design);
+            design.damper.freq_hz = self.design.damper.freq_hz;
+            (design, ExportOptions { freqs_hz: Some(freqs), ..ExportOptions::default() })
         } else {
-            ExportOptions::default()
+            (self.design.clone(), ExportOptions::default())
         };
         self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
-        Some(Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path })))
+        Some(Request::Export(Box::new(ExportJob { kind, design, options, path })))
+    }
+
+    /// The export menu's rows: the frequency response's too while it is on screen.
+    pub fn export_menu(&self) -> Vec<(Artifact, &'static str)> {
+        export_menu(self.chart_view == ChartView::Response && self.design.damper.forced())
     }
 
     /// An export ended: the file is no longer pending and the status line says how it went.

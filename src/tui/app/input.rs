@@ -7,7 +7,6 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use super::state::{App, ChartView, Mode};
 use crate::presets;
 use crate::tui::fields::{Knob, Scope};
-use crate::tui::files::EXPORTS;
 use crate::tui::keys::Action;
 use crate::tui::view::{Panel, PulseView};
 use crate::tui::worker::Request;
@@ -259,8 +258,9 @@ impl App {
 
     /// A key in the export menu; Enter asks for that export.
     fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
-        let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
+        let menu = self.export_menu();
+        let ListNav::Choose(i) = self.list_nav(k, i, menu.len(), Mode::Export) else { return vec![] };
+        let Some(&(kind, _)) = menu.get(i) else { return vec![] };
         self.export(kind).into_iter().collect()
     }
 
