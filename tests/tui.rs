@@ -1329,8 +1329,9 @@ fn the_readout_shows_the_clis_json_numbers() {
     }
     let zone = cli["zone"].as_u64().unwrap();
     assert!(row(&screen, "zone").contains(&format!("zone    {zone} ")), "{screen}");
-    // A forced design: the steady figures.
-    let cli = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--json"]);
+    // A forced design: the settled steady figures (issue 17 item 1: the 2 s run's last
+    // periods are still the start-up transient; the readout shows `simulate --settle`'s).
+    let cli = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--settle", "--json"]);
     let st = &cli["steady"];
     let mut forced = d;
     forced.damper.force_n = 1.0;
@@ -1339,8 +1340,13 @@ fn the_readout_shows_the_clis_json_numbers() {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     let screen = render(&mut app, 120, 40);
+    // The note says whether that state settled, as the command line does, before the rest.
+    let settled = if st["settled"].as_bool().unwrap() { "│settled, " } else { "│NOT settled, " };
+    let end = sig(num(st, "window_end_s"), 3);
+    assert!(screen.contains(settled) && end.parse::<f64>().unwrap() > 2.0, "{settled} {end}\n{screen}");
+    let plain = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--json"]);
     for (label, want) in [
-        ("U0max", format!("{} m/s", sig(num(&cli, "u0_max_m_s"), 5))),
+        ("U0max", format!("{} m/s", sig(num(&plain, "u0_max_m_s"), 5))),
         ("amp", format!("{} mm", sig(num(st, "amplitude_m") * 1e3, 4))),
         ("alone", format!("{} mm", sig(num(st, "amplitude_linear_m") * 1e3, 4))),
         ("cut", format!("{} dB", sig(num(st, "reduction_db"), 3))),
@@ -1349,6 +1355,39 @@ fn the_readout_shows_the_clis_json_numbers() {
     ] {
         assert!(row(&screen, label).contains(&format!(" {want} ")), "{label}: {want} in\n{screen}");
     }
+    // With N > 1 the forced figures are the N runs' settled states, median [p10–p90], as
+    // `thud response --ensemble N` at this f (from the design's own v0).
+    set_field(&mut app, thud::tui::fields::Knob::Runs, "3");
+    let cli = json(&[
+        "response",
+        "--preset",
+        "paper-fig9",
+        "--force",
+        "1N",
+        "--v0",
+        "2m/s",
+        "--freqs",
+        "5Hz:5Hz:1",
+        "--ensemble",
+        "3",
+        "--json",
+    ]);
+    let p = &cli["sweeps"][0]["points"][0]["spread"];
+    let spread = |k: &str, scale: f64, digits: usize, unit: &str| {
+        let v = |q: &str| sig(num(&p[k], q) * scale, digits);
+        format!("{}{unit} [{}–{}]", v("median"), v("p10"), v("p90"))
+    };
+    let screen = render(&mut app, 120, 40);
+    for (label, want) in [
+        ("amp", spread("amplitude_m", 1e3, 4, " mm")),
+        ("cut", spread("reduction_db", 1.0, 3, " dB")),
+        ("Leq", spread("leq_db", 1.0, 4, " dB")),
+        ("imp/T", spread("impacts_per_period", 1.0, 3, " ")),
+    ] {
+        assert!(row(&screen, label).contains(&want), "{label}: {want} in\n{screen}");
+    }
+    let settled = cli["sweeps"][0]["points"][0]["settled_fraction"].as_f64().unwrap();
+    assert!(screen.contains(&format!("3 runs: {:.0}% settled", 100.0 * settled)), "{screen}");
 }
 
 /// Issue 17 item 2: the polar's listener level is the level at the exact θ, as `thud simulate`
@@ -1454,4 +1493,32 @@ fn exports_are_the_ensemble_chart_and_the_response_on_screen() {
     export(&mut app, thud::export::Artifact::SvgResponse);
     assert!(std::fs::read_to_string(out.path().join("thud-response.svg")).unwrap().contains("<svg"));
     assert!(render(&mut app, 120, 40).contains("exported response SVG"));
+}
+
+/// Issue 17 item 1: a forced design whose settled run has not settled says so on screen even
+/// when its e is negative: the warning ranks above the `(!) e < 0` note (the e row keeps its
+/// `(!)`), and the settled state is the command line's (`simulate --settle`).
+#[test]
+fn a_not_settled_note_is_never_hidden_behind_the_negative_e_note() {
+    let mut app = computed_app();
+    let reqs = app.select_design(0.050, 0.060);
+    compute_sync(&mut app, reqs);
+    set_field(&mut app, thud::tui::fields::Knob::Force, "1");
+    let a = app.acoustic().expect("computed");
+    let steady = a.steady.expect("forced");
+    let e = app.metrics().unwrap().inclination_cm_s.unwrap();
+    assert!(e < 0.0 && !steady.settled, "this design: e {e}, settled {}", steady.settled);
+    // The same settled state as the command line's.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(["simulate", "--mass", "50g", "--gap", "6cm", "--force", "1N", "--settle", "--json"])
+        .arg(format!("--freq={}Hz", app.design.damper.freq_hz))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let cli: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(cli["steady"]["amplitude_m"].as_f64().unwrap(), steady.amplitude_m);
+    for (w, h) in [(120, 40), (200, 60)] {
+        let screen = render(&mut app, w, h);
+        assert!(screen.contains("│NOT settled, ") && row(&screen, "e").contains("(!)"), "{screen}");
+    }
 }

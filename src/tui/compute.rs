@@ -94,8 +94,12 @@ pub struct AcousticResult {
     /// design: Fig 2, Table 1); an error text when v0 gives no impact.
     pub single: Result<SingleImpact, String>,
     /// A forced design's steady state over its last N periods with the Leq of its rattle at
-    /// this observer ([`response::steady`]); None without a force.
+    /// this observer ([`response::steady`]); None without a force. The readout job
+    /// ([`compute_readout`]) replaces it by the settled state (as `thud simulate --settle`).
     pub steady: Option<Steady>,
+    /// With N > 1 runs and a force: the settled steady state of the N runs at f (median and
+    /// p10–p90, as `thud response --ensemble N` at this f).
+    pub forced_ensemble: Option<response::EnsemblePoint>,
     /// With N > 1 runs: the ensemble of the design (its runs from N spread ball offsets).
     pub ensemble: Option<Ensemble>,
 }
@@ -163,7 +167,7 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         polar = directivity(&r, u0);
     }
     let single = single_impact(&r).map_err(|e| e.to_string());
-    Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None })
+    Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None, forced_ensemble: None })
 }
 
 /// The readout of `d` with `runs` runs: [`compute_acoustic`], and with N > 1 the ensemble of
@@ -181,7 +185,33 @@ pub fn compute_readout(
             None => return Ok(None),
         }
     }
+    if d.damper.forced() {
+        match settled_steady(d, cancel)? {
+            Some(s) => a.steady = Some(s),
+            None => return Ok(None),
+        }
+        if runs > 1 {
+            let opts = ResponseOptions { continuation: false, settle: true };
+            let f = d.damper.freq_hz;
+            let r = response::response_ensemble(d, &[f], runs, &opts, cancel, &|| {})?;
+            if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return Ok(None);
+            }
+            a.forced_ensemble = r.sweeps.into_iter().next().and_then(|s| s.points.into_iter().next());
+        }
+    }
     Ok(Some(a))
+}
+
+/// The settled steady state of forced `d`: its run going on until the amplitude settles (at
+/// most [`damper::SETTLE_PERIODS_MAX`] periods more), as `thud simulate --settle` reports it,
+/// not the last periods of its own duration, which may still be the start-up transient (the
+/// structure's time constant 2M/C is 20 s for Table 2). `None` if cancelled.
+pub fn settled_steady(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<Steady>, ThudError> {
+    let mut s = d.clone();
+    s.damper.settle = true;
+    let eval = design::evaluate(&s, 0, cancel)?;
+    Ok(if eval.run.cancelled { None } else { eval.steady })
 }
 
 /// The ensemble `e` under thresholds `t`: each run's zone and the zone of the medians

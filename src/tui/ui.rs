@@ -234,6 +234,23 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
     let opt = |v: Option<f64>, digits: usize, unit: &str| {
         v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
     };
+    if let Some(e) = &a.forced_ensemble {
+        // N > 1: the N runs' settled states, median [p10–p90] (the line without the ball is
+        // the same for every run).
+        let p = &e.spread;
+        let mm = |p: &Percentiles| Percentiles {
+            p10: p.p10.map(|x| x * 1e3),
+            median: p.median.map(|x| x * 1e3),
+            p90: p.p90.map(|x| x * 1e3),
+        };
+        return vec![
+            ("amp", spread(&mm(&p.amplitude_m), 4, "mm")),
+            ("alone", opt(e.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
+            ("cut", spread(&p.reduction_db, 3, "dB")),
+            ("Leq", spread(&p.leq_db, 4, "dB")),
+            ("imp/T", spread(&p.impacts_per_period, 3, "")),
+        ];
+    }
     vec![
         ("amp", format!("{} mm", sig(s.amplitude_m * 1e3, 4))),
         ("alone", opt(s.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
@@ -243,17 +260,38 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// The note of a forced design: its window and whether it is periodic and settled.
+/// The note of a forced design: its window (after settling, as `thud simulate --settle`) and
+/// whether it is periodic and settled; with N > 1 the share of runs that settled.
 fn steady_note(a: &AcousticResult) -> Option<String> {
     let s = a.steady.as_ref()?;
-    let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("not {word}") };
+    let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("NOT {word}") };
+    if let Some(e) = &a.forced_ensemble {
+        let cut = if e.truncated { ", TRUNCATED" } else { "" };
+        return Some(format!(
+            "{} runs: {:.0}% settled, {:.0}% periodic{cut}",
+            e.ensemble.len(),
+            100.0 * e.settled_fraction,
+            100.0 * e.periodic_fraction
+        ));
+    }
+    // The most important word first: the note may be cut at the panel's edge.
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
     Some(format!(
-        "steady: last {} periods, {}, {}{cut}",
-        s.periods,
+        "{}, {} by t {} s{cut}",
+        yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
-        yes(s.settled, "settled")
+        sig(s.window_end_s, 3)
     ))
+}
+
+/// Whether the steady note says something is wrong (not settled or cut short): it then
+/// ranks above the `(!) e < 0` note, which the glossary explains anyway.
+fn steady_warns(a: &AcousticResult) -> bool {
+    match (&a.forced_ensemble, &a.steady) {
+        (Some(e), _) => e.settled_fraction < 1.0 || e.truncated,
+        (None, Some(s)) => !s.settled || s.truncated,
+        (None, None) => false,
+    }
 }
 
 /// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
@@ -338,6 +376,12 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
+    } else if let Some(n) = live_a.filter(|a| steady_warns(a)).and_then(steady_note) {
+        if negative {
+            format!("{n}; {NEGATIVE_E} e < 0")
+        } else {
+            n
+        }
     } else if negative {
         format!("{NEGATIVE_E} e < 0: see ? page 2")
     } else if let Some(n) = live_a.and_then(steady_note) {
