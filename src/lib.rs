@@ -16,6 +16,7 @@ pub mod presets;
 pub mod shard;
 pub mod signals;
 pub mod store;
+pub mod threads;
 
 pub mod cli;
 pub mod tui;

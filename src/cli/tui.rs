@@ -26,18 +26,18 @@ pub struct TuiArgs {
 
 /// `thud` with no subcommand: the explorer on a terminal, the help text otherwise (pipes,
 /// scripts, CI).
-pub fn run_default() -> Result<(), String> {
+pub fn run_default() -> Result<(), (i32, String)> {
     use std::io::IsTerminal;
     if std::io::stdin().is_terminal() && std::io::stdout().is_terminal() {
         run(&TuiArgs { preset: "default".into(), ..Default::default() })
     } else {
         use clap::CommandFactory;
-        super::Cli::command().print_help().map_err(|e| e.to_string())
+        super::Cli::command().print_help().map_err(|e| (1, format!("cannot write the help: {e}")))
     }
 }
 
-/// Runs the explorer; the error is one line for stderr.
-pub fn run(a: &TuiArgs) -> Result<(), String> {
+/// Runs the explorer; the error is its exit code and one line for stderr.
+pub fn run(a: &TuiArgs) -> Result<(), (i32, String)> {
     use crate::tui::tour::TourSource;
     let tour = a.tour.as_ref().map(|file| file.clone().map_or(TourSource::BuiltIn, TourSource::File));
     let opts = crate::tui::Options {
@@ -47,5 +47,5 @@ pub fn run(a: &TuiArgs) -> Result<(), String> {
         export_dir: a.export_dir.clone(),
         tour,
     };
-    crate::tui::run(&opts).map_err(|e| e.to_string())
+    crate::tui::run(&opts).map_err(|e| (e.exit_code(), e.to_string()))
 }

@@ -72,6 +72,19 @@ impl Tunable for Design {
     }
 }
 
+/// Checks a setup that was loaded rather than typed (a saved design, a preset, a tour step)
+/// as if each of its fields had been typed: every field's range, the work caps (named as the
+/// duration, the field that usually carries them: a 1e6-s design is refused with the chart's
+/// cap line, as typing 1e6 is), the whole-design checks and the engine's validation.
+pub fn check_loaded<S: Tunable>(s: &S) -> Result<(), ThudError> {
+    // The forcing and the ball's start only where they apply: the whole-design check has them.
+    for k in Knob::ALL.into_iter().filter(|k| !matches!(k, Knob::Force | Knob::Freq | Knob::BallPosition)) {
+        k.check_range(s)?;
+    }
+    limits::check_design(s.design())?;
+    Knob::Duration.checked(s.clone()).map(drop)
+}
+
 /// What the explorer runs: the design and the ensemble size N (runs from N ball offsets spread
 /// over the clearance, [`crate::ensemble`]; 1 is the single trajectory).
 #[derive(Debug, Clone, PartialEq)]
@@ -367,7 +380,7 @@ impl Knob {
     /// the work caps, and the design's own validation — the one range table over the whole
     /// design ([`limits::check_design`]: what the command line checks, e.g. |y0| < d/2 and a
     /// force's frequency) and the engine's ([`Design::validate`], [`Design::resolved`]).
-    fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
+    pub(crate) fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
         self.check_range(&next)?;
         self.check_work(&next)?;
         let d = next.design();

@@ -20,7 +20,7 @@
 //! ```
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Deserialize;
 
@@ -140,8 +140,8 @@ impl Tour {
             TourSource::BuiltIn => Tour::parse("assets/tour.toml", BUILT_IN),
             TourSource::File(path) => {
                 let text = fsio::read_to_string(path, fsio::MAX_READ_BYTES)
-                    .map_err(|e| TourError { file: path.display().to_string(), message: e.reason() })?;
-                Tour::parse(&path.display().to_string(), &text)
+                    .map_err(|e| TourError { file: fsio::shown(path), message: e.reason() })?;
+                Tour::parse(&fsio::shown(path), &text)
             }
         }
     }
@@ -165,6 +165,7 @@ impl Tour {
                 preset = p.trim().to_ascii_lowercase();
             }
             setup = apply_sets(&setup, &s.set).map_err(at)?;
+            crate::tui::fields::check_loaded(&setup).map_err(|e| at(e.to_string()))?;
             let panel = panel(&s.panel).ok_or_else(|| {
                 at(format!("panel '{}'; one of params, readout, waveform, polar, history, chart", s.panel))
             })?;
@@ -248,7 +249,7 @@ fn line_col(text: &str, at: usize) -> (usize, usize) {
 pub fn source_name(source: &TourSource) -> String {
     match source {
         TourSource::BuiltIn => "the built-in tour".into(),
-        TourSource::File(p) => Path::new(p).display().to_string(),
+        TourSource::File(p) => fsio::shown(p),
     }
 }
 

@@ -250,6 +250,16 @@ pub const GRID_N: Range = range(
     "1000 × 1000 cells is the most a chart can show; the work cap limits the product",
 );
 
+/// Worker threads of the parallel pool (`--threads N`, or `RAYON_NUM_THREADS`).
+pub const THREADS: Range = range(
+    "threads",
+    "worker threads",
+    1.0,
+    1024.0,
+    "threads",
+    "1 runs the work on one thread; past the machine's cores more threads only cost memory, and 1024 is more cores than one machine has",
+);
+
 /// Runs of an ensemble (`--ensemble N`): the same design from N evenly spread initial ball
 /// offsets (see [`crate::ensemble`]).
 pub const ENSEMBLE: Range = range(
@@ -758,7 +768,7 @@ mod tests {
 
     #[test]
     fn every_range_is_ordered_and_finite() {
-        for r in RANGES.iter().chain([&GRID_N]) {
+        for r in RANGES.iter().chain([&GRID_N, &THREADS]) {
             assert!(r.min.is_finite() && r.max.is_finite() && r.min < r.max, "{}", r.param);
             assert!(!r.reason.is_empty() && !r.what.is_empty(), "{}", r.param);
         }

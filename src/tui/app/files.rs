@@ -100,9 +100,13 @@ impl App {
         if let Some(entry) = self.saved.designs.get(i) {
             let name = entry.name.clone();
             let Some(dir) = self.data_dir.clone() else { return vec![] };
-            return match store::load_design(&dir, &name) {
-                Ok(file) => {
-                    let reqs = self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"));
+            let loaded = store::load_design(&dir, &name).map_err(|e| e.to_string()).and_then(|f| {
+                let setup = crate::tui::fields::Setup { design: f.design, runs: self.runs };
+                crate::tui::fields::check_loaded(&setup).map(|()| setup.design).map_err(|e| e.to_string())
+            });
+            return match loaded {
+                Ok(design) => {
+                    let reqs = self.apply(design, Scope::All, format!("loaded {name} (u undoes)"));
                     self.preset.clone_from(&name);
                     reqs
                 }
