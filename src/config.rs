@@ -505,12 +505,6 @@ pub fn load_user_config() -> ConfigLoad {
     }
 }
 
-/// [`save_config`] to the user's config directory.
-pub fn save_user_config(config: &Config) -> Result<PathBuf, StoreError> {
-    let d = store::Dirs::project().ok_or(StoreError::NoHome("config"))?;
-    save_config(&d.config_dir, config)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

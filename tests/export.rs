@@ -30,9 +30,9 @@ fn wav_parses_back_with_rate_length_and_a_peak_at_each_impact() {
     let bytes = export::render(Artifact::Wav, &d, &ExportOptions::default()).unwrap();
     let mut r = hound::WavReader::new(std::io::Cursor::new(bytes)).unwrap();
     let spec = r.spec();
-    assert_eq!((spec.sample_rate, spec.channels, spec.bits_per_sample), (48_000, 1, 32));
-    assert_eq!(spec.sample_format, hound::SampleFormat::Float);
-    let s: Vec<f32> = r.samples::<f32>().map(Result::unwrap).collect();
+    assert_eq!((spec.sample_rate, spec.channels, spec.bits_per_sample), (48_000, 1, 16), "16-bit PCM by default");
+    assert_eq!(spec.sample_format, hound::SampleFormat::Int);
+    let s: Vec<f32> = r.samples::<i16>().map(|v| f32::from(v.unwrap()) / 32767.0).collect();
     assert_eq!(s.len(), (d.damper.duration_s * 48_000.0).round() as usize);
     let field0 = d.impact_field(e.run.impacts[0].u_in_m_s).unwrap();
     let delay = field0.arrival_s();
@@ -94,7 +94,7 @@ fn csv_exports_have_their_headers_and_rows() {
             "index,t_s,wall,u_in_m_s,u_out_m_s,restitution,t_end_s,duration_s,penetration_max_m,spl_db",
             10,
         ),
-        (Artifact::CsvSweep, "mass_kg,gap_m,inclination_cm_s", 9),
+        (Artifact::CsvSweep, "mass_kg,gap_m,n_impacts,inclination_cm_s", 9),
     ] {
         let text = String::from_utf8(export::render(kind, &d, &small_grid()).unwrap()).unwrap();
         let lines: Vec<&str> = text.lines().collect();
@@ -265,4 +265,69 @@ fn cli_pulse_takes_the_single_impact_presets() {
     assert!((t1["spl_db"].as_f64().unwrap() - 105.6063).abs() < 0.03, "{}", t1["spl_db"]);
     let slower = json(&["--preset", "paper-table1", "--u0", "0.99"]);
     assert!((slower["spl_db"].as_f64().unwrap() - 101.3914).abs() < 0.03, "{}", slower["spl_db"]);
+}
+
+/// Whether `python3` runs here (the Python checks are skipped, saying so, where it does not).
+fn python3() -> bool {
+    Command::new("python3").arg("-c").arg("pass").output().is_ok_and(|o| o.status.success())
+}
+
+#[test]
+fn cli_wav_formats_parse_back_and_pcm_clips_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_string_lossy().into_owned();
+    let write = |name: &str, extra: &[&str]| -> String {
+        let out = p(name);
+        let (code, _, err) = thud(
+            &[&["export", "wav", "--preset", "steel-ball", "--duration", "0.2", "--out", &out][..], extra].concat(),
+            dir.path(),
+        );
+        assert_eq!(code, 0, "{err}");
+        err
+    };
+    write("f.wav", &["--format", "float"]);
+    write("p24.wav", &["--format", "pcm24"]);
+    write("p16.wav", &[]);
+    let float: Vec<f32> = hound::WavReader::open(p("f.wav")).unwrap().samples::<f32>().map(Result::unwrap).collect();
+    let mut r24 = hound::WavReader::open(p("p24.wav")).unwrap();
+    assert_eq!((r24.spec().bits_per_sample, r24.spec().sample_format), (24, hound::SampleFormat::Int));
+    let pcm24: Vec<i32> = r24.samples::<i32>().map(Result::unwrap).collect();
+    let pcm16: Vec<i16> = hound::WavReader::open(p("p16.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
+    assert_eq!((float.len(), pcm24.len(), pcm16.len()), (9600, 9600, 9600));
+    assert!(float.iter().any(|&v| v != 0.0), "the sound is not silence");
+    for ((&f, &a), &b) in float.iter().zip(&pcm24).zip(&pcm16) {
+        // Each PCM code is the float value (within full scale) times 2^(b−1)−1, rounded.
+        let f = f64::from(f).clamp(-1.0, 1.0);
+        assert!((f64::from(a) - f * 8_388_607.0).abs() <= 0.5 + 1e-6 * 8_388_607.0, "{f} → {a}");
+        assert!((f64::from(b) - f * 32_767.0).abs() <= 0.51, "{f} → {b}");
+    }
+    // A full scale far below the loudest pulse clips PCM and says so; float keeps the values.
+    let err = write("loud.wav", &["--full-scale", "0.01"]);
+    assert!(err.contains("clipped") && err.contains("--full-scale"), "{err}");
+    assert_eq!(err.lines().count(), 2, "the warning and `wrote`: {err}");
+    let loud: Vec<i16> = hound::WavReader::open(p("loud.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
+    assert!(loud.iter().any(|&v| v == i16::MAX || v == -i16::MAX) && !loud.contains(&i16::MIN));
+    if !python3() {
+        eprintln!("python3 not found: Python's wave check skipped");
+        return;
+    }
+    // Python's standard `wave` module (which refuses WAVE_FORMAT_EXTENSIBLE before 3.12) reads the
+    // default file and the 24-bit one, with the same length and the same samples.
+    for (name, width) in [("p16.wav", 2), ("p24.wav", 3)] {
+        let script = format!(
+            "import wave,sys\nw=wave.open(sys.argv[1])\nprint(w.getnchannels(),w.getsampwidth(),w.getframerate(),w.getnframes())\nb=w.readframes(w.getnframes())\nprint(sum(1 for i in range(0,len(b),{width}) if int.from_bytes(b[i:i+{width}],'little',signed=True)!=0))"
+        );
+        let o = Command::new("python3").arg("-c").arg(&script).arg(p(name)).output().unwrap();
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8_lossy(&o.stdout).into_owned();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some(format!("1 {width} 48000 9600").as_str()), "{name}");
+        let nonzero: usize = lines.next().unwrap().parse().unwrap();
+        let want = if width == 2 {
+            pcm16.iter().filter(|&&v| v != 0).count()
+        } else {
+            pcm24.iter().filter(|&&v| v != 0).count()
+        };
+        assert_eq!(nonzero, want, "{name}");
+    }
 }

@@ -454,6 +454,8 @@ fn quick(base: &[&str]) -> Vec<String> {
         "restitution" => ["--masses", "10g:100g:4"].map(String::from).to_vec(),
         // A forced design (the response needs one) over three frequencies.
         "response" => ["--force", "1N", "--freqs", "4Hz:6Hz:3"].map(String::from).to_vec(),
+        // Float samples: the format where a non-finite value could show (PCM codes are integers).
+        "export" if base.get(1) == Some(&"wav") => ["--format", "float"].map(String::from).to_vec(),
         _ => vec![],
     }
 }
@@ -505,7 +507,8 @@ fn check_contract(base: &[&str], flag: &str, value: &str, mode: &str) {
             if base[0] == "export" {
                 let bytes = std::fs::read(&file).unwrap_or_else(|e| panic!("{shown:?}: no file: {e}"));
                 if base[1] == "wav" {
-                    let bad = bytes[44..]
+                    let data = bytes.windows(4).position(|w| w == b"data").expect("a data chunk") + 8;
+                    let bad = bytes[data..]
                         .chunks_exact(4)
                         .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
                         .find(|x| !x.is_finite());
@@ -672,6 +675,37 @@ fn explorer_refuses_runs_over_the_work_caps() {
     let status = app.status().map(|s| s.text.clone()).unwrap_or_default();
     assert!(status.contains("WAV samples exceed the limit"), "{status}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// The new flags of the exports and of `thud man`: `export wav --format` takes only pcm16,
+/// pcm24 or float; `export svg --size` only WxH within 480–4000 × 320–4000 px; `--no-title` takes
+/// no value; `man --all` refuses a path that is a file and takes no COMMAND beside it. Each is
+/// refused with exit 2, one line naming the flag and what was typed, and no file.
+#[test]
+fn new_export_and_man_flags_are_checked_and_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = |n: &str| dir.path().join(n).to_string_lossy().into_owned();
+    let (wav, svg) = (f("s.wav"), f("s.svg"));
+    for bad in ["pcm8", "PCM", "", "float64", "1e308"] {
+        assert_refused(&["export", "wav", "--format", bad, "--out", &wav], &["--format", "pcm16"]);
+    }
+    for bad in
+        ["479x320", "480x319", "4001x800", "800x4001", "-800x600", "1e308x600", "NaNxNaN", "800x", "x600", "800*600"]
+    {
+        assert_refused(&["export", "svg", "chart", "--size", bad, "--out", &svg], &["--size", bad, "480 to 4000"]);
+    }
+    assert_refused(&["export", "svg", "chart", "--no-title=yes", "--out", &svg], &["--no-title"]);
+    let file = f("a-file");
+    std::fs::write(&file, "x").unwrap();
+    assert_refused(&["man", "--all", &file], &["a-file"]);
+    assert_refused(&["man", "pulse", "--all", &f("m")], &["--all"]);
+    assert_refused(&["man", "--force"], &["--all"]);
+    assert!(!Path::new(&wav).exists() && !Path::new(&svg).exists() && !Path::new(&f("m")).exists());
+    // The bounds themselves are taken.
+    let r = thud(&["export", "svg", "waveform", "--size", "480x320", "--no-title", "--out", &svg]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let r = thud(&["export", "wav", "--format", "pcm24", "--duration", "0.05", "--out", &wav]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
 }
 
 // Issue 18, round 2 (thread pools, dead terminals, config problems, loaded files, huge

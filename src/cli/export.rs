@@ -9,7 +9,8 @@ use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
 use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::Design;
 use crate::error::ThudError;
-use crate::export::{self, wav::WavOptions, Artifact, ExportError, ExportOptions};
+use crate::export::wav::{SampleFormat, WavError, WavOptions};
+use crate::export::{self, svg, Artifact, ExportError, ExportOptions};
 use crate::fsio::{self, FsError, Overwrite, Plan, Sink};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
@@ -26,7 +27,7 @@ enum ExportCommand {
     Csv(CsvArgs),
     /// Figures as SVG: waveform, directivity, history, restitution, chart, fig17, response.
     Svg(SvgArgs),
-    /// The damper's sound at the observer: 48 kHz mono 32-bit float, 1.0 = --full-scale Pa.
+    /// The damper's sound at the observer: 48 kHz mono, 16-bit PCM (--format), 1.0 = --full-scale Pa.
     Wav(WavArgs),
 }
 
@@ -62,15 +63,63 @@ struct CsvArgs {
 struct SvgArgs {
     #[arg(value_enum)]
     what: SvgWhat,
+    /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
+    size: Option<String>,
+    /// Leave the title off the figure (for a caption of its own); the SVG keeps it as <title>.
+    #[arg(long)]
+    no_title: bool,
     #[command(flatten)]
     common: Common,
 }
 
+/// The figure size `--size WxH` asks for (px), each side within [`svg::MIN_SIZE`] and
+/// [`svg::MAX_SIZE`].
+fn parse_size(text: &str) -> Result<(f64, f64), ThudError> {
+    let (min, max) = (svg::MIN_SIZE, svg::MAX_SIZE);
+    let range = format!("WxH in px, width {} to {}, height {} to {} (e.g. 1200x800)", min.0, max.0, min.1, max.1);
+    let side = |t: &str| t.trim().parse::<u32>().ok().map(f64::from);
+    let (w, h) = text
+        .split_once(['x', 'X', '×'])
+        .and_then(|(w, h)| Some((side(w)?, side(h)?)))
+        .ok_or_else(|| ThudError::invalid("--size", format!("{text}: must be {range}")))?;
+    if !(min.0..=max.0).contains(&w) || !(min.1..=max.1).contains(&h) {
+        return Err(ThudError::invalid("--size", format!("{text}: must be {range}")));
+    }
+    Ok((w, h))
+}
+
+/// How the samples of a WAV are stored (`--format`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum WavFormat {
+    /// 16-bit signed PCM, clipped at full scale: every reader opens it.
+    Pcm16,
+    /// 24-bit signed PCM, clipped at full scale.
+    Pcm24,
+    /// 32-bit IEEE float, not clipped.
+    Float,
+}
+
+impl From<WavFormat> for SampleFormat {
+    fn from(f: WavFormat) -> Self {
+        match f {
+            WavFormat::Pcm16 => SampleFormat::Pcm16,
+            WavFormat::Pcm24 => SampleFormat::Pcm24,
+            WavFormat::Float => SampleFormat::Float,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Args)]
 struct WavArgs {
-    /// Pressure written as sample value 1.0 (Pa); the same for every design, so files compare by ear.
+    /// Pressure written as sample value 1.0 (Pa; its range: `thud limits`); the same for every design, so files
+    /// compare by ear (never normalised to the loudest sample).
     #[arg(long, value_name = "PA", default_value = "20", allow_hyphen_values = true)]
     full_scale: String,
+    /// Sample format: pcm16 or pcm24 (value/full scale clipped to ±1, times 2^(b−1)−1, rounded),
+    /// or float (32-bit, unclipped).
+    #[arg(long, value_enum, default_value = "pcm16")]
+    format: WavFormat,
     #[command(flatten)]
     common: Common,
 }
@@ -128,6 +177,7 @@ impl Common {
             gaps_m: self.gaps.as_deref().map(|g| parse_range("gaps", g, Unit::Length, &limits::GAP)).transpose()?,
             points,
             wav: WavOptions::default(),
+            look: svg::Look::default(),
             freqs_hz: self
                 .freqs
                 .as_deref()
@@ -194,17 +244,28 @@ fn no_impact(e: ThudError, common: &Common) -> ThudError {
     ThudError::invalid("--u0", format!("the design ({typed}) has no impact to hear; give an impact speed with --u0"))
 }
 
-/// Checks rendered contents hold no non-finite number: WAV samples as floats, text as text.
+/// Checks rendered text holds no non-finite number (a WAV's pressures are checked before they
+/// are encoded: [`WavError::NonFinite`]).
 fn check_contents(kind: Artifact, bytes: &[u8]) -> Result<(), CliError> {
     if kind == Artifact::Wav {
-        // 32-bit float samples after the 44-byte header of a mono float WAV.
-        let bad = bytes.get(44..).unwrap_or_default().chunks_exact(4).find_map(|c| {
-            let x = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
-            (!x.is_finite()).then_some(x)
-        });
-        return bad.map_or(Ok(()), |x| Err(CliError::NonFinite(format!("{x} in a WAV sample"))));
+        return Ok(());
     }
     super::output::check_text(&String::from_utf8_lossy(bytes))
+}
+
+/// Samples of a PCM WAV at the largest code (clipped at, or exactly at, full scale); 0 for float.
+fn samples_at_full_scale(bytes: &[u8], format: SampleFormat) -> usize {
+    let data = bytes.get(44..).unwrap_or_default();
+    match format {
+        SampleFormat::Pcm16 => {
+            data.chunks_exact(2).filter(|c| i16::from_le_bytes([c[0], c[1]]).abs() == i16::MAX).count()
+        }
+        SampleFormat::Pcm24 => data
+            .chunks_exact(3)
+            .filter(|c| (i32::from_le_bytes([0, c[0], c[1], c[2]]) >> 8).abs() == (1 << 23) - 1)
+            .count(),
+        SampleFormat::Float => 0,
+    }
 }
 
 /// Renders and writes one export; says on stderr what was written. The target and the work are
@@ -228,12 +289,26 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
     let spinner = budget::spinner("exporting", long);
     let bytes = export::render(kind, &design, opts);
     spinner.finish_and_clear();
-    let bytes = bytes.map_err(|e| export_error(out, e, common))?;
+    let bytes = match bytes {
+        Err(ExportError::Wav(WavError::NonFinite(p))) => {
+            return Err(CliError::NonFinite(format!("{p} Pa in a WAV sample")))
+        }
+        other => other.map_err(|e| export_error(out, e, common))?,
+    };
     check_contents(kind, &bytes)?;
+    if kind == Artifact::Wav {
+        let clipped = samples_at_full_scale(&bytes, opts.wav.format);
+        if clipped > 0 {
+            super::warn(&format!(
+                "{clipped} samples reached full scale ({} Pa) and were clipped; raise --full-scale or use --format float",
+                short(opts.wav.full_scale_pa)
+            ));
+        }
+    }
     if to_stdout {
         return Ok(fsio::write_stdout(&bytes)?);
     }
-    fsio::write(out, &bytes, overwrite).map_err(|e| out_error(out, &e))?;
+    fsio::write(out, &bytes, overwrite).map_err(|e| write_error(out, &e))?;
     super::warn(&format!("wrote {}", fsio::shown(out)));
     Ok(())
 }
@@ -244,12 +319,27 @@ fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
         ExportError::Invalid(t) => no_impact(t, common),
         ExportError::File(f) => out_error(out, &f),
         ExportError::Csv(c) => ThudError::invalid("--out", format!("cannot write {}: {c}", fsio::shown(out))),
+        ExportError::Wav(w) => ThudError::invalid("--out", format!("cannot write {}: {w}", fsio::shown(out))),
     }
 }
 
-/// A refused or failed write of `out` as the CLI's one-line error (exit 2) naming `--out`:
-/// what is at the path and what to do. Paths are [`fsio::shown`] (escaped, a long one cut in
-/// its middle), so the reason always survives.
+/// A write of `out` that failed or was refused, as the CLI's error: a refusal (the file exists,
+/// is a link, is not writable through, a FIFO without a reader) is bad input (exit 2), a
+/// failure of the write itself is I/O (exit 1); the line is [`out_error`]'s.
+pub(super) fn write_error(out: &Path, e: &FsError) -> CliError {
+    match e {
+        FsError::Exists(_) | FsError::NotRegular { .. } | FsError::Link(_) | FsError::NoReader(_) => {
+            CliError::Input(out_error(out, e))
+        }
+        FsError::Changed(_) | FsError::TooLarge { .. } | FsError::Io { .. } => {
+            CliError::Io(out_error(out, e).to_string())
+        }
+    }
+}
+
+/// A refused or failed write of `out` as the CLI's one-line error naming `--out`: what is at
+/// the path and what to do. Paths are [`fsio::shown`] (escaped, a long one cut in its middle),
+/// so the reason always survives.
 pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
     let message = match e {
         FsError::Exists(p) => format!("{} exists; add --force to replace it", fsio::shown(p)),
@@ -291,12 +381,15 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 SvgWhat::Fig17 => Artifact::SvgFig17,
                 SvgWhat::Response => Artifact::SvgResponse,
             };
-            write(ctx, kind, &s.common, &s.common.options()?)
+            let mut opts = s.common.options()?;
+            opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
+            write(ctx, kind, &s.common, &opts)
         }
         ExportCommand::Wav(w) => {
             let mut opts = w.common.options()?;
             opts.wav.full_scale_pa =
                 quantity("full-scale", &Some(w.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
+            opts.wav.format = w.format.into();
             opts.wav.validate()?;
             write(ctx, Artifact::Wav, &w.common, &opts)
         }

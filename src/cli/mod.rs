@@ -262,12 +262,15 @@ fn not_utf8(raw: &[std::ffi::OsString]) -> String {
     }
 }
 
-/// The exit code of the explorer: 0, or its error's code with the line on stderr (naming the
-/// flag, `--preset`, where the line names a parameter).
-fn tui_exit(r: Result<(), (i32, String)>) -> i32 {
+/// The exit code of the explorer: 0, or its error's ([`CliError::report`]: the preset named as
+/// the flag `--preset`) with its line on stderr.
+fn tui_exit(r: Result<(), CliError>) -> i32 {
     r.map_or_else(
-        |(code, line)| {
-            warn(&errors::name_flag(&line, &numeric_flags()));
+        |e| {
+            let (code, line) = e.report(&numeric_flags());
+            if let Some(line) = line {
+                warn(&line);
+            }
             code
         },
         |()| 0,

@@ -1,12 +1,19 @@
 //! Shell integration: `thud completions SHELL` prints a completion script (clap_complete) and
-//! `thud man [COMMAND…]` a roff man page (clap_mangen), both generated from the very clap
-//! definitions the command line parses with, so they never drift from it.
+//! `thud man [COMMAND…]` a roff man page (clap_mangen), `thud man --all DIR` every page, all
+//! generated from the very clap definitions the command line parses with, so they never drift
+//! from it. [`with_hints`] adds the names the shell can offer (presets, materials, paper items,
+//! commands) to a copy of those definitions; [`extra_sections`] appends the sections clap_mangen
+//! does not write (EXIT STATUS, ENVIRONMENT, FILES, UNITS, EXAMPLES, SEE ALSO).
 
-use clap::{Args, CommandFactory};
+use std::path::{Path, PathBuf};
+
+use clap::builder::PossibleValuesParser;
+use clap::{Arg, Args, Command, CommandFactory};
 use clap_complete::Shell;
 
 use super::{Cli, CliError, Out};
 use crate::error::ThudError;
+use crate::fsio::{self, Overwrite};
 
 /// Options of `thud completions`.
 #[derive(Debug, Clone, Copy, Args)]
@@ -21,21 +28,83 @@ pub struct CompletionsArgs {
 pub struct ManArgs {
     /// The command whose page to print (`pulse`, `export csv`); none: the page of thud itself,
     /// thud(1), which lists the commands (thud-pulse(1), …).
-    #[arg(value_name = "COMMAND")]
+    #[arg(value_name = "COMMAND", conflicts_with = "all")]
     command: Vec<String>,
+    /// Write every page (thud.1, thud-pulse.1, …, thud-export-csv.1, thud-man.1) into DIR,
+    /// created if missing; pages already there are kept unless --force (nothing is written then).
+    #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
+    all: Option<PathBuf>,
+    /// With --all: replace pages of the same names (atomically; never a device or folder).
+    #[arg(long, requires = "all")]
+    force: bool,
+}
+
+/// The command line's definitions with the names a shell can offer: preset names for
+/// `--preset`, materials for `--sphere`/`--plate`, the items of `thud paper ID` and the commands
+/// of `thud man COMMAND`. Only completions and man pages use this copy; the parser keeps its
+/// own (which accepts aliases such as `pmma` too).
+pub fn with_hints(cmd: Command) -> Command {
+    let presets: Vec<&'static str> = crate::presets::names().collect();
+    let materials: Vec<&'static str> = crate::contact::MATERIALS.iter().map(|m| m.name).collect();
+    let items: Vec<&'static str> = crate::paper::items().map(|i| i.id).chain(std::iter::once("all")).collect();
+    let commands: Vec<String> = cmd.get_subcommands().map(|c| c.get_name().to_string()).collect();
+    hint(cmd, &|path: &[&str], arg: Arg| match (path, arg.get_id().as_str()) {
+        (_, "preset") => arg.value_parser(PossibleValuesParser::new(presets.clone())),
+        (_, "sphere" | "plate") => arg.value_parser(PossibleValuesParser::new(materials.clone())),
+        (["paper"], "id") => arg.value_parser(PossibleValuesParser::new(items.clone())),
+        (["man"], "command") => arg.value_parser(PossibleValuesParser::new(commands.clone())),
+        _ => arg,
+    })
+}
+
+/// `cmd` with `f(path, arg)` applied to every argument of it and of its subcommands (`path`:
+/// the subcommand names below the top, e.g. `["export", "csv"]`).
+fn hint(cmd: Command, f: &dyn Fn(&[&str], Arg) -> Arg) -> Command {
+    fn walk(mut cmd: Command, path: &mut Vec<String>, f: &dyn Fn(&[&str], Arg) -> Arg) -> Command {
+        let ids: Vec<String> = cmd.get_arguments().map(|a| a.get_id().to_string()).collect();
+        {
+            let here: Vec<&str> = path.iter().map(String::as_str).collect();
+            for id in ids {
+                cmd = cmd.mut_arg(id, |a| f(&here, a));
+            }
+        }
+        let names: Vec<String> = cmd.get_subcommands().map(|c| c.get_name().to_string()).collect();
+        for name in names {
+            path.push(name.clone());
+            let sub = cmd.find_subcommand(&name).cloned();
+            if let Some(sub) = sub {
+                let sub = walk(sub, path, f);
+                cmd = cmd.mut_subcommand(&name, |_| sub);
+            }
+            path.pop();
+        }
+        cmd
+    }
+    walk(cmd, &mut Vec::new(), f)
+}
+
+/// The command line's definitions for pages: hinted, built, without the `help` subcommand.
+fn page_root() -> Command {
+    let mut cmd = with_hints(Cli::command()).disable_help_subcommand(true);
+    cmd.build();
+    cmd
 }
 
 /// `thud completions SHELL`: the completion script on stdout.
 pub fn completions(a: &CompletionsArgs, out: &mut Out) -> Result<(), CliError> {
     let mut script = Vec::new();
-    clap_complete::generate(a.shell, &mut Cli::command(), "thud", &mut script);
+    clap_complete::generate(a.shell, &mut with_hints(Cli::command()), "thud", &mut script);
     out.raw(&script)
 }
 
-/// `thud man [COMMAND…]`: the man page of thud or of one of its commands, in roff.
+/// `thud man [COMMAND…]`: the man page of thud or of one of its commands, in roff; `thud man
+/// --all DIR`: every page into DIR.
 pub fn man(a: &ManArgs, out: &mut Out) -> Result<(), CliError> {
-    let mut cmd = Cli::command().disable_help_subcommand(true);
-    cmd.build();
+    if let Some(dir) = &a.all {
+        return write_all(dir, Overwrite::from_force(a.force));
+    }
+    let mut cmd = page_root();
+    let mut path: Vec<String> = Vec::new();
     for name in &a.command {
         let next = cmd.find_subcommand(name).cloned();
         cmd = next.ok_or_else(|| {
@@ -47,10 +116,182 @@ pub fn man(a: &ManArgs, out: &mut Out) -> Result<(), CliError> {
             };
             ThudError::invalid("command", format!("'{name}' is not a command of `{}`; {what}", cmd_path(&cmd)))
         })?;
+        path.push(name.clone());
     }
+    out.raw(&page(&cmd, &path)?)
+}
+
+/// Every page: (file name, the command's path below `thud`, the command), thud(1) first, each
+/// command before its subcommands.
+fn all_pages() -> Vec<(String, Vec<String>, Command)> {
+    fn walk(cmd: &Command, path: &mut Vec<String>, pages: &mut Vec<(String, Vec<String>, Command)>) {
+        let name = if path.is_empty() { "thud".to_string() } else { format!("thud-{}", path.join("-")) };
+        pages.push((format!("{name}.1"), path.clone(), cmd.clone()));
+        for sub in cmd.get_subcommands() {
+            path.push(sub.get_name().to_string());
+            walk(sub, path, pages);
+            path.pop();
+        }
+    }
+    let mut pages = Vec::new();
+    walk(&page_root(), &mut Vec::new(), &mut pages);
+    pages
+}
+
+/// `thud man --all DIR`: every page into `dir` through [`fsio::write`]. Every target is checked
+/// first, so a refused page leaves the folder as it was.
+fn write_all(dir: &Path, overwrite: Overwrite) -> Result<(), CliError> {
+    let pages = all_pages();
+    for (file, _, _) in &pages {
+        let target = dir.join(file);
+        fsio::check_target(&target, overwrite).map_err(|e| page_error(&target, &e))?;
+    }
+    for (file, path, cmd) in &pages {
+        let target = dir.join(file);
+        fsio::write(&target, &page(cmd, path)?, overwrite).map_err(|e| page_error(&target, &e))?;
+    }
+    super::warn(&format!("wrote {} man pages to {}", pages.len(), dir.display()));
+    Ok(())
+}
+
+/// A refused or failed page as the one-line error of `--out` writes, naming `--all`.
+fn page_error(target: &Path, e: &fsio::FsError) -> ThudError {
+    super::export::out_error(target, e).renamed("--all")
+}
+
+/// The page of `cmd` (at `path` below thud): clap_mangen's sections, then [`extra_sections`].
+fn page(cmd: &Command, path: &[String]) -> Result<Vec<u8>, CliError> {
     let mut page = Vec::new();
-    clap_mangen::Man::new(cmd).render(&mut page)?;
-    out.raw(&title_first(&page))
+    clap_mangen::Man::new(cmd.clone()).render(&mut page)?;
+    let mut page = title_first(&page);
+    page.extend_from_slice(extra_sections(cmd, path).as_bytes());
+    Ok(page)
+}
+
+/// Text for roff: backslashes and hyphens escaped, no line starting with a control character.
+fn roff(text: &str) -> String {
+    let t = text.replace('\\', "\\e").replace('-', "\\-");
+    if t.starts_with('.') || t.starts_with('\'') {
+        format!("\\&{t}")
+    } else {
+        t
+    }
+}
+
+/// Examples of the command at `path` (a command line each, then what it does).
+fn examples(path: &[String]) -> Vec<(&'static str, &'static str)> {
+    let p: Vec<&str> = path.iter().map(String::as_str).collect();
+    match p.as_slice() {
+        [] => vec![
+            ("thud", "open the explorer"),
+            ("thud simulate --preset paper-fig9 --json", "one design, every impact, as JSON"),
+            ("thud sweep --csv > chart.csv", "the design chart, one row per mass and gap"),
+            ("thud paper all --out paper/", "every table and figure of the paper"),
+        ],
+        ["pulse"] => vec![("thud pulse --radius 19.05mm --mass 40.5g --u0 1.4 --json", "the paper's Fig 2 impact")],
+        ["simulate"] => vec![
+            ("thud simulate --preset paper-fig9", "the Fig 9 free vibration, summarised"),
+            ("thud simulate --mass 50g --gap 3cm --csv --samples 501", "the time history as CSV"),
+            ("thud simulate --ensemble 16 --json", "16 runs from spread ball offsets"),
+        ],
+        ["sweep"] => vec![
+            ("thud sweep --masses 30g:100g:20 --gaps 2cm:5cm:20", "the zone map and Table 5"),
+            ("thud sweep --shard 0/8 --out part0.jsonl", "part 0 of 8 for `thud merge`"),
+        ],
+        ["merge"] => vec![("thud merge part*.jsonl --json", "the whole chart from its parts")],
+        ["response"] => vec![("thud response --force 1N --freqs 3Hz:8Hz:101 --csv", "amplitude and Leq against frequency")],
+        ["restitution"] => vec![("thud restitution --json", "restitution against impact mass (Fig 13)")],
+        ["paper"] => vec![("thud paper table3", "Table 3 beside the paper's numbers"), ("thud paper --list", "every item")],
+        ["export"] | ["export", "wav"] => vec![
+            ("thud export wav --preset steel-ball --out steel.wav", "the rattle, 16-bit PCM, 20 Pa full scale"),
+            ("thud export wav --format float --out s.wav", "32-bit float, not clipped"),
+        ],
+        ["export", "csv"] => vec![("thud export csv impacts --preset paper-fig9 --out impacts.csv", "every impact")],
+        ["export", "svg"] => vec![("thud export svg chart --out chart.svg", "the zone chart as a figure")],
+        ["presets"] => vec![("thud presets", "the named starting designs")],
+        ["tui"] => vec![("thud tui --preset paper-fig9", "the explorer on a preset")],
+        ["limits"] => vec![("thud limits --json", "every range and work cap")],
+        ["completions"] => vec![(
+            "mkdir -p ~/.local/share/bash-completion/completions && thud completions bash > ~/.local/share/bash-completion/completions/thud",
+            "bash completion",
+        )],
+        ["man", ..] => vec![("thud man --all ~/.local/share/man/man1", "every page, for man(1)")],
+        _ => vec![],
+    }
+}
+
+/// EXIT STATUS, ENVIRONMENT, FILES, UNITS, EXAMPLES and SEE ALSO of the page of `cmd` (at
+/// `path` below thud), in roff.
+fn extra_sections(cmd: &Command, path: &[String]) -> String {
+    let mut s = String::new();
+    let item = |s: &mut String, tag: &str, text: &str| {
+        *s += &format!(".TP\n{}\n{}\n", roff(tag), roff(text));
+    };
+    s += ".SH \"EXIT STATUS\"\n";
+    item(&mut s, "0", "Success (also when standard output is closed early, as by head).");
+    item(&mut s, "1", "An I/O failure, an internal error or a non-finite result.");
+    item(
+        &mut s,
+        "2",
+        "Bad input: a value outside its range, an unknown flag, a file that exists without --force. One line on standard error names what was typed.",
+    );
+    item(
+        &mut s,
+        "128+N",
+        "Stopped by signal N (130 SIGINT, 143 SIGTERM, 129 SIGHUP); the terminal is restored and no partial file is left.",
+    );
+    s += ".SH ENVIRONMENT\n";
+    item(&mut s, "NO_COLOR", "When set to anything non-empty, the explorer draws without colour.");
+    item(
+        &mut s,
+        "RAYON_NUM_THREADS",
+        "Worker threads for sweeps, ensembles and responses when --threads is not given (else one per CPU).",
+    );
+    item(&mut s, "XDG_CONFIG_HOME", "Where thud/config.toml is read from (default ~/.config).");
+    item(&mut s, "XDG_DATA_HOME", "Where saved designs are kept, in thud/designs/ (default ~/.local/share).");
+    s += ".SH FILES\n";
+    item(
+        &mut s,
+        "$XDG_CONFIG_HOME/thud/config.toml",
+        "Settings: theme, markers, zone thresholds, key overrides. A file that fails to parse is reported and never overwritten.",
+    );
+    item(
+        &mut s,
+        "$XDG_DATA_HOME/thud/designs/NAME.toml",
+        "Designs saved from the explorer, in the format of the presets.",
+    );
+    s += &format!(
+        ".PP\n{}\n",
+        roff("Every file thud writes is written whole or not at all; an existing file is kept unless --force.")
+    );
+    s += ".SH UNITS\n";
+    s += &format!(
+        ".PP\n{}\n",
+        roff("A plain number is SI (kg, m, s, N, Pa, m/s, N/m^1.5); angles are degrees, L* is in dB, e* in cm/s. A number may carry its unit: 40.5g, 19.05mm, 4cm, 45deg, 250ms, 5Hz, 1N. Every CSV column and JSON key names its unit (mass_kg, gap_m, spl_max_db; dB re 20 uPa); zones are numbers 1 to 4.")
+    );
+    let ex = examples(path);
+    if !ex.is_empty() {
+        s += ".SH EXAMPLES\n";
+        for (line, what) in ex {
+            s += &format!(".TP\n\\fB{}\\fR\n{}\n", roff(line), roff(what));
+        }
+    }
+    s += ".SH \"SEE ALSO\"\n";
+    let mut refs: Vec<String> = Vec::new();
+    if !path.is_empty() {
+        refs.push("thud(1)".into());
+    }
+    if path.len() > 1 {
+        refs.push(format!("thud-{}(1)", path[..path.len() - 1].join("-")));
+    }
+    let here = if path.is_empty() { "thud".to_string() } else { format!("thud-{}", path.join("-")) };
+    refs.extend(cmd.get_subcommands().map(|c| format!("{here}-{}(1)", c.get_name())));
+    if refs.is_empty() {
+        refs.push("thud(1)".into());
+    }
+    s += &format!(".PP\n{}\n", roff(&refs.join(", ")));
+    s += &format!(".PP\n{}\n", roff("README.md and docs/model.md in the source distribution."));
+    s
 }
 
 /// "thud export" for the command whose display name is "thud-export".

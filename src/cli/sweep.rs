@@ -215,7 +215,7 @@ impl<'a> Target<'a> {
             None => out.text(text),
             Some(p) => {
                 super::output::check_text(text)?;
-                fsio::write(p, text.as_bytes(), self.overwrite).map_err(|e| super::export::out_error(p, &e))?;
+                fsio::write(p, text.as_bytes(), self.overwrite).map_err(|e| super::export::write_error(p, &e))?;
                 super::warn(&format!("wrote {}", fsio::shown(p)));
                 Ok(())
             }

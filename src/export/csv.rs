@@ -128,12 +128,14 @@ pub fn impacts(run: &Run, spl_db: &[f64]) -> Result<String, csv::Error> {
 struct SweepRow {
     mass_kg: Num,
     gap_m: Num,
+    n_impacts: usize,
     inclination_cm_s: Option<Num>,
     inclination_fit_cm_s: Option<Num>,
     u0_max_m_s: Num,
     zdot_abs_max_m_s: Num,
     spl_max_db: Option<Num>,
-    n_impacts: usize,
+    contact_duration_s: Option<Num>,
+    restitution_mean: Option<Num>,
     zone: Option<u8>,
 }
 
@@ -143,26 +145,32 @@ impl SweepRow {
         SweepRow {
             mass_kg: Num(mass_kg),
             gap_m: Num(gap_m),
+            n_impacts: m.n_impacts,
             inclination_cm_s: m.inclination_cm_s.map(Num),
             inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
             u0_max_m_s: Num(m.u0_max_m_s),
             zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
             spl_max_db: m.spl_max_db.map(Num),
-            n_impacts: m.n_impacts,
+            contact_duration_s: m.contact_duration_s.map(Num),
+            restitution_mean: m.restitution_mean.map(Num),
             zone: m.zone.map(thud_core::design::Zone::number),
         }
     }
 }
 
-const SWEEP_HEADER: [&str; 9] = [
+/// The columns of a chart cell: its mass and gap, then its metrics in the order (and with the
+/// names) of a cell of `sweep --json` (`mass_kg`, `gap_m`, `metrics.*`).
+const SWEEP_HEADER: [&str; 11] = [
     "mass_kg",
     "gap_m",
+    "n_impacts",
     "inclination_cm_s",
     "inclination_fit_cm_s",
     "u0_max_m_s",
     "zdot_abs_max_m_s",
     "spl_max_db",
-    "n_impacts",
+    "contact_duration_s",
+    "restitution_mean",
     "zone",
 ];
 
@@ -241,11 +249,25 @@ struct MemberRow {
     inclination_cm_s: Option<Num>,
     inclination_fit_cm_s: Option<Num>,
     u0_max_m_s: Num,
+    zdot_abs_max_m_s: Num,
     spl_max_db: Option<Num>,
+    contact_duration_s: Option<Num>,
+    restitution_mean: Option<Num>,
     zone: Option<u8>,
 }
-const MEMBERS_HEADER: [&str; 7] =
-    ["ball_position_m", "n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "spl_max_db", "zone"];
+/// The columns of one run of an ensemble: the keys of a run of `simulate --ensemble N --json`.
+const MEMBERS_HEADER: [&str; 10] = [
+    "ball_position_m",
+    "n_impacts",
+    "inclination_cm_s",
+    "inclination_fit_cm_s",
+    "u0_max_m_s",
+    "zdot_abs_max_m_s",
+    "spl_max_db",
+    "contact_duration_s",
+    "restitution_mean",
+    "zone",
+];
 
 /// The runs of one design's ensemble, one row each: the ball's initial offset and the run's
 /// metrics.
@@ -258,7 +280,10 @@ pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, c
             inclination_cm_s: r.inclination_cm_s.map(Num),
             inclination_fit_cm_s: r.inclination_fit_cm_s.map(Num),
             u0_max_m_s: Num(r.u0_max_m_s),
+            zdot_abs_max_m_s: Num(r.zdot_abs_max_m_s),
             spl_max_db: r.spl_max_db.map(Num),
+            contact_duration_s: r.contact_duration_s.map(Num),
+            restitution_mean: r.restitution_mean.map(Num),
             zone: r.zone.map(thud_core::design::Zone::number),
         }),
     )
@@ -477,17 +502,18 @@ mod tests {
             spl_db: None,
         };
         assert_eq!(serde_header(imp), IMPACTS_HEADER.join(","));
-        let sw = SweepRow {
-            mass_kg: n,
-            gap_m: n,
+        let metrics = crate::design::Metrics {
+            n_impacts: 0,
             inclination_cm_s: None,
             inclination_fit_cm_s: None,
-            u0_max_m_s: n,
-            zdot_abs_max_m_s: n,
+            u0_max_m_s: 0.0,
+            zdot_abs_max_m_s: 0.0,
             spl_max_db: None,
-            n_impacts: 0,
+            contact_duration_s: None,
+            restitution_mean: None,
             zone: None,
         };
+        let sw = SweepRow::new(0.0, 0.0, &metrics);
         assert_eq!(serde_header(sw), SWEEP_HEADER.join(","));
         let m = MemberRow {
             ball_position_m: n,
@@ -495,7 +521,10 @@ mod tests {
             inclination_cm_s: None,
             inclination_fit_cm_s: None,
             u0_max_m_s: n,
+            zdot_abs_max_m_s: n,
             spl_max_db: None,
+            contact_duration_s: None,
+            restitution_mean: None,
             zone: None,
         };
         assert_eq!(serde_header(m), MEMBERS_HEADER.join(","));

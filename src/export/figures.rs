@@ -8,26 +8,30 @@ use crate::design::{Chart, Thresholds, Zone};
 use crate::paper::{Table, Value};
 use crate::units::sig;
 
-use super::svg::{draw_series_clipped, legend, line_plot, Anchor, Axis, Frame, Series, Style, Svg, HEIGHT, WIDTH};
+use super::svg::{
+    draw_series_clipped, legend, line_plot, nice_step, series_color, Anchor, Axis, Frame, Look, Series, Shape, Style,
+    Svg, HEIGHT, WIDTH,
+};
 
 /// The pressure of one impact against time after the direct wave arrives (ms, Pa).
-pub fn waveform(field: &Field, points: usize, title: &str) -> String {
+pub fn waveform(field: &Field, points: usize, title: &str, look: &Look) -> String {
     let (t, p) = field.waveform(points);
     let t0 = field.arrival_s();
     let pts: Vec<(f64, f64)> = t.iter().zip(&p).map(|(&ti, &pi)| ((ti - t0) * 1e3, pi)).collect();
     let x = Axis::fit("time after the direct arrival (ms)", pts.iter().map(|p| p.0));
     let y = Axis::fit("sound pressure p (Pa)", pts.iter().map(|p| p.1).chain([0.0]));
-    line_plot(title, x, y, &[Series::new("p", pts, Style::Line)])
+    line_plot(title, look, x, y, &[Series::new("p", pts, Style::Line)])
 }
 
 /// SPL (rms over τ) and peak level against the observer angle θ: `points` are (θ in rad, levels).
-pub fn directivity(points: &[(f64, Levels)], title: &str) -> String {
+pub fn directivity(points: &[(f64, Levels)], title: &str, look: &Look) -> String {
     let spl: Vec<(f64, f64)> = points.iter().map(|(th, l)| (th.to_degrees(), l.spl_db)).collect();
     let peak: Vec<(f64, f64)> = points.iter().map(|(th, l)| (th.to_degrees(), l.spl_peak_db)).collect();
     let x = Axis::fit("observer angle θ from the plate normal (deg)", spl.iter().map(|p| p.0));
     let y = Axis::fit("level (dB re 20 µPa)", spl.iter().chain(&peak).map(|p| p.1));
     line_plot(
         title,
+        look,
         x,
         y,
         &[Series::new("SPL, rms over τ", spl, Style::LineMarkers), Series::new("peak level", peak, Style::Dashed)],
@@ -35,13 +39,14 @@ pub fn directivity(points: &[(f64, Levels)], title: &str) -> String {
 }
 
 /// The main mass's displacement with the damper and without it (cm against s).
-pub fn history(run: &Run, damper: &DamperParams, title: &str) -> String {
+pub fn history(run: &Run, damper: &DamperParams, title: &str, look: &Look) -> String {
     let with: Vec<(f64, f64)> = run.history.iter().map(|h| (h.t_s, h.x_m * 1e2)).collect();
     let without: Vec<(f64, f64)> = run.history.iter().map(|h| (h.t_s, free_response(damper, h.t_s) * 1e2)).collect();
     let x = Axis::fit("time t (s)", with.iter().map(|p| p.0));
     let y = Axis::fit("main-mass displacement x (cm)", with.iter().chain(&without).map(|p| p.1));
     line_plot(
         title,
+        look,
         x,
         y,
         &[Series::new("with the damper", with, Style::Line), Series::new("without the damper", without, Style::Dashed)],
@@ -49,11 +54,11 @@ pub fn history(run: &Run, damper: &DamperParams, title: &str) -> String {
 }
 
 /// Coefficient of restitution against impact mass (Fig 13): `curve` is (m in kg, R).
-pub fn restitution(curve: &[(f64, f64)], title: &str) -> String {
+pub fn restitution(curve: &[(f64, f64)], title: &str, look: &Look) -> String {
     let pts: Vec<(f64, f64)> = curve.iter().map(|&(m, r)| (m * 1e3, r)).collect();
     let x = Axis::fit("impact mass m (g)", pts.iter().map(|p| p.0));
     let y = Axis::fit("coefficient of restitution R = u_out/U0", pts.iter().map(|p| p.1));
-    line_plot(title, x, y, &[Series::new("R", pts, Style::LineMarkers)])
+    line_plot(title, look, x, y, &[Series::new("R", pts, Style::LineMarkers)])
 }
 
 /// Fill colour of a zone (none: grey).
@@ -84,8 +89,17 @@ fn edges(values: &[f64]) -> Vec<f64> {
     }
 }
 
-/// Draws grid cells (`xs` × `ys` in axis units) with fill colours and labels from `cell(i, j)`.
-fn draw_cells(svg: &mut Svg, frame: &Frame, xs: &[f64], ys: &[f64], cell: impl Fn(usize, usize) -> (String, String)) {
+/// Draws grid cells (`xs` × `ys` in axis units) with fill colours and labels from `cell(i, j)`,
+/// over the frame's grid (drawn first) and under its axes: no grid line crosses a cell's digit.
+fn draw_cells(
+    svg: &mut Svg,
+    frame: &Frame,
+    title: &str,
+    xs: &[f64],
+    ys: &[f64],
+    cell: impl Fn(usize, usize) -> (String, String),
+) {
+    frame.grid(svg);
     let (ex, ey) = (edges(xs), edges(ys));
     let font =
         ((frame.width / xs.len().max(1) as f64).min(frame.height / ys.len().max(1) as f64) * 0.5).clamp(6.0, 14.0);
@@ -100,33 +114,46 @@ fn draw_cells(svg: &mut Svg, frame: &Frame, xs: &[f64], ys: &[f64], cell: impl F
             }
         }
     }
+    frame.axes(svg, Some(title), super::svg::CLIP);
 }
 
 /// The design chart: impact mass × gap cells coloured by zone, with the zone number in each.
-pub fn design_chart(chart: &Chart, title: &str) -> String {
+pub fn design_chart(chart: &Chart, title: &str, look: &Look) -> String {
     let xs: Vec<f64> = chart.masses_kg.iter().map(|m| m * 1e3).collect();
     let ys: Vec<f64> = chart.gaps_m.iter().map(|g| g * 1e2).collect();
     let (ex, ey) = (edges(&xs), edges(&ys));
     let x = Axis::fixed("impact mass m (g)", ex[0], ex[ex.len() - 1]);
     let y = Axis::fixed("total clearance d (cm)", ey[0], ey[ey.len() - 1]);
-    let mut svg = Svg::new(WIDTH, HEIGHT, title);
-    let frame = Frame::standard(x, y, true);
-    draw_cells(&mut svg, &frame, &xs, &ys, |i, j| {
+    let mut svg = Svg::figure(look, (WIDTH, HEIGHT), title);
+    let frame = Frame::standard(&svg, x, y, true);
+    draw_cells(&mut svg, &frame, title, &xs, &ys, |i, j| {
         let zone = chart.cell(i, j).and_then(|c| c.metrics.zone);
         (zone_color(zone).into(), zone.map_or(String::new(), |z| z.number().to_string()))
     });
-    frame.draw(&mut svg, title);
-    zone_legend(&mut svg, &frame, &chart.thresholds);
+    zone_legend(&mut svg, &frame, &chart.thresholds, false);
     svg.finish()
 }
 
-/// The legend of the four zones, with the thresholds.
-fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds) {
+/// The legend of the four zones, with the thresholds: cell swatches for a cell chart, or the
+/// dots of Fig 17 (`dots`) in their colours.
+fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds, dots: bool) {
     let labels: Vec<String> = ZONES.iter().map(|z| format!("{} {}", z.number(), z.describe())).collect();
-    let mut entries: Vec<(&str, &str)> =
-        ZONES.iter().zip(&labels).map(|(z, l)| (zone_color(Some(*z)), l.as_str())).collect();
-    entries.push((zone_color(None), "no impact"));
-    legend(svg, frame, &entries);
+    let mut entries: Vec<(&str, &str)> = ZONES
+        .iter()
+        .zip(&labels)
+        .map(|(z, l)| (if dots { darker(Some(*z)) } else { zone_color(Some(*z)) }, l.as_str()))
+        .collect();
+    if dots {
+        let x = frame.left + frame.width + 15.0;
+        for (k, (color, label)) in entries.iter().enumerate() {
+            let y = frame.top + 10.0 + 20.0 * k as f64;
+            svg.circle(x + 9.0, y - 4.0, 4.0, color);
+            svg.text(x + 24.0, y, label, 11.0, Anchor::Start, 0.0);
+        }
+    } else {
+        entries.push((zone_color(None), "no impact"));
+        legend(svg, frame, &entries);
+    }
     let x = frame.left + frame.width + 15.0;
     let y = frame.top + 10.0 + 20.0 * entries.len() as f64 + 10.0;
     svg.text(x, y, &format!("L* = {} dB", sig(t.spl_db, 4)), 12.0, Anchor::Start, 0.0);
@@ -156,11 +183,11 @@ pub fn zone_points(chart: &Chart) -> Vec<ZonePoint> {
 
 /// Fig 17: damping inclination against SPLmax for every design, coloured by zone, with the
 /// L* and e* lines and the zone numbers in the four quadrants.
-pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str) -> String {
+pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str, look: &Look) -> String {
     let x = Axis::fit("SPLmax (dB re 20 µPa)", points.iter().map(|p| p.spl_db).chain([t.spl_db]));
     let y = Axis::fit("damping inclination e (cm/s)", points.iter().map(|p| p.e_cm_s).chain([t.inclination_cm_s]));
-    let mut svg = Svg::new(WIDTH, HEIGHT, title);
-    let frame = Frame::standard(x, y, true);
+    let mut svg = Svg::figure(look, (WIDTH, HEIGHT), title);
+    let frame = Frame::standard(&svg, x, y, true);
     frame.draw(&mut svg, title);
     let (xl, yl) = (frame.px(t.spl_db), frame.py(t.inclination_cm_s));
     let (left, right) = (frame.left, frame.left + frame.width);
@@ -178,13 +205,13 @@ pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str) -> String
     for p in points {
         svg.circle(frame.px(p.spl_db), frame.py(p.e_cm_s), 4.0, darker(p.zone));
     }
-    zone_legend(&mut svg, &frame, t);
+    zone_legend(&mut svg, &frame, t, true);
     svg.finish()
 }
 
 /// Fig 17 of a design chart.
-pub fn fig17(chart: &Chart, title: &str) -> String {
-    fig17_points(&zone_points(chart), &chart.thresholds, title)
+pub fn fig17(chart: &Chart, title: &str, look: &Look) -> String {
+    fig17_points(&zone_points(chart), &chart.thresholds, title, look)
 }
 
 /// Marker colour of a zone (stronger than the cell fill).
@@ -240,7 +267,7 @@ fn plot_of(id: &str) -> Option<Plot> {
         "fig12" => lines("r_m", &[("p_max_pa", LineMarkers), ("p_min_pa", LineMarkers)], None, "pressure (Pa)", true),
         "table3" => lines(
             "mass_g",
-            &[("splmax_paper_db", Markers), ("splmax_model_db", Line)],
+            &[("spl_max_paper_db", Markers), ("spl_max_model_db", Line)],
             Some("gap_cm"),
             "SPLmax (dB re 20 µPa)",
             false,
@@ -270,7 +297,7 @@ fn plot_of(id: &str) -> Option<Plot> {
             lines("t_s", &[("x_damper_m", Line), ("x_free_m", Dashed)], None, "main-mass displacement x (m)", false)
         }
         "fig10" => lines("gap_cm", &[("inclination_cm_s", LineMarkers)], Some("mass_g"), "e (cm/s)", false),
-        "fig11" => lines("mass_g", &[("splmax_db", LineMarkers)], Some("gap_cm"), "SPLmax (dB re 20 µPa)", false),
+        "fig11" => lines("mass_g", &[("spl_max_db", LineMarkers)], Some("gap_cm"), "SPLmax (dB re 20 µPa)", false),
         "fig13" => lines(
             "mass_g",
             &[("restitution", LineMarkers), ("restitution_reference", Markers)],
@@ -280,7 +307,7 @@ fn plot_of(id: &str) -> Option<Plot> {
         ),
         "fig14" => lines("mass_g", &[("inclination_cm_s", LineMarkers)], Some("gap_cm"), "e (cm/s)", false),
         "fig15" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "inclination_cm_s" }),
-        "fig16" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "splmax_db" }),
+        "fig16" => Some(Plot::Cells { x: "mass_g", y: "gap_cm", v: "spl_max_db" }),
         "fig17" => Some(Plot::Zones),
         _ => None,
     }
@@ -311,7 +338,7 @@ fn label(table: &Table, key: &str) -> String {
 
 /// The SVG of a reproduced paper table, or None when it is not worth plotting. Fig 17 uses
 /// `thresholds` for its zone lines (those of the chart it was computed with).
-pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
+pub fn paper_figure(table: &Table, thresholds: &Thresholds, look: &Look) -> Option<String> {
     let title = table.title.as_str();
     match plot_of(table.id)? {
         Plot::Lines { x, ys, group, y_label, log_x } => {
@@ -324,7 +351,7 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
                 }
             }
             let mut series = Vec::new();
-            for &(yk, style) in ys {
+            for (yi, &(yk, style)) in ys.iter().enumerate() {
                 let yv = column(table, yk)?;
                 let name = label(table, yk);
                 let pick = |g: Option<f64>| -> Vec<(f64, f64)> {
@@ -337,11 +364,14 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
                 if groups.is_empty() {
                     series.push(Series::new(&split_unit(&name).0, pick(None), style));
                 } else {
+                    // One colour per group (the paper's and the model's curve of one gap alike),
+                    // one marker shape per column: no colour stands for two groups.
                     let (gname, gunit) = split_unit(&label(table, group.unwrap_or_default()));
-                    for &g in &groups {
+                    for (gi, &g) in groups.iter().enumerate() {
                         let glabel = format!("{gname} {} {gunit}", sig(g, 4)).trim_end().to_string();
                         let name = if ys.len() > 1 { format!("{}, {glabel}", split_unit(&name).0) } else { glabel };
-                        series.push(Series::new(&name, pick(Some(g)), style));
+                        let s = Series::new(&name, pick(Some(g)), style).colored(series_color(gi, groups.len()));
+                        series.push(s.shaped(Shape::nth(yi)));
                     }
                 }
             }
@@ -351,11 +381,11 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
             } else {
                 Axis::fit(&label(table, x), xv.clone())
             };
-            Some(line_plot(title, xa, Axis::fit(y_label, all_y), &series))
+            Some(line_plot(title, look, xa, Axis::fit(y_label, all_y), &series))
         }
-        Plot::Cells { x, y, v } => Some(cell_map(table, x, y, v)),
+        Plot::Cells { x, y, v } => Some(cell_map(table, x, y, v, look)),
         Plot::Zones => {
-            let (s, e, z) = (column(table, "splmax_db")?, column(table, "inclination_cm_s")?, column(table, "zone")?);
+            let (s, e, z) = (column(table, "spl_max_db")?, column(table, "inclination_cm_s")?, column(table, "zone")?);
             let pts: Vec<ZonePoint> = (0..s.len())
                 .filter(|&i| s[i].is_finite() && e[i].is_finite())
                 .map(|i| ZonePoint {
@@ -364,7 +394,7 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds) -> Option<String> {
                     zone: ZONES.iter().copied().find(|zz| f64::from(zz.number()) == z[i]),
                 })
                 .collect();
-            Some(fig17_points(&pts, thresholds, title))
+            Some(fig17_points(&pts, thresholds, title, look))
         }
     }
 }
@@ -381,7 +411,7 @@ fn ramp(f: f64) -> String {
 }
 
 /// A cell map of column `v` over the grid of columns `x` × `y`, with a colour scale.
-fn cell_map(table: &Table, x: &str, y: &str, v: &str) -> String {
+fn cell_map(table: &Table, x: &str, y: &str, v: &str, look: &Look) -> String {
     let (xv, yv, vv) = (
         column(table, x).unwrap_or_default(),
         column(table, y).unwrap_or_default(),
@@ -397,48 +427,77 @@ fn cell_map(table: &Table, x: &str, y: &str, v: &str) -> String {
     let (lo, hi) =
         vv.iter().filter(|a| a.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &c| (a.min(c), b.max(c)));
     let title = table.title.as_str();
-    let mut svg = Svg::new(WIDTH, HEIGHT, title);
+    let mut svg = Svg::figure(look, (WIDTH, HEIGHT), title);
     if xs.is_empty() || ys.is_empty() {
         return svg.finish();
     }
     let (ex, ey) = (edges(&xs), edges(&ys));
     let frame = Frame::standard(
+        &svg,
         Axis::fixed(&label(table, x), ex[0], ex[ex.len() - 1]),
         Axis::fixed(&label(table, y), ey[0], ey[ey.len() - 1]),
         true,
     );
     let value_at = |i: usize, j: usize| (0..vv.len()).find(|&k| xv[k] == xs[i] && yv[k] == ys[j]).map(|k| vv[k]);
-    draw_cells(&mut svg, &frame, &xs, &ys, |i, j| match value_at(i, j).filter(|a| a.is_finite()) {
+    draw_cells(&mut svg, &frame, title, &xs, &ys, |i, j| match value_at(i, j).filter(|a| a.is_finite()) {
         Some(a) => (ramp((a - lo) / (hi - lo).max(1e-300)), String::new()),
         None => ("#dddddd".into(), String::new()),
     });
-    frame.draw(&mut svg, title);
     let lx = frame.left + frame.width + 15.0;
     svg.text(lx, frame.top + 4.0, &label(table, v), 12.0, Anchor::Start, 0.0);
-    for k in 0..=10 {
-        let f = 1.0 - f64::from(k) / 10.0;
-        svg.rect(lx, frame.top + 14.0 + 22.0 * f64::from(k), 22.0, 22.0, &ramp(f), None);
-        if k % 2 == 0 && lo.is_finite() {
-            svg.text(
-                lx + 28.0,
-                frame.top + 30.0 + 22.0 * f64::from(k),
-                &sig(lo + f * (hi - lo), 4),
-                12.0,
-                Anchor::Start,
-                0.0,
-            );
-        }
+    if lo.is_finite() {
+        color_bar(&mut svg, lx, frame.top + 14.0, (frame.height - 14.0).min(240.0), (lo, hi));
     }
     svg.finish()
+}
+
+/// A continuous colour bar of [`ramp`] for values `lo..hi` (top: `hi`), `height` px tall at
+/// (`x`, `top`), with ticks at round values (multiples of a 1-2-5 step).
+fn color_bar(svg: &mut Svg, x: f64, top: f64, height: f64, (lo, hi): (f64, f64)) {
+    const SLICES: usize = 48;
+    let span = (hi - lo).max(1e-300);
+    for k in 0..SLICES {
+        let f = 1.0 - (k as f64 + 0.5) / SLICES as f64;
+        let h = height / SLICES as f64;
+        svg.rect(x, top + h * k as f64, 22.0, h + 0.5, &ramp(f), None);
+    }
+    svg.rect(x, top, 22.0, height, "none", Some("black"));
+    for (v, text) in round_ticks(lo, hi) {
+        let y = top + (1.0 - (v - lo) / span) * height;
+        svg.line((x + 22.0, y), (x + 27.0, y), "black", 1.0, None);
+        svg.text(x + 30.0, y + 4.0, &text, 12.0, Anchor::Start, 0.0);
+    }
+}
+
+/// Round tick values in `lo..=hi` (multiples of the 1-2-5 step that gives about five) with
+/// their labels (as many decimals as the step needs); `lo` alone when the range is empty.
+fn round_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
+    if hi <= lo {
+        return vec![(lo, sig(lo, 4))];
+    }
+    let step = nice_step((hi - lo) / 5.0);
+    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    let (first, last) = ((lo / step - 1e-9).ceil() as i64, (hi / step + 1e-9).floor() as i64);
+    (first..=last)
+        .map(|k| {
+            let v = k as f64 * step;
+            let v = if v.abs() < 1e-12 * step { 0.0 } else { v };
+            (v, format!("{v:.decimals$}"))
+        })
+        .collect()
 }
 
 /// The frequency response (docs/model.md §6.4): the steady amplitude against the forcing
 /// frequency with the damper (one series per sweep) and without it (the closed form), on a log
 /// scale in mm; below, `Leq` at the observer against the frequency.
-pub fn response(r: &crate::response::Response, title: &str) -> String {
+pub fn response(r: &crate::response::Response, title: &str, look: &Look) -> String {
     use crate::response::Direction;
-    let height = 760.0;
-    let mut svg = Svg::new(WIDTH, height, title);
+    let mut svg = Svg::figure(look, (WIDTH, 760.0), title);
+    let (width, height) = (svg.width(), svg.height());
+    // The two panels share the height left by the margins, 2 : 1.
+    let top_margin = Frame::top_margin(&svg);
+    let free = height - top_margin - 70.0 - 70.0;
+    let (h_top, h_bottom) = (free * 2.0 / 3.0, free / 3.0);
     let label = |d: Direction| match d {
         Direction::FromRest => "with the damper".to_string(),
         d => format!("damper, {} sweep", d.name()),
@@ -471,12 +530,13 @@ pub fn response(r: &crate::response::Response, title: &str) -> String {
     let freqs = || r.sweeps.iter().flat_map(|s| s.points.iter().map(|p| p.freq_hz));
     let x = Axis::fit("forcing frequency f (Hz)", freqs());
     let y = Axis::fit_log("steady amplitude (mm)", amp.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-    let top = Frame { left: 85.0, top: 50.0, width: WIDTH - 85.0 - 200.0, height: 380.0, x: x.clone(), y };
+    let top = Frame { left: 85.0, top: top_margin, width: width - 85.0 - 200.0, height: h_top, x: x.clone(), y };
     top.draw_panel(&mut svg, Some(title), "amplitude");
     draw_series_clipped(&mut svg, &top, &amp, "amplitude");
     let levels: Vec<f64> = leq.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(|v| v.is_finite()).collect();
     let y2 = Axis::fit("Leq at the observer (dB)", levels.iter().copied());
-    let bottom = Frame { left: 85.0, top: 500.0, width: WIDTH - 85.0 - 200.0, height: 190.0, x, y: y2 };
+    let bottom =
+        Frame { left: 85.0, top: top_margin + h_top + 70.0, width: width - 85.0 - 200.0, height: h_bottom, x, y: y2 };
     bottom.draw_panel(&mut svg, None, "level");
     if levels.is_empty() {
         svg.text(

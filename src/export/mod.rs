@@ -30,6 +30,9 @@ pub enum ExportError {
     /// The table could not be written as CSV.
     #[error("cannot write the CSV: {0}")]
     Csv(#[from] ::csv::Error),
+    /// The sound could not be encoded (a non-finite pressure: a bug).
+    #[error("cannot write the WAV: {0}")]
+    Wav(wav::WavError),
     /// The file could not be written (it exists, is not a regular file, or the system refused).
     #[error("cannot write {0}")]
     File(#[from] FsError),
@@ -135,6 +138,8 @@ pub struct ExportOptions {
     /// Runs a cell of a sweep CSV: 1 the single trajectory; N > 1 the ensemble chart of N runs
     /// from spread ball offsets (the columns of `thud sweep --ensemble N --csv`).
     pub ensemble_runs: usize,
+    /// Size and title of SVG figures.
+    pub look: svg::Look,
 }
 
 impl Default for ExportOptions {
@@ -148,6 +153,7 @@ impl Default for ExportOptions {
             freqs_hz: None,
             continuation: false,
             ensemble_runs: 1,
+            look: svg::Look::default(),
         }
     }
 }
@@ -225,7 +231,7 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
             } else {
                 let title =
                     format!("Sound pressure of one impact, U0 {} m/s ({})", crate::units::sig(u0, 4), listener(&d));
-                figures::waveform(&field, points, &title)
+                figures::waveform(&field, points, &title, &opts.look)
             }
         }
         Artifact::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper)?,
@@ -236,7 +242,7 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
                 crate::units::sig(d.damper.gap_m * 1e2, 3),
                 crate::units::sig(d.damper.v0_m_s, 3)
             );
-            figures::history(&run(&d, points)?.run, &d.damper, &title)
+            figures::history(&run(&d, points)?.run, &d.damper, &title, &opts.look)
         }
         Artifact::CsvImpacts => {
             let e = run(&d, 0)?;
@@ -249,7 +255,7 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
                 crate::units::sig(u0, 4),
                 crate::units::sig(d.observer.r_m, 3)
             );
-            figures::directivity(&directivity_points(&d, u0)?, &title)
+            figures::directivity(&directivity_points(&d, u0)?, &title, &opts.look)
         }
         Artifact::SvgRestitution => {
             let masses = opts.masses_kg.clone().unwrap_or_else(|| linspace(0.005, 0.100, 20));
@@ -261,7 +267,7 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
                 crate::units::sig(d.damper.c1_n_s_m, 4),
                 crate::units::sig(d.damper.main_mass_kg, 3)
             );
-            figures::restitution(&curve, &title)
+            figures::restitution(&curve, &title, &opts.look)
         }
         Artifact::CsvSweep if opts.ensemble_runs > 1 => {
             let (masses, gaps) = grid(opts);
@@ -273,13 +279,18 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
             let chart = design::sweep(&d, &masses, &gaps, None, &|_, _| {})?;
             match kind {
                 Artifact::CsvSweep => csv::sweep(&chart)?,
-                Artifact::SvgChart => figures::design_chart(&chart, "Design chart: zone of each impact mass × gap"),
-                _ => figures::fig17(&chart, "Design chart: damping inclination against SPLmax (Fig 17)"),
+                Artifact::SvgChart => {
+                    figures::design_chart(&chart, "Design chart: zone of each impact mass × gap", &opts.look)
+                }
+                _ => figures::fig17(&chart, "Design chart: damping inclination against SPLmax (Fig 17)", &opts.look),
             }
         }
         Artifact::Wav => {
             let e = run(&d, 0)?;
-            return Ok(wav::damper_sound(&d, &e.run, &opts.wav)?);
+            return wav::damper_sound(&d, &e.run, &opts.wav).map_err(|e| match e {
+                wav::WavError::Invalid(t) => ExportError::Invalid(t),
+                other @ wav::WavError::NonFinite(_) => ExportError::Wav(other),
+            });
         }
         Artifact::CsvResponse | Artifact::SvgResponse => {
             let freqs = response_freqs(opts);
@@ -295,7 +306,7 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
                     crate::units::sig(d.damper.gap_m * 1e2, 3),
                     crate::units::sig(d.damper.main_mass_kg, 3)
                 );
-                figures::response(&r, &title)
+                figures::response(&r, &title, &opts.look)
             }
         }
     };

@@ -80,7 +80,7 @@ pub fn paper_bundle() -> Vec<BundleFile> {
                 };
                 let mut names = vec![format!("{}.csv", item.id)];
                 files.push(BundleFile { name: names[0].clone(), contents });
-                if let Some(svg) = figures::paper_figure(&table, &thresholds) {
+                if let Some(svg) = figures::paper_figure(&table, &thresholds, &super::svg::Look::default()) {
                     names.push(format!("{}.svg", item.id));
                     files.push(BundleFile { name: names[1].clone(), contents: svg });
                 }

@@ -10,9 +10,53 @@ pub const WIDTH: f64 = 860.0;
 /// Height of every figure (px).
 pub const HEIGHT: f64 = 540.0;
 
-/// Colours for series, in order (colour-blind friendly "tableau 10").
+/// Colours for series, in order (colour-blind friendly "tableau 10"); a figure of more series
+/// takes its colours from [`sequential`] instead, so no colour is used twice.
 pub const PALETTE: [&str; 10] =
     ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+
+/// The smallest figure size `--size` takes (px): room for the axes and a legend.
+pub const MIN_SIZE: (f64, f64) = (480.0, 320.0);
+/// The largest figure size `--size` takes (px).
+pub const MAX_SIZE: (f64, f64) = (4000.0, 4000.0);
+
+/// How a figure looks beyond its data: its size and whether its title is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Look {
+    /// Width × height (px); None: the figure's own default ([`WIDTH`] × [`HEIGHT`], taller for
+    /// the two-panel response).
+    pub size: Option<(f64, f64)>,
+    /// Draw the title above the plot (the SVG's `<title>` element is always there).
+    pub title: bool,
+}
+
+impl Default for Look {
+    fn default() -> Self {
+        Look { size: None, title: true }
+    }
+}
+
+/// Colour `k` of `n` distinct colours: the palette for up to 10, else evenly spaced along a
+/// sequential map ([`sequential`]).
+pub fn series_color(k: usize, n: usize) -> String {
+    if n <= PALETTE.len() {
+        PALETTE[k % PALETTE.len()].to_string()
+    } else {
+        sequential(k as f64 / (n - 1).max(1) as f64)
+    }
+}
+
+/// A colour of the sequential "viridis" map at `f` in [0, 1] (dark purple to green; stops at
+/// 0.85 of the map, before its pale yellow end, so every colour reads on white).
+pub fn sequential(f: f64) -> String {
+    let f = if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.0 } * 0.85;
+    let stops: [(f64, f64, f64); 5] =
+        [(68.0, 1.0, 84.0), (59.0, 82.0, 139.0), (33.0, 145.0, 140.0), (94.0, 201.0, 98.0), (253.0, 231.0, 37.0)];
+    let k = ((f * 4.0).floor() as usize).min(3);
+    let (a, b, t) = (stops[k], stops[k + 1], f * 4.0 - k as f64);
+    let mix = |p: f64, q: f64| (p + (q - p) * t).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
 
 /// Escapes text for XML content and attribute values.
 pub fn escape(s: &str) -> String {
@@ -65,6 +109,7 @@ pub struct Svg {
     width: f64,
     height: f64,
     title: String,
+    show_title: bool,
     defs: String,
     body: String,
 }
@@ -72,9 +117,33 @@ pub struct Svg {
 impl Svg {
     /// An empty white canvas titled `title`.
     pub fn new(width: f64, height: f64, title: &str) -> Svg {
-        let mut s = Svg { width, height, title: title.to_string(), defs: String::new(), body: String::new() };
+        let mut s =
+            Svg { width, height, title: title.to_string(), show_title: true, defs: String::new(), body: String::new() };
         s.rect(0.0, 0.0, width, height, "white", None);
         s
+    }
+
+    /// A figure's canvas: `look`'s size (else `default`), its title drawn unless `look` says not.
+    pub fn figure(look: &Look, default: (f64, f64), title: &str) -> Svg {
+        let (w, h) = look.size.unwrap_or(default);
+        let mut s = Svg::new(w, h, title);
+        s.show_title = look.title;
+        s
+    }
+
+    /// Width of the canvas (px).
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// Height of the canvas (px).
+    pub fn height(&self) -> f64 {
+        self.height
+    }
+
+    /// Whether the title is drawn above the plot.
+    pub fn shows_title(&self) -> bool {
+        self.show_title
     }
 
     /// Adds raw definitions (e.g. a clip path) to `<defs>`; the caller escapes its text.
@@ -138,6 +207,33 @@ impl Svg {
     /// A filled circle.
     pub fn circle(&mut self, cx: f64, cy: f64, r: f64, fill: &str) {
         let _ = writeln!(self.body, r#"<circle cx="{}" cy="{}" r="{}" fill="{}"/>"#, n(cx), n(cy), n(r), escape(fill));
+    }
+
+    /// Marker `shape` (see [`Shape`]) of size `r` px at (`cx`, `cy`), filled with `fill`.
+    pub fn marker(&mut self, shape: Shape, cx: f64, cy: f64, r: f64, fill: &str) {
+        let poly = |pts: &[(f64, f64)]| {
+            pts.iter().map(|(x, y)| format!("{},{}", n(cx + x * r), n(cy + y * r))).collect::<Vec<_>>().join(" ")
+        };
+        match shape {
+            Shape::Circle => self.circle(cx, cy, r, fill),
+            Shape::Square => self.rect(cx - 0.85 * r, cy - 0.85 * r, 1.7 * r, 1.7 * r, fill, None),
+            Shape::Triangle => {
+                let _ = writeln!(
+                    self.body,
+                    r#"<polygon points="{}" fill="{}"/>"#,
+                    poly(&[(0.0, -1.2), (1.1, 0.9), (-1.1, 0.9)]),
+                    escape(fill)
+                );
+            }
+            Shape::Diamond => {
+                let _ = writeln!(
+                    self.body,
+                    r#"<polygon points="{}" fill="{}"/>"#,
+                    poly(&[(0.0, -1.25), (1.1, 0.0), (0.0, 1.25), (-1.1, 0.0)]),
+                    escape(fill)
+                );
+            }
+        }
     }
 
     /// A text of font size `size` px, rotated by `rotate` degrees about its anchor point.
@@ -321,11 +417,25 @@ pub struct Frame {
 /// Id of the clip path of the plotting area.
 pub const CLIP: &str = "plot-area";
 
+/// Colour of the grid lines.
+pub const GRID: &str = "#e6e6e6";
+
 impl Frame {
-    /// The standard frame of a [`WIDTH`] × [`HEIGHT`] figure; `legend` leaves room on the right.
-    pub fn standard(x: Axis, y: Axis, legend: bool) -> Frame {
+    /// The standard frame of a figure on `svg`'s canvas; `legend` leaves room on the right, a
+    /// drawn title room at the top.
+    pub fn standard(svg: &Svg, x: Axis, y: Axis, legend: bool) -> Frame {
         let right = if legend { 200.0 } else { 30.0 };
-        Frame { left: 85.0, top: 50.0, width: WIDTH - 85.0 - right, height: HEIGHT - 50.0 - 70.0, x, y }
+        let top = Frame::top_margin(svg);
+        Frame { left: 85.0, top, width: svg.width() - 85.0 - right, height: svg.height() - top - 70.0, x, y }
+    }
+
+    /// Room above the plotting area (px): for the title if drawn.
+    pub fn top_margin(svg: &Svg) -> f64 {
+        if svg.shows_title() {
+            50.0
+        } else {
+            20.0
+        }
     }
 
     /// Pixel x of data value `v`.
@@ -338,15 +448,35 @@ impl Frame {
         self.top + (1.0 - self.y.fraction(v)) * self.height
     }
 
-    /// Draws the title, the box, grid lines, ticks with labels and the axis labels, and
-    /// defines the clip path [`CLIP`].
+    /// Draws the grid, then the title, the box, ticks with labels and the axis labels, and
+    /// defines the clip path [`CLIP`]. Call it before drawing data, so the grid lies under it.
     pub fn draw(&self, svg: &mut Svg, title: &str) {
         self.draw_panel(svg, Some(title), CLIP);
     }
 
-    /// As [`Frame::draw`] for one panel of a figure of several: the title only if given, and
-    /// the clip path under the id `clip` (one per panel).
+    /// As [`Frame::draw`] for one panel of a figure of several: the title only if given (and
+    /// the canvas shows titles), and the clip path under the id `clip` (one per panel).
     pub fn draw_panel(&self, svg: &mut Svg, title: Option<&str>, clip: &str) {
+        self.grid(svg);
+        self.axes(svg, title, clip);
+    }
+
+    /// The light grid lines at the ticks, alone: drawn first, under the data (cells, curves).
+    pub fn grid(&self, svg: &mut Svg) {
+        let bottom = self.top + self.height;
+        for (v, _) in self.x.ticks() {
+            let x = self.px(v);
+            svg.line((x, self.top), (x, bottom), GRID, 1.0, None);
+        }
+        for (v, _) in self.y.ticks() {
+            let y = self.py(v);
+            svg.line((self.left, y), (self.left + self.width, y), GRID, 1.0, None);
+        }
+    }
+
+    /// Everything of [`Frame::draw_panel`] but the grid: the clip path, the title, the ticks
+    /// outside the box, the box and the axis labels (none of it over the plotting area's inside).
+    pub fn axes(&self, svg: &mut Svg, title: Option<&str>, clip: &str) {
         svg.def(&format!(
             r#"<clipPath id="{}"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>"#,
             escape(clip),
@@ -355,20 +485,19 @@ impl Frame {
             n(self.width),
             n(self.height)
         ));
-        if let Some(title) = title {
-            let size = (17.0 * 78.0 / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
-            svg.text(WIDTH / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
+        if let Some(title) = title.filter(|_| svg.shows_title()) {
+            let room = svg.width() / WIDTH;
+            let size = (17.0 * 78.0 * room / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
+            svg.text(svg.width() / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
         }
         let bottom = self.top + self.height;
         for (v, label) in self.x.ticks() {
             let x = self.px(v);
-            svg.line((x, self.top), (x, bottom), "#e6e6e6", 1.0, None);
             svg.line((x, bottom), (x, bottom + 5.0), "black", 1.0, None);
             svg.text(x, bottom + 20.0, &label, 12.0, Anchor::Middle, 0.0);
         }
         for (v, label) in self.y.ticks() {
             let y = self.py(v);
-            svg.line((self.left, y), (self.left + self.width, y), "#e6e6e6", 1.0, None);
             svg.line((self.left - 5.0, y), (self.left, y), "black", 1.0, None);
             svg.text(self.left - 8.0, y + 4.0, &label, 12.0, Anchor::End, 0.0);
         }
@@ -402,18 +531,63 @@ pub enum Style {
     LineMarkers,
 }
 
+/// The shape of a series' markers; series of one figure get different shapes, so they differ
+/// without colour too.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    Circle,
+    Square,
+    Triangle,
+    Diamond,
+}
+
+impl Shape {
+    /// Shape number `k` (cycling through the four).
+    pub fn nth(k: usize) -> Shape {
+        [Shape::Circle, Shape::Square, Shape::Triangle, Shape::Diamond][k % 4]
+    }
+}
+
 /// One named series of (x, y) points in axis units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
     pub label: String,
     pub points: Vec<(f64, f64)>,
     pub style: Style,
+    /// Its colour; None: the figure's k-th ([`series_color`]).
+    pub color: Option<String>,
+    /// Its marker shape; None: the k-th ([`Shape::nth`]).
+    pub shape: Option<Shape>,
 }
 
 impl Series {
     pub fn new(label: &str, points: Vec<(f64, f64)>, style: Style) -> Series {
-        Series { label: label.into(), points, style }
+        Series { label: label.into(), points, style, color: None, shape: None }
     }
+
+    /// The series drawn in `color`.
+    #[must_use]
+    pub fn colored(mut self, color: String) -> Series {
+        self.color = Some(color);
+        self
+    }
+
+    /// The series' markers drawn as `shape`.
+    #[must_use]
+    pub fn shaped(mut self, shape: Shape) -> Series {
+        self.shape = Some(shape);
+        self
+    }
+}
+
+/// The colour and marker shape each series is drawn with: its own, else the k-th of `n`.
+fn looks(series: &[Series]) -> Vec<(String, Shape)> {
+    let n = series.len();
+    series
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (s.color.clone().unwrap_or_else(|| series_color(k, n)), s.shape.unwrap_or(Shape::nth(k))))
+        .collect()
 }
 
 /// Draws the series into `frame` with the palette's colours, and a legend on the right when
@@ -424,8 +598,9 @@ pub fn draw_series(svg: &mut Svg, frame: &Frame, series: &[Series]) {
 
 /// As [`draw_series`], clipped to the clip path `clip` (a panel's, see [`Frame::draw_panel`]).
 pub fn draw_series_clipped(svg: &mut Svg, frame: &Frame, series: &[Series], clip: &str) {
-    for (k, s) in series.iter().enumerate() {
-        let color = PALETTE[k % PALETTE.len()];
+    let looks = looks(series);
+    for (s, (color, shape)) in series.iter().zip(&looks) {
+        let color = color.as_str();
         let lines = matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers);
         let dash = (s.style == Style::Dashed).then_some("7 4");
         if lines {
@@ -440,19 +615,34 @@ pub fn draw_series_clipped(svg: &mut Svg, frame: &Frame, series: &[Series], clip
                 let inside = (frame.left..=frame.left + frame.width).contains(&cx)
                     && (frame.top..=frame.top + frame.height).contains(&cy);
                 if inside {
-                    svg.circle(cx, cy, 3.0, color);
+                    svg.marker(*shape, cx, cy, 3.2, color);
                 }
             }
         }
     }
     if series.len() > 1 {
-        let entries: Vec<(&str, &str)> =
-            series.iter().enumerate().map(|(k, s)| (PALETTE[k % PALETTE.len()], s.label.as_str())).collect();
-        legend(svg, frame, &entries);
+        series_legend(svg, frame, series, &looks);
     }
 }
 
-/// A legend of coloured swatches to the right of the frame.
+/// The legend of `series`, each entry drawn as the series is: a short line (dashed if the
+/// series is) and its marker, in its colour.
+fn series_legend(svg: &mut Svg, frame: &Frame, series: &[Series], looks: &[(String, Shape)]) {
+    let x = frame.left + frame.width + 12.0;
+    for (k, (s, (color, shape))) in series.iter().zip(looks).enumerate() {
+        let y = frame.top + 10.0 + 20.0 * k as f64;
+        if matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers) {
+            let dash = (s.style == Style::Dashed).then_some("7 4");
+            svg.line((x, y - 4.0), (x + 24.0, y - 4.0), color, 1.8, dash);
+        }
+        if matches!(s.style, Style::Markers | Style::LineMarkers) {
+            svg.marker(*shape, x + 12.0, y - 4.0, 3.2, color);
+        }
+        svg.text(x + 30.0, y, &s.label, 11.0, Anchor::Start, 0.0);
+    }
+}
+
+/// A legend of coloured swatches (cell fills) to the right of the frame.
 pub fn legend(svg: &mut Svg, frame: &Frame, entries: &[(&str, &str)]) {
     let x = frame.left + frame.width + 15.0;
     for (k, (color, label)) in entries.iter().enumerate() {
@@ -463,9 +653,9 @@ pub fn legend(svg: &mut Svg, frame: &Frame, entries: &[(&str, &str)]) {
 }
 
 /// A complete x–y figure: title, axes, series (and a legend when there are several).
-pub fn line_plot(title: &str, x: Axis, y: Axis, series: &[Series]) -> String {
-    let mut svg = Svg::new(WIDTH, HEIGHT, title);
-    let frame = Frame::standard(x, y, series.len() > 1);
+pub fn line_plot(title: &str, look: &Look, x: Axis, y: Axis, series: &[Series]) -> String {
+    let mut svg = Svg::figure(look, (WIDTH, HEIGHT), title);
+    let frame = Frame::standard(&svg, x, y, series.len() > 1);
     frame.draw(&mut svg, title);
     draw_series(&mut svg, &frame, series);
     svg.finish()

@@ -202,8 +202,15 @@ pub enum Zone {
 }
 
 impl Zone {
+    /// The zone's number 1–4: how every file (CSV, JSON) and Python write it.
     pub fn number(self) -> u8 {
         self as u8
+    }
+
+    /// The zone numbered `n` (1–4).
+    #[must_use]
+    pub fn from_number(n: u8) -> Option<Zone> {
+        [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak].into_iter().find(|z| z.number() == n)
     }
 
     pub fn describe(self) -> &'static str {
@@ -244,8 +251,26 @@ pub struct Metrics {
     pub contact_duration_s: Option<f64>,
     /// Mean restitution u_out/u_in over the impacts.
     pub restitution_mean: Option<f64>,
-    /// The zone, when both e and SPLmax exist.
+    /// The zone, when both e and SPLmax exist; written as its number 1–4.
+    #[serde(with = "zone_number")]
     pub zone: Option<Zone>,
+}
+
+/// A zone written as its number 1–4 (never the enum's name): how `--json`, the CSV files and
+/// Python write it. Serde `with` module for `Option<Zone>`.
+pub mod zone_number {
+    use super::Zone;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(z: &Option<Zone>, s: S) -> Result<S::Ok, S::Error> {
+        z.map(Zone::number).serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Zone>, D::Error> {
+        Option::<u8>::deserialize(d)?
+            .map(|n| Zone::from_number(n).ok_or_else(|| serde::de::Error::custom(format!("zone {n}; must be 1 to 4"))))
+            .transpose()
+    }
 }
 
 impl Metrics {

@@ -30,7 +30,7 @@ use std::ops::Range;
 use std::sync::atomic::AtomicBool;
 
 use rayon::prelude::*;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 
 use crate::damper::Truncation;
 use crate::design::{self, variant, Chart, Design, Metrics, Thresholds, Zone};
@@ -97,6 +97,10 @@ pub struct Member {
     /// Initial offset y0 of the ball from the enclosure's centre (m), at rest.
     pub ball_position_m: f64,
     pub n_impacts: usize,
+    /// Damping inclination e of Eq 27 (cm/s).
+    pub inclination_cm_s: Option<f64>,
+    /// The robust inclination e_fit (cm/s).
+    pub inclination_fit_cm_s: Option<f64>,
     /// Largest contact speed by the design's U0max rule (m/s).
     pub u0_max_m_s: f64,
     /// Largest |z'| over the run including t = 0 (m/s).
@@ -107,12 +111,8 @@ pub struct Member {
     pub contact_duration_s: Option<f64>,
     /// Mean restitution u_out/u_in over the run's impacts.
     pub restitution_mean: Option<f64>,
-    /// Damping inclination e of Eq 27 (cm/s).
-    pub inclination_cm_s: Option<f64>,
-    /// The robust inclination e_fit (cm/s).
-    pub inclination_fit_cm_s: Option<f64>,
     /// The run's zone, as its number 1–4.
-    #[serde(with = "zone_number")]
+    #[serde(with = "design::zone_number")]
     pub zone: Option<Zone>,
     /// Set when a solver work cap stopped this run before its duration.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -155,25 +155,10 @@ impl Member {
     }
 }
 
-/// A zone written as its number 1–4 (as `simulate --json` and the CSV files write it).
-mod zone_number {
-    use super::{zone_from_number, Deserialize, Deserializer, Serialize, Serializer, Zone};
-
-    pub fn serialize<S: Serializer>(z: &Option<Zone>, s: S) -> Result<S::Ok, S::Error> {
-        z.map(Zone::number).serialize(s)
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Zone>, D::Error> {
-        Option::<u8>::deserialize(d)?
-            .map(|n| zone_from_number(n).ok_or_else(|| serde::de::Error::custom(format!("zone {n}; must be 1 to 4"))))
-            .transpose()
-    }
-}
-
-/// The zone numbered `n` (1–4).
+/// The zone numbered `n` (1–4): [`Zone::from_number`].
 #[must_use]
 pub fn zone_from_number(n: u8) -> Option<Zone> {
-    [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak].into_iter().find(|z| z.number() == n)
+    Zone::from_number(n)
 }
 
 /// An ensemble of one design: its runs and what they say together (see the module doc).

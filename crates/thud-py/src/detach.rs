@@ -2,7 +2,8 @@
 //! Python thread waits with the GIL released, so other Python threads (and
 //! `concurrent.futures`) run designs at the same time. Every 100 ms the waiting thread takes
 //! the GIL back for a moment to let Python handle signals: Ctrl-C cancels a simulation or a
-//! sweep (the engine stops between impacts or cells) and raises `KeyboardInterrupt`.
+//! sweep (the engine stops between impacts or cells) and raises `KeyboardInterrupt`. The same
+//! moment reports progress ([`run_watched`]); a progress callback that raises cancels too.
 //!
 //! pyo3's `Python::detach` alone would release the GIL, but a long run could not then be
 //! interrupted; hence the thread and the channel.
@@ -25,6 +26,17 @@ where
     T: Send,
     F: FnOnce(&AtomicBool) -> T + Send,
 {
+    run_watched(py, work, || Ok(()))
+}
+
+/// [`run`], calling `watch` (with the GIL) at every poll and once when the work is done: the
+/// progress callback's hook. An error from `watch` cancels the work as an interrupt does.
+pub fn run_watched<T, F, W>(py: Python<'_>, work: F, mut watch: W) -> PyResult<T>
+where
+    T: Send,
+    F: FnOnce(&AtomicBool) -> T + Send,
+    W: FnMut() -> PyResult<()>,
+{
     let cancel = AtomicBool::new(false);
     std::thread::scope(|s| {
         let (tx, mut rx) = mpsc::channel();
@@ -40,9 +52,9 @@ where
             });
             rx = back;
             match got {
-                Ok(result) => return Ok(result),
+                Ok(result) => return watch().map(|()| result),
                 Err(RecvTimeoutError::Timeout) => {
-                    if let Err(interrupt) = py.check_signals() {
+                    if let Err(interrupt) = py.check_signals().and_then(|()| watch()) {
                         cancel.store(true, Ordering::Relaxed);
                         let _ = py.detach(move || rx.recv());
                         return Err(interrupt);

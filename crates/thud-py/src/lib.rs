@@ -16,25 +16,50 @@
 //! typed. The engine runs without the GIL (see the `detach` module). Every number handed out is checked
 //! finite; a missing value (no impact, so no SPL) is `None`, or NaN inside an array.
 //!
-//! The Python-facing documentation (docstrings, `thud.pyi`) is in the `#[pyo3]` items and the
-//! stub file next to `Cargo.toml`.
+//! This is the native part, `thud._thud`, of the mixed package `thud` (`python/thud`): the
+//! pure-Python `thud/__init__.py` wraps these functions with explicit keyword signatures built
+//! at import from `_parameters()` (the engine's parameter table), turns `progress=True` into a
+//! progress bar and holds the DataFrame / xarray converters (`thud/_frames.py`). The
+//! Python-facing documentation is in the `#[pyo3]` items and the stub `python/thud/__init__.pyi`.
 
 mod args;
 mod detach;
 mod objects;
+mod progress;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use thud_core::design::{self, Design};
-use thud_core::limits::{self, short, Estimate};
+use thud_core::limits::{self, short};
 use thud_core::params::{self, Spelling};
 use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
 use thud_core::response::{self, ResponseOptions};
 use thud_core::units::Kind;
 use thud_core::{ensemble, ThudError};
 
-use args::{check_solver, enforce, engine_error, parameter_error, Kwargs};
+use args::{enforce, engine_error, parameter_error, refuse, Kwargs};
 use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
+use progress::Progress;
+
+/// The keywords each function takes beside the engine's named parameters (its run options),
+/// as `_parameters()` hands them to the Python wrapper for the signatures.
+const OPTIONS: [(&str, &[&str]); 5] = [
+    ("pulse", &["preset", "points", "no_limit"]),
+    ("simulate", &["preset", "samples", "ensemble", "no_limit"]),
+    ("simulate_ensemble", &["preset", "no_limit"]),
+    ("sweep", &["preset", "ensemble", "progress", "no_limit"]),
+    ("response", &["preset", "continuation", "ensemble", "progress", "no_limit"]),
+];
+
+/// Waveform points of a pulse unless `points` is given.
+const POINTS_DEFAULT: usize = 2000;
+/// Time-history samples of a run unless `samples` is given.
+const SAMPLES_DEFAULT: usize = 2001;
+
+/// The run options of the function `name` (see [`OPTIONS`]).
+fn options(name: &str) -> &'static [&'static str] {
+    OPTIONS.iter().find(|(n, _)| *n == name).map_or(&[], |(_, o)| o)
+}
 
 /// The preset named by the `preset` option (default: "default"), as the command line loads it
 /// (the app's compiled-in preset files). The user's config file is not read: a script gives
@@ -42,7 +67,7 @@ use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
 fn preset(py: Python<'_>, kw: &Kwargs<'_>, default: Option<&str>) -> PyResult<Option<Design>> {
     match kw.text(py, "preset")?.as_deref().or(default) {
         None => Ok(None),
-        Some(name) => thud::presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
+        Some(name) => thud_presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
     }
 }
 
@@ -77,9 +102,9 @@ fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Design> {
 #[pyfunction]
 #[pyo3(signature = (**params))]
 fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<PyPulse> {
-    let kw = Kwargs::new(params, &["preset", "points", "no_limit"])?;
+    let kw = Kwargs::new(params, options("pulse"))?;
     let no_limit = kw.switch(py, "no_limit")?;
-    let points = kw.count(py, "points", &limits::POINTS, 2000)?;
+    let points = kw.count(py, "points", &limits::POINTS, POINTS_DEFAULT)?;
     let cap = limits::WAVEFORM_POINTS.max;
     enforce(py, limits::waveform_points(points), "points", &format!("use points ≤ {}", short(cap)), no_limit)?;
     let base = preset(py, &kw, None)?;
@@ -118,37 +143,71 @@ fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<PyPulse
 #[pyfunction]
 #[pyo3(signature = (**params))]
 fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Py<PyAny>> {
-    let kw = Kwargs::new(params, &["preset", "samples", "no_limit", "ensemble"])?;
+    let kw = Kwargs::new(params, options("simulate"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let d = design_of(py, &kw)?;
-    let samples = kw.count(py, "samples", &limits::SAMPLES, 2001)?;
+    let samples = kw.count(py, "samples", &limits::SAMPLES, SAMPLES_DEFAULT)?;
     let runs = ensemble_runs(py, &kw)?;
+    let given = |n: &str| args::given(&kw.params, n);
     if runs > 1 {
-        args::check_run(py, &d, &kw.params, 0, no_limit)?;
-        args::check_runs(py, &d, &kw.params, 1, runs, no_limit)?;
-        let e = {
-            let d = d.clone();
-            detach::run(py, move |cancel| ensemble::evaluate(&d, runs, Some(cancel)))?
-        };
-        let e = e.map_err(|e| engine_error(py, e))?.ok_or_else(|| cancelled(py))?;
-        return Ok(PyEnsemble::new(py, &EnsembleReport::new(&d, &e))?.into_pyobject(py)?.into_any().unbind());
+        return Ok(ensemble_of(py, &d, &kw, runs, no_limit)?.into_pyobject(py)?.into_any().unbind());
     }
-    args::check_run(py, &d, &kw.params, samples, no_limit)?;
+    refuse(py, limits::check_run(&d, &given, samples), "samples", no_limit)?;
     let data = detach::run(py, |cancel| objects::RunData::compute(&d, samples, cancel))?;
     Ok(PyRun::new(py, data.map_err(|e| engine_error(py, e))?)?.into_pyobject(py)?.into_any().unbind())
+}
+
+/// simulate_ensemble(runs, **params) -> Ensemble
+///
+/// One design from `runs` ball offsets y0 = −d/2 + (k + ½)·d/N at rest, always an Ensemble
+/// (even of one run): `simulate(ensemble=N)` with a return type a type checker knows.
+/// Keywords: as for `simulate` (no samples, ensemble or ball_position).
+#[pyfunction]
+#[pyo3(signature = (runs, **params))]
+fn simulate_ensemble(
+    py: Python<'_>,
+    runs: &Bound<'_, PyAny>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyEnsemble> {
+    let kw = Kwargs::new(params, options("simulate_ensemble"))?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let d = design_of(py, &kw)?;
+    let given = PyDict::new(py);
+    given.set_item("runs", runs)?;
+    let n = Kwargs::new(Some(&given), &["runs"])?.count(py, "runs", &limits::ENSEMBLE, 1)?;
+    // An ensemble of one run is still an ensemble here: refuse a ball offset the runs set.
+    params::check_ensemble(n.max(2), ball_position_typed(&kw), Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    ensemble_of(py, &d, &kw, n, no_limit)
+}
+
+/// The ensemble of `runs` runs of `d`, its work checked first.
+fn ensemble_of(py: Python<'_>, d: &Design, kw: &Kwargs<'_>, runs: usize, no_limit: bool) -> PyResult<PyEnsemble> {
+    let given = |n: &str| args::given(&kw.params, n);
+    refuse(py, limits::check_run(d, &given, 0), "samples", no_limit)?;
+    refuse(py, limits::check_runs(d, &given, 1, runs), "ensemble", no_limit)?;
+    let e = {
+        let d = d.clone();
+        detach::run(py, move |cancel| ensemble::evaluate(&d, runs, Some(cancel)))?
+    };
+    let e = e.map_err(|e| engine_error(py, e))?.ok_or_else(|| cancelled(py))?;
+    PyEnsemble::new(py, &EnsembleReport::new(d, &e))
 }
 
 /// The `ensemble` option (a count, default 1), refused with `ball_position` when over 1.
 fn ensemble_runs(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<usize> {
     let runs = kw.count(py, "ensemble", &limits::ENSEMBLE, 1)?;
-    let typed = kw.params.iter().any(|(n, _)| *n == Spelling::Keyword.key("ball-position"));
-    params::check_ensemble(runs, typed, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    params::check_ensemble(runs, ball_position_typed(kw), Spelling::Keyword).map_err(|e| engine_error(py, e))?;
     Ok(runs)
+}
+
+/// Whether the call gave the ball's start (`ball_position`).
+fn ball_position_typed(kw: &Kwargs<'_>) -> bool {
+    kw.params.iter().any(|(n, _)| *n == Spelling::Keyword.key("ball-position"))
 }
 
 /// The error of runs stopped without an interrupt (not expected: a stop comes from Ctrl-C).
 fn cancelled(py: Python<'_>) -> PyErr {
-    engine_error(py, ThudError::invalid("ensemble", "the runs were cancelled"))
+    engine_error(py, ThudError::Cancelled)
 }
 
 /// An axis of a sweep: a sequence of numbers in SI units, or "FROM:TO:N" text as on the
@@ -198,6 +257,10 @@ fn axis(py: Python<'_>, name: &str, value: &Bound<'_, PyAny>, kind: Kind, range:
 /// — lift the work caps.
 ///
 /// The chart's 2-D arrays have shape (len(gaps_m), len(masses_kg)): row = gap, column = mass.
+/// progress: a callable progress(done, total) called with the engine's count of finished
+/// cells (at most every 0.1 s, and at the end), or True for a bar on stderr (tqdm if
+/// installed); an exception it raises stops the sweep and propagates.
+///
 /// Raises ParameterError (a ValueError) as `simulate` does. Ctrl-C stops the sweep.
 #[pyfunction]
 #[pyo3(signature = (masses_kg, gaps_m, **params))]
@@ -207,26 +270,31 @@ fn sweep(
     gaps_m: &Bound<'_, PyAny>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyChart> {
-    let kw = Kwargs::new(params, &["preset", "no_limit", "ensemble"])?;
+    let kw = Kwargs::new(params, options("sweep"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let d = design_of(py, &kw)?;
     let masses = axis(py, "masses_kg", masses_kg, Kind::Mass, &limits::MASS)?;
     let gaps = axis(py, "gaps_m", gaps_m, Kind::Length, &limits::GAP)?;
     let runs = ensemble_runs(py, &kw)?;
-    let cells = limits::sweep_cells(masses.len(), gaps.len());
-    let hint = format!("use fewer values on either axis (product ≤ {})", short(cells.cap.max));
-    enforce(py, cells, "masses_kg", &hint, no_limit)?;
+    let given = |n: &str| args::given(&kw.params, n);
+    refuse(py, limits::check_sweep(&d, &given, masses.len(), gaps.len()), "masses_kg", no_limit)?;
     let n = masses.len() * gaps.len();
-    let [cell_seconds, steps, cycles] = limits::sweep_work(&d, n);
-    let hint = format!("use duration ≤ {} s with {n} cells or fewer cells", short(cell_seconds.cap.max / n as f64));
-    enforce(py, cell_seconds, "duration", &hint, no_limit)?;
-    check_solver(py, &d, &kw.params, steps, cycles, &format!(" with {n} cells"), no_limit)?;
+    let progress = Progress::new(py, &kw, n)?;
+    let done = &progress.done;
     if runs > 1 {
-        args::check_runs(py, &d, &kw.params, n, runs, no_limit)?;
-        let chart = detach::run(py, |cancel| ensemble::sweep(&d, &masses, &gaps, runs, Some(cancel), &|_, _| {}))?;
-        return PyChart::of_ensembles(py, &d, &chart.map_err(|e| engine_error(py, e))?);
+        refuse(py, limits::check_runs(&d, &given, n, runs), "ensemble", no_limit)?;
+        let chart = detach::run_watched(
+            py,
+            |cancel| ensemble::sweep(&d, &masses, &gaps, runs, Some(cancel), &|_, _| Progress::tick(done)),
+            || progress.report(),
+        )?;
+        return PyChart::of_ensembles(py, &d, chart.map_err(|e| engine_error(py, e))?);
     }
-    let chart = detach::run(py, |cancel| design::sweep(&d, &masses, &gaps, Some(cancel), &|_, _| {}))?;
+    let chart = detach::run_watched(
+        py,
+        |cancel| design::sweep(&d, &masses, &gaps, Some(cancel), &|_, _| Progress::tick(done)),
+        || progress.report(),
+    )?;
     PyChart::new(py, &d, chart.map_err(|e| engine_error(py, e))?)
 }
 
@@ -244,6 +312,8 @@ fn sweep(
 /// falling; ensemble: int — N runs a frequency from ball offsets y0 = −d/2 + (k + ½)·d/N
 /// (p10/median/p90 of each figure, and every run); no_limit: bool — lift the work caps.
 ///
+/// progress: as for `sweep`, counting the points of every run (each sweep of a continuation).
+///
 /// Raises ParameterError (a ValueError) as `simulate` does. Ctrl-C stops the response.
 #[pyfunction]
 #[pyo3(name = "response", signature = (freqs_hz, **params))]
@@ -252,7 +322,7 @@ fn response_curve(
     freqs_hz: &Bound<'_, PyAny>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyResponse> {
-    let kw = Kwargs::new(params, &["preset", "no_limit", "ensemble", "continuation"])?;
+    let kw = Kwargs::new(params, options("response"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let continuation = kw.switch(py, "continuation")?;
     let freqs = axis(py, "freqs_hz", freqs_hz, Kind::Frequency, &limits::FREQ)?;
@@ -262,12 +332,24 @@ fn response_curve(
     let runs = ensemble_runs(py, &kw)?;
     check_response(py, &d, &freqs, continuation, runs, no_limit)?;
     let opts = ResponseOptions { continuation, settle: true };
+    // The engine's count: every point of every run, each sweep of a continuation.
+    let points = freqs.len() * runs * if continuation { 2 } else { 1 };
+    let progress = Progress::new(py, &kw, points)?;
+    let done = &progress.done;
     if runs > 1 {
-        let r = detach::run(py, |cancel| response::response_ensemble(&d, &freqs, runs, &opts, Some(cancel), &|| {}))?;
+        let r = detach::run_watched(
+            py,
+            |cancel| response::response_ensemble(&d, &freqs, runs, &opts, Some(cancel), &|| Progress::tick(done)),
+            || progress.report(),
+        )?;
         let r = r.map_err(|e| engine_error(py, e))?;
         return PyResponse::of_ensembles(py, &ResponseEnsembleReport::new(&d, &r, continuation));
     }
-    let r = detach::run(py, |cancel| response::response(&d, &freqs, &opts, Some(cancel), &|| {}))?;
+    let r = detach::run_watched(
+        py,
+        |cancel| response::response(&d, &freqs, &opts, Some(cancel), &|| Progress::tick(done)),
+        || progress.report(),
+    )?;
     let r = r.map_err(|e| engine_error(py, e))?;
     PyResponse::new(py, &ResponseReport::new(&d, &r, continuation))
 }
@@ -282,23 +364,12 @@ fn check_response(
     runs: usize,
     no_limit: bool,
 ) -> PyResult<()> {
-    let [one, one_steps] = limits::response_work(d, freqs, continuation);
-    let n = runs as f64;
-    let periods = Estimate { value: n * one.value, ..one };
-    if runs > 1 && !one.exceeded() {
-        let hint =
-            format!("use fewer runs (at most {} for these frequencies)", short((one.cap.max / one.value).floor()));
-        enforce(py, periods, "ensemble", &hint, no_limit)?;
-    }
-    enforce(py, periods, "freqs_hz", "use fewer frequencies or a shorter duration", no_limit)?;
-    if let thud_core::damper::Solver::Newmark { dt_s } = d.solver {
-        let steps = Estimate { value: n * one_steps.value, ..one_steps };
-        let _ = dt_s;
-        enforce(py, steps, "dt", "use the event solver or a larger dt", no_limit)?;
-    }
-    let f_max = freqs.iter().copied().fold(0.0, f64::max);
-    let cycles = limits::design_run(&response::at_frequency(d, f_max, true), 0)[1];
-    enforce(py, cycles, "freqs_hz", "use lower frequencies or a shorter duration", no_limit)
+    let r = response::check_response(d, freqs, continuation, runs);
+    let counted = match &r {
+        Err(e) if e.param == limits::RUNS_PARAM => "ensemble",
+        _ => "freqs_hz",
+    };
+    refuse(py, r, counted, no_limit)
 }
 
 /// axis(name, spec) -> numpy.ndarray
@@ -325,7 +396,7 @@ fn axis_values<'py>(py: Python<'py>, name: &str, spec: &str) -> PyResult<Bound<'
 #[pyfunction]
 fn presets(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    for p in thud::presets::list().map_err(|e| engine_error(py, e))? {
+    for p in thud_presets::list().map_err(|e| engine_error(py, e))? {
         d.set_item(p.name, p.description)?;
     }
     Ok(d)
@@ -361,8 +432,70 @@ fn ranges(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
 /// main_mass=), SI units (angles in degrees), or strings with units ("40.5g"). Bad input
 /// raises ParameterError (a ValueError) naming the parameter. The GIL is released while the
 /// engine runs.
+/// _parameters() -> dict
+///
+/// The keywords of every function, for the Python wrapper's signatures: {"design": rows,
+/// "pulse": rows, "options": {function: [option, …]}, "refused": {function: [keyword, …]}},
+/// a row {"name": keyword, "accepts": "quantity" | "choice" | "name" | "switch" | "count",
+/// "unit": the plain number's unit (quantities and counts), "choices": [names] (choices)},
+/// and "defaults": {option: its default} — the engine's tables ([`params::DESIGN`], [`params::PULSE`]) in their order.
+#[pyfunction]
+fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("design", table_rows(py, params::DESIGN)?)?;
+    d.set_item("pulse", table_rows(py, params::PULSE)?)?;
+    let opts = PyDict::new(py);
+    for (name, o) in OPTIONS {
+        opts.set_item(name, o.to_vec())?;
+    }
+    d.set_item("options", opts)?;
+    let defaults = PyDict::new(py);
+    defaults.set_item("points", POINTS_DEFAULT)?;
+    defaults.set_item("samples", SAMPLES_DEFAULT)?;
+    defaults.set_item("ensemble", 1)?;
+    defaults.set_item("continuation", false)?;
+    defaults.set_item("no_limit", false)?;
+    defaults.set_item("progress", py.None())?;
+    d.set_item("defaults", defaults)?;
+    let refused = PyDict::new(py);
+    // A response sweeps the frequency itself (`params::response_design` refuses `freq`).
+    refused.set_item("response", vec![Spelling::Keyword.spell("freq")])?;
+    // An ensemble sets each run's ball offset (`params::check_ensemble`).
+    refused.set_item("simulate_ensemble", vec![Spelling::Keyword.spell("ball-position")])?;
+    d.set_item("refused", refused)?;
+    Ok(d)
+}
+
+/// The rows of one parameter table as dicts (see `_parameters()`).
+fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<Bound<'py, PyList>> {
+    let rows = PyList::empty(py);
+    for p in table {
+        let row = PyDict::new(py);
+        row.set_item("name", Spelling::Keyword.spell(p.name))?;
+        let accepts = match &p.accepts {
+            params::Accepts::Quantity { range, .. } => {
+                row.set_item("unit", range.unit)?;
+                "quantity"
+            }
+            params::Accepts::Choice { names, .. } => {
+                row.set_item("choices", names.to_vec())?;
+                "choice"
+            }
+            params::Accepts::Name { .. } => "name",
+            params::Accepts::Switch { .. } => "switch",
+            params::Accepts::Count { range, .. } => {
+                row.set_item("unit", range.unit)?;
+                "count"
+            }
+        };
+        row.set_item("accepts", accepts)?;
+        rows.append(row)?;
+    }
+    Ok(rows)
+}
+
 #[pymodule]
-#[pyo3(name = "thud")]
+#[pyo3(name = "_thud")]
 fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -374,10 +507,13 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyResponse>()?;
     m.add_function(wrap_pyfunction!(pulse, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(response_curve, m)?)?;
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;
+    m.add_function(wrap_pyfunction!(_parameters, m)?)?;
+    m.add_function(wrap_pyfunction!(objects::_restore, m)?)?;
     Ok(())
 }

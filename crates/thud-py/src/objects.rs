@@ -5,28 +5,38 @@
 //! objects become dicts. Every number is checked finite before it is handed out; a value that
 //! does not exist (no impact, so no SPL) is `None`, or NaN inside a float array (zone 0 in a
 //! zone array).
+//!
+//! Every result pickles (and `copy.deepcopy`s): `__reduce__` hands out the record's JSON
+//! (floats written and read back exactly), and `thud._restore` builds the object again from it
+//! by the same constructor, so an unpickled result is the same object field for field. Tables
+//! and labelled arrays (`impacts_frame`, `to_dataframe`, `to_xarray`), `as_dict(json=True)` and
+//! `_repr_html_` are Python code (`thud/_frames.py`) that these methods call.
 
+use std::fmt;
 use std::sync::atomic::AtomicBool;
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use serde::Serialize;
+use serde::de::{DeserializeOwned, IgnoredAny, MapAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
 use serde_json::Value as Json;
-use thud_core::damper::{free_response, HistoryPoint};
+use thud_core::damper::{free_response, HistoryPoint, Maximum};
 use thud_core::design::{self, Design};
-use thud_core::ensemble::EnsembleChart;
+use thud_core::ensemble::{EnsembleChart, Member};
 use thud_core::limits::{self, short};
 use thud_core::params::PulseInput;
 use thud_core::report::{EnsembleReport, ImpactReport, PulseReport, ResponseEnsembleReport, ResponseReport, RunReport};
+use thud_core::response::{EnsemblePoint, ResponsePoint};
 use thud_core::ThudError;
 
 use crate::args::{engine_error, non_finite, parameter_error};
 
 /// `record` checked finite (the command line's check of its JSON), then as a JSON value.
 fn checked<T: Serialize>(what: &str, record: &T) -> PyResult<Json> {
-    thud::cli::check_finite(record).map_err(|e| non_finite(&format!("{what}: {e:?}")))?;
+    thud_core::finite::check(record).map_err(|e| non_finite(&format!("{what}: NonFinite({:?})", e.0)))?;
     serde_json::to_value(record).map_err(|e| non_finite(&format!("{what} ({e})")))
 }
 
@@ -49,6 +59,90 @@ fn array(py: Python<'_>, what: &str, values: Vec<f64>) -> PyResult<Py<PyAny>> {
     Ok(PyArray1::from_vec(py, values).into_any().unbind())
 }
 
+/// An internal error: a record without the field a result reads from it.
+fn missing(what: &str, key: &str) -> PyErr {
+    PyRuntimeError::new_err(format!("internal error: the {what} record has no valid '{key}'"))
+}
+
+/// The number `key` of `record` (required).
+fn num(what: &str, record: &Json, key: &str) -> PyResult<f64> {
+    record.get(key).and_then(Json::as_f64).ok_or_else(|| missing(what, key))
+}
+
+/// The number `key` of `record`, None for null.
+fn opt_num(what: &str, record: &Json, key: &str) -> PyResult<Option<f64>> {
+    match record.get(key) {
+        Some(Json::Null) => Ok(None),
+        Some(v) => v.as_f64().map(Some).ok_or_else(|| missing(what, key)),
+        None => Err(missing(what, key)),
+    }
+}
+
+/// The whole number `key` of `record` (required).
+fn whole(what: &str, record: &Json, key: &str) -> PyResult<usize> {
+    record.get(key).and_then(Json::as_u64).and_then(|v| usize::try_from(v).ok()).ok_or_else(|| missing(what, key))
+}
+
+/// The text `key` of `record`, None for null.
+fn opt_text(what: &str, record: &Json, key: &str) -> PyResult<Option<String>> {
+    match record.get(key) {
+        Some(Json::Null) => Ok(None),
+        Some(Json::String(t)) => Ok(Some(t.clone())),
+        _ => Err(missing(what, key)),
+    }
+}
+
+/// The text `key` of `record` (required).
+fn text(what: &str, record: &Json, key: &str) -> PyResult<String> {
+    opt_text(what, record, key)?.ok_or_else(|| missing(what, key))
+}
+
+/// The switch `key` of `record` (required).
+fn flag(what: &str, record: &Json, key: &str) -> PyResult<bool> {
+    record.get(key).and_then(Json::as_bool).ok_or_else(|| missing(what, key))
+}
+
+/// The zone `key` of `record` (1–4), None for null.
+fn zone_of(what: &str, record: &Json, key: &str) -> PyResult<Option<u8>> {
+    Ok(opt_num(what, record, key)?.map(|z| z as u8))
+}
+
+/// The top-level keys of a JSON object in the order of the text: a visitor, because
+/// serde_json's own map (without its `preserve_order` feature, which would change the
+/// command line's output too) sorts keys.
+struct Keys(Vec<String>);
+
+impl<'de> Deserialize<'de> for Keys {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Keys, D::Error> {
+        struct KeysVisitor;
+        impl<'de> Visitor<'de> for KeysVisitor {
+            type Value = Keys;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a JSON object")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Keys, A::Error> {
+                let mut keys = Vec::new();
+                while let Some((k, IgnoredAny)) = map.next_entry::<String, IgnoredAny>()? {
+                    keys.push(k);
+                }
+                Ok(Keys(keys))
+            }
+        }
+        d.deserialize_map(KeysVisitor)
+    }
+}
+
+/// The keys of `value` in the order serde writes them: its fields' order (`t_s` first for an
+/// impact), the natural order of a table's columns.
+fn field_order<T: Serialize>(value: &T) -> Vec<String> {
+    serde_json::to_string(value).ok().and_then(|t| serde_json::from_str::<Keys>(&t).ok()).map_or_else(Vec::new, |k| k.0)
+}
+
+/// The field order of the record row `row` read as a `T` (empty when it is not one).
+fn order_of<T: Serialize + DeserializeOwned>(row: Option<&Json>) -> Vec<String> {
+    row.and_then(|r| serde_json::from_value::<T>(r.clone()).ok()).map_or_else(Vec::new, |t| field_order(&t))
+}
+
 /// The key `key` of every object in `rows` (null where absent).
 fn column<'a>(rows: &'a [Json], key: &str) -> Vec<&'a Json> {
     rows.iter().map(|r| r.get(key).unwrap_or(&Json::Null)).collect()
@@ -58,17 +152,26 @@ fn column<'a>(rows: &'a [Json], key: &str) -> Vec<&'a Json> {
 /// `template` when there are no rows, so an empty list still has every key): a `zone` as int8
 /// (0 = none), the keys in `int8` as int8, other whole numbers as int64, numbers as float64
 /// (NaN = none), booleans as bool, nested objects as dicts of columns, lists of records as
-/// dicts of 2-D columns (row × item), anything else as a list.
-fn columns(py: Python<'_>, rows: &[Json], template: Option<&Json>, int8: &[&str]) -> PyResult<Py<PyDict>> {
+/// dicts of 2-D columns (row × item), anything else as a list. The keys in `order` come first,
+/// in that order (a record's field order); any others follow in the record's (sorted) order.
+fn columns(
+    py: Python<'_>,
+    rows: &[Json],
+    template: Option<&Json>,
+    int8: &[&str],
+    order: &[String],
+) -> PyResult<Py<PyDict>> {
     let d = PyDict::new(py);
-    let mut keys: Vec<&String> = Vec::new();
+    let mut found: Vec<&String> = Vec::new();
     for r in rows.iter().chain(template.filter(|_| rows.is_empty())) {
         for k in r.as_object().into_iter().flat_map(|o| o.keys()) {
-            if !keys.contains(&k) {
-                keys.push(k);
+            if !found.contains(&k) {
+                found.push(k);
             }
         }
     }
+    let mut keys: Vec<&String> = order.iter().filter(|k| found.contains(k)).collect();
+    keys.extend(found.into_iter().filter(|k| !order.contains(k)));
     for key in keys {
         let col = column(rows, key);
         let value: Py<PyAny> = if key == "zone" || int8.contains(&key.as_str()) {
@@ -84,7 +187,7 @@ fn columns(py: Python<'_>, rows: &[Json], template: Option<&Json>, int8: &[&str]
             PyArray1::from_vec(py, col.iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect()).into_any().unbind()
         } else if col.iter().all(|v| v.is_object() || v.is_null()) {
             let inner: Vec<Json> = col.into_iter().cloned().collect();
-            columns(py, &inner, None, int8)?.into_any()
+            columns(py, &inner, None, int8, &[])?.into_any()
         } else if col.iter().all(|v| v.as_array().is_some_and(|a| a.iter().all(Json::is_object))) {
             stacked(py, &col, int8)?
         } else {
@@ -106,7 +209,7 @@ fn stacked(py: Python<'_>, lists: &[&Json], int8: &[&str]) -> PyResult<Py<PyAny>
     if flat.len() != n * lists.len() {
         return Err(pyo3::exceptions::PyRuntimeError::new_err("internal error: ragged lists of records"));
     }
-    let d = columns(py, &flat, None, int8)?;
+    let d = columns(py, &flat, None, int8, &[])?;
     reshape(py, d.bind(py).as_any(), &[lists.len(), n])
 }
 
@@ -238,36 +341,48 @@ pub struct PyPulse {
 
 impl PyPulse {
     pub fn new(py: Python<'_>, data: PulseData) -> PyResult<PyPulse> {
-        let r = data.0;
-        let record = checked("pulse", &r)?;
+        Self::from_record(py, checked("pulse", &data.0)?)
+    }
+
+    /// The pulse of the record of `thud pulse --json` (finite already).
+    fn from_record(py: Python<'_>, record: Json) -> PyResult<PyPulse> {
+        const W: &str = "pulse";
+        let number = |k: &str| num(W, &record, k);
+        let wave = record.get("waveform").ok_or_else(|| missing(W, "waveform"))?;
+        let series = |k: &str| -> PyResult<Vec<f64>> {
+            let v = wave.get(k).and_then(Json::as_array).ok_or_else(|| missing(W, k))?;
+            v.iter().map(|x| x.as_f64().ok_or_else(|| missing(W, k))).collect()
+        };
         let template = serde_json::json!({"t_s": 0.0, "p_pa": 0.0});
+        let extrema = rows_of(&record, "extrema");
+        let order = order_of::<thud_core::acoustics::Extremum>(extrema.first());
         Ok(PyPulse {
-            extrema: columns(py, &rows_of(&record, "extrema"), Some(&template), &[])?,
-            t_s: array(py, "t_s", r.waveform.t_s)?,
-            p_pa: array(py, "p_pa", r.waveform.p_pa)?,
-            radius_m: r.radius_m,
-            mass_kg: r.mass_kg,
-            u0_m_s: r.u0_m_s,
-            k_hz: r.k_hz,
-            r_m: r.r_m,
-            theta_deg: r.theta_deg,
-            source: r.source,
-            quad_signs: r.quad_signs,
-            pulse: r.pulse,
-            rho_c_pa_s_m: r.rho_c_pa_s_m,
-            c_m_s: r.c_m_s,
-            alpha_max_m: r.alpha_max_m,
-            accel_max_m_s2: r.accel_max_m_s2,
-            tau_s: r.tau_s,
-            force_max_n: r.force_max_n,
-            arrival_s: r.arrival_s,
-            spl_db: r.spl_db,
-            spl_definition: r.spl_definition,
-            spl_peak_db: r.spl_peak_db,
-            sel_db: r.sel_db,
-            p_rms_pa: r.p_rms_pa,
-            p_max_pa: r.p_max_pa,
-            p_min_pa: r.p_min_pa,
+            extrema: columns(py, &extrema, Some(&template), &[], &order)?,
+            t_s: array(py, "t_s", series("t_s")?)?,
+            p_pa: array(py, "p_pa", series("p_pa")?)?,
+            radius_m: number("radius_m")?,
+            mass_kg: number("mass_kg")?,
+            u0_m_s: number("u0_m_s")?,
+            k_hz: number("k_hz")?,
+            r_m: number("r_m")?,
+            theta_deg: number("theta_deg")?,
+            source: text(W, &record, "source")?,
+            quad_signs: text(W, &record, "quad_signs")?,
+            pulse: text(W, &record, "pulse")?,
+            rho_c_pa_s_m: number("rho_c_pa_s_m")?,
+            c_m_s: number("c_m_s")?,
+            alpha_max_m: number("alpha_max_m")?,
+            accel_max_m_s2: number("accel_max_m_s2")?,
+            tau_s: number("tau_s")?,
+            force_max_n: number("force_max_n")?,
+            arrival_s: number("arrival_s")?,
+            spl_db: number("spl_db")?,
+            spl_definition: text(W, &record, "spl_definition")?,
+            spl_peak_db: number("spl_peak_db")?,
+            sel_db: number("sel_db")?,
+            p_rms_pa: number("p_rms_pa")?,
+            p_max_pa: number("p_max_pa")?,
+            p_min_pa: number("p_min_pa")?,
             record,
         })
     }
@@ -294,8 +409,12 @@ fn fill(
 
 #[pymethods]
 impl PyPulse {
+    /// as_dict(json=False) -> dict
+    ///
     /// Every field in one dict (the command line's JSON keys; the waveform as "t_s"/"p_pa").
-    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// json=True: plain lists, numbers and None only (NaN → None), ready for `json.dumps`.
+    #[pyo3(signature = (json = false))]
+    fn as_dict(&self, py: Python<'_>, json: bool) -> PyResult<Py<PyAny>> {
         let d = PyDict::new(py);
         let extrema = self.extrema.clone_ref(py).into_any();
         fill(
@@ -305,7 +424,22 @@ impl PyPulse {
             &["waveform", "extrema"],
             &[("extrema", &extrema), ("t_s", &self.t_s), ("p_pa", &self.p_pa)],
         )?;
-        Ok(d)
+        plain(py, d, json)
+    }
+
+    /// to_dataframe() -> pandas.DataFrame
+    ///
+    /// The waveform as a table: t_s (s), p_pa (Pa); the scalars in `.attrs`. Needs pandas.
+    fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "pulse_frame", slf.as_any())
+    }
+
+    fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "repr_html", slf.as_any())
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        reduce(py, "Pulse", &self.record)
     }
 
     fn __repr__(&self) -> String {
@@ -321,6 +455,57 @@ impl PyPulse {
             self.spl_db,
             self.spl_peak_db
         )
+    }
+}
+
+/// How a result pickles: `thud._restore(kind, state)`, the state the record's JSON text.
+type Reduced = (Py<PyAny>, (String, String));
+
+/// `(thud._restore, (kind, JSON text of state))`: `__reduce__` of every result.
+fn reduce(py: Python<'_>, kind: &str, state: &Json) -> PyResult<Reduced> {
+    let text = serde_json::to_string(state).map_err(|e| non_finite(&format!("{kind} ({e})")))?;
+    let restore = py.import("thud")?.getattr("_restore")?.unbind();
+    Ok((restore, (kind.to_string(), text)))
+}
+
+/// _restore(kind, state) -> Pulse | Run | Ensemble | Chart | Response
+///
+/// A result again from its pickled state (what `__reduce__` gave): the same constructor as a
+/// fresh result, from the record's JSON text.
+#[pyfunction]
+pub fn _restore(py: Python<'_>, kind: &str, state: &str) -> PyResult<Py<PyAny>> {
+    let bad = |e: &dyn fmt::Display| pyo3::exceptions::PyValueError::new_err(format!("not a thud {kind} state: {e}"));
+    let v: Json = serde_json::from_str(state).map_err(|e| bad(&e))?;
+    let obj = match kind {
+        "Pulse" => PyPulse::from_record(py, v)?.into_pyobject(py)?.into_any(),
+        "Run" => PyRun::from_state(py, v)?.into_pyobject(py)?.into_any(),
+        "Ensemble" => PyEnsemble::from_record(py, v)?.into_pyobject(py)?.into_any(),
+        "Chart" => PyChart::from_state(py, v)?.into_pyobject(py)?.into_any(),
+        "Response" => PyResponse::from_state(py, v)?.into_pyobject(py)?.into_any(),
+        _ => return Err(bad(&"unknown kind")),
+    };
+    Ok(obj.unbind())
+}
+
+/// `thud._frames.NAME(obj)`: the Python half of a result's table, HTML and JSON methods.
+fn frames(py: Python<'_>, name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+    Ok(py.import("thud._frames")?.getattr(name)?.call1((obj,))?.unbind())
+}
+
+/// `d`, or with `json` its JSON-ready copy (`thud._frames.jsonable`).
+fn plain(py: Python<'_>, d: Bound<'_, PyDict>, json: bool) -> PyResult<Py<PyAny>> {
+    if json {
+        frames(py, "jsonable", d.as_any())
+    } else {
+        Ok(d.into_any().unbind())
+    }
+}
+
+/// "mass=0.05 kg, gap=0.03 m": the design of a record, for a repr.
+fn named(record: &Json) -> String {
+    match record.get("design").and_then(|d| serde_json::from_value::<Design>(d.clone()).ok()) {
+        Some(d) => format!("mass={} kg, gap={} m", short(d.damper.impact_mass_kg), short(d.damper.gap_m)),
+        None => "design unknown".to_string(),
     }
 }
 
@@ -346,95 +531,147 @@ impl RunData {
 /// U0max, SPLmax, zone), every impact, the cycle maxima, the energy ledger, the steady state
 /// of a forced run and the time history. SI units; inclinations in cm/s; levels in dB re
 /// 20 µPa. None = no such value (too few maxima for e, no impact for SPLmax).
-#[pyclass(name = "Run", module = "thud", frozen, get_all)]
+#[pyclass(name = "Run", module = "thud", frozen)]
 pub struct PyRun {
     /// The design as run (the command line's JSON "design" object).
+    #[pyo3(get)]
     design: Py<PyAny>,
     /// Ball radius (m).
+    #[pyo3(get)]
     ball_radius_m: f64,
     /// Number of impacts.
+    #[pyo3(get)]
     n_impacts: usize,
     /// Damping inclination e of Eq 27 (cm/s).
+    #[pyo3(get)]
     inclination_cm_s: Option<f64>,
     /// Robust least-squares inclination e_fit (cm/s).
+    #[pyo3(get)]
     inclination_fit_cm_s: Option<f64>,
     /// Largest contact speed by the design's rule, U0max (m/s).
+    #[pyo3(get)]
     u0_max_m_s: f64,
     /// Largest |z'| over the run including t = 0 (m/s).
+    #[pyo3(get)]
     zdot_abs_max_m_s: f64,
     /// SPL of an impact at U0max, SPLmax (dB).
+    #[pyo3(get)]
     spl_max_db: Option<f64>,
     /// Contact duration at U0max (s).
+    #[pyo3(get)]
     contact_duration_s: Option<f64>,
     /// Mean restitution u_out/u_in.
+    #[pyo3(get)]
     restitution_mean: Option<f64>,
     /// Zone 1–4 (3 = quiet and strong, the target).
+    #[pyo3(get)]
     zone: Option<u8>,
     /// Every impact, as arrays: t_s (s), wall (±1, int8), u_in_m_s, u_out_m_s (m/s),
     /// restitution, t_end_s, duration_s (s), penetration_max_m (m), spl_db (dB).
+    #[pyo3(get)]
     impacts: Py<PyDict>,
     /// Cycle maxima of the main mass: t_s (s), x_m (m).
+    #[pyo3(get)]
     maxima: Py<PyDict>,
     /// Energy ledger (J): initial_j, final_mechanical_j, dissipated_viscous_j,
     /// dissipated_contact_j (and forcing_work_j of a forced run).
+    #[pyo3(get)]
     energy: Py<PyAny>,
     /// Time reached (s).
+    #[pyo3(get)]
     final_time_s: f64,
     /// Whether the solver's work cap stopped the run before its duration.
+    #[pyo3(get)]
     truncated: bool,
     /// Why, when it did.
+    #[pyo3(get)]
     truncation_reason: Option<String>,
     /// The steady state of a forced run over its last `periods` forcing periods (the JSON
     /// "steady" object: amplitude_m, amplitude_linear_m (m), reduction_db, leq_db (dB), …);
     /// None without a force.
+    #[pyo3(get)]
     steady: Option<Py<PyAny>>,
     /// Uniform time history: t_s (s), x_m (main mass, m), y_m (ball, m), x_free_m (no damper, m).
+    #[pyo3(get)]
     history: Py<PyDict>,
+    /// The record (`thud simulate --json`), for pickling and the repr.
+    record: Json,
 }
 
 impl PyRun {
     pub fn new(py: Python<'_>, data: RunData) -> PyResult<PyRun> {
-        let RunData { report: r, history, x_free } = data;
-        let record = checked("run", &r)?;
-        let template = serde_json::to_value(ImpactReport::default()).ok();
-        let history_dict = PyDict::new(py);
-        for (k, v) in [
+        let RunData { report, history, x_free } = data;
+        let series = vec![
             ("t_s", history.iter().map(|h| h.t_s).collect()),
             ("x_m", history.iter().map(|h| h.x_m).collect()),
             ("y_m", history.iter().map(|h| h.y_m).collect()),
             ("x_free_m", x_free),
-        ] {
-            history_dict.set_item(k, array(py, &format!("history.{k}"), v)?)?;
+        ];
+        let history = series.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+        Self::from_parts(py, checked("run", &report)?, history)
+    }
+
+    /// The run of the record of `thud simulate --json` (finite already) and the time history
+    /// (name, values) in order.
+    fn from_parts(py: Python<'_>, record: Json, history: Vec<(String, Vec<f64>)>) -> PyResult<PyRun> {
+        const W: &str = "run";
+        let history_dict = PyDict::new(py);
+        for (k, v) in history {
+            history_dict.set_item(&k, array(py, &format!("history.{k}"), v)?)?;
         }
+        let impacts = rows_of(&record, "impacts");
+        let template = serde_json::to_value(ImpactReport::default()).ok();
+        let impact_order = field_order(&ImpactReport::default());
+        let maxima = rows_of(&record, "maxima");
         let maxima_template = serde_json::json!({"t_s": 0.0, "x_m": 0.0});
+        let maxima_order = order_of::<Maximum>(maxima.first());
         Ok(PyRun {
             design: field(py, &record, "design")?,
-            ball_radius_m: r.ball_radius_m,
-            n_impacts: r.n_impacts,
-            inclination_cm_s: r.inclination_cm_s,
-            inclination_fit_cm_s: r.inclination_fit_cm_s,
-            u0_max_m_s: r.u0_max_m_s,
-            zdot_abs_max_m_s: r.zdot_abs_max_m_s,
-            spl_max_db: r.spl_max_db,
-            contact_duration_s: r.contact_duration_s,
-            restitution_mean: r.restitution_mean,
-            zone: r.zone,
-            impacts: columns(py, &rows_of(&record, "impacts"), template.as_ref(), &["wall"])?,
-            maxima: columns(py, &rows_of(&record, "maxima"), Some(&maxima_template), &[])?,
+            ball_radius_m: num(W, &record, "ball_radius_m")?,
+            n_impacts: whole(W, &record, "n_impacts")?,
+            inclination_cm_s: opt_num(W, &record, "inclination_cm_s")?,
+            inclination_fit_cm_s: opt_num(W, &record, "inclination_fit_cm_s")?,
+            u0_max_m_s: num(W, &record, "u0_max_m_s")?,
+            zdot_abs_max_m_s: num(W, &record, "zdot_abs_max_m_s")?,
+            spl_max_db: opt_num(W, &record, "spl_max_db")?,
+            contact_duration_s: opt_num(W, &record, "contact_duration_s")?,
+            restitution_mean: opt_num(W, &record, "restitution_mean")?,
+            zone: zone_of(W, &record, "zone")?,
+            impacts: columns(py, &impacts, template.as_ref(), &["wall"], &impact_order)?,
+            maxima: columns(py, &maxima, Some(&maxima_template), &[], &maxima_order)?,
             energy: field(py, &record, "energy")?,
-            final_time_s: r.final_time_s,
-            truncated: r.truncated,
-            truncation_reason: r.truncation_reason,
+            final_time_s: num(W, &record, "final_time_s")?,
+            truncated: flag(W, &record, "truncated")?,
+            truncation_reason: opt_text(W, &record, "truncation_reason")?,
             steady: record.get("steady").map(|s| to_py(py, s)).transpose()?,
             history: history_dict.unbind(),
+            record,
         })
+    }
+
+    /// The run of its pickled state: {"record": …, "history": [[name, [values…]], …]}.
+    fn from_state(py: Python<'_>, state: Json) -> PyResult<PyRun> {
+        let mut history = Vec::new();
+        for item in state.get("history").and_then(Json::as_array).ok_or_else(|| missing("Run state", "history"))? {
+            let name = item.get(0).and_then(Json::as_str).ok_or_else(|| missing("Run state", "history"))?;
+            let values = item.get(1).and_then(Json::as_array).ok_or_else(|| missing("Run state", name))?;
+            let values: Vec<f64> =
+                values.iter().map(|v| v.as_f64().ok_or_else(|| missing("Run state", name))).collect::<PyResult<_>>()?;
+            history.push((name.to_string(), values));
+        }
+        let record = state.get("record").cloned().ok_or_else(|| missing("Run state", "record"))?;
+        Self::from_parts(py, record, history)
     }
 }
 
 #[pymethods]
 impl PyRun {
-    /// Every field in one dict (the command line's JSON keys, plus "history").
-    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// as_dict(json=False) -> dict
+    ///
+    /// Every field in one dict (the command line's JSON keys, plus "history"). json=True:
+    /// plain lists, numbers and None only (NaN → None), ready for `json.dumps`.
+    #[pyo3(signature = (json = false))]
+    fn as_dict(&self, py: Python<'_>, json: bool) -> PyResult<Py<PyAny>> {
         let d = PyDict::new(py);
         d.set_item("design", self.design.clone_ref(py))?;
         d.set_item("ball_radius_m", self.ball_radius_m)?;
@@ -455,13 +692,44 @@ impl PyRun {
         d.set_item("truncation_reason", self.truncation_reason.clone())?;
         d.set_item("steady", self.steady.as_ref().map(|s| s.clone_ref(py)))?;
         d.set_item("history", self.history.clone_ref(py))?;
-        Ok(d)
+        plain(py, d, json)
+    }
+
+    /// impacts_frame() -> pandas.DataFrame
+    ///
+    /// Every impact as a row: t_s first, then the impact's fields in the record's order
+    /// (units in the names); the design's scalars in `.attrs`. Needs pandas.
+    fn impacts_frame(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "impacts_frame", slf.as_any())
+    }
+
+    /// history_frame() -> pandas.DataFrame
+    ///
+    /// The uniform time history as a table: t_s (s), x_m, y_m, x_free_m (m). Needs pandas.
+    fn history_frame(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "history_frame", slf.as_any())
+    }
+
+    fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "repr_html", slf.as_any())
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        let history = self.history.bind(py);
+        let mut series = Vec::new();
+        for (k, v) in history.iter() {
+            let name: String = k.extract()?;
+            let values: Vec<f64> = v.extract()?;
+            series.push(serde_json::json!([name, values]));
+        }
+        reduce(py, "Run", &serde_json::json!({"record": self.record, "history": series}))
     }
 
     fn __repr__(&self) -> String {
         let opt = |v: Option<f64>, digits: usize| v.map_or("None".into(), |x| format!("{x:.digits$}"));
         format!(
-            "Run({} impacts, e={} cm/s, e_fit={} cm/s, U0max={:.4} m/s, SPLmax={} dB, zone={}{})",
+            "Run({}: {} impacts, e={} cm/s, e_fit={} cm/s, U0max={:.4} m/s, SPLmax={} dB, zone={}{})",
+            named(&self.record),
             self.n_impacts,
             opt(self.inclination_cm_s, 4),
             opt(self.inclination_fit_cm_s, 4),
@@ -516,18 +784,25 @@ pub struct PyEnsemble {
 
 impl PyEnsemble {
     pub fn new(py: Python<'_>, r: &EnsembleReport) -> PyResult<PyEnsemble> {
-        let record = checked("ensemble", r)?;
+        Self::from_record(py, checked("ensemble", r)?)
+    }
+
+    /// The ensemble of the record of `thud simulate --ensemble N --json` (finite already).
+    fn from_record(py: Python<'_>, record: Json) -> PyResult<PyEnsemble> {
+        const W: &str = "ensemble";
+        let members = rows_of(&record, "ensemble");
+        let order = order_of::<Member>(members.first());
         Ok(PyEnsemble {
             design: field(py, &record, "design")?,
-            ball_radius_m: r.ball_radius_m,
-            runs: r.runs,
-            zone: r.zone,
-            zone3_probability: r.zone3_probability,
-            agreement: r.agreement,
+            ball_radius_m: num(W, &record, "ball_radius_m")?,
+            runs: whole(W, &record, "runs")?,
+            zone: zone_of(W, &record, "zone")?,
+            zone3_probability: num(W, &record, "zone3_probability")?,
+            agreement: num(W, &record, "agreement")?,
             spread: field(py, &record, "spread")?,
-            ensemble: columns(py, &rows_of(&record, "ensemble"), None, &[])?,
-            truncated: r.truncated,
-            truncation_reason: r.truncation_reason.clone(),
+            ensemble: columns(py, &members, None, &[], &order)?,
+            truncated: flag(W, &record, "truncated")?,
+            truncation_reason: opt_text(W, &record, "truncation_reason")?,
             record,
         })
     }
@@ -535,17 +810,38 @@ impl PyEnsemble {
 
 #[pymethods]
 impl PyEnsemble {
-    /// Every field in one dict (the command line's JSON keys; the runs as arrays).
-    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// as_dict(json=False) -> dict
+    ///
+    /// Every field in one dict (the command line's JSON keys; the runs as arrays). json=True:
+    /// plain lists, numbers and None only (NaN → None), ready for `json.dumps`.
+    #[pyo3(signature = (json = false))]
+    fn as_dict(&self, py: Python<'_>, json: bool) -> PyResult<Py<PyAny>> {
         let d = PyDict::new(py);
         let runs = self.ensemble.clone_ref(py).into_any();
         fill(py, &d, &self.record, &["ensemble"], &[("ensemble", &runs)])?;
-        Ok(d)
+        plain(py, d, json)
+    }
+
+    /// to_dataframe() -> pandas.DataFrame
+    ///
+    /// One row per run (in order of k): ball_position_m first, then each run's metrics; the
+    /// zone 0 = none. Needs pandas.
+    fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "ensemble_frame", slf.as_any())
+    }
+
+    fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "repr_html", slf.as_any())
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        reduce(py, "Ensemble", &self.record)
     }
 
     fn __repr__(&self) -> String {
         format!(
-            "Ensemble({} runs, zone of the medians {}, zone 3 in {:.0} % of the runs, {:.0} % agree{})",
+            "Ensemble({}: {} runs, zone of the medians {}, zone 3 in {:.0} % of the runs, {:.0} % agree{})",
+            named(&self.record),
             self.runs,
             self.zone.map_or("None".into(), |z| z.to_string()),
             100.0 * self.zone3_probability,
@@ -620,6 +916,9 @@ pub struct PyChart {
     ensemble: Option<Py<PyAny>>,
     /// The engine's chart (of the medians), kept for `Chart.table5`.
     chart: design::Chart,
+    /// What the chart was made of, for pickling: {"design": …, "chart": the plain chart} or
+    /// {"design": …, "ensembles": the chart of ensembles} (the engine's serde form).
+    state: Json,
 }
 
 /// The parts of an ensemble chart beyond its medians, as arrays shaped (gap, mass, …).
@@ -637,7 +936,7 @@ impl EnsembleParts {
         if cells.iter().any(Json::is_null) {
             return Err(pyo3::exceptions::PyRuntimeError::new_err("internal error: a cell of the chart is missing"));
         }
-        let all = columns(py, &cells, None, &[])?;
+        let all = columns(py, &cells, None, &[], &[])?;
         let shaped = reshape(py, all.bind(py).as_any(), &[chart.gaps_m.len(), chart.masses_kg.len()])?;
         let shaped = shaped.bind(py);
         let get = |k: &str| -> PyResult<Py<PyAny>> { Ok(shaped.get_item(k)?.unbind()) };
@@ -651,13 +950,15 @@ impl EnsembleParts {
 }
 
 impl PyChart {
-    /// The chart `chart` of `d`; with the parts of an ensemble chart of `runs` runs a cell.
+    /// The chart `chart` of `d`; with the parts of an ensemble chart of `runs` runs a cell;
+    /// `state` as the field says.
     fn with(
         py: Python<'_>,
         d: &Design,
         chart: design::Chart,
         runs: usize,
         parts: Option<EnsembleParts>,
+        state: Json,
     ) -> PyResult<PyChart> {
         let (rows, cols) = (chart.gaps_m.len(), chart.masses_kg.len());
         let grid = |what: &str, f: &dyn Fn(&design::Metrics) -> Option<f64>| -> PyResult<Py<PyAny>> {
@@ -702,18 +1003,33 @@ impl PyChart {
             spread,
             ensemble,
             chart,
+            state,
         })
     }
 
     /// The plain chart `chart` of `d`.
     pub fn new(py: Python<'_>, d: &Design, chart: design::Chart) -> PyResult<PyChart> {
-        Self::with(py, d, chart, 1, None)
+        let state = serde_json::json!({"design": checked("design", d)?, "chart": checked("chart", &chart)?});
+        Self::with(py, d, chart, 1, None, state)
     }
 
     /// The chart of ensembles `chart` of `d`: its medians, and the ensemble fields.
-    pub fn of_ensembles(py: Python<'_>, d: &Design, chart: &EnsembleChart) -> PyResult<PyChart> {
-        let parts = EnsembleParts::new(py, chart)?;
-        Self::with(py, d, chart.medians(), chart.runs, Some(parts))
+    pub fn of_ensembles(py: Python<'_>, d: &Design, chart: EnsembleChart) -> PyResult<PyChart> {
+        let parts = EnsembleParts::new(py, &chart)?;
+        let medians = chart.medians();
+        let state = serde_json::json!({"design": checked("design", d)?, "ensembles": checked("chart", &chart)?});
+        Self::with(py, d, medians, chart.runs, Some(parts), state)
+    }
+
+    /// The chart of its pickled state (see the `state` field).
+    fn from_state(py: Python<'_>, state: Json) -> PyResult<PyChart> {
+        let bad = |e: serde_json::Error| PyRuntimeError::new_err(format!("internal error: a Chart state: {e}"));
+        let part = |k: &str| state.get(k).cloned().ok_or_else(|| missing("Chart state", k));
+        let d: Design = serde_json::from_value(part("design")?).map_err(bad)?;
+        if state.get("ensembles").is_some() {
+            return Self::of_ensembles(py, &d, serde_json::from_value(part("ensembles")?).map_err(bad)?);
+        }
+        Self::new(py, &d, serde_json::from_value(part("chart")?).map_err(bad)?)
     }
 }
 
@@ -751,11 +1067,16 @@ impl PyChart {
         let records: Vec<Json> = rows.iter().map(|b| checked("table5", b)).collect::<PyResult<_>>()?;
         let template =
             serde_json::json!({"e_lo_cm_s": 0.0, "e_hi_cm_s": 0.0, "count": 0, "spl_min_db": 0.0, "spl_max_db": 0.0});
-        Ok(columns(py, &records, Some(&template), &[])?.into_bound(py))
+        let order = rows.first().map(field_order).unwrap_or_default();
+        Ok(columns(py, &records, Some(&template), &[], &order)?.into_bound(py))
     }
 
-    /// Every field in one dict (the 2-D arrays by metric name).
-    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// as_dict(json=False) -> dict
+    ///
+    /// Every field in one dict (the 2-D arrays by metric name). json=True: nested lists,
+    /// numbers and None only (NaN → None), ready for `json.dumps`.
+    #[pyo3(signature = (json = false))]
+    fn as_dict(&self, py: Python<'_>, json: bool) -> PyResult<Py<PyAny>> {
         let d = PyDict::new(py);
         for (k, v) in [
             ("design", &self.design),
@@ -783,7 +1104,35 @@ impl PyChart {
         ] {
             d.set_item(k, v.as_ref().map(|v| v.clone_ref(py)))?;
         }
-        Ok(d)
+        plain(py, d, json)
+    }
+
+    /// to_dataframe() -> pandas.DataFrame
+    ///
+    /// The chart as a tidy table: one row per cell (gap_m, mass_kg, then every metric, zone
+    /// 0 = none), or with ensemble=N one row per run of each cell (gap_m, mass_kg, run, the
+    /// run's ball_position_m and metrics, then its cell's medians as median_* columns, zone3_probability and
+    /// agreement). The thresholds and the design in `.attrs`. Needs pandas.
+    fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "chart_frame", slf.as_any())
+    }
+
+    /// to_xarray() -> xarray.Dataset
+    ///
+    /// The chart as labelled arrays on the dimensions gap_m × mass_kg (coordinates in m and
+    /// kg): every metric, and with ensemble=N zone3_probability, agreement, the spread as
+    /// {metric}_p10 / _median / _p90 and every run on gap_m × mass_kg × run. Units in each
+    /// variable's attrs. Needs xarray.
+    fn to_xarray(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "chart_xarray", slf.as_any())
+    }
+
+    fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "repr_html", slf.as_any())
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        reduce(py, "Chart", &self.state)
     }
 
     fn __repr__(&self) -> String {
@@ -791,7 +1140,19 @@ impl PyChart {
         let zone3 = c.cells.iter().flatten().filter(|c| c.metrics.zone.is_some_and(|z| z.number() == 3)).count();
         let runs =
             if self.runs > 1 { format!(", {} runs a cell (zones of the medians)", self.runs) } else { String::new() };
-        format!("Chart({} masses × {} gaps, {} cells in zone 3{runs})", c.masses_kg.len(), c.gaps_m.len(), zone3)
+        let span = |v: &[f64]| match (v.first(), v.last()) {
+            (Some(a), Some(b)) if v.len() > 1 => format!("{}–{}", short(*a), short(*b)),
+            (Some(a), _) => short(*a),
+            _ => String::new(),
+        };
+        format!(
+            "Chart({} masses {} kg × {} gaps {} m, {} cells in zone 3{runs})",
+            c.masses_kg.len(),
+            span(&c.masses_kg),
+            c.gaps_m.len(),
+            span(&c.gaps_m),
+            zone3
+        )
     }
 }
 
@@ -832,7 +1193,13 @@ impl PyResponse {
     fn from_record(py: Python<'_>, record: Json, runs: usize) -> PyResult<PyResponse> {
         let sweeps = PyList::empty(py);
         for sweep in rows_of(&record, "sweeps") {
-            let d = columns(py, &rows_of(&sweep, "points"), None, &[])?.into_bound(py);
+            let points = rows_of(&sweep, "points");
+            let order = if runs > 1 {
+                order_of::<EnsemblePoint>(points.first())
+            } else {
+                order_of::<ResponsePoint>(points.first())
+            };
+            let d = columns(py, &points, None, &[], &order)?.into_bound(py);
             d.set_item("direction", field(py, &sweep, "direction")?)?;
             sweeps.append(d)?;
         }
@@ -855,17 +1222,45 @@ impl PyResponse {
     pub fn of_ensembles(py: Python<'_>, r: &ResponseEnsembleReport) -> PyResult<PyResponse> {
         Self::from_record(py, checked("response", r)?, r.runs)
     }
+
+    /// The response of its pickled state: {"record": …, "runs": N}.
+    fn from_state(py: Python<'_>, state: Json) -> PyResult<PyResponse> {
+        let runs = whole("Response state", &state, "runs")?;
+        let record = state.get("record").cloned().ok_or_else(|| missing("Response state", "record"))?;
+        Self::from_record(py, record, runs)
+    }
 }
 
 #[pymethods]
 impl PyResponse {
+    /// as_dict(json=False) -> dict
+    ///
     /// Every field in one dict (the command line's JSON keys; each sweep's points as arrays).
-    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// json=True: plain lists, numbers and None only (NaN → None), ready for `json.dumps`.
+    #[pyo3(signature = (json = false))]
+    fn as_dict(&self, py: Python<'_>, json: bool) -> PyResult<Py<PyAny>> {
         let d = PyDict::new(py);
         let sweeps = self.sweeps.clone_ref(py).into_any();
         fill(py, &d, &self.record, &["sweeps"], &[("sweeps", &sweeps)])?;
         d.set_item("runs", self.runs)?;
-        Ok(d)
+        plain(py, d, json)
+    }
+
+    /// to_dataframe() -> pandas.DataFrame
+    ///
+    /// One row per frequency of each sweep: direction, freq_hz, then the point's fields in the
+    /// record's order (with ensemble=N the spread as {figure}_p10 / _median / _p90). Needs
+    /// pandas.
+    fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "response_frame", slf.as_any())
+    }
+
+    fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "repr_html", slf.as_any())
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        reduce(py, "Response", &serde_json::json!({"record": self.record, "runs": self.runs}))
     }
 
     fn __repr__(&self) -> String {
@@ -877,7 +1272,8 @@ impl PyResponse {
             .map_or(0, |s| s.get("points").and_then(Json::as_array).map_or(0, Vec::len));
         let runs = if self.runs > 1 { format!(", {} runs a frequency", self.runs) } else { String::new() };
         format!(
-            "Response(F0={} N, {} frequencies{}{runs})",
+            "Response({}, F0={} N: {} frequencies{}{runs})",
+            named(&self.record),
             short(self.force_n),
             points,
             if self.continuation { ", up and down" } else { "" }

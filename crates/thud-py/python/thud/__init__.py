@@ -1,0 +1,81 @@
+"""thud — design single-unit impact dampers from Python, on the engine of the `thud` app.
+
+pulse(**params) -> Pulse, simulate(**params) -> Run (an Ensemble with ensemble=N > 1),
+simulate_ensemble(runs, **params) -> Ensemble, sweep(masses_kg, gaps_m, **params) -> Chart,
+response(freqs_hz, **params) -> Response.
+
+Parameters are the command line's long flags as keywords (``--main-mass`` → ``main_mass=``):
+a plain number in SI units (angles in degrees, levels in dB, inclinations in cm/s), or a
+string with a unit ("40.5g", "4cm"). Bad input raises ``ParameterError`` (a ``ValueError``)
+naming the parameter. Every result pickles, has ``as_dict(json=True)`` and tables
+(``Run.impacts_frame()``, ``Chart.to_dataframe()``, ``Chart.to_xarray()`` with pandas /
+xarray installed). Long sweeps take ``progress=True`` (or a callable); Ctrl-C stops them.
+
+This package is a thin layer over the native module ``thud._thud``: the functions below have
+explicit keyword signatures (``inspect.signature``, ``help``) built at import from the engine's
+own parameter table, so they list exactly the keywords the engine accepts.
+"""
+
+from typing import Any as _Any
+from typing import Union as _Union
+
+from . import _thud
+from ._thud import (
+    Chart,
+    Ensemble,
+    ParameterError,
+    Pulse,
+    Response,
+    Run,
+    __version__,
+    axis,
+    presets,
+    ranges,
+)
+from ._wrap import document as _document
+from ._wrap import with_progress as _progress
+
+__all__ = [
+    "Chart",
+    "Ensemble",
+    "ParameterError",
+    "Pulse",
+    "Response",
+    "Run",
+    "axis",
+    "presets",
+    "pulse",
+    "ranges",
+    "response",
+    "simulate",
+    "simulate_ensemble",
+    "sweep",
+]
+
+
+def _restore(kind: str, state: str) -> _Any:
+    """A result again from its pickled state (what every result's ``__reduce__`` names)."""
+    return _thud._restore(kind, state)
+
+
+def pulse(**params: _Any) -> Pulse:
+    return _thud.pulse(**params)
+
+
+def simulate(**params: _Any) -> _Union[Run, Ensemble]:
+    return _thud.simulate(**params)
+
+
+def simulate_ensemble(runs: _Union[int, str], **params: _Any) -> Ensemble:
+    return _thud.simulate_ensemble(runs, **params)
+
+
+def sweep(masses_kg: _Any, gaps_m: _Any, **params: _Any) -> Chart:
+    return _thud.sweep(masses_kg, gaps_m, **_progress(params, "sweep"))
+
+
+def response(freqs_hz: _Any, **params: _Any) -> Response:
+    return _thud.response(freqs_hz, **_progress(params, "response"))
+
+
+_document(globals())

@@ -1,0 +1,518 @@
+"""thud — design single-unit impact dampers from Python, on the engine of the `thud` app.
+
+pulse(**params) -> Pulse, simulate(**params) -> Run (an Ensemble with ensemble=N > 1),
+simulate_ensemble(runs, **params) -> Ensemble, sweep(masses_kg, gaps_m, **params) -> Chart,
+response(freqs_hz, **params) -> Response. Every result pickles; tables with pandas/xarray.
+
+Parameters are the command line's long flags as keywords (``--main-mass`` → ``main_mass=``).
+A plain number is in SI units (kg, m, s, m/s, N/m, N·s/m, N/m^1.5, kg/m³, Pa·s/m) except angles
+(degrees), levels (dB) and inclinations (cm/s); a string may carry a unit: "40.5g", "19.05mm",
+"4cm", "250ms", "45deg". ``None`` means "not given". Every value is checked against the same
+range table as the command line (``thud.ranges()``); bad input raises ``ParameterError`` (a
+``ValueError``) with the command line's one-line message, the parameter spelled as typed.
+
+The GIL is released while the engine runs: Python threads run designs in parallel. Results are
+bit-for-bit those of ``thud pulse|simulate|sweep|response --json`` for the same design.
+"""
+
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+#: A number in the parameter's plain unit, or a string with a unit ("40.5g").
+Quantity = Union[float, str]
+#: A whole number (or its text, "1e4").
+Count = Union[int, str]
+Source = Literal["single", "dipole", "quadrupole"]
+QuadSigns = Literal["paper", "rigid"]
+PulseShape = Literal["half-sine", "hertz"]
+Solver = Literal["event", "newmark"]
+FloatArray = npt.NDArray[np.float64]
+#: progress=: True for a bar on stderr (tqdm if installed), or a callable progress(done, total).
+ProgressArg = Union[bool, Callable[[int, int], object], None]
+
+class ParameterError(ValueError):
+    """A parameter thud cannot accept: unknown, of the wrong type, NaN/inf, out of its range,
+    or a run whose work is over its cap. ``str(e)`` is one line naming the parameter, e.g.
+    "invalid main_mass: 1e308 kg is out of range; the main mass M must be 0.001 to 1e6 kg"."""
+
+    #: The parameter's name as typed (``main_mass``), or the option (``preset``, ``points``).
+    param: str
+
+class Pulse:
+    """One Hertzian impact heard at one observer: the inputs as used, the contact (Eqs 5–7),
+    the levels (dB re 20 µPa) and the waveform. The fields of ``thud pulse --json``."""
+
+    radius_m: float
+    """Sphere radius a (m)."""
+    mass_kg: float
+    """Sphere mass m (kg)."""
+    u0_m_s: float
+    """Impact speed U0 (m/s)."""
+    k_hz: float
+    """Hertz stiffness K_HZ (N/m^1.5)."""
+    r_m: float
+    """Observer distance r (m)."""
+    theta_deg: float
+    """Observer angle θ from the plate's normal (degrees)."""
+    source: Source
+    quad_signs: QuadSigns
+    pulse: PulseShape
+    rho_c_pa_s_m: float
+    """Air impedance ρ0·c (Pa·s/m)."""
+    c_m_s: float
+    """Speed of sound c (m/s)."""
+    alpha_max_m: float
+    """Peak approach α_max (m)."""
+    accel_max_m_s2: float
+    """Peak acceleration A_max (m/s²)."""
+    tau_s: float
+    """Contact duration τ (s)."""
+    force_max_n: float
+    """Peak contact force (N)."""
+    arrival_s: float
+    """Arrival of the direct wave (s after the contact starts)."""
+    spl_db: float
+    """SPL (dB): rms pressure over one contact duration from the direct arrival."""
+    spl_definition: str
+    spl_peak_db: float
+    """Peak level 20·log10(max|p|/20 µPa) (dB)."""
+    sel_db: float
+    """Sound exposure level (dB)."""
+    p_rms_pa: float
+    """rms pressure over the SPL window (Pa)."""
+    p_max_pa: float
+    """Largest pressure (Pa)."""
+    p_min_pa: float
+    """Smallest pressure (Pa)."""
+    extrema: Dict[str, FloatArray]
+    """Local extrema of the waveform: {"t_s": times (s), "p_pa": pressures (Pa)}."""
+    t_s: FloatArray
+    """Waveform times (s) from the contact's start."""
+    p_pa: FloatArray
+    """Waveform pressure (Pa)."""
+    def to_dataframe(self) -> Any:
+        """The waveform as a pandas.DataFrame: t_s (s), p_pa (Pa); the scalars in .attrs."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
+
+class Run:
+    """One damper design run through its impacts: the fields of ``thud simulate --json`` and
+    the time history. None = no such value (too few maxima for e, no impact for SPLmax)."""
+
+    design: Dict[str, object]
+    """The design as run (the JSON "design" object; SI units, angles in degrees)."""
+    ball_radius_m: float
+    """Ball radius (m)."""
+    n_impacts: int
+    inclination_cm_s: Optional[float]
+    """Damping inclination e of Eq 27 from the first two cycle maxima (cm/s)."""
+    inclination_fit_cm_s: Optional[float]
+    """Robust least-squares inclination e_fit (cm/s)."""
+    u0_max_m_s: float
+    """U0max: the largest contact speed by the design's rule (m/s)."""
+    zdot_abs_max_m_s: float
+    """Largest |z'| over the run including t = 0 (m/s)."""
+    spl_max_db: Optional[float]
+    """SPLmax: the SPL of an impact at U0max (dB)."""
+    contact_duration_s: Optional[float]
+    """Contact duration at U0max (s)."""
+    restitution_mean: Optional[float]
+    """Mean restitution u_out/u_in."""
+    zone: Optional[int]
+    """Zone 1 noisy & weak, 2 noisy & strong, 3 quiet & strong (the target), 4 quiet & weak."""
+    impacts: Dict[str, np.ndarray]
+    """Every impact, as arrays: t_s (s), wall (±1, int8), u_in_m_s, u_out_m_s (m/s),
+    restitution, t_end_s, duration_s (s), penetration_max_m (m), spl_db (dB)."""
+    maxima: Dict[str, FloatArray]
+    """Cycle maxima of the main mass: t_s (s), x_m (m)."""
+    energy: Dict[str, float]
+    """Energy ledger (J): initial_j, final_mechanical_j, dissipated_viscous_j, dissipated_contact_j."""
+    final_time_s: float
+    """Time reached (s)."""
+    truncated: bool
+    """Whether the solver's work cap stopped the run before its duration."""
+    truncation_reason: Optional[str]
+    steady: Optional[Dict[str, object]]
+    """The steady state of a forced run over its last ``periods`` forcing periods (the JSON
+    "steady" object): amplitude_m and amplitude_linear_m (m; without the ball, closed form),
+    reduction_db and leq_db (dB), impacts_per_period, periodic, settled, truncated, the
+    window (s). None without a force."""
+    history: Dict[str, FloatArray]
+    """Uniform time history: t_s (s), x_m (main mass, m), y_m (ball, m), x_free_m (no damper, m)."""
+    def impacts_frame(self) -> Any:
+        """Every impact as a row of a pandas.DataFrame, t_s first (units in the names)."""
+    def history_frame(self) -> Any:
+        """The time history as a pandas.DataFrame: t_s, x_m, y_m, x_free_m."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
+
+class Chart:
+    """The design chart of a sweep. Every metric is a 2-D array of shape
+    (len(gaps_m), len(masses_kg)): row = gap, column = mass. NaN = no such value (no impact,
+    so no SPLmax; too few maxima for e); zone 0 = no zone. The cells of ``thud sweep --json``."""
+
+    design: Dict[str, object]
+    masses_kg: FloatArray
+    """Impact masses, the columns (kg)."""
+    gaps_m: FloatArray
+    """Gaps, the rows (m)."""
+    n_impacts: npt.NDArray[np.int64]
+    inclination_cm_s: FloatArray
+    """e of Eq 27 (cm/s)."""
+    inclination_fit_cm_s: FloatArray
+    """e_fit (cm/s)."""
+    u0_max_m_s: FloatArray
+    """U0max (m/s)."""
+    zdot_abs_max_m_s: FloatArray
+    spl_max_db: FloatArray
+    """SPLmax (dB)."""
+    contact_duration_s: FloatArray
+    restitution_mean: FloatArray
+    zone: npt.NDArray[np.int8]
+    """Zone 1–4; 0 = none."""
+    thresholds: Dict[str, object]
+    """{"spl_db": L* (dB), "inclination_cm_s": e* (cm/s), "zone_by": "paper" | "fit"}."""
+    runs: int
+    """Runs per cell N (1: the single trajectory; with more the metrics are the medians)."""
+    zone3_probability: Optional[FloatArray]
+    """Fraction of each cell's runs in zone 3 (None without an ensemble)."""
+    agreement: Optional[FloatArray]
+    """Fraction of each cell's runs in the zone of its medians (None without an ensemble)."""
+    spread: Optional[Dict[str, Dict[str, FloatArray]]]
+    """{metric: {"p10", "median", "p90"}} of e, e_fit (cm/s), U0max (m/s), SPLmax (dB), each
+    2-D (None without an ensemble)."""
+    ensemble: Optional[Dict[str, np.ndarray]]
+    """Every run of every cell as 3-D arrays (gap, mass, run): ball_position_m (m), the metrics,
+    zone (int8, 0 = none) (None without an ensemble)."""
+    def to_dataframe(self) -> Any:
+        """A tidy pandas.DataFrame: one row per cell (gap_m, mass_kg, the metrics), or with an
+        ensemble one row per run of each cell (gap_m, mass_kg, run, its metrics, the cell's
+        median_* metrics, zone3_probability, agreement)."""
+    def to_xarray(self) -> Any:
+        """An xarray.Dataset on gap_m × mass_kg (× run with an ensemble), units in attrs."""
+    def table5(self, band_cm_s: float = 0.2, no_limit: bool = False) -> Dict[str, np.ndarray]:
+        """Table 5: the SPLmax spread per band of e of width band_cm_s (cm/s), as
+        ``thud sweep --band``: e_lo_cm_s, e_hi_cm_s (cm/s), count, spl_min_db, spl_max_db (dB)."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
+
+class Ensemble:
+    """One design from N ball offsets y0 = −d/2 + (k + ½)·d/N at rest (``simulate(ensemble=N)``):
+    the fields of ``thud simulate --ensemble N --json``."""
+
+    design: Dict[str, object]
+    ball_radius_m: float
+    """Ball radius (m)."""
+    runs: int
+    """Runs N."""
+    zone: Optional[int]
+    """The zone of the medians, 1–4."""
+    zone3_probability: float
+    """Fraction of the runs in zone 3."""
+    agreement: float
+    """Fraction of the runs in the zone of the medians."""
+    spread: Dict[str, Dict[str, Optional[float]]]
+    """{"inclination_cm_s" | "inclination_fit_cm_s" (cm/s) | "u0_max_m_s" (m/s) | "spl_max_db"
+    (dB): {"p10", "median", "p90"}}, by nearest rank (None: among runs without the value)."""
+    ensemble: Dict[str, np.ndarray]
+    """Every run in order of k: ball_position_m (m), n_impacts, u0_max_m_s, zdot_abs_max_m_s
+    (m/s), spl_max_db (dB), contact_duration_s (s), restitution_mean, inclination_cm_s,
+    inclination_fit_cm_s (cm/s), zone (int8, 0 = none)."""
+    truncated: bool
+    """Whether any run stopped at a solver work cap."""
+    truncation_reason: Optional[str]
+    def to_dataframe(self) -> Any:
+        """One row per run as a pandas.DataFrame: run, ball_position_m, the run's metrics."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
+
+class Response:
+    """The frequency response under the harmonic force: the fields of ``thud response --json``,
+    each sweep's points as arrays."""
+
+    design: Dict[str, object]
+    """The design at the first frequency."""
+    force_n: float
+    """Force amplitude F0 (N)."""
+    periods: int
+    """Forcing periods of each steady-state window."""
+    continuation: bool
+    runs: int
+    """Runs per frequency N (1: the single trajectory)."""
+    sweeps: List[Dict[str, Any]]
+    """One sweep from rest, or "up" then "down" with continuation. Each: "direction" and per
+    frequency arrays freq_hz (Hz), amplitude_m, amplitude_linear_m (m; NaN: unbounded),
+    reduction_db, leq_db (dB; NaN: no impact), impacts_per_period, periodic, settled,
+    truncated (bool), window_start_s, window_end_s, final_time_s (s). With ensemble=N:
+    freq_hz, amplitude_linear_m, periodic_fraction, settled_fraction, truncated, "spread"
+    {metric: {"p10", "median", "p90"}} and "ensemble" (every run, 2-D: frequency × run)."""
+    def to_dataframe(self) -> Any:
+        """One row per frequency of each sweep as a pandas.DataFrame: direction, freq_hz, …"""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
+    def _repr_html_(self) -> str: ...
+
+def pulse(
+    *,
+    preset: Optional[str] = None,
+    radius: Optional[Quantity] = None,
+    mass: Optional[Quantity] = None,
+    u0: Optional[Quantity] = None,
+    k_hz: Optional[Quantity] = None,
+    sphere: Optional[str] = None,
+    plate: Optional[str] = None,
+    main_mass: Optional[Quantity] = None,
+    r: Optional[Quantity] = None,
+    theta: Optional[Quantity] = None,
+    source: Optional[Source] = None,
+    quad_signs: Optional[QuadSigns] = None,
+    pulse: Optional[PulseShape] = None,
+    rho_c: Optional[Quantity] = None,
+    c: Optional[Quantity] = None,
+    points: Count = 2000,
+    no_limit: bool = False,
+) -> Pulse:
+    """The pressure pulse of one Hertzian impact at an observer (Eqs 1–24), as ``thud pulse``.
+
+    Defaults: the paper's Fig 2 impact — acrylic sphere a 19.05 mm, m 40.5 g, U0 1.4 m/s,
+    K_HZ 5.6e8 N/m^1.5 on a fixed plate, dipole at r 0.7 m, θ 45°; or those of ``preset``.
+
+    radius (m), mass (kg), u0 (m/s), k_hz (N/m^1.5); sphere/plate: materials (K_HZ from Eq 2);
+    main_mass (kg): a movable target (Eq 8); r (m), theta (degrees); rho_c (Pa·s/m), c (m/s);
+    points: waveform points; no_limit: lift the work cap.
+    """
+
+@overload
+def simulate(
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    samples: Count = 2001,
+    ensemble: Literal[1] = 1,
+    no_limit: bool = False,
+) -> Run:
+    """One impact-damper design through its impacts (Eqs 25–27), as ``thud simulate``.
+
+    preset: the starting design (default "default"; ``thud.presets()``), then: mass (kg),
+    gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m), k_hz (N/m^1.5),
+    sphere/plate (materials), no_tension, duration (s), solver, dt (s, Newmark), density
+    (kg/m³) or radius (m) of the ball, r (m), theta (degrees), source, quad_signs, pulse,
+    l_star (dB), e_star (cm/s); force (N) and freq (Hz): the harmonic force F0·cos(2π·f·t) on
+    the main mass; ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start;
+    periods: forcing periods of the steady-state window; settle: run on until it settles;
+    samples: time-history samples; ensemble: N runs from ball offsets spread over the
+    clearance (N > 1 returns an Ensemble; not with ball_position); no_limit: lift the work
+    caps. Ctrl-C stops the run (KeyboardInterrupt).
+    """
+
+@overload
+def simulate(
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    samples: Count = 2001,
+    ensemble: Count = 1,
+    no_limit: bool = False,
+) -> Union[Run, Ensemble]: ...
+def simulate_ensemble(
+    runs: Count,
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    no_limit: bool = False,
+) -> Ensemble:
+    """One design from ``runs`` ball offsets y0 = −d/2 + (k + ½)·d/N at rest: always an
+    Ensemble (even of one run), as ``simulate(ensemble=N)``; keywords as for ``simulate``."""
+
+def sweep(
+    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str],
+    gaps_m: Union[Sequence[Quantity], npt.ArrayLike, str],
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    ensemble: Count = 1,
+    progress: ProgressArg = None,
+    no_limit: bool = False,
+) -> Chart:
+    """The design chart: the design run for every impact mass × gap on all cores, as
+    ``thud sweep``. masses_kg (kg) and gaps_m (m): sequences, or "FROM:TO:N" text as on the
+    command line ("30g:100g:20" — N evenly spaced values, the command line's very numbers).
+    Keywords as for ``simulate``; ensemble: N runs a cell (the metrics are then the medians,
+    with zone3_probability, agreement, spread and every run). Ctrl-C stops the sweep.
+    """
+
+def response(
+    freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str],
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    continuation: bool = False,
+    ensemble: Count = 1,
+    progress: ProgressArg = None,
+    no_limit: bool = False,
+) -> Response:
+    """The frequency response under the harmonic force F0·cos(2π·f·t) on the main mass, as
+    ``thud response``: per frequency the steady amplitude with the damper beside the closed
+    form without it (m), the cut (dB), impacts per period and Leq (dB re 20 µPa), settled.
+    freqs_hz (Hz): a sequence, or "FROM:TO:N" text ("3Hz:8Hz:101"). force (N) is needed; each
+    frequency starts from rest unless v0, ball_position or ball_velocity is given;
+    continuation: each from the previous final state, up then down; ensemble: N runs a
+    frequency (p10/median/p90 of each figure). Ctrl-C stops the response.
+    """
+
+def axis(name: Literal["masses", "gaps"], spec: str) -> FloatArray:
+    """The values of a sweep axis "FROM:TO:N" exactly as the command line computes them:
+    axis("masses", "30g:100g:20") (kg), axis("gaps", "2cm:5cm:20") (m)."""
+
+def presets() -> Dict[str, str]:
+    """The named starting designs (``preset=``) with their one-line descriptions."""
+
+def ranges() -> List[Dict[str, object]]:
+    """The valid range of every numeric parameter (``thud limits``): dicts with param (the
+    keyword), what, min, max, unit (of a plain number) and reason."""
