@@ -321,7 +321,10 @@ fn at_80x24_pulse_and_polar_show_first_and_the_marker_shows_the_readouts_zone_at
     let s = t.wait_for("mass 45.00 g", |s| s.contains("m 45.00 g") && settled(s));
     let zone = readout_zone(&s).unwrap();
     assert!(marker_zones(&s).iter().all(|z| *z == zone), "{s}");
+    // The design changed and is not saved: q asks once, y quits.
     t.keys(&["q"]);
+    t.wait_for("the quit question", |s| s.contains("quit without saving? y/n"));
+    t.keys(&["y"]);
     assert_eq!(t.wait_file("status").trim(), "0");
 }
 
@@ -346,5 +349,7 @@ fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
     t.keys(&["Right"]);
     t.wait_for("a step of the mass", |s| s.lines().next().unwrap_or("") != before);
     t.keys(&["q"]);
+    t.wait_for("the quit question", |s| s.contains("quit without saving? y/n"));
+    t.keys(&["y"]);
     assert_eq!(t.wait_file("status").trim(), "0");
 }

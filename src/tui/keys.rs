@@ -92,9 +92,8 @@ const fn bind(
 /// Enter/Esc/arrows as described in the help text of `Enter` and `P`. A `[keys]` override in
 /// `config.toml` replaces the first key of the named action (see [`Keymap::with_overrides`]).
 pub const KEYS: &[Binding] = &[
-    bind(KeyCode::Char('q'), NONE, Action::Quit, "quit", "q", "quit", "quit"),
-    bind(KeyCode::Esc, NONE, Action::Quit, "quit", "Esc", "quit (or close a popup / cancel the input line)", ""),
-    bind(KeyCode::Char('c'), CTRL, Action::Quit, "quit", "Ctrl-C", "quit", ""),
+    bind(KeyCode::Char('q'), NONE, Action::Quit, "quit", "q", "quit (asks first if the design is not saved)", "quit"),
+    bind(KeyCode::Char('c'), CTRL, Action::Quit, "quit", "Ctrl-C", "quit at once", ""),
     bind(KeyCode::Char('?'), NONE, Action::Help, "help", "?", "help: keys, then (→) what the numbers mean", "help"),
     bind(
         KeyCode::Char('T'),
@@ -522,9 +521,10 @@ mod tests {
 
     #[test]
     fn quit_keys() {
-        for (c, m) in [(KeyCode::Char('q'), NONE), (KeyCode::Esc, NONE), (KeyCode::Char('c'), CTRL)] {
+        for (c, m) in [(KeyCode::Char('q'), NONE), (KeyCode::Char('c'), CTRL)] {
             assert_eq!(action_for(&key(c, m)), Some(Action::Quit));
         }
+        assert_eq!(action_for(&key(KeyCode::Esc, NONE)), None, "Esc never quits the main view");
         assert_eq!(action_for(&key(KeyCode::Char('c'), NONE)), None);
     }
 

@@ -68,6 +68,7 @@ impl App {
         match store::save_design(&dir, name, &file, overwrite) {
             Ok(path) => {
                 self.preset = name.to_string();
+                self.mark_unmodified();
                 self.set_status(&format!("saved {name} to {}", path.display()), false);
             }
             Err(e) => {
@@ -86,6 +87,7 @@ impl App {
             Ok(list) => {
                 let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
                 self.saved = list;
+                self.load_error = None;
                 self.mode = Mode::Saved(i);
             }
             Err(e) => {
@@ -95,6 +97,7 @@ impl App {
     }
 
     /// Loads row `i` of the saved-designs list (the good designs, then the problem files).
+    /// A failure keeps the list open on that row with the whole error under it.
     pub(crate) fn load_saved(&mut self, i: usize) -> Vec<Request> {
         if let Some(entry) = self.saved.designs.get(i) {
             let name = entry.name.clone();
@@ -103,16 +106,25 @@ impl App {
                 Ok(file) => {
                     let reqs = self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"));
                     self.preset.clone_from(&name);
+                    self.mark_unmodified();
                     reqs
                 }
-                Err(e) => self.error(format_args!("cannot load {name}: {e}")),
+                Err(e) => self.load_failed(i, format!("cannot load {name}: {e}")),
             };
         }
         let problem = i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j));
         match problem.map(ToString::to_string) {
-            Some(p) => self.error(format_args!("cannot load {p}")),
+            Some(p) => self.load_failed(i, format!("cannot load {p}")),
             None => vec![],
         }
+    }
+
+    /// A load of row `i` failed with `why`: the list stays open on it and shows `why` whole.
+    fn load_failed(&mut self, i: usize, why: String) -> Vec<Request> {
+        self.mode = Mode::Saved(i);
+        self.error(&why);
+        self.load_error = Some(why);
+        vec![]
     }
 
     /// Asks the worker to write an export of `kind` into the export directory, under its

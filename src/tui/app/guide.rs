@@ -46,6 +46,7 @@ impl App {
         self.mode = Mode::Normal;
         let mut reqs = self.apply_setup(Setup { design: d, runs: step.runs }, Scope::All, String::new());
         self.preset.clone_from(&step.preset);
+        self.mark_unmodified();
         self.set_status(&format!("tour {}/{n}: {} — → next, ← back, Esc explores from here", i + 1, step.title), false);
         self.pending_best = step.best;
         if step.best && !self.chart_busy() {
