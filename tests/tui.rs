@@ -1508,3 +1508,102 @@ fn the_readout_shows_the_clis_json_numbers() {
         assert!(row(&screen, label).contains(&format!(" {want} ")), "{label}: {want} in\n{screen}");
     }
 }
+
+/// Braille cells (plotted points) on a screen.
+fn braille(screen: &str) -> usize {
+    screen.chars().filter(|c| ('\u{2801}'..='\u{28ff}').contains(c)).count()
+}
+
+/// The title words of each panel, as drawn at 80 columns.
+fn panel_title(p: thud::tui::app::Panel) -> &'static str {
+    use thud::tui::app::Panel;
+    match p {
+        Panel::Waveform => "p(t)",
+        Panel::Polar => "SPL(θ)",
+        Panel::History => "x(t)",
+        Panel::Chart => "m (g)",
+        Panel::Params => "parameters",
+        Panel::Readout => "readout",
+    }
+}
+
+#[test]
+fn every_tour_step_at_80x24_shows_its_named_panel_with_its_plot() {
+    use thud::tui::app::Panel;
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    let n = app.tour.as_ref().unwrap().tour.steps.len();
+    for i in 0..n {
+        let step = app.tour.as_ref().unwrap().tour.steps[i].clone();
+        let screen = render(&mut app, 80, 24);
+        insta::assert_snapshot!(format!("tour_zoomed_step{}_80x24", i + 1), screen);
+        assert!(!screen.contains("too small"), "step {} at 80x24:\n{screen}", i + 1);
+        let marked = screen.lines().find(|l| l.contains("▶ ")).expect("the step's panel is marked");
+        assert!(marked.contains(panel_title(step.panel)) || step.panel == Panel::Chart, "step {}:\n{screen}", i + 1);
+        match step.panel {
+            Panel::Chart => {
+                assert!(screen.contains(panel_title(Panel::Chart)) && screen.contains("d (cm)"), "{screen}");
+            }
+            // A plot: plotted cells, not a message.
+            _ => assert!(braille(&screen) > 15, "step {} plot:\n{screen}", i + 1),
+        }
+        if i == 0 {
+            // One impact on a plate: no damper run's zone or e beside it.
+            assert!(!screen.contains("zone ") && !screen.contains("(!)"), "{screen}");
+        }
+        press(&mut app, KeyCode::Right);
+    }
+}
+
+#[test]
+fn the_tour_caption_keys_do_what_the_caption_says() {
+    use thud::tui::fields::Knob;
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    press(&mut app, KeyCode::Right);
+    let step = app.tour.as_ref().unwrap().step;
+    let caption = app.tour.as_ref().unwrap().tour.steps[step].caption.clone();
+    assert!(caption.contains("Select θ") && caption.contains("↑↓") && caption.contains('+'), "{caption}");
+    assert!(!caption.contains("←→"), "← and → move the tour, not θ: {caption}");
+    // As written: ↑↓ until θ is selected (the status line names it), then + walks θ.
+    for _ in 0..Knob::ALL.len() {
+        if app.param() == Knob::ALL.iter().copied().find(|k| k.label().starts_with('θ')).unwrap() {
+            break;
+        }
+        press(&mut app, KeyCode::Down);
+    }
+    assert!(app.param().label().starts_with('θ'));
+    let s = render(&mut app, 80, 24);
+    assert!(s.lines().last().unwrap().contains('θ'), "the status line names θ (no footer in the tour):\n{s}");
+    let theta = app.design.observer.theta_rad;
+    press(&mut app, KeyCode::Char('+'));
+    assert!(app.design.observer.theta_rad > theta, "+ walks the listener");
+    assert_eq!(app.tour.as_ref().unwrap().step, step, "still on the same step");
+    press(&mut app, KeyCode::Char('-'));
+    assert!((app.design.observer.theta_rad - theta).abs() < 1e-12);
+}
+
+#[test]
+fn z_zooms_the_focused_panel_to_the_whole_screen_and_back() {
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    let before = render(&mut app, 80, 24);
+    assert!(before.contains("x(t)") && before.contains("m (g)"), "history and chart side by side:\n{before}");
+    press(&mut app, KeyCode::Char('z'));
+    let zoomed = render(&mut app, 80, 24);
+    assert!(zoomed.contains("x(t) of the main mass near its peaks"), "the long title fits:\n{zoomed}");
+    assert!(!zoomed.contains("m (g)") && !zoomed.contains("parameters"), "only the history:\n{zoomed}");
+    assert!(braille(&zoomed) > braille(&before) / 2, "{zoomed}");
+    assert!(zoomed.lines().next().unwrap().contains("zoom: history"));
+    // Tab moves the zoom to the next panel; z goes back to all panels.
+    press(&mut app, KeyCode::Tab);
+    let chart = render(&mut app, 80, 24);
+    assert!(chart.contains("m (g)") && !chart.contains("x(t)"), "{chart}");
+    press(&mut app, KeyCode::Char('z'));
+    assert_eq!(render(&mut app, 80, 24).lines().filter(|l| l.contains("x(t)")).count(), 1);
+    // The key table has it, so help and footer show it.
+    assert!(render(&mut app, 80, 24).lines().last().unwrap().contains("z zoom"));
+    assert!(KEYS.iter().any(|b| b.label == "z" && b.help.contains("fills the screen")));
+}

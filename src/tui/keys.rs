@@ -47,6 +47,8 @@ pub enum Action {
     PulseView,
     /// The chart panel: the frequency response of the forced design (f marked) / the zones.
     ResponseView,
+    /// The focused panel fills the screen, and back (the tour starts zoomed).
+    Zoom,
     /// Tour: the next step (after the last: leave the tour).
     TourNext,
     /// Tour: the previous step.
@@ -175,6 +177,15 @@ pub const KEYS: &[Binding] = &[
         "type",
     ),
     bind(KeyCode::Tab, NONE, Action::FocusNext, "next-panel", "Tab", "focus the next panel", "focus"),
+    bind(
+        KeyCode::Char('z'),
+        NONE,
+        Action::Zoom,
+        "zoom",
+        "z",
+        "zoom: the focused panel fills the screen (Tab: the next one), z again: all panels",
+        "zoom",
+    ),
     bind(KeyCode::BackTab, SHIFT, Action::FocusPrev, "prev-panel", "Shift-Tab", "focus the previous panel", ""),
     bind(
         KeyCode::Char('P'),
@@ -195,15 +206,7 @@ pub const KEYS: &[Binding] = &[
         "pin",
     ),
     bind(KeyCode::Char('u'), NONE, Action::Undo, "undo", "u", "undo the last change", "undo"),
-    bind(
-        KeyCode::Char('v'),
-        NONE,
-        Action::ToggleChartView,
-        "view",
-        "v",
-        "chart: zones (mass × gap) / e vs SPLmax",
-        "view",
-    ),
+    bind(KeyCode::Char('v'), NONE, Action::ToggleChartView, "view", "v", "chart: zones (mass × gap) / e vs SPLmax", ""),
     bind(
         KeyCode::Char('s'),
         NONE,

@@ -122,6 +122,9 @@ pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
 /// Lays out the body by size class.
 fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     let params_h = PARAMS_ROWS.min(Knob::ALL.len() as u16) + 2;
+    if app.zoom && body.width >= 30 && body.height >= 6 {
+        return zoomed(f, app, body);
+    }
     if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
@@ -169,6 +172,19 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
         readout_widget(f, app, readout, false);
         Drawn::default()
     }
+}
+
+/// The zoomed panel alone in the whole body.
+fn zoomed(f: &mut Frame, app: &App, body: Rect) -> Drawn {
+    match app.zoomed_panel() {
+        Panel::Params => params_widget(f, app, body),
+        Panel::Readout => readout_widget(f, app, body, false),
+        Panel::Chart => return Drawn { geometry: plot(f, app, Panel::Chart, body), chart_shown: true },
+        which => {
+            plot(f, app, which, body);
+        }
+    }
+    Drawn::default()
 }
 
 /// A panel's block: the tour's panel with a heavy border and a pointer, the focused one
@@ -647,7 +663,9 @@ fn header_line(app: &App) -> Paragraph<'static> {
     if app.pulse == PulseView::Single {
         spans.push(Span::raw(format!("{bar} pulse: one impact ")));
     }
-    if app.focus != Panel::Params {
+    if app.zoom {
+        spans.push(Span::raw(format!("{bar} zoom: {:?} ", app.zoomed_panel()).to_lowercase()));
+    } else if app.focus != Panel::Params {
         spans.push(Span::raw(format!("{bar} focus: {:?} ", app.focus).to_lowercase()));
     }
     Paragraph::new(Line::from(spans))
@@ -740,9 +758,9 @@ fn caption_box(f: &mut Frame, app: &App, area: Rect) {
     let n = state.tour.steps.len();
     let title = th.text(&format!(" tour {}/{n}: {} ", state.step + 1, step.title)).into_owned();
     let keys = if state.step + 1 < n {
-        " → next  ← back  Esc explore from here "
+        " → next  ← back  z all panels  Esc explore from here "
     } else {
-        " → finish  ← back  Esc explore "
+        " → finish  ← back  z all panels  Esc explore "
     };
     let block = th
         .block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true)

@@ -155,6 +155,7 @@ impl App {
         match a {
             Action::Quit => self.quit_or_ask(),
             Action::Help => self.mode = Mode::Help(0),
+            Action::Zoom => self.zoom = !self.zoom,
             Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
             // The response curve focused: ←→ move the forcing frequency (the marker), ↑↓ select.
             Action::Decrease { fine } | Action::Increase { fine }

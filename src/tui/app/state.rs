@@ -291,6 +291,8 @@ pub struct App {
     /// The selected parameter (index into [`Knob::ALL`]).
     pub selected: usize,
     pub focus: Panel,
+    /// The focused panel fills the body (the `z` key; the tour turns it on).
+    pub zoom: bool,
     pub mode: Mode,
     pub(crate) chart_view: ChartView,
     /// Which impact the pulse panel shows.
@@ -350,6 +352,7 @@ impl App {
             response: ResponseCurve::default(),
             selected: 0,
             focus: Panel::Params,
+            zoom: false,
             mode: Mode::Normal,
             chart_view: ChartView::Zones,
             pulse: PulseView::for_preset(preset),
@@ -413,6 +416,15 @@ impl App {
     /// True if the live design (or N) differs from the one last loaded or saved.
     pub fn modified(&self) -> bool {
         self.design != self.origin.0 || self.runs != self.origin.1
+    }
+
+    /// The panel that fills the body while zoomed: the focused one (the readout when a tour
+    /// step points at it).
+    pub fn zoomed_panel(&self) -> Panel {
+        match self.tour_panel() {
+            Some(Panel::Readout) if self.focus == Panel::Params => Panel::Readout,
+            _ => self.focus,
+        }
     }
 
     /// The panel the running tour's step talks about.
