@@ -1607,3 +1607,40 @@ fn z_zooms_the_focused_panel_to_the_whole_screen_and_back() {
     assert!(render(&mut app, 80, 24).lines().last().unwrap().contains("z zoom"));
     assert!(KEYS.iter().any(|b| b.label == "z" && b.help.contains("fills the screen")));
 }
+
+#[test]
+fn input_lines_start_with_the_current_value_selected_and_typing_replaces_it() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Editing("40.50 g".into()), "the line opens on the value shown");
+    let (screen, buf) = render_with(&mut app, 80, 24);
+    let y = screen.lines().count() - 2;
+    let line: String = (0..80).map(|x| buf[(x, y as u16)].symbol().to_string()).collect();
+    let x = line.find("40.50 g").unwrap();
+    let x = u16::try_from(line[..x].chars().count()).unwrap();
+    assert!(buf[(x, y as u16)].modifier.contains(ratatui::style::Modifier::REVERSED), "shown selected");
+    // Enter on it: nothing changes (the shown value is rounded).
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.0405).abs() < 1e-15);
+    assert!(!app.modified(), "no change was made");
+    // Typing replaces the selection.
+    press(&mut app, KeyCode::Enter);
+    type_text(&mut app, "45");
+    assert_eq!(app.mode, Mode::Editing("45".into()));
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.045).abs() < 1e-12);
+    // An arrow keeps the text to edit; Ctrl-U clears it.
+    press(&mut app, KeyCode::Enter);
+    press(&mut app, KeyCode::End);
+    type_text(&mut app, "0");
+    assert_eq!(app.mode, Mode::Editing("45.00 g0".into()));
+    press_mod(&mut app, KeyCode::Char('u'), KeyModifiers::CONTROL);
+    assert_eq!(app.mode, Mode::Editing(String::new()));
+    press(&mut app, KeyCode::Esc);
+    // The save line too: the offered name is selected, typing replaces it.
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.mode, Mode::SaveAs("design-1".into()));
+    assert!(app.line_selected);
+    type_text(&mut app, "mine");
+    assert_eq!(app.mode, Mode::SaveAs("mine".into()));
+}

@@ -671,6 +671,15 @@ fn header_line(app: &App) -> Paragraph<'static> {
     Paragraph::new(Line::from(spans))
 }
 
+/// The input line's text: reversed while selected (typing replaces it).
+fn typed(app: &App) -> Style {
+    if app.line_selected {
+        Style::default().add_modifier(Modifier::REVERSED)
+    } else {
+        Style::default()
+    }
+}
+
 fn status_line(app: &App) -> Paragraph<'static> {
     let th = &app.theme;
     let cursor = th.sym("█", "_");
@@ -679,7 +688,8 @@ fn status_line(app: &App) -> Paragraph<'static> {
         let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
         return Paragraph::new(Line::from(vec![
             Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
-            Span::raw(format!("{buf}{cursor}")),
+            Span::styled(buf.clone(), typed(app)),
+            Span::raw(cursor),
             Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), dim),
         ]));
     }
@@ -699,18 +709,19 @@ fn status_line(app: &App) -> Paragraph<'static> {
         let f = app.param();
         let hint = match (f.display_unit(), f.display_range(&app.design)) {
             (Some((unit, _)), Some((lo, hi))) => format!(
-                "  (plain number: {unit}, {}–{}; or with a unit; Enter accepts, Esc cancels)",
+                "  (plain number: {unit}, {}–{}; or with a unit; Enter accepts, Esc cancels, Ctrl-U clears)",
                 crate::limits::short(lo),
                 crate::limits::short(hi)
             ),
-            _ => "  (Enter accepts, Esc cancels)".to_string(),
+            _ => "  (Enter accepts, Esc cancels, Ctrl-U clears)".to_string(),
         };
         return Paragraph::new(Line::from(vec![
             Span::styled(
                 th.text(&format!(" {} = ", f.label())).into_owned(),
                 Style::default().add_modifier(Modifier::BOLD),
             ),
-            Span::raw(format!("{buf}{cursor}")),
+            Span::styled(th.text(buf).into_owned(), typed(app)),
+            Span::raw(cursor),
             Span::styled(th.text(&hint).into_owned(), dim),
         ]));
     }

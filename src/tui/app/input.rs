@@ -19,16 +19,24 @@ enum Line {
     Submit(String),
 }
 
-/// Esc, Enter, Backspace and typing (at most `max` characters) in an input line.
-fn line_key(k: KeyEvent, mut buf: String, max: usize) -> Line {
+/// Esc, Enter, Backspace, Ctrl-U and typing (at most `max` characters) in an input line.
+/// While the line's text is `selected` (just opened with the current value), typing replaces
+/// it and Backspace/Delete clear it; an arrow, Home or End keeps it to edit.
+fn line_key(k: KeyEvent, mut buf: String, max: usize, selected: bool) -> Line {
+    let ctrl = k.modifiers.contains(KeyModifiers::CONTROL);
     match k.code {
         KeyCode::Esc => Line::Cancel,
         KeyCode::Enter => Line::Submit(buf),
+        KeyCode::Char('u') if ctrl => Line::Typing(String::new()),
+        KeyCode::Backspace | KeyCode::Delete if selected => Line::Typing(String::new()),
         KeyCode::Backspace => {
             buf.pop();
             Line::Typing(buf)
         }
-        KeyCode::Char(c) if !k.modifiers.contains(KeyModifiers::CONTROL) => {
+        KeyCode::Char(c) if !ctrl => {
+            if selected {
+                buf.clear();
+            }
             if buf.chars().count() < max {
                 buf.push(c);
             }
@@ -179,7 +187,10 @@ impl App {
             }
             Action::Decrease { fine } => return self.step(false, fine),
             Action::Increase { fine } => return self.step(true, fine),
-            Action::Edit => self.mode = Mode::Editing(String::new()),
+            Action::Edit => {
+                self.mode = Mode::Editing(self.param().display(&self.setup()));
+                self.line_selected = true;
+            }
             Action::Presets => {
                 let i = self.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
                 self.mode = Mode::Presets(i);
@@ -187,7 +198,10 @@ impl App {
             Action::Pin => self.toggle_pin(),
             Action::Undo => return self.undo(),
             Action::ToggleChartView => self.toggle_chart_view(),
-            Action::Save => self.mode = Mode::SaveAs(self.suggested_name()),
+            Action::Save => {
+                self.mode = Mode::SaveAs(self.suggested_name());
+                self.line_selected = true;
+            }
             Action::Load => self.open_saved(),
             Action::Export => self.mode = Mode::Export(0),
             Action::Tour => return self.start_tour(),
@@ -215,7 +229,8 @@ impl App {
 
     /// A key in the value line of the selected field.
     fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        match line_key(k, buf, VALUE_MAX) {
+        let selected = std::mem::take(&mut self.line_selected);
+        match line_key(k, buf, VALUE_MAX, selected) {
             Line::Typing(buf) => self.mode = Mode::Editing(buf),
             Line::Cancel => {
                 self.mode = Mode::Normal;
@@ -223,6 +238,11 @@ impl App {
             }
             Line::Submit(buf) => {
                 self.mode = Mode::Normal;
+                // The value as shown, accepted: no change (it is rounded for display).
+                if buf == self.param().display(&self.setup()) {
+                    self.set_status(&format!("{} unchanged", self.param().label()), false);
+                    return vec![];
+                }
                 return self.submit_text(&buf);
             }
         }
@@ -231,7 +251,8 @@ impl App {
 
     /// A key in the save line (the name to save under).
     fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        match line_key(k, buf, NAME_MAX) {
+        let selected = std::mem::take(&mut self.line_selected);
+        match line_key(k, buf, NAME_MAX, selected) {
             Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
             Line::Cancel => {
                 self.mode = Mode::Normal;

@@ -291,6 +291,9 @@ pub struct App {
     /// The selected parameter (index into [`Knob::ALL`]).
     pub selected: usize,
     pub focus: Panel,
+    /// The input line's text is selected (just opened with the current value or name):
+    /// typing replaces it.
+    pub line_selected: bool,
     /// The focused panel fills the body (the `z` key; the tour turns it on).
     pub zoom: bool,
     pub mode: Mode,
@@ -353,6 +356,7 @@ impl App {
             selected: 0,
             focus: Panel::Params,
             zoom: false,
+            line_selected: false,
             mode: Mode::Normal,
             chart_view: ChartView::Zones,
             pulse: PulseView::for_preset(preset),
