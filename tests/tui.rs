@@ -1644,3 +1644,37 @@ fn input_lines_start_with_the_current_value_selected_and_typing_replaces_it() {
     type_text(&mut app, "mine");
     assert_eq!(app.mode, Mode::SaveAs("mine".into()));
 }
+
+#[test]
+fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
+    use thud::tui::fields::Knob;
+    let data = tempfile::tempdir().unwrap();
+    let mut app = ensemble_app(4, Palette::default());
+    app.data_dir = Some(data.path().to_path_buf());
+    set_field(&mut app, Knob::Force, "1");
+    set_field(&mut app, Knob::Freq, "5.45");
+    set_field(&mut app, Knob::Theta, "51");
+    let (design, runs) = (app.design.clone(), app.runs);
+    assert!(design.damper.forced() && runs == 4);
+    app.save_as("forced-ensemble");
+    // Change everything back, then load it.
+    set_field(&mut app, Knob::Runs, "1");
+    set_field(&mut app, Knob::Force, "0");
+    set_field(&mut app, Knob::Theta, "30");
+    press(&mut app, KeyCode::Char('L'));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.design, design, "every field of the design");
+    assert_eq!(app.runs, 4, "the ensemble N");
+    assert!(!app.modified(), "just loaded: not modified");
+    // A file with an N the field refuses is a load error, nothing applied.
+    let path = data.path().join("designs").join("forced-ensemble.toml");
+    let text = std::fs::read_to_string(&path).unwrap().replace("ensemble = 4", "ensemble = 0");
+    assert!(text.contains("ensemble = 0"), "{text}");
+    std::fs::write(&path, text).unwrap();
+    set_field(&mut app, Knob::Runs, "1");
+    press(&mut app, KeyCode::Char('L'));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Saved(0));
+    assert!(app.status().unwrap().text.contains("ensemble N 0"), "{:?}", app.status());
+    assert_eq!(app.runs, 1);
+}

@@ -7,7 +7,7 @@ use std::path::Path;
 use super::state::{App, Mode};
 use crate::export::{wav::WavOptions, Artifact, ExportOptions};
 use crate::store::{self, DesignFile};
-use crate::tui::fields::Scope;
+use crate::tui::fields::{Knob, Scope, Setup};
 use crate::tui::files::{export_name, unique_path};
 use crate::tui::worker::{ExportJob, Request, WorkError};
 use crate::units::sig;
@@ -64,7 +64,8 @@ impl App {
             sig(p.gap_m * 1e2, 3),
             self.preset
         );
-        let file = DesignFile { description, design: self.design.clone() };
+        let ensemble = (self.runs > 1).then_some(self.runs);
+        let file = DesignFile { description, ensemble, design: self.design.clone() };
         match store::save_design(&dir, name, &file, overwrite) {
             Ok(path) => {
                 self.preset = name.to_string();
@@ -104,7 +105,15 @@ impl App {
             let Some(dir) = self.data_dir.clone() else { return vec![] };
             return match store::load_design(&dir, &name) {
                 Ok(file) => {
-                    let reqs = self.apply(file.design, Scope::All, format!("loaded {name} (u undoes)"));
+                    // N goes through the field's own check (its range and the work caps).
+                    let mut setup = Setup { design: file.design, runs: 1 };
+                    if let Some(n) = file.ensemble {
+                        match Knob::Runs.parsed(&setup, &n.to_string()) {
+                            Ok(s) => setup = s,
+                            Err(e) => return self.load_failed(i, format!("cannot load {name}: ensemble N {n}: {e}")),
+                        }
+                    }
+                    let reqs = self.apply_setup(setup, Scope::All, format!("loaded {name} (u undoes)"));
                     self.preset.clone_from(&name);
                     self.mark_unmodified();
                     reqs
