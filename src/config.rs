@@ -250,6 +250,8 @@ pub struct ThresholdDefaults {
 pub struct Config {
     pub theme: Theme,
     pub markers: MarkerStyle,
+    /// A table only: `thresholds = [1, 2]` is refused, not read by position.
+    #[serde(deserialize_with = "table_only")]
     pub thresholds: ThresholdDefaults,
     /// Key overrides: action name → key (e.g. `save = "ctrl-s"`).
     pub keys: BTreeMap<ActionName, KeyBinding>,
@@ -300,6 +302,121 @@ impl Config {
     }
 }
 
+/// Deserializes `T` from a TOML table only; serde's derived structs also accept an array read
+/// by position, which would take `thresholds = [1, 2]` silently.
+fn table_only<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Result<T, D::Error> {
+    struct Table<T>(std::marker::PhantomData<T>);
+    impl<'de, T: Deserialize<'de>> serde::de::Visitor<'de> for Table<T> {
+        type Value = T;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("a table")
+        }
+        fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<T, A::Error> {
+            T::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+        }
+    }
+    d.deserialize_map(Table(std::marker::PhantomData))
+}
+
+/// The top-level keys of `config.toml`.
+const KEYS: [&str; 4] = ["theme", "markers", "thresholds", "keys"];
+
+/// Every problem of the config `text` read from `path`, in the order they appear: TOML syntax,
+/// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
+/// name no key or bind one key twice. Each has its line and column.
+pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
+    use serde::de::IntoDeserializer;
+    use toml::de::{DeTable, DeValue};
+    type Value<'i> = toml::Spanned<DeValue<'i>>;
+    let at = |span: std::ops::Range<usize>, message: String| {
+        let (line, column) = store::line_column(text, span.start);
+        (span.start, FileProblem { path: path.to_path_buf(), line: Some(line), column: Some(column), message })
+    };
+    let (table, errors) = DeTable::parse_recoverable(text);
+    let mut found: Vec<(usize, FileProblem)> =
+        errors.iter().map(|e| at(e.span().unwrap_or(0..0), e.message().trim().to_string())).collect();
+    let field = |value: &Value<'_>, check: &mut dyn FnMut(Value<'_>) -> Result<(), toml::de::Error>| {
+        check(value.clone()).err().map(|e| at(e.span().unwrap_or(value.span()), e.message().trim().to_string()))
+    };
+    for (key, value) in table.get_ref() {
+        let problem = match key.get_ref().as_ref() {
+            "theme" => field(value, &mut |v| Theme::deserialize(v.into_deserializer()).map(drop)),
+            "markers" => field(value, &mut |v| MarkerStyle::deserialize(v.into_deserializer()).map(drop)),
+            "thresholds" => {
+                let shape = field(value, &mut |v| table_only::<_, ThresholdDefaults>(v.into_deserializer()).map(drop));
+                if shape.is_none() {
+                    found.extend(threshold_problems(value, &at));
+                }
+                shape
+            }
+            "keys" => {
+                found.extend(key_problems(value, &at));
+                None
+            }
+            other => Some(at(key.span(), format!("unknown key '{other}'; the settings are {}", KEYS.join(", ")))),
+        };
+        found.extend(problem);
+    }
+    found.sort_by_key(|(offset, _)| *offset);
+    found.into_iter().map(|(_, p)| p).collect()
+}
+
+/// Thresholds outside their ranges (the table parsed), each at its value.
+fn threshold_problems(
+    value: &toml::Spanned<toml::de::DeValue<'_>>,
+    at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
+) -> Vec<(usize, FileProblem)> {
+    use crate::limits::{E_STAR, L_STAR};
+    let Some(table) = value.get_ref().as_table() else { return vec![] };
+    let mut found = Vec::new();
+    for (name, range) in [("l_star_db", L_STAR), ("e_star_cm_s", E_STAR)] {
+        let Some(v) = table.get(name) else { continue };
+        let x = v
+            .get_ref()
+            .as_float()
+            .and_then(|f| f.as_str().parse::<f64>().ok())
+            .or_else(|| v.get_ref().as_integer().and_then(|i| i.as_str().replace('_', "").parse::<f64>().ok()));
+        if let Some(Err(e)) = x.map(|x| range.check_as(name, x)) {
+            found.push(at(v.span(), e.to_string()));
+        }
+    }
+    found
+}
+
+/// Entries of `[keys]` that are not an action name or a key, or bind a key already bound.
+fn key_problems(
+    value: &toml::Spanned<toml::de::DeValue<'_>>,
+    at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
+) -> Vec<(usize, FileProblem)> {
+    let Some(table) = value.get_ref().as_table() else {
+        return vec![at(value.span(), "invalid type: expected a table of action = \"key\"".into())];
+    };
+    let mut found = Vec::new();
+    let mut seen: Vec<(KeySpec, String)> = Vec::new();
+    // In file order, so a key bound twice is reported where it is bound the second time.
+    let mut entries: Vec<_> = table.iter().collect();
+    entries.sort_by_key(|(action, _)| action.span().start);
+    for (action, key) in entries {
+        let action_name = action.get_ref().as_ref();
+        if let Err(e) = ActionName::new(action_name) {
+            found.push(at(action.span(), e.to_string()));
+        }
+        let Some(text) = key.get_ref().as_str() else {
+            found.push(at(key.span(), format!("the key of '{action_name}' must be a string like \"ctrl-s\"")));
+            continue;
+        };
+        match KeySpec::parse(text) {
+            Err(e) => found.push(at(key.span(), e.to_string())),
+            Ok(spec) => match seen.iter().find(|(k, _)| *k == spec) {
+                Some((_, other)) => found
+                    .push(at(key.span(), format!("'{}' is bound to both '{other}' and '{action_name}'", text.trim()))),
+                None => seen.push((spec, action_name.to_string())),
+            },
+        }
+    }
+    found
+}
+
 /// A loaded config and what was wrong with the file (if anything). With a problem the config
 /// is the default one and the file was left untouched.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -331,14 +448,45 @@ pub fn load_config(config_dir: &Path) -> ConfigLoad {
     let problem = |line, column, message: String| FileProblem { path: path.clone(), line, column, message };
     let parsed = match fsio::read_optional(&path, fsio::MAX_READ_BYTES) {
         Ok(None) => Ok(Config::default()),
-        Ok(Some(text)) => store::parse_toml::<Config>(&path, &text)
-            .and_then(|c| c.validate().map(|()| c).map_err(|e| problem(None, None, e.to_string()))),
+        Ok(Some(text)) => match check_text(&path, &text).into_iter().next() {
+            // The first problem; `thud config check` lists them all.
+            Some(first) => Err(first),
+            None => store::parse_toml::<Config>(&path, &text)
+                .and_then(|c| c.validate().map(|()| c).map_err(|e| problem(None, None, e.to_string()))),
+        },
         Err(e) => Err(problem(None, None, e.reason())),
     };
     match parsed {
         Ok(config) => ConfigLoad { config, path, problem: None },
         Err(p) => ConfigLoad { config: Config::default(), path, problem: Some(p) },
     }
+}
+
+/// What `thud config check` found: where it looked, whether a file is there, every problem.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ConfigCheck {
+    pub path: PathBuf,
+    pub exists: bool,
+    pub problems: Vec<FileProblem>,
+}
+
+/// Checks `config.toml` in `config_dir` ([`check_text`]); a file that cannot be read is one
+/// problem. Never writes.
+pub fn check_config(config_dir: &Path) -> ConfigCheck {
+    let path = config_path(config_dir);
+    match fsio::read_optional(&path, fsio::MAX_READ_BYTES) {
+        Ok(None) => ConfigCheck { path, exists: false, problems: vec![] },
+        Ok(Some(text)) => ConfigCheck { problems: check_text(&path, &text), path, exists: true },
+        Err(e) => {
+            let problem = FileProblem { path: path.clone(), line: None, column: None, message: e.reason() };
+            ConfigCheck { path, exists: true, problems: vec![problem] }
+        }
+    }
+}
+
+/// [`check_config`] in the user's config directory (`None` without a home directory).
+pub fn check_user_config() -> Option<ConfigCheck> {
+    store::Dirs::project().map(|d| check_config(&d.config_dir))
 }
 
 /// Saves `config` as `config.toml` in `config_dir`, atomically. Returns the path written.
@@ -355,12 +503,6 @@ pub fn load_user_config() -> ConfigLoad {
         Some(d) => load_config(&d.config_dir),
         None => ConfigLoad::default(),
     }
-}
-
-/// [`save_config`] to the user's config directory.
-pub fn save_user_config(config: &Config) -> Result<PathBuf, StoreError> {
-    let d = store::Dirs::project().ok_or(StoreError::NoHome("config"))?;
-    save_config(&d.config_dir, config)
 }
 
 #[cfg(test)]
@@ -388,6 +530,26 @@ mod tests {
         };
         let t = c.thresholds(Thresholds::default());
         assert_eq!((t.spl_db, t.inclination_cm_s), (100.0, Thresholds::default().inclination_cm_s));
+    }
+
+    #[test]
+    fn every_problem_is_listed_with_its_line_and_column() {
+        let text = "theme = \"purple\"\nthresholds = [1, 2]\ncolour = 3\n[keys]\nsave = \"ctrl-\"\nsweep = \"s\"\nquit = \"s\"\n";
+        let problems = check_text(Path::new("c.toml"), text);
+        let at: Vec<String> = problems.iter().map(|p| format!("{}:{}", p.line.unwrap(), p.column.unwrap())).collect();
+        assert_eq!(at, ["1:9", "2:14", "3:1", "5:8", "7:8"], "{problems:#?}");
+        let text = problems.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n");
+        assert!(text.contains("c.toml:2:14: invalid type: sequence, expected a table"), "{text}");
+        assert!(text.contains("unknown key 'colour'") && text.contains("bound to both"), "{text}");
+    }
+
+    #[test]
+    fn thresholds_as_an_array_are_refused_not_read_by_position() {
+        assert!(toml::from_str::<Config>("thresholds = [100, 1]").is_err());
+        let problems = check_text(Path::new("c.toml"), "[thresholds]\nl_star_db = 1e308\ne_star_cm_s = 1\n");
+        assert_eq!(problems.len(), 1, "{problems:?}");
+        assert_eq!((problems[0].line, problems[0].column), (Some(2), Some(13)));
+        assert!(check_text(Path::new("c.toml"), "theme = \"mono\"\n[thresholds]\nl_star_db = 100\n").is_empty());
     }
 
     #[test]

@@ -1,38 +1,54 @@
-//! Every file thud writes (exports, `paper all`, saved designs, the config) and every settings or
-//! design file it reads goes through this module, so each rule below holds everywhere:
+//! Every file thud writes (exports, sweep parts, merges, `paper all`, saved designs, the config)
+//! and every settings, design or part file it reads goes through this module, so each rule below
+//! holds everywhere:
 //!
 //! - **Never clobber.** A target that exists is refused unless the caller says
-//!   [`Overwrite::Replace`] (`--force`); then it is replaced atomically by a rename, and a
-//!   symbolic link at the target is replaced itself (its pointee is left alone).
-//! - **Only regular files.** A target that is a directory, a device (`/dev/null`, `/dev/full`),
-//!   a FIFO or a socket is refused even with `Replace`: a rename would swap a device node for a
-//!   regular file.
+//!   [`Overwrite::Replace`] (`--force`); then a *regular file* there is replaced atomically.
+//! - **Only a regular file is ever replaced.** A symbolic link, device, FIFO, socket or folder
+//!   at the target is never replaced, with or without `--force`: it is written through when it
+//!   is a stream ([`Sink`]: thud's own standard output — `-`, `/dev/stdout`, `/dev/fd/1` —, a
+//!   terminal, a FIFO with a reader, `/dev/null`), and refused otherwise. A link that leads
+//!   anywhere else (a file, a folder, nowhere) is refused: thud neither follows nor replaces it.
+//!   The kind is checked when `--out` is read (before any work) and again on the file itself
+//!   when it is written: a stream is opened without `O_CREAT`/`O_TRUNC` and checked with
+//!   `fstat`; a replacement is an atomic exchange (`renameat2(RENAME_EXCHANGE)`) after which
+//!   the replaced entry is inspected, and swapped back if it was not a regular file.
 //! - **No half-written file and no planted symlink.** The contents go to a temporary file in the
 //!   target's folder first, written and synced, then linked into place. On Linux the temporary
-//!   file has no name at all (`O_TMPFILE`): nothing can be planted at it and nothing is left
-//!   behind even after `kill -9`. Elsewhere (or where the file system lacks `O_TMPFILE`) it has
-//!   an unpredictable name created exclusively (`O_EXCL`, so a symlink there is never followed),
-//!   removed on every error path and, through [`crate::signals`], on SIGINT/SIGTERM/SIGHUP.
-//! - **Bounded reads.** Settings and designs are read only from regular files (a symlink to one
-//!   is fine) of at most [`MAX_READ_BYTES`]; a FIFO is opened non-blocking and refused, so a
+//!   file has no name at all (`O_TMPFILE`, linked with `linkat(AT_EMPTY_PATH)` or through
+//!   `/proc/self/fd`): nothing can be planted at it and nothing is left behind even after
+//!   `kill -9`. Elsewhere (or where the file system lacks `O_TMPFILE`, or `--force` needs a
+//!   name to exchange) it has an unpredictable name `.NAME.thud-XXXXXX.tmp` created
+//!   exclusively (`O_EXCL`, so a symlink there is never followed), removed on every error path
+//!   and, through [`crate::signals`], on SIGINT/SIGTERM/SIGHUP.
+//! - **What `kill -9` leaves is removed by the next write.** A named temporary file is
+//!   `flock`ed by its writer for its whole life. Each write first removes, from the folder it
+//!   writes into, every `.*.thud-XXXXXX.tmp` regular file or folder whose lock is free and
+//!   which is over a second old (its writer is gone); links and locked names are left alone.
+//! - **Bounded reads.** Settings, designs and parts are read only from regular files (a symlink
+//!   to one is fine) of at most a given size; a FIFO is opened non-blocking and refused, so a
 //!   read never hangs and never eats `/dev/zero`.
+//! - **Names are bytes.** Paths stay `Path`/`OsStr` end to end; [`shown`] renders one for a
+//!   message with invalid UTF-8 as `\xNN` and control characters escaped.
 //!
 //! Why hand-written around the crates it uses: `tempfile` gives the exclusive random names and
-//! the no-clobber persist, `rustix` the `O_TMPFILE` open and `linkat` without `unsafe`, and
-//! `signal-hook` the signal handling; but no crate puts them together with a refusal of
-//! non-regular targets (`tempfile`'s `persist` and the atomic-write crates rename over a device
-//! node), no-clobber as the default, and an anonymous temporary file that survives `kill -9`
-//! without a trace. This module is that glue and nothing more.
+//! the no-clobber persist, `rustix` the `O_TMPFILE` open, `linkat`, `renameat2`, `flock` and
+//! `fstat` without `unsafe`, and `signal-hook` the signal handling; but no crate puts them
+//! together with a refusal of non-regular targets (`tempfile`'s `persist` and the atomic-write
+//! crates rename over a device node or a symlink), no-clobber as the default, and an anonymous
+//! temporary file that survives `kill -9` without a trace. This module is that glue.
 
+use std::ffi::OsString;
 use std::fmt;
 use std::fs::{self, File, Permissions};
 use std::io::{self, Read, Write};
-use std::os::fd::AsRawFd;
-use std::os::unix::fs::{FileTypeExt, PermissionsExt};
+use std::os::fd::{AsFd, AsRawFd};
+use std::os::unix::ffi::{OsStrExt, OsStringExt};
+use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt};
 use std::path::{Path, PathBuf};
-use std::time::Duration;
+use std::time::{Duration, SystemTime};
 
-use rustix::fs::{AtFlags, Mode, OFlags, CWD};
+use rustix::fs::{AtFlags, FlockOperation, Mode, OFlags, RenameFlags, CWD};
 use rustix::io::Errno;
 
 use crate::signals;
@@ -49,12 +65,19 @@ pub const NAMED_TEMPS_FOR_TEST: &str = "THUD_TEST_NAMED_TEMPS";
 /// mid-write.
 pub const HOLD_TEMP_FOR_TEST: &str = "THUD_TEST_HOLD_TEMP_MS";
 
+/// The marker of thud's temporary names: `.NAME` + this + six random characters + `.tmp`.
+pub const TEMP_MARK: &str = ".thud-";
+
+/// A temporary name whose lock is free is removed only once it is this old, so a file another
+/// thud has just created (and not yet locked) is never taken for a leftover.
+pub const STALE_AFTER: Duration = Duration::from_secs(1);
+
 /// What to do when the target of a write exists.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Overwrite {
     /// Refuse with [`FsError::Exists`] (the default everywhere).
     Refuse,
-    /// Replace it atomically (`--force`, or the user confirmed).
+    /// Replace a regular file atomically (`--force`, or the user confirmed).
     Replace,
 }
 
@@ -84,7 +107,8 @@ pub enum FileKind {
 
 impl FileKind {
     /// The kind of `t`, or `None` for a regular file (and for a symlink, which callers handle).
-    fn of(t: fs::FileType) -> Option<FileKind> {
+    #[must_use]
+    pub fn of(t: fs::FileType) -> Option<FileKind> {
         if t.is_file() || t.is_symlink() {
             None
         } else if t.is_dir() {
@@ -116,20 +140,30 @@ impl fmt::Display for FileKind {
     }
 }
 
-/// A file that could not be read or written, and why. Each displays as `path: reason`.
+/// A file that could not be read or written, and why. Each displays as `path: reason`, the
+/// path [`shown`] (escaped, a very long one cut in its middle).
 #[derive(Debug, thiserror::Error)]
 pub enum FsError {
-    /// The target exists (a file or a symlink) and overwriting was not asked for.
-    #[error("{}: already exists", .0.display())]
+    /// The target exists (a regular file) and overwriting was not asked for.
+    #[error("{}: already exists", shown(.0))]
     Exists(PathBuf),
-    /// The path is a directory, device, FIFO or socket: thud only reads and writes regular files.
-    #[error("{}: is {kind}, not a regular file", path.display())]
+    /// The path is a directory, device, FIFO or socket that is not written through.
+    #[error("{}: is {kind}, not a regular file", shown(.path))]
     NotRegular { path: PathBuf, kind: FileKind },
+    /// The path is a symbolic link that does not lead to a stream thud writes through.
+    #[error("{}: is a symbolic link (thud neither follows nor replaces one)", shown(.0))]
+    Link(PathBuf),
+    /// The path is a FIFO nothing reads from (writing would block forever).
+    #[error("{}: is a FIFO with no reader", shown(.0))]
+    NoReader(PathBuf),
+    /// What is at the path changed between the check and the write; nothing was replaced.
+    #[error("{}: changed while it was being written; nothing was replaced", shown(.0))]
+    Changed(PathBuf),
     /// The file is larger than the read limit.
-    #[error("{}: is larger than {limit_bytes} bytes", path.display())]
+    #[error("{}: is larger than {limit_bytes} bytes", shown(.path))]
     TooLarge { path: PathBuf, limit_bytes: u64 },
     /// The operating system refused.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {source}", shown(.path))]
     Io {
         path: PathBuf,
         #[source]
@@ -143,6 +177,9 @@ impl FsError {
     pub fn path(&self) -> &Path {
         match self {
             FsError::Exists(path)
+            | FsError::Link(path)
+            | FsError::NoReader(path)
+            | FsError::Changed(path)
             | FsError::NotRegular { path, .. }
             | FsError::TooLarge { path, .. }
             | FsError::Io { path, .. } => path,
@@ -152,17 +189,45 @@ impl FsError {
     /// The reason alone, without the path (for messages that name the path themselves).
     #[must_use]
     pub fn reason(&self) -> String {
-        match self {
-            FsError::Exists(_) => "already exists".into(),
-            FsError::NotRegular { kind, .. } => format!("is {kind}, not a regular file"),
-            FsError::TooLarge { limit_bytes, .. } => format!("is larger than {limit_bytes} bytes"),
-            FsError::Io { source, .. } => source.to_string(),
-        }
+        let full = self.to_string();
+        let path = shown(self.path());
+        full.strip_prefix(&format!("{path}: ")).map_or(full.clone(), str::to_string)
     }
 }
 
 fn io_at(path: &Path) -> impl FnOnce(io::Error) -> FsError + '_ {
     move |source| FsError::Io { path: path.to_path_buf(), source }
+}
+
+/// Longest path (in characters, after escaping) shown whole in a message; a longer one keeps
+/// its start and its end around "…", so the reason after it is never cut away.
+pub const MAX_SHOWN_CHARS: usize = 120;
+
+/// `path` for a message: its bytes as UTF-8 where they are, every other byte as `\xNN`,
+/// control characters escaped (so a name cannot start a second line), and a path longer than
+/// [`MAX_SHOWN_CHARS`] cut in its middle.
+#[must_use]
+pub fn shown(path: &Path) -> String {
+    let mut s = String::new();
+    for chunk in path.as_os_str().as_bytes().utf8_chunks() {
+        for c in chunk.valid().chars() {
+            if c.is_control() {
+                s.extend(c.escape_default());
+            } else {
+                s.push(c);
+            }
+        }
+        for b in chunk.invalid() {
+            s += &format!("\\x{b:02x}");
+        }
+    }
+    let n = s.chars().count();
+    if n <= MAX_SHOWN_CHARS {
+        return s;
+    }
+    let head: String = s.chars().take(MAX_SHOWN_CHARS / 3).collect();
+    let tail: String = s.chars().skip(n - (MAX_SHOWN_CHARS - MAX_SHOWN_CHARS / 3 - 1)).collect();
+    format!("{head}…{tail}")
 }
 
 /// True for the `--out` value that means standard output.
@@ -179,35 +244,95 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
-/// Checks that `path` may be written with `overwrite`: absent, or (with `Replace`) a regular
-/// file or a symlink. Returns the permissions of a regular file that will be replaced, so the
-/// new file keeps them. Callers that write several files check them all first with this.
-pub fn check_target(path: &Path, overwrite: Overwrite) -> Result<Option<Permissions>, FsError> {
+/// A stream a write goes through (see the module doc): never created, truncated or replaced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sink {
+    /// thud's own standard output: `-`, or a path that is the very file of file descriptor 1.
+    Stdout,
+    /// A FIFO, a terminal or `/dev/null` at the path, opened for writing as it is; `link` when
+    /// the path is a symbolic link to it (else it is opened with `O_NOFOLLOW`, so a link swapped
+    /// in after the check is not followed).
+    Stream { link: bool },
+}
+
+/// What a write to a path will do, decided from what is there now.
+#[derive(Debug)]
+pub enum Plan {
+    /// Nothing is there: a new file is linked into place (never over anything).
+    Create,
+    /// A regular file is there and is replaced (`Replace`); the new file keeps these permissions.
+    Replace(Permissions),
+    /// A stream is there and is written through.
+    Through(Sink),
+}
+
+/// The character devices written through: `/dev/null` (1,3), `/dev/tty` (5,0), the console
+/// (5,1), virtual consoles and serial lines (major 4) and pseudo-terminals (136–143). Any
+/// other device (a disk, `/dev/mem`, a watchdog, `/dev/full`…) is refused, never opened.
+fn is_stream_device(rdev: u64) -> bool {
+    let (major, minor) = (rustix::fs::major(rdev), rustix::fs::minor(rdev));
+    matches!((major, minor), (1, 3) | (5, 0 | 1)) || major == 4 || (136..=143).contains(&major)
+}
+
+/// Whether `meta` (of the file itself, links followed) is a stream thud writes through.
+fn is_stream(meta: &fs::Metadata) -> bool {
+    let t = meta.file_type();
+    t.is_fifo() || (t.is_char_device() && is_stream_device(meta.rdev()))
+}
+
+/// Whether `meta` is the file thud's standard output is.
+fn is_own_stdout(meta: &fs::Metadata) -> bool {
+    rustix::fs::fstat(io::stdout().as_fd()).is_ok_and(|s| s.st_dev == meta.dev() && s.st_ino == meta.ino())
+}
+
+/// What a write of `path` with `overwrite` will do (see the module doc), or why it may not
+/// happen. Callers that write several files check them all first with this.
+pub fn check_target(path: &Path, overwrite: Overwrite) -> Result<Plan, FsError> {
+    if is_stdout(path) {
+        return Ok(Plan::Through(Sink::Stdout));
+    }
     let meta = match fs::symlink_metadata(path) {
         Ok(m) => m,
-        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(Plan::Create),
         Err(e) => return Err(io_at(path)(e)),
     };
-    if let Some(kind) = FileKind::of(meta.file_type()) {
-        return Err(FsError::NotRegular { path: path.to_path_buf(), kind });
+    if meta.file_type().is_file() {
+        return match overwrite {
+            Overwrite::Refuse => Err(FsError::Exists(path.to_path_buf())),
+            Overwrite::Replace => Ok(Plan::Replace(meta.permissions())),
+        };
     }
-    match overwrite {
-        Overwrite::Refuse => Err(FsError::Exists(path.to_path_buf())),
-        Overwrite::Replace if meta.file_type().is_symlink() => Ok(None),
-        Overwrite::Replace => Ok(Some(meta.permissions())),
+    let link = meta.file_type().is_symlink();
+    let target = if link { fs::metadata(path).map_err(|_| FsError::Link(path.to_path_buf()))? } else { meta };
+    if is_own_stdout(&target) {
+        Ok(Plan::Through(Sink::Stdout))
+    } else if is_stream(&target) {
+        Ok(Plan::Through(Sink::Stream { link }))
+    } else if link {
+        Err(FsError::Link(path.to_path_buf()))
+    } else {
+        let kind = FileKind::of(target.file_type()).unwrap_or(FileKind::Other);
+        Err(FsError::NotRegular { path: path.to_path_buf(), kind })
     }
 }
 
-/// Writes `bytes` to `path` by the rules in the module doc: the target checked, the contents
-/// written to a temporary file in its folder (created if missing), synced, then linked into
-/// place without replacing anything (`Refuse`) or renamed over the target (`Replace`).
+/// Writes `bytes` to `path` by the rules in the module doc: the target checked, a stream
+/// written through, otherwise the contents written to a temporary file in its folder (created
+/// if missing), synced, then linked into place without replacing anything (`Refuse`) or
+/// exchanged with the regular file there (`Replace`).
 pub fn write(path: &Path, bytes: &[u8], overwrite: Overwrite) -> Result<(), FsError> {
-    let (dir, permissions) = prepare(path, overwrite)?;
+    let permissions = match check_target(path, overwrite)? {
+        Plan::Through(sink) => return write_through(path, sink, bytes),
+        Plan::Create => None,
+        Plan::Replace(p) => Some(p),
+    };
+    let dir = prepare_dir(path)?;
     if std::env::var_os(NAMED_TEMPS_FOR_TEST).is_none() {
         if let Some(file) = open_unnamed(&dir, path)? {
-            write_unnamed(file, &dir, path, bytes, overwrite, permissions)?;
-            sync_dir(&dir);
-            return Ok(());
+            if write_unnamed(file, &dir, path, bytes, overwrite, permissions.clone())? {
+                sync_dir(&dir);
+                return Ok(());
+            }
         }
     }
     write_named(&dir, path, bytes, overwrite, permissions, |_| Ok(()))
@@ -223,34 +348,86 @@ pub fn write_with(
     overwrite: Overwrite,
     before_link: impl FnOnce(&Path) -> io::Result<()>,
 ) -> Result<(), FsError> {
-    let (dir, permissions) = prepare(path, overwrite)?;
+    let permissions = match check_target(path, overwrite)? {
+        Plan::Through(sink) => return write_through(path, sink, bytes),
+        Plan::Create => None,
+        Plan::Replace(p) => Some(p),
+    };
+    let dir = prepare_dir(path)?;
     write_named(&dir, path, bytes, overwrite, permissions, before_link)
 }
 
-/// Checks the target and creates its folder; the folder and the permissions to keep.
-fn prepare(path: &Path, overwrite: Overwrite) -> Result<(PathBuf, Option<Permissions>), FsError> {
-    let permissions = check_target(path, overwrite)?;
+/// Creates the folder of `path` and removes thud's leftovers from it; the folder.
+fn prepare_dir(path: &Path) -> Result<PathBuf, FsError> {
     let dir = parent_dir(path);
     fs::create_dir_all(&dir).map_err(io_at(path))?;
-    Ok((dir, permissions))
+    remove_stale_temps(&dir);
+    Ok(dir)
 }
 
-/// An anonymous file in `dir` (`O_TMPFILE`), or `None` where that is not available (no
-/// `/proc` to link it by, or a file system without it).
-fn open_unnamed(dir: &Path, path: &Path) -> Result<Option<File>, FsError> {
-    if !Path::new("/proc/self/fd").is_dir() {
-        return Ok(None);
+/// Writes `bytes` through the stream at `path` (checked again on the opened file).
+fn write_through(path: &Path, sink: Sink, bytes: &[u8]) -> Result<(), FsError> {
+    let link = match sink {
+        Sink::Stdout => return write_stdout(bytes).map_err(io_at(path)),
+        Sink::Stream { link } => link,
+    };
+    let mut flags = OFlags::WRONLY | OFlags::NOCTTY | OFlags::CLOEXEC | OFlags::NONBLOCK;
+    if !link {
+        flags |= OFlags::NOFOLLOW;
     }
+    let fd = rustix::fs::open(path, flags, Mode::empty()).map_err(|e| match e {
+        Errno::NXIO => FsError::NoReader(path.to_path_buf()),
+        Errno::LOOP => FsError::Changed(path.to_path_buf()),
+        e => io_at(path)(e.into()),
+    })?;
+    let mut file = File::from(fd);
+    let meta = file.metadata().map_err(io_at(path))?;
+    if !is_stream(&meta) && !is_own_stdout(&meta) {
+        return Err(FsError::Changed(path.to_path_buf()));
+    }
+    let blocking = rustix::fs::fcntl_getfl(&file).map(|f| f - OFlags::NONBLOCK);
+    blocking.and_then(|f| rustix::fs::fcntl_setfl(&file, f)).map_err(|e| io_at(path)(e.into()))?;
+    match file.write_all(bytes).and_then(|()| file.flush()) {
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Ok(()),
+        other => other.map_err(io_at(path)),
+    }
+}
+
+/// An anonymous file in `dir` (`O_TMPFILE`), locked, or `None` where the file system lacks it.
+fn open_unnamed(dir: &Path, path: &Path) -> Result<Option<File>, FsError> {
     let flags = OFlags::WRONLY | OFlags::TMPFILE | OFlags::CLOEXEC;
     match rustix::fs::open(dir, flags, Mode::from_bits_truncate(0o666)) {
-        Ok(fd) => Ok(Some(File::from(fd))),
+        Ok(fd) => {
+            // Locked before it ever has a name, so no later run takes it for a leftover.
+            rustix::fs::flock(&fd, FlockOperation::LockExclusive).map_err(|e| io_at(path)(e.into()))?;
+            Ok(Some(File::from(fd)))
+        }
         // The "not supported here" answers to O_TMPFILE (as in `tempfile`), plus EINVAL.
         Err(Errno::OPNOTSUPP | Errno::ISDIR | Errno::NOENT | Errno::INVAL) => Ok(None),
         Err(e) => Err(io_at(path)(e.into())),
     }
 }
 
-/// Fills the anonymous `file` and gives it the name `path`.
+/// Gives the anonymous `file` the name `to`: `linkat(AT_EMPTY_PATH)` (Linux ≥ 6.10 for an
+/// unprivileged caller, or with CAP_DAC_READ_SEARCH), else through `/proc/self/fd`. `Ok(false)`
+/// when neither is possible here.
+fn link_unnamed(file: &File, to: &Path) -> Result<bool, Errno> {
+    match rustix::fs::linkat(file, "", CWD, to, AtFlags::EMPTY_PATH) {
+        Ok(()) => return Ok(true),
+        Err(Errno::NOENT | Errno::PERM | Errno::INVAL | Errno::ACCESS) => {}
+        Err(e) => return Err(e),
+    }
+    let by_fd = format!("/proc/self/fd/{}", file.as_raw_fd());
+    match rustix::fs::linkat(CWD, by_fd.as_str(), CWD, to, AtFlags::SYMLINK_FOLLOW) {
+        Ok(()) => Ok(true),
+        // No /proc (or its fd links do not lead back here).
+        Err(Errno::NOENT | Errno::PERM | Errno::XDEV | Errno::ACCESS) if !Path::new(&by_fd).exists() => Ok(false),
+        Err(e) => Err(e),
+    }
+}
+
+/// Fills the anonymous `file` and gives it the name `path`. `Ok(false)` (nothing written at
+/// `dir`) when it cannot be linked here: the caller falls back to a named temporary file.
 fn write_unnamed(
     mut file: File,
     dir: &Path,
@@ -258,35 +435,105 @@ fn write_unnamed(
     bytes: &[u8],
     overwrite: Overwrite,
     permissions: Option<Permissions>,
-) -> Result<(), FsError> {
+) -> Result<bool, FsError> {
     fill(&mut file, bytes, permissions).map_err(io_at(path))?;
     hold_for_test();
-    let by_fd = format!("/proc/self/fd/{}", file.as_raw_fd());
-    let link = |to: &Path| rustix::fs::linkat(CWD, by_fd.as_str(), CWD, to, AtFlags::SYMLINK_FOLLOW);
     match overwrite {
         // linkat never replaces: whatever appeared at the target since the check stays.
-        Overwrite::Refuse => link(path).map_err(|e| match e {
+        Overwrite::Refuse => link_unnamed(&file, path).map_err(|e| match e {
             Errno::EXIST => FsError::Exists(path.to_path_buf()),
             e => io_at(path)(e.into()),
         }),
-        // No call links over an existing name: link under a fresh exclusive name, then rename.
+        // No call links over an existing name: link under a fresh exclusive name (the file is
+        // locked, so no other run removes it), then exchange it with the target.
         Overwrite::Replace => {
+            let mut linked = true;
             let prefix = temp_prefix(path);
-            let (named, _registration) = signals::guarded(|| {
-                let named = tempfile::Builder::new()
-                    .prefix(&prefix)
-                    .suffix(".tmp")
-                    .make_in(dir, |p| link(p).map_err(io::Error::from))?;
-                let (registration, _) = remove_on_signal(named.path());
-                Ok::<_, io::Error>((named, registration))
-            })
-            .map_err(io_at(path))?;
-            named.persist(path).map(drop).map_err(|e| io_at(path)(e.error))
+            let named = signals::guarded(|| {
+                let named = temp_builder(&prefix).make_in(dir, |p| {
+                    if link_unnamed(&file, p)? {
+                        Ok(())
+                    } else {
+                        linked = false;
+                        // Stops make_in: nothing was created under this name.
+                        Err(io::Error::from(io::ErrorKind::Unsupported))
+                    }
+                });
+                named.map(|n| {
+                    let registration = remove_on_signal(n.path());
+                    (n, registration)
+                })
+            });
+            match named {
+                Ok((named, _registration)) => exchange_into_place(named.path(), path).map(|()| true),
+                Err(_) if !linked => Ok(false),
+                Err(e) => Err(io_at(path)(e)),
+            }
         }
     }
 }
 
-/// Writes through a named temporary file (removed on every error path and on signals).
+/// The prefix of temporary names `.NAME.thud-XXXXXX.tmp` (six random characters follow; the
+/// name's bytes are cut to 40 so the temporary name fits wherever the target's does).
+fn temp_prefix(path: &Path) -> OsString {
+    let name = path.file_name().map_or(b"file".as_slice(), OsStrExt::as_bytes);
+    let mut prefix = b".".to_vec();
+    prefix.extend_from_slice(&name[..name.len().min(40)]);
+    prefix.extend_from_slice(TEMP_MARK.as_bytes());
+    OsString::from_vec(prefix)
+}
+
+/// A builder of temporary names with `prefix` ([`temp_prefix`]).
+fn temp_builder(prefix: &OsString) -> tempfile::Builder<'_, 'static> {
+    let mut b = tempfile::Builder::new();
+    b.prefix(prefix).suffix(".tmp").rand_bytes(6);
+    b
+}
+
+/// Whether `name` has the shape of thud's temporary names (see [`temp_prefix`]).
+fn is_temp_name(name: &[u8]) -> bool {
+    let mark = TEMP_MARK.as_bytes();
+    let Some(stem) = name.strip_suffix(b".tmp") else { return false };
+    if !name.starts_with(b".") || stem.len() < 1 + mark.len() + 6 {
+        return false;
+    }
+    let (head, random) = stem.split_at(stem.len() - 6);
+    head.ends_with(mark) && random.iter().all(u8::is_ascii_alphanumeric)
+}
+
+/// Removes from `dir` the temporary files and folders of thud runs that are gone (killed with
+/// SIGKILL, or a power cut): names of thud's shape, regular files or folders (never a link),
+/// whose `flock` is free and which are over [`STALE_AFTER`] old. Best effort: an error leaves
+/// the name where it is.
+pub fn remove_stale_temps(dir: &Path) {
+    let Ok(entries) = fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        if is_temp_name(entry.file_name().as_bytes()) {
+            remove_if_stale(&entry.path());
+        }
+    }
+}
+
+fn remove_if_stale(path: &Path) {
+    let flags = OFlags::RDONLY | OFlags::NOFOLLOW | OFlags::NONBLOCK | OFlags::CLOEXEC | OFlags::NOCTTY;
+    let Ok(fd) = rustix::fs::open(path, flags, Mode::empty()) else { return };
+    let file = File::from(fd);
+    let Ok(meta) = file.metadata() else { return };
+    let old =
+        meta.modified().ok().and_then(|t| SystemTime::now().duration_since(t).ok()).is_some_and(|a| a >= STALE_AFTER);
+    if !old || rustix::fs::flock(&file, FlockOperation::NonBlockingLockExclusive).is_err() {
+        return;
+    }
+    // The name must still be the file that was locked.
+    let same = fs::symlink_metadata(path).is_ok_and(|m| m.ino() == meta.ino() && m.dev() == meta.dev());
+    if same && meta.is_file() {
+        let _ = fs::remove_file(path);
+    } else if same && meta.is_dir() {
+        let _ = fs::remove_dir_all(path);
+    }
+}
+
+/// Writes through a named temporary file (locked; removed on every error path and on signals).
 fn write_named(
     dir: &Path,
     path: &Path,
@@ -298,43 +545,156 @@ fn write_named(
     let prefix = temp_prefix(path);
     // Created and registered with signals held off, so no signal falls between the two.
     let (mut temp, _registration) = signals::guarded(|| {
-        let temp = tempfile::Builder::new()
-            .prefix(&prefix)
-            .suffix(".tmp")
-            .permissions(Permissions::from_mode(0o666))
-            .tempfile_in(dir)?;
-        let (registration, _) = remove_on_signal(temp.path());
+        let temp = temp_builder(&prefix).permissions(Permissions::from_mode(0o666)).tempfile_in(dir)?;
+        rustix::fs::flock(temp.as_file(), FlockOperation::LockExclusive)?;
+        let registration = remove_on_signal(temp.path());
         Ok::<_, io::Error>((temp, registration))
     })
     .map_err(io_at(path))?;
     fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
     before_link(temp.path()).map_err(io_at(temp.path()))?;
     hold_for_test();
-    let persisted = match overwrite {
-        Overwrite::Refuse => temp.persist_noclobber(path),
-        Overwrite::Replace => temp.persist(path),
-    };
-    persisted.map_err(|e| match e.error.kind() {
-        io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
-        _ => io_at(path)(e.error),
-    })?;
+    match overwrite {
+        Overwrite::Refuse => {
+            temp.persist_noclobber(path).map_err(|e| match e.error.kind() {
+                io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
+                _ => io_at(path)(e.error),
+            })?;
+        }
+        // `temp` is dropped after the exchange: its name then holds the replaced file.
+        Overwrite::Replace => exchange_into_place(temp.path(), path)?,
+    }
     sync_dir(dir);
     Ok(())
 }
 
-/// The prefix of temporary names `.NAME.XXXXXX.tmp` (six random characters follow; the name
-/// is cut to 40 characters so the temporary name fits wherever the target's does).
-fn temp_prefix(path: &Path) -> String {
-    let name = path.file_name().map_or_else(|| "file".into(), |n| n.to_string_lossy().into_owned());
-    format!(".{}.", name.chars().take(40).collect::<String>())
+/// Puts the file named `temp` at `path`, replacing only a regular file: exchanges the two
+/// atomically (`RENAME_EXCHANGE`), then looks at what `temp` now names — the replaced entry —
+/// and swaps back if it is not a regular file. The caller removes `temp` afterwards (the old
+/// file, or after a swap back its own new one). Where the file system cannot exchange, the
+/// target is checked once more and renamed over.
+fn exchange_into_place(temp: &Path, path: &Path) -> Result<(), FsError> {
+    match rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE) {
+        Ok(()) => {
+            let old = fs::symlink_metadata(temp);
+            if old.as_ref().is_ok_and(fs::Metadata::is_file) {
+                let _ = fs::remove_file(temp);
+                return Ok(());
+            }
+            // A link, device or folder appeared at `path` since the check: put it back.
+            rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE)
+                .map_err(|e| io_at(path)(e.into()))?;
+            Err(FsError::Changed(path.to_path_buf()))
+        }
+        // The target is gone: put the new file there without replacing anything.
+        Err(Errno::NOENT) => rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::NOREPLACE).map_err(|e| {
+            if e == Errno::EXIST {
+                FsError::Changed(path.to_path_buf())
+            } else {
+                io_at(path)(e.into())
+            }
+        }),
+        Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) => {
+            if !fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+                return Err(FsError::Changed(path.to_path_buf()));
+            }
+            fs::rename(temp, path).map_err(io_at(path))
+        }
+        Err(e) => Err(io_at(path)(e.into())),
+    }
+}
+
+/// A temporary folder beside a target folder (`.NAME.thud-XXXXXX.tmp`), `flock`ed for its
+/// life, removed when dropped and on SIGINT/SIGTERM/SIGHUP (after SIGKILL, by the next write
+/// beside it), until [`TempFolder::put_in_place`] gives it the target's name.
+#[derive(Debug)]
+pub struct TempFolder {
+    dir: tempfile::TempDir,
+    _lock: File,
+    _registration: signals::Registration,
+}
+
+impl TempFolder {
+    /// A new temporary folder in `parent` for the folder `target`.
+    pub fn new(parent: &Path, target: &Path) -> io::Result<Self> {
+        let prefix = temp_prefix(target);
+        signals::guarded(|| {
+            let dir = temp_builder(&prefix).tempdir_in(parent)?;
+            let lock = File::open(dir.path())?;
+            rustix::fs::flock(&lock, FlockOperation::LockExclusive)?;
+            let path = dir.path().to_path_buf();
+            let registration = signals::on_signal(move || {
+                let _ = fs::remove_dir_all(&path);
+            })
+            .0;
+            Ok(TempFolder { dir, _lock: lock, _registration: registration })
+        })
+    }
+
+    /// Where the files go.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        self.dir.path()
+    }
+
+    /// Makes the names in the folder durable (best effort).
+    pub fn sync(&self) {
+        sync_dir(self.path());
+    }
+
+    /// Gives the folder the name `target`: over nothing or an empty folder; with `replace`, by
+    /// an atomic exchange with the folder there, which is then removed — if it still holds only
+    /// regular files named in `names` (else it is swapped back and nothing is replaced).
+    pub fn put_in_place(self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
+        let temp = self.path();
+        let changed = || FsError::Changed(target.to_path_buf());
+        if replace {
+            match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE) {
+                Ok(()) => {
+                    if only_named_files(temp, names) {
+                        return Ok(()); // `temp` now names the old set: removed on drop.
+                    }
+                    rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE)
+                        .map_err(|e| io_at(target)(e.into()))?;
+                    return Err(changed());
+                }
+                Err(Errno::NOENT) => {}
+                Err(e) => return Err(io_at(target)(e.into())),
+            }
+        }
+        match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::NOREPLACE) {
+            Ok(()) => Ok(()),
+            // An empty folder is there: rename(2) replaces only an empty folder.
+            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match e.raw_os_error() {
+                Some(c) if c == Errno::NOTEMPTY.raw_os_error() || c == Errno::NOTDIR.raw_os_error() => changed(),
+                Some(c) if c == Errno::EXIST.raw_os_error() => changed(),
+                _ => io_at(target)(e),
+            }),
+            Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) if !target.exists() => {
+                fs::rename(temp, target).map_err(io_at(target))
+            }
+            Err(e) => Err(io_at(target)(e.into())),
+        }
+    }
+}
+
+/// Whether the folder `dir` holds only regular files (no links) named in `names`.
+fn only_named_files(dir: &Path, names: &[&str]) -> bool {
+    let Ok(entries) = fs::read_dir(dir) else { return false };
+    entries.into_iter().all(|e| {
+        e.is_ok_and(|e| {
+            names.iter().any(|n| e.file_name() == std::ffi::OsStr::new(n)) && e.file_type().is_ok_and(|t| t.is_file())
+        })
+    })
 }
 
 /// Removes `path` if a signal ends the process while the registration lives.
-fn remove_on_signal(path: &Path) -> (signals::Registration, io::Result<()>) {
+fn remove_on_signal(path: &Path) -> signals::Registration {
     let path = path.to_path_buf();
     signals::on_signal(move || {
         let _ = fs::remove_file(&path);
     })
+    .0
 }
 
 /// Writes `bytes`, keeps `permissions` of the file being replaced, and syncs to disk.
@@ -360,14 +720,21 @@ fn sync_dir(dir: &Path) {
     }
 }
 
-/// Reads `path` as UTF-8 text if it is a regular file (or a symlink to one) of at most
+/// Opens `path` for reading if it is a regular file (or a symlink to one) of at most
 /// `limit_bytes`. The path is checked before it is opened (a device is never opened), opened
 /// non-blocking (a FIFO swapped in meanwhile does not hang) and checked again on the open file.
-pub fn read_to_string(path: &Path, limit_bytes: u64) -> Result<String, FsError> {
+pub fn open_regular(path: &Path, limit_bytes: u64) -> Result<File, FsError> {
     check_readable(path, &fs::metadata(path).map_err(io_at(path))?, limit_bytes)?;
     let flags = OFlags::RDONLY | OFlags::NONBLOCK | OFlags::CLOEXEC | OFlags::NOCTTY;
     let file = File::from(rustix::fs::open(path, flags, Mode::empty()).map_err(|e| io_at(path)(e.into()))?);
     check_readable(path, &file.metadata().map_err(io_at(path))?, limit_bytes)?;
+    Ok(file)
+}
+
+/// Reads `path` as UTF-8 text if it is a regular file (or a symlink to one) of at most
+/// `limit_bytes` (see [`open_regular`]).
+pub fn read_to_string(path: &Path, limit_bytes: u64) -> Result<String, FsError> {
+    let file = open_regular(path, limit_bytes)?;
     let mut bytes = Vec::new();
     file.take(limit_bytes + 1).read_to_end(&mut bytes).map_err(io_at(path))?;
     if bytes.len() as u64 > limit_bytes {
@@ -473,5 +840,99 @@ mod tests {
         assert_eq!(e.to_string(), "/dev/null: is a character device, not a regular file");
         assert_eq!(e.reason(), "is a character device, not a regular file");
         assert_eq!(e.path(), Path::new("/dev/null"));
+    }
+
+    #[test]
+    fn a_symlink_is_never_replaced_and_its_pointee_never_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim");
+        fs::write(&victim, "keep").unwrap();
+        let link = dir.path().join("out.csv");
+        std::os::unix::fs::symlink(&victim, &link).unwrap();
+        let dangling = dir.path().join("dangling.csv");
+        std::os::unix::fs::symlink(dir.path().join("nowhere"), &dangling).unwrap();
+        for p in [&link, &dangling] {
+            for o in [Overwrite::Refuse, Overwrite::Replace] {
+                assert!(matches!(write(p, b"x", o), Err(FsError::Link(_))), "{p:?} {o:?}");
+                assert!(fs::symlink_metadata(p).unwrap().file_type().is_symlink());
+            }
+        }
+        assert_eq!(fs::read_to_string(&victim).unwrap(), "keep");
+        assert!(!dir.path().join("nowhere").exists());
+    }
+
+    #[test]
+    fn dev_null_and_a_fifo_with_a_reader_are_written_through() {
+        let null = Path::new("/dev/null");
+        if fs::symlink_metadata(null).is_ok_and(|m| m.file_type().is_char_device()) {
+            assert!(matches!(check_target(null, Overwrite::Replace), Ok(Plan::Through(_))));
+            write(null, b"x", Overwrite::Replace).unwrap();
+            assert!(fs::symlink_metadata(null).unwrap().file_type().is_char_device());
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("pipe");
+        rustix::fs::mknodat(CWD, &fifo, rustix::fs::FileType::Fifo, Mode::from_bits_truncate(0o600), 0).unwrap();
+        assert!(matches!(write(&fifo, b"x", Overwrite::Replace), Err(FsError::NoReader(_))));
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || fs::read(fifo).unwrap())
+        };
+        // The reader opens the FIFO in its own time: retry until it is there.
+        let start = std::time::Instant::now();
+        loop {
+            match write(&fifo, b"through\n", Overwrite::Refuse) {
+                Ok(()) => break,
+                Err(FsError::NoReader(_)) if start.elapsed() < Duration::from_secs(10) => {
+                    std::thread::sleep(Duration::from_millis(10));
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        assert_eq!(reader.join().unwrap(), b"through\n");
+        assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+    }
+
+    #[test]
+    fn stale_temporary_names_are_removed_and_live_or_foreign_ones_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let stale = d.join(".e.csv.thud-aB3dE9.tmp");
+        let stale_dir = d.join(".paper.thud-Zz9Zz9.tmp");
+        let live = d.join(".f.csv.thud-Qw3rTy.tmp");
+        let young = d.join(".g.csv.thud-Yo0nG1.tmp");
+        let mine = d.join(".e.csv.backup.tmp");
+        let link = d.join(".h.csv.thud-L1nkL1.tmp");
+        for p in [&stale, &live, &young, &mine] {
+            fs::write(p, "x").unwrap();
+        }
+        fs::create_dir(&stale_dir).unwrap();
+        fs::write(stale_dir.join("REPORT.md"), "x").unwrap();
+        std::os::unix::fs::symlink(&mine, &link).unwrap();
+        let old = SystemTime::now() - Duration::from_secs(5);
+        for p in [&stale, &live, &stale_dir, &mine] {
+            File::open(p).unwrap().set_modified(old).unwrap();
+        }
+        let held = File::open(&live).unwrap();
+        rustix::fs::flock(&held, FlockOperation::LockExclusive).unwrap();
+        remove_stale_temps(d);
+        assert!(!stale.exists() && !stale_dir.exists(), "the leftovers of a dead run are removed");
+        for p in [&live, &young, &mine] {
+            assert!(p.exists(), "{p:?} is kept");
+        }
+        assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "a link is never touched");
+    }
+
+    #[test]
+    fn names_are_shown_escaped_and_long_ones_cut_in_the_middle() {
+        use std::os::unix::ffi::OsStrExt;
+        let p = Path::new(std::ffi::OsStr::from_bytes(b"caf\xe9\n.csv"));
+        assert_eq!(shown(p), "caf\\xe9\\n.csv");
+        let long = format!("/{}/end.csv", "d".repeat(500));
+        let s = shown(Path::new(&long));
+        assert_eq!(s.chars().count(), MAX_SHOWN_CHARS);
+        assert!(s.starts_with("/ddd") && s.ends_with("ddd/end.csv") && s.contains('…'), "{s}");
+        let e = FsError::Exists(long.into());
+        assert_eq!(e.reason(), "already exists");
+        assert!(e.to_string().ends_with("/end.csv: already exists"));
     }
 }

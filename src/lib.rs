@@ -6,7 +6,8 @@
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
 pub use thud_core::{
-    acoustics, contact, damper, design, ensemble, error, limits, paper, params, report, response, units, ThudError,
+    acoustics, contact, damper, design, ensemble, error, finite, limits, paper, params, report, response, units,
+    ThudError,
 };
 
 pub mod config;
@@ -16,6 +17,7 @@ pub mod presets;
 pub mod shard;
 pub mod signals;
 pub mod store;
+pub mod threads;
 
 pub mod cli;
 pub mod tui;

@@ -42,14 +42,28 @@ use thiserror::Error;
 
 use crate::design::{self, Cell, Chart, Design};
 use crate::ensemble::{self, Ensemble, EnsembleCell, EnsembleChart, Member};
+use crate::limits;
 
 /// The `format` of a part's header.
 pub const FORMAT: &str = "thud-sweep-shard";
 /// The version of the part format this thud writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
 /// The largest part file `thud merge` reads (1 GiB): a part of the largest chart the run caps
-/// allow (1e5 runs) is about 25–35 MB.
+/// allow (1e5 runs) is about 25–35 MB. A part is also refused, before it is read, when it is
+/// larger than its own header allows ([`Header::max_part_bytes`]).
 pub const MAX_PART_BYTES: u64 = 1 << 30;
+/// The longest first line (the header) of a part read (1 MiB): the header of the largest grid
+/// (1000 × 1000 grid points) is about 40 kB. `merge` reads only this much of every part before
+/// it checks the parts together and the merged chart against its cap.
+pub const MAX_HEADER_BYTES: usize = 1 << 20;
+/// The most bytes a run takes in a part (a JSON run is about 330 bytes, a CSV row about 250).
+pub const MAX_BYTES_PER_RUN: u64 = 1024;
+/// The most bytes a cell takes in a part besides its runs (index, mass and gap).
+pub const MAX_BYTES_PER_CELL: u64 = 256;
+/// The largest magnitude of a number in a part's cell: far beyond anything thud computes within
+/// its ranges (a forced run's inclination reaches about 1e7 cm/s), and small enough that sums,
+/// spans and squares of any cells stay finite.
+pub const MAX_CELL_MAGNITUDE: f64 = 1e100;
 
 /// What a chart is of: everything that decides its numbers and its printout. Its hash names it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -126,6 +140,15 @@ impl Header {
         }
     }
 
+    /// The most bytes a part with this header can hold: its header line, the CSV column line
+    /// and [`MAX_BYTES_PER_CELL`] + [`MAX_BYTES_PER_RUN`] × runs for each of its cells.
+    #[must_use]
+    pub fn max_part_bytes(&self) -> u64 {
+        let cells = self.end_cell.saturating_sub(self.first_cell) as u64;
+        let per_cell = MAX_BYTES_PER_CELL.saturating_add(MAX_BYTES_PER_RUN.saturating_mul(self.study.ensemble as u64));
+        (2 * MAX_HEADER_BYTES as u64).saturating_add(cells.saturating_mul(per_cell)).min(MAX_PART_BYTES)
+    }
+
     /// "K/N".
     fn k_of_n(&self) -> String {
         format!("{}/{}", self.shard, self.shards)
@@ -185,7 +208,7 @@ pub enum ShardError {
     #[error("{file} is not a part written by `thud sweep --shard` ({why})")]
     NotAPart { file: String, why: String },
     #[error("{file} is a part of format version {found}; this thud reads version {FORMAT_VERSION}")]
-    FormatVersion { file: String, found: u32 },
+    FormatVersion { file: String, found: String },
     #[error("{file}: {why}")]
     Invalid { file: String, why: String },
     #[error("{file} line {line}: {why}")]
@@ -216,6 +239,33 @@ fn missing_message(missing: &[usize], n: usize) -> String {
         listed.join(", "),
         if missing.len() == 1 { "it" } else { "them" }
     )
+}
+
+/// What serde_json says is wrong, without its "at line L column C" (the line is the file's, not
+/// its) and with every quoted value cut to 40 characters, so the reason after a long value
+/// stays on the message's one line.
+fn serde_reason(e: &serde_json::Error) -> String {
+    let text = e.to_string();
+    let what = text.split(" at line ").next().unwrap_or(&text);
+    let mut out = String::new();
+    let mut parts = what.split('"');
+    if let Some(first) = parts.next() {
+        out.push_str(first);
+    }
+    for (i, p) in parts.enumerate() {
+        out.push('"');
+        out.push_str(&if i % 2 == 0 { cut(p, 40) } else { p.to_string() });
+    }
+    out
+}
+
+/// `s` cut to `max` characters with "…" when longer.
+fn cut(s: &str, max: usize) -> String {
+    if s.chars().count() <= max {
+        s.to_string()
+    } else {
+        s.chars().take(max - 1).chain(['…']).collect()
+    }
 }
 
 /// A number as a CSV field: Rust's shortest round-trip form; "" for none.
@@ -280,10 +330,19 @@ pub struct Part {
 }
 
 /// Reads the part `text` of the file the user named `file`, and checks it on its own: the
-/// header (format, version, hash, K/N and the cell range), then exactly the header's cells in
-/// order, each at its grid point with its N runs at their offsets.
+/// header (format, version, ranges, hash, K/N and the cell range), then exactly the header's
+/// cells in order, each at its grid point with its N runs at their offsets.
 pub fn parse(file: &str, text: &str) -> Result<Part, ShardError> {
     let (first, rest) = text.split_once('\n').unwrap_or((text, ""));
+    let (format, header) = parse_header(file, first)?;
+    let cells = parse_cells(file, format, &header, rest)?;
+    Ok(Part { format, header, cells })
+}
+
+/// Reads and checks the first line of a part alone (nothing of its cells): what it is, its
+/// version, every value of its study in its flag's range (so a forged ensemble of 2^63 or a
+/// grid of 1e12 points is refused before anything is sized by it), its hash and its K/N.
+pub fn parse_header(file: &str, first: &str) -> Result<(Format, Header), ShardError> {
     let (format, head) = match first.strip_prefix("# ") {
         Some(h) => (Format::Csv, h),
         None => (Format::JsonLines, first),
@@ -294,19 +353,29 @@ pub fn parse(file: &str, text: &str) -> Result<Part, ShardError> {
     if value.get("format").and_then(|f| f.as_str()) != Some(FORMAT) {
         return Err(not_a_part(format!("its first line has no \"format\": \"{FORMAT}\"")));
     }
-    let found = value.get("format_version").and_then(serde_json::Value::as_u64).unwrap_or(0);
-    if found != u64::from(FORMAT_VERSION) {
-        return Err(ShardError::FormatVersion { file: file.to_string(), found: u32::try_from(found).unwrap_or(0) });
+    let version = value.get("format_version");
+    if version.and_then(serde_json::Value::as_u64) != Some(u64::from(FORMAT_VERSION)) {
+        // Reported as written (1.0, "1", none), never as a number it was read to.
+        let found = version.map_or_else(|| "none".to_string(), |v| cut(&v.to_string(), 40));
+        return Err(ShardError::FormatVersion { file: file.to_string(), found });
     }
-    let header: Header = serde_json::from_value(value)
-        .map_err(|e| ShardError::Invalid { file: file.to_string(), why: format!("the header does not read: {e}") })?;
+    let header: Header = serde_json::from_value(value).map_err(|e| ShardError::Invalid {
+        file: file.to_string(),
+        why: format!("the header does not read: {}", serde_reason(&e)),
+    })?;
+    check_ranges(file, &header.study)?;
     check_header(file, &header)?;
+    Ok((format, header))
+}
+
+/// The cells of a part after its header line (`rest`), checked against `header`.
+pub fn parse_cells(file: &str, format: Format, header: &Header, rest: &str) -> Result<Vec<PartCell>, ShardError> {
     let cells = match format {
         Format::JsonLines => read_json_cells(file, rest)?,
         Format::Csv => read_csv_cells(file, rest)?,
     };
-    check_cells(file, &header, &cells)?;
-    Ok(Part { format, header, cells })
+    check_cells(file, header, &cells)?;
+    Ok(cells)
 }
 
 /// The header on its own: hash, K/N and range consistent with its study.
@@ -336,17 +405,64 @@ fn check_header(file: &str, h: &Header) -> Result<(), ShardError> {
     Ok(())
 }
 
-/// The cells of a JSON-lines part (`text` after the header line; line numbers from 2).
+/// Every value of a header's study in the range of the flag that sets it.
+fn check_ranges(file: &str, s: &Study) -> Result<(), ShardError> {
+    let bad = |e: crate::error::ThudError| ShardError::Invalid {
+        file: file.to_string(),
+        why: format!("its header is out of range ({e}); was it edited?"),
+    };
+    let count = |n: usize| n as f64;
+    limits::ENSEMBLE.check(count(s.ensemble)).map_err(bad)?;
+    limits::GRID_N.check_as("masses", count(s.masses_kg.len())).map_err(bad)?;
+    limits::GRID_N.check_as("gaps", count(s.gaps_m.len())).map_err(bad)?;
+    for &m in &s.masses_kg {
+        limits::MASS.check(m).map_err(bad)?;
+    }
+    for &g in &s.gaps_m {
+        limits::GAP.check(g).map_err(bad)?;
+    }
+    limits::BAND.check(s.band_cm_s).map_err(bad)?;
+    limits::check_design(&s.design).map_err(bad)
+}
+
+/// Every number of a run finite and at most [`MAX_CELL_MAGNITUDE`], speeds and durations ≥ 0.
+fn check_member(r: &Member) -> Result<(), String> {
+    let signed = [("inclination_cm_s", r.inclination_cm_s), ("inclination_fit_cm_s", r.inclination_fit_cm_s)];
+    let positive = [
+        ("u0_max_m_s", Some(r.u0_max_m_s)),
+        ("zdot_abs_max_m_s", Some(r.zdot_abs_max_m_s)),
+        ("contact_duration_s", r.contact_duration_s),
+        ("restitution_mean", r.restitution_mean),
+    ];
+    let any = [("ball_position_m", Some(r.ball_position_m)), ("spl_max_db", r.spl_max_db)];
+    for (name, v, min) in signed
+        .iter()
+        .chain(&any)
+        .map(|(n, v)| (n, v, -MAX_CELL_MAGNITUDE))
+        .chain(positive.iter().map(|(n, v)| (n, v, 0.0)))
+    {
+        if let Some(x) = *v {
+            if !x.is_finite() || x < min || x > MAX_CELL_MAGNITUDE {
+                let range = if min == 0.0 { "0 to 1e100" } else { "-1e100 to 1e100" };
+                return Err(format!("{name} {x} is out of range (a finite number, {range})"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The cells of a JSON-lines part (`text` after the header line; line numbers from 2, blank
+/// lines counted).
 fn read_json_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
     text.lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
         .map(|(i, l)| {
-            serde_json::from_str(l).map_err(|e| ShardError::BadCell {
-                file: file.to_string(),
-                line: i + 2,
-                why: format!("not a cell ({e})"),
-            })
+            let bad = |why: String| ShardError::BadCell { file: file.to_string(), line: i + 2, why };
+            let cell: PartCell = serde_json::from_str(l)
+                .map_err(|e| bad(format!("not a cell ({}, column {})", serde_reason(&e), e.column())))?;
+            cell.runs.iter().try_for_each(check_member).map_err(bad)?;
+            Ok(cell)
         })
         .collect()
 }
@@ -356,7 +472,13 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
     let mut r = csv::ReaderBuilder::new().has_headers(false).from_reader(text.as_bytes());
     let mut cells: Vec<PartCell> = Vec::new();
     for (i, rec) in r.records().enumerate() {
-        let line = i + 2;
+        // The line in the file: the csv reader's own count (blank lines included) after the
+        // header line.
+        let at = |p: Option<&csv::Position>| p.map_or(i + 2, |p| usize::try_from(p.line()).unwrap_or(usize::MAX) + 1);
+        let line = match &rec {
+            Ok(r) => at(r.position()),
+            Err(e) => at(e.position()),
+        };
         let bad = |why: String| ShardError::BadCell { file: file.to_string(), line, why };
         let rec = rec.map_err(|e| bad(format!("not a CSV row ({e})")))?;
         if i == 0 {
@@ -411,6 +533,7 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
             zone,
             truncated,
         };
+        check_member(&member).map_err(bad)?;
         let (mass_kg, gap_m) = (num(2)?, num(3)?);
         match cells.last_mut() {
             Some(c) if c.index == index => {
@@ -527,52 +650,61 @@ impl Merged {
     }
 }
 
-/// Joins `parts` (each with the file name the user gave): one study, one thud version, one
-/// split, every K exactly once.
-pub fn merge(parts: Vec<(String, Part)>) -> Result<Merged, ShardError> {
-    let Some((first_file, first)) = parts.first().map(|(f, p)| (f.clone(), p.header.clone())) else {
+/// Checks the headers of a set of parts together (each with the file name the user gave): one
+/// study, one thud version, one split, every K exactly once. Needs only the headers, so a set
+/// is refused before any cell is read.
+pub fn check_set<'a>(headers: impl IntoIterator<Item = (&'a str, &'a Header)>) -> Result<(), ShardError> {
+    let mut headers = headers.into_iter();
+    let Some((first_file, first)) = headers.next() else {
         return Err(ShardError::NoParts);
     };
     let mut by_k: BTreeMap<usize, String> = BTreeMap::new();
-    for (file, p) in &parts {
-        let h = &p.header;
+    by_k.insert(first.shard, first_file.to_string());
+    for (file, h) in headers {
         if h.hash != first.hash {
             return Err(ShardError::DifferentStudy {
-                file: file.clone(),
-                first_file: first_file.clone(),
+                file: file.to_string(),
+                first_file: first_file.to_string(),
                 hash: short_hash(&h.hash),
                 first_hash: short_hash(&first.hash),
             });
         }
         if h.thud_version != first.thud_version {
             return Err(ShardError::DifferentVersion {
-                file: file.clone(),
-                first_file: first_file.clone(),
+                file: file.to_string(),
+                first_file: first_file.to_string(),
                 version: h.thud_version.clone(),
                 first_version: first.thud_version.clone(),
             });
         }
         if h.shards != first.shards {
             return Err(ShardError::DifferentSplit {
-                file: file.clone(),
-                first_file: first_file.clone(),
+                file: file.to_string(),
+                first_file: first_file.to_string(),
                 k_of_n: h.k_of_n(),
                 first_k_of_n: first.k_of_n(),
             });
         }
-        if let Some(other) = by_k.insert(h.shard, file.clone()) {
-            return Err(ShardError::Doubled { file: file.clone(), other, k_of_n: h.k_of_n() });
+        if let Some(other) = by_k.insert(h.shard, file.to_string()) {
+            return Err(ShardError::Doubled { file: file.to_string(), other, k_of_n: h.k_of_n() });
         }
     }
     let missing: Vec<usize> = (0..first.shards).filter(|k| !by_k.contains_key(k)).collect();
     if !missing.is_empty() {
         return Err(ShardError::Missing { missing, shards: first.shards });
     }
+    Ok(())
+}
+
+/// Joins `parts` (each with the file name the user gave) after [`check_set`].
+pub fn merge(parts: Vec<(String, Part)>) -> Result<Merged, ShardError> {
+    check_set(parts.iter().map(|(f, p)| (f.as_str(), &p.header)))?;
+    let study = parts[0].1.header.study.clone();
     let all_csv = parts.iter().all(|(_, p)| p.format == Format::Csv);
     let mut ordered: Vec<Part> = parts.into_iter().map(|(_, p)| p).collect();
     ordered.sort_by_key(|p| p.header.shard);
     let cells = ordered.into_iter().flat_map(|p| p.cells).collect();
-    Ok(Merged { study: first.study, cells, all_csv })
+    Ok(Merged { study, cells, all_csv })
 }
 
 /// The first 12 hex digits of a hash, for messages.

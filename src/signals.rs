@@ -1,5 +1,6 @@
-//! What happens when thud is told to stop: SIGINT, SIGTERM or SIGHUP run every registered
-//! clean-up (remove a live temporary file, restore the terminal), then the process exits with
+//! What happens when thud is told to stop: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2,
+//! SIGALRM, SIGXCPU, SIGVTALRM or SIGPROF (every catchable signal whose default action ends the
+//! process, other than the faults a program raises itself) run every registered clean-up (remove a live temporary file, restore the terminal), then the process exits with
 //! status 128 + the signal number, as a shell reports a process killed by that signal.
 //!
 //! One handler for the whole process, so the file writer ([`crate::fsio`]) and the terminal
@@ -13,11 +14,13 @@ use std::io;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, OnceLock, PoisonError};
 
-use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+use signal_hook::consts::{SIGALRM, SIGHUP, SIGINT, SIGPROF, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGVTALRM, SIGXCPU};
 use signal_hook::iterator::Signals;
 
-/// The signals that run the clean-ups and end the process.
-pub const HANDLED: [i32; 3] = [SIGINT, SIGTERM, SIGHUP];
+/// The signals that run the clean-ups and end the process (SIGPIPE is left alone: a closed
+/// pipe is an error on the write, handled where it happens).
+pub const HANDLED: [i32; 10] =
+    [SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGVTALRM, SIGPROF];
 
 type Cleanup = Box<dyn Fn() + Send + Sync>;
 
@@ -40,7 +43,7 @@ impl Drop for Registration {
     }
 }
 
-/// Registers `cleanup` to run if SIGINT, SIGTERM or SIGHUP arrives while the returned
+/// Registers `cleanup` to run if one of [`HANDLED`] arrives while the returned
 /// [`Registration`] is alive; installs the handler on first use. If the handler cannot be
 /// installed the clean-up is still registered (and never runs) and the error is returned, so a
 /// caller may go on without the safety net.

@@ -125,6 +125,9 @@ impl From<FsError> for StoreError {
             FsError::Exists(path) => StoreError::Exists(path),
             FsError::NotRegular { path, kind } => StoreError::NotRegular { path, kind },
             FsError::TooLarge { path, limit_bytes } => StoreError::TooLarge { path, limit_bytes },
+            e @ (FsError::Link(_) | FsError::NoReader(_) | FsError::Changed(_)) => {
+                StoreError::Io { path: e.path().to_path_buf(), source: io::Error::other(e.reason()) }
+            }
         }
     }
 }

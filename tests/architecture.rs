@@ -253,3 +253,42 @@ fn the_engine_depends_on_no_ui_file_or_terminal_crate() {
         assert!(!deps.contains(&ui), "thud-core depends on {ui}: {deps:?}");
     }
 }
+
+/// The packages `name` depends on in Cargo.lock, directly or through others (every kind of
+/// dependency: a superset of what `cargo tree -p name -e normal` lists).
+fn locked_closure(name: &str) -> BTreeSet<String> {
+    let lock = fs::read_to_string(root().join("Cargo.lock")).unwrap();
+    let mut deps: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for block in lock.split("[[package]]").skip(1) {
+        let field =
+            |key: &str| block.lines().find_map(|l| l.strip_prefix(key)).map(|v| v.trim_matches('"').to_string());
+        let Some(pkg) = field("name = ") else { continue };
+        let list = block.split("dependencies = [").nth(1).and_then(|s| s.split(']').next()).unwrap_or("");
+        let names = list
+            .lines()
+            .filter_map(|l| l.trim().trim_end_matches(',').trim_matches('"').split(' ').next().map(str::to_string))
+            .filter(|n| !n.is_empty());
+        deps.entry(pkg).or_default().extend(names);
+    }
+    let mut seen = BTreeSet::new();
+    let mut todo = vec![name.to_string()];
+    while let Some(p) = todo.pop() {
+        for d in deps.get(&p).into_iter().flatten() {
+            if seen.insert(d.clone()) {
+                todo.push(d.clone());
+            }
+        }
+    }
+    seen
+}
+
+#[test]
+fn the_python_module_builds_on_the_engine_alone() {
+    let all = locked_closure("thud-py");
+    assert!(all.contains("thud-core") && all.contains("thud-presets") && all.contains("pyo3"), "{all:?}");
+    for app in ["thud", "ratatui", "crossterm", "clap", "clap_complete", "hound", "directories", "indicatif"] {
+        assert!(!all.contains(app), "thud-py depends on {app}");
+    }
+    // The check sees the app's own crates: the app itself does depend on them.
+    assert!(locked_closure("thud").contains("ratatui"));
+}

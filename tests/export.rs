@@ -186,7 +186,7 @@ fn cli_export_errors_are_one_line_with_exit_2() {
         assert!(err.starts_with("thud: invalid ") && !err.contains("panicked"), "{err}");
     }
     let (_, _, err) = thud(&["export", "csv", "impacts", "--out", bad.to_str().unwrap()], dir.path());
-    assert!(err.contains("invalid out: cannot write") && err.contains("x.csv"), "{err}");
+    assert!(err.contains("invalid --out: cannot write") && err.contains("x.csv"), "{err}");
 }
 
 #[test]

@@ -673,3 +673,283 @@ fn explorer_refuses_runs_over_the_work_caps() {
     assert!(status.contains("WAV samples exceed the limit"), "{status}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+// Issue 18, round 2 (thread pools, dead terminals, config problems, loaded files, huge
+// terminals, help to a full disk).
+
+/// Item 4: `RAYON_NUM_THREADS` far past what the system gives is held to the thread range with
+/// one warning; the run completes (it used to try 100000 threads and never finish in time).
+#[test]
+fn a_huge_rayon_num_threads_is_held_to_the_range_with_one_warning() {
+    let home = tempfile::tempdir().unwrap();
+    let mut c = command(home.path(), &["sweep", "--masses", "10g:50g:6", "--gaps", "1cm:3cm:4"]);
+    let out = c.env("RAYON_NUM_THREADS", "100000").output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("RAYON_NUM_THREADS=100000") && err.contains("using 1024"), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("zone"));
+    // --threads is range-checked like every count.
+    assert_refused(&["sweep", "--threads", "0"], &["--threads", "1 to 1024"]);
+    assert_refused(&["--threads", "2000", "sweep"], &["--threads", "2000"]);
+}
+
+/// Item 4: under a pids limit every parallel command runs on the threads it gets (down to the
+/// calling thread alone) with one warning, instead of panicking with ThreadPoolBuildError.
+/// Root ignores RLIMIT_NPROC, so the runs are made as `nobody` with `setpriv` (skipped, with
+/// the reason printed, where that is not possible).
+#[test]
+fn thread_pools_fall_back_under_a_pids_limit() {
+    use std::os::unix::fs::PermissionsExt;
+    let root = Command::new("id").arg("-u").output().is_ok_and(|o| o.stdout.starts_with(b"0\n"));
+    let setpriv = Command::new("setpriv").arg("--version").output().is_ok_and(|o| o.status.success());
+    if !root || !setpriv {
+        eprintln!("skipped: needs root and setpriv to run as nobody under ulimit -u (root ignores the limit)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o777)).unwrap();
+    let bin = dir.path().join("thud");
+    std::fs::copy(env!("CARGO_BIN_EXE_thud"), &bin).unwrap();
+    std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let part = dir.path().join("part1.json");
+    let part = part.to_str().unwrap();
+    let grid = ["--masses", "10g:50g:6", "--gaps", "1cm:3cm:4"];
+    let commands: Vec<Vec<&str>> = vec![
+        [&["sweep"][..], &grid].concat(),
+        vec!["response", "--force", "5", "--freqs", "4:6:5"],
+        vec!["simulate", "--ensemble", "8"],
+        vec!["paper", "table3"],
+        [&["sweep"][..], &grid, &["--shard", "1/2", "--out", part]].concat(),
+    ];
+    // `exec` leaves one process: with -u 1 no other thread at all; with -u 4 three more, one of
+    // them left for the signal thread.
+    for (limit, threads, expect) in [("1", "4", "calling thread alone"), ("4", "8", "only 2 of 8")] {
+        for args in &commands {
+            let _ = std::fs::remove_file(part);
+            let out = Command::new("timeout")
+                .args(["20", "setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups", "bash", "-c"])
+                .arg(format!("ulimit -u {limit} && exec \"$0\" \"$@\""))
+                .arg(&bin)
+                .args(args)
+                .env("HOME", dir.path())
+                .env("XDG_CONFIG_HOME", dir.path().join("config"))
+                .env("RAYON_NUM_THREADS", threads)
+                .current_dir(dir.path())
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(0), "ulimit -u {limit}, {args:?}: {err}");
+            let warning = err.lines().next().unwrap_or("");
+            assert!(warning.starts_with("thud: warning: ") && warning.contains(expect), "{args:?}: {err}");
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+            assert!(!out.stdout.is_empty() || std::path::Path::new(part).exists(), "{args:?} gave no result");
+        }
+    }
+}
+
+/// Item 14: help and version to a full disk fail with exit 1 and one line; to a closed pipe
+/// they end quietly.
+#[test]
+fn help_and_version_to_a_full_disk_exit_1_with_one_line() {
+    for args in [&["--help"][..], &["--version"], &["sweep", "--help"]] {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let home = tempfile::tempdir().unwrap();
+        let out = command(home.path(), args).stdout(full).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("thud: cannot write the ") && err.contains("No space left"), "{args:?}: {err}");
+    }
+}
+
+/// Item 14: an unknown preset for the explorer names `--preset`, as for every other command.
+#[test]
+fn the_explorer_s_unknown_preset_names_the_flag() {
+    assert_refused(&["tui", "--preset", "bogus"], &["invalid --preset: ", "'bogus'"]);
+}
+
+/// Item 5: a pty whose master side closes without a SIGHUP (a new session, no controlling
+/// terminal), as with `setsid` + `openpty`. Prints "exit CODE" or "STILL RUNNING".
+const DEAD_PTY: &str = r#"
+import fcntl, os, pty, select, struct, subprocess, sys, termios, time
+m, s = pty.openpty()
+fcntl.ioctl(s, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
+p = subprocess.Popen([sys.argv[1], "tui"], stdin=s, stdout=s, stderr=s, start_new_session=True,
+                     env=dict(os.environ, TERM="xterm-256color"))
+os.close(s)
+seen, last, start = b"", time.time(), time.time()
+while time.time() - last < 1.0 and time.time() - start < 15:
+    if select.select([m], [], [], 0.1)[0]:
+        try:
+            chunk = os.read(m, 65536)
+        except OSError:
+            break
+        seen += chunk
+        last = time.time()
+if b"parameters" not in seen or p.poll() is not None:
+    print("NO SCREEN", p.poll(), seen[-200:])
+    sys.exit(0)
+os.close(m)
+try:
+    print("exit", p.wait(timeout=1.5))
+except subprocess.TimeoutExpired:
+    p.kill()
+    p.wait()
+    print("STILL RUNNING")
+"#;
+
+/// Item 5: when the explorer's terminal is gone without SIGHUP, the explorer ends (exit 1)
+/// within a second instead of spinning on EIO forever.
+#[test]
+fn a_dead_terminal_ends_the_explorer_within_a_second() {
+    let home = tempfile::tempdir().unwrap();
+    let Ok(out) = Command::new("python3")
+        .args(["-c", DEAD_PTY, env!("CARGO_BIN_EXE_thud")])
+        .env("HOME", home.path())
+        .env("XDG_CONFIG_HOME", home.path().join("config"))
+        .env("XDG_DATA_HOME", home.path().join("data"))
+        .output()
+    else {
+        eprintln!("skipped: python3 (for its pty module) is not installed");
+        return;
+    };
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(said.trim(), "exit 1", "{said}{}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// Item 6: a config problem is a warning, apart from errors: a failing command prints only its
+/// one error line; `thud config check` lists every problem with file:line:col and exits 2; a
+/// wrong shape such as `thresholds = [1, 2]` is a problem, not read by position.
+#[test]
+fn config_warnings_stay_apart_from_errors_and_config_check_lists_every_problem() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path().join("config").join("thud");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("config.toml");
+    std::fs::write(&file, "thresholds = [100, 1]\ntheme = \"purple\"\n[keys]\nsave = \"ctrl-\"\n").unwrap();
+    let r = thud_in(home.path(), &["simulate", "--mass", "1e308"]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "only the error: {}", r.stderr);
+    assert!(r.stderr.contains("--mass") && !r.stderr.contains("warning"), "{}", r.stderr);
+
+    let r = thud_in(home.path(), &["config", "check"]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+    assert!(r.stderr.contains("3 problems"), "{}", r.stderr);
+    let f = file.display().to_string();
+    let lines: Vec<&str> = r.stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{}", r.stdout);
+    assert!(lines[0].starts_with(&format!("{f}:1:14: ")) && lines[0].contains("expected a table"), "{}", r.stdout);
+    assert!(lines[1].starts_with(&format!("{f}:2:9: ")) && lines[1].contains("purple"), "{}", r.stdout);
+    assert!(lines[2].starts_with(&format!("{f}:4:8: ")) && lines[2].contains("'ctrl-' is not a key"), "{}", r.stdout);
+
+    // The thresholds were not read by position: a successful run warns once and uses the
+    // defaults (L* = 103 dB, not 100).
+    let r = thud_in(home.path(), &["simulate", "--json"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["design"]["thresholds"]["spl_db"].as_f64(), Some(103.0));
+
+    // A good file: no problems, exit 0.
+    std::fs::write(&file, "theme = \"mono\"\n[thresholds]\nl_star_db = 100\n").unwrap();
+    let r = thud_in(home.path(), &["config", "check"]);
+    assert_eq!((r.code, r.stderr.as_str()), (0, ""), "{}", r.stdout);
+    assert!(r.stdout.contains("no problems"), "{}", r.stdout);
+}
+
+/// Item 10: a saved design is held to the caps of typed values: a duration of 1e6 s (inside
+/// the duration's range, over the chart's work cap) is refused on load with the cap's line, as
+/// typing it is, and the live design stays. Every preset and the built-in tour pass.
+#[test]
+fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
+    use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+    use thud::design::Design;
+    use thud::tui::{fields, App, Msg, Palette};
+    let data = tempfile::tempdir().unwrap();
+    let mut long = Design::default();
+    long.damper.duration_s = 1e6;
+    let file = thud::store::DesignFile { description: "a long one".into(), ensemble: None, design: long };
+    thud::store::save_design(data.path(), "long", &file, false).unwrap();
+    let mut app = App::new(Design::default(), "default", Palette::default());
+    app.data_dir = Some(data.path().to_path_buf());
+    let before = app.design.clone();
+    for key in [KeyCode::Char('L'), KeyCode::Enter] {
+        app.update(Msg::Input(Event::Key(KeyEvent::new(key, KeyModifiers::NONE))));
+    }
+    let status = app.status().map(|s| s.text.clone()).unwrap_or_default();
+    assert!(status.contains("cannot load long") && status.contains("invalid duration: "), "{status}");
+    assert!(status.contains("exceed the limit"), "{status}");
+    assert_eq!(app.design, before, "nothing loaded");
+    // The same line as typing the value.
+    let typed = fields::Knob::Duration.parsed(&Design::default(), "1e6").unwrap_err().to_string();
+    assert!(status.contains(&typed), "{status} / {typed}");
+    for name in thud::presets::names() {
+        fields::check_loaded(&thud::presets::preset(name).unwrap()).unwrap();
+    }
+    assert!(thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).is_ok());
+}
+
+// ---- Issue 18 (lane a): files written and parts merged -------------------------------------
+
+/// Asserts a refusal run in `home`: exit 2, one stderr line naming every one of `needles`.
+fn assert_refused_in(home: &Path, args: &[&str], needles: &[&str]) {
+    let r = thud_in(home, args);
+    assert_eq!(r.code, 2, "{args:?}: exit {} stderr {}", r.code, r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+    assert!(r.stdout.is_empty(), "{args:?} printed: {}", r.stdout);
+    for n in needles {
+        assert!(r.stderr.contains(n), "{args:?}: '{n}' not in: {}", r.stderr);
+    }
+}
+
+#[test]
+fn written_files_and_merged_parts_keep_the_contract() {
+    let home = tempfile::tempdir().unwrap();
+    let h = home.path();
+    // Item 1: a link at --out is neither followed nor replaced, with --force too.
+    std::fs::write(h.join("victim"), "keep").unwrap();
+    std::os::unix::fs::symlink(h.join("victim"), h.join("link.csv")).unwrap();
+    let link = h.join("link.csv");
+    let link = link.to_str().unwrap();
+    assert_refused_in(
+        h,
+        &["export", "csv", "waveform", "--out", link, "--force"],
+        &["invalid --out: ", "symbolic link"],
+    );
+    assert!(std::fs::symlink_metadata(link).unwrap().file_type().is_symlink());
+    // Item 14: `paper ID --out` honours --out, and its refusal names --out.
+    std::fs::write(h.join("fig2.txt"), "mine").unwrap();
+    let fig = h.join("fig2.txt");
+    assert_refused_in(
+        h,
+        &["paper", "fig2", "--out", fig.to_str().unwrap()],
+        &["invalid --out: ", "exists; add --force"],
+    );
+    // Items 2, 3, 11: a part with a forged ensemble (valid hash) and a merge over its cap.
+    let part = h.join("p.jsonl");
+    let p = part.to_str().unwrap();
+    let r = thud_in(
+        h,
+        &["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2", "--duration", "0.2", "--shard", "0/1", "--out", p],
+    );
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let text = std::fs::read_to_string(&part).unwrap();
+    let (first, rest) = text.split_once('\n').unwrap();
+    let header: thud::shard::Header = serde_json::from_str(first).unwrap();
+    let mut study = header.study.clone();
+    study.ensemble = 1 << 63;
+    let forged = serde_json::to_string(&thud::shard::Header::new(study, 0, 1)).unwrap() + "\n" + rest;
+    std::fs::write(h.join("forged.jsonl"), forged).unwrap();
+    let f = h.join("forged.jsonl");
+    assert_refused_in(
+        h,
+        &["--no-limit", "merge", f.to_str().unwrap(), "--out", "-"],
+        &["out of range (invalid ensemble"],
+    );
+    assert_refused_in(h, &["merge", p, "--out", "-", "--band", "nan"], &["--band"]);
+    let v = h.join("v.jsonl");
+    std::fs::write(&v, text.replacen("\"format_version\":1", "\"format_version\":1.0", 1)).unwrap();
+    assert_refused_in(h, &["merge", v.to_str().unwrap(), "--out", "-"], &["format version 1.0;"]);
+}

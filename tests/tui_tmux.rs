@@ -253,6 +253,48 @@ fn sigint_restores_the_terminal() {
     a_signal_restores_the_terminal("INT", 2);
 }
 
+/// Every other signal whose default action ends the process restores the terminal too, and
+/// exits with 128 + its number (one test, one pane after another, to keep the time small).
+#[test]
+fn every_ending_signal_restores_the_terminal() {
+    for (signal, number) in
+        [("QUIT", 3), ("USR1", 10), ("USR2", 12), ("ALRM", 14), ("XCPU", 24), ("VTALRM", 26), ("PROF", 27)]
+    {
+        a_signal_restores_the_terminal(signal, number);
+    }
+}
+
+/// Under a pids limit the pool leaves room for the explorer's own threads: it runs with the
+/// worker threads it got (one warning) and quits with 0. Root ignores RLIMIT_NPROC, so it runs
+/// as nobody (skipped, with the reason printed, where that is not possible).
+#[test]
+fn the_explorer_runs_under_a_pids_limit() {
+    let root = Command::new("id").arg("-u").output().is_ok_and(|o| o.stdout.starts_with(b"0\n"));
+    let setpriv = Command::new("setpriv").arg("--version").output().is_ok_and(|o| o.status.success());
+    if !root || !setpriv {
+        eprintln!("skipped: needs root and setpriv to run as nobody under ulimit -u (root ignores the limit)");
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            format!(
+                "setpriv --reuid=nobody --regid=nogroup --clear-groups bash -c \
+                 'ulimit -u 14; HOME=/nonexistent RAYON_NUM_THREADS=8 exec \"{bin}\" tui' 2> '{d}/err'; \
+                 echo $? > '{d}/status'; exec sleep 60",
+                d = d.display()
+            )
+        },
+        100,
+        30,
+    );
+    t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0");
+    let err = std::fs::read_to_string(t.dir.join("err")).unwrap();
+    assert!(err.starts_with("thud: warning: only ") && err.lines().count() == 1, "{err}");
+}
+
 /// The explorer in a `w × h` pane with its own config and data folders, `args` after `tui`.
 fn explorer(args: &str, w: u16, h: u16) -> Tmux {
     let bin = env!("CARGO_BIN_EXE_thud");

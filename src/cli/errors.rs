@@ -26,6 +26,11 @@ pub enum CliError {
     NonFinite(String),
     /// Writing the output failed: exit 1, or 0 quietly for a closed pipe.
     Output(io::Error),
+    /// Writing a file failed (the disk, the file system), already worded: exit 1.
+    Io(String),
+    /// The explorer could not start or run: a bad preset or tour (exit 2), no terminal or a
+    /// failed draw (exit 1; [`crate::tui::TuiError::exit_code`]).
+    Tui(crate::tui::TuiError),
 }
 
 impl From<ThudError> for CliError {
@@ -44,7 +49,13 @@ impl CliError {
     /// The exit code and the line for stderr (None: exit quietly).
     pub fn report(&self, flags: &[String]) -> (i32, Option<String>) {
         match self {
-            CliError::Input(e) => (2, Some(name_flag(&e.to_string(), flags))),
+            // Not bad input: a run stopped by an interrupt (the signal's own exit code is set
+            // by the handler) or by the program itself.
+            CliError::Input(e @ ThudError::Cancelled) => (1, Some(e.to_string())),
+            CliError::Input(e) => (2, Some(name_flag(e, flags))),
+            CliError::Io(m) => (1, Some(m.clone())),
+            CliError::Tui(crate::tui::TuiError::Preset(e)) => (2, Some(name_flag(e, flags))),
+            CliError::Tui(e) => (e.exit_code(), Some(e.to_string())),
             CliError::Refused(m) => (2, Some(m.clone())),
             CliError::NonFinite(what) => (
                 1,
@@ -59,15 +70,18 @@ impl CliError {
     }
 }
 
-/// `invalid mass: …` → `invalid --mass: …` when `mass` is one of thud's long flags, so the
-/// message names what the user types (the engine names parameters without dashes).
-pub fn name_flag(message: &str, flags: &[String]) -> String {
-    let Some(rest) = message.strip_prefix("invalid ") else { return message.to_string() };
-    let Some((param, tail)) = rest.split_once(": ") else { return message.to_string() };
-    if flags.iter().any(|f| f == param) {
-        format!("invalid --{param}: {tail}")
-    } else {
-        message.to_string()
+/// The error's line, naming its parameter as the flag the user types (`invalid --mass: …`)
+/// when the engine named it bare (`mass`) and it is one of thud's long flags. The parameter is
+/// the error's own ([`ThudError::param`]); no message is parsed back.
+pub fn name_flag(e: &ThudError, flags: &[String]) -> String {
+    let param = e.param();
+    if param.is_empty() || !flags.iter().any(|f| f == param) {
+        return e.to_string();
+    }
+    match e.clone().renamed(format!("--{param}")) {
+        renamed if renamed.param() != param => renamed.to_string(),
+        // A variant with a fixed parameter (no impact: `u0`) keeps its words under the flag.
+        _ => ThudError::invalid(format!("--{param}"), e.detail()).to_string(),
     }
 }
 
@@ -177,8 +191,12 @@ mod tests {
 
     #[test]
     fn engine_names_become_flags() {
-        let flags = vec!["mass".to_string(), "r".to_string()];
-        assert_eq!(name_flag("invalid r: 0.7 m puts…", &flags), "invalid --r: 0.7 m puts…");
-        assert_eq!(name_flag("invalid paper item: x", &flags), "invalid paper item: x");
+        let flags = vec!["mass".to_string(), "r".to_string(), "u0".to_string()];
+        assert_eq!(name_flag(&ThudError::invalid("r", "0.7 m puts…"), &flags), "invalid --r: 0.7 m puts…");
+        assert_eq!(name_flag(&ThudError::invalid("paper item", "x"), &flags), "invalid paper item: x");
+        let range = crate::limits::MASS.check(1e308).unwrap_err();
+        assert!(name_flag(&range, &flags).starts_with("invalid --mass: 1e308 kg is out of range"));
+        assert!(name_flag(&ThudError::NoImpact, &flags).starts_with("invalid --u0: the design has no impact"));
+        assert_eq!(name_flag(&ThudError::Cancelled, &flags), ThudError::Cancelled.to_string());
     }
 }

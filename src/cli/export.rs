@@ -10,7 +10,7 @@ use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::Design;
 use crate::error::ThudError;
 use crate::export::{self, wav::WavOptions, Artifact, ExportError, ExportOptions};
-use crate::fsio::{self, FsError, Overwrite};
+use crate::fsio::{self, FsError, Overwrite, Plan, Sink};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
 
@@ -217,16 +217,11 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
     };
     let overwrite = Overwrite::from_force(common.force);
     let out = &common.out;
-    let to_stdout = fsio::is_stdout(out);
+    let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    let to_stdout = matches!(plan, Plan::Through(Sink::Stdout));
     if to_stdout && kind == Artifact::Wav && std::io::stdout().is_terminal() {
-        return Err(ThudError::invalid(
-            "out",
-            "-: a WAV file is binary; redirect standard output to a file or a player",
-        )
-        .into());
-    }
-    if !to_stdout {
-        fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+        let why = format!("{}: a WAV file is binary; redirect standard output to a file or a player", fsio::shown(out));
+        return Err(ThudError::invalid("--out", why).into());
     }
     let long = common.check_work(ctx, kind, &design, opts)?;
     let spinner = budget::spinner("exporting", long);
@@ -237,8 +232,8 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
     if to_stdout {
         return Ok(fsio::write_stdout(&bytes)?);
     }
-    fsio::write(out, &bytes, overwrite).map_err(|e| out_error(out, &e))?;
-    super::warn(&format!("wrote {}", out.display()));
+    fsio::write(out, &bytes, overwrite).map_err(|e| write_error(out, &e))?;
+    super::warn(&format!("wrote {}", fsio::shown(out)));
     Ok(())
 }
 
@@ -247,21 +242,44 @@ fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
     match e {
         ExportError::Invalid(t) => no_impact(t, common),
         ExportError::File(f) => out_error(out, &f),
-        ExportError::Csv(c) => ThudError::invalid("out", format!("cannot write {}: {c}", out.display())),
+        ExportError::Csv(c) => ThudError::invalid("--out", format!("cannot write {}: {c}", fsio::shown(out))),
     }
 }
 
-/// A refused or failed write of `out` as the CLI's one-line error (exit 2): what is at the
-/// path and what to do.
+/// A write of `out` that failed or was refused, as the CLI's error: a refusal (the file exists,
+/// is a link, is not writable through, a FIFO without a reader) is bad input (exit 2), a
+/// failure of the write itself is I/O (exit 1); the line is [`out_error`]'s.
+pub(super) fn write_error(out: &Path, e: &FsError) -> CliError {
+    match e {
+        FsError::Exists(_) | FsError::NotRegular { .. } | FsError::Link(_) | FsError::NoReader(_) => {
+            CliError::Input(out_error(out, e))
+        }
+        FsError::Changed(_) | FsError::TooLarge { .. } | FsError::Io { .. } => {
+            CliError::Io(out_error(out, e).to_string())
+        }
+    }
+}
+
+/// A refused or failed write of `out` as the CLI's one-line error naming `--out`: what is at
+/// the path and what to do. Paths are [`fsio::shown`] (escaped, a long one cut in its middle),
+/// so the reason always survives.
 pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
     let message = match e {
-        FsError::Exists(p) => format!("{} exists; add --force to replace it", p.display()),
-        FsError::NotRegular { path, kind } => {
-            format!("{} is {kind}; thud writes only regular files (even with --force)", path.display())
+        FsError::Exists(p) => format!("{} exists; add --force to replace it", fsio::shown(p)),
+        FsError::NotRegular { path, kind } => format!(
+            "{} is {kind}; thud writes through only a terminal, a FIFO or /dev/null, and replaces only a regular file (even with --force)",
+            fsio::shown(path)
+        ),
+        FsError::Link(p) => format!(
+            "{} is a symbolic link; thud neither follows nor replaces one (even with --force): name the file itself",
+            fsio::shown(p)
+        ),
+        FsError::NoReader(p) => format!("{} is a FIFO with no reader; start the reader first", fsio::shown(p)),
+        FsError::Changed(_) | FsError::TooLarge { .. } | FsError::Io { .. } => {
+            format!("cannot write {}: {}", fsio::shown(out), e.reason())
         }
-        FsError::TooLarge { .. } | FsError::Io { .. } => format!("cannot write {}: {}", out.display(), e.reason()),
     };
-    ThudError::invalid("out", message)
+    ThudError::invalid("--out", message)
 }
 
 pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {

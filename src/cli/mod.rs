@@ -43,6 +43,11 @@ pub struct Cli {
     /// Lift the work caps (Newmark steps, samples, sweep cells, …; `thud limits` lists them).
     #[arg(long, global = true)]
     pub no_limit: bool,
+    /// Worker threads for parallel work (sweeps, ensembles, responses, the explorer's chart):
+    /// 1 to 1024. Default: RAYON_NUM_THREADS if set, else one per CPU. If the system refuses
+    /// some (a pids limit), thud runs with the threads it got and prints one warning.
+    #[arg(long, global = true, value_name = "N")]
+    pub threads: Option<String>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -73,6 +78,8 @@ pub enum Command {
     Completions(shell::CompletionsArgs),
     /// Print the man page (roff) of thud, or of one command (`thud man pulse`).
     Man(shell::ManArgs),
+    /// The settings file (config.toml): `thud config check` lists every problem in it.
+    Config(settings::ConfigArgs),
 }
 
 /// Options of `thud limits`.
@@ -213,15 +220,27 @@ fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
 /// The whole command line: parses the arguments (a clap error becomes one line, exit 2; help
 /// and version print and exit 0), runs the command, returns the exit code.
 pub fn main() -> i32 {
-    let args: Vec<String> = std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect();
-    match Cli::try_parse_from(&args) {
+    // Parsed as the OS gave them: a file name is bytes, not necessarily UTF-8 (issue 18, item 9).
+    let raw: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let args: Vec<String> = raw.iter().map(|a| a.to_string_lossy().into_owned()).collect();
+    match Cli::try_parse_from(&raw) {
         Ok(cli) => run(cli),
         Err(e) => {
             use clap::error::ErrorKind;
             match e.kind() {
-                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
-                    let _ = e.print();
-                    0
+                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => match e.print() {
+                    Ok(()) => 0,
+                    // A closed pipe (`thud --help | head -1`) ends quietly, as for any output.
+                    Err(io) if io.kind() == std::io::ErrorKind::BrokenPipe => 0,
+                    Err(io) => {
+                        let what = if e.kind() == ErrorKind::DisplayHelp { "help" } else { "version" };
+                        warn(&format!("cannot write the {what}: {io}"));
+                        1
+                    }
+                },
+                ErrorKind::InvalidUtf8 => {
+                    warn(&not_utf8(&raw));
+                    2
                 }
                 _ => {
                     warn(&errors::clap_line(&e, missing_subcommand(&args)));
@@ -232,12 +251,27 @@ pub fn main() -> i32 {
     }
 }
 
-/// The exit code of the explorer: 0, or 2 with the error on stderr.
-fn tui_exit(r: Result<(), String>) -> i32 {
+/// The one line for an argument that is not UTF-8 where text is expected (only file names may
+/// be any bytes): the flag before it and the value, escaped.
+fn not_utf8(raw: &[std::ffi::OsString]) -> String {
+    let at = raw.iter().position(|a| a.to_str().is_none()).unwrap_or(0);
+    let value = crate::fsio::shown(std::path::Path::new(&raw[at]));
+    match raw[..at].last().and_then(|f| f.to_str()).filter(|f| f.starts_with('-')) {
+        Some(flag) => format!("invalid {flag}: '{value}' is not UTF-8 text (only a file name may be any bytes)"),
+        None => format!("invalid argument '{value}': not UTF-8 text (only a file name may be any bytes)"),
+    }
+}
+
+/// The exit code of the explorer: 0, or its error's ([`CliError::report`]: the preset named as
+/// the flag `--preset`) with its line on stderr.
+fn tui_exit(r: Result<(), CliError>) -> i32 {
     r.map_or_else(
         |e| {
-            warn(&e);
-            2
+            let (code, line) = e.report(&numeric_flags());
+            if let Some(line) = line {
+                warn(&line);
+            }
+            code
         },
         |()| 0,
     )
@@ -245,7 +279,13 @@ fn tui_exit(r: Result<(), String>) -> i32 {
 
 /// Runs the CLI on `args`; returns the process exit code. Errors are one line on stderr.
 pub fn run(cli: Cli) -> i32 {
+    // The explorer's own threads: input, hang-up watch, signals, five job slots, an export.
+    let reserve = if matches!(cli.command, Some(Command::Tui(_)) | None) { 9 } else { 1 };
+    if let Err(e) = start_threads(cli.threads.as_deref(), reserve) {
+        return fail(&e);
+    }
     settings::load();
+    let checking_config = matches!(cli.command, Some(Command::Config(_)));
     let ctx = Ctx { no_limit: cli.no_limit };
     let mut out = Out::new();
     let result = match cli.command {
@@ -261,19 +301,43 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Limits(a)) => limits(&a, &mut out),
         Some(Command::Completions(a)) => shell::completions(&a, &mut out),
         Some(Command::Man(a)) => shell::man(&a, &mut out),
+        Some(Command::Config(a)) => settings::run(&a, &mut out),
         Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
         None => return tui_exit(tui::run_default()),
     };
     match result.and_then(|()| out.flush()) {
-        Ok(()) => 0,
-        Err(e) => {
-            let (code, line) = e.report(&numeric_flags());
-            if let Some(line) = line {
-                warn(&line);
+        Ok(()) => {
+            // A config warning only beside a success: a failure is its one error line.
+            if let Some(w) = settings::warning().filter(|_| !checking_config) {
+                warn(w);
             }
-            code
+            0
         }
+        Err(e) => fail(&e),
     }
+}
+
+/// Prints `e`'s line (if any) and returns its exit code.
+fn fail(e: &CliError) -> i32 {
+    let (code, line) = e.report(&numeric_flags());
+    if let Some(line) = line {
+        warn(&line);
+    }
+    code
+}
+
+/// Builds the parallel pool ([`crate::threads`]) from `--threads` or `RAYON_NUM_THREADS`,
+/// leaving room for `reserve` other threads;
+/// a pool smaller than wanted is a one-line warning, a bad `--threads` an error.
+fn start_threads(flag: Option<&str>, reserve: usize) -> Result<(), CliError> {
+    let flag = flag.map(|t| count("threads", t, &crate::limits::THREADS)).transpose()?;
+    let env = std::env::var(crate::threads::ENV).ok();
+    let (wanted, too_many) = crate::threads::wanted(flag, env.as_deref());
+    let pool = crate::threads::init(wanted, reserve);
+    for w in too_many.iter().chain(&pool.warning) {
+        warn(w);
+    }
+    Ok(())
 }
 
 /// `thud limits`: the table of ranges and caps.
@@ -292,7 +356,7 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
         return out.json(&serde_json::json!({ "ranges": ranges, "caps": caps }));
     }
     let mut s = String::from("Ranges (a plain number is in the unit shown; θ is narrowed by the source type):\n");
-    for r in RANGES.iter().chain([&crate::limits::GRID_N]) {
+    for r in RANGES.iter().chain([&crate::limits::GRID_N, &crate::limits::THREADS]) {
         let flag = if r.param == "N" { "FROM:TO:N".to_string() } else { format!("--{}", r.param) };
         s += &format!("  {flag:<15} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);
     }

@@ -1,14 +1,15 @@
 //! `thud paper`: the paper's tables and figures, reproduced.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
 
 use super::export::out_error;
-use super::{budget, CliError, Out, OutputArgs};
+use super::sweep::Target;
+use super::{budget, CliError, Out, OutputArgs, OutputFormat};
 use crate::error::ThudError;
-use crate::export::report;
-use crate::fsio::{self, FsError, Overwrite};
+use crate::export::report::{self, BundleError};
+use crate::fsio::{self, Overwrite};
 use crate::paper;
 
 #[derive(Debug, Clone, Args)]
@@ -19,10 +20,13 @@ pub struct PaperArgs {
     /// List every table and figure that can be reproduced.
     #[arg(long)]
     list: bool,
-    /// Folder for `thud paper all` (created if missing); files in it are kept unless --force.
-    #[arg(long, value_name = "DIR")]
+    /// With `all`: the folder for the whole set, written complete or not at all (a new or empty
+    /// folder, or with --force one holding a previous set). With one ID: the file for its table
+    /// (`-`: standard output), kept if it exists unless --force.
+    #[arg(long, value_name = "DIR|FILE")]
     out: Option<PathBuf>,
-    /// With `all`: replace files of the same names in --out (atomically; never a device or folder).
+    /// Replace the previous set in --out (all) or the --out file (one ID), atomically; only
+    /// regular files are ever replaced.
     #[arg(long, requires = "out")]
     force: bool,
     #[command(flatten)]
@@ -41,24 +45,46 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
     if id == "all" {
         return all(a.out.as_deref(), Overwrite::from_force(a.force));
     }
+    let target = Target::new(a.out.as_deref(), a.force)?;
     let table = paper::get(&id).ok_or_else(|| {
         let ids: Vec<&str> = paper::items().map(|i| i.id).collect();
         ThudError::invalid("paper item", format!("unknown '{id}'; one of: {}", ids.join(", ")))
     })??;
-    out.table(&table, a.output.format())
+    if a.out.is_none() {
+        return out.table(&table, a.output.format());
+    }
+    super::output::check_table(&table)?;
+    let mut bytes = Vec::new();
+    match a.output.format() {
+        OutputFormat::Text => super::format::write_text(&mut bytes, &table)?,
+        OutputFormat::Csv => super::format::write_csv(&mut bytes, &table)?,
+        OutputFormat::Json => {
+            serde_json::to_writer_pretty(&mut bytes, &super::format::table_json(&table))
+                .map_err(std::io::Error::from)?;
+            bytes.push(b'\n');
+        }
+    }
+    target.write(&String::from_utf8_lossy(&bytes), out)
 }
 
-/// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md. Every
-/// target is checked before the work starts (an existing file is kept unless `--force`), and
-/// every number in every file before the first file is written.
-fn all(out: Option<&std::path::Path>, overwrite: Overwrite) -> Result<(), CliError> {
-    let dir = out.ok_or_else(|| ThudError::invalid("out", "`thud paper all` needs --out DIR"))?;
-    if fsio::is_stdout(dir) {
-        return Err(ThudError::invalid("out", "-: `thud paper all` writes a folder of files; give --out DIR").into());
+/// A refusal of `paper all`'s folder as the CLI's one-line error naming `--out`.
+fn bundle_error(e: BundleError) -> CliError {
+    match e {
+        BundleError::File(f) => out_error(f.path(), &f).into(),
+        e => ThudError::invalid("--out", e.to_string()).into(),
     }
-    let refused = |e: FsError| out_error(e.path(), &e);
+}
+
+/// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md, as one
+/// folder written complete or not at all ([`report::write_bundle`]). The folder is checked
+/// before the work starts, and every number in every file before the first file is written.
+fn all(out: Option<&Path>, overwrite: Overwrite) -> Result<(), CliError> {
+    let dir = out.ok_or_else(|| ThudError::invalid("--out", "`thud paper all` needs --out DIR"))?;
+    if fsio::is_stdout(dir) {
+        return Err(ThudError::invalid("--out", "-: `thud paper all` writes a folder of files; give --out DIR").into());
+    }
     let expected = report::expected_files();
-    report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite).map_err(refused)?;
+    report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite).map_err(bundle_error)?;
     let spinner = budget::spinner("reproducing the paper", true);
     let files = report::paper_bundle();
     spinner.finish_and_clear();
@@ -71,7 +97,7 @@ fn all(out: Option<&std::path::Path>, overwrite: Overwrite) -> Result<(), CliErr
             }
         })?;
     }
-    report::write_bundle(dir, &files, overwrite).map_err(refused)?;
-    super::warn(&format!("wrote {} files to {}", files.len(), dir.display()));
+    report::write_bundle(dir, &files, overwrite).map_err(bundle_error)?;
+    super::warn(&format!("wrote {} files to {}", files.len(), fsio::shown(dir)));
     Ok(())
 }

@@ -11,7 +11,7 @@ use super::simulate::describe;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::Design;
 use crate::error::ThudError;
-use crate::limits::{self, short, Estimate};
+use crate::limits::{self, short};
 use crate::report::{ResponseEnsembleReport, ResponseReport};
 use crate::response::{self, Direction, Response, ResponseEnsemble, ResponseOptions};
 use crate::units::Kind;
@@ -64,22 +64,17 @@ fn check_runs_work(
     continuation: bool,
     (runs, runs_text): (usize, &str),
 ) -> Result<(), CliError> {
-    let [one, one_steps] = limits::response_work(d, freqs, continuation);
-    let n = runs as f64;
-    let (periods, steps) =
-        (Estimate { value: n * one.value, ..one }, Estimate { value: n * one_steps.value, ..one_steps });
-    if runs > 1 && !one.exceeded() {
-        let hint =
-            format!("use fewer runs (at most {} for these frequencies)", short((one.cap.max / one.value).floor()));
-        ctx.enforce(periods, "--ensemble", runs_text, &hint)?;
-    }
-    ctx.enforce(periods, "--freqs", freqs_text, "use fewer frequencies or a shorter --duration")?;
-    if let crate::damper::Solver::Newmark { dt_s } = d.solver {
-        ctx.enforce(steps, "--dt", &format!("{} s", short(dt_s)), "use the event solver or a larger --dt")?;
-    }
-    let f_max = freqs.iter().copied().fold(0.0, f64::max);
-    let cycles = limits::design_run(&response::at_frequency(d, f_max, true), 0)[1];
-    ctx.enforce(cycles, "--freqs", freqs_text, "use lower frequencies or a shorter --duration")
+    let Err(r) = response::check_response(d, freqs, continuation, runs) else { return Ok(()) };
+    let value = match (r.param, d.solver) {
+        (limits::RUNS_PARAM, _) => runs_text.to_string(),
+        ("dt", crate::damper::Solver::Newmark { dt_s }) => format!("{} s", short(dt_s)),
+        _ => freqs_text.to_string(),
+    };
+    let flag = match r.param {
+        limits::RUNS_PARAM => "--ensemble".to_string(),
+        param => format!("--{param}"),
+    };
+    ctx.enforce(r.estimate, &flag, &value, &super::design_args::hint(&r, &flag))
 }
 
 pub fn run(a: &ResponseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {

@@ -82,7 +82,7 @@ fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &Design, runs: us
     let spinner = budget::spinner("simulating", long);
     let e = ensemble::evaluate(d, runs, None)?;
     spinner.finish_and_clear();
-    let e = e.ok_or_else(|| ThudError::invalid("ensemble", "the runs were cancelled"))?;
+    let e = e.ok_or(ThudError::Cancelled)?;
     let report = EnsembleReport::new(d, &e);
     let truncated = report.truncation_reason.clone();
     match a.output.format() {

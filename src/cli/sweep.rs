@@ -215,8 +215,8 @@ impl<'a> Target<'a> {
             None => out.text(text),
             Some(p) => {
                 super::output::check_text(text)?;
-                fsio::write(p, text.as_bytes(), self.overwrite).map_err(|e| super::export::out_error(p, &e))?;
-                super::warn(&format!("wrote {}", p.display()));
+                fsio::write(p, text.as_bytes(), self.overwrite).map_err(|e| super::export::write_error(p, &e))?;
+                super::warn(&format!("wrote {}", fsio::shown(p)));
                 Ok(())
             }
         }
@@ -263,6 +263,19 @@ fn write_shard(
     } else {
         ("--shard", a.shard.as_deref().unwrap_or_default())
     };
+    // Refused up front: a study whose parts `thud merge` could never join.
+    let merged = limits::merged_runs(s.cells(), s.ensemble);
+    ctx.enforce(
+        merged,
+        flag,
+        value,
+        &format!(
+            "`thud merge` joins a chart of at most {} runs ({} cells × {} runs here): use fewer --masses or --gaps values or a smaller --ensemble",
+            short(merged.cap.max),
+            s.cells(),
+            s.ensemble
+        ),
+    )?;
     a.design.check_runs(ctx, &s.design, part_cells, s.ensemble, flag, value)?;
     let bar = budget::bar(part_cells as u64, "shard");
     let range = header.first_cell..header.end_cell;

@@ -2,6 +2,8 @@
 
 use clap::Args;
 
+use super::CliError;
+
 /// Options of the explorer.
 #[derive(Debug, Clone, Default, Args)]
 pub struct TuiArgs {
@@ -26,18 +28,18 @@ pub struct TuiArgs {
 
 /// `thud` with no subcommand: the explorer on a terminal, the help text otherwise (pipes,
 /// scripts, CI).
-pub fn run_default() -> Result<(), String> {
+pub fn run_default() -> Result<(), CliError> {
     use std::io::IsTerminal;
     if std::io::stdin().is_terminal() && std::io::stdout().is_terminal() {
         run(&TuiArgs { preset: "default".into(), ..Default::default() })
     } else {
         use clap::CommandFactory;
-        super::Cli::command().print_help().map_err(|e| e.to_string())
+        Ok(super::Cli::command().print_help().map_err(|e| CliError::Io(format!("cannot write the help: {e}")))?)
     }
 }
 
-/// Runs the explorer; the error is one line for stderr.
-pub fn run(a: &TuiArgs) -> Result<(), String> {
+/// Runs the explorer.
+pub fn run(a: &TuiArgs) -> Result<(), CliError> {
     use crate::tui::tour::TourSource;
     let tour = a.tour.as_ref().map(|file| file.clone().map_or(TourSource::BuiltIn, TourSource::File));
     let opts = crate::tui::Options {
@@ -47,5 +49,5 @@ pub fn run(a: &TuiArgs) -> Result<(), String> {
         export_dir: a.export_dir.clone(),
         tour,
     };
-    crate::tui::run(&opts).map_err(|e| e.to_string())
+    crate::tui::run(&opts).map_err(CliError::Tui)
 }

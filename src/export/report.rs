@@ -1,7 +1,8 @@
 //! `paper all`: every reproducible table and figure as CSV (and SVG where it is a figure or a
 //! table worth plotting), and a `REPORT.md` with the side-by-side tables, notes and errors.
 
-use std::path::Path;
+use std::fs;
+use std::path::{Path, PathBuf};
 
 use crate::design::Thresholds;
 use crate::fsio::{self, FsError, Overwrite};
@@ -112,27 +113,100 @@ pub fn expected_files() -> Vec<String> {
     v
 }
 
-/// Checks that every file of `names` may be written into `dir` with `overwrite` (see
-/// [`fsio::check_target`]); the first that may not is the error. Run before the bundle is
-/// computed, so a refusal costs nothing.
+/// Why `paper all` may not write its set into a folder.
+#[derive(Debug, thiserror::Error)]
+pub enum BundleError {
+    /// A file of the set (or the folder) is in the way, or the system refused.
+    #[error(transparent)]
+    File(#[from] FsError),
+    /// The folder holds a file that is not one of the set: the set would be mixed with it.
+    #[error(
+        "{} holds {} that `thud paper all` does not write; give a new or empty folder (or, with --force, one holding only a previous set)",
+        fsio::shown(.dir),
+        fsio::shown(.name)
+    )]
+    Foreign { dir: PathBuf, name: PathBuf },
+    /// The path is not a folder.
+    #[error("{} is {what}, not a folder", fsio::shown(.dir))]
+    NotAFolder { dir: PathBuf, what: String },
+}
+
+/// What writing the set into a folder does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BundlePlan {
+    /// Nothing is there (or an empty folder): the new folder is renamed into place.
+    Create,
+    /// A previous set is there (`Replace`): the new folder is exchanged with it.
+    Replace,
+}
+
+/// Checks that the set of `names` may be written as the folder `dir` with `overwrite`: `dir`
+/// absent, an empty folder, or (with `Replace`) a folder holding only regular files of the set.
+/// Run before the bundle is computed, so a refusal costs nothing.
 pub fn check_bundle_targets<'a>(
     dir: &Path,
     names: impl IntoIterator<Item = &'a str>,
     overwrite: Overwrite,
-) -> Result<(), FsError> {
-    for name in names {
-        fsio::check_target(&dir.join(name), overwrite)?;
+) -> Result<BundlePlan, BundleError> {
+    let meta = match fs::symlink_metadata(dir) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(BundlePlan::Create),
+        Err(e) => return Err(FsError::Io { path: dir.to_path_buf(), source: e }.into()),
+    };
+    if !meta.is_dir() {
+        let what = if meta.file_type().is_symlink() { "a symbolic link".into() } else { kind_of(&meta) };
+        return Err(BundleError::NotAFolder { dir: dir.to_path_buf(), what });
     }
-    Ok(())
+    let names: Vec<&str> = names.into_iter().collect();
+    let mut present: Vec<PathBuf> = Vec::new();
+    for entry in fs::read_dir(dir).map_err(|e| FsError::Io { path: dir.to_path_buf(), source: e })? {
+        let entry = entry.map_err(|e| FsError::Io { path: dir.to_path_buf(), source: e })?;
+        let name = entry.file_name();
+        if !names.iter().any(|n| name == std::ffi::OsStr::new(n)) {
+            return Err(BundleError::Foreign { dir: dir.to_path_buf(), name: name.into() });
+        }
+        present.push(entry.path());
+    }
+    present.sort();
+    for p in &present {
+        if let fsio::Plan::Through(_) = fsio::check_target(p, Overwrite::Replace)? {
+            // A stream among the set's names is never replaced either.
+            return Err(FsError::Link(p.clone()).into());
+        }
+    }
+    match (present.first(), overwrite) {
+        (None, _) => Ok(BundlePlan::Create),
+        (Some(p), Overwrite::Refuse) => Err(FsError::Exists(p.clone()).into()),
+        (Some(_), Overwrite::Replace) => Ok(BundlePlan::Replace),
+    }
 }
 
-/// Writes `files` into `dir` (created if missing), each through [`fsio::write`]. Every target is
-/// checked first, so a refusal (an existing file without `Replace`, or a path that is not a
-/// regular file) writes nothing.
-pub fn write_bundle(dir: &Path, files: &[BundleFile], overwrite: Overwrite) -> Result<(), FsError> {
-    check_bundle_targets(dir, files.iter().map(|f| f.name.as_str()), overwrite)?;
+/// "a regular file", "a FIFO", … for a message.
+fn kind_of(meta: &fs::Metadata) -> String {
+    fsio::FileKind::of(meta.file_type()).map_or_else(|| "a regular file".into(), |k| k.to_string())
+}
+
+/// Writes `files` as the folder `dir`, complete or not at all: into a new temporary folder
+/// `.DIR.thud-XXXXXX.tmp` beside it (locked, removed on every error and on SIGINT/SIGTERM/
+/// SIGHUP; after SIGKILL, by the next run), each file through [`fsio::write`] and synced, then
+/// renamed into place — over nothing, over an empty folder, or (`Replace`) exchanged atomically
+/// with the previous set, which is then removed. A full disk or a kill leaves no partial set,
+/// and a run after a failure starts afresh.
+pub fn write_bundle(dir: &Path, files: &[BundleFile], overwrite: Overwrite) -> Result<(), BundleError> {
+    let plan = check_bundle_targets(dir, files.iter().map(|f| f.name.as_str()), overwrite)?;
+    let io = |e: std::io::Error| BundleError::from(FsError::Io { path: dir.to_path_buf(), source: e });
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    fs::create_dir_all(&parent).map_err(io)?;
+    fsio::remove_stale_temps(&parent);
+    let temp = fsio::TempFolder::new(&parent, dir).map_err(io)?;
     for f in files {
-        fsio::write(&dir.join(&f.name), f.contents.as_bytes(), overwrite)?;
+        fsio::write(&temp.path().join(&f.name), f.contents.as_bytes(), Overwrite::Refuse)?;
     }
+    temp.sync();
+    let names: Vec<&str> = files.iter().map(|f| f.name.as_str()).collect();
+    temp.put_in_place(dir, plan == BundlePlan::Replace, &names)?;
     Ok(())
 }

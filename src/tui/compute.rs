@@ -223,8 +223,7 @@ pub const RESPONSE_POINTS: usize = 61;
 /// 5.03 Hz), or 1–10 Hz without one (no spring, or overdamped). It does not depend on the
 /// forcing frequency f, so changing f only moves the marker.
 pub fn default_band(d: &Design) -> FreqBand {
-    let f = natural_frequency_hz(d);
-    let (from_hz, to_hz) = if f > 0.0 { (0.6 * f, 1.6 * f) } else { (1.0, 10.0) };
+    let (from_hz, to_hz) = thud_core::response::default_band_hz(d);
     FreqBand { from_hz, to_hz, points: RESPONSE_POINTS }
 }
 
@@ -389,8 +388,7 @@ pub fn compute_relevel(d: &Design, passes: &ChartPasses) -> ChartPasses {
 /// The main mass's damped natural frequency (Hz) of `d`: the engine's cycles per second of
 /// Eq 25 alone ([`thud_core::limits::cycles`]); 0 without a spring or when overdamped.
 pub fn natural_frequency_hz(d: &Design) -> f64 {
-    let p = &d.damper;
-    thud_core::limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
+    thud_core::response::natural_frequency_hz(d)
 }
 
 #[cfg(test)]

@@ -38,6 +38,8 @@ pub fn what(p: Knob) -> &'static str {
         Knob::Runs => {
             "runs from N ball offsets spread over the clearance (y0 = −d/2 + (k + ½)·d/N): the readout shows median [p10–p90], the chart shades cells where < 70 % of runs agree"
         }
+        // A field of the engine's table: its help.
+        Knob::Row(_) => p.row().map_or("", |r| r.help),
     }
 }
 

@@ -10,6 +10,7 @@ use crate::damper::Solver;
 use crate::design::{Design, Materials};
 use crate::error::ThudError;
 use crate::limits;
+use crate::params::{self, Accepts, Group, DESIGN};
 use crate::units::{self, sig, Kind};
 
 /// One editable parameter of the design (a row of the parameter panel).
@@ -42,6 +43,127 @@ pub enum Knob {
     BallPosition,
     /// Runs N of the ensemble (`--ensemble`): the readout's spread and the chart's shading.
     Runs,
+    /// A field made from the engine's row `DESIGN[i]` alone (a number, a count or a switch no
+    /// field above sets): its name, range, help, unit and accessor are the row's. Every row of
+    /// [`params::DESIGN`] gets a field this way unless a field above already sets it, so a new
+    /// parameter appears in the explorer without a line here.
+    Row(usize),
+}
+
+/// The rows of [`params::DESIGN`] the named fields set ([`Knob::rows`] of each, in order).
+const NAMED_ROWS: [&str; 24] = [
+    "mass",
+    "gap",
+    "r",
+    "theta",
+    "v0",
+    "main-mass",
+    "k",
+    "c",
+    "c1",
+    "k-hz",
+    "sphere",
+    "plate",
+    "source",
+    "quad-signs",
+    "pulse",
+    "no-tension",
+    "solver",
+    "dt",
+    "duration",
+    "l-star",
+    "e-star",
+    "force",
+    "freq",
+    "ball-position",
+];
+
+/// `a == b`, at compile time.
+const fn same(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// Whether the row `i` of [`params::DESIGN`] is set by a named field.
+const fn named_row(i: usize) -> bool {
+    let mut j = 0;
+    while j < NAMED_ROWS.len() {
+        if same(DESIGN[i].name, NAMED_ROWS[j]) {
+            return true;
+        }
+        j += 1;
+    }
+    false
+}
+
+/// How many rows of [`params::DESIGN`] get a [`Knob::Row`] field.
+const ROW_FIELDS: usize = {
+    let mut n = 0;
+    let mut i = 0;
+    while i < DESIGN.len() {
+        if !named_row(i) {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
+};
+
+/// The named fields of the panel, in panel order (the ensemble size last).
+const NAMED: [Knob; 23] = [
+    Knob::Mass,
+    Knob::Gap,
+    Knob::R,
+    Knob::Theta,
+    Knob::V0,
+    Knob::MainMass,
+    Knob::K,
+    Knob::C,
+    Knob::C1,
+    Knob::KHz,
+    Knob::Materials,
+    Knob::Source,
+    Knob::QuadSigns,
+    Knob::Pulse,
+    Knob::Clamp,
+    Knob::Solver,
+    Knob::Duration,
+    Knob::LStar,
+    Knob::EStar,
+    Knob::Force,
+    Knob::Freq,
+    Knob::BallPosition,
+    Knob::Runs,
+];
+
+/// Every field: the named ones, then one [`Knob::Row`] per other row of the engine's table
+/// (in table order), then the ensemble size.
+const fn all_fields() -> [Knob; NAMED.len() + ROW_FIELDS] {
+    let mut all = [Knob::Runs; NAMED.len() + ROW_FIELDS];
+    let mut k = 0;
+    while k < NAMED.len() - 1 {
+        all[k] = NAMED[k];
+        k += 1;
+    }
+    let mut i = 0;
+    while i < DESIGN.len() {
+        if !named_row(i) {
+            all[k] = Knob::Row(i);
+            k += 1;
+        }
+        i += 1;
+    }
+    all
 }
 
 /// What the knobs turn: a design, or a design with the explorer's ensemble size.
@@ -70,6 +192,19 @@ impl Tunable for Design {
     fn set_runs(&mut self, _: usize) -> bool {
         false
     }
+}
+
+/// Checks a setup that was loaded rather than typed (a saved design, a preset, a tour step)
+/// as if each of its fields had been typed: every field's range, the work caps (named as the
+/// duration, the field that usually carries them: a 1e6-s design is refused with the chart's
+/// cap line, as typing 1e6 is), the whole-design checks and the engine's validation.
+pub fn check_loaded<S: Tunable>(s: &S) -> Result<(), ThudError> {
+    // The forcing and the ball's start only where they apply: the whole-design check has them.
+    for k in Knob::ALL.into_iter().filter(|k| !matches!(k, Knob::Force | Knob::Freq | Knob::BallPosition)) {
+        k.check_range(s)?;
+    }
+    limits::check_design(s.design())?;
+    Knob::Duration.checked(s.clone()).map(drop)
 }
 
 /// What the explorer runs: the design and the ensemble size N (runs from N ball offsets spread
@@ -137,32 +272,49 @@ fn material_choices() -> Vec<Option<Materials>> {
 }
 
 impl Knob {
-    /// All fields, in panel order.
-    pub const ALL: [Knob; 23] = [
-        Knob::Mass,
-        Knob::Gap,
-        Knob::R,
-        Knob::Theta,
-        Knob::V0,
-        Knob::MainMass,
-        Knob::K,
-        Knob::C,
-        Knob::C1,
-        Knob::KHz,
-        Knob::Materials,
-        Knob::Source,
-        Knob::QuadSigns,
-        Knob::Pulse,
-        Knob::Clamp,
-        Knob::Solver,
-        Knob::Duration,
-        Knob::LStar,
-        Knob::EStar,
-        Knob::Force,
-        Knob::Freq,
-        Knob::BallPosition,
-        Knob::Runs,
-    ];
+    /// All fields, in panel order: the named fields, a field for every other row of the
+    /// engine's table, the ensemble size.
+    pub const ALL: [Knob; NAMED.len() + ROW_FIELDS] = all_fields();
+
+    /// The rows of the engine's table ([`params::DESIGN`]) this field sets (none for the
+    /// ensemble size, which is the explorer's, not a design's).
+    pub fn rows(self) -> &'static [&'static str] {
+        let named = |i: usize| &NAMED_ROWS[i..=i];
+        match self {
+            Knob::Mass => named(0),
+            Knob::Gap => named(1),
+            Knob::R => named(2),
+            Knob::Theta => named(3),
+            Knob::V0 => named(4),
+            Knob::MainMass => named(5),
+            Knob::K => named(6),
+            Knob::C => named(7),
+            Knob::C1 => named(8),
+            Knob::KHz => named(9),
+            Knob::Materials => &NAMED_ROWS[10..=11],
+            Knob::Source => named(12),
+            Knob::QuadSigns => named(13),
+            Knob::Pulse => named(14),
+            Knob::Clamp => named(15),
+            Knob::Solver => &NAMED_ROWS[16..=17],
+            Knob::Duration => named(18),
+            Knob::LStar => named(19),
+            Knob::EStar => named(20),
+            Knob::Force => named(21),
+            Knob::Freq => named(22),
+            Knob::BallPosition => named(23),
+            Knob::Runs => &[],
+            Knob::Row(i) => DESIGN.get(i).map_or(&[], |p| std::slice::from_ref(&p.name)),
+        }
+    }
+
+    /// The engine's row of a field that sets exactly one.
+    pub fn row(self) -> Option<&'static params::Param<params::DesignDraft>> {
+        match self.rows() {
+            [name] => params::design_param(name),
+            _ => None,
+        }
+    }
 
     /// Short label for the panel.
     pub fn label(self) -> &'static str {
@@ -190,6 +342,7 @@ impl Knob {
             Knob::Freq => "freq f",
             Knob::BallPosition => "ball y0",
             Knob::Runs => "ensemble N",
+            Knob::Row(_) => self.row().map_or("?", |r| r.label),
         }
     }
 
@@ -219,6 +372,7 @@ impl Knob {
             Knob::Freq => "freq",
             Knob::BallPosition => "ball-position",
             Knob::Runs => "ensemble",
+            Knob::Row(_) => self.rows().first().copied().unwrap_or("?"),
         }
     }
 
@@ -239,32 +393,21 @@ impl Knob {
             Knob::Force => Kind::Force,
             Knob::Freq => Kind::Frequency,
             Knob::BallPosition => Kind::Length,
+            Knob::Row(_) => match self.row()?.accepts {
+                Accepts::Quantity { kind, .. } => kind,
+                _ => return None,
+            },
             _ => return None,
         })
     }
 
-    /// The field's valid range, from the one table of ranges ([`crate::limits`]).
+    /// The field's valid range: its row's in the engine's table ([`params::DESIGN`], whose
+    /// ranges are [`crate::limits`]'s); the ensemble size's is [`limits::ENSEMBLE`].
     pub fn range(self) -> Option<limits::Range> {
-        Some(match self {
-            Knob::Mass => limits::MASS,
-            Knob::Gap => limits::GAP,
-            Knob::R => limits::R,
-            Knob::Theta => limits::THETA,
-            Knob::V0 => limits::V0,
-            Knob::MainMass => limits::MAIN_MASS,
-            Knob::K => limits::STIFFNESS,
-            Knob::C => limits::DAMPING,
-            Knob::C1 => limits::C1,
-            Knob::KHz => limits::K_HZ,
-            Knob::Duration => limits::DURATION,
-            Knob::LStar => limits::L_STAR,
-            Knob::EStar => limits::E_STAR,
-            Knob::Force => limits::FORCE,
-            Knob::Freq => limits::FREQ,
-            Knob::BallPosition => limits::BALL_POSITION,
-            Knob::Runs => limits::ENSEMBLE,
-            _ => return None,
-        })
+        match self {
+            Knob::Runs => Some(limits::ENSEMBLE),
+            _ => self.row()?.range().copied(),
+        }
     }
 
     /// The unit the value is shown in, and the factor from it to the internal unit (SI;
@@ -288,6 +431,11 @@ impl Knob {
             Knob::Freq => ("Hz", 1.0),
             Knob::BallPosition => ("cm", 1e-2),
             Knob::Runs => ("runs", 1.0),
+            Knob::Row(_) => match self.row()?.accepts {
+                Accepts::Quantity { kind, .. } => (kind.plain_unit(), 1.0),
+                Accepts::Count { range, .. } => (range.unit, 1.0),
+                _ => return None,
+            },
             _ => return None,
         })
     }
@@ -317,25 +465,24 @@ impl Knob {
         let d = s.design();
         let cells = compute::Grids::default().fine.len();
         let runs = s.runs();
-        let ensembles = (runs > 1)
-            .then(|| limits::ensemble_work(d, 1, runs).into_iter().chain(limits::ensemble_work(d, cells, runs)))
-            .into_iter()
-            .flatten();
-        let over = limits::design_run(d, compute::HISTORY_SAMPLES)
-            .into_iter()
-            .chain(limits::sweep_work(d, cells))
-            .chain(ensembles)
-            .find(limits::Estimate::exceeded);
-        match over {
-            Some(e) => {
+        // The field just changed is the parameter "given": the engine's one decision of
+        // which cap a run is over ([`limits::check_run`], [`limits::check_sweep`],
+        // [`limits::check_runs`]); the status line names this field.
+        let given = |n: &str| self.rows().contains(&n);
+        let refused = limits::check_run(d, &given, compute::HISTORY_SAMPLES)
+            .and_then(|()| limits::check_sweep(d, &given, cells, 1))
+            .and_then(|()| if runs > 1 { limits::check_runs(d, &given, 1, runs) } else { Ok(()) })
+            .and_then(|()| if runs > 1 { limits::check_runs(d, &given, cells, runs) } else { Ok(()) });
+        match refused {
+            Err(r) => {
                 // The solver field is named by its step, as the command line's --dt.
                 let (name, shown) = match (self, d.solver) {
                     (Knob::Solver, Solver::Newmark { dt_s }) => ("dt", format!("{} s", limits::short(dt_s))),
                     _ => (self.param(), self.display(s)),
                 };
-                Err(ThudError::invalid(name, format!("{shown}: {}", e.describe())))
+                Err(ThudError::invalid(name, format!("{shown}: {}", r.estimate.describe())))
             }
-            None => Ok(()),
+            Ok(()) => Ok(()),
         }
     }
 
@@ -367,13 +514,13 @@ impl Knob {
     /// the work caps, and the design's own validation — the one range table over the whole
     /// design ([`limits::check_design`]: what the command line checks, e.g. |y0| < d/2 and a
     /// force's frequency) and the engine's ([`Design::validate`], [`Design::resolved`]).
-    fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
+    pub(crate) fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
         self.check_range(&next)?;
         self.check_work(&next)?;
         let d = next.design();
         d.validate()?;
         d.resolved()?;
-        if matches!(self, Knob::Force | Knob::Freq | Knob::BallPosition | Knob::Gap) {
+        if matches!(self, Knob::Force | Knob::Freq | Knob::BallPosition | Knob::Gap | Knob::Row(_)) {
             limits::check_design(d)?;
         }
         Ok(next)
@@ -385,6 +532,11 @@ impl Knob {
             Knob::R | Knob::Theta | Knob::Source | Knob::QuadSigns | Knob::Pulse => Scope::Acoustics,
             Knob::Mass | Knob::Gap => Scope::Design,
             Knob::LStar | Knob::EStar => Scope::Thresholds,
+            Knob::Row(_) => match self.row().map(|p| p.group) {
+                Some(Group::Listener) => Scope::Acoustics,
+                Some(Group::Study) => Scope::Thresholds,
+                _ => Scope::All,
+            },
             _ => Scope::All,
         }
     }
@@ -406,6 +558,12 @@ impl Knob {
             Knob::Freq => Stepping::Mul(0.02, 0.002),
             Knob::BallPosition => Stepping::Add(1e-3, 1e-4),
             Knob::Runs => Stepping::Count,
+            Knob::Row(_) => match self.row().map(|p| &p.accepts) {
+                Some(Accepts::Quantity { range, .. }) if range.min > 0.0 => Stepping::Mul(0.1, 0.01),
+                Some(Accepts::Quantity { .. }) => Stepping::Add(0.1, 0.01),
+                Some(Accepts::Count { .. }) => Stepping::Count,
+                _ => Stepping::Cycle,
+            },
             _ => Stepping::Cycle,
         }
     }
@@ -431,6 +589,13 @@ impl Knob {
             Knob::Force => p.force_n,
             Knob::Freq => p.freq_hz,
             Knob::BallPosition => p.ball_position_m,
+            // NaN: the design does not use the row (a density while the radius is set).
+            Knob::Row(_) => match self.row()? {
+                row if matches!(row.accepts, Accepts::Quantity { .. } | Accepts::Count { .. }) => {
+                    Some((row.get?)(d)).filter(|v| !v.is_nan())?
+                }
+                _ => return None,
+            },
             _ => return None,
         })
     }
@@ -477,6 +642,11 @@ impl Knob {
             Knob::Force => p.force_n = v,
             Knob::Freq => p.freq_hz = v,
             Knob::BallPosition => p.ball_position_m = v,
+            Knob::Row(_) => {
+                if let Some(row) = self.row() {
+                    *d = params::set_number(d, row, v);
+                }
+            }
             _ => {}
         }
         Ok(s)
@@ -520,6 +690,7 @@ impl Knob {
             Knob::BallPosition => format!("{} cm", sig(p.ball_position_m * 1e2, 3)),
             Knob::Runs if s.runs() == 1 => "1 (single run)".into(),
             Knob::Runs => format!("{} runs", s.runs()),
+            Knob::Row(_) => self.row_display(d),
         }
     }
 
@@ -584,6 +755,12 @@ impl Knob {
                 }
             }
             Knob::Clamp => d.damper.no_tension = !d.damper.no_tension,
+            Knob::Row(_) => {
+                if let Some(row) = self.row().filter(|r| matches!(r.accepts, Accepts::Switch { .. })) {
+                    let on = row.get.is_some_and(|get| get(d) != 0.0);
+                    *d = params::set_number(d, row, if on { 0.0 } else { 1.0 });
+                }
+            }
             Knob::Solver => {
                 d.solver = match d.solver {
                     Solver::Event => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
@@ -609,6 +786,11 @@ impl Knob {
                 let n = limits::ENSEMBLE.parse_count(self.param(), t)?;
                 self.set(s, n as f64)?
             }
+            // A count of the engine's table, read as the command line reads its flag.
+            (Knob::Row(_), None, Some(_)) => match self.range() {
+                Some(r) => self.set(s, r.parse_count(self.param(), t)? as f64)?,
+                None => self.parse_choice(s, t)?,
+            },
             // A plain number is in the unit shown.
             (_, Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
                 self.set(s, t.parse::<f64>().unwrap_or(f64::NAN) * k)?
@@ -672,9 +854,37 @@ impl Knob {
                     }
                 }
             }
+            Knob::Row(_) if self.row().is_some_and(|r| matches!(r.accepts, Accepts::Switch { .. })) => {
+                let on = match low.as_str() {
+                    "on" | "yes" | "true" => 1.0,
+                    "off" | "no" | "false" => 0.0,
+                    _ => return Err(bad("on or off")),
+                };
+                if let Some(row) = self.row() {
+                    *d = params::set_number(d, row, on);
+                }
+            }
             _ => return Err(bad("a number")),
         }
         Ok(s)
+    }
+}
+
+impl Knob {
+    /// The value of a [`Knob::Row`] field as people read it: a number in its plain unit
+    /// (— when the design does not use it, e.g. a density while the radius is set), or on/off.
+    fn row_display(self, d: &Design) -> String {
+        let Some(row) = self.row() else { return "—".into() };
+        let v = row.get.map_or(f64::NAN, |get| get(d));
+        match row.accepts {
+            Accepts::Switch { .. } => if v == 0.0 { "off" } else { "on" }.into(),
+            _ if !v.is_finite() => "—".into(),
+            Accepts::Count { .. } => format!("{}", v.round()),
+            _ => match row.unit() {
+                "" => sig(v, 4),
+                unit => format!("{} {unit}", sig(v, 4)),
+            },
+        }
     }
 }
 
@@ -740,6 +950,28 @@ mod tests {
         let q = Knob::Source.stepped(&d, false, false).unwrap();
         assert_eq!(q.radiation.source, Source::Quadrupole);
         assert!((q.observer.theta_rad.to_degrees() - 90.0).abs() < 1e-9);
+    }
+
+    /// The field of the engine's row `name` (a [`Knob::Row`]).
+    fn row_field(name: &str) -> Knob {
+        Knob::ALL.into_iter().find(|k| matches!(k, Knob::Row(_)) && k.rows() == [name]).unwrap()
+    }
+
+    #[test]
+    fn fields_made_from_table_rows_set_the_design() {
+        let d = Design::default();
+        let w0 = row_field("ball-velocity");
+        assert_eq!(w0.parsed(&d, "0.5").unwrap().damper.ball_velocity_m_s, 0.5);
+        assert!(w0.parsed(&d, "1e3").is_err(), "out of the row's range");
+        let rho = row_field("density");
+        assert_eq!(rho.parsed(&d, "1000").unwrap().ball, crate::design::BallSize::Density(1000.0));
+        let n = row_field("periods");
+        assert_eq!(n.stepped(&d, true, false).unwrap().damper.steady_periods, 2 * d.damper.steady_periods);
+        assert!(n.parsed(&d, "2.5").is_err(), "a count");
+        let settle = row_field("settle");
+        assert!(settle.stepped(&d, true, false).unwrap().damper.settle);
+        assert_eq!(settle.display(&d), "off");
+        assert_eq!(w0.display(&d), "0 m/s");
     }
 
     #[test]

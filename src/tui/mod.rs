@@ -25,11 +25,13 @@
 pub mod app;
 pub mod cache_key;
 pub mod chart;
+pub mod clamp;
 pub mod compute;
 pub mod explain;
 pub mod fields;
 pub mod files;
 pub mod fingerprint;
+pub mod hangup;
 pub mod history;
 pub mod job;
 pub mod keys;
@@ -76,6 +78,22 @@ pub enum TuiError {
     /// The `--tour` file cannot be read or is not a valid tour.
     #[error(transparent)]
     Tour(#[from] tour::TourError),
+    /// A thread the explorer needs could not be started.
+    #[error("cannot start the explorer's {0} thread ({1}); the system refuses new threads (a pids limit?)")]
+    Thread(&'static str, #[source] std::io::Error),
+    /// The terminal hung up while the explorer ran (its input reports POLLHUP).
+    #[error("the terminal is gone (its input hung up); the explorer ended")]
+    TerminalGone,
+}
+
+impl TuiError {
+    /// The exit status: 1 for a terminal or system failure, 2 for bad input (preset, tour).
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            TuiError::Preset(_) | TuiError::Tour(_) => 2,
+            TuiError::Terminal(_) | TuiError::Draw(_) | TuiError::Thread(..) | TuiError::TerminalGone => 1,
+        }
+    }
 }
 
 /// Set this environment variable to make the explorer panic right after it took over the
@@ -90,6 +108,7 @@ const TICK: Duration = Duration::from_millis(120);
 /// problem with it is shown in the status line and the defaults are used.
 pub fn run(opts: &Options) -> Result<(), TuiError> {
     let design = presets::preset(&opts.preset)?;
+    fields::check_loaded(&design)?;
     let tour_def = opts.tour.as_ref().map(tour::Tour::load).transpose()?;
     let theme = Palette::from_env(opts.ascii);
     let mut app = App::new(design, &opts.preset, theme);
@@ -100,6 +119,10 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     if let Some(dir) = &opts.export_dir {
         app.export_dir.clone_from(dir);
     }
+    if crate::threads::calling_thread_only() {
+        // The worker slots' parallel work would wait for the calling thread forever.
+        return Err(TuiError::Thread("worker", std::io::Error::other("no worker thread could be started")));
+    }
     let (mut term, _guard) = terminal::setup(opts.mouse).map_err(TuiError::Terminal)?;
     assert!(
         std::env::var_os(PANIC_FOR_TEST).is_none(),
@@ -107,7 +130,10 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     );
     let (tx, rx) = mpsc::channel();
     let busy = Arc::new(AtomicBool::new(true));
-    spawn_input(tx.clone(), busy.clone());
+    spawn_input(tx.clone(), busy.clone()).map_err(|e| TuiError::Thread("input", e))?;
+    let on_hangup = tx.clone();
+    // Without the watch the explorer runs as before (a dead terminal ends it at the next draw).
+    let gone = hangup::watch(move || drop(on_hangup.send(Msg::Hangup))).ok();
     let worker = Worker::start(move |d| {
         let _ = tx.send(Msg::Work(d));
     });
@@ -116,12 +142,19 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
             worker.submit(r);
         }
     }
-    event_loop(&mut term, &mut app, &worker, &rx, &busy).map_err(TuiError::Draw)
+    let ended = event_loop(&mut term, &mut app, &worker, &rx, &busy);
+    // The guard restores the cursor; ratatui's own drop would print (and, with stderr on the
+    // same dead terminal, panic) when it cannot show it.
+    std::mem::forget(term);
+    if gone.is_some_and(|g| g.load(Ordering::SeqCst)) {
+        return Err(TuiError::TerminalGone);
+    }
+    ended.map_err(TuiError::Draw)
 }
 
 /// Reads terminal events on their own thread; sends a tick when idle while work is in flight.
-fn spawn_input(tx: Sender<Msg>, busy: Arc<AtomicBool>) {
-    std::thread::spawn(move || loop {
+fn spawn_input(tx: Sender<Msg>, busy: Arc<AtomicBool>) -> std::io::Result<()> {
+    let input = std::thread::Builder::new().name("thud-input".into()).spawn(move || loop {
         let msg = match crossterm::event::poll(TICK) {
             Ok(true) => match crossterm::event::read() {
                 Ok(e) => Msg::Input(e),
@@ -135,6 +168,7 @@ fn spawn_input(tx: Sender<Msg>, busy: Arc<AtomicBool>) {
             return;
         }
     });
+    input.map(drop)
 }
 
 /// Draw, block for a message, handle it and everything else already queued, repeat.

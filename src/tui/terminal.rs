@@ -13,10 +13,11 @@ use crossterm::{execute, queue};
 use ratatui::backend::CrosstermBackend;
 use ratatui::Terminal;
 
+use super::clamp::Clamped;
 use crate::signals;
 
-/// The terminal the app draws on.
-pub type Term = Terminal<CrosstermBackend<Stdout>>;
+/// The terminal the app draws on, its size held to what the explorer draws ([`Clamped`]).
+pub type Term = Terminal<Clamped<CrosstermBackend<Stdout>>>;
 
 /// Writes the escape sequences that undo [`setup`]: leave the alternate screen, stop mouse
 /// capture, show the cursor. Separate from raw mode so it can be tested on a buffer.
@@ -90,7 +91,7 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
-    let term = Terminal::new(CrosstermBackend::new(out))?;
+    let term = Terminal::new(Clamped(CrosstermBackend::new(out)))?;
     Ok((term, guard))
 }
 

@@ -20,7 +20,7 @@
 //! ```
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Deserialize;
 
@@ -140,8 +140,8 @@ impl Tour {
             TourSource::BuiltIn => Tour::parse("assets/tour.toml", BUILT_IN),
             TourSource::File(path) => {
                 let text = fsio::read_to_string(path, fsio::MAX_READ_BYTES)
-                    .map_err(|e| TourError { file: path.display().to_string(), message: e.reason() })?;
-                Tour::parse(&path.display().to_string(), &text)
+                    .map_err(|e| TourError { file: fsio::shown(path), message: e.reason() })?;
+                Tour::parse(&fsio::shown(path), &text)
             }
         }
     }
@@ -164,7 +164,8 @@ impl Tour {
                 setup.design = presets::preset(p).map_err(|e| at(e.to_string()))?;
                 preset = p.trim().to_ascii_lowercase();
             }
-            setup = apply_sets(&setup, &s.set).map_err(at)?;
+            setup = apply_sets(&setup, &s.set).map_err(|e| at(e.to_string()))?;
+            crate::tui::fields::check_loaded(&setup).map_err(|e| at(e.to_string()))?;
             let panel = panel(&s.panel).ok_or_else(|| {
                 at(format!("panel '{}'; one of params, readout, waveform, polar, history, chart", s.panel))
             })?;
@@ -210,28 +211,42 @@ fn field(key: &str) -> Option<Knob> {
     Knob::ALL.into_iter().find(|p| p.param() == key)
 }
 
+/// Why a step's `set` table cannot be applied.
+#[derive(Debug, thiserror::Error)]
+enum SetError {
+    /// A key that names no field.
+    #[error("unknown field '{key}'; one of: {names}")]
+    Unknown { key: String, names: String },
+    /// A value that is not text, a number or a switch.
+    #[error("field '{key}': {value} is not a value (write it as text, e.g. \"45g\")")]
+    NotAValue { key: String, value: String },
+    /// The field refused the value.
+    #[error(transparent)]
+    Field(#[from] crate::error::ThudError),
+}
+
 /// `d` with the step's fields set, choices (like the source) first so that a value checked
 /// against them (θ against the source's open side) sees the new choice.
-fn apply_sets(d: &Setup, sets: &BTreeMap<String, toml::Value>) -> Result<Setup, String> {
+fn apply_sets(d: &Setup, sets: &BTreeMap<String, toml::Value>) -> Result<Setup, SetError> {
     let mut fields = Vec::new();
     for (key, value) in sets {
         let p = field(key).ok_or_else(|| {
             let names: Vec<&str> = Knob::ALL.iter().map(|p| p.param()).collect();
-            format!("unknown field '{key}'; one of: {}", names.join(", "))
+            SetError::Unknown { key: key.clone(), names: names.join(", ") }
         })?;
         let text = match value {
             toml::Value::String(s) => s.clone(),
             toml::Value::Integer(n) => n.to_string(),
             toml::Value::Float(x) => x.to_string(),
             toml::Value::Boolean(b) => if *b { "on" } else { "off" }.to_string(),
-            other => return Err(format!("field '{key}': {other} is not a value (write it as text, e.g. \"45g\")")),
+            other => return Err(SetError::NotAValue { key: key.clone(), value: other.to_string() }),
         };
         fields.push((p, text));
     }
     fields.sort_by_key(|(p, _)| (p.kind().is_some(), Knob::ALL.iter().position(|q| q == p)));
     let mut d = d.clone();
     for (p, text) in fields {
-        d = p.parsed(&d, &text).map_err(|e| e.to_string())?;
+        d = p.parsed(&d, &text)?;
     }
     Ok(d)
 }
@@ -248,7 +263,7 @@ fn line_col(text: &str, at: usize) -> (usize, usize) {
 pub fn source_name(source: &TourSource) -> String {
     match source {
         TourSource::BuiltIn => "the built-in tour".into(),
-        TourSource::File(p) => Path::new(p).display().to_string(),
+        TourSource::File(p) => fsio::shown(p),
     }
 }
 

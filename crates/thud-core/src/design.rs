@@ -671,10 +671,29 @@ pub fn spl_range_by_inclination(chart: &Chart, width_cm_s: f64, zone_by: ZoneBy)
     }
     let lo = (pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min) / width_cm_s).floor() as i64;
     let hi = (pts.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max) / width_cm_s).floor() as i64;
-    (lo..=hi)
+    // Only the bands a point can fall in (its k = ⌊e/w⌋ and the neighbours rounding may put it
+    // in) are visited, each by bisection, so the work is O(n log n) in the points however wide
+    // the span (a forced chart's e spans 1e7 cm/s; a merge under --no-limit must not hang):
+    // the same bands, in the same order, as scanning every k from lo to hi.
+    let mut candidates: Vec<i64> = pts
+        .iter()
+        .flat_map(|p| {
+            let k = (p.0 / width_cm_s).floor() as i64;
+            [k.saturating_sub(1), k, k.saturating_add(1)]
+        })
+        .filter(|k| (lo..=hi).contains(k))
+        .collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    let mut sorted = pts;
+    sorted.sort_by(|x, y| x.0.total_cmp(&y.0));
+    candidates
+        .into_iter()
         .filter_map(|k| {
             let (a, b) = (k as f64 * width_cm_s, (k + 1) as f64 * width_cm_s);
-            let in_band: Vec<f64> = pts.iter().filter(|p| p.0 >= a && p.0 < b).map(|p| p.1).collect();
+            // The points with a ≤ e < b, found by bisection in the sorted points.
+            let (from, to) = (sorted.partition_point(|p| p.0 < a), sorted.partition_point(|p| p.0 < b));
+            let in_band: Vec<f64> = sorted[from..to.max(from)].iter().map(|p| p.1).collect();
             (!in_band.is_empty()).then(|| Band {
                 e_lo_cm_s: a,
                 e_hi_cm_s: b,

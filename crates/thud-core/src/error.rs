@@ -14,6 +14,24 @@ pub enum ThudError {
     #[error("invalid {param}: {message}")]
     Invalid { param: String, message: String },
 
+    /// A value outside its parameter's range ([`crate::limits::Range`]), or not a finite
+    /// number: `value` in `unit` (`shown` as the messages print it), `what` the parameter is
+    /// for people, `range` its valid span.
+    #[error("invalid {param}: {}", out_of_range(*value, shown, unit, what, range))]
+    OutOfRange { param: String, value: f64, shown: String, unit: &'static str, what: &'static str, range: String },
+
+    /// Two parameters given together that contradict each other (`why`).
+    #[error("invalid {param}: cannot be combined with {with}: {why}")]
+    Conflict { param: String, with: String, why: &'static str },
+
+    /// A parameter given without one it needs.
+    #[error("invalid {param}: needs {needs} as well")]
+    Requires { param: String, needs: String },
+
+    /// A run stopped before it finished (an interrupt, or a newer request in the explorer).
+    #[error("cancelled: the run was stopped before it finished")]
+    Cancelled,
+
     /// A quantity whose number does not parse; `example` shows one that does.
     #[error("invalid {param}: '{text}' is not a number (expected e.g. {example})")]
     NotANumber { param: String, text: String, example: &'static str },
@@ -47,7 +65,13 @@ impl ThudError {
     #[must_use]
     pub fn param(&self) -> &str {
         match self {
-            Self::Invalid { param, .. } | Self::NotANumber { param, .. } | Self::UnknownUnit { param, .. } => param,
+            Self::Invalid { param, .. }
+            | Self::NotANumber { param, .. }
+            | Self::UnknownUnit { param, .. }
+            | Self::OutOfRange { param, .. }
+            | Self::Conflict { param, .. }
+            | Self::Requires { param, .. } => param,
+            Self::Cancelled => "",
             Self::UnknownMaterial { .. } => "material",
             Self::RestitutionUnreachable { .. } => "restitution",
             Self::NoImpact => "u0",
@@ -60,6 +84,11 @@ impl ThudError {
     pub fn renamed(self, param: impl Into<String>) -> Self {
         match self {
             Self::Invalid { message, .. } => Self::Invalid { param: param.into(), message },
+            Self::OutOfRange { value, shown, unit, what, range, .. } => {
+                Self::OutOfRange { param: param.into(), value, shown, unit, what, range }
+            }
+            Self::Conflict { with, why, .. } => Self::Conflict { param: param.into(), with, why },
+            Self::Requires { needs, .. } => Self::Requires { param: param.into(), needs },
             Self::NotANumber { text, example, .. } => Self::NotANumber { param: param.into(), text, example },
             Self::UnknownUnit { unit, text, known, plain_unit, .. } => {
                 Self::UnknownUnit { param: param.into(), unit, text, known, plain_unit }
@@ -75,6 +104,14 @@ impl ThudError {
         let prefix = format!("invalid {}: ", self.param());
         full.strip_prefix(&prefix).map_or_else(|| full.clone(), str::to_string)
     }
+}
+
+/// "1e308 kg is out of range; the ball mass m must be 0.0001 to 100 kg" (or "NaN is not a
+/// finite number; …").
+fn out_of_range(value: f64, shown: &str, unit: &str, what: &str, range: &str) -> String {
+    let unit = if unit.is_empty() || !value.is_finite() { String::new() } else { format!(" {unit}") };
+    let how = if value.is_finite() { "is out of range" } else { "is not a finite number" };
+    format!("{shown}{unit} {how}; the {what} must be {range}")
 }
 
 /// `value` must be finite and > 0.
@@ -124,6 +161,16 @@ mod tests {
             ThudError::UnknownMaterial { name: "unobtainium".into(), known: "steel, acrylic".into() },
             ThudError::RestitutionUnreachable { restitution: 0.5 },
             ThudError::NoImpact,
+            ThudError::OutOfRange {
+                param: "gap".into(),
+                value: -1.0,
+                shown: "-1".into(),
+                unit: "m",
+                what: "clearance d",
+                range: "1 to 2 m".into(),
+            },
+            ThudError::Conflict { param: "radius".into(), with: "density".into(), why: "the radius follows" },
+            ThudError::Requires { param: "plate".into(), needs: "sphere".into() },
         ];
         for e in all {
             let text = e.to_string();

@@ -250,6 +250,16 @@ pub const GRID_N: Range = range(
     "1000 × 1000 cells is the most a chart can show; the work cap limits the product",
 );
 
+/// Worker threads of the parallel pool (`--threads N`, or `RAYON_NUM_THREADS`).
+pub const THREADS: Range = range(
+    "threads",
+    "worker threads",
+    1.0,
+    1024.0,
+    "threads",
+    "1 runs the work on one thread; past the machine's cores more threads only cost memory, and 1024 is more cores than one machine has",
+);
+
 /// Runs of an ensemble (`--ensemble N`): the same design from N evenly spread initial ball
 /// offsets (see [`crate::ensemble`]).
 pub const ENSEMBLE: Range = range(
@@ -367,12 +377,14 @@ impl Range {
         if self.contains(value) {
             return Ok(value);
         }
-        let unit = if self.unit.is_empty() || !value.is_finite() { String::new() } else { format!(" {}", self.unit) };
-        let what = if value.is_finite() { "is out of range" } else { "is not a finite number" };
-        Err(ThudError::invalid(
-            param,
-            format!("{}{unit} {what}; the {} must be {}", short(value), self.what, self.describe()),
-        ))
+        Err(ThudError::OutOfRange {
+            param: param.to_string(),
+            value,
+            shown: short(value),
+            unit: self.unit,
+            what: self.what,
+            range: self.describe(),
+        })
     }
 
     /// A whole number typed as `text` (plain or like `1e4`), checked against the range.
@@ -730,6 +742,138 @@ pub fn ensemble_work(d: &Design, cells: usize, runs: usize) -> [Estimate; 4] {
     ]
 }
 
+/// What the user can change to bring a refused run under its cap (the front end words it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Remedy {
+    /// A duration of at most `max_s` (s).
+    ShorterDuration { max_s: f64 },
+    /// Newmark steps: a duration of at most `max_s` (s), or a larger time step.
+    ShorterDurationOrLargerDt { max_s: f64 },
+    /// Newmark steps: a time step of at least `min_s` (s), or a shorter duration.
+    LargerDtOrShorterDuration { min_s: f64 },
+    /// At most `max` history samples.
+    FewerSamples { max: f64 },
+    /// Fewer values on the chart's axes (their product at most `max`).
+    FewerCells { max: f64 },
+    /// A duration of at most `max_s` (s), or fewer cells.
+    ShorterDurationOrFewerCells { max_s: f64 },
+    /// At most `max` runs in all, over `cells` cells of `runs` runs each.
+    FewerRuns { max: f64, cells: usize, runs: usize },
+    /// A duration of at most `max_s` (s), or fewer runs.
+    ShorterDurationOrFewerRuns { max_s: f64 },
+    /// A response: at most `max` runs a frequency.
+    FewerRunsPerFrequency { max: f64 },
+    /// A response: fewer frequencies, or a shorter duration.
+    FewerFrequencies,
+    /// A response: lower frequencies, or a shorter duration.
+    LowerFrequencies,
+    /// Newmark steps of a response: the event solver, or a larger time step.
+    EventSolverOrLargerDt,
+}
+
+/// The quantity a refusal asks the user to change, when it is not a row of the parameter
+/// table: what the caller counts (history samples, chart cells, ensemble runs).
+pub const SAMPLES_PARAM: &str = "samples";
+/// See [`SAMPLES_PARAM`]: the cells of a chart (its two axes).
+pub const CELLS_PARAM: &str = "cells";
+/// See [`SAMPLES_PARAM`]: the ensemble's runs.
+pub const RUNS_PARAM: &str = "runs";
+/// See [`SAMPLES_PARAM`]: the frequencies of a response.
+pub const FREQS_PARAM: &str = "freqs";
+
+/// A run refused before it starts: one estimate over its cap, the parameter the user can
+/// change (a row name of [`crate::params::DESIGN`] such as `duration`, `dt`, `k`, or one of
+/// [`SAMPLES_PARAM`], [`CELLS_PARAM`], [`RUNS_PARAM`]), and what to change. The one decision
+/// of every front end ([`check_run`], [`check_sweep`], [`check_runs`]); each words it itself.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{param}: {}", estimate.describe())]
+pub struct Refusal {
+    pub param: &'static str,
+    pub estimate: Estimate,
+    pub remedy: Remedy,
+    /// What the estimate is summed over, for the hint: `" with 400 cells"`, `" with 16 runs"`,
+    /// or empty for one run.
+    pub per: String,
+}
+
+/// `Err` of `e` over its cap.
+pub(crate) fn over(e: Estimate, param: &'static str, remedy: Remedy, per: &str) -> Result<(), Refusal> {
+    if e.exceeded() {
+        Err(Refusal { param, estimate: e, remedy, per: per.to_string() })
+    } else {
+        Ok(())
+    }
+}
+
+/// Newmark steps over their cap: blames the duration when it was given without a step, else
+/// the step.
+fn newmark(d: &Design, given: &dyn Fn(&str) -> bool, steps: Estimate, per: &str) -> Result<(), Refusal> {
+    let Solver::Newmark { dt_s } = d.solver else { return Ok(()) };
+    let dur = d.damper.duration_s;
+    let scale = steps.value / newmark_steps(dur, dt_s);
+    if given("duration") && !given("dt") {
+        over(steps, "duration", Remedy::ShorterDurationOrLargerDt { max_s: steps.cap.max * dt_s / scale }, per)
+    } else {
+        over(steps, "dt", Remedy::LargerDtOrShorterDuration { min_s: dur * scale / steps.cap.max }, per)
+    }
+}
+
+/// Main-mass cycles over their cap: blames the stiffness or the main mass when one of them
+/// was given and the duration was not (they set the cycles' rate), else the duration.
+fn main_cycles(d: &Design, given: &dyn Fn(&str) -> bool, cycles: Estimate, per: &str) -> Result<(), Refusal> {
+    let max_s = d.damper.duration_s * cycles.cap.max / cycles.value;
+    let param = ["k", "main-mass"].into_iter().find(|n| !given("duration") && given(n)).unwrap_or("duration");
+    over(cycles, param, Remedy::ShorterDuration { max_s }, per)
+}
+
+/// Refuses one run of `d` keeping `history_samples` history samples whose work
+/// ([`design_run`]) is over a cap. `given` says which rows of the parameter table the user
+/// gave (so the refusal names one they can change).
+pub fn check_run(d: &Design, given: &dyn Fn(&str) -> bool, history_samples: usize) -> Result<(), Refusal> {
+    let [steps, cycles, history] = design_run(d, history_samples);
+    newmark(d, given, steps, "")?;
+    main_cycles(d, given, cycles, "")?;
+    over(history, SAMPLES_PARAM, Remedy::FewerSamples { max: history.cap.max }, "")
+}
+
+/// Refuses a design chart of `n_masses` × `n_gaps` cells of `d` whose work ([`sweep_cells`],
+/// [`sweep_work`]) is over a cap.
+pub fn check_sweep(d: &Design, given: &dyn Fn(&str) -> bool, n_masses: usize, n_gaps: usize) -> Result<(), Refusal> {
+    let cells = sweep_cells(n_masses, n_gaps);
+    over(cells, CELLS_PARAM, Remedy::FewerCells { max: cells.cap.max }, "")?;
+    let n = n_masses * n_gaps;
+    let [cell_seconds, steps, cycles] = sweep_work(d, n);
+    let per = format!(" with {n} cells");
+    let max_s = cell_seconds.cap.max / n as f64;
+    over(cell_seconds, "duration", Remedy::ShorterDurationOrFewerCells { max_s }, &per)?;
+    newmark(d, given, steps, &per)?;
+    main_cycles(d, given, cycles, &per)
+}
+
+/// Refuses `cells` cells of `d` with `runs` ensemble runs each (a chart, a chart's part, or
+/// one design with `cells` = 1) whose work ([`ensemble_work`]) is over a cap.
+pub fn check_runs(d: &Design, given: &dyn Fn(&str) -> bool, cells: usize, runs: usize) -> Result<(), Refusal> {
+    let [n, seconds, steps, cycles] = ensemble_work(d, cells, runs);
+    over(n, RUNS_PARAM, Remedy::FewerRuns { max: n.cap.max, cells, runs }, "")?;
+    let per = format!(" with {} runs", short(n.value));
+    let max_s = seconds.cap.max / n.value;
+    over(seconds, "duration", Remedy::ShorterDurationOrFewerRuns { max_s }, &per)?;
+    newmark(d, given, steps, &per)?;
+    main_cycles(d, given, cycles, &per)
+}
+
+/// The value of the parameter a refusal names, in the design, with its unit (for a message
+/// about a parameter the user did not type): `(2, "s")` for the duration.
+pub fn refused_value(d: &Design, param: &str) -> Option<(f64, &'static str)> {
+    match (param, d.solver) {
+        ("duration", _) => Some((d.damper.duration_s, "s")),
+        ("dt", Solver::Newmark { dt_s }) => Some((dt_s, "s")),
+        ("k", _) => Some((d.damper.stiffness_n_m, "N/m")),
+        ("main-mass", _) => Some((d.damper.main_mass_kg, "kg")),
+        _ => None,
+    }
+}
+
 /// Runs in a merged chart of `cells` cells of `runs` ensemble runs each.
 pub fn merged_runs(cells: usize, runs: usize) -> Estimate {
     Estimate { cap: MERGED_RUNS, value: cells as f64 * runs as f64 }
@@ -758,7 +902,7 @@ mod tests {
 
     #[test]
     fn every_range_is_ordered_and_finite() {
-        for r in RANGES.iter().chain([&GRID_N]) {
+        for r in RANGES.iter().chain([&GRID_N, &THREADS]) {
             assert!(r.min.is_finite() && r.max.is_finite() && r.min < r.max, "{}", r.param);
             assert!(!r.reason.is_empty() && !r.what.is_empty(), "{}", r.param);
         }
@@ -907,6 +1051,27 @@ mod tests {
         let [periods, _] = response_work(&Design::default(), &[3.0, 8.0], true);
         // 2 s at 3 Hz is 6 periods < 2N = 20; at 8 Hz 16 < 20: 2 × (20 + settle) per sweep, two sweeps.
         assert!((periods.value - 4.0 * (20.0 + settle)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_refusal_names_the_parameter_the_user_can_change() {
+        let mut d = Design::default();
+        d.damper.stiffness_n_m = 1e10;
+        let per_second = cycles(1.0, d.damper.main_mass_kg, 1e10, d.damper.damping_n_s_m);
+        d.damper.duration_s = 2.0 * CYCLES.max / per_second;
+        let param = |given: &[&str]| check_run(&d, &|n| given.contains(&n), 0).unwrap_err().param;
+        assert_eq!(param(&["k"]), "k", "the stiffness typed alone sets the cycles' rate");
+        assert_eq!(param(&["main-mass"]), "main-mass");
+        assert_eq!(param(&["k", "duration"]), "duration");
+        assert_eq!(param(&[]), "duration");
+        let r = check_run(&d, &|_| false, 0).unwrap_err();
+        assert!(matches!(r.remedy, Remedy::ShorterDuration { max_s } if max_s < d.damper.duration_s));
+        let d = Design { solver: Solver::Newmark { dt_s: 1e-12 }, ..Design::default() };
+        let r = check_run(&d, &|n| n == "duration", 0).unwrap_err();
+        assert_eq!((r.param, r.estimate.cap.what), ("duration", NEWMARK_STEPS.what));
+        assert_eq!(check_run(&d, &|_| false, 0).unwrap_err().param, "dt");
+        assert!(check_sweep(&Design::default(), &|_| false, 1000, 1000).is_err_and(|r| r.param == CELLS_PARAM));
+        assert!(check_runs(&Design::default(), &|_| false, 1, 4).is_ok());
     }
 
     #[test]

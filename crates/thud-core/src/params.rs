@@ -89,8 +89,14 @@ impl Spelling {
 pub enum Accepts<T: 'static> {
     /// A quantity of `kind` inside `range` (a plain number is in the range's unit).
     Quantity { kind: Kind, range: &'static Range, set: fn(&mut T, f64) },
-    /// One of `names`; `set` gets the index of the name.
-    Choice { names: &'static [&'static str], set: fn(&mut T, usize) },
+    /// One of `names` (each with a line of help in `helps`, or none); `set` gets the index of
+    /// the name. `type_name` is the type of the choice in Python's stubs (`Solver`).
+    Choice {
+        names: &'static [&'static str],
+        helps: &'static [&'static str],
+        type_name: &'static str,
+        set: fn(&mut T, usize),
+    },
     /// A name the engine checks itself (a material).
     Name { set: fn(&mut T, &str) },
     /// On or off.
@@ -99,7 +105,53 @@ pub enum Accepts<T: 'static> {
     Count { range: &'static Range, set: fn(&mut T, usize) },
 }
 
-/// One named parameter.
+/// What part of a study a parameter belongs to: the explorer groups its fields by it, and the
+/// documentation lists them so.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Group {
+    /// The damper and its structure: masses, gap, springs, contact, materials, the ball.
+    Design,
+    /// The harmonic force on the main mass and the ball's start.
+    Forcing,
+    /// Where the sound is heard and how it is radiated.
+    Listener,
+    /// How the run is computed: solver, time step, simulated time, windows.
+    Solver,
+    /// How a result is judged: the zone thresholds.
+    Study,
+}
+
+impl Group {
+    /// Every group, in the order the explorer lists them.
+    pub const ALL: [Group; 5] = [Group::Design, Group::Forcing, Group::Listener, Group::Solver, Group::Study];
+
+    /// The group's heading.
+    pub fn title(self) -> &'static str {
+        match self {
+            Group::Design => "design",
+            Group::Forcing => "forcing",
+            Group::Listener => "listener",
+            Group::Solver => "solver",
+            Group::Study => "study",
+        }
+    }
+}
+
+/// Two parameters that cannot be given together, declared on one row (where the command line
+/// declares it too, e.g. in its completions).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Conflict {
+    /// The other parameter.
+    pub with: &'static str,
+    /// Why, for the message ("K_HZ follows from the materials").
+    pub why: &'static str,
+    /// Whether the message names the other parameter (the one whose value would be ignored)
+    /// rather than this row.
+    pub names_other: bool,
+}
+
+/// One named parameter: one row of a table, from which every front end takes its flag, keyword,
+/// field, help, range and check.
 pub struct Param<T: 'static> {
     /// The long flag without dashes (`main-mass`).
     pub name: &'static str,
@@ -107,36 +159,104 @@ pub struct Param<T: 'static> {
     /// on commands whose `--force` means "replace the file"); messages then name it as given.
     pub alias: Option<&'static str>,
     pub accepts: Accepts<T>,
+    /// One line for people: the command line's help, Python's stub comment, the explorer's hint.
+    pub help: &'static str,
+    /// The value's placeholder in usage lines (`M` in `--mass <M>`; empty: the name in capitals).
+    pub value_name: &'static str,
+    /// A label of at most 10 characters for a panel row (`ball w0`); the name if it is short.
+    pub label: &'static str,
+    pub group: Group,
+    /// Another parameter this one cannot be given with ([`Conflict`]).
+    pub conflicts: Option<Conflict>,
+    /// Another parameter this one needs (`plate` needs `sphere`).
+    pub requires: Option<&'static str>,
+    /// The value in a design (internal units), for numeric rows of [`DESIGN`]: what a front end
+    /// shows as the current or default value.
+    pub get: Option<fn(&Design) -> f64>,
+}
+
+impl<T> Param<T> {
+    /// Shorthand: a row of `group` with no placeholder, relation or accessor yet.
+    const fn new(name: &'static str, group: Group, accepts: Accepts<T>, help: &'static str) -> Self {
+        Param {
+            name,
+            alias: None,
+            accepts,
+            help,
+            value_name: "",
+            label: name,
+            group,
+            conflicts: None,
+            requires: None,
+            get: None,
+        }
+    }
+
+    /// The row with the placeholder `value_name`.
+    const fn value(mut self, value_name: &'static str) -> Self {
+        self.value_name = value_name;
+        self
+    }
+
+    /// The row with the panel label `label`.
+    const fn label(mut self, label: &'static str) -> Self {
+        self.label = label;
+        self
+    }
+
+    /// The row with the accessor `get`.
+    const fn get(mut self, get: fn(&Design) -> f64) -> Self {
+        self.get = Some(get);
+        self
+    }
+
+    /// The row's range, for quantity and count rows.
+    pub fn range(&self) -> Option<&'static Range> {
+        match self.accepts {
+            Accepts::Quantity { range, .. } | Accepts::Count { range, .. } => Some(range),
+            _ => None,
+        }
+    }
+
+    /// The unit of a plain number (empty for counts, names, choices and switches).
+    pub fn unit(&self) -> &'static str {
+        match self.accepts {
+            Accepts::Quantity { kind, .. } => kind.plain_unit(),
+            _ => "",
+        }
+    }
 }
 
 /// Shorthand for a quantity row of the tables.
 const fn quantity<T>(name: &'static str, kind: Kind, range: &'static Range, set: fn(&mut T, f64)) -> Param<T> {
-    Param { name, alias: None, accepts: Accepts::Quantity { kind, range, set } }
+    Param::new(name, Group::Design, Accepts::Quantity { kind, range, set }, "")
 }
 
 /// Shorthand for a choice row of the tables.
 const fn choice<T>(name: &'static str, names: &'static [&'static str], set: fn(&mut T, usize)) -> Param<T> {
-    Param { name, alias: None, accepts: Accepts::Choice { names, set } }
+    Param::new(name, Group::Listener, Accepts::Choice { names, helps: &[], type_name: "", set }, "")
 }
 
 /// Shorthand for a row of the tables that takes a name.
 const fn named<T>(name: &'static str, set: fn(&mut T, &str)) -> Param<T> {
-    Param { name, alias: None, accepts: Accepts::Name { set } }
-}
-
-/// Shorthand for a switch row of the tables.
-const fn switch<T>(name: &'static str, set: fn(&mut T, bool)) -> Param<T> {
-    Param { name, alias: None, accepts: Accepts::Switch { set } }
+    Param::new(name, Group::Design, Accepts::Name { set }, "")
 }
 
 /// The names of the solvers, as on the command line.
 pub const SOLVERS: [&str; 2] = ["event", "newmark"];
+/// What each solver is ([`SOLVERS`] order).
+const SOLVER_HELPS: [&str; 2] = [
+    "Exact flight between impacts, adaptive integration inside each contact (fast)",
+    "Uniform Newmark-β (β 1/4, γ 1/2) at --dt: the paper's method, the reference",
+];
 /// The names of the source types, in [`Source::ALL`] order.
 pub const SOURCES: [&str; 3] = ["single", "dipole", "quadrupole"];
 /// The names of the quadrupole wall-image signs.
 pub const QUAD_SIGNS: [&str; 2] = ["paper", "rigid"];
 /// The names of the acceleration pulse shapes.
 pub const PULSES: [&str; 2] = ["half-sine", "hertz"];
+/// What each pulse shape is ([`PULSES`] order).
+const PULSE_HELPS: [&str; 2] = ["The paper's half-sine, Eq 7", "The exact Hertz pulse"];
 
 fn source(i: usize) -> Source {
     Source::ALL[i.min(2)]
@@ -169,55 +289,186 @@ pub struct DesignDraft {
     plate: Option<String>,
 }
 
-/// The parameters of a design (`simulate`, `sweep`, `export` and Python's `simulate`/`sweep`),
-/// in the order they are checked.
+impl DesignDraft {
+    /// A draft of `design` with nothing given yet.
+    fn of(design: Design) -> Self {
+        DesignDraft { design, solver: None, dt_s: None, sphere: None, plate: None }
+    }
+}
+
+/// A row of [`DESIGN`]: a quantity with its help, placeholder, group and accessor (one
+/// argument per column of the table, so each row reads as one line of it).
+#[allow(clippy::too_many_arguments)]
+const fn q(
+    name: &'static str,
+    kind: Kind,
+    range: &'static Range,
+    group: Group,
+    value_name: &'static str,
+    help: &'static str,
+    get: fn(&Design) -> f64,
+    set: fn(&mut DesignDraft, f64),
+) -> Param<DesignDraft> {
+    Param::new(name, group, Accepts::Quantity { kind, range, set }, help).value(value_name).get(get)
+}
+
+/// A choice row of [`DESIGN`].
+const fn ch(
+    name: &'static str,
+    group: Group,
+    names: &'static [&'static str],
+    helps: &'static [&'static str],
+    type_name: &'static str,
+    help: &'static str,
+    set: fn(&mut DesignDraft, usize),
+) -> Param<DesignDraft> {
+    Param::new(name, group, Accepts::Choice { names, helps, type_name, set }, help)
+}
+
+/// A switch row of [`DESIGN`].
+const fn sw(
+    name: &'static str,
+    group: Group,
+    help: &'static str,
+    get: fn(&Design) -> f64,
+    set: fn(&mut DesignDraft, bool),
+) -> Param<DesignDraft> {
+    Param::new(name, group, Accepts::Switch { set }, help).get(get)
+}
+
+/// The parameters of a design (`simulate`, `sweep`, `export`, `response`; Python's `simulate`,
+/// `sweep`, `response`; the explorer's fields), in the order they are checked and listed.
+/// Each row is the one definition of its parameter: the command line's flag (and its help,
+/// completion and man page), Python's keyword (and its stub), the explorer's field, its range
+/// ([`crate::limits`]) and where its value goes.
+#[rustfmt::skip]
 pub const DESIGN: &[Param<DesignDraft>] = &[
-    quantity("mass", Kind::Mass, &limits::MASS, |d, v| d.design.damper.impact_mass_kg = v),
-    quantity("gap", Kind::Length, &limits::GAP, |d, v| d.design.damper.gap_m = v),
-    quantity("v0", Kind::Speed, &limits::V0, |d, v| d.design.damper.v0_m_s = v),
-    quantity("main-mass", Kind::Mass, &limits::MAIN_MASS, |d, v| d.design.damper.main_mass_kg = v),
-    quantity("k", Kind::Stiffness, &limits::STIFFNESS, |d, v| d.design.damper.stiffness_n_m = v),
-    quantity("c", Kind::Damping, &limits::DAMPING, |d, v| d.design.damper.damping_n_s_m = v),
-    quantity("c1", Kind::Damping, &limits::C1, |d, v| d.design.damper.c1_n_s_m = v),
-    quantity("k-hz", Kind::HertzStiffness, &limits::K_HZ, |d, v| d.design.damper.k_hz = v),
-    named("sphere", |d, s| d.sphere = Some(s.to_string())),
-    named("plate", |d, s| d.plate = Some(s.to_string())),
-    switch("no-tension", |d, on| d.design.damper.no_tension = on),
-    quantity("duration", Kind::Time, &limits::DURATION, |d, v| d.design.damper.duration_s = v),
-    choice("solver", &SOLVERS, |d, i| d.solver = Some(i)),
-    quantity("dt", Kind::Time, &limits::DT, |d, v| d.dt_s = Some(v)),
-    quantity("density", Kind::Density, &limits::DENSITY, |d, v| d.design.ball = BallSize::Density(v)),
-    quantity("radius", Kind::Length, &limits::RADIUS, |d, v| d.design.ball = BallSize::Radius(v)),
-    quantity("r", Kind::Length, &limits::R, |d, v| d.design.observer.r_m = v),
-    quantity("theta", Kind::Angle, &limits::THETA, |d, v| d.design.observer.theta_rad = v.to_radians()),
-    choice("source", &SOURCES, |d, i| d.design.radiation.source = source(i)),
-    choice("quad-signs", &QUAD_SIGNS, |d, i| d.design.radiation.quad_signs = quad_signs(i)),
-    choice("pulse", &PULSES, |d, i| d.design.radiation.pulse = pulse_shape(i)),
-    quantity("l-star", Kind::Level, &limits::L_STAR, |d, v| d.design.thresholds.spl_db = v),
-    quantity("e-star", Kind::Inclination, &limits::E_STAR, |d, v| d.design.thresholds.inclination_cm_s = v),
+    q("mass", Kind::Mass, &limits::MASS, Group::Design, "M", "Impact mass m (kg, or e.g. 40.5g)",
+        |d| d.damper.impact_mass_kg, |d, v| d.design.damper.impact_mass_kg = v),
+    q("gap", Kind::Length, &limits::GAP, Group::Design, "D", "Total clearance d (m, or e.g. 4cm)",
+        |d| d.damper.gap_m, |d, v| d.design.damper.gap_m = v),
+    q("v0", Kind::Speed, &limits::V0, Group::Forcing, "V", "Initial velocity of the main mass (m/s)",
+        |d| d.damper.v0_m_s, |d, v| d.design.damper.v0_m_s = v),
+    q("main-mass", Kind::Mass, &limits::MAIN_MASS, Group::Design, "MM", "Main mass M (kg)",
+        |d| d.damper.main_mass_kg, |d, v| d.design.damper.main_mass_kg = v),
+    q("k", Kind::Stiffness, &limits::STIFFNESS, Group::Design, "K", "Spring stiffness K (N/m)",
+        |d| d.damper.stiffness_n_m, |d, v| d.design.damper.stiffness_n_m = v),
+    q("c", Kind::Damping, &limits::DAMPING, Group::Design, "C", "Viscous damping C (N·s/m)",
+        |d| d.damper.damping_n_s_m, |d, v| d.design.damper.damping_n_s_m = v),
+    q("c1", Kind::Damping, &limits::C1, Group::Design, "C1", "Contact damping c1 (N·s/m)",
+        |d| d.damper.c1_n_s_m, |d, v| d.design.damper.c1_n_s_m = v),
+    Param {
+        conflicts: Some(Conflict { with: "sphere", why: "K_HZ follows from the materials", names_other: false }),
+        ..q("k-hz", Kind::HertzStiffness, &limits::K_HZ, Group::Design, "KH", "Hertz stiffness K_HZ (N/m^1.5)",
+            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v)
+    },
+    Param::new("sphere", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.sphere = Some(s.to_string()) },
+        "Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)").value("MATERIAL"),
+    Param {
+        requires: Some("sphere"),
+        ..Param::new("plate", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.plate = Some(s.to_string()) },
+            "Enclosure material (with --sphere) [default: steel]").value("MATERIAL")
+    },
+    sw("no-tension", Group::Design, "Clamp the contact force at ≥ 0 (a contact cannot pull)",
+        |d| f64::from(u8::from(d.damper.no_tension)), |d, on| d.design.damper.no_tension = on),
+    q("duration", Kind::Time, &limits::DURATION, Group::Solver, "T", "Simulated time (s)",
+        |d| d.damper.duration_s, |d, v| d.design.damper.duration_s = v),
+    ch("solver", Group::Solver, &SOLVERS, &SOLVER_HELPS, "Solver", "Solver", |d, i| d.solver = Some(i)),
+    q("dt", Kind::Time, &limits::DT, Group::Solver, "DT", "Newmark time step (s) [default: 1e-7]",
+        |d| match d.solver { Solver::Newmark { dt_s } => dt_s, Solver::Event => NEWMARK_DT_S }, |d, v| d.dt_s = Some(v)),
+    Param {
+        conflicts: Some(Conflict { with: "radius", why: "the radius follows from the mass and the density", names_other: true }),
+        ..q("density", Kind::Density, &limits::DENSITY, Group::Design, "RHO", "Ball density (kg/m³): the radius follows from the mass",
+            |d| match d.ball { BallSize::Density(rho) => rho, BallSize::Radius(_) => f64::NAN }, |d, v| d.design.ball = BallSize::Density(v))
+            .label("ball ρ")
+    },
+    q("radius", Kind::Length, &limits::RADIUS, Group::Design, "A", "Ball radius (m), whatever the mass",
+        Design::ball_radius_m, |d, v| d.design.ball = BallSize::Radius(v)).label("ball a"),
+    q("r", Kind::Length, &limits::R, Group::Listener, "R", "Observer distance (m)",
+        |d| d.observer.r_m, |d, v| d.design.observer.r_m = v),
+    q("theta", Kind::Angle, &limits::THETA, Group::Listener, "DEG", "Observer angle (degrees)",
+        |d| d.observer.theta_rad.to_degrees(), |d, v| d.design.observer.theta_rad = v.to_radians()),
+    ch("source", Group::Listener, &SOURCES, &[], "Source", "Reflecting surfaces around the impact",
+        |d, i| d.design.radiation.source = source(i)),
+    ch("quad-signs", Group::Listener, &QUAD_SIGNS, &[], "QuadSigns", "Quadrupole wall-image signs",
+        |d, i| d.design.radiation.quad_signs = quad_signs(i)),
+    ch("pulse", Group::Listener, &PULSES, &PULSE_HELPS, "PulseShape",
+        "Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse",
+        |d, i| d.design.radiation.pulse = pulse_shape(i)),
+    q("l-star", Kind::Level, &limits::L_STAR, Group::Study, "DB", "Zone threshold L* on SPLmax (dB)",
+        |d| d.thresholds.spl_db, |d, v| d.design.thresholds.spl_db = v),
+    q("e-star", Kind::Inclination, &limits::E_STAR, Group::Study, "CM_S", "Zone threshold e* on the damping inclination (cm/s)",
+        |d| d.thresholds.inclination_cm_s, |d, v| d.design.thresholds.inclination_cm_s = v),
     // The harmonic force F0·cos(2πft) on the main mass and the ball's start (docs/model.md §6).
     Param {
-        name: "force",
         alias: Some("force-amplitude"),
-        accepts: Accepts::Quantity {
-            kind: Kind::Force,
-            range: &limits::FORCE,
-            set: |d, v| d.design.damper.force_n = v,
-        },
+        ..q("force", Kind::Force, &limits::FORCE, Group::Forcing, "F0",
+            "Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq",
+            |d| d.damper.force_n, |d, v| d.design.damper.force_n = v)
     },
-    quantity("freq", Kind::Frequency, &limits::FREQ, |d, v| d.design.damper.freq_hz = v),
-    quantity("ball-position", Kind::Length, &limits::BALL_POSITION, |d, v| d.design.damper.ball_position_m = v),
-    quantity("ball-velocity", Kind::Speed, &limits::BALL_VELOCITY, |d, v| d.design.damper.ball_velocity_m_s = v),
-    Param {
-        name: "periods",
-        alias: None,
-        accepts: Accepts::Count {
+    q("freq", Kind::Frequency, &limits::FREQ, Group::Forcing, "F", "Frequency f of the harmonic force (Hz, or e.g. 5Hz)",
+        |d| d.damper.freq_hz, |d, v| d.design.damper.freq_hz = v),
+    q("ball-position", Kind::Length, &limits::BALL_POSITION, Group::Forcing, "Y0",
+        "The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]",
+        |d| d.damper.ball_position_m, |d, v| d.design.damper.ball_position_m = v),
+    q("ball-velocity", Kind::Speed, &limits::BALL_VELOCITY, Group::Forcing, "W0", "The ball's initial velocity w0 (m/s) [default: 0]",
+        |d| d.damper.ball_velocity_m_s, |d, v| d.design.damper.ball_velocity_m_s = v).label("ball w0"),
+    Param::new("periods", Group::Solver, Accepts::Count {
             range: &limits::PERIODS,
-            set: |d, n| d.design.damper.steady_periods = u32::try_from(n).unwrap_or(u32::MAX),
-        },
-    },
-    switch("settle", |d, on| d.design.damper.settle = on),
+            set: |d: &mut DesignDraft, n| d.design.damper.steady_periods = u32::try_from(n).unwrap_or(u32::MAX),
+        }, "Forcing periods N of the steady-state window of a forced run [default: 10]")
+        .value("N").label("periods N").get(|d| f64::from(d.damper.steady_periods)),
+    sw("settle", Group::Solver, "Run a forced run on past --duration, N periods at a time, until its steady amplitude settles",
+        |d| f64::from(u8::from(d.damper.settle)), |d, on| d.design.damper.settle = on),
 ];
+
+/// The Newmark step a design takes when the newmark solver is asked for without a step (s):
+/// the paper's.
+pub const NEWMARK_DT_S: f64 = 1e-7;
+
+/// The row of [`DESIGN`] called `name` (its name as in the table, `main-mass`).
+pub fn design_param(name: &str) -> Option<&'static Param<DesignDraft>> {
+    DESIGN.iter().find(|p| p.name == name)
+}
+
+/// The keyword lines of Python's stub (`crates/thud-py/thud.pyi`) for the rows of [`DESIGN`]
+/// not in `skip`, in table order, each with its help and range as a comment:
+/// `    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg`.
+/// A test keeps the checked-in stub equal to this.
+pub fn stub_keywords(skip: &[&str]) -> String {
+    let mut out = String::new();
+    for p in DESIGN.iter().filter(|p| !skip.contains(&p.name)) {
+        let ty = match p.accepts {
+            Accepts::Quantity { .. } => "Quantity",
+            Accepts::Count { .. } => "Count",
+            Accepts::Switch { .. } => "bool",
+            Accepts::Name { .. } => "str",
+            Accepts::Choice { type_name, .. } => type_name,
+        };
+        let range = p.range().map_or(String::new(), |r| format!("; {}", r.describe()));
+        let alias = p.alias.map_or(String::new(), |a| format!(" (alias {})", Spelling::Keyword.spell(a)));
+        let name = Spelling::Keyword.spell(p.name);
+        out += &format!("    {name}: Optional[{ty}] = None,  # {}{range}{alias}\n", p.help);
+    }
+    out
+}
+
+/// `design` with the numeric row `p` of [`DESIGN`] set to `value` (internal units; a count is
+/// rounded, a switch is on when `value` ≠ 0), unchecked: the explorer's field for a row the
+/// panel shows as a number. Rows that set more than the design (the solver, its step, the
+/// materials) leave it as it is.
+pub fn set_number(design: &Design, p: &Param<DesignDraft>, value: f64) -> Design {
+    let mut draft = DesignDraft::of(design.clone());
+    match p.accepts {
+        Accepts::Quantity { set, .. } => set(&mut draft, value),
+        Accepts::Count { set, .. } => {
+            set(&mut draft, if value.is_finite() && value >= 0.0 { value.round() as usize } else { 0 });
+        }
+        Accepts::Switch { set } => set(&mut draft, value != 0.0),
+        Accepts::Choice { .. } | Accepts::Name { .. } => {}
+    }
+    draft.design
+}
 
 /// The named parameters a front end received, checked against a table: no unknown name, no
 /// name twice.
@@ -268,7 +519,7 @@ impl<'a, T> Given<'a, T> {
                 (Accepts::Quantity { kind, range, set }, Input::Text(t)) => {
                     set(draft, range.check_as(&flag, units::parse(&flag, t, *kind)?)?);
                 }
-                (Accepts::Choice { names, set }, Input::Text(t)) => match names.iter().position(|n| n == t) {
+                (Accepts::Choice { names, set, .. }, Input::Text(t)) => match names.iter().position(|n| n == t) {
                     Some(i) => set(draft, i),
                     None => {
                         return Err(ThudError::invalid(
@@ -303,10 +554,28 @@ impl<'a, T> Given<'a, T> {
         e
     }
 
+    /// Refuses what the table's rows say cannot go together: a row given with the one it
+    /// conflicts with, or without the one it needs (table order).
+    fn relations(&self) -> Result<(), ThudError> {
+        for p in self.table {
+            match p.conflicts {
+                Some(c) if c.names_other => self.conflict(p.name, c.with, c.why)?,
+                Some(c) => self.conflict(c.with, p.name, c.why)?,
+                None => {}
+            }
+        }
+        for p in self.table {
+            if let Some(needed) = p.requires.filter(|n| self.has(p.name) && !self.has(n)) {
+                return Err(ThudError::Requires { param: self.spell(p.name), needs: self.spell(needed) });
+            }
+        }
+        Ok(())
+    }
+
     /// Refuses two parameters given together that contradict each other.
-    fn conflict(&self, a: &str, b: &str, why: &str) -> Result<(), ThudError> {
+    fn conflict(&self, a: &str, b: &str, why: &'static str) -> Result<(), ThudError> {
         if self.has(a) && self.has(b) {
-            return Err(ThudError::invalid(self.spell(b), format!("cannot be combined with {}: {why}", self.spell(a))));
+            return Err(ThudError::Conflict { param: self.spell(b), with: self.spell(a), why });
         }
         Ok(())
     }
@@ -364,12 +633,8 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// result has K_HZ resolved from its materials, if any.
 pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<Design, ThudError> {
     let given = Given::new(DESIGN, given, spelling)?;
-    given.conflict("density", "radius", "the radius follows from the mass and the density")?;
-    given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
-    if given.has("plate") && !given.has("sphere") {
-        return Err(ThudError::invalid(given.spell("plate"), format!("needs {} as well", given.spell("sphere"))));
-    }
-    let mut draft = DesignDraft { design: base, solver: None, dt_s: None, sphere: None, plate: None };
+    given.relations()?;
+    let mut draft = DesignDraft::of(base);
     given.apply(&mut draft)?;
     let DesignDraft { design: mut d, solver, dt_s, sphere, plate } = draft;
     if let Some(sphere) = sphere {
@@ -377,7 +642,7 @@ pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Re
     }
     d.solver = match (solver, dt_s, d.solver) {
         (Some(0), _, _) => Solver::Event,
-        (Some(_), dt, _) => Solver::Newmark { dt_s: dt.unwrap_or(1e-7) },
+        (Some(_), dt, _) => Solver::Newmark { dt_s: dt.unwrap_or(NEWMARK_DT_S) },
         (None, Some(dt), Solver::Newmark { .. }) => Solver::Newmark { dt_s: dt },
         (None, Some(_), Solver::Event) => {
             return Err(ThudError::invalid(

@@ -19,6 +19,7 @@ use crate::design::Design;
 pub use crate::design::{leq_db, steady, Steady};
 use crate::ensemble::Percentiles;
 use crate::error::{check_positive, ThudError};
+use crate::limits::{self, Estimate, Refusal, Remedy};
 
 /// How the points of a frequency response start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -80,6 +81,48 @@ pub struct ResponseOptions {
 impl Default for ResponseOptions {
     fn default() -> Self {
         Self { continuation: false, settle: true }
+    }
+}
+
+/// Refuses a frequency response of `d` over `freqs_hz` (twice with `continuation`) with
+/// `runs` runs a frequency whose work is over a cap ([`limits::response_work`]): the forcing
+/// periods summed over the runs (blaming the runs when one run alone is inside the cap, else
+/// the frequencies), the Newmark steps, and the main-mass cycles of one run at the highest
+/// frequency.
+pub fn check_response(d: &Design, freqs_hz: &[f64], continuation: bool, runs: usize) -> Result<(), Refusal> {
+    let [one, one_steps] = limits::response_work(d, freqs_hz, continuation);
+    let n = runs as f64;
+    let (periods, steps) =
+        (Estimate { value: n * one.value, ..one }, Estimate { value: n * one_steps.value, ..one_steps });
+    if runs > 1 && !one.exceeded() {
+        let max = (one.cap.max / one.value).floor();
+        limits::over(periods, limits::RUNS_PARAM, Remedy::FewerRunsPerFrequency { max }, "")?;
+    }
+    limits::over(periods, limits::FREQS_PARAM, Remedy::FewerFrequencies, "")?;
+    if let damper::Solver::Newmark { .. } = d.solver {
+        limits::over(steps, "dt", Remedy::EventSolverOrLargerDt, "")?;
+    }
+    let f_max = freqs_hz.iter().copied().fold(0.0, f64::max);
+    let cycles = limits::design_run(&at_frequency(d, f_max, true), 0)[1];
+    limits::over(cycles, limits::FREQS_PARAM, Remedy::LowerFrequencies, "")
+}
+
+/// The main mass's damped natural frequency (Hz) of `d`: the cycles per second of Eq 25 alone
+/// ([`crate::limits::cycles`]); 0 without a spring or when overdamped. The one definition the
+/// explorer (a force switched on starts here) and the default response band use.
+pub fn natural_frequency_hz(d: &Design) -> f64 {
+    let p = &d.damper;
+    crate::limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
+}
+
+/// The band a response of `d` spans by default (Hz): 0.6 to 1.6 times its natural frequency
+/// (the resonance and both flanks), or 1 to 10 Hz without one (no spring, or overdamped).
+pub fn default_band_hz(d: &Design) -> (f64, f64) {
+    let f = natural_frequency_hz(d);
+    if f > 0.0 {
+        (0.6 * f, 1.6 * f)
+    } else {
+        (1.0, 10.0)
     }
 }
 
@@ -315,4 +358,22 @@ pub fn response_ensemble(
         })
         .collect();
     Ok(ResponseEnsemble { force_n: base.damper.force_n, runs: n, sweeps })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_band_spans_the_resonance_of_table_2() {
+        // Table 2: √(K/M − (C/2M)²)/2π with K 500 N/m, M 0.5 kg, C 0.05 N·s/m.
+        let d = Design::default();
+        let f = (1000.0f64 - 0.0025).sqrt() / (2.0 * std::f64::consts::PI);
+        assert!((natural_frequency_hz(&d) - f).abs() < 1e-12);
+        let (lo, hi) = default_band_hz(&d);
+        assert!((lo - 0.6 * f).abs() < 1e-12 && (hi - 1.6 * f).abs() < 1e-12);
+        let mut free = d;
+        free.damper.stiffness_n_m = 0.0;
+        assert_eq!(default_band_hz(&free), (1.0, 10.0), "no spring: no natural frequency");
+    }
 }

@@ -5,8 +5,8 @@
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyString};
-use thud_core::limits::{self, short, Estimate, Range};
-use thud_core::params::Input;
+use thud_core::limits::{self, short, Estimate, Range, Refusal, Remedy};
+use thud_core::params::{Input, Spelling};
 use thud_core::ThudError;
 
 pyo3::create_exception!(
@@ -29,6 +29,9 @@ pub fn parameter_error(py: Python<'_>, param: &str, message: String) -> PyErr {
 
 /// An engine error as a `ParameterError`: "invalid main_mass: 1e308 kg is out of range; …".
 pub fn engine_error(py: Python<'_>, e: ThudError) -> PyErr {
+    if e == ThudError::Cancelled {
+        return pyo3::exceptions::PyKeyboardInterrupt::new_err(e.to_string());
+    }
     let param = e.param().to_string();
     parameter_error(py, &param, e.to_string())
 }
@@ -157,67 +160,45 @@ pub fn enforce(py: Python<'_>, e: Estimate, param: &str, hint: &str, no_limit: b
     Err(parameter_error(py, param, format!("invalid {param}: {}; {hint}, or pass no_limit=True", e.describe())))
 }
 
-/// Refuses one simulation of `d` keeping `samples` history samples whose work is over a cap,
-/// blaming `duration` when it was given without `dt`, else `dt`.
-pub fn check_run(
-    py: Python<'_>,
-    d: &thud_core::design::Design,
-    given: &[(String, Input)],
-    samples: usize,
-    no_limit: bool,
-) -> PyResult<()> {
-    let [steps, cycles, history] = limits::design_run(d, samples);
-    check_solver(py, d, given, steps, cycles, "", no_limit)?;
-    enforce(py, history, "samples", &format!("use samples ≤ {}", short(history.cap.max)), no_limit)
-}
-
-/// Refuses Newmark steps or main-mass cycles over their caps (`per` says "with N cells").
-pub fn check_solver(
-    py: Python<'_>,
-    d: &thud_core::design::Design,
-    given: &[(String, Input)],
-    steps: Estimate,
-    cycles: Estimate,
-    per: &str,
-    no_limit: bool,
-) -> PyResult<()> {
-    let has = |n: &str| given.iter().any(|(g, _)| g == n);
-    let dur = d.damper.duration_s;
-    if let thud_core::damper::Solver::Newmark { dt_s } = d.solver {
-        let scale = steps.value / limits::newmark_steps(dur, dt_s);
-        let (min_dt, max_dur) = (dur * scale / steps.cap.max, steps.cap.max * dt_s / scale);
-        if has("duration") && !has("dt") {
-            let hint = format!("use duration ≤ {} s{per} or a larger dt", short(max_dur));
-            enforce(py, steps, "duration", &hint, no_limit)?;
-        } else {
-            let hint = format!("use dt ≥ {} s{per} or a shorter duration", short(min_dt));
-            enforce(py, steps, "dt", &hint, no_limit)?;
-        }
-    }
-    let max_dur = dur * cycles.cap.max / cycles.value;
-    enforce(py, cycles, "duration", &format!("use duration ≤ {} s{per}", short(max_dur)), no_limit)
-}
-
-/// Refuses `cells` cells of `d` with `runs` ensemble runs each whose work is over a cap, as the
-/// command line's `--ensemble` does: the runs, the simulated run-seconds, and the Newmark steps
-/// and main-mass cycles summed over the runs.
-pub fn check_runs(
-    py: Python<'_>,
-    d: &thud_core::design::Design,
-    given: &[(String, Input)],
-    cells: usize,
-    runs: usize,
-    no_limit: bool,
-) -> PyResult<()> {
-    let [n, seconds, steps, cycles] = limits::ensemble_work(d, cells, runs);
-    let hint = if cells > 1 {
-        format!("use fewer runs ({cells} cells × {runs}; at most {} runs)", short(n.cap.max))
-    } else {
-        format!("use at most {} runs", short(n.cap.max))
+/// The engine's refusal ([`limits::check_run`] and the like) in Python's words, as a
+/// `ParameterError` naming the keyword to change: "invalid duration: 2e12 Newmark steps exceed
+/// the limit of 1e9; use duration ≤ 2 s or a larger dt, or pass no_limit=True". `counted`
+/// is the keyword of what the caller counts (`samples`, `masses_kg`, `ensemble`).
+pub fn refuse(py: Python<'_>, r: Result<(), Refusal>, counted: &str, no_limit: bool) -> PyResult<()> {
+    let Err(r) = r else { return Ok(()) };
+    let param = match r.param {
+        limits::SAMPLES_PARAM | limits::CELLS_PARAM | limits::RUNS_PARAM | limits::FREQS_PARAM => counted.to_string(),
+        row => Spelling::Keyword.spell(row),
     };
-    enforce(py, n, "ensemble", &hint, no_limit)?;
-    let per = format!(" with {} runs", short(n.value));
-    let hint = format!("use duration ≤ {} s{per} or fewer runs", short(seconds.cap.max / n.value));
-    enforce(py, seconds, "duration", &hint, no_limit)?;
-    check_solver(py, d, given, steps, cycles, &per, no_limit)
+    let per = &r.per;
+    let hint = match r.remedy {
+        Remedy::ShorterDuration { max_s } => format!("use duration ≤ {} s{per}", short(max_s)),
+        Remedy::ShorterDurationOrLargerDt { max_s } => format!("use duration ≤ {} s{per} or a larger dt", short(max_s)),
+        Remedy::LargerDtOrShorterDuration { min_s } => {
+            format!("use dt ≥ {} s{per} or a shorter duration", short(min_s))
+        }
+        Remedy::FewerSamples { max } => format!("use {counted} ≤ {}", short(max)),
+        Remedy::FewerCells { max } => format!("use fewer values on either axis (product ≤ {})", short(max)),
+        Remedy::ShorterDurationOrFewerCells { max_s } => {
+            format!("use duration ≤ {} s{per} or fewer cells", short(max_s))
+        }
+        Remedy::FewerRuns { max, cells, runs } if cells > 1 => {
+            format!("use fewer runs ({cells} cells × {runs}; at most {} runs)", short(max))
+        }
+        Remedy::FewerRuns { max, .. } => format!("use at most {} runs", short(max)),
+        Remedy::ShorterDurationOrFewerRuns { max_s } => format!("use duration ≤ {} s{per} or fewer runs", short(max_s)),
+        Remedy::FewerRunsPerFrequency { max } => {
+            format!("use fewer runs (at most {} for these frequencies)", short(max))
+        }
+        Remedy::FewerFrequencies => "use fewer frequencies or a shorter duration".to_string(),
+        Remedy::LowerFrequencies => "use lower frequencies or a shorter duration".to_string(),
+        Remedy::EventSolverOrLargerDt => "use the event solver or a larger dt".to_string(),
+    };
+    enforce(py, r.estimate, &param, &hint, no_limit)
+}
+
+/// Whether the keyword of the table row `name` was given.
+pub fn given(params: &[(String, Input)], name: &str) -> bool {
+    let key = Spelling::Keyword.key(name);
+    params.iter().any(|(n, _)| *n == key)
 }

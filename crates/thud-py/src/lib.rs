@@ -26,14 +26,14 @@ mod objects;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use thud_core::design::{self, Design};
-use thud_core::limits::{self, short, Estimate};
+use thud_core::limits::{self, short};
 use thud_core::params::{self, Spelling};
 use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
 use thud_core::response::{self, ResponseOptions};
 use thud_core::units::Kind;
 use thud_core::{ensemble, ThudError};
 
-use args::{check_solver, enforce, engine_error, parameter_error, Kwargs};
+use args::{enforce, engine_error, parameter_error, refuse, Kwargs};
 use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
 
 /// The preset named by the `preset` option (default: "default"), as the command line loads it
@@ -42,7 +42,7 @@ use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
 fn preset(py: Python<'_>, kw: &Kwargs<'_>, default: Option<&str>) -> PyResult<Option<Design>> {
     match kw.text(py, "preset")?.as_deref().or(default) {
         None => Ok(None),
-        Some(name) => thud::presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
+        Some(name) => thud_presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
     }
 }
 
@@ -123,9 +123,10 @@ fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Py<P
     let d = design_of(py, &kw)?;
     let samples = kw.count(py, "samples", &limits::SAMPLES, 2001)?;
     let runs = ensemble_runs(py, &kw)?;
+    let given = |n: &str| args::given(&kw.params, n);
     if runs > 1 {
-        args::check_run(py, &d, &kw.params, 0, no_limit)?;
-        args::check_runs(py, &d, &kw.params, 1, runs, no_limit)?;
+        refuse(py, limits::check_run(&d, &given, 0), "samples", no_limit)?;
+        refuse(py, limits::check_runs(&d, &given, 1, runs), "ensemble", no_limit)?;
         let e = {
             let d = d.clone();
             detach::run(py, move |cancel| ensemble::evaluate(&d, runs, Some(cancel)))?
@@ -133,7 +134,7 @@ fn simulate(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Py<P
         let e = e.map_err(|e| engine_error(py, e))?.ok_or_else(|| cancelled(py))?;
         return Ok(PyEnsemble::new(py, &EnsembleReport::new(&d, &e))?.into_pyobject(py)?.into_any().unbind());
     }
-    args::check_run(py, &d, &kw.params, samples, no_limit)?;
+    refuse(py, limits::check_run(&d, &given, samples), "samples", no_limit)?;
     let data = detach::run(py, |cancel| objects::RunData::compute(&d, samples, cancel))?;
     Ok(PyRun::new(py, data.map_err(|e| engine_error(py, e))?)?.into_pyobject(py)?.into_any().unbind())
 }
@@ -148,7 +149,7 @@ fn ensemble_runs(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<usize> {
 
 /// The error of runs stopped without an interrupt (not expected: a stop comes from Ctrl-C).
 fn cancelled(py: Python<'_>) -> PyErr {
-    engine_error(py, ThudError::invalid("ensemble", "the runs were cancelled"))
+    engine_error(py, ThudError::Cancelled)
 }
 
 /// An axis of a sweep: a sequence of numbers in SI units, or "FROM:TO:N" text as on the
@@ -213,16 +214,11 @@ fn sweep(
     let masses = axis(py, "masses_kg", masses_kg, Kind::Mass, &limits::MASS)?;
     let gaps = axis(py, "gaps_m", gaps_m, Kind::Length, &limits::GAP)?;
     let runs = ensemble_runs(py, &kw)?;
-    let cells = limits::sweep_cells(masses.len(), gaps.len());
-    let hint = format!("use fewer values on either axis (product ≤ {})", short(cells.cap.max));
-    enforce(py, cells, "masses_kg", &hint, no_limit)?;
+    let given = |n: &str| args::given(&kw.params, n);
+    refuse(py, limits::check_sweep(&d, &given, masses.len(), gaps.len()), "masses_kg", no_limit)?;
     let n = masses.len() * gaps.len();
-    let [cell_seconds, steps, cycles] = limits::sweep_work(&d, n);
-    let hint = format!("use duration ≤ {} s with {n} cells or fewer cells", short(cell_seconds.cap.max / n as f64));
-    enforce(py, cell_seconds, "duration", &hint, no_limit)?;
-    check_solver(py, &d, &kw.params, steps, cycles, &format!(" with {n} cells"), no_limit)?;
     if runs > 1 {
-        args::check_runs(py, &d, &kw.params, n, runs, no_limit)?;
+        refuse(py, limits::check_runs(&d, &given, n, runs), "ensemble", no_limit)?;
         let chart = detach::run(py, |cancel| ensemble::sweep(&d, &masses, &gaps, runs, Some(cancel), &|_, _| {}))?;
         return PyChart::of_ensembles(py, &d, &chart.map_err(|e| engine_error(py, e))?);
     }
@@ -282,23 +278,12 @@ fn check_response(
     runs: usize,
     no_limit: bool,
 ) -> PyResult<()> {
-    let [one, one_steps] = limits::response_work(d, freqs, continuation);
-    let n = runs as f64;
-    let periods = Estimate { value: n * one.value, ..one };
-    if runs > 1 && !one.exceeded() {
-        let hint =
-            format!("use fewer runs (at most {} for these frequencies)", short((one.cap.max / one.value).floor()));
-        enforce(py, periods, "ensemble", &hint, no_limit)?;
-    }
-    enforce(py, periods, "freqs_hz", "use fewer frequencies or a shorter duration", no_limit)?;
-    if let thud_core::damper::Solver::Newmark { dt_s } = d.solver {
-        let steps = Estimate { value: n * one_steps.value, ..one_steps };
-        let _ = dt_s;
-        enforce(py, steps, "dt", "use the event solver or a larger dt", no_limit)?;
-    }
-    let f_max = freqs.iter().copied().fold(0.0, f64::max);
-    let cycles = limits::design_run(&response::at_frequency(d, f_max, true), 0)[1];
-    enforce(py, cycles, "freqs_hz", "use lower frequencies or a shorter duration", no_limit)
+    let r = response::check_response(d, freqs, continuation, runs);
+    let counted = match &r {
+        Err(e) if e.param == limits::RUNS_PARAM => "ensemble",
+        _ => "freqs_hz",
+    };
+    refuse(py, r, counted, no_limit)
 }
 
 /// axis(name, spec) -> numpy.ndarray
@@ -325,7 +310,7 @@ fn axis_values<'py>(py: Python<'py>, name: &str, spec: &str) -> PyResult<Bound<'
 #[pyfunction]
 fn presets(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    for p in thud::presets::list().map_err(|e| engine_error(py, e))? {
+    for p in thud_presets::list().map_err(|e| engine_error(py, e))? {
         d.set_item(p.name, p.description)?;
     }
     Ok(d)

@@ -26,7 +26,7 @@ use crate::args::{engine_error, non_finite, parameter_error};
 
 /// `record` checked finite (the command line's check of its JSON), then as a JSON value.
 fn checked<T: Serialize>(what: &str, record: &T) -> PyResult<Json> {
-    thud::cli::check_finite(record).map_err(|e| non_finite(&format!("{what}: {e:?}")))?;
+    thud_core::finite::check(record).map_err(|e| non_finite(&format!("{what}: NonFinite({:?})", e.0)))?;
     serde_json::to_value(record).map_err(|e| non_finite(&format!("{what} ({e})")))
 }
 

@@ -103,16 +103,16 @@ impl App {
         if let Some(entry) = self.saved.designs.get(i) {
             let name = entry.name.clone();
             let Some(dir) = self.data_dir.clone() else { return vec![] };
-            return match store::load_design(&dir, &name) {
-                Ok(file) => {
-                    // N goes through the field's own check (its range and the work caps).
-                    let mut setup = Setup { design: file.design, runs: 1 };
-                    if let Some(n) = file.ensemble {
-                        match Knob::Runs.parsed(&setup, &n.to_string()) {
-                            Ok(s) => setup = s,
-                            Err(e) => return self.load_failed(i, format!("cannot load {name}: ensemble N {n}: {e}")),
-                        }
-                    }
+            let loaded = store::load_design(&dir, &name).map_err(|e| e.to_string()).and_then(|f| {
+                // N goes through the field's own check (its range and the work caps).
+                let mut setup = Setup { design: f.design, runs: 1 };
+                if let Some(n) = f.ensemble {
+                    setup = Knob::Runs.parsed(&setup, &n.to_string()).map_err(|e| format!("ensemble N {n}: {e}"))?;
+                }
+                crate::tui::fields::check_loaded(&setup).map(|()| setup).map_err(|e| e.to_string())
+            });
+            return match loaded {
+                Ok(setup) => {
                     let reqs = self.apply_setup(setup, Scope::All, format!("loaded {name} (u undoes)"));
                     self.preset.clone_from(&name);
                     self.mark_unmodified();

@@ -307,7 +307,11 @@ impl App {
     fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
         let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
         let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
-        match presets::preset(name) {
+        let runs = self.runs;
+        let checked = |d: crate::design::Design| {
+            crate::tui::fields::check_loaded(&crate::tui::fields::Setup { design: d.clone(), runs }).map(|()| d)
+        };
+        match presets::preset(name).and_then(checked) {
             Ok(mut d) => {
                 d.thresholds = self.settings.config.thresholds(d.thresholds);
                 self.pulse = PulseView::for_preset(name);

@@ -22,6 +22,8 @@ pub enum Msg {
     Work(Done),
     /// Spinner tick (only sent while work is in flight).
     Tick,
+    /// The terminal hung up (see `tui::hangup`): the explorer ends.
+    Hangup,
 }
 
 /// Messages, and the worker's results.
@@ -46,6 +48,10 @@ impl App {
             Msg::Work(done) => self.work(done),
             Msg::Tick => {
                 self.spinner = self.spinner.wrapping_add(1);
+                vec![]
+            }
+            Msg::Hangup => {
+                self.quit = true;
                 vec![]
             }
         }

@@ -242,14 +242,19 @@ impl From<Wall> for i8 {
     }
 }
 
-impl TryFrom<i8> for Wall {
-    type Error = String;
+/// A number that is not a wall (−1 or 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("wall {0}; must be -1 (lower) or 1 (upper)")]
+pub struct NotAWall(pub i8);
 
-    fn try_from(n: i8) -> Result<Self, String> {
+impl TryFrom<i8> for Wall {
+    type Error = NotAWall;
+
+    fn try_from(n: i8) -> Result<Self, NotAWall> {
         match n {
             -1 => Ok(Wall::Lower),
             1 => Ok(Wall::Upper),
-            _ => Err(format!("wall {n}; must be -1 (lower) or 1 (upper)")),
+            _ => Err(NotAWall(n)),
         }
     }
 }
