@@ -96,7 +96,9 @@ fn tiny_sizes_render_without_panic() {
         app.data_dir = Some(std::env::temp_dir().join("thud-tui-tiny-sizes-none"));
         for mode in [
             Mode::Normal,
-            Mode::Help,
+            Mode::Help(0),
+            Mode::Help(40),
+            Mode::ConfirmQuit,
             Mode::Presets(0),
             Mode::Editing("40".into()),
             Mode::SaveAs("design-1".into()),
@@ -120,8 +122,8 @@ fn tiny_sizes_render_without_panic() {
 fn help_overlay_lists_every_binding() {
     let mut app = computed_app();
     press(&mut app, KeyCode::Char('?'));
-    assert_eq!(app.mode, Mode::Help);
-    let screen = render(&mut app, 120, 40);
+    assert_eq!(app.mode, Mode::Help(0));
+    let screen = help_text(&mut app, 120, 40);
     for b in KEYS {
         assert!(screen.contains(b.label), "help lacks key {}", b.label);
         assert!(screen.contains(b.help), "help lacks '{}'", b.help);
@@ -129,6 +131,172 @@ fn help_overlay_lists_every_binding() {
     press(&mut app, KeyCode::Esc);
     assert_eq!(app.mode, Mode::Normal);
     assert!(!app.quit, "Esc closes the help, it does not quit");
+}
+
+/// Every line the help shows at `w`×`h`, scrolled through from the top with ↓ (the app is
+/// left at the top again).
+fn help_text(app: &mut App, w: u16, h: u16) -> String {
+    let mut seen: Vec<String> = Vec::new();
+    for _ in 0..80 {
+        for l in render(app, w, h).lines() {
+            if !seen.iter().any(|s| s == l) {
+                seen.push(l.to_string());
+            }
+        }
+        press(app, KeyCode::Down);
+    }
+    press(app, KeyCode::Home);
+    seen.join("\n")
+}
+
+#[test]
+fn esc_never_quits_the_main_view_and_q_asks_once_with_unsaved_changes() {
+    // Esc on the main view: nothing closes, nothing quits, the status line says how to quit.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit, "Esc must not quit the main view");
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(status_of(&render(&mut app, 80, 24)).contains("q quits"));
+    // Esc leaves the tour without quitting.
+    press(&mut app, KeyCode::Char('T'));
+    assert!(app.tour.is_some());
+    press(&mut app, KeyCode::Esc);
+    assert!(app.tour.is_none() && !app.quit);
+    // An unknown key says so.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Char('Z'));
+    assert!(status_of(&render(&mut app, 80, 24)).contains("unknown key — ? for help"));
+    assert!(!app.quit);
+
+    // Unchanged design: q quits at once.
+    let mut app = computed_app();
+    assert!(!render(&mut app, 80, 24).lines().next().unwrap().contains("default*"));
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit);
+
+    // Changed: q asks once; n stays, y quits.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Right);
+    assert!(render(&mut app, 80, 24).lines().next().unwrap().contains("preset default*"), "modified mark");
+    press(&mut app, KeyCode::Char('q'));
+    assert!(!app.quit);
+    assert_eq!(app.mode, Mode::ConfirmQuit);
+    assert!(status_of(&render(&mut app, 80, 24)).contains("quit without saving? y/n"));
+    press(&mut app, KeyCode::Char('n'));
+    assert!(!app.quit);
+    assert_eq!(app.mode, Mode::Normal);
+    press(&mut app, KeyCode::Char('q'));
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit, "Esc answers no");
+    press(&mut app, KeyCode::Char('q'));
+    press(&mut app, KeyCode::Char('y'));
+    assert!(app.quit);
+
+    // q in a list popup asks the same; Ctrl-C always quits.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Char('P'));
+    press(&mut app, KeyCode::Char('q'));
+    assert_eq!(app.mode, Mode::ConfirmQuit);
+    press_mod(&mut app, KeyCode::Char('c'), KeyModifiers::CONTROL);
+    assert!(app.quit);
+
+    // Saving makes it unmodified again: q quits.
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    press(&mut app, KeyCode::Right);
+    app.save_as("kept");
+    assert!(!render(&mut app, 80, 24).lines().next().unwrap().contains('*'));
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit);
+}
+
+#[test]
+fn a_failed_load_keeps_the_list_open_with_the_whole_error() {
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    app.save_as("good-but-later-broken");
+    press(&mut app, KeyCode::Char('L'));
+    assert_eq!(app.mode, Mode::Saved(0));
+    // The file goes bad after the list was read: loading it fails.
+    let path = data.path().join("designs").join("good-but-later-broken.toml");
+    std::fs::write(&path, "description = \"x\"\n[design]\nnot_a_field_of_any_design = 1\n").unwrap();
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Saved(0), "the list stays open");
+    let status = app.status().unwrap().text.clone();
+    assert!(status.contains("cannot load good-but-later-broken"), "{status}");
+    let why = status.trim_start_matches("error: ").to_string();
+    for (w, h) in [(80, 24), (120, 40)] {
+        let screen = render(&mut app, w, h);
+        // The whole error is inside the popup (wrapped, never cut): its rows, read between
+        // the popup's borders, hold every character of it in order.
+        let lines: Vec<Vec<char>> = screen.lines().map(|l| l.trim_matches('"').chars().collect()).collect();
+        let top = lines.iter().position(|l| l.iter().collect::<String>().contains("┌ saved designs")).unwrap();
+        let x = lines[top].iter().collect::<String>().split("┌ saved designs").next().unwrap().chars().count();
+        let w = lines[top][x..].iter().position(|&c| c == '┐').unwrap();
+        let popup: String = lines[top + 1..]
+            .iter()
+            .take_while(|l| l[x] == '│')
+            .map(|l| l[x + 1..x + w].iter().collect::<String>())
+            .collect();
+        let squeezed: String = why.split_whitespace().collect();
+        let shown: String = popup.split_whitespace().collect();
+        assert!(shown.contains(&squeezed), "{w}x{h}: error not whole:\n{why}\n{screen}");
+    }
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(!app.quit);
+}
+
+#[test]
+fn help_scrolls_wraps_and_closes_only_on_esc_question_mark_or_q() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Char('?'));
+    let top = render(&mut app, 80, 24);
+    assert!(top.contains("more below"), "{top}");
+    // ↓ scrolls instead of closing; PgDn a page; PgUp back.
+    press(&mut app, KeyCode::Down);
+    assert_eq!(app.mode, Mode::Help(1));
+    assert_ne!(render(&mut app, 80, 24), top);
+    press(&mut app, KeyCode::PageDown);
+    assert_eq!(app.mode, Mode::Help(11));
+    press(&mut app, KeyCode::PageUp);
+    press(&mut app, KeyCode::Up);
+    assert_eq!(app.mode, Mode::Help(0));
+    // Stray keys leave it open.
+    for c in ['x', 'v', 'p', 'u'] {
+        press(&mut app, KeyCode::Char(c));
+        assert_eq!(app.mode, Mode::Help(0), "{c} closed the help");
+    }
+    // Every binding's whole help text is reachable at 80×24 (wrapped, not cut).
+    let all = help_text(&mut app, 80, 24);
+    let words: String = all.split_whitespace().collect::<Vec<_>>().join(" ");
+    for b in KEYS {
+        for word in b.help.split_whitespace() {
+            assert!(words.contains(word), "help at 80x24 lacks '{word}' of '{}'", b.help);
+        }
+    }
+    let last = b_last_words(KEYS.last().unwrap().help);
+    assert!(all.replace(['│', '\n'], " ").split_whitespace().collect::<Vec<_>>().join(" ").contains(&last), "{all}");
+    for close in [KeyCode::Esc, KeyCode::Char('?'), KeyCode::Char('q')] {
+        press(&mut app, KeyCode::Char('?'));
+        press(&mut app, close);
+        assert_eq!(app.mode, Mode::Normal);
+        assert!(!app.quit, "{close:?} closes the help, it does not quit");
+    }
+    // The second page scrolls the same way.
+    press(&mut app, KeyCode::Char('?'));
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::PageDown);
+    assert_eq!(app.mode, Mode::Glossary(10));
+}
+
+/// The last three words of a help text (the part a cut would lose).
+fn b_last_words(help: &str) -> String {
+    let w: Vec<&str> = help.split_whitespace().collect();
+    w[w.len().saturating_sub(3)..].join(" ")
 }
 
 #[test]
@@ -171,11 +339,7 @@ fn typed_value_with_units_is_applied() {
 
 #[test]
 fn quit_keys_quit() {
-    for (code, mods) in [
-        (KeyCode::Char('q'), KeyModifiers::NONE),
-        (KeyCode::Esc, KeyModifiers::NONE),
-        (KeyCode::Char('c'), KeyModifiers::CONTROL),
-    ] {
+    for (code, mods) in [(KeyCode::Char('q'), KeyModifiers::NONE), (KeyCode::Char('c'), KeyModifiers::CONTROL)] {
         let mut app = App::new(Design::default(), "default", Palette::default());
         app.update(Msg::Input(Event::Key(KeyEvent::new(code, mods))));
         assert!(app.quit);
@@ -730,7 +894,9 @@ fn ascii_frames_are_pure_ascii_in_every_mode_and_size() {
     app.data_dir = Some(std::env::temp_dir().join("thud-tui-ascii-none"));
     for mode in [
         Mode::Normal,
-        Mode::Help,
+        Mode::Help(0),
+        Mode::Help(9),
+        Mode::ConfirmQuit,
         Mode::Glossary(3),
         Mode::Presets(0),
         Mode::Editing("40".into()),
@@ -1521,4 +1687,174 @@ fn a_not_settled_note_is_never_hidden_behind_the_negative_e_note() {
         let screen = render(&mut app, w, h);
         assert!(screen.contains("│NOT settled, ") && row(&screen, "e").contains("(!)"), "{screen}");
     }
+}
+
+/// Braille cells (plotted points) on a screen.
+fn braille(screen: &str) -> usize {
+    screen.chars().filter(|c| ('\u{2801}'..='\u{28ff}').contains(c)).count()
+}
+
+/// The title words of each panel, as drawn at 80 columns.
+fn panel_title(p: thud::tui::app::Panel) -> &'static str {
+    use thud::tui::app::Panel;
+    match p {
+        Panel::Waveform => "p(t)",
+        Panel::Polar => "SPL(θ)",
+        Panel::History => "x(t)",
+        Panel::Chart => "m (g)",
+        Panel::Params => "parameters",
+        Panel::Readout => "readout",
+    }
+}
+
+#[test]
+fn every_tour_step_at_80x24_shows_its_named_panel_with_its_plot() {
+    use thud::tui::app::Panel;
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    let n = app.tour.as_ref().unwrap().tour.steps.len();
+    for i in 0..n {
+        let step = app.tour.as_ref().unwrap().tour.steps[i].clone();
+        let screen = render(&mut app, 80, 24);
+        insta::assert_snapshot!(format!("tour_zoomed_step{}_80x24", i + 1), screen);
+        assert!(!screen.contains("too small"), "step {} at 80x24:\n{screen}", i + 1);
+        let marked = screen.lines().find(|l| l.contains("▶ ")).expect("the step's panel is marked");
+        assert!(marked.contains(panel_title(step.panel)) || step.panel == Panel::Chart, "step {}:\n{screen}", i + 1);
+        match step.panel {
+            Panel::Chart => {
+                assert!(screen.contains(panel_title(Panel::Chart)) && screen.contains("d (cm)"), "{screen}");
+            }
+            // A plot: plotted cells, not a message.
+            _ => assert!(braille(&screen) > 15, "step {} plot:\n{screen}", i + 1),
+        }
+        if i == 0 {
+            // One impact on a plate: no damper run's zone or e beside it.
+            assert!(!screen.contains("zone ") && !screen.contains("(!)"), "{screen}");
+        }
+        press(&mut app, KeyCode::Right);
+    }
+}
+
+#[test]
+fn the_tour_caption_keys_do_what_the_caption_says() {
+    use thud::tui::fields::Knob;
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    press(&mut app, KeyCode::Right);
+    let step = app.tour.as_ref().unwrap().step;
+    let caption = app.tour.as_ref().unwrap().tour.steps[step].caption.clone();
+    assert!(caption.contains("Select θ") && caption.contains("↑↓") && caption.contains('+'), "{caption}");
+    assert!(!caption.contains("←→"), "← and → move the tour, not θ: {caption}");
+    // As written: ↑↓ until θ is selected (the status line names it), then + walks θ.
+    for _ in 0..Knob::ALL.len() {
+        if app.param() == Knob::ALL.iter().copied().find(|k| k.label().starts_with('θ')).unwrap() {
+            break;
+        }
+        press(&mut app, KeyCode::Down);
+    }
+    assert!(app.param().label().starts_with('θ'));
+    let s = render(&mut app, 80, 24);
+    assert!(s.lines().last().unwrap().contains('θ'), "the status line names θ (no footer in the tour):\n{s}");
+    let theta = app.design.observer.theta_rad;
+    press(&mut app, KeyCode::Char('+'));
+    assert!(app.design.observer.theta_rad > theta, "+ walks the listener");
+    assert_eq!(app.tour.as_ref().unwrap().step, step, "still on the same step");
+    press(&mut app, KeyCode::Char('-'));
+    assert!((app.design.observer.theta_rad - theta).abs() < 1e-12);
+}
+
+#[test]
+fn z_zooms_the_focused_panel_to_the_whole_screen_and_back() {
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    let before = render(&mut app, 80, 24);
+    assert!(before.contains("x(t)") && before.contains("m (g)"), "history and chart side by side:\n{before}");
+    press(&mut app, KeyCode::Char('z'));
+    let zoomed = render(&mut app, 80, 24);
+    assert!(zoomed.contains("x(t) of the main mass near its peaks"), "the long title fits:\n{zoomed}");
+    assert!(!zoomed.contains("m (g)") && !zoomed.contains("parameters"), "only the history:\n{zoomed}");
+    assert!(braille(&zoomed) > braille(&before) / 2, "{zoomed}");
+    assert!(zoomed.lines().next().unwrap().contains("zoom: history"));
+    // Tab moves the zoom to the next panel; z goes back to all panels.
+    press(&mut app, KeyCode::Tab);
+    let chart = render(&mut app, 80, 24);
+    assert!(chart.contains("m (g)") && !chart.contains("x(t)"), "{chart}");
+    press(&mut app, KeyCode::Char('z'));
+    assert_eq!(render(&mut app, 80, 24).lines().filter(|l| l.contains("x(t)")).count(), 1);
+    // The key table has it, so help and footer show it.
+    assert!(render(&mut app, 80, 24).lines().last().unwrap().contains("z zoom"));
+    assert!(KEYS.iter().any(|b| b.label == "z" && b.help.contains("fills the screen")));
+}
+
+#[test]
+fn input_lines_start_with_the_current_value_selected_and_typing_replaces_it() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Editing("40.50 g".into()), "the line opens on the value shown");
+    let (screen, buf) = render_with(&mut app, 80, 24);
+    let y = screen.lines().count() - 2;
+    let line: String = (0..80).map(|x| buf[(x, y as u16)].symbol().to_string()).collect();
+    let x = line.find("40.50 g").unwrap();
+    let x = u16::try_from(line[..x].chars().count()).unwrap();
+    assert!(buf[(x, y as u16)].modifier.contains(ratatui::style::Modifier::REVERSED), "shown selected");
+    // Enter on it: nothing changes (the shown value is rounded).
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.0405).abs() < 1e-15);
+    assert!(!app.modified(), "no change was made");
+    // Typing replaces the selection.
+    press(&mut app, KeyCode::Enter);
+    type_text(&mut app, "45");
+    assert_eq!(app.mode, Mode::Editing("45".into()));
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.045).abs() < 1e-12);
+    // An arrow keeps the text to edit; Ctrl-U clears it.
+    press(&mut app, KeyCode::Enter);
+    press(&mut app, KeyCode::End);
+    type_text(&mut app, "0");
+    assert_eq!(app.mode, Mode::Editing("45.00 g0".into()));
+    press_mod(&mut app, KeyCode::Char('u'), KeyModifiers::CONTROL);
+    assert_eq!(app.mode, Mode::Editing(String::new()));
+    press(&mut app, KeyCode::Esc);
+    // The save line too: the offered name is selected, typing replaces it.
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.mode, Mode::SaveAs("design-1".into()));
+    assert!(app.line_selected);
+    type_text(&mut app, "mine");
+    assert_eq!(app.mode, Mode::SaveAs("mine".into()));
+}
+
+#[test]
+fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
+    use thud::tui::fields::Knob;
+    let data = tempfile::tempdir().unwrap();
+    let mut app = ensemble_app(4, Palette::default());
+    app.data_dir = Some(data.path().to_path_buf());
+    set_field(&mut app, Knob::Force, "1");
+    set_field(&mut app, Knob::Freq, "5.45");
+    set_field(&mut app, Knob::Theta, "51");
+    let (design, runs) = (app.design.clone(), app.runs);
+    assert!(design.damper.forced() && runs == 4);
+    app.save_as("forced-ensemble");
+    // Change everything back, then load it.
+    set_field(&mut app, Knob::Runs, "1");
+    set_field(&mut app, Knob::Force, "0");
+    set_field(&mut app, Knob::Theta, "30");
+    press(&mut app, KeyCode::Char('L'));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.design, design, "every field of the design");
+    assert_eq!(app.runs, 4, "the ensemble N");
+    assert!(!app.modified(), "just loaded: not modified");
+    // A file with an N the field refuses is a load error, nothing applied.
+    let path = data.path().join("designs").join("forced-ensemble.toml");
+    let text = std::fs::read_to_string(&path).unwrap().replace("ensemble = 4", "ensemble = 0");
+    assert!(text.contains("ensemble = 0"), "{text}");
+    std::fs::write(&path, text).unwrap();
+    set_field(&mut app, Knob::Runs, "1");
+    press(&mut app, KeyCode::Char('L'));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Saved(0));
+    assert!(app.status().unwrap().text.contains("ensemble N 0"), "{:?}", app.status());
+    assert_eq!(app.runs, 1);
 }
