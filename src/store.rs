@@ -164,6 +164,10 @@ pub struct DesignFile {
     /// One line saying what the design is.
     #[serde(default)]
     pub description: String,
+    /// The explorer's ensemble size N the design was saved with (absent: 1, the single run).
+    /// Checked on load like a typed N.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ensemble: Option<usize>,
     pub design: Design,
 }
 

@@ -96,7 +96,9 @@ fn tiny_sizes_render_without_panic() {
         app.data_dir = Some(std::env::temp_dir().join("thud-tui-tiny-sizes-none"));
         for mode in [
             Mode::Normal,
-            Mode::Help,
+            Mode::Help(0),
+            Mode::Help(40),
+            Mode::ConfirmQuit,
             Mode::Presets(0),
             Mode::Editing("40".into()),
             Mode::SaveAs("design-1".into()),
@@ -120,8 +122,8 @@ fn tiny_sizes_render_without_panic() {
 fn help_overlay_lists_every_binding() {
     let mut app = computed_app();
     press(&mut app, KeyCode::Char('?'));
-    assert_eq!(app.mode, Mode::Help);
-    let screen = render(&mut app, 120, 40);
+    assert_eq!(app.mode, Mode::Help(0));
+    let screen = help_text(&mut app, 120, 40);
     for b in KEYS {
         assert!(screen.contains(b.label), "help lacks key {}", b.label);
         assert!(screen.contains(b.help), "help lacks '{}'", b.help);
@@ -129,6 +131,172 @@ fn help_overlay_lists_every_binding() {
     press(&mut app, KeyCode::Esc);
     assert_eq!(app.mode, Mode::Normal);
     assert!(!app.quit, "Esc closes the help, it does not quit");
+}
+
+/// Every line the help shows at `w`×`h`, scrolled through from the top with ↓ (the app is
+/// left at the top again).
+fn help_text(app: &mut App, w: u16, h: u16) -> String {
+    let mut seen: Vec<String> = Vec::new();
+    for _ in 0..80 {
+        for l in render(app, w, h).lines() {
+            if !seen.iter().any(|s| s == l) {
+                seen.push(l.to_string());
+            }
+        }
+        press(app, KeyCode::Down);
+    }
+    press(app, KeyCode::Home);
+    seen.join("\n")
+}
+
+#[test]
+fn esc_never_quits_the_main_view_and_q_asks_once_with_unsaved_changes() {
+    // Esc on the main view: nothing closes, nothing quits, the status line says how to quit.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit, "Esc must not quit the main view");
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(status_of(&render(&mut app, 80, 24)).contains("q quits"));
+    // Esc leaves the tour without quitting.
+    press(&mut app, KeyCode::Char('T'));
+    assert!(app.tour.is_some());
+    press(&mut app, KeyCode::Esc);
+    assert!(app.tour.is_none() && !app.quit);
+    // An unknown key says so.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Char('Z'));
+    assert!(status_of(&render(&mut app, 80, 24)).contains("unknown key — ? for help"));
+    assert!(!app.quit);
+
+    // Unchanged design: q quits at once.
+    let mut app = computed_app();
+    assert!(!render(&mut app, 80, 24).lines().next().unwrap().contains("default*"));
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit);
+
+    // Changed: q asks once; n stays, y quits.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Right);
+    assert!(render(&mut app, 80, 24).lines().next().unwrap().contains("preset default*"), "modified mark");
+    press(&mut app, KeyCode::Char('q'));
+    assert!(!app.quit);
+    assert_eq!(app.mode, Mode::ConfirmQuit);
+    assert!(status_of(&render(&mut app, 80, 24)).contains("quit without saving? y/n"));
+    press(&mut app, KeyCode::Char('n'));
+    assert!(!app.quit);
+    assert_eq!(app.mode, Mode::Normal);
+    press(&mut app, KeyCode::Char('q'));
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit, "Esc answers no");
+    press(&mut app, KeyCode::Char('q'));
+    press(&mut app, KeyCode::Char('y'));
+    assert!(app.quit);
+
+    // q in a list popup asks the same; Ctrl-C always quits.
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Char('P'));
+    press(&mut app, KeyCode::Char('q'));
+    assert_eq!(app.mode, Mode::ConfirmQuit);
+    press_mod(&mut app, KeyCode::Char('c'), KeyModifiers::CONTROL);
+    assert!(app.quit);
+
+    // Saving makes it unmodified again: q quits.
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    press(&mut app, KeyCode::Right);
+    app.save_as("kept");
+    assert!(!render(&mut app, 80, 24).lines().next().unwrap().contains('*'));
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit);
+}
+
+#[test]
+fn a_failed_load_keeps_the_list_open_with_the_whole_error() {
+    let data = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.data_dir = Some(data.path().to_path_buf());
+    app.save_as("good-but-later-broken");
+    press(&mut app, KeyCode::Char('L'));
+    assert_eq!(app.mode, Mode::Saved(0));
+    // The file goes bad after the list was read: loading it fails.
+    let path = data.path().join("designs").join("good-but-later-broken.toml");
+    std::fs::write(&path, "description = \"x\"\n[design]\nnot_a_field_of_any_design = 1\n").unwrap();
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Saved(0), "the list stays open");
+    let status = app.status().unwrap().text.clone();
+    assert!(status.contains("cannot load good-but-later-broken"), "{status}");
+    let why = status.trim_start_matches("error: ").to_string();
+    for (w, h) in [(80, 24), (120, 40)] {
+        let screen = render(&mut app, w, h);
+        // The whole error is inside the popup (wrapped, never cut): its rows, read between
+        // the popup's borders, hold every character of it in order.
+        let lines: Vec<Vec<char>> = screen.lines().map(|l| l.trim_matches('"').chars().collect()).collect();
+        let top = lines.iter().position(|l| l.iter().collect::<String>().contains("┌ saved designs")).unwrap();
+        let x = lines[top].iter().collect::<String>().split("┌ saved designs").next().unwrap().chars().count();
+        let w = lines[top][x..].iter().position(|&c| c == '┐').unwrap();
+        let popup: String = lines[top + 1..]
+            .iter()
+            .take_while(|l| l[x] == '│')
+            .map(|l| l[x + 1..x + w].iter().collect::<String>())
+            .collect();
+        let squeezed: String = why.split_whitespace().collect();
+        let shown: String = popup.split_whitespace().collect();
+        assert!(shown.contains(&squeezed), "{w}x{h}: error not whole:\n{why}\n{screen}");
+    }
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(!app.quit);
+}
+
+#[test]
+fn help_scrolls_wraps_and_closes_only_on_esc_question_mark_or_q() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Char('?'));
+    let top = render(&mut app, 80, 24);
+    assert!(top.contains("more below"), "{top}");
+    // ↓ scrolls instead of closing; PgDn a page; PgUp back.
+    press(&mut app, KeyCode::Down);
+    assert_eq!(app.mode, Mode::Help(1));
+    assert_ne!(render(&mut app, 80, 24), top);
+    press(&mut app, KeyCode::PageDown);
+    assert_eq!(app.mode, Mode::Help(11));
+    press(&mut app, KeyCode::PageUp);
+    press(&mut app, KeyCode::Up);
+    assert_eq!(app.mode, Mode::Help(0));
+    // Stray keys leave it open.
+    for c in ['x', 'v', 'p', 'u'] {
+        press(&mut app, KeyCode::Char(c));
+        assert_eq!(app.mode, Mode::Help(0), "{c} closed the help");
+    }
+    // Every binding's whole help text is reachable at 80×24 (wrapped, not cut).
+    let all = help_text(&mut app, 80, 24);
+    let words: String = all.split_whitespace().collect::<Vec<_>>().join(" ");
+    for b in KEYS {
+        for word in b.help.split_whitespace() {
+            assert!(words.contains(word), "help at 80x24 lacks '{word}' of '{}'", b.help);
+        }
+    }
+    let last = b_last_words(KEYS.last().unwrap().help);
+    assert!(all.replace(['│', '\n'], " ").split_whitespace().collect::<Vec<_>>().join(" ").contains(&last), "{all}");
+    for close in [KeyCode::Esc, KeyCode::Char('?'), KeyCode::Char('q')] {
+        press(&mut app, KeyCode::Char('?'));
+        press(&mut app, close);
+        assert_eq!(app.mode, Mode::Normal);
+        assert!(!app.quit, "{close:?} closes the help, it does not quit");
+    }
+    // The second page scrolls the same way.
+    press(&mut app, KeyCode::Char('?'));
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::PageDown);
+    assert_eq!(app.mode, Mode::Glossary(10));
+}
+
+/// The last three words of a help text (the part a cut would lose).
+fn b_last_words(help: &str) -> String {
+    let w: Vec<&str> = help.split_whitespace().collect();
+    w[w.len().saturating_sub(3)..].join(" ")
 }
 
 #[test]
@@ -171,11 +339,7 @@ fn typed_value_with_units_is_applied() {
 
 #[test]
 fn quit_keys_quit() {
-    for (code, mods) in [
-        (KeyCode::Char('q'), KeyModifiers::NONE),
-        (KeyCode::Esc, KeyModifiers::NONE),
-        (KeyCode::Char('c'), KeyModifiers::CONTROL),
-    ] {
+    for (code, mods) in [(KeyCode::Char('q'), KeyModifiers::NONE), (KeyCode::Char('c'), KeyModifiers::CONTROL)] {
         let mut app = App::new(Design::default(), "default", Palette::default());
         app.update(Msg::Input(Event::Key(KeyEvent::new(code, mods))));
         assert!(app.quit);
@@ -730,7 +894,9 @@ fn ascii_frames_are_pure_ascii_in_every_mode_and_size() {
     app.data_dir = Some(std::env::temp_dir().join("thud-tui-ascii-none"));
     for mode in [
         Mode::Normal,
-        Mode::Help,
+        Mode::Help(0),
+        Mode::Help(9),
+        Mode::ConfirmQuit,
         Mode::Glossary(3),
         Mode::Presets(0),
         Mode::Editing("40".into()),
@@ -1146,8 +1312,16 @@ fn is_response_job(r: &thud::tui::Request) -> bool {
 fn a_force_switched_on_gets_the_natural_frequency_and_the_steady_readout() {
     let mut app = forced_app(Palette::default());
     assert_eq!(app.design.damper.force_n, 1.0);
-    // Table 2: √(K/M − (C/2M)²)/2π = 5.033 Hz, to 3 digits.
-    assert_eq!(app.design.damper.freq_hz, 5.03);
+    // Issue 17 item 6: Table 2's exact natural frequency √(K/M − (C/2M)²)/2π = 5.0329 Hz
+    // (not rounded to 5.03), the value the response band is centred on.
+    let p = &app.design.damper;
+    let g = p.damping_n_s_m / (2.0 * p.main_mass_kg);
+    let fn_hz = (p.stiffness_n_m / p.main_mass_kg - g * g).sqrt() / (2.0 * std::f64::consts::PI);
+    assert!((fn_hz - 5.0329).abs() < 5e-5, "{fn_hz}");
+    assert!((p.freq_hz - fn_hz).abs() < 1e-12, "f {} is the natural frequency {fn_hz}", p.freq_hz);
+    let band = thud::tui::compute::default_band(&app.design);
+    assert!((band.from_hz - 0.6 * p.freq_hz).abs() < 1e-12 && (band.to_hz - 1.6 * p.freq_hz).abs() < 1e-12);
+    assert!(render(&mut app, 120, 40).contains("5.033 Hz"));
     let screen = render(&mut app, 120, 40);
     for label in ["amp", "alone", "cut", "Leq", "imp/T"] {
         row(&screen, label);
@@ -1277,7 +1451,7 @@ fn an_ensemble_chart_shades_the_cells_where_runs_disagree() {
         assert!(unsure.iter().any(|u| !*u));
         let screen = render(&mut app, 120, 40);
         let shade = if theme.ascii { ":" } else { "░" };
-        assert!(screen.contains(&format!("{shade} <70% of runs agree")), "legend:\n{screen}");
+        assert!(screen.contains(&format!("{shade} <70% agree")), "legend:\n{screen}");
         insta::assert_snapshot!(format!("{name}_120x40"), screen);
         show_chart(&mut app);
         let screen = render(&mut app, 80, 24);
@@ -1321,8 +1495,9 @@ fn the_readout_shows_the_clis_json_numbers() {
     }
     let zone = cli["zone"].as_u64().unwrap();
     assert!(row(&screen, "zone").contains(&format!("zone    {zone} ")), "{screen}");
-    // A forced design: the steady figures.
-    let cli = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--json"]);
+    // A forced design: the settled steady figures (issue 17 item 1: the 2 s run's last
+    // periods are still the start-up transient; the readout shows `simulate --settle`'s).
+    let cli = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--settle", "--json"]);
     let st = &cli["steady"];
     let mut forced = d;
     forced.damper.force_n = 1.0;
@@ -1331,8 +1506,13 @@ fn the_readout_shows_the_clis_json_numbers() {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     let screen = render(&mut app, 120, 40);
+    // The note says whether that state settled, as the command line does, before the rest.
+    let settled = if st["settled"].as_bool().unwrap() { "│settled, " } else { "│NOT settled, " };
+    let end = sig(num(st, "window_end_s"), 3);
+    assert!(screen.contains(settled) && end.parse::<f64>().unwrap() > 2.0, "{settled} {end}\n{screen}");
+    let plain = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--json"]);
     for (label, want) in [
-        ("U0max", format!("{} m/s", sig(num(&cli, "u0_max_m_s"), 5))),
+        ("U0max", format!("{} m/s", sig(num(&plain, "u0_max_m_s"), 5))),
         ("amp", format!("{} mm", sig(num(st, "amplitude_m") * 1e3, 4))),
         ("alone", format!("{} mm", sig(num(st, "amplitude_linear_m") * 1e3, 4))),
         ("cut", format!("{} dB", sig(num(st, "reduction_db"), 3))),
@@ -1341,4 +1521,340 @@ fn the_readout_shows_the_clis_json_numbers() {
     ] {
         assert!(row(&screen, label).contains(&format!(" {want} ")), "{label}: {want} in\n{screen}");
     }
+    // With N > 1 the forced figures are the N runs' settled states, median [p10–p90], as
+    // `thud response --ensemble N` at this f (from the design's own v0).
+    set_field(&mut app, thud::tui::fields::Knob::Runs, "3");
+    let cli = json(&[
+        "response",
+        "--preset",
+        "paper-fig9",
+        "--force",
+        "1N",
+        "--v0",
+        "2m/s",
+        "--freqs",
+        "5Hz:5Hz:1",
+        "--ensemble",
+        "3",
+        "--json",
+    ]);
+    let p = &cli["sweeps"][0]["points"][0]["spread"];
+    let spread = |k: &str, scale: f64, digits: usize, unit: &str| {
+        let v = |q: &str| sig(num(&p[k], q) * scale, digits);
+        format!("{}{unit} [{}–{}]", v("median"), v("p10"), v("p90"))
+    };
+    let screen = render(&mut app, 120, 40);
+    for (label, want) in [
+        ("amp", spread("amplitude_m", 1e3, 4, " mm")),
+        ("cut", spread("reduction_db", 1.0, 3, " dB")),
+        ("Leq", spread("leq_db", 1.0, 4, " dB")),
+        ("imp/T", spread("impacts_per_period", 1.0, 3, " ")),
+    ] {
+        assert!(row(&screen, label).contains(&want), "{label}: {want} in\n{screen}");
+    }
+    let settled = cli["sweeps"][0]["points"][0]["settled_fraction"].as_f64().unwrap();
+    assert!(screen.contains(&format!("3 runs: {:.0}% settled", 100.0 * settled)), "{screen}");
+}
+
+/// Issue 17 item 2: the polar's listener level is the level at the exact θ, as `thud simulate`
+/// (the loudest impact, SPLmax) and `thud pulse` (one impact) report it, at angles off the
+/// polar's 5° grid too (it used to show the nearest grid angle's level).
+#[test]
+fn the_polars_listener_level_is_the_clis_at_non_grid_angles() {
+    let sig = thud::units::sig;
+    let json = |args: &[&str]| -> serde_json::Value {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud")).args(args).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let listener = |screen: &str| -> String {
+        let line =
+            screen.lines().find(|l| l.contains("θ ") && l.contains("° → ")).unwrap_or_else(|| panic!("{screen}"));
+        let at = line.split("° → ").nth(1).unwrap();
+        at.split(" dB").next().unwrap().to_string()
+    };
+    let mut app = computed_app();
+    for theta in ["47", "51", "12.5", "83"] {
+        set_field(&mut app, thud::tui::fields::Knob::Theta, theta);
+        let loud = json(&["simulate", "--theta", theta, "--json"]);
+        let pulse = json(&["pulse", "--preset", "default", "--theta", theta, "--json"]);
+        let screen = render(&mut app, 120, 40);
+        assert!(screen.contains(&format!("θ {}° → ", sig(theta.parse().unwrap(), 3))), "{screen}");
+        assert_eq!(listener(&screen), sig(loud["spl_max_db"].as_f64().unwrap(), 4), "θ {theta}: SPLmax\n{screen}");
+        // The readout's SPLmax is the same number.
+        assert!(row(&screen, "SPLmax").contains(&format!("{} dB", listener(&screen))), "{screen}");
+        press(&mut app, KeyCode::Char('i'));
+        let screen = render(&mut app, 120, 40);
+        assert_eq!(listener(&screen), sig(pulse["spl_db"].as_f64().unwrap(), 4), "θ {theta}: one impact\n{screen}");
+        press(&mut app, KeyCode::Char('i'));
+    }
+}
+
+/// Issue 17 item 3: the `░` legend entry never costs the chart a gap row: at every panel size
+/// where the chart without it draws all 12 computed rows, the chart with it (and with the
+/// pending entry) draws all 12 too (at 120×40 it used to draw 11).
+#[test]
+fn the_chart_draws_every_computed_row_with_the_unsure_legend_too() {
+    let grid = Grid::standard(16, 12);
+    let masses_g: Vec<f64> = grid.masses_kg.iter().map(|m| m * 1e3).collect();
+    let gaps_cm: Vec<f64> = grid.gaps_m.iter().map(|g| g * 1e2).collect();
+    let theme = Palette::default();
+    let rows = |inner, pending, unsure| {
+        thud::tui::chart::layout(inner, &masses_g, &gaps_cm, &theme, pending, unsure)
+            .map_or(0, |l| l.geometry.rows.len())
+    };
+    let (mut checked, mut lost) = (0, vec![]);
+    // From 28 columns: narrower, the 16 columns and their labels fill the panel and the
+    // legend below needs a line more for the entry (24–27 columns).
+    for w in 28..=200u16 {
+        for h in 6..=60u16 {
+            let inner = ratatui::layout::Rect::new(1, 1, w, h);
+            if rows(inner, false, false) == 12 {
+                checked += 1;
+                if rows(inner, false, true) != 12 {
+                    lost.push((w, h));
+                }
+            }
+        }
+    }
+    assert!(lost.is_empty(), "a row lost to the ░ entry at {lost:?}");
+    assert!(checked > 1000, "{checked}");
+}
+
+/// Issue 17 item 4: the export is what is on screen: with N > 1 the sweep CSV is the ensemble
+/// chart (`thud sweep --ensemble N --csv` over the chart's grid), and while the frequency
+/// response is shown the menu offers it as CSV and SVG, the curve the view draws.
+#[test]
+fn exports_are_the_ensemble_chart_and_the_response_on_screen() {
+    let out = tempfile::tempdir().unwrap();
+    let mut app = ensemble_app(2, Palette::default());
+    app.export_dir = out.path().to_path_buf();
+    let export = |app: &mut App, kind: thud::export::Artifact| {
+        press(app, KeyCode::Char('e'));
+        let at =
+            app.export_menu().iter().position(|(k, _)| *k == kind).unwrap_or_else(|| panic!("{kind:?} in the menu"));
+        for _ in 0..at {
+            press(app, KeyCode::Down);
+        }
+        press(app, KeyCode::Enter);
+    };
+    export(&mut app, thud::export::Artifact::CsvSweep);
+    let file = std::fs::read_to_string(out.path().join("thud-sweep.csv")).unwrap();
+    let cli = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(["sweep", "--ensemble", "2", "--masses", "20g:100g:6", "--gaps", "1cm:7cm:5", "--csv"])
+        .output()
+        .unwrap();
+    assert!(cli.status.success(), "{}", String::from_utf8_lossy(&cli.stderr));
+    assert_eq!(file, String::from_utf8(cli.stdout).unwrap(), "the ensemble chart's CSV");
+    assert!(file.lines().next().unwrap().contains("agreement"), "{file}");
+    // The response: not in the menu until it is shown, then the curve on screen.
+    let mut app = forced_app(Palette::default());
+    app.export_dir = out.path().to_path_buf();
+    assert!(!app.export_menu().iter().any(|(k, _)| k.is_response()));
+    press(&mut app, KeyCode::Char('f'));
+    export(&mut app, thud::export::Artifact::CsvResponse);
+    let file = std::fs::read_to_string(out.path().join("thud-response.csv"))
+        .unwrap_or_else(|e| panic!("{e}: {}", status_of(&render(&mut app, 120, 40))));
+    assert_eq!(file, thud::export::csv::response(app.response().expect("curve")).unwrap());
+    export(&mut app, thud::export::Artifact::SvgResponse);
+    assert!(std::fs::read_to_string(out.path().join("thud-response.svg")).unwrap().contains("<svg"));
+    assert!(render(&mut app, 120, 40).contains("exported response SVG"));
+}
+
+/// Issue 17 item 1: a forced design whose settled run has not settled says so on screen even
+/// when its e is negative: the warning ranks above the `(!) e < 0` note (the e row keeps its
+/// `(!)`), and the settled state is the command line's (`simulate --settle`).
+#[test]
+fn a_not_settled_note_is_never_hidden_behind_the_negative_e_note() {
+    let mut app = computed_app();
+    let reqs = app.select_design(0.050, 0.060);
+    compute_sync(&mut app, reqs);
+    set_field(&mut app, thud::tui::fields::Knob::Force, "1");
+    let a = app.acoustic().expect("computed");
+    let steady = a.steady.expect("forced");
+    let e = app.metrics().unwrap().inclination_cm_s.unwrap();
+    assert!(e < 0.0 && !steady.settled, "this design: e {e}, settled {}", steady.settled);
+    // The same settled state as the command line's.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(["simulate", "--mass", "50g", "--gap", "6cm", "--force", "1N", "--settle", "--json"])
+        .arg(format!("--freq={}Hz", app.design.damper.freq_hz))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let cli: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(cli["steady"]["amplitude_m"].as_f64().unwrap(), steady.amplitude_m);
+    for (w, h) in [(120, 40), (200, 60)] {
+        let screen = render(&mut app, w, h);
+        assert!(screen.contains("│NOT settled, ") && row(&screen, "e").contains("(!)"), "{screen}");
+    }
+}
+
+/// Braille cells (plotted points) on a screen.
+fn braille(screen: &str) -> usize {
+    screen.chars().filter(|c| ('\u{2801}'..='\u{28ff}').contains(c)).count()
+}
+
+/// The title words of each panel, as drawn at 80 columns.
+fn panel_title(p: thud::tui::app::Panel) -> &'static str {
+    use thud::tui::app::Panel;
+    match p {
+        Panel::Waveform => "p(t)",
+        Panel::Polar => "SPL(θ)",
+        Panel::History => "x(t)",
+        Panel::Chart => "m (g)",
+        Panel::Params => "parameters",
+        Panel::Readout => "readout",
+    }
+}
+
+#[test]
+fn every_tour_step_at_80x24_shows_its_named_panel_with_its_plot() {
+    use thud::tui::app::Panel;
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    let n = app.tour.as_ref().unwrap().tour.steps.len();
+    for i in 0..n {
+        let step = app.tour.as_ref().unwrap().tour.steps[i].clone();
+        let screen = render(&mut app, 80, 24);
+        insta::assert_snapshot!(format!("tour_zoomed_step{}_80x24", i + 1), screen);
+        assert!(!screen.contains("too small"), "step {} at 80x24:\n{screen}", i + 1);
+        let marked = screen.lines().find(|l| l.contains("▶ ")).expect("the step's panel is marked");
+        assert!(marked.contains(panel_title(step.panel)) || step.panel == Panel::Chart, "step {}:\n{screen}", i + 1);
+        match step.panel {
+            Panel::Chart => {
+                assert!(screen.contains(panel_title(Panel::Chart)) && screen.contains("d (cm)"), "{screen}");
+            }
+            // A plot: plotted cells, not a message.
+            _ => assert!(braille(&screen) > 15, "step {} plot:\n{screen}", i + 1),
+        }
+        if i == 0 {
+            // One impact on a plate: no damper run's zone or e beside it.
+            assert!(!screen.contains("zone ") && !screen.contains("(!)"), "{screen}");
+        }
+        press(&mut app, KeyCode::Right);
+    }
+}
+
+#[test]
+fn the_tour_caption_keys_do_what_the_caption_says() {
+    use thud::tui::fields::Knob;
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Char('T'));
+    press(&mut app, KeyCode::Right);
+    let step = app.tour.as_ref().unwrap().step;
+    let caption = app.tour.as_ref().unwrap().tour.steps[step].caption.clone();
+    assert!(caption.contains("Select θ") && caption.contains("↑↓") && caption.contains('+'), "{caption}");
+    assert!(!caption.contains("←→"), "← and → move the tour, not θ: {caption}");
+    // As written: ↑↓ until θ is selected (the status line names it), then + walks θ.
+    for _ in 0..Knob::ALL.len() {
+        if app.param() == Knob::ALL.iter().copied().find(|k| k.label().starts_with('θ')).unwrap() {
+            break;
+        }
+        press(&mut app, KeyCode::Down);
+    }
+    assert!(app.param().label().starts_with('θ'));
+    let s = render(&mut app, 80, 24);
+    assert!(s.lines().last().unwrap().contains('θ'), "the status line names θ (no footer in the tour):\n{s}");
+    let theta = app.design.observer.theta_rad;
+    press(&mut app, KeyCode::Char('+'));
+    assert!(app.design.observer.theta_rad > theta, "+ walks the listener");
+    assert_eq!(app.tour.as_ref().unwrap().step, step, "still on the same step");
+    press(&mut app, KeyCode::Char('-'));
+    assert!((app.design.observer.theta_rad - theta).abs() < 1e-12);
+}
+
+#[test]
+fn z_zooms_the_focused_panel_to_the_whole_screen_and_back() {
+    let mut app = full_app("default", Palette::default());
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    let before = render(&mut app, 80, 24);
+    assert!(before.contains("x(t)") && before.contains("m (g)"), "history and chart side by side:\n{before}");
+    press(&mut app, KeyCode::Char('z'));
+    let zoomed = render(&mut app, 80, 24);
+    assert!(zoomed.contains("x(t) of the main mass near its peaks"), "the long title fits:\n{zoomed}");
+    assert!(!zoomed.contains("m (g)") && !zoomed.contains("parameters"), "only the history:\n{zoomed}");
+    assert!(braille(&zoomed) > braille(&before) / 2, "{zoomed}");
+    assert!(zoomed.lines().next().unwrap().contains("zoom: history"));
+    // Tab moves the zoom to the next panel; z goes back to all panels.
+    press(&mut app, KeyCode::Tab);
+    let chart = render(&mut app, 80, 24);
+    assert!(chart.contains("m (g)") && !chart.contains("x(t)"), "{chart}");
+    press(&mut app, KeyCode::Char('z'));
+    assert_eq!(render(&mut app, 80, 24).lines().filter(|l| l.contains("x(t)")).count(), 1);
+    // The key table has it, so help and footer show it.
+    assert!(render(&mut app, 80, 24).lines().last().unwrap().contains("z zoom"));
+    assert!(KEYS.iter().any(|b| b.label == "z" && b.help.contains("fills the screen")));
+}
+
+#[test]
+fn input_lines_start_with_the_current_value_selected_and_typing_replaces_it() {
+    let mut app = computed_app();
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Editing("40.50 g".into()), "the line opens on the value shown");
+    let (screen, buf) = render_with(&mut app, 80, 24);
+    let y = screen.lines().count() - 2;
+    let line: String = (0..80).map(|x| buf[(x, y as u16)].symbol().to_string()).collect();
+    let x = line.find("40.50 g").unwrap();
+    let x = u16::try_from(line[..x].chars().count()).unwrap();
+    assert!(buf[(x, y as u16)].modifier.contains(ratatui::style::Modifier::REVERSED), "shown selected");
+    // Enter on it: nothing changes (the shown value is rounded).
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.0405).abs() < 1e-15);
+    assert!(!app.modified(), "no change was made");
+    // Typing replaces the selection.
+    press(&mut app, KeyCode::Enter);
+    type_text(&mut app, "45");
+    assert_eq!(app.mode, Mode::Editing("45".into()));
+    press(&mut app, KeyCode::Enter);
+    assert!((app.design.damper.impact_mass_kg - 0.045).abs() < 1e-12);
+    // An arrow keeps the text to edit; Ctrl-U clears it.
+    press(&mut app, KeyCode::Enter);
+    press(&mut app, KeyCode::End);
+    type_text(&mut app, "0");
+    assert_eq!(app.mode, Mode::Editing("45.00 g0".into()));
+    press_mod(&mut app, KeyCode::Char('u'), KeyModifiers::CONTROL);
+    assert_eq!(app.mode, Mode::Editing(String::new()));
+    press(&mut app, KeyCode::Esc);
+    // The save line too: the offered name is selected, typing replaces it.
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.mode, Mode::SaveAs("design-1".into()));
+    assert!(app.line_selected);
+    type_text(&mut app, "mine");
+    assert_eq!(app.mode, Mode::SaveAs("mine".into()));
+}
+
+#[test]
+fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
+    use thud::tui::fields::Knob;
+    let data = tempfile::tempdir().unwrap();
+    let mut app = ensemble_app(4, Palette::default());
+    app.data_dir = Some(data.path().to_path_buf());
+    set_field(&mut app, Knob::Force, "1");
+    set_field(&mut app, Knob::Freq, "5.45");
+    set_field(&mut app, Knob::Theta, "51");
+    let (design, runs) = (app.design.clone(), app.runs);
+    assert!(design.damper.forced() && runs == 4);
+    app.save_as("forced-ensemble");
+    // Change everything back, then load it.
+    set_field(&mut app, Knob::Runs, "1");
+    set_field(&mut app, Knob::Force, "0");
+    set_field(&mut app, Knob::Theta, "30");
+    press(&mut app, KeyCode::Char('L'));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.design, design, "every field of the design");
+    assert_eq!(app.runs, 4, "the ensemble N");
+    assert!(!app.modified(), "just loaded: not modified");
+    // A file with an N the field refuses is a load error, nothing applied.
+    let path = data.path().join("designs").join("forced-ensemble.toml");
+    let text = std::fs::read_to_string(&path).unwrap().replace("ensemble = 4", "ensemble = 0");
+    assert!(text.contains("ensemble = 0"), "{text}");
+    std::fs::write(&path, text).unwrap();
+    set_field(&mut app, Knob::Runs, "1");
+    press(&mut app, KeyCode::Char('L'));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.mode, Mode::Saved(0));
+    assert!(app.status().unwrap().text.contains("ensemble N 0"), "{:?}", app.status());
+    assert_eq!(app.runs, 1);
 }

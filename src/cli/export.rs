@@ -184,6 +184,7 @@ impl Common {
                 .map(|f| parse_range("freqs", f, Unit::Frequency, &limits::FREQ))
                 .transpose()?,
             continuation: self.continuation,
+            ensemble_runs: 1,
         })
     }
 

@@ -135,6 +135,9 @@ pub struct ExportOptions {
     pub freqs_hz: Option<Vec<f64>>,
     /// A response from each frequency's predecessor, up then down (else each from rest).
     pub continuation: bool,
+    /// Runs a cell of a sweep CSV: 1 the single trajectory; N > 1 the ensemble chart of N runs
+    /// from spread ball offsets (the columns of `thud sweep --ensemble N --csv`).
+    pub ensemble_runs: usize,
     /// Size and title of SVG figures.
     pub look: svg::Look,
 }
@@ -149,6 +152,7 @@ impl Default for ExportOptions {
             wav: wav::WavOptions::default(),
             freqs_hz: None,
             continuation: false,
+            ensemble_runs: 1,
             look: svg::Look::default(),
         }
     }
@@ -264,6 +268,11 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
                 crate::units::sig(d.damper.main_mass_kg, 3)
             );
             figures::restitution(&curve, &title, &opts.look)
+        }
+        Artifact::CsvSweep if opts.ensemble_runs > 1 => {
+            let (masses, gaps) = grid(opts);
+            let chart = crate::ensemble::sweep(&d, &masses, &gaps, opts.ensemble_runs, None, &|_, _| {})?;
+            csv::sweep_ensemble(&chart)?
         }
         Artifact::CsvSweep | Artifact::SvgChart | Artifact::SvgFig17 => {
             let (masses, gaps) = grid(opts);

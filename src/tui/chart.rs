@@ -177,9 +177,10 @@ pub fn unsure(cells: &[CellView]) -> bool {
     cells.iter().any(|c| matches!(c, CellView::Unsure(_)))
 }
 
-/// The legend's entry for the shading of unsure ensemble cells.
+/// The legend's entry for the shading of unsure ensemble cells: no wider than a zone's entry,
+/// so it never widens the legend beside the grid (which cost the grid a row).
 pub fn unsure_legend(theme: &Palette) -> String {
-    format!("{} <70% of runs agree", theme.sym("░", ":"))
+    format!("{} <70% agree", theme.sym("░", ":"))
 }
 
 /// The legend's entries (text, zone for its colour); "pending" only while cells are, the
@@ -246,6 +247,18 @@ pub enum LegendPlace {
     Below(u16, Vec<Vec<usize>>),
 }
 
+/// The grid in `area` and whether the x title fits on the labels row right of it; else the
+/// title takes a row of its own under the grid (taken from the grid).
+fn grid_in(area: Rect, nm: usize, ng: usize) -> Option<(Geometry, bool)> {
+    let x_title_w = 8u16;
+    let geometry = Geometry::new(area, nm, ng)?;
+    if area.right().saturating_sub(geometry.cells.right()) > x_title_w {
+        return Some((geometry, true));
+    }
+    let room = Rect { height: area.height.saturating_sub(1), ..area };
+    Some((Geometry::new(room, nm, ng)?, false))
+}
+
 /// Lays out the zone grid, its axes, legend and the design's line in the panel's inner area;
 /// None if the grid does not fit.
 pub fn layout(
@@ -266,18 +279,18 @@ pub fn layout(
     let beside_w = inner.width.saturating_sub(legend_w + 1);
     let grid_room_beside = beside_w.saturating_sub(LABEL_W) as usize;
     let beside_fits = inner.height >= fixed + items.len() as u16 && grid_room_beside >= nm;
-    let beside = beside_fits && (usize::from(below_h) < ng || grid_room_beside >= 2 * nm);
-    let (grid_w, grid_h) = if beside { (beside_w, inner.height - fixed) } else { (inner.width, below_h) };
-    let mut geometry = Geometry::new(Rect::new(inner.x, inner.y + 1, grid_w, grid_h), nm, ng)?;
-    // The x title goes on the labels row if there is room right of the grid, else on a row of
-    // its own under it (taken from the grid).
-    let x_title_w = 8u16;
+    let wide = beside_fits && grid_room_beside >= 2 * nm;
+    // The placement that draws the most gap rows (every computed one where any does); beside
+    // where the grid is wide enough either way.
+    let place = |beside: bool| {
+        let (grid_w, grid_h) = if beside { (beside_w, inner.height - fixed) } else { (inner.width, below_h) };
+        grid_in(Rect::new(inner.x, inner.y + 1, grid_w, grid_h), nm, ng).map(|(g, t)| (beside, grid_w, g, t))
+    };
+    let rows = |p: &Option<(bool, u16, Geometry, bool)>| p.as_ref().map_or(0, |p| p.2.rows.len());
+    let (below, side) = (place(false), if beside_fits { place(true) } else { None });
+    let best = if rows(&side) > rows(&below) || (wide && rows(&side) == rows(&below)) { side } else { below };
+    let (beside, grid_w, geometry, title_beside) = best?;
     let grid_right = inner.x + grid_w;
-    let title_beside = grid_right.saturating_sub(geometry.cells.right()) > x_title_w;
-    if !title_beside {
-        let room = grid_h.saturating_sub(1);
-        geometry = Geometry::new(Rect::new(inner.x, inner.y + 1, grid_w, room), nm, ng)?;
-    }
     let cells = geometry.cells;
     let x_labels_y = cells.bottom();
     let x_title_y = if title_beside { x_labels_y } else { x_labels_y + 1 };

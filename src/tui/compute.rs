@@ -94,8 +94,12 @@ pub struct AcousticResult {
     /// design: Fig 2, Table 1); an error text when v0 gives no impact.
     pub single: Result<SingleImpact, String>,
     /// A forced design's steady state over its last N periods with the Leq of its rattle at
-    /// this observer ([`response::steady`]); None without a force.
+    /// this observer ([`response::steady`]); None without a force. The readout job
+    /// ([`compute_readout`]) replaces it by the settled state (as `thud simulate --settle`).
     pub steady: Option<Steady>,
+    /// With N > 1 runs and a force: the settled steady state of the N runs at f (median and
+    /// p10–p90, as `thud response --ensemble N` at this f).
+    pub forced_ensemble: Option<response::EnsemblePoint>,
     /// With N > 1 runs: the ensemble of the design (its runs from N spread ball offsets).
     pub ensemble: Option<Ensemble>,
 }
@@ -163,7 +167,7 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         polar = directivity(&r, u0);
     }
     let single = single_impact(&r).map_err(|e| e.to_string());
-    Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None })
+    Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None, forced_ensemble: None })
 }
 
 /// The readout of `d` with `runs` runs: [`compute_acoustic`], and with N > 1 the ensemble of
@@ -181,7 +185,33 @@ pub fn compute_readout(
             None => return Ok(None),
         }
     }
+    if d.damper.forced() {
+        match settled_steady(d, cancel)? {
+            Some(s) => a.steady = Some(s),
+            None => return Ok(None),
+        }
+        if runs > 1 {
+            let opts = ResponseOptions { continuation: false, settle: true };
+            let f = d.damper.freq_hz;
+            let r = response::response_ensemble(d, &[f], runs, &opts, cancel, &|| {})?;
+            if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return Ok(None);
+            }
+            a.forced_ensemble = r.sweeps.into_iter().next().and_then(|s| s.points.into_iter().next());
+        }
+    }
     Ok(Some(a))
+}
+
+/// The settled steady state of forced `d`: its run going on until the amplitude settles (at
+/// most [`damper::SETTLE_PERIODS_MAX`] periods more), as `thud simulate --settle` reports it,
+/// not the last periods of its own duration, which may still be the start-up transient (the
+/// structure's time constant 2M/C is 20 s for Table 2). `None` if cancelled.
+pub fn settled_steady(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<Steady>, ThudError> {
+    let mut s = d.clone();
+    s.damper.settle = true;
+    let eval = design::evaluate(&s, 0, cancel)?;
+    Ok(if eval.run.cancelled { None } else { eval.steady })
 }
 
 /// The ensemble `e` under thresholds `t`: each run's zone and the zone of the medians
@@ -298,27 +328,51 @@ pub fn single_impact(d: &Design) -> Result<SingleImpact, ThudError> {
     let (t, p) = field.waveform(WAVEFORM_SAMPLES);
     let waveform = t.iter().zip(&p).map(|(t, p)| (1e3 * (t - arrival), *p)).collect();
     let peaks = field.significant_extrema(0.02).iter().map(|e| (1e3 * (e.t_s - arrival), e.p_pa)).collect();
-    let (lo, hi) = d.radiation.source.theta_range_deg();
-    let n = ((hi - lo) / POLAR_STEP_DEG).round() as usize;
-    let polar = (0..=n)
-        .filter_map(|i| {
-            let deg = lo + i as f64 * POLAR_STEP_DEG;
-            let at = Observer { theta_rad: deg.to_radians(), ..d.observer };
+    let polar = polar_angles(d)
+        .into_iter()
+        .filter_map(|(deg, theta_rad)| {
+            let at = Observer { theta_rad, ..d.observer };
             plate_field(d, &at).ok().map(|f| (deg, f.spl_db()))
         })
         .collect();
     Ok(SingleImpact { u0_m_s: d.damper.v0_m_s, spl_db: field.spl_db(), waveform, polar, peaks })
 }
 
-/// SPL (dB) every [`POLAR_STEP_DEG`] over the valid angles of the source, at the design's r.
-fn directivity(d: &Design, u0: f64) -> Vec<(f64, f64)> {
+/// The angles a polar is computed at, as (deg, rad): every [`POLAR_STEP_DEG`] over the valid
+/// angles of the source, and the observer's own θ exactly (its radians as the design holds
+/// them, its degrees as [`listener_deg`] gives them), so the listener's level is the level at
+/// θ, the one `thud simulate`/`thud pulse` report, not the nearest grid angle's.
+fn polar_angles(d: &Design) -> Vec<(f64, f64)> {
     let (lo, hi) = d.radiation.source.theta_range_deg();
     let n = ((hi - lo) / POLAR_STEP_DEG).round() as usize;
-    (0..=n)
-        .filter_map(|i| {
+    let mut angles: Vec<(f64, f64)> = (0..=n)
+        .map(|i| {
             let deg = lo + i as f64 * POLAR_STEP_DEG;
+            (deg, deg.to_radians())
+        })
+        .collect();
+    let own = listener_deg(d);
+    if (lo..=hi).contains(&own) {
+        angles.retain(|a| a.0 != own);
+        angles.push((own, d.observer.theta_rad));
+        angles.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    angles
+}
+
+/// The listener's θ in degrees as the polar is keyed on it: the design's radians in degrees.
+pub fn listener_deg(d: &Design) -> f64 {
+    d.observer.theta_rad.to_degrees()
+}
+
+/// SPL (dB) every [`POLAR_STEP_DEG`] over the valid angles of the source and at the observer's
+/// own θ ([`polar_angles`]), at the design's r.
+fn directivity(d: &Design, u0: f64) -> Vec<(f64, f64)> {
+    polar_angles(d)
+        .into_iter()
+        .filter_map(|(deg, theta_rad)| {
             let mut v = d.clone();
-            v.observer.theta_rad = deg.to_radians();
+            v.observer.theta_rad = theta_rad;
             v.impact_spl_db(u0).ok().map(|l| (deg, l))
         })
         .collect()
@@ -385,8 +439,9 @@ pub fn compute_relevel(d: &Design, passes: &ChartPasses) -> ChartPasses {
     ChartPasses { coarse: passes.coarse.as_ref().map(re), fine: re(&passes.fine) }
 }
 
-/// The main mass's damped natural frequency (Hz) of `d`: the engine's cycles per second of
-/// Eq 25 alone ([`thud_core::limits::cycles`]); 0 without a spring or when overdamped.
+/// The main mass's damped natural frequency (Hz) of `d`: the engine's
+/// [`thud_core::damper::DamperParams::natural_frequency_hz`] (Eq 25), unrounded; 0 without a
+/// spring or when overdamped.
 pub fn natural_frequency_hz(d: &Design) -> f64 {
     thud_core::response::natural_frequency_hz(d)
 }

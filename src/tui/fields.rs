@@ -889,11 +889,12 @@ impl Knob {
 }
 
 /// The forcing frequency a force starts at when none is set: the structure's natural
-/// frequency rounded to 3 significant digits, or 1 Hz without one (no spring, overdamped).
+/// frequency, exactly the value the response band is centred on, or 1 Hz without one (no
+/// spring, overdamped).
 fn start_frequency_hz(d: &Design) -> f64 {
     let f = compute::natural_frequency_hz(d);
     if f > 0.0 {
-        sig(f, 3).parse().unwrap_or(f)
+        f
     } else {
         1.0
     }

@@ -22,9 +22,22 @@ pub const EXPORTS: [(Artifact, &str); 11] = [
     (Artifact::Wav, "sound WAV — the whole run at the observer, 48 kHz"),
 ];
 
+/// The frequency response's rows, offered while the response view is shown.
+pub const RESPONSE_EXPORTS: [(Artifact, &str); 2] = [
+    (Artifact::CsvResponse, "response CSV — the frequency response on screen"),
+    (Artifact::SvgResponse, "response SVG — the same response as a figure"),
+];
+
+/// The export menu's rows: [`EXPORTS`], and [`RESPONSE_EXPORTS`] while the frequency response
+/// is on screen (`response`), so the menu offers what the screen shows.
+pub fn export_menu(response: bool) -> Vec<(Artifact, &'static str)> {
+    let extra = if response { &RESPONSE_EXPORTS[..] } else { &[] };
+    EXPORTS.iter().chain(extra).copied().collect()
+}
+
 /// The short name of an export kind ("waveform CSV").
 pub fn export_name(kind: Artifact) -> &'static str {
-    let label = EXPORTS.iter().find(|(k, _)| *k == kind).map_or("file", |(_, l)| l);
+    let label = EXPORTS.iter().chain(&RESPONSE_EXPORTS).find(|(k, _)| *k == kind).map_or("file", |(_, l)| l);
     label.split(" — ").next().unwrap_or(label)
 }
 

@@ -47,6 +47,8 @@ pub enum Action {
     PulseView,
     /// The chart panel: the frequency response of the forced design (f marked) / the zones.
     ResponseView,
+    /// The focused panel fills the screen, and back (the tour starts zoomed).
+    Zoom,
     /// Tour: the next step (after the last: leave the tour).
     TourNext,
     /// Tour: the previous step.
@@ -92,9 +94,8 @@ const fn bind(
 /// Enter/Esc/arrows as described in the help text of `Enter` and `P`. A `[keys]` override in
 /// `config.toml` replaces the first key of the named action (see [`Keymap::with_overrides`]).
 pub const KEYS: &[Binding] = &[
-    bind(KeyCode::Char('q'), NONE, Action::Quit, "quit", "q", "quit", "quit"),
-    bind(KeyCode::Esc, NONE, Action::Quit, "quit", "Esc", "quit (or close a popup / cancel the input line)", ""),
-    bind(KeyCode::Char('c'), CTRL, Action::Quit, "quit", "Ctrl-C", "quit", ""),
+    bind(KeyCode::Char('q'), NONE, Action::Quit, "quit", "q", "quit (asks first if the design is not saved)", "quit"),
+    bind(KeyCode::Char('c'), CTRL, Action::Quit, "quit", "Ctrl-C", "quit at once", ""),
     bind(KeyCode::Char('?'), NONE, Action::Help, "help", "?", "help: keys, then (→) what the numbers mean", "help"),
     bind(
         KeyCode::Char('T'),
@@ -176,6 +177,15 @@ pub const KEYS: &[Binding] = &[
         "type",
     ),
     bind(KeyCode::Tab, NONE, Action::FocusNext, "next-panel", "Tab", "focus the next panel", "focus"),
+    bind(
+        KeyCode::Char('z'),
+        NONE,
+        Action::Zoom,
+        "zoom",
+        "z",
+        "zoom: the focused panel fills the screen (Tab: the next one), z again: all panels",
+        "zoom",
+    ),
     bind(KeyCode::BackTab, SHIFT, Action::FocusPrev, "prev-panel", "Shift-Tab", "focus the previous panel", ""),
     bind(
         KeyCode::Char('P'),
@@ -196,15 +206,7 @@ pub const KEYS: &[Binding] = &[
         "pin",
     ),
     bind(KeyCode::Char('u'), NONE, Action::Undo, "undo", "u", "undo the last change", "undo"),
-    bind(
-        KeyCode::Char('v'),
-        NONE,
-        Action::ToggleChartView,
-        "view",
-        "v",
-        "chart: zones (mass × gap) / e vs SPLmax",
-        "view",
-    ),
+    bind(KeyCode::Char('v'), NONE, Action::ToggleChartView, "view", "v", "chart: zones (mass × gap) / e vs SPLmax", ""),
     bind(
         KeyCode::Char('s'),
         NONE,
@@ -522,9 +524,10 @@ mod tests {
 
     #[test]
     fn quit_keys() {
-        for (c, m) in [(KeyCode::Char('q'), NONE), (KeyCode::Esc, NONE), (KeyCode::Char('c'), CTRL)] {
+        for (c, m) in [(KeyCode::Char('q'), NONE), (KeyCode::Char('c'), CTRL)] {
             assert_eq!(action_for(&key(c, m)), Some(Action::Quit));
         }
+        assert_eq!(action_for(&key(KeyCode::Esc, NONE)), None, "Esc never quits the main view");
         assert_eq!(action_for(&key(KeyCode::Char('c'), NONE)), None);
     }
 

@@ -146,7 +146,9 @@ impl Widget for PolarView<'_> {
             }
         });
         let theta = self.theta_deg;
-        let current = self.live.iter().min_by(|a, b| (a.0 - theta).abs().total_cmp(&(b.0 - theta).abs())).copied();
+        // The level at the listener's own θ, which the polar computes exactly; none while a
+        // polar of another θ is still shown (never the nearest grid angle's level).
+        let current = self.live.iter().find(|a| a.0 == theta).copied();
         let (tx, ty) = point(theta, current.map_or(top, |c| c.1), floor);
         stamp(buf, canvas, xb, yb, th.mark('•', '+'), th.fg(Color::Yellow).add_modifier(Modifier::BOLD), |ctx| {
             ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: tx, y2: ty, color: Color::Reset });

@@ -217,14 +217,20 @@ fn ascii_word(c: char) -> Option<&'static str> {
         '×' => "x",
         '≥' => ">=",
         '≤' => "<=",
-        '≈' => "~",
+        '≈' | '≃' | '∼' => "~",
+        '±' => "+/-",
+        '≠' => "!=",
+        '∞' => "inf",
+        '√' => "sqrt",
+        '○' | '◇' => "o",
+        '●' | '◆' => "o",
+        '…' | '⋯' => "...",
         '→' => "->",
         '←' => "<-",
         '↑' => "^",
         '↓' => "v",
         '°' => "deg",
         '▶' => ">",
-        '…' => "...",
         '✗' => "x",
         '²' => "^2",
         '³' => "^3",
@@ -271,6 +277,9 @@ fn ascii_cell(sym: &str) -> &'static str {
         '↑' => "^",
         '↓' => "v",
         '—' | '–' | '−' => "-",
+        '±' | '○' | '◇' => "+",
+        '≈' | '≃' | '∼' => "~",
+        '…' | '⋯' => ".",
         _ => "?",
     }
 }
@@ -293,6 +302,13 @@ pub fn fold_buffer(buf: &mut Buffer) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ascii_spells_what_it_can_instead_of_a_question_mark() {
+        let folded = fold("±0.02 dB, e ≈ 0.5, N ≠ 1, ∞, ○○ none ●● damper, cut…");
+        assert_eq!(folded, "+/-0.02 dB, e ~ 0.5, N != 1, inf, oo none oo damper, cut...");
+        assert!(!folded.contains('?'));
+    }
 
     #[test]
     fn fold_spells_units_and_symbols_in_ascii() {

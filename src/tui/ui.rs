@@ -25,7 +25,6 @@ use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
 use super::compute::{default_band, ensemble_under, nearest, AcousticResult, AGREEMENT_SURE};
 use super::explain;
 use super::fields::Knob;
-use super::files::EXPORTS;
 use super::history::{self, HistoryView};
 use super::keys::Action;
 use super::keys::Keymap;
@@ -91,7 +90,7 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
         f.render_widget(footer_line(&app.settings.keys, footer.width, touring, &app.theme), footer);
     }
     match app.mode {
-        Mode::Help => help_popup(f, &app.settings.keys, &app.theme, area),
+        Mode::Help(scroll) => help_popup(f, &app.settings.keys, &app.theme, scroll, area),
         Mode::Glossary(scroll) => glossary_popup(f, app, scroll, area),
         _ => {
             if let Some(list) = list_view(app) {
@@ -122,6 +121,9 @@ pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
 /// Lays out the body by size class.
 fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     let params_h = PARAMS_ROWS.min(Knob::ALL.len() as u16) + 2;
+    if app.zoom && body.width >= 30 && body.height >= 6 {
+        return zoomed(f, app, body);
+    }
     if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
@@ -169,6 +171,19 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
         readout_widget(f, app, readout, false);
         Drawn::default()
     }
+}
+
+/// The zoomed panel alone in the whole body.
+fn zoomed(f: &mut Frame, app: &App, body: Rect) -> Drawn {
+    match app.zoomed_panel() {
+        Panel::Params => params_widget(f, app, body),
+        Panel::Readout => readout_widget(f, app, body, false),
+        Panel::Chart => return Drawn { geometry: plot(f, app, Panel::Chart, body), chart_shown: true },
+        which => {
+            plot(f, app, which, body);
+        }
+    }
+    Drawn::default()
 }
 
 /// A panel's block: the tour's panel with a heavy border and a pointer, the focused one
@@ -235,6 +250,23 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
     let opt = |v: Option<f64>, digits: usize, unit: &str| {
         v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
     };
+    if let Some(e) = &a.forced_ensemble {
+        // N > 1: the N runs' settled states, median [p10–p90] (the line without the ball is
+        // the same for every run).
+        let p = &e.spread;
+        let mm = |p: &Percentiles| Percentiles {
+            p10: p.p10.map(|x| x * 1e3),
+            median: p.median.map(|x| x * 1e3),
+            p90: p.p90.map(|x| x * 1e3),
+        };
+        return vec![
+            ("amp", spread(&mm(&p.amplitude_m), 4, "mm")),
+            ("alone", opt(e.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
+            ("cut", spread(&p.reduction_db, 3, "dB")),
+            ("Leq", spread(&p.leq_db, 4, "dB")),
+            ("imp/T", spread(&p.impacts_per_period, 3, "")),
+        ];
+    }
     vec![
         ("amp", format!("{} mm", sig(s.amplitude_m * 1e3, 4))),
         ("alone", opt(s.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
@@ -244,17 +276,38 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// The note of a forced design: its window and whether it is periodic and settled.
+/// The note of a forced design: its window (after settling, as `thud simulate --settle`) and
+/// whether it is periodic and settled; with N > 1 the share of runs that settled.
 fn steady_note(a: &AcousticResult) -> Option<String> {
     let s = a.steady.as_ref()?;
-    let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("not {word}") };
+    let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("NOT {word}") };
+    if let Some(e) = &a.forced_ensemble {
+        let cut = if e.truncated { ", TRUNCATED" } else { "" };
+        return Some(format!(
+            "{} runs: {:.0}% settled, {:.0}% periodic{cut}",
+            e.ensemble.len(),
+            100.0 * e.settled_fraction,
+            100.0 * e.periodic_fraction
+        ));
+    }
+    // The most important word first: the note may be cut at the panel's edge.
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
     Some(format!(
-        "steady: last {} periods, {}, {}{cut}",
-        s.periods,
+        "{}, {} by t {} s{cut}",
+        yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
-        yes(s.settled, "settled")
+        sig(s.window_end_s, 3)
     ))
+}
+
+/// Whether the steady note says something is wrong (not settled or cut short): it then
+/// ranks above the `(!) e < 0` note, which the glossary explains anyway.
+fn steady_warns(a: &AcousticResult) -> bool {
+    match (&a.forced_ensemble, &a.steady) {
+        (Some(e), _) => e.settled_fraction < 1.0 || e.truncated,
+        (None, Some(s)) => !s.settled || s.truncated,
+        (None, None) => false,
+    }
 }
 
 /// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
@@ -339,6 +392,12 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
+    } else if let Some(n) = live_a.filter(|a| steady_warns(a)).and_then(steady_note) {
+        if negative {
+            format!("{n}; {NEGATIVE_E} e < 0")
+        } else {
+            n
+        }
     } else if negative {
         format!("{NEGATIVE_E} e < 0: see ? page 2")
     } else if let Some(n) = live_a.and_then(steady_note) {
@@ -438,7 +497,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 block: panel_block(app, Panel::Polar, &title),
                 live,
                 pinned: pin,
-                theta_deg: d.observer.theta_rad.to_degrees(),
+                theta_deg: super::compute::listener_deg(d),
                 range_deg: d.radiation.source.theta_range_deg(),
                 theme,
             };
@@ -622,8 +681,9 @@ fn header_line(app: &App) -> Paragraph<'static> {
     let mut spans = vec![
         Span::styled(" thud ", bold.add_modifier(Modifier::REVERSED)),
         Span::raw(format!(
-            " preset {} {bar} m {} g, d {} cm ",
+            " preset {}{} {bar} m {} g, d {} cm ",
             app.preset,
+            if app.modified() { "*" } else { "" },
             sig(p.impact_mass_kg * 1e3, 4),
             sig(p.gap_m * 1e2, 3)
         )),
@@ -646,10 +706,21 @@ fn header_line(app: &App) -> Paragraph<'static> {
     if app.pulse == PulseView::Single {
         spans.push(Span::raw(format!("{bar} pulse: one impact ")));
     }
-    if app.focus != Panel::Params {
+    if app.zoom {
+        spans.push(Span::raw(format!("{bar} zoom: {:?} ", app.zoomed_panel()).to_lowercase()));
+    } else if app.focus != Panel::Params {
         spans.push(Span::raw(format!("{bar} focus: {:?} ", app.focus).to_lowercase()));
     }
     Paragraph::new(Line::from(spans))
+}
+
+/// The input line's text: reversed while selected (typing replaces it).
+fn typed(app: &App) -> Style {
+    if app.line_selected {
+        Style::default().add_modifier(Modifier::REVERSED)
+    } else {
+        Style::default()
+    }
 }
 
 fn status_line(app: &App) -> Paragraph<'static> {
@@ -660,7 +731,8 @@ fn status_line(app: &App) -> Paragraph<'static> {
         let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
         return Paragraph::new(Line::from(vec![
             Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
-            Span::raw(format!("{buf}{cursor}")),
+            Span::styled(buf.clone(), typed(app)),
+            Span::raw(cursor),
             Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), dim),
         ]));
     }
@@ -670,22 +742,29 @@ fn status_line(app: &App) -> Paragraph<'static> {
             Span::styled("  (y replaces the saved design of that name; any other key keeps it)", dim),
         ]));
     }
+    if app.mode == Mode::ConfirmQuit {
+        return Paragraph::new(Line::from(vec![
+            Span::styled(" quit without saving? y/n", Style::default().add_modifier(Modifier::BOLD)),
+            Span::styled(format!("  (y quits; any other key stays, then {} saves)", app.key_label(Action::Save)), dim),
+        ]));
+    }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.param();
         let hint = match (f.display_unit(), f.display_range(&app.design)) {
             (Some((unit, _)), Some((lo, hi))) => format!(
-                "  (plain number: {unit}, {}–{}; or with a unit; Enter accepts, Esc cancels)",
+                "  (plain number: {unit}, {}–{}; or with a unit; Enter accepts, Esc cancels, Ctrl-U clears)",
                 crate::limits::short(lo),
                 crate::limits::short(hi)
             ),
-            _ => "  (Enter accepts, Esc cancels)".to_string(),
+            _ => "  (Enter accepts, Esc cancels, Ctrl-U clears)".to_string(),
         };
         return Paragraph::new(Line::from(vec![
             Span::styled(
                 th.text(&format!(" {} = ", f.label())).into_owned(),
                 Style::default().add_modifier(Modifier::BOLD),
             ),
-            Span::raw(format!("{buf}{cursor}")),
+            Span::styled(th.text(buf).into_owned(), typed(app)),
+            Span::raw(cursor),
             Span::styled(th.text(&hint).into_owned(), dim),
         ]));
     }
@@ -733,9 +812,9 @@ fn caption_box(f: &mut Frame, app: &App, area: Rect) {
     let n = state.tour.steps.len();
     let title = th.text(&format!(" tour {}/{n}: {} ", state.step + 1, step.title)).into_owned();
     let keys = if state.step + 1 < n {
-        " → next  ← back  Esc explore from here "
+        " → next  ← back  z all panels  Esc explore from here "
     } else {
-        " → finish  ← back  Esc explore "
+        " → finish  ← back  z all panels  Esc explore "
     };
     let block = th
         .block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true)
@@ -754,54 +833,84 @@ fn centered(area: Rect, w: u16, h: u16) -> Rect {
     Rect::new(area.x + (area.width - w) / 2, area.y + (area.height - h) / 2, w, h)
 }
 
-/// The help's first page: every binding in effect (with its `[keys]` action name), in one to
-/// three columns.
-fn help_popup(f: &mut Frame, keys: &Keymap, theme: &Palette, area: Rect) {
-    let keys = &keys.keys;
-    let rows_avail = area.height.saturating_sub(5).max(1) as usize;
-    let cols = keys.len().div_ceil(rows_avail).clamp(1, 3);
-    let per_col = keys.len().div_ceil(cols);
-    let col_w = (area.width.saturating_sub(2) as usize / cols).max(10);
-    let lines: Vec<Line> = (0..per_col)
-        .map(|r| {
-            let spans: Vec<Span> = (0..cols)
-                .filter_map(|c| keys.get(c * per_col + r))
-                .flat_map(|b| {
-                    let label = key_text(&b.label, theme);
-                    let help = theme.text(b.help);
-                    let text = if cols == 1 {
-                        format!("{label:<10}{:<14}{help}", b.name)
-                    } else {
-                        format!("{label:<10}{help}")
-                    };
-                    let text: String = text.chars().take(col_w.saturating_sub(1)).collect();
-                    [Span::raw(format!("{text:<col_w$}"))]
-                })
-                .collect();
-            Line::from(spans)
+/// `text` wrapped at word boundaries to `width` columns, a word longer than a line broken
+/// where the line ends (a path in an error message), so nothing is cut.
+fn wrap_all(text: &str, width: usize) -> Vec<String> {
+    let width = width.max(1);
+    wrap(text, width)
+        .into_iter()
+        .flat_map(|l| {
+            let chars: Vec<char> = l.chars().collect();
+            chars.chunks(width).map(|c| c.iter().collect::<String>()).collect::<Vec<_>>()
         })
-        .collect();
-    let h = per_col as u16 + 4;
-    let w = if cols == 1 { 112 } else { area.width };
-    let popup = centered(area, w, h);
+        .collect()
+}
+
+/// Lines under a key's label in the help: the label and action name, then the help text
+/// wrapped beside them (the continuation lines indented).
+fn help_lines(keys: &Keymap, theme: &Palette, width: usize) -> Vec<Line<'static>> {
+    let names = width >= 60;
+    let head_w = if names { 24 } else { 10 };
+    let text_w = width.saturating_sub(head_w).max(10);
+    let mut lines = Vec::new();
+    for b in &keys.keys {
+        let label = key_text(&b.label, theme);
+        let head = if names { format!("{label:<10}{:<14}", b.name) } else { format!("{label:<10}") };
+        for (i, l) in wrap_all(&theme.text(b.help), text_w).into_iter().enumerate() {
+            let h = if i == 0 { head.clone() } else { String::new() };
+            lines.push(Line::from(format!("{h:<head_w$}{l}")));
+        }
+    }
+    let dim = Style::default().add_modifier(Modifier::DIM);
+    lines.push(Line::from(""));
+    let notes = [
+        "Values are typed in the unit shown (45 = 45 g) or with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB",
+        "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\"",
+    ];
+    for note in notes.iter().take(if names { 2 } else { 1 }) {
+        lines.extend(wrap_all(&theme.text(note), width).into_iter().map(|l| Line::from(Span::styled(l, dim))));
+    }
+    lines
+}
+
+/// Scrolls `lines` in a bordered popup `popup` (cleared first) under `title`: at most to the
+/// last screenful, with "more" marks on the bottom border while text is above or below.
+fn scrolled_popup(f: &mut Frame, theme: &Palette, popup: Rect, title: &str, lines: Vec<Line<'static>>, scroll: u16) {
     f.render_widget(Clear, popup);
-    let block =
-        theme.block(theme.text(" help 1/2: keys — → what the numbers mean, ? or Esc closes ").into_owned(), false);
+    let inner_h = popup.height.saturating_sub(2);
+    let total = u16::try_from(lines.len()).unwrap_or(u16::MAX);
+    let max_scroll = total.saturating_sub(inner_h);
+    let scroll = scroll.min(max_scroll);
+    let mut marks = Vec::new();
+    if scroll > 0 {
+        marks.push(format!("{} more above", theme.sym("↑", "^")));
+    }
+    if scroll < max_scroll {
+        marks.push(format!("{} more below (PgDn)", theme.sym("↓", "v")));
+    }
+    let mut block = theme.block(theme.text(title).into_owned(), false);
+    if !marks.is_empty() {
+        block = block.title_bottom(Line::from(format!(" {} ", marks.join(", "))).right_aligned());
+    }
     let inner = block.inner(popup);
     f.render_widget(block, popup);
-    let mut all = lines;
-    let dim = Style::default().add_modifier(Modifier::DIM);
-    all.push(Line::from(Span::styled(
-        "Values are typed in the unit shown (45 = 45 g) or with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB",
-        dim,
-    )));
-    let note = if cols == 1 {
-        "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\""
-    } else {
-        "Rebind in config.toml [keys], e.g. save = \"ctrl-s\" (names: ? on a wider screen)"
-    };
-    all.push(Line::from(Span::styled(note, dim)));
-    f.render_widget(Paragraph::new(all), inner);
+    f.render_widget(Paragraph::new(lines).scroll((scroll, 0)), inner);
+}
+
+/// The help's first page: every binding in effect (with its `[keys]` action name where the
+/// width allows), wrapped, scrolled by `scroll` lines.
+fn help_popup(f: &mut Frame, keys: &Keymap, theme: &Palette, scroll: u16, area: Rect) {
+    let width = 112.min(area.width);
+    let lines = help_lines(keys, theme, usize::from(width.saturating_sub(2)));
+    let popup = centered(area, width, u16::try_from(lines.len()).unwrap_or(u16::MAX).saturating_add(2));
+    scrolled_popup(
+        f,
+        theme,
+        popup,
+        " help 1/2: keys — ↑↓ PgUp/PgDn scroll, → what the numbers mean, Esc closes ",
+        lines,
+        scroll,
+    );
 }
 
 /// The help's second page, "What the numbers mean": the glossary, wrapped, scrolled by
@@ -825,21 +934,22 @@ fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
             lines.push(Line::from(vec![Span::styled(format!("{head:<term_w$}"), bold), Span::raw(l)]));
         }
     }
-    let popup = centered(area, width, (lines.len() as u16).saturating_add(2));
-    f.render_widget(Clear, popup);
-    let title = format!(" help 2/2: {} — ↑↓ scroll, ← keys, Esc closes ", explain::GLOSSARY_TITLE);
-    let block = th.block(th.text(&title).into_owned(), false);
-    let inner = block.inner(popup);
-    f.render_widget(block, popup);
-    let max_scroll = (lines.len() as u16).saturating_sub(inner.height);
-    f.render_widget(Paragraph::new(lines).scroll((scroll.min(max_scroll), 0)), inner);
+    let popup = centered(area, width, u16::try_from(lines.len()).unwrap_or(u16::MAX).saturating_add(2));
+    let title = format!(" help 2/2: {} — ↑↓ PgUp/PgDn scroll, ← keys, Esc closes ", explain::GLOSSARY_TITLE);
+    scrolled_popup(f, th, popup, &title, lines, scroll);
 }
 
 /// A list popup (presets, saved designs, exports): the rows around the highlighted one, then
 /// the highlighted row's detail. Rows that cannot be chosen are drawn in the error style.
 fn list_popup(f: &mut Frame, list: &ListView, theme: &Palette, area: Rect) {
     let n = list.items.len();
-    let popup = centered(area, 76, (n.max(1) as u16).saturating_add(7));
+    let error: Vec<String> = list
+        .error
+        .as_deref()
+        .map(|e| wrap_all(&theme.text(e), usize::from(76.min(area.width).saturating_sub(2))))
+        .unwrap_or_default();
+    let error_h = u16::try_from(error.len()).unwrap_or(u16::MAX);
+    let popup = centered(area, 76, (n.max(1) as u16).saturating_add(7).saturating_add(error_h));
     f.render_widget(Clear, popup);
     let block = theme.block(theme.text(&list.title).into_owned(), false);
     let inner = block.inner(popup);
@@ -849,6 +959,11 @@ fn list_popup(f: &mut Frame, list: &ListView, theme: &Palette, area: Rect) {
         f.render_widget(Paragraph::new(empty).wrap(ratatui::widgets::Wrap { trim: true }), inner);
         return;
     }
+    // The error first: it is what the user must read, whole, before the rows.
+    let error_h = error_h.min(inner.height.saturating_sub(1));
+    let [err_area, inner] = Layout::vertical([Constraint::Length(error_h), Constraint::Min(0)]).areas(inner);
+    let err_lines: Vec<Line> = error.into_iter().map(|l| Line::from(Span::styled(l, theme.error()))).collect();
+    f.render_widget(Paragraph::new(err_lines), err_area);
     let sel = list.selected.min(n - 1);
     let detail_h = 3.min(inner.height.saturating_sub(1));
     let rows_h = (inner.height - detail_h).max(1) as usize;
@@ -890,6 +1005,8 @@ pub struct ListView {
     pub items: Vec<ListItem>,
     pub selected: usize,
     pub empty: String,
+    /// Why the last choice failed, shown whole under the list (which stays open).
+    pub error: Option<String>,
 }
 
 /// The list popup of the app's mode, if it shows one.
@@ -928,7 +1045,7 @@ pub fn list_view(app: &App) -> Option<ListView> {
         }
         Mode::Export(i) => (
             " export (↑↓, Enter writes the file, Esc closes) ".to_string(),
-            EXPORTS
+            app.export_menu()
                 .iter()
                 .map(|(k, label)| ListItem {
                     label: format!("{label}  [{}]", k.default_file_name()),
@@ -941,5 +1058,6 @@ pub fn list_view(app: &App) -> Option<ListView> {
         ),
         _ => return None,
     };
-    Some(ListView { title, items, selected, empty })
+    let error = if matches!(app.mode, Mode::Saved(_)) { app.load_error.clone() } else { None };
+    Some(ListView { title, items, selected, empty, error })
 }

@@ -642,13 +642,7 @@ pub fn newmark_steps(duration_s: f64, dt_s: f64) -> f64 {
 /// Cycles of the main mass over `duration_s`: duration × ω_d / 2π with the damped frequency
 /// ω_d = √(K/M − (C/2M)²) (Eq 25 alone; zero when overdamped or without a spring).
 pub fn cycles(duration_s: f64, main_mass_kg: f64, stiffness_n_m: f64, damping_n_s_m: f64) -> f64 {
-    let gamma = damping_n_s_m / (2.0 * main_mass_kg);
-    let wd2 = stiffness_n_m / main_mass_kg - gamma * gamma;
-    if wd2 > 0.0 {
-        duration_s * wd2.sqrt() / (2.0 * std::f64::consts::PI)
-    } else {
-        0.0
-    }
+    duration_s * crate::damper::damped_frequency_hz(main_mass_kg, stiffness_n_m, damping_n_s_m)
 }
 
 /// The longest a run of `d` can simulate (s): its duration, and for a forced run that settles

@@ -107,12 +107,11 @@ pub fn check_response(d: &Design, freqs_hz: &[f64], continuation: bool, runs: us
     limits::over(cycles, limits::FREQS_PARAM, Remedy::LowerFrequencies, "")
 }
 
-/// The main mass's damped natural frequency (Hz) of `d`: the cycles per second of Eq 25 alone
-/// ([`crate::limits::cycles`]); 0 without a spring or when overdamped. The one definition the
+/// The main mass's damped natural frequency (Hz) of `d`: [`crate::damper::DamperParams::natural_frequency_hz`]
+/// (Eq 25); 0 without a spring or when overdamped. The one definition the
 /// explorer (a force switched on starts here) and the default response band use.
 pub fn natural_frequency_hz(d: &Design) -> f64 {
-    let p = &d.damper;
-    crate::limits::cycles(1.0, p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m)
+    d.damper.natural_frequency_hz()
 }
 
 /// The band a response of `d` spans by default (Hz): 0.6 to 1.6 times its natural frequency

@@ -4,11 +4,12 @@
 
 use std::path::Path;
 
-use super::state::{App, Mode};
+use super::state::{App, ChartView, Mode};
 use crate::export::{wav::WavOptions, Artifact, ExportOptions};
 use crate::store::{self, DesignFile};
-use crate::tui::fields::Scope;
-use crate::tui::files::{export_name, unique_path};
+use crate::tui::compute::{default_band, response_design};
+use crate::tui::fields::{Knob, Scope, Setup};
+use crate::tui::files::{export_menu, export_name, unique_path};
 use crate::tui::worker::{ExportJob, Request, WorkError};
 use crate::units::sig;
 
@@ -64,10 +65,12 @@ impl App {
             sig(p.gap_m * 1e2, 3),
             self.preset
         );
-        let file = DesignFile { description, design: self.design.clone() };
+        let ensemble = (self.runs > 1).then_some(self.runs);
+        let file = DesignFile { description, ensemble, design: self.design.clone() };
         match store::save_design(&dir, name, &file, overwrite) {
             Ok(path) => {
                 self.preset = name.to_string();
+                self.mark_unmodified();
                 self.set_status(&format!("saved {name} to {}", path.display()), false);
             }
             Err(e) => {
@@ -86,6 +89,7 @@ impl App {
             Ok(list) => {
                 let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
                 self.saved = list;
+                self.load_error = None;
                 self.mode = Mode::Saved(i);
             }
             Err(e) => {
@@ -95,28 +99,42 @@ impl App {
     }
 
     /// Loads row `i` of the saved-designs list (the good designs, then the problem files).
+    /// A failure keeps the list open on that row with the whole error under it.
     pub(crate) fn load_saved(&mut self, i: usize) -> Vec<Request> {
         if let Some(entry) = self.saved.designs.get(i) {
             let name = entry.name.clone();
             let Some(dir) = self.data_dir.clone() else { return vec![] };
             let loaded = store::load_design(&dir, &name).map_err(|e| e.to_string()).and_then(|f| {
-                let setup = crate::tui::fields::Setup { design: f.design, runs: self.runs };
-                crate::tui::fields::check_loaded(&setup).map(|()| setup.design).map_err(|e| e.to_string())
+                // N goes through the field's own check (its range and the work caps).
+                let mut setup = Setup { design: f.design, runs: 1 };
+                if let Some(n) = f.ensemble {
+                    setup = Knob::Runs.parsed(&setup, &n.to_string()).map_err(|e| format!("ensemble N {n}: {e}"))?;
+                }
+                crate::tui::fields::check_loaded(&setup).map(|()| setup).map_err(|e| e.to_string())
             });
             return match loaded {
-                Ok(design) => {
-                    let reqs = self.apply(design, Scope::All, format!("loaded {name} (u undoes)"));
+                Ok(setup) => {
+                    let reqs = self.apply_setup(setup, Scope::All, format!("loaded {name} (u undoes)"));
                     self.preset.clone_from(&name);
+                    self.mark_unmodified();
                     reqs
                 }
-                Err(e) => self.error(format_args!("cannot load {name}: {e}")),
+                Err(e) => self.load_failed(i, format!("cannot load {name}: {e}")),
             };
         }
         let problem = i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j));
         match problem.map(ToString::to_string) {
-            Some(p) => self.error(format_args!("cannot load {p}")),
+            Some(p) => self.load_failed(i, format!("cannot load {p}")),
             None => vec![],
         }
+    }
+
+    /// A load of row `i` failed with `why`: the list stays open on it and shows `why` whole.
+    fn load_failed(&mut self, i: usize, why: String) -> Vec<Request> {
+        self.mode = Mode::Saved(i);
+        self.error(&why);
+        self.load_error = Some(why);
+        vec![]
     }
 
     /// Asks the worker to write an export of `kind` into the export directory, under its
@@ -132,19 +150,33 @@ impl App {
         }
         let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
         self.exports.push(path.clone());
-        // Sweeps use the chart's grid, so the file shows what the screen does.
+        // Sweeps use the chart's grid and its N runs a cell, and a response the curve's band
+        // and design (from rest, as the view runs it), so the file shows what the screen does.
         let g = &self.chart.grids.fine;
-        let options = if kind.needs_sweep() {
-            ExportOptions {
+        let (design, options) = if kind.needs_sweep() {
+            let options = ExportOptions {
                 masses_kg: Some(g.masses_kg.clone()),
                 gaps_m: Some(g.gaps_m.clone()),
+                ensemble_runs: self.runs,
                 ..ExportOptions::default()
-            }
+            };
+            (self.design.clone(), options)
+        } else if kind.is_response() {
+            let freqs = default_band(&self.design).freqs();
+            // The curve's design keeps f (a forced design is checked with it); each point sets its own.
+            let mut design = response_design(&self.design);
+            design.damper.freq_hz = self.design.damper.freq_hz;
+            (design, ExportOptions { freqs_hz: Some(freqs), ..ExportOptions::default() })
         } else {
-            ExportOptions::default()
+            (self.design.clone(), ExportOptions::default())
         };
         self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
-        Some(Request::Export(Box::new(ExportJob { kind, design: self.design.clone(), options, path })))
+        Some(Request::Export(Box::new(ExportJob { kind, design, options, path })))
+    }
+
+    /// The export menu's rows: the frequency response's too while it is on screen.
+    pub fn export_menu(&self) -> Vec<(Artifact, &'static str)> {
+        export_menu(self.chart_view == ChartView::Response && self.design.damper.forced())
     }
 
     /// An export ended: the file is no longer pending and the status line says how it went.

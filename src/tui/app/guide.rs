@@ -43,9 +43,12 @@ impl App {
         }
         self.pulse = step.pulse;
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
+        // The step's panel fills the screen, so its plot is shown whole at any size (z: all).
+        self.zoom = true;
         self.mode = Mode::Normal;
         let mut reqs = self.apply_setup(Setup { design: d, runs: step.runs }, Scope::All, String::new());
         self.preset.clone_from(&step.preset);
+        self.mark_unmodified();
         self.set_status(&format!("tour {}/{n}: {} — → next, ← back, Esc explores from here", i + 1, step.title), false);
         self.pending_best = step.best;
         if step.best && !self.chart_busy() {
@@ -57,6 +60,7 @@ impl App {
     /// Leaves the tour, keeping the design on screen to explore.
     pub(crate) fn leave_tour(&mut self, finished: bool) {
         self.tour = None;
+        self.zoom = false;
         // Finishing lets the last step's jump to the best design happen; Esc keeps the state.
         if !finished {
             self.pending_best = false;

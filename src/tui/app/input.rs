@@ -7,7 +7,6 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use super::state::{App, ChartView, Mode};
 use crate::presets;
 use crate::tui::fields::{Knob, Scope};
-use crate::tui::files::EXPORTS;
 use crate::tui::keys::Action;
 use crate::tui::view::{Panel, PulseView};
 use crate::tui::worker::Request;
@@ -19,16 +18,24 @@ enum Line {
     Submit(String),
 }
 
-/// Esc, Enter, Backspace and typing (at most `max` characters) in an input line.
-fn line_key(k: KeyEvent, mut buf: String, max: usize) -> Line {
+/// Esc, Enter, Backspace, Ctrl-U and typing (at most `max` characters) in an input line.
+/// While the line's text is `selected` (just opened with the current value), typing replaces
+/// it and Backspace/Delete clear it; an arrow, Home or End keeps it to edit.
+fn line_key(k: KeyEvent, mut buf: String, max: usize, selected: bool) -> Line {
+    let ctrl = k.modifiers.contains(KeyModifiers::CONTROL);
     match k.code {
         KeyCode::Esc => Line::Cancel,
         KeyCode::Enter => Line::Submit(buf),
+        KeyCode::Char('u') if ctrl => Line::Typing(String::new()),
+        KeyCode::Backspace | KeyCode::Delete if selected => Line::Typing(String::new()),
         KeyCode::Backspace => {
             buf.pop();
             Line::Typing(buf)
         }
-        KeyCode::Char(c) if !k.modifiers.contains(KeyModifiers::CONTROL) => {
+        KeyCode::Char(c) if !ctrl => {
+            if selected {
+                buf.clear();
+            }
             if buf.chars().count() < max {
                 buf.push(c);
             }
@@ -45,6 +52,11 @@ enum ListNav {
     Close,
     Quit,
 }
+
+/// Lines a PageUp/PageDown moves the help by.
+const HELP_PAGE: u16 = 10;
+/// The furthest the help scrolls (the view shows at least its last screenful).
+const HELP_SCROLL_MAX: u16 = 500;
 
 /// Longest value typed in the input line (characters).
 const VALUE_MAX: usize = 40;
@@ -66,50 +78,91 @@ impl App {
             Mode::Editing(buf) => self.edit_key(k, buf),
             Mode::SaveAs(buf) => self.save_key(k, buf),
             Mode::ConfirmOverwrite(name) => self.confirm_key(k, &name),
+            Mode::ConfirmQuit => {
+                self.confirm_quit_key(k);
+                vec![]
+            }
             Mode::Presets(i) => self.preset_key(k, i),
             Mode::Saved(i) => self.saved_key(k, i),
             Mode::Export(i) => self.export_key(k, i),
-            Mode::Help | Mode::Glossary(_) => {
-                self.help_key(k);
+            Mode::Help(s) | Mode::Glossary(s) => {
+                self.help_key(k, s);
                 vec![]
             }
             Mode::Normal => {
                 let touring = self.tour.is_some();
-                self.settings.keys.action_in(&k, touring).map_or_else(Vec::new, |a| self.act(a))
+                if let Some(a) = self.settings.keys.action_in(&k, touring) {
+                    self.act(a)
+                } else {
+                    self.unbound(k);
+                    vec![]
+                }
             }
         }
     }
 
-    /// Keys in the help: → (or PageDown, Tab, 2) the second page, ← (PageUp, BackTab, 1) the
-    /// first, ↑↓ scroll the second page, `q` quits, anything else closes it.
-    fn help_key(&mut self, k: KeyEvent) {
-        let scroll = match self.mode {
-            Mode::Glossary(s) => s,
-            _ => 0,
-        };
+    /// A key bound to nothing on the main view: Esc says how to quit, others point to help.
+    fn unbound(&mut self, k: KeyEvent) {
+        let help = self.key_label(Action::Help).to_string();
+        let quit = self.key_label(Action::Quit).to_string();
         match k.code {
-            KeyCode::Right | KeyCode::PageDown | KeyCode::Tab | KeyCode::Char('2') => {
-                self.mode = Mode::Glossary(scroll);
+            KeyCode::Modifier(_) | KeyCode::Null => {}
+            KeyCode::Esc => self.set_status(&format!("nothing to close — {quit} quits, {help} for help"), false),
+            _ => self.set_status(&format!("unknown key — {help} for help"), false),
+        }
+    }
+
+    /// Keys in the help: ↑↓ (j/k) scroll a line, PageUp/PageDown a page, Home/End to the
+    /// ends; → (Tab, 2) the second page, ← (BackTab, 1) the first; Esc, `?` and `q` close it.
+    /// Any other key leaves it open. The view clamps the scroll to the text.
+    fn help_key(&mut self, k: KeyEvent, scroll: u16) {
+        let glossary = matches!(self.mode, Mode::Glossary(_));
+        let page = if glossary { Mode::Glossary } else { Mode::Help };
+        let closes = matches!(k.code, KeyCode::Esc | KeyCode::Char('?' | 'q'))
+            || self.settings.keys.action_for(&k) == Some(Action::Help);
+        match k.code {
+            _ if closes => self.mode = Mode::Normal,
+            KeyCode::Right | KeyCode::Tab | KeyCode::Char('2') => self.mode = Mode::Glossary(0),
+            KeyCode::Left | KeyCode::BackTab | KeyCode::Char('1') => self.mode = Mode::Help(0),
+            KeyCode::Down | KeyCode::Char('j') => self.mode = page(scroll.saturating_add(1).min(HELP_SCROLL_MAX)),
+            KeyCode::Up | KeyCode::Char('k') => self.mode = page(scroll.saturating_sub(1)),
+            KeyCode::PageDown | KeyCode::Char(' ') => {
+                self.mode = page(scroll.saturating_add(HELP_PAGE).min(HELP_SCROLL_MAX));
             }
-            KeyCode::Left | KeyCode::PageUp | KeyCode::BackTab | KeyCode::Char('1') => self.mode = Mode::Help,
-            KeyCode::Down | KeyCode::Char('j') if self.mode != Mode::Help => {
-                self.mode = Mode::Glossary(scroll.saturating_add(1).min(200));
-            }
-            KeyCode::Up | KeyCode::Char('k') if self.mode != Mode::Help => {
-                self.mode = Mode::Glossary(scroll.saturating_sub(1));
-            }
-            _ => match self.settings.keys.action_for(&k) {
-                Some(Action::Quit) if k.code != KeyCode::Esc => self.quit = true,
-                _ => self.mode = Mode::Normal,
-            },
+            KeyCode::PageUp => self.mode = page(scroll.saturating_sub(HELP_PAGE)),
+            KeyCode::Home => self.mode = page(0),
+            KeyCode::End => self.mode = page(HELP_SCROLL_MAX),
+            _ => {}
+        }
+    }
+
+    /// `q` (the quit action): quits, or first asks if the design has unsaved changes.
+    fn quit_or_ask(&mut self) {
+        if self.modified() {
+            self.mode = Mode::ConfirmQuit;
+        } else {
+            self.quit = true;
+        }
+    }
+
+    /// The answer to "quit without saving?": `y` (or the quit key again) quits; any other key
+    /// stays.
+    fn confirm_quit_key(&mut self, k: KeyEvent) {
+        self.mode = Mode::Normal;
+        if matches!(k.code, KeyCode::Char('y' | 'Y')) {
+            self.quit = true;
+        } else {
+            let save = self.key_label(Action::Save).to_string();
+            self.set_status(&format!("still here — {save} saves the design"), false);
         }
     }
 
     /// Performs one action of the key table.
     pub fn act(&mut self, a: Action) -> Vec<Request> {
         match a {
-            Action::Quit => self.quit = true,
-            Action::Help => self.mode = Mode::Help,
+            Action::Quit => self.quit_or_ask(),
+            Action::Help => self.mode = Mode::Help(0),
+            Action::Zoom => self.zoom = !self.zoom,
             Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
             // The response curve focused: ←→ move the forcing frequency (the marker), ↑↓ select.
             Action::Decrease { fine } | Action::Increase { fine }
@@ -133,7 +186,10 @@ impl App {
             }
             Action::Decrease { fine } => return self.step(false, fine),
             Action::Increase { fine } => return self.step(true, fine),
-            Action::Edit => self.mode = Mode::Editing(String::new()),
+            Action::Edit => {
+                self.mode = Mode::Editing(self.param().display(&self.setup()));
+                self.line_selected = true;
+            }
             Action::Presets => {
                 let i = self.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
                 self.mode = Mode::Presets(i);
@@ -141,7 +197,10 @@ impl App {
             Action::Pin => self.toggle_pin(),
             Action::Undo => return self.undo(),
             Action::ToggleChartView => self.toggle_chart_view(),
-            Action::Save => self.mode = Mode::SaveAs(self.suggested_name()),
+            Action::Save => {
+                self.mode = Mode::SaveAs(self.suggested_name());
+                self.line_selected = true;
+            }
             Action::Load => self.open_saved(),
             Action::Export => self.mode = Mode::Export(0),
             Action::Tour => return self.start_tour(),
@@ -169,7 +228,8 @@ impl App {
 
     /// A key in the value line of the selected field.
     fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        match line_key(k, buf, VALUE_MAX) {
+        let selected = std::mem::take(&mut self.line_selected);
+        match line_key(k, buf, VALUE_MAX, selected) {
             Line::Typing(buf) => self.mode = Mode::Editing(buf),
             Line::Cancel => {
                 self.mode = Mode::Normal;
@@ -177,6 +237,11 @@ impl App {
             }
             Line::Submit(buf) => {
                 self.mode = Mode::Normal;
+                // The value as shown, accepted: no change (it is rounded for display).
+                if buf == self.param().display(&self.setup()) {
+                    self.set_status(&format!("{} unchanged", self.param().label()), false);
+                    return vec![];
+                }
                 return self.submit_text(&buf);
             }
         }
@@ -185,7 +250,8 @@ impl App {
 
     /// A key in the save line (the name to save under).
     fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        match line_key(k, buf, NAME_MAX) {
+        let selected = std::mem::take(&mut self.line_selected);
+        match line_key(k, buf, NAME_MAX, selected) {
             Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
             Line::Cancel => {
                 self.mode = Mode::Normal;
@@ -222,14 +288,16 @@ impl App {
                 self.mode = Mode::Normal;
                 return ListNav::Choose(i);
             }
-            KeyCode::Char('q') => {
-                self.quit = true;
-                return ListNav::Quit;
-            }
-            _ => {
+            KeyCode::Esc => {
                 self.mode = Mode::Normal;
                 return ListNav::Close;
             }
+            KeyCode::Char('q') => {
+                self.mode = Mode::Normal;
+                self.quit_or_ask();
+                return ListNav::Quit;
+            }
+            _ => {}
         }
         ListNav::Stay
     }
@@ -263,8 +331,9 @@ impl App {
 
     /// A key in the export menu; Enter asks for that export.
     fn export_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let ListNav::Choose(i) = self.list_nav(k, i, EXPORTS.len(), Mode::Export) else { return vec![] };
-        let Some(&(kind, _)) = EXPORTS.get(i) else { return vec![] };
+        let menu = self.export_menu();
+        let ListNav::Choose(i) = self.list_nav(k, i, menu.len(), Mode::Export) else { return vec![] };
+        let Some(&(kind, _)) = menu.get(i) else { return vec![] };
         self.export(kind).into_iter().collect()
     }
 

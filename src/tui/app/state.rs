@@ -125,8 +125,8 @@ pub enum ChartView {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Mode {
     Normal,
-    /// The help's first page: the keys.
-    Help,
+    /// The help's first page, the keys, scrolled down this many lines.
+    Help(u16),
     /// The help's second page, "what the numbers mean", scrolled down this many lines.
     Glossary(u16),
     /// Typing a value for the selected parameter.
@@ -137,6 +137,8 @@ pub enum Mode {
     SaveAs(String),
     /// A saved design of this name exists: `y` overwrites it, any other key keeps it.
     ConfirmOverwrite(String),
+    /// `q` with unsaved changes: `y` quits, any other key stays.
+    ConfirmQuit,
     /// Choosing a saved design to load (from the list read when it opened); the highlighted index.
     Saved(usize),
     /// Choosing what to export; the highlighted index in `files::EXPORTS`.
@@ -274,6 +276,9 @@ pub struct App {
     pub runs: usize,
     /// The name of the preset or saved design the live one came from.
     pub preset: String,
+    /// The setup as last loaded (preset, saved design, tour step) or saved: the live one
+    /// differs from it when the header marks the design modified (`*`).
+    pub(crate) origin: (Design, usize),
     pub(crate) undo: UndoStack,
     pub pinned: Option<Pinned>,
 
@@ -286,6 +291,11 @@ pub struct App {
     /// The selected parameter (index into [`Knob::ALL`]).
     pub selected: usize,
     pub focus: Panel,
+    /// The input line's text is selected (just opened with the current value or name):
+    /// typing replaces it.
+    pub line_selected: bool,
+    /// The focused panel fills the body (the `z` key; the tour turns it on).
+    pub zoom: bool,
     pub mode: Mode,
     pub(crate) chart_view: ChartView,
     /// Which impact the pulse panel shows.
@@ -317,6 +327,8 @@ pub struct App {
     pub export_dir: PathBuf,
     /// The saved designs offered by the load list (read when it opens).
     pub(crate) saved: DesignList,
+    /// Why the last load from that list failed (shown whole in the list, which stays open).
+    pub(crate) load_error: Option<String>,
     /// Export files being written.
     pub exports: Vec<PathBuf>,
 }
@@ -332,6 +344,7 @@ impl App {
     pub fn with_grids(design: Design, preset: &str, theme: Palette, grids: Grids) -> Self {
         let chart = ChartState::empty(&design, &grids, 1);
         Self {
+            origin: (design.clone(), 1),
             design,
             runs: 1,
             preset: preset.to_string(),
@@ -342,6 +355,8 @@ impl App {
             response: ResponseCurve::default(),
             selected: 0,
             focus: Panel::Params,
+            zoom: false,
+            line_selected: false,
             mode: Mode::Normal,
             chart_view: ChartView::Zones,
             pulse: PulseView::for_preset(preset),
@@ -365,6 +380,7 @@ impl App {
             data_dir: None,
             export_dir: PathBuf::from("."),
             saved: DesignList::default(),
+            load_error: None,
             exports: Vec::new(),
         }
     }
@@ -382,6 +398,7 @@ impl App {
             self.theme.ascii = true;
         }
         self.design.thresholds = c.thresholds(self.design.thresholds);
+        self.mark_unmodified();
         let (keys, problems) = Keymap::with_overrides(&c.keys);
         self.settings.keys = keys;
         self.settings.config = c.clone();
@@ -398,6 +415,20 @@ impl App {
     /// The live design with the ensemble size: what the knobs turn.
     pub fn setup(&self) -> Setup {
         Setup { design: self.design.clone(), runs: self.runs }
+    }
+
+    /// True if the live design (or N) differs from the one last loaded or saved.
+    pub fn modified(&self) -> bool {
+        self.design != self.origin.0 || self.runs != self.origin.1
+    }
+
+    /// The panel that fills the body while zoomed: the focused one (the readout when a tour
+    /// step points at it).
+    pub fn zoomed_panel(&self) -> Panel {
+        match self.tour_panel() {
+            Some(Panel::Readout) if self.focus == Panel::Params => Panel::Readout,
+            _ => self.focus,
+        }
     }
 
     /// The panel the running tour's step talks about.
@@ -481,6 +512,11 @@ impl App {
 
 /// The status line.
 impl App {
+    /// The live setup becomes the one that counts as unmodified (just loaded or saved).
+    pub(crate) fn mark_unmodified(&mut self) {
+        self.origin = (self.design.clone(), self.runs);
+    }
+
     /// Shows `e` as an error in the status line; asks for nothing.
     pub(crate) fn error(&mut self, e: impl Display) -> Vec<Request> {
         self.status = Some(Status { text: format!("error: {e}"), error: true });

@@ -98,6 +98,20 @@ fn is_zero(v: &f64) -> bool {
     *v == 0.0
 }
 
+/// The damped natural frequency (Hz) of a mass `main_mass_kg` on a spring `stiffness_n_m` with
+/// a dashpot `damping_n_s_m` (Eq 25): √(K/M − (C/2M)²)/2π; 0 without a spring or when
+/// overdamped.
+#[must_use]
+pub fn damped_frequency_hz(main_mass_kg: f64, stiffness_n_m: f64, damping_n_s_m: f64) -> f64 {
+    let gamma = damping_n_s_m / (2.0 * main_mass_kg);
+    let wd2 = stiffness_n_m / main_mass_kg - gamma * gamma;
+    if wd2 > 0.0 {
+        wd2.sqrt() / (2.0 * std::f64::consts::PI)
+    } else {
+        0.0
+    }
+}
+
 fn is_false(b: &bool) -> bool {
     !*b
 }
@@ -124,6 +138,14 @@ impl DamperParams {
             steady_periods: DEFAULT_STEADY_PERIODS,
             settle: false,
         }
+    }
+
+    /// The main structure's natural frequency (Hz): its damped cycles per second of Eq 25,
+    /// √(K/M − (C/2M)²)/2π (5.0329 Hz for Table 2), or 0 without a spring or when overdamped.
+    /// The explorer's default forcing frequency and its response band both take this value.
+    #[must_use]
+    pub fn natural_frequency_hz(&self) -> f64 {
+        damped_frequency_hz(self.main_mass_kg, self.stiffness_n_m, self.damping_n_s_m)
     }
 
     /// Whether a harmonic force drives the main mass (`force_n > 0`).
