@@ -425,8 +425,20 @@ fn check_ranges(file: &str, s: &Study) -> Result<(), ShardError> {
     limits::check_design(&s.design).map_err(bad)
 }
 
+/// A number of a part's run outside what any run can give: not finite, beyond
+/// [`MAX_CELL_MAGNITUDE`], or a negative speed or duration.
+#[derive(Debug, Error)]
+#[error("{name} {value} is out of range (a finite number, {})", if *.non_negative { "0 to 1e100" } else { "-1e100 to 1e100" })]
+struct CellOutOfRange {
+    /// The column (JSON key) of the number.
+    name: &'static str,
+    value: f64,
+    /// Whether the number must be ≥ 0 (speeds, durations, restitution).
+    non_negative: bool,
+}
+
 /// Every number of a run finite and at most [`MAX_CELL_MAGNITUDE`], speeds and durations ≥ 0.
-fn check_member(r: &Member) -> Result<(), String> {
+fn check_member(r: &Member) -> Result<(), CellOutOfRange> {
     let signed = [("inclination_cm_s", r.inclination_cm_s), ("inclination_fit_cm_s", r.inclination_fit_cm_s)];
     let positive = [
         ("u0_max_m_s", Some(r.u0_max_m_s)),
@@ -443,8 +455,7 @@ fn check_member(r: &Member) -> Result<(), String> {
     {
         if let Some(x) = *v {
             if !x.is_finite() || x < min || x > MAX_CELL_MAGNITUDE {
-                let range = if min == 0.0 { "0 to 1e100" } else { "-1e100 to 1e100" };
-                return Err(format!("{name} {x} is out of range (a finite number, {range})"));
+                return Err(CellOutOfRange { name, value: x, non_negative: min == 0.0 });
             }
         }
     }
@@ -461,7 +472,7 @@ fn read_json_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> 
             let bad = |why: String| ShardError::BadCell { file: file.to_string(), line: i + 2, why };
             let cell: PartCell = serde_json::from_str(l)
                 .map_err(|e| bad(format!("not a cell ({}, column {})", serde_reason(&e), e.column())))?;
-            cell.runs.iter().try_for_each(check_member).map_err(bad)?;
+            cell.runs.iter().try_for_each(check_member).map_err(|e| bad(e.to_string()))?;
             Ok(cell)
         })
         .collect()
@@ -533,7 +544,7 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
             zone,
             truncated,
         };
-        check_member(&member).map_err(bad)?;
+        check_member(&member).map_err(|e| bad(e.to_string()))?;
         let (mass_kg, gap_m) = (num(2)?, num(3)?);
         match cells.last_mut() {
             Some(c) if c.index == index => {

@@ -12,7 +12,7 @@
 
 use std::io;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, OnceLock, PoisonError};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 use signal_hook::consts::{SIGALRM, SIGHUP, SIGINT, SIGPROF, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGVTALRM, SIGXCPU};
 use signal_hook::iterator::Signals;
@@ -67,10 +67,10 @@ pub fn guarded<T>(f: impl FnOnce() -> T) -> T {
 
 /// Installs the handler and its thread (once).
 fn install() -> io::Result<()> {
-    static INSTALLED: OnceLock<Result<(), String>> = OnceLock::new();
+    static INSTALLED: OnceLock<Result<(), Arc<io::Error>>> = OnceLock::new();
     INSTALLED
         .get_or_init(|| {
-            let mut signals = Signals::new(HANDLED).map_err(|e| e.to_string())?;
+            let mut signals = Signals::new(HANDLED).map_err(Arc::new)?;
             std::thread::Builder::new()
                 .name("thud-signals".into())
                 .spawn(move || {
@@ -80,10 +80,10 @@ fn install() -> io::Result<()> {
                     }
                 })
                 .map(drop)
-                .map_err(|e| e.to_string())
+                .map_err(Arc::new)
         })
         .clone()
-        .map_err(io::Error::other)
+        .map_err(|e| io::Error::new(e.kind(), e.to_string()))
 }
 
 /// Runs every registered clean-up, newest first.

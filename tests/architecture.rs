@@ -292,3 +292,50 @@ fn the_python_module_builds_on_the_engine_alone() {
     // The check sees the app's own crates: the app itself does depend on them.
     assert!(locked_closure("thud").contains("ratatui"));
 }
+
+/// The places a file's text names a `Result` whose error is a bare `String` (`Result<T, String>`),
+/// as `file:line`.
+fn string_errors(file: &str, text: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let mut rest = line;
+        while let Some(at) = rest.find("Result<") {
+            rest = &rest[at + "Result<".len()..];
+            // The type arguments up to the matching `>`, nested generics included.
+            let mut depth = 1;
+            let end = rest.char_indices().find_map(|(j, c)| {
+                match c {
+                    '<' | '(' => depth += 1,
+                    '>' | ')' => depth -= 1,
+                    _ => {}
+                }
+                (depth == 0).then_some(j)
+            });
+            let args = &rest[..end.unwrap_or(rest.len())];
+            if args.contains(',') && args.rsplit(',').next().is_some_and(|e| e.trim() == "String") {
+                found.push(format!("{file}:{}", i + 1));
+            }
+        }
+    }
+    found
+}
+
+/// Typed errors end to end (issue 16): no `Result<_, String>` in the app, the engine or the
+/// Python module, tests included.
+#[test]
+fn no_result_has_a_bare_string_error() {
+    let mut files = Vec::new();
+    for dir in ["src", "crates"] {
+        rust_files(&root().join(dir), &mut files);
+    }
+    let found: Vec<String> =
+        files.iter().flat_map(|f| string_errors(&f.display().to_string(), &fs::read_to_string(f).unwrap())).collect();
+    assert!(found.is_empty(), "Result<_, String> at {found:?}");
+}
+
+#[test]
+fn the_string_error_check_finds_one() {
+    let planted = "fn f() -> Result<Vec<(f64, usize)>, String> {\n    type R = Result<usize, JobError>;\n}";
+    assert_eq!(string_errors("x.rs", planted), ["x.rs:1"]);
+    assert!(string_errors("x.rs", "fn g() -> io::Result<String> {}").is_empty());
+}

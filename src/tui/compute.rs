@@ -92,7 +92,7 @@ pub struct AcousticResult {
     pub polar: Vec<(f64, f64)>,
     /// One impact of the ball at U0 = v0 on a fixed plate (what `thud pulse` computes for the
     /// design: Fig 2, Table 1); an error text when v0 gives no impact.
-    pub single: Result<SingleImpact, String>,
+    pub single: Result<SingleImpact, ThudError>,
     /// A forced design's steady state over its last N periods with the Leq of its rattle at
     /// this observer ([`response::steady`]); None without a force. The readout job
     /// ([`compute_readout`]) replaces it by the settled state (as `thud simulate --settle`).
@@ -166,7 +166,7 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         waveform = t.iter().zip(&p).map(|(t, p)| (1e3 * (t - arrival), *p)).collect();
         polar = directivity(&r, u0);
     }
-    let single = single_impact(&r).map_err(|e| e.to_string());
+    let single = single_impact(&r);
     Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None, forced_ensemble: None })
 }
 
