@@ -18,10 +18,14 @@
 use std::fs;
 use std::os::unix::fs::{FileTypeExt, MetadataExt};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use thud::fsio::{HOLD_TEMP_FOR_TEST, NAMED_TEMPS_FOR_TEST};
+
+#[path = "support/wait.rs"]
+mod wait;
+use wait::wait_within;
 
 const BIN: &str = env!("CARGO_BIN_EXE_thud");
 const TIMEOUT: Duration = Duration::from_secs(20);
@@ -56,19 +60,6 @@ fn run(args: &[&str], home: &Path, env: &[(&str, &str)]) -> (i32, String, String
         String::from_utf8_lossy(&out.stdout).into(),
         String::from_utf8_lossy(&out.stderr).into(),
     )
-}
-
-fn wait_within(mut child: Child, limit: Duration, what: &str) -> Output {
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{what} did not finish within {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
 }
 
 /// The names in `dir`, sorted.

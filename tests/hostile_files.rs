@@ -11,26 +11,17 @@ use std::fs;
 use std::os::unix::ffi::OsStrExt;
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use thud::fsio::{HOLD_TEMP_FOR_TEST, NAMED_TEMPS_FOR_TEST};
 
+#[path = "support/wait.rs"]
+mod wait;
+use wait::wait_within;
+
 const BIN: &str = env!("CARGO_BIN_EXE_thud");
 const TIMEOUT: Duration = Duration::from_secs(20);
-
-fn wait_within(mut child: Child, limit: Duration, what: &str) -> Output {
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{what} did not finish within {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
-}
 
 /// `program args` in `home` with HOME there and the test seams set as `env` says.
 fn command(program: &str, args: &[&OsStr], home: &Path, env: &[(&str, &str)]) -> Command {
