@@ -1,6 +1,6 @@
 //! The user's settings, `config.toml` in the config directory (on Linux
-//! `$XDG_CONFIG_HOME/thud/config.toml`): theme, key overrides, default zone thresholds and the
-//! marker style of plots. Front-end support, not physics.
+//! `$XDG_CONFIG_HOME/thud/config.toml`): theme, key overrides, default zone thresholds, the
+//! marker style of plots and whether the explorer captures the mouse. Front-end support, not physics.
 //!
 //! A file that fails to parse is reported with its path, line and problem; the caller goes on
 //! with the defaults and the file is never overwritten by loading.
@@ -255,6 +255,9 @@ pub struct Config {
     pub thresholds: ThresholdDefaults,
     /// Key overrides: action name → key (e.g. `save = "ctrl-s"`).
     pub keys: BTreeMap<ActionName, KeyBinding>,
+    /// `mouse = false`: the explorer does not capture the mouse (left out: it does).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mouse: Option<bool>,
 }
 
 impl Config {
@@ -291,6 +294,11 @@ impl Config {
         }
     }
 
+    /// True unless the file says `mouse = false`.
+    pub fn mouse_on(&self) -> bool {
+        self.mouse.unwrap_or(true)
+    }
+
     /// The key override of `action`, if any.
     pub fn key(&self, action: &str) -> Option<&KeyBinding> {
         self.keys.iter().find(|(a, _)| a.as_str() == action).map(|(_, k)| k)
@@ -319,7 +327,7 @@ fn table_only<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Re
 }
 
 /// The top-level keys of `config.toml`.
-const KEYS: [&str; 4] = ["theme", "markers", "thresholds", "keys"];
+const KEYS: [&str; 5] = ["theme", "markers", "thresholds", "keys", "mouse"];
 
 /// Every problem of the config `text` read from `path`, in the order they appear: TOML syntax,
 /// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
@@ -342,6 +350,7 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
         let problem = match key.get_ref().as_ref() {
             "theme" => field(value, &mut |v| Theme::deserialize(v.into_deserializer()).map(drop)),
             "markers" => field(value, &mut |v| MarkerStyle::deserialize(v.into_deserializer()).map(drop)),
+            "mouse" => field(value, &mut |v| bool::deserialize(v.into_deserializer()).map(drop)),
             "thresholds" => {
                 let shape = field(value, &mut |v| table_only::<_, ThresholdDefaults>(v.into_deserializer()).map(drop));
                 if shape.is_none() {
@@ -520,6 +529,18 @@ mod tests {
         for bad in ["", "ctrl-", "f25", "hyper-x", "enterr"] {
             assert!(KeySpec::parse(bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn the_mouse_is_on_unless_the_file_says_mouse_false() {
+        assert!(Config::default().mouse_on(), "no file, or no key: on");
+        assert!(toml::from_str::<Config>("theme = \"mono\"").unwrap().mouse_on());
+        assert!(!toml::from_str::<Config>("mouse = false").unwrap().mouse_on());
+        assert!(toml::from_str::<Config>("mouse = true").unwrap().mouse_on());
+        let problems = check_text(Path::new("c.toml"), "mouse = \"off\"\n");
+        assert_eq!(problems.len(), 1, "a non-boolean is reported: {problems:?}");
+        assert_eq!((problems[0].line, problems[0].column), (Some(1), Some(9)));
+        assert!(check_text(Path::new("c.toml"), "mouse = false\n").is_empty());
     }
 
     #[test]
