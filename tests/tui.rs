@@ -302,11 +302,84 @@ fn b_last_words(help: &str) -> String {
 #[test]
 fn footer_shows_the_table_hints() {
     let mut app = computed_app();
-    let screen = render(&mut app, 120, 40);
+    let screen = render(&mut app, 200, 60);
     let footer = screen.lines().last().unwrap();
     for (k, h) in thud::tui::keys::footer_hints() {
         assert!(footer.contains(&format!("{k} {h}")), "footer lacks {k} {h}: {footer}");
     }
+}
+
+/// The footer's text (the last line of the screen, without the quotes TestBackend adds).
+fn footer_of(screen: &str) -> String {
+    screen.lines().last().unwrap().trim_matches('"').to_string()
+}
+
+/// Issue 17: at 80, 120 and 200 columns the footer leaves out no hint that would fit in the
+/// room left, a hint is left out only for more important ones (`v view` is shown at 120), and
+/// with the mouse on it says `mouse on` where it fits.
+#[test]
+fn the_footer_shows_every_hint_that_fits_by_importance() {
+    use thud::tui::keys::{mouse_hint, Keymap, FOOTER_PRIORITY};
+    let rank = |name: &str| FOOTER_PRIORITY.iter().position(|n| *n == name).unwrap();
+    // " key hint ": what a hint takes on the footer.
+    let cost = |h: &thud::tui::keys::Hint| h.label.chars().count() + h.hint.chars().count() + 3;
+    for mouse in [false, true] {
+        let mut app = computed_app();
+        app.mouse = mouse;
+        let mut hints = Keymap::default().footer_items(false);
+        if mouse {
+            hints.push(mouse_hint());
+        }
+        for w in [80u16, 120, 200] {
+            let footer = footer_of(&render(&mut app, w, 40));
+            let room = usize::from(w) + 1; // the last hint's trailing space may fall off
+            let (shown, left_out): (Vec<_>, Vec<_>) =
+                hints.iter().partition(|h| format!("{footer} ").contains(&format!(" {} {} ", h.label, h.hint)));
+            let used: usize = shown.iter().map(|h| cost(h)).sum();
+            assert!(used <= room, "{w} cols: {used} columns of hints:\n{footer}");
+            for h in &left_out {
+                assert!(
+                    used + cost(h) > room,
+                    "{w} cols, mouse {mouse}: `{} {}` fits but is left out:\n{footer}",
+                    h.label,
+                    h.hint
+                );
+                let before: usize = shown.iter().filter(|s| rank(s.name) < rank(h.name)).map(|s| cost(s)).sum();
+                assert!(
+                    before + cost(h) > room,
+                    "{w} cols, mouse {mouse}: `{} {}` is left out for less important hints:\n{footer}",
+                    h.label,
+                    h.hint
+                );
+            }
+            if w >= 120 {
+                assert!(footer.contains(" v view "), "{w} cols:\n{footer}");
+                assert_eq!(footer.contains(" mouse on"), mouse, "{w} cols:\n{footer}");
+            }
+            if w == 200 {
+                assert!(left_out.is_empty(), "every hint at 200 columns, {left_out:?} left out:\n{footer}");
+            }
+        }
+    }
+}
+
+/// The config's `mouse = false` turns the mouse off (and its footer word with it).
+#[test]
+fn config_mouse_false_turns_the_mouse_off() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path()).unwrap();
+    std::fs::write(dir.path().join("config.toml"), "mouse = false\n").unwrap();
+    let load = thud::config::load_config(dir.path());
+    let mut app = computed_app();
+    app.mouse = true;
+    app.configure(&load);
+    assert!(!app.mouse, "mouse = false in config.toml");
+    assert!(!footer_of(&render(&mut app, 200, 60)).contains("mouse"));
+    let mut app = computed_app();
+    app.mouse = true;
+    app.configure(&thud::config::load_config(&dir.path().join("none")));
+    assert!(app.mouse, "no config: the mouse stays on");
+    assert!(footer_of(&render(&mut app, 200, 60)).contains(" mouse on"));
 }
 
 #[test]
