@@ -437,6 +437,7 @@ fn the_mouse_is_on_by_default_and_off_by_flag_or_config() {
     let t = explorer("", 80, 24);
     t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
     assert_eq!(t.format("#{mouse_any_flag}"), "1", "mouse reporting on with no flag");
+    t.wait_for("the footer's mouse hint at 80 columns", |s| s.lines().nth(23).is_some_and(|l| l.contains("mouse on")));
     // The bottom row of the chart (gap 1 cm), as in the test with --mouse above.
     t.keys(&["Tab", "Tab", "Tab"]);
     let s = t.wait_for("the chart's bottom row", |s| s.lines().any(|l| l.contains("│  1.0 ")));
@@ -444,8 +445,6 @@ fn the_mouse_is_on_by_default_and_off_by_flag_or_config() {
     let x = line[..line.find("│  1.0 ").unwrap() + "│  1.0 ".len()].chars().count() + 2;
     t.keys(&["-l", &format!("\x1b[<0;{};{}M\x1b[<0;{};{}m", x + 1, y + 1, x + 1, y + 1)]);
     t.wait_for("the clicked design (gap 1.00 cm)", |s| s.contains("d 1.00 cm"));
-    assert!(t.run(&["resize-window", "-x", "120", "-y", "40"]).status.success());
-    t.wait_for("the footer's mouse hint at 120 columns", |s| s.lines().nth(39).is_some_and(|l| l.contains("mouse on")));
     drop(t);
 
     let t = explorer("--no-mouse", 120, 40);

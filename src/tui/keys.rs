@@ -286,9 +286,11 @@ pub const FOOTER_PRIORITY: &[&str] = &[
     "edit",
     "zoom",
     "next-panel",
+    // Above the tour: at 80 columns the footer has room for one of them, and the status line
+    // names `T` when the explorer starts.
+    "mouse",
     "tour",
     "view",
-    "mouse",
     "save",
     "undo",
     "pin",
