@@ -702,7 +702,10 @@ pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
 /// `on_cell(index, cell)` is called as each cell finishes (from pool threads, in no particular
 /// order); `cancel` stops the sweep between cells (cells not started stay `None`). The chart
 /// does not depend on the scheduling; the first failing cell (in index order) gives the error.
-/// A panic in a cell (or in `on_cell`) propagates to the caller.
+/// A panic in a cell (or in `on_cell`) propagates to the caller. Each cell is `base` at its
+/// (mass, gap) checked again ([`ValidDesign::variant`]): the axes' ranges do not make a cell
+/// valid (K_HZ from materials and the observer's distance follow the ball's radius, |y0| < d/2
+/// the gap), and a check costs nothing beside a run.
 pub fn sweep(
     base: &ValidDesign,
     masses_kg: &[f64],
@@ -1076,6 +1079,78 @@ mod tests {
             }
         }
         assert_eq!(joined, whole);
+    }
+
+    /// A design with `f` applied, checked: the name of the parameter the check refuses.
+    fn refused(f: impl FnOnce(&mut Design)) -> String {
+        let mut d = Design::default();
+        f(&mut d);
+        d.check().unwrap_err().param().to_string()
+    }
+
+    #[test]
+    fn check_refuses_a_ball_outside_the_clearance_a_nan_and_an_out_of_range_value() {
+        assert_eq!(refused(|d| d.damper.ball_position_m = 0.5 * d.damper.gap_m), "ball-position", "|y0| = d/2");
+        assert_eq!(refused(|d| d.damper.ball_position_m = -0.03), "ball-position", "|y0| > d/2 (d 4 cm)");
+        assert_eq!(refused(|d| d.damper.v0_m_s = f64::NAN), "v0");
+        assert_eq!(refused(|d| d.thresholds.spl_db = f64::NAN), "thresholds");
+        // Positive and finite, so the physics' own checks pass it; the range table does not.
+        assert_eq!(refused(|d| d.damper.main_mass_kg = 1e7), "main-mass");
+        assert_eq!(refused(|d| d.damper.freq_hz = 1e6), "freq");
+        assert_eq!(refused(|d| d.observer.theta_rad = 120f64.to_radians()), "theta", "behind the corner's wall");
+        let inside = Design::default().check().unwrap();
+        assert!(inside.damper.ball_position_m.abs() < 0.5 * inside.damper.gap_m);
+    }
+
+    #[test]
+    fn check_resolves_k_hz_from_the_materials_for_the_balls_radius() {
+        let mut d = Design::default();
+        d.materials = Some(Materials { sphere: "nylon".into(), plate: "steel".into() });
+        d.damper.k_hz = 1.0; // stale: the materials decide
+        let rho = contact::material("nylon").unwrap().density_kg_m3;
+        d.ball = BallSize::Density(rho);
+        let v = d.clone().check().unwrap();
+        let (nylon, steel) = (contact::material("nylon").unwrap(), contact::material("steel").unwrap());
+        let radius = (3.0 * d.damper.impact_mass_kg / (4.0 * std::f64::consts::PI * rho)).cbrt();
+        let want = contact::hertz_stiffness(radius, &nylon, &steel);
+        assert!((v.damper.k_hz - want).abs() <= 1e-12 * want, "{} vs {want}", v.damper.k_hz);
+        // A chart cell of another mass has another radius and so another K_HZ.
+        let heavy = v.variant(4.0 * d.damper.impact_mass_kg, d.damper.gap_m).unwrap();
+        let want_heavy = contact::hertz_stiffness(radius * 4f64.cbrt(), &nylon, &steel);
+        assert!((heavy.damper.k_hz - want_heavy).abs() <= 1e-12 * want_heavy);
+        assert!(heavy.damper.k_hz > v.damper.k_hz, "a bigger ball is stiffer (Eq 2)");
+        // Without materials K_HZ is the design's own.
+        assert_eq!(Design::default().check().unwrap().damper.k_hz, Design::default().damper.k_hz);
+        // And a changed design is a Design again, to check again.
+        let mut back = v.into_design();
+        back.damper.ball_position_m = 1.0;
+        assert_eq!(back.check().unwrap_err().param(), "ball-position");
+    }
+
+    #[test]
+    fn a_variant_outside_the_clearance_is_refused() {
+        let mut d = Design::default();
+        d.damper.ball_position_m = 0.015;
+        let v = d.check().unwrap();
+        assert!(v.variant(0.05, 0.04).is_ok());
+        assert_eq!(v.variant(0.05, 0.02).unwrap_err().param(), "ball-position", "|y0| 1.5 cm ≥ 1 cm");
+        let e = sweep(&v, &[0.05], &[0.04, 0.02], None, &|_, _| {}).unwrap_err();
+        assert_eq!(e.param(), "ball-position", "the sweep's cell at d 2 cm");
+    }
+
+    #[test]
+    fn a_checked_design_is_read_back_only_if_it_checks() {
+        let v = Design::default().check().unwrap();
+        let text = serde_json::to_string(&v).unwrap();
+        assert_eq!(text, serde_json::to_string(v.design()).unwrap(), "written as the design it holds");
+        let back: ValidDesign = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, v);
+        let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        json["damper"]["main_mass_kg"] = serde_json::json!(1e7);
+        let raw: Design = serde_json::from_value(json.clone()).unwrap();
+        assert_eq!(raw.damper.main_mass_kg, 1e7, "a plain Design reads it");
+        let e = serde_json::from_value::<ValidDesign>(json).unwrap_err().to_string();
+        assert!(e.contains("invalid main-mass: ") && e.contains("out of range"), "{e}");
     }
 
     #[test]
