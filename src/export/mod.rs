@@ -185,7 +185,8 @@ fn impact_speed(design: &ValidDesign, u0: Option<f64>) -> Result<f64, ThudError>
 
 /// SPL and peak level of one impact of `design` at `u0` (m/s) for observer angles over the
 /// open side of its reflecting surfaces (5° steps), at the design's distance.
-pub fn directivity_points(d: &ValidDesign, u0: f64) -> Result<Vec<(f64, Levels)>, ThudError> {
+pub fn directivity_points(design: &ValidDesign, u0: f64) -> Result<Vec<(f64, Levels)>, ThudError> {
+    let d = design.clone();
     let (lo, hi) = d.radiation.source.theta_range_deg();
     let thetas: Vec<f64> = ((lo / 5.0) as i32..=(hi / 5.0) as i32).map(|k| (5.0 * f64::from(k)).to_radians()).collect();
     let impact = Impact {
@@ -217,7 +218,8 @@ fn listener(d: &Design) -> String {
 }
 
 /// The contents of an export of `kind` for `design`.
-pub fn render(kind: Artifact, d: &ValidDesign, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+    let d = design.clone();
     let points = opts.points.clamp(2, 1_000_000);
     let text = match kind {
         Artifact::CsvWaveform | Artifact::SvgWaveform => {

@@ -122,7 +122,8 @@ pub fn sample_count(duration_s: f64, sample_rate: u32) -> usize {
 
 /// The pressure (Pa) at the observer over the run, one value per sample from t = 0 to the
 /// design's duration: the sum of every impact's pulse, delayed by its impact time.
-pub fn render(d: &ValidDesign, run: &Run, sample_rate: u32) -> Result<Vec<f64>, ThudError> {
+pub fn render(design: &ValidDesign, run: &Run, sample_rate: u32) -> Result<Vec<f64>, ThudError> {
+    let d = design.clone();
     let n = sample_count(d.damper.duration_s, sample_rate);
     let dt = 1.0 / f64::from(sample_rate);
     let mut p = vec![0.0; n];

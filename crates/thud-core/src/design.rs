@@ -1104,11 +1104,13 @@ mod tests {
 
     #[test]
     fn check_resolves_k_hz_from_the_materials_for_the_balls_radius() {
-        let mut d = Design::default();
-        d.materials = Some(Materials { sphere: "nylon".into(), plate: "steel".into() });
-        d.damper.k_hz = 1.0; // stale: the materials decide
         let rho = contact::material("nylon").unwrap().density_kg_m3;
-        d.ball = BallSize::Density(rho);
+        let mut d = Design {
+            materials: Some(Materials { sphere: "nylon".into(), plate: "steel".into() }),
+            ball: BallSize::Density(rho),
+            ..Design::default()
+        };
+        d.damper.k_hz = 1.0; // stale: the materials decide
         let v = d.clone().check().unwrap();
         let (nylon, steel) = (contact::material("nylon").unwrap(), contact::material("steel").unwrap());
         let radius = (3.0 * d.damper.impact_mass_kg / (4.0 * std::f64::consts::PI * rho)).cbrt();
