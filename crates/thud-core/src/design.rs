@@ -153,24 +153,9 @@ impl Design {
         }
     }
 
-    /// Checks the whole design and resolves what follows from it: the only way to a
-    /// [`ValidDesign`], the design every solver takes. In order: the physics' own checks
-    /// ([`Design::validate`]: positive masses and gap, |y0| < d/2, the observer outside the
-    /// ball and on the open side of the source's walls, finite thresholds), then every range of
-    /// the one range table and the derived quantities ([`crate::limits::check_design`]: the
-    /// ball radius from mass and density, K_HZ from the materials), then K_HZ set from the
-    /// materials for the ball's radius. The first problem is the error, naming the parameter
-    /// bare (`mass`), as the command line spells it without dashes.
-    pub fn check(self) -> Result<ValidDesign, ThudError> {
-        self.validate()?;
-        crate::limits::check_design(&self)?;
-        let mut d = self;
-        d.damper.k_hz = d.hertz_stiffness()?;
-        Ok(ValidDesign(d))
-    }
-
     /// Checks every parameter; the first problem is reported, naming the CLI parameter.
-    /// Part of [`Design::check`], which also checks the ranges and resolves K_HZ.
+    /// Part of [`Design::check`] (beside the range table, in [`crate::limits`]), which also
+    /// checks the ranges and resolves K_HZ.
     pub fn validate(&self) -> Result<(), ThudError> {
         self.damper.validate()?;
         match self.ball {
@@ -210,7 +195,7 @@ impl Design {
 /// A design that passed [`Design::check`]: every range of the range table, the
 /// cross-checks (|y0| < d/2, the observer outside the ball, finite thresholds, …) and K_HZ
 /// resolved from its materials for its radius. Only the engine builds one ([`Design::check`],
-/// the named-parameter builder [`crate::params::design`], and [`ValidDesign::variant`]), and
+/// the named-parameter builder [`crate::params::design`], and a chart's cells), and
 /// every solver and evaluation takes one ([`evaluate`], [`sweep`], [`crate::ensemble`],
 /// [`crate::response`], the work checks of [`crate::limits`]), so an unchecked or unresolved
 /// design cannot reach a solver.
@@ -243,8 +228,7 @@ impl Design {
 /// let e = design::evaluate(&v, 0, None).unwrap();
 /// assert!(e.metrics.n_impacts > 0);
 /// ```
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(try_from = "Design")]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ValidDesign(Design);
 
 impl ValidDesign {
@@ -260,12 +244,27 @@ impl ValidDesign {
         self.0
     }
 
-    /// This design with impact mass `mass_kg` and gap `gap_m` (a chart cell), checked again:
-    /// the ball's radius, and with it K_HZ from the materials and the observer's distance to
-    /// the ball, follow the mass, and |y0| < d/2 the gap, so a cell is not valid because its
-    /// base is. The checks cost nothing beside a run.
-    pub fn variant(&self, mass_kg: f64, gap_m: f64) -> Result<ValidDesign, ThudError> {
-        variant(self, mass_kg, gap_m).check()
+    /// `d`, whose ranges [`Design::check`] has checked, after the physics' own checks
+    /// ([`Design::validate`]) with K_HZ set from its materials for its radius: the one
+    /// constructor, called by [`Design::check`] after the range table, and for a chart cell.
+    pub(crate) fn from_ranges_checked(d: Design) -> Result<ValidDesign, ThudError> {
+        d.validate()?;
+        let mut d = d;
+        d.damper.k_hz = d.hertz_stiffness()?;
+        Ok(ValidDesign(d))
+    }
+
+    /// This design with impact mass `mass_kg` and gap `gap_m` (a chart cell or a restitution
+    /// curve's mass), checked again by the physics' own checks with K_HZ resolved again: the
+    /// ball's radius, and with it K_HZ from the materials and the observer's distance to the
+    /// ball, follow the mass, and |y0| < d/2 the gap. The range table is not run again: every
+    /// front end checks the axes against the mass and gap ranges (the sweep itself that they
+    /// are > 0), and every mass and density inside their ranges gives a radius, and with
+    /// materials a K_HZ, inside theirs ([`crate::limits::RADIUS`], [`crate::limits::K_HZ`]);
+    /// nothing else changes. These checks are what [`evaluate`] ran on every cell before it
+    /// took a checked design.
+    pub(crate) fn variant(&self, mass_kg: f64, gap_m: f64) -> Result<ValidDesign, ThudError> {
+        ValidDesign::from_ranges_checked(variant(self, mass_kg, gap_m))
     }
 }
 
@@ -274,14 +273,6 @@ impl std::ops::Deref for ValidDesign {
 
     fn deref(&self) -> &Design {
         &self.0
-    }
-}
-
-impl TryFrom<Design> for ValidDesign {
-    type Error = ThudError;
-
-    fn try_from(d: Design) -> Result<Self, ThudError> {
-        d.check()
     }
 }
 
@@ -703,9 +694,9 @@ pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
 /// order); `cancel` stops the sweep between cells (cells not started stay `None`). The chart
 /// does not depend on the scheduling; the first failing cell (in index order) gives the error.
 /// A panic in a cell (or in `on_cell`) propagates to the caller. Each cell is `base` at its
-/// (mass, gap) checked again ([`ValidDesign::variant`]): the axes' ranges do not make a cell
-/// valid (K_HZ from materials and the observer's distance follow the ball's radius, |y0| < d/2
-/// the gap), and a check costs nothing beside a run.
+/// (mass, gap) checked again ([`ValidDesign::variant`]): the axes do not make a cell valid
+/// (K_HZ from materials and the observer's distance follow the ball's radius, |y0| < d/2 the
+/// gap), and a check costs nothing beside a run.
 pub fn sweep(
     base: &ValidDesign,
     masses_kg: &[f64],

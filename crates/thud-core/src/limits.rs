@@ -417,6 +417,39 @@ pub fn theta_deg(source: Source) -> Range {
     Range { min, max, reason, ..THETA }
 }
 
+impl Design {
+    /// Checks the whole design and resolves what follows from it: the only way to a
+    /// [`ValidDesign`], the design every solver takes. In order: the physics' own checks
+    /// ([`Design::validate`]: positive masses and gap, |y0| < d/2, the observer outside the
+    /// ball and on the open side of the source's walls, finite thresholds), then every range of
+    /// the one range table and the derived quantities ([`check_design`]: the ball radius from
+    /// mass and density, K_HZ from the materials), then K_HZ set from the materials for the
+    /// ball's radius. The first problem is the error, naming the parameter bare (`mass`), as
+    /// the command line spells it without dashes. (Here beside the range table, so that the
+    /// design module, which the table's checks read, does not read the table.)
+    pub fn check(self) -> Result<ValidDesign, ThudError> {
+        self.validate()?;
+        check_design(&self)?;
+        ValidDesign::from_ranges_checked(self)
+    }
+}
+
+impl TryFrom<Design> for ValidDesign {
+    type Error = ThudError;
+
+    fn try_from(d: Design) -> Result<Self, ThudError> {
+        d.check()
+    }
+}
+
+/// A checked design is read as a [`Design`] and then checked ([`Design::check`]): a file
+/// cannot skip the check.
+impl<'de> serde::Deserialize<'de> for ValidDesign {
+    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
+        Design::deserialize(de)?.check().map_err(serde::de::Error::custom)
+    }
+}
+
 /// Checks every parameter of a design against its range, then the derived quantities that a
 /// combination can push out (the ball radius from mass and density, K_HZ from materials). The
 /// error names the parameter (bare, as on the command line).

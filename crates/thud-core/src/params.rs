@@ -1,6 +1,6 @@
 //! Parameters by name: the one mapping from named inputs — the command line's long flags
-//! (`--main-mass 0.5`) and Python's keywords (`main_mass=0.5`) — to a checked [`Design`] or a
-//! single impact ([`PulseInput`]). Every number is checked against its range in
+//! (`--main-mass 0.5`) and Python's keywords (`main_mass=0.5`) — to a checked design
+//! ([`ValidDesign`]) or a single impact ([`PulseInput`]). Every number is checked against its range in
 //! [`crate::limits`] (the one range table), so every front end accepts and refuses the same
 //! values with the same one-line message.
 //!
@@ -630,7 +630,8 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// The design `base` with the named parameters `given` applied, checked: each value against its
 /// range (the error names the parameter as `spelling` spells it), then the whole design and its
 /// derived quantities (ball radius, K_HZ from materials, the observer outside the ball). The
-/// result has K_HZ resolved from its materials, if any.
+/// result is a [`ValidDesign`] ([`Design::check`]): K_HZ resolved from its materials, if any,
+/// and ready for the solvers.
 pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<ValidDesign, ThudError> {
     let given = Given::new(DESIGN, given, spelling)?;
     given.relations()?;
