@@ -680,7 +680,7 @@ impl Chart {
 }
 
 /// The design `base` with this impact mass and gap, unchecked (a chart cell's parameters, or
-/// a key; [`ValidDesign::variant`] checks it again).
+/// a key; [`sweep`] checks each cell again).
 pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
     let mut d = base.clone();
     d.damper.impact_mass_kg = mass_kg;
@@ -694,9 +694,11 @@ pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
 /// order); `cancel` stops the sweep between cells (cells not started stay `None`). The chart
 /// does not depend on the scheduling; the first failing cell (in index order) gives the error.
 /// A panic in a cell (or in `on_cell`) propagates to the caller. Each cell is `base` at its
-/// (mass, gap) checked again ([`ValidDesign::variant`]): the axes do not make a cell valid
-/// (K_HZ from materials and the observer's distance follow the ball's radius, |y0| < d/2 the
-/// gap), and a check costs nothing beside a run.
+/// (mass, gap) checked again by the physics' own checks ([`Design::validate`]) with K_HZ
+/// resolved again: the axes do not make a cell valid (K_HZ from materials and the observer's
+/// distance follow the ball's radius, |y0| < d/2 the gap). The axes' ranges are the caller's
+/// to check (every front end checks them against the mass and gap ranges; here they must be
+/// > 0); inside them the derived radius and K_HZ stay inside their ranges.
 pub fn sweep(
     base: &ValidDesign,
     masses_kg: &[f64],
