@@ -1,11 +1,16 @@
 //! The design chart: the mass × gap grid with the zone number drawn in every cell (not colour
-//! alone) on continuous axes, the current design marked at its exact (m, d) with its own zone;
-//! and the second view, e against SPLmax (Fig 17) with the L* and e* lines.
+//! alone), the current design marked in the cell nearest its mass with its own zone; and the
+//! second view, e against SPLmax (Fig 17) with the L* and e* lines.
 //!
-//! One truth: the marker's zone is the live design's own (the readout's), never a cell's; a
-//! design between cells is drawn between them, one off the chart's range as an arrow at the
-//! edge with a line saying so. The axes have titles with units and round ticks; the legend
-//! (zones 1–4, no impact, pending) is always drawn, below or beside the grid as space allows.
+//! One truth: the marker's zone is the live design's own (the readout's), never a cell's. The
+//! marker stays inside its cell, so the cells beside it show their own zones: `[n]` around the
+//! glyph where the cell is three or more columns wide, else the zone glyph alone in the cursor
+//! style (reversed, underlined). A gap between two rows' is drawn between them (on the spacer
+//! lines of cells taller than a line); a design off the chart's range is an arrow in the edge
+//! cell with a line saying so. The axes have titles with units and round ticks, each tick on
+//! the glyph line (column) of the row (column) whose value is nearest it, so within half a
+//! step of it and never on a spacer line; the legend (zones 1–4, no impact, pending) is always
+//! drawn, below or beside the grid as space allows.
 //!
 //! An ensemble chart (N > 1 runs a cell) draws each cell in the zone of its medians; a cell
 //! where fewer than 70 % of its runs are in that zone is shaded — its blank filled with `░`
@@ -498,14 +503,19 @@ impl ZoneGridView<'_> {
 
     /// The marker in displayed column `c` on line `y`, inside that column's cell so it never
     /// covers a neighbour's glyph or fill: `[n]` around the glyph where the cell is three or
-    /// more columns wide, else the design's zone glyph alone in the cursor style (reversed,
-    /// underlined) in the glyph's place.
+    /// more columns wide, else the design's zone glyph in the glyph's place and the cell's
+    /// width on that line in the cursor style (reversed, underlined).
     fn put_marker(&self, buf: &mut Buffer, geo: &Geometry, c: usize, y: u16, style: Style) {
         let (gx, _) = geo.glyph_at(c, 0);
         if geo.cell_w >= 3 {
             buf.set_stringn(gx - 1, y, self.zone.marker(), 3, style);
         } else {
-            buf.set_stringn(gx, y, self.zone.glyph(), 1, style.add_modifier(Modifier::UNDERLINED));
+            let cursor = style.add_modifier(Modifier::UNDERLINED);
+            let r = geo.rect(c, 0);
+            for x in r.x..r.right() {
+                buf[(x, y)].set_style(cursor);
+            }
+            buf.set_stringn(gx, y, self.zone.glyph(), 1, cursor);
         }
     }
 

@@ -3,6 +3,11 @@
 //! A forced design's compact readout pairs its steady figures instead (amplitude with and
 //! without the damper, cut, Leq, impacts a period); an ensemble's gives e, e_fit and SPLmax
 //! a row each, with their [p10–p90].
+//!
+//! Columns never run together: each value is cut to its column with one blank or more after
+//! it, losing first the insides of its bracketed parts (`1.4000 m/s […]`), then them (`1.4000
+//! m/s…`), then its end, each cut marked with `…` (`...` in ASCII); beside a pinned design the
+//! live column is as wide as the longest forms that leave the pinned one room for its own.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
