@@ -38,7 +38,7 @@ pub struct ReadoutView<'a> {
 
 /// The pinned column's least width where the live one wants more room than there is: its own
 /// width or this, whichever is less (a third of the room where that is more).
-const PINNED_MIN: usize = 8;
+pub const PINNED_MIN: usize = 8;
 
 /// `text` cut to at most `room` columns: the first of its [`forms`] that fits, else its start
 /// and `ell` (`…`, or `...` in ASCII). Written here rather than shared: the readout's columns
