@@ -2057,22 +2057,14 @@ fn panel_lines(screen: &str, title: &str) -> Vec<Vec<char>> {
     lines[top + 1..].iter().take_while(|l| l[x] != '└').map(|l| l[x + 1..right].to_vec()).collect()
 }
 
-/// Issue 17 item 12: with a pinned design, an ensemble of 4 and a force on, at every size from
-/// 60×20 to 200×60, every readout line is its columns (labels, live and pinned values, each
-/// whole or cut with `…`) a blank or more apart; the history legend keeps `●● damper`.
-#[test]
-fn readout_columns_never_run_into_each_other_with_pin_ensemble_and_force() {
-    let mut app = forced_app(Palette::default());
-    set_field(&mut app, thud::tui::fields::Knob::Runs, "4");
-    press(&mut app, KeyCode::Char('p'));
-    assert!(app.pinned.is_some());
-    set_field(&mut app, thud::tui::fields::Knob::Gap, "2.5");
-    assert!(!app.busy());
-    let (rows, note) = thud::tui::ui::readout_rows(&app);
-    assert!(rows.iter().all(|r| r.pinned.is_some()) && rows.iter().any(|r| r.live.contains(" [")), "{rows:?}");
+/// Every readout line in `app`'s frames from 60×20 to 200×60 (both teaching layouts): its
+/// columns (labels, live and pinned values, each whole or cut with `…`) a blank or more apart;
+/// where the history is drawn, its legend keeps `●● damper`. (lines checked, legends seen)
+fn readout_columns_at_every_size(app: &mut App) -> (usize, usize) {
+    let (rows, note) = thud::tui::ui::readout_rows(app);
     let mut texts: Vec<Vec<char>> = ["live", "pinned"].iter().map(|t| t.chars().collect()).collect();
     for r in &rows {
-        for t in [r.label, &r.live, r.pinned.as_deref().unwrap()] {
+        for t in [r.label, &r.live, r.pinned.as_deref().unwrap_or("")] {
             texts.push(t.chars().collect());
         }
     }
@@ -2082,7 +2074,7 @@ fn readout_columns_never_run_into_each_other_with_pin_ensemble_and_force() {
         for h in [20u16, 24, 33, 40, 60] {
             for focus in [thud::tui::app::Panel::Params, thud::tui::app::Panel::History] {
                 app.focus = focus;
-                let screen = render(&mut app, w, h);
+                let screen = render(app, w, h);
                 let lines = panel_lines(&screen, " readout ");
                 assert!(lines.len() >= 3, "{w}x{h}: no readout\n{screen}");
                 for line in &lines {
@@ -2100,5 +2092,27 @@ fn readout_columns_never_run_into_each_other_with_pin_ensemble_and_force() {
             }
         }
     }
+    (checked, legends)
+}
+
+/// Issue 17 item 12: with a pinned design, an ensemble of 4 and a force on, at every size from
+/// 60×20 to 200×60, every readout line is its columns (labels, live and pinned values, each
+/// whole or cut with `…`) a blank or more apart; the history legend keeps `●● damper`. Without
+/// the pin too (the compact readout's pairs of spreads).
+#[test]
+fn readout_columns_never_run_into_each_other_with_pin_ensemble_and_force() {
+    let mut app = forced_app(Palette::default());
+    set_field(&mut app, thud::tui::fields::Knob::Runs, "4");
+    press(&mut app, KeyCode::Char('p'));
+    assert!(app.pinned.is_some());
+    set_field(&mut app, thud::tui::fields::Knob::Gap, "2.5");
+    assert!(!app.busy());
+    let (rows, _) = thud::tui::ui::readout_rows(&app);
+    assert!(rows.iter().all(|r| r.pinned.is_some()) && rows.iter().any(|r| r.live.contains(" [")), "{rows:?}");
+    let (checked, legends) = readout_columns_at_every_size(&mut app);
     assert!(checked > 500 && legends > 50, "{checked} lines, {legends} legends");
+    press(&mut app, KeyCode::Char('p'));
+    assert!(app.pinned.is_none());
+    let (checked, _) = readout_columns_at_every_size(&mut app);
+    assert!(checked > 500, "{checked} lines");
 }
