@@ -20,7 +20,9 @@
 //! drawing the widgets `params`, `readout`, `waveform`, `polar`, `history`, `chart`,
 //! `response` (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
 //! each field and number means), `files` (the export menu), `tour` (the guided tour's
-//! steps), `keys` (the key table) and `terminal` (setup and restore).
+//! steps), `keys` (the key table), `input_reader` (the input thread) on `input_parse` (the
+//! terminal's bytes to crossterm events, a bracketed paste held to a time and a size), `hangup`
+//! and `terminal` (setup and restore).
 
 pub mod app;
 pub mod cache_key;
