@@ -27,7 +27,8 @@
 //! bytes (the rest is counted and skipped). A paste that ran out of time is dropped (its text is
 //! never replayed as keys: the explorer never asks for bracketed paste, so a paste marker is a
 //! stray or a leftover and its text is not commands) and parsing resumes with the next byte.
-//! Any other escape sequence longer than [`SEQUENCE_MAX`] bytes is dropped. So the parser holds
+//! Any other escape sequence longer than [`SEQUENCE_MAX`] bytes is dropped, and a control
+//! character (ESC, Ctrl-C, …) that breaks a sequence is read as the start of the next event. So the parser holds
 //! at most `PASTE_MAX + SEQUENCE_MAX` bytes whatever it is sent, and every byte is consumed.
 //! Times are passed in, so the limits are tested without a clock.
 
@@ -173,14 +174,12 @@ impl Parser {
         match parse(&self.pending, more) {
             Step::Wait if self.pending.len() < SEQUENCE_MAX => {}
             Step::Wait | Step::Drop => {
+                let broke = self.pending.len() > 1;
                 self.pending.clear();
-                // An ESC that broke a sequence starts the next one (crossterm drops it too).
-                if b == 0x1b {
-                    self.pending.push(b);
-                    if !more {
-                        self.pending.clear();
-                        self.out.push_back(Parsed::Event(Event::Key(KeyCode::Esc.into())));
-                    }
+                // A control character (ESC, Ctrl-C, …) cannot be part of a sequence: one that
+                // broke a sequence starts the next event (crossterm drops it with the sequence).
+                if broke && b < 0x20 {
+                    self.push(b, more, now);
                 }
             }
             Step::Event(e) => {
@@ -657,8 +656,12 @@ mod tests {
             input.push(b'q');
             assert_eq!(events(&input), [Parsed::Event(k(KeyCode::Char('q'), N))], "{bytes:?}");
         }
-        // An ESC that breaks a sequence starts the next one.
+        // A control character that breaks a sequence is the next key: an ESC starts the next
+        // sequence, Ctrl-C after a broken sequence or a broken character still quits.
         assert_eq!(events(b"\x1b[1\x1b[A"), [Parsed::Event(k(KeyCode::Up, N))]);
+        assert_eq!(events(b"\x1b[<0;1\x03"), [Parsed::Event(k(KeyCode::Char('c'), C))]);
+        assert_eq!(events(b"\xe2\x82\x03"), [Parsed::Event(k(KeyCode::Char('c'), C))]);
+        assert_eq!(events(b"\x1b[1\x1b"), [Parsed::Event(k(KeyCode::Esc, N))]);
     }
 
     #[test]
