@@ -9,10 +9,11 @@
 //! good: every key, `q` and Ctrl-C included, was swallowed and the buffer grew without bound.
 //! crossterm's parser is private, so it cannot be fed bytes with a limit around it. The crates
 //! that parse terminal input do not fit better: `termwiz`'s `InputParser` brings a large
-//! dependency tree and its own event types (and waits for the end marker too), `vte` parses the
-//! output direction (no keys, no mouse, no Esc-versus-sequence rule), and `anes`' parser is
-//! unmaintained. The explorer needs a small, known subset, written here after crossterm's
-//! tables and tested against crossterm's documented encodings.
+//! dependency tree, and it and `anes`' parser make their own event types (a conversion layer
+//! as large as this parser, and the rest of the explorer speaks crossterm's); `vte` is built
+//! for the output direction (no key or mouse decoding, no Esc-versus-sequence rule). The
+//! explorer needs a small, known subset, written here after crossterm's tables and tested
+//! against crossterm's documented encodings.
 //!
 //! **What it reads.** Printable UTF-8 (uppercase with SHIFT, as crossterm), Enter, Tab, BackTab,
 //! Backspace, Ctrl-letter and Ctrl-space/4–7, Esc (a lone ESC at the end of what the terminal
