@@ -151,12 +151,12 @@ impl<F: ForceFlag> DesignArgs<F> {
         params::design(d, &self.given, Spelling::Flag)
     }
 
-    /// The design of a frequency response from these flags at its first frequency
-    /// ([`params::response_design`]).
-    pub fn response_design(&self, first_hz: f64) -> Result<Design, ThudError> {
+    /// The design of a frequency response from these flags and its frequencies: `freqs_hz`
+    /// as given, else the engine's default band of the design ([`params::response_setup`]).
+    pub fn response_setup(&self, freqs_hz: Option<Vec<f64>>) -> Result<(Design, Vec<f64>), ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
-        params::response_design(d, &self.given, Spelling::Flag, first_hz, F::NAME)
+        params::response_setup(d, &self.given, Spelling::Flag, freqs_hz, F::NAME)
     }
 
     /// The text typed for the row `name` (as in the table; the force under either name).

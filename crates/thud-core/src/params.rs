@@ -697,6 +697,40 @@ pub fn response_design(
     Ok(d)
 }
 
+/// The design of a frequency response and its frequencies (Hz): `freqs_hz` when the front end
+/// was given them, else the engine's default band of the design
+/// ([`crate::response::default_freqs_hz`], 0.6–1.6 × the natural frequency). The design is
+/// built first ([`response_design`]); its band depends on M, K and C only, which the named
+/// parameters set before any frequency counts, so the band of the design as given starts the
+/// design and is the band of the design built.
+pub fn response_setup(
+    base: Design,
+    given: &[(String, Input)],
+    spelling: Spelling,
+    freqs_hz: Option<Vec<f64>>,
+    force: &str,
+) -> Result<(Design, Vec<f64>), ThudError> {
+    if let Some(freqs) = freqs_hz {
+        let first = freqs.first().copied().unwrap_or(0.0);
+        return Ok((response_design(base, given, spelling, first, force)?, freqs));
+    }
+    // M, K and C as given (a value refused here is refused again, in order, by the design).
+    let drafted = drafted(base.clone(), given, spelling).unwrap_or_else(|_| base.clone());
+    let first = crate::response::default_freqs_hz(&drafted)[0];
+    let d = response_design(base, given, spelling, first, force)?;
+    let freqs = crate::response::default_freqs_hz(&d);
+    Ok((d, freqs))
+}
+
+/// `base` with the named parameters `given` set, each checked against its range only (no
+/// relation, no whole-design check).
+fn drafted(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<Design, ThudError> {
+    let given = Given::new(DESIGN, given, spelling)?;
+    let mut draft = DesignDraft::of(base);
+    given.apply(&mut draft)?;
+    Ok(draft.design)
+}
+
 /// Refuses an ensemble of `runs` > 1 runs together with an initial ball offset given by the
 /// user (`ball_position_given`): the ensemble sets the offsets itself
 /// ([`crate::ensemble::ball_positions`]). The message names both, as `spelling` spells them.
@@ -1112,6 +1146,22 @@ mod tests {
         assert!(check_ensemble(1, true, Spelling::Flag).is_ok() && check_ensemble(4, false, Spelling::Flag).is_ok());
         let e = check_ensemble(4, true, Spelling::Keyword).unwrap_err().to_string();
         assert!(e.starts_with("invalid ball_position: cannot be combined with ensemble 4"), "{e}");
+    }
+
+    #[test]
+    fn a_response_without_frequencies_spans_the_default_band_of_the_design_given() {
+        let given = text(&[("force", "1"), ("k", "2000"), ("main-mass", "2kg")]);
+        let (d, freqs) = response_setup(Design::default(), &given, Spelling::Flag, None, "force").unwrap();
+        // √(K/M − (C/2M)²)/2π with K 2000 N/m, M 2 kg, C 0.05 N·s/m (the default's).
+        let f = (1000.0f64 - (0.05f64 / 4.0).powi(2)).sqrt() / (2.0 * std::f64::consts::PI);
+        assert_eq!(freqs.len(), crate::response::DEFAULT_POINTS);
+        assert!((freqs[0] - 0.6 * f).abs() < 1e-12 && (freqs[freqs.len() - 1] - 1.6 * f).abs() < 1e-12);
+        assert_eq!(d.damper.freq_hz, freqs[0]);
+        let (_, given_freqs) =
+            response_setup(Design::default(), &given, Spelling::Flag, Some(vec![4.0, 5.0]), "force").unwrap();
+        assert_eq!(given_freqs, [4.0, 5.0]);
+        let e = response_setup(Design::default(), &text(&[("force", "1"), ("k", "-1")]), Spelling::Flag, None, "force");
+        assert!(e.unwrap_err().to_string().starts_with("invalid --k: -1 N/m is out of range"));
     }
 
     #[test]

@@ -4,8 +4,8 @@
 //! - `thud.pulse(**params) -> Pulse`: one Hertzian impact heard at one observer (`thud pulse`).
 //! - `thud.simulate(**params) -> Run`: one damper design through its impacts (`thud simulate`).
 //! - `thud.sweep(masses_kg, gaps_m, **params) -> Chart`: the design chart (`thud sweep`).
-//! - `thud.response(freqs_hz, **params) -> Response`: the frequency response under the
-//!   harmonic force (`thud response`).
+//! - `thud.response(freqs_hz=None, **params) -> Response`: the frequency response under the
+//!   harmonic force (`thud response`; by default over the engine's band of the design).
 //! - `ensemble=N` on `simulate` (then an `Ensemble`), `sweep` and `response`: N runs from
 //!   ball offsets spread over the clearance, as `--ensemble N`.
 //!
@@ -298,7 +298,7 @@ fn sweep(
     PyChart::new(py, &d, chart.map_err(|e| engine_error(py, e))?)
 }
 
-/// response(freqs_hz, **params) -> Response
+/// response(freqs_hz=None, **params) -> Response
 ///
 /// The frequency response of a design under the harmonic force F0·cos(2π·f·t) on the main
 /// mass, as `thud response --json`: per frequency the steady amplitude with the damper beside
@@ -306,7 +306,8 @@ fn sweep(
 /// the rattle (dB re 20 µPa), over the last `periods` forcing periods of a settled run.
 ///
 /// freqs_hz: a sequence of frequencies (Hz), or "FROM:TO:N" text as on the command line
-/// ("3Hz:8Hz:101"). Keywords: as for `simulate` (force is needed; no freq, no samples; each
+/// ("3Hz:8Hz:101"); None (the default): 0.6–1.6 × the natural frequency, 101 points, as the
+/// command line without --freqs. Keywords: as for `simulate` (force is needed; no freq, no samples; each
 /// frequency starts from rest unless v0, ball_position or ball_velocity is given), and
 /// continuation: bool — each frequency from the previous one's final state, rising then
 /// falling; ensemble: int — N runs a frequency from ball offsets y0 = −d/2 + (k + ½)·d/N
@@ -316,18 +317,19 @@ fn sweep(
 ///
 /// Raises ParameterError (a ValueError) as `simulate` does. Ctrl-C stops the response.
 #[pyfunction]
-#[pyo3(name = "response", signature = (freqs_hz, **params))]
+#[pyo3(name = "response", signature = (freqs_hz=None, **params))]
 fn response_curve(
     py: Python<'_>,
-    freqs_hz: &Bound<'_, PyAny>,
+    freqs_hz: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyResponse> {
     let kw = Kwargs::new(params, options("response"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let continuation = kw.switch(py, "continuation")?;
-    let freqs = axis(py, "freqs_hz", freqs_hz, Kind::Frequency, &limits::FREQ)?;
+    let typed = freqs_hz.filter(|f| !f.is_none()).map(|f| axis(py, "freqs_hz", f, Kind::Frequency, &limits::FREQ));
     let base = preset(py, &kw, Some("default"))?.unwrap_or_default();
-    let d = params::response_design(base, &kw.params, Spelling::Keyword, freqs[0], "force")
+    // The design first, then its frequencies: freqs_hz, or the engine's default band.
+    let (d, freqs) = params::response_setup(base, &kw.params, Spelling::Keyword, typed.transpose()?, "force")
         .map_err(|e| engine_error(py, e))?;
     let runs = ensemble_runs(py, &kw)?;
     check_response(py, &d, &freqs, continuation, runs, no_limit)?;

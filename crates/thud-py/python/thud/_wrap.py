@@ -63,13 +63,14 @@ _OPTION_TYPES: Dict[str, Any] = {
     "no_limit": bool,
 }
 
-#: The positional parameters of each function (name, annotation).
+#: The positional parameters of each function (name, annotation, default or P.empty).
 _POSITIONAL: Dict[str, List[Any]] = {
     "pulse": [],
     "simulate": [],
-    "simulate_ensemble": [("runs", Count)],
-    "sweep": [("masses_kg", Any), ("gaps_m", Any)],
-    "response": [("freqs_hz", Any)],
+    "simulate_ensemble": [("runs", Count, inspect.Parameter.empty)],
+    "sweep": [("masses_kg", Any, inspect.Parameter.empty), ("gaps_m", Any, inspect.Parameter.empty)],
+    # None: the engine's default band of the design (0.6–1.6 × its natural frequency).
+    "response": [("freqs_hz", Any, None)],
 }
 
 
@@ -92,7 +93,7 @@ def _signature(name: str, table: Dict[str, Any], returns: Any) -> inspect.Signat
     parameters, then `preset`, every named parameter of the engine (table order) and the
     function's other options, all keyword-only."""
     P = inspect.Parameter
-    params = [P(n, P.POSITIONAL_OR_KEYWORD, annotation=a) for n, a in _POSITIONAL[name]]
+    params = [P(n, P.POSITIONAL_OR_KEYWORD, annotation=a, default=d) for n, a, d in _POSITIONAL[name]]
     options = table["options"][name]
     defaults = table["defaults"]
     rows = table["pulse" if name == "pulse" else "design"]
