@@ -722,6 +722,21 @@ pub fn response_setup(
     Ok((d, freqs))
 }
 
+/// Checks each of the named parameters `given` on its own: a known name (a row of [`DESIGN`]
+/// or its alias, as `spelling` hands it in), given once, with a value its row accepts (inside
+/// its range, a known choice). No relation between them and no whole-design check: what a
+/// settings file can be checked for key by key.
+pub fn check_named(given: &[(String, Input)], spelling: Spelling) -> Result<(), ThudError> {
+    drafted(Design::default(), given, spelling).map(drop)
+}
+
+/// The row of [`DESIGN`] whose name (or alias) is nearest to `name` (edit distance; `_` read as
+/// `-`): what "did you mean" names.
+pub fn nearest_design_param(name: &str) -> Option<&'static str> {
+    let canonical = name.replace('_', "-");
+    DESIGN.iter().flat_map(|p| std::iter::once(p.name).chain(p.alias)).min_by_key(|n| edit_distance(&canonical, n))
+}
+
 /// `base` with the named parameters `given` set, each checked against its range only (no
 /// relation, no whole-design check).
 fn drafted(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<Design, ThudError> {
@@ -1162,6 +1177,15 @@ mod tests {
         assert_eq!(given_freqs, [4.0, 5.0]);
         let e = response_setup(Design::default(), &text(&[("force", "1"), ("k", "-1")]), Spelling::Flag, None, "force");
         assert!(e.unwrap_err().to_string().starts_with("invalid --k: -1 N/m is out of range"));
+    }
+
+    #[test]
+    fn names_are_checked_one_by_one_and_the_nearest_is_found() {
+        assert!(check_named(&text(&[("force", "1"), ("plate", "steel")]), Spelling::Flag).is_ok(), "no relations");
+        let e = check_named(&text(&[("gap", "1km")]), Spelling::Flag).unwrap_err().to_string();
+        assert!(e.starts_with("invalid --gap: 1000 m is out of range"), "{e}");
+        assert_eq!(nearest_design_param("main_mas"), Some("main-mass"));
+        assert_eq!(nearest_design_param("force-amplitud"), Some("force-amplitude"));
     }
 
     #[test]
