@@ -7,7 +7,7 @@ use std::path::Path;
 use super::state::{App, ChartView, Mode};
 use crate::export::{wav::WavOptions, Artifact, ExportOptions};
 use crate::store::{self, DesignFile};
-use crate::tui::compute::response_design;
+use crate::tui::compute::{default_band, response_design};
 use crate::tui::fields::{Knob, Scope, Setup};
 use crate::tui::files::{export_menu, export_name, unique_path};
 use crate::tui::worker::{ExportJob, Request, WorkError};
@@ -150,9 +150,9 @@ impl App {
         }
         let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
         self.exports.push(path.clone());
-        // Sweeps use the chart's grid and its N runs a cell, so the file shows what the screen
-        // does; a response the curve's design (from rest, as the view runs it) over the
-        // engine's default frequencies, the very file `thud export csv response` writes.
+        // Sweeps use the chart's grid and its N runs a cell, and a response the curve's band
+        // and design (from rest, as the view runs it), so the file shows what the screen does
+        // (the curve's band is the engine's default, so it is `thud export … response`'s too).
         let g = &self.chart.grids.fine;
         let (design, options) = if kind.needs_sweep() {
             let options = ExportOptions {
@@ -163,10 +163,10 @@ impl App {
             };
             (self.design.clone(), options)
         } else if kind.is_response() {
+            let freqs = default_band(&self.design).freqs();
             // The curve's design keeps f (a forced design is checked with it); each point sets its own.
             let mut design = response_design(&self.design);
             design.damper.freq_hz = self.design.damper.freq_hz;
-            let freqs = crate::response::default_freqs_hz(&design);
             (design, ExportOptions { freqs_hz: Some(freqs), ..ExportOptions::default() })
         } else {
             (self.design.clone(), ExportOptions::default())
