@@ -218,6 +218,24 @@ impl<T> Param<T> {
         }
     }
 
+    /// One line documenting the row, generated (no hand-written copy anywhere): its help (or,
+    /// without one, what its range is, or the help of the [`DESIGN`] row of its name), its
+    /// range, and its alias as `spelling` spells it — `Impact mass m (kg, or e.g. 40.5g);
+    /// 0.0001 to 100 kg`. Python's stub comments and docstrings are these lines.
+    pub fn doc_line(&self, spelling: Spelling) -> String {
+        let help = match (self.help, self.range()) {
+            ("", Some(r)) => {
+                let mut what = r.what.chars();
+                what.next().map_or(String::new(), |c| c.to_uppercase().chain(what).collect())
+            }
+            ("", None) => design_param(self.name).map_or("", |p| p.help).to_string(),
+            (help, _) => help.to_string(),
+        };
+        let range = self.range().map_or(String::new(), |r| format!("; {}", r.describe()));
+        let alias = self.alias.map_or(String::new(), |a| format!(" (alias {})", spelling.spell(a)));
+        format!("{help}{range}{alias}")
+    }
+
     /// The unit of a plain number (empty for counts, names, choices and switches).
     pub fn unit(&self) -> &'static str {
         match self.accepts {
@@ -445,10 +463,8 @@ pub fn stub_keywords(skip: &[&str]) -> String {
             Accepts::Name { .. } => "str",
             Accepts::Choice { type_name, .. } => type_name,
         };
-        let range = p.range().map_or(String::new(), |r| format!("; {}", r.describe()));
-        let alias = p.alias.map_or(String::new(), |a| format!(" (alias {})", Spelling::Keyword.spell(a)));
         let name = Spelling::Keyword.spell(p.name);
-        out += &format!("    {name}: Optional[{ty}] = None,  # {}{range}{alias}\n", p.help);
+        out += &format!("    {name}: Optional[{ty}] = None,  # {}\n", p.doc_line(Spelling::Keyword));
     }
     out
 }
@@ -1182,7 +1198,7 @@ mod tests {
     #[test]
     fn names_are_checked_one_by_one_and_the_nearest_is_found() {
         assert!(check_named(&text(&[("force", "1"), ("plate", "steel")]), Spelling::Flag).is_ok(), "no relations");
-        let e = check_named(&text(&[("gap", "1km")]), Spelling::Flag).unwrap_err().to_string();
+        let e = check_named(&text(&[("gap", "1000m")]), Spelling::Flag).unwrap_err().to_string();
         assert!(e.starts_with("invalid --gap: 1000 m is out of range"), "{e}");
         assert_eq!(nearest_design_param("main_mas"), Some("main-mass"));
         assert_eq!(nearest_design_param("force-amplitud"), Some("force-amplitude"));

@@ -84,18 +84,13 @@ fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Design> {
 /// Defaults are the paper's Fig 2 impact: an acrylic sphere a = 19.05 mm, m = 40.5 g,
 /// U0 = 1.4 m/s, K_HZ = 5.6e8 N/m^1.5 on a fixed plate, heard as a dipole at r = 0.7 m, θ = 45°.
 ///
-/// Parameters (keywords; numbers in SI units unless noted, or strings with a unit such as
-/// "19.05mm"; None = not given):
+/// Options (numbers in SI units unless noted, or strings with a unit such as "19.05mm"):
 ///     preset: str — take the defaults from a preset (`thud.presets()`): its ball, K_HZ,
 ///         observer, source and air, and U0 = its v0; the target stays a fixed plate.
-///     radius (m), mass (kg), u0 (m/s), k_hz (N/m^1.5),
-///     sphere, plate: material names (K_HZ then follows from them, Eq 2),
-///     main_mass (kg): a movable target, K* = (m+M)/(mM) (Eq 8),
-///     r (m), theta (degrees), source: "single" | "dipole" | "quadrupole",
-///     quad_signs: "paper" | "rigid", pulse: "half-sine" | "hertz",
-///     rho_c (Pa·s/m), c (speed of sound, m/s),
 ///     points: int — waveform points (default 2000),
 ///     no_limit: bool — lift the work cap on points.
+/// The impact's keywords (sphere and plate: K_HZ from the materials, Eq 2; main_mass: a
+/// movable target, K* = (m+M)/(mM), Eq 8) are listed under "Keywords" from the engine's table.
 ///
 /// Raises ParameterError (a ValueError) naming the parameter for an unknown name, a wrong
 /// type, NaN/inf or an out-of-range value — the command line's message and range table.
@@ -118,20 +113,9 @@ fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<PyPulse
 /// One impact-damper design through its impacts (Eqs 25–27), as `thud simulate --json`, plus
 /// the time history.
 ///
-/// Parameters (keywords; numbers in SI units unless noted, or strings with a unit such as
-/// "40.5g"; None = not given):
+/// Options (the design's keywords, numbers in SI units unless noted or strings with a unit
+/// such as "40.5g", are listed under "Keywords" from the engine's parameter table):
 ///     preset: str — the starting design (default "default"; `thud.presets()` lists them),
-///     mass (kg), gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m),
-///     k_hz (N/m^1.5), sphere / plate (materials: K_HZ from Eq 2), no_tension (bool),
-///     duration (s), solver: "event" | "newmark", dt (s, Newmark only),
-///     density (kg/m³) or radius (m) of the ball, r (m), theta (degrees),
-///     source: "single" | "dipole" | "quadrupole", quad_signs: "paper" | "rigid",
-///     pulse: "half-sine" | "hertz", l_star (dB), e_star (cm/s),
-///     force (N; alias force_amplitude) and freq (Hz): the harmonic force F0·cos(2π·f·t)
-///     on the main mass (default 0, the paper's free decay),
-///     ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start,
-///     periods: int — forcing periods of the steady-state window (default 10),
-///     settle: bool — run a forced design on until its steady amplitude settles,
 ///     samples: int — time-history samples (default 2001),
 ///     ensemble: int — N runs from ball offsets y0 = −d/2 + (k + ½)·d/N at rest (default 1);
 ///         N > 1 returns an Ensemble (not with ball_position),
@@ -439,7 +423,9 @@ fn ranges(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
 /// The keywords of every function, for the Python wrapper's signatures: {"design": rows,
 /// "pulse": rows, "options": {function: [option, …]}, "refused": {function: [keyword, …]}},
 /// a row {"name": keyword, "accepts": "quantity" | "choice" | "name" | "switch" | "count",
-/// "unit": the plain number's unit (quantities and counts), "choices": [names] (choices)},
+/// "help": its line of help, "range": its range as text (or None), "doc": the line the
+/// docstrings show ([`params::Param::doc_line`]), "unit": the plain number's unit (quantities
+/// and counts), "choices": [names] (choices)},
 /// and "defaults": {option: its default} — the engine's tables ([`params::DESIGN`], [`params::PULSE`]) in their order.
 #[pyfunction]
 fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
@@ -474,6 +460,9 @@ fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<B
     for p in table {
         let row = PyDict::new(py);
         row.set_item("name", Spelling::Keyword.spell(p.name))?;
+        row.set_item("help", p.help)?;
+        row.set_item("range", p.range().map(limits::Range::describe))?;
+        row.set_item("doc", p.doc_line(Spelling::Keyword))?;
         let accepts = match &p.accepts {
             params::Accepts::Quantity { range, .. } => {
                 row.set_item("unit", range.unit)?;

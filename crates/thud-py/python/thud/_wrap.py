@@ -109,9 +109,24 @@ def _signature(name: str, table: Dict[str, Any], returns: Any) -> inspect.Signat
     return inspect.Signature(params, return_annotation=returns)
 
 
+def keywords_doc(name: str, table: Dict[str, Any]) -> str:
+    """The "Keywords" section of the function `name`'s docstring, generated from the engine's
+    parameter table: one line per row the function takes (table order), the row's own line
+    (help, range, alias) and, for a choice, its names."""
+    rows = table["pulse" if name == "pulse" else "design"]
+    refused = set(table["refused"].get(name, []))
+    lines = ["Keywords (the engine's parameter table; None = not given):"]
+    for row in rows:
+        if row["name"] in refused:
+            continue
+        choices = " | ".join(f'"{c}"' for c in row.get("choices", []))
+        lines.append(f"    {row['name']}: {row['doc']}" + (f" ({choices})" if choices else ""))
+    return "\n".join(lines)
+
+
 def document(namespace: Dict[str, Any]) -> None:
-    """Gives each function of the package (in `namespace`) the native one's docstring and the
-    engine's signature."""
+    """Gives each function of the package (in `namespace`) the native one's docstring, its
+    keywords' documentation from the engine's table and the engine's signature."""
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
                "simulate_ensemble": _thud.Ensemble, "sweep": _thud.Chart, "response": _thud.Response}
@@ -119,6 +134,7 @@ def document(namespace: Dict[str, Any]) -> None:
         fn = namespace[name]
         doc = getattr(_thud, name).__doc__ or ""
         # The native docstring opens with "name(**params) -> T": the signature says it now.
-        fn.__doc__ = doc.split("\n\n", 1)[-1] if doc.startswith(f"{name}(") else doc
+        doc = doc.split("\n\n", 1)[-1] if doc.startswith(f"{name}(") else doc
+        fn.__doc__ = doc.rstrip() + "\n\n" + keywords_doc(name, table) + "\n"
         fn.__signature__ = _signature(name, table, ret)  # type: ignore[attr-defined]
 
