@@ -1877,8 +1877,7 @@ fn the_field_list_is_grouped_by_the_table_s_groups() {
         }
     }
     let mut app = computed_app();
-    let at = |k: Knob| Knob::ALL.iter().position(|q| *q == k).unwrap();
-    app.selected = at(Knob::Force);
+    app.selected = Knob::ALL.iter().position(|q| *q == Knob::Force).unwrap();
     let screen = render(&mut app, 120, 40);
     insta::assert_snapshot!("fields_grouped_120x40", screen);
     let panel: Vec<&str> =
