@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::design::{Design, Thresholds};
+use crate::design::{Design, Thresholds, ValidDesign};
 use crate::error::ThudError;
 use crate::fsio;
 use crate::params::{self, Input, Spelling};
@@ -328,7 +328,7 @@ impl Config {
             return Ok(base);
         }
         let given: Vec<(String, Input)> = self.design.iter().map(|(k, v)| (k.clone(), v.input())).collect();
-        params::design(base, &given, Spelling::Flag).map_err(|e| {
+        params::design(base, &given, Spelling::Flag).map(ValidDesign::into_design).map_err(|e| {
             let key = e.param().trim_start_matches("--").to_string();
             e.renamed(format!("{key} in {CONFIG_FILE} [design]"))
         })

@@ -4,7 +4,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
 
 use super::{CliError, Ctx};
-use crate::design::Design;
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::limits::{self, short, Range, Refusal, Remedy};
 use crate::params::{self, Accepts, Group, Input, Param, Spelling};
@@ -145,7 +145,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// names the flag as typed), then the whole design (preset values too) and its derived
     /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
     /// shared with the Python module.
-    pub fn design(&self) -> Result<Design, ThudError> {
+    pub fn design(&self) -> Result<ValidDesign, ThudError> {
         params::design(self.base()?, &self.given, Spelling::Flag)
     }
 
@@ -159,7 +159,7 @@ impl<F: ForceFlag> DesignArgs<F> {
 
     /// The design of a frequency response from these flags and its frequencies: `freqs_hz`
     /// as given, else the engine's default band of the design ([`params::response_setup`]).
-    pub fn response_setup(&self, freqs_hz: Option<Vec<f64>>) -> Result<(Design, Vec<f64>), ThudError> {
+    pub fn response_setup(&self, freqs_hz: Option<Vec<f64>>) -> Result<(ValidDesign, Vec<f64>), ThudError> {
         params::response_setup(self.base()?, &self.given, Spelling::Flag, freqs_hz, F::NAME)
     }
 
@@ -224,7 +224,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     pub(crate) fn check_run(
         &self,
         ctx: &Ctx,
-        d: &Design,
+        d: &ValidDesign,
         history_samples: usize,
         samples_flag: &str,
     ) -> Result<(), CliError> {
@@ -234,7 +234,13 @@ impl<F: ForceFlag> DesignArgs<F> {
 
     /// Refuses a design chart of `n_masses` × `n_gaps` cells of `d` whose work is over a cap
     /// ([`limits::check_sweep`]).
-    pub(crate) fn check_sweep(&self, ctx: &Ctx, d: &Design, n_masses: usize, n_gaps: usize) -> Result<(), CliError> {
+    pub(crate) fn check_sweep(
+        &self,
+        ctx: &Ctx,
+        d: &ValidDesign,
+        n_masses: usize,
+        n_gaps: usize,
+    ) -> Result<(), CliError> {
         let r = limits::check_sweep(d, &|n| self.has(n), n_masses, n_gaps);
         self.refuse(ctx, d, r, ("--masses/--gaps", &format!("{n_masses} × {n_gaps}")))
     }
@@ -245,7 +251,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     pub(crate) fn check_runs(
         &self,
         ctx: &Ctx,
-        d: &Design,
+        d: &ValidDesign,
         cells: usize,
         runs: usize,
         flag: &str,

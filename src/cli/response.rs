@@ -9,7 +9,7 @@ use super::design_args::{parse_range, DesignArgs, ForceFlag};
 use super::format::num;
 use super::simulate::describe;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
-use crate::design::Design;
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::limits::{self, short};
 use crate::report::{ResponseEnsembleReport, ResponseReport};
@@ -39,7 +39,7 @@ pub struct ResponseArgs {
 /// Refuses a response whose work is over a cap.
 pub(crate) fn check_work(
     ctx: &Ctx,
-    d: &Design,
+    d: &ValidDesign,
     freqs: &[f64],
     freqs_text: &str,
     continuation: bool,
@@ -52,7 +52,7 @@ pub(crate) fn check_work(
 /// when one run alone would be inside the cap), and the cycles of one run.
 fn check_runs_work(
     ctx: &Ctx,
-    d: &Design,
+    d: &ValidDesign,
     freqs: &[f64],
     freqs_text: &str,
     continuation: bool,
@@ -77,7 +77,7 @@ fn check_runs_work(
 pub(crate) fn response_setup<F: ForceFlag>(
     args: &DesignArgs<F>,
     text: Option<&str>,
-) -> Result<(Design, Vec<f64>, String), ThudError> {
+) -> Result<(ValidDesign, Vec<f64>, String), ThudError> {
     let typed = text.map(|t| parse_range("freqs", t, Kind::Frequency, &limits::FREQ)).transpose()?;
     let (d, freqs) = args.response_setup(typed)?;
     let shown = text.map_or_else(|| freqs_text(&freqs), str::to_string);
