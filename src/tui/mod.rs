@@ -7,7 +7,7 @@
 //! a simulation.
 //!
 //! It is made to teach with: the chart never contradicts the readout (its marker is the live
-//! design at its exact mass and gap with the design's own zone), every plot has round ticks and
+//! design, at its mass and gap, with the design's own zone), every plot has round ticks and
 //! axis titles with units, the selected field's meaning, unit and range are in the status line,
 //! the help's second page says what the numbers mean, and a guided tour (`T`, `thud tui
 //! --tour [FILE]`) tells the paper's story step by step with the real computations.
