@@ -1142,7 +1142,8 @@ fn typed_plain_numbers_are_in_the_unit_shown_and_refusals_name_the_field() {
 #[test]
 fn the_status_line_explains_the_selected_field() {
     let mut app = computed_app();
-    for _ in 0..8 {
+    // The design group in table order: m, d, M, K, C, c1.
+    for _ in 0..5 {
         press(&mut app, KeyCode::Down);
     }
     assert_eq!(app.param(), thud::tui::fields::Knob::C1);
@@ -2029,6 +2030,36 @@ fn readme_screens_are_what_the_explorer_draws() {
         std::io::Write::write_all(&mut tmp, out.as_bytes()).unwrap();
         tmp.persist(&path).unwrap();
     }
+}
+
+/// Issue 16 item 1: the field list is grouped as the engine's table groups its rows (design,
+/// forcing, listener, solver, study), each group under its heading and in table order; the
+/// panel scrolls to the selected field with its group's heading above it.
+#[test]
+fn the_field_list_is_grouped_by_the_table_s_groups() {
+    use thud::params::{Group, DESIGN};
+    use thud::tui::fields::Knob;
+    let position = |k: &Knob| k.rows().first().and_then(|n| DESIGN.iter().position(|p| p.name == *n));
+    let key = |k: &Knob| (Group::ALL.iter().position(|g| *g == k.group()), position(k).unwrap_or(usize::MAX));
+    let keys: Vec<_> = Knob::ALL.iter().map(key).collect();
+    assert!(keys.windows(2).all(|w| w[0] < w[1]), "grouped, then in table order: {:?}", Knob::ALL);
+    for k in Knob::ALL {
+        if let Some(row) = k.row() {
+            assert_eq!(k.group(), row.group, "{k:?}");
+        }
+    }
+    let mut app = computed_app();
+    app.selected = Knob::ALL.iter().position(|q| *q == Knob::Force).unwrap();
+    let screen = render(&mut app, 120, 40);
+    insta::assert_snapshot!("fields_grouped_120x40", screen);
+    let panel: Vec<&str> =
+        screen.lines().map(|l| l.get(..l.char_indices().nth(42).map_or(l.len(), |(i, _)| i)).unwrap_or(l)).collect();
+    let heading = |title: &str| panel.iter().position(|l| l.contains(&format!("─ {title} ─")));
+    let (forcing, listener) = (heading("forcing").expect("forcing heading"), heading("listener").expect("listener"));
+    let force = panel.iter().position(|l| l.contains("▶")).unwrap();
+    assert!(forcing < force && force < listener, "{screen}");
+    app.selected = Knob::ALL.len() - 1;
+    assert!(render(&mut app, 120, 40).contains("─ study ─"), "the last field, N, is with the study");
 }
 
 // ---- Issue 17 items 5 and 12: the chart's marker and labels, the readout's columns ----
