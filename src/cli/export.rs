@@ -286,7 +286,8 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions, as_pd
     let to_stdout = matches!(plan, Plan::Through(Sink::Stdout));
     if to_stdout && (kind == Artifact::Wav || as_pdf) && std::io::stdout().is_terminal() {
         let (what, reader) = if as_pdf { ("a PDF", "a viewer") } else { ("a WAV", "a player") };
-        let why = format!("{}: {what} file is binary; redirect standard output to a file or {reader}", fsio::shown(out));
+        let why =
+            format!("{}: {what} file is binary; redirect standard output to a file or {reader}", fsio::shown(out));
         return Err(ThudError::invalid("--out", why).into());
     }
     let long = common.check_work(ctx, kind, &design, opts)?;

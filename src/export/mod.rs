@@ -336,7 +336,9 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
 pub fn render_pdf(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
     if !kind.is_figure() {
         let name = kind.default_file_name();
-        return Err(ThudError::invalid("format", format!("{name} is not a figure; only figures are made as PDF")).into());
+        return Err(
+            ThudError::invalid("format", format!("{name} is not a figure; only figures are made as PDF")).into()
+        );
     }
     let bytes = render(kind, design, opts)?;
     Ok(pdf::from_svg(&String::from_utf8_lossy(&bytes))?)
