@@ -346,6 +346,18 @@ fn export_pdf_keeps_an_existing_file_and_never_follows_a_planted_link() {
 }
 
 #[test]
+fn completions_and_man_pages_offer_export_pdf() {
+    let (code, fish, err) = thud(&["completions", "fish"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(fish.contains("csv svg pdf wav"), "export's formats complete");
+    assert!(fish.contains("__fish_thud_using_subcommand paper") && fish.contains("-l pdf"), "paper --pdf completes");
+    let (code, page, err) = thud(&["man", "export", "pdf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(page.starts_with(".TH thud-export-pdf 1"), "{}", &page[..page.len().min(80)]);
+    assert!(page.contains("\\-\\-no\\-title") && page.contains("\\-\\-size"), "the page lists --no-title and --size");
+}
+
+#[test]
 fn paper_all_pdf_writes_a_pdf_beside_every_svg() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("paper");

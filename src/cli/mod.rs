@@ -66,7 +66,7 @@ pub enum Command {
     Restitution(Box<restitution::RestitutionArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
     Paper(paper::PaperArgs),
-    /// Write a design's data (CSV), figures (SVG) or sound (WAV) to a file.
+    /// Write a design's data (CSV), figures (SVG, PDF) or sound (WAV) to a file.
     Export(Box<export::ExportArgs>),
     /// List the named starting designs (--preset NAME).
     Presets(presets::PresetsArgs),
