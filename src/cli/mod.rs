@@ -199,7 +199,7 @@ fn numeric_flags() -> Vec<String> {
 }
 
 /// The command path the user typed up to a command that needs a subcommand, and its
-/// subcommands ("thud export", [csv, svg, wav]).
+/// subcommands ("thud export", [csv, svg, pdf, wav]).
 fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
     let mut cmd = Cli::command();
     let mut path = vec!["thud".to_string()];
