@@ -32,7 +32,7 @@ fn chart_options() -> ExportOptions {
 }
 
 fn chart_svg(opts: &ExportOptions) -> String {
-    let d = presets::preset("default").unwrap();
+    let d = presets::preset("default").unwrap().check().unwrap();
     String::from_utf8(export::render(Artifact::SvgChart, &d, opts).unwrap()).unwrap()
 }
 
@@ -211,7 +211,7 @@ fn a_pdf_is_one_page_of_the_asked_size_with_its_font_embedded() {
 
 #[test]
 fn every_figure_converts_with_every_glyph_of_its_text_in_the_embedded_font() {
-    let d = presets::preset("default").unwrap();
+    let d = presets::preset("default").unwrap().check().unwrap();
     let opts = ExportOptions {
         masses_kg: Some(linspace(0.03, 0.06, 3)),
         gaps_m: Some(linspace(0.02, 0.04, 3)),
@@ -223,8 +223,9 @@ fn every_figure_converts_with_every_glyph_of_its_text_in_the_embedded_font() {
         assert!(bytes.starts_with(b"%PDF-"), "{kind:?}");
     }
     // The response figure, of the default design under a forcing.
-    let mut forced = d.clone();
+    let mut forced = d.clone().into_design();
     (forced.damper.force_n, forced.damper.freq_hz, forced.damper.v0_m_s) = (1.0, 4.0, 0.0);
+    let forced = forced.check().unwrap();
     let ro = ExportOptions { freqs_hz: Some(linspace(3.0, 5.0, 5)), ..opts.clone() };
     let bytes = export::render_pdf(Artifact::SvgResponse, &forced, &ro).unwrap();
     assert!(bytes.starts_with(b"%PDF-"));
