@@ -79,10 +79,12 @@ impl Widget for HistoryView<'_> {
             Curve::line("e", &e, th.fg(Color::Red), th.mark('╌', '=')),
         ];
         if let Some(p) = self.pinned {
-            series.push(Curve::line("pinned", p, th.pinned(), th.mark('◇', '%')));
+            series.push(Curve::line("pinned", p, th.pinned(), th.mark('◇', '%')).ranked(1));
         }
-        series.push(Curve::line("none", self.free_maxima, th.fg(Color::White).patch(bold), th.mark('○', 'o')));
-        series.push(Curve::line("damper", self.maxima, th.fg(Color::Yellow).patch(bold), th.mark('●', '#')));
+        // The legend keeps "damper" and "none" (the panel's point) before the others.
+        series
+            .push(Curve::line("none", self.free_maxima, th.fg(Color::White).patch(bold), th.mark('○', 'o')).ranked(2));
+        series.push(Curve::line("damper", self.maxima, th.fg(Color::Yellow).patch(bold), th.mark('●', '#')).ranked(3));
         LinePlot {
             block: self.block,
             x_title: "t (s)",
