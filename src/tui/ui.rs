@@ -726,26 +726,27 @@ fn typed(app: &App) -> Style {
 fn status_line(app: &App) -> Paragraph<'static> {
     let th = &app.theme;
     let cursor = th.sym("█", "_");
-    let dim = Style::default().add_modifier(Modifier::DIM);
+    // The hints are read, not skimmed: plain text, never dim.
+    let plain = th.label();
     if let Mode::SaveAs(buf) = &app.mode {
         let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
         return Paragraph::new(Line::from(vec![
             Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
             Span::styled(buf.clone(), typed(app)),
             Span::raw(cursor),
-            Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), dim),
+            Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), plain),
         ]));
     }
     if let Mode::ConfirmOverwrite(name) = &app.mode {
         return Paragraph::new(Line::from(vec![
             Span::styled(format!(" overwrite {name}? y/n"), Style::default().add_modifier(Modifier::BOLD)),
-            Span::styled("  (y replaces the saved design of that name; any other key keeps it)", dim),
+            Span::styled("  (y replaces the saved design of that name; any other key keeps it)", plain),
         ]));
     }
     if app.mode == Mode::ConfirmQuit {
         return Paragraph::new(Line::from(vec![
             Span::styled(" quit without saving? y/n", Style::default().add_modifier(Modifier::BOLD)),
-            Span::styled(format!("  (y quits; any other key stays, then {} saves)", app.key_label(Action::Save)), dim),
+            Span::styled(format!("  (y quits; any other key stays, then {} saves)", app.key_label(Action::Save)), plain),
         ]));
     }
     if let Mode::Editing(buf) = &app.mode {
@@ -765,7 +766,7 @@ fn status_line(app: &App) -> Paragraph<'static> {
             ),
             Span::styled(th.text(buf).into_owned(), typed(app)),
             Span::raw(cursor),
-            Span::styled(th.text(&hint).into_owned(), dim),
+            Span::styled(th.text(&hint).into_owned(), plain),
         ]));
     }
     match &app.status {
@@ -861,14 +862,14 @@ fn help_lines(keys: &Keymap, theme: &Palette, width: usize) -> Vec<Line<'static>
             lines.push(Line::from(format!("{h:<head_w$}{l}")));
         }
     }
-    let dim = Style::default().add_modifier(Modifier::DIM);
+    let plain = theme.label();
     lines.push(Line::from(""));
     let notes = [
         "Values are typed in the unit shown (45 = 45 g) or with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB",
         "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\"",
     ];
     for note in notes.iter().take(if names { 2 } else { 1 }) {
-        lines.extend(wrap_all(&theme.text(note), width).into_iter().map(|l| Line::from(Span::styled(l, dim))));
+        lines.extend(wrap_all(&theme.text(note), width).into_iter().map(|l| Line::from(Span::styled(l, plain))));
     }
     lines
 }
@@ -975,7 +976,7 @@ fn list_popup(f: &mut Frame, list: &ListView, theme: &Palette, area: Rect) {
         .skip(first)
         .take(rows_h)
         .map(|(i, item)| {
-            let mut style = if item.problem { Style::default().add_modifier(Modifier::DIM) } else { Style::default() };
+            let mut style = if item.problem { theme.error() } else { Style::default() };
             if i == sel {
                 style = style.add_modifier(Modifier::REVERSED);
             }
