@@ -40,6 +40,7 @@ pub mod plot;
 pub mod polar;
 pub mod readout;
 pub mod response;
+pub mod sgr16;
 pub mod terminal;
 pub mod theme;
 pub mod tour;

@@ -533,6 +533,99 @@ pub fn fold_buffer(buf: &mut Buffer) -> usize {
 mod tests {
     use super::*;
 
+    /// WCAG 2.1 relative luminance of a colour of the reference palette.
+    fn luminance(c: Color) -> f64 {
+        let (r, g, b) = XTERM_RGB[usize::from(ansi_index(c).expect("a named colour"))];
+        let lin = |v: u8| {
+            let s = f64::from(v) / 255.0;
+            if s <= 0.04045 {
+                s / 12.92
+            } else {
+                ((s + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        0.2126 * lin(r) + 0.7152 * lin(g) + 0.0722 * lin(b)
+    }
+
+    /// WCAG 2.1 contrast ratio of two colours.
+    fn contrast(a: Color, b: Color) -> f64 {
+        let (la, lb) = (luminance(a), luminance(b));
+        (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+    }
+
+    #[test]
+    fn the_reference_luminances_are_wcags() {
+        assert!((contrast(Color::Black, Color::White) - 21.0).abs() < 1e-9);
+        assert!((luminance(Color::Red) - 0.2126 * ((205.0 / 255.0 + 0.055) / 1.055_f64).powf(2.4)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn zone_digits_read_on_their_fill_at_4_5_to_1_in_both_themes() {
+        for light in [false, true] {
+            let p = Palette { light, ..Palette::dark() };
+            for zone in [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak] {
+                let s = p.zone(zone);
+                let (fg, bg) = (s.fg.expect("a digit colour"), s.bg.expect("a fill"));
+                let c = contrast(fg, bg);
+                assert!(c >= 4.5, "zone {zone:?} (light {light}): {fg:?} on {bg:?} is {c:.2}:1");
+            }
+        }
+    }
+
+    #[test]
+    fn every_role_reads_on_its_themes_background() {
+        for (light, background) in [(false, Color::Black), (true, Color::White)] {
+            let p = Palette { light, ..Palette::dark() };
+            for role in Role::ALL {
+                let Some(c) = p.role_color(role) else { continue };
+                let need = if role.is_text() { 4.5 } else { 3.0 };
+                let got = contrast(c, background);
+                assert!(got >= need, "{role:?} {c:?} on {background:?} (light {light}): {got:.2}:1 < {need}");
+            }
+            for zone in [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak] {
+                if let Some(c) = p.zone_ink(zone).fg {
+                    assert!(contrast(c, background) >= 3.0, "zone ink {zone:?} {c:?} on {background:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn no_role_is_dim_and_behind_is_the_only_dim() {
+        for light in [false, true] {
+            let p = Palette { light, ..Palette::dark() };
+            for role in Role::ALL {
+                assert!(!p.style(role).add_modifier.contains(Modifier::DIM), "{role:?}");
+                assert!(p.style(role).fg.is_none_or(|c| ansi_index(c).is_some()), "{role:?}: a named colour");
+            }
+        }
+        let p = Palette::dark();
+        assert!(p.behind(p.label()).add_modifier.contains(Modifier::DIM));
+        assert!(p.pinned().add_modifier.contains(Modifier::DIM));
+    }
+
+    #[test]
+    fn sixteen_colours_unless_the_terminal_advertises_256() {
+        assert_eq!(Depth::from_vars(Some("xterm"), None), Depth::Sixteen);
+        assert_eq!(Depth::from_vars(Some("screen"), Some("")), Depth::Sixteen);
+        assert_eq!(Depth::from_vars(None, None), Depth::Sixteen);
+        assert_eq!(Depth::from_vars(Some("xterm-256color"), None), Depth::Indexed256);
+        assert_eq!(Depth::from_vars(Some("tmux-256color"), None), Depth::Indexed256);
+        assert_eq!(Depth::from_vars(Some("xterm-direct"), None), Depth::Indexed256);
+        assert_eq!(Depth::from_vars(Some("xterm"), Some("truecolor")), Depth::Indexed256);
+    }
+
+    #[test]
+    fn themes_map_to_palettes() {
+        use crate::config::Theme;
+        let p = Palette::dark();
+        assert_eq!(p.with_theme(Theme::Light), Palette { light: true, ..p });
+        assert_eq!(p.with_theme(Theme::Mono), Palette { color: false, ..p });
+        assert_eq!(Palette { light: true, ..p }.with_theme(Theme::Default), p);
+        assert_eq!(p.with_theme(Theme::Light).style(Role::Damper).fg, Some(Color::Magenta));
+        assert_eq!(p.style(Role::Damper).fg, Some(Color::Yellow));
+    }
+
     #[test]
     fn ascii_spells_what_it_can_instead_of_a_question_mark() {
         let folded = fold("±0.02 dB, e ≈ 0.5, N ≠ 1, ∞, ○○ none ●● damper, cut…");
