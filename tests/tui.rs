@@ -14,7 +14,8 @@ use thud::tui::{compute_sync, draw, Palette};
 /// The default design with every result computed on this thread (small chart grid).
 fn computed_app() -> App {
     let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
-    let mut app = App::with_grids(Design::default(), "default", Palette { color: true, ascii: false, light: false }, grids);
+    let mut app =
+        App::with_grids(Design::default(), "default", Palette { color: true, ascii: false, light: false }, grids);
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
@@ -1251,7 +1252,11 @@ fn the_polar_curve_is_never_covered_and_its_parts_have_their_own_glyphs() {
     use thud::tui::polar::PolarView;
     let app = full_app("default", Palette::default());
     let polar: &'static [(f64, f64)] = Box::leak(app.acoustic().unwrap().polar.clone().into_boxed_slice());
-    for theme in [Palette { color: false, ascii: false, light: false }, Palette { color: false, ascii: true, light: false }, Palette::default()] {
+    for theme in [
+        Palette { color: false, ascii: false, light: false },
+        Palette { color: false, ascii: true, light: false },
+        Palette::default(),
+    ] {
         for (w, h) in [(20, 10), (34, 14), (36, 16), (60, 25), (90, 30)] {
             let area = ratatui::layout::Rect::new(0, 0, w, h);
             let view = |live: &'static [(f64, f64)]| PolarView {

@@ -504,7 +504,7 @@ impl ZoneGridView<'_> {
             .iter()
             .map(|o| th.text(o).into_owned())
             .find(|o| o.chars().count() <= room)
-            .unwrap_or_else(|| th.text(&options[options.len() - 1]).into_owned());
+            .unwrap_or_else(|| th.fit(&th.text(&options[options.len() - 1]), room).into_owned());
         if l.info_y < inner.bottom() {
             buf.set_stringn(inner.x, l.info_y, &marker, 3, mark_style);
             buf.set_stringn(inner.x + 3, l.info_y, &text, room, Style::default());
@@ -518,7 +518,8 @@ impl Widget for ZoneGridView<'_> {
         (&self.block).render(area, buf);
         let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme, pending(self.cells), unsure(self.cells))
         else {
-            Paragraph::new("too small for the chart").render(inner, buf);
+            Paragraph::new(self.theme.fit("too small for the chart", inner.width.into()).into_owned())
+                .render(inner, buf);
             return;
         };
         let g = &l.geometry;

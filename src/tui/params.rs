@@ -39,6 +39,7 @@ impl ParamsView<'_> {
         let label = self.theme.text(label);
         let value = self.theme.text(value);
         let text = format!("{pointer}{label:<label_w$} {value:>value_w$}");
+        let text = self.theme.fit(&text, width).into_owned();
         let style = if selected {
             let s = Style::default().add_modifier(Modifier::REVERSED);
             if self.focused {

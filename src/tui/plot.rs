@@ -256,12 +256,14 @@ impl Widget for LinePlot<'_> {
         (&self.block).render(area, buf);
         let has_data = self.series.iter().any(|s| !s.data.is_empty());
         if !has_data {
-            Paragraph::new(self.theme.text(self.empty).into_owned()).render(inner, buf);
+            let empty = self.theme.text(self.empty);
+            Paragraph::new(self.theme.fit(&empty, inner.width.into()).into_owned()).render(inner, buf);
             return;
         }
         let (xb, yb) = self.bounds();
         let Some(axes) = draw_axes(buf, inner, xb, yb, self.x_title, self.y_title, &self.theme) else {
-            Paragraph::new(self.theme.text("too small for this plot").into_owned()).render(inner, buf);
+            let msg = self.theme.text("too small for this plot");
+            Paragraph::new(self.theme.fit(&msg, inner.width.into()).into_owned()).render(inner, buf);
             return;
         };
         if self.y_zero && yb[0] < 0.0 && yb[1] > 0.0 {
@@ -337,7 +339,7 @@ pub fn draw_axes(
     let mut graph = Rect::new(axis_x + 1, inner.y + 1, graph_w, graph_h);
     let x_title = theme.text(x_title);
     let arrow = theme.sym(" →", " ->");
-    let x_title = format!("{x_title}{arrow}");
+    let x_title = theme.fit(&format!("{x_title}{arrow}"), inner.width.into()).into_owned();
     // X ticks: as many as fit with a space between labels.
     let x_label_w = |step: f64| {
         ticks(xb[0], xb[1], 50)
@@ -372,6 +374,7 @@ pub fn draw_axes(
     let axes = Axes { graph, xb, yb };
     // The y title and axis.
     let y_title = theme.text(y_title);
+    let y_title = theme.fit(&y_title, inner.width.into());
     buf.set_stringn(inner.x, inner.y, &*y_title, inner.width as usize, label);
     let (v_line, tick_y, corner, h_line, tick_x) =
         if theme.ascii { ("|", "+", "+", "-", "+") } else { ("│", "┤", "└", "─", "┬") };

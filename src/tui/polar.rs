@@ -125,7 +125,7 @@ impl Widget for PolarView<'_> {
         let th = self.theme;
         let Some(PolarLayout { canvas, xb, yb, floor, top }) = self.layout(inner) else {
             let text = if self.live.is_empty() { "no impact: no sound" } else { "too small for the polar" };
-            Paragraph::new(th.text(text).into_owned()).render(inner, buf);
+            Paragraph::new(th.fit(&th.text(text), inner.width.into()).into_owned()).render(inner, buf);
             return;
         };
         let (lo, hi) = self.range_deg;
@@ -187,7 +187,7 @@ impl Widget for PolarView<'_> {
             Some((_, db)) => format!("{ray} θ {}° → {} dB", sig(theta, 3), sig(db, 4)),
             None => format!("{ray} θ {}°", sig(theta, 3)),
         };
-        let text = th.text(&text).into_owned();
+        let text = th.fit(&th.text(&text), inner.width.into()).into_owned();
         buf.set_stringn(inner.x, inner.bottom() - 1, &text, inner.width as usize, Style::default());
     }
 }

@@ -195,6 +195,7 @@ impl Widget for ResponseView<'_> {
             .render(bottom, buf);
         }
         let line = th.text(&marker_line(r, &self.band, self.freq_hz, info.width as usize)).into_owned();
+        let line = th.fit(&line, info.width.into()).into_owned();
         buf.set_stringn(info.x, info.y, &line, info.width as usize, Style::default());
     }
 }

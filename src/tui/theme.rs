@@ -26,8 +26,9 @@ use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::border;
 use ratatui::symbols::Marker;
-use ratatui::text::Line;
+use ratatui::text::{Line, Span};
 use ratatui::widgets::Block;
+use unicode_width::{UnicodeWidthChar, UnicodeWidthStr};
 
 use crate::design::Zone;
 
@@ -371,6 +372,77 @@ impl Palette {
         }
     }
 
+    /// The ellipsis that ends cut text: `…`, or `...` with `--ascii`.
+    pub fn ellipsis(&self) -> &'static str {
+        if self.ascii {
+            "..."
+        } else {
+            "…"
+        }
+    }
+
+    /// `text` in at most `width` columns (display width): whole when it fits, else cut and
+    /// ended with [`Self::ellipsis`]. Every place that cuts text cuts it here.
+    pub fn fit<'a>(&self, text: &'a str, width: usize) -> Cow<'a, str> {
+        if text.width() <= width {
+            return Cow::Borrowed(text);
+        }
+        let ell = self.ellipsis();
+        let Some(room) = width.checked_sub(ell.width()) else {
+            return Cow::Owned(ell.chars().take(width).collect());
+        };
+        let mut out = take_width(text, room).trim_end().to_string();
+        out.push_str(ell);
+        Cow::Owned(out)
+    }
+
+    /// A line of styled spans in at most `width` columns, cut like [`Self::fit`]: the
+    /// ellipsis takes the style of the span it cuts.
+    pub fn fit_line(&self, line: Line<'static>, width: usize) -> Line<'static> {
+        // Trailing blanks (a padded column) may fall off the edge: nothing is lost.
+        let mut blanks = 0;
+        for span in line.spans.iter().rev() {
+            let c = &span.content;
+            blanks += c.width() - c.trim_end().width();
+            if !c.trim_end().is_empty() {
+                break;
+            }
+        }
+        if line.width() - blanks <= width {
+            return line;
+        }
+        let room = width.saturating_sub(self.ellipsis().width());
+        let mut spans: Vec<Span<'static>> = Vec::new();
+        let mut used = 0;
+        for span in line.spans {
+            let w = span.width();
+            if used + w <= room {
+                used += w;
+                spans.push(span);
+                continue;
+            }
+            // The span that does not fit: as much of it as does, then the ellipsis.
+            let mut cut = take_width(&span.content, room - used).trim_end().to_string();
+            cut.push_str(self.ellipsis());
+            spans.push(Span::styled(cut, span.style));
+            return Line::from(spans).style(line.style);
+        }
+        Line::from(spans).style(line.style)
+    }
+
+    /// Wrapped `lines` in a box `height` rows high and `width` wide: when they do not all fit,
+    /// the last one shown ends with the ellipsis.
+    pub fn fit_lines(&self, mut lines: Vec<String>, height: usize, width: usize) -> Vec<String> {
+        if lines.len() > height {
+            lines.truncate(height);
+            if let Some(last) = lines.last_mut() {
+                let room = width.saturating_sub(self.ellipsis().width());
+                *last = format!("{}{}", take_width(last, room).trim_end(), self.ellipsis());
+            }
+        }
+        lines
+    }
+
     /// The marker of a main curve: Braille, or `*` with `--ascii`.
     pub fn line_marker(&self) -> Marker {
         if self.ascii {
@@ -402,6 +474,18 @@ impl Palette {
             unicode
         }
     }
+}
+
+/// The longest start of `text` at most `width` columns wide.
+fn take_width(text: &str, width: usize) -> &str {
+    let mut used = 0;
+    for (i, c) in text.char_indices() {
+        used += c.width().unwrap_or(0);
+        if used > width {
+            return &text[..i];
+        }
+    }
+    text
 }
 
 /// Plain ASCII borders (ratatui has no ASCII border set).
@@ -442,6 +526,19 @@ fn ascii_word(c: char) -> Option<&'static str> {
         'ν' => "nu",
         'π' => "pi",
         'ω' => "omega",
+        'Ω' => "Omega",
+        'β' => "beta",
+        'γ' => "gamma",
+        'ε' => "eps",
+        'ζ' => "zeta",
+        'η' => "eta",
+        'σ' => "sigma",
+        'φ' => "phi",
+        '█' | '■' => "#",
+        '┈' | '╌' => "-",
+        '▲' => "^",
+        '▼' => "v",
+        '✓' => "ok",
         '·' => "*",
         '—' | '–' | '−' => "-",
         '×' => "x",
@@ -510,8 +607,16 @@ fn ascii_cell(sym: &str) -> &'static str {
         '±' | '○' | '◇' => "+",
         '≈' | '≃' | '∼' => "~",
         '…' | '⋯' => ".",
-        _ => "?",
+        // Anything else the text fold can spell: its first letter (one cell has room for one).
+        _ => ascii_word(c).map_or("?", |w| &w[..1]),
     }
+}
+
+/// Whether `--ascii` can show `c` without a `?`: it is ASCII, or the text fold or the
+/// frame's last pass has a spelling for it.
+pub fn spellable(c: char) -> bool {
+    let mut b = [0; 4];
+    c.is_ascii() || ascii_word(c).is_some() || ascii_cell(c.encode_utf8(&mut b)) != "?"
 }
 
 /// Replaces every non-ASCII cell of `buf` by an ASCII one (the `--ascii` frame's last pass:

@@ -40,12 +40,7 @@ pub fn title(single: Option<f64>, width: u16) -> String {
 
 impl Widget for WaveformView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let mut series = vec![Curve::line(
-            "live",
-            self.live,
-            self.theme.style(Role::Live),
-            self.theme.line_marker(),
-        )];
+        let mut series = vec![Curve::line("live", self.live, self.theme.style(Role::Live), self.theme.line_marker())];
         if let Some(p) = self.pinned {
             series.insert(0, Curve::line("pinned", p, self.theme.pinned(), self.theme.mark('•', '.')));
         }
