@@ -205,3 +205,178 @@ fn theme_light_in_config_and_on_the_command_line() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("purple"), "{err}");
 }
+
+// ---- Item 11: text cut with an ellipsis; --ascii spells rather than `?` ----
+
+const ASCII: Palette = Palette { color: true, ascii: true, light: false };
+
+fn screen(app: &mut App, w: u16, h: u16) -> String {
+    text(&buffer(app, w, h))
+}
+
+/// The status line's row: above the footer when there is one.
+fn status_row(app: &App, h: u16) -> usize {
+    let footer = h >= 12 && app.tour.is_none();
+    usize::from(h) - 1 - usize::from(footer)
+}
+
+/// `narrow` is `full` whole, or its start ended with the ellipsis `ell`.
+fn assert_whole_or_cut(narrow: &str, full: &str, ell: &str, what: &str) {
+    let (n, f) = (narrow.trim_end(), full.trim_end());
+    if n == f {
+        return;
+    }
+    assert!(n.ends_with(ell), "{what} cut without {ell:?}:\n  narrow {n:?}\n  full   {f:?}");
+    let head = n.strip_suffix(ell).unwrap().trim_end();
+    assert!(f.starts_with(head), "{what}: {n:?} is not the start of {f:?}");
+}
+
+/// The header and the status line at 60×20 and 80×24 against the same lines at 400 columns.
+fn check_header_and_status(app: &mut App, ell: &str, what: &str) -> usize {
+    let full = screen(app, 400, 60);
+    let full_rows: Vec<&str> = full.lines().collect();
+    let mut cut = 0;
+    for (w, h) in [(60, 20), (80, 24)] {
+        let s = screen(app, w, h);
+        let rows: Vec<&str> = s.lines().collect();
+        assert_whole_or_cut(rows[0], full_rows[0], ell, &format!("{what}: header at {w}x{h}"));
+        let (r, fr) = (status_row(app, h), status_row(app, 60));
+        assert_whole_or_cut(rows[r], full_rows[fr], ell, &format!("{what}: status at {w}x{h}"));
+        cut += usize::from(rows[0].trim_end() != full_rows[0].trim_end());
+        cut += usize::from(rows[r].trim_end() != full_rows[fr].trim_end());
+    }
+    cut
+}
+
+#[test]
+fn the_header_and_the_status_line_end_with_an_ellipsis_where_cut() {
+    for (theme, ell) in [(DARK, "…"), (ASCII, "...")] {
+        let d = thud::presets::preset("paper-table3").unwrap();
+        let grids = Grids { coarse: None, fine: Grid::standard(4, 3) };
+        let mut app = App::with_grids(d, "a-long-preset-name-read-from-the-back-row", theme, grids);
+        let reqs = app.initial_requests();
+        compute_sync(&mut app, reqs);
+        let mut cut = check_header_and_status(&mut app, ell, "main");
+        // A refused value: the error names the whole of what was typed.
+        press(&mut app, KeyCode::Enter);
+        for c in "forty-and-a-half-grams-please-and-then-some-more".chars() {
+            press(&mut app, KeyCode::Char(c));
+        }
+        cut += check_header_and_status(&mut app, ell, "typing");
+        press(&mut app, KeyCode::Enter);
+        let s = screen(&mut app, 400, 60);
+        assert!(s.contains("error: invalid mass: 'forty-and-a-half"), "{s}");
+        cut += check_header_and_status(&mut app, ell, "error");
+        assert!(cut >= 4, "the header and the error were cut at 60 columns ({cut} cut)");
+    }
+}
+
+#[test]
+fn the_too_small_message_ends_with_an_ellipsis() {
+    for (theme, ell) in [(DARK, "…"), (ASCII, "...")] {
+        let mut app = app_with("default", theme);
+        for (w, h) in [(20, 5), (29, 7), (12, 3)] {
+            let s = screen(&mut app, w, h);
+            let first = s.lines().next().unwrap().trim_end();
+            assert!(first.starts_with("thud: ter"), "{s}");
+            assert!(first.ends_with(ell), "{w}x{h}: {first:?}");
+        }
+        // Wide enough for the whole message: no ellipsis.
+        let first = screen(&mut app, 60, 6).lines().next().unwrap().trim_end().to_string();
+        assert!(first.ends_with("need 30x8") || first.ends_with("need 30×8"), "{first:?}");
+    }
+}
+
+#[test]
+fn tour_captions_and_titles_are_whole_or_end_with_an_ellipsis() {
+    for (theme, ell) in [(DARK, "…"), (ASCII, "...")] {
+        let mut app = app_with("default", theme);
+        press(&mut app, KeyCode::Char('T'));
+        let n = app.tour.as_ref().unwrap().tour.steps.len();
+        let mut cut = 0;
+        for _ in 0..n {
+            let step = app.tour.as_ref().unwrap().tour.steps[app.tour.as_ref().unwrap().step].clone();
+            for (w, h) in [(60, 20), (80, 24)] {
+                let s = screen(&mut app, w, h);
+                let rows: Vec<&str> = s.lines().collect();
+                // The caption box: the five rows above the status line.
+                let status = status_row(&app, h);
+                let inner: Vec<String> = rows[status - 4..status - 1]
+                    .iter()
+                    .map(|r| {
+                        let r = r.trim_end();
+                        let body = if theme.ascii { r.trim_start_matches('|') } else { r.trim_start_matches('│') };
+                        let body = if theme.ascii { body.trim_end_matches('|') } else { body.trim_end_matches('│') };
+                        body.trim_end().to_string()
+                    })
+                    .collect();
+                let last_word = step.caption.split_whitespace().last().unwrap();
+                let last_word = if theme.ascii { thud::tui::theme::fold(last_word) } else { last_word.to_string() };
+                let whole = inner.iter().any(|l| l.ends_with(&last_word));
+                let last = inner.iter().rev().find(|l| !l.is_empty()).unwrap();
+                assert!(whole || last.ends_with(ell), "step caption at {w}x{h} cut without {ell:?}:\n{s}");
+                cut += usize::from(!whole);
+                // The box's title.
+                let top = rows[status - 5];
+                let title = if theme.ascii { fold_title(&step.title) } else { step.title.clone() };
+                assert!(top.contains(&title) || top.contains(ell), "title at {w}x{h}: {top:?}");
+            }
+            press(&mut app, KeyCode::Right);
+        }
+        assert!(cut > 0, "some caption is cut at 60x20");
+    }
+}
+
+fn fold_title(t: &str) -> String {
+    thud::tui::theme::fold(t)
+}
+
+/// Every character of many screens (every field selected, both help pages, every tour step).
+fn chars_of_many_screens(theme: Palette) -> Vec<String> {
+    let mut app = app_with("paper-table3", theme);
+    let mut screens = vec![screen(&mut app, 120, 40), screen(&mut app, 80, 24)];
+    for _ in 0..thud::tui::fields::Knob::ALL.len() {
+        screens.push(screen(&mut app, 200, 60));
+        press(&mut app, KeyCode::Down);
+    }
+    press(&mut app, KeyCode::Char('?'));
+    screens.push(screen(&mut app, 120, 60));
+    press(&mut app, KeyCode::Right);
+    screens.push(screen(&mut app, 120, 60));
+    press(&mut app, KeyCode::Esc);
+    press(&mut app, KeyCode::Char('T'));
+    while app.tour.is_some() {
+        screens.push(screen(&mut app, 120, 40));
+        screens.push(screen(&mut app, 80, 24));
+        press(&mut app, KeyCode::Right);
+    }
+    screens
+}
+
+#[test]
+fn ascii_spells_every_character_the_screens_use_and_never_prints_a_question_mark_for_one() {
+    let unicode = chars_of_many_screens(DARK);
+    let mut unknown: Vec<char> =
+        unicode.iter().flat_map(|s| s.chars()).filter(|c| !thud::tui::theme::spellable(*c)).collect();
+    unknown.sort_unstable();
+    unknown.dedup();
+    assert!(unknown.is_empty(), "--ascii would print ? for {unknown:?}");
+    let ascii = chars_of_many_screens(ASCII);
+    let all = ascii.join("\n");
+    assert!(all.is_ascii());
+    assert!(all.contains("+/-90deg"), "± spelled +/- (the polar's tour step)");
+    assert!(all.contains("Newmark-beta"), "β spelled beta (the solver's explanation)");
+    assert!(!all.contains("Newmark-?"));
+    // What `?` remains is the help key, never a stand-in: each is followed or preceded by a blank
+    // or a bracket as in "? help", "(?)" or "help?".
+    for s in &ascii {
+        for (i, _) in s.match_indices('?') {
+            let around = &s[i.saturating_sub(12)..(i + 12).min(s.len())];
+            let prev = s[..i].chars().last().unwrap_or(' ');
+            assert!(
+                !prev.is_alphanumeric() || around.contains("help") || around.contains("y/n"),
+                "a ? standing in for a character: {around:?}"
+            );
+        }
+    }
+}
