@@ -9,6 +9,7 @@ use std::cell::RefCell;
 use std::io::Write;
 use std::rc::Rc;
 
+use clap::Parser;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
@@ -197,7 +198,6 @@ fn theme_light_in_config_and_on_the_command_line() {
     assert_eq!(app.theme, LIGHT);
     assert!(thud::config::check_text(std::path::Path::new("c.toml"), "theme = \"light\"\n").is_empty());
 
-    use clap::Parser;
     let cli = thud::cli::Cli::try_parse_from(["thud", "tui", "--theme", "light"]).unwrap();
     let Some(thud::cli::Command::Tui(a)) = cli.command else { panic!("tui") };
     assert_eq!(a.theme, Some(thud::config::Theme::Light));

@@ -327,7 +327,7 @@ impl ZoneGridView<'_> {
         };
         // A guessed cell is drawn behind (dim); an exact one plain (not bold: a bold black digit
         // turns grey in terminals that brighten bold, and loses its contrast on the fill).
-        if !(exact && !unsure) {
+        if !exact || unsure {
             style = self.theme.behind(style);
         }
         let text = if known { glyph(zone) } else { self.theme.sym("·", ".").to_string() };

@@ -739,27 +739,27 @@ fn status_line(app: &App) -> Line<'static> {
     let plain = th.label();
     if let Mode::SaveAs(buf) = &app.mode {
         let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
-        return Line::from(Line::from(vec![
+        return Line::from(vec![
             Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
             Span::styled(buf.clone(), typed(app)),
             Span::raw(cursor),
             Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), plain),
-        ]));
+        ]);
     }
     if let Mode::ConfirmOverwrite(name) = &app.mode {
-        return Line::from(Line::from(vec![
+        return Line::from(vec![
             Span::styled(format!(" overwrite {name}? y/n"), Style::default().add_modifier(Modifier::BOLD)),
             Span::styled("  (y replaces the saved design of that name; any other key keeps it)", plain),
-        ]));
+        ]);
     }
     if app.mode == Mode::ConfirmQuit {
-        return Line::from(Line::from(vec![
+        return Line::from(vec![
             Span::styled(" quit without saving? y/n", Style::default().add_modifier(Modifier::BOLD)),
             Span::styled(
                 format!("  (y quits; any other key stays, then {} saves)", app.key_label(Action::Save)),
                 plain,
             ),
-        ]));
+        ]);
     }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.param();
@@ -771,7 +771,7 @@ fn status_line(app: &App) -> Line<'static> {
             ),
             _ => "  (Enter accepts, Esc cancels, Ctrl-U clears)".to_string(),
         };
-        return Line::from(Line::from(vec![
+        return Line::from(vec![
             Span::styled(
                 th.text(&format!(" {} = ", f.label())).into_owned(),
                 Style::default().add_modifier(Modifier::BOLD),
@@ -779,7 +779,7 @@ fn status_line(app: &App) -> Line<'static> {
             Span::styled(th.text(buf).into_owned(), typed(app)),
             Span::raw(cursor),
             Span::styled(th.text(&hint).into_owned(), plain),
-        ]));
+        ]);
     }
     match &app.status {
         Some(s) if s.error => Line::from(Span::styled(th.text(&format!(" {}", s.text)).into_owned(), th.error())),
