@@ -739,6 +739,29 @@ mod tests {
     }
 
     #[test]
+    fn fit_cuts_by_display_width_and_ends_with_the_ellipsis() {
+        let (u, a) = (Palette::dark(), Palette { ascii: true, ..Palette::dark() });
+        assert_eq!(u.fit("θ 45.0°", 7), "θ 45.0°", "fits: whole");
+        assert_eq!(u.fit("SPL: rms over tau", 10), "SPL: rms…");
+        assert_eq!(a.fit("SPL: rms over tau", 10), "SPL: rm...");
+        // Wide characters count two columns; the cut never splits one.
+        assert_eq!(u.fit("日本語テキスト", 6), "日本…");
+        assert!(UnicodeWidthStr::width(&*u.fit("日本語テキスト", 6)) <= 6);
+        assert_eq!(a.fit("abcdef", 2), "..");
+        assert_eq!(u.fit("abcdef", 0), "");
+        let line = Line::from(vec![Span::raw(" thud "), Span::styled("preset long-name", Style::new().bold())]);
+        let cut = u.fit_line(line, 12);
+        assert_eq!(cut.to_string(), " thud prese…");
+        assert_eq!(cut.width(), 12);
+        assert!(cut.spans[1].style.add_modifier.contains(Modifier::BOLD), "the ellipsis keeps the cut span's style");
+        let padded = Line::from(vec![Span::raw("zone 1"), Span::raw("          ")]);
+        assert_eq!(u.fit_line(padded, 8).to_string(), "zone 1          ", "trailing blanks are not text");
+        let lines = vec!["one two".to_string(), "three four".into(), "five".into()];
+        assert_eq!(u.fit_lines(lines.clone(), 2, 10), ["one two", "three fou…"]);
+        assert_eq!(u.fit_lines(lines.clone(), 3, 10), lines);
+    }
+
+    #[test]
     fn fold_spells_units_and_symbols_in_ascii() {
         assert_eq!(fold("θ 45.0° τ@U0max 229 µs N·s/m"), "theta 45.0deg tau@U0max 229 us N*s/m");
         assert_eq!(fold("a — b → c ≥ d"), "a - b -> c >= d");

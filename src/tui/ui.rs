@@ -475,7 +475,8 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 PulseView::Single => Some(app.design.damper.v0_m_s),
                 PulseView::Loudest => None,
             };
-            let title = waveform::title(u0, title_width(app, Panel::Waveform, area));
+            let width = title_width(app, Panel::Waveform, area);
+            let title = fit(&theme, &[waveform::title(u0, width)], width);
             let view = WaveformView {
                 block: panel_block(app, Panel::Waveform, &title),
                 live,
@@ -516,7 +517,10 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
             let empty: &[(f64, f64)] = &[];
             let s = app.results.sim.as_deref();
             let view = HistoryView {
-                block: panel_block(app, Panel::History, history::title(title_width(app, Panel::History, area))),
+                block: panel_block(app, Panel::History, &{
+                    let width = title_width(app, Panel::History, area);
+                    fit(&theme, &[history::title(width).to_string()], width)
+                }),
                 with_damper: s.map_or(empty, |s| &s.history_cm),
                 without: s.map_or(empty, |s| &s.free_cm),
                 maxima: s.map_or(empty, |s| &s.maxima_cm),
