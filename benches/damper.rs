@@ -49,7 +49,7 @@ fn event_sweep(c: &mut Criterion) {
 /// The same 20×20 chart as the app computes it: `design::sweep` on every core, with e, e_fit,
 /// U0max, SPLmax and zone per cell.
 fn design_sweep(c: &mut Criterion) {
-    let base = thud::design::Design::default();
+    let base = thud::design::Design::default().check().unwrap();
     let masses = thud::design::linspace(0.03, 0.1, 20);
     let gaps = thud::design::linspace(0.02, 0.05, 20);
     let mut g = c.benchmark_group("sweep");

@@ -12,8 +12,8 @@ use thud::design::{self, linspace, Design};
 use thud::ensemble;
 
 fn robust_chart_vs_newmark(c: &mut Criterion) {
-    let newmark = Design { solver: Solver::Newmark { dt_s: 1e-7 }, ..Design::paper_fig9() };
-    let base = Design::paper_fig9();
+    let newmark = Design { solver: Solver::Newmark { dt_s: 1e-7 }, ..Design::paper_fig9() }.check().unwrap();
+    let base = Design::paper_fig9().check().unwrap();
     let masses = linspace(0.03, 0.1, 20);
     let gaps = linspace(0.02, 0.05, 20);
     let mut g = c.benchmark_group("robust chart vs newmark");

@@ -82,6 +82,9 @@ fn responses(c: &mut Criterion) {
     d.damper.duration_s = 0.1;
     d.damper.steady_periods = 20;
     let freqs = linspace(3.0, 8.0, 101);
+    // Checked at the first frequency, as `thud response` builds it; each point sets its own.
+    d.damper.freq_hz = freqs[0];
+    let d = d.check().unwrap();
     let fixed = ResponseOptions { continuation: false, settle: false };
     let r = response(&d, &freqs, &fixed, None, &|| {}).unwrap();
     let ipp: f64 = r.sweeps[0].points.iter().map(|p| p.steady.impacts_per_period).sum::<f64>() / freqs.len() as f64;
@@ -94,6 +97,8 @@ fn responses(c: &mut Criterion) {
     let mut cli = Design::default();
     cli.damper.force_n = 1.0;
     cli.damper.v0_m_s = 0.0;
+    cli.damper.freq_hz = freqs[0];
+    let cli = cli.check().unwrap();
     g.bench_function("response 101 points settled (thud response --force 1N)", |b| {
         b.iter(|| response(black_box(&cli), &freqs, &ResponseOptions::default(), None, &|| {}).unwrap());
     });

@@ -740,7 +740,7 @@ mod tests {
             .map(|k| {
                 let h = Header::new(s.clone(), k, n);
                 let cells: Vec<PartCell> = ensemble::sweep_cells(
-                    &s.design,
+                    &s.design.clone().check().unwrap(),
                     &s.masses_kg,
                     &s.gaps_m,
                     s.ensemble,
@@ -781,7 +781,9 @@ mod tests {
     fn merged_parts_are_the_whole_chart_in_both_formats() {
         for ens in [1, 3] {
             let s = study(ens);
-            let whole = ensemble::sweep(&s.design, &s.masses_kg, &s.gaps_m, ens, None, &|_, _| {}).unwrap();
+            let whole =
+                ensemble::sweep(&s.design.clone().check().unwrap(), &s.masses_kg, &s.gaps_m, ens, None, &|_, _| {})
+                    .unwrap();
             for format in [Format::JsonLines, Format::Csv] {
                 for n in [1, 4, 6] {
                     let m = read(&parts(&s, n, format)).unwrap();
@@ -792,7 +794,8 @@ mod tests {
             }
         }
         let s = study(1);
-        let plain = design::sweep(&s.design, &s.masses_kg, &s.gaps_m, None, &|_, _| {}).unwrap();
+        let plain =
+            design::sweep(&s.design.clone().check().unwrap(), &s.masses_kg, &s.gaps_m, None, &|_, _| {}).unwrap();
         assert_eq!(read(&parts(&s, 5, Format::Csv)).unwrap().chart(), plain);
     }
 

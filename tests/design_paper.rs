@@ -115,7 +115,7 @@ fn table4_paper_exact_column_matches_40_5_g() {
 
 #[test]
 fn fig9_first_impacts() {
-    let d = presets::preset("paper-fig9").unwrap();
+    let d = presets::preset("paper-fig9").unwrap().check().unwrap();
     let e = design::evaluate(&d, 0, None).unwrap();
     let i = &e.run.impacts;
     assert!((i[0].t_s - 0.0101800).abs() < 1e-6);
@@ -143,24 +143,24 @@ fn splmax_rises_with_impact_speed() {
 fn no_impact_design_has_no_spl_and_no_zone() {
     let mut d = Design::default();
     d.damper.gap_m = 2.5 * 2.0 * d.damper.v0_m_s / (d.damper.stiffness_n_m / d.damper.main_mass_kg).sqrt();
-    let e = design::evaluate(&d, 0, None).unwrap();
+    let e = design::evaluate(&d.clone().check().unwrap(), 0, None).unwrap();
     assert_eq!(e.metrics.n_impacts, 0);
     assert!(e.metrics.spl_max_db.is_none() && e.metrics.zone.is_none());
     d.u0max_rule = U0MaxRule::WholeRun;
-    let e = design::evaluate(&d, 0, None).unwrap();
+    let e = design::evaluate(&d.clone().check().unwrap(), 0, None).unwrap();
     assert!((e.metrics.u0_max_m_s - d.damper.v0_m_s).abs() < 1e-12);
 }
 
 #[test]
 fn sweep_matches_single_evaluations_and_fills_every_cell() {
-    let base = presets::preset("paper-table3").unwrap();
+    let base = presets::preset("paper-table3").unwrap().check().unwrap();
     let masses = design::linspace(0.03, 0.1, 4);
     let gaps = design::linspace(0.02, 0.05, 3);
     let chart = design::sweep(&base, &masses, &gaps, None, &|_, _| {}).unwrap();
     assert_eq!(chart.done(), 12);
     for (gi, &g) in gaps.iter().enumerate() {
         for (mi, &m) in masses.iter().enumerate() {
-            let one = design::evaluate(&design::variant(&base, m, g), 0, None).unwrap();
+            let one = design::evaluate(&design::variant(&base, m, g).check().unwrap(), 0, None).unwrap();
             assert_eq!(chart.cell(mi, gi).unwrap().metrics, one.metrics);
         }
     }
@@ -169,7 +169,7 @@ fn sweep_matches_single_evaluations_and_fills_every_cell() {
 #[test]
 fn zone_three_is_at_small_gaps_in_the_paper_chart() {
     // The paper: zone 3 (quiet and strong) for d 2–3 cm and m 30–60 g.
-    let base = presets::preset("paper-table3").unwrap();
+    let base = presets::preset("paper-table3").unwrap().check().unwrap();
     let chart = design::sweep(&base, &[0.03, 0.045, 0.06], &[0.0225, 0.025], None, &|_, _| {}).unwrap();
     let threes = chart.cells.iter().flatten().filter(|c| c.metrics.zone == Some(Zone::QuietStrong)).count();
     assert!(threes >= 5, "{threes} of 6 in zone 3");
@@ -177,7 +177,7 @@ fn zone_three_is_at_small_gaps_in_the_paper_chart() {
 
 #[test]
 fn restitution_rises_with_mass() {
-    let d = Design::default();
+    let d = Design::default().check().unwrap();
     let r = design::restitution_curve(&d, &[0.01, 0.03, 0.05, 0.1], 1.4).unwrap();
     for ((_, got), want) in r.iter().zip([0.84, 0.91, 0.93, 0.95]) {
         assert!((got - want).abs() < 0.01, "{got} vs {want}");
@@ -200,7 +200,7 @@ fn invalid_designs_are_refused() {
     for (param, f) in cases {
         let mut d = Design::default();
         f(&mut d);
-        let err = design::evaluate(&d, 0, None).unwrap_err();
+        let err = d.check().unwrap_err();
         assert_eq!(err.param(), param, "{err}");
     }
 }

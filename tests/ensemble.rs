@@ -37,13 +37,13 @@ fn an_ensemble_of_one_is_today_s_output_exactly() {
 #[test]
 fn each_run_is_the_single_run_from_its_offset() {
     let d = Design::paper_fig9();
-    let e = ensemble::evaluate(&d, 16, None).unwrap().unwrap();
+    let e = ensemble::evaluate(&d.clone().check().unwrap(), 16, None).unwrap().unwrap();
     let offsets = ensemble::ball_positions(d.damper.gap_m, 16);
     assert_eq!(offsets[0], -0.02 + 0.04 / 32.0);
     for (m, y0) in e.ensemble.iter().zip(&offsets) {
         let mut alone = d.clone();
         alone.damper.ball_position_m = *y0;
-        let single = design::evaluate(&alone, 0, None).unwrap();
+        let single = design::evaluate(&alone.check().unwrap(), 0, None).unwrap();
         assert_eq!(m.ball_position_m, *y0);
         assert_eq!(m.metrics(), single.metrics, "y0 {y0}");
         assert_eq!(m.truncated, single.run.truncated);
@@ -105,7 +105,7 @@ fn simulate_json_lists_every_run_and_the_spread_they_give() {
         assert_eq!(num(&r["ball_position_m"]), Some(y0));
         let mut alone = d.clone();
         alone.damper.ball_position_m = y0;
-        let m = design::evaluate(&alone, 0, None).unwrap().metrics;
+        let m = design::evaluate(&alone.check().unwrap(), 0, None).unwrap().metrics;
         assert_eq!(num(&r["inclination_cm_s"]), m.inclination_cm_s, "y0 {y0}");
         assert_eq!(num(&r["spl_max_db"]), m.spl_max_db, "y0 {y0}");
         assert_eq!(r["zone"].as_u64(), m.zone.map(|z| u64::from(z.number())));

@@ -25,7 +25,7 @@ fn small_grid() -> ExportOptions {
 
 #[test]
 fn wav_parses_back_with_rate_length_and_a_peak_at_each_impact() {
-    let d = presets::preset("default").unwrap();
+    let d = presets::preset("default").unwrap().check().unwrap();
     let e = design::evaluate(&d, 0, None).unwrap();
     let bytes = export::render(Artifact::Wav, &d, &ExportOptions::default()).unwrap();
     let mut r = hound::WavReader::new(std::io::Cursor::new(bytes)).unwrap();
@@ -65,7 +65,7 @@ fn svg_title(doc: &str) -> String {
 
 #[test]
 fn every_svg_export_is_well_formed_with_its_title() {
-    let d = presets::preset("default").unwrap();
+    let d = presets::preset("default").unwrap().check().unwrap();
     for (kind, title, units) in [
         (Artifact::SvgWaveform, "Sound pressure of one impact", ["(ms)", "(Pa)"]),
         (Artifact::SvgDirectivity, "Directivity of one impact", ["(deg)", "(dB re 20 µPa)"]),
@@ -85,7 +85,7 @@ fn every_svg_export_is_well_formed_with_its_title() {
 
 #[test]
 fn csv_exports_have_their_headers_and_rows() {
-    let d = presets::preset("paper-fig9").unwrap();
+    let d = presets::preset("paper-fig9").unwrap().check().unwrap();
     for (kind, header, min_rows) in [
         (Artifact::CsvWaveform, "t_s,p_pa", 300),
         (Artifact::CsvHistory, "t_s,x_m,y_m,x_free_m", 300),

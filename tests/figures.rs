@@ -22,7 +22,7 @@ fn small_grid() -> ExportOptions {
 }
 
 fn svg_of(kind: Artifact) -> String {
-    let d = presets::preset("default").unwrap();
+    let d = presets::preset("default").unwrap().check().unwrap();
     String::from_utf8(export::render(kind, &d, &small_grid()).unwrap()).unwrap()
 }
 

@@ -257,7 +257,7 @@ fn a_frequency_without_a_force_changes_nothing() {
 fn leq_is_the_energy_average_of_the_pulses() {
     // Impacts far apart: Leq over a window is the sum of the pulses' exposures (each pulse's own
     // SEL, integrated by the acoustics module) over the window's length.
-    let d = Design::default();
+    let d = Design::default().check().unwrap();
     let impacts: Vec<ImpactEvent> = [(0.1, 1.2), (0.35, 0.8), (0.61, 1.9)]
         .iter()
         .map(|&(t_s, u)| ImpactEvent {
@@ -300,24 +300,24 @@ fn leq_is_the_energy_average_of_the_pulses() {
 
 #[test]
 fn a_forced_design_reports_its_steady_state_in_its_evaluation() {
-    let d = Design { damper: forced(1.0, 5.5, 4.0), ..Design::default() };
+    let d = Design { damper: forced(1.0, 5.5, 4.0), ..Design::default() }.check().unwrap();
     let e = design::evaluate(&d, 0, None).unwrap();
     let s = e.steady.expect("forced");
     let m = e.run.steady.unwrap();
     assert_eq!((s.amplitude_m, s.impacts_per_period, s.periodic), (m.amplitude_m, m.impacts_per_period, m.periodic));
     assert!(s.leq_db.is_some() && s.impacts_per_period > 0.0);
-    assert!(design::evaluate(&Design::default(), 0, None).unwrap().steady.is_none());
+    assert!(design::evaluate(&Design::default().check().unwrap(), 0, None).unwrap().steady.is_none());
 }
 
 #[test]
 fn a_response_from_rest_is_its_points_run_one_by_one() {
-    let d = Design { damper: forced(1.0, 5.0, 2.0), ..Design::default() };
+    let d = Design { damper: forced(1.0, 5.0, 2.0), ..Design::default() }.check().unwrap();
     let freqs = [4.0, 5.2, 6.0];
     let r = response::response(&d, &freqs, &ResponseOptions::default(), None, &|| {}).unwrap();
     assert_eq!(r.sweeps.len(), 1);
     assert_eq!(r.sweeps[0].direction, Direction::FromRest);
     for (pt, &f) in r.sweeps[0].points.iter().zip(&freqs) {
-        let one = design::evaluate(&response::at_frequency(&d, f, true), 0, None).unwrap();
+        let one = design::evaluate(&response::at_frequency(&d, f, true).check().unwrap(), 0, None).unwrap();
         assert_eq!(pt.steady, one.steady.unwrap(), "{f} Hz");
         assert_eq!(pt.final_time_s, one.run.final_time_s);
         assert!(pt.final_time_s >= 2.0 * 10.0 / f);
@@ -328,6 +328,7 @@ fn a_response_from_rest_is_its_points_run_one_by_one() {
 fn a_continued_response_sweeps_up_then_down() {
     let mut d = Design { damper: forced(1.0, 5.0, 2.0), ..Design::default() };
     d.damper.steady_periods = 4;
+    let d = d.check().unwrap();
     let freqs = [4.8, 5.0, 5.2];
     let opts = ResponseOptions { continuation: true, settle: false };
     let r = response::response(&d, &freqs, &opts, None, &|| {}).unwrap();

@@ -1419,7 +1419,7 @@ fn ensemble_app(n: usize, theme: Palette) -> App {
 fn an_ensemble_readout_shows_the_engines_median_and_p10_p90() {
     let mut app = ensemble_app(8, Palette::default());
     let screen = render(&mut app, 120, 40);
-    let e = thud::ensemble::evaluate(&app.design, 8, None).unwrap().unwrap();
+    let e = thud::ensemble::evaluate(&app.design.clone().check().unwrap(), 8, None).unwrap().unwrap();
     let sig = thud::units::sig;
     let p = e.spread.inclination_fit_cm_s;
     let want = format!("{} cm/s [{}–{}]", sig(p.median.unwrap(), 3), sig(p.p10.unwrap(), 3), sig(p.p90.unwrap(), 3));

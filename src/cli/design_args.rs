@@ -4,7 +4,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::{Arg, ArgAction, ArgGroup, ArgMatches, Args, Command, FromArgMatches};
 
 use super::{CliError, Ctx};
-use crate::design::Design;
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::limits::{self, short, Range, Refusal, Remedy};
 use crate::params::{self, Accepts, Group, Input, Param, Spelling};
@@ -145,7 +145,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// names the flag as typed), then the whole design (preset values too) and its derived
     /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
     /// shared with the Python module.
-    pub fn design(&self) -> Result<Design, ThudError> {
+    pub fn design(&self) -> Result<ValidDesign, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
         params::design(d, &self.given, Spelling::Flag)
@@ -153,7 +153,7 @@ impl<F: ForceFlag> DesignArgs<F> {
 
     /// The design of a frequency response from these flags at its first frequency
     /// ([`params::response_design`]).
-    pub fn response_design(&self, first_hz: f64) -> Result<Design, ThudError> {
+    pub fn response_design(&self, first_hz: f64) -> Result<ValidDesign, ThudError> {
         let mut d = presets::preset(&self.preset)?;
         d.thresholds = super::settings::load().thresholds(d.thresholds);
         params::response_design(d, &self.given, Spelling::Flag, first_hz, F::NAME)
@@ -220,7 +220,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     pub(crate) fn check_run(
         &self,
         ctx: &Ctx,
-        d: &Design,
+        d: &ValidDesign,
         history_samples: usize,
         samples_flag: &str,
     ) -> Result<(), CliError> {
@@ -230,7 +230,13 @@ impl<F: ForceFlag> DesignArgs<F> {
 
     /// Refuses a design chart of `n_masses` × `n_gaps` cells of `d` whose work is over a cap
     /// ([`limits::check_sweep`]).
-    pub(crate) fn check_sweep(&self, ctx: &Ctx, d: &Design, n_masses: usize, n_gaps: usize) -> Result<(), CliError> {
+    pub(crate) fn check_sweep(
+        &self,
+        ctx: &Ctx,
+        d: &ValidDesign,
+        n_masses: usize,
+        n_gaps: usize,
+    ) -> Result<(), CliError> {
         let r = limits::check_sweep(d, &|n| self.has(n), n_masses, n_gaps);
         self.refuse(ctx, d, r, ("--masses/--gaps", &format!("{n_masses} × {n_gaps}")))
     }
@@ -241,7 +247,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     pub(crate) fn check_runs(
         &self,
         ctx: &Ctx,
-        d: &Design,
+        d: &ValidDesign,
         cells: usize,
         runs: usize,
         flag: &str,

@@ -7,7 +7,7 @@ use clap::{Args, Subcommand, ValueEnum};
 
 use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
 use super::{budget, count, quantity, CliError, Ctx};
-use crate::design::Design;
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::export::wav::{SampleFormat, WavError, WavOptions};
 use crate::export::{self, svg, Artifact, ExportError, ExportOptions};
@@ -189,7 +189,7 @@ impl Common {
     }
 
     /// Refuses an export whose work is over a cap; says whether it is expected to be long.
-    fn check_work(&self, ctx: &Ctx, kind: Artifact, d: &Design, opts: &ExportOptions) -> Result<bool, CliError> {
+    fn check_work(&self, ctx: &Ctx, kind: Artifact, d: &ValidDesign, opts: &ExportOptions) -> Result<bool, CliError> {
         let points = &self.points;
         if kind.is_response() {
             let freqs = export::response_freqs(opts);

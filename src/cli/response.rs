@@ -9,7 +9,7 @@ use super::design_args::{parse_range, DesignArgs, ForceFlag};
 use super::format::num;
 use super::simulate::describe;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
-use crate::design::Design;
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::limits::{self, short};
 use crate::report::{ResponseEnsembleReport, ResponseReport};
@@ -38,14 +38,14 @@ pub struct ResponseArgs {
 
 /// The design of a response: the flags, from rest unless the start was typed, at the first
 /// frequency (each point sets its own): the engine's [`crate::params::response_design`].
-pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<Design, ThudError> {
+pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<ValidDesign, ThudError> {
     args.response_design(first_hz)
 }
 
 /// Refuses a response whose work is over a cap.
 pub(crate) fn check_work(
     ctx: &Ctx,
-    d: &Design,
+    d: &ValidDesign,
     freqs: &[f64],
     freqs_text: &str,
     continuation: bool,
@@ -58,7 +58,7 @@ pub(crate) fn check_work(
 /// when one run alone would be inside the cap), and the cycles of one run.
 fn check_runs_work(
     ctx: &Ctx,
-    d: &Design,
+    d: &ValidDesign,
     freqs: &[f64],
     freqs_text: &str,
     continuation: bool,

@@ -44,7 +44,7 @@ pub fn run(a: &RestitutionArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
     for &(m, r) in &curve {
         let mut row = vec![(m * 1e3).into(), r.into()];
         if let Some(t) = target {
-            let c1 = design::c1_for_restitution(&design::variant(&d, m, d.damper.gap_m), u0, t)?;
+            let c1 = design::c1_for_restitution(&design::variant(&d, m, d.damper.gap_m).check()?, u0, t)?;
             row.push(c1.into());
         }
         rows.push(row);

@@ -7,7 +7,7 @@ use super::design_args::DesignArgs;
 use super::format::num;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::damper::{free_response, Run, Solver};
-use crate::design::{self, Design, Evaluation};
+use crate::design::{self, Design, Evaluation, ValidDesign};
 use crate::ensemble::{self, Ensemble, Percentiles};
 use crate::error::ThudError;
 use crate::limits;
@@ -75,7 +75,7 @@ pub fn run(a: &SimulateArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
 }
 
 /// `thud simulate --ensemble N` (N > 1): the design from N ball offsets.
-fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &Design, runs: usize) -> Result<(), CliError> {
+fn run_ensemble(a: &SimulateArgs, ctx: &Ctx, out: &mut Out, d: &ValidDesign, runs: usize) -> Result<(), CliError> {
     a.design.check_run(ctx, d, 0, "--samples")?;
     a.design.check_runs(ctx, d, 1, runs, "--ensemble", &a.ensemble)?;
     let long = limits::ensemble_work(d, 1, runs)[2].value > 4e7;
@@ -195,7 +195,7 @@ pub fn describe(d: &Design) -> String {
     )
 }
 
-fn summary(d: &Design, e: &Evaluation, show: usize, truncated: Option<&str>) -> Result<String, ThudError> {
+fn summary(d: &ValidDesign, e: &Evaluation, show: usize, truncated: Option<&str>) -> Result<String, ThudError> {
     let m = &e.metrics;
     let mut s = format!("design    {}\n", describe(d));
     if let Some(why) = truncated {

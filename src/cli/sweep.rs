@@ -77,7 +77,7 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
         let (k, n) = parse_shard(text, masses.len() * gaps.len())?;
-        let study = Study { design: d, masses_kg: masses, gaps_m: gaps, band_cm_s: band, ensemble: runs };
+        let study = Study { design: d.into_design(), masses_kg: masses, gaps_m: gaps, band_cm_s: band, ensemble: runs };
         return write_shard(a, ctx, study, k, n, &target, out);
     }
     a.design.check_sweep(ctx, &d, masses.len(), gaps.len())?;
@@ -276,10 +276,12 @@ fn write_shard(
             s.ensemble
         ),
     )?;
-    a.design.check_runs(ctx, &s.design, part_cells, s.ensemble, flag, value)?;
+    // The study's design is the checked design of the flags; checked again as the engine's type.
+    let d = s.design.clone().check()?;
+    a.design.check_runs(ctx, &d, part_cells, s.ensemble, flag, value)?;
     let bar = budget::bar(part_cells as u64, "shard");
     let range = header.first_cell..header.end_cell;
-    let cells = ensemble::sweep_cells(&s.design, &s.masses_kg, &s.gaps_m, s.ensemble, range, None, &|_, _| bar.inc(1))?;
+    let cells = ensemble::sweep_cells(&d, &s.masses_kg, &s.gaps_m, s.ensemble, range, None, &|_, _| bar.inc(1))?;
     bar.finish_and_clear();
     let cells: Vec<PartCell> = cells.iter().map(|(i, c)| PartCell::new(*i, c)).collect();
     super::output::check_finite(&cells)?;

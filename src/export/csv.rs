@@ -534,7 +534,7 @@ mod tests {
     fn an_ensemble_chart_row_is_the_sweep_row_of_its_medians_then_the_spread() {
         let mut d = crate::design::Design::default();
         d.damper.duration_s = 0.2;
-        let chart = crate::ensemble::sweep(&d, &[0.03, 0.05], &[0.03], 3, None, &|_, _| {}).unwrap();
+        let chart = crate::ensemble::sweep(&d.check().unwrap(), &[0.03, 0.05], &[0.03], 3, None, &|_, _| {}).unwrap();
         let text = sweep_ensemble(&chart).unwrap();
         let medians = sweep(&chart.medians()).unwrap();
         let mut r = csv::Reader::from_reader(text.as_bytes());

@@ -17,7 +17,7 @@ use thiserror::Error;
 
 use crate::acoustics::{self, Levels};
 use crate::contact::{Impact, Target};
-use crate::design::{self, linspace, Design, Evaluation};
+use crate::design::{self, linspace, Design, Evaluation, ValidDesign};
 use crate::error::ThudError;
 use crate::fsio::{self, FsError, Overwrite};
 
@@ -164,12 +164,12 @@ pub fn response_freqs(opts: &ExportOptions) -> Vec<f64> {
 }
 
 /// Runs `design` (with `points` history samples).
-fn run(design: &Design, points: usize) -> Result<Evaluation, ThudError> {
+fn run(design: &ValidDesign, points: usize) -> Result<Evaluation, ThudError> {
     design::evaluate(design, points, None)
 }
 
 /// The impact speed to draw: `u0` if given, else the largest impact speed of the run.
-fn impact_speed(design: &Design, u0: Option<f64>) -> Result<f64, ThudError> {
+fn impact_speed(design: &ValidDesign, u0: Option<f64>) -> Result<f64, ThudError> {
     if let Some(u) = u0 {
         crate::error::check_positive("u0", u, "m/s")?;
         return Ok(u);
@@ -185,8 +185,8 @@ fn impact_speed(design: &Design, u0: Option<f64>) -> Result<f64, ThudError> {
 
 /// SPL and peak level of one impact of `design` at `u0` (m/s) for observer angles over the
 /// open side of its reflecting surfaces (5° steps), at the design's distance.
-pub fn directivity_points(design: &Design, u0: f64) -> Result<Vec<(f64, Levels)>, ThudError> {
-    let d = design.resolved()?;
+pub fn directivity_points(design: &ValidDesign, u0: f64) -> Result<Vec<(f64, Levels)>, ThudError> {
+    let d = design.clone();
     let (lo, hi) = d.radiation.source.theta_range_deg();
     let thetas: Vec<f64> = ((lo / 5.0) as i32..=(hi / 5.0) as i32).map(|k| (5.0 * f64::from(k)).to_radians()).collect();
     let impact = Impact {
@@ -218,9 +218,8 @@ fn listener(d: &Design) -> String {
 }
 
 /// The contents of an export of `kind` for `design`.
-pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
-    design.validate()?;
-    let d = design.resolved()?;
+pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+    let d = design.clone();
     let points = opts.points.clamp(2, 1_000_000);
     let text = match kind {
         Artifact::CsvWaveform | Artifact::SvgWaveform => {
@@ -313,10 +312,11 @@ pub fn render(kind: Artifact, design: &Design, opts: &ExportOptions) -> Result<V
     Ok(text.into_bytes())
 }
 
-/// Renders an export of `kind` for `design` and writes it to `path` through [`fsio::write`]:
-/// atomically, and never over an existing file (the explorer picks a free name; a file that
-/// appears meanwhile is left alone and reported).
+/// Checks `design` ([`Design::check`]), renders an export of `kind` for it and writes it to
+/// `path` through [`fsio::write`]: atomically, and never over an existing file (the explorer
+/// picks a free name; a file that appears meanwhile is left alone and reported).
 pub fn export_to_path(kind: Artifact, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ExportError> {
-    fsio::write(path, &render(kind, design, opts)?, Overwrite::Refuse)?;
+    let design = design.clone().check()?;
+    fsio::write(path, &render(kind, &design, opts)?, Overwrite::Refuse)?;
     Ok(())
 }

@@ -25,7 +25,7 @@
 use thiserror::Error;
 
 use crate::damper::Run;
-use crate::design::Design;
+use crate::design::ValidDesign;
 use crate::error::{check_positive, ThudError};
 
 /// Why a WAV was not made.
@@ -122,8 +122,8 @@ pub fn sample_count(duration_s: f64, sample_rate: u32) -> usize {
 
 /// The pressure (Pa) at the observer over the run, one value per sample from t = 0 to the
 /// design's duration: the sum of every impact's pulse, delayed by its impact time.
-pub fn render(design: &Design, run: &Run, sample_rate: u32) -> Result<Vec<f64>, ThudError> {
-    let d = design.resolved()?;
+pub fn render(design: &ValidDesign, run: &Run, sample_rate: u32) -> Result<Vec<f64>, ThudError> {
+    let d = design.clone();
     let n = sample_count(d.damper.duration_s, sample_rate);
     let dt = 1.0 / f64::from(sample_rate);
     let mut p = vec![0.0; n];
@@ -213,7 +213,7 @@ pub fn clipped_samples(pressure_pa: &[f64], opts: &WavOptions) -> usize {
 }
 
 /// The WAV file of `design`'s run: [`render`] then [`encode`].
-pub fn damper_sound(design: &Design, run: &Run, opts: &WavOptions) -> Result<Vec<u8>, WavError> {
+pub fn damper_sound(design: &ValidDesign, run: &Run, opts: &WavOptions) -> Result<Vec<u8>, WavError> {
     opts.validate()?;
     encode(&render(design, run, opts.sample_rate)?, opts)
 }

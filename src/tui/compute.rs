@@ -139,11 +139,12 @@ pub fn grids_of(p: &ChartPasses) -> Grids {
 
 /// Simulates `d` with history; `None` if cancelled.
 pub fn compute_sim(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<SimResult>, ThudError> {
-    let eval = design::evaluate(d, HISTORY_SAMPLES, cancel)?;
+    let d = d.clone().check()?;
+    let eval = design::evaluate(&d, HISTORY_SAMPLES, cancel)?;
     if eval.run.cancelled {
         return Ok(None);
     }
-    let p = d.resolved()?.damper;
+    let p = d.into_design().damper;
     let history_cm = eval.run.history.iter().map(|h| (h.t_s, 100.0 * h.x_m)).collect();
     let free_cm = eval.run.history.iter().map(|h| (h.t_s, 100.0 * damper::free_response(&p, h.t_s))).collect();
     let cm = |m: &damper::Maximum| (m.t_s, 100.0 * m.x_m);
@@ -154,7 +155,7 @@ pub fn compute_sim(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<Sim
 
 /// Metrics, loudest-impact waveform, directivity and steady state of `d` from its cached run.
 pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, ThudError> {
-    let r = d.resolved()?;
+    let r = d.clone().check()?;
     let metrics = design::metrics(&sim.eval.run, &r)?;
     let steady = response::steady(&sim.eval.run, &r)?;
     let (mut waveform, mut polar) = (Vec::new(), Vec::new());
@@ -179,6 +180,7 @@ pub fn compute_readout(
     cancel: Option<&AtomicBool>,
 ) -> Result<Option<AcousticResult>, ThudError> {
     let mut a = compute_acoustic(d, sim)?;
+    let d = &d.clone().check()?;
     if runs > 1 {
         match ensemble::evaluate(d, runs, cancel)? {
             Some(e) => a.ensemble = Some(e),
@@ -210,7 +212,7 @@ pub fn compute_readout(
 pub fn settled_steady(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<Steady>, ThudError> {
     let mut s = d.clone();
     s.damper.settle = true;
-    let eval = design::evaluate(&s, 0, cancel)?;
+    let eval = design::evaluate(&s.check()?, 0, cancel)?;
     Ok(if eval.run.cancelled { None } else { eval.steady })
 }
 
@@ -297,7 +299,10 @@ pub fn compute_response(
         return Err(ThudError::invalid("force", "0 N: a response needs a force; set F0 > 0"));
     }
     check_response_work(d, band)?;
-    let r = response::response(&response_design(d), &band.freqs(), &ResponseOptions::default(), cancel, on_point)?;
+    // Checked with the design's own f (a forced design needs one); each point sets its own.
+    let mut rd = response_design(d);
+    rd.damper.freq_hz = d.damper.freq_hz;
+    let r = response::response(&rd.check()?, &band.freqs(), &ResponseOptions::default(), cancel, on_point)?;
     if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
         return Ok(None);
     }
@@ -390,7 +395,10 @@ pub fn compute_chart(
 ) -> bool {
     let passes = grids.coarse.iter().map(|g| (Stage::Coarse, g)).chain([(Stage::Fine, &grids.fine)]);
     for (stage, grid) in passes {
-        let result = design::sweep(d, &grid.masses_kg, &grid.gaps_m, cancel, &|i, cell| on_cell(stage, i, cell));
+        let result = d
+            .clone()
+            .check()
+            .and_then(|d| design::sweep(&d, &grid.masses_kg, &grid.gaps_m, cancel, &|i, cell| on_cell(stage, i, cell)));
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             return false;
         }
@@ -411,8 +419,9 @@ pub fn compute_ensemble_chart(
 ) -> bool {
     let passes = grids.coarse.iter().map(|g| (Stage::Coarse, g)).chain([(Stage::Fine, &grids.fine)]);
     for (stage, grid) in passes {
-        let result =
-            ensemble::sweep(d, &grid.masses_kg, &grid.gaps_m, runs, cancel, &|i, cell| on_cell(stage, i, cell));
+        let result = d.clone().check().and_then(|d| {
+            ensemble::sweep(&d, &grid.masses_kg, &grid.gaps_m, runs, cancel, &|i, cell| on_cell(stage, i, cell))
+        });
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             return false;
         }
@@ -427,7 +436,7 @@ pub fn relevel_cell(d: &Design, cell: &Cell) -> Cell {
     let mut out = *cell;
     if cell.metrics.spl_max_db.is_some() {
         let v = design::variant(d, cell.mass_kg, cell.gap_m);
-        out.metrics.spl_max_db = v.resolved().and_then(|r| r.impact_spl_db(cell.metrics.u0_max_m_s)).ok();
+        out.metrics.spl_max_db = v.check().and_then(|r| r.impact_spl_db(cell.metrics.u0_max_m_s)).ok();
         out.metrics.zone = out.metrics.zone(&d.thresholds);
     }
     out
@@ -454,10 +463,10 @@ mod tests {
     fn relevel_equals_a_fresh_sweep_at_the_new_observer() {
         let d = Design::default();
         let (m, g) = ([0.03, 0.06], [0.02, 0.04]);
-        let chart = design::sweep(&d, &m, &g, None, &|_, _| {}).unwrap();
+        let chart = design::sweep(&d.clone().check().unwrap(), &m, &g, None, &|_, _| {}).unwrap();
         let mut far = d.clone();
         far.observer = Observer::new(1.5, 30.0);
-        let fresh = design::sweep(&far, &m, &g, None, &|_, _| {}).unwrap();
+        let fresh = design::sweep(&far.clone().check().unwrap(), &m, &g, None, &|_, _| {}).unwrap();
         let re = compute_relevel(&far, &ChartPasses { coarse: None, fine: chart });
         for (a, b) in re.fine.cells.iter().zip(&fresh.cells) {
             let (a, b) = (a.unwrap().metrics, b.unwrap().metrics);

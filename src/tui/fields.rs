@@ -462,7 +462,10 @@ impl Knob {
     /// This is what keeps a duration, a Newmark step or an ensemble typed here from running
     /// for hours or out of memory.
     fn check_work<S: Tunable>(self, s: &S) -> Result<(), ThudError> {
-        let d = s.design();
+        // A design that fails its checks has no work to estimate: the checks after this one
+        // ([`Design::check`] in [`Knob::checked`]) refuse it.
+        let Ok(d) = s.design().clone().check() else { return Ok(()) };
+        let d = &d;
         let cells = compute::Grids::default().fine.len();
         let runs = s.runs();
         // The field just changed is the parameter "given": the engine's one decision of
@@ -511,18 +514,13 @@ impl Knob {
     }
 
     /// The checks every new value passes, in order: the field's own range (in the unit shown),
-    /// the work caps, and the design's own validation — the one range table over the whole
-    /// design ([`limits::check_design`]: what the command line checks, e.g. |y0| < d/2 and a
-    /// force's frequency) and the engine's ([`Design::validate`], [`Design::resolved`]).
+    /// the work caps, and the engine's check of the whole design ([`Design::check`]: the
+    /// physics' own checks, then the one range table over the whole design, e.g. |y0| < d/2
+    /// and a force's frequency, as the command line checks it), the check every job repeats.
     pub(crate) fn checked<S: Tunable>(self, next: S) -> Result<S, ThudError> {
         self.check_range(&next)?;
         self.check_work(&next)?;
-        let d = next.design();
-        d.validate()?;
-        d.resolved()?;
-        if matches!(self, Knob::Force | Knob::Freq | Knob::BallPosition | Knob::Gap | Knob::Row(_)) {
-            limits::check_design(d)?;
-        }
+        next.design().clone().check()?;
         Ok(next)
     }
 
@@ -582,7 +580,7 @@ impl Knob {
             Knob::K => p.stiffness_n_m,
             Knob::C => p.damping_n_s_m,
             Knob::C1 => p.c1_n_s_m,
-            Knob::KHz => d.resolved().map_or(p.k_hz, |r| r.damper.k_hz),
+            Knob::KHz => d.hertz_stiffness().unwrap_or(p.k_hz),
             Knob::Duration => p.duration_s,
             Knob::LStar => d.thresholds.spl_db,
             Knob::EStar => d.thresholds.inclination_cm_s,

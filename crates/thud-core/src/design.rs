@@ -141,17 +141,21 @@ impl Design {
         }
     }
 
-    /// The design with K_HZ set from its materials (if any) for the current radius.
-    pub fn resolved(&self) -> Result<Design, ThudError> {
-        let mut d = self.clone();
-        if let Some(m) = &self.materials {
-            let (s, p) = (contact::material(&m.sphere)?, contact::material(&m.plate)?);
-            d.damper.k_hz = contact::hertz_stiffness(self.ball_radius_m(), &s, &p);
+    /// The Hertz stiffness K_HZ (N/m^1.5) this design runs with: from its materials for the
+    /// ball's current radius (Eq 2) when it has materials, else its own `k_hz`.
+    pub fn hertz_stiffness(&self) -> Result<f64, ThudError> {
+        match &self.materials {
+            Some(m) => {
+                let (s, p) = (contact::material(&m.sphere)?, contact::material(&m.plate)?);
+                Ok(contact::hertz_stiffness(self.ball_radius_m(), &s, &p))
+            }
+            None => Ok(self.damper.k_hz),
         }
-        Ok(d)
     }
 
     /// Checks every parameter; the first problem is reported, naming the CLI parameter.
+    /// Part of [`Design::check`] (beside the range table, in [`crate::limits`]), which also
+    /// checks the ranges and resolves K_HZ.
     pub fn validate(&self) -> Result<(), ThudError> {
         self.damper.validate()?;
         match self.ball {
@@ -185,6 +189,108 @@ impl Design {
     /// SPL (dB, rms over τ from the direct arrival) of an impact at `u0` (m/s).
     pub fn impact_spl_db(&self, u0: f64) -> Result<f64, ThudError> {
         Ok(self.impact_field(u0)?.spl_db())
+    }
+}
+
+/// A design that passed [`Design::check`]: every range of the range table, the
+/// cross-checks (|y0| < d/2, the observer outside the ball, finite thresholds, …) and K_HZ
+/// resolved from its materials for its radius. Only the engine builds one ([`Design::check`],
+/// the named-parameter builder [`crate::params::design`], and a chart's cells), and
+/// every solver and evaluation takes one ([`evaluate`], [`sweep`], [`crate::ensemble`],
+/// [`crate::response`], the work checks of [`crate::limits`]), so an unchecked or unresolved
+/// design cannot reach a solver.
+///
+/// Read it as a [`Design`] (it dereferences to one). To change it, take the design out
+/// ([`ValidDesign::into_design`] or a clone), change it and check it again. It is written as
+/// the design it holds; reading one (serde) checks it, so a file cannot skip the check.
+///
+/// Neither a struct literal nor a bare [`Design`] makes one:
+///
+/// ```compile_fail
+/// use thud_core::design::{Design, ValidDesign};
+/// let v = ValidDesign(Design::default());
+/// ```
+///
+/// ```compile_fail
+/// use thud_core::design::{Design, ValidDesign};
+/// let v: ValidDesign = Design::default().into();
+/// ```
+///
+/// ```compile_fail
+/// use thud_core::design::{self, Design};
+/// // A solver takes only a checked design.
+/// let e = design::evaluate(&Design::default(), 0, None);
+/// ```
+///
+/// ```
+/// use thud_core::design::{self, Design};
+/// let v = Design::default().check().unwrap();
+/// let e = design::evaluate(&v, 0, None).unwrap();
+/// assert!(e.metrics.n_impacts > 0);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidDesign(Design);
+
+impl ValidDesign {
+    /// The checked design (K_HZ resolved).
+    #[must_use]
+    pub fn design(&self) -> &Design {
+        &self.0
+    }
+
+    /// The design, to change and check again.
+    #[must_use]
+    pub fn into_design(self) -> Design {
+        self.0
+    }
+
+    /// `d`, whose ranges [`Design::check`] has checked, after the physics' own checks
+    /// ([`Design::validate`]) with K_HZ set from its materials for its radius: the one
+    /// constructor, called by [`Design::check`] after the range table, and for a chart cell.
+    pub(crate) fn from_ranges_checked(d: Design) -> Result<ValidDesign, ThudError> {
+        d.validate()?;
+        let mut d = d;
+        d.damper.k_hz = d.hertz_stiffness()?;
+        Ok(ValidDesign(d))
+    }
+
+    /// This design with impact mass `mass_kg` and gap `gap_m` (a chart cell or a restitution
+    /// curve's mass), checked again by the physics' own checks with K_HZ resolved again: the
+    /// ball's radius, and with it K_HZ from the materials and the observer's distance to the
+    /// ball, follow the mass, and |y0| < d/2 the gap. The range table is not run again: every
+    /// front end checks the axes against the mass and gap ranges (the sweep itself that they
+    /// are > 0), and every mass and density inside their ranges gives a radius, and with
+    /// materials a K_HZ, inside theirs ([`crate::limits::RADIUS`], [`crate::limits::K_HZ`]);
+    /// nothing else changes. These checks are what [`evaluate`] ran on every cell before it
+    /// took a checked design.
+    pub(crate) fn variant(&self, mass_kg: f64, gap_m: f64) -> Result<ValidDesign, ThudError> {
+        ValidDesign::from_ranges_checked(variant(self, mass_kg, gap_m))
+    }
+}
+
+impl std::ops::Deref for ValidDesign {
+    type Target = Design;
+
+    fn deref(&self) -> &Design {
+        &self.0
+    }
+}
+
+impl From<ValidDesign> for Design {
+    fn from(v: ValidDesign) -> Design {
+        v.0
+    }
+}
+
+impl PartialEq<Design> for ValidDesign {
+    fn eq(&self, other: &Design) -> bool {
+        self.0 == *other
+    }
+}
+
+impl Serialize for ValidDesign {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0.serialize(s)
     }
 }
 
@@ -316,7 +422,12 @@ pub fn inclination_fit_cm_s(maxima: &[damper::Maximum]) -> Option<f64> {
 }
 
 /// The metrics of a finished run of `design`.
-pub fn metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
+pub fn metrics(run: &Run, design: &ValidDesign) -> Result<Metrics, ThudError> {
+    run_metrics(run, design)
+}
+
+/// [`metrics`] of a run of a design derived from a [`ValidDesign`] (resolved and valid).
+pub(crate) fn run_metrics(run: &Run, design: &Design) -> Result<Metrics, ThudError> {
     let impact_max = run.impacts.iter().map(|i| i.u_in_m_s).fold(0.0, f64::max);
     let u0_max = match design.u0max_rule {
         U0MaxRule::Impacts => impact_max,
@@ -361,12 +472,25 @@ pub struct Evaluation {
 
 /// Simulates `design` and computes its metrics. `history_samples` uniform samples of x and y
 /// are kept for plotting (0 for none); `cancel` stops the run between impacts.
-pub fn evaluate(design: &Design, history_samples: usize, cancel: Option<&AtomicBool>) -> Result<Evaluation, ThudError> {
-    design.validate()?;
-    let d = design.resolved()?;
+pub fn evaluate(
+    design: &ValidDesign,
+    history_samples: usize,
+    cancel: Option<&AtomicBool>,
+) -> Result<Evaluation, ThudError> {
+    evaluate_checked(design, history_samples, cancel)
+}
+
+/// [`evaluate`] of a design the engine derived from a [`ValidDesign`] by a change that keeps
+/// it valid and resolved (an ensemble run's ball offset inside the clearance, which no check
+/// and not K_HZ depends on beyond |y0| < d/2).
+pub(crate) fn evaluate_checked(
+    d: &Design,
+    history_samples: usize,
+    cancel: Option<&AtomicBool>,
+) -> Result<Evaluation, ThudError> {
     let run = damper::simulate(&d.damper, d.solver, &RunOptions { history_samples, cancel })?;
-    let metrics = metrics(&run, &d)?;
-    let steady = steady(&run, &d)?;
+    let metrics = run_metrics(&run, d)?;
+    let steady = run_steady(&run, d)?;
     Ok(Evaluation { run, metrics, steady })
 }
 
@@ -398,10 +522,16 @@ pub struct Steady {
     pub truncated: bool,
 }
 
-/// The steady state of `run` of the (resolved) `design`, if the design is forced.
-pub fn steady(run: &Run, design: &Design) -> Result<Option<Steady>, ThudError> {
+/// The steady state of `run` of `design`, if the design is forced.
+pub fn steady(run: &Run, design: &ValidDesign) -> Result<Option<Steady>, ThudError> {
+    run_steady(run, design)
+}
+
+/// [`steady`] of a run of a design derived from a [`ValidDesign`] (resolved and valid: a
+/// response's design at one frequency).
+pub(crate) fn run_steady(run: &Run, design: &Design) -> Result<Option<Steady>, ThudError> {
     let Some(m) = run.steady else { return Ok(None) };
-    Ok(Some(with_level(&m, leq_db(run, design, m.window_start_s, m.window_end_s)?)))
+    Ok(Some(with_level(&m, run_leq_db(run, design, m.window_start_s, m.window_end_s)?)))
 }
 
 fn with_level(m: &SteadyMotion, leq_db: Option<f64>) -> Steady {
@@ -420,9 +550,14 @@ fn with_level(m: &SteadyMotion, leq_db: Option<f64>) -> Steady {
     }
 }
 
-/// `Leq` (dB re 20 µPa) of the impacts of `run` of the (resolved) `design` over `[a, b]` (s);
-/// None when no pulse reaches the window.
-pub fn leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>, ThudError> {
+/// `Leq` (dB re 20 µPa) of the impacts of `run` of `design` over `[a, b]` (s); None when no
+/// pulse reaches the window.
+pub fn leq_db(run: &Run, design: &ValidDesign, a: f64, b: f64) -> Result<Option<f64>, ThudError> {
+    run_leq_db(run, design, a, b)
+}
+
+/// [`leq_db`] of a run of a design derived from a [`ValidDesign`] (resolved and valid).
+fn run_leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>, ThudError> {
     if b <= a {
         return Ok(None);
     }
@@ -498,9 +633,8 @@ pub fn truncation(run: &Run, duration_s: f64) -> Option<String> {
 }
 
 /// SPL (dB) of every impact of a run, in order.
-pub fn impact_spls(run: &Run, design: &Design) -> Result<Vec<f64>, ThudError> {
-    let d = design.resolved()?;
-    run.impacts.iter().map(|i| d.impact_spl_db(i.u_in_m_s)).collect()
+pub fn impact_spls(run: &Run, design: &ValidDesign) -> Result<Vec<f64>, ThudError> {
+    run.impacts.iter().map(|i| design.impact_spl_db(i.u_in_m_s)).collect()
 }
 
 /// `n` evenly spaced values from `from` to `to` inclusive.
@@ -545,7 +679,8 @@ impl Chart {
     }
 }
 
-/// The design `base` with this impact mass and gap.
+/// The design `base` with this impact mass and gap, unchecked (a chart cell's parameters, or
+/// a key; [`sweep`] checks each cell again).
 pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
     let mut d = base.clone();
     d.damper.impact_mass_kg = mass_kg;
@@ -558,9 +693,14 @@ pub fn variant(base: &Design, mass_kg: f64, gap_m: f64) -> Design {
 /// `on_cell(index, cell)` is called as each cell finishes (from pool threads, in no particular
 /// order); `cancel` stops the sweep between cells (cells not started stay `None`). The chart
 /// does not depend on the scheduling; the first failing cell (in index order) gives the error.
-/// A panic in a cell (or in `on_cell`) propagates to the caller.
+/// A panic in a cell (or in `on_cell`) propagates to the caller. Each cell is `base` at its
+/// (mass, gap) checked again by the physics' own checks ([`Design::validate`]) with K_HZ
+/// resolved again: the axes do not make a cell valid (K_HZ from materials and the observer's
+/// distance follow the ball's radius, |y0| < d/2 the gap). The axes' ranges are the caller's
+/// to check (every front end checks them against the mass and gap ranges; here they must be
+/// > 0); inside them the derived radius and K_HZ stay inside their ranges.
 pub fn sweep(
-    base: &Design,
+    base: &ValidDesign,
     masses_kg: &[f64],
     gaps_m: &[f64],
     cancel: Option<&AtomicBool>,
@@ -580,7 +720,7 @@ pub fn sweep(
 /// cancellation, errors and panics as in [`sweep`] (a cancelled run returns the cells it
 /// finished). Indices past the grid are ignored.
 pub fn sweep_cells(
-    base: &Design,
+    base: &ValidDesign,
     masses_kg: &[f64],
     gaps_m: &[f64],
     range: Range<usize>,
@@ -588,8 +728,8 @@ pub fn sweep_cells(
     on_cell: &(dyn Fn(usize, &Cell) + Sync),
 ) -> Result<Vec<(usize, Cell)>, ThudError> {
     grid_cells(masses_kg, gaps_m, range, cancel, on_cell, |mass_kg, gap_m| {
-        let d = variant(base, mass_kg, gap_m);
-        Some(evaluate(&d, 0, cancel).map(|e| Cell { mass_kg, gap_m, metrics: e.metrics }))
+        let cell = base.variant(mass_kg, gap_m).and_then(|d| evaluate(&d, 0, cancel));
+        Some(cell.map(|e| Cell { mass_kg, gap_m, metrics: e.metrics }))
     })
 }
 
@@ -732,13 +872,13 @@ pub fn spl_range_by_inclination(chart: &Chart, width_cm_s: f64, zone_by: ZoneBy)
 
 /// Restitution R = u_out/u0 of one isolated ball–main-mass contact at `u0` for each mass
 /// (Fig 13), with the design's K_HZ (or materials), c1 and clamp.
-pub fn restitution_curve(design: &Design, masses_kg: &[f64], u0: f64) -> Result<Vec<(f64, f64)>, ThudError> {
+pub fn restitution_curve(design: &ValidDesign, masses_kg: &[f64], u0: f64) -> Result<Vec<(f64, f64)>, ThudError> {
     check_positive("u0", u0, "m/s")?;
     masses_kg
         .iter()
         .map(|&m| {
             check_positive("mass", m, "kg")?;
-            let d = variant(design, m, design.damper.gap_m).resolved()?;
+            let d = design.variant(m, design.damper.gap_m)?;
             let p = &d.damper;
             let c = damper::single_contact(m, p.main_mass_kg, p.k_hz, p.c1_n_s_m, p.no_tension, u0);
             Ok((m, c.u_out_m_s / u0))
@@ -748,9 +888,8 @@ pub fn restitution_curve(design: &Design, masses_kg: &[f64], u0: f64) -> Result<
 
 /// The contact damping c1 (N·s/m) that gives the restitution `r` to one isolated contact of
 /// this design's ball against its main mass at `u0` (the inverse of [`restitution_curve`]).
-pub fn c1_for_restitution(design: &Design, u0: f64, r: f64) -> Result<f64, ThudError> {
-    let d = design.resolved()?;
-    let p = &d.damper;
+pub fn c1_for_restitution(design: &ValidDesign, u0: f64, r: f64) -> Result<f64, ThudError> {
+    let p = &design.damper;
     damper::c1_for_restitution(p.impact_mass_kg, p.main_mass_kg, p.k_hz, p.no_tension, u0, r)
 }
 
@@ -819,7 +958,7 @@ mod tests {
         for zone_by in [ZoneBy::Paper, ZoneBy::Fit] {
             let mut d = Design::default();
             d.thresholds.zone_by = zone_by;
-            let m = evaluate(&d, 0, None).unwrap().metrics;
+            let m = evaluate(&d.clone().check().unwrap(), 0, None).unwrap().metrics;
             assert!(m.zone.is_some(), "the default design sounds and decays");
             assert_eq!(m.zone, m.zone(&d.thresholds));
             let e = m.inclination_by(zone_by).unwrap();
@@ -837,11 +976,11 @@ mod tests {
 
     #[test]
     fn c1_for_restitution_inverts_the_curve() {
-        let d = Design::default();
+        let d = Design::default().check().unwrap();
         let c1 = c1_for_restitution(&d, 1.4, 0.8).unwrap();
-        let mut d2 = d.clone();
+        let mut d2 = d.clone().into_design();
         d2.damper.c1_n_s_m = c1;
-        let r = restitution_curve(&d2, &[d.damper.impact_mass_kg], 1.4).unwrap()[0].1;
+        let r = restitution_curve(&d2.check().unwrap(), &[d.damper.impact_mass_kg], 1.4).unwrap()[0].1;
         assert!((r - 0.8).abs() < 1e-6, "{r}");
         assert!(c1_for_restitution(&d, 1.4, 1.5).is_err());
     }
@@ -850,7 +989,7 @@ mod tests {
     fn small_sweep(on_cell: &(dyn Fn(usize, &Cell) + Sync), cancel: Option<&AtomicBool>) -> Result<Chart, ThudError> {
         let mut d = Design::default();
         d.damper.duration_s = 0.1;
-        sweep(&d, &[0.03, 0.06], &[0.02, 0.04], cancel, on_cell)
+        sweep(&d.check().unwrap(), &[0.03, 0.06], &[0.02, 0.04], cancel, on_cell)
     }
 
     #[test]
@@ -869,7 +1008,7 @@ mod tests {
         d.damper.duration_s = 0.1;
         for (g, &gap) in chart.gaps_m.iter().enumerate() {
             for (m, &mass) in chart.masses_kg.iter().enumerate() {
-                let alone = evaluate(&variant(&d, mass, gap), 0, None).unwrap().metrics;
+                let alone = evaluate(&variant(&d, mass, gap).check().unwrap(), 0, None).unwrap().metrics;
                 assert_eq!(chart.cell(m, g).unwrap().metrics, alone, "mass {mass}, gap {gap}");
             }
         }
@@ -923,6 +1062,7 @@ mod tests {
     fn a_sweep_split_into_parts_is_the_whole_sweep() {
         let mut d = Design::default();
         d.damper.duration_s = 0.1;
+        let d = d.check().unwrap();
         let (masses, gaps) = ([0.03, 0.05, 0.07], [0.02, 0.04]);
         let whole = sweep(&d, &masses, &gaps, None, &|_, _| {}).unwrap();
         let mut joined = Chart::empty(masses.to_vec(), gaps.to_vec(), d.thresholds);
@@ -932,6 +1072,80 @@ mod tests {
             }
         }
         assert_eq!(joined, whole);
+    }
+
+    /// A design with `f` applied, checked: the name of the parameter the check refuses.
+    fn refused(f: impl FnOnce(&mut Design)) -> String {
+        let mut d = Design::default();
+        f(&mut d);
+        d.check().unwrap_err().param().to_string()
+    }
+
+    #[test]
+    fn check_refuses_a_ball_outside_the_clearance_a_nan_and_an_out_of_range_value() {
+        assert_eq!(refused(|d| d.damper.ball_position_m = 0.5 * d.damper.gap_m), "ball-position", "|y0| = d/2");
+        assert_eq!(refused(|d| d.damper.ball_position_m = -0.03), "ball-position", "|y0| > d/2 (d 4 cm)");
+        assert_eq!(refused(|d| d.damper.v0_m_s = f64::NAN), "v0");
+        assert_eq!(refused(|d| d.thresholds.spl_db = f64::NAN), "thresholds");
+        // Positive and finite, so the physics' own checks pass it; the range table does not.
+        assert_eq!(refused(|d| d.damper.main_mass_kg = 1e7), "main-mass");
+        assert_eq!(refused(|d| d.damper.freq_hz = 1e6), "freq");
+        assert_eq!(refused(|d| d.observer.theta_rad = 120f64.to_radians()), "theta", "behind the corner's wall");
+        let inside = Design::default().check().unwrap();
+        assert!(inside.damper.ball_position_m.abs() < 0.5 * inside.damper.gap_m);
+    }
+
+    #[test]
+    fn check_resolves_k_hz_from_the_materials_for_the_balls_radius() {
+        let rho = contact::material("nylon").unwrap().density_kg_m3;
+        let mut d = Design {
+            materials: Some(Materials { sphere: "nylon".into(), plate: "steel".into() }),
+            ball: BallSize::Density(rho),
+            ..Design::default()
+        };
+        d.damper.k_hz = 1.0; // stale: the materials decide
+        let v = d.clone().check().unwrap();
+        let (nylon, steel) = (contact::material("nylon").unwrap(), contact::material("steel").unwrap());
+        let radius = (3.0 * d.damper.impact_mass_kg / (4.0 * std::f64::consts::PI * rho)).cbrt();
+        let want = contact::hertz_stiffness(radius, &nylon, &steel);
+        assert!((v.damper.k_hz - want).abs() <= 1e-12 * want, "{} vs {want}", v.damper.k_hz);
+        // A chart cell of another mass has another radius and so another K_HZ.
+        let heavy = v.variant(4.0 * d.damper.impact_mass_kg, d.damper.gap_m).unwrap();
+        let want_heavy = contact::hertz_stiffness(radius * 4f64.cbrt(), &nylon, &steel);
+        assert!((heavy.damper.k_hz - want_heavy).abs() <= 1e-12 * want_heavy);
+        assert!(heavy.damper.k_hz > v.damper.k_hz, "a bigger ball is stiffer (Eq 2)");
+        // Without materials K_HZ is the design's own.
+        assert_eq!(Design::default().check().unwrap().damper.k_hz, Design::default().damper.k_hz);
+        // And a changed design is a Design again, to check again.
+        let mut back = v.into_design();
+        back.damper.ball_position_m = 1.0;
+        assert_eq!(back.check().unwrap_err().param(), "ball-position");
+    }
+
+    #[test]
+    fn a_variant_outside_the_clearance_is_refused() {
+        let mut d = Design::default();
+        d.damper.ball_position_m = 0.015;
+        let v = d.check().unwrap();
+        assert!(v.variant(0.05, 0.04).is_ok());
+        assert_eq!(v.variant(0.05, 0.02).unwrap_err().param(), "ball-position", "|y0| 1.5 cm ≥ 1 cm");
+        let e = sweep(&v, &[0.05], &[0.04, 0.02], None, &|_, _| {}).unwrap_err();
+        assert_eq!(e.param(), "ball-position", "the sweep's cell at d 2 cm");
+    }
+
+    #[test]
+    fn a_checked_design_is_read_back_only_if_it_checks() {
+        let v = Design::default().check().unwrap();
+        let text = serde_json::to_string(&v).unwrap();
+        assert_eq!(text, serde_json::to_string(v.design()).unwrap(), "written as the design it holds");
+        let back: ValidDesign = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, v);
+        let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        json["damper"]["main_mass_kg"] = serde_json::json!(1e7);
+        let raw: Design = serde_json::from_value(json.clone()).unwrap();
+        assert_eq!(raw.damper.main_mass_kg, 1e7, "a plain Design reads it");
+        let e = serde_json::from_value::<ValidDesign>(json).unwrap_err().to_string();
+        assert!(e.contains("invalid main-mass: ") && e.contains("out of range"), "{e}");
     }
 
     #[test]

@@ -33,7 +33,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::damper::Truncation;
-use crate::design::{self, variant, Chart, Design, Metrics, Thresholds, Zone};
+use crate::design::{self, Chart, Metrics, Thresholds, ValidDesign, Zone};
 use crate::error::ThudError;
 
 /// The N initial ball offsets (m) of an ensemble in a clearance of `gap_m`: `−d/2 + (k + ½)·d/N`,
@@ -233,18 +233,19 @@ impl Ensemble {
 }
 
 /// One run of an ensemble: `design` with the ball starting at `y0` (m).
-fn member(design: &Design, y0: f64, cancel: Option<&AtomicBool>) -> Result<(Member, bool), ThudError> {
-    let mut d = design.clone();
+/// The offset keeps the design valid (|y0| < d/2 by [`ball_positions`]) and resolved (K_HZ
+/// does not depend on it), so the run is not checked again.
+fn member(design: &ValidDesign, y0: f64, cancel: Option<&AtomicBool>) -> Result<(Member, bool), ThudError> {
+    let mut d = design.design().clone();
     d.damper.ball_position_m = y0;
-    let e = design::evaluate(&d, 0, cancel)?;
+    let e = design::evaluate_checked(&d, 0, cancel)?;
     Ok((Member::new(y0, &e.metrics, e.run.truncated), e.run.cancelled))
 }
 
 /// Runs the ensemble of `n` runs of `design` (offsets [`ball_positions`]) on rayon's global
 /// pool. `Ok(None)` when `cancel` stopped a run before its end; the first failing run (in
 /// order of k) gives the error.
-pub fn evaluate(design: &Design, n: usize, cancel: Option<&AtomicBool>) -> Result<Option<Ensemble>, ThudError> {
-    design.validate()?;
+pub fn evaluate(design: &ValidDesign, n: usize, cancel: Option<&AtomicBool>) -> Result<Option<Ensemble>, ThudError> {
     check_runs(n)?;
     let runs: Vec<(Member, bool)> = ball_positions(design.damper.gap_m, n)
         .into_par_iter()
@@ -323,7 +324,7 @@ impl EnsembleChart {
 /// finishes; `cancel` stops the sweep (cells not finished stay `None`). The first failing cell
 /// (in index order) gives the error; a panic propagates.
 pub fn sweep(
-    base: &Design,
+    base: &ValidDesign,
     masses_kg: &[f64],
     gaps_m: &[f64],
     n: usize,
@@ -343,7 +344,7 @@ pub fn sweep(
 /// `(index, cell)` in index order: the part one shard computes (see
 /// [`design::shard_range`]). A cancelled run returns the cells it finished.
 pub fn sweep_cells(
-    base: &Design,
+    base: &ValidDesign,
     masses_kg: &[f64],
     gaps_m: &[f64],
     n: usize,
@@ -353,7 +354,7 @@ pub fn sweep_cells(
 ) -> Result<Vec<(usize, EnsembleCell)>, ThudError> {
     check_runs(n)?;
     design::grid_cells(masses_kg, gaps_m, range, cancel, on_cell, |mass_kg, gap_m| {
-        match evaluate(&variant(base, mass_kg, gap_m), n, cancel) {
+        match base.variant(mass_kg, gap_m).and_then(|d| evaluate(&d, n, cancel)) {
             Ok(None) => None,
             Ok(Some(ensemble)) => Some(Ok(EnsembleCell { mass_kg, gap_m, ensemble })),
             Err(e) => Some(Err(e)),
@@ -364,6 +365,7 @@ pub fn sweep_cells(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::design::Design;
 
     #[test]
     fn offsets_are_evenly_spread_inside_the_clearance() {
@@ -471,15 +473,15 @@ mod tests {
 
     #[test]
     fn an_ensemble_needs_a_run() {
-        let e = evaluate(&Design::default(), 0, None).unwrap_err().to_string();
+        let e = evaluate(&Design::default().check().unwrap(), 0, None).unwrap_err().to_string();
         assert!(e.starts_with("invalid ensemble: "), "{e}");
     }
 
     /// Short runs, so the debug test build stays quick.
-    fn short() -> Design {
+    fn short() -> ValidDesign {
         let mut d = Design::default();
         d.damper.duration_s = 0.3;
-        d
+        d.check().unwrap()
     }
 
     #[test]
@@ -488,9 +490,10 @@ mod tests {
         let e = evaluate(&d, 5, None).unwrap().unwrap();
         assert_eq!(e.ensemble.len(), 5);
         for (m, y0) in e.ensemble.iter().zip(ball_positions(d.damper.gap_m, 5)) {
-            let mut alone = d.clone();
+            let mut alone = d.clone().into_design();
             alone.damper.ball_position_m = y0;
             assert_eq!(m.ball_position_m, y0);
+            let alone = alone.check().unwrap();
             assert_eq!(m.metrics(), design::evaluate(&alone, 0, None).unwrap().metrics, "y0 {y0}");
         }
         let spread: Vec<f64> = e.ensemble.iter().filter_map(|m| m.inclination_cm_s).collect();

@@ -1,6 +1,6 @@
 //! Parameters by name: the one mapping from named inputs — the command line's long flags
-//! (`--main-mass 0.5`) and Python's keywords (`main_mass=0.5`) — to a checked [`Design`] or a
-//! single impact ([`PulseInput`]). Every number is checked against its range in
+//! (`--main-mass 0.5`) and Python's keywords (`main_mass=0.5`) — to a checked design
+//! ([`ValidDesign`]) or a single impact ([`PulseInput`]). Every number is checked against its range in
 //! [`crate::limits`] (the one range table), so every front end accepts and refuses the same
 //! values with the same one-line message.
 //!
@@ -17,7 +17,7 @@
 use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
 use crate::contact::{self, Contact, Impact, Material, Target};
 use crate::damper::Solver;
-use crate::design::{BallSize, Design, Materials};
+use crate::design::{BallSize, Design, Materials, ValidDesign};
 use crate::error::ThudError;
 use crate::limits::{self, short, Range};
 use crate::units::{self, Kind};
@@ -630,8 +630,9 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// The design `base` with the named parameters `given` applied, checked: each value against its
 /// range (the error names the parameter as `spelling` spells it), then the whole design and its
 /// derived quantities (ball radius, K_HZ from materials, the observer outside the ball). The
-/// result has K_HZ resolved from its materials, if any.
-pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<Design, ThudError> {
+/// result is a [`ValidDesign`] ([`Design::check`]): K_HZ resolved from its materials, if any,
+/// and ready for the solvers.
+pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<ValidDesign, ThudError> {
     let given = Given::new(DESIGN, given, spelling)?;
     given.relations()?;
     let mut draft = DesignDraft::of(base);
@@ -658,7 +659,7 @@ pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Re
     }
     limits::check_design(&d).map_err(|e| given.respell(e))?;
     d.validate().map_err(|e| blame_ball(&given, e, &d))?;
-    d.resolved().map_err(|e| given.respell(e))
+    d.check().map_err(|e| given.respell(e))
 }
 
 /// The design of a frequency response (`thud response`, Python's `thud.response`): `base`
@@ -673,7 +674,7 @@ pub fn response_design(
     spelling: Spelling,
     first_hz: f64,
     force: &str,
-) -> Result<Design, ThudError> {
+) -> Result<ValidDesign, ThudError> {
     let typed = |name: &str| given.iter().find(|(n, _)| *n == spelling.key(name)).map(|(_, v)| v);
     if let Some(v) = typed("freq") {
         let freqs = match spelling {
@@ -820,7 +821,6 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
     given.conflict("plate", "k-hz", "K_HZ follows from the materials")?;
     let mut a = PulseDraft::default();
     given.apply(&mut a)?;
-    let base = base.map(Design::resolved).transpose()?;
     let sphere = a.sphere.as_deref().map(contact::material).transpose().map_err(|e| given.respell(e))?;
     let plate = match (&a.plate, &sphere) {
         (Some(p), _) => Some(contact::material(p).map_err(|e| given.respell(e))?),
@@ -836,7 +836,7 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
             (derived(&given, &limits::RADIUS, contact::sphere_radius(m, s.density_kg_m3), "mass", m, &s)?, m)
         }
         (r, m, _) => (
-            r.or(base.as_ref().map(Design::ball_radius_m)).unwrap_or(0.01905),
+            r.or(base.map(Design::ball_radius_m)).unwrap_or(0.01905),
             m.or(base.as_ref().map(|d| d.damper.impact_mass_kg)).unwrap_or(0.0405),
         ),
     };
@@ -943,7 +943,7 @@ mod tests {
         pairs.iter().map(|(n, v)| (n.to_string(), Input::Text(v.to_string()))).collect()
     }
 
-    fn err(r: Result<Design, ThudError>) -> String {
+    fn err<T: std::fmt::Debug>(r: Result<T, ThudError>) -> String {
         r.unwrap_err().to_string()
     }
 

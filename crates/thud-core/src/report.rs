@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::acoustics::{Extremum, Field};
 use crate::contact::Contact;
 use crate::damper::{EnergyLedger, ImpactEvent, Maximum};
-use crate::design::{self, Design, Evaluation, Zone};
+use crate::design::{self, Design, Evaluation, ValidDesign, Zone};
 use crate::ensemble::{Ensemble, Member, Spread};
 use crate::error::ThudError;
 use crate::limits::short;
@@ -199,12 +199,12 @@ pub struct RunReport {
 
 impl RunReport {
     /// The record of `eval`, the evaluation of the design `d`.
-    pub fn new(d: &Design, eval: &Evaluation) -> Result<Self, ThudError> {
+    pub fn new(d: &ValidDesign, eval: &Evaluation) -> Result<Self, ThudError> {
         let spls = design::impact_spls(&eval.run, d)?;
         let m = &eval.metrics;
         let truncation_reason = design::truncation(&eval.run, d.damper.duration_s);
         Ok(RunReport {
-            design: d.clone(),
+            design: d.design().clone(),
             ball_radius_m: d.ball_radius_m(),
             n_impacts: m.n_impacts,
             inclination_cm_s: m.inclination_cm_s,

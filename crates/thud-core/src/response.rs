@@ -15,8 +15,8 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::damper::{self, RunOptions, Start};
-use crate::design::Design;
 pub use crate::design::{leq_db, steady, Steady};
+use crate::design::{run_steady, Design, ValidDesign};
 use crate::ensemble::Percentiles;
 use crate::error::{check_positive, ThudError};
 use crate::limits::{self, Estimate, Refusal, Remedy};
@@ -89,7 +89,7 @@ impl Default for ResponseOptions {
 /// periods summed over the runs (blaming the runs when one run alone is inside the cap, else
 /// the frequencies), the Newmark steps, and the main-mass cycles of one run at the highest
 /// frequency.
-pub fn check_response(d: &Design, freqs_hz: &[f64], continuation: bool, runs: usize) -> Result<(), Refusal> {
+pub fn check_response(d: &ValidDesign, freqs_hz: &[f64], continuation: bool, runs: usize) -> Result<(), Refusal> {
     let [one, one_steps] = limits::response_work(d, freqs_hz, continuation);
     let n = runs as f64;
     let (periods, steps) =
@@ -138,7 +138,7 @@ pub fn at_frequency(base: &Design, freq_hz: f64, settle: bool) -> Design {
 /// One frequency from `start`: the point and the state it ended in.
 fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Option<Start>), ThudError> {
     let (run, end) = damper::run_from(&d.damper, d.solver, &RunOptions::default(), start, want_end)?;
-    let s = steady(&run, d)?.ok_or_else(|| ThudError::invalid("force", "a response needs a force > 0"))?;
+    let s = run_steady(&run, d)?.ok_or_else(|| ThudError::invalid("force", "a response needs a force > 0"))?;
     Ok((ResponsePoint { freq_hz: d.damper.freq_hz, steady: s, final_time_s: run.final_time_s }, end))
 }
 
@@ -148,6 +148,21 @@ fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Op
 /// from the previous final state) and then a falling one. `on_point` is called as each point
 /// finishes; `cancel` stops between points (the response then holds what was done).
 pub fn response(
+    base: &ValidDesign,
+    freqs_hz: &[f64],
+    opts: &ResponseOptions,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn() + Sync),
+) -> Result<Response, ThudError> {
+    response_checked(base, freqs_hz, opts, cancel, on_point)
+}
+
+/// [`response`] of a checked design, or of one derived from it by a change that keeps it
+/// valid and resolved (a response ensemble's ball offset inside the clearance). The design at
+/// each frequency differs from `base` in its frequency (each checked > 0 here), its settling
+/// and a duration of at least two windows: none of them bears on K_HZ or a cross-check, and
+/// the work caps ([`check_response`]) bound them, so they are not checked again.
+fn response_checked(
     base: &Design,
     freqs_hz: &[f64],
     opts: &ResponseOptions,
@@ -157,15 +172,12 @@ pub fn response(
     for &f in freqs_hz {
         check_positive("freqs", f, "Hz")?;
     }
-    let Some(&first) = freqs_hz.first() else {
+    if freqs_hz.is_empty() {
         return Ok(Response { force_n: base.damper.force_n, sweeps: vec![] });
-    };
+    }
     check_positive("force", base.damper.force_n, "N")?;
-    // The base design need not have a frequency of its own: each point sets one.
-    at_frequency(base, first, opts.settle).validate()?;
-    let base = base.resolved()?;
     let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
-    let design_at = |f: f64| at_frequency(&base, f, opts.settle);
+    let design_at = |f: f64| at_frequency(base, f, opts.settle);
     let start0 = Start::of(&base.damper);
     let sweeps = if opts.continuation {
         let mut up: Vec<f64> = freqs_hz.to_vec();
@@ -323,7 +335,7 @@ impl ResponseEnsemble {
 /// frequencies are spread over rayon's pool; `on_point` is called as each run's point
 /// finishes; `cancel` stops between points (every sweep then holds the points all runs did).
 pub fn response_ensemble(
-    base: &Design,
+    base: &ValidDesign,
     freqs_hz: &[f64],
     n: usize,
     opts: &ResponseOptions,
@@ -337,9 +349,9 @@ pub fn response_ensemble(
     let runs: Vec<Response> = offsets
         .par_iter()
         .map(|&y0| {
-            let mut d = base.clone();
+            let mut d = base.design().clone();
             d.damper.ball_position_m = y0;
-            response(&d, freqs_hz, opts, cancel, on_point)
+            response_checked(&d, freqs_hz, opts, cancel, on_point)
         })
         .collect::<Result<_, _>>()?;
     let n_sweeps = runs.iter().map(|r| r.sweeps.len()).min().unwrap_or(0);

@@ -121,8 +121,7 @@ mod tests {
         for p in list {
             assert!(!p.description.is_empty() && !p.description.contains('\n'), "{}", p.name);
             let d = preset(p.name).unwrap();
-            d.validate().unwrap();
-            d.resolved().unwrap();
+            d.check().unwrap();
         }
     }
 

@@ -29,7 +29,7 @@ mod progress;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
-use thud_core::design::{self, Design};
+use thud_core::design::{self, Design, ValidDesign};
 use thud_core::limits::{self, short};
 use thud_core::params::{self, Spelling};
 use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
@@ -72,7 +72,7 @@ fn preset(py: Python<'_>, kw: &Kwargs<'_>, default: Option<&str>) -> PyResult<Op
 }
 
 /// The design of a call: the preset, then the keyword parameters (the engine's mapping).
-fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Design> {
+fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<ValidDesign> {
     let base = preset(py, kw, Some("default"))?.unwrap_or_default();
     params::design(base, &kw.params, Spelling::Keyword).map_err(|e| engine_error(py, e))
 }
@@ -181,7 +181,7 @@ fn simulate_ensemble(
 }
 
 /// The ensemble of `runs` runs of `d`, its work checked first.
-fn ensemble_of(py: Python<'_>, d: &Design, kw: &Kwargs<'_>, runs: usize, no_limit: bool) -> PyResult<PyEnsemble> {
+fn ensemble_of(py: Python<'_>, d: &ValidDesign, kw: &Kwargs<'_>, runs: usize, no_limit: bool) -> PyResult<PyEnsemble> {
     let given = |n: &str| args::given(&kw.params, n);
     refuse(py, limits::check_run(d, &given, 0), "samples", no_limit)?;
     refuse(py, limits::check_runs(d, &given, 1, runs), "ensemble", no_limit)?;
@@ -358,7 +358,7 @@ fn response_curve(
 /// line does: the forcing periods and Newmark steps over all runs, the cycles of one run.
 fn check_response(
     py: Python<'_>,
-    d: &Design,
+    d: &ValidDesign,
     freqs: &[f64],
     continuation: bool,
     runs: usize,

@@ -24,7 +24,7 @@ use serde::de::{DeserializeOwned, IgnoredAny, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
 use serde_json::Value as Json;
 use thud_core::damper::{free_response, HistoryPoint, Maximum};
-use thud_core::design::{self, Design};
+use thud_core::design::{self, Design, ValidDesign};
 use thud_core::ensemble::{EnsembleChart, Member};
 use thud_core::limits::{self, short};
 use thud_core::params::PulseInput;
@@ -519,7 +519,7 @@ pub struct RunData {
 impl RunData {
     /// `design` simulated with `samples` history samples — the record of
     /// `thud simulate --json`, and the history of `--csv`.
-    pub fn compute(d: &Design, samples: usize, cancel: &AtomicBool) -> Result<RunData, ThudError> {
+    pub fn compute(d: &ValidDesign, samples: usize, cancel: &AtomicBool) -> Result<RunData, ThudError> {
         let eval = design::evaluate(d, samples, Some(cancel))?;
         let report = RunReport::new(d, &eval)?;
         let x_free = eval.run.history.iter().map(|h| free_response(&d.damper, h.t_s)).collect();

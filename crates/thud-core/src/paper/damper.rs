@@ -69,7 +69,7 @@ pub const TABLE4: [(f64, f64, f64, f64); 10] = [
 /// The model's Table 3: for each printed (mass, gap), the design `paper-table3` evaluated.
 /// Returns (U0max m/s, SPLmax dB) in Table 3's layout.
 pub fn table3_model() -> Result<Vec<[(f64, f64); 4]>, ThudError> {
-    let base = Design::paper_table3();
+    let base = Design::paper_table3().check()?;
     let chart = design::sweep(&base, &TABLE3_MASSES_KG, &TABLE3_GAPS_M, None, &|_, _| {})?;
     Ok((0..TABLE3_MASSES_KG.len())
         .map(|mi| {
@@ -200,7 +200,7 @@ pub fn chart_grid() -> (Vec<f64>, Vec<f64>) {
 /// The design chart of the paper's set-up (preset paper-table3) on [`chart_grid`].
 pub fn paper_chart() -> Result<Chart, ThudError> {
     let (masses, gaps) = chart_grid();
-    design::sweep(&Design::paper_table3(), &masses, &gaps, None, &|_, _| {})
+    design::sweep(&Design::paper_table3().check()?, &masses, &gaps, None, &|_, _| {})
 }
 
 const CHART_NOTE: &str = "Set-up: preset paper-table3 (v0 1.4 m/s, c1 83.68 N·s/m, no-tension clamp), 2 s runs; e from Eq 27 (first two cycle maxima), e_fit the least-squares slope of the maxima down to X1/2. The paper prints only the plot.";
@@ -285,7 +285,7 @@ pub fn table5() -> Result<Table, ThudError> {
 }
 
 pub fn fig9() -> Result<Table, ThudError> {
-    let d = Design::paper_fig9();
+    let d = Design::paper_fig9().check()?;
     let eval = design::evaluate(&d, 1001, None)?;
     let mut notes =
         vec!["Preset paper-fig9: Table 2, v0 2 m/s, d 4 cm; x(0) = 0, x'(0) = v0, ball centred at rest.".into()];
@@ -330,7 +330,7 @@ pub fn fig9() -> Result<Table, ThudError> {
 }
 
 pub fn fig13() -> Result<Table, ThudError> {
-    let d = Design::default();
+    let d = Design::default().check()?;
     let masses: Vec<f64> = (1..=20).map(|k| 0.005 * f64::from(k)).collect();
     let curve = design::restitution_curve(&d, &masses, 1.4)?;
     let reference = |m: f64| match (m * 1e3).round() as i64 {
