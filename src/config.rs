@@ -1,6 +1,8 @@
 //! The user's settings, `config.toml` in the config directory (on Linux
-//! `$XDG_CONFIG_HOME/thud/config.toml`): theme, key overrides, default zone thresholds and the
-//! marker style of plots. Front-end support, not physics.
+//! `$XDG_CONFIG_HOME/thud/config.toml`): theme, key overrides, default zone thresholds, the
+//! marker style of plots and design defaults (`[design]`, whose keys are the rows of the
+//! engine's parameter table, [`params::DESIGN`]: no key list is kept here). Front-end support,
+//! not physics.
 //!
 //! A file that fails to parse is reported with its path, line and problem; the caller goes on
 //! with the defaults and the file is never overwritten by loading.
@@ -11,9 +13,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::design::Thresholds;
+use crate::design::{Design, Thresholds, ValidDesign};
 use crate::error::ThudError;
 use crate::fsio;
+use crate::params::{self, Input, Spelling};
 use crate::store::{self, FileProblem, StoreError};
 
 /// File name of the settings inside the config directory.
@@ -246,6 +249,28 @@ pub struct ThresholdDefaults {
     pub e_star_cm_s: Option<f64>,
 }
 
+/// The value of a design parameter in `config.toml`'s `[design]` table: what the command
+/// line takes after the flag — a number in the row's plain unit, text with a unit or a name,
+/// or a switch.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ParamValue {
+    Switch(bool),
+    Number(f64),
+    Text(String),
+}
+
+impl ParamValue {
+    /// The value as the engine's parameter table takes it.
+    fn input(&self) -> Input {
+        match self {
+            ParamValue::Switch(on) => Input::Switch(*on),
+            ParamValue::Number(x) => Input::Num(*x),
+            ParamValue::Text(t) => Input::Text(t.clone()),
+        }
+    }
+}
+
 /// The settings of `config.toml`. Every field may be left out.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -255,6 +280,11 @@ pub struct Config {
     /// A table only: `thresholds = [1, 2]` is refused, not read by position.
     #[serde(deserialize_with = "table_only")]
     pub thresholds: ThresholdDefaults,
+    /// Design defaults, set on the preset before the command line's flags: each key a row of
+    /// the engine's parameter table [`params::DESIGN`] by its name, the long flag without
+    /// dashes (`main-mass = 0.6`, `mass = "40.5g"`, `no-tension = true`), checked as the flag.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub design: BTreeMap<String, ParamValue>,
     /// Key overrides: action name → key (e.g. `save = "ctrl-s"`).
     pub keys: BTreeMap<ActionName, KeyBinding>,
 }
@@ -263,13 +293,13 @@ impl Config {
     /// Checks the values serde cannot: thresholds inside their ranges (the same table the
     /// command line and the explorer use, [`crate::limits`]), no key bound to two actions.
     pub fn validate(&self) -> Result<(), ThudError> {
-        use crate::limits::{E_STAR, L_STAR};
-        for (name, v, range) in
-            [("l_star_db", self.thresholds.l_star_db, L_STAR), ("e_star_cm_s", self.thresholds.e_star_cm_s, E_STAR)]
-        {
-            if let Some(x) = v {
+        for (name, v) in [("l_star_db", self.thresholds.l_star_db), ("e_star_cm_s", self.thresholds.e_star_cm_s)] {
+            if let (Some(x), Some(range)) = (v, threshold_range(name)) {
                 range.check_as(name, x)?;
             }
+        }
+        for (key, value) in &self.design {
+            check_design_key(key, &value.input())?;
         }
         let mut seen: Vec<(KeySpec, &ActionName)> = Vec::new();
         for (action, key) in &self.keys {
@@ -291,6 +321,19 @@ impl Config {
             inclination_cm_s: self.thresholds.e_star_cm_s.unwrap_or(base.inclination_cm_s),
             zone_by: base.zone_by,
         }
+    }
+
+    /// `base` with the design defaults of `[design]` set ([`params::design`]: each value
+    /// checked as its flag, then the whole design); an error names the key and the file.
+    pub fn design(&self, base: Design) -> Result<Design, ThudError> {
+        if self.design.is_empty() {
+            return Ok(base);
+        }
+        let given: Vec<(String, Input)> = self.design.iter().map(|(k, v)| (k.clone(), v.input())).collect();
+        params::design(base, &given, Spelling::Flag).map(ValidDesign::into_design).map_err(|e| {
+            let key = e.param().trim_start_matches("--").to_string();
+            e.renamed(format!("{key} in {CONFIG_FILE} [design]"))
+        })
     }
 
     /// The key override of `action`, if any.
@@ -321,7 +364,33 @@ fn table_only<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Re
 }
 
 /// The top-level keys of `config.toml`.
-const KEYS: [&str; 4] = ["theme", "markers", "thresholds", "keys"];
+const KEYS: [&str; 5] = ["theme", "markers", "thresholds", "design", "keys"];
+
+/// The range of a key of `[thresholds]` (the older spelling of `[design]`'s `l-star` and
+/// `e-star`): its row's in the engine's table.
+fn threshold_range(key: &str) -> Option<&'static crate::limits::Range> {
+    let row = match key {
+        "l_star_db" => "l-star",
+        "e_star_cm_s" => "e-star",
+        _ => return None,
+    };
+    params::design_param(row).and_then(params::Param::range)
+}
+
+/// Checks one key of `[design]` and its value against the engine's table: a row's name (or
+/// alias), else "unknown" naming the nearest row; the value as that row's flag takes it.
+fn check_design_key(key: &str, value: &Input) -> Result<(), ThudError> {
+    let known = params::DESIGN.iter().any(|p| p.name == key || p.alias == Some(key));
+    if !known {
+        let near = params::nearest_design_param(key).map_or(String::new(), |n| format!("did you mean '{n}'? "));
+        let all: Vec<&str> = params::DESIGN.iter().map(|p| p.name).collect();
+        return Err(ThudError::invalid(
+            key,
+            format!("unknown design parameter; {near}(the keys of [design] are: {})", all.join(", ")),
+        ));
+    }
+    params::check_named(&[(key.to_string(), value.clone())], Spelling::Flag).map_err(|e| e.renamed(key))
+}
 
 /// Every problem of the config `text` read from `path`, in the order they appear: TOML syntax,
 /// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
@@ -355,6 +424,10 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
                 found.extend(key_problems(value, &at));
                 None
             }
+            "design" => {
+                found.extend(design_problems(value, &at));
+                None
+            }
             other => Some(at(key.span(), format!("unknown key '{other}'; the settings are {}", KEYS.join(", ")))),
         };
         found.extend(problem);
@@ -363,22 +436,61 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
     found.into_iter().map(|(_, p)| p).collect()
 }
 
+/// Keys of `[design]` that are no row of the engine's table (at the key) or values the row
+/// refuses (at the value).
+fn design_problems(
+    value: &toml::Spanned<toml::de::DeValue<'_>>,
+    at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
+) -> Vec<(usize, FileProblem)> {
+    use toml::de::DeValue;
+    let Some(table) = value.get_ref().as_table() else {
+        return vec![at(value.span(), "invalid type: expected a table of parameter = value".into())];
+    };
+    let mut found = Vec::new();
+    for (key, v) in table {
+        let name = key.get_ref().as_ref();
+        let input = match v.get_ref() {
+            DeValue::Boolean(on) => Some(Input::Switch(*on)),
+            DeValue::String(t) => Some(Input::Text(t.to_string())),
+            DeValue::Integer(_) | DeValue::Float(_) => toml_number(v.get_ref()).map(Input::Num),
+            _ => None,
+        };
+        let Some(input) = input else {
+            found.push(at(
+                v.span(),
+                format!("invalid {name}: expected a number, a text such as \"40.5g\" or true/false"),
+            ));
+            continue;
+        };
+        if let Err(e) = check_design_key(name, &input) {
+            let span = if matches!(e, ThudError::Invalid { .. }) && e.detail().starts_with("unknown design parameter") {
+                key.span()
+            } else {
+                v.span()
+            };
+            found.push(at(span, e.to_string()));
+        }
+    }
+    found
+}
+
+/// A TOML integer or float as a number.
+fn toml_number(v: &toml::de::DeValue<'_>) -> Option<f64> {
+    v.as_float()
+        .and_then(|f| f.as_str().parse::<f64>().ok())
+        .or_else(|| v.as_integer().and_then(|i| i.as_str().replace('_', "").parse::<f64>().ok()))
+}
+
 /// Thresholds outside their ranges (the table parsed), each at its value.
 fn threshold_problems(
     value: &toml::Spanned<toml::de::DeValue<'_>>,
     at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
 ) -> Vec<(usize, FileProblem)> {
-    use crate::limits::{E_STAR, L_STAR};
     let Some(table) = value.get_ref().as_table() else { return vec![] };
     let mut found = Vec::new();
-    for (name, range) in [("l_star_db", L_STAR), ("e_star_cm_s", E_STAR)] {
-        let Some(v) = table.get(name) else { continue };
-        let x = v
-            .get_ref()
-            .as_float()
-            .and_then(|f| f.as_str().parse::<f64>().ok())
-            .or_else(|| v.get_ref().as_integer().and_then(|i| i.as_str().replace('_', "").parse::<f64>().ok()));
-        if let Some(Err(e)) = x.map(|x| range.check_as(name, x)) {
+    for name in ["l_star_db", "e_star_cm_s"] {
+        let (Some(v), Some(range)) = (table.get(name), threshold_range(name)) else { continue };
+        if let Some(Err(e)) = toml_number(v.get_ref()).map(|x| range.check_as(name, x)) {
             found.push(at(v.span(), e.to_string()));
         }
     }

@@ -852,6 +852,71 @@ fn a_dead_terminal_ends_the_explorer_within_a_second() {
     assert_eq!(said.trim(), "exit 1", "{said}{}", String::from_utf8_lossy(&out.stderr));
 }
 
+/// Item 14: a hostile terminal sends a bracketed-paste start and 2 MiB without the end marker,
+/// then, after the paste's second, `q`. Prints "exit CODE" or "STILL RUNNING".
+const ENDLESS_PASTE: &str = r#"
+import fcntl, os, pty, select, struct, subprocess, sys, termios, time
+m, s = pty.openpty()
+fcntl.ioctl(s, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
+p = subprocess.Popen([sys.argv[1], "tui"], stdin=s, stdout=s, stderr=s, start_new_session=True,
+                     env=dict(os.environ, TERM="xterm-256color"))
+os.close(s)
+def pump(seconds, data=b""):
+    seen, sent, end = b"", 0, time.time() + seconds
+    while time.time() < end and (sent < len(data) or not data):
+        r, w, _ = select.select([m], [m] if sent < len(data) else [], [], 0.05)
+        if r:
+            try:
+                seen += os.read(m, 65536)
+            except OSError:
+                break
+        if w:
+            sent += os.write(m, data[sent:sent + 4096])
+    return seen, sent
+seen = b""
+start = time.time()
+while b"parameters" not in seen and time.time() - start < 15:
+    seen += pump(0.2)[0]
+if b"parameters" not in seen:
+    print("NO SCREEN", p.poll(), seen[-200:])
+    sys.exit(0)
+flood = b"\x1b[200~" + b"x" * (2 << 20)
+_, sent = pump(30, flood)
+if sent < len(flood):
+    print("FLOOD NOT READ", sent)
+pump(1.5)
+os.write(m, b"q")
+end = time.time() + 5
+while p.poll() is None and time.time() < end:
+    pump(0.1)
+if p.poll() is None:
+    p.kill()
+    p.wait()
+    print("STILL RUNNING")
+else:
+    print("exit", p.returncode)
+"#;
+
+/// Item 14: an unterminated bracketed paste times out. crossterm's reader kept everything after
+/// `ESC[200~` until `ESC[201~`, so every later key (q included) was swallowed and memory grew;
+/// the explorer drops such a paste after a second (keeping at most 1 MiB) and reads keys again.
+#[test]
+fn an_endless_bracketed_paste_times_out_and_q_quits() {
+    let home = tempfile::tempdir().unwrap();
+    let Ok(out) = Command::new("python3")
+        .args(["-c", ENDLESS_PASTE, env!("CARGO_BIN_EXE_thud")])
+        .env("HOME", home.path())
+        .env("XDG_CONFIG_HOME", home.path().join("config"))
+        .env("XDG_DATA_HOME", home.path().join("data"))
+        .output()
+    else {
+        eprintln!("skipped: python3 (for its pty module) is not installed");
+        return;
+    };
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(said.trim(), "exit 0", "{said}{}", String::from_utf8_lossy(&out.stderr));
+}
+
 /// Item 6: a config problem is a warning, apart from errors: a failing command prints only its
 /// one error line; `thud config check` lists every problem with file:line:col and exits 2; a
 /// wrong shape such as `thresholds = [1, 2]` is a problem, not read by position.

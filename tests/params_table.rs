@@ -2,9 +2,10 @@
 //! One table per parameter: every row of the engine's table (`thud_core::params::DESIGN`) is
 //! exposed by every front end with the row's own range and help — the command line's flag on
 //! each design command (so its completions and man page too), `thud limits`, an explorer field,
-//! and Python's keyword in the checked-in stub. A row a front end misses fails here.
+//! a key of `config.toml`'s `[design]`, and Python's keyword in the checked-in stub. A row a
+//! front end misses fails here.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::CommandFactory;
 use thud::cli::Cli;
@@ -134,4 +135,100 @@ fn the_python_stub_lists_every_row_as_the_table_says() {
         assert!(text.contains(&keyword), "{}", p.name);
         assert!(text.contains(p.help), "{}", p.name);
     }
+}
+
+/// A value inside the row's range (the default design's, or the range's bound) as TOML, and
+/// one outside it (none for rows without a range).
+fn config_values(p: &params::Param<params::DesignDraft>) -> (String, Option<String>) {
+    let d = thud::design::Design::default();
+    match (&p.accepts, p.range()) {
+        (Accepts::Choice { names, .. }, _) => (format!("\"{}\"", names[names.len() - 1]), None),
+        (Accepts::Name { .. }, _) => ("\"steel\"".into(), None),
+        (Accepts::Switch { .. }, _) => ("true".into(), None),
+        (_, Some(r)) => {
+            let inside = p.get.map(|g| g(&d)).filter(|v| r.contains(*v)).unwrap_or(r.max);
+            let outside = if r.max.is_finite() { r.max.abs() * 2.0 + 1.0 } else { r.min - r.min.abs() - 1.0 };
+            (format!("{inside:?}"), Some(format!("{outside:?}")))
+        }
+        (_, None) => unreachable!("{}: a numeric row has a range", p.name),
+    }
+}
+
+#[test]
+fn every_row_is_a_config_key_with_its_range() {
+    let path = Path::new("config.toml");
+    for p in DESIGN {
+        let (inside, outside) = config_values(p);
+        let text = format!("theme = \"mono\"\n[design]\n{} = {inside}\n", p.name);
+        let problems = thud::config::check_text(path, &text);
+        assert!(problems.is_empty(), "{text}: {problems:?}");
+        let config: thud::config::Config = toml::from_str(&text).unwrap();
+        assert!(config.validate().is_ok(), "{text}");
+        if let (Some(outside), Some(range)) = (outside, p.range()) {
+            let text = format!("[design]\n{} = {outside}\n", p.name);
+            let problems = thud::config::check_text(path, &text);
+            assert_eq!(problems.len(), 1, "{text}: {problems:?}");
+            let shown = problems[0].to_string();
+            assert!(shown.starts_with(&format!("config.toml:2:{}: invalid {}: ", p.name.len() + 4, p.name)), "{shown}");
+            assert!(shown.contains(&range.describe()), "{shown}: the range's line");
+            let config: thud::config::Config = toml::from_str(&text).unwrap();
+            assert!(config.validate().is_err(), "{text}");
+        }
+    }
+    // A key that is no row is reported at the key, naming the nearest row.
+    let problems = thud::config::check_text(path, "[design]\nmain_mas = 1\nstifness = 2\n");
+    let shown: Vec<String> = problems.iter().map(ToString::to_string).collect();
+    assert_eq!(shown.len(), 2, "{shown:?}");
+    assert!(
+        shown[0].starts_with("config.toml:2:1: invalid main_mas: unknown design parameter; did you mean 'main-mass'?"),
+        "{shown:?}"
+    );
+    assert!(shown[1].starts_with("config.toml:3:1: invalid stifness: unknown design parameter"), "{shown:?}");
+}
+
+/// Runs the built binary with HOME and the XDG folders in `home`: exit code, stdout, stderr.
+fn thud_in(home: &Path, args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(args)
+        .env("HOME", home)
+        .env("XDG_CONFIG_HOME", home.join("config"))
+        .env("XDG_DATA_HOME", home.join("data"))
+        .env_remove("XDG_CONFIG_DIRS")
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
+    (out.status.code().unwrap_or(-1), text(&out.stdout), text(&out.stderr))
+}
+
+#[test]
+fn config_design_keys_set_the_preset_before_the_flags_and_config_check_lists_them() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path().join("config/thud");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("config.toml"), "[design]\nmass = \"50g\"\nmain-mass = 0.6\n").unwrap();
+    let mass = |args: &[&str]| {
+        let (code, out, err) =
+            thud_in(home.path(), &[&["simulate", "--duration", "0.05", "--json"][..], args].concat());
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        (
+            v["design"]["damper"]["impact_mass_kg"].as_f64().unwrap(),
+            v["design"]["damper"]["main_mass_kg"].as_f64().unwrap(),
+        )
+    };
+    assert_eq!(mass(&[]), (0.05, 0.6));
+    assert_eq!(mass(&["--mass", "60g"]), (0.06, 0.6), "a flag overrides the config");
+    assert_eq!(thud_in(home.path(), &["config", "check"]).0, 0);
+    std::fs::write(dir.join("config.toml"), "[design]\nmass = 1e9\nmian-mass = 1\n").unwrap();
+    let (code, out, err) = thud_in(home.path(), &["config", "check"]);
+    assert_eq!(code, 2, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    assert!(lines[0].contains("config.toml:2:8: invalid mass: 1e9 kg is out of range"), "{out}");
+    assert!(lines[0].contains(&thud::limits::MASS.describe()), "{out}");
+    assert!(
+        lines[1].contains("config.toml:3:1: invalid mian-mass: unknown design parameter; did you mean 'main-mass'?"),
+        "{out}"
+    );
 }

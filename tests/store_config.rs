@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::mpsc;
 use std::time::Duration;
 
-use thud::config::{self, ActionName, Config, KeyBinding, MarkerStyle, Theme, ThresholdDefaults};
+use thud::config::{self, ActionName, Config, KeyBinding, MarkerStyle, ParamValue, Theme, ThresholdDefaults};
 use thud::fsio::FileKind;
 use thud::presets;
 use thud::store::{self, DesignFile, StoreError};
@@ -19,6 +19,13 @@ fn full_config() -> Config {
         thresholds: ThresholdDefaults { l_star_db: Some(100.5), e_star_cm_s: Some(0.75) },
         ..Default::default()
     };
+    for (name, value) in [
+        ("main-mass", ParamValue::Number(0.6)),
+        ("mass", ParamValue::Text("50g".into())),
+        ("no-tension", ParamValue::Switch(true)),
+    ] {
+        c.design.insert(name.into(), value);
+    }
     for (a, k) in [("save", "ctrl-s"), ("load", "L"), ("export", "F5"), ("next-panel", "tab")] {
         c.keys.insert(ActionName::new(a).unwrap(), KeyBinding::new(k).unwrap());
     }

@@ -993,13 +993,20 @@ fn the_default_design_at_200x60_is_marked_with_its_own_zone_not_a_cells() {
     let reqs = app.select_design(0.0405, 0.0482);
     compute_sync(&mut app, reqs);
     show_chart(&mut app);
-    let a = render(&mut app, 80, 24);
+    let (a, buf_a) = render_with(&mut app, 80, 24);
+    let geo_a = app.chart_geometry.clone().unwrap();
     let reqs = app.select_design(0.0405, 0.0536);
     compute_sync(&mut app, reqs);
-    let b = render(&mut app, 80, 24);
-    let (za, zb) = (readout_zone(&a).unwrap(), readout_zone(&b).unwrap());
-    let find = |s: &str, z: char| s.lines().position(|l| l.contains(&format!("[{z}]")) && !l.contains("this design"));
-    assert_ne!(find(&a, za), find(&b, zb), "the marker moves with d:\n{a}\n{b}");
+    let (b, buf_b) = render_with(&mut app, 80, 24);
+    let geo_b = app.chart_geometry.clone().unwrap();
+    // The marker is the grid's reversed cell (`[n]`, or the zone glyph alone in narrow cells).
+    let find = |buf: &ratatui::buffer::Buffer, geo: &thud::tui::chart::Geometry| {
+        let c = geo.cells;
+        (c.y..c.bottom())
+            .find(|&y| (c.x..c.right()).any(|x| buf[(x, y)].modifier.contains(ratatui::style::Modifier::REVERSED)))
+    };
+    assert!(find(&buf_a, &geo_a).is_some(), "{a}");
+    assert_ne!(find(&buf_a, &geo_a), find(&buf_b, &geo_b), "the marker moves with d:\n{a}\n{b}");
 }
 
 #[test]
@@ -1063,7 +1070,8 @@ fn typed_plain_numbers_are_in_the_unit_shown_and_refusals_name_the_field() {
 #[test]
 fn the_status_line_explains_the_selected_field() {
     let mut app = computed_app();
-    for _ in 0..8 {
+    // The design group in table order: m, d, M, K, C, c1.
+    for _ in 0..5 {
         press(&mut app, KeyCode::Down);
     }
     assert_eq!(app.param(), thud::tui::fields::Knob::C1);
@@ -1862,4 +1870,287 @@ fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
     assert_eq!(app.mode, Mode::Saved(0));
     assert!(app.status().unwrap().text.contains("ensemble N 0"), "{:?}", app.status());
     assert_eq!(app.runs, 1);
+}
+
+/// Issue 16 item 1: the field list is grouped as the engine's table groups its rows (design,
+/// forcing, listener, solver, study), each group under its heading and in table order; the
+/// panel scrolls to the selected field with its group's heading above it.
+#[test]
+fn the_field_list_is_grouped_by_the_table_s_groups() {
+    use thud::params::{Group, DESIGN};
+    use thud::tui::fields::Knob;
+    let position = |k: &Knob| k.rows().first().and_then(|n| DESIGN.iter().position(|p| p.name == *n));
+    let key = |k: &Knob| (Group::ALL.iter().position(|g| *g == k.group()), position(k).unwrap_or(usize::MAX));
+    let keys: Vec<_> = Knob::ALL.iter().map(key).collect();
+    assert!(keys.windows(2).all(|w| w[0] < w[1]), "grouped, then in table order: {:?}", Knob::ALL);
+    for k in Knob::ALL {
+        if let Some(row) = k.row() {
+            assert_eq!(k.group(), row.group, "{k:?}");
+        }
+    }
+    let mut app = computed_app();
+    app.selected = Knob::ALL.iter().position(|q| *q == Knob::Force).unwrap();
+    let screen = render(&mut app, 120, 40);
+    insta::assert_snapshot!("fields_grouped_120x40", screen);
+    let panel: Vec<&str> =
+        screen.lines().map(|l| l.get(..l.char_indices().nth(42).map_or(l.len(), |(i, _)| i)).unwrap_or(l)).collect();
+    let heading = |title: &str| panel.iter().position(|l| l.contains(&format!("─ {title} ─")));
+    let (forcing, listener) = (heading("forcing").expect("forcing heading"), heading("listener").expect("listener"));
+    let force = panel.iter().position(|l| l.contains("▶")).unwrap();
+    assert!(forcing < force && force < listener, "{screen}");
+    app.selected = Knob::ALL.len() - 1;
+    assert!(render(&mut app, 120, 40).contains("─ study ─"), "the last field, N, is with the study");
+}
+
+// ---- Issue 17 items 5 and 12: the chart's marker and labels, the readout's columns ----
+
+/// The chart's cells in the last frame: (geometry, the cells' views, masses in g, gaps in cm).
+fn chart_of(app: &App) -> (thud::tui::chart::Geometry, Vec<thud::tui::chart::CellView>, Vec<f64>, Vec<f64>) {
+    let geo = app.chart_geometry.clone().expect("chart drawn");
+    let masses: Vec<f64> = app.chart.fine.masses_kg.iter().map(|m| m * 1e3).collect();
+    let gaps: Vec<f64> = app.chart.fine.gaps_m.iter().map(|g| g * 1e2).collect();
+    (geo, thud::tui::ui::chart_cells(app), masses, gaps)
+}
+
+/// The text of columns `xs` on line `y` of `buf`.
+fn text_at(buf: &ratatui::buffer::Buffer, xs: std::ops::Range<u16>, y: u16) -> String {
+    xs.map(|x| buf[(x, y)].symbol().to_string()).collect()
+}
+
+/// Numbers written on line `y` from column `from` to `to` (exclusive): (first, end, value).
+fn numbers_on(buf: &ratatui::buffer::Buffer, from: u16, to: u16, y: u16) -> Vec<(u16, u16, f64)> {
+    let mut out = vec![];
+    let mut x = from;
+    while x < to {
+        if buf[(x, y)].symbol() == " " {
+            x += 1;
+            continue;
+        }
+        let start = x;
+        while x < buf.area.right() && buf[(x, y)].symbol() != " " {
+            x += 1;
+        }
+        if let Ok(v) = text_at(buf, start..x, y).parse::<f64>() {
+            out.push((start, x, v));
+        }
+    }
+    out
+}
+
+/// The chart at 80×24 (Tab to it), 120×40 and 200×60 of the default design on the full grid
+/// and of an ensemble of 4 on the small one.
+fn chart_frames() -> Vec<(String, App, u16, u16)> {
+    let mut out = vec![];
+    for (w, h) in SIZES {
+        let mut app = full_app("default", Palette::default());
+        show_chart(&mut app);
+        out.push((format!("default {w}x{h}"), app, w, h));
+        let mut app = ensemble_app(4, Palette::default());
+        show_chart(&mut app);
+        out.push((format!("ensemble {w}x{h}"), app, w, h));
+    }
+    out
+}
+
+/// Issue 17 item 5: each gap label sits on the glyph line of the row whose gap is nearest its
+/// value (within half a row step; never on a spacer line of a tall cell), and each mass label
+/// over the glyph column of the column whose mass is nearest it.
+#[test]
+fn the_charts_axis_labels_sit_on_the_rows_and_columns_of_their_values() {
+    for (name, mut app, w, h) in chart_frames() {
+        let (screen, buf) = render_with(&mut app, w, h);
+        let (geo, _, masses, gaps) = chart_of(&app);
+        let shown_gaps: Vec<f64> = geo.rows.iter().map(|&i| gaps[i]).collect();
+        let step = shown_gaps.windows(2).map(|p| p[1] - p[0]).fold(0.0, f64::max);
+        let label_x = geo.cells.x - thud::tui::chart::LABEL_W;
+        let labels: Vec<(u16, f64)> = (geo.cells.y..geo.cells.bottom())
+            .filter_map(|y| text_at(&buf, label_x..geo.cells.x, y).trim().parse().ok().map(|v| (y, v)))
+            .collect();
+        assert!(labels.len() >= 2, "{name}: gap labels {labels:?}\n{screen}");
+        for (y, v) in labels {
+            let r = (0..geo.rows.len()).find(|&r| geo.glyph_at(0, r).1 == y);
+            let r = r.unwrap_or_else(|| panic!("{name}: label {v} on a spacer line {y}\n{screen}"));
+            let off = (shown_gaps[r] - v).abs();
+            let best = shown_gaps.iter().map(|g| (g - v).abs()).fold(f64::INFINITY, f64::min);
+            assert!(off <= best + 1e-9, "{name}: {v} labels the {} cm row\n{screen}", shown_gaps[r]);
+            assert!(off <= 0.5 * step + 1e-9, "{name}: {v} is {off} cm from its row\n{screen}");
+        }
+        let shown_masses: Vec<f64> = geo.cols.iter().map(|&i| masses[i]).collect();
+        let mstep = shown_masses.windows(2).map(|p| p[1] - p[0]).fold(0.0, f64::max);
+        let ticks = numbers_on(&buf, label_x, geo.cells.right(), geo.cells.bottom());
+        assert!(ticks.len() >= 2, "{name}: mass labels\n{screen}");
+        for (x0, x1, v) in ticks {
+            let best = shown_masses.iter().map(|m| (m - v).abs()).fold(f64::INFINITY, f64::min);
+            // The nearest column (either of two halfway) has its glyph under the label.
+            let under = (0..shown_masses.len())
+                .filter(|&c| (shown_masses[c] - v).abs() <= best + 1e-9)
+                .any(|c| (x0..x1).contains(&geo.glyph_at(c, 0).0));
+            assert!(under, "{name}: mass label {v} at {x0}..{x1} is not over its column\n{screen}");
+            assert!(best <= 0.5 * mstep + 1e-9, "{name}: {v}\n{screen}");
+        }
+    }
+}
+
+/// What a cell shows on screen at (x, y) of its rectangle `r` without a marker: its zone
+/// digit (or `-`, `·` pending) in the middle, its fill (`░` unsure, else blank) elsewhere.
+fn cell_glyph(cell: thud::tui::chart::CellView, r: ratatui::layout::Rect, x: u16, y: u16) -> String {
+    use thud::tui::chart::CellView;
+    let digit = |z: Option<thud::design::Zone>| z.map_or("-".to_string(), |z| z.number().to_string());
+    if (x, y) == thud::tui::chart::centre(r) {
+        return match cell {
+            CellView::Empty => "·".into(),
+            CellView::Approx(z) | CellView::Exact(z) | CellView::Unsure(z) => digit(z),
+        };
+    }
+    if matches!(cell, CellView::Unsure(_)) { "░" } else { " " }.to_string()
+}
+
+/// Issue 17 item 5: the design's marker stays inside its own cell; the cells beside it (left
+/// and right) show the digits and fill they show without it, for designs on a cell, between
+/// cells and between rows, at 80×24, 120×40 and 200×60, on the plain and the ensemble chart.
+#[test]
+fn the_chart_marker_never_covers_the_cells_beside_it() {
+    for (name, mut app, w, h) in chart_frames() {
+        let (masses, gaps) = (app.chart.fine.masses_kg.clone(), app.chart.fine.gaps_m.clone());
+        let designs = [
+            (app.design.damper.impact_mass_kg, app.design.damper.gap_m),
+            (masses[2], gaps[2]),
+            (0.5 * (masses[1] + masses[2]), 0.5 * (gaps[2] + gaps[3])),
+            (0.3 * masses[3] + 0.7 * masses[4], 0.7 * gaps[1] + 0.3 * gaps[2]),
+        ];
+        for (m, d) in designs {
+            let reqs = app.select_design(m, d);
+            compute_sync(&mut app, reqs);
+            let (screen, buf) = render_with(&mut app, w, h);
+            let (geo, cells, _, _) = chart_of(&app);
+            let c = geo.cells;
+            let marked: Vec<(u16, u16)> = (c.y..c.bottom())
+                .flat_map(|y| (c.x..c.right()).map(move |x| (x, y)))
+                .filter(|&(x, y)| buf[(x, y)].modifier.contains(ratatui::style::Modifier::REVERSED))
+                .collect();
+            assert!(!marked.is_empty(), "{name} {m} {d}: no marker\n{screen}");
+            let own = geo.hit(marked[0].0, marked[0].1).unwrap();
+            assert!(marked.iter().all(|&(x, y)| geo.hit(x, y) == Some(own)), "{name}: marker {marked:?}\n{screen}");
+            let col = geo.cols.iter().position(|&i| i == own.0).unwrap();
+            let row = geo.rows.iter().position(|&i| i == own.1).unwrap();
+            for nc in [col.wrapping_sub(1), col + 1].into_iter().filter(|&k| k < geo.cols.len()) {
+                let r = geo.rect(nc, row);
+                let cell = cells[geo.rows[row] * app.chart.fine.masses_kg.len() + geo.cols[nc]];
+                for y in r.y..r.bottom() {
+                    for x in r.x..r.right() {
+                        let want = cell_glyph(cell, r, x, y);
+                        assert_eq!(buf[(x, y)].symbol(), want, "{name} {m} {d}: ({x}, {y}) beside\n{screen}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Whether `line` is `texts` (each whole, or with a middle or end cut to `…`) one after the
+/// other, each column one blank or more from the one before.
+fn columns_apart(line: &[char], texts: &[Vec<char>], first: bool) -> bool {
+    let mut p = 0;
+    while p < line.len() && line[p] == ' ' {
+        p += 1;
+    }
+    if p == line.len() {
+        return true;
+    }
+    if p == 0 && !first {
+        return false;
+    }
+    let rest = &line[p..];
+    let ends = |t: &Vec<char>| -> Vec<usize> {
+        let mut out = vec![];
+        if rest.starts_with(t) {
+            out.push(t.len());
+        }
+        let Some(q) = rest.iter().position(|&c| c == '…') else { return out };
+        if q <= t.len() && rest[..q] == t[..q] {
+            // After the `…`: the text's own ending, or nothing.
+            for k in 0..t.len() - q {
+                if rest[q + 1..].starts_with(&t[t.len() - k..]) {
+                    out.push(q + 1 + k);
+                }
+            }
+        }
+        out
+    };
+    texts.iter().any(|t| ends(t).into_iter().any(|e| columns_apart(&rest[e..], texts, false)))
+}
+
+/// The inside lines of the panel titled `title` on `screen`.
+fn panel_lines(screen: &str, title: &str) -> Vec<Vec<char>> {
+    let lines: Vec<Vec<char>> = screen.lines().map(|l| l.trim_matches('"').chars().collect()).collect();
+    let head: Vec<char> = format!("┌{title}").chars().collect();
+    let Some((top, x)) =
+        lines.iter().enumerate().find_map(|(y, l)| l.windows(head.len()).position(|w| w == head).map(|x| (y, x)))
+    else {
+        return vec![];
+    };
+    let right = (x + 1..lines[top].len()).find(|&i| lines[top][i] == '┐').unwrap();
+    lines[top + 1..].iter().take_while(|l| l[x] != '└').map(|l| l[x + 1..right].to_vec()).collect()
+}
+
+/// Every readout line in `app`'s frames from 60×20 to 200×60 (both teaching layouts): its
+/// columns (labels, live and pinned values, each whole or cut with `…`) a blank or more apart;
+/// where the history is drawn, its legend keeps `●● damper`. (lines checked, legends seen)
+fn readout_columns_at_every_size(app: &mut App) -> (usize, usize) {
+    let (rows, note) = thud::tui::ui::readout_rows(app);
+    let mut texts: Vec<Vec<char>> = ["live", "pinned"].iter().map(|t| t.chars().collect()).collect();
+    for r in &rows {
+        for t in [r.label, &r.live, r.pinned.as_deref().unwrap_or("")] {
+            texts.push(t.chars().collect());
+        }
+    }
+    let note: Vec<char> = note.unwrap().chars().collect();
+    let (mut checked, mut legends) = (0, 0);
+    for w in (60..=200u16).step_by(7).chain([200]) {
+        for h in [20u16, 24, 33, 40, 60] {
+            for focus in [thud::tui::app::Panel::Params, thud::tui::app::Panel::History] {
+                app.focus = focus;
+                let screen = render(app, w, h);
+                let lines = panel_lines(&screen, " readout ");
+                assert!(lines.len() >= 3, "{w}x{h}: no readout\n{screen}");
+                for line in &lines {
+                    let text: String = line.iter().collect::<String>().trim_end().to_string();
+                    // The note, whole or cut with an ellipsis.
+                    let shown = text.strip_suffix('…').unwrap_or(&text);
+                    if !text.is_empty() && note.starts_with(&shown.chars().collect::<Vec<_>>()) {
+                        continue;
+                    }
+                    assert!(columns_apart(line, &texts, true), "{w}x{h}: columns run together in\n{text}\n{screen}");
+                    checked += 1;
+                }
+                if let Some(l) = screen.lines().find(|l| l.contains("│x (cm) ")) {
+                    assert!(l.contains("●● damper"), "{w}x{h}: the legend lost the damper:\n{screen}");
+                    legends += 1;
+                }
+            }
+        }
+    }
+    (checked, legends)
+}
+
+/// Issue 17 item 12: with a pinned design, an ensemble of 4 and a force on, at every size from
+/// 60×20 to 200×60, every readout line is its columns (labels, live and pinned values, each
+/// whole or cut with `…`) a blank or more apart; the history legend keeps `●● damper`. Without
+/// the pin too (the compact readout's pairs of spreads).
+#[test]
+fn readout_columns_never_run_into_each_other_with_pin_ensemble_and_force() {
+    let mut app = forced_app(Palette::default());
+    set_field(&mut app, thud::tui::fields::Knob::Runs, "4");
+    press(&mut app, KeyCode::Char('p'));
+    assert!(app.pinned.is_some());
+    set_field(&mut app, thud::tui::fields::Knob::Gap, "2.5");
+    assert!(!app.busy());
+    let (rows, _) = thud::tui::ui::readout_rows(&app);
+    assert!(rows.iter().all(|r| r.pinned.is_some()) && rows.iter().any(|r| r.live.contains(" [")), "{rows:?}");
+    let (checked, legends) = readout_columns_at_every_size(&mut app);
+    assert!(checked > 500 && legends > 50, "{checked} lines, {legends} legends");
+    press(&mut app, KeyCode::Char('p'));
+    assert!(app.pinned.is_none());
+    let (checked, _) = readout_columns_at_every_size(&mut app);
+    assert!(checked > 500, "{checked} lines");
 }

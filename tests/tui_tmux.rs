@@ -428,3 +428,38 @@ fn under_term_xterm_the_real_binary_sends_no_256_colour_code() {
     assert!(!sent.contains("38;5;") && !sent.contains("48;5;"), "a 256-colour code under TERM=xterm");
     assert!(sent.contains(";36m") && (sent.contains(";41m") || sent.contains(";41;")), "the classic colour codes");
 }
+
+/// Issue 18 item 14: a stray bracketed-paste start without its end marker (a pasted fragment, a
+/// broken terminal, `printf '\e[200~'` into the pty) no longer swallows every key for good.
+/// Within about a second the explorer drops the paste (its text, a `q` included, is not taken
+/// as keys) and says so; then `q` quits and the terminal is restored.
+#[test]
+fn an_unterminated_bracketed_paste_times_out_and_q_quits() {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            format!(
+                "cd '{d}' && XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui --mouse; \
+                 echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
+                d = d.display()
+            )
+        },
+        100,
+        30,
+    );
+    t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
+    t.keys(&["-l", "\x1b[200~abc q"]);
+    let sent = Instant::now();
+    let s = t.wait_for("the dropped paste", |s| s.contains("dropped a paste that never ended"));
+    let took = sent.elapsed();
+    assert!(took < Duration::from_secs(5), "the paste was dropped only after {took:?}:\n{s}");
+    assert!(s.contains("(5 bytes)") && s.contains("parameters"), "the text was not replayed as keys:\n{s}");
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0", "exit status");
+    let stty = t.wait_file("stty");
+    assert!(has_token(&stty, "icanon") && has_token(&stty, "echo"), "raw mode left on:\n{stty}");
+    t.wait_for("the shell after thud", |s| s.contains("AFTER-THUD"));
+    assert_eq!(t.format("#{alternate_on}"), "0", "alternate screen off");
+    assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
+}

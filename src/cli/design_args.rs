@@ -146,17 +146,21 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
     /// shared with the Python module.
     pub fn design(&self) -> Result<ValidDesign, ThudError> {
-        let mut d = presets::preset(&self.preset)?;
-        d.thresholds = super::settings::load().thresholds(d.thresholds);
-        params::design(d, &self.given, Spelling::Flag)
+        params::design(self.base()?, &self.given, Spelling::Flag)
     }
 
-    /// The design of a frequency response from these flags at its first frequency
-    /// ([`params::response_design`]).
-    pub fn response_design(&self, first_hz: f64) -> Result<ValidDesign, ThudError> {
+    /// The preset with the user's settings: its thresholds and its `[design]` defaults.
+    fn base(&self) -> Result<Design, ThudError> {
         let mut d = presets::preset(&self.preset)?;
-        d.thresholds = super::settings::load().thresholds(d.thresholds);
-        params::response_design(d, &self.given, Spelling::Flag, first_hz, F::NAME)
+        let settings = super::settings::load();
+        d.thresholds = settings.thresholds(d.thresholds);
+        settings.design(d)
+    }
+
+    /// The design of a frequency response from these flags and its frequencies: `freqs_hz`
+    /// as given, else the engine's default band of the design ([`params::response_setup`]).
+    pub fn response_setup(&self, freqs_hz: Option<Vec<f64>>) -> Result<(ValidDesign, Vec<f64>), ThudError> {
+        params::response_setup(self.base()?, &self.given, Spelling::Flag, freqs_hz, F::NAME)
     }
 
     /// The text typed for the row `name` (as in the table; the force under either name).

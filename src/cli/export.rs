@@ -138,7 +138,7 @@ struct Common {
     /// Gaps FROM:TO:N of sweep/chart/fig17 [default: 2cm:5cm:20].
     #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
     gaps: Option<String>,
-    /// Forcing frequencies FROM:TO:N of a response (Hz) [default: 3Hz:8Hz:101]; needs --force-amplitude.
+    /// Forcing frequencies FROM:TO:N of a response (Hz) [default: 0.6–1.6 × the natural frequency, 101 points]; needs --force-amplitude.
     #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
     freqs: Option<String>,
     /// A response from each frequency's predecessor, rising then falling (else each from rest).
@@ -192,8 +192,8 @@ impl Common {
     fn check_work(&self, ctx: &Ctx, kind: Artifact, d: &ValidDesign, opts: &ExportOptions) -> Result<bool, CliError> {
         let points = &self.points;
         if kind.is_response() {
-            let freqs = export::response_freqs(opts);
-            let text = self.freqs.clone().unwrap_or_else(|| "3Hz:8Hz:101".into());
+            let freqs = export::response_freqs(opts, d);
+            let text = self.freqs.clone().unwrap_or_else(|| super::response::freqs_text(&freqs));
             super::response::check_work(ctx, d, &freqs, &text, opts.continuation)?;
             return Ok(true);
         }
@@ -272,10 +272,12 @@ fn samples_at_full_scale(bytes: &[u8], format: SampleFormat) -> usize {
 /// checked before the work starts, so a refused --out or an over-cap run costs nothing, and the
 /// contents are checked for non-finite numbers before anything is written.
 fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Result<(), CliError> {
-    let design = if kind.is_response() {
-        super::response::response_design(&common.design, export::response_freqs(opts)[0])?
+    let (design, opts) = if kind.is_response() {
+        // The design first, then its frequencies: --freqs, or the engine's default band.
+        let (d, freqs) = common.design.response_setup(opts.freqs_hz.clone())?;
+        (d, &ExportOptions { freqs_hz: Some(freqs), ..opts.clone() })
     } else {
-        common.design.design()?
+        (common.design.design()?, opts)
     };
     let overwrite = Overwrite::from_force(common.force);
     let out = &common.out;

@@ -20,9 +20,9 @@ use crate::units::Kind;
 pub struct ResponseArgs {
     #[command(flatten)]
     design: DesignArgs,
-    /// Forcing frequencies FROM:TO:N (Hz, e.g. 3Hz:8Hz:101).
-    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "3Hz:8Hz:101")]
-    freqs: String,
+    /// Forcing frequencies FROM:TO:N (Hz, e.g. 3Hz:8Hz:101) [default: 0.6–1.6 × the natural frequency, 101 points].
+    #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true)]
+    freqs: Option<String>,
     /// Start each frequency from the previous one's final state, rising then falling (shows
     /// jumps and hysteresis); without it every frequency starts from rest.
     #[arg(long)]
@@ -34,12 +34,6 @@ pub struct ResponseArgs {
     ensemble: String,
     #[command(flatten)]
     output: OutputArgs,
-}
-
-/// The design of a response: the flags, from rest unless the start was typed, at the first
-/// frequency (each point sets its own): the engine's [`crate::params::response_design`].
-pub(crate) fn response_design<F: ForceFlag>(args: &DesignArgs<F>, first_hz: f64) -> Result<ValidDesign, ThudError> {
-    args.response_design(first_hz)
 }
 
 /// Refuses a response whose work is over a cap.
@@ -77,12 +71,30 @@ fn check_runs_work(
     ctx.enforce(r.estimate, &flag, &value, &super::design_args::hint(&r, &flag))
 }
 
+/// The design of a response and its frequencies: `--freqs` as typed (`text`), else the
+/// engine's default band of the design ([`response::default_freqs_hz`]); with the frequencies
+/// as a message shows them (as typed, or the default band as `FROM:TO:N`).
+pub(crate) fn response_setup<F: ForceFlag>(
+    args: &DesignArgs<F>,
+    text: Option<&str>,
+) -> Result<(ValidDesign, Vec<f64>, String), ThudError> {
+    let typed = text.map(|t| parse_range("freqs", t, Kind::Frequency, &limits::FREQ)).transpose()?;
+    let (d, freqs) = args.response_setup(typed)?;
+    let shown = text.map_or_else(|| freqs_text(&freqs), str::to_string);
+    Ok((d, freqs, shown))
+}
+
+/// Frequencies evenly spaced from the first to the last as `FROM:TO:N` (Hz).
+pub(crate) fn freqs_text(freqs: &[f64]) -> String {
+    let (from, to) = (freqs.first().copied().unwrap_or(0.0), freqs.last().copied().unwrap_or(0.0));
+    format!("{}Hz:{}Hz:{}", short(from), short(to), freqs.len())
+}
+
 pub fn run(a: &ResponseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let freqs = parse_range("freqs", &a.freqs, Kind::Frequency, &limits::FREQ)?;
-    let d = response_design(&a.design, freqs[0])?;
+    let (d, freqs, freqs_text) = response_setup(&a.design, a.freqs.as_deref())?;
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
     a.design.check_ensemble(runs)?;
-    check_runs_work(ctx, &d, &freqs, &a.freqs, a.continuation, (runs, &a.ensemble))?;
+    check_runs_work(ctx, &d, &freqs, &freqs_text, a.continuation, (runs, &a.ensemble))?;
     let n = (freqs.len() * runs) as u64 * if a.continuation { 2 } else { 1 };
     let bar = budget::bar(n, "response");
     let opts = ResponseOptions { continuation: a.continuation, settle: true };

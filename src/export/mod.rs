@@ -131,7 +131,8 @@ pub struct ExportOptions {
     pub points: usize,
     /// Sample rate and scale of WAV files.
     pub wav: wav::WavOptions,
-    /// Forcing frequencies (Hz) of a response; None: 3–8 Hz, 101 values.
+    /// Forcing frequencies (Hz) of a response; None: the engine's default band of the design,
+    /// 0.6–1.6 × its natural frequency in [`crate::response::DEFAULT_POINTS`] values.
     pub freqs_hz: Option<Vec<f64>>,
     /// A response from each frequency's predecessor, up then down (else each from rest).
     pub continuation: bool,
@@ -158,9 +159,10 @@ impl Default for ExportOptions {
     }
 }
 
-/// The forcing frequencies of a response export (defaults as documented on [`ExportOptions`]).
-pub fn response_freqs(opts: &ExportOptions) -> Vec<f64> {
-    opts.freqs_hz.clone().unwrap_or_else(|| linspace(3.0, 8.0, 101))
+/// The forcing frequencies of a response export of `design`: as given, else the engine's
+/// default band of the design ([`crate::response::default_freqs_hz`]).
+pub fn response_freqs(opts: &ExportOptions, design: &Design) -> Vec<f64> {
+    opts.freqs_hz.clone().unwrap_or_else(|| crate::response::default_freqs_hz(design))
 }
 
 /// Runs `design` (with `points` history samples).
@@ -292,7 +294,7 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
             });
         }
         Artifact::CsvResponse | Artifact::SvgResponse => {
-            let freqs = response_freqs(opts);
+            let freqs = response_freqs(opts, &d);
             let ro = crate::response::ResponseOptions { continuation: opts.continuation, settle: true };
             let r = crate::response::response(&d, &freqs, &ro, None, &|| {})?;
             if kind == Artifact::CsvResponse {

@@ -1,11 +1,16 @@
 //! The design chart: the mass × gap grid with the zone number drawn in every cell (not colour
-//! alone) on continuous axes, the current design marked at its exact (m, d) with its own zone;
-//! and the second view, e against SPLmax (Fig 17) with the L* and e* lines.
+//! alone), the current design marked in the cell nearest its mass with its own zone; and the
+//! second view, e against SPLmax (Fig 17) with the L* and e* lines.
 //!
-//! One truth: the marker's zone is the live design's own (the readout's), never a cell's; a
-//! design between cells is drawn between them, one off the chart's range as an arrow at the
-//! edge with a line saying so. The axes have titles with units and round ticks; the legend
-//! (zones 1–4, no impact, pending) is always drawn, below or beside the grid as space allows.
+//! One truth: the marker's zone is the live design's own (the readout's), never a cell's. The
+//! marker stays inside its cell, so the cells beside it show their own zones: `[n]` around the
+//! glyph where the cell is three or more columns wide, else the zone glyph alone in the cursor
+//! style (reversed, underlined). A gap between two rows' is drawn between them (on the spacer
+//! lines of cells taller than a line); a design off the chart's range is an arrow in the edge
+//! cell with a line saying so. The axes have titles with units and round ticks, each tick on
+//! the glyph line (column) of the row (column) whose value is nearest it, so within half a
+//! step of it and never on a spacer line; the legend (zones 1–4, no impact, pending) is always
+//! drawn, below or beside the grid as space allows.
 //!
 //! An ensemble chart (N > 1 runs a cell) draws each cell in the zone of its medians; a cell
 //! where fewer than 70 % of its runs are in that zone is shaded — its blank filled with `░`
@@ -47,15 +52,20 @@ pub enum DesignZone {
 impl DesignZone {
     /// The marker's text: `[n]`, `[-]` (no zone) or `[?]` (computing).
     pub fn marker(self) -> String {
+        format!("[{}]", self.glyph())
+    }
+
+    /// The zone's glyph alone: `n`, `-` or `?`.
+    pub fn glyph(self) -> String {
         match self {
-            DesignZone::Computing => "[?]".into(),
-            DesignZone::Known(z) => format!("[{}]", glyph(z)),
+            DesignZone::Computing => "?".into(),
+            DesignZone::Known(z) => glyph(z),
         }
     }
 }
 
 /// Width of the gap labels on the left of the grid ("  4.0 ").
-const LABEL_W: u16 = 6;
+pub const LABEL_W: u16 = 6;
 /// Widest cell (columns) and tallest cell (rows).
 const CELL_W_MAX: u16 = 6;
 const CELL_H_MAX: u16 = 3;
@@ -106,6 +116,40 @@ impl Geometry {
         Rect::new(self.cells.x + c as u16 * self.cell_w, self.cells.y + top * self.cell_h, self.cell_w, self.cell_h)
     }
 
+    /// Where displayed cell (c, r)'s zone glyph is drawn (row 0 at the bottom): see [`centre`].
+    pub fn glyph_at(&self, c: usize, r: usize) -> (u16, u16) {
+        centre(self.rect(c, r))
+    }
+
+    /// The displayed column whose grid mass is nearest `m` (`masses` the grid's, any unit).
+    pub fn nearest_col(&self, masses: &[f64], m: f64) -> usize {
+        nearest(&self.cols, masses, m)
+    }
+
+    /// The displayed row whose grid gap is nearest `d` (`gaps` the grid's, any unit).
+    pub fn nearest_row(&self, gaps: &[f64], d: f64) -> usize {
+        nearest(&self.rows, gaps, d)
+    }
+
+    /// The screen line of gap `d` (the unit of `gaps`): the glyph line of a displayed row at
+    /// that row's own gap, moving linearly from one row's glyph line to the next over the
+    /// spacer lines between them (cells taller than a line); the end rows' lines beyond them.
+    pub fn line_of(&self, gaps: &[f64], d: f64) -> u16 {
+        let at = |k: usize| (gaps.get(self.rows[k]).copied().unwrap_or(f64::NAN), self.glyph_at(0, k).1);
+        let last = self.rows.len() - 1;
+        if !d.is_finite() || d <= at(0).0 {
+            return at(0).1;
+        }
+        for k in 0..last {
+            let ((g0, y0), (g1, y1)) = (at(k), at(k + 1));
+            if d < g1 && g1 > g0 {
+                let t = (d - g0) / (g1 - g0);
+                return y0 - (t * f64::from(y0 - y1)).round() as u16;
+            }
+        }
+        at(last).1
+    }
+
     /// The grid cell (mass index, gap index) under screen position (x, y), if any.
     pub fn hit(&self, x: u16, y: u16) -> Option<(usize, usize)> {
         let c = self.cells;
@@ -116,6 +160,26 @@ impl Geometry {
         let top = ((y - c.y) / self.cell_h) as usize;
         Some((self.cols[col], self.rows[self.rows.len() - 1 - top]))
     }
+}
+
+/// Where a cell's zone glyph goes in its rectangle: the middle column and line (the left and
+/// upper of the two middles when even). Labels and the marker use the same place.
+pub fn centre(r: Rect) -> (u16, u16) {
+    (r.x + r.width.saturating_sub(1) / 2, r.y + r.height.saturating_sub(1) / 2)
+}
+
+/// The index into `shown` (displayed grid indices) whose grid value in `values` is nearest `v`:
+/// the later one on a tie (`v` halfway, to rounding), as [`Geometry::line_of`] rounds a half up.
+fn nearest(shown: &[usize], values: &[f64], v: f64) -> usize {
+    let tie = 1e-9 * (1.0 + v.abs());
+    let mut best = (0, f64::INFINITY);
+    for (k, &i) in shown.iter().enumerate() {
+        let dist = values.get(i).map_or(f64::INFINITY, |x| (x - v).abs());
+        if dist <= best.1 + tie {
+            best = (k, dist);
+        }
+    }
+    best.0
 }
 
 /// A continuous axis over the cells: the grid's values at the cells' centres, the cells'
@@ -341,8 +405,7 @@ impl ZoneGridView<'_> {
             // No room for the shade: the digit itself is marked.
             style = style.add_modifier(Modifier::UNDERLINED);
         }
-        let x = r.x + r.width.saturating_sub(1) / 2;
-        let y = r.y + r.height.saturating_sub(1) / 2;
+        let (x, y) = centre(r);
         buf.set_stringn(x, y, &text, 1, style);
     }
 
@@ -351,14 +414,25 @@ impl ZoneGridView<'_> {
         let th = &self.theme;
         let dim = th.label(); // not dim: the labels read on a projector
         buf.set_stringn(inner.x, l.y_title_y, th.text("d (cm) ↑"), inner.width as usize, dim);
-        // Gap ticks: round values at the rows they fall in.
-        let (g, rows) = (&l.gap_axis, cells.height);
-        let n = usize::from(rows / 2 + 1).clamp(2, 8);
+        // Gap ticks: round values, each on the glyph line of the row whose gap is nearest it
+        // (never a spacer line of a tall cell), one label a row.
+        let geo = &l.geometry;
+        let g = &l.gap_axis;
+        // Where two ticks share a row, the one nearer its gap labels it.
+        let n = usize::from(cells.height / 2 + 1).clamp(2, 8);
         if let Some(step) = tick_step(g.lo, g.hi, n) {
             let decimals = ((-step.log10().floor()).max(1.0)) as usize;
+            let mut best: Vec<Option<(f64, f64)>> = vec![None; geo.rows.len()];
             for v in ticks(g.lo, g.hi, n) {
-                if let Ok(off) = g.place(v) {
-                    let y = cells.bottom() - 1 - off;
+                let r = geo.nearest_row(self.gaps_cm, v);
+                let off = self.gaps_cm.get(geo.rows[r]).map_or(f64::INFINITY, |gap| (gap - v).abs());
+                if best[r].is_none_or(|(_, o)| off < o) {
+                    best[r] = Some((v, off));
+                }
+            }
+            for (r, b) in best.iter().enumerate() {
+                if let Some((v, _)) = b {
+                    let (_, y) = geo.glyph_at(0, r);
                     buf.set_stringn(inner.x, y, format!("{v:>5.decimals$} "), LABEL_W as usize, dim);
                 }
             }
@@ -377,9 +451,13 @@ impl ZoneGridView<'_> {
         };
         let mut next_free = inner.x;
         for (v, text) in labels {
-            let Ok(off) = m.place(v) else { continue };
+            if m.place(v).is_err() {
+                continue;
+            }
+            // Centred on the glyph column of the column whose mass is nearest it.
+            let (gx, _) = geo.glyph_at(geo.nearest_col(self.masses_g, v), 0);
             let w = text.len() as u16;
-            let x = (m.start + off).saturating_sub(w / 2).min(l.grid_right.saturating_sub(w));
+            let x = gx.saturating_sub(w.saturating_sub(1) / 2).min(l.grid_right.saturating_sub(w));
             if x < next_free {
                 continue;
             }
@@ -427,29 +505,40 @@ impl ZoneGridView<'_> {
         }
     }
 
+    /// The marker in displayed column `c` on line `y`, inside that column's cell so it never
+    /// covers a neighbour's glyph or fill: `[n]` around the glyph where the cell is three or
+    /// more columns wide, else the design's zone glyph in the glyph's place and the cell's
+    /// width on that line in the cursor style (reversed, underlined).
+    fn put_marker(&self, buf: &mut Buffer, geo: &Geometry, c: usize, y: u16, style: Style) {
+        let (gx, _) = geo.glyph_at(c, 0);
+        if geo.cell_w >= 3 {
+            buf.set_stringn(gx - 1, y, self.zone.marker(), 3, style);
+        } else {
+            let cursor = style.add_modifier(Modifier::UNDERLINED);
+            let r = geo.rect(c, 0);
+            for x in r.x..r.right() {
+                buf[(x, y)].set_style(cursor);
+            }
+            buf.set_stringn(gx, y, self.zone.glyph(), 1, cursor);
+        }
+    }
+
     /// The design's marker at its exact place with its own zone, or an arrow at the edge;
     /// and the line under the grid saying which zone it is in and whether it is on the chart.
     fn draw_design(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
-        let cells = l.geometry.cells;
         let th = &self.theme;
         let (m, d) = self.design;
         let mark_style = Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED);
         let marker = self.zone.marker();
         let (pm, pd) = (l.mass_axis.place(m), l.gap_axis.place(d));
-        let row = |p: Result<u16, bool>| match p {
-            Ok(off) => cells.bottom() - 1 - off,
-            Err(true) => cells.bottom() - 1,
-            Err(false) => cells.y,
-        };
-        let col = |p: Result<u16, bool>| match p {
-            Ok(off) => l.mass_axis.start + off,
-            Err(true) => cells.x,
-            Err(false) => cells.right() - 1,
-        };
-        let (x, y) = (col(pm), row(pd));
+        let geo = &l.geometry;
+        // The cell nearest the design across (its column), and its line: a row's glyph line,
+        // or a spacer line between two rows (see `Geometry::line_of`).
+        let c = geo.nearest_col(self.masses_g, m);
+        let (x, _) = geo.glyph_at(c, 0);
+        let y = geo.line_of(self.gaps_cm, d);
         let off = if let (Ok(_), Ok(_)) = (pm, pd) {
-            let x0 = x.saturating_sub(1).clamp(cells.x, cells.right().saturating_sub(3));
-            buf.set_stringn(x0, y, &marker, 3, mark_style);
+            self.put_marker(buf, geo, c, y, mark_style);
             None
         } else {
             let arrow = match (pm, pd) {
@@ -458,7 +547,7 @@ impl ZoneGridView<'_> {
                 (_, Err(true)) => th.sym("↓", "v"),
                 _ => th.sym("↑", "^"),
             };
-            buf.set_stringn(x, y, arrow, 1, mark_style);
+            buf.set_stringn(x, y, arrow, 1, mark_style.add_modifier(Modifier::UNDERLINED));
             let mut why = Vec::new();
             if let Err(low) = pm {
                 let (cmp, edge) = if low { ("<", l.mass_axis.lo) } else { (">", l.mass_axis.hi) };

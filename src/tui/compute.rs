@@ -247,13 +247,16 @@ impl FreqBand {
     }
 }
 
-/// Points of the explorer's response curve.
-pub const RESPONSE_POINTS: usize = 61;
+/// Points of the explorer's response curve: the engine's default
+/// ([`thud_core::response::DEFAULT_POINTS`]), so the curve is `thud response`'s without
+/// `--freqs`, point for point.
+pub const RESPONSE_POINTS: usize = thud_core::response::DEFAULT_POINTS;
 
-/// The band a response curve spans for `d`: 0.6 to 1.6 times the structure's natural
-/// frequency (its resonance and both flanks; 3–8 Hz, `thud response`'s default, for Table 2's
-/// 5.03 Hz), or 1–10 Hz without one (no spring, or overdamped). It does not depend on the
-/// forcing frequency f, so changing f only moves the marker.
+/// The band a response curve spans for `d`: the engine's default
+/// ([`thud_core::response::default_band_hz`], as `thud response` without `--freqs`): 0.6 to
+/// 1.6 times the structure's natural frequency (its resonance and both flanks), or 1–10 Hz
+/// without one (no spring, or overdamped). It does not depend on the forcing frequency f, so
+/// changing f only moves the marker.
 pub fn default_band(d: &Design) -> FreqBand {
     let (from_hz, to_hz) = thud_core::response::default_band_hz(d);
     FreqBand { from_hz, to_hz, points: RESPONSE_POINTS }

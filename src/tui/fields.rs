@@ -146,22 +146,53 @@ const NAMED: [Knob; 23] = [
     Knob::Runs,
 ];
 
-/// Every field: the named ones, then one [`Knob::Row`] per other row of the engine's table
-/// (in table order), then the ensemble size.
+/// The row of [`params::DESIGN`] called `name` (its index; the table's length if none).
+const fn design_row(name: &str) -> usize {
+    let mut i = 0;
+    while i < DESIGN.len() && !same(DESIGN[i].name, name) {
+        i += 1;
+    }
+    i
+}
+
+/// The field that owns the row `i` of [`params::DESIGN`] and lists first there: a named field
+/// at its first row (the materials at `sphere`, the solver at `solver`), else the row's own
+/// [`Knob::Row`]; none at a named field's later rows (`plate`, `dt`).
+const fn field_at_row(i: usize) -> Option<Knob> {
+    if !named_row(i) {
+        return Some(Knob::Row(i));
+    }
+    let mut n = 0;
+    while n < NAMED.len() {
+        if let Some((at, _)) = NAMED[n].named_span() {
+            if design_row(NAMED_ROWS[at]) == i {
+                return Some(NAMED[n]);
+            }
+        }
+        n += 1;
+    }
+    None
+}
+
+/// Every field, grouped as the engine's table groups its rows ([`Group::ALL`] order: design,
+/// forcing, listener, solver, study) and in table order inside a group (a field where its
+/// first row is); the ensemble size N, the explorer's own, last in the study group.
 const fn all_fields() -> [Knob; NAMED.len() + ROW_FIELDS] {
     let mut all = [Knob::Runs; NAMED.len() + ROW_FIELDS];
     let mut k = 0;
-    while k < NAMED.len() - 1 {
-        all[k] = NAMED[k];
-        k += 1;
-    }
-    let mut i = 0;
-    while i < DESIGN.len() {
-        if !named_row(i) {
-            all[k] = Knob::Row(i);
-            k += 1;
+    let mut g = 0;
+    while g < Group::ALL.len() {
+        let mut i = 0;
+        while i < DESIGN.len() {
+            if DESIGN[i].group as usize == Group::ALL[g] as usize {
+                if let Some(field) = field_at_row(i) {
+                    all[k] = field;
+                    k += 1;
+                }
+            }
+            i += 1;
         }
-        i += 1;
+        g += 1;
     }
     all
 }
@@ -279,33 +310,46 @@ impl Knob {
     /// The rows of the engine's table ([`params::DESIGN`]) this field sets (none for the
     /// ensemble size, which is the explorer's, not a design's).
     pub fn rows(self) -> &'static [&'static str] {
-        let named = |i: usize| &NAMED_ROWS[i..=i];
-        match self {
-            Knob::Mass => named(0),
-            Knob::Gap => named(1),
-            Knob::R => named(2),
-            Knob::Theta => named(3),
-            Knob::V0 => named(4),
-            Knob::MainMass => named(5),
-            Knob::K => named(6),
-            Knob::C => named(7),
-            Knob::C1 => named(8),
-            Knob::KHz => named(9),
-            Knob::Materials => &NAMED_ROWS[10..=11],
-            Knob::Source => named(12),
-            Knob::QuadSigns => named(13),
-            Knob::Pulse => named(14),
-            Knob::Clamp => named(15),
-            Knob::Solver => &NAMED_ROWS[16..=17],
-            Knob::Duration => named(18),
-            Knob::LStar => named(19),
-            Knob::EStar => named(20),
-            Knob::Force => named(21),
-            Knob::Freq => named(22),
-            Knob::BallPosition => named(23),
-            Knob::Runs => &[],
-            Knob::Row(i) => DESIGN.get(i).map_or(&[], |p| std::slice::from_ref(&p.name)),
+        match (self, self.named_span()) {
+            (_, Some((at, n))) => &NAMED_ROWS[at..at + n],
+            (Knob::Row(i), None) => DESIGN.get(i).map_or(&[], |p| std::slice::from_ref(&p.name)),
+            _ => &[],
         }
+    }
+
+    /// Where a named field's rows are in [`NAMED_ROWS`]: (first, how many).
+    const fn named_span(self) -> Option<(usize, usize)> {
+        Some(match self {
+            Knob::Mass => (0, 1),
+            Knob::Gap => (1, 1),
+            Knob::R => (2, 1),
+            Knob::Theta => (3, 1),
+            Knob::V0 => (4, 1),
+            Knob::MainMass => (5, 1),
+            Knob::K => (6, 1),
+            Knob::C => (7, 1),
+            Knob::C1 => (8, 1),
+            Knob::KHz => (9, 1),
+            Knob::Materials => (10, 2),
+            Knob::Source => (12, 1),
+            Knob::QuadSigns => (13, 1),
+            Knob::Pulse => (14, 1),
+            Knob::Clamp => (15, 1),
+            Knob::Solver => (16, 2),
+            Knob::Duration => (18, 1),
+            Knob::LStar => (19, 1),
+            Knob::EStar => (20, 1),
+            Knob::Force => (21, 1),
+            Knob::Freq => (22, 1),
+            Knob::BallPosition => (23, 1),
+            Knob::Runs | Knob::Row(_) => return None,
+        })
+    }
+
+    /// The group the field is listed under: its first row's in the engine's table; the
+    /// ensemble size N (the explorer's own) with the study.
+    pub fn group(self) -> Group {
+        self.rows().first().and_then(|n| params::design_param(n)).map_or(Group::Study, |p| p.group)
     }
 
     /// The engine's row of a field that sets exactly one.

@@ -2,9 +2,10 @@
 //! while thud is not its session's controlling process, e.g. after `setsid`).
 //!
 //! crossterm's reader retries every read error other than "would block", so on a dead terminal
-//! (each read fails with EIO, or returns 0 at end of file) its `poll`/`read` never return and
-//! the input thread spins at 100 % CPU. This module watches the same terminal from a thread of
-//! its own with `poll(2)` asking for no event at all: the call sleeps, costing nothing, until
+//! (each read fails with EIO, or returns 0 at end of file) its `poll`/`read` never returned and
+//! the input thread spun at 100 % CPU. The explorer's own reader ([`super::input_reader`]) now
+//! ends on EOF or EIO itself; this watch stays as the second path. It watches the same terminal
+//! from a thread of its own with `poll(2)` asking for no event at all: the call sleeps, costing nothing, until
 //! the kernel reports a hang-up or an error on the descriptor (POLLHUP, POLLERR, POLLNVAL are
 //! always reported). Then the explorer is told and ends, restoring what can be restored.
 //! Written by hand on `rustix`'s `poll` because crossterm has no hook for it.
@@ -19,7 +20,7 @@ use rustix::event::{poll, PollFd, PollFlags};
 
 /// The terminal input crossterm reads (standard input if it is a terminal, else `/dev/tty`),
 /// as a descriptor of our own on the same open file.
-fn terminal_input() -> io::Result<OwnedFd> {
+pub(crate) fn terminal_input() -> io::Result<OwnedFd> {
     if io::stdin().is_terminal() {
         io::stdin().as_fd().try_clone_to_owned()
     } else {

@@ -76,10 +76,11 @@ impl Widget for HistoryView<'_> {
             Curve::line("e", &e, th.style(Role::Fit), th.mark('╌', '=')),
         ];
         if let Some(p) = self.pinned {
-            series.push(Curve::line("pinned", p, th.pinned(), th.mark('◇', '%')));
+            series.push(Curve::line("pinned", p, th.pinned(), th.mark('◇', '%')).ranked(1));
         }
-        series.push(Curve::line("none", self.free_maxima, th.style(Role::Alone), th.mark('○', 'o')));
-        series.push(Curve::line("damper", self.maxima, th.style(Role::Damper), th.mark('●', '#')));
+        // The legend keeps "damper" and "none" (the panel's point) before the others.
+        series.push(Curve::line("none", self.free_maxima, th.style(Role::Alone), th.mark('○', 'o')).ranked(2));
+        series.push(Curve::line("damper", self.maxima, th.style(Role::Damper), th.mark('●', '#')).ranked(3));
         LinePlot {
             block: self.block,
             x_title: "t (s)",

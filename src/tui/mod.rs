@@ -7,7 +7,7 @@
 //! a simulation.
 //!
 //! It is made to teach with: the chart never contradicts the readout (its marker is the live
-//! design at its exact mass and gap with the design's own zone), every plot has round ticks and
+//! design, at its mass and gap, with the design's own zone), every plot has round ticks and
 //! axis titles with units, the selected field's meaning, unit and range are in the status line,
 //! the help's second page says what the numbers mean, and a guided tour (`T`, `thud tui
 //! --tour [FILE]`) tells the paper's story step by step with the real computations.
@@ -20,7 +20,9 @@
 //! drawing the widgets `params`, `readout`, `waveform`, `polar`, `history`, `chart`,
 //! `response` (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
 //! each field and number means), `files` (the export menu), `tour` (the guided tour's
-//! steps), `keys` (the key table) and `terminal` (setup and restore).
+//! steps), `keys` (the key table), `input_reader` (the input thread) on `input_parse` (the
+//! terminal's bytes to crossterm events, a bracketed paste held to a time and a size), `hangup`
+//! and `terminal` (setup and restore).
 
 pub mod app;
 pub mod cache_key;
@@ -33,6 +35,8 @@ pub mod files;
 pub mod fingerprint;
 pub mod hangup;
 pub mod history;
+pub mod input_parse;
+pub mod input_reader;
 pub mod job;
 pub mod keys;
 pub mod params;
@@ -50,7 +54,7 @@ pub mod waveform;
 pub mod worker;
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::mpsc::{self, Receiver};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -135,7 +139,10 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     );
     let (tx, rx) = mpsc::channel();
     let busy = Arc::new(AtomicBool::new(true));
-    spawn_input(tx.clone(), busy.clone()).map_err(|e| TuiError::Thread("input", e))?;
+    let reader = input_reader::Reader::open().map_err(TuiError::Terminal)?;
+    let input_gone = Arc::new(AtomicBool::new(false));
+    input_reader::spawn(reader, tx.clone(), busy.clone(), input_gone.clone(), TICK)
+        .map_err(|e| TuiError::Thread("input", e))?;
     let on_hangup = tx.clone();
     // Without the watch the explorer runs as before (a dead terminal ends it at the next draw).
     let gone = hangup::watch(move || drop(on_hangup.send(Msg::Hangup))).ok();
@@ -151,29 +158,10 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     // The guard restores the cursor; ratatui's own drop would print (and, with stderr on the
     // same dead terminal, panic) when it cannot show it.
     std::mem::forget(term);
-    if gone.is_some_and(|g| g.load(Ordering::SeqCst)) {
+    if input_gone.load(Ordering::SeqCst) || gone.is_some_and(|g| g.load(Ordering::SeqCst)) {
         return Err(TuiError::TerminalGone);
     }
     ended.map_err(TuiError::Draw)
-}
-
-/// Reads terminal events on their own thread; sends a tick when idle while work is in flight.
-fn spawn_input(tx: Sender<Msg>, busy: Arc<AtomicBool>) -> std::io::Result<()> {
-    let input = std::thread::Builder::new().name("thud-input".into()).spawn(move || loop {
-        let msg = match crossterm::event::poll(TICK) {
-            Ok(true) => match crossterm::event::read() {
-                Ok(e) => Msg::Input(e),
-                Err(_) => return,
-            },
-            Ok(false) if busy.load(Ordering::Relaxed) => Msg::Tick,
-            Ok(false) => continue,
-            Err(_) => return,
-        };
-        if tx.send(msg).is_err() {
-            return;
-        }
-    });
-    input.map(drop)
 }
 
 /// Draw, block for a message, handle it and everything else already queued, repeat.

@@ -1,6 +1,7 @@
-//! The parameter panel: one row per field, the selected one reversed and pointed at. When not
-//! every row fits (the teaching layout at 80×24) it shows the selected field and its
-//! neighbours.
+//! The parameter panel: one row per field under its group's heading (the engine's table's
+//! groups: design, forcing, listener, solver, study), the selected one reversed and pointed at.
+//! When not every line fits (the teaching layout at 80×24) it scrolls to show the selected field
+//! and its neighbours.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -10,25 +11,57 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::theme::Palette;
 
-/// The panel's data: (label, value) rows, the selected row, whether the panel has focus.
+/// One line of the panel: a group's heading, or the field at an index of the rows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Entry {
+    Heading(&'static str),
+    Field(usize),
+}
+
+/// The panel's data: (label, value) rows, the group of each row (a heading opens each run of
+/// rows of one group), the selected row, whether the panel has focus.
 pub struct ParamsView<'a> {
     pub block: Block<'a>,
     pub rows: &'a [(String, String)],
+    pub groups: &'a [&'static str],
     pub selected: usize,
     pub focused: bool,
     pub theme: Palette,
 }
 
 impl ParamsView<'_> {
-    /// The first row shown: all rows when they fit, else the selected one in the middle of
-    /// its neighbours.
-    fn scroll(&self, height: usize) -> usize {
-        let n = self.rows.len();
+    /// The lines of the panel: each group's heading before its first row.
+    fn entries(&self) -> Vec<Entry> {
+        let mut out = Vec::with_capacity(self.rows.len() + 5);
+        let mut current = None;
+        for i in 0..self.rows.len() {
+            let group = self.groups.get(i).copied();
+            if group.is_some() && group != current {
+                out.extend(group.map(Entry::Heading));
+                current = group;
+            }
+            out.push(Entry::Field(i));
+        }
+        out
+    }
+
+    /// The first line shown of `n`: all when they fit, else the selected field's line
+    /// (`at`) in the middle of its neighbours.
+    fn scroll(n: usize, at: usize, height: usize) -> usize {
         if height == 0 || n <= height {
             0
         } else {
-            self.selected.saturating_sub(height / 2).min(n - height)
+            at.saturating_sub(height / 2).min(n - height)
         }
+    }
+
+    /// A group's heading, as wide as the panel: `─ forcing ───…`.
+    fn heading(&self, title: &str, width: usize) -> Line<'static> {
+        let head = format!("─ {title} ");
+        let rule = "─".repeat(width.saturating_sub(head.chars().count()));
+        let text = self.theme.text(&format!("{head}{rule}")).into_owned();
+        // A label, so never dim (dim means "drawn behind", theme.rs).
+        Line::from(Span::styled(text, self.theme.label()))
     }
 
     fn line(&self, i: usize, label: &str, value: &str, width: usize) -> Line<'static> {
@@ -58,15 +91,17 @@ impl Widget for ParamsView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let inner = self.block.inner(area);
         (&self.block).render(area, buf);
-        let h = inner.height as usize;
-        let first = self.scroll(h);
-        let lines: Vec<Line> = self
-            .rows
+        let (h, w) = (inner.height as usize, inner.width as usize);
+        let entries = self.entries();
+        let at = entries.iter().position(|e| *e == Entry::Field(self.selected)).unwrap_or(0);
+        let first = Self::scroll(entries.len(), at, h);
+        let lines: Vec<Line> = entries[first..]
             .iter()
-            .enumerate()
-            .skip(first)
             .take(h)
-            .map(|(i, (l, v))| self.line(i, l, v, inner.width as usize))
+            .filter_map(|e| match *e {
+                Entry::Heading(title) => Some(self.heading(title, w)),
+                Entry::Field(i) => self.rows.get(i).map(|(l, v)| self.line(i, l, v, w)),
+            })
             .collect();
         Paragraph::new(lines).render(inner, buf);
     }

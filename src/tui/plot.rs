@@ -110,17 +110,26 @@ pub struct Curve<'a> {
     pub style: Style,
     pub marker: Marker,
     pub shape: Shape,
+    /// Its legend entry's rank: where not every entry fits, the higher ranks are kept first
+    /// (0 for all: the first entries, as listed).
+    pub rank: u8,
 }
 
 impl<'a> Curve<'a> {
     /// A line curve.
     pub fn line(name: &'a str, data: &'a [(f64, f64)], style: Style, marker: Marker) -> Self {
-        Self { name, data, style, marker, shape: Shape::Line }
+        Self { name, data, style, marker, shape: Shape::Line, rank: 0 }
     }
 
     /// A scatter of points.
     pub fn points(name: &'a str, data: &'a [(f64, f64)], style: Style, marker: Marker) -> Self {
-        Self { name, data, style, marker, shape: Shape::Points }
+        Self { name, data, style, marker, shape: Shape::Points, rank: 0 }
+    }
+
+    /// The curve with its legend entry ranked `rank` (see [`Curve::rank`]).
+    #[must_use]
+    pub fn ranked(self, rank: u8) -> Self {
+        Self { rank, ..self }
     }
 }
 
@@ -275,11 +284,11 @@ impl Widget for LinePlot<'_> {
             stamp_curve(buf, axes.graph, xb, yb, s);
         }
         if self.legend {
-            let items: Vec<(String, Style)> = self
+            let items: Vec<(String, Style, u8)> = self
                 .series
                 .iter()
                 .filter(|s| !s.name.is_empty())
-                .map(|s| (format!("{} {}", sample(s.marker, s.shape), self.theme.text(s.name)), s.style))
+                .map(|s| (format!("{} {}", sample(s.marker, s.shape), self.theme.text(s.name)), s.style, s.rank))
                 .collect();
             draw_legend(buf, inner, &items, self.y_title.chars().count() as u16 + 2);
         }
@@ -287,19 +296,23 @@ impl Widget for LinePlot<'_> {
 }
 
 /// Draws the legend on the top row of `inner`, right-aligned, as many items as fit after
-/// `skip` columns (the y title).
-fn draw_legend(buf: &mut Buffer, inner: Rect, items: &[(String, Style)], skip: u16) {
+/// `skip` columns (the y title): taken by rank (highest first, then as listed) until one does
+/// not fit, drawn in their listed order.
+fn draw_legend(buf: &mut Buffer, inner: Rect, items: &[(String, Style, u8)], skip: u16) {
     let room = inner.width.saturating_sub(skip) as usize;
+    let mut by_rank: Vec<usize> = (0..items.len()).collect();
+    by_rank.sort_by_key(|&i| std::cmp::Reverse(items[i].2));
     let mut used = 0;
-    let mut shown = Vec::new();
-    for (text, style) in items {
-        let w = text.chars().count() + 2;
+    let mut keep = vec![false; items.len()];
+    for i in by_rank {
+        let w = items[i].0.chars().count() + 2;
         if used + w > room {
             break;
         }
         used += w;
-        shown.push((text, *style));
+        keep[i] = true;
     }
+    let shown = items.iter().zip(keep).filter(|(_, k)| *k).map(|((text, style, _), _)| (text, *style));
     let mut x = inner.right().saturating_sub(used as u16);
     for (text, style) in shown {
         buf.set_stringn(x, inner.y, text, text.chars().count(), style.remove_modifier(Modifier::DIM));

@@ -226,9 +226,11 @@ fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
 fn params_widget(f: &mut Frame, app: &App, area: Rect) {
     let setup = app.setup();
     let rows: Vec<(String, String)> = Knob::ALL.iter().map(|p| (p.label().to_string(), p.display(&setup))).collect();
+    let groups: Vec<&'static str> = Knob::ALL.iter().map(|p| p.group().title()).collect();
     let view = ParamsView {
         block: panel_block(app, Panel::Params, " parameters "),
         rows: &rows,
+        groups: &groups,
         selected: app.selected,
         focused: app.focus == Panel::Params,
         theme: app.theme,

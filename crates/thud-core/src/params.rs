@@ -218,6 +218,24 @@ impl<T> Param<T> {
         }
     }
 
+    /// One line documenting the row, generated (no hand-written copy anywhere): its help (or,
+    /// without one, what its range is, or the help of the [`DESIGN`] row of its name), its
+    /// range, and its alias as `spelling` spells it — `Impact mass m (kg, or e.g. 40.5g);
+    /// 0.0001 to 100 kg`. Python's stub comments and docstrings are these lines.
+    pub fn doc_line(&self, spelling: Spelling) -> String {
+        let help = match (self.help, self.range()) {
+            ("", Some(r)) => {
+                let mut what = r.what.chars();
+                what.next().map_or(String::new(), |c| c.to_uppercase().chain(what).collect())
+            }
+            ("", None) => design_param(self.name).map_or("", |p| p.help).to_string(),
+            (help, _) => help.to_string(),
+        };
+        let range = self.range().map_or(String::new(), |r| format!("; {}", r.describe()));
+        let alias = self.alias.map_or(String::new(), |a| format!(" (alias {})", spelling.spell(a)));
+        format!("{help}{range}{alias}")
+    }
+
     /// The unit of a plain number (empty for counts, names, choices and switches).
     pub fn unit(&self) -> &'static str {
         match self.accepts {
@@ -445,10 +463,8 @@ pub fn stub_keywords(skip: &[&str]) -> String {
             Accepts::Name { .. } => "str",
             Accepts::Choice { type_name, .. } => type_name,
         };
-        let range = p.range().map_or(String::new(), |r| format!("; {}", r.describe()));
-        let alias = p.alias.map_or(String::new(), |a| format!(" (alias {})", Spelling::Keyword.spell(a)));
         let name = Spelling::Keyword.spell(p.name);
-        out += &format!("    {name}: Optional[{ty}] = None,  # {}{range}{alias}\n", p.help);
+        out += &format!("    {name}: Optional[{ty}] = None,  # {}\n", p.doc_line(Spelling::Keyword));
     }
     out
 }
@@ -696,6 +712,55 @@ pub fn response_design(
         return Err(ThudError::invalid(&force, format!("0 N: a response needs a force; give {force} F0 (N)")));
     }
     Ok(d)
+}
+
+/// The design of a frequency response and its frequencies (Hz): `freqs_hz` when the front end
+/// was given them, else the engine's default band of the design
+/// ([`crate::response::default_freqs_hz`], 0.6–1.6 × the natural frequency). The design is
+/// built first ([`response_design`]); its band depends on M, K and C only, which the named
+/// parameters set before any frequency counts, so the band of the design as given starts the
+/// design and is the band of the design built.
+pub fn response_setup(
+    base: Design,
+    given: &[(String, Input)],
+    spelling: Spelling,
+    freqs_hz: Option<Vec<f64>>,
+    force: &str,
+) -> Result<(ValidDesign, Vec<f64>), ThudError> {
+    if let Some(freqs) = freqs_hz {
+        let first = freqs.first().copied().unwrap_or(0.0);
+        return Ok((response_design(base, given, spelling, first, force)?, freqs));
+    }
+    // M, K and C as given (a value refused here is refused again, in order, by the design).
+    let drafted = drafted(base.clone(), given, spelling).unwrap_or_else(|_| base.clone());
+    let first = crate::response::default_freqs_hz(&drafted)[0];
+    let d = response_design(base, given, spelling, first, force)?;
+    let freqs = crate::response::default_freqs_hz(&d);
+    Ok((d, freqs))
+}
+
+/// Checks each of the named parameters `given` on its own: a known name (a row of [`DESIGN`]
+/// or its alias, as `spelling` hands it in), given once, with a value its row accepts (inside
+/// its range, a known choice). No relation between them and no whole-design check: what a
+/// settings file can be checked for key by key.
+pub fn check_named(given: &[(String, Input)], spelling: Spelling) -> Result<(), ThudError> {
+    drafted(Design::default(), given, spelling).map(drop)
+}
+
+/// The row of [`DESIGN`] whose name (or alias) is nearest to `name` (edit distance; `_` read as
+/// `-`): what "did you mean" names.
+pub fn nearest_design_param(name: &str) -> Option<&'static str> {
+    let canonical = name.replace('_', "-");
+    DESIGN.iter().flat_map(|p| std::iter::once(p.name).chain(p.alias)).min_by_key(|n| edit_distance(&canonical, n))
+}
+
+/// `base` with the named parameters `given` set, each checked against its range only (no
+/// relation, no whole-design check).
+fn drafted(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<Design, ThudError> {
+    let given = Given::new(DESIGN, given, spelling)?;
+    let mut draft = DesignDraft::of(base);
+    given.apply(&mut draft)?;
+    Ok(draft.design)
 }
 
 /// Refuses an ensemble of `runs` > 1 runs together with an initial ball offset given by the
@@ -1112,6 +1177,31 @@ mod tests {
         assert!(check_ensemble(1, true, Spelling::Flag).is_ok() && check_ensemble(4, false, Spelling::Flag).is_ok());
         let e = check_ensemble(4, true, Spelling::Keyword).unwrap_err().to_string();
         assert!(e.starts_with("invalid ball_position: cannot be combined with ensemble 4"), "{e}");
+    }
+
+    #[test]
+    fn a_response_without_frequencies_spans_the_default_band_of_the_design_given() {
+        let given = text(&[("force", "1"), ("k", "2000"), ("main-mass", "2kg")]);
+        let (d, freqs) = response_setup(Design::default(), &given, Spelling::Flag, None, "force").unwrap();
+        // √(K/M − (C/2M)²)/2π with K 2000 N/m, M 2 kg, C 0.05 N·s/m (the default's).
+        let f = (1000.0f64 - (0.05f64 / 4.0).powi(2)).sqrt() / (2.0 * std::f64::consts::PI);
+        assert_eq!(freqs.len(), crate::response::DEFAULT_POINTS);
+        assert!((freqs[0] - 0.6 * f).abs() < 1e-12 && (freqs[freqs.len() - 1] - 1.6 * f).abs() < 1e-12);
+        assert_eq!(d.damper.freq_hz, freqs[0]);
+        let (_, given_freqs) =
+            response_setup(Design::default(), &given, Spelling::Flag, Some(vec![4.0, 5.0]), "force").unwrap();
+        assert_eq!(given_freqs, [4.0, 5.0]);
+        let e = response_setup(Design::default(), &text(&[("force", "1"), ("k", "-1")]), Spelling::Flag, None, "force");
+        assert!(e.unwrap_err().to_string().starts_with("invalid --k: -1 N/m is out of range"));
+    }
+
+    #[test]
+    fn names_are_checked_one_by_one_and_the_nearest_is_found() {
+        assert!(check_named(&text(&[("force", "1"), ("plate", "steel")]), Spelling::Flag).is_ok(), "no relations");
+        let e = check_named(&text(&[("gap", "1000m")]), Spelling::Flag).unwrap_err().to_string();
+        assert!(e.starts_with("invalid --gap: 1000 m is out of range"), "{e}");
+        assert_eq!(nearest_design_param("main_mas"), Some("main-mass"));
+        assert_eq!(nearest_design_param("force-amplitud"), Some("force-amplitude"));
     }
 
     #[test]

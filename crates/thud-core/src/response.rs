@@ -125,6 +125,20 @@ pub fn default_band_hz(d: &Design) -> (f64, f64) {
     }
 }
 
+/// Points of a response over its default band ([`default_freqs_hz`]): what `thud response`,
+/// `thud export … response`, Python's `thud.response()` and the explorer's export run when no
+/// frequencies are given.
+pub const DEFAULT_POINTS: usize = 101;
+
+/// The frequencies a response of `d` runs by default (Hz): [`DEFAULT_POINTS`] evenly spaced
+/// over [`default_band_hz`], 0.6 to 1.6 times the damped natural frequency (Eq 25). The one
+/// default every front end uses; it depends on M, K and C only, so a design built at any
+/// frequency gives the same band.
+pub fn default_freqs_hz(d: &Design) -> Vec<f64> {
+    let (from, to) = default_band_hz(d);
+    crate::design::linspace(from, to, DEFAULT_POINTS)
+}
+
 /// The design `base` forced at `freq_hz`, run for at least two windows (its duration if longer).
 pub fn at_frequency(base: &Design, freq_hz: f64, settle: bool) -> Design {
     let mut d = base.clone();
@@ -383,8 +397,12 @@ mod tests {
         assert!((natural_frequency_hz(&d) - f).abs() < 1e-12);
         let (lo, hi) = default_band_hz(&d);
         assert!((lo - 0.6 * f).abs() < 1e-12 && (hi - 1.6 * f).abs() < 1e-12);
-        let mut free = d;
+        let mut free = d.clone();
         free.damper.stiffness_n_m = 0.0;
         assert_eq!(default_band_hz(&free), (1.0, 10.0), "no spring: no natural frequency");
+        let freqs = default_freqs_hz(&d);
+        assert_eq!(freqs.len(), DEFAULT_POINTS);
+        assert!((freqs[0] - 0.6 * f).abs() < 1e-12 && (freqs[100] - 1.6 * f).abs() < 1e-12);
+        assert!((freqs[50] - 1.1 * f).abs() < 1e-12, "evenly spaced");
     }
 }

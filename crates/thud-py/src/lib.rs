@@ -4,8 +4,8 @@
 //! - `thud.pulse(**params) -> Pulse`: one Hertzian impact heard at one observer (`thud pulse`).
 //! - `thud.simulate(**params) -> Run`: one damper design through its impacts (`thud simulate`).
 //! - `thud.sweep(masses_kg, gaps_m, **params) -> Chart`: the design chart (`thud sweep`).
-//! - `thud.response(freqs_hz, **params) -> Response`: the frequency response under the
-//!   harmonic force (`thud response`).
+//! - `thud.response(freqs_hz=None, **params) -> Response`: the frequency response under the
+//!   harmonic force (`thud response`; by default over the engine's band of the design).
 //! - `ensemble=N` on `simulate` (then an `Ensemble`), `sweep` and `response`: N runs from
 //!   ball offsets spread over the clearance, as `--ensemble N`.
 //!
@@ -84,18 +84,13 @@ fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<ValidDesign> {
 /// Defaults are the paper's Fig 2 impact: an acrylic sphere a = 19.05 mm, m = 40.5 g,
 /// U0 = 1.4 m/s, K_HZ = 5.6e8 N/m^1.5 on a fixed plate, heard as a dipole at r = 0.7 m, θ = 45°.
 ///
-/// Parameters (keywords; numbers in SI units unless noted, or strings with a unit such as
-/// "19.05mm"; None = not given):
+/// Options (numbers in SI units unless noted, or strings with a unit such as "19.05mm"):
 ///     preset: str — take the defaults from a preset (`thud.presets()`): its ball, K_HZ,
 ///         observer, source and air, and U0 = its v0; the target stays a fixed plate.
-///     radius (m), mass (kg), u0 (m/s), k_hz (N/m^1.5),
-///     sphere, plate: material names (K_HZ then follows from them, Eq 2),
-///     main_mass (kg): a movable target, K* = (m+M)/(mM) (Eq 8),
-///     r (m), theta (degrees), source: "single" | "dipole" | "quadrupole",
-///     quad_signs: "paper" | "rigid", pulse: "half-sine" | "hertz",
-///     rho_c (Pa·s/m), c (speed of sound, m/s),
 ///     points: int — waveform points (default 2000),
 ///     no_limit: bool — lift the work cap on points.
+/// The impact's keywords (sphere and plate: K_HZ from the materials, Eq 2; main_mass: a
+/// movable target, K* = (m+M)/(mM), Eq 8) are listed under "Keywords" from the engine's table.
 ///
 /// Raises ParameterError (a ValueError) naming the parameter for an unknown name, a wrong
 /// type, NaN/inf or an out-of-range value — the command line's message and range table.
@@ -118,20 +113,9 @@ fn pulse(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<PyPulse
 /// One impact-damper design through its impacts (Eqs 25–27), as `thud simulate --json`, plus
 /// the time history.
 ///
-/// Parameters (keywords; numbers in SI units unless noted, or strings with a unit such as
-/// "40.5g"; None = not given):
+/// Options (the design's keywords, numbers in SI units unless noted or strings with a unit
+/// such as "40.5g", are listed under "Keywords" from the engine's parameter table):
 ///     preset: str — the starting design (default "default"; `thud.presets()` lists them),
-///     mass (kg), gap (m), v0 (m/s), main_mass (kg), k (N/m), c (N·s/m), c1 (N·s/m),
-///     k_hz (N/m^1.5), sphere / plate (materials: K_HZ from Eq 2), no_tension (bool),
-///     duration (s), solver: "event" | "newmark", dt (s, Newmark only),
-///     density (kg/m³) or radius (m) of the ball, r (m), theta (degrees),
-///     source: "single" | "dipole" | "quadrupole", quad_signs: "paper" | "rigid",
-///     pulse: "half-sine" | "hertz", l_star (dB), e_star (cm/s),
-///     force (N; alias force_amplitude) and freq (Hz): the harmonic force F0·cos(2π·f·t)
-///     on the main mass (default 0, the paper's free decay),
-///     ball_position (m, |y0| < gap/2) and ball_velocity (m/s): the ball's start,
-///     periods: int — forcing periods of the steady-state window (default 10),
-///     settle: bool — run a forced design on until its steady amplitude settles,
 ///     samples: int — time-history samples (default 2001),
 ///     ensemble: int — N runs from ball offsets y0 = −d/2 + (k + ½)·d/N at rest (default 1);
 ///         N > 1 returns an Ensemble (not with ball_position),
@@ -298,7 +282,7 @@ fn sweep(
     PyChart::new(py, &d, chart.map_err(|e| engine_error(py, e))?)
 }
 
-/// response(freqs_hz, **params) -> Response
+/// response(freqs_hz=None, **params) -> Response
 ///
 /// The frequency response of a design under the harmonic force F0·cos(2π·f·t) on the main
 /// mass, as `thud response --json`: per frequency the steady amplitude with the damper beside
@@ -306,7 +290,8 @@ fn sweep(
 /// the rattle (dB re 20 µPa), over the last `periods` forcing periods of a settled run.
 ///
 /// freqs_hz: a sequence of frequencies (Hz), or "FROM:TO:N" text as on the command line
-/// ("3Hz:8Hz:101"). Keywords: as for `simulate` (force is needed; no freq, no samples; each
+/// ("3Hz:8Hz:101"); None (the default): 0.6–1.6 × the natural frequency, 101 points, as the
+/// command line without --freqs. Keywords: as for `simulate` (force is needed; no freq, no samples; each
 /// frequency starts from rest unless v0, ball_position or ball_velocity is given), and
 /// continuation: bool — each frequency from the previous one's final state, rising then
 /// falling; ensemble: int — N runs a frequency from ball offsets y0 = −d/2 + (k + ½)·d/N
@@ -316,18 +301,19 @@ fn sweep(
 ///
 /// Raises ParameterError (a ValueError) as `simulate` does. Ctrl-C stops the response.
 #[pyfunction]
-#[pyo3(name = "response", signature = (freqs_hz, **params))]
+#[pyo3(name = "response", signature = (freqs_hz=None, **params))]
 fn response_curve(
     py: Python<'_>,
-    freqs_hz: &Bound<'_, PyAny>,
+    freqs_hz: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyResponse> {
     let kw = Kwargs::new(params, options("response"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let continuation = kw.switch(py, "continuation")?;
-    let freqs = axis(py, "freqs_hz", freqs_hz, Kind::Frequency, &limits::FREQ)?;
+    let typed = freqs_hz.filter(|f| !f.is_none()).map(|f| axis(py, "freqs_hz", f, Kind::Frequency, &limits::FREQ));
     let base = preset(py, &kw, Some("default"))?.unwrap_or_default();
-    let d = params::response_design(base, &kw.params, Spelling::Keyword, freqs[0], "force")
+    // The design first, then its frequencies: freqs_hz, or the engine's default band.
+    let (d, freqs) = params::response_setup(base, &kw.params, Spelling::Keyword, typed.transpose()?, "force")
         .map_err(|e| engine_error(py, e))?;
     let runs = ensemble_runs(py, &kw)?;
     check_response(py, &d, &freqs, continuation, runs, no_limit)?;
@@ -437,7 +423,9 @@ fn ranges(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
 /// The keywords of every function, for the Python wrapper's signatures: {"design": rows,
 /// "pulse": rows, "options": {function: [option, …]}, "refused": {function: [keyword, …]}},
 /// a row {"name": keyword, "accepts": "quantity" | "choice" | "name" | "switch" | "count",
-/// "unit": the plain number's unit (quantities and counts), "choices": [names] (choices)},
+/// "help": its line of help, "range": its range as text (or None), "doc": the line the
+/// docstrings show ([`params::Param::doc_line`]), "unit": the plain number's unit (quantities
+/// and counts), "choices": [names] (choices)},
 /// and "defaults": {option: its default} — the engine's tables ([`params::DESIGN`], [`params::PULSE`]) in their order.
 #[pyfunction]
 fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
@@ -472,6 +460,9 @@ fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<B
     for p in table {
         let row = PyDict::new(py);
         row.set_item("name", Spelling::Keyword.spell(p.name))?;
+        row.set_item("help", p.help)?;
+        row.set_item("range", p.range().map(limits::Range::describe))?;
+        row.set_item("doc", p.doc_line(Spelling::Keyword))?;
         let accepts = match &p.accepts {
             params::Accepts::Quantity { range, .. } => {
                 row.set_item("unit", range.unit)?;

@@ -74,6 +74,18 @@ def test_the_response_equals_the_cli(cli_json):
     assert [s["direction"] for s in r.sweeps] == ["up", "down"]
 
 
+def test_a_response_without_frequencies_runs_the_engine_s_band_as_the_cli(cli_json):
+    # Issue 16 item 6: no freqs_hz is the command line's no --freqs: 101 points from 0.6 to
+    # 1.6 × the damped natural frequency √(K/M − (C/2M)²)/2π of Table 2 (K 500, M 0.5, C 0.05).
+    j = cli_json("response", "--force", "1N", "--periods", "1", "--duration", "0.2")
+    r = thud.response(force="1N", periods=1, duration=0.2)
+    check_response(j, r, 1)
+    f_n = np.sqrt(500.0 / 0.5 - (0.05 / (2 * 0.5)) ** 2) / (2 * np.pi)
+    f = r.sweeps[0]["freq_hz"]
+    assert len(f) == 101 and abs(f[0] - 0.6 * f_n) < 1e-9 and abs(f[-1] - 1.6 * f_n) < 1e-9
+    assert np.array_equal(thud.response(None, force="1N", periods=1, duration=0.2).sweeps[0]["freq_hz"], f)
+
+
 def test_a_response_ensemble_equals_the_cli(cli_json):
     j = cli_json("response", "--freqs", FREQS, *RESPONSE, "--ensemble", "3")
     r = thud.response(FREQS, ensemble=3, **RESPONSE_KW)

@@ -151,7 +151,8 @@ impl App {
         let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
         self.exports.push(path.clone());
         // Sweeps use the chart's grid and its N runs a cell, and a response the curve's band
-        // and design (from rest, as the view runs it), so the file shows what the screen does.
+        // and design (from rest, as the view runs it), so the file shows what the screen does
+        // (the curve's band is the engine's default, so it is `thud export … response`'s too).
         let g = &self.chart.grids.fine;
         let (design, options) = if kind.needs_sweep() {
             let options = ExportOptions {

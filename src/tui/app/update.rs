@@ -24,6 +24,9 @@ pub enum Msg {
     Tick,
     /// The terminal hung up (see `tui::hangup`): the explorer ends.
     Hangup,
+    /// A bracketed paste without its end marker was dropped after its time ran out
+    /// (`tui::input_parse`): `bytes` bytes after its start marker.
+    PasteDropped { bytes: usize },
 }
 
 /// Messages, and the worker's results.
@@ -52,6 +55,11 @@ impl App {
             }
             Msg::Hangup => {
                 self.quit = true;
+                vec![]
+            }
+            Msg::PasteDropped { bytes } => {
+                let s = if bytes == 1 { "" } else { "s" };
+                self.set_status(&format!("dropped a paste that never ended ({bytes} byte{s}); keys work again"), false);
                 vec![]
             }
         }

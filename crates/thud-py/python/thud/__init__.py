@@ -2,7 +2,7 @@
 
 pulse(**params) -> Pulse, simulate(**params) -> Run (an Ensemble with ensemble=N > 1),
 simulate_ensemble(runs, **params) -> Ensemble, sweep(masses_kg, gaps_m, **params) -> Chart,
-response(freqs_hz, **params) -> Response.
+response(freqs_hz=None, **params) -> Response.
 
 Parameters are the command line's long flags as keywords (``--main-mass`` → ``main_mass=``):
 a plain number in SI units (angles in degrees, levels in dB, inclinations in cm/s), or a
@@ -74,7 +74,7 @@ def sweep(masses_kg: _Any, gaps_m: _Any, **params: _Any) -> Chart:
     return _thud.sweep(masses_kg, gaps_m, **_progress(params, "sweep"))
 
 
-def response(freqs_hz: _Any, **params: _Any) -> Response:
+def response(freqs_hz: _Any = None, **params: _Any) -> Response:
     return _thud.response(freqs_hz, **_progress(params, "response"))
 
 

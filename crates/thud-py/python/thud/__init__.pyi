@@ -461,7 +461,7 @@ def sweep(
     """
 
 def response(
-    freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str],
+    freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
     *,
     preset: Optional[str] = None,
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
@@ -500,7 +500,8 @@ def response(
     """The frequency response under the harmonic force F0·cos(2π·f·t) on the main mass, as
     ``thud response``: per frequency the steady amplitude with the damper beside the closed
     form without it (m), the cut (dB), impacts per period and Leq (dB re 20 µPa), settled.
-    freqs_hz (Hz): a sequence, or "FROM:TO:N" text ("3Hz:8Hz:101"). force (N) is needed; each
+    freqs_hz (Hz): a sequence, or "FROM:TO:N" text ("3Hz:8Hz:101"); None: 0.6–1.6 × the
+    natural frequency, 101 points (the command line's default). force (N) is needed; each
     frequency starts from rest unless v0, ball_position or ball_velocity is given;
     continuation: each from the previous final state, up then down; ensemble: N runs a
     frequency (p10/median/p90 of each figure). Ctrl-C stops the response.

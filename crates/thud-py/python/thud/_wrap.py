@@ -63,13 +63,14 @@ _OPTION_TYPES: Dict[str, Any] = {
     "no_limit": bool,
 }
 
-#: The positional parameters of each function (name, annotation).
+#: The positional parameters of each function (name, annotation, default or P.empty).
 _POSITIONAL: Dict[str, List[Any]] = {
     "pulse": [],
     "simulate": [],
-    "simulate_ensemble": [("runs", Count)],
-    "sweep": [("masses_kg", Any), ("gaps_m", Any)],
-    "response": [("freqs_hz", Any)],
+    "simulate_ensemble": [("runs", Count, inspect.Parameter.empty)],
+    "sweep": [("masses_kg", Any, inspect.Parameter.empty), ("gaps_m", Any, inspect.Parameter.empty)],
+    # None: the engine's default band of the design (0.6–1.6 × its natural frequency).
+    "response": [("freqs_hz", Any, None)],
 }
 
 
@@ -92,7 +93,7 @@ def _signature(name: str, table: Dict[str, Any], returns: Any) -> inspect.Signat
     parameters, then `preset`, every named parameter of the engine (table order) and the
     function's other options, all keyword-only."""
     P = inspect.Parameter
-    params = [P(n, P.POSITIONAL_OR_KEYWORD, annotation=a) for n, a in _POSITIONAL[name]]
+    params = [P(n, P.POSITIONAL_OR_KEYWORD, annotation=a, default=d) for n, a, d in _POSITIONAL[name]]
     options = table["options"][name]
     defaults = table["defaults"]
     rows = table["pulse" if name == "pulse" else "design"]
@@ -108,9 +109,24 @@ def _signature(name: str, table: Dict[str, Any], returns: Any) -> inspect.Signat
     return inspect.Signature(params, return_annotation=returns)
 
 
+def keywords_doc(name: str, table: Dict[str, Any]) -> str:
+    """The "Keywords" section of the function `name`'s docstring, generated from the engine's
+    parameter table: one line per row the function takes (table order), the row's own line
+    (help, range, alias) and, for a choice, its names."""
+    rows = table["pulse" if name == "pulse" else "design"]
+    refused = set(table["refused"].get(name, []))
+    lines = ["Keywords (the engine's parameter table; None = not given):"]
+    for row in rows:
+        if row["name"] in refused:
+            continue
+        choices = " | ".join(f'"{c}"' for c in row.get("choices", []))
+        lines.append(f"    {row['name']}: {row['doc']}" + (f" ({choices})" if choices else ""))
+    return "\n".join(lines)
+
+
 def document(namespace: Dict[str, Any]) -> None:
-    """Gives each function of the package (in `namespace`) the native one's docstring and the
-    engine's signature."""
+    """Gives each function of the package (in `namespace`) the native one's docstring, its
+    keywords' documentation from the engine's table and the engine's signature."""
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
                "simulate_ensemble": _thud.Ensemble, "sweep": _thud.Chart, "response": _thud.Response}
@@ -118,6 +134,7 @@ def document(namespace: Dict[str, Any]) -> None:
         fn = namespace[name]
         doc = getattr(_thud, name).__doc__ or ""
         # The native docstring opens with "name(**params) -> T": the signature says it now.
-        fn.__doc__ = doc.split("\n\n", 1)[-1] if doc.startswith(f"{name}(") else doc
+        doc = doc.split("\n\n", 1)[-1] if doc.startswith(f"{name}(") else doc
+        fn.__doc__ = doc.rstrip() + "\n\n" + keywords_doc(name, table) + "\n"
         fn.__signature__ = _signature(name, table, ret)  # type: ignore[attr-defined]
 
