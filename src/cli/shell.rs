@@ -252,6 +252,11 @@ fn extra_sections(cmd: &Command, path: &[String]) -> String {
     item(&mut s, "NO_COLOR", "When set to anything non-empty, the explorer draws without colour.");
     item(
         &mut s,
+        "TERM, COLORTERM",
+        "Unless COLORTERM is set or TERM names 256 colours (xterm-256color, tmux-256color, *-direct), the explorer sends only the classic 16-colour codes.",
+    );
+    item(
+        &mut s,
         "RAYON_NUM_THREADS",
         "Worker threads for sweeps, ensembles and responses when --threads is not given (else one per CPU).",
     );

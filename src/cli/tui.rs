@@ -13,6 +13,10 @@ pub struct TuiArgs {
     /// Pure ASCII: plain borders, plot glyphs and text (theta, us) for fonts without Braille.
     #[arg(long)]
     pub ascii: bool,
+    /// Colours: default (dark background), light (light background), mono (none); overrides
+    /// the theme of config.toml.
+    #[arg(long, value_enum, value_name = "THEME")]
+    pub theme: Option<crate::config::Theme>,
     /// Capture the mouse: a click on the chart selects that design.
     #[arg(long)]
     pub mouse: bool,
@@ -48,6 +52,7 @@ pub fn run(a: &TuiArgs) -> Result<(), CliError> {
         mouse: a.mouse,
         export_dir: a.export_dir.clone(),
         tour,
+        theme: a.theme,
     };
     crate::tui::run(&opts).map_err(CliError::Tui)
 }

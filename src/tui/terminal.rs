@@ -10,14 +10,16 @@ use crossterm::cursor::{Hide, Show};
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
 use crossterm::terminal::{self, EnterAlternateScreen, LeaveAlternateScreen};
 use crossterm::{execute, queue};
-use ratatui::backend::CrosstermBackend;
 use ratatui::Terminal;
 
 use super::clamp::Clamped;
+use super::sgr16::Depth16;
+use super::theme::Depth;
 use crate::signals;
 
 /// The terminal the app draws on, its size held to what the explorer draws ([`Clamped`]).
-pub type Term = Terminal<Clamped<CrosstermBackend<Stdout>>>;
+/// Its colours are written in the depth the terminal advertises ([`Depth16`]).
+pub type Term = Terminal<Clamped<Depth16<Stdout>>>;
 
 /// Writes the escape sequences that undo [`setup`]: leave the alternate screen, stop mouse
 /// capture, show the cursor. Separate from raw mode so it can be tested on a buffer.
@@ -91,7 +93,7 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
-    let term = Terminal::new(Clamped(CrosstermBackend::new(out)))?;
+    let term = Terminal::new(Clamped(Depth16::new(out, Depth::from_env())))?;
     Ok((term, guard))
 }
 
