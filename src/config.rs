@@ -34,12 +34,14 @@ pub enum ConfigError {
 }
 
 /// Colour theme of the terminal interface.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
 pub enum Theme {
-    /// Colours.
+    /// Colours for a dark background.
     #[default]
     Default,
+    /// Colours for a light background (dark text and curves, no yellow or white ink).
+    Light,
     /// No colours: bold and reverse video only.
     Mono,
 }

@@ -251,7 +251,7 @@ fn count_flags_give_one_line_not_clap_s_three() {
 fn clap_s_own_errors_are_one_line() {
     assert_refused(&["simulate", "--mas", "3"], &["'--mas'", "--mass"]);
     assert_refused(&["simulate", "--solver", "rk4"], &["rk4", "--solver"]);
-    assert_refused(&["export"], &["thud export", "csv, svg, wav"]);
+    assert_refused(&["export"], &["thud export", "csv, svg, pdf, wav"]);
     assert_refused(&["paper"], &["<ID>"]);
     assert_refused(&["nonesuch"], &["nonesuch"]);
 }

@@ -106,8 +106,16 @@ fn man_all_writes_every_page_with_the_extra_sections_and_keeps_existing_ones() {
         std::fs::read_dir(&folder).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     names.sort();
     for want in COMMANDS.iter().map(|c| format!("thud-{c}.1")).chain(
-        ["thud.1", "thud-merge.1", "thud-response.1", "thud-export-csv.1", "thud-export-svg.1", "thud-export-wav.1"]
-            .map(String::from),
+        [
+            "thud.1",
+            "thud-merge.1",
+            "thud-response.1",
+            "thud-export-csv.1",
+            "thud-export-svg.1",
+            "thud-export-pdf.1",
+            "thud-export-wav.1",
+        ]
+        .map(String::from),
     ) {
         assert!(names.contains(&want), "{want} not in {names:?}");
     }

@@ -402,6 +402,33 @@ fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
     assert_eq!(t.wait_file("status").trim(), "0");
 }
 
+#[test]
+fn under_term_xterm_the_real_binary_sends_no_256_colour_code() {
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            // A second's pause so the pipe below is attached before the first frame.
+            format!(
+                "sleep 1; cd '{d}' && env -u COLORTERM TERM=xterm XDG_CONFIG_HOME='{d}/config' \
+                 XDG_DATA_HOME='{d}/data' '{bin}' tui; echo $? > '{d}/status'; exec sleep 60",
+                d = d.display()
+            )
+        },
+        120,
+        40,
+    );
+    let wire = t.dir.join("wire");
+    let out = t.run(&["pipe-pane", "-o", &format!("cat >> '{}'", wire.display())]);
+    assert!(out.status.success(), "tmux pipe-pane: {}", String::from_utf8_lossy(&out.stderr));
+    t.wait_for("the main screen with its chart", |s| s.contains("U0max") && !s.contains("filling chart"));
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0");
+    let sent = String::from_utf8_lossy(&std::fs::read(&wire).unwrap()).into_owned();
+    assert!(sent.contains("U0max"), "the pipe saw the frames ({} bytes)", sent.len());
+    assert!(!sent.contains("38;5;") && !sent.contains("48;5;"), "a 256-colour code under TERM=xterm");
+    assert!(sent.contains(";36m") && (sent.contains(";41m") || sent.contains(";41;")), "the classic colour codes");
+}
+
 /// Issue 18 item 14: a stray bracketed-paste start without its end marker (a pasted fragment, a
 /// broken terminal, `printf '\e[200~'` into the pty) no longer swallows every key for good.
 /// Within about a second the explorer drops the paste (its text, a `q` included, is not taken

@@ -1,4 +1,4 @@
-//! `thud export csv|svg|wav`: a design's data, figures and sound as files.
+//! `thud export csv|svg|pdf|wav`: a design's data, figures and sound as files.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -10,7 +10,7 @@ use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::export::wav::{SampleFormat, WavError, WavOptions};
-use crate::export::{self, svg, Artifact, ExportError, ExportOptions};
+use crate::export::{self, pdf, svg, Artifact, ExportError, ExportOptions};
 use crate::fsio::{self, FsError, Overwrite, Plan, Sink};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
@@ -27,6 +27,8 @@ enum ExportCommand {
     Csv(CsvArgs),
     /// Figures as SVG: waveform, directivity, history, restitution, chart, fig17, response.
     Svg(SvgArgs),
+    /// Figures as PDF, one page the figure's size (1 px = 0.75 pt), text in an embedded DejaVu Sans: the figures of `svg`.
+    Pdf(SvgArgs),
     /// The damper's sound at the observer: 48 kHz mono, 16-bit PCM (--format), 1.0 = --full-scale Pa.
     Wav(WavArgs),
 }
@@ -66,7 +68,7 @@ struct SvgArgs {
     /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
     #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
     size: Option<String>,
-    /// Leave the title off the figure (for a caption of its own); the SVG keeps it as <title>.
+    /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
     #[arg(long)]
     no_title: bool,
     #[command(flatten)]
@@ -271,7 +273,8 @@ fn samples_at_full_scale(bytes: &[u8], format: SampleFormat) -> usize {
 /// Renders and writes one export; says on stderr what was written. The target and the work are
 /// checked before the work starts, so a refused --out or an over-cap run costs nothing, and the
 /// contents are checked for non-finite numbers before anything is written.
-fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Result<(), CliError> {
+/// With `as_pdf` the figure's SVG is checked, then converted to PDF ([`pdf::from_svg`]).
+fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions, as_pdf: bool) -> Result<(), CliError> {
     let (design, opts) = if kind.is_response() {
         // The design first, then its frequencies: --freqs, or the engine's default band.
         let (d, freqs) = common.design.response_setup(opts.freqs_hz.clone())?;
@@ -283,8 +286,10 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
     let out = &common.out;
     let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
     let to_stdout = matches!(plan, Plan::Through(Sink::Stdout));
-    if to_stdout && kind == Artifact::Wav && std::io::stdout().is_terminal() {
-        let why = format!("{}: a WAV file is binary; redirect standard output to a file or a player", fsio::shown(out));
+    if to_stdout && (kind == Artifact::Wav || as_pdf) && std::io::stdout().is_terminal() {
+        let (what, reader) = if as_pdf { ("a PDF", "a viewer") } else { ("a WAV", "a player") };
+        let why =
+            format!("{}: {what} file is binary; redirect standard output to a file or {reader}", fsio::shown(out));
         return Err(ThudError::invalid("--out", why).into());
     }
     let long = common.check_work(ctx, kind, &design, opts)?;
@@ -298,6 +303,12 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions) -> Re
         other => other.map_err(|e| export_error(out, e, common))?,
     };
     check_contents(kind, &bytes)?;
+    let bytes = if as_pdf {
+        pdf::from_svg(&String::from_utf8_lossy(&bytes))
+            .map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
+    } else {
+        bytes
+    };
     if kind == Artifact::Wav {
         let clipped = samples_at_full_scale(&bytes, opts.wav.format);
         if clipped > 0 {
@@ -322,6 +333,7 @@ fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
         ExportError::File(f) => out_error(out, &f),
         ExportError::Csv(c) => ThudError::invalid("--out", format!("cannot write {}: {c}", fsio::shown(out))),
         ExportError::Wav(w) => ThudError::invalid("--out", format!("cannot write {}: {w}", fsio::shown(out))),
+        ExportError::Pdf(p) => ThudError::invalid("--out", format!("cannot write {}: {p}", fsio::shown(out))),
     }
 }
 
@@ -361,6 +373,22 @@ pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
     ThudError::invalid("--out", message)
 }
 
+/// `export svg` or (`as_pdf`) `export pdf`: one figure, sized and titled as asked.
+fn figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
+    let kind = match s.what {
+        SvgWhat::Waveform => Artifact::SvgWaveform,
+        SvgWhat::Directivity => Artifact::SvgDirectivity,
+        SvgWhat::History => Artifact::SvgHistory,
+        SvgWhat::Restitution => Artifact::SvgRestitution,
+        SvgWhat::Chart => Artifact::SvgChart,
+        SvgWhat::Fig17 => Artifact::SvgFig17,
+        SvgWhat::Response => Artifact::SvgResponse,
+    };
+    let mut opts = s.common.options()?;
+    opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
+    write(ctx, kind, &s.common, &opts, as_pdf)
+}
+
 pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
     match &a.what {
         ExportCommand::Csv(c) => {
@@ -371,29 +399,17 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 CsvWhat::Sweep => Artifact::CsvSweep,
                 CsvWhat::Response => Artifact::CsvResponse,
             };
-            write(ctx, kind, &c.common, &c.common.options()?)
+            write(ctx, kind, &c.common, &c.common.options()?, false)
         }
-        ExportCommand::Svg(s) => {
-            let kind = match s.what {
-                SvgWhat::Waveform => Artifact::SvgWaveform,
-                SvgWhat::Directivity => Artifact::SvgDirectivity,
-                SvgWhat::History => Artifact::SvgHistory,
-                SvgWhat::Restitution => Artifact::SvgRestitution,
-                SvgWhat::Chart => Artifact::SvgChart,
-                SvgWhat::Fig17 => Artifact::SvgFig17,
-                SvgWhat::Response => Artifact::SvgResponse,
-            };
-            let mut opts = s.common.options()?;
-            opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
-            write(ctx, kind, &s.common, &opts)
-        }
+        ExportCommand::Svg(s) => figure(ctx, s, false),
+        ExportCommand::Pdf(s) => figure(ctx, s, true),
         ExportCommand::Wav(w) => {
             let mut opts = w.common.options()?;
             opts.wav.full_scale_pa =
                 quantity("full-scale", &Some(w.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
             opts.wav.format = w.format.into();
             opts.wav.validate()?;
-            write(ctx, Artifact::Wav, &w.common, &opts)
+            write(ctx, Artifact::Wav, &w.common, &opts, false)
         }
     }
 }

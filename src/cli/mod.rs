@@ -66,7 +66,7 @@ pub enum Command {
     Restitution(Box<restitution::RestitutionArgs>),
     /// Reproduce a table or figure of the paper, beside the paper's numbers.
     Paper(paper::PaperArgs),
-    /// Write a design's data (CSV), figures (SVG) or sound (WAV) to a file.
+    /// Write a design's data (CSV), figures (SVG, PDF) or sound (WAV) to a file.
     Export(Box<export::ExportArgs>),
     /// List the named starting designs (--preset NAME).
     Presets(presets::PresetsArgs),
@@ -199,7 +199,7 @@ fn numeric_flags() -> Vec<String> {
 }
 
 /// The command path the user typed up to a command that needs a subcommand, and its
-/// subcommands ("thud export", [csv, svg, wav]).
+/// subcommands ("thud export", [csv, svg, pdf, wav]).
 fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
     let mut cmd = Cli::command();
     let mut path = vec!["thud".to_string()];

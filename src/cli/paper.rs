@@ -14,7 +14,7 @@ use crate::paper;
 
 #[derive(Debug, Clone, Args)]
 pub struct PaperArgs {
-    /// Which table or figure (see --list), or `all` with --out DIR for every one as CSV/SVG plus REPORT.md.
+    /// Which table or figure (see --list), or `all` with --out DIR for every one as CSV/SVG (and PDF with --pdf) plus REPORT.md.
     #[arg(value_name = "ID", required_unless_present = "list")]
     id: Option<String>,
     /// List every table and figure that can be reproduced.
@@ -29,6 +29,9 @@ pub struct PaperArgs {
     /// regular files are ever replaced.
     #[arg(long, requires = "out")]
     force: bool,
+    /// With `all`: each figure also as ID.pdf beside its ID.svg (text in an embedded DejaVu Sans).
+    #[arg(long)]
+    pdf: bool,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -43,7 +46,14 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
     }
     let id = a.id.as_deref().unwrap_or_default().to_ascii_lowercase();
     if id == "all" {
-        return all(a.out.as_deref(), Overwrite::from_force(a.force));
+        return all(a.out.as_deref(), Overwrite::from_force(a.force), a.pdf);
+    }
+    if a.pdf {
+        return Err(ThudError::invalid(
+            "--pdf",
+            format!("PDF figures are made by `thud paper all --pdf --out DIR`, not for '{id}'"),
+        )
+        .into());
     }
     let target = Target::new(a.out.as_deref(), a.force)?;
     let table = paper::get(&id).ok_or_else(|| {
@@ -71,19 +81,20 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
 fn bundle_error(e: BundleError) -> CliError {
     match e {
         BundleError::File(f) => out_error(f.path(), &f).into(),
+        e @ BundleError::Pdf { .. } => CliError::Io(e.to_string()),
         e => ThudError::invalid("--out", e.to_string()).into(),
     }
 }
 
-/// `thud paper all --out DIR`: every item as CSV (and SVG where plotted) plus REPORT.md, as one
+/// `thud paper all --out DIR`: every item as CSV (and SVG where plotted; with `pdf` PDF too) plus REPORT.md, as one
 /// folder written complete or not at all ([`report::write_bundle`]). The folder is checked
 /// before the work starts, and every number in every file before the first file is written.
-fn all(out: Option<&Path>, overwrite: Overwrite) -> Result<(), CliError> {
+fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool) -> Result<(), CliError> {
     let dir = out.ok_or_else(|| ThudError::invalid("--out", "`thud paper all` needs --out DIR"))?;
     if fsio::is_stdout(dir) {
         return Err(ThudError::invalid("--out", "-: `thud paper all` writes a folder of files; give --out DIR").into());
     }
-    let expected = report::expected_files();
+    let expected = report::expected_files_with(true);
     report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite).map_err(bundle_error)?;
     let spinner = budget::spinner("reproducing the paper", true);
     let files = report::paper_bundle();
@@ -97,7 +108,13 @@ fn all(out: Option<&Path>, overwrite: Overwrite) -> Result<(), CliError> {
             }
         })?;
     }
-    report::write_bundle(dir, &files, overwrite).map_err(bundle_error)?;
-    super::warn(&format!("wrote {} files to {}", files.len(), fsio::shown(dir)));
+    let pdfs = if pdf { report::pdf_files(&files).map_err(bundle_error)? } else { Vec::new() };
+    let all: Vec<(&str, &[u8])> = files
+        .iter()
+        .map(|f| (f.name.as_str(), f.contents.as_bytes()))
+        .chain(pdfs.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())))
+        .collect();
+    report::write_bundle(dir, &all, overwrite).map_err(bundle_error)?;
+    super::warn(&format!("wrote {} files to {}", all.len(), fsio::shown(dir)));
     Ok(())
 }

@@ -201,13 +201,21 @@ fn examples(path: &[String]) -> Vec<(&'static str, &'static str)> {
         ["merge"] => vec![("thud merge part*.jsonl --json", "the whole chart from its parts")],
         ["response"] => vec![("thud response --force 1N --freqs 3Hz:8Hz:101 --csv", "amplitude and Leq against frequency")],
         ["restitution"] => vec![("thud restitution --json", "restitution against impact mass (Fig 13)")],
-        ["paper"] => vec![("thud paper table3", "Table 3 beside the paper's numbers"), ("thud paper --list", "every item")],
+        ["paper"] => vec![
+            ("thud paper table3", "Table 3 beside the paper's numbers"),
+            ("thud paper --list", "every item"),
+            ("thud paper all --pdf --out paper/", "every item as CSV, its figure as SVG and PDF"),
+        ],
         ["export"] | ["export", "wav"] => vec![
             ("thud export wav --preset steel-ball --out steel.wav", "the rattle, 16-bit PCM, 20 Pa full scale"),
             ("thud export wav --format float --out s.wav", "32-bit float, not clipped"),
         ],
         ["export", "csv"] => vec![("thud export csv impacts --preset paper-fig9 --out impacts.csv", "every impact")],
         ["export", "svg"] => vec![("thud export svg chart --out chart.svg", "the zone chart as a figure")],
+        ["export", "pdf"] => vec![(
+            "thud export pdf chart --no-title --size 1200x800 --out chart.pdf",
+            "the zone chart as a PDF for a paper, font embedded",
+        )],
         ["presets"] => vec![("thud presets", "the named starting designs")],
         ["tui"] => vec![("thud tui --preset paper-fig9", "the explorer on a preset")],
         ["limits"] => vec![("thud limits --json", "every range and work cap")],
@@ -242,6 +250,11 @@ fn extra_sections(cmd: &Command, path: &[String]) -> String {
     );
     s += ".SH ENVIRONMENT\n";
     item(&mut s, "NO_COLOR", "When set to anything non-empty, the explorer draws without colour.");
+    item(
+        &mut s,
+        "TERM, COLORTERM",
+        "Unless COLORTERM is set or TERM names 256 colours (xterm-256color, tmux-256color, *-direct), the explorer sends only the classic 16-colour codes.",
+    );
     item(
         &mut s,
         "RAYON_NUM_THREADS",

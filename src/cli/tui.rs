@@ -13,6 +13,10 @@ pub struct TuiArgs {
     /// Pure ASCII: plain borders, plot glyphs and text (theta, us) for fonts without Braille.
     #[arg(long)]
     pub ascii: bool,
+    /// Colours: default (dark background), light (light background), mono (none); overrides
+    /// the theme of config.toml.
+    #[arg(long, value_enum, value_name = "THEME")]
+    pub theme: Option<crate::config::Theme>,
     /// Do not capture the mouse (by default it is on where the terminal reports it: a click on
     /// a chart cell selects that design, and the terminal's own selection needs Shift). The
     /// config key `mouse = false` does the same.
@@ -55,6 +59,7 @@ impl TuiArgs {
             mouse: !self.no_mouse,
             export_dir: self.export_dir.clone(),
             tour,
+            theme: self.theme,
         }
     }
 }

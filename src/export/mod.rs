@@ -1,12 +1,13 @@
-//! Files that leave the terminal: CSV tables, SVG figures and WAV sound.
+//! Files that leave the terminal: CSV tables, SVG and PDF figures and WAV sound.
 //!
-//! The building blocks ([`csv`], [`figures`], [`wav`], [`report`]) return the file's contents
+//! The building blocks ([`csv`], [`figures`], [`wav`], [`report`]; [`pdf`] converts a figure) return the file's contents
 //! (`String` or `Vec<u8>`). [`render`] and [`export_to_path`] are the one-call front door used
 //! by the CLI and the TUI: a [`Artifact`] of file, a design and [`ExportOptions`] in; the contents,
 //! or a file written through [`crate::fsio`] (atomic, never over an existing file), out.
 
 pub mod csv;
 pub mod figures;
+pub mod pdf;
 pub mod report;
 pub mod svg;
 pub mod wav;
@@ -33,6 +34,9 @@ pub enum ExportError {
     /// The sound could not be encoded (a non-finite pressure: a bug).
     #[error("cannot write the WAV: {0}")]
     Wav(wav::WavError),
+    /// The figure could not be converted to PDF (a glyph missing from the embedded font: a bug).
+    #[error(transparent)]
+    Pdf(#[from] pdf::PdfError),
     /// The file could not be written (it exists, is not a regular file, or the system refused).
     #[error("cannot write {0}")]
     File(#[from] FsError),
@@ -108,6 +112,20 @@ impl Artifact {
     /// Whether this export needs the mass × gap grid (a sweep).
     pub fn needs_sweep(self) -> bool {
         matches!(self, Artifact::CsvSweep | Artifact::SvgChart | Artifact::SvgFig17)
+    }
+
+    /// Whether this export is an SVG figure (which [`render_pdf`] also makes as a PDF).
+    pub fn is_figure(self) -> bool {
+        matches!(
+            self,
+            Artifact::SvgWaveform
+                | Artifact::SvgDirectivity
+                | Artifact::SvgHistory
+                | Artifact::SvgRestitution
+                | Artifact::SvgChart
+                | Artifact::SvgFig17
+                | Artifact::SvgResponse
+        )
     }
 
     /// Whether this export is a frequency response (a forced design over `freqs_hz`).
@@ -312,6 +330,19 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
         }
     };
     Ok(text.into_bytes())
+}
+
+/// The figure `kind` (an SVG artifact, [`Artifact::is_figure`]) for `design` as a one-page PDF
+/// ([`pdf::from_svg`] of [`render`]'s SVG); a kind that is no figure is refused.
+pub fn render_pdf(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
+    if !kind.is_figure() {
+        let name = kind.default_file_name();
+        return Err(
+            ThudError::invalid("format", format!("{name} is not a figure; only figures are made as PDF")).into()
+        );
+    }
+    let bytes = render(kind, design, opts)?;
+    Ok(pdf::from_svg(&String::from_utf8_lossy(&bytes))?)
 }
 
 /// Checks `design` ([`Design::check`]), renders an export of `kind` for it and writes it to

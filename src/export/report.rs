@@ -1,5 +1,6 @@
 //! `paper all`: every reproducible table and figure as CSV (and SVG where it is a figure or a
-//! table worth plotting), and a `REPORT.md` with the side-by-side tables, notes and errors.
+//! table worth plotting), and a `REPORT.md` with the side-by-side tables, notes and errors;
+//! with `--pdf` each SVG also as `ID.pdf` ([`pdf_files`]).
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -113,6 +114,33 @@ pub fn expected_files() -> Vec<String> {
     v
 }
 
+/// The names of the files [`paper_bundle`] produces, and with `pdf` the PDF of each figure
+/// ([`pdf_files`]) after them.
+pub fn expected_files_with(pdf: bool) -> Vec<String> {
+    let mut v = expected_files();
+    if pdf {
+        v.extend(v.iter().filter_map(|n| n.strip_suffix(".svg")).map(|id| format!("{id}.pdf")).collect::<Vec<_>>());
+    }
+    v
+}
+
+/// The file `ID.pdf` of a set's `ID.svg`.
+pub fn pdf_name(svg_name: &str) -> Option<String> {
+    svg_name.strip_suffix(".svg").map(|id| format!("{id}.pdf"))
+}
+
+/// Each SVG figure of `files` as a PDF ([`super::pdf::from_svg`]), named by [`pdf_name`].
+pub fn pdf_files(files: &[BundleFile]) -> Result<Vec<(String, Vec<u8>)>, BundleError> {
+    files
+        .iter()
+        .filter_map(|f| Some((pdf_name(&f.name)?, f)))
+        .map(|(name, f)| match super::pdf::from_svg(&f.contents) {
+            Ok(bytes) => Ok((name, bytes)),
+            Err(source) => Err(BundleError::Pdf { name: f.name.clone(), source }),
+        })
+        .collect()
+}
+
 /// Why `paper all` may not write its set into a folder.
 #[derive(Debug, thiserror::Error)]
 pub enum BundleError {
@@ -129,6 +157,9 @@ pub enum BundleError {
     /// The path is not a folder.
     #[error("{} is {what}, not a folder", fsio::shown(.dir))]
     NotAFolder { dir: PathBuf, what: String },
+    /// A figure could not be made a PDF (a bug: a glyph missing from the embedded font).
+    #[error("cannot make {name} a PDF: {source}")]
+    Pdf { name: String, source: super::pdf::PdfError },
 }
 
 /// What writing the set into a folder does.
@@ -186,14 +217,18 @@ fn kind_of(meta: &fs::Metadata) -> String {
     fsio::FileKind::of(meta.file_type()).map_or_else(|| "a regular file".into(), |k| k.to_string())
 }
 
-/// Writes `files` as the folder `dir`, complete or not at all: into a new temporary folder
+/// Writes `files` (name, contents) as the folder `dir`, complete or not at all: into a new temporary folder
 /// `.DIR.thud-XXXXXX.tmp` beside it (locked, removed on every error and on SIGINT/SIGTERM/
 /// SIGHUP; after SIGKILL, by the next run), each file through [`fsio::write`] and synced, then
 /// renamed into place — over nothing, over an empty folder, or (`Replace`) exchanged atomically
 /// with the previous set, which is then removed. A full disk or a kill leaves no partial set,
-/// and a run after a failure starts afresh.
-pub fn write_bundle(dir: &Path, files: &[BundleFile], overwrite: Overwrite) -> Result<(), BundleError> {
-    let plan = check_bundle_targets(dir, files.iter().map(|f| f.name.as_str()), overwrite)?;
+/// and a run after a failure starts afresh. A previous set may hold the PDFs of the set's
+/// figures ([`pdf_name`]) whether or not this one does.
+pub fn write_bundle(dir: &Path, files: &[(&str, &[u8])], overwrite: Overwrite) -> Result<(), BundleError> {
+    let twins: Vec<String> = files.iter().filter_map(|(name, _)| pdf_name(name)).collect();
+    let mut names: Vec<&str> = files.iter().map(|(name, _)| *name).collect();
+    names.extend(twins.iter().map(String::as_str).filter(|t| !names.contains(t)).collect::<Vec<_>>());
+    let plan = check_bundle_targets(dir, names.iter().copied(), overwrite)?;
     let io = |e: std::io::Error| BundleError::from(FsError::Io { path: dir.to_path_buf(), source: e });
     let parent = match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -202,11 +237,10 @@ pub fn write_bundle(dir: &Path, files: &[BundleFile], overwrite: Overwrite) -> R
     fs::create_dir_all(&parent).map_err(io)?;
     fsio::remove_stale_temps(&parent);
     let temp = fsio::TempFolder::new(&parent, dir).map_err(io)?;
-    for f in files {
-        fsio::write(&temp.path().join(&f.name), f.contents.as_bytes(), Overwrite::Refuse)?;
+    for (name, contents) in files {
+        fsio::write(&temp.path().join(name), contents, Overwrite::Refuse)?;
     }
     temp.sync();
-    let names: Vec<&str> = files.iter().map(|f| f.name.as_str()).collect();
     temp.put_in_place(dir, plan == BundlePlan::Replace, &names)?;
     Ok(())
 }

@@ -19,11 +19,11 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::plot::{fit_bounds, tick_step, ticks, Curve, LinePlot};
-use super::theme::Palette;
+use super::theme::{Palette, Role};
 use crate::design::Zone;
 use crate::units::sig;
 
@@ -389,7 +389,11 @@ impl ZoneGridView<'_> {
             Some(z) if known => self.theme.zone(z),
             _ => Style::default(),
         };
-        style = if exact && !unsure { style.add_modifier(Modifier::BOLD) } else { style.add_modifier(Modifier::DIM) };
+        // A guessed cell is drawn behind (dim); an exact one plain (not bold: a bold black digit
+        // turns grey in terminals that brighten bold, and loses its contrast on the fill).
+        if !exact || unsure {
+            style = self.theme.behind(style);
+        }
         let text = if known { glyph(zone) } else { self.theme.sym("·", ".").to_string() };
         let fill = if unsure { self.theme.sym("░", ":") } else { " " };
         for y in r.y..r.y + r.height {
@@ -406,9 +410,9 @@ impl ZoneGridView<'_> {
     }
 
     fn draw_axes(&self, buf: &mut Buffer, l: &ChartLayout, inner: Rect) {
-        let dim = Style::default().add_modifier(Modifier::DIM);
         let cells = l.geometry.cells;
         let th = &self.theme;
+        let dim = th.label(); // not dim: the labels read on a projector
         buf.set_stringn(inner.x, l.y_title_y, th.text("d (cm) ↑"), inner.width as usize, dim);
         // Gap ticks: round values, each on the glyph line of the row whose gap is nearest it
         // (never a spacer line of a tall cell), one label a row.
@@ -589,7 +593,7 @@ impl ZoneGridView<'_> {
             .iter()
             .map(|o| th.text(o).into_owned())
             .find(|o| o.chars().count() <= room)
-            .unwrap_or_else(|| th.text(&options[options.len() - 1]).into_owned());
+            .unwrap_or_else(|| th.fit(&th.text(&options[options.len() - 1]), room).into_owned());
         if l.info_y < inner.bottom() {
             buf.set_stringn(inner.x, l.info_y, &marker, 3, mark_style);
             buf.set_stringn(inner.x + 3, l.info_y, &text, room, Style::default());
@@ -603,7 +607,8 @@ impl Widget for ZoneGridView<'_> {
         (&self.block).render(area, buf);
         let Some(l) = layout(inner, self.masses_g, self.gaps_cm, &self.theme, pending(self.cells), unsure(self.cells))
         else {
-            Paragraph::new("too small for the chart").render(inner, buf);
+            Paragraph::new(self.theme.fit("too small for the chart", inner.width.into()).into_owned())
+                .render(inner, buf);
             return;
         };
         let g = &l.geometry;
@@ -643,9 +648,7 @@ impl Widget for ScatterView<'_> {
             zones.iter().map(|z| self.points.iter().filter(|p| p.2 == *z).map(|p| (p.0, p.1)).collect()).collect();
         let l_line = [(xb[0], self.l_star_db), (xb[1], self.l_star_db)];
         let e_line = [(self.e_star_cm_s, yb[0]), (self.e_star_cm_s, yb[1])];
-        let colors = [Color::Red, Color::Yellow, Color::Green, Color::Blue];
-
-        let line = th.pinned();
+        let line = th.style(Role::Grid);
         let mut series = vec![
             Curve::line("L*", &l_line, line, th.mark('─', '-')),
             Curve::line("e*", &e_line, line, th.mark('│', '|')),
@@ -653,7 +656,7 @@ impl Widget for ScatterView<'_> {
         for (i, pts) in by_zone.iter().enumerate() {
             let digit = char::from(b'1' + i as u8);
             // Each point is its zone's digit: no legend entry needed.
-            series.push(Curve::points("", pts, th.fg(colors[i]).add_modifier(Modifier::BOLD), th.mark(digit, digit)));
+            series.push(Curve::points("", pts, th.zone_ink(zones[i]), th.mark(digit, digit)));
         }
         series.push(Curve::points(
             "this design",

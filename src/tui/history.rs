@@ -6,11 +6,10 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::widgets::{Block, Widget};
 
 use super::plot::{fit_bounds, Curve, LinePlot};
-use super::theme::Palette;
+use super::theme::{Palette, Role};
 
 /// The panel's data: (t in s, x in cm) samples and maxima with and without the damper, and the
 /// pinned design's.
@@ -66,25 +65,22 @@ pub fn window(maxima: &[(f64, f64)], free: &[(f64, f64)]) -> Option<[f64; 2]> {
 impl Widget for HistoryView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let th = self.theme;
-        let faint = Style::default().add_modifier(Modifier::DIM);
-        let bold = Style::default().add_modifier(Modifier::BOLD);
         let t_end = self.with_damper.last().map_or(0.0, |p| p.0);
         let e = e_line(self.maxima, t_end);
         let yb = window(self.maxima, self.free_maxima)
             .unwrap_or_else(|| fit_bounds(self.with_damper.iter().chain(self.without).map(|p| p.1), 0.05));
         let xb = fit_bounds(self.with_damper.iter().map(|p| p.0), 0.0);
         let mut series = vec![
-            Curve::line("", self.without, th.fg(Color::DarkGray).patch(faint), th.mark('·', ':')),
-            Curve::line("", self.with_damper, th.fg(Color::Yellow).patch(faint), th.line_marker_faint()),
-            Curve::line("e", &e, th.fg(Color::Red), th.mark('╌', '=')),
+            Curve::line("", self.without, th.behind(th.ink(Role::Grid)), th.mark('·', ':')),
+            Curve::line("", self.with_damper, th.behind(th.ink(Role::Damper)), th.line_marker_faint()),
+            Curve::line("e", &e, th.style(Role::Fit), th.mark('╌', '=')),
         ];
         if let Some(p) = self.pinned {
             series.push(Curve::line("pinned", p, th.pinned(), th.mark('◇', '%')).ranked(1));
         }
         // The legend keeps "damper" and "none" (the panel's point) before the others.
-        series
-            .push(Curve::line("none", self.free_maxima, th.fg(Color::White).patch(bold), th.mark('○', 'o')).ranked(2));
-        series.push(Curve::line("damper", self.maxima, th.fg(Color::Yellow).patch(bold), th.mark('●', '#')).ranked(3));
+        series.push(Curve::line("none", self.free_maxima, th.style(Role::Alone), th.mark('○', 'o')).ranked(2));
+        series.push(Curve::line("damper", self.maxima, th.style(Role::Damper), th.mark('●', '#')).ranked(3));
         LinePlot {
             block: self.block,
             x_title: "t (s)",

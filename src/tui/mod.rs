@@ -44,6 +44,7 @@ pub mod plot;
 pub mod polar;
 pub mod readout;
 pub mod response;
+pub mod sgr16;
 pub mod terminal;
 pub mod theme;
 pub mod tour;
@@ -119,6 +120,10 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     app.tour_def = tour_def.map(Arc::new);
     app.mouse = opts.mouse;
     app.configure(&config::load_user_config());
+    if let Some(t) = opts.theme {
+        // The command line wins over config.toml (NO_COLOR still wins over both).
+        app.theme = Palette { ascii: app.theme.ascii, ..theme }.with_theme(t);
+    }
     app.data_dir = store::Dirs::project().map(|d| d.data_dir);
     if let Some(dir) = &opts.export_dir {
         app.export_dir.clone_from(dir);

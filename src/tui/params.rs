@@ -60,7 +60,8 @@ impl ParamsView<'_> {
         let head = format!("─ {title} ");
         let rule = "─".repeat(width.saturating_sub(head.chars().count()));
         let text = self.theme.text(&format!("{head}{rule}")).into_owned();
-        Line::from(Span::styled(text, Style::default().add_modifier(Modifier::DIM)))
+        // A label, so never dim (dim means "drawn behind", theme.rs).
+        Line::from(Span::styled(text, self.theme.label()))
     }
 
     fn line(&self, i: usize, label: &str, value: &str, width: usize) -> Line<'static> {
@@ -71,6 +72,7 @@ impl ParamsView<'_> {
         let label = self.theme.text(label);
         let value = self.theme.text(value);
         let text = format!("{pointer}{label:<label_w$} {value:>value_w$}");
+        let text = self.theme.fit(&text, width).into_owned();
         let style = if selected {
             let s = Style::default().add_modifier(Modifier::REVERSED);
             if self.focused {

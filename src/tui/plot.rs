@@ -13,7 +13,7 @@ use ratatui::symbols::Marker;
 use ratatui::widgets::canvas::{Canvas, Context, Line as CLine, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::theme::Palette;
+use super::theme::{Palette, Role};
 
 /// The spacing of "nice" ticks: the smallest of 1, 2 and 5 × 10^k that gives at most `n`
 /// ticks in `[lo, hi]`. None for an empty or non-finite range.
@@ -265,17 +265,19 @@ impl Widget for LinePlot<'_> {
         (&self.block).render(area, buf);
         let has_data = self.series.iter().any(|s| !s.data.is_empty());
         if !has_data {
-            Paragraph::new(self.theme.text(self.empty).into_owned()).render(inner, buf);
+            let empty = self.theme.text(self.empty);
+            Paragraph::new(self.theme.fit(&empty, inner.width.into()).into_owned()).render(inner, buf);
             return;
         }
         let (xb, yb) = self.bounds();
         let Some(axes) = draw_axes(buf, inner, xb, yb, self.x_title, self.y_title, &self.theme) else {
-            Paragraph::new(self.theme.text("too small for this plot").into_owned()).render(inner, buf);
+            let msg = self.theme.text("too small for this plot");
+            Paragraph::new(self.theme.fit(&msg, inner.width.into()).into_owned()).render(inner, buf);
             return;
         };
         if self.y_zero && yb[0] < 0.0 && yb[1] > 0.0 {
             let zero = [(xb[0], 0.0), (xb[1], 0.0)];
-            let z = Curve::line("", &zero, Style::default().add_modifier(Modifier::DIM), self.theme.mark('┈', '-'));
+            let z = Curve::line("", &zero, self.theme.style(Role::Grid), self.theme.mark('┈', '-'));
             stamp_curve(buf, axes.graph, xb, yb, &z);
         }
         for s in &self.series {
@@ -330,7 +332,8 @@ pub fn draw_axes(
     y_title: &str,
     theme: &Palette,
 ) -> Option<Axes> {
-    let dim = Style::default().add_modifier(Modifier::DIM);
+    // Text never dim (it must read on a projector); the axis lines grey.
+    let (label, line) = (theme.label(), theme.style(Role::Grid));
     // Rows: y title, graph, x axis line, x labels (and the x title when it does not fit there).
     let graph_h = inner.height.checked_sub(3)?;
     if graph_h < 2 || inner.width < 12 {
@@ -349,7 +352,7 @@ pub fn draw_axes(
     let mut graph = Rect::new(axis_x + 1, inner.y + 1, graph_w, graph_h);
     let x_title = theme.text(x_title);
     let arrow = theme.sym(" →", " ->");
-    let x_title = format!("{x_title}{arrow}");
+    let x_title = theme.fit(&format!("{x_title}{arrow}"), inner.width.into()).into_owned();
     // X ticks: as many as fit with a space between labels.
     let x_label_w = |step: f64| {
         ticks(xb[0], xb[1], 50)
@@ -384,36 +387,37 @@ pub fn draw_axes(
     let axes = Axes { graph, xb, yb };
     // The y title and axis.
     let y_title = theme.text(y_title);
-    buf.set_stringn(inner.x, inner.y, &*y_title, inner.width as usize, dim);
+    let y_title = theme.fit(&y_title, inner.width.into());
+    buf.set_stringn(inner.x, inner.y, &*y_title, inner.width as usize, label);
     let (v_line, tick_y, corner, h_line, tick_x) =
         if theme.ascii { ("|", "+", "+", "-", "+") } else { ("│", "┤", "└", "─", "┬") };
     for y in graph.top()..graph.bottom() {
-        buf[(axis_x, y)].set_symbol(v_line).set_style(dim);
+        buf[(axis_x, y)].set_symbol(v_line).set_style(line);
     }
     for (v, l) in y_ticks.iter().zip(&y_labels) {
         if let Some(row) = axes.row(*v) {
-            buf[(axis_x, row)].set_symbol(tick_y).set_style(dim);
+            buf[(axis_x, row)].set_symbol(tick_y).set_style(line);
             let w = l.chars().count() as u16;
-            buf.set_stringn(axis_x - 1 - w, row, l, w as usize, dim);
+            buf.set_stringn(axis_x - 1 - w, row, l, w as usize, label);
         }
     }
     // The x axis.
     let axis_y = graph.bottom();
-    buf[(axis_x, axis_y)].set_symbol(corner).set_style(dim);
+    buf[(axis_x, axis_y)].set_symbol(corner).set_style(line);
     for x in graph.left()..graph.right() {
-        buf[(x, axis_y)].set_symbol(h_line).set_style(dim);
+        buf[(x, axis_y)].set_symbol(h_line).set_style(line);
     }
     for v in &x_ticks {
         if let Some(col) = axes.col(*v) {
-            buf[(col, axis_y)].set_symbol(tick_x).set_style(dim);
+            buf[(col, axis_y)].set_symbol(tick_x).set_style(line);
         }
     }
     for (x, l) in place_labels(&x_ticks, &x_labels, &axes, inner) {
-        buf.set_stringn(x, axis_y + 1, &l, l.chars().count(), dim);
+        buf.set_stringn(x, axis_y + 1, &l, l.chars().count(), label);
     }
     let title_y = if own_row { axis_y + 2 } else { axis_y + 1 };
     if title_y < inner.bottom() {
-        buf.set_stringn(title_x.max(inner.x), title_y, &x_title, inner.width as usize, dim);
+        buf.set_stringn(title_x.max(inner.x), title_y, &x_title, inner.width as usize, label);
     }
     Some(axes)
 }

@@ -10,12 +10,12 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Color, Style};
 use ratatui::widgets::canvas::{Context, Line as CLine, Points};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::plot::stamp;
-use super::theme::Palette;
+use super::theme::{Palette, Role};
 use crate::units::sig;
 
 /// Decibels shown between the floor and the loudest direction's round 10 dB.
@@ -125,12 +125,12 @@ impl Widget for PolarView<'_> {
         let th = self.theme;
         let Some(PolarLayout { canvas, xb, yb, floor, top }) = self.layout(inner) else {
             let text = if self.live.is_empty() { "no impact: no sound" } else { "too small for the polar" };
-            Paragraph::new(th.text(text).into_owned()).render(inner, buf);
+            Paragraph::new(th.fit(&th.text(text), inner.width.into()).into_owned()).render(inner, buf);
             return;
         };
         let (lo, hi) = self.range_deg;
-        let dim = Style::default().add_modifier(Modifier::DIM);
-        let ring_style = th.fg(Color::DarkGray).patch(dim);
+        let label = th.label();
+        let ring_style = th.style(Role::Grid);
         // Rings every 10 dB and the walls (the range's ends and the normal).
         stamp(buf, canvas, xb, yb, th.mark('·', '.'), ring_style, |ctx| {
             let n = (((hi - lo) / 10.0).round() as usize).max(2);
@@ -150,36 +150,36 @@ impl Widget for PolarView<'_> {
         // polar of another θ is still shown (never the nearest grid angle's level).
         let current = self.live.iter().find(|a| a.0 == theta).copied();
         let (tx, ty) = point(theta, current.map_or(top, |c| c.1), floor);
-        stamp(buf, canvas, xb, yb, th.mark('•', '+'), th.fg(Color::Yellow).add_modifier(Modifier::BOLD), |ctx| {
+        stamp(buf, canvas, xb, yb, th.mark('•', '+'), th.style(Role::Listener), |ctx| {
             ctx.draw(&CLine { x1: 0.0, y1: 0.0, x2: tx, y2: ty, color: Color::Reset });
         });
         if let Some(p) = self.pinned {
             stamp(buf, canvas, xb, yb, th.mark('◇', '%'), th.pinned(), |ctx| curve(ctx, p, floor));
         }
         let live = self.live;
-        stamp(buf, canvas, xb, yb, th.line_marker(), th.fg(Color::Cyan).add_modifier(Modifier::BOLD), |ctx| {
+        stamp(buf, canvas, xb, yb, th.line_marker(), th.style(Role::Live), |ctx| {
             curve(ctx, live, floor);
         });
         // "θ 0" above the normal.
         let zero = th.text("θ 0°").into_owned();
         let zx = col(0.0, xb, canvas).saturating_sub(1).min(inner.right().saturating_sub(zero.len() as u16));
-        buf.set_stringn(zx.max(inner.x), inner.y, &zero, inner.width as usize, dim);
+        buf.set_stringn(zx.max(inner.x), inner.y, &zero, inner.width as usize, label);
         // The ring scale: each ring's level where it crosses θ = 90°.
         let scale_y = canvas.bottom();
         let mut next_free = inner.x;
         for k in 0..=4 {
-            let label = format!("{}", floor + 10.0 * f64::from(k));
+            let ring = format!("{}", floor + 10.0 * f64::from(k));
             let c = col(10.0 * f64::from(k), xb, canvas);
-            let x = c.saturating_sub(label.len() as u16 / 2).max(inner.x);
-            if x < next_free || x + label.len() as u16 > inner.right() {
+            let x = c.saturating_sub(ring.len() as u16 / 2).max(inner.x);
+            if x < next_free || x + ring.len() as u16 > inner.right() {
                 continue;
             }
-            buf.set_stringn(x, scale_y, &label, label.len(), dim);
-            next_free = x + label.len() as u16 + 1;
+            buf.set_stringn(x, scale_y, &ring, ring.len(), label);
+            next_free = x + ring.len() as u16 + 1;
         }
         let unit = " dB";
         if next_free + 2 < inner.right() {
-            buf.set_stringn(next_free.saturating_sub(1), scale_y, unit, (inner.right() - next_free) as usize, dim);
+            buf.set_stringn(next_free.saturating_sub(1), scale_y, unit, (inner.right() - next_free) as usize, label);
         }
         // The listener: angle and level, with the ray's glyph.
         let ray = th.sym("•", "+");
@@ -187,7 +187,7 @@ impl Widget for PolarView<'_> {
             Some((_, db)) => format!("{ray} θ {}° → {} dB", sig(theta, 3), sig(db, 4)),
             None => format!("{ray} θ {}°", sig(theta, 3)),
         };
-        let text = th.text(&text).into_owned();
+        let text = th.fit(&th.text(&text), inner.width.into()).into_owned();
         buf.set_stringn(inner.x, inner.bottom() - 1, &text, inner.width as usize, Style::default());
     }
 }

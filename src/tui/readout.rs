@@ -238,6 +238,7 @@ impl Widget for ReadoutView<'_> {
             let n = self.theme.text(n).into_owned();
             lines.push(Line::from(Span::styled(n, Style::default().add_modifier(Modifier::ITALIC))));
         }
+        let lines: Vec<Line> = lines.into_iter().map(|l| self.theme.fit_line(l, w)).collect();
         Paragraph::new(lines).render(inner, buf);
     }
 }

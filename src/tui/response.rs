@@ -10,12 +10,12 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::compute::FreqBand;
 use super::plot::{fit_bounds, Curve, LinePlot};
-use super::theme::Palette;
+use super::theme::{Palette, Role};
 use crate::response::{Response, ResponsePoint};
 use crate::units::sig;
 
@@ -155,15 +155,14 @@ impl Widget for ResponseView<'_> {
             Layout::vertical([Constraint::Min(1), Constraint::Length(leq_h), Constraint::Length(1)]).areas(inner);
         let yb = fit_bounds(with.iter().chain(&without).map(|p| p.1), 0.05);
         let mark = self.marker(yb);
-        let bold = Style::default().add_modifier(Modifier::BOLD);
         let marker_style = Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED);
         LinePlot {
             block: Block::default(),
             x_title: "f (Hz)",
             y_title: "x (dB re 1 mm)",
             series: vec![
-                Curve::line("none", &without, th.fg(Color::White).add_modifier(Modifier::DIM), th.mark('○', 'o')),
-                Curve::line("damper", &with, th.fg(Color::Yellow).patch(bold), th.mark('●', '#')),
+                Curve::line("none", &without, th.behind(th.ink(Role::Alone)), th.mark('○', 'o')),
+                Curve::line("damper", &with, th.style(Role::Damper), th.mark('●', '#')),
                 Curve::line("f", &mark, marker_style, th.mark('│', '|')),
             ],
             empty: "no steady amplitude",
@@ -183,7 +182,7 @@ impl Widget for ResponseView<'_> {
                 x_title: "f (Hz)",
                 y_title: "Leq (dB)",
                 series: vec![
-                    Curve::line("Leq", &leq, th.fg(Color::Cyan).patch(bold), th.mark('•', '*')),
+                    Curve::line("Leq", &leq, th.style(Role::Live), th.mark('•', '*')),
                     Curve::line("", &lmark, marker_style, th.mark('│', '|')),
                 ],
                 empty: "no impact in any window: no Leq",
@@ -196,6 +195,7 @@ impl Widget for ResponseView<'_> {
             .render(bottom, buf);
         }
         let line = th.text(&marker_line(r, &self.band, self.freq_hz, info.width as usize)).into_owned();
+        let line = th.fit(&line, info.width.into()).into_owned();
         buf.set_stringn(info.x, info.y, &line, info.width as usize, Style::default());
     }
 }

@@ -12,14 +12,16 @@ use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
 use crossterm::style::{Attribute, SetAttribute};
 use crossterm::terminal::{self, Clear, ClearType, EnterAlternateScreen, LeaveAlternateScreen};
 use crossterm::{execute, queue};
-use ratatui::backend::CrosstermBackend;
 use ratatui::Terminal;
 
 use super::clamp::Clamped;
+use super::sgr16::Depth16;
+use super::theme::Depth;
 use crate::signals;
 
 /// The terminal the app draws on, its size held to what the explorer draws ([`Clamped`]).
-pub type Term = Terminal<Clamped<CrosstermBackend<Stdout>>>;
+/// Its colours are written in the depth the terminal advertises ([`Depth16`]).
+pub type Term = Terminal<Clamped<Depth16<Stdout>>>;
 
 /// True between [`setup`] entering the alternate screen and the first [`restore`]: only then
 /// is there an alternate screen of ours to clear (a restore without it, e.g. a panic after the
@@ -111,7 +113,7 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
-    let term = Terminal::new(Clamped(CrosstermBackend::new(out)))?;
+    let term = Terminal::new(Clamped(Depth16::new(out, Depth::from_env())))?;
     Ok((term, guard))
 }
 

@@ -64,7 +64,11 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     }
     if area.width < MIN_W || area.height < MIN_H {
         let msg = format!("thud: terminal {}×{} too small; need {MIN_W}×{MIN_H}", area.width, area.height);
-        f.render_widget(Paragraph::new(app.theme.text(&msg).into_owned()), Rect { height: 1, ..area });
+        let msg = app.theme.text(&msg);
+        f.render_widget(
+            Paragraph::new(app.theme.fit(&msg, area.width.into()).into_owned()),
+            Rect { height: 1, ..area },
+        );
         fold(f, app);
         return Drawn::default();
     }
@@ -78,14 +82,14 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
         Constraint::Length(footer_h),
     ])
     .areas(area);
-    f.render_widget(header_line(app), header);
+    f.render_widget(Paragraph::new(app.theme.fit_line(header_line(app), header.width.into())), header);
     let caption_h = if touring && body.height >= 12 { 5 } else { 0 };
     let [panels, caption] = Layout::vertical([Constraint::Min(1), Constraint::Length(caption_h)]).areas(body);
     let drawn = body_panels(f, app, panels);
     if caption_h > 0 {
         caption_box(f, app, caption);
     }
-    f.render_widget(status_line(app), status);
+    f.render_widget(Paragraph::new(app.theme.fit_line(status_line(app), status.width.into())), status);
     if footer_h > 0 {
         f.render_widget(footer_line(&app.settings.keys, footer.width, touring, app.mouse, &app.theme), footer);
     }
@@ -199,10 +203,15 @@ fn panel_block(app: &App, which: Panel, title: &str) -> Block<'static> {
 }
 
 /// The longest of `options` that fits a panel `width` wide (its borders taken off), as drawn
-/// (folded to ASCII with `--ascii`).
+/// (folded to ASCII with `--ascii`); the shortest cut with an ellipsis when none fits.
 fn fit(theme: &Palette, options: &[String], width: u16) -> String {
     let w = usize::from(width).saturating_sub(2);
-    options.iter().find(|t| theme.text(t).chars().count() <= w).unwrap_or(&options[options.len() - 1]).clone()
+    let last = theme.text(&options[options.len() - 1]).into_owned();
+    options
+        .iter()
+        .find(|t| theme.text(t).chars().count() <= w)
+        .cloned()
+        .unwrap_or_else(|| theme.fit(&last, w).into_owned())
 }
 
 /// The width a panel's title may use: the panel's, less the tour's pointer when it has one.
@@ -468,7 +477,8 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 PulseView::Single => Some(app.design.damper.v0_m_s),
                 PulseView::Loudest => None,
             };
-            let title = waveform::title(u0, title_width(app, Panel::Waveform, area));
+            let width = title_width(app, Panel::Waveform, area);
+            let title = fit(&theme, &[waveform::title(u0, width)], width);
             let view = WaveformView {
                 block: panel_block(app, Panel::Waveform, &title),
                 live,
@@ -509,7 +519,10 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
             let empty: &[(f64, f64)] = &[];
             let s = app.results.sim.as_deref();
             let view = HistoryView {
-                block: panel_block(app, Panel::History, history::title(title_width(app, Panel::History, area))),
+                block: panel_block(app, Panel::History, &{
+                    let width = title_width(app, Panel::History, area);
+                    fit(&theme, &[history::title(width).to_string()], width)
+                }),
                 with_damper: s.map_or(empty, |s| &s.history_cm),
                 without: s.map_or(empty, |s| &s.free_cm),
                 maxima: s.map_or(empty, |s| &s.maxima_cm),
@@ -675,7 +688,7 @@ pub fn scatter_points(app: &App) -> Vec<(f64, f64, Zone)> {
     })
 }
 
-fn header_line(app: &App) -> Paragraph<'static> {
+fn header_line(app: &App) -> Line<'static> {
     let th = &app.theme;
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let p = &app.design.damper;
@@ -713,7 +726,7 @@ fn header_line(app: &App) -> Paragraph<'static> {
     } else if app.focus != Panel::Params {
         spans.push(Span::raw(format!("{bar} focus: {:?} ", app.focus).to_lowercase()));
     }
-    Paragraph::new(Line::from(spans))
+    Line::from(spans)
 }
 
 /// The input line's text: reversed while selected (typing replaces it).
@@ -725,30 +738,34 @@ fn typed(app: &App) -> Style {
     }
 }
 
-fn status_line(app: &App) -> Paragraph<'static> {
+fn status_line(app: &App) -> Line<'static> {
     let th = &app.theme;
     let cursor = th.sym("█", "_");
-    let dim = Style::default().add_modifier(Modifier::DIM);
+    // The hints are read, not skimmed: plain text, never dim.
+    let plain = th.label();
     if let Mode::SaveAs(buf) = &app.mode {
         let dir = app.data_dir.as_deref().map_or_else(|| "(no data directory)".into(), |d| d.display().to_string());
-        return Paragraph::new(Line::from(vec![
+        return Line::from(vec![
             Span::styled(" save as: ", Style::default().add_modifier(Modifier::BOLD)),
             Span::styled(buf.clone(), typed(app)),
             Span::raw(cursor),
-            Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), dim),
-        ]));
+            Span::styled(format!("  (letters, digits, - or _; Enter saves in {dir}, Esc cancels)"), plain),
+        ]);
     }
     if let Mode::ConfirmOverwrite(name) = &app.mode {
-        return Paragraph::new(Line::from(vec![
+        return Line::from(vec![
             Span::styled(format!(" overwrite {name}? y/n"), Style::default().add_modifier(Modifier::BOLD)),
-            Span::styled("  (y replaces the saved design of that name; any other key keeps it)", dim),
-        ]));
+            Span::styled("  (y replaces the saved design of that name; any other key keeps it)", plain),
+        ]);
     }
     if app.mode == Mode::ConfirmQuit {
-        return Paragraph::new(Line::from(vec![
+        return Line::from(vec![
             Span::styled(" quit without saving? y/n", Style::default().add_modifier(Modifier::BOLD)),
-            Span::styled(format!("  (y quits; any other key stays, then {} saves)", app.key_label(Action::Save)), dim),
-        ]));
+            Span::styled(
+                format!("  (y quits; any other key stays, then {} saves)", app.key_label(Action::Save)),
+                plain,
+            ),
+        ]);
     }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.param();
@@ -760,20 +777,20 @@ fn status_line(app: &App) -> Paragraph<'static> {
             ),
             _ => "  (Enter accepts, Esc cancels, Ctrl-U clears)".to_string(),
         };
-        return Paragraph::new(Line::from(vec![
+        return Line::from(vec![
             Span::styled(
                 th.text(&format!(" {} = ", f.label())).into_owned(),
                 Style::default().add_modifier(Modifier::BOLD),
             ),
             Span::styled(th.text(buf).into_owned(), typed(app)),
             Span::raw(cursor),
-            Span::styled(th.text(&hint).into_owned(), dim),
-        ]));
+            Span::styled(th.text(&hint).into_owned(), plain),
+        ]);
     }
     match &app.status {
-        Some(s) if s.error => Paragraph::new(Span::styled(th.text(&format!(" {}", s.text)).into_owned(), th.error())),
-        Some(s) => Paragraph::new(th.text(&format!(" {}", s.text)).into_owned()),
-        None => Paragraph::new(""),
+        Some(s) if s.error => Line::from(Span::styled(th.text(&format!(" {}", s.text)).into_owned(), th.error())),
+        Some(s) => Line::from(th.text(&format!(" {}", s.text)).into_owned()),
+        None => Line::from(""),
     }
 }
 
@@ -817,19 +834,22 @@ fn caption_box(f: &mut Frame, app: &App, area: Rect) {
     let th = &app.theme;
     let n = state.tour.steps.len();
     let title = th.text(&format!(" tour {}/{n}: {} ", state.step + 1, step.title)).into_owned();
+    let title = th.fit(&title, area.width.saturating_sub(2).into()).into_owned();
     let keys = if state.step + 1 < n {
         " → next  ← back  z all panels  Esc explore from here "
     } else {
         " → finish  ← back  z all panels  Esc explore "
     };
-    let block = th
-        .block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true)
-        .title_bottom(Line::from(th.text(keys).into_owned()).right_aligned());
+    let block =
+        th.block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true).title_bottom(
+            Line::from(th.fit(&th.text(keys), area.width.saturating_sub(2).into()).into_owned()).right_aligned(),
+        );
     let inner = block.inner(area);
     f.render_widget(Clear, area);
     f.render_widget(block, area);
     let caption = th.text(&step.caption).into_owned();
-    let lines: Vec<Line> = wrap(&caption, inner.width as usize).into_iter().map(Line::from).collect();
+    let (w, h) = (usize::from(inner.width), usize::from(inner.height));
+    let lines: Vec<Line> = th.fit_lines(wrap_all(&caption, w), h, w).into_iter().map(Line::from).collect();
     f.render_widget(Paragraph::new(lines), inner);
 }
 
@@ -867,14 +887,14 @@ fn help_lines(keys: &Keymap, theme: &Palette, width: usize) -> Vec<Line<'static>
             lines.push(Line::from(format!("{h:<head_w$}{l}")));
         }
     }
-    let dim = Style::default().add_modifier(Modifier::DIM);
+    let plain = theme.label();
     lines.push(Line::from(""));
     let notes = [
         "Values are typed in the unit shown (45 = 45 g) or with units: 40.5g 3cm 0.7m 60deg 1.4m/s 2s 103dB",
         "The second column is the action's name for [keys] in config.toml, e.g. save = \"ctrl-s\"",
     ];
     for note in notes.iter().take(if names { 2 } else { 1 }) {
-        lines.extend(wrap_all(&theme.text(note), width).into_iter().map(|l| Line::from(Span::styled(l, dim))));
+        lines.extend(wrap_all(&theme.text(note), width).into_iter().map(|l| Line::from(Span::styled(l, plain))));
     }
     lines
 }
@@ -894,9 +914,11 @@ fn scrolled_popup(f: &mut Frame, theme: &Palette, popup: Rect, title: &str, line
     if scroll < max_scroll {
         marks.push(format!("{} more below (PgDn)", theme.sym("↓", "v")));
     }
-    let mut block = theme.block(theme.text(title).into_owned(), false);
+    let room = usize::from(popup.width.saturating_sub(2));
+    let mut block = theme.block(theme.fit(&theme.text(title), room).into_owned(), false);
     if !marks.is_empty() {
-        block = block.title_bottom(Line::from(format!(" {} ", marks.join(", "))).right_aligned());
+        let marks = format!(" {} ", marks.join(", "));
+        block = block.title_bottom(Line::from(theme.fit(&marks, room).into_owned()).right_aligned());
     }
     let inner = block.inner(popup);
     f.render_widget(block, popup);
@@ -957,7 +979,8 @@ fn list_popup(f: &mut Frame, list: &ListView, theme: &Palette, area: Rect) {
     let error_h = u16::try_from(error.len()).unwrap_or(u16::MAX);
     let popup = centered(area, 76, (n.max(1) as u16).saturating_add(7).saturating_add(error_h));
     f.render_widget(Clear, popup);
-    let block = theme.block(theme.text(&list.title).into_owned(), false);
+    let block =
+        theme.block(theme.fit(&theme.text(&list.title), popup.width.saturating_sub(2).into()).into_owned(), false);
     let inner = block.inner(popup);
     f.render_widget(block, popup);
     if n == 0 {
@@ -981,7 +1004,7 @@ fn list_popup(f: &mut Frame, list: &ListView, theme: &Palette, area: Rect) {
         .skip(first)
         .take(rows_h)
         .map(|(i, item)| {
-            let mut style = if item.problem { Style::default().add_modifier(Modifier::DIM) } else { Style::default() };
+            let mut style = if item.problem { theme.error() } else { Style::default() };
             if i == sel {
                 style = style.add_modifier(Modifier::REVERSED);
             }

@@ -4,11 +4,10 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier};
 use ratatui::widgets::{Block, Widget};
 
 use super::plot::{Curve, LinePlot};
-use super::theme::Palette;
+use super::theme::{Palette, Role};
 
 /// The panel's data: (t in ms after the direct arrival, p in Pa).
 pub struct WaveformView<'a> {
@@ -41,12 +40,7 @@ pub fn title(single: Option<f64>, width: u16) -> String {
 
 impl Widget for WaveformView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let mut series = vec![Curve::line(
-            "live",
-            self.live,
-            self.theme.fg(Color::Cyan).add_modifier(Modifier::BOLD),
-            self.theme.line_marker(),
-        )];
+        let mut series = vec![Curve::line("live", self.live, self.theme.style(Role::Live), self.theme.line_marker())];
         if let Some(p) = self.pinned {
             series.insert(0, Curve::line("pinned", p, self.theme.pinned(), self.theme.mark('•', '.')));
         }

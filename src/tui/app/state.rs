@@ -261,11 +261,13 @@ pub struct Options {
     pub export_dir: Option<PathBuf>,
     /// Start with the guided tour from here (the built-in one or a file).
     pub tour: Option<TourSource>,
+    /// `--theme`: overrides the `theme` of `config.toml`.
+    pub theme: Option<config::Theme>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Self { preset: "default".into(), ascii: false, mouse: true, export_dir: None, tour: None }
+        Self { preset: "default".into(), ascii: false, mouse: true, export_dir: None, tour: None, theme: None }
     }
 }
 
@@ -393,9 +395,7 @@ impl App {
     /// the rest of the settings still apply.
     pub fn configure(&mut self, load: &ConfigLoad) {
         let c = &load.config;
-        if c.theme == config::Theme::Mono {
-            self.theme.color = false;
-        }
+        self.theme = self.theme.with_theme(c.theme);
         if c.markers == MarkerStyle::Ascii {
             self.theme.ascii = true;
         }
