@@ -1,8 +1,8 @@
 //! The user's settings, `config.toml` in the config directory (on Linux
 //! `$XDG_CONFIG_HOME/thud/config.toml`): theme, key overrides, default zone thresholds, the
-//! marker style of plots and design defaults (`[design]`, whose keys are the rows of the
-//! engine's parameter table, [`params::DESIGN`]: no key list is kept here). Front-end support,
-//! not physics.
+//! marker style of plots, design defaults (`[design]`, whose keys are the rows of the
+//! engine's parameter table, [`params::DESIGN`]: no key list is kept here) and whether the
+//! explorer captures the mouse. Front-end support, not physics.
 //!
 //! A file that fails to parse is reported with its path, line and problem; the caller goes on
 //! with the defaults and the file is never overwritten by loading.
@@ -287,6 +287,9 @@ pub struct Config {
     pub design: BTreeMap<String, ParamValue>,
     /// Key overrides: action name → key (e.g. `save = "ctrl-s"`).
     pub keys: BTreeMap<ActionName, KeyBinding>,
+    /// `mouse = false`: the explorer does not capture the mouse (left out: it does).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mouse: Option<bool>,
 }
 
 impl Config {
@@ -321,6 +324,11 @@ impl Config {
             inclination_cm_s: self.thresholds.e_star_cm_s.unwrap_or(base.inclination_cm_s),
             zone_by: base.zone_by,
         }
+    }
+
+    /// True unless the file says `mouse = false`.
+    pub fn mouse_on(&self) -> bool {
+        self.mouse.unwrap_or(true)
     }
 
     /// `base` with the design defaults of `[design]` set ([`params::design`]: each value
@@ -364,7 +372,7 @@ fn table_only<'de, D: serde::Deserializer<'de>, T: Deserialize<'de>>(d: D) -> Re
 }
 
 /// The top-level keys of `config.toml`.
-const KEYS: [&str; 5] = ["theme", "markers", "thresholds", "design", "keys"];
+const KEYS: [&str; 6] = ["theme", "markers", "thresholds", "design", "keys", "mouse"];
 
 /// The range of a key of `[thresholds]` (the older spelling of `[design]`'s `l-star` and
 /// `e-star`): its row's in the engine's table.
@@ -413,6 +421,7 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
         let problem = match key.get_ref().as_ref() {
             "theme" => field(value, &mut |v| Theme::deserialize(v.into_deserializer()).map(drop)),
             "markers" => field(value, &mut |v| MarkerStyle::deserialize(v.into_deserializer()).map(drop)),
+            "mouse" => field(value, &mut |v| bool::deserialize(v.into_deserializer()).map(drop)),
             "thresholds" => {
                 let shape = field(value, &mut |v| table_only::<_, ThresholdDefaults>(v.into_deserializer()).map(drop));
                 if shape.is_none() {
@@ -634,6 +643,18 @@ mod tests {
         for bad in ["", "ctrl-", "f25", "hyper-x", "enterr"] {
             assert!(KeySpec::parse(bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn the_mouse_is_on_unless_the_file_says_mouse_false() {
+        assert!(Config::default().mouse_on(), "no file, or no key: on");
+        assert!(toml::from_str::<Config>("theme = \"mono\"").unwrap().mouse_on());
+        assert!(!toml::from_str::<Config>("mouse = false").unwrap().mouse_on());
+        assert!(toml::from_str::<Config>("mouse = true").unwrap().mouse_on());
+        let problems = check_text(Path::new("c.toml"), "mouse = \"off\"\n");
+        assert_eq!(problems.len(), 1, "a non-boolean is reported: {problems:?}");
+        assert_eq!((problems[0].line, problems[0].column), (Some(1), Some(9)));
+        assert!(check_text(Path::new("c.toml"), "mouse = false\n").is_empty());
     }
 
     #[test]

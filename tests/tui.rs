@@ -303,11 +303,84 @@ fn b_last_words(help: &str) -> String {
 #[test]
 fn footer_shows_the_table_hints() {
     let mut app = computed_app();
-    let screen = render(&mut app, 120, 40);
+    let screen = render(&mut app, 200, 60);
     let footer = screen.lines().last().unwrap();
     for (k, h) in thud::tui::keys::footer_hints() {
         assert!(footer.contains(&format!("{k} {h}")), "footer lacks {k} {h}: {footer}");
     }
+}
+
+/// The footer's text (the last line of the screen, without the quotes TestBackend adds).
+fn footer_of(screen: &str) -> String {
+    screen.lines().last().unwrap().trim_matches('"').to_string()
+}
+
+/// Issue 17: at 80, 120 and 200 columns the footer leaves out no hint that would fit in the
+/// room left, a hint is left out only for more important ones (`v view` is shown at 120), and
+/// with the mouse on it says `mouse on` where it fits.
+#[test]
+fn the_footer_shows_every_hint_that_fits_by_importance() {
+    use thud::tui::keys::{mouse_hint, Keymap, FOOTER_PRIORITY};
+    let rank = |name: &str| FOOTER_PRIORITY.iter().position(|n| *n == name).unwrap();
+    // " key hint ": what a hint takes on the footer.
+    let cost = |h: &thud::tui::keys::Hint| h.label.chars().count() + h.hint.chars().count() + 3;
+    for mouse in [false, true] {
+        let mut app = computed_app();
+        app.mouse = mouse;
+        let mut hints = Keymap::default().footer_items(false);
+        if mouse {
+            hints.push(mouse_hint());
+        }
+        for w in [80u16, 120, 200] {
+            let footer = footer_of(&render(&mut app, w, 40));
+            let room = usize::from(w) + 1; // the last hint's trailing space may fall off
+            let (shown, left_out): (Vec<_>, Vec<_>) =
+                hints.iter().partition(|h| format!("{footer} ").contains(&format!(" {} {} ", h.label, h.hint)));
+            let used: usize = shown.iter().map(|h| cost(h)).sum();
+            assert!(used <= room, "{w} cols: {used} columns of hints:\n{footer}");
+            for h in &left_out {
+                assert!(
+                    used + cost(h) > room,
+                    "{w} cols, mouse {mouse}: `{} {}` fits but is left out:\n{footer}",
+                    h.label,
+                    h.hint
+                );
+                let before: usize = shown.iter().filter(|s| rank(s.name) < rank(h.name)).map(|s| cost(s)).sum();
+                assert!(
+                    before + cost(h) > room,
+                    "{w} cols, mouse {mouse}: `{} {}` is left out for less important hints:\n{footer}",
+                    h.label,
+                    h.hint
+                );
+            }
+            if w >= 120 {
+                assert!(footer.contains(" v view "), "{w} cols:\n{footer}");
+            }
+            assert_eq!(footer.contains(" mouse on"), mouse, "{w} cols:\n{footer}");
+            if w == 200 {
+                assert!(left_out.is_empty(), "every hint at 200 columns, {left_out:?} left out:\n{footer}");
+            }
+        }
+    }
+}
+
+/// The config's `mouse = false` turns the mouse off (and its footer word with it).
+#[test]
+fn config_mouse_false_turns_the_mouse_off() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path()).unwrap();
+    std::fs::write(dir.path().join("config.toml"), "mouse = false\n").unwrap();
+    let load = thud::config::load_config(dir.path());
+    let mut app = computed_app();
+    app.mouse = true;
+    app.configure(&load);
+    assert!(!app.mouse, "mouse = false in config.toml");
+    assert!(!footer_of(&render(&mut app, 200, 60)).contains("mouse"));
+    let mut app = computed_app();
+    app.mouse = true;
+    app.configure(&thud::config::load_config(&dir.path().join("none")));
+    assert!(app.mouse, "no config: the mouse stays on");
+    assert!(footer_of(&render(&mut app, 200, 60)).contains(" mouse on"));
 }
 
 #[test]
@@ -1870,6 +1943,98 @@ fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
     assert_eq!(app.mode, Mode::Saved(0));
     assert!(app.status().unwrap().text.contains("ensemble N 0"), "{:?}", app.status());
     assert_eq!(app.runs, 1);
+}
+
+/// README.md of the repository.
+fn readme_path() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")
+}
+
+/// Every key of the key table (the explorer's and the tour's) is in the README's keys table
+/// (its first column, each key in backticks), so the README cannot fall behind the table.
+#[test]
+fn readme_keys_table_has_every_key_of_the_table() {
+    let readme = std::fs::read_to_string(readme_path()).unwrap();
+    let start = readme.find("### Keys\n").expect("the README's keys section");
+    let table: Vec<&str> = readme[start..]
+        .lines()
+        .skip(1)
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .collect();
+    let documented: Vec<&str> = table
+        .iter()
+        .skip(2)
+        .flat_map(|row| row.trim_start_matches('|').split(" | ").next().unwrap().split('`').skip(1).step_by(2))
+        .collect();
+    for b in KEYS.iter().chain(thud::tui::keys::TOUR_KEYS) {
+        assert!(documented.contains(&b.label), "key `{}` ({}) is not in the README's keys table", b.label, b.name);
+    }
+}
+
+/// The explorer screens the README shows, by the name of their marker: the default design
+/// computed with the real chart grid (16 × 12), the mouse on as in the real explorer.
+fn readme_screen(name: &str) -> String {
+    let mut app = full_app("default", Palette::default());
+    app.mouse = true;
+    let screen = match name {
+        "main_80x24" => render(&mut app, 80, 24),
+        "history_chart_80x24" => {
+            show_chart(&mut app);
+            render(&mut app, 80, 24)
+        }
+        "main_120x40" => render(&mut app, 120, 40),
+        "tour_step4_80x24" => {
+            press(&mut app, KeyCode::Char('T'));
+            for _ in 1..4 {
+                press(&mut app, KeyCode::Right);
+            }
+            render(&mut app, 80, 24)
+        }
+        other => panic!("no README screen named {other}"),
+    };
+    // TestBackend quotes each line; the README shows the text, trailing blanks cut.
+    let lines: Vec<&str> =
+        screen.lines().map(|l| l.strip_prefix('"').and_then(|l| l.strip_suffix('"')).unwrap()).collect();
+    lines.iter().map(|l| format!("{}\n", l.trim_end())).collect()
+}
+
+/// The README's text captures of the explorer (between `<!-- screen NAME ... -->` and
+/// `<!-- /screen -->`, a ```text block) are what the explorer draws today.
+/// `THUD_BLESS=1 cargo test --release --test tui readme_screens` re-captures them in place (after
+/// a change of the screens, or a merge of other explorer work).
+#[test]
+fn readme_screens_are_what_the_explorer_draws() {
+    let path = readme_path();
+    let readme = std::fs::read_to_string(&path).unwrap();
+    let bless = std::env::var_os("THUD_BLESS").is_some();
+    let (mut out, mut rest, mut names) = (String::new(), readme.as_str(), Vec::new());
+    while let Some(at) = rest.find("<!-- screen ") {
+        let open_end = at + rest[at..].find("-->\n").expect("the marker's end") + "-->\n".len();
+        let name = rest[at + "<!-- screen ".len()..].split([' ', ':']).next().unwrap().to_string();
+        let close = open_end + rest[open_end..].find("<!-- /screen -->").expect("the closing marker");
+        let want = format!("```text\n{}```\n", readme_screen(&name));
+        if !bless {
+            assert_eq!(
+                rest[open_end..close],
+                want,
+                "the README's screen {name} is not what the explorer draws; re-capture with \
+                 THUD_BLESS=1 cargo test --release --test tui readme_screens"
+            );
+        }
+        out.push_str(&rest[..open_end]);
+        out.push_str(&want);
+        rest = &rest[close..];
+        names.push(name);
+    }
+    out.push_str(rest);
+    assert_eq!(names, ["main_80x24", "history_chart_80x24", "main_120x40", "tour_step4_80x24"], "the README's screens");
+    if bless && out != readme {
+        let dir = path.parent().unwrap();
+        let mut tmp = tempfile::NamedTempFile::new_in(dir).unwrap();
+        std::io::Write::write_all(&mut tmp, out.as_bytes()).unwrap();
+        tmp.persist(&path).unwrap();
+    }
 }
 
 /// Issue 16 item 1: the field list is grouped as the engine's table groups its rows (design,

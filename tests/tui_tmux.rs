@@ -463,3 +463,72 @@ fn an_unterminated_bracketed_paste_times_out_and_q_quits() {
     assert_eq!(t.format("#{cursor_flag}"), "1", "cursor shown");
     assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off");
 }
+
+/// Waits for the explorer's main screen at `w × h`, resizes the window to `to`, waits for the
+/// new layout, quits and returns the shell's screen.
+fn resize_and_quit(from: (u16, u16), to: (u16, u16)) -> String {
+    let t = explorer("", from.0, from.1);
+    t.wait_for("the main screen, computed", |s| s.contains("parameters") && readout_zone(s).is_some());
+    let (w, h) = (to.0.to_string(), to.1.to_string());
+    assert!(t.run(&["resize-window", "-x", &w, "-y", &h]).status.success());
+    let last = usize::from(to.1) - 1;
+    t.wait_for("the new layout, computed", |s| {
+        s.lines().nth(last).is_some_and(|l| l.contains("quit")) && s.contains("parameters") && settled(s)
+    });
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0", "exit status");
+    t.wait_for("the shell after thud", |s| s.contains("AFTER-THUD"))
+}
+
+/// Issue 17 item 15: after a resize and `q`, none of the explorer's text is left on the
+/// shell's screen (tmux carried the alternate screen's rows beyond the old size over to the
+/// main screen when it was left; the restore empties the alternate screen first).
+#[test]
+fn a_resize_then_quit_leaves_nothing_on_the_shell_screen() {
+    for (from, to) in [((80, 24), (120, 40)), ((120, 40), (80, 24))] {
+        let s = resize_and_quit(from, to);
+        let left: Vec<&str> = s.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(left, ["AFTER-THUD"], "{from:?} → {to:?}: the explorer's text stayed on the shell's screen:\n{s}");
+    }
+}
+
+/// Issue 17 item 16: the mouse is on with no flag (the footer says `mouse on`, and a click on
+/// a chart cell selects it); `--no-mouse` and the config's `mouse = false` turn it off.
+#[test]
+fn the_mouse_is_on_by_default_and_off_by_flag_or_config() {
+    let t = explorer("", 80, 24);
+    t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
+    assert_eq!(t.format("#{mouse_any_flag}"), "1", "mouse reporting on with no flag");
+    t.wait_for("the footer's mouse hint at 80 columns", |s| s.lines().nth(23).is_some_and(|l| l.contains("mouse on")));
+    // The bottom row of the chart (gap 1 cm), as in the test with --mouse above.
+    t.keys(&["Tab", "Tab", "Tab"]);
+    let s = t.wait_for("the chart's bottom row", |s| s.lines().any(|l| l.contains("│  1.0 ")));
+    let (y, line) = s.lines().enumerate().find(|(_, l)| l.contains("│  1.0 ")).unwrap();
+    let x = line[..line.find("│  1.0 ").unwrap() + "│  1.0 ".len()].chars().count() + 2;
+    t.keys(&["-l", &format!("\x1b[<0;{};{}M\x1b[<0;{};{}m", x + 1, y + 1, x + 1, y + 1)]);
+    t.wait_for("the clicked design (gap 1.00 cm)", |s| s.contains("d 1.00 cm"));
+    drop(t);
+
+    let t = explorer("--no-mouse", 120, 40);
+    let s = t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off with --no-mouse");
+    assert!(!s.lines().nth(39).unwrap_or("").contains("mouse"), "{s}");
+    drop(t);
+
+    let bin = env!("CARGO_BIN_EXE_thud");
+    let t = Tmux::start(
+        |d| {
+            format!(
+                "cd '{d}' && mkdir -p config/thud && echo 'mouse = false' > config/thud/config.toml && \
+                 XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui; exec sleep 60",
+                d = d.display()
+            )
+        },
+        120,
+        40,
+    );
+    let s = t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
+    assert_eq!(t.format("#{mouse_any_flag}"), "0", "mouse reporting off with mouse = false in config.toml");
+    assert!(!s.lines().nth(39).unwrap_or("").contains("mouse"), "{s}");
+    assert!(!s.contains("warning"), "the key is known: {s}");
+}

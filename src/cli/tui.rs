@@ -17,8 +17,13 @@ pub struct TuiArgs {
     /// the theme of config.toml.
     #[arg(long, value_enum, value_name = "THEME")]
     pub theme: Option<crate::config::Theme>,
-    /// Capture the mouse: a click on the chart selects that design.
-    #[arg(long)]
+    /// Do not capture the mouse (by default it is on where the terminal reports it: a click on
+    /// a chart cell selects that design, and the terminal's own selection needs Shift). The
+    /// config key `mouse = false` does the same.
+    #[arg(long, overrides_with = "mouse")]
+    pub no_mouse: bool,
+    /// Capture the mouse (the default; kept for scripts written when it was off by default).
+    #[arg(long, hide = true, overrides_with = "no_mouse")]
     pub mouse: bool,
     /// Folder the export key (e) writes files into (default: the current directory).
     #[arg(long, value_name = "DIR")]
@@ -42,17 +47,46 @@ pub fn run_default() -> Result<(), CliError> {
     }
 }
 
+impl TuiArgs {
+    /// The explorer's options: the mouse is on unless `--no-mouse` (the last of `--mouse` and
+    /// `--no-mouse` wins).
+    pub fn options(&self) -> crate::tui::Options {
+        use crate::tui::tour::TourSource;
+        let tour = self.tour.as_ref().map(|file| file.clone().map_or(TourSource::BuiltIn, TourSource::File));
+        crate::tui::Options {
+            preset: self.preset.clone(),
+            ascii: self.ascii,
+            mouse: !self.no_mouse,
+            export_dir: self.export_dir.clone(),
+            tour,
+            theme: self.theme,
+        }
+    }
+}
+
 /// Runs the explorer.
 pub fn run(a: &TuiArgs) -> Result<(), CliError> {
-    use crate::tui::tour::TourSource;
-    let tour = a.tour.as_ref().map(|file| file.clone().map_or(TourSource::BuiltIn, TourSource::File));
-    let opts = crate::tui::Options {
-        preset: a.preset.clone(),
-        ascii: a.ascii,
-        mouse: a.mouse,
-        export_dir: a.export_dir.clone(),
-        tour,
-        theme: a.theme,
-    };
-    crate::tui::run(&opts).map_err(CliError::Tui)
+    crate::tui::run(&a.options()).map_err(CliError::Tui)
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::super::{Cli, Command};
+
+    fn mouse(args: &[&str]) -> bool {
+        let cli = Cli::try_parse_from(["thud", "tui"].iter().chain(args)).unwrap();
+        let Some(Command::Tui(a)) = cli.command else { panic!("not the tui command: {args:?}") };
+        a.options().mouse
+    }
+
+    #[test]
+    fn the_mouse_is_on_by_default_and_no_mouse_turns_it_off() {
+        assert!(mouse(&[]));
+        assert!(!mouse(&["--no-mouse"]));
+        assert!(mouse(&["--mouse"]), "the old flag still parses");
+        assert!(mouse(&["--no-mouse", "--mouse"]) && !mouse(&["--mouse", "--no-mouse"]), "the last one wins");
+        assert!(super::TuiArgs::default().options().mouse, "`thud` alone has the mouse on");
+    }
 }

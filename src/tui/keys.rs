@@ -206,7 +206,15 @@ pub const KEYS: &[Binding] = &[
         "pin",
     ),
     bind(KeyCode::Char('u'), NONE, Action::Undo, "undo", "u", "undo the last change", "undo"),
-    bind(KeyCode::Char('v'), NONE, Action::ToggleChartView, "view", "v", "chart: zones (mass × gap) / e vs SPLmax", ""),
+    bind(
+        KeyCode::Char('v'),
+        NONE,
+        Action::ToggleChartView,
+        "view",
+        "v",
+        "chart: zones (mass × gap) / e vs SPLmax",
+        "view",
+    ),
     bind(
         KeyCode::Char('s'),
         NONE,
@@ -216,7 +224,15 @@ pub const KEYS: &[Binding] = &[
         "save this design under a name (Enter saves, Esc cancels)",
         "save",
     ),
-    bind(KeyCode::Char('L'), SHIFT, Action::Load, "load", "L", "load a saved design (↑↓, Enter loads, Esc closes)", ""),
+    bind(
+        KeyCode::Char('L'),
+        SHIFT,
+        Action::Load,
+        "load",
+        "L",
+        "load a saved design (↑↓, Enter loads, Esc closes)",
+        "load",
+    ),
     bind(KeyCode::Char('o'), NONE, Action::Load, "load", "o", "same as L", ""),
     bind(
         KeyCode::Char('e'),
@@ -225,7 +241,7 @@ pub const KEYS: &[Binding] = &[
         "export",
         "e",
         "export a CSV, SVG or WAV file of this design to the export directory",
-        "",
+        "export",
     ),
     bind(
         KeyCode::Char('b'),
@@ -243,7 +259,7 @@ pub const KEYS: &[Binding] = &[
         "impact",
         "i",
         "pulse panel: the run's loudest impact / one impact at v0 on a plate (Fig 2)",
-        "",
+        "impact",
     ),
     bind(
         KeyCode::Char('f'),
@@ -252,9 +268,73 @@ pub const KEYS: &[Binding] = &[
         "response",
         "f",
         "chart: frequency response (F0 > 0), f marked (chart focused: ←→ move f) / zones",
-        "",
+        "response",
     ),
 ];
+
+/// The footer's hints by importance, by action name (`mouse` for [`mouse_hint`]):
+/// when the footer cannot show every hint, it keeps the first of this list that fit and shows
+/// them in table order. Every action with a hint is listed (a test checks it).
+pub const FOOTER_PRIORITY: &[&str] = &[
+    "tour-next",
+    "tour-back",
+    "tour-leave",
+    "quit",
+    "help",
+    "down",
+    "increase",
+    "edit",
+    "zoom",
+    "next-panel",
+    // Above the tour: at 80 columns the footer has room for one of them, and the status line
+    // names `T` when the explorer starts.
+    "mouse",
+    "tour",
+    "view",
+    "save",
+    "undo",
+    "pin",
+    "presets",
+    "best",
+    "load",
+    "export",
+    "impact",
+    "response",
+];
+
+/// One hint of the footer: its action's name (its rank in [`FOOTER_PRIORITY`]), the key as
+/// shown and what it does.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Hint {
+    pub name: &'static str,
+    pub label: String,
+    pub hint: &'static str,
+}
+
+/// The footer's word that the mouse is on (a click on a chart cell selects that design),
+/// shown after the keys while mouse reporting is on.
+pub fn mouse_hint() -> Hint {
+    Hint { name: "mouse", label: "mouse".into(), hint: "on" }
+}
+
+/// The hints of `hints` (in their order) that fit in `width` columns when each takes
+/// `cost(hint)` columns, chosen by [`FOOTER_PRIORITY`]: a hint is dropped only for a more
+/// important one (hints of names not in the list come last).
+pub fn fit_hints(hints: Vec<Hint>, width: usize, cost: impl Fn(&Hint) -> usize) -> Vec<Hint> {
+    let rank = |h: &Hint| FOOTER_PRIORITY.iter().position(|n| *n == h.name).unwrap_or(FOOTER_PRIORITY.len());
+    let mut order: Vec<usize> = (0..hints.len()).collect();
+    order.sort_by_key(|&i| rank(&hints[i]));
+    let mut keep = vec![false; hints.len()];
+    let mut used = 0;
+    for i in order {
+        let w = cost(&hints[i]);
+        if used + w <= width {
+            used += w;
+            keep[i] = true;
+        }
+    }
+    hints.into_iter().zip(keep).filter_map(|(h, k)| k.then_some(h)).collect()
+}
 
 /// The bindings that change while the guided tour runs (looked up before [`KEYS`]; every
 /// other key works as usual).
@@ -475,6 +555,12 @@ impl Keymap {
 
     /// The footer while the tour runs (`touring`: its keys first) or not.
     pub fn footer_hints_in(&self, touring: bool) -> Vec<(String, &'static str)> {
+        self.footer_items(touring).into_iter().map(|h| (h.label, h.hint)).collect()
+    }
+
+    /// The footer's hints with their action names, in table order (the tour's first while it
+    /// runs); [`fit_hints`] chooses the ones that fit.
+    pub fn footer_items(&self, touring: bool) -> Vec<Hint> {
         let first = |a: Action| self.keys.iter().find(|k| k.action == a);
         let pair = |a: Action, b: Action, both: &str| match (first(a), first(b)) {
             (Some(x), Some(y)) if x.overridden || y.overridden => format!("{}{}", x.label, y.label),
@@ -498,7 +584,7 @@ impl Keymap {
                     }
                     _ => k.label.clone(),
                 };
-                (label, k.hint)
+                Hint { name: k.name, label, hint: k.hint }
             })
             .collect()
     }
@@ -602,6 +688,31 @@ mod tests {
         assert!(!map.footer_hints().iter().any(|(_, h)| *h == "next"));
         assert_eq!(action_for(&key(KeyCode::Char('T'), SHIFT)), Some(Action::Tour));
         assert_eq!(action_for(&key(KeyCode::Char('b'), NONE)), Some(Action::Best));
+    }
+
+    #[test]
+    fn every_hint_has_a_rank_and_every_rank_a_hint() {
+        let hinted: Vec<&str> = KEYS.iter().chain(TOUR_KEYS).filter(|b| !b.hint.is_empty()).map(|b| b.name).collect();
+        for name in &hinted {
+            assert!(FOOTER_PRIORITY.contains(name), "{name} has a footer hint but no rank in FOOTER_PRIORITY");
+        }
+        for name in FOOTER_PRIORITY {
+            assert!(hinted.contains(name) || *name == mouse_hint().name, "{name} is ranked but has no hint");
+        }
+    }
+
+    #[test]
+    fn fit_hints_drops_the_least_important_and_keeps_the_order() {
+        let hint = |name: &'static str| Hint { name, label: name.into(), hint: "" };
+        let hints = vec![hint("best"), hint("quit"), hint("view"), hint("help")];
+        let names = |w| fit_hints(hints.clone(), w, |_| 10).into_iter().map(|h| h.name).collect::<Vec<_>>();
+        assert_eq!(names(25), ["quit", "help"]);
+        assert_eq!(names(30), ["quit", "view", "help"]);
+        assert_eq!(names(40), ["best", "quit", "view", "help"]);
+        // A smaller hint further down still fills the room a large one left.
+        let cost = |h: &Hint| if h.name == "view" { 20 } else { 5 };
+        let kept: Vec<_> = fit_hints(hints.clone(), 20, cost).into_iter().map(|h| h.name).collect();
+        assert_eq!(kept, ["best", "quit", "help"]);
     }
 
     #[test]

@@ -132,7 +132,8 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
         // The worker slots' parallel work would wait for the calling thread forever.
         return Err(TuiError::Thread("worker", std::io::Error::other("no worker thread could be started")));
     }
-    let (mut term, _guard) = terminal::setup(opts.mouse).map_err(TuiError::Terminal)?;
+    // The config's `mouse = false` turned it off in `configure`.
+    let (mut term, _guard) = terminal::setup(app.mouse).map_err(TuiError::Terminal)?;
     assert!(
         std::env::var_os(PANIC_FOR_TEST).is_none(),
         "{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore"

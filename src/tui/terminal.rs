@@ -4,11 +4,13 @@
 //! the panic hook runs (through [`crate::signals`]), then thud exits with 128 + the signal.
 
 use std::io::{self, Stdout, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Once;
 
-use crossterm::cursor::{Hide, Show};
+use crossterm::cursor::{Hide, MoveTo, Show};
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
-use crossterm::terminal::{self, EnterAlternateScreen, LeaveAlternateScreen};
+use crossterm::style::{Attribute, SetAttribute};
+use crossterm::terminal::{self, Clear, ClearType, EnterAlternateScreen, LeaveAlternateScreen};
 use crossterm::{execute, queue};
 use ratatui::Terminal;
 
@@ -21,14 +23,29 @@ use crate::signals;
 /// Its colours are written in the depth the terminal advertises ([`Depth16`]).
 pub type Term = Terminal<Clamped<Depth16<Stdout>>>;
 
-/// Writes the escape sequences that undo [`setup`]: leave the alternate screen, stop mouse
-/// capture, show the cursor. Separate from raw mode so it can be tested on a buffer.
-pub fn write_restore_sequence(out: &mut impl Write) -> io::Result<()> {
+/// True between [`setup`] entering the alternate screen and the first [`restore`]: only then
+/// is there an alternate screen of ours to clear (a restore without it, e.g. a panic after the
+/// explorer ended, must not clear the shell's screen).
+static ON_ALTERNATE_SCREEN: AtomicBool = AtomicBool::new(false);
+
+/// Writes the escape sequences that undo [`setup`]: stop mouse capture, leave the alternate
+/// screen, show the cursor. Separate from raw mode so it can be tested on a buffer.
+///
+/// With `clear_alternate` the alternate screen is first emptied (attributes reset, cleared,
+/// cursor home). A terminal that was resized while the explorer ran may carry the alternate
+/// screen's text over to the main screen when it is left: tmux 3.3 copies the rows below and
+/// the columns beside the size the main screen had, after 80×24 → 120×40 twelve lines of the
+/// explorer stayed on the shell's screen. An empty alternate screen leaves nothing behind.
+pub fn write_restore_sequence(out: &mut impl Write, clear_alternate: bool) -> io::Result<()> {
     // CAN (0x18) first: a signal can stop a frame in the middle of an escape sequence, and
     // without it the terminal would take the restore (or the shell's next character) as that
     // sequence's end. In the ground state CAN does nothing.
     out.write_all(b"\x18")?;
-    queue!(out, DisableMouseCapture, LeaveAlternateScreen, Show)?;
+    queue!(out, DisableMouseCapture)?;
+    if clear_alternate {
+        queue!(out, SetAttribute(Attribute::Reset), Clear(ClearType::All), MoveTo(0, 0))?;
+    }
+    queue!(out, LeaveAlternateScreen, Show)?;
     out.flush()
 }
 
@@ -36,7 +53,8 @@ pub fn write_restore_sequence(out: &mut impl Write) -> io::Result<()> {
 /// are ignored (there is nothing better to do on the way out).
 pub fn restore() {
     let _ = terminal::disable_raw_mode();
-    let _ = write_restore_sequence(&mut io::stdout().lock());
+    let on_alternate = ON_ALTERNATE_SCREEN.swap(false, Ordering::SeqCst);
+    let _ = write_restore_sequence(&mut io::stdout().lock(), on_alternate);
 }
 
 /// Restores the terminal on the way out of a signal, and keeps standard output locked until
@@ -45,7 +63,8 @@ pub fn restore() {
 fn restore_for_exit() {
     let _ = terminal::disable_raw_mode();
     let mut out = io::stdout().lock();
-    let _ = write_restore_sequence(&mut out);
+    let on_alternate = ON_ALTERNATE_SCREEN.swap(false, Ordering::SeqCst);
+    let _ = write_restore_sequence(&mut out, on_alternate);
     // Held until `exit`: the signal thread exits right after the clean-ups.
     std::mem::forget(out);
 }
@@ -89,6 +108,7 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     terminal::enable_raw_mode()?;
     let guard = Guard { _on_signal: on_signal };
     let mut out = io::stdout();
+    ON_ALTERNATE_SCREEN.store(true, Ordering::SeqCst);
     execute!(out, EnterAlternateScreen, Hide)?;
     if mouse {
         execute!(out, EnableMouseCapture)?;
@@ -103,12 +123,25 @@ mod tests {
 
     #[test]
     fn restore_sequence_leaves_alt_screen_shows_cursor_and_stops_mouse() {
+        for clear in [false, true] {
+            let mut buf = Vec::new();
+            write_restore_sequence(&mut buf, clear).unwrap();
+            let s = String::from_utf8(buf).unwrap();
+            assert!(s.starts_with('\x18'), "cancels a half-written escape sequence first: {s:?}");
+            assert!(s.contains("\x1b[?1049l"), "leave alternate screen: {s:?}");
+            assert!(s.contains("\x1b[?25h"), "show cursor: {s:?}");
+            assert!(s.contains("\x1b[?1000l"), "mouse capture off: {s:?}");
+            assert_eq!(s.contains("\x1b[2J"), clear, "clears only the alternate screen of ours: {s:?}");
+        }
+    }
+
+    #[test]
+    fn the_alternate_screen_is_emptied_before_it_is_left() {
         let mut buf = Vec::new();
-        write_restore_sequence(&mut buf).unwrap();
+        write_restore_sequence(&mut buf, true).unwrap();
         let s = String::from_utf8(buf).unwrap();
-        assert!(s.starts_with('\x18'), "cancels a half-written escape sequence first: {s:?}");
-        assert!(s.contains("\x1b[?1049l"), "leave alternate screen: {s:?}");
-        assert!(s.contains("\x1b[?25h"), "show cursor: {s:?}");
-        assert!(s.contains("\x1b[?1000l"), "mouse capture off: {s:?}");
+        let (reset, clear, home, leave) =
+            (s.find("\x1b[0m"), s.find("\x1b[2J"), s.find("\x1b[1;1H"), s.find("\x1b[?1049l"));
+        assert!(reset < clear && clear < home && home < leave && reset.is_some(), "{s:?}");
     }
 }

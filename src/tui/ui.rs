@@ -26,8 +26,8 @@ use super::compute::{default_band, ensemble_under, nearest, AcousticResult, AGRE
 use super::explain;
 use super::fields::Knob;
 use super::history::{self, HistoryView};
-use super::keys::Action;
 use super::keys::Keymap;
+use super::keys::{self, Action};
 use super::params::ParamsView;
 use super::polar::PolarView;
 use super::readout::{ReadoutView, Row};
@@ -91,7 +91,7 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     }
     f.render_widget(Paragraph::new(app.theme.fit_line(status_line(app), status.width.into())), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(&app.settings.keys, footer.width, touring, &app.theme), footer);
+        f.render_widget(footer_line(&app.settings.keys, footer.width, touring, app.mouse, &app.theme), footer);
     }
     match app.mode {
         Mode::Help(scroll) => help_popup(f, &app.settings.keys, &app.theme, scroll, area),
@@ -794,19 +794,23 @@ fn status_line(app: &App) -> Line<'static> {
     }
 }
 
-/// The footer: the key table's hints (the tour's first while it runs), as many whole ones as
-/// fit in `width`, in table order.
-fn footer_line(keys: &Keymap, width: u16, touring: bool, theme: &Palette) -> Paragraph<'static> {
+/// The footer: the key table's hints (the tour's first while it runs) and, with the mouse on,
+/// `mouse on`; as many whole ones as fit in `width`, chosen by importance
+/// ([`keys::FOOTER_PRIORITY`]) and shown in table order.
+fn footer_line(keys: &Keymap, width: u16, touring: bool, mouse: bool, theme: &Palette) -> Paragraph<'static> {
+    let mut hints = keys.footer_items(touring);
+    if mouse {
+        hints.push(keys::mouse_hint());
+    }
+    let shown = |h: &keys::Hint| (format!(" {}", key_text(&h.label, theme)), format!(" {} ", h.hint));
+    let cost = |h: &keys::Hint| {
+        let (key, text) = shown(h);
+        key.chars().count() + text.chars().count()
+    };
+    // The last item's trailing space may fall off the edge.
     let mut spans = Vec::new();
-    let mut used = 0;
-    for (k, h) in keys.footer_hints_in(touring) {
-        let (key, text) = (format!(" {}", key_text(&k, theme)), format!(" {h} "));
-        let w = key.chars().count() + text.chars().count();
-        // The last item's trailing space may fall off the edge.
-        if used + w - 1 > width as usize {
-            continue;
-        }
-        used += w;
+    for h in keys::fit_hints(hints, usize::from(width) + 1, cost) {
+        let (key, text) = shown(&h);
         spans.push(Span::styled(key, Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED)));
         spans.push(Span::raw(text));
     }

@@ -254,6 +254,8 @@ pub(crate) struct Settings {
 pub struct Options {
     pub preset: String,
     pub ascii: bool,
+    /// Capture the mouse (on by default; `--no-mouse` and the config's `mouse = false` turn it
+    /// off).
     pub mouse: bool,
     /// Where exports go; None: the current directory.
     pub export_dir: Option<PathBuf>,
@@ -265,7 +267,7 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Self { preset: "default".into(), ascii: false, mouse: false, export_dir: None, tour: None, theme: None }
+        Self { preset: "default".into(), ascii: false, mouse: true, export_dir: None, tour: None, theme: None }
     }
 }
 
@@ -397,6 +399,7 @@ impl App {
         if c.markers == MarkerStyle::Ascii {
             self.theme.ascii = true;
         }
+        self.mouse &= c.mouse_on();
         self.design.thresholds = c.thresholds(self.design.thresholds);
         self.mark_unmodified();
         let (keys, problems) = Keymap::with_overrides(&c.keys);
