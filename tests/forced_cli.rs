@@ -5,7 +5,8 @@
 //! XDG folders in a temporary folder.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
+
+mod common;
 
 struct Ran {
     code: i32,
@@ -14,20 +15,8 @@ struct Ran {
 }
 
 fn thud_in(home: &Path, args: &[&str]) -> Ran {
-    let out = Command::new(env!("CARGO_BIN_EXE_thud"))
-        .args(args)
-        .env("HOME", home)
-        .env("XDG_CONFIG_HOME", home.join("config"))
-        .env("XDG_DATA_HOME", home.join("data"))
-        .env_remove("XDG_CONFIG_DIRS")
-        .stdin(Stdio::null())
-        .output()
-        .expect("run thud");
-    Ran {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into(),
-        stderr: String::from_utf8_lossy(&out.stderr).into(),
-    }
+    let (code, stdout, stderr) = common::thud_in(home, args);
+    Ran { code, stdout, stderr }
 }
 
 fn thud(args: &[&str]) -> Ran {

@@ -837,19 +837,26 @@ except subprocess.TimeoutExpired:
 /// within a second instead of spinning on EIO forever.
 #[test]
 fn a_dead_terminal_ends_the_explorer_within_a_second() {
+    let Some((said, err)) = run_pty_script(DEAD_PTY) else { return };
+    assert_eq!(said.trim(), "exit 1", "{said}{err}");
+}
+
+/// Runs a python3 script that drives the built explorer through a pty (its argument is the
+/// binary), with HOME and the XDG folders in a temporary folder: (stdout, stderr), or None
+/// (with a printed reason) where python3 is not installed.
+fn run_pty_script(script: &str) -> Option<(String, String)> {
     let home = tempfile::tempdir().unwrap();
     let Ok(out) = Command::new("python3")
-        .args(["-c", DEAD_PTY, env!("CARGO_BIN_EXE_thud")])
+        .args(["-c", script, env!("CARGO_BIN_EXE_thud")])
         .env("HOME", home.path())
         .env("XDG_CONFIG_HOME", home.path().join("config"))
         .env("XDG_DATA_HOME", home.path().join("data"))
         .output()
     else {
         eprintln!("skipped: python3 (for its pty module) is not installed");
-        return;
+        return None;
     };
-    let said = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(said.trim(), "exit 1", "{said}{}", String::from_utf8_lossy(&out.stderr));
+    Some((String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into()))
 }
 
 /// Item 14: a hostile terminal sends a bracketed-paste start and 2 MiB without the end marker,
@@ -902,19 +909,8 @@ else:
 /// the explorer drops such a paste after a second (keeping at most 1 MiB) and reads keys again.
 #[test]
 fn an_endless_bracketed_paste_times_out_and_q_quits() {
-    let home = tempfile::tempdir().unwrap();
-    let Ok(out) = Command::new("python3")
-        .args(["-c", ENDLESS_PASTE, env!("CARGO_BIN_EXE_thud")])
-        .env("HOME", home.path())
-        .env("XDG_CONFIG_HOME", home.path().join("config"))
-        .env("XDG_DATA_HOME", home.path().join("data"))
-        .output()
-    else {
-        eprintln!("skipped: python3 (for its pty module) is not installed");
-        return;
-    };
-    let said = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(said.trim(), "exit 0", "{said}{}", String::from_utf8_lossy(&out.stderr));
+    let Some((said, err)) = run_pty_script(ENDLESS_PASTE) else { return };
+    assert_eq!(said.trim(), "exit 0", "{said}{err}");
 }
 
 /// Item 6: a config problem is a warning, apart from errors: a failing command prints only its

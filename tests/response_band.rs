@@ -6,7 +6,6 @@
 //! frequencies is checked against the command line in crates/thud-py/tests/test_forced.py.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 use thud::design::Design;
 use thud::export::Artifact;
@@ -15,19 +14,13 @@ use thud::tui::compute::{default_band, Grid, Grids};
 use thud::tui::App;
 use thud::tui::{Palette, Request};
 
-/// Runs the built binary with HOME and the XDG folders in a temporary folder.
+mod common;
+
+/// Runs the built binary with HOME and the XDG folders in `home`; it must succeed.
 fn thud(home: &Path, args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_thud"))
-        .args(args)
-        .env("HOME", home)
-        .env("XDG_CONFIG_HOME", home.join("config"))
-        .env("XDG_DATA_HOME", home.join("data"))
-        .env_remove("XDG_CONFIG_DIRS")
-        .stdin(Stdio::null())
-        .output()
-        .expect("run thud");
-    assert_eq!(out.status.code(), Some(0), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).unwrap()
+    let (code, stdout, stderr) = common::thud_in(home, args);
+    assert_eq!(code, 0, "{args:?}: {stderr}");
+    stdout
 }
 
 /// The damped natural frequency (Hz) of Table 2's main mass from K, M and C (Eq 25):

@@ -44,6 +44,24 @@ impl Tmux {
         t
     }
 
+    /// Starts the built explorer (mouse on, its config and data in the pane's folder) in a
+    /// `w × h` pane; when it ends, its exit status goes to `status`, `stty -a` to `stty`, and the
+    /// shell prints AFTER-THUD and waits.
+    fn explorer(w: u16, h: u16) -> Self {
+        let bin = env!("CARGO_BIN_EXE_thud");
+        Self::start(
+            |d| {
+                format!(
+                    "cd '{d}' && XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui --mouse; \
+                     echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
+                    d = d.display()
+                )
+            },
+            w,
+            h,
+        )
+    }
+
     fn run(&self, args: &[&str]) -> Output {
         Command::new("tmux").arg("-L").arg(&self.socket).arg("-f").arg("/dev/null").args(args).output().unwrap()
     }
@@ -108,18 +126,7 @@ fn has_token(text: &str, word: &str) -> bool {
 
 #[test]
 fn real_binary_in_tmux_starts_changes_resizes_quits_and_restores() {
-    let bin = env!("CARGO_BIN_EXE_thud");
-    let t = Tmux::start(
-        |d| {
-            format!(
-                "cd '{d}' && XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui --mouse; \
-                 echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
-                d = d.display()
-            )
-        },
-        120,
-        40,
-    );
+    let t = Tmux::explorer(120, 40);
 
     // 1. The screen appears with computed numbers.
     let computed = |s: &str| s.lines().any(|l| l.contains("U0max") && l.contains("m/s"));
@@ -435,18 +442,7 @@ fn under_term_xterm_the_real_binary_sends_no_256_colour_code() {
 /// as keys) and says so; then `q` quits and the terminal is restored.
 #[test]
 fn an_unterminated_bracketed_paste_times_out_and_q_quits() {
-    let bin = env!("CARGO_BIN_EXE_thud");
-    let t = Tmux::start(
-        |d| {
-            format!(
-                "cd '{d}' && XDG_CONFIG_HOME='{d}/config' XDG_DATA_HOME='{d}/data' '{bin}' tui --mouse; \
-                 echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
-                d = d.display()
-            )
-        },
-        100,
-        30,
-    );
+    let t = Tmux::explorer(100, 30);
     t.wait_for("the main screen", |s| s.contains("parameters") && s.contains("U0max"));
     t.keys(&["-l", "\x1b[200~abc q"]);
     let sent = Instant::now();
