@@ -187,3 +187,33 @@ fn restitution_curve_and_its_inverse() {
     assert_ne!(code, 0);
     assert!(err.contains("restitution"), "{err}");
 }
+
+#[test]
+fn sphere_poisson_changes_k_hz_and_is_refused_out_of_range_or_without_a_sphere() {
+    let k_hz = |args: &[&str]| {
+        let (code, out, err) =
+            thud(&[&["simulate", "--duration", "0.05", "--sphere", "steel", "--json"][..], args].concat());
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        (v["design"]["damper"]["k_hz"].as_f64().unwrap(), out)
+    };
+    let (own, plain) = k_hz(&[]);
+    let (given, out) = k_hz(&["--sphere-poisson", "0.28"]);
+    assert_ne!(out, plain, "the ball's ν is a real parameter");
+    assert!(given < own, "ν 0.28 below steel's 0.30 is a softer contact: {given} vs {own}");
+    assert!(out.contains(r#""sphere_nu": 0.28"#) || out.contains(r#""sphere_nu":0.28"#), "{out}");
+    assert!(!plain.contains("sphere_nu"), "without the flag the output is as before");
+    let (same, out) = k_hz(&["--sphere-poisson", "0.3"]);
+    assert_eq!(same.to_bits(), own.to_bits(), "steel's own ν: {out}");
+    for (args, names) in [
+        (&["simulate", "--sphere", "steel", "--sphere-poisson", "0.7"][..], &["--sphere-poisson"][..]),
+        (&["simulate", "--sphere-poisson", "0.28"][..], &["--sphere-poisson", "--sphere"][..]),
+    ] {
+        let (code, out, err) = thud(args);
+        assert_eq!(code, 2, "{args:?}: {out}{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: one line: {err}");
+        for name in names {
+            assert!(err.contains(name), "{args:?}: {err}");
+        }
+    }
+}

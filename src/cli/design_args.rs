@@ -70,9 +70,8 @@ fn flag<F: ForceFlag>(p: &Param<params::DesignDraft>) -> Arg {
     if let Some(c) = p.conflicts {
         arg = arg.conflicts_with(id(c.with));
     }
-    if let Some(needed) = p.requires {
-        arg = arg.requires(id(needed));
-    }
+    // No clap `requires` for `p.requires`: clap's message names only the flag missing; the
+    // engine's ([`params::design`]) names both, as Python's does.
     match &p.accepts {
         Accepts::Switch { .. } => arg.action(ArgAction::SetTrue),
         Accepts::Choice { names, helps, .. } => {

@@ -298,7 +298,11 @@ pub const TUI_NEWMARK_DT_S: f64 = 1e-6;
 /// Material choices offered by the materials field (sphere on a steel main mass).
 fn material_choices() -> Vec<Option<Materials>> {
     std::iter::once(None)
-        .chain(MATERIALS.iter().map(|m| Some(Materials { sphere: m.name.to_string(), plate: "steel".to_string() })))
+        .chain(
+            MATERIALS
+                .iter()
+                .map(|m| Some(Materials { sphere: m.name.to_string(), plate: "steel".to_string(), sphere_nu: None })),
+        )
         .collect()
 }
 
@@ -840,7 +844,20 @@ impl Knob {
             (_, Some(kind), _) => self.set(s, units::parse(self.param(), t, kind)?)?,
             (_, None, _) => self.parse_choice(s, t)?,
         };
+        self.applies(&next, t)?;
         self.checked(with_frequency(self, next))
+    }
+
+    /// Refuses a number typed into a row the design still does not use after it (shown as —:
+    /// the ball's ν without materials), naming the field that makes it apply.
+    fn applies<S: Tunable>(self, next: &S, typed: &str) -> Result<(), ThudError> {
+        let Some(row) = self.row().filter(|r| matches!(r.accepts, Accepts::Quantity { .. })) else { return Ok(()) };
+        if self.get(next.design()).is_some() {
+            return Ok(());
+        }
+        let needed = row.requires.and_then(|n| Knob::ALL.into_iter().find(|k| k.rows().contains(&n)));
+        let why = needed.map_or("this design".to_string(), |k| format!("a design without {}", k.label()));
+        Err(ThudError::invalid(self.param(), format!("'{typed}' does not apply to {why}")))
     }
 
     /// Parses a choice field: source names, signs, on/off, event/newmark/a time step, materials.
@@ -892,7 +909,7 @@ impl Knob {
                     _ => {
                         let (s, p) = low.split_once('/').unwrap_or((low.as_str(), "steel"));
                         let (s, p) = (crate::contact::material(s)?, crate::contact::material(p)?);
-                        Some(Materials { sphere: s.name.to_string(), plate: p.name.to_string() })
+                        Some(Materials { sphere: s.name.to_string(), plate: p.name.to_string(), sphere_nu: None })
                     }
                 }
             }
@@ -993,6 +1010,26 @@ mod tests {
         let q = Knob::Source.stepped(&d, false, false).unwrap();
         assert_eq!(q.radiation.source, Source::Quadrupole);
         assert!((q.observer.theta_rad.to_degrees() - 90.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_balls_poisson_ratio_applies_with_materials_only() {
+        let nu = row_field("sphere-poisson");
+        let d = Design::default();
+        assert_eq!(nu.display(&d), "—", "no materials: no ball ν");
+        assert_eq!(nu.stepped(&d, true, false).unwrap(), d, "a step changes nothing that is not there");
+        let e = nu.parsed(&d, "0.28").unwrap_err().to_string();
+        assert_eq!(e, "invalid sphere-poisson: '0.28' does not apply to a design without materials");
+        let steel = Knob::Materials.parsed(&d, "steel/steel").unwrap();
+        assert_eq!(nu.display(&steel), "0.3000", "the material's own ν");
+        let given = nu.parsed(&steel, "0.28").unwrap();
+        assert_eq!(given.materials.as_ref().unwrap().sphere_nu, Some(0.28));
+        assert_eq!(nu.display(&given), "0.2800");
+        assert!(
+            given.clone().check().unwrap().damper.k_hz < steel.clone().check().unwrap().damper.k_hz,
+            "softer: Eq 2"
+        );
+        assert!(nu.parsed(&steel, "0.7").unwrap_err().to_string().starts_with("invalid sphere-poisson: "));
     }
 
     /// The field of the engine's row `name` (a [`Knob::Row`]).

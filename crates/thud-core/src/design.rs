@@ -32,10 +32,28 @@ pub const PAPER_BALL_DENSITY: f64 = 1190.0;
 pub const TABLE3_C1: f64 = 83.68;
 
 /// Materials from which K_HZ follows for each ball radius (Eq 2), instead of a fixed K_HZ.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Materials {
     pub sphere: String,
     pub plate: String,
+    /// The ball's Poisson ratio ν (dimensionless), overriding the sphere material's; absent
+    /// (and not written) when the material's own applies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sphere_nu: Option<f64>,
+}
+
+impl Materials {
+    /// The ball's material: the sphere's, with its Poisson ratio overridden by `sphere_nu`.
+    pub fn sphere_material(&self) -> Result<contact::Material, ThudError> {
+        let m = contact::material(&self.sphere)?;
+        Ok(contact::Material { nu: self.sphere_nu.unwrap_or(m.nu), ..m })
+    }
+
+    /// K_HZ (N/m^1.5) of a ball of radius `radius_m` (m) of these materials, Eq 2:
+    /// K_HZ = (4/3)·√R·E* with 1/E* = (1−ν1²)/E1 + (1−ν2²)/E2, ν1 the ball's ([`Self::sphere_material`]).
+    pub fn hertz_stiffness(&self, radius_m: f64) -> Result<f64, ThudError> {
+        Ok(contact::hertz_stiffness(radius_m, &self.sphere_material()?, &contact::material(&self.plate)?))
+    }
 }
 
 /// Which largest contact speed is reported as U0max (docs/model.md §6–7).
@@ -145,10 +163,7 @@ impl Design {
     /// ball's current radius (Eq 2) when it has materials, else its own `k_hz`.
     pub fn hertz_stiffness(&self) -> Result<f64, ThudError> {
         match &self.materials {
-            Some(m) => {
-                let (s, p) = (contact::material(&m.sphere)?, contact::material(&m.plate)?);
-                Ok(contact::hertz_stiffness(self.ball_radius_m(), &s, &p))
-            }
+            Some(m) => m.hertz_stiffness(self.ball_radius_m()),
             None => Ok(self.damper.k_hz),
         }
     }
@@ -1099,7 +1114,7 @@ mod tests {
     fn check_resolves_k_hz_from_the_materials_for_the_balls_radius() {
         let rho = contact::material("nylon").unwrap().density_kg_m3;
         let mut d = Design {
-            materials: Some(Materials { sphere: "nylon".into(), plate: "steel".into() }),
+            materials: Some(Materials { sphere: "nylon".into(), plate: "steel".into(), sphere_nu: None }),
             ball: BallSize::Density(rho),
             ..Design::default()
         };
@@ -1120,6 +1135,48 @@ mod tests {
         let mut back = v.into_design();
         back.damper.ball_position_m = 1.0;
         assert_eq!(back.check().unwrap_err().param(), "ball-position");
+    }
+
+    #[test]
+    fn the_balls_poisson_ratio_overrides_its_materials_in_eq_2() {
+        let radius: f64 = 0.01905 / 2.0;
+        let with = |sphere_nu| Materials { sphere: "steel".into(), plate: "steel".into(), sphere_nu };
+        // Eq 2 from the handbook numbers: steel E 210 GPa, ν 0.30; the ball's ν 0.28.
+        let (e_s, e_p, nu_s, nu_p) = (210e9, 210e9, 0.28, 0.30);
+        let want = 4.0 / 3.0 * radius.sqrt() / ((1.0 - nu_s * nu_s) / e_s + (1.0 - nu_p * nu_p) / e_p);
+        let k = with(Some(nu_s)).hertz_stiffness(radius).unwrap();
+        assert!((k - want).abs() <= 1e-12 * want, "{k} vs {want}");
+        let own = with(None).hertz_stiffness(radius).unwrap();
+        assert!(k < own, "a smaller ν is a more compliant contact: {k} vs {own}");
+        // The material's own ν as the override is the material: the same K_HZ to the bit.
+        for m in contact::MATERIALS {
+            let pair = |sphere_nu| Materials { sphere: m.name.into(), plate: "brass".into(), sphere_nu };
+            let (given, plain) = (pair(Some(m.nu)).hertz_stiffness(radius), pair(None).hertz_stiffness(radius));
+            assert_eq!(given.unwrap().to_bits(), plain.unwrap().to_bits(), "{}", m.name);
+        }
+        // A design checks and resolves it, and refuses it out of its range by name.
+        let mut d = Design { materials: Some(with(Some(nu_s))), ..Design::default() };
+        let v = d.clone().check().unwrap();
+        let want = with(Some(nu_s)).hertz_stiffness(d.ball_radius_m()).unwrap();
+        assert_eq!(v.damper.k_hz.to_bits(), want.to_bits());
+        d.materials = Some(with(Some(0.7)));
+        assert_eq!(d.check().unwrap_err().param(), "sphere-poisson");
+    }
+
+    #[test]
+    fn no_poisson_ratio_is_written_unless_one_is_given() {
+        let d = Design {
+            materials: Some(Materials { sphere: "glass".into(), plate: "steel".into(), sphere_nu: None }),
+            ..Design::default()
+        };
+        let text = serde_json::to_string(&d).unwrap();
+        assert!(text.contains(r#""materials":{"sphere":"glass","plate":"steel"}"#), "{text}");
+        let mut m = d.materials.clone().unwrap();
+        m.sphere_nu = Some(0.25);
+        let back: Materials = serde_json::from_str(&serde_json::to_string(&m).unwrap()).unwrap();
+        assert_eq!(back, m);
+        let old: Materials = serde_json::from_str(r#"{"sphere":"glass","plate":"steel"}"#).unwrap();
+        assert_eq!(old.sphere_nu, None, "a file from before the parameter reads as the material's own ν");
     }
 
     #[test]

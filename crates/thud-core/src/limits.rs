@@ -18,7 +18,6 @@
 //! ends refuse an estimate over its cap unless the user lifts the caps (`--no-limit`).
 
 use crate::acoustics::Source;
-use crate::contact;
 use crate::damper::Solver;
 use crate::design::{BallSize, Design, ValidDesign};
 use crate::error::ThudError;
@@ -317,8 +316,18 @@ pub const PERIODS: Range = range(
     "a window holds at least one forcing period; 1000 outlasts any transient worth averaging over",
 );
 
+/// The ball's Poisson ratio ν (dimensionless), overriding its material's.
+pub const SPHERE_POISSON: Range = range(
+    "sphere-poisson",
+    "ball Poisson ratio ν",
+    0.0,
+    0.5,
+    "",
+    "an isotropic solid has −1 < ν ≤ 0.5 (0.5 incompressible); below 0 is auxetic, which no common ball material is",
+);
+
 /// Every range, in the order `thud` lists them.
-pub const RANGES: [Range; 31] = [
+pub const RANGES: [Range; 32] = [
     MASS,
     GAP,
     V0,
@@ -331,6 +340,7 @@ pub const RANGES: [Range; 31] = [
     DT,
     DENSITY,
     RADIUS,
+    SPHERE_POISSON,
     R,
     THETA,
     U0,
@@ -512,8 +522,10 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
         }
     }
     if let Some(m) = &d.materials {
-        let k =
-            contact::hertz_stiffness(d.ball_radius_m(), &contact::material(&m.sphere)?, &contact::material(&m.plate)?);
+        if let Some(nu) = m.sphere_nu {
+            SPHERE_POISSON.check(nu)?;
+        }
+        let k = m.hertz_stiffness(d.ball_radius_m())?;
         if !K_HZ.contains(k) {
             return Err(ThudError::invalid(
                 "radius",
@@ -931,6 +943,7 @@ pub fn restitution_contacts(n_masses: usize, with_target: bool) -> Estimate {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact;
 
     #[test]
     fn every_range_is_ordered_and_finite() {

@@ -305,12 +305,14 @@ pub struct DesignDraft {
     dt_s: Option<f64>,
     sphere: Option<String>,
     plate: Option<String>,
+    /// The ball's Poisson ratio ν, for the materials `sphere` names.
+    sphere_nu: Option<f64>,
 }
 
 impl DesignDraft {
     /// A draft of `design` with nothing given yet.
     fn of(design: Design) -> Self {
-        DesignDraft { design, solver: None, dt_s: None, sphere: None, plate: None }
+        DesignDraft { design, solver: None, dt_s: None, sphere: None, plate: None, sphere_nu: None }
     }
 }
 
@@ -386,6 +388,19 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         requires: Some("sphere"),
         ..Param::new("plate", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.plate = Some(s.to_string()) },
             "Enclosure material (with --sphere) [default: steel]").value("MATERIAL")
+    },
+    // A design without materials has no ball ν: NaN, which a front end shows as not applicable.
+    Param {
+        requires: Some("sphere"),
+        ..q("sphere-poisson", Kind::Number, &limits::SPHERE_POISSON, Group::Design, "NU",
+            "The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere)",
+            |d| d.materials.as_ref().and_then(|m| m.sphere_material().ok()).map_or(f64::NAN, |m| m.nu),
+            |d, v| {
+                d.sphere_nu = Some(v);
+                if let Some(m) = d.design.materials.as_mut() {
+                    m.sphere_nu = Some(v);
+                }
+            }).label("ball ν")
     },
     sw("no-tension", Group::Design, "Clamp the contact force at ≥ 0 (a contact cannot pull)",
         |d| f64::from(u8::from(d.damper.no_tension)), |d, on| d.design.damper.no_tension = on),
@@ -653,9 +668,9 @@ pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Re
     given.relations()?;
     let mut draft = DesignDraft::of(base);
     given.apply(&mut draft)?;
-    let DesignDraft { design: mut d, solver, dt_s, sphere, plate } = draft;
+    let DesignDraft { design: mut d, solver, dt_s, sphere, plate, sphere_nu } = draft;
     if let Some(sphere) = sphere {
-        d.materials = Some(Materials { sphere, plate: plate.unwrap_or_else(|| "steel".into()) });
+        d.materials = Some(Materials { sphere, plate: plate.unwrap_or_else(|| "steel".into()), sphere_nu });
     }
     d.solver = match (solver, dt_s, d.solver) {
         (Some(0), _, _) => Solver::Event,
@@ -912,9 +927,7 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
         (None, Some(s), Some(p)) => contact::hertz_stiffness(radius_m, &s, &p),
         (None, None, Some(p)) => contact::hertz_stiffness(radius_m, &contact::material("acrylic")?, &p),
         _ => match base.as_ref().map(|d| (&d.materials, d.damper.k_hz)) {
-            Some((Some(m), _)) => {
-                contact::hertz_stiffness(radius_m, &contact::material(&m.sphere)?, &contact::material(&m.plate)?)
-            }
+            Some((Some(m), _)) => m.hertz_stiffness(radius_m)?,
             Some((None, k)) => k,
             None => 5.6e8,
         },

@@ -304,6 +304,7 @@ def simulate(
     k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
     sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
     plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
     no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
@@ -355,6 +356,7 @@ def simulate(
     k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
     sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
     plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
     no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
@@ -392,6 +394,7 @@ def simulate_ensemble(
     k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
     sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
     plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
     no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
@@ -430,6 +433,7 @@ def sweep(
     k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
     sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
     plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
     no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
@@ -474,6 +478,7 @@ def response(
     k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
     sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
     plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
     no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
