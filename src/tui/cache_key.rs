@@ -246,7 +246,7 @@ mod tests {
             change("settle", &|d| d.damper.settle = !d.damper.settle),
             change("radius", &|d| d.ball = BallSize::Radius(0.01)),
             change("materials", &|d| {
-                d.materials = Some(Materials { sphere: "steel".into(), plate: "steel".into(), sphere_nu: None });
+                d.materials = Some(Materials::new("steel", "steel"));
             }),
             change("solver", &|d| d.solver = Solver::newmark_default()),
             change("r", &|d| d.observer.r_m *= 1.5),

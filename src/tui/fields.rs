@@ -297,13 +297,7 @@ pub const TUI_NEWMARK_DT_S: f64 = 1e-6;
 
 /// Material choices offered by the materials field (sphere on a steel main mass).
 fn material_choices() -> Vec<Option<Materials>> {
-    std::iter::once(None)
-        .chain(
-            MATERIALS
-                .iter()
-                .map(|m| Some(Materials { sphere: m.name.to_string(), plate: "steel".to_string(), sphere_nu: None })),
-        )
-        .collect()
+    std::iter::once(None).chain(MATERIALS.iter().map(|m| Some(Materials::new(m.name, "steel")))).collect()
 }
 
 impl Knob {
@@ -814,9 +808,17 @@ impl Knob {
                 }
             }
             Knob::Materials => {
+                // The next ball material from the current one (whatever its plate and ν); the
+                // plate and a ν the user set are theirs and stay.
                 let all = material_choices();
-                let i = all.iter().position(|m| *m == d.materials).unwrap_or(0);
-                d.materials.clone_from(&all[turn(i, all.len())]);
+                let sphere = |m: &Option<Materials>| m.as_ref().map(|m| m.sphere.clone());
+                let i = all.iter().position(|m| sphere(m) == sphere(&d.materials)).unwrap_or(0);
+                let mut next = all[turn(i, all.len())].clone();
+                if let (Some(next), Some(now)) = (next.as_mut(), d.materials.as_ref()) {
+                    next.plate.clone_from(&now.plate);
+                    next.sphere_nu = now.sphere_nu;
+                }
+                d.materials = next;
             }
             _ => {}
         }
@@ -909,7 +911,10 @@ impl Knob {
                     _ => {
                         let (s, p) = low.split_once('/').unwrap_or((low.as_str(), "steel"));
                         let (s, p) = (crate::contact::material(s)?, crate::contact::material(p)?);
-                        Some(Materials { sphere: s.name.to_string(), plate: p.name.to_string(), sphere_nu: None })
+                        Some(Materials {
+                            sphere_nu: d.materials.as_ref().and_then(|m| m.sphere_nu),
+                            ..Materials::new(s.name, p.name)
+                        })
                     }
                 }
             }
@@ -1030,6 +1035,22 @@ mod tests {
             "softer: Eq 2"
         );
         assert!(nu.parsed(&steel, "0.7").unwrap_err().to_string().starts_with("invalid sphere-poisson: "));
+    }
+
+    /// → on the materials field goes to the ball material after the current one, whatever the
+    /// plate and the ball's ν, and keeps both (they are the user's): it used to restart from the
+    /// first material and drop them.
+    #[test]
+    fn cycling_the_materials_starts_from_the_current_ball_and_keeps_plate_and_nu() {
+        let d = Design::default();
+        let nu = row_field("sphere-poisson");
+        let set = nu.parsed(&Knob::Materials.parsed(&d, "brass/aluminium").unwrap(), "0.28").unwrap();
+        let next = Knob::Materials.stepped(&set, true, false).unwrap();
+        let after = |name: &str| MATERIALS[MATERIALS.iter().position(|m| m.name == name).unwrap() + 1].name;
+        let m = next.materials.as_ref().unwrap();
+        assert_eq!((m.sphere.as_str(), m.plate.as_str(), m.sphere_nu), (after("brass"), "aluminium", Some(0.28)));
+        let back = Knob::Materials.stepped(&next, false, false).unwrap();
+        assert_eq!(back.materials, set.materials, "← undoes →");
     }
 
     /// The field of the engine's row `name` (a [`Knob::Row`]).
