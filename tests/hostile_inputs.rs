@@ -5,12 +5,16 @@
 //! binary with HOME and the XDG folders in a temporary folder; each run is killed after 20 s
 //! (a failure).
 
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use proptest::prelude::*;
+
+#[path = "support/wait.rs"]
+mod wait;
+use wait::wait_within;
 
 /// What one run of thud did.
 #[derive(Debug)]
@@ -34,34 +38,12 @@ fn command(home: &Path, args: &[&str]) -> Command {
 
 /// Runs thud in `home`; panics (a test failure) if it runs longer than 20 s.
 fn thud_in(home: &Path, args: &[&str]) -> Ran {
-    let mut child = command(home, args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("run thud");
-    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
-    let t_out = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        let _ = out.read_to_end(&mut s);
-        s
-    });
-    let t_err = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        let _ = err.read_to_end(&mut s);
-        s
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("wait") {
-            break s;
-        }
-        if start.elapsed() > Duration::from_secs(20) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("{args:?} ran longer than 20 s");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
+    let child = command(home, args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("run thud");
+    let out = wait_within(child, Duration::from_secs(20), &format!("{args:?}"));
     Ran {
-        code: status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&t_out.join().unwrap()).into(),
-        stderr: String::from_utf8_lossy(&t_err.join().unwrap()).into(),
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into(),
+        stderr: String::from_utf8_lossy(&out.stderr).into(),
     }
 }
 
@@ -335,28 +317,25 @@ const fn flag(name: &'static str, range: Option<thud::limits::Range>, wrong_unit
 
 use thud::limits as L;
 
-const DESIGN_FLAGS: &[Flag] = &[
-    flag("mass", Some(L::MASS), "3cm"),
-    flag("gap", Some(L::GAP), "3g"),
-    flag("v0", Some(L::V0), "3kg"),
-    flag("main-mass", Some(L::MAIN_MASS), "3m"),
-    flag("k", Some(L::STIFFNESS), "3kg"),
-    flag("c", Some(L::DAMPING), "3m"),
-    flag("c1", Some(L::C1), "3m"),
-    flag("k-hz", Some(L::K_HZ), "3kg"),
-    flag("duration", Some(L::DURATION), "3kg"),
-    flag("dt", Some(L::DT), "3kg"),
-    flag("density", Some(L::DENSITY), "3m"),
-    flag("radius", Some(L::RADIUS), "3g"),
-    flag("r", Some(L::R), "3g"),
-    flag("theta", Some(L::THETA), "3m"),
-    flag("l-star", Some(L::L_STAR), "3kg"),
-    flag("e-star", Some(L::E_STAR), "3kg"),
-    flag("freq", Some(L::FREQ), "3kg"),
-    flag("ball-position", Some(L::BALL_POSITION), "3g"),
-    flag("ball-velocity", Some(L::BALL_VELOCITY), "3kg"),
-    flag("periods", Some(L::PERIODS), "3cm"),
-];
+/// The design flags: every row of the engine's table ([`thud::params::DESIGN`]) that takes a
+/// number, with its range, so a new row is tested without being listed here; a unit of the
+/// wrong kind for each (a length for a mass or a count, a mass otherwise). The force is in each
+/// command's own list instead, spelled as that command spells it (`--force-amplitude` where
+/// `--force` means overwrite).
+fn design_flags() -> Vec<Flag> {
+    use thud::params::{Accepts, DESIGN};
+    DESIGN
+        .iter()
+        .filter(|p| p.name != "force")
+        .filter_map(|p| {
+            let wrong_unit = match p.accepts {
+                Accepts::Quantity { kind: thud::units::Kind::Mass, .. } | Accepts::Count { .. } => "3cm",
+                _ => "3kg",
+            };
+            Some(flag(p.name, Some(*p.range()?), wrong_unit))
+        })
+        .collect()
+}
 
 const PULSE_FLAGS: &[Flag] = &[
     flag("radius", Some(L::RADIUS), "3g"),
@@ -481,6 +460,10 @@ fn check_contract(base: &[&str], flag: &str, value: &str, mode: &str) {
     if flag == "dt" {
         args.extend(["--solver".into(), "newmark".into()]);
     }
+    // A row that needs another gets it (the ball's Poisson ratio needs the ball's material).
+    if let Some(needed) = thud::params::design_param(flag).and_then(|p| p.requires) {
+        args.extend([format!("--{needed}"), "steel".into()]);
+    }
     // A force needs a frequency (`response` sets its own from --freqs).
     if flag.starts_with("force") && base[0] != "response" {
         args.extend(["--freq".into(), "5Hz".into()]);
@@ -541,7 +524,8 @@ fn check_contract(base: &[&str], flag: &str, value: &str, mode: &str) {
 #[test]
 fn every_bound_of_every_flag_keeps_the_contract() {
     for (base, own, design, modes) in commands() {
-        let flags: Vec<&Flag> = own.iter().chain(if design { DESIGN_FLAGS } else { &[] }).collect();
+        let design_flags = if design { design_flags() } else { vec![] };
+        let flags: Vec<&Flag> = own.iter().chain(&design_flags).collect();
         for f in flags {
             let Some(range) = f.range else { continue };
             for v in [range.min, range.max] {
@@ -598,7 +582,8 @@ proptest! {
     ) {
         let all = commands();
         let (base, own, design, modes) = &all[cmd % all.len()];
-        let flags: Vec<&Flag> = own.iter().chain(if *design { DESIGN_FLAGS } else { &[] }).collect();
+        let design_flags = if *design { design_flags() } else { vec![] };
+        let flags: Vec<&Flag> = own.iter().chain(&design_flags).collect();
         let f = flags[pick % flags.len()];
         let value = if wrong_unit { f.wrong_unit.to_string() } else { value };
         check_contract(base, f.name, &value, modes[mode_pick % modes.len()]);
