@@ -747,10 +747,11 @@ pub fn response_setup(
         return Ok((response_design(base, given, spelling, first, force)?, freqs));
     }
     // M, K and C as given (a value refused here is refused again, in order, by the design).
+    // The band depends on M, K and C only, so the drafted design's band is the built one's.
     let drafted = drafted(base.clone(), given, spelling).unwrap_or_else(|_| base.clone());
-    let first = crate::response::default_freqs_hz(&drafted)[0];
-    let d = response_design(base, given, spelling, first, force)?;
-    let freqs = crate::response::default_freqs_hz(&d);
+    let freqs = crate::response::default_freqs_hz(&drafted);
+    let d = response_design(base, given, spelling, freqs[0], force)?;
+    debug_assert_eq!(freqs, crate::response::default_freqs_hz(&d), "the band follows M, K and C only");
     Ok((d, freqs))
 }
 
