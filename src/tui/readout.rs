@@ -15,7 +15,8 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-use super::theme::Palette;
+use super::theme::{self, Palette};
+use unicode_width::UnicodeWidthStr;
 
 /// One readout row: label, live value, pinned value (if a design is pinned).
 #[derive(Debug, Clone, PartialEq)]
@@ -41,18 +42,13 @@ pub struct ReadoutView<'a> {
 pub const PINNED_MIN: usize = 8;
 
 /// `text` cut to at most `room` columns: the first of its [`forms`] that fits, else its start
-/// and `ell` (`…`, or `...` in ASCII). Written here rather than shared: the readout's columns
-/// are the only cut text with bracketed parts to drop first.
+/// and `ell` (`…`, or `...` in ASCII) as every cut text ends ([`theme::cut_to`]). The forms
+/// are the readout's own: its columns are the only cut text with bracketed parts to drop first.
 pub fn cut(text: &str, room: usize, ell: &str) -> String {
-    if let Some(f) = forms(text, ell).into_iter().find(|f| f.chars().count() <= room) {
-        return f;
-    }
-    let keep = room.saturating_sub(ell.chars().count());
-    if keep == 0 {
-        return ell.chars().take(room).collect();
-    }
-    let head: String = text.chars().take(keep).collect();
-    format!("{}{ell}", head.trim_end())
+    forms(text, ell)
+        .into_iter()
+        .find(|f| f.width() <= room)
+        .unwrap_or_else(|| theme::cut_to(text, room, ell).into_owned())
 }
 
 /// A value's forms, longest first: itself; with the insides of its bracketed parts elided

@@ -382,18 +382,9 @@ impl Palette {
     }
 
     /// `text` in at most `width` columns (display width): whole when it fits, else cut and
-    /// ended with [`Self::ellipsis`]. Every place that cuts text cuts it here.
+    /// ended with [`Self::ellipsis`] ([`cut_to`]). Every place that cuts text cuts it here.
     pub fn fit<'a>(&self, text: &'a str, width: usize) -> Cow<'a, str> {
-        if text.width() <= width {
-            return Cow::Borrowed(text);
-        }
-        let ell = self.ellipsis();
-        let Some(room) = width.checked_sub(ell.width()) else {
-            return Cow::Owned(ell.chars().take(width).collect());
-        };
-        let mut out = take_width(text, room).trim_end().to_string();
-        out.push_str(ell);
-        Cow::Owned(out)
+        cut_to(text, width, self.ellipsis())
     }
 
     /// A line of styled spans in at most `width` columns, cut like [`Self::fit`]: the
@@ -477,6 +468,20 @@ impl Palette {
 }
 
 /// The longest start of `text` at most `width` columns wide.
+/// `text` in at most `width` columns (display width): whole when it fits, else its start and
+/// `ell`. [`Palette::fit`] with the palette's ellipsis; the readout's columns cut with it too.
+pub fn cut_to<'a>(text: &'a str, width: usize, ell: &str) -> Cow<'a, str> {
+    if text.width() <= width {
+        return Cow::Borrowed(text);
+    }
+    let Some(room) = width.checked_sub(ell.width()) else {
+        return Cow::Owned(ell.chars().take(width).collect());
+    };
+    let mut out = take_width(text, room).trim_end().to_string();
+    out.push_str(ell);
+    Cow::Owned(out)
+}
+
 fn take_width(text: &str, width: usize) -> &str {
     let mut used = 0;
     for (i, c) in text.char_indices() {
