@@ -23,6 +23,9 @@ use std::time::{Duration, Instant};
 
 use thud::fsio::{HOLD_TEMP_FOR_TEST, NAMED_TEMPS_FOR_TEST};
 
+#[path = "support/home.rs"]
+mod home;
+use home::in_home;
 #[path = "support/wait.rs"]
 mod wait;
 use wait::wait_within;
@@ -32,23 +35,7 @@ const TIMEOUT: Duration = Duration::from_secs(20);
 
 /// thud with HOME and the XDG folders inside `home`, run in `home`, with extra environment.
 fn command(args: &[&str], home: &Path, env: &[(&str, &str)]) -> Command {
-    program(BIN, args, home, env)
-}
-
-/// `program` run as [`command`] runs thud.
-fn program(program: &str, args: &[&str], home: &Path, env: &[(&str, &str)]) -> Command {
-    let mut c = Command::new(program);
-    c.args(args)
-        .current_dir(home)
-        .env("HOME", home)
-        .env("XDG_CONFIG_HOME", home.join("config"))
-        .env("XDG_DATA_HOME", home.join("data"))
-        .env_remove(NAMED_TEMPS_FOR_TEST)
-        .env_remove(HOLD_TEMP_FOR_TEST);
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c
+    in_home(BIN, args, home, env)
 }
 
 /// Runs to completion within [`TIMEOUT`] (killed and failed after it): (code, stdout, stderr).
@@ -288,7 +275,7 @@ fn no_temporary_file_is_left_after_success_or_an_error() {
         let errdir = home.path().join("limited");
         fs::create_dir(&errdir).unwrap();
         let script = format!("trap '' XFSZ; ulimit -f 8; exec '{BIN}' export wav --duration 0.5 --out big.wav");
-        let mut c = program("sh", &["-c", &script], &errdir, env);
+        let mut c = in_home("sh", &["-c", &script], &errdir, env);
         let out = wait_within(c.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap(), TIMEOUT, "limited");
         let err = String::from_utf8_lossy(&out.stderr);
         // A failed write is I/O, not bad input: exit 1 (ARCHITECTURE.md's contract).

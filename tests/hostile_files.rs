@@ -16,33 +16,19 @@ use std::time::{Duration, Instant};
 
 use thud::fsio::{HOLD_TEMP_FOR_TEST, NAMED_TEMPS_FOR_TEST};
 
+#[path = "support/home.rs"]
+mod home;
 #[path = "support/wait.rs"]
 mod wait;
+use home::in_home;
 use wait::wait_within;
 
 const BIN: &str = env!("CARGO_BIN_EXE_thud");
 const TIMEOUT: Duration = Duration::from_secs(20);
 
-/// `program args` in `home` with HOME there and the test seams set as `env` says.
-fn command(program: &str, args: &[&OsStr], home: &Path, env: &[(&str, &str)]) -> Command {
-    let mut c = Command::new(program);
-    c.args(args)
-        .current_dir(home)
-        .env("HOME", home)
-        .env("XDG_CONFIG_HOME", home.join("config"))
-        .env("XDG_DATA_HOME", home.join("data"))
-        .env_remove(NAMED_TEMPS_FOR_TEST)
-        .env_remove(HOLD_TEMP_FOR_TEST)
-        .stdin(Stdio::null());
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c
-}
-
 /// Runs thud to completion: (code, stdout, stderr).
 fn thud(args: &[&OsStr], home: &Path) -> (i32, String, String) {
-    let child = command(BIN, args, home, &[]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let child = in_home(BIN, args, home, &[]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     let out = wait_within(child, TIMEOUT, "thud");
     (
         out.status.code().unwrap_or(-1),
@@ -180,7 +166,7 @@ fn holds_temp(pid: u32, dir: &Path) -> bool {
 fn kill_9_mid_write(program: &str, args: &[&OsStr], home: &Path, dir: &Path, env: &[(&str, &str)]) -> Vec<Vec<u8>> {
     let mut env = env.to_vec();
     env.push((HOLD_TEMP_FOR_TEST, "30000"));
-    let mut child = command(program, args, home, &env).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
+    let mut child = in_home(program, args, home, &env).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
     let pid = child.id();
     let start = Instant::now();
     while !holds_temp(pid, dir) {
@@ -211,7 +197,7 @@ fn kill_9_leaves_nothing_even_without_proc() {
     let left = kill_9_mid_write("unshare", &args, home.path(), &dir, &cmd_env);
     assert_eq!(left, Vec::<Vec<u8>>::new(), "a temporary file survived kill -9 without /proc");
     // And the file is written there when not killed.
-    let out = command("unshare", &args, home.path(), &cmd_env).output().unwrap();
+    let out = in_home("unshare", &args, home.path(), &cmd_env).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert_eq!(names(&dir), [b"e.csv".to_vec()]);
 }
@@ -318,7 +304,7 @@ fn paper_all_writes_a_complete_set_or_nothing_and_a_rerun_after_a_failure_works(
     // A file size limit (as a full disk would) stops it at its first larger file: nothing is
     // left, neither a partial set nor a temporary folder.
     let script = format!("trap '' XFSZ; ulimit -f 16; exec '{BIN}' paper all --out paper");
-    let mut child = command("sh", &os(&["-c", &script]), home.path(), &[]);
+    let mut child = in_home("sh", &os(&["-c", &script]), home.path(), &[]);
     let child = child.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     let out = wait_within(child, TIMEOUT, "limited paper all");
     let err = String::from_utf8_lossy(&out.stderr);
@@ -352,7 +338,7 @@ fn paper_all_killed_leaves_no_partial_set_and_the_next_run_clears_its_folder() {
     let home = tempfile::tempdir().unwrap();
     let dir = home.path().canonicalize().unwrap();
     let env = [(HOLD_TEMP_FOR_TEST, "30000")];
-    let mut child = command(BIN, &os(&["paper", "all", "--out", "paper"]), &dir, &env)
+    let mut child = in_home(BIN, &os(&["paper", "all", "--out", "paper"]), &dir, &env)
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
