@@ -1,0 +1,265 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
+//! Forced vibration on the command line (issue 11): `--force`, `--freq`, `--ball-position`,
+//! `--ball-velocity`, `--periods`, `--settle` on simulate, sweep and export; `thud response`;
+//! the unforced outputs byte-for-byte those of v0.1. Runs the built binary with HOME and the
+//! XDG folders in a temporary folder.
+
+use std::path::Path;
+
+use crate::common;
+
+struct Ran {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn thud_in(home: &Path, args: &[&str]) -> Ran {
+    let (code, stdout, stderr) = common::thud_in(home, args);
+    Ran { code, stdout, stderr }
+}
+
+fn thud(args: &[&str]) -> Ran {
+    let home = tempfile::tempdir().unwrap();
+    thud_in(home.path(), args)
+}
+
+fn ok(args: &[&str]) -> String {
+    let r = thud(args);
+    assert_eq!(r.code, 0, "{args:?}: {}", r.stderr);
+    r.stdout
+}
+
+fn refused(args: &[&str], needles: &[&str]) {
+    let r = thud(args);
+    assert_eq!(r.code, 2, "{args:?}: exit {} {}", r.code, r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+    assert!(r.stdout.is_empty());
+    for n in needles {
+        assert!(r.stderr.contains(n), "{args:?}: '{n}' not in {}", r.stderr);
+    }
+}
+
+/// Without a force every output is the one thud 0.1 wrote (commit 60914cd, before forcing
+/// existed; the files in tests/data/unforced were written by that build): the Fig 9 run as
+/// JSON, text and CSV, the Table 3 set-up, a Newmark run and a sweep — byte for byte.
+#[test]
+fn unforced_outputs_are_byte_for_byte_those_of_0_1() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/unforced");
+    for (args, file) in [
+        (vec!["simulate", "--json"], "simulate_fig9.json"),
+        (vec!["simulate"], "simulate_fig9.txt"),
+        (vec!["simulate", "--csv", "--samples", "501"], "simulate_fig9.csv"),
+        (vec!["simulate", "--preset", "paper-table3", "--no-tension", "--json"], "simulate_table3.json"),
+        (vec!["simulate", "--solver", "newmark", "--duration", "0.05", "--json"], "simulate_newmark.json"),
+        (vec!["sweep", "--masses", "30g:100g:5", "--gaps", "2cm:5cm:4", "--json"], "sweep.json"),
+    ] {
+        let want = std::fs::read_to_string(data.join(file)).unwrap();
+        assert!(ok(&args) == want, "{args:?} differs from {file}");
+    }
+    // A centred ball at rest and the default window, typed, change nothing; a frequency alone
+    // (no force) changes no result (the design echoed in the output shows it).
+    let want = std::fs::read_to_string(data.join("simulate_fig9.json")).unwrap();
+    let same = ok(&["simulate", "--json", "--ball-position", "0", "--ball-velocity", "0", "--periods", "10"]);
+    assert!(same == want);
+    let mut with_freq: serde_json::Value = serde_json::from_str(&ok(&["simulate", "--json", "--freq", "5Hz"])).unwrap();
+    let mut want: serde_json::Value = serde_json::from_str(&want).unwrap();
+    assert_eq!(with_freq["design"]["damper"]["freq_hz"], 5.0);
+    with_freq.as_object_mut().unwrap().remove("design");
+    want.as_object_mut().unwrap().remove("design");
+    assert_eq!(with_freq, want);
+}
+
+#[test]
+fn a_forced_simulation_reports_its_steady_state() {
+    let out = ok(&["simulate", "--v0", "0", "--force", "1N", "--freq", "5.5Hz", "--duration", "6", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let s = &v["steady"];
+    for key in ["amplitude_m", "amplitude_linear_m", "reduction_db", "impacts_per_period", "leq_db", "window_start_s"] {
+        assert!(s[key].is_number(), "steady.{key}: {s}");
+    }
+    for key in ["periodic", "settled", "truncated"] {
+        assert!(s[key].is_boolean(), "steady.{key}");
+    }
+    assert_eq!(v["design"]["damper"]["force_n"], 1.0);
+    assert_eq!(v["design"]["damper"]["freq_hz"], 5.5);
+    assert!(v["energy"]["forcing_work_j"].is_number());
+    // Today's keys are all there.
+    for key in ["n_impacts", "impacts", "maxima", "energy", "final_time_s", "truncated", "u0_max_m_s"] {
+        assert!(!v[key].is_null(), "{key}");
+    }
+    let text = ok(&["simulate", "--v0", "0", "--force", "1N", "--freq", "5.5Hz", "--duration", "6"]);
+    assert!(
+        text.contains("steady    last 10 periods")
+            && text.contains("Leq")
+            && text.contains("force 1.0000 N at 5.5000 Hz"),
+        "{text}"
+    );
+    // Without a force there is no steady object at all.
+    let free: serde_json::Value = serde_json::from_str(&ok(&["simulate", "--json"])).unwrap();
+    assert!(free.get("steady").is_none());
+    // --settle runs on past --duration.
+    let settled: serde_json::Value = serde_json::from_str(&ok(&[
+        "simulate",
+        "--v0",
+        "0",
+        "--force",
+        "1N",
+        "--freq",
+        "3Hz",
+        "--gap",
+        "1",
+        "--duration",
+        "5",
+        "--settle",
+        "--json",
+    ]))
+    .unwrap();
+    assert!(settled["final_time_s"].as_f64().unwrap() > 5.0);
+    assert_eq!(settled["steady"]["settled"], true);
+}
+
+#[test]
+fn forcing_flags_are_checked_and_named() {
+    refused(&["simulate", "--force", "1N"], &["--freq"]);
+    refused(&["simulate", "--force", "-1"], &["--force", "0 to 1e6 N"]);
+    refused(&["simulate", "--force", "1kg", "--freq", "5"], &["--force", "unknown unit"]);
+    refused(&["simulate", "--force", "1", "--freq", "0"], &["--freq"]);
+    refused(&["simulate", "--freq", "1e9Hz"], &["--freq"]);
+    refused(&["simulate", "--ball-position", "2.5cm"], &["--ball-position", "d/2"]);
+    refused(&["simulate", "--ball-position", "-2cm"], &["--ball-position"]);
+    refused(&["simulate", "--ball-velocity", "NaN"], &["--ball-velocity"]);
+    refused(&["simulate", "--periods", "0"], &["--periods"]);
+    refused(&["simulate", "--periods", "2.5"], &["--periods"]);
+    refused(&["response", "--freqs", "3:8:5"], &["--force"]);
+    refused(&["response", "--force", "1", "--freq", "5"], &["--freq", "--freqs"]);
+    refused(&["response", "--force", "1", "--freqs", "3Hz:8N:5"], &["--freqs"]);
+    refused(&["export", "svg", "response", "--out", "-", "--freqs", "3:4:3"], &["--force-amplitude"]);
+    // Settling Newmark runs are budgeted before they start.
+    refused(&["simulate", "--force", "1", "--freq", "5", "--settle", "--solver", "newmark"], &["Newmark steps"]);
+    refused(&["response", "--force", "1", "--freqs", "3:8:1000", "--periods", "1000"], &["--freqs", "forcing periods"]);
+}
+
+#[test]
+fn forcing_flags_keep_the_contract_at_their_bounds() {
+    // Every bound of every new flag, on the commands that take it: finite output or one line.
+    use thud::limits as L;
+    for (flag, range, extra) in [
+        ("force", L::FORCE, vec!["--freq", "5"]),
+        ("freq", L::FREQ, vec!["--force", "1"]),
+        ("ball-position", L::BALL_POSITION, vec![]),
+        ("ball-velocity", L::BALL_VELOCITY, vec![]),
+        ("periods", L::PERIODS, vec!["--force", "1", "--freq", "5"]),
+    ] {
+        for v in [range.min, range.max] {
+            let text = format!("{v}");
+            for base in [
+                vec!["simulate", "--json"],
+                vec!["simulate"],
+                vec!["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"],
+            ] {
+                // `sweep` writes files (`--out`), so its `--force` replaces one and the force
+                // amplitude is `--force-amplitude`, as on `export`.
+                let amplitude =
+                    |f: &'static str| if base[0] == "sweep" && f == "--force" { "--force-amplitude" } else { f };
+                let flag_arg = if base[0] == "sweep" && flag == "force" {
+                    "--force-amplitude".to_string()
+                } else {
+                    format!("--{flag}")
+                };
+                let mut args: Vec<&str> = base.clone();
+                args.extend(extra.iter().map(|f| amplitude(f)));
+                args.extend(["--duration", "0.5", &flag_arg, &text]);
+                let r = thud(&args);
+                match r.code {
+                    0 => assert!(
+                        !r.stdout.split(|c: char| !c.is_ascii_alphanumeric()).any(|w| w == "NaN" || w == "inf"),
+                        "{args:?}: {}",
+                        r.stdout
+                    ),
+                    2 => assert!(r.stderr.lines().count() == 1 && r.stderr.contains("--"), "{args:?}: {}", r.stderr),
+                    c => panic!("{args:?}: exit {c}: {}", r.stderr),
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn response_prints_a_table_a_plot_json_and_csv() {
+    let base = ["response", "--force", "1N", "--freqs", "4.5Hz:5.5Hz:5", "--periods", "5"];
+    let text = ok(&base);
+    assert!(
+        text.contains("amplitude (mm, log scale) against f") && text.contains("4.500") && text.contains("5.500"),
+        "{text}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&ok(&[&base[..], &["--json"]].concat())).unwrap();
+    let sweeps = json["sweeps"].as_array().unwrap();
+    assert_eq!(sweeps.len(), 1);
+    assert_eq!(sweeps[0]["direction"], "from_rest");
+    let points = sweeps[0]["points"].as_array().unwrap();
+    assert_eq!(points.len(), 5);
+    for p in points {
+        assert!(p["freq_hz"].is_number() && p["amplitude_m"].is_number() && p["settled"].is_boolean(), "{p}");
+    }
+    assert_eq!(json["design"]["damper"]["v0_m_s"], 0.0, "a response starts from rest");
+    let csv = ok(&[&base[..], &["--csv"]].concat());
+    let lines: Vec<&str> = csv.lines().collect();
+    assert!(lines[0].starts_with("sweep,freq_hz,amplitude_m,amplitude_linear_m,reduction_db,impacts_per_period,leq_db"));
+    assert_eq!(lines.len(), 6);
+    assert!(lines[1].starts_with("from_rest,4.5,"));
+    // With continuation: a rising and a falling sweep.
+    let cont: serde_json::Value =
+        serde_json::from_str(&ok(&[&base[..], &["--continuation", "--json"]].concat())).unwrap();
+    let dirs: Vec<&str> = cont["sweeps"].as_array().unwrap().iter().map(|s| s["direction"].as_str().unwrap()).collect();
+    assert_eq!(dirs, ["up", "down"]);
+}
+
+#[test]
+fn response_exports_as_svg_and_csv() {
+    let home = tempfile::tempdir().unwrap();
+    let svg = home.path().join("r.svg");
+    let args = ["export", "svg", "response", "--force-amplitude", "1N", "--freqs", "4.6Hz:5.4Hz:4", "--periods", "4"];
+    let r = thud_in(home.path(), &[&args[..], &["--out", svg.to_str().unwrap()]].concat());
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap().text().unwrap();
+    assert!(title.starts_with("Frequency response under F0 1"), "{title}");
+    assert!(text.contains("steady amplitude (mm)") && text.contains("Leq at the observer (dB)"));
+    let clips: Vec<&str> =
+        doc.descendants().filter(|n| n.has_tag_name("clipPath")).filter_map(|n| n.attribute("id")).collect();
+    assert_eq!(clips, ["amplitude", "level"], "one clip path per panel");
+    // The same response as CSV, to standard output, equals `thud response --csv`.
+    let csv = thud_in(
+        home.path(),
+        &[
+            "export",
+            "csv",
+            "response",
+            "--force-amplitude",
+            "1N",
+            "--freqs",
+            "4.6Hz:5.4Hz:4",
+            "--periods",
+            "4",
+            "--out",
+            "-",
+        ],
+    );
+    assert_eq!(csv.code, 0, "{}", csv.stderr);
+    assert_eq!(csv.stdout, ok(&["response", "--force", "1N", "--freqs", "4.6Hz:5.4Hz:4", "--periods", "4", "--csv"]));
+    // export's own --force still means "replace the file".
+    let again = thud_in(home.path(), &[&args[..], &["--out", svg.to_str().unwrap()]].concat());
+    assert_eq!(again.code, 2);
+    let forced = thud_in(home.path(), &[&args[..], &["--out", svg.to_str().unwrap(), "--force"]].concat());
+    assert_eq!(forced.code, 0, "{}", forced.stderr);
+}
+
+#[test]
+fn limits_lists_the_new_ranges_and_the_response_cap() {
+    let out = ok(&["limits"]);
+    for needle in ["--force", "--freq", "--ball-position", "--ball-velocity", "--periods", "forcing periods"] {
+        assert!(out.contains(needle), "{needle}");
+    }
+}

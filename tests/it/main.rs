@@ -1,0 +1,43 @@
+//! The integration tests, one module per subject, in one test binary: each test binary links
+//! thud and every dependency again, so one binary instead of one per file is most of a cold
+//! `cargo test --release` (ARCHITECTURE.md, "Tests"). A new subject is a new module here
+//! (`tests/it/<subject>.rs` and a `mod` line below); insta names its snapshots after the module
+//! path (`tests/it/snapshots/it__tui__main_80x24.snap`), proptest its regressions after the file
+//! (`tests/it/damper.proptest-regressions`).
+//!
+//! No test here changes what the process shares (the environment, the working folder, signal
+//! handlers, a panic hook, the global thread pool): everything that needs that runs a `thud`
+//! of its own. A test that must change it belongs in a binary of its own (`tests/<name>.rs`).
+
+/// Running the built `thud` (shared by the command-line tests).
+mod common;
+/// Helpers of the file, process and pids-limit tests.
+mod support {
+    pub mod home;
+    pub mod stranger;
+    pub mod wait;
+}
+
+mod acoustics_paper;
+mod architecture;
+mod cli;
+mod damper;
+mod design_paper;
+mod ensemble;
+mod export;
+mod figures;
+mod files;
+mod forced;
+mod forced_cli;
+mod hostile_files;
+mod hostile_inputs;
+mod params_table;
+mod pdf;
+mod response_band;
+mod schema;
+mod shards;
+mod shell;
+mod store_config;
+mod tui;
+mod tui_look;
+mod tui_tmux;
