@@ -42,7 +42,7 @@ use thiserror::Error;
 
 use crate::design::{self, Cell, Chart, Design};
 use crate::ensemble::{self, Ensemble, EnsembleCell, EnsembleChart, Member};
-use crate::limits;
+use crate::{limits, params};
 
 /// The `format` of a part's header.
 pub const FORMAT: &str = "thud-sweep-shard";
@@ -422,7 +422,7 @@ fn check_ranges(file: &str, s: &Study) -> Result<(), ShardError> {
         limits::GAP.check(g).map_err(bad)?;
     }
     limits::BAND.check(s.band_cm_s).map_err(bad)?;
-    limits::check_design(&s.design).map_err(bad)
+    params::check_design(&s.design).map_err(bad)
 }
 
 /// A number of a part's run outside what any run can give: not finite, beyond

@@ -234,7 +234,7 @@ pub fn check_loaded<S: Tunable>(s: &S) -> Result<(), ThudError> {
     for k in Knob::ALL.into_iter().filter(|k| !matches!(k, Knob::Force | Knob::Freq | Knob::BallPosition)) {
         k.check_range(s)?;
     }
-    limits::check_design(s.design())?;
+    params::check_design(s.design())?;
     Knob::Duration.checked(s.clone()).map(drop)
 }
 

@@ -2001,7 +2001,7 @@ fn readme_screen(name: &str) -> String {
 
 /// The README's text captures of the explorer (between `<!-- screen NAME ... -->` and
 /// `<!-- /screen -->`, a ```text block) are what the explorer draws today.
-/// `THUD_BLESS=1 cargo test --release --test tui readme_screens` re-captures them in place (after
+/// `THUD_BLESS=1 cargo test --release --test it tui::readme_screens` re-captures them in place (after
 /// a change of the screens, or a merge of other explorer work).
 #[test]
 fn readme_screens_are_what_the_explorer_draws() {
@@ -2019,7 +2019,7 @@ fn readme_screens_are_what_the_explorer_draws() {
                 rest[open_end..close],
                 want,
                 "the README's screen {name} is not what the explorer draws; re-capture with \
-                 THUD_BLESS=1 cargo test --release --test tui readme_screens"
+                 THUD_BLESS=1 cargo test --release --test it tui::readme_screens"
             );
         }
         out.push_str(&rest[..open_end]);

@@ -7,7 +7,8 @@
 //! parameter, the value and the range ([`Range::check`]). The ranges are wide enough that every
 //! combination of in-range values gives finite results; the few derived quantities that can
 //! still go wrong (a ball radius from mass and density, K_HZ from materials, the observer inside
-//! the ball) are checked by [`check_design`].
+//! the ball) are checked by [`crate::params::check_design`], which checks every design against
+//! the ranges of its rows.
 //!
 //! **Caps** ([`Cap`]) bound the work of one run before it starts: [`design_run`] estimates the
 //! Newmark steps, main-mass cycles and history samples of a simulation; [`wav_samples`],
@@ -19,7 +20,7 @@
 
 use crate::acoustics::Source;
 use crate::damper::Solver;
-use crate::design::{BallSize, Design, ValidDesign};
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 pub use crate::units::short;
 
@@ -427,130 +428,6 @@ pub fn theta_deg(source: Source) -> Range {
     Range { min, max, reason, ..THETA }
 }
 
-impl Design {
-    /// Checks the whole design and resolves what follows from it: the only way to a
-    /// [`ValidDesign`], the design every solver takes. In order: the physics' own checks
-    /// ([`Design::validate`]: positive masses and gap, |y0| < d/2, the observer outside the
-    /// ball and on the open side of the source's walls, finite thresholds), then every range of
-    /// the one range table and the derived quantities ([`check_design`]: the ball radius from
-    /// mass and density, K_HZ from the materials), then K_HZ set from the materials for the
-    /// ball's radius. The first problem is the error, naming the parameter bare (`mass`), as
-    /// the command line spells it without dashes. (Here beside the range table, so that the
-    /// design module, which the table's checks read, does not read the table.)
-    pub fn check(self) -> Result<ValidDesign, ThudError> {
-        self.validate()?;
-        check_design(&self)?;
-        ValidDesign::from_ranges_checked(self)
-    }
-}
-
-impl TryFrom<Design> for ValidDesign {
-    type Error = ThudError;
-
-    fn try_from(d: Design) -> Result<Self, ThudError> {
-        d.check()
-    }
-}
-
-/// A checked design is read as a [`Design`] and then checked ([`Design::check`]): a file
-/// cannot skip the check.
-impl<'de> serde::Deserialize<'de> for ValidDesign {
-    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
-        Design::deserialize(de)?.check().map_err(serde::de::Error::custom)
-    }
-}
-
-/// Checks every parameter of a design against its range, then the derived quantities that a
-/// combination can push out (the ball radius from mass and density, K_HZ from materials). The
-/// error names the parameter (bare, as on the command line).
-pub fn check_design(d: &Design) -> Result<(), ThudError> {
-    let p = &d.damper;
-    MASS.check(p.impact_mass_kg)?;
-    GAP.check(p.gap_m)?;
-    V0.check(p.v0_m_s)?;
-    MAIN_MASS.check(p.main_mass_kg)?;
-    STIFFNESS.check(p.stiffness_n_m)?;
-    DAMPING.check(p.damping_n_s_m)?;
-    C1.check(p.c1_n_s_m)?;
-    if d.materials.is_none() {
-        K_HZ.check(p.k_hz)?;
-    }
-    DURATION.check(p.duration_s)?;
-    FORCE.check(p.force_n)?;
-    if p.freq_hz != 0.0 || p.force_n > 0.0 {
-        if p.freq_hz == 0.0 {
-            return Err(ThudError::invalid("freq", "a force needs a frequency; give --freq (Hz)"));
-        }
-        FREQ.check(p.freq_hz)?;
-    }
-    BALL_POSITION.check(p.ball_position_m)?;
-    if p.ball_position_m.abs() >= 0.5 * p.gap_m {
-        return Err(ThudError::invalid(
-            "ball-position",
-            format!(
-                "{} m puts the ball outside the clearance; |y0| must be < d/2 = {} m",
-                short(p.ball_position_m),
-                short(0.5 * p.gap_m)
-            ),
-        ));
-    }
-    BALL_VELOCITY.check(p.ball_velocity_m_s)?;
-    PERIODS.check(f64::from(p.steady_periods))?;
-    if let Solver::Newmark { dt_s } = d.solver {
-        DT.check(dt_s)?;
-    }
-    match d.ball {
-        BallSize::Density(rho) => {
-            DENSITY.check(rho)?;
-            let a = d.ball_radius_m();
-            if !RADIUS.contains(a) {
-                return Err(ThudError::invalid(
-                    "mass",
-                    format!(
-                        "{} kg at {} kg/m^3 makes a ball of radius {} m; the {} must be {}",
-                        short(p.impact_mass_kg),
-                        short(rho),
-                        short(a),
-                        RADIUS.what,
-                        RADIUS.describe()
-                    ),
-                ));
-            }
-        }
-        BallSize::Radius(a) => {
-            RADIUS.check(a)?;
-        }
-    }
-    if let Some(m) = &d.materials {
-        if let Some(nu) = m.sphere_nu {
-            SPHERE_POISSON.check(nu)?;
-        }
-        let k = m.hertz_stiffness(d.ball_radius_m())?;
-        if !K_HZ.contains(k) {
-            return Err(ThudError::invalid(
-                "radius",
-                format!(
-                    "{} m of {} on {} gives K_HZ {} N/m^1.5; the {} must be {}",
-                    short(d.ball_radius_m()),
-                    m.sphere,
-                    m.plate,
-                    short(k),
-                    K_HZ.what,
-                    K_HZ.describe()
-                ),
-            ));
-        }
-    }
-    R.check(d.observer.r_m)?;
-    // Degrees back from radians to 1e-9 deg, so 90° stays 90°.
-    theta_deg(d.radiation.source).check((d.observer.theta_rad.to_degrees() * 1e9).round() / 1e9)?;
-    RHO_C.check(d.radiation.air.rho_c_pa_s_m)?;
-    C_SOUND.check_as("speed of sound", d.radiation.air.c_m_s)?;
-    L_STAR.check(d.thresholds.spl_db)?;
-    E_STAR.check(d.thresholds.inclination_cm_s)?;
-    Ok(())
-}
-
 /// A cap on one kind of work of a run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cap {
@@ -944,6 +821,7 @@ pub fn restitution_contacts(n_masses: usize, with_target: bool) -> Estimate {
 mod tests {
     use super::*;
     use crate::contact;
+    use crate::params::check_design;
 
     #[test]
     fn every_range_is_ordered_and_finite() {
@@ -987,12 +865,6 @@ mod tests {
     }
 
     #[test]
-    fn the_default_design_and_presets_like_it_are_in_range() {
-        check_design(&Design::default()).unwrap();
-        check_design(&Design::paper_table3()).unwrap();
-    }
-
-    #[test]
     fn derived_radius_and_k_hz_stay_inside_their_ranges_at_the_corners() {
         // Every in-range mass and density gives an in-range radius ...
         for m in [MASS.min, MASS.max] {
@@ -1010,18 +882,6 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn check_design_refuses_an_out_of_range_field_by_name() {
-        let mut d = Design::default();
-        d.damper.stiffness_n_m = 1e308;
-        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid k: "));
-        let d = Design { ball: BallSize::Density(1e308), ..Design::default() };
-        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid density: "));
-        let mut d = Design::default();
-        d.thresholds.inclination_cm_s = -5.0;
-        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid e-star: "));
     }
 
     #[test]

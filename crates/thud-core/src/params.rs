@@ -173,6 +173,10 @@ pub struct Param<T: 'static> {
     /// The value in a design (internal units), for numeric rows of [`DESIGN`]: what a front end
     /// shows as the current or default value.
     pub get: Option<fn(&Design) -> f64>,
+    /// Whether a design holds the row's value (None: every design does): K_HZ is not a design's
+    /// own when its materials set it, nor a frequency without a force. [`check_design`] checks
+    /// the value against the row's range wherever the row applies.
+    pub applies: Option<fn(&Design) -> bool>,
 }
 
 impl<T> Param<T> {
@@ -189,6 +193,7 @@ impl<T> Param<T> {
             conflicts: None,
             requires: None,
             get: None,
+            applies: None,
         }
     }
 
@@ -207,6 +212,12 @@ impl<T> Param<T> {
     /// The row with the accessor `get`.
     const fn get(mut self, get: fn(&Design) -> f64) -> Self {
         self.get = Some(get);
+        self
+    }
+
+    /// The row applying only to the designs for which `applies` holds.
+    const fn applies(mut self, applies: fn(&Design) -> bool) -> Self {
+        self.applies = Some(applies);
         self
     }
 
@@ -380,7 +391,7 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     Param {
         conflicts: Some(Conflict { with: "sphere", why: "K_HZ follows from the materials", names_other: false }),
         ..q("k-hz", Kind::HertzStiffness, &limits::K_HZ, Group::Design, "KH", "Hertz stiffness K_HZ (N/m^1.5)",
-            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v)
+            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v).applies(|d| d.materials.is_none())
     },
     Param::new("sphere", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.sphere = Some(s.to_string()) },
         "Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)").value("MATERIAL"),
@@ -394,13 +405,13 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         requires: Some("sphere"),
         ..q("sphere-poisson", Kind::Number, &limits::SPHERE_POISSON, Group::Design, "NU",
             "The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere)",
-            |d| d.materials.as_ref().and_then(|m| m.sphere_material().ok()).map_or(f64::NAN, |m| m.nu),
+            |d| d.materials.as_ref().and_then(|m| m.sphere_nu.or_else(|| Some(m.sphere_material().ok()?.nu))).unwrap_or(f64::NAN),
             |d, v| {
                 d.sphere_nu = Some(v);
                 if let Some(m) = d.design.materials.as_mut() {
                     m.sphere_nu = Some(v);
                 }
-            }).label("ball ν")
+            }).label("ball ν").applies(|d| d.materials.as_ref().is_some_and(|m| m.sphere_nu.is_some()))
     },
     sw("no-tension", Group::Design, "Clamp the contact force at ≥ 0 (a contact cannot pull)",
         |d| f64::from(u8::from(d.damper.no_tension)), |d, on| d.design.damper.no_tension = on),
@@ -408,15 +419,17 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         |d| d.damper.duration_s, |d, v| d.design.damper.duration_s = v),
     ch("solver", Group::Solver, &SOLVERS, &SOLVER_HELPS, "Solver", "Solver", |d, i| d.solver = Some(i)),
     q("dt", Kind::Time, &limits::DT, Group::Solver, "DT", "Newmark time step (s) [default: 1e-7]",
-        |d| match d.solver { Solver::Newmark { dt_s } => dt_s, Solver::Event => NEWMARK_DT_S }, |d, v| d.dt_s = Some(v)),
+        |d| match d.solver { Solver::Newmark { dt_s } => dt_s, Solver::Event => NEWMARK_DT_S }, |d, v| d.dt_s = Some(v))
+        .applies(|d| matches!(d.solver, Solver::Newmark { .. })),
     Param {
         conflicts: Some(Conflict { with: "radius", why: "the radius follows from the mass and the density", names_other: true }),
         ..q("density", Kind::Density, &limits::DENSITY, Group::Design, "RHO", "Ball density (kg/m³): the radius follows from the mass",
             |d| match d.ball { BallSize::Density(rho) => rho, BallSize::Radius(_) => f64::NAN }, |d, v| d.design.ball = BallSize::Density(v))
-            .label("ball ρ")
+            .label("ball ρ").applies(|d| matches!(d.ball, BallSize::Density(_)))
     },
     q("radius", Kind::Length, &limits::RADIUS, Group::Design, "A", "Ball radius (m), whatever the mass",
-        Design::ball_radius_m, |d, v| d.design.ball = BallSize::Radius(v)).label("ball a"),
+        Design::ball_radius_m, |d, v| d.design.ball = BallSize::Radius(v)).label("ball a")
+        .applies(|d| matches!(d.ball, BallSize::Radius(_))),
     q("r", Kind::Length, &limits::R, Group::Listener, "R", "Observer distance (m)",
         |d| d.observer.r_m, |d, v| d.design.observer.r_m = v),
     q("theta", Kind::Angle, &limits::THETA, Group::Listener, "DEG", "Observer angle (degrees)",
@@ -440,7 +453,7 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
             |d| d.damper.force_n, |d, v| d.design.damper.force_n = v)
     },
     q("freq", Kind::Frequency, &limits::FREQ, Group::Forcing, "F", "Frequency f of the harmonic force (Hz, or e.g. 5Hz)",
-        |d| d.damper.freq_hz, |d, v| d.design.damper.freq_hz = v),
+        |d| d.damper.freq_hz, |d, v| d.design.damper.freq_hz = v).applies(|d| d.damper.freq_hz != 0.0),
     q("ball-position", Kind::Length, &limits::BALL_POSITION, Group::Forcing, "Y0",
         "The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]",
         |d| d.damper.ball_position_m, |d, v| d.design.damper.ball_position_m = v),
@@ -462,6 +475,111 @@ pub const NEWMARK_DT_S: f64 = 1e-7;
 /// The row of [`DESIGN`] called `name` (its name as in the table, `main-mass`).
 pub fn design_param(name: &str) -> Option<&'static Param<DesignDraft>> {
     DESIGN.iter().find(|p| p.name == name)
+}
+
+/// Checks every parameter of a design against its range: the value of every row of [`DESIGN`]
+/// with a range, wherever the row applies ([`Param::applies`]; θ against the range of the
+/// design's source, [`limits::theta_deg`]), then what the rows do not hold: a force's
+/// frequency, the ball inside the clearance, the ball radius from mass and density, K_HZ from
+/// the materials, and the air. The error names the parameter (bare, as on the command line).
+/// Part of [`Design::check`]; derived from the table, so a row added to it is checked here.
+pub fn check_design(d: &Design) -> Result<(), ThudError> {
+    for p in DESIGN {
+        let (Some(range), Some(get)) = (p.range(), p.get) else { continue };
+        if p.applies.is_some_and(|applies| !applies(d)) {
+            continue;
+        }
+        if *range == limits::THETA {
+            // Degrees back from radians to 1e-9 deg, so 90° stays 90°.
+            limits::theta_deg(d.radiation.source).check((get(d) * 1e9).round() / 1e9)?;
+        } else {
+            range.check(get(d))?;
+        }
+    }
+    let p = &d.damper;
+    if p.force_n > 0.0 && p.freq_hz == 0.0 {
+        return Err(ThudError::invalid("freq", "a force needs a frequency; give --freq (Hz)"));
+    }
+    if p.ball_position_m.abs() >= 0.5 * p.gap_m {
+        return Err(ThudError::invalid(
+            "ball-position",
+            format!(
+                "{} m puts the ball outside the clearance; |y0| must be < d/2 = {} m",
+                short(p.ball_position_m),
+                short(0.5 * p.gap_m)
+            ),
+        ));
+    }
+    if let BallSize::Density(rho) = d.ball {
+        let a = d.ball_radius_m();
+        if !limits::RADIUS.contains(a) {
+            return Err(ThudError::invalid(
+                "mass",
+                format!(
+                    "{} kg at {} kg/m^3 makes a ball of radius {} m; the {} must be {}",
+                    short(p.impact_mass_kg),
+                    short(rho),
+                    short(a),
+                    limits::RADIUS.what,
+                    limits::RADIUS.describe()
+                ),
+            ));
+        }
+    }
+    if let Some(m) = &d.materials {
+        let k = m.hertz_stiffness(d.ball_radius_m())?;
+        if !limits::K_HZ.contains(k) {
+            return Err(ThudError::invalid(
+                "radius",
+                format!(
+                    "{} m of {} on {} gives K_HZ {} N/m^1.5; the {} must be {}",
+                    short(d.ball_radius_m()),
+                    m.sphere,
+                    m.plate,
+                    short(k),
+                    limits::K_HZ.what,
+                    limits::K_HZ.describe()
+                ),
+            ));
+        }
+    }
+    // The air is no row of the table (a single impact's parameters, [`PULSE`]).
+    limits::RHO_C.check(d.radiation.air.rho_c_pa_s_m)?;
+    limits::C_SOUND.check_as("speed of sound", d.radiation.air.c_m_s)?;
+    Ok(())
+}
+
+impl Design {
+    /// Checks the whole design and resolves what follows from it: the only way to a
+    /// [`ValidDesign`], the design every solver takes. In order: the physics' own checks
+    /// ([`Design::validate`]: positive masses and gap, |y0| < d/2, the observer outside the
+    /// ball and on the open side of the source's walls, finite thresholds), then every range of
+    /// the parameter table and the derived quantities ([`check_design`]: the ball radius from
+    /// mass and density, K_HZ from the materials), then K_HZ set from the materials for the
+    /// ball's radius. The first problem is the error, naming the parameter bare (`mass`), as
+    /// the command line spells it without dashes. (Here beside the parameter table, so that the
+    /// design module, which the table's rows read and write, does not read the table.)
+    pub fn check(self) -> Result<ValidDesign, ThudError> {
+        self.validate()?;
+        check_design(&self)?;
+        ValidDesign::from_ranges_checked(self)
+    }
+}
+
+impl TryFrom<Design> for ValidDesign {
+    type Error = ThudError;
+
+    fn try_from(d: Design) -> Result<Self, ThudError> {
+        d.check()
+    }
+}
+
+/// A checked design is read as a [`Design`] and then checked ([`Design::check`]): a file
+/// cannot skip the check.
+impl<'de> serde::Deserialize<'de> for ValidDesign {
+    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
+        Design::deserialize(de)?.check().map_err(serde::de::Error::custom)
+    }
 }
 
 /// The keyword lines of Python's stub (`crates/thud-py/python/thud/__init__.pyi`) for the rows of [`DESIGN`]
@@ -688,7 +806,7 @@ pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Re
         let freq = given.spell("freq");
         return Err(ThudError::invalid(&freq, format!("a force needs a frequency; give {freq} (Hz)")));
     }
-    limits::check_design(&d).map_err(|e| given.respell(e))?;
+    check_design(&d).map_err(|e| given.respell(e))?;
     d.validate().map_err(|e| blame_ball(&given, e, &d))?;
     d.check().map_err(|e| given.respell(e))
 }
@@ -1024,6 +1142,81 @@ mod tests {
 
     fn err<T: std::fmt::Debug>(r: Result<T, ThudError>) -> String {
         r.unwrap_err().to_string()
+    }
+
+    #[test]
+    fn the_default_design_and_presets_like_it_are_in_range() {
+        check_design(&Design::default()).unwrap();
+        check_design(&Design::paper_table3()).unwrap();
+    }
+
+    #[test]
+    fn check_design_refuses_an_out_of_range_field_by_name() {
+        let mut d = Design::default();
+        d.damper.stiffness_n_m = 1e308;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid k: "));
+        let d = Design { ball: BallSize::Density(1e308), ..Design::default() };
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid density: "));
+        let mut d = Design::default();
+        d.thresholds.inclination_cm_s = -5.0;
+        assert!(check_design(&d).unwrap_err().to_string().starts_with("invalid e-star: "));
+    }
+
+    /// The check is the table's: for every row of [`DESIGN`] with a range, a design with that
+    /// one value below its range, above it or NaN (on a design the row applies to) is refused
+    /// by [`Design::check`], and [`check_design`] names the row.
+    #[test]
+    fn a_design_with_any_single_row_out_of_range_is_refused() {
+        let materials = Materials { sphere: "steel".into(), plate: "steel".into(), sphere_nu: Some(0.3) };
+        // Designs between them every row applies to: the default (a density ball, the event
+        // solver, no materials, no force), a ball of a given radius, the Newmark solver, materials.
+        let bases = [
+            Design::default(),
+            Design { ball: BallSize::Radius(0.01), ..Design::default() },
+            Design { solver: Solver::Newmark { dt_s: NEWMARK_DT_S }, ..Design::default() },
+            Design { materials: Some(materials), ..Design::default() },
+        ];
+        for p in DESIGN {
+            let Some(range) = p.range() else { continue };
+            assert_eq!(range.param, p.name, "the range of a row names the row");
+            let get = p.get.unwrap_or_else(|| panic!("{}: a row with a range reads its value", p.name));
+            let mut refused = 0;
+            let wide = |b: f64| b.abs().max(1.0);
+            for v in [range.min - wide(range.min), range.max + wide(range.max), f64::NAN] {
+                // The row's value set to v: the Newmark step is the solver's, not a design value.
+                let with = |base: &Design| match p.name {
+                    "dt" => Design { solver: Solver::Newmark { dt_s: v }, ..base.clone() },
+                    _ => set_number(base, p, v),
+                };
+                let Some(d) = bases.iter().map(with).find(|d| p.applies.is_none_or(|applies| applies(d))) else {
+                    panic!("{}: no design the row applies to", p.name)
+                };
+                if range.contains(get(&d)) {
+                    continue; // a count cannot hold v (NaN, or below 0)
+                }
+                assert!(d.clone().check().is_err(), "{} = {v} passed Design::check", p.name);
+                let e = check_design(&d).unwrap_err();
+                assert_eq!(e.param(), p.name, "{} = {v}: {e}", p.name);
+                refused += 1;
+            }
+            assert!(refused >= 2, "{}: only {refused} of its out-of-range values could be set", p.name);
+        }
+    }
+
+    /// A row is checked only where it applies: K_HZ that materials set, a frequency without a
+    /// force, a Newmark step of the event solver, a density of a ball of given radius.
+    #[test]
+    fn a_row_that_does_not_apply_is_not_checked() {
+        let materials = Materials { sphere: "steel".into(), plate: "steel".into(), sphere_nu: None };
+        let mut d = Design { materials: Some(materials), ..Design::default() };
+        d.damper.k_hz = 0.0;
+        check_design(&d).unwrap();
+        let mut d = Design { ball: BallSize::Radius(0.01), ..Design::default() };
+        d.damper.freq_hz = 0.0;
+        d.damper.force_n = 0.0;
+        check_design(&d).unwrap();
+        d.damper.force_n = 1.0;
+        assert_eq!(check_design(&d).unwrap_err().param(), "freq", "a force needs a frequency");
     }
 
     #[test]
