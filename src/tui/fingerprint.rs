@@ -2,14 +2,12 @@
 //! indices, numbers, strings), every `f64` as its bits. Equal fingerprints mean equal serialized
 //! forms, as equal JSON texts did, without formatting text; and like them a fingerprint follows
 //! every field the engine serializes, so a parameter added to the engine's structs counts in the
-//! explorer's cache keys (`cache_key.rs`) without an edit there.
-//!
-//! A hand-written `serde::Serializer` (about 150 lines) rather than a dependency: the crates that
-//! do this (serde-hashkey) are not in the dependency tree, and this one needs no options.
+//! explorer's cache keys (`cache_key.rs`) without an edit there. The tokens are the steps of the
+//! engine's one serializer walk ([`crate::walk`], which the finite check also takes), kept.
 
-use std::fmt::Display;
+use serde::Serialize;
 
-use serde::ser::{self, Serialize};
+use crate::walk::{walk, Step};
 
 /// An `f64` as its bits, −0 taken as +0 (equal values give equal keys; the values keyed are
 /// checked finite before any work starts).
@@ -22,7 +20,7 @@ impl From<f64> for Bits {
     }
 }
 
-/// One step of a serialized form.
+/// One step of a serialized form ([`Step`], owned and hashable).
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 enum Token {
     Bool(bool),
@@ -37,11 +35,31 @@ enum Token {
     /// A named thing: a struct's or variant's name, or a field's.
     Name(&'static str),
     Variant(u32),
-    /// The start of a sequence, tuple or map of this many elements (if known).
+    /// The start of a sequence, tuple or map of this many elements (if known), or of a struct.
     Open(Option<usize>),
     Close,
     /// What a value's `Serialize` reported instead (never for the engine's types).
     Refused(String),
+}
+
+impl From<Step<'_>> for Token {
+    fn from(step: Step<'_>) -> Self {
+        match step {
+            Step::Bool(v) => Token::Bool(v),
+            Step::Int(v) => Token::Int(v),
+            Step::Float(v) => Token::Float(v.into()),
+            Step::Char(v) => Token::Char(v),
+            Step::Str(v) => Token::Str(v.to_string()),
+            Step::Bytes(v) => Token::Bytes(v.to_vec()),
+            Step::None => Token::None,
+            Step::Some => Token::Some,
+            Step::Unit => Token::Unit,
+            Step::Name(v) => Token::Name(v),
+            Step::Variant(v) => Token::Variant(v),
+            Step::Open(v) => Token::Open(v),
+            Step::Close => Token::Close,
+        }
+    }
 }
 
 /// A value's serialized form as tokens (see the module doc).
@@ -51,261 +69,14 @@ pub struct Fingerprint(Vec<Token>);
 impl Fingerprint {
     /// The fingerprint of `value`.
     pub fn of<T: Serialize + ?Sized>(value: &T) -> Self {
-        let mut f = Fingerprint::default();
-        if let Err(e) = value.serialize(&mut f) {
-            f.0.push(Token::Refused(e.0));
+        let mut tokens = Vec::new();
+        if let Err(e) = walk(value, |_, step| {
+            tokens.push(Token::from(step));
+            Ok(())
+        }) {
+            tokens.push(Token::Refused(e.0));
         }
-        f
-    }
-
-    fn push(&mut self, t: Token) {
-        self.0.push(t);
-    }
-}
-
-/// A value that could not be serialized (its own `Serialize` refused).
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct Refused(String);
-
-impl ser::Error for Refused {
-    fn custom<T: Display>(msg: T) -> Self {
-        Refused(msg.to_string())
-    }
-}
-
-impl ser::Serializer for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    type SerializeSeq = Self;
-    type SerializeTuple = Self;
-    type SerializeTupleStruct = Self;
-    type SerializeTupleVariant = Self;
-    type SerializeMap = Self;
-    type SerializeStruct = Self;
-    type SerializeStructVariant = Self;
-
-    fn serialize_bool(self, v: bool) -> Result<(), Refused> {
-        self.push(Token::Bool(v));
-        Ok(())
-    }
-    fn serialize_i8(self, v: i8) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_i16(self, v: i16) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_i32(self, v: i32) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_i64(self, v: i64) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_i128(self, v: i128) -> Result<(), Refused> {
-        self.push(Token::Int(v));
-        Ok(())
-    }
-    fn serialize_u8(self, v: u8) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_u16(self, v: u16) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_u32(self, v: u32) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_u64(self, v: u64) -> Result<(), Refused> {
-        self.push(Token::Int(v.into()));
-        Ok(())
-    }
-    fn serialize_f32(self, v: f32) -> Result<(), Refused> {
-        self.push(Token::Float(f64::from(v).into()));
-        Ok(())
-    }
-    fn serialize_f64(self, v: f64) -> Result<(), Refused> {
-        self.push(Token::Float(v.into()));
-        Ok(())
-    }
-    fn serialize_char(self, v: char) -> Result<(), Refused> {
-        self.push(Token::Char(v));
-        Ok(())
-    }
-    fn serialize_str(self, v: &str) -> Result<(), Refused> {
-        self.push(Token::Str(v.to_string()));
-        Ok(())
-    }
-    fn serialize_bytes(self, v: &[u8]) -> Result<(), Refused> {
-        self.push(Token::Bytes(v.to_vec()));
-        Ok(())
-    }
-    fn serialize_none(self) -> Result<(), Refused> {
-        self.push(Token::None);
-        Ok(())
-    }
-    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> Result<(), Refused> {
-        self.push(Token::Some);
-        value.serialize(self)
-    }
-    fn serialize_unit(self) -> Result<(), Refused> {
-        self.push(Token::Unit);
-        Ok(())
-    }
-    fn serialize_unit_struct(self, name: &'static str) -> Result<(), Refused> {
-        self.push(Token::Name(name));
-        Ok(())
-    }
-    fn serialize_unit_variant(self, _: &'static str, index: u32, _: &'static str) -> Result<(), Refused> {
-        self.push(Token::Variant(index));
-        Ok(())
-    }
-    fn serialize_newtype_struct<T: Serialize + ?Sized>(self, name: &'static str, value: &T) -> Result<(), Refused> {
-        self.push(Token::Name(name));
-        value.serialize(self)
-    }
-    fn serialize_newtype_variant<T: Serialize + ?Sized>(
-        self,
-        _: &'static str,
-        index: u32,
-        _: &'static str,
-        value: &T,
-    ) -> Result<(), Refused> {
-        self.push(Token::Variant(index));
-        value.serialize(self)
-    }
-    fn serialize_seq(self, len: Option<usize>) -> Result<Self, Refused> {
-        self.push(Token::Open(len));
-        Ok(self)
-    }
-    fn serialize_tuple(self, len: usize) -> Result<Self, Refused> {
-        self.push(Token::Open(Some(len)));
-        Ok(self)
-    }
-    fn serialize_tuple_struct(self, name: &'static str, len: usize) -> Result<Self, Refused> {
-        self.push(Token::Name(name));
-        self.push(Token::Open(Some(len)));
-        Ok(self)
-    }
-    fn serialize_tuple_variant(
-        self,
-        _: &'static str,
-        index: u32,
-        _: &'static str,
-        len: usize,
-    ) -> Result<Self, Refused> {
-        self.push(Token::Variant(index));
-        self.push(Token::Open(Some(len)));
-        Ok(self)
-    }
-    fn serialize_map(self, len: Option<usize>) -> Result<Self, Refused> {
-        self.push(Token::Open(len));
-        Ok(self)
-    }
-    fn serialize_struct(self, name: &'static str, _: usize) -> Result<Self, Refused> {
-        // Not the length: a field skipped when it is at its default is simply not there.
-        self.push(Token::Name(name));
-        self.push(Token::Open(None));
-        Ok(self)
-    }
-    fn serialize_struct_variant(self, _: &'static str, index: u32, _: &'static str, _: usize) -> Result<Self, Refused> {
-        self.push(Token::Variant(index));
-        self.push(Token::Open(None));
-        Ok(self)
-    }
-}
-
-impl ser::SerializeSeq for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Refused> {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
-    }
-}
-
-impl ser::SerializeTuple for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Refused> {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleStruct for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Refused> {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleVariant for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Refused> {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
-    }
-}
-
-impl ser::SerializeMap for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> Result<(), Refused> {
-        key.serialize(&mut **self)
-    }
-    fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), Refused> {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
-    }
-}
-
-impl ser::SerializeStruct for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> Result<(), Refused> {
-        self.push(Token::Name(key));
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
-    }
-}
-
-impl ser::SerializeStructVariant for &mut Fingerprint {
-    type Ok = ();
-    type Error = Refused;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> Result<(), Refused> {
-        self.push(Token::Name(key));
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> Result<(), Refused> {
-        self.push(Token::Close);
-        Ok(())
+        Fingerprint(tokens)
     }
 }
 

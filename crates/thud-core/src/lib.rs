@@ -19,6 +19,8 @@
 //! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
 //! - [`response`]: a forced design's steady state and level (`Leq`), and its frequency response.
 //! - [`units`]: parsing and formatting of quantities with units.
+//! - [`walk`]: one walk over a value's serialized form (every field and number), for the finite
+//!   check and the explorer's cache keys.
 
 pub mod acoustics;
 pub mod contact;
@@ -33,5 +35,6 @@ pub mod params;
 pub mod report;
 pub mod response;
 pub mod units;
+pub mod walk;
 
 pub use error::ThudError;
