@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! The integration tests, one module per subject, in one test binary: each test binary links
 //! thud and every dependency again, so one binary instead of one per file is most of a cold
 //! `cargo test --release` (ARCHITECTURE.md, "Tests"). A new subject is a new module here

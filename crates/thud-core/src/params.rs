@@ -478,8 +478,8 @@ pub fn design_param(name: &str) -> Option<&'static Param<DesignDraft>> {
 }
 
 /// Checks every parameter of a design against its range: the value of every row of [`DESIGN`]
-/// with a range, wherever the row applies ([`Param::applies`]; θ against the range of the
-/// design's source, [`limits::theta_deg`]), then what the rows do not hold: a force's
+/// with a range, wherever the row applies (its `applies` column, [`Param`]; θ against the range
+/// of the design's source, [`limits::theta_deg`]), then what the rows do not hold: a force's
 /// frequency, the ball inside the clearance, the ball radius from mass and density, K_HZ from
 /// the materials, and the air. The error names the parameter (bare, as on the command line).
 /// Part of [`Design::check`]; derived from the table, so a row added to it is checked here.
