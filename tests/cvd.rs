@@ -215,7 +215,7 @@ fn the_curves_palette_stays_apart_for_deuteranopes_and_protanopes() {
     // Every multi-curve figure takes its colours from this palette (export::svg::series_color).
     let (d, vision, a, b) = closest_pair(&PALETTE);
     assert!(d >= MIN_DELTA_E, "curves: {a} and {b} are ΔE00 {d:.1} apart with {vision}");
-    for k in 0..PALETTE.len() {
-        assert_eq!(thud::export::svg::series_color(k), PALETTE[k]);
+    for (k, color) in PALETTE.iter().enumerate() {
+        assert_eq!(thud::export::svg::series_color(k), *color);
     }
 }
