@@ -57,6 +57,29 @@ fn console_sessions_run_as_written() {
     cases.run();
 }
 
+/// The session check is not vacuous: a page whose shown output differs from the real one by one
+/// digit fails it.
+#[test]
+fn console_sessions_fail_when_an_output_changes() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = dir.path().join("changed.md");
+    let real = read("README.md");
+    let at = real.find("$ thud simulate --preset paper-table3").expect("recipe 1's simulate");
+    let block = &real[at..at + real[at..].find("\n```").unwrap()];
+    assert!(block.contains("zone 3 (quiet, strong)"), "{block}");
+    let changed = block.replacen("zone 3 (quiet, strong)", "zone 2 (quiet, strong)", 1);
+    std::fs::write(&page, format!("```console\n{changed}\n```\n")).unwrap();
+    let unchanged = dir.path().join("same.md");
+    std::fs::write(&unchanged, format!("```console\n{block}\n```\n")).unwrap();
+    let run = |path: PathBuf| {
+        std::panic::catch_unwind(|| {
+            trycmd::TestCases::new().register_bin("thud", trycmd::cargo::cargo_bin!("thud")).case(&path).run();
+        })
+    };
+    assert!(run(unchanged).is_ok(), "the README's own session passes");
+    assert!(run(page).is_err(), "a changed output must fail");
+}
+
 /// The range table and the work caps as Markdown, from the engine's table.
 fn limits_tables() -> String {
     use thud::limits::{short, CAPS, GRID_N, RANGES, THREADS};
@@ -209,6 +232,18 @@ fn man_finds_thud_after_man_install() {
     let page = prefix.path().join("share/man/man1/thud.1");
     assert!(std::fs::read_to_string(&page).unwrap().starts_with(".TH"), "{}", page.display());
     assert!(prefix.path().join("share/man/man1/thud-sweep.1").is_file());
+    // --install goes alone: with a command, --all or --force it is refused with one line.
+    for (args, names) in [
+        (&["man", "--install", "--force"][..], ["--install", "--force"]),
+        (&["man", "pulse", "--install"][..], ["COMMAND", "--install"]),
+        (&["man", "--install", "--all", "x"][..], ["--install", "--all"]),
+    ] {
+        let o = std::process::Command::new(bin.join("thud")).args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(names.iter().all(|n| err.contains(n)), "{args:?}: {err}");
+    }
     // A second install replaces the pages (an upgrade), never refuses.
     let again = std::process::Command::new(bin.join("thud")).args(["man", "--install"]).output().unwrap();
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
