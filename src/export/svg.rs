@@ -619,7 +619,7 @@ impl Frame {
         if let Some(title) = title.filter(|_| svg.shows_title()) {
             let room = svg.width() / WIDTH;
             let size = (17.0 * 78.0 * room / title.chars().count().max(1) as f64).clamp(11.0 * k, 17.0 * k);
-            svg.text(svg.width() / 2.0, 28.0 * k, title, size, Anchor::Middle, 0.0);
+            svg.text(svg.width() / 2.0, 28.0 * k, &minus(title), size, Anchor::Middle, 0.0);
         }
         let bottom = self.top + self.height;
         for (v, label) in self.x.ticks() {
@@ -811,7 +811,7 @@ fn series_legend(svg: &mut Svg, frame: &Frame, series: &[Series], looks: &[Serie
         if matches!(s.style, Style::Markers | Style::LineMarkers) {
             svg.marker(look.shape, x + 12.0 * k, y - 4.0 * k, 3.2 * k, &look.color);
         }
-        svg.text(x + 30.0 * k, y, &s.label, 11.0 * k, Anchor::Start, 0.0);
+        svg.text(x + 30.0 * k, y, &minus(&s.label), 11.0 * k, Anchor::Start, 0.0);
     }
 }
 
