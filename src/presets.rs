@@ -1,4 +1,4 @@
-//! Named starting designs: the compiled-in files of `assets/presets/` ([`thud_presets`], a
+//! Named starting designs: the compiled-in files of `crates/thud-presets/presets/` ([`thud_presets`], a
 //! small crate the Python module shares), and each as a saved-design file
 //! ([`crate::store::DesignFile`]) for the explorer and the tests.
 

@@ -157,7 +157,7 @@ pub fn read_optional(path: &Path) -> Result<Option<String>, StoreError> {
 }
 
 /// A design file: a one-line description and the design. The format of saved designs and of
-/// the presets in `assets/presets/`.
+/// the presets in `crates/thud-presets/presets/`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DesignFile {

@@ -37,6 +37,11 @@ pub struct ManArgs {
     /// With --all: replace pages of the same names (atomically; never a device or folder).
     #[arg(long, requires = "all")]
     force: bool,
+    /// Write every page where man(1) finds it for this thud: `share/man/man1` beside the folder
+    /// of the running binary (~/.cargo/bin/thud → ~/.cargo/share/man/man1, ~/.local/bin/thud →
+    /// ~/.local/share/man/man1), replacing the pages of an earlier install; then `man thud`.
+    #[arg(long, conflicts_with_all = ["all", "command", "force"])]
+    install: bool,
 }
 
 /// The command line's definitions with the names a shell can offer: preset names for
@@ -101,7 +106,10 @@ pub fn completions(a: &CompletionsArgs, out: &mut Out) -> Result<(), CliError> {
 /// --all DIR`: every page into DIR.
 pub fn man(a: &ManArgs, out: &mut Out) -> Result<(), CliError> {
     if let Some(dir) = &a.all {
-        return write_all(dir, Overwrite::from_force(a.force));
+        return write_all(dir, Overwrite::from_force(a.force), "--all");
+    }
+    if a.install {
+        return write_all(&install_dir()?, Overwrite::Replace, "--install");
     }
     let mut cmd = page_root();
     let mut path: Vec<String> = Vec::new();
@@ -119,6 +127,18 @@ pub fn man(a: &ManArgs, out: &mut Out) -> Result<(), CliError> {
         path.push(name.clone());
     }
     out.raw(&page(&cmd, &path)?)
+}
+
+/// `share/man/man1` beside the folder of the running binary: man-db's manpath adds
+/// `DIR/../share/man` for every `DIR` of `PATH`, so the pages are found for the `thud` on `PATH`.
+fn install_dir() -> Result<PathBuf, CliError> {
+    let exe = std::env::current_exe()
+        .map_err(|e| ThudError::invalid("--install", format!("cannot find the running thud binary: {e}")))?;
+    let prefix = exe
+        .parent()
+        .and_then(Path::parent)
+        .ok_or_else(|| ThudError::invalid("--install", format!("{} has no folder above its own", fsio::shown(&exe))))?;
+    Ok(prefix.join("share").join("man").join("man1"))
 }
 
 /// Every page: (file name, the command's path below `thud`, the command), thud(1) first, each
@@ -140,23 +160,24 @@ fn all_pages() -> Vec<(String, Vec<String>, Command)> {
 
 /// `thud man --all DIR`: every page into `dir` through [`fsio::write`]. Every target is checked
 /// first, so a refused page leaves the folder as it was.
-fn write_all(dir: &Path, overwrite: Overwrite) -> Result<(), CliError> {
+fn write_all(dir: &Path, overwrite: Overwrite, flag: &str) -> Result<(), CliError> {
     let pages = all_pages();
     for (file, _, _) in &pages {
         let target = dir.join(file);
-        fsio::check_target(&target, overwrite).map_err(|e| page_error(&target, &e))?;
+        fsio::check_target(&target, overwrite).map_err(|e| page_error(&target, &e, flag))?;
     }
     for (file, path, cmd) in &pages {
         let target = dir.join(file);
-        fsio::write(&target, &page(cmd, path)?, overwrite).map_err(|e| page_error(&target, &e))?;
+        fsio::write(&target, &page(cmd, path)?, overwrite).map_err(|e| page_error(&target, &e, flag))?;
     }
     super::warn(&format!("wrote {} man pages to {}", pages.len(), dir.display()));
     Ok(())
 }
 
-/// A refused or failed page as the one-line error of `--out` writes, naming `--all`.
-fn page_error(target: &Path, e: &fsio::FsError) -> ThudError {
-    super::export::out_error(target, e).renamed("--all")
+/// A refused or failed page as the one-line error of `--out` writes, naming `flag` (`--all`,
+/// `--install`).
+fn page_error(target: &Path, e: &fsio::FsError, flag: &str) -> ThudError {
+    super::export::out_error(target, e).renamed(flag)
 }
 
 /// The page of `cmd` (at `path` below thud): clap_mangen's sections, then [`extra_sections`].
@@ -223,7 +244,10 @@ fn examples(path: &[String]) -> Vec<(&'static str, &'static str)> {
             "mkdir -p ~/.local/share/bash-completion/completions && thud completions bash > ~/.local/share/bash-completion/completions/thud",
             "bash completion",
         )],
-        ["man", ..] => vec![("thud man --all ~/.local/share/man/man1", "every page, for man(1)")],
+        ["man", ..] => vec![
+            ("thud man --install", "every page where man(1) finds it; then man thud"),
+            ("thud man --all ~/.local/share/man/man1", "every page into a folder"),
+        ],
         _ => vec![],
     }
 }
@@ -303,7 +327,7 @@ fn extra_sections(cmd: &Command, path: &[String]) -> String {
         refs.push("thud(1)".into());
     }
     s += &format!(".PP\n{}\n", roff(&refs.join(", ")));
-    s += &format!(".PP\n{}\n", roff("README.md and docs/model.md in the source distribution."));
+    s += &format!(".PP\n{}\n", roff("README.md, the guide (docs/guide, a book with mdbook build docs) and docs/model.md in the source distribution."));
     s
 }
 

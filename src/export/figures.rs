@@ -9,8 +9,8 @@ use crate::paper::{Table, Value};
 use crate::units::sig;
 
 use super::svg::{
-    draw_series_clipped, legend, line_plot, nice_step, series_color, Anchor, Axis, Frame, Look, Series, Shape, Style,
-    Svg, HEIGHT, WIDTH,
+    draw_series_clipped, legend, line_plot, minus, nice_step, series_color, series_dash, Anchor, Axis, Frame, Look,
+    Series, Shape, Style, Svg, HEIGHT, WIDTH,
 };
 
 /// The pressure of one impact against time after the direct wave arrives (ms, Pa).
@@ -57,18 +57,56 @@ pub fn history(run: &Run, damper: &DamperParams, title: &str, look: &Look) -> St
 pub fn restitution(curve: &[(f64, f64)], title: &str, look: &Look) -> String {
     let pts: Vec<(f64, f64)> = curve.iter().map(|&(m, r)| (m * 1e3, r)).collect();
     let x = Axis::fit("impact mass m (g)", pts.iter().map(|p| p.0));
-    let y = Axis::fit("coefficient of restitution R = u_out/U0", pts.iter().map(|p| p.1));
+    let y = Axis::fit("coefficient of restitution R, rebound ÷ impact speed (1)", pts.iter().map(|p| p.1));
     line_plot(title, look, x, y, &[Series::new("R", pts, Style::LineMarkers)])
 }
 
-/// Fill colour of a zone (none: grey).
+/// Fill colour of a zone (none: grey). Colours of the Okabe–Ito palette (zone 2's yellow
+/// lightened), chosen so every pair, the grey included, stays apart for deuteranopes and
+/// protanopes (CIEDE2000 ΔE ≥ 18 after the Machado et al. 2009 simulation; tests/cvd.rs) and a
+/// black zone digit reads on each (contrast ≥ 4.5:1). The digit in every cell says the zone
+/// without colour too.
 pub fn zone_color(zone: Option<Zone>) -> &'static str {
     match zone {
-        Some(Zone::NoisyWeak) => "#e8787a",
-        Some(Zone::NoisyStrong) => "#f7b267",
-        Some(Zone::QuietStrong) => "#7fc97f",
-        Some(Zone::QuietWeak) => "#8fb8de",
-        None => "#dddddd",
+        Some(Zone::NoisyWeak) => "#D55E00",
+        Some(Zone::NoisyStrong) => "#F5ED84",
+        Some(Zone::QuietStrong) => "#009E73",
+        Some(Zone::QuietWeak) => "#56B4E9",
+        None => "#DDDDDD",
+    }
+}
+
+/// Every zone colour of the cell charts, the no-impact grey last (for tests/cvd.rs).
+pub fn zone_colors() -> [&'static str; 5] {
+    [
+        zone_color(Some(Zone::NoisyWeak)),
+        zone_color(Some(Zone::NoisyStrong)),
+        zone_color(Some(Zone::QuietStrong)),
+        zone_color(Some(Zone::QuietWeak)),
+        zone_color(None),
+    ]
+}
+
+/// Every zone colour of Fig 17's points, the no-zone grey last (for tests/cvd.rs).
+pub fn zone_dot_colors() -> [&'static str; 5] {
+    [
+        darker(Some(Zone::NoisyWeak)),
+        darker(Some(Zone::NoisyStrong)),
+        darker(Some(Zone::QuietStrong)),
+        darker(Some(Zone::QuietWeak)),
+        darker(None),
+    ]
+}
+
+/// The marker shape of a zone's points on Fig 17 (zone 1 circle, 2 square, 3 triangle, 4
+/// diamond, no zone a cross): the zone reads without colour.
+pub fn zone_shape(zone: Option<Zone>) -> Shape {
+    match zone {
+        Some(Zone::NoisyWeak) => Shape::Circle,
+        Some(Zone::NoisyStrong) => Shape::Square,
+        Some(Zone::QuietStrong) => Shape::Triangle,
+        Some(Zone::QuietWeak) => Shape::Diamond,
+        None => Shape::Cross,
     }
 }
 
@@ -101,8 +139,9 @@ fn draw_cells(
 ) {
     frame.grid(svg);
     let (ex, ey) = (edges(xs), edges(ys));
+    let most = 14.0 * svg.scale();
     let font =
-        ((frame.width / xs.len().max(1) as f64).min(frame.height / ys.len().max(1) as f64) * 0.5).clamp(6.0, 14.0);
+        ((frame.width / xs.len().max(1) as f64).min(frame.height / ys.len().max(1) as f64) * 0.5).clamp(6.0, most);
     for j in 0..ys.len() {
         for i in 0..xs.len() {
             let (fill, label) = cell(i, j);
@@ -143,21 +182,23 @@ fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds, dots: bool) {
         .zip(&labels)
         .map(|(z, l)| (if dots { darker(Some(*z)) } else { zone_color(Some(*z)) }, l.as_str()))
         .collect();
+    let k = svg.scale();
     if dots {
-        let x = frame.left + frame.width + 15.0;
-        for (k, (color, label)) in entries.iter().enumerate() {
-            let y = frame.top + 10.0 + 20.0 * k as f64;
-            svg.circle(x + 9.0, y - 4.0, 4.0, color);
-            svg.text(x + 24.0, y, label, 11.0, Anchor::Start, 0.0);
+        let x = frame.left + frame.width + 15.0 * k;
+        for (row, (zone, (color, label))) in ZONES.iter().zip(&entries).enumerate() {
+            let y = frame.top + (10.0 + 20.0 * row as f64) * k;
+            svg.marker(zone_shape(Some(*zone)), x + 9.0 * k, y - 4.0 * k, 4.0 * k, color);
+            svg.text(x + 24.0 * k, y, label, 11.0 * k, Anchor::Start, 0.0);
         }
     } else {
         entries.push((zone_color(None), "no impact"));
         legend(svg, frame, &entries);
     }
-    let x = frame.left + frame.width + 15.0;
-    let y = frame.top + 10.0 + 20.0 * entries.len() as f64 + 10.0;
-    svg.text(x, y, &format!("L* = {} dB", sig(t.spl_db, 4)), 12.0, Anchor::Start, 0.0);
-    svg.text(x, y + 18.0, &format!("e* = {} cm/s", sig(t.inclination_cm_s, 3)), 12.0, Anchor::Start, 0.0);
+    let x = frame.left + frame.width + 15.0 * k;
+    let y = frame.top + (10.0 + 20.0 * entries.len() as f64 + 10.0) * k;
+    svg.text(x, y, &minus(&format!("L* = {} dB", sig(t.spl_db, 4))), 12.0 * k, Anchor::Start, 0.0);
+    let e_star = minus(&format!("e* = {} cm/s", sig(t.inclination_cm_s, 3)));
+    svg.text(x, y + 18.0 * k, &e_star, 12.0 * k, Anchor::Start, 0.0);
 }
 
 /// A design's point on the Fig 17 chart: SPLmax (dB), inclination (cm/s) and zone.
@@ -198,12 +239,13 @@ pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str, look: &Lo
         (Zone::QuietStrong, 0.5 * (left + xl), 0.5 * (top + yl)),
         (Zone::QuietWeak, 0.5 * (left + xl), 0.5 * (yl + bottom)),
     ] {
-        svg.text_fill(cx, cy, &format!("zone {}", zone.number()), 22.0, Anchor::Middle, "#b0b0b0");
+        svg.text_fill(cx, cy, &format!("zone {}", zone.number()), 22.0 * svg.scale(), Anchor::Middle, "#b0b0b0");
     }
     frame.vline(&mut svg, t.spl_db, &format!("L* {} dB", sig(t.spl_db, 4)), "black");
     frame.hline(&mut svg, t.inclination_cm_s, &format!("e* {} cm/s", sig(t.inclination_cm_s, 3)), "black");
+    let r = 4.0 * svg.scale();
     for p in points {
-        svg.circle(frame.px(p.spl_db), frame.py(p.e_cm_s), 4.0, darker(p.zone));
+        svg.marker(zone_shape(p.zone), frame.px(p.spl_db), frame.py(p.e_cm_s), r, darker(p.zone));
     }
     zone_legend(&mut svg, &frame, t, true);
     svg.finish()
@@ -214,14 +256,15 @@ pub fn fig17(chart: &Chart, title: &str, look: &Look) -> String {
     fig17_points(&zone_points(chart), &chart.thresholds, title, look)
 }
 
-/// Marker colour of a zone (stronger than the cell fill).
+/// Marker colour of a zone on Fig 17 (points on white: zone 2 is Okabe–Ito's orange, not the
+/// cells' pale yellow; CVD-checked with the rest in tests/cvd.rs).
 fn darker(zone: Option<Zone>) -> &'static str {
     match zone {
-        Some(Zone::NoisyWeak) => "#d62728",
-        Some(Zone::NoisyStrong) => "#ff7f0e",
-        Some(Zone::QuietStrong) => "#2ca02c",
-        Some(Zone::QuietWeak) => "#1f77b4",
-        None => "#7f7f7f",
+        Some(Zone::NoisyWeak) => "#D55E00",
+        Some(Zone::NoisyStrong) => "#E69F00",
+        Some(Zone::QuietStrong) => "#009E73",
+        Some(Zone::QuietWeak) => "#0072B2",
+        None => "#333333",
     }
 }
 
@@ -321,6 +364,21 @@ fn split_unit(label: &str) -> (String, String) {
     }
 }
 
+/// The title of a paper item's figure: the table's own, except where the figure plots only
+/// part of the table, so the title says what is drawn.
+pub fn figure_title(table: &Table) -> String {
+    match table.id {
+        "table3" => {
+            "Table 3: SPLmax against impact mass for each gap (preset paper-table3), paper (points) vs model (lines)"
+                .to_string()
+        }
+        "fig3" => "Fig 3: dipole directivity, SPL and peak level against θ at r 0.7 m".to_string(),
+        "fig6" => "Fig 6: quadrupole directivity, SPL and peak level against θ at r 0.7 m".to_string(),
+        "fig12" => "Fig 12: the quadrupole's largest and smallest pressure against r".to_string(),
+        _ => table.title.clone(),
+    }
+}
+
 /// Whether the paper item `id` is drawn as a figure by [`paper_figure`].
 pub fn has_figure(id: &str) -> bool {
     plot_of(id).is_some()
@@ -370,8 +428,12 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds, look: &Look) -> Opti
                     for (gi, &g) in groups.iter().enumerate() {
                         let glabel = format!("{gname} {} {gunit}", sig(g, 4)).trim_end().to_string();
                         let name = if ys.len() > 1 { format!("{}, {glabel}", split_unit(&name).0) } else { glabel };
-                        let s = Series::new(&name, pick(Some(g)), style).colored(series_color(gi, groups.len()));
-                        series.push(s.shaped(Shape::nth(yi)));
+                        // Past the palette's colours a group repeats a colour with another
+                        // dash pattern, and (one column) another marker: no two curves alike.
+                        let shape = if ys.len() > 1 { Shape::nth(yi) } else { Shape::nth(gi) };
+                        let dash = if style == Style::Dashed { Some("7 4") } else { series_dash(gi) };
+                        let s = Series::new(&minus(&name), pick(Some(g)), style).colored(series_color(gi));
+                        series.push(s.shaped(shape).dashed(dash));
                     }
                 }
             }
@@ -381,7 +443,7 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds, look: &Look) -> Opti
             } else {
                 Axis::fit(&label(table, x), xv.clone())
             };
-            Some(line_plot(title, look, xa, Axis::fit(y_label, all_y), &series))
+            Some(line_plot(&figure_title(table), look, xa, Axis::fit(y_label, all_y), &series))
         }
         Plot::Cells { x, y, v } => Some(cell_map(table, x, y, v, look)),
         Plot::Zones => {
@@ -443,10 +505,11 @@ fn cell_map(table: &Table, x: &str, y: &str, v: &str, look: &Look) -> String {
         Some(a) => (ramp((a - lo) / (hi - lo).max(1e-300)), String::new()),
         None => ("#dddddd".into(), String::new()),
     });
-    let lx = frame.left + frame.width + 15.0;
-    svg.text(lx, frame.top + 4.0, &label(table, v), 12.0, Anchor::Start, 0.0);
+    let k = svg.scale();
+    let lx = frame.left + frame.width + 15.0 * k;
+    svg.text(lx, frame.top + 4.0 * k, &label(table, v), 12.0 * k, Anchor::Start, 0.0);
     if lo.is_finite() {
-        color_bar(&mut svg, lx, frame.top + 14.0, (frame.height - 14.0).min(240.0), (lo, hi));
+        color_bar(&mut svg, lx, frame.top + 14.0 * k, (frame.height - 14.0 * k).min(240.0 * k), (lo, hi));
     }
     svg.finish()
 }
@@ -456,16 +519,17 @@ fn cell_map(table: &Table, x: &str, y: &str, v: &str, look: &Look) -> String {
 fn color_bar(svg: &mut Svg, x: f64, top: f64, height: f64, (lo, hi): (f64, f64)) {
     const SLICES: usize = 48;
     let span = (hi - lo).max(1e-300);
+    let s = svg.scale();
     for k in 0..SLICES {
         let f = 1.0 - (k as f64 + 0.5) / SLICES as f64;
         let h = height / SLICES as f64;
-        svg.rect(x, top + h * k as f64, 22.0, h + 0.5, &ramp(f), None);
+        svg.rect(x, top + h * k as f64, 22.0 * s, h + 0.5, &ramp(f), None);
     }
-    svg.rect(x, top, 22.0, height, "none", Some("black"));
+    svg.rect(x, top, 22.0 * s, height, "none", Some("black"));
     for (v, text) in round_ticks(lo, hi) {
         let y = top + (1.0 - (v - lo) / span) * height;
-        svg.line((x + 22.0, y), (x + 27.0, y), "black", 1.0, None);
-        svg.text(x + 30.0, y + 4.0, &text, 12.0, Anchor::Start, 0.0);
+        svg.line((x + 22.0 * s, y), (x + 27.0 * s, y), "black", s, None);
+        svg.text(x + 30.0 * s, y + 4.0 * s, &minus(&text), 12.0 * s, Anchor::Start, 0.0);
     }
 }
 
@@ -496,7 +560,8 @@ pub fn response(r: &crate::response::Response, title: &str, look: &Look) -> Stri
     let (width, height) = (svg.width(), svg.height());
     // The two panels share the height left by the margins, 2 : 1.
     let top_margin = Frame::top_margin(&svg);
-    let free = height - top_margin - 70.0 - 70.0;
+    let (k, left) = (svg.scale(), Frame::left_margin(&svg));
+    let free = height - top_margin - 2.0 * Frame::bottom_margin(&svg);
     let (h_top, h_bottom) = (free * 2.0 / 3.0, free / 3.0);
     let label = |d: Direction| match d {
         Direction::FromRest => "with the damper".to_string(),
@@ -530,20 +595,26 @@ pub fn response(r: &crate::response::Response, title: &str, look: &Look) -> Stri
     let freqs = || r.sweeps.iter().flat_map(|s| s.points.iter().map(|p| p.freq_hz));
     let x = Axis::fit("forcing frequency f (Hz)", freqs());
     let y = Axis::fit_log("steady amplitude (mm)", amp.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-    let top = Frame { left: 85.0, top: top_margin, width: width - 85.0 - 200.0, height: h_top, x: x.clone(), y };
+    let top = Frame { left, top: top_margin, width: width - left - 200.0 * k, height: h_top, x: x.clone(), y };
     top.draw_panel(&mut svg, Some(title), "amplitude");
     draw_series_clipped(&mut svg, &top, &amp, "amplitude");
     let levels: Vec<f64> = leq.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(|v| v.is_finite()).collect();
     let y2 = Axis::fit("Leq at the observer (dB)", levels.iter().copied());
-    let bottom =
-        Frame { left: 85.0, top: top_margin + h_top + 70.0, width: width - 85.0 - 200.0, height: h_bottom, x, y: y2 };
+    let bottom = Frame {
+        left,
+        top: top_margin + h_top + Frame::bottom_margin(&svg),
+        width: width - left - 200.0 * k,
+        height: h_bottom,
+        x,
+        y: y2,
+    };
     bottom.draw_panel(&mut svg, None, "level");
     if levels.is_empty() {
         svg.text(
             bottom.left + bottom.width / 2.0,
             bottom.top + bottom.height / 2.0,
             "no impact at any frequency",
-            13.0,
+            13.0 * k,
             Anchor::Middle,
             0.0,
         );

@@ -10,10 +10,15 @@ pub const WIDTH: f64 = 860.0;
 /// Height of every figure (px).
 pub const HEIGHT: f64 = 540.0;
 
-/// Colours for series, in order (colour-blind friendly "tableau 10"); a figure of more series
-/// takes its colours from [`sequential`] instead, so no colour is used twice.
-pub const PALETTE: [&str; 10] =
-    ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+/// Colours for series, in order: the Okabe–Ito palette (Okabe & Ito 2008, "Color Universal
+/// Design"), without its yellow, which is too faint on white. Every pair stays apart under
+/// deuteranopia and protanopia (CIEDE2000 ΔE ≥ 10 after the Machado et al. 2009 simulation:
+/// tests/cvd.rs). A figure of more curves repeats a colour with another dash pattern
+/// ([`series_dash`]) and marker ([`Shape::nth`]), so no two curves look alike.
+pub const PALETTE: [&str; 7] = ["#0072B2", "#D55E00", "#009E73", "#E69F00", "#CC79A7", "#56B4E9", "#000000"];
+
+/// The dash patterns that tell apart curves of one colour: solid, dashed, dotted, dash-dot.
+pub const DASHES: [Option<&str>; 4] = [None, Some("7 4"), Some("2 3"), Some("8 3 2 3")];
 
 /// The smallest figure size `--size` takes (px): room for the axes and a legend.
 pub const MIN_SIZE: (f64, f64) = (480.0, 320.0);
@@ -36,26 +41,33 @@ impl Default for Look {
     }
 }
 
-/// Colour `k` of `n` distinct colours: the palette for up to 10, else evenly spaced along a
-/// sequential map ([`sequential`]).
-pub fn series_color(k: usize, n: usize) -> String {
-    if n <= PALETTE.len() {
-        PALETTE[k % PALETTE.len()].to_string()
-    } else {
-        sequential(k as f64 / (n - 1).max(1) as f64)
-    }
+/// Colour of curve `k` (from 0): the palette's, cycling.
+pub fn series_color(k: usize) -> String {
+    PALETTE[k % PALETTE.len()].to_string()
 }
 
-/// A colour of the sequential "viridis" map at `f` in [0, 1] (dark purple to green; stops at
-/// 0.85 of the map, before its pale yellow end, so every colour reads on white).
-pub fn sequential(f: f64) -> String {
-    let f = if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.0 } * 0.85;
-    let stops: [(f64, f64, f64); 5] =
-        [(68.0, 1.0, 84.0), (59.0, 82.0, 139.0), (33.0, 145.0, 140.0), (94.0, 201.0, 98.0), (253.0, 231.0, 37.0)];
-    let k = ((f * 4.0).floor() as usize).min(3);
-    let (a, b, t) = (stops[k], stops[k + 1], f * 4.0 - k as f64);
-    let mix = |p: f64, q: f64| (p + (q - p) * t).round() as u8;
-    format!("#{:02x}{:02x}{:02x}", mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+/// The dash pattern of curve `k`: solid for the first round of the palette's colours, then
+/// dashed, dotted and dash-dot, so curve `k` and curve `k + 7` (one colour) differ.
+pub fn series_dash(k: usize) -> Option<&'static str> {
+    DASHES[(k / PALETTE.len()) % DASHES.len()]
+}
+
+/// `text` with the hyphen of every negative number set as a true minus sign (U+2212): `-2.5`
+/// → `−2.5`, `1e-3` → `1e−3`; a hyphen between words stays.
+pub fn minus(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len() + 4);
+    for (i, &c) in chars.iter().enumerate() {
+        let next_is_digit = chars.get(i + 1).is_some_and(|d| d.is_ascii_digit() || *d == '.');
+        let exponent = i > 1 && chars[i - 1] == 'e' && chars[i - 2].is_ascii_digit();
+        let prev_is_word = i > 0 && (chars[i - 1] == '_' || chars[i - 1].is_alphabetic() && !exponent);
+        if c == '-' && next_is_digit && !prev_is_word {
+            out.push('\u{2212}');
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// Escapes text for XML content and attribute values.
@@ -139,6 +151,13 @@ impl Svg {
     /// Height of the canvas (px).
     pub fn height(&self) -> f64 {
         self.height
+    }
+
+    /// How much the figure's text and margins grow with its size: 1 at the default 860 × 540,
+    /// in proportion to the smaller of the two ratios to it (`--size 1720x1080` draws text twice
+    /// as large), never below 0.75 (the smallest size, 480 × 320) or above 4.
+    pub fn scale(&self) -> f64 {
+        (self.width / WIDTH).min(self.height / HEIGHT).clamp(0.75, 4.0)
     }
 
     /// Whether the title is drawn above the plot.
@@ -233,6 +252,36 @@ impl Svg {
                     escape(fill)
                 );
             }
+            Shape::TriangleDown => {
+                let _ = writeln!(
+                    self.body,
+                    r#"<polygon points="{}" fill="{}"/>"#,
+                    poly(&[(0.0, 1.2), (1.1, -0.9), (-1.1, -0.9)]),
+                    escape(fill)
+                );
+            }
+            Shape::Cross => {
+                let (a, b) = (1.1, 0.38);
+                let _ = writeln!(
+                    self.body,
+                    r#"<polygon points="{}" fill="{}"/>"#,
+                    poly(&[
+                        (-b, -a),
+                        (b, -a),
+                        (b, -b),
+                        (a, -b),
+                        (a, b),
+                        (b, b),
+                        (b, a),
+                        (-b, a),
+                        (-b, b),
+                        (-a, b),
+                        (-a, -b),
+                        (-b, -b)
+                    ]),
+                    escape(fill)
+                );
+            }
         }
     }
 
@@ -299,30 +348,32 @@ pub struct Axis {
 }
 
 impl Axis {
-    /// A linear axis over the finite `values`, widened by 5 % each side and to nice ticks.
+    /// A linear axis over the finite `values` that ends on round ticks around them, chosen
+    /// to waste the least room ([`tick_step`]): ±90° data span −90 to 90 (ticks every 30°),
+    /// 0.13–2.71 spans 0 to 3.
     pub fn fit(label: &str, values: impl IntoIterator<Item = f64>) -> Axis {
         let (lo, hi) = finite_range(values).unwrap_or((0.0, 1.0));
         let (lo, hi) = if hi - lo > 0.0 {
-            let pad = 0.05 * (hi - lo);
-            (lo - pad, hi + pad)
+            (lo, hi)
         } else {
             let w = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
             (lo - w, hi + w)
         };
-        let step = nice_step((hi - lo) / 20.0);
+        let step = tick_step(lo, hi, is_angle(label));
         Axis {
             label: label.into(),
-            lo: (lo / step).floor() * step,
-            hi: (hi / step).ceil() * step,
+            lo: (lo / step + 1e-9).floor() * step,
+            hi: (hi / step - 1e-9).ceil() * step,
             scale: Scale::Linear,
         }
     }
 
-    /// A logarithmic axis over the positive `values`, to whole decades.
+    /// A logarithmic axis over the positive `values`, from the largest 1-2-5 value at or below
+    /// the smallest to the smallest at or above the largest: 0.05–20 m data span 0.05 to 20.
     pub fn fit_log(label: &str, values: impl IntoIterator<Item = f64>) -> Axis {
         let (lo, hi) = finite_range(values.into_iter().filter(|v| *v > 0.0)).unwrap_or((1.0, 10.0));
-        let (lo, hi) = (10f64.powf(lo.log10().floor()), 10f64.powf(hi.log10().ceil()));
-        Axis { label: label.into(), lo, hi: if hi > lo { hi } else { lo * 10.0 }, scale: Scale::Log }
+        let (lo, hi) = (round_125(lo, false), round_125(hi, true));
+        Axis { label: label.into(), lo, hi: if hi > lo { hi } else { round_125(lo * 1.01, true) }, scale: Scale::Log }
     }
 
     /// A linear axis from `lo` to `hi` exactly.
@@ -338,32 +389,93 @@ impl Axis {
         }
     }
 
-    /// Tick values and their labels.
+    /// Tick values and their labels (a true minus sign for negative values).
     pub fn ticks(&self) -> Vec<(f64, String)> {
         match self.scale {
             Scale::Linear => {
-                let step = nice_step((self.hi - self.lo) / 7.0);
-                let decimals = (-step.log10().floor()).max(0.0) as usize;
+                let step = tick_step(self.lo, self.hi, is_angle(&self.label));
+                let decimals = decimals(step);
                 let first = (self.lo / step - 1e-9).ceil() as i64;
                 let last = (self.hi / step + 1e-9).floor() as i64;
                 (first..=last)
                     .map(|k| {
                         let v = k as f64 * step;
                         let v = if v.abs() < 1e-12 * step { 0.0 } else { v };
-                        (v, format!("{v:.decimals$}"))
+                        (v, minus(&format!("{v:.decimals$}")))
                     })
                     .collect()
             }
             Scale::Log => {
-                let (a, b) = (self.lo.log10().round() as i32, self.hi.log10().round() as i32);
-                let mults: &[f64] = if b - a <= 2 { &[1.0, 2.0, 5.0] } else { &[1.0] };
-                (a..=b)
-                    .flat_map(|k| mults.iter().map(move |m| m * 10f64.powi(k)))
-                    .filter(|v| *v >= self.lo * (1.0 - 1e-9) && *v <= self.hi * (1.0 + 1e-9))
-                    .map(|v| (v, format_log_tick(v)))
-                    .collect()
+                let (a, b) = (self.lo.log10().floor() as i32, self.hi.log10().ceil() as i32);
+                let mults: &[f64] = if self.hi / self.lo <= 1e4 { &[1.0, 2.0, 5.0] } else { &[1.0] };
+                let inside = |v: &f64| *v >= self.lo * (1.0 - 1e-9) && *v <= self.hi * (1.0 + 1e-9);
+                let mut values: Vec<f64> =
+                    (a..=b).flat_map(|k| mults.iter().map(move |m| m * 10f64.powi(k))).filter(inside).collect();
+                // The axis ends on its two ends' values (1-2-5 values, from Axis::fit_log).
+                for end in [self.lo, self.hi] {
+                    if !values.iter().any(|v| (v / end - 1.0).abs() < 1e-9) {
+                        values.push(end);
+                    }
+                }
+                values.sort_by(f64::total_cmp);
+                values.into_iter().map(|v| (v, minus(&format_log_tick(v)))).collect()
             }
         }
+    }
+}
+
+/// Whether an axis label is of an angle in degrees (its ticks may step by 15°, 30°, 45°, 90°).
+fn is_angle(label: &str) -> bool {
+    label.ends_with("(deg)") || label.ends_with("(°)")
+}
+
+/// Decimals a tick label of step `step` needs (2.5 → 1).
+fn decimals(step: f64) -> usize {
+    (0..=12)
+        .find(|&d| {
+            ((step * 10f64.powi(d)).round() - step * 10f64.powi(d)).abs() < 1e-6 * step.max(1e-300) * 10f64.powi(d)
+        })
+        .unwrap_or(12) as usize
+}
+
+/// The tick step for data `lo..hi`: of the round steps (1, 2, 2.5 and 5 times a power of ten,
+/// and 15°, 30°, 45° and 90° on an angle axis), the one whose ticks around the data leave the
+/// least empty room, with 3 to 10 intervals (a near tie goes to about six intervals).
+pub fn tick_step(lo: f64, hi: f64, angle: bool) -> f64 {
+    let span = hi - lo;
+    if !(span.is_finite() && span > 0.0) {
+        return 1.0;
+    }
+    let mag = 10f64.powf((span / 6.0).log10().floor());
+    let mut candidates: Vec<f64> =
+        [0.1, 0.2, 0.25, 0.5, 1.0, 2.0, 2.5, 5.0, 10.0, 20.0, 25.0, 50.0].iter().map(|m| m * mag).collect();
+    if angle {
+        candidates.extend([15.0, 30.0, 45.0, 90.0]);
+    }
+    let score = |step: f64| {
+        let (a, b) = ((lo / step + 1e-9).floor(), (hi / step - 1e-9).ceil());
+        let n = b - a;
+        if !(3.0..=10.0).contains(&n) {
+            return f64::INFINITY;
+        }
+        (1.0 - span / (n * step)) + 0.02 * (n - 6.0).abs()
+    };
+    candidates
+        .into_iter()
+        .min_by(|a, b| score(*a).total_cmp(&score(*b)))
+        .filter(|s| score(*s).is_finite())
+        .unwrap_or_else(|| nice_step(span / 6.0))
+}
+
+/// The nearest 1-2-5 value (1, 2 or 5 times a power of ten) at or above `v` (`up`), or at or
+/// below it.
+fn round_125(v: f64, up: bool) -> f64 {
+    let mag = 10f64.powf(v.log10().floor());
+    let steps = [1.0, 2.0, 5.0, 10.0];
+    if up {
+        steps.iter().map(|s| s * mag).find(|s| *s >= v * (1.0 - 1e-9)).unwrap_or(10.0 * mag)
+    } else {
+        steps.iter().rev().map(|s| s * mag).find(|s| *s <= v * (1.0 + 1e-9)).unwrap_or(mag)
     }
 }
 
@@ -424,18 +536,36 @@ impl Frame {
     /// The standard frame of a figure on `svg`'s canvas; `legend` leaves room on the right, a
     /// drawn title room at the top.
     pub fn standard(svg: &Svg, x: Axis, y: Axis, legend: bool) -> Frame {
-        let right = if legend { 200.0 } else { 30.0 };
-        let top = Frame::top_margin(svg);
-        Frame { left: 85.0, top, width: svg.width() - 85.0 - right, height: svg.height() - top - 70.0, x, y }
+        let s = svg.scale();
+        let right = if legend { 200.0 } else { 30.0 } * s;
+        let (top, left) = (Frame::top_margin(svg), Frame::left_margin(svg));
+        Frame {
+            left,
+            top,
+            width: svg.width() - left - right,
+            height: svg.height() - top - Frame::bottom_margin(svg),
+            x,
+            y,
+        }
     }
 
-    /// Room above the plotting area (px): for the title if drawn.
+    /// Room above the plotting area (px): for the title if drawn; grows with the text.
     pub fn top_margin(svg: &Svg) -> f64 {
         if svg.shows_title() {
-            50.0
+            50.0 * svg.scale()
         } else {
-            20.0
+            20.0 * svg.scale()
         }
+    }
+
+    /// Room left of the plotting area (px): the tick labels and the y axis's label.
+    pub fn left_margin(svg: &Svg) -> f64 {
+        85.0 * svg.scale()
+    }
+
+    /// Room below the plotting area (px): the tick labels and the x axis's label.
+    pub fn bottom_margin(svg: &Svg) -> f64 {
+        70.0 * svg.scale()
     }
 
     /// Pixel x of data value `v`.
@@ -485,40 +615,41 @@ impl Frame {
             n(self.width),
             n(self.height)
         ));
+        let k = svg.scale();
         if let Some(title) = title.filter(|_| svg.shows_title()) {
             let room = svg.width() / WIDTH;
-            let size = (17.0 * 78.0 * room / title.chars().count().max(1) as f64).clamp(11.0, 17.0);
-            svg.text(svg.width() / 2.0, 28.0, title, size, Anchor::Middle, 0.0);
+            let size = (17.0 * 78.0 * room / title.chars().count().max(1) as f64).clamp(11.0 * k, 17.0 * k);
+            svg.text(svg.width() / 2.0, 28.0 * k, &minus(title), size, Anchor::Middle, 0.0);
         }
         let bottom = self.top + self.height;
         for (v, label) in self.x.ticks() {
             let x = self.px(v);
-            svg.line((x, bottom), (x, bottom + 5.0), "black", 1.0, None);
-            svg.text(x, bottom + 20.0, &label, 12.0, Anchor::Middle, 0.0);
+            svg.line((x, bottom), (x, bottom + 5.0 * k), "black", k, None);
+            svg.text(x, bottom + 20.0 * k, &label, 12.0 * k, Anchor::Middle, 0.0);
         }
         for (v, label) in self.y.ticks() {
             let y = self.py(v);
-            svg.line((self.left - 5.0, y), (self.left, y), "black", 1.0, None);
-            svg.text(self.left - 8.0, y + 4.0, &label, 12.0, Anchor::End, 0.0);
+            svg.line((self.left - 5.0 * k, y), (self.left, y), "black", k, None);
+            svg.text(self.left - 8.0 * k, y + 4.0 * k, &label, 12.0 * k, Anchor::End, 0.0);
         }
         svg.rect(self.left, self.top, self.width, self.height, "none", Some("black"));
-        svg.text(self.left + self.width / 2.0, bottom + 48.0, &self.x.label, 14.0, Anchor::Middle, 0.0);
+        svg.text(self.left + self.width / 2.0, bottom + 48.0 * k, &self.x.label, 14.0 * k, Anchor::Middle, 0.0);
         let yc = self.top + self.height / 2.0;
-        svg.text(22.0, yc, &self.y.label, 14.0, Anchor::Middle, -90.0);
+        svg.text(22.0 * k, yc, &self.y.label, 14.0 * k, Anchor::Middle, -90.0);
     }
 
     /// A horizontal reference line at `v` with a label at its right end.
     pub fn hline(&self, svg: &mut Svg, v: f64, label: &str, color: &str) {
-        let y = self.py(v);
-        svg.line((self.left, y), (self.left + self.width, y), color, 1.5, Some("6 4"));
-        svg.text(self.left + self.width - 4.0, y - 5.0, label, 12.0, Anchor::End, 0.0);
+        let (y, k) = (self.py(v), svg.scale());
+        svg.line((self.left, y), (self.left + self.width, y), color, 1.5 * k, Some("6 4"));
+        svg.text(self.left + self.width - 4.0 * k, y - 5.0 * k, &minus(label), 12.0 * k, Anchor::End, 0.0);
     }
 
     /// A vertical reference line at `v` with a label at its top.
     pub fn vline(&self, svg: &mut Svg, v: f64, label: &str, color: &str) {
-        let x = self.px(v);
-        svg.line((x, self.top), (x, self.top + self.height), color, 1.5, Some("6 4"));
-        svg.text(x + 4.0, self.top + 14.0, label, 12.0, Anchor::Start, 0.0);
+        let (x, k) = (self.px(v), svg.scale());
+        svg.line((x, self.top), (x, self.top + self.height), color, 1.5 * k, Some("6 4"));
+        svg.text(x + 4.0 * k, self.top + 14.0 * k, &minus(label), 12.0 * k, Anchor::Start, 0.0);
     }
 }
 
@@ -539,12 +670,18 @@ pub enum Shape {
     Square,
     Triangle,
     Diamond,
+    TriangleDown,
+    Cross,
 }
 
 impl Shape {
-    /// Shape number `k` (cycling through the four).
+    /// The shapes, in the order curves take them.
+    pub const ALL: [Shape; 6] =
+        [Shape::Circle, Shape::Square, Shape::Triangle, Shape::Diamond, Shape::TriangleDown, Shape::Cross];
+
+    /// Shape number `k` (cycling through the six).
     pub fn nth(k: usize) -> Shape {
-        [Shape::Circle, Shape::Square, Shape::Triangle, Shape::Diamond][k % 4]
+        Shape::ALL[k % Shape::ALL.len()]
     }
 }
 
@@ -558,11 +695,21 @@ pub struct Series {
     pub color: Option<String>,
     /// Its marker shape; None: the k-th ([`Shape::nth`]).
     pub shape: Option<Shape>,
+    /// Its line's dash pattern (None inside: solid); None: a [`Style::Dashed`] series' dashes,
+    /// else the k-th's ([`series_dash`]).
+    pub dash: Option<Option<&'static str>>,
 }
 
 impl Series {
     pub fn new(label: &str, points: Vec<(f64, f64)>, style: Style) -> Series {
-        Series { label: label.into(), points, style, color: None, shape: None }
+        Series { label: label.into(), points, style, color: None, shape: None, dash: None }
+    }
+
+    /// The series' line drawn with dash pattern `dash` (None: solid).
+    #[must_use]
+    pub fn dashed(mut self, dash: Option<&'static str>) -> Series {
+        self.dash = Some(dash);
+        self
     }
 
     /// The series drawn in `color`.
@@ -580,13 +727,24 @@ impl Series {
     }
 }
 
-/// The colour and marker shape each series is drawn with: its own, else the k-th of `n`.
-fn looks(series: &[Series]) -> Vec<(String, Shape)> {
-    let n = series.len();
+/// How one series is drawn: colour, marker shape and dash pattern (None: solid).
+#[derive(Debug, Clone, PartialEq)]
+struct SeriesLook {
+    color: String,
+    shape: Shape,
+    dash: Option<&'static str>,
+}
+
+/// The look each series is drawn with: its own, else the k-th colour, shape and dash.
+fn looks(series: &[Series]) -> Vec<SeriesLook> {
     series
         .iter()
         .enumerate()
-        .map(|(k, s)| (s.color.clone().unwrap_or_else(|| series_color(k, n)), s.shape.unwrap_or(Shape::nth(k))))
+        .map(|(k, s)| SeriesLook {
+            color: s.color.clone().unwrap_or_else(|| series_color(k)),
+            shape: s.shape.unwrap_or(Shape::nth(k)),
+            dash: s.dash.unwrap_or(if s.style == Style::Dashed { Some("7 4") } else { series_dash(k) }),
+        })
         .collect()
 }
 
@@ -599,14 +757,14 @@ pub fn draw_series(svg: &mut Svg, frame: &Frame, series: &[Series]) {
 /// As [`draw_series`], clipped to the clip path `clip` (a panel's, see [`Frame::draw_panel`]).
 pub fn draw_series_clipped(svg: &mut Svg, frame: &Frame, series: &[Series], clip: &str) {
     let looks = looks(series);
-    for (s, (color, shape)) in series.iter().zip(&looks) {
-        let color = color.as_str();
+    let k = svg.scale();
+    for (s, look) in series.iter().zip(&looks) {
+        let color = look.color.as_str();
         let lines = matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers);
-        let dash = (s.style == Style::Dashed).then_some("7 4");
         if lines {
             for run in s.points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
                 let px: Vec<(f64, f64)> = run.iter().map(|&(x, y)| (frame.px(x), frame.py(y))).collect();
-                svg.polyline(&px, color, 1.8, dash, Some(clip));
+                svg.polyline(&px, color, 1.8 * k, look.dash, Some(clip));
             }
         }
         if matches!(s.style, Style::Markers | Style::LineMarkers) {
@@ -615,7 +773,7 @@ pub fn draw_series_clipped(svg: &mut Svg, frame: &Frame, series: &[Series], clip
                 let inside = (frame.left..=frame.left + frame.width).contains(&cx)
                     && (frame.top..=frame.top + frame.height).contains(&cy);
                 if inside {
-                    svg.marker(*shape, cx, cy, 3.2, color);
+                    svg.marker(look.shape, cx, cy, 3.2 * k, color);
                 }
             }
         }
@@ -625,30 +783,46 @@ pub fn draw_series_clipped(svg: &mut Svg, frame: &Frame, series: &[Series], clip
     }
 }
 
-/// The legend of `series`, each entry drawn as the series is: a short line (dashed if the
-/// series is) and its marker, in its colour.
-fn series_legend(svg: &mut Svg, frame: &Frame, series: &[Series], looks: &[(String, Shape)]) {
-    let x = frame.left + frame.width + 12.0;
-    for (k, (s, (color, shape))) in series.iter().zip(looks).enumerate() {
-        let y = frame.top + 10.0 + 20.0 * k as f64;
+/// The order of the legend's entries: the curves' own order top to bottom where they end (by
+/// the last finite value of each, highest first), so the legend reads as the curves lie.
+pub fn legend_order(series: &[Series]) -> Vec<usize> {
+    let last = |s: &Series| s.points.iter().rev().find(|p| p.0.is_finite() && p.1.is_finite()).map(|p| p.1);
+    let mut order: Vec<usize> = (0..series.len()).collect();
+    order.sort_by(|&a, &b| match (last(&series[a]), last(&series[b])) {
+        (Some(x), Some(y)) => y.total_cmp(&x).then(a.cmp(&b)),
+        (Some(_), None) => std::cmp::Ordering::Less,
+        (None, Some(_)) => std::cmp::Ordering::Greater,
+        (None, None) => a.cmp(&b),
+    });
+    order
+}
+
+/// The legend of `series`, each entry drawn as the series is: a short line (with its dashes)
+/// and its marker, in its colour, in the curves' order top to bottom ([`legend_order`]).
+fn series_legend(svg: &mut Svg, frame: &Frame, series: &[Series], looks: &[SeriesLook]) {
+    let k = svg.scale();
+    let x = frame.left + frame.width + 12.0 * k;
+    for (row, i) in legend_order(series).into_iter().enumerate() {
+        let (s, look) = (&series[i], &looks[i]);
+        let y = frame.top + (10.0 + 20.0 * row as f64) * k;
         if matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers) {
-            let dash = (s.style == Style::Dashed).then_some("7 4");
-            svg.line((x, y - 4.0), (x + 24.0, y - 4.0), color, 1.8, dash);
+            svg.line((x, y - 4.0 * k), (x + 24.0 * k, y - 4.0 * k), &look.color, 1.8 * k, look.dash);
         }
         if matches!(s.style, Style::Markers | Style::LineMarkers) {
-            svg.marker(*shape, x + 12.0, y - 4.0, 3.2, color);
+            svg.marker(look.shape, x + 12.0 * k, y - 4.0 * k, 3.2 * k, &look.color);
         }
-        svg.text(x + 30.0, y, &s.label, 11.0, Anchor::Start, 0.0);
+        svg.text(x + 30.0 * k, y, &minus(&s.label), 11.0 * k, Anchor::Start, 0.0);
     }
 }
 
 /// A legend of coloured swatches (cell fills) to the right of the frame.
 pub fn legend(svg: &mut Svg, frame: &Frame, entries: &[(&str, &str)]) {
-    let x = frame.left + frame.width + 15.0;
+    let s = svg.scale();
+    let x = frame.left + frame.width + 15.0 * s;
     for (k, (color, label)) in entries.iter().enumerate() {
-        let y = frame.top + 10.0 + 20.0 * k as f64;
-        svg.rect(x, y - 9.0, 18.0, 10.0, color, None);
-        svg.text(x + 24.0, y, label, 11.0, Anchor::Start, 0.0);
+        let y = frame.top + (10.0 + 20.0 * k as f64) * s;
+        svg.rect(x, y - 9.0 * s, 18.0 * s, 10.0 * s, color, Some("#333333"));
+        svg.text(x + 24.0 * s, y, label, 11.0 * s, Anchor::Start, 0.0);
     }
 }
 
@@ -681,8 +855,19 @@ mod tests {
         assert!(t.len() >= 4 && t.len() <= 15, "{t:?}");
         assert!(t.iter().all(|(v, _)| *v >= a.lo - 1e-12 && *v <= a.hi + 1e-12));
         assert_eq!(nice_step(0.33), 0.5);
+        // Figs 7 and 12: 0.05–20 m of data span 0.05 to 20 m, not whole decades.
         let l = Axis::fit_log("r", [0.05, 20.0]);
-        assert_eq!((l.lo, l.hi), (0.01, 100.0));
-        assert_eq!(l.ticks().iter().map(|t| t.1.as_str()).collect::<Vec<_>>(), ["0.01", "0.1", "1", "10", "100"]);
+        assert_eq!((l.lo, l.hi), (0.05, 20.0));
+        let labels: Vec<String> = l.ticks().into_iter().map(|t| t.1).collect();
+        assert_eq!(labels, ["0.05", "0.1", "0.2", "0.5", "1", "2", "5", "10", "20"]);
+        // Fig 3: ±90° of data span −90 to 90, ticks every 30°, with a true minus sign.
+        let a = Axis::fit("observer angle θ (deg)", [-90.0, -45.0, 90.0]);
+        assert_eq!((a.lo, a.hi), (-90.0, 90.0));
+        let labels: Vec<String> = a.ticks().into_iter().map(|t| t.1).collect();
+        assert_eq!(labels, ["\u{2212}90", "\u{2212}60", "\u{2212}30", "0", "30", "60", "90"]);
+        // A plain axis ends on ticks around its data and wastes little room.
+        let b = Axis::fit("x", [0.13, 2.71]);
+        assert!(b.lo <= 0.13 && b.hi >= 2.71 && (b.hi - b.lo) <= 1.3 * (2.71 - 0.13), "{b:?}");
+        assert_eq!(minus("-2.5 and 1e-3, a well-known x-1"), "\u{2212}2.5 and 1e\u{2212}3, a well-known x-1");
     }
 }

@@ -9,7 +9,7 @@ use std::collections::BTreeSet;
 use common::thud;
 use roxmltree::{Document, Node};
 use thud::design::{linspace, Thresholds};
-use thud::export::svg::Look;
+use thud::export::svg::{Look, PALETTE};
 use thud::export::{self, figures, Artifact, ExportOptions};
 use thud::{paper, presets};
 
@@ -101,19 +101,29 @@ fn legend_glyphs_are_drawn_as_their_series_line_dash_and_marker() {
     assert!(legend_marks.contains(&solid.0), "the line + markers series has its marker in the legend");
     let dashed = curves.iter().find(|c| c.1).unwrap();
     assert!(!legend_marks.contains(&dashed.0), "the dashed series has no marker");
-    assert!(!doc.contains(r##"height="10" fill="#1f77b4""##), "no plain swatch for a line series");
+    assert!(!doc.contains(&format!(r#"height="10" fill="{}""#, PALETTE[0])), "no plain swatch for a line series");
 }
 
 #[test]
-fn no_colour_stands_for_two_curves_and_paper_and_model_share_a_gap_s_colour() {
-    // Fig 10: one curve per impact mass (15 of them, more than the palette's 10).
-    let doc = paper_svg("fig10");
-    let (curves, _, _) = series_and_legend(&doc, 660.0);
-    let xml = Document::parse(&doc).unwrap();
-    let strokes: Vec<&str> =
-        xml.descendants().filter(|n| n.has_tag_name("polyline")).map(|n| n.attribute("stroke").unwrap()).collect();
-    assert!(strokes.len() >= 15, "{}", strokes.len());
-    assert_eq!(curves.len(), strokes.len(), "every curve has a colour of its own: {strokes:?}");
+fn no_two_curves_look_alike_and_paper_and_model_share_a_gap_s_colour() {
+    // Fig 10: one curve per impact mass (15 of them, more than the palette's 7 colours): each
+    // in a palette colour, and no two with the same colour and dash pattern.
+    for id in ["fig10", "fig11", "fig14"] {
+        let doc = paper_svg(id);
+        let xml = Document::parse(&doc).unwrap();
+        let looks: Vec<(String, String)> = xml
+            .descendants()
+            .filter(|n| n.has_tag_name("polyline"))
+            .map(|n| {
+                let dash = n.attribute("stroke-dasharray").unwrap_or("solid").to_string();
+                (n.attribute("stroke").unwrap().to_string(), dash)
+            })
+            .collect();
+        assert!(looks.len() >= 10, "{id}: {}", looks.len());
+        let distinct: BTreeSet<&(String, String)> = looks.iter().collect();
+        assert_eq!(distinct.len(), looks.len(), "{id}: two curves look alike: {looks:?}");
+        assert!(looks.iter().all(|(c, _)| PALETTE.contains(&c.as_str())), "{id}: {looks:?}");
+    }
     // Table 3: the paper's points and the model's line of each gap in one colour, gaps apart.
     let doc = paper_svg("table3");
     let xml = Document::parse(&doc).unwrap();
@@ -126,6 +136,113 @@ fn no_colour_stands_for_two_curves_and_paper_and_model_share_a_gap_s_colour() {
         .collect();
     assert!(lines.len() >= 3, "one colour per gap: {lines:?}");
     assert_eq!(lines, points, "the paper's points and the model's line of a gap share its colour");
+}
+
+/// The texts of `doc` right of x = `right` (the legend), top to bottom.
+fn legend_texts(doc: &str, right: f64) -> Vec<String> {
+    let xml = Document::parse(doc).unwrap();
+    let mut t: Vec<(f64, String)> = xml
+        .descendants()
+        .filter(|n| n.has_tag_name("text") && attr(n, "x") > right)
+        .map(|n| (attr(&n, "y"), n.text().unwrap_or_default().to_string()))
+        .collect();
+    t.sort_by(|a, b| a.0.total_cmp(&b.0));
+    t.into_iter().map(|p| p.1).collect()
+}
+
+#[test]
+fn the_legend_lists_the_curves_in_the_order_they_lie() {
+    // Fig 11: SPLmax against mass, one curve per gap. The legend runs top to bottom as the
+    // curves end at the right edge, highest first.
+    let table = paper::get("fig11").unwrap().unwrap();
+    let series_end: Vec<(String, f64)> = {
+        let gap = table.columns.iter().position(|c| c.key == "gap_cm").unwrap();
+        let spl = table.columns.iter().position(|c| c.key == "spl_max_db").unwrap();
+        let mass = table.columns.iter().position(|c| c.key == "mass_g").unwrap();
+        let num = |v: &paper::Value| if let paper::Value::Num(x) = v { *x } else { f64::NAN };
+        let mut ends: Vec<(f64, f64, f64)> = Vec::new(); // (gap, mass, spl) of the largest mass per gap
+        for row in &table.rows {
+            let (g, m, y) = (num(&row[gap]), num(&row[mass]), num(&row[spl]));
+            match ends.iter_mut().find(|e| e.0 == g) {
+                Some(e) if m > e.1 && y.is_finite() => *e = (g, m, y),
+                Some(_) => {}
+                None if y.is_finite() => ends.push((g, m, y)),
+                None => {}
+            }
+        }
+        ends.sort_by(|a, b| b.2.total_cmp(&a.2));
+        ends.into_iter().map(|e| (thud::units::sig(e.0, 4), e.2)).collect()
+    };
+    let doc = paper_svg("fig11");
+    let legend: Vec<String> = legend_texts(&doc, 660.0);
+    let order: Vec<String> =
+        legend.iter().map(|l| l.split_whitespace().nth(1).unwrap_or_default().to_string()).collect();
+    let want: Vec<String> = series_end.iter().map(|e| e.0.clone()).collect();
+    assert_eq!(order, want, "legend {legend:?}");
+}
+
+#[test]
+fn axes_fit_the_data_on_round_ticks_with_a_true_minus_and_units() {
+    let ticks = |doc: &str, below: f64| -> Vec<String> {
+        let xml = Document::parse(doc).unwrap();
+        xml.descendants()
+            .filter(|n| n.has_tag_name("text") && attr(n, "y") > below && attr(n, "y") < below + 40.0)
+            .filter(|n| n.attribute("text-anchor") == Some("middle"))
+            .map(|n| n.text().unwrap().to_string())
+            .collect()
+    };
+    // Fig 3: θ from −90° to 90°, not ±100°.
+    let doc = paper_svg("fig3");
+    let xml = Document::parse(&doc).unwrap();
+    let frame = xml
+        .descendants()
+        .find(|n| n.has_tag_name("rect") && n.attribute("fill") == Some("none"))
+        .map(|n| attr(&n, "y") + attr(&n, "height"))
+        .unwrap();
+    let x_ticks = ticks(&doc, frame);
+    assert_eq!(x_ticks.first().map(String::as_str), Some("\u{2212}90"), "{x_ticks:?}");
+    assert_eq!(x_ticks.iter().rev().find(|t| t.parse::<f64>().is_ok()).map(String::as_str), Some("90"), "{x_ticks:?}");
+    assert!(!doc.contains(">-"), "a hyphen for a minus sign");
+    // Figs 7 and 12: r from 0.05 m to 20 m, not 0.01–100 m.
+    for id in ["fig7", "fig12"] {
+        let doc = paper_svg(id);
+        let labels = ticks(&doc, frame);
+        assert!(labels.contains(&"0.05".to_string()) && labels.contains(&"20".to_string()), "{id}: {labels:?}");
+        assert!(!labels.contains(&"100".to_string()) && !labels.contains(&"0.01".to_string()), "{id}: {labels:?}");
+    }
+    // Every axis label of every figure carries a unit in parentheses.
+    for kind in [Artifact::SvgWaveform, Artifact::SvgDirectivity, Artifact::SvgHistory, Artifact::SvgRestitution] {
+        let doc = svg_of(kind);
+        let xml = Document::parse(&doc).unwrap();
+        let rotated: Vec<&str> = xml
+            .descendants()
+            .filter(|n| n.has_tag_name("text") && n.attribute("transform").is_some())
+            .map(|n| n.text().unwrap())
+            .collect();
+        assert!(!rotated.is_empty() && rotated.iter().all(|l| l.ends_with(')')), "{kind:?}: {rotated:?}");
+    }
+}
+
+#[test]
+fn titles_say_what_is_plotted() {
+    let doc = paper_svg("table3");
+    let xml = Document::parse(&doc).unwrap();
+    let title = xml.root_element().children().find(|n| n.has_tag_name("title")).unwrap().text().unwrap();
+    assert!(title.contains("SPLmax") && !title.contains("U0max"), "{title}");
+}
+
+#[test]
+fn text_grows_with_the_figure_s_size() {
+    let sizes = |look: &Look| -> f64 {
+        let table = paper::get("fig11").unwrap().unwrap();
+        let doc = figures::paper_figure(&table, &Thresholds::default(), look).unwrap();
+        let xml = Document::parse(&doc).unwrap();
+        let s: Vec<f64> = xml.descendants().filter(|n| n.has_tag_name("text")).map(|n| attr(&n, "font-size")).collect();
+        s.iter().sum::<f64>() / s.len() as f64
+    };
+    let small = sizes(&Look::default());
+    let big = sizes(&Look { size: Some((1720.0, 1080.0)), title: true });
+    assert!((big / small - 2.0).abs() < 0.05, "{small} → {big}");
 }
 
 #[test]

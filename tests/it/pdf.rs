@@ -272,7 +272,8 @@ fn no_title_and_size_show_in_the_pixels_of_svg_and_pdf() {
         assert_eq!((p.width(), p.height()), (1200, 800), "{what}");
         assert_cell_colours(&p, &cells, 1, what);
         assert_eq!(dark_pixels(&p, title_band(1200.0, true)), 0, "{what}: no title above the plot");
-        assert!(cells.iter().any(|c| c.rect.0 + c.rect.2 > 950.0), "{what}: the cells fill the wider figure");
+        // Past the default figure's whole width (860 px); the legend column grows with the text.
+        assert!(cells.iter().any(|c| c.rect.0 + c.rect.2 > 900.0), "{what}: the cells fill the wider figure");
     }
 }
 

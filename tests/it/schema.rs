@@ -1,6 +1,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! One data schema: every CSV column and every metric key of the JSON is documented in the
-//! README's one schema table, with the same name and unit everywhere; zones are numbers; and
+//! guide's one schema table (docs/guide/schema.md), with the same name and unit everywhere; zones are numbers; and
 //! the licence and citation files say what Cargo.toml declares.
 
 use crate::common;
@@ -20,9 +20,9 @@ fn repo_file(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(name)).unwrap()
 }
 
-/// The keys of the README's schema table (first cell of each row, every `key` in backticks).
+/// The keys of the guide's schema table (first cell of each row, every `key` in backticks).
 fn documented() -> BTreeSet<String> {
-    let readme = repo_file("README.md");
+    let readme = repo_file("docs/guide/schema.md");
     let start = readme.find("<!-- schema:start -->").expect("the schema table's start marker");
     let end = readme.find("<!-- schema:end -->").expect("its end marker");
     let mut keys = BTreeSet::new();
@@ -84,7 +84,7 @@ fn every_csv_column_is_in_the_readme_schema_table() {
     assert!(headers.len() > 25);
     for (name, cols) in &headers {
         for c in cols {
-            assert!(known.contains(base(c)), "{name}: column `{c}` is not in the README's schema table");
+            assert!(known.contains(base(c)), "{name}: column `{c}` is not in the guide's schema table");
             for old in ["u0max", "splmax", "QuietWeak"] {
                 assert!(!c.contains(old), "{name}: `{c}`");
             }
@@ -137,7 +137,7 @@ fn sweep_csv_has_every_key_of_a_sweep_json_cell_with_zones_as_numbers() {
     keys.extend(scalar_keys(&ens["ensemble"][0]));
     keys.extend(want);
     for k in &keys {
-        assert!(known.contains(k), "JSON key `{k}` is not in the README's schema table");
+        assert!(known.contains(k), "JSON key `{k}` is not in the guide's schema table");
     }
     for text in [sim.to_string(), ens.to_string(), json.to_string()] {
         for name in ["NoisyWeak", "NoisyStrong", "QuietStrong", "QuietWeak"] {

@@ -1945,17 +1945,20 @@ fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
     assert_eq!(app.runs, 1);
 }
 
-/// README.md of the repository.
-fn readme_path() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")
+/// A file of the repository (README.md, a page of the guide).
+fn repo_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(name)
 }
 
-/// Every key of the key table (the explorer's and the tour's) is in the README's keys table
-/// (its first column, each key in backticks), so the README cannot fall behind the table.
+/// The guide's explorer chapter, where the keys table and most screens live.
+const EXPLORER_PAGE: &str = "docs/guide/the-explorer.md";
+
+/// Every key of the key table (the explorer's and the tour's) is in the guide's keys table
+/// (its first column, each key in backticks), so the guide cannot fall behind the table.
 #[test]
 fn readme_keys_table_has_every_key_of_the_table() {
-    let readme = std::fs::read_to_string(readme_path()).unwrap();
-    let start = readme.find("### Keys\n").expect("the README's keys section");
+    let readme = std::fs::read_to_string(repo_path(EXPLORER_PAGE)).unwrap();
+    let start = readme.find("## Keys\n").expect("the explorer chapter's keys section");
     let table: Vec<&str> = readme[start..]
         .lines()
         .skip(1)
@@ -1968,7 +1971,7 @@ fn readme_keys_table_has_every_key_of_the_table() {
         .flat_map(|row| row.trim_start_matches('|').split(" | ").next().unwrap().split('`').skip(1).step_by(2))
         .collect();
     for b in KEYS.iter().chain(thud::tui::keys::TOUR_KEYS) {
-        assert!(documented.contains(&b.label), "key `{}` ({}) is not in the README's keys table", b.label, b.name);
+        assert!(documented.contains(&b.label), "key `{}` ({}) is not in the guide's keys table", b.label, b.name);
     }
 }
 
@@ -1999,41 +2002,47 @@ fn readme_screen(name: &str) -> String {
     lines.iter().map(|l| format!("{}\n", l.trim_end())).collect()
 }
 
-/// The README's text captures of the explorer (between `<!-- screen NAME ... -->` and
-/// `<!-- /screen -->`, a ```text block) are what the explorer draws today.
-/// `THUD_BLESS=1 cargo test --release --test it tui::readme_screens` re-captures them in place (after
-/// a change of the screens, or a merge of other explorer work).
+/// The text captures of the explorer in the README and the guide's explorer chapter (between
+/// `<!-- screen NAME ... -->` and `<!-- /screen -->`, a ```text block) are what the explorer draws
+/// today. `THUD_BLESS=1 cargo test --release --test it tui::readme_screens` re-captures them in place
+/// (after a change of the screens, or a merge of other explorer work).
 #[test]
 fn readme_screens_are_what_the_explorer_draws() {
-    let path = readme_path();
-    let readme = std::fs::read_to_string(&path).unwrap();
-    let bless = std::env::var_os("THUD_BLESS").is_some();
-    let (mut out, mut rest, mut names) = (String::new(), readme.as_str(), Vec::new());
-    while let Some(at) = rest.find("<!-- screen ") {
-        let open_end = at + rest[at..].find("-->\n").expect("the marker's end") + "-->\n".len();
-        let name = rest[at + "<!-- screen ".len()..].split([' ', ':']).next().unwrap().to_string();
-        let close = open_end + rest[open_end..].find("<!-- /screen -->").expect("the closing marker");
-        let want = format!("```text\n{}```\n", readme_screen(&name));
-        if !bless {
-            assert_eq!(
-                rest[open_end..close],
-                want,
-                "the README's screen {name} is not what the explorer draws; re-capture with \
-                 THUD_BLESS=1 cargo test --release --test it tui::readme_screens"
-            );
+    let pages: [(&str, &[&str]); 2] = [
+        ("README.md", &["main_80x24"]),
+        (EXPLORER_PAGE, &["main_80x24", "history_chart_80x24", "main_120x40", "tour_step4_80x24"]),
+    ];
+    for (page, want_names) in pages {
+        let path = repo_path(page);
+        let readme = std::fs::read_to_string(&path).unwrap();
+        let bless = std::env::var_os("THUD_BLESS").is_some();
+        let (mut out, mut rest, mut names) = (String::new(), readme.as_str(), Vec::new());
+        while let Some(at) = rest.find("<!-- screen ") {
+            let open_end = at + rest[at..].find("-->\n").expect("the marker's end") + "-->\n".len();
+            let name = rest[at + "<!-- screen ".len()..].split([' ', ':']).next().unwrap().to_string();
+            let close = open_end + rest[open_end..].find("<!-- /screen -->").expect("the closing marker");
+            let want = format!("```text\n{}```\n", readme_screen(&name));
+            if !bless {
+                assert_eq!(
+                    rest[open_end..close],
+                    want,
+                    "{page}'s screen {name} is not what the explorer draws; re-capture with \
+                     THUD_BLESS=1 cargo test --release --test it tui::readme_screens"
+                );
+            }
+            out.push_str(&rest[..open_end]);
+            out.push_str(&want);
+            rest = &rest[close..];
+            names.push(name);
         }
-        out.push_str(&rest[..open_end]);
-        out.push_str(&want);
-        rest = &rest[close..];
-        names.push(name);
-    }
-    out.push_str(rest);
-    assert_eq!(names, ["main_80x24", "history_chart_80x24", "main_120x40", "tour_step4_80x24"], "the README's screens");
-    if bless && out != readme {
-        let dir = path.parent().unwrap();
-        let mut tmp = tempfile::NamedTempFile::new_in(dir).unwrap();
-        std::io::Write::write_all(&mut tmp, out.as_bytes()).unwrap();
-        tmp.persist(&path).unwrap();
+        out.push_str(rest);
+        assert_eq!(names, want_names, "{page}'s screens");
+        if bless && out != readme {
+            let dir = path.parent().unwrap();
+            let mut tmp = tempfile::NamedTempFile::new_in(dir).unwrap();
+            std::io::Write::write_all(&mut tmp, out.as_bytes()).unwrap();
+            tmp.persist(&path).unwrap();
+        }
     }
 }
 

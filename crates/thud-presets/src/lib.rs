@@ -1,5 +1,5 @@
 //! Named starting designs: the paper's set-ups, the physical default and a few realistic
-//! designs. Each is a TOML file in `assets/presets/` (the format of saved designs) compiled
+//! designs. Each is a TOML file in `crates/thud-presets/presets/` (the format of saved designs) compiled
 //! into the binary, so thud works from any directory.
 //!
 //! This small crate sits between the engine and its front ends: the engine stays free of TOML
@@ -14,14 +14,14 @@ pub use thud_core::design::TABLE3_C1;
 
 /// The compiled-in preset files: (name, TOML text), in the order `thud presets` lists them.
 const SOURCES: &[(&str, &str)] = &[
-    ("default", include_str!("../../../assets/presets/default.toml")),
-    ("paper-fig2", include_str!("../../../assets/presets/paper-fig2.toml")),
-    ("paper-table1", include_str!("../../../assets/presets/paper-table1.toml")),
-    ("paper-fig9", include_str!("../../../assets/presets/paper-fig9.toml")),
-    ("paper-table3", include_str!("../../../assets/presets/paper-table3.toml")),
-    ("machine-tool-fixture", include_str!("../../../assets/presets/machine-tool-fixture.toml")),
-    ("quiet-nylon", include_str!("../../../assets/presets/quiet-nylon.toml")),
-    ("steel-ball", include_str!("../../../assets/presets/steel-ball.toml")),
+    ("default", include_str!("../presets/default.toml")),
+    ("paper-fig2", include_str!("../presets/paper-fig2.toml")),
+    ("paper-table1", include_str!("../presets/paper-table1.toml")),
+    ("paper-fig9", include_str!("../presets/paper-fig9.toml")),
+    ("paper-table3", include_str!("../presets/paper-table3.toml")),
+    ("machine-tool-fixture", include_str!("../presets/machine-tool-fixture.toml")),
+    ("quiet-nylon", include_str!("../presets/quiet-nylon.toml")),
+    ("steel-ball", include_str!("../presets/steel-ball.toml")),
 ];
 
 /// A preset's name and one-line description.
@@ -48,7 +48,7 @@ pub fn names() -> impl Iterator<Item = &'static str> {
 /// Parses the compiled-in file of preset `name` and validates its design (a failure is a bug
 /// the tests catch, but it is reported, not panicked on).
 fn parse(name: &'static str, text: &str) -> Result<Preset, ThudError> {
-    let bad = |what: String| ThudError::invalid("preset", format!("assets/presets/{name}.toml: {what}"));
+    let bad = |what: String| ThudError::invalid("preset", format!("crates/thud-presets/presets/{name}.toml: {what}"));
     let file: Preset = toml::from_str(text).map_err(|e| bad(e.message().trim().to_string()))?;
     file.design.validate().map_err(|e| bad(e.to_string()))?;
     Ok(file)

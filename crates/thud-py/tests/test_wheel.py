@@ -62,7 +62,7 @@ def test_the_wheel_is_abi3_manylinux2014_stripped_and_small(wheel):
     REPORT.append(("wheel", f"{wheel.name}: {size / 1e6:.2f} MB"))
     assert size < MAX_BYTES, f"{wheel.name} is {size} bytes"
     name = wheel.name
-    assert re.match(r"thud-[\d.]+-cp39-abi3-.*\.whl$", name), name
+    assert re.match(r"thud_damper-[\d.]+-cp39-abi3-.*\.whl$", name), name
     assert "manylinux_2_17_x86_64" in name and "manylinux2014_x86_64" in name, name
     with zipfile.ZipFile(wheel) as z:
         files = z.namelist()
@@ -80,14 +80,67 @@ def test_the_wheel_is_abi3_manylinux2014_stripped_and_small(wheel):
     assert glibc and max(glibc) <= (2, 17), sorted(glibc)
 
 
-def test_the_sdist_holds_the_module_the_engine_and_the_lock_file(tmp_path):
+def metadata_fields(text):
+    """The header fields of a METADATA / PKG-INFO file: name → list of values."""
+    head = text.split("\n\n", 1)[0]
+    fields = {}
+    for line in head.splitlines():
+        if ": " in line and not line.startswith(" "):
+            k, v = line.split(": ", 1)
+            fields.setdefault(k, []).append(v)
+    return fields, text.split("\n\n", 1)[1] if "\n\n" in text else ""
+
+
+def check_metadata(text):
+    """A registry page that is not blank: name, summary, licence and its file, URLs,
+    classifiers, Requires-Python and the README as the description."""
+    fields, body = metadata_fields(text)
+    assert fields["Name"] == ["thud-damper"], fields.get("Name")
+    assert fields["Summary"][0].startswith("Design single-unit impact dampers")
+    assert fields.get("License-Expression") == ["MIT"], fields
+    assert "LICENSE" in fields.get("License-File", []), fields
+    assert fields["Requires-Python"] == [">=3.9"]
+    urls = dict(u.split(", ", 1) for u in fields.get("Project-URL", []))
+    assert {"Homepage", "Documentation", "Repository", "Changelog"} <= set(urls), urls
+    assert any(c.startswith("Topic :: Scientific/Engineering") for c in fields["Classifier"])
+    assert "Programming Language :: Rust" in fields["Classifier"]
+    assert fields["Description-Content-Type"][0].startswith("text/markdown")
+    assert "pip install thud-damper" in body, body[:400]
+
+
+def test_the_wheel_s_metadata_fills_a_registry_page(wheel):
+    with zipfile.ZipFile(wheel) as z:
+        files = z.namelist()
+        meta = z.read(next(f for f in files if f.endswith(".dist-info/METADATA"))).decode()
+        assert any(f.endswith(".dist-info/licenses/LICENSE") or f.endswith(".dist-info/LICENSE") for f in files), files
+    check_metadata(meta)
+
+
+def test_the_sdist_holds_everything_its_build_reads(tmp_path):
+    """`maturin sdist` makes an archive that builds: besides the module, the engine and the lock
+    file, every file a crate in it compiles in (include_str!/include_bytes!, e.g. the presets)
+    resolves inside the archive, and it carries LICENSE, README and its metadata. (Building it
+    into a wheel is what CI does: .ci/run builds the wheel from this very sdist.)"""
     maturin("sdist", out=tmp_path)
-    sdist = next(tmp_path.glob("thud-*.tar.gz"))
+    sdist = next(tmp_path.glob("thud_damper-*.tar.gz"))
     with tarfile.open(sdist) as t:
-        names = [n.split("/", 1)[1] for n in t.getnames() if "/" in n]
-    for want in ("pyproject.toml", "Cargo.lock", "python/thud/__init__.py", "python/thud/__init__.pyi",
-                 "python/thud/py.typed", "crates/thud-core/src/lib.rs"):
-        assert any(n == want or n.endswith("/" + want) for n in names), (want, names[:40])
+        members = {m.name.split("/", 1)[1]: m for m in t.getmembers() if "/" in m.name}
+        names = list(members)
+        for want in ("pyproject.toml", "Cargo.lock", "LICENSE", "README.md", "python/thud/__init__.py",
+                     "python/thud/__init__.pyi", "python/thud/py.typed", "crates/thud-core/src/lib.rs",
+                     "crates/thud-presets/presets/default.toml"):
+            assert any(n == want or n.endswith("/" + want) for n in names), (want, names[:40])
+        included = 0
+        for name in names:
+            if not name.endswith(".rs"):
+                continue
+            source = t.extractfile(members[name]).read().decode()
+            for rel in re.findall(r'include_(?:str|bytes)!\(\s*"([^"]+)"\s*\)', source):
+                target = os.path.normpath(os.path.join(os.path.dirname(name), rel))
+                assert target in members, f"{name} compiles in {rel}, which the sdist lacks ({target})"
+                included += 1
+        assert included >= 8, included  # the presets at least
+        check_metadata(t.extractfile(members["PKG-INFO"]).read().decode())
 
 
 def test_the_release_binary_carries_no_debug_info():

@@ -51,7 +51,7 @@ def _need(module: str, what: str) -> Any:
     except ImportError as e:
         raise ImportError(
             f"{what} needs {module}, which is not installed: pip install {module} "
-            f"(or pip install 'thud[frames]' for pandas and xarray)"
+            f"(or pip install 'thud-damper[frames]' for pandas and xarray)"
         ) from e
 
 
