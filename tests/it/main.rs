@@ -22,8 +22,10 @@ mod support {
 mod acoustics_paper;
 mod architecture;
 mod cli;
+mod cvd;
 mod damper;
 mod design_paper;
+mod docs;
 mod ensemble;
 mod export;
 mod figures;

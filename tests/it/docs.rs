@@ -4,7 +4,7 @@
 //! - Every ```console session of the README and of the guide (docs/guide/**/*.md) is run by
 //!   trycmd and its output compared (stdout and stderr together, `? CODE` for an exit status,
 //!   `...` for lines left out, `[..]` for part of a line). `TRYCMD=overwrite cargo test --release
-//!   --test docs` writes the real output back into the pages (then restore any `...` by hand).
+//!   --test it docs` writes the real output back into the pages (then restore any `...` by hand).
 //! - The guide's range table (docs/guide/limits.md) is generated from the engine's table
 //!   (`thud_core::limits`, what `thud limits` prints); `THUD_BLESS=1` regenerates it.
 //! - The README stays a front door: at most 200 lines, prose within 100 columns, its lecture is
@@ -97,7 +97,7 @@ fn limits_tables() -> String {
 }
 
 /// docs/guide/limits.md's tables between `<!-- limits:start -->` and `<!-- limits:end -->` are
-/// the engine's ranges and caps; `THUD_BLESS=1 cargo test --release --test docs limits`
+/// the engine's ranges and caps; `THUD_BLESS=1 cargo test --release --test it docs::limits`
 /// regenerates them after a row changes.
 #[test]
 fn limits_table_of_the_guide_is_the_engine_s() {
@@ -122,7 +122,7 @@ fn limits_table_of_the_guide_is_the_engine_s() {
         text[start..end],
         want,
         "{PAGE}'s range table is not the engine's; regenerate it with \
-         THUD_BLESS=1 cargo test --release --test docs limits"
+         THUD_BLESS=1 cargo test --release --test it docs::limits"
     );
 }
 
