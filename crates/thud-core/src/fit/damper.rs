@@ -104,7 +104,10 @@ fn period_s(d: &Design) -> Result<f64, ThudError> {
     if f > 0.0 {
         Ok(1.0 / f)
     } else {
-        Err(ThudError::invalid("k", "the structure has no free vibration (K = 0 or overdamped); a damper fit needs one"))
+        Err(ThudError::invalid(
+            "k",
+            "the structure has no free vibration (K = 0 or overdamped); a damper fit needs one",
+        ))
     }
 }
 
@@ -138,9 +141,7 @@ pub fn window_amplitude_sloped(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64)
 pub fn envelope(t: &[f64], x: &[f64], period_s: f64, periods: usize) -> Vec<f64> {
     let om = 2.0 * PI / period_s;
     (0..periods)
-        .map(|j| {
-            window_amplitude_sloped(t, x, j as f64 * period_s, (j + 1) as f64 * period_s, om).unwrap_or(0.0)
-        })
+        .map(|j| window_amplitude_sloped(t, x, j as f64 * period_s, (j + 1) as f64 * period_s, om).unwrap_or(0.0))
         .collect()
 }
 
@@ -206,7 +207,7 @@ pub fn observe(s: &Series, d: &Design) -> Result<Observed, ThudError> {
     let env = envelope(&t, &x, period, periods);
     // The amplitude's noise: the displacement's white noise over a window's samples.
     let noise = match s.quantity() {
-        Quantity::Velocity => noise_sd(y) * period / (2.0 * PI) ,
+        Quantity::Velocity => noise_sd(y) * period / (2.0 * PI),
         _ => noise_sd(&x),
     };
     let per_window = (s.len() as f64 / s.span_s() * period).max(8.0);
@@ -400,12 +401,10 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
     }
     let n = observed.len();
     let stat = observed.iter().map(|o| statistic(&o.envelope_m, periods)).sum::<f64>() / n as f64;
-    let noise = (observed
-        .iter()
-        .map(|o| statistic_noise(&o.envelope_m, periods, o.amplitude_noise_m).powi(2))
-        .sum::<f64>()
-        / (n * n) as f64)
-        .sqrt();
+    let noise =
+        (observed.iter().map(|o| statistic_noise(&o.envelope_m, periods, o.amplitude_noise_m).powi(2)).sum::<f64>()
+            / (n * n) as f64)
+            .sqrt();
     let lc: Vec<f64> = table.c1_n_s_m.iter().map(|c| c.ln()).collect();
     let members: Vec<Vec<f64>> =
         table.envelopes.iter().map(|ms| ms.iter().map(|e| statistic(e, periods)).collect()).collect();
@@ -594,10 +593,8 @@ mod tests {
         let d = design.check().unwrap();
         let truth = 80.0;
         let mut g = Noise(99);
-        let records: Vec<Series> = [-0.3, 0.1, 0.42]
-            .iter()
-            .map(|f| record(&d, truth, f * d.damper.gap_m, 3000.0, 0.015, &mut g))
-            .collect();
+        let records: Vec<Series> =
+            [-0.3, 0.1, 0.42].iter().map(|f| record(&d, truth, f * d.damper.gap_m, 3000.0, 0.015, &mut g)).collect();
         let one = fit(&d, &records[..1], None).unwrap().unwrap();
         let three = fit(&d, &records, None).unwrap().unwrap();
         for f in [&one, &three] {
@@ -618,7 +615,8 @@ mod tests {
         let d = Design::default().check().unwrap();
         let p = d.damper;
         let truth = 25.0;
-        let (big_m, m, k, c, khz, half) = (p.main_mass_kg, p.impact_mass_kg, p.stiffness_n_m, p.damping_n_s_m, p.k_hz, 0.5 * p.gap_m);
+        let (big_m, m, k, c, khz, half) =
+            (p.main_mass_kg, p.impact_mass_kg, p.stiffness_n_m, p.damping_n_s_m, p.k_hz, 0.5 * p.gap_m);
         let accel = |s: [f64; 4]| -> [f64; 4] {
             let [x, v, y, w] = s;
             let z = y - x;
@@ -638,7 +636,8 @@ mod tests {
         let steps = (p.duration_s / dt).round() as usize;
         for i in 1..=steps {
             let k1 = accel(s);
-            let add = |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
+            let add =
+                |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
             let k2 = accel(add(s, k1, 0.5 * dt));
             let k3 = accel(add(s, k2, 0.5 * dt));
             let k4 = accel(add(s, k3, dt));

@@ -110,7 +110,12 @@ impl Series {
         }
         for (i, w) in t_s.windows(2).enumerate() {
             if w[1] == w[0] {
-                return Err(bad(format!("repeated time {} s at samples {} and {}; times must increase", w[0], i + 1, i + 2)));
+                return Err(bad(format!(
+                    "repeated time {} s at samples {} and {}; times must increase",
+                    w[0],
+                    i + 1,
+                    i + 2
+                )));
             }
             if w[1] < w[0] {
                 return Err(bad(format!(
@@ -209,8 +214,10 @@ pub fn line(t: &[f64], y: &[f64]) -> (f64, f64) {
     let t0 = t[0];
     let (st, sy) = t.iter().zip(y).fold((0.0, 0.0), |(a, b), (&ti, &yi)| (a + ti - t0, b + yi));
     let (mt, my) = (st / n, sy / n);
-    let (num, den) =
-        t.iter().zip(y).fold((0.0, 0.0), |(a, b), (&ti, &yi)| (a + (ti - t0 - mt) * (yi - my), b + (ti - t0 - mt).powi(2)));
+    let (num, den) = t
+        .iter()
+        .zip(y)
+        .fold((0.0, 0.0), |(a, b), (&ti, &yi)| (a + (ti - t0 - mt) * (yi - my), b + (ti - t0 - mt).powi(2)));
     let slope = if den > 0.0 { num / den } else { 0.0 };
     (my - slope * mt, slope)
 }

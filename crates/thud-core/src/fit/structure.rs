@@ -154,9 +154,7 @@ impl LeastSquaresProblem<f64, Dyn, U6> for Problem {
 /// no resampling.
 fn spectrum_peak(t: &[f64], y: &[f64], f0: f64) -> f64 {
     let n = t.len();
-    let w: Vec<f64> = (0..n)
-        .map(|i| 0.5 * (t[(i + 1).min(n - 1)] - t[i.saturating_sub(1)]))
-        .collect();
+    let w: Vec<f64> = (0..n).map(|i| 0.5 * (t[(i + 1).min(n - 1)] - t[i.saturating_sub(1)])).collect();
     let power = |f: f64| {
         let om = 2.0 * PI * f;
         let (mut re, mut im) = (0.0, 0.0);
@@ -401,13 +399,7 @@ pub(crate) mod tests {
     #[test]
     fn the_engines_decay_is_recovered() {
         let mut g = Noise(7);
-        let p = DamperParams {
-            damping_n_s_m: 0.8,
-            gap_m: 5.0,
-            v0_m_s: 0.2,
-            duration_s: 3.0,
-            ..DamperParams::table2()
-        };
+        let p = DamperParams { damping_n_s_m: 0.8, gap_m: 5.0, v0_m_s: 0.2, duration_s: 3.0, ..DamperParams::table2() };
         let run = damper::simulate(&p, Solver::Event, &RunOptions { history_samples: 9000, cancel: None }).unwrap();
         assert!(run.impacts.is_empty());
         let t: Vec<f64> = run.history.iter().map(|h| h.t_s).collect();
