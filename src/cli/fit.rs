@@ -113,7 +113,7 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
         .headers()
         .map_err(|e| data_error(path, format!("cannot read the header: {e}")))?
         .iter()
-        .map(|h| h.to_ascii_lowercase())
+        .map(str::to_ascii_lowercase)
         .collect();
     let unitless = |h: &String| !h.contains('_');
     if let Some(h) = header.iter().find(|h| unitless(h)) {

@@ -416,40 +416,22 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
     // last, where the band's edge meets the statistic (interpolated in ln c1).
     let inside: Vec<bool> = bands.iter().map(|&(lo, hi)| lo <= stat && stat <= hi).collect();
     let g = lc.len();
-    let (lo_ln, hi_ln, open) = match (inside.iter().position(|&b| b), inside.iter().rposition(|&b| b)) {
-        (Some(a), Some(b)) => {
-            let lo_ln = if a == 0 {
-                lc[0]
-            } else {
-                let (lo_edge, hi_edge): (Vec<f64>, Vec<f64>) = bands.iter().copied().unzip();
-                // The edge the statistic left through between a−1 and a.
-                let edge = if stat > bands[a - 1].1 { &hi_edge } else { &lo_edge };
-                cross(&lc, edge, a - 1, stat)
-            };
-            let hi_ln = if b == g - 1 {
-                lc[g - 1]
-            } else {
-                let (lo_edge, hi_edge): (Vec<f64>, Vec<f64>) = bands.iter().copied().unzip();
-                let edge = if stat > bands[b + 1].1 { &hi_edge } else { &lo_edge };
-                cross(&lc, edge, b, stat)
-            };
-            (lo_ln, hi_ln, a == 0 || b == g - 1)
-        }
-        _ => {
-            // No c1 of the grid explains the data: the nearest band's point, said so.
-            let k = (0..g)
-                .min_by(|&i, &j| {
-                    let dist = |k: usize| (bands[k].0 - stat).max(stat - bands[k].1);
-                    dist(i).total_cmp(&dist(j))
-                })
-                .unwrap_or(0);
-            return Err(bad(format!(
-                "no c1 explains the decay: its statistic {} lies outside every band (nearest c1 {} N·s/m); check the design flags (M, K, C, m, d, v0)",
-                crate::units::sig(stat, 4),
-                crate::units::sig(table.c1_n_s_m[k], 4)
-            )));
-        }
+    let (Some(a), Some(b)) = (inside.iter().position(|&b| b), inside.iter().rposition(|&b| b)) else {
+        // No c1 of the grid explains the data: name the nearest band's c1.
+        let dist = |k: usize| (bands[k].0 - stat).max(stat - bands[k].1);
+        let k = (0..g).min_by(|&i, &j| dist(i).total_cmp(&dist(j))).unwrap_or(0);
+        return Err(bad(format!(
+            "no c1 explains the decay: its statistic {} lies outside every band (nearest c1 {} N·s/m); check the design flags (M, K, C, m, d, v0)",
+            crate::units::sig(stat, 4),
+            crate::units::sig(table.c1_n_s_m[k], 4)
+        )));
     };
+    let (lo_edge, hi_edge): (Vec<f64>, Vec<f64>) = bands.iter().copied().unzip();
+    // The edge the statistic leaves through between a rejected grid point and an accepted one.
+    let leave = |rejected: usize| if stat > bands[rejected].1 { &hi_edge } else { &lo_edge };
+    let lo_ln = if a == 0 { lc[0] } else { cross(&lc, leave(a - 1), a - 1, stat) };
+    let hi_ln = if b == g - 1 { lc[g - 1] } else { cross(&lc, leave(b + 1), b, stat) };
+    let open = a == 0 || b == g - 1;
     // The point estimate: where the median meets the statistic, inside the interval.
     let best_ln = (0..g - 1)
         .filter(|&k| (medians[k] - stat) * (medians[k + 1] - stat) <= 0.0)
@@ -475,8 +457,8 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
     let mut sq = 0.0;
     let mut count = 0usize;
     for o in observed {
-        for j in 0..periods {
-            sq += (o.envelope_m[j] - model[j]).powi(2);
+        for (a, b) in o.envelope_m.iter().zip(&model).take(periods) {
+            sq += (a - b).powi(2);
             count += 1;
         }
     }

@@ -241,11 +241,9 @@ pub fn fit(s: &Series, main_mass_kg: f64) -> Result<StructureFit, ThudError> {
     let rss = r.norm_squared();
     let dof = n.saturating_sub(6).max(1) as f64;
     let s2 = rss / dof;
-    let cov = problem
-        .jacobian()
-        .and_then(|j| (j.transpose() * j).try_inverse())
-        .map(|m| m * s2)
-        .unwrap_or_else(|| nalgebra::Matrix6::from_element(f64::NAN));
+    let cov = problem.jacobian().and_then(|j| (j.transpose() * j).try_inverse()).map(|m| m * s2).ok_or_else(|| {
+        bad("the data do not determine the decay (the fit's Jacobian is singular); record more cycles")
+    })?;
     let sigma = p[0] / span;
     let omega_d = p[1] / span;
     let var_sigma = cov[(0, 0)] / (span * span);
