@@ -265,7 +265,6 @@ impl Table {
                 let mut p = d.damper;
                 p.c1_n_s_m = c1_grid[k];
                 p.ball_position_m = y0;
-                p.ball_velocity_m_s = 0.0;
                 p.duration_s = span_s;
                 let run = damper::simulate(&p, d.solver, &RunOptions { history_samples: samples, cancel })?;
                 let t: Vec<f64> = run.history.iter().map(|h| h.t_s).collect();
