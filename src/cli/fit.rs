@@ -181,14 +181,44 @@ fn pm(v: f64, se: f64) -> String {
     format!("{} ± {}", sig(v, 5), sig(se, 2))
 }
 
+/// Reads `path` and fits the structure with main mass `m` (kg): the record and its fit.
+pub(super) fn structure_fit(ctx: &Ctx, path: &Path, m: f64) -> Result<(Series, StructureFit), CliError> {
+    let s = read_series(path, ctx)?;
+    let f = fit::structure::fit(&s, m).map_err(|e| data_error(path, e.detail()))?;
+    Ok((s, f))
+}
+
+/// Reads every `paths` and fits c1 of `d` to them, the work checked first.
+pub(super) fn damper_fit(
+    ctx: &Ctx,
+    flags: &DesignArgs<impl super::design_args::ForceFlag>,
+    d: &crate::design::ValidDesign,
+    paths: &[OsString],
+) -> Result<DamperFit, CliError> {
+    let mut records = Vec::with_capacity(paths.len());
+    for p in paths {
+        records.push(read_series(Path::new(p), ctx)?);
+    }
+    let span = fit::damper::common_span_s(&records);
+    let work = fit::damper::work_design(d, span)?;
+    let runs = fit::damper::GRID_POINTS * fit::damper::STARTS;
+    flags.check_runs(ctx, &work, fit::damper::GRID_POINTS, fit::damper::STARTS, "--data", &format!("{runs} runs"))?;
+    let spinner = super::budget::spinner("fitting", true);
+    let first = Path::new(&paths[0]);
+    let f = fit::damper::fit(d, &records, None)
+        .map_err(|e| if e.param() == fit::DATA_PARAM { data_error(first, e.detail()) } else { e })?
+        .ok_or(ThudError::Cancelled)?;
+    spinner.finish_and_clear();
+    Ok(f)
+}
+
 fn structure(a: &StructureArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let m = quantity("main-mass", &Some(a.main_mass.clone()), Kind::Mass, &limits::MAIN_MASS)?.unwrap_or(1.0);
     if let Some(name) = &a.save {
         crate::store::check_design_name(name).map_err(|e| e.renamed("save"))?;
     }
     let path = Path::new(&a.data);
-    let s = read_series(path, ctx)?;
-    let f = fit::structure::fit(&s, m).map_err(|e| data_error(path, e.detail()))?;
+    let (_, f) = structure_fit(ctx, path, m)?;
     let saved = match (&a.save, f.converged) {
         (Some(name), true) => {
             let mut d = Design::default();
