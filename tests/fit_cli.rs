@@ -188,3 +188,24 @@ fn bad_data_is_refused_in_one_line() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--main-mass"), "{err}");
 }
+
+#[test]
+fn export_fit_draws_the_measurement_over_the_model() {
+    let home = tempfile::tempdir().unwrap();
+    let file = home.path().join("decay.csv");
+    std::fs::write(&file, decay_csv()).unwrap();
+    let svg = home.path().join("fit.svg");
+    let args =
+        ["export", "svg", "fit", "--data", file.to_str().unwrap(), "--main-mass", "2", "--out", svg.to_str().unwrap()];
+    let (code, _, err) = run(home.path(), &args);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("measurement") && text.contains("fitted free decay"), "{}", &text[..200]);
+    // No clobber: the same export again is refused, the file kept.
+    let (code, _, err) = run(home.path(), &args);
+    assert_eq!(code, 2, "{err}");
+    // --data belongs to `fit` only.
+    let (code, _, err) = run(home.path(), &["export", "svg", "history", "--data", "x.csv", "--out", "h.svg"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--data"), "{err}");
+}
