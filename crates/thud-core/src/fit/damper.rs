@@ -382,6 +382,25 @@ fn pooled(members: &[Vec<f64>], raw_medians: &[f64], medians: &[f64]) -> Vec<Vec
         .collect()
 }
 
+/// The part [u0, u1] ⊆ [0, 1] of the segment from band `a` (u = 0) to band `b` (u = 1), the
+/// edges straight between, where `low(u) ≤ stat ≤ high(u)`; `None` when empty.
+fn segment(a: &(f64, f64), b: &(f64, f64), stat: f64) -> Option<(f64, f64)> {
+    let (mut u0, mut u1) = (0.0f64, 1.0f64);
+    // p + q·u ≤ 0 for each edge: low − stat ≤ 0 and stat − high ≤ 0.
+    for (p, q) in [(a.0 - stat, b.0 - a.0), (stat - a.1, a.1 - b.1)] {
+        if q == 0.0 {
+            if p > 0.0 {
+                return None;
+            }
+        } else if q > 0.0 {
+            u1 = u1.min(-p / q);
+        } else {
+            u0 = u0.max(-p / q);
+        }
+    }
+    (u0 <= u1).then_some((u0, u1))
+}
+
 /// Where a piecewise-linear function of ln c1 through the grid's points `(ln c1_k, f_k)` meets
 /// `target` between grid points k and k+1: ln c1 there.
 fn cross(lc: &[f64], f: &[f64], k: usize, target: f64) -> f64 {
@@ -413,10 +432,21 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
     let bands: Vec<(f64, f64)> = pooled.iter().map(|m| band(m, n, noise)).collect();
     // The accepted grid points; the interval runs from just below the first to just above the
     // last, where the band's edge meets the statistic (interpolated in ln c1).
-    let inside: Vec<bool> = bands.iter().map(|&(lo, hi)| lo <= stat && stat <= hi).collect();
     let g = lc.len();
-    let (Some(a), Some(b)) = (inside.iter().position(|&b| b), inside.iter().rposition(|&b| b)) else {
-        // No c1 of the grid explains the data: name the nearest band's c1.
+    // The accepted set {c1 : low(c1) ≤ S ≤ high(c1)} with the band's edges straight in ln c1
+    // between grid points (so a statistic between two narrow bands finds the c1 between
+    // them), and its hull.
+    let accepted: Vec<(f64, f64)> = (0..g - 1)
+        .filter_map(|k| {
+            let (u0, u1) = segment(&bands[k], &bands[k + 1], stat)?;
+            let at = |u: f64| lc[k] + u * (lc[k + 1] - lc[k]);
+            Some((at(u0), at(u1)))
+        })
+        .collect();
+    let (Some(lo_ln), Some(hi_ln)) =
+        (accepted.iter().map(|a| a.0).min_by(f64::total_cmp), accepted.iter().map(|a| a.1).max_by(f64::total_cmp))
+    else {
+        // No c1 of the grid's span explains the data: name the nearest band's c1.
         let dist = |k: usize| (bands[k].0 - stat).max(stat - bands[k].1);
         let k = (0..g).min_by(|&i, &j| dist(i).total_cmp(&dist(j))).unwrap_or(0);
         return Err(bad(format!(
@@ -425,12 +455,7 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
             crate::units::sig(table.c1_n_s_m[k], 4)
         )));
     };
-    let (lo_edge, hi_edge): (Vec<f64>, Vec<f64>) = bands.iter().copied().unzip();
-    // The edge the statistic leaves through between a rejected grid point and an accepted one.
-    let leave = |rejected: usize| if stat > bands[rejected].1 { &hi_edge } else { &lo_edge };
-    let lo_ln = if a == 0 { lc[0] } else { cross(&lc, leave(a - 1), a - 1, stat) };
-    let hi_ln = if b == g - 1 { lc[g - 1] } else { cross(&lc, leave(b + 1), b, stat) };
-    let open = a == 0 || b == g - 1;
+    let open = lo_ln <= lc[0] || hi_ln >= lc[g - 1];
     // The point estimate: where the median meets the statistic, inside the interval.
     let best_ln = (0..g - 1)
         .filter(|&k| (medians[k] - stat) * (medians[k + 1] - stat) <= 0.0)
@@ -637,5 +662,16 @@ mod tests {
         let [lo, hi] = f.c1_n_s_m_ci;
         assert!(lo <= truth && truth <= hi, "[{lo}, {hi}]");
         assert!(hi / lo <= 3.0, "[{lo}, {hi}]");
+    }
+
+    /// Two narrow bands that do not overlap: a statistic between them is accepted in between
+    /// (where the straight edges pass it), not refused at both grid points.
+    #[test]
+    fn a_statistic_between_two_narrow_bands_is_accepted_between_them() {
+        let (a, b) = ((-0.10, -0.09), (-0.20, -0.19));
+        let (u0, u1) = segment(&a, &b, -0.15).unwrap();
+        assert!((u0 - 0.4).abs() < 1e-12 && (u1 - 0.5).abs() < 1e-12, "{u0} {u1}");
+        assert_eq!(segment(&a, &b, -0.05), None);
+        assert_eq!(segment(&(-1.0, 1.0), &(-1.0, 1.0), 0.0), Some((0.0, 1.0)));
     }
 }
