@@ -670,7 +670,7 @@ mod tests {
     fn a_statistic_between_two_narrow_bands_is_accepted_between_them() {
         let (a, b) = ((-0.10, -0.09), (-0.20, -0.19));
         let (u0, u1) = segment(&a, &b, -0.15).unwrap();
-        assert!((u0 - 0.4).abs() < 1e-12 && (u1 - 0.5).abs() < 1e-12, "{u0} {u1}");
+        assert!((u0 - 0.5).abs() < 1e-12 && (u1 - 0.6).abs() < 1e-12, "{u0} {u1}");
         assert_eq!(segment(&a, &b, -0.05), None);
         assert_eq!(segment(&(-1.0, 1.0), &(-1.0, 1.0), 0.0), Some((0.0, 1.0)));
     }
