@@ -15,7 +15,7 @@
 //! interval is the Neyman construction: the c1 whose acceptance band holds the observed
 //! statistic (Neyman 1937). The evenly spread starts stand for a start spread uniformly over
 //! the clearance: member i sits at the quantile (i + ½)/N of the start, so the sorted members
-//! joined by straight lines are the statistic's quantile function at that c1 ([`quantile`]).
+//! joined by straight lines are the statistic's quantile function at that c1.
 //! The band is the 2.5 % and 97.5 % points of that distribution plus the measurement's noise
 //! (the statistic's standard deviation from the amplitudes' noise), found by drawing: for n
 //! records (repeated strikes fitted together) the mean of n draws, so the band narrows as √n.
@@ -239,9 +239,9 @@ pub fn grid(d: &ValidDesign) -> Result<Vec<f64>, ThudError> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
     pub c1_n_s_m: Vec<f64>,
-    /// [c1][member] → envelope (m, one a period).
+    /// `[c1][member]` → envelope (m, one a period).
     pub envelopes: Vec<Vec<Vec<f64>>>,
-    /// [c1][member] → the first impact's incoming speed (m/s; 0 without an impact).
+    /// `[c1][member]` → the first impact's incoming speed (m/s; 0 without an impact).
     pub first_impact_m_s: Vec<Vec<f64>>,
     pub period_s: f64,
 }
