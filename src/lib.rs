@@ -6,7 +6,7 @@
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
 pub use thud_core::{
-    acoustics, contact, damper, design, ensemble, error, finite, limits, paper, params, report, response, units, walk,
+    acoustics, contact, damper, design, ensemble, error, finite, fit, limits, paper, params, report, response, units, walk,
     ThudError,
 };
 

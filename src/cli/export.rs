@@ -51,6 +51,8 @@ enum SvgWhat {
     Chart,
     Fig17,
     Response,
+    /// A measurement (--data) over the model `thud fit` fits to it (--damper: the damper's).
+    Fit,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -71,6 +73,12 @@ struct SvgArgs {
     /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
     #[arg(long)]
     no_title: bool,
+    /// The measurement of `fit` (CSV, as `thud fit --data`); repeated with --damper.
+    #[arg(long, value_name = "FILE")]
+    data: Vec<std::ffi::OsString>,
+    /// With `fit`: the damper's fit (its envelopes) instead of the structure's.
+    #[arg(long)]
+    damper: bool,
     #[command(flatten)]
     common: Common,
 }
@@ -383,10 +391,59 @@ fn figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
         SvgWhat::Chart => Artifact::SvgChart,
         SvgWhat::Fig17 => Artifact::SvgFig17,
         SvgWhat::Response => Artifact::SvgResponse,
+        SvgWhat::Fit => return fit_figure(ctx, s, as_pdf),
     };
+    if !s.data.is_empty() || s.damper {
+        let flag = if s.damper { "--damper" } else { "--data" };
+        return Err(ThudError::invalid(flag, "is for the figure `fit` only").into());
+    }
     let mut opts = s.common.options()?;
     opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
     write(ctx, kind, &s.common, &opts, as_pdf)
+}
+
+/// `export svg|pdf fit`: the measurement over its fitted model, by `thud fit`'s own reading
+/// and fitting; the structure's with the design's main mass, or (`--damper`) the damper's.
+fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
+    let Some(first) = s.data.first() else {
+        return Err(ThudError::invalid("--data", "the figure `fit` needs a measurement: give --data FILE").into());
+    };
+    let look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
+    let d = s.common.design.design()?;
+    let out = &s.common.out;
+    let overwrite = Overwrite::from_force(s.common.force);
+    let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    let to_stdout = matches!(plan, Plan::Through(Sink::Stdout));
+    let name = fsio::shown(Path::new(first));
+    let svg_text = if s.damper {
+        let f = super::fit::damper_fit(ctx, &s.common.design, &d, &s.data)?;
+        export::fit::damper(&f, &format!("Damper fit of {name}: c1 {} N·s/m", crate::units::sig(f.c1_n_s_m, 4)), &look)
+    } else {
+        if s.data.len() > 1 {
+            return Err(
+                ThudError::invalid("--data", "the structure's figure draws one record; give --data once").into()
+            );
+        }
+        let (series, f) = super::fit::structure_fit(ctx, Path::new(first), d.damper.main_mass_kg)?;
+        let title = format!(
+            "Structure fit of {name}: f_n {} Hz, ζ {}",
+            crate::units::sig(f.f_n_hz, 5),
+            crate::units::sig(f.zeta, 3)
+        );
+        export::fit::structure(&series, &f, &title, &look)
+    };
+    super::output::check_text(&svg_text)?;
+    let bytes = if as_pdf {
+        pdf::from_svg(&svg_text).map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
+    } else {
+        svg_text.into_bytes()
+    };
+    if to_stdout {
+        return Ok(fsio::write_stdout(&bytes)?);
+    }
+    fsio::write(out, &bytes, overwrite).map_err(|e| write_error(out, &e))?;
+    super::warn(&format!("wrote {}", fsio::shown(out)));
+    Ok(())
 }
 
 pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {

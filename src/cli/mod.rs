@@ -5,6 +5,7 @@ mod budget;
 pub mod design_args;
 mod errors;
 mod export;
+mod fit;
 mod format;
 mod merge;
 mod output;
@@ -68,6 +69,8 @@ pub enum Command {
     Paper(paper::PaperArgs),
     /// Write a design's data (CSV), figures (SVG, PDF) or sound (WAV) to a file.
     Export(Box<export::ExportArgs>),
+    /// Calibrate from a measured free decay (CSV): the structure's f_n, ζ, K, C, or a damper's c1.
+    Fit(fit::FitArgs),
     /// List the named starting designs (--preset NAME).
     Presets(presets::PresetsArgs),
     /// The interactive explorer (the default with no subcommand).
@@ -193,7 +196,7 @@ fn numeric_flags() -> Vec<String> {
     crate::limits::RANGES
         .iter()
         .map(|r| r.param)
-        .chain(["masses", "gaps", "preset", "freqs"])
+        .chain(["masses", "gaps", "preset", "freqs", "data", "save"])
         .map(str::to_string)
         .collect()
 }
@@ -297,6 +300,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Restitution(a)) => restitution::run(&a, &ctx, &mut out),
         Some(Command::Paper(a)) => paper::run(&a, &mut out),
         Some(Command::Export(a)) => export::run(&a, &ctx),
+        Some(Command::Fit(a)) => fit::run(&a, &ctx, &mut out),
         Some(Command::Presets(a)) => presets::run(&a, &mut out),
         Some(Command::Limits(a)) => limits(&a, &mut out),
         Some(Command::Completions(a)) => shell::completions(&a, &mut out),

@@ -7,6 +7,7 @@
 
 pub mod csv;
 pub mod figures;
+pub mod fit;
 pub mod pdf;
 pub mod report;
 pub mod svg;

@@ -30,6 +30,7 @@ mod ensemble;
 mod export;
 mod figures;
 mod files;
+mod fit_cli;
 mod forced;
 mod forced_cli;
 mod hostile_files;

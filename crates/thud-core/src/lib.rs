@@ -14,6 +14,7 @@
 //! - [`ensemble`]: N runs of a design from evenly spread initial ball offsets, and the
 //!   spread of their metrics (p10 / median / p90, zone-3 probability).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
+//! - [`fit`]: calibration from measurements: the structure's f_n, ζ, K, C and a damper's c1.
 //! - [`finite`]: the check that every number of a result is finite before it is handed out.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
 //! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
@@ -29,6 +30,7 @@ pub mod design;
 pub mod ensemble;
 pub mod error;
 pub mod finite;
+pub mod fit;
 pub mod limits;
 pub mod paper;
 pub mod params;

@@ -6,6 +6,8 @@
 //! - `thud.sweep(masses_kg, gaps_m, **params) -> Chart`: the design chart (`thud sweep`).
 //! - `thud.response(freqs_hz=None, **params) -> Response`: the frequency response under the
 //!   harmonic force (`thud response`; by default over the engine's band of the design).
+//! - `thud.fit_structure(t_s, x, main_mass=…)`, `thud.fit_damper(t_s, x, **params)`:
+//!   calibration from a measured free decay (`thud fit structure|damper`), dicts out.
 //! - `ensemble=N` on `simulate` (then an `Ensemble`), `sweep` and `response`: N runs from
 //!   ball offsets spread over the clearance, as `--ensemble N`.
 //!
@@ -24,6 +26,7 @@
 
 mod args;
 mod detach;
+mod fit;
 mod objects;
 mod progress;
 
@@ -43,12 +46,13 @@ use progress::Progress;
 
 /// The keywords each function takes beside the engine's named parameters (its run options),
 /// as `_parameters()` hands them to the Python wrapper for the signatures.
-const OPTIONS: [(&str, &[&str]); 5] = [
+const OPTIONS: [(&str, &[&str]); 6] = [
     ("pulse", &["preset", "points", "no_limit"]),
     ("simulate", &["preset", "samples", "ensemble", "no_limit"]),
     ("simulate_ensemble", &["preset", "no_limit"]),
     ("sweep", &["preset", "ensemble", "progress", "no_limit"]),
     ("response", &["preset", "continuation", "ensemble", "progress", "no_limit"]),
+    ("fit_damper", &["preset", "quantity", "no_limit"]),
 ];
 
 /// Waveform points of a pulse unless `points` is given.
@@ -57,7 +61,7 @@ const POINTS_DEFAULT: usize = 2000;
 const SAMPLES_DEFAULT: usize = 2001;
 
 /// The run options of the function `name` (see [`OPTIONS`]).
-fn options(name: &str) -> &'static [&'static str] {
+pub(crate) fn options(name: &str) -> &'static [&'static str] {
     OPTIONS.iter().find(|(n, _)| *n == name).map_or(&[], |(_, o)| o)
 }
 
@@ -72,7 +76,7 @@ fn preset(py: Python<'_>, kw: &Kwargs<'_>, default: Option<&str>) -> PyResult<Op
 }
 
 /// The design of a call: the preset, then the keyword parameters (the engine's mapping).
-fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<ValidDesign> {
+pub(crate) fn design_of(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<ValidDesign> {
     let base = preset(py, kw, Some("default"))?.unwrap_or_default();
     params::design(base, &kw.params, Spelling::Keyword).map_err(|e| engine_error(py, e))
 }
@@ -190,7 +194,7 @@ fn ball_position_typed(kw: &Kwargs<'_>) -> bool {
 }
 
 /// The error of runs stopped without an interrupt (not expected: a stop comes from Ctrl-C).
-fn cancelled(py: Python<'_>) -> PyErr {
+pub(crate) fn cancelled(py: Python<'_>) -> PyErr {
     engine_error(py, ThudError::Cancelled)
 }
 
@@ -444,12 +448,15 @@ fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     defaults.set_item("continuation", false)?;
     defaults.set_item("no_limit", false)?;
     defaults.set_item("progress", py.None())?;
+    defaults.set_item("quantity", "x")?;
     d.set_item("defaults", defaults)?;
     let refused = PyDict::new(py);
     // A response sweeps the frequency itself (`params::response_design` refuses `freq`).
     refused.set_item("response", vec![Spelling::Keyword.spell("freq")])?;
     // An ensemble sets each run's ball offset (`params::check_ensemble`).
     refused.set_item("simulate_ensemble", vec![Spelling::Keyword.spell("ball-position")])?;
+    // A damper fit spreads the ball's start itself (an ensemble over starts).
+    refused.set_item("fit_damper", vec![Spelling::Keyword.spell("ball-position")])?;
     d.set_item("refused", refused)?;
     Ok(d)
 }
@@ -506,5 +513,7 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ranges, m)?)?;
     m.add_function(wrap_pyfunction!(_parameters, m)?)?;
     m.add_function(wrap_pyfunction!(objects::_restore, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit_structure, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit_damper, m)?)?;
     Ok(())
 }

@@ -43,6 +43,8 @@ __all__ = [
     "Response",
     "Run",
     "axis",
+    "fit_damper",
+    "fit_structure",
     "presets",
     "pulse",
     "ranges",
@@ -76,6 +78,19 @@ def sweep(masses_kg: _Any, gaps_m: _Any, **params: _Any) -> Chart:
 
 def response(freqs_hz: _Any = None, **params: _Any) -> Response:
     return _thud.response(freqs_hz, **_progress(params, "response"))
+
+
+def fit_structure(t_s: _Any, x: _Any, *, main_mass: _Union[float, str], quantity: str = "x") -> _Any:
+    """The structure alone, struck once: f_n, ζ, K and C with standard errors from a measured
+    free decay, as ``thud fit structure --json`` (a dict: f_n_hz, zeta, k_n_m, c_n_s_m, each
+    with ``_stderr``, residual_rms, converged, …). ``t_s``: times (s, increasing, any spacing);
+    ``x``: the signal as ``quantity`` "x" (m), "v" (m/s) or "a" (m/s²), offset and drift
+    allowed; ``main_mass``: M (kg, or e.g. "2kg"). Bad data raises ParameterError."""
+    return _thud.fit_structure(t_s, x, main_mass=main_mass, quantity=quantity)
+
+
+def fit_damper(t_s: _Any, x: _Any, **params: _Any) -> _Any:
+    return _thud.fit_damper(t_s, x, **params)
 
 
 _document(globals())

@@ -522,3 +522,57 @@ def presets() -> Dict[str, str]:
 def ranges() -> List[Dict[str, object]]:
     """The valid range of every numeric parameter (``thud limits``): dicts with param (the
     keyword), what, min, max, unit (of a plain number) and reason."""
+
+
+def fit_structure(
+    t_s: Union[Sequence[float], npt.ArrayLike],
+    x: Union[Sequence[float], npt.ArrayLike],
+    *,
+    main_mass: Quantity,
+    quantity: Literal["x", "v", "a"] = "x",
+) -> Dict[str, Any]:
+    """The structure alone, struck once: f_n, ζ, K and C with standard errors from a measured
+    free decay, as ``thud fit structure --json`` (keys f_n_hz, zeta, k_n_m, c_n_s_m, each with
+    ``_stderr``, residual_rms, converged)."""
+
+def fit_damper(
+    t_s: Union[Sequence[float], npt.ArrayLike, Sequence[Sequence[float]]],
+    x: Union[Sequence[float], npt.ArrayLike, Sequence[Sequence[float]]],
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    quantity: Literal["x", "v", "a"] = "x",
+    no_limit: bool = False,
+) -> Dict[str, Any]:
+    """The structure with the damper, struck once at the record's start, every other parameter
+    known: c1 and its restitution with 95 % intervals, as ``thud fit damper --json`` (keys
+    c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr, residual_rms).
+    ``t_s`` and ``x`` may be lists of records (repeated strikes), fitted together."""

@@ -61,6 +61,7 @@ _OPTION_TYPES: Dict[str, Any] = {
     "continuation": bool,
     "progress": ProgressArg,
     "no_limit": bool,
+    "quantity": Literal["x", "v", "a"],
 }
 
 #: The positional parameters of each function (name, annotation, default or P.empty).
@@ -71,6 +72,7 @@ _POSITIONAL: Dict[str, List[Any]] = {
     "sweep": [("masses_kg", Any, inspect.Parameter.empty), ("gaps_m", Any, inspect.Parameter.empty)],
     # None: the engine's default band of the design (0.6–1.6 × its natural frequency).
     "response": [("freqs_hz", Any, None)],
+    "fit_damper": [("t_s", Any, inspect.Parameter.empty), ("x", Any, inspect.Parameter.empty)],
 }
 
 
@@ -129,7 +131,8 @@ def document(namespace: Dict[str, Any]) -> None:
     keywords' documentation from the engine's table and the engine's signature."""
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
-               "simulate_ensemble": _thud.Ensemble, "sweep": _thud.Chart, "response": _thud.Response}
+               "simulate_ensemble": _thud.Ensemble, "sweep": _thud.Chart, "response": _thud.Response,
+               "fit_damper": Dict[str, Any]}
     for name, ret in returns.items():
         fn = namespace[name]
         doc = getattr(_thud, name).__doc__ or ""
