@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
+use super::fields::Knob;
 use crate::config::{ActionName, KeyBinding, KeyCode as ConfigKey, KeySpec, NamedKey};
 
 /// Everything a key (or a mouse click) can ask the app to do.
@@ -55,6 +56,10 @@ pub enum Action {
     TourPrev,
     /// Tour: leave it, keeping the design to explore.
     TourLeave,
+    /// Open the filter over the field list (`/`): type part of a name, Enter selects.
+    Find,
+    /// Select this field at once (the headline inputs: mass, gap, r, θ).
+    Field(Knob),
 }
 
 /// One binding: the key, its modifiers, the action, its name in `config.toml`'s `[keys]`, how
@@ -176,6 +181,19 @@ pub const KEYS: &[Binding] = &[
         "type a value with units, e.g. 40.5g, 3cm, 60deg (Enter accepts, Esc cancels)",
         "type",
     ),
+    bind(
+        KeyCode::Char('/'),
+        NONE,
+        Action::Find,
+        "find",
+        "/",
+        "find a field: type part of its name (th → θ), ↑↓ choose, Enter selects, Esc cancels",
+        "find",
+    ),
+    bind(KeyCode::Char('m'), NONE, Action::Field(Knob::Mass), "field-mass", "m", "select the ball's mass m", "m d r θ"),
+    bind(KeyCode::Char('g'), NONE, Action::Field(Knob::Gap), "field-gap", "g", "select the gap d", ""),
+    bind(KeyCode::Char('r'), NONE, Action::Field(Knob::R), "field-r", "r", "select the listener's distance r", ""),
+    bind(KeyCode::Char('t'), NONE, Action::Field(Knob::Theta), "field-theta", "t", "select the listener's angle θ", ""),
     bind(KeyCode::Tab, NONE, Action::FocusNext, "next-panel", "Tab", "focus the next panel", "focus"),
     bind(
         KeyCode::Char('z'),
@@ -284,6 +302,8 @@ pub const FOOTER_PRIORITY: &[&str] = &[
     "down",
     "increase",
     "edit",
+    "find",
+    "field-mass",
     "zoom",
     "next-panel",
     // Above the tour: at 80 columns the footer has room for one of them, and the status line
@@ -582,6 +602,12 @@ impl Keymap {
                     Action::Increase { fine: false } => {
                         pair(Action::Decrease { fine: false }, Action::Increase { fine: false }, "←→")
                     }
+                    // The four field keys as one hint: "mgrt m d r θ".
+                    Action::Field(_) => [Knob::Mass, Knob::Gap, Knob::R, Knob::Theta]
+                        .into_iter()
+                        .filter_map(|f| first(Action::Field(f)).map(|k| k.label.clone()))
+                        .collect::<Vec<_>>()
+                        .join(""),
                     _ => k.label.clone(),
                 };
                 Hint { name: k.name, label, hint: k.hint }

@@ -199,6 +199,8 @@ pub fn draw<B: Backend>(term: &mut Terminal<B>, app: &mut App) -> Result<(), B::
     term.draw(|f| drawn = ui::draw(f, app))?;
     app.chart_geometry = drawn.geometry;
     app.chart_shown = drawn.chart_shown;
+    app.field_lines = drawn.fields;
+    app.polar_hit = drawn.polar;
     Ok(())
 }
 

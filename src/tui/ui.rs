@@ -29,7 +29,7 @@ use super::history::{self, HistoryView};
 use super::keys::Keymap;
 use super::keys::{self, Action};
 use super::params::ParamsView;
-use super::polar::PolarView;
+use super::polar::{PolarHit, PolarView};
 use super::readout::{ReadoutView, Row};
 use super::response::{ResponseState, ResponseView};
 use super::theme::{fold_buffer, Palette};
@@ -54,6 +54,21 @@ pub const MIN_H: u16 = 8;
 pub struct Drawn {
     pub geometry: Option<Geometry>,
     pub chart_shown: bool,
+    /// Where each shown field of the parameters panel is (its line, its index in `Knob::ALL`).
+    pub fields: Vec<(Rect, usize)>,
+    /// Where the polar's canvas is (a click or drag there sets θ).
+    pub polar: Option<PolarHit>,
+}
+
+impl Drawn {
+    /// This and `other` together (each area is drawn once a frame).
+    fn and(mut self, other: Drawn) -> Drawn {
+        self.geometry = self.geometry.or(other.geometry);
+        self.chart_shown |= other.chart_shown;
+        self.fields.extend(other.fields);
+        self.polar = self.polar.or(other.polar);
+        self
+    }
 }
 
 /// Draws the whole screen.
@@ -131,27 +146,26 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
-        params_widget(f, app, params);
+        let drawn = params_widget(f, app, params);
         readout_widget(f, app, readout, false);
         let [top, bottom] = Layout::vertical([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(right);
         let [wave, polar] = Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top);
         let [hist, chart] = Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(bottom);
         plot(f, app, Panel::Waveform, wave);
-        plot(f, app, Panel::Polar, polar);
+        let drawn = drawn.and(plot(f, app, Panel::Polar, polar));
         plot(f, app, Panel::History, hist);
-        Drawn { geometry: plot(f, app, Panel::Chart, chart), chart_shown: true }
+        drawn.and(plot(f, app, Panel::Chart, chart))
     } else if body.width >= 60 && body.height >= 12 {
         let strip_h = if body.height >= 19 { 7 } else { 6 };
         if teaching_pair(app.focus).0 == Panel::Waveform {
             // The sound: pulse and polar over the parameters and the readout.
             let [top, strip] = Layout::vertical([Constraint::Min(1), Constraint::Length(strip_h)]).areas(body);
             let [params, readout] = Layout::horizontal([Constraint::Length(30), Constraint::Min(1)]).areas(strip);
-            params_widget(f, app, params);
+            let drawn = params_widget(f, app, params);
             readout_widget(f, app, readout, true);
             let [left, right] = Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top);
             plot(f, app, Panel::Waveform, left);
-            plot(f, app, Panel::Polar, right);
-            Drawn::default()
+            drawn.and(plot(f, app, Panel::Polar, right))
         } else {
             // The design: the chart the full height (every gap row at 80×24), the history,
             // parameters and readout beside it.
@@ -162,9 +176,9 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
                 Layout::vertical([Constraint::Min(1), Constraint::Length(params_h), Constraint::Length(strip_h)])
                     .areas(left);
             plot(f, app, Panel::History, hist);
-            params_widget(f, app, params);
+            let drawn = params_widget(f, app, params);
             readout_widget(f, app, readout, true);
-            Drawn { geometry: plot(f, app, Panel::Chart, chart), chart_shown: true }
+            drawn.and(plot(f, app, Panel::Chart, chart))
         }
     } else {
         let [sel, readout] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(body);
@@ -181,13 +195,12 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
 fn zoomed(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     match app.zoomed_panel() {
         Panel::Params => params_widget(f, app, body),
-        Panel::Readout => readout_widget(f, app, body, false),
-        Panel::Chart => return Drawn { geometry: plot(f, app, Panel::Chart, body), chart_shown: true },
-        which => {
-            plot(f, app, which, body);
+        Panel::Readout => {
+            readout_widget(f, app, body, false);
+            Drawn::default()
         }
+        which => plot(f, app, which, body),
     }
-    Drawn::default()
 }
 
 /// A panel's block: the tour's panel with a heavy border and a pointer, the focused one
@@ -223,7 +236,7 @@ fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
     }
 }
 
-fn params_widget(f: &mut Frame, app: &App, area: Rect) {
+fn params_widget(f: &mut Frame, app: &App, area: Rect) -> Drawn {
     let setup = app.setup();
     let rows: Vec<(String, String)> = Knob::ALL.iter().map(|p| (p.label().to_string(), p.display(&setup))).collect();
     let groups: Vec<&'static str> = Knob::ALL.iter().map(|p| p.group().title()).collect();
@@ -235,7 +248,9 @@ fn params_widget(f: &mut Frame, app: &App, area: Rect) {
         focused: app.focus == Panel::Params,
         theme: app.theme,
     };
+    let fields = view.field_lines(area);
     f.render_widget(view, area);
+    Drawn { fields, ..Drawn::default() }
 }
 
 /// Formats one readout value from a design's metrics.
@@ -464,8 +479,8 @@ fn sound_of(a: Option<&super::compute::AcousticResult>, view: PulseView) -> Soun
     }
 }
 
-/// Draws one plot panel; returns the chart geometry if it drew the zone grid.
-fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> {
+/// Draws one plot panel; returns where its chart or polar is (for clicks).
+fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Drawn {
     let theme = app.theme;
     let pinned = app.pinned.as_ref();
     let pin_sound = pinned.and_then(|p| p.acoustic.as_deref());
@@ -478,7 +493,9 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 PulseView::Loudest => None,
             };
             let width = title_width(app, Panel::Waveform, area);
-            let title = fit(&theme, &[waveform::title(u0, width)], width);
+            let loudest =
+                app.metrics().filter(|_| !app.design_busy()).and_then(|m| Some((m.u0_max_m_s, m.spl_max_db?)));
+            let title = fit(&theme, &[waveform::title(u0, loudest, width)], width);
             let view = WaveformView {
                 block: panel_block(app, Panel::Waveform, &title),
                 live,
@@ -513,7 +530,9 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 range_deg: d.radiation.source.theta_range_deg(),
                 theme,
             };
+            let polar = view.hit_area(area);
             f.render_widget(view, area);
+            return Drawn { polar, ..Drawn::default() };
         }
         Panel::History => {
             let empty: &[(f64, f64)] = &[];
@@ -532,9 +551,11 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
             };
             f.render_widget(view, area);
         }
-        Panel::Chart => return chart_panel(f, app, area),
+        Panel::Chart => {
+            return Drawn { geometry: chart_panel(f, app, area), chart_shown: true, ..Drawn::default() }
+        }
     }
-    None
+    Drawn::default()
 }
 
 fn chart_title(app: &App, width: u16) -> String {
@@ -767,6 +788,14 @@ fn status_line(app: &App) -> Line<'static> {
             ),
         ]);
     }
+    if let Mode::Find(buf, _) = &app.mode {
+        return Line::from(vec![
+            Span::styled(" find: ", Style::default().add_modifier(Modifier::BOLD)),
+            Span::styled(th.text(buf).into_owned(), typed(app)),
+            Span::raw(cursor),
+            Span::styled("  (part of a field's name; ↑↓ choose, Enter selects, Esc cancels)", plain),
+        ]);
+    }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.param();
         let hint = match (f.display_unit(), f.display_range(&app.design)) {
@@ -840,10 +869,17 @@ fn caption_box(f: &mut Frame, app: &App, area: Rect) {
     } else {
         " → finish  ← back  z all panels  Esc explore "
     };
-    let block =
+    // The field the step talks about (selected), with its value: the keys change it.
+    let fld = app.param();
+    let field = th.text(&format!(" {}{} = {} ", th.pointer(), fld.label(), fld.display(&app.setup()))).into_owned();
+    let room = usize::from(area.width.saturating_sub(4)).saturating_sub(th.text(keys).chars().count());
+    let mut block =
         th.block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true).title_bottom(
             Line::from(th.fit(&th.text(keys), area.width.saturating_sub(2).into()).into_owned()).right_aligned(),
         );
+    if field.chars().count() <= room {
+        block = block.title_bottom(Line::from(Span::styled(field, th.label())).left_aligned());
+    }
     let inner = block.inner(area);
     f.render_widget(Clear, area);
     f.render_widget(block, area);
@@ -1085,6 +1121,22 @@ pub fn list_view(app: &App) -> Option<ListView> {
             *i,
             String::new(),
         ),
+        Mode::Find(buf, i) => {
+            let setup = app.setup();
+            (
+                format!(" find a field: {buf} (↑↓ choose, Enter selects, Esc cancels) "),
+                super::fields::find(buf)
+                    .into_iter()
+                    .map(|k| ListItem {
+                        label: format!("{:<12} {}", k.label(), k.display(&setup)),
+                        detail: format!("{} ({}): {}", k.label(), k.param(), explain::field_hint(k, &app.design)),
+                        problem: false,
+                    })
+                    .collect(),
+                *i,
+                format!("no field matches '{buf}' — Backspace, or Esc to cancel"),
+            )
+        }
         _ => return None,
     };
     let error = if matches!(app.mode, Mode::Saved(_)) { app.load_error.clone() } else { None };

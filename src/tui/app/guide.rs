@@ -42,6 +42,9 @@ impl App {
             d.thresholds = self.settings.config.thresholds(d.thresholds);
         }
         self.pulse = step.pulse;
+        if let Some(i) = crate::tui::fields::Knob::ALL.iter().position(|k| *k == step.select) {
+            self.selected = i;
+        }
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
         // The step's panel fills the screen, so its plot is shown whole at any size (z: all).
         self.zoom = true;

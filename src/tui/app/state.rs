@@ -143,6 +143,9 @@ pub enum Mode {
     Saved(usize),
     /// Choosing what to export; the highlighted index in `files::EXPORTS`.
     Export(usize),
+    /// The `/` filter over the fields: the text typed and the highlighted match (an index
+    /// into [`crate::tui::fields::find`]'s answer for it).
+    Find(String, usize),
 }
 
 /// The status line's message.
@@ -315,6 +318,10 @@ pub struct App {
     pub chart_geometry: Option<Geometry>,
     /// Whether the last frame showed the chart panel.
     pub chart_shown: bool,
+    /// Where the last frame drew each shown field (its line, its index in [`Knob::ALL`]).
+    pub field_lines: Vec<(ratatui::layout::Rect, usize)>,
+    /// Where the last frame drew the polar's canvas (a click or drag there sets θ).
+    pub polar_hit: Option<crate::tui::polar::PolarHit>,
 
     // The host's set-up and the files.
     pub theme: Palette,
@@ -374,6 +381,8 @@ impl App {
             quit: false,
             chart_geometry: None,
             chart_shown: false,
+            field_lines: Vec::new(),
+            polar_hit: None,
             theme,
             mouse: false,
             settings: Settings::default(),

@@ -45,6 +45,7 @@ impl App {
             Msg::Input(Event::Key(k)) => self.key(k),
             Msg::Input(Event::Mouse(m)) if self.mouse => match m.kind {
                 MouseEventKind::Down(MouseButton::Left) => self.click(m.column, m.row),
+                MouseEventKind::Drag(MouseButton::Left) => self.drag(m.column, m.row),
                 _ => vec![],
             },
             Msg::Input(_) => vec![],
