@@ -356,7 +356,10 @@ fn the_footer_shows_every_hint_that_fits_by_importance() {
             if w >= 120 {
                 assert!(footer.contains(" v view "), "{w} cols:\n{footer}");
             }
-            assert_eq!(footer.contains(" mouse on"), mouse, "{w} cols:\n{footer}");
+            // At 80 columns the field keys (/ and m g r t) outrank the mouse's word.
+            if w >= 120 {
+                assert_eq!(footer.contains(" mouse on"), mouse, "{w} cols:\n{footer}");
+            }
             if w == 200 {
                 assert!(left_out.is_empty(), "every hint at 200 columns, {left_out:?} left out:\n{footer}");
             }
@@ -1311,7 +1314,8 @@ fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
     press(&mut app, KeyCode::Esc);
     assert!(app.tour.is_none() && !app.quit && app.design == d);
     press(&mut app, KeyCode::Right);
-    assert!(app.design.damper.impact_mass_kg > d.damper.impact_mass_kg, "→ changes values again");
+    assert_eq!(app.param(), app.tour_def.as_ref().unwrap().steps[1].select, "the step's field stays selected");
+    assert_ne!(app.design, d, "→ changes values again");
 }
 
 #[test]
@@ -1829,16 +1833,10 @@ fn the_tour_caption_keys_do_what_the_caption_says() {
     press(&mut app, KeyCode::Right);
     let step = app.tour.as_ref().unwrap().step;
     let caption = app.tour.as_ref().unwrap().tour.steps[step].caption.clone();
-    assert!(caption.contains("Select θ") && caption.contains("↑↓") && caption.contains('+'), "{caption}");
+    assert!(caption.contains("θ is selected") && caption.contains('+'), "{caption}");
     assert!(!caption.contains("←→"), "← and → move the tour, not θ: {caption}");
-    // As written: ↑↓ until θ is selected (the status line names it), then + walks θ.
-    for _ in 0..Knob::ALL.len() {
-        if app.param() == Knob::ALL.iter().copied().find(|k| k.label().starts_with('θ')).unwrap() {
-            break;
-        }
-        press(&mut app, KeyCode::Down);
-    }
-    assert!(app.param().label().starts_with('θ'));
+    // As written: the step selects θ, then + walks it.
+    assert_eq!(app.param(), Knob::Theta);
     let s = render(&mut app, 80, 24);
     assert!(s.lines().last().unwrap().contains('θ'), "the status line names θ (no footer in the tour):\n{s}");
     let theta = app.design.observer.theta_rad;
@@ -1950,11 +1948,13 @@ fn readme_path() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")
 }
 
-/// Every key of the key table (the explorer's and the tour's) is in the README's keys table
-/// (its first column, each key in backticks), so the README cannot fall behind the table.
+/// Every key of the key table (the explorer's and the tour's) is in the explorer guide's keys
+/// table (docs/guide/explorer.md, its first column, each key in backticks), so the guide cannot
+/// fall behind the table.
 #[test]
 fn readme_keys_table_has_every_key_of_the_table() {
-    let readme = std::fs::read_to_string(readme_path()).unwrap();
+    let guide = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/explorer.md");
+    let readme = std::fs::read_to_string(guide).unwrap();
     let start = readme.find("### Keys\n").expect("the README's keys section");
     let table: Vec<&str> = readme[start..]
         .lines()

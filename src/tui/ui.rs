@@ -302,38 +302,43 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// The note of a forced design: its window (after settling, as `thud simulate --settle`) and
-/// whether it is periodic and settled; with N > 1 the share of runs that settled.
-fn steady_note(a: &AcousticResult) -> Option<String> {
+/// Where a design's run starts, as the readout's forced note says it: "after the 2 m/s
+/// strike" (the main mass's v0), "after the ball's 0.5 m/s start" (w0 alone), or "from rest".
+pub fn start_words(d: &Design) -> String {
+    let p = &d.damper;
+    if p.v0_m_s != 0.0 {
+        format!("after the {} m/s strike", sig(p.v0_m_s, 3))
+    } else if p.ball_velocity_m_s != 0.0 {
+        format!("after the ball's {} m/s start", sig(p.ball_velocity_m_s, 3))
+    } else {
+        "from rest".to_string()
+    }
+}
+
+/// The note of a forced design: whether its steady state settled, the start it ran from
+/// (the response view's curve runs from rest), whether it is periodic, and its window's end
+/// (after settling, as `thud simulate --settle`); with N > 1 the share of runs that settled.
+/// The most important words first: the compact readout cuts the note at its edge.
+fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
     let s = a.steady.as_ref()?;
     let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("NOT {word}") };
+    let start = start_words(d);
     if let Some(e) = &a.forced_ensemble {
         let cut = if e.truncated { ", TRUNCATED" } else { "" };
         return Some(format!(
-            "{} runs: {:.0}% settled, {:.0}% periodic{cut}",
+            "{} runs: {:.0}% settled, {start}, {:.0}% periodic{cut}",
             e.ensemble.len(),
             100.0 * e.settled_fraction,
             100.0 * e.periodic_fraction
         ));
     }
-    // The most important word first: the note may be cut at the panel's edge.
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
     Some(format!(
-        "{}, {} by t {} s{cut}",
+        "{}, {start}, {} by t {} s{cut}",
         yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
         sig(s.window_end_s, 3)
     ))
-}
-
-/// Whether the steady note says something is wrong (not settled or cut short): it then
-/// ranks above the `(!) e < 0` note, which the glossary explains anyway.
-fn steady_warns(a: &AcousticResult) -> bool {
-    match (&a.forced_ensemble, &a.steady) {
-        (Some(e), _) => e.settled_fraction < 1.0 || e.truncated,
-        (None, Some(s)) => !s.settled || s.truncated,
-        (None, None) => false,
-    }
 }
 
 /// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
@@ -418,7 +423,9 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
-    } else if let Some(n) = live_a.filter(|a| steady_warns(a)).and_then(steady_note) {
+    } else if let Some(n) = live_a.and_then(|a| steady_note(a, &app.design)) {
+        // A forced design's note first, settled or not: it says which start the figures are
+        // from (the response view's curve runs from rest).
         if negative {
             format!("{n}; {NEGATIVE_E} e < 0")
         } else {
@@ -426,8 +433,6 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         }
     } else if negative {
         format!("{NEGATIVE_E} e < 0: see ? page 2")
-    } else if let Some(n) = live_a.and_then(steady_note) {
-        n
     } else if let Some(e) = live_a.and_then(|a| a.ensemble.as_ref()) {
         format!("median [p10–p90] of {} runs; % agree", e.runs)
     } else {
@@ -622,7 +627,9 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
             } else {
                 ResponseState::Computing(app.response.progress.0, app.response.progress.1)
             };
-            let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, theme: app.theme };
+            let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.rest_at_f.as_ref());
+            let view =
+                ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, at_f, theme: app.theme };
             f.render_widget(view, area);
             None
         }

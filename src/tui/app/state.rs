@@ -449,10 +449,14 @@ impl App {
         t.tour.steps.get(t.step).map(|s| s.panel)
     }
 
-    /// The zone the chart's marker shows: the live design's own, as the readout shows it.
+    /// The zone the chart's marker shows: the live design's own, as the readout shows it (with
+    /// N > 1 the zone of its own ensemble's medians, never a single run's or a neighbour's).
     pub fn design_zone(&self) -> DesignZone {
-        match self.metrics() {
-            Some(m) if !self.design_busy() => DesignZone::Known(self.zone(m)),
+        match self.acoustic() {
+            Some(a) if !self.design_busy() => DesignZone::Known(match &a.ensemble {
+                Some(e) => e.zone_under(&self.design.thresholds).0,
+                None => self.zone(&a.metrics),
+            }),
             _ if self.results.error.is_some() => DesignZone::Known(None),
             _ => DesignZone::Computing,
         }
