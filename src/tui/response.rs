@@ -82,6 +82,7 @@ pub fn marker_line(at_f: Option<&ResponsePoint>, band: &FreqBand, f: f64, width:
                 format!("f {fs} Hz from rest: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}"),
                 format!("f {fs} Hz from rest: {x} mm, alone {alone}, Leq {leq}"),
                 format!("f {fs} Hz from rest: {x} mm, alone {alone}"),
+                format!("f {fs} Hz from rest: {x} mm"),
                 format!("{fs} Hz, rest: {x} mm"),
             ]
         }

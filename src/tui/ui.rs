@@ -307,9 +307,9 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
 pub fn start_words(d: &Design) -> String {
     let p = &d.damper;
     if p.v0_m_s != 0.0 {
-        format!("after the {} m/s strike", sig(p.v0_m_s, 3))
+        format!("after the {} m/s strike", crate::units::short(p.v0_m_s))
     } else if p.ball_velocity_m_s != 0.0 {
-        format!("after the ball's {} m/s start", sig(p.ball_velocity_m_s, 3))
+        format!("after the ball's {} m/s start", crate::units::short(p.ball_velocity_m_s))
     } else {
         "from rest".to_string()
     }
