@@ -106,7 +106,7 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     }
     f.render_widget(Paragraph::new(app.theme.fit_line(status_line(app), status.width.into())), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(&app.settings.keys, footer.width, touring, app.mouse, &app.theme), footer);
+        f.render_widget(footer_line(&app.settings.keys, footer.width, (touring, app.anim.is_some()), app.mouse, &app.theme), footer);
     }
     match app.mode {
         Mode::Help(scroll) => help_popup(f, &app.settings.keys, &app.theme, scroll, area),
@@ -140,6 +140,12 @@ pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
 /// Lays out the body by size class.
 fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     let params_h = PARAMS_ROWS.min(Knob::ALL.len() as u16) + 2;
+    if let Some(anim) = &app.anim {
+        if body.width >= 30 && body.height >= 6 {
+            anim_panel(f, app, anim, body);
+            return Drawn::default();
+        }
+    }
     if app.zoom && body.width >= 30 && body.height >= 6 {
         return zoomed(f, app, body);
     }
@@ -189,6 +195,37 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
         readout_widget(f, app, readout, false);
         Drawn::default()
     }
+}
+
+/// The animation view in the whole body: the live design's run in slow motion.
+fn anim_panel(f: &mut Frame, app: &App, anim: &super::anim::Anim, area: Rect) {
+    let th = &app.theme;
+    let title = fit(
+        th,
+        &[
+            " animation: the run in slow motion, to scale; ghost: without the ball ".to_string(),
+            " animation, to scale; ghost: without the ball ".to_string(),
+            " animation ".to_string(),
+        ],
+        area.width,
+    );
+    let block = th.highlight_block(th.text(&title).into_owned());
+    let empty_h: &[crate::damper::HistoryPoint] = &[];
+    let empty: &[(f64, f64)] = &[];
+    let sim = app.results.sim.as_deref();
+    let view = super::anim::AnimView {
+        block,
+        anim,
+        history: sim.map_or(empty_h, |s| &s.eval.run.history),
+        impacts: sim.map_or(&[], |s| &s.eval.run.impacts),
+        history_cm: sim.map_or(empty, |s| &s.history_cm),
+        free_cm: sim.map_or(empty, |s| &s.free_cm),
+        gap_m: app.design.damper.gap_m,
+        ball_radius_m: app.design.ball_radius_m(),
+        end_s: sim.map_or(0.0, |s| s.eval.run.final_time_s),
+        theme: app.theme,
+    };
+    f.render_widget(view, area);
 }
 
 /// The zoomed panel alone in the whole body.
@@ -833,8 +870,14 @@ fn status_line(app: &App) -> Line<'static> {
 /// The footer: the key table's hints (the tour's first while it runs) and, with the mouse on,
 /// `mouse on`; as many whole ones as fit in `width`, chosen by importance
 /// ([`keys::FOOTER_PRIORITY`]) and shown in table order.
-fn footer_line(keys: &Keymap, width: u16, touring: bool, mouse: bool, theme: &Palette) -> Paragraph<'static> {
-    let mut hints = keys.footer_items(touring);
+fn footer_line(
+    keys: &Keymap,
+    width: u16,
+    (touring, animating): (bool, bool),
+    mouse: bool,
+    theme: &Palette,
+) -> Paragraph<'static> {
+    let mut hints = keys.footer_items_in(touring, animating);
     if mouse {
         hints.push(keys::mouse_hint());
     }

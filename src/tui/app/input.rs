@@ -103,7 +103,7 @@ impl App {
             }
             Mode::Normal => {
                 let touring = self.tour.is_some();
-                if let Some(a) = self.settings.keys.action_in(&k, touring) {
+                if let Some(a) = self.settings.keys.action_mode(&k, touring, self.anim.is_some()) {
                     self.act(a)
                 } else if let Some(c) = typed_start(&k) {
                     // A digit or a point starts typing a value into the selected field.
@@ -241,6 +241,10 @@ impl App {
             Action::TourLeave => self.leave_tour(false),
             Action::Find => self.mode = Mode::Find(String::new(), 0),
             Action::Field(f) => self.select_field(f),
+            Action::Animate => self.toggle_anim(),
+            Action::AnimPlay | Action::AnimStep { .. } | Action::AnimSpeed { .. } | Action::AnimRestart => {
+                self.anim_key(a);
+            }
         }
         vec![]
     }

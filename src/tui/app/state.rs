@@ -309,6 +309,8 @@ pub struct App {
     pub pulse: PulseView,
     /// The guided tour, while it runs.
     pub tour: Option<TourState>,
+    /// The animation view, while it shows (`a`).
+    pub anim: Option<crate::tui::anim::Anim>,
     /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
     pub(crate) pending_best: bool,
     pub(crate) status: Option<Status>,
@@ -372,6 +374,7 @@ impl App {
             chart_view: ChartView::Zones,
             pulse: PulseView::for_preset(preset),
             tour: None,
+            anim: None,
             pending_best: false,
             status: Some(Status {
                 text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),

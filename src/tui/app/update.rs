@@ -24,6 +24,8 @@ pub enum Msg {
     Tick,
     /// The terminal hung up (see `tui::hangup`): the explorer ends.
     Hangup,
+    /// A frame of the playing animation: this much real time (s) went by since the last one.
+    Frame(f64),
     /// A bracketed paste without its end marker was dropped after its time ran out
     /// (`tui::input_parse`): `bytes` bytes after its start marker.
     PasteDropped { bytes: usize },
@@ -56,6 +58,10 @@ impl App {
             }
             Msg::Hangup => {
                 self.quit = true;
+                vec![]
+            }
+            Msg::Frame(real_s) => {
+                self.anim_advance(real_s);
                 vec![]
             }
             Msg::PasteDropped { bytes } => {
