@@ -1809,7 +1809,8 @@ fn every_tour_step_at_80x24_shows_its_named_panel_with_its_plot() {
         insta::assert_snapshot!(format!("tour_zoomed_step{}_80x24", i + 1), screen);
         assert!(!screen.contains("too small"), "step {} at 80x24:\n{screen}", i + 1);
         let marked = screen.lines().find(|l| l.contains("▶ ")).expect("the step's panel is marked");
-        assert!(marked.contains(panel_title(step.panel)) || step.panel == Panel::Chart, "step {}:\n{screen}", i + 1);
+        let title = if step.animate { "animation" } else { panel_title(step.panel) };
+        assert!(marked.contains(title) || step.panel == Panel::Chart, "step {}:\n{screen}", i + 1);
         match step.panel {
             Panel::Chart => {
                 assert!(screen.contains(panel_title(Panel::Chart)) && screen.contains("d (cm)"), "{screen}");

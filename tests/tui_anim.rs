@@ -93,3 +93,44 @@ fn the_animation_draws_forced_runs_the_pinned_design_and_ascii() {
         assert!(s.contains("speed 1/1000x") && s.contains("t 0.03"), "{w}x{h}:\n{s}");
     }
 }
+
+/// A writer that counts the bytes sent through it.
+struct Count(std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+impl std::io::Write for Count {
+    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+        self.0.fetch_add(b.len(), std::sync::atomic::Ordering::Relaxed);
+        Ok(b.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Bytes the real backend sends for one second of playback (30 frames) at `w × h`, after the
+/// first full frame; ratatui sends only the cells that changed.
+pub fn bytes_per_second(w: u16, h: u16) -> usize {
+    use ratatui::backend::CrosstermBackend;
+    use ratatui::layout::Rect;
+    use ratatui::{TerminalOptions, Viewport};
+    use std::sync::atomic::Ordering;
+    let mut app = computed_app(Design::default(), false);
+    press(&mut app, KeyCode::Char('a'));
+    let sent = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let opts = TerminalOptions { viewport: Viewport::Fixed(Rect::new(0, 0, w, h)) };
+    let mut term = Terminal::with_options(CrosstermBackend::new(Count(sent.clone())), opts).unwrap();
+    draw(&mut term, &mut app).unwrap();
+    let first = sent.load(Ordering::Relaxed);
+    for _ in 0..30 {
+        app.update(Msg::Frame(thud::tui::anim::FRAME_S));
+        draw(&mut term, &mut app).unwrap();
+    }
+    sent.load(Ordering::Relaxed) - first
+}
+
+#[test]
+fn one_second_of_playback_at_80x24_sends_under_30_kb() {
+    let bytes = bytes_per_second(80, 24);
+    eprintln!("animation at 80x24: {bytes} bytes per second");
+    assert!(bytes > 0 && bytes < 30_000, "{bytes} B/s");
+}

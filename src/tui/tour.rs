@@ -17,6 +17,7 @@
 //! panel = "waveform"           # params, readout, waveform, polar, history or chart
 //! best = false                 # optional: jump to the best zone-3 design once the chart is in
 //! select = "theta"             # optional: the field the step talks about (else the first it sets)
+//! animate = false              # optional: play the run in slow motion (the animation view)
 //! caption = "Two to three lines of text."
 //! ```
 
@@ -73,6 +74,8 @@ pub struct TourStep {
     /// The field the step talks about, selected while it shows (its `select`, else the
     /// first field it sets, else the step before's; the mass first).
     pub select: Knob,
+    /// The step plays the run in slow motion (the animation view) instead of its panel.
+    pub animate: bool,
 }
 
 /// A checked tour.
@@ -103,6 +106,8 @@ struct StepFile {
     #[serde(default)]
     set: BTreeMap<String, toml::Value>,
     select: Option<String>,
+    #[serde(default)]
+    animate: bool,
 }
 
 /// `text` wrapped greedily at spaces into lines of at most `width` columns (a longer word
@@ -207,6 +212,7 @@ impl Tour {
                 runs: setup.runs,
                 sets_thresholds,
                 select,
+                animate: s.animate,
             });
         }
         Ok(Tour { title: parsed.title, steps })
@@ -284,9 +290,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_built_in_tour_loads_with_six_to_eight_steps_of_three_lines_at_most() {
+    fn the_built_in_tour_loads_with_six_to_ten_steps_of_three_lines_at_most() {
         let t = Tour::load(&TourSource::BuiltIn).unwrap();
-        assert!((6..=8).contains(&t.steps.len()), "{}", t.steps.len());
+        assert!((6..=10).contains(&t.steps.len()), "{}", t.steps.len());
         for s in &t.steps {
             let n = wrap(&s.caption, CAPTION_WIDTH).len();
             assert!((2..=3).contains(&n), "{}: {n} lines", s.title);

@@ -209,6 +209,8 @@ fn anim_panel(f: &mut Frame, app: &App, anim: &super::anim::Anim, area: Rect) {
         ],
         area.width,
     );
+    // In the tour the animation is the step's panel: marked as the others are.
+    let title = if app.tour.is_some() { format!(" {} {}", th.sym("▶", ">"), title.trim_start()) } else { title };
     let block = th.highlight_block(th.text(&title).into_owned());
     let empty_h: &[crate::damper::HistoryPoint] = &[];
     let empty: &[(f64, f64)] = &[];

@@ -42,6 +42,7 @@ impl App {
             d.thresholds = self.settings.config.thresholds(d.thresholds);
         }
         self.pulse = step.pulse;
+        self.anim = step.animate.then(crate::tui::anim::Anim::default);
         if let Some(i) = crate::tui::fields::Knob::ALL.iter().position(|k| *k == step.select) {
             self.selected = i;
         }
