@@ -87,7 +87,20 @@ fn the_ensemble_marker_shows_the_readouts_zone_which_is_the_clis() {
     set(&mut app, Knob::V0, "2.6");
     set(&mut app, Knob::Runs, "12");
     assert!(!app.busy());
-    let json = cli(&["simulate", "--mass", "31.2g", "--gap", "5.6cm", "--c1", "45", "--v0", "2.6", "--ensemble", "12", "--json"]);
+    let json = cli(&[
+        "simulate",
+        "--mass",
+        "31.2g",
+        "--gap",
+        "5.6cm",
+        "--c1",
+        "45",
+        "--v0",
+        "2.6",
+        "--ensemble",
+        "12",
+        "--json",
+    ]);
     let zone = json["zone"].as_u64().unwrap();
     let DesignZone::Known(Some(marker)) = app.design_zone() else { panic!("{:?}", app.design_zone()) };
     assert_eq!(u64::from(marker.number()), zone, "the marker's zone is the CLI's");

@@ -13,9 +13,9 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Color;
 use ratatui::style::{Modifier, Style};
 use ratatui::widgets::canvas::{Circle, Line as CLine, Rectangle};
-use ratatui::style::Color;
 use ratatui::widgets::{Block, Widget};
 
 use super::plot::{fit_bounds, stamp, Curve, LinePlot};
@@ -184,13 +184,25 @@ impl AnimView<'_> {
             let mut prev = (anchor, 0.0);
             for i in 1..=n {
                 let px = anchor + (to - anchor) * f64::from(i) / f64::from(n);
-                let py = if i == n { 0.0 } else if i % 2 == 1 { amp } else { -amp };
+                let py = if i == n {
+                    0.0
+                } else if i % 2 == 1 {
+                    amp
+                } else {
+                    -amp
+                };
                 ctx.draw(&CLine { x1: prev.0, y1: prev.1, x2: px, y2: py, color: Color::Reset });
                 prev = (px, py);
             }
         };
         let frame = |ctx: &mut ratatui::widgets::canvas::Context, x: f64| {
-            ctx.draw(&Rectangle { x: x - box_half, y: -box_h, width: 2.0 * box_half, height: 2.0 * box_h, color: Color::Reset });
+            ctx.draw(&Rectangle {
+                x: x - box_half,
+                y: -box_h,
+                width: 2.0 * box_half,
+                height: 2.0 * box_h,
+                color: Color::Reset,
+            });
             ctx.draw(&CLine { x1: x - inner, y1: -r, x2: x - inner, y2: r, color: Color::Reset });
             ctx.draw(&CLine { x1: x + inner, y1: -r, x2: x + inner, y2: r, color: Color::Reset });
         };
@@ -201,7 +213,13 @@ impl AnimView<'_> {
         if let Some(g) = ghost_m {
             let g = cm(g);
             stamp(buf, area, xb, yb, th.line_marker_faint(), th.behind(th.ink(Role::Alone)), |ctx| {
-                ctx.draw(&Rectangle { x: g - box_half, y: -box_h, width: 2.0 * box_half, height: 2.0 * box_h, color: Color::Reset });
+                ctx.draw(&Rectangle {
+                    x: g - box_half,
+                    y: -box_h,
+                    width: 2.0 * box_half,
+                    height: 2.0 * box_h,
+                    color: Color::Reset,
+                });
             });
         }
         let x = cm(pose.x_m);
@@ -247,7 +265,13 @@ impl Widget for AnimView<'_> {
         self.scene(buf, picture, pose, ghost, flashed.and_then(|i| self.impacts.get(i)));
         let state = if a.playing { th.sym("▶ playing", "> playing") } else { th.sym("❚❚ paused", "|| paused") };
         let text = format!("t {} s of {} s   speed {}   {state}", sig(a.t_s, 4), sig(self.end_s, 3), a.speed_text());
-        buf.set_stringn(status.x, status.y, th.fit(&th.text(&text), status.width.into()), status.width.into(), th.label());
+        buf.set_stringn(
+            status.x,
+            status.y,
+            th.fit(&th.text(&text), status.width.into()),
+            status.width.into(),
+            th.label(),
+        );
         let text = match flashed.and_then(|i| self.impacts.get(i).map(|e| (i, e))) {
             Some((i, e)) => {
                 let side = match e.wall {
@@ -263,7 +287,13 @@ impl Widget for AnimView<'_> {
             None => format!("{} impacts in the run; the ghost: the structure without the ball", self.impacts.len()),
         };
         let style = if flashed.is_some() { Style::default().add_modifier(Modifier::BOLD) } else { th.label() };
-        buf.set_stringn(flash_line.x, flash_line.y, th.fit(&th.text(&text), flash_line.width.into()), flash_line.width.into(), style);
+        buf.set_stringn(
+            flash_line.x,
+            flash_line.y,
+            th.fit(&th.text(&text), flash_line.width.into()),
+            flash_line.width.into(),
+            style,
+        );
         let cursor = [(a.t_s, -1e9), (a.t_s, 1e9)];
         let yb = fit_bounds(self.history_cm.iter().chain(self.free_cm).map(|p| p.1), 0.05);
         let cursor = [(cursor[0].0, yb[0]), (cursor[1].0, yb[1])];

@@ -350,8 +350,7 @@ pub fn layout(
     let place = |beside: bool| {
         let (grid_w, grid_h) = if beside { (beside_w, inner.height - fixed) } else { (inner.width, below_h) };
         // Beside, the x title may run under the legend when the legend ends above its row.
-        let title_right =
-            if beside && grid_h >= items.len() as u16 { inner.right() } else { inner.x + grid_w };
+        let title_right = if beside && grid_h >= items.len() as u16 { inner.right() } else { inner.x + grid_w };
         grid_in(Rect::new(inner.x, inner.y + 1, grid_w, grid_h), nm, ng, title_right)
             .map(|(g, t)| (beside, grid_w, g, t))
     };

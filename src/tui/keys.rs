@@ -214,8 +214,8 @@ pub const KEYS: &[Binding] = &[
         Action::Animate,
         "animate",
         "a",
-        "animation: the run in slow motion, the ball rattling in its mass on the spring (a again: the panels)",
-        "animate",
+        "animation: the run in slow motion (a again: back to the panels)",
+        "",
     ),
     bind(KeyCode::Tab, NONE, Action::FocusNext, "next-panel", "Tab", "focus the next panel", "focus"),
     bind(
@@ -347,7 +347,6 @@ pub const FOOTER_PRIORITY: &[&str] = &[
     "export",
     "impact",
     "response",
-    "animate",
 ];
 
 /// One hint of the footer: its action's name (its rank in [`FOOTER_PRIORITY`]), the key as
@@ -396,10 +395,34 @@ pub const TOUR_KEYS: &[Binding] = &[
 /// leaves it, every other key works as usual).
 pub const ANIM_KEYS: &[Binding] = &[
     bind(KeyCode::Char(' '), NONE, Action::AnimPlay, "anim-play", "Space", "animation: play or pause", "play/pause"),
-    bind(KeyCode::Char('.'), NONE, Action::AnimStep { back: false }, "anim-step", ".", "animation: one frame on", "frame"),
+    bind(
+        KeyCode::Char('.'),
+        NONE,
+        Action::AnimStep { back: false },
+        "anim-step",
+        ".",
+        "animation: one frame on",
+        "frame",
+    ),
     bind(KeyCode::Char(','), NONE, Action::AnimStep { back: true }, "anim-back", ",", "animation: one frame back", ""),
-    bind(KeyCode::Char('['), NONE, Action::AnimSpeed { faster: false }, "anim-slower", "[", "animation: slower (down to 1/1000×)", ""),
-    bind(KeyCode::Char(']'), NONE, Action::AnimSpeed { faster: true }, "anim-faster", "]", "animation: faster (up to 1×)", "speed"),
+    bind(
+        KeyCode::Char('['),
+        NONE,
+        Action::AnimSpeed { faster: false },
+        "anim-slower",
+        "[",
+        "animation: slower (down to 1/1000×)",
+        "",
+    ),
+    bind(
+        KeyCode::Char(']'),
+        NONE,
+        Action::AnimSpeed { faster: true },
+        "anim-faster",
+        "]",
+        "animation: faster (up to 1×)",
+        "speed",
+    ),
     bind(KeyCode::Home, NONE, Action::AnimRestart, "anim-restart", "Home", "animation: back to the start", "restart"),
 ];
 
@@ -786,7 +809,8 @@ mod tests {
 
     #[test]
     fn every_hint_has_a_rank_and_every_rank_a_hint() {
-        let hinted: Vec<&str> = KEYS.iter().chain(TOUR_KEYS).chain(ANIM_KEYS).filter(|b| !b.hint.is_empty()).map(|b| b.name).collect();
+        let hinted: Vec<&str> =
+            KEYS.iter().chain(TOUR_KEYS).chain(ANIM_KEYS).filter(|b| !b.hint.is_empty()).map(|b| b.name).collect();
         for name in &hinted {
             assert!(FOOTER_PRIORITY.contains(name), "{name} has a footer hint but no rank in FOOTER_PRIORITY");
         }

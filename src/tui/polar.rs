@@ -234,7 +234,12 @@ mod tests {
 
     #[test]
     fn a_click_reads_the_angle_from_the_centre() {
-        let hit = PolarHit { canvas: Rect::new(0, 0, 41, 21), xb: [-20.0, 20.0], yb: [-20.0, 20.0], range_deg: (-90.0, 90.0) };
+        let hit = PolarHit {
+            canvas: Rect::new(0, 0, 41, 21),
+            xb: [-20.0, 20.0],
+            yb: [-20.0, 20.0],
+            range_deg: (-90.0, 90.0),
+        };
         assert_eq!(hit.theta_at(20, 0), Some(0.0), "straight up: the normal");
         assert_eq!(hit.theta_at(40, 10), Some(90.0), "right");
         assert_eq!(hit.theta_at(0, 10), Some(-90.0), "left");

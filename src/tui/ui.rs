@@ -106,7 +106,10 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     }
     f.render_widget(Paragraph::new(app.theme.fit_line(status_line(app), status.width.into())), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(&app.settings.keys, footer.width, (touring, app.anim.is_some()), app.mouse, &app.theme), footer);
+        f.render_widget(
+            footer_line(&app.settings.keys, footer.width, (touring, app.anim.is_some()), app.mouse, &app.theme),
+            footer,
+        );
     }
     match app.mode {
         Mode::Help(scroll) => help_popup(f, &app.settings.keys, &app.theme, scroll, area),
@@ -595,9 +598,7 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Drawn {
             };
             f.render_widget(view, area);
         }
-        Panel::Chart => {
-            return Drawn { geometry: chart_panel(f, app, area), chart_shown: true, ..Drawn::default() }
-        }
+        Panel::Chart => return Drawn { geometry: chart_panel(f, app, area), chart_shown: true, ..Drawn::default() },
     }
     Drawn::default()
 }
@@ -667,8 +668,7 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
                 ResponseState::Computing(app.response.progress.0, app.response.progress.1)
             };
             let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.rest_at_f.as_ref());
-            let view =
-                ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, at_f, theme: app.theme };
+            let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, at_f, theme: app.theme };
             f.render_widget(view, area);
             None
         }

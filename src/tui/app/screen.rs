@@ -108,7 +108,10 @@ impl App {
             return;
         }
         self.anim = Some(crate::tui::anim::Anim::default());
-        self.set_status("animation: Space plays/pauses, . , one frame, [ ] slower/faster, Home restarts, a closes", false);
+        self.set_status(
+            "animation: Space plays/pauses, . , one frame, [ ] slower/faster, Home restarts, a closes",
+            false,
+        );
     }
 
     /// The animation's own keys.
