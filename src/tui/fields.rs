@@ -945,7 +945,7 @@ pub fn find(typed: &str) -> Vec<Knob> {
             return Some(0);
         }
         let names = [k.label().to_lowercase(), k.param().to_lowercase()];
-        if names.iter().any(|n| *n == q) {
+        if names.contains(&q) {
             Some(0)
         } else if names.iter().any(|n| n.starts_with(&q)) {
             Some(1)

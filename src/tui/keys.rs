@@ -697,8 +697,7 @@ impl Keymap {
                     Action::Field(_) => [Knob::Mass, Knob::Gap, Knob::R, Knob::Theta]
                         .into_iter()
                         .filter_map(|f| first(Action::Field(f)).map(|k| k.label.clone()))
-                        .collect::<Vec<_>>()
-                        .join(""),
+                        .collect::<String>(),
                     _ => k.label.clone(),
                 };
                 Hint { name: k.name, label, hint: k.hint }

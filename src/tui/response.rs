@@ -64,7 +64,7 @@ pub fn nearest_point(r: &Response, f: f64) -> Option<&ResponsePoint> {
 /// nearest band point's), and where f lies off the band.
 pub fn marker_line(at_f: Option<&ResponsePoint>, band: &FreqBand, f: f64, width: usize) -> String {
     let fs = sig(f, 4);
-    let side = (!band.contains(f)).then(|| if f < band.from_hz { "below" } else { "above" });
+    let side = (!band.contains(f)).then_some(if f < band.from_hz { "below" } else { "above" });
     let off = side.map_or(String::new(), |s| format!(" ({s} the band, arrow at the edge)"));
     let options = match at_f {
         Some(p) => {
