@@ -180,7 +180,9 @@ impl AnimView<'_> {
         let anchor = xb[0] + 0.5;
         let spring = |ctx: &mut ratatui::widgets::canvas::Context, to: f64| {
             let n = 12;
-            let amp = 0.5 * box_h;
+            // A flat zigzag, one line of cells tall (±1.5 Braille dots): fewer cells change as
+            // it stretches (bytes over SSH).
+            let amp = 1.5 * (yb[1] - yb[0]) / (4.0 * f64::from(area.height.max(1)));
             let mut prev = (anchor, 0.0);
             for i in 1..=n {
                 let px = anchor + (to - anchor) * f64::from(i) / f64::from(n);
@@ -212,14 +214,11 @@ impl AnimView<'_> {
         });
         if let Some(g) = ghost_m {
             let g = cm(g);
+            // The ghost's two ends only: enough to read its swing, few cells to resend.
             stamp(buf, area, xb, yb, th.line_marker_faint(), th.behind(th.ink(Role::Alone)), |ctx| {
-                ctx.draw(&Rectangle {
-                    x: g - box_half,
-                    y: -box_h,
-                    width: 2.0 * box_half,
-                    height: 2.0 * box_h,
-                    color: Color::Reset,
-                });
+                for end in [g - box_half, g + box_half] {
+                    ctx.draw(&CLine { x1: end, y1: -box_h, x2: end, y2: box_h, color: Color::Reset });
+                }
             });
         }
         let x = cm(pose.x_m);
