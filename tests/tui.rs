@@ -356,10 +356,7 @@ fn the_footer_shows_every_hint_that_fits_by_importance() {
             if w >= 120 {
                 assert!(footer.contains(" v view "), "{w} cols:\n{footer}");
             }
-            // At 80 columns the field keys (/ and m g r t) outrank the mouse's word.
-            if w >= 120 {
-                assert_eq!(footer.contains(" mouse on"), mouse, "{w} cols:\n{footer}");
-            }
+            assert_eq!(footer.contains(" mouse on"), mouse, "{w} cols:\n{footer}");
             if w == 200 {
                 assert!(left_out.is_empty(), "every hint at 200 columns, {left_out:?} left out:\n{footer}");
             }

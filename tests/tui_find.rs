@@ -95,7 +95,7 @@ fn m_g_r_t_select_the_headline_inputs_and_the_footer_names_them() {
     }
     let screen = render(&mut app, 80, 24);
     let footer = screen.lines().last().unwrap();
-    assert!(footer.contains("/ find") && footer.contains("mgrt m d r θ"), "{footer}");
+    assert!(footer.contains("/ find") && footer.contains("mgrt fields"), "{footer}");
 }
 
 #[test]

@@ -204,7 +204,7 @@ pub const KEYS: &[Binding] = &[
         "find a field: type part of its name (th → θ), ↑↓ choose, Enter selects, Esc cancels",
         "find",
     ),
-    bind(KeyCode::Char('m'), NONE, Action::Field(Knob::Mass), "field-mass", "m", "select the ball's mass m", "m d r θ"),
+    bind(KeyCode::Char('m'), NONE, Action::Field(Knob::Mass), "field-mass", "m", "select the ball's mass m", "fields"),
     bind(KeyCode::Char('g'), NONE, Action::Field(Knob::Gap), "field-gap", "g", "select the gap d", ""),
     bind(KeyCode::Char('r'), NONE, Action::Field(Knob::R), "field-r", "r", "select the listener's distance r", ""),
     bind(KeyCode::Char('t'), NONE, Action::Field(Knob::Theta), "field-theta", "t", "select the listener's angle θ", ""),
@@ -331,11 +331,11 @@ pub const FOOTER_PRIORITY: &[&str] = &[
     "edit",
     "find",
     "field-mass",
-    "zoom",
-    "next-panel",
     // Above the tour: at 80 columns the footer has room for one of them, and the status line
     // names `T` when the explorer starts.
     "mouse",
+    "zoom",
+    "next-panel",
     "tour",
     "view",
     "save",
@@ -693,7 +693,7 @@ impl Keymap {
                     Action::Increase { fine: false } => {
                         pair(Action::Decrease { fine: false }, Action::Increase { fine: false }, "←→")
                     }
-                    // The four field keys as one hint: "mgrt m d r θ".
+                    // The four field keys as one hint: "mgrt fields".
                     Action::Field(_) => [Knob::Mass, Knob::Gap, Knob::R, Knob::Theta]
                         .into_iter()
                         .filter_map(|f| first(Action::Field(f)).map(|k| k.label.clone()))
