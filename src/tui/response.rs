@@ -54,11 +54,6 @@ fn points(r: &Response) -> Vec<&ResponsePoint> {
     r.sweeps.iter().flat_map(|s| &s.points).collect()
 }
 
-/// The point nearest frequency `f` (Hz).
-pub fn nearest_point(r: &Response, f: f64) -> Option<&ResponsePoint> {
-    points(r).into_iter().min_by(|a, b| (a.freq_hz - f).abs().total_cmp(&(b.freq_hz - f).abs()))
-}
-
 /// The line under the plots, the longest of its wordings that fits `width` columns: the
 /// engine's steady figures at f itself from rest (`at_f`, computed for exactly f, never the
 /// nearest band point's), and where f lies off the band.
