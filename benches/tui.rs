@@ -178,5 +178,61 @@ fn at_200x60(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, frame, mass_change, chart_fill, at_200x60);
+/// A writer that counts the bytes sent through it.
+struct Count(std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+impl std::io::Write for Count {
+    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+        self.0.fetch_add(b.len(), std::sync::atomic::Ordering::Relaxed);
+        Ok(b.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// The animation: one frame at 200×60 (a frame of time on, then the redraw ratatui diffs), and
+/// the bytes one second of playback (30 frames) sends at 80×24 through the real backend, at the
+/// slowest speed and at 1× (printed: criterion measures time).
+fn animation(c: &mut Criterion) {
+    use ratatui::backend::CrosstermBackend;
+    use ratatui::layout::Rect;
+    use ratatui::{TerminalOptions, Viewport};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use thud::tui::anim::{Anim, FRAME_S, SPEEDS};
+    let small = Grids { coarse: None, fine: Grid::standard(4, 4) };
+    for speed in [0, SPEEDS.len() - 1] {
+        let mut app = computed(small.clone());
+        app.anim = Some(Anim { speed, ..Anim::default() });
+        let sent = std::sync::Arc::new(AtomicUsize::new(0));
+        let opts = TerminalOptions { viewport: Viewport::Fixed(Rect::new(0, 0, 80, 24)) };
+        let mut term = Terminal::with_options(CrosstermBackend::new(Count(sent.clone())), opts).unwrap();
+        draw(&mut term, &mut app).unwrap();
+        let first = sent.load(Ordering::Relaxed);
+        for _ in 0..30 {
+            app.update(Msg::Frame(FRAME_S));
+            draw(&mut term, &mut app).unwrap();
+        }
+        let bytes = sent.load(Ordering::Relaxed) - first;
+        println!("animation at 80x24, speed {}x: {bytes} bytes per second of playback", SPEEDS[speed]);
+    }
+    let mut app = computed(small);
+    app.anim = Some(Anim::default());
+    let mut term = Terminal::new(TestBackend::new(200, 60)).unwrap();
+    let mut worst = Duration::ZERO;
+    c.bench_function("tui animation frame 200x60 (a frame on, redraw)", |b| {
+        b.iter(|| {
+            let t = Instant::now();
+            app.update(Msg::Frame(FRAME_S));
+            if app.anim.as_ref().is_some_and(|a| !a.playing) {
+                app.anim = Some(Anim::default());
+            }
+            draw(&mut term, &mut app).unwrap();
+            worst = worst.max(t.elapsed());
+        });
+    });
+    println!("animation frame at 200x60: slowest {worst:?} (budget 33 ms)");
+}
+
+criterion_group!(benches, frame, mass_change, chart_fill, at_200x60, animation);
 criterion_main!(benches);

@@ -311,12 +311,13 @@ pub enum LegendPlace {
     Below(u16, Vec<Vec<usize>>),
 }
 
-/// The grid in `area` and whether the x title fits on the labels row right of it; else the
-/// title takes a row of its own under the grid (taken from the grid).
-fn grid_in(area: Rect, nm: usize, ng: usize) -> Option<(Geometry, bool)> {
+/// The grid in `area` and whether the x title fits on the labels row right of it (up to
+/// column `title_right`); else the title takes a row of its own under the grid (taken from
+/// the grid).
+fn grid_in(area: Rect, nm: usize, ng: usize, title_right: u16) -> Option<(Geometry, bool)> {
     let x_title_w = 8u16;
     let geometry = Geometry::new(area, nm, ng)?;
-    if area.right().saturating_sub(geometry.cells.right()) > x_title_w {
+    if title_right.max(area.right()).saturating_sub(geometry.cells.right()) > x_title_w {
         return Some((geometry, true));
     }
     let room = Rect { height: area.height.saturating_sub(1), ..area };
@@ -348,7 +349,10 @@ pub fn layout(
     // where the grid is wide enough either way.
     let place = |beside: bool| {
         let (grid_w, grid_h) = if beside { (beside_w, inner.height - fixed) } else { (inner.width, below_h) };
-        grid_in(Rect::new(inner.x, inner.y + 1, grid_w, grid_h), nm, ng).map(|(g, t)| (beside, grid_w, g, t))
+        // Beside, the x title may run under the legend when the legend ends above its row.
+        let title_right = if beside && grid_h >= items.len() as u16 { inner.right() } else { inner.x + grid_w };
+        grid_in(Rect::new(inner.x, inner.y + 1, grid_w, grid_h), nm, ng, title_right)
+            .map(|(g, t)| (beside, grid_w, g, t))
     };
     let rows = |p: &Option<(bool, u16, Geometry, bool)>| p.as_ref().map_or(0, |p| p.2.rows.len());
     let (below, side) = (place(false), if beside_fits { place(true) } else { None });

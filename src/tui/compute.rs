@@ -100,6 +100,10 @@ pub struct AcousticResult {
     /// With N > 1 runs and a force: the settled steady state of the N runs at f (median and
     /// p10–p90, as `thud response --ensemble N` at this f).
     pub forced_ensemble: Option<response::EnsemblePoint>,
+    /// A forced design: the engine's point at exactly its f from rest (v0 = 0, settled), as
+    /// `thud response --freqs f:f:1` computes it; the response view shows it at its marker
+    /// (the curve's band points rarely fall on f). None without a force.
+    pub rest_at_f: Option<response::ResponsePoint>,
     /// With N > 1 runs: the ensemble of the design (its runs from N spread ball offsets).
     pub ensemble: Option<Ensemble>,
 }
@@ -168,7 +172,16 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         polar = directivity(&r, u0);
     }
     let single = single_impact(&r);
-    Ok(AcousticResult { metrics, waveform, polar, single, steady, ensemble: None, forced_ensemble: None })
+    Ok(AcousticResult {
+        metrics,
+        waveform,
+        polar,
+        single,
+        steady,
+        ensemble: None,
+        forced_ensemble: None,
+        rest_at_f: None,
+    })
 }
 
 /// The readout of `d` with `runs` runs: [`compute_acoustic`], and with N > 1 the ensemble of
@@ -190,6 +203,10 @@ pub fn compute_readout(
     if d.damper.forced() {
         match settled_steady(d, cancel)? {
             Some(s) => a.steady = Some(s),
+            None => return Ok(None),
+        }
+        match rest_point(d, cancel)? {
+            Some(p) => a.rest_at_f = Some(p),
             None => return Ok(None),
         }
         if runs > 1 {
@@ -214,6 +231,20 @@ pub fn settled_steady(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<
     s.damper.settle = true;
     let eval = design::evaluate(&s.check()?, 0, cancel)?;
     Ok(if eval.run.cancelled { None } else { eval.steady })
+}
+
+/// The response of forced `d` at exactly its f from rest: the point the response curve's
+/// engine call ([`compute_response`]) computes for that frequency, as `thud response --freqs
+/// f:f:1` does (each frequency from rest, settled). `None` if cancelled.
+pub fn rest_point(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<response::ResponsePoint>, ThudError> {
+    let f = d.damper.freq_hz;
+    let mut rd = response_design(d);
+    rd.damper.freq_hz = f;
+    let r = response::response(&rd.check()?, &[f], &ResponseOptions::default(), cancel, &|| {})?;
+    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return Ok(None);
+    }
+    Ok(r.sweeps.into_iter().next().and_then(|s| s.points.into_iter().next()))
 }
 
 /// The ensemble `e` under thresholds `t`: each run's zone and the zone of the medians

@@ -934,6 +934,35 @@ impl Knob {
     }
 }
 
+/// The fields whose name matches `typed` (the `/` filter), best first: the label or the
+/// command-line name equal to it, then starting with it, then a word of the label starting
+/// with it, then containing it; in panel order within each (all fields for nothing typed).
+/// Case is ignored; "th" finds θ (its name is `theta`).
+pub fn find(typed: &str) -> Vec<Knob> {
+    let q = typed.trim().to_lowercase();
+    let rank = |k: Knob| -> Option<u8> {
+        if q.is_empty() {
+            return Some(0);
+        }
+        let names = [k.label().to_lowercase(), k.param().to_lowercase()];
+        if names.contains(&q) {
+            Some(0)
+        } else if names.iter().any(|n| n.starts_with(&q)) {
+            Some(1)
+        } else if names[0].split([' ', '-']).any(|w| w.starts_with(&q)) {
+            Some(2)
+        } else if names.iter().any(|n| n.contains(&q)) {
+            Some(3)
+        } else {
+            None
+        }
+    };
+    let mut hits: Vec<(u8, usize, Knob)> =
+        Knob::ALL.into_iter().enumerate().filter_map(|(i, k)| rank(k).map(|r| (r, i, k))).collect();
+    hits.sort_by_key(|&(r, i, _)| (r, i));
+    hits.into_iter().map(|(_, _, k)| k).collect()
+}
+
 impl Knob {
     /// The value of a [`Knob::Row`] field as people read it: a number in its plain unit
     /// (— when the design does not use it, e.g. a density while the radius is set), or on/off.
@@ -1073,6 +1102,19 @@ mod tests {
         assert!(settle.stepped(&d, true, false).unwrap().damper.settle);
         assert_eq!(settle.display(&d), "off");
         assert_eq!(w0.display(&d), "0 m/s");
+    }
+
+    #[test]
+    fn the_filter_finds_theta_from_th_and_each_field_from_its_name() {
+        assert_eq!(find("th").first(), Some(&Knob::Theta));
+        assert_eq!(find("θ").first(), Some(&Knob::Theta));
+        assert_eq!(find("TH").first(), Some(&Knob::Theta), "case is ignored");
+        assert_eq!(find("gap").first(), Some(&Knob::Gap));
+        assert_eq!(find("").len(), Knob::ALL.len());
+        assert!(find("zzz").is_empty());
+        for k in Knob::ALL {
+            assert_eq!(find(k.param()).first(), Some(&k), "{} finds itself first", k.param());
+        }
     }
 
     #[test]

@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
+use super::fields::Knob;
 use crate::config::{ActionName, KeyBinding, KeyCode as ConfigKey, KeySpec, NamedKey};
 
 /// Everything a key (or a mouse click) can ask the app to do.
@@ -55,6 +56,24 @@ pub enum Action {
     TourPrev,
     /// Tour: leave it, keeping the design to explore.
     TourLeave,
+    /// Open the filter over the field list (`/`): type part of a name, Enter selects.
+    Find,
+    /// Select this field at once (the headline inputs: mass, gap, r, θ).
+    Field(Knob),
+    /// The animation view: the run played in slow motion (again: back to the panels).
+    Animate,
+    /// Animation: play or pause.
+    AnimPlay,
+    /// Animation: one frame forward (`back`: one frame back).
+    AnimStep {
+        back: bool,
+    },
+    /// Animation: faster (or slower) playback, 1/1000× to 1×.
+    AnimSpeed {
+        faster: bool,
+    },
+    /// Animation: back to the run's start.
+    AnimRestart,
 }
 
 /// One binding: the key, its modifiers, the action, its name in `config.toml`'s `[keys]`, how
@@ -176,6 +195,28 @@ pub const KEYS: &[Binding] = &[
         "type a value with units, e.g. 40.5g, 3cm, 60deg (Enter accepts, Esc cancels)",
         "type",
     ),
+    bind(
+        KeyCode::Char('/'),
+        NONE,
+        Action::Find,
+        "find",
+        "/",
+        "find a field: type part of its name (th → θ), ↑↓ choose, Enter selects, Esc cancels",
+        "find",
+    ),
+    bind(KeyCode::Char('m'), NONE, Action::Field(Knob::Mass), "field-mass", "m", "select the ball's mass m", "fields"),
+    bind(KeyCode::Char('g'), NONE, Action::Field(Knob::Gap), "field-gap", "g", "select the gap d", ""),
+    bind(KeyCode::Char('r'), NONE, Action::Field(Knob::R), "field-r", "r", "select the listener's distance r", ""),
+    bind(KeyCode::Char('t'), NONE, Action::Field(Knob::Theta), "field-theta", "t", "select the listener's angle θ", ""),
+    bind(
+        KeyCode::Char('a'),
+        NONE,
+        Action::Animate,
+        "animate",
+        "a",
+        "animation: the run in slow motion (a again: back to the panels)",
+        "",
+    ),
     bind(KeyCode::Tab, NONE, Action::FocusNext, "next-panel", "Tab", "focus the next panel", "focus"),
     bind(
         KeyCode::Char('z'),
@@ -279,16 +320,22 @@ pub const FOOTER_PRIORITY: &[&str] = &[
     "tour-next",
     "tour-back",
     "tour-leave",
+    "anim-play",
+    "anim-faster",
+    "anim-step",
+    "anim-restart",
     "quit",
     "help",
     "down",
     "increase",
     "edit",
-    "zoom",
-    "next-panel",
+    "find",
+    "field-mass",
     // Above the tour: at 80 columns the footer has room for one of them, and the status line
     // names `T` when the explorer starts.
     "mouse",
+    "zoom",
+    "next-panel",
     "tour",
     "view",
     "save",
@@ -344,6 +391,41 @@ pub const TOUR_KEYS: &[Binding] = &[
     bind(KeyCode::Esc, NONE, Action::TourLeave, "tour-leave", "Esc", "tour: leave it and explore from here", "leave"),
 ];
 
+/// The bindings that change while the animation shows (looked up before [`KEYS`]; `a`
+/// leaves it, every other key works as usual).
+pub const ANIM_KEYS: &[Binding] = &[
+    bind(KeyCode::Char(' '), NONE, Action::AnimPlay, "anim-play", "Space", "animation: play or pause", "play/pause"),
+    bind(
+        KeyCode::Char('.'),
+        NONE,
+        Action::AnimStep { back: false },
+        "anim-step",
+        ".",
+        "animation: one frame on",
+        "frame",
+    ),
+    bind(KeyCode::Char(','), NONE, Action::AnimStep { back: true }, "anim-back", ",", "animation: one frame back", ""),
+    bind(
+        KeyCode::Char('['),
+        NONE,
+        Action::AnimSpeed { faster: false },
+        "anim-slower",
+        "[",
+        "animation: slower (down to 1/1000×)",
+        "",
+    ),
+    bind(
+        KeyCode::Char(']'),
+        NONE,
+        Action::AnimSpeed { faster: true },
+        "anim-faster",
+        "]",
+        "animation: faster (up to 1×)",
+        "speed",
+    ),
+    bind(KeyCode::Home, NONE, Action::AnimRestart, "anim-restart", "Home", "animation: back to the start", "restart"),
+];
+
 /// One binding in effect: the table's row with its key, possibly overridden by the config.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Key {
@@ -359,6 +441,8 @@ pub struct Key {
     pub overridden: bool,
     /// A tour key ([`TOUR_KEYS`]): it acts only while the tour runs.
     pub tour: bool,
+    /// An animation key ([`ANIM_KEYS`]): it acts only while the animation shows.
+    pub anim: bool,
 }
 
 /// The bindings in effect: [`KEYS`] with the config's overrides. Dispatch, help overlay and
@@ -370,7 +454,7 @@ pub struct Keymap {
 
 impl Default for Keymap {
     fn default() -> Self {
-        let key = |b: &Binding, tour: bool| Key {
+        let key = |b: &Binding, tour: bool, anim: bool| Key {
             code: b.code,
             mods: b.mods,
             action: b.action,
@@ -380,8 +464,14 @@ impl Default for Keymap {
             hint: b.hint,
             overridden: false,
             tour,
+            anim,
         };
-        let keys = KEYS.iter().map(|b| key(b, false)).chain(TOUR_KEYS.iter().map(|b| key(b, true))).collect();
+        let keys = KEYS
+            .iter()
+            .map(|b| key(b, false, false))
+            .chain(TOUR_KEYS.iter().map(|b| key(b, true, false)))
+            .chain(ANIM_KEYS.iter().map(|b| key(b, false, true)))
+            .collect();
         Self { keys }
     }
 }
@@ -398,7 +488,7 @@ fn strip(code: KeyCode, m: KeyModifiers) -> KeyModifiers {
 /// The action names of the table, each once, in table order.
 pub fn action_names() -> Vec<&'static str> {
     let mut out: Vec<&'static str> = Vec::new();
-    for b in KEYS.iter().chain(TOUR_KEYS) {
+    for b in KEYS.iter().chain(TOUR_KEYS).chain(ANIM_KEYS) {
         if !out.contains(&b.name) {
             out.push(b.name);
         }
@@ -508,6 +598,7 @@ impl Keymap {
                     .find(|(j, o)| {
                         *j != i
                             && o.tour == k.tour
+                            && o.anim == k.anim
                             && o.code == k.code
                             && strip(o.code, o.mods) == strip(k.code, k.mods)
                     })
@@ -533,14 +624,27 @@ impl Keymap {
 
     /// The action bound to a key press; while the tour runs (`touring`) its keys come first.
     pub fn action_in(&self, key: &KeyEvent, touring: bool) -> Option<Action> {
+        self.action_mode(key, touring, false)
+    }
+
+    /// The action bound to a key press; while the animation shows (`animating`) its keys
+    /// come first, then the tour's while it runs.
+    pub fn action_mode(&self, key: &KeyEvent, touring: bool, animating: bool) -> Option<Action> {
         if key.kind == KeyEventKind::Release {
             return None;
         }
         let mods = strip(key.code, key.modifiers);
-        let hit = |tour: bool| {
-            self.keys.iter().find(|b| b.tour == tour && b.code == key.code && strip(b.code, b.mods) == mods)
+        let hit = |tour: bool, anim: bool| {
+            self.keys
+                .iter()
+                .find(|b| b.tour == tour && b.anim == anim && b.code == key.code && strip(b.code, b.mods) == mods)
         };
-        touring.then(|| hit(true)).flatten().or_else(|| hit(false)).map(|b| b.action)
+        animating
+            .then(|| hit(false, true))
+            .flatten()
+            .or_else(|| touring.then(|| hit(true, false)).flatten())
+            .or_else(|| hit(false, false))
+            .map(|b| b.action)
     }
 
     /// The first key of `action` as shown (e.g. "s"), if any.
@@ -561,15 +665,22 @@ impl Keymap {
     /// The footer's hints with their action names, in table order (the tour's first while it
     /// runs); [`fit_hints`] chooses the ones that fit.
     pub fn footer_items(&self, touring: bool) -> Vec<Hint> {
+        self.footer_items_in(touring, false)
+    }
+
+    /// The footer's hints; while the animation shows (`animating`) its keys first.
+    pub fn footer_items_in(&self, touring: bool, animating: bool) -> Vec<Hint> {
         let first = |a: Action| self.keys.iter().find(|k| k.action == a);
         let pair = |a: Action, b: Action, both: &str| match (first(a), first(b)) {
             (Some(x), Some(y)) if x.overridden || y.overridden => format!("{}{}", x.label, y.label),
             _ => both.to_string(),
         };
+        let plain = || self.keys.iter().filter(|k| !k.tour && !k.anim);
+        let anim = self.keys.iter().filter(|k| k.anim && animating);
         let tour_first: Vec<&Key> = if touring {
-            self.keys.iter().filter(|k| k.tour).chain(self.keys.iter().filter(|k| !k.tour)).collect()
+            anim.chain(self.keys.iter().filter(|k| k.tour)).chain(plain()).collect()
         } else {
-            self.keys.iter().filter(|k| !k.tour).collect()
+            anim.chain(plain()).collect()
         };
         tour_first
             .into_iter()
@@ -582,6 +693,11 @@ impl Keymap {
                     Action::Increase { fine: false } => {
                         pair(Action::Decrease { fine: false }, Action::Increase { fine: false }, "←→")
                     }
+                    // The four field keys as one hint: "mgrt fields".
+                    Action::Field(_) => [Knob::Mass, Knob::Gap, Knob::R, Knob::Theta]
+                        .into_iter()
+                        .filter_map(|f| first(Action::Field(f)).map(|k| k.label.clone()))
+                        .collect::<String>(),
                     _ => k.label.clone(),
                 };
                 Hint { name: k.name, label, hint: k.hint }
@@ -692,7 +808,8 @@ mod tests {
 
     #[test]
     fn every_hint_has_a_rank_and_every_rank_a_hint() {
-        let hinted: Vec<&str> = KEYS.iter().chain(TOUR_KEYS).filter(|b| !b.hint.is_empty()).map(|b| b.name).collect();
+        let hinted: Vec<&str> =
+            KEYS.iter().chain(TOUR_KEYS).chain(ANIM_KEYS).filter(|b| !b.hint.is_empty()).map(|b| b.name).collect();
         for name in &hinted {
             assert!(FOOTER_PRIORITY.contains(name), "{name} has a footer hint but no rank in FOOTER_PRIORITY");
         }

@@ -24,6 +24,7 @@
 //! terminal's bytes to crossterm events, a bracketed paste held to a time and a size), `hangup`
 //! and `terminal` (setup and restore).
 
+pub mod anim;
 pub mod app;
 pub mod cache_key;
 pub mod chart;
@@ -56,7 +57,7 @@ pub mod worker;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, Receiver};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use ratatui::backend::Backend;
 use ratatui::Terminal;
@@ -176,10 +177,29 @@ pub fn event_loop<B: Backend>(
     for r in app.initial_requests() {
         worker.submit(r);
     }
+    let frame = Duration::from_secs_f64(anim::FRAME_S);
+    let mut last_frame = Instant::now();
     loop {
         draw(term, app)?;
         busy.store(app.busy(), Ordering::Relaxed);
-        let Ok(first) = rx.recv() else { return Ok(()) };
+        // While the animation plays, a frame every 1/30 s (the time that went by since the
+        // last one); paused or closed, nothing is drawn until a message comes.
+        let first = if app.anim_playing() {
+            let wait = frame.saturating_sub(last_frame.elapsed());
+            match rx.recv_timeout(wait) {
+                Ok(m) => m,
+                Err(mpsc::RecvTimeoutError::Timeout) => {
+                    let real = last_frame.elapsed().as_secs_f64();
+                    last_frame = Instant::now();
+                    Msg::Frame(real)
+                }
+                Err(mpsc::RecvTimeoutError::Disconnected) => return Ok(()),
+            }
+        } else {
+            let Ok(m) = rx.recv() else { return Ok(()) };
+            last_frame = Instant::now();
+            m
+        };
         let mut next = Some(first);
         while let Some(msg) = next {
             for r in app.update(msg) {
@@ -199,6 +219,8 @@ pub fn draw<B: Backend>(term: &mut Terminal<B>, app: &mut App) -> Result<(), B::
     term.draw(|f| drawn = ui::draw(f, app))?;
     app.chart_geometry = drawn.geometry;
     app.chart_shown = drawn.chart_shown;
+    app.field_lines = drawn.fields;
+    app.polar_hit = drawn.polar;
     Ok(())
 }
 

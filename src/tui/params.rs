@@ -87,17 +87,38 @@ impl ParamsView<'_> {
     }
 }
 
+impl ParamsView<'_> {
+    /// The entries shown in `inner` (its height), from the first one the scroll shows.
+    fn shown(&self, inner: Rect) -> Vec<Entry> {
+        let entries = self.entries();
+        let at = entries.iter().position(|e| *e == Entry::Field(self.selected)).unwrap_or(0);
+        let first = Self::scroll(entries.len(), at, inner.height as usize);
+        entries.into_iter().skip(first).take(inner.height as usize).collect()
+    }
+
+    /// Where each shown field is drawn when the panel fills `area`: its line and its index
+    /// into the rows (for a click on a field).
+    pub fn field_lines(&self, area: Rect) -> Vec<(Rect, usize)> {
+        let inner = self.block.inner(area);
+        self.shown(inner)
+            .into_iter()
+            .zip(inner.y..inner.bottom())
+            .filter_map(|(e, y)| match e {
+                Entry::Field(i) => Some((Rect::new(inner.x, y, inner.width, 1), i)),
+                Entry::Heading(_) => None,
+            })
+            .collect()
+    }
+}
+
 impl Widget for ParamsView<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let inner = self.block.inner(area);
         (&self.block).render(area, buf);
-        let (h, w) = (inner.height as usize, inner.width as usize);
-        let entries = self.entries();
-        let at = entries.iter().position(|e| *e == Entry::Field(self.selected)).unwrap_or(0);
-        let first = Self::scroll(entries.len(), at, h);
-        let lines: Vec<Line> = entries[first..]
+        let w = inner.width as usize;
+        let entries = self.shown(inner);
+        let lines: Vec<Line> = entries
             .iter()
-            .take(h)
             .filter_map(|e| match *e {
                 Entry::Heading(title) => Some(self.heading(title, w)),
                 Entry::Field(i) => self.rows.get(i).map(|(l, v)| self.line(i, l, v, w)),

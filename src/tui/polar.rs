@@ -87,7 +87,43 @@ struct PolarLayout {
     top: f64,
 }
 
+/// Where the polar's canvas was drawn, for a click or a drag that sets θ there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PolarHit {
+    canvas: Rect,
+    xb: [f64; 2],
+    yb: [f64; 2],
+    range_deg: (f64, f64),
+}
+
+impl PolarHit {
+    /// The angle θ (degrees, whole, inside the source's range) of the direction from the
+    /// polar's centre to the cell at (x, y); None outside the canvas or at the centre itself.
+    pub fn theta_at(&self, x: u16, y: u16) -> Option<f64> {
+        let c = self.canvas;
+        if x < c.x || y < c.y || x >= c.right() || y >= c.bottom() {
+            return None;
+        }
+        // The cell's centre in the canvas's coordinates (y up; the canvas maps its bounds to
+        // the cells' range as `col` does).
+        let (w, h) = (f64::from(c.width.max(2)) - 1.0, f64::from(c.height.max(2)) - 1.0);
+        let cx = self.xb[0] + f64::from(x - c.x) / w * (self.xb[1] - self.xb[0]);
+        let cy = self.yb[1] - f64::from(y - c.y) / h * (self.yb[1] - self.yb[0]);
+        if cx.hypot(cy) < 1e-9 {
+            return None;
+        }
+        let deg = cx.atan2(cy).to_degrees().round();
+        Some(deg.clamp(self.range_deg.0, self.range_deg.1))
+    }
+}
+
 impl PolarView<'_> {
+    /// Where the canvas is drawn when the panel fills `area` (None when it is not drawn).
+    pub fn hit_area(&self, area: Rect) -> Option<PolarHit> {
+        let l = self.layout(self.block.inner(area))?;
+        Some(PolarHit { canvas: l.canvas, xb: l.xb, yb: l.yb, range_deg: self.range_deg })
+    }
+
     /// The canvas between the "θ 0" row above and the scale and listener rows below; None when
     /// there is nothing to draw or no room.
     fn layout(&self, inner: Rect) -> Option<PolarLayout> {
@@ -195,6 +231,23 @@ impl Widget for PolarView<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_click_reads_the_angle_from_the_centre() {
+        let hit = PolarHit {
+            canvas: Rect::new(0, 0, 41, 21),
+            xb: [-20.0, 20.0],
+            yb: [-20.0, 20.0],
+            range_deg: (-90.0, 90.0),
+        };
+        assert_eq!(hit.theta_at(20, 0), Some(0.0), "straight up: the normal");
+        assert_eq!(hit.theta_at(40, 10), Some(90.0), "right");
+        assert_eq!(hit.theta_at(0, 10), Some(-90.0), "left");
+        assert_eq!(hit.theta_at(40, 0), Some(45.0));
+        assert_eq!(hit.theta_at(20, 20), Some(90.0), "straight down: clamped into the range");
+        assert_eq!(hit.theta_at(20, 10), None, "the centre has no direction");
+        assert_eq!(hit.theta_at(41, 0), None, "outside");
+    }
 
     #[test]
     fn up_is_theta_zero_and_right_is_ninety() {

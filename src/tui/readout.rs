@@ -232,7 +232,11 @@ impl Widget for ReadoutView<'_> {
         let mut lines = if self.compact { self.compact(w) } else { self.tall(w) };
         if let Some(n) = self.note {
             let n = self.theme.text(n).into_owned();
-            lines.push(Line::from(Span::styled(n, Style::default().add_modifier(Modifier::ITALIC))));
+            // Tall: the whole note, wrapped (its rows are free); compact: one line, cut.
+            let parts = if self.compact { vec![n] } else { super::tour::wrap(&n, w.max(1)) };
+            for part in parts {
+                lines.push(Line::from(Span::styled(part, Style::default().add_modifier(Modifier::ITALIC))));
+            }
         }
         let lines: Vec<Line> = lines.into_iter().map(|l| self.theme.fit_line(l, w)).collect();
         Paragraph::new(lines).render(inner, buf);

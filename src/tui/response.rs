@@ -6,7 +6,8 @@
 //!
 //! The amplitudes span decades (a few mm with the damper, hundreds without it at resonance),
 //! so they are drawn in dB re 1 mm, 20·log10(x/1 mm); the line under the plots gives the
-//! engine's numbers at the point nearest the marker in mm.
+//! engine's numbers at f itself, from rest (computed for exactly f with the readout, as `thud
+//! response --freqs f:f:1`), in mm.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -38,6 +39,8 @@ pub struct ResponseView<'a> {
     pub band: FreqBand,
     /// The forcing frequency f of the live design (Hz), marked on the curve.
     pub freq_hz: f64,
+    /// The engine's point at exactly f from rest (None while it computes).
+    pub at_f: Option<&'a ResponsePoint>,
     pub theme: Palette,
 }
 
@@ -51,39 +54,34 @@ fn points(r: &Response) -> Vec<&ResponsePoint> {
     r.sweeps.iter().flat_map(|s| &s.points).collect()
 }
 
-/// The point nearest frequency `f` (Hz).
-pub fn nearest_point(r: &Response, f: f64) -> Option<&ResponsePoint> {
-    points(r).into_iter().min_by(|a, b| (a.freq_hz - f).abs().total_cmp(&(b.freq_hz - f).abs()))
-}
-
 /// The line under the plots, the longest of its wordings that fits `width` columns: the
-/// engine's steady figures at the point nearest f, or where f lies off the band.
-pub fn marker_line(r: &Response, band: &FreqBand, f: f64, width: usize) -> String {
-    let options = if band.contains(f) {
-        let Some(p) = nearest_point(r, f) else { return String::new() };
-        let s = &p.steady;
-        let mm = |x: f64| sig(x * 1e3, 3);
-        let alone = s.amplitude_linear_m.map_or("—".to_string(), mm);
-        let cut = s.reduction_db.map_or("—".to_string(), |c| format!("{} dB", sig(c, 3)));
-        let leq = s.leq_db.map_or("—".to_string(), |l| format!("{} dB", sig(l, 4)));
-        let (at, x) = (sig(p.freq_hz, 4), mm(s.amplitude_m));
-        vec![
-            format!(
-                "at {at} Hz: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}, {} impacts/T",
-                sig(s.impacts_per_period, 3)
-            ),
-            format!("at {at} Hz: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}"),
-            format!("{at} Hz: {x} mm, alone {alone}, Leq {leq}"),
-            format!("{at} Hz: {x} mm, alone {alone}"),
-        ]
-    } else {
-        let side = if f < band.from_hz { "below" } else { "above" };
-        let (lo, hi) = (sig(band.from_hz, 3), sig(band.to_hz, 3));
-        vec![
-            format!("f {} Hz is {side} the band {lo}–{hi} Hz (arrow at the edge)", sig(f, 4)),
-            format!("f {} Hz is {side} {lo}–{hi} Hz", sig(f, 4)),
-            format!("f {side} the band"),
-        ]
+/// engine's steady figures at f itself from rest (`at_f`, computed for exactly f, never the
+/// nearest band point's), and where f lies off the band.
+pub fn marker_line(at_f: Option<&ResponsePoint>, band: &FreqBand, f: f64, width: usize) -> String {
+    let fs = sig(f, 4);
+    let side = (!band.contains(f)).then_some(if f < band.from_hz { "below" } else { "above" });
+    let off = side.map_or(String::new(), |s| format!(" ({s} the band, arrow at the edge)"));
+    let options = match at_f {
+        Some(p) => {
+            let s = &p.steady;
+            let mm = |x: f64| sig(x * 1e3, 3);
+            let alone = s.amplitude_linear_m.map_or("—".to_string(), mm);
+            let cut = s.reduction_db.map_or("—".to_string(), |c| format!("{} dB", sig(c, 3)));
+            let leq = s.leq_db.map_or("—".to_string(), |l| format!("{} dB", sig(l, 4)));
+            let x = mm(s.amplitude_m);
+            vec![
+                format!(
+                    "f {fs} Hz from rest: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}, {} impacts/T{off}",
+                    sig(s.impacts_per_period, 3)
+                ),
+                format!("f {fs} Hz from rest: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}"),
+                format!("f {fs} Hz from rest: {x} mm, alone {alone}, Leq {leq}"),
+                format!("f {fs} Hz from rest: {x} mm, alone {alone}"),
+                format!("f {fs} Hz from rest: {x} mm"),
+                format!("{fs} Hz, rest: {x} mm"),
+            ]
+        }
+        None => vec![format!("f {fs} Hz from rest: computing…{off}"), format!("f {fs} Hz: computing…")],
     };
     options.iter().find(|o| o.chars().count() <= width).unwrap_or(&options[options.len() - 1]).clone()
 }
@@ -194,7 +192,7 @@ impl Widget for ResponseView<'_> {
             }
             .render(bottom, buf);
         }
-        let line = th.text(&marker_line(r, &self.band, self.freq_hz, info.width as usize)).into_owned();
+        let line = th.text(&marker_line(self.at_f, &self.band, self.freq_hz, info.width as usize)).into_owned();
         let line = th.fit(&line, info.width.into()).into_owned();
         buf.set_stringn(info.x, info.y, &line, info.width as usize, Style::default());
     }

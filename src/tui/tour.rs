@@ -16,6 +16,8 @@
 //! pulse = "single"             # optional: "single" (one impact on a plate) or "loudest"
 //! panel = "waveform"           # params, readout, waveform, polar, history or chart
 //! best = false                 # optional: jump to the best zone-3 design once the chart is in
+//! select = "theta"             # optional: the field the step talks about (else the first it sets)
+//! animate = false              # optional: play the run in slow motion (the animation view)
 //! caption = "Two to three lines of text."
 //! ```
 
@@ -69,6 +71,11 @@ pub struct TourStep {
     pub runs: usize,
     /// True if the step sets L* or e* itself (else the user's configured thresholds apply).
     pub sets_thresholds: bool,
+    /// The field the step talks about, selected while it shows (its `select`, else the
+    /// first field it sets, else the step before's; the mass first).
+    pub select: Knob,
+    /// The step plays the run in slow motion (the animation view) instead of its panel.
+    pub animate: bool,
 }
 
 /// A checked tour.
@@ -98,6 +105,9 @@ struct StepFile {
     best: bool,
     #[serde(default)]
     set: BTreeMap<String, toml::Value>,
+    select: Option<String>,
+    #[serde(default)]
+    animate: bool,
 }
 
 /// `text` wrapped greedily at spaces into lines of at most `width` columns (a longer word
@@ -158,6 +168,7 @@ impl Tour {
         }
         let mut steps = Vec::new();
         let (mut setup, mut preset) = (Setup { design: Design::default(), runs: 1 }, "default".to_string());
+        let mut select = Knob::Mass;
         for (i, s) in parsed.steps.into_iter().enumerate() {
             let at = |m: String| err(format!("step {} ({}): {m}", i + 1, s.title));
             if let Some(p) = &s.preset {
@@ -184,6 +195,11 @@ impl Tour {
             if s.title.trim().is_empty() || s.title.chars().count() > 60 {
                 return Err(at("a step title has 1 to 60 characters".into()));
             }
+            select = match (&s.select, s.set.keys().next()) {
+                (Some(name), _) => field(name).ok_or_else(|| at(format!("select '{name}': no such field")))?,
+                (None, Some(first)) => field(first).unwrap_or(select),
+                (None, None) => select,
+            };
             let sets_thresholds = s.set.keys().any(|k| matches!(k.as_str(), "L*" | "e*" | "l-star" | "e-star"));
             steps.push(TourStep {
                 title: s.title.trim().to_string(),
@@ -195,6 +211,8 @@ impl Tour {
                 design: setup.design.clone(),
                 runs: setup.runs,
                 sets_thresholds,
+                select,
+                animate: s.animate,
             });
         }
         Ok(Tour { title: parsed.title, steps })
@@ -272,9 +290,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_built_in_tour_loads_with_six_to_eight_steps_of_three_lines_at_most() {
+    fn the_built_in_tour_loads_with_six_to_ten_steps_of_three_lines_at_most() {
         let t = Tour::load(&TourSource::BuiltIn).unwrap();
-        assert!((6..=8).contains(&t.steps.len()), "{}", t.steps.len());
+        assert!((6..=10).contains(&t.steps.len()), "{}", t.steps.len());
         for s in &t.steps {
             let n = wrap(&s.caption, CAPTION_WIDTH).len();
             assert!((2..=3).contains(&n), "{}: {n} lines", s.title);

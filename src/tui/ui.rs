@@ -29,7 +29,7 @@ use super::history::{self, HistoryView};
 use super::keys::Keymap;
 use super::keys::{self, Action};
 use super::params::ParamsView;
-use super::polar::PolarView;
+use super::polar::{PolarHit, PolarView};
 use super::readout::{ReadoutView, Row};
 use super::response::{ResponseState, ResponseView};
 use super::theme::{fold_buffer, Palette};
@@ -54,6 +54,21 @@ pub const MIN_H: u16 = 8;
 pub struct Drawn {
     pub geometry: Option<Geometry>,
     pub chart_shown: bool,
+    /// Where each shown field of the parameters panel is (its line, its index in `Knob::ALL`).
+    pub fields: Vec<(Rect, usize)>,
+    /// Where the polar's canvas is (a click or drag there sets θ).
+    pub polar: Option<PolarHit>,
+}
+
+impl Drawn {
+    /// This and `other` together (each area is drawn once a frame).
+    fn and(mut self, other: Drawn) -> Drawn {
+        self.geometry = self.geometry.or(other.geometry);
+        self.chart_shown |= other.chart_shown;
+        self.fields.extend(other.fields);
+        self.polar = self.polar.or(other.polar);
+        self
+    }
 }
 
 /// Draws the whole screen.
@@ -91,7 +106,10 @@ pub fn draw(f: &mut Frame, app: &App) -> Drawn {
     }
     f.render_widget(Paragraph::new(app.theme.fit_line(status_line(app), status.width.into())), status);
     if footer_h > 0 {
-        f.render_widget(footer_line(&app.settings.keys, footer.width, touring, app.mouse, &app.theme), footer);
+        f.render_widget(
+            footer_line(&app.settings.keys, footer.width, (touring, app.anim.is_some()), app.mouse, &app.theme),
+            footer,
+        );
     }
     match app.mode {
         Mode::Help(scroll) => help_popup(f, &app.settings.keys, &app.theme, scroll, area),
@@ -125,33 +143,38 @@ pub fn teaching_pair(focus: Panel) -> (Panel, Panel) {
 /// Lays out the body by size class.
 fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     let params_h = PARAMS_ROWS.min(Knob::ALL.len() as u16) + 2;
+    if let Some(anim) = &app.anim {
+        if body.width >= 30 && body.height >= 6 {
+            anim_panel(f, app, anim, body);
+            return Drawn::default();
+        }
+    }
     if app.zoom && body.width >= 30 && body.height >= 6 {
         return zoomed(f, app, body);
     }
     if body.width >= 110 && body.height >= params_h + 10 {
         let [left, right] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(body);
         let [params, readout] = Layout::vertical([Constraint::Length(params_h), Constraint::Min(1)]).areas(left);
-        params_widget(f, app, params);
+        let drawn = params_widget(f, app, params);
         readout_widget(f, app, readout, false);
         let [top, bottom] = Layout::vertical([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(right);
         let [wave, polar] = Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top);
         let [hist, chart] = Layout::horizontal([Constraint::Percentage(45), Constraint::Percentage(55)]).areas(bottom);
         plot(f, app, Panel::Waveform, wave);
-        plot(f, app, Panel::Polar, polar);
+        let drawn = drawn.and(plot(f, app, Panel::Polar, polar));
         plot(f, app, Panel::History, hist);
-        Drawn { geometry: plot(f, app, Panel::Chart, chart), chart_shown: true }
+        drawn.and(plot(f, app, Panel::Chart, chart))
     } else if body.width >= 60 && body.height >= 12 {
         let strip_h = if body.height >= 19 { 7 } else { 6 };
         if teaching_pair(app.focus).0 == Panel::Waveform {
             // The sound: pulse and polar over the parameters and the readout.
             let [top, strip] = Layout::vertical([Constraint::Min(1), Constraint::Length(strip_h)]).areas(body);
             let [params, readout] = Layout::horizontal([Constraint::Length(30), Constraint::Min(1)]).areas(strip);
-            params_widget(f, app, params);
+            let drawn = params_widget(f, app, params);
             readout_widget(f, app, readout, true);
             let [left, right] = Layout::horizontal([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top);
             plot(f, app, Panel::Waveform, left);
-            plot(f, app, Panel::Polar, right);
-            Drawn::default()
+            drawn.and(plot(f, app, Panel::Polar, right))
         } else {
             // The design: the chart the full height (every gap row at 80×24), the history,
             // parameters and readout beside it.
@@ -162,9 +185,9 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
                 Layout::vertical([Constraint::Min(1), Constraint::Length(params_h), Constraint::Length(strip_h)])
                     .areas(left);
             plot(f, app, Panel::History, hist);
-            params_widget(f, app, params);
+            let drawn = params_widget(f, app, params);
             readout_widget(f, app, readout, true);
-            Drawn { geometry: plot(f, app, Panel::Chart, chart), chart_shown: true }
+            drawn.and(plot(f, app, Panel::Chart, chart))
         }
     } else {
         let [sel, readout] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(body);
@@ -177,17 +200,49 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     }
 }
 
+/// The animation view in the whole body: the live design's run in slow motion.
+fn anim_panel(f: &mut Frame, app: &App, anim: &super::anim::Anim, area: Rect) {
+    let th = &app.theme;
+    let title = fit(
+        th,
+        &[
+            " animation: the run in slow motion, to scale; ghost: without the ball ".to_string(),
+            " animation, to scale; ghost: without the ball ".to_string(),
+            " animation ".to_string(),
+        ],
+        area.width,
+    );
+    // In the tour the animation is the step's panel: marked as the others are.
+    let title = if app.tour.is_some() { format!(" {} {}", th.sym("▶", ">"), title.trim_start()) } else { title };
+    let block = th.highlight_block(th.text(&title).into_owned());
+    let empty_h: &[crate::damper::HistoryPoint] = &[];
+    let empty: &[(f64, f64)] = &[];
+    let sim = app.results.sim.as_deref();
+    let view = super::anim::AnimView {
+        block,
+        anim,
+        history: sim.map_or(empty_h, |s| &s.eval.run.history),
+        impacts: sim.map_or(&[], |s| &s.eval.run.impacts),
+        history_cm: sim.map_or(empty, |s| &s.history_cm),
+        free_cm: sim.map_or(empty, |s| &s.free_cm),
+        gap_m: app.design.damper.gap_m,
+        ball_radius_m: app.design.ball_radius_m(),
+        end_s: sim.map_or(0.0, |s| s.eval.run.final_time_s),
+        theme: app.theme,
+    };
+    f.render_widget(view, area);
+}
+
 /// The zoomed panel alone in the whole body.
 fn zoomed(f: &mut Frame, app: &App, body: Rect) -> Drawn {
     match app.zoomed_panel() {
         Panel::Params => params_widget(f, app, body),
-        Panel::Readout => readout_widget(f, app, body, false),
-        Panel::Chart => return Drawn { geometry: plot(f, app, Panel::Chart, body), chart_shown: true },
-        which => {
-            plot(f, app, which, body);
+        Panel::Readout => {
+            readout_widget(f, app, body, false);
+            Drawn::default()
         }
+        which => plot(f, app, which, body),
     }
-    Drawn::default()
 }
 
 /// A panel's block: the tour's panel with a heavy border and a pointer, the focused one
@@ -223,7 +278,7 @@ fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
     }
 }
 
-fn params_widget(f: &mut Frame, app: &App, area: Rect) {
+fn params_widget(f: &mut Frame, app: &App, area: Rect) -> Drawn {
     let setup = app.setup();
     let rows: Vec<(String, String)> = Knob::ALL.iter().map(|p| (p.label().to_string(), p.display(&setup))).collect();
     let groups: Vec<&'static str> = Knob::ALL.iter().map(|p| p.group().title()).collect();
@@ -235,7 +290,9 @@ fn params_widget(f: &mut Frame, app: &App, area: Rect) {
         focused: app.focus == Panel::Params,
         theme: app.theme,
     };
+    let fields = view.field_lines(area);
     f.render_widget(view, area);
+    Drawn { fields, ..Drawn::default() }
 }
 
 /// Formats one readout value from a design's metrics.
@@ -287,38 +344,43 @@ fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// The note of a forced design: its window (after settling, as `thud simulate --settle`) and
-/// whether it is periodic and settled; with N > 1 the share of runs that settled.
-fn steady_note(a: &AcousticResult) -> Option<String> {
+/// Where a design's run starts, as the readout's forced note says it: "after the 2 m/s
+/// strike" (the main mass's v0), "after the ball's 0.5 m/s start" (w0 alone), or "from rest".
+pub fn start_words(d: &Design) -> String {
+    let p = &d.damper;
+    if p.v0_m_s != 0.0 {
+        format!("after the {} m/s strike", crate::units::short(p.v0_m_s))
+    } else if p.ball_velocity_m_s != 0.0 {
+        format!("after the ball's {} m/s start", crate::units::short(p.ball_velocity_m_s))
+    } else {
+        "from rest".to_string()
+    }
+}
+
+/// The note of a forced design: whether its steady state settled, the start it ran from
+/// (the response view's curve runs from rest), whether it is periodic, and its window's end
+/// (after settling, as `thud simulate --settle`); with N > 1 the share of runs that settled.
+/// The most important words first: the compact readout cuts the note at its edge.
+fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
     let s = a.steady.as_ref()?;
     let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("NOT {word}") };
+    let start = start_words(d);
     if let Some(e) = &a.forced_ensemble {
         let cut = if e.truncated { ", TRUNCATED" } else { "" };
         return Some(format!(
-            "{} runs: {:.0}% settled, {:.0}% periodic{cut}",
+            "{} runs: {:.0}% settled, {start}, {:.0}% periodic{cut}",
             e.ensemble.len(),
             100.0 * e.settled_fraction,
             100.0 * e.periodic_fraction
         ));
     }
-    // The most important word first: the note may be cut at the panel's edge.
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
     Some(format!(
-        "{}, {} by t {} s{cut}",
+        "{}, {start}, {} by t {} s{cut}",
         yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
         sig(s.window_end_s, 3)
     ))
-}
-
-/// Whether the steady note says something is wrong (not settled or cut short): it then
-/// ranks above the `(!) e < 0` note, which the glossary explains anyway.
-fn steady_warns(a: &AcousticResult) -> bool {
-    match (&a.forced_ensemble, &a.steady) {
-        (Some(e), _) => e.settled_fraction < 1.0 || e.truncated,
-        (None, Some(s)) => !s.settled || s.truncated,
-        (None, None) => false,
-    }
 }
 
 /// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
@@ -403,7 +465,9 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         format!("error: {e}")
     } else if app.design_busy() {
         "computing…".to_string()
-    } else if let Some(n) = live_a.filter(|a| steady_warns(a)).and_then(steady_note) {
+    } else if let Some(n) = live_a.and_then(|a| steady_note(a, &app.design)) {
+        // A forced design's note first, settled or not: it says which start the figures are
+        // from (the response view's curve runs from rest).
         if negative {
             format!("{n}; {NEGATIVE_E} e < 0")
         } else {
@@ -411,8 +475,6 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         }
     } else if negative {
         format!("{NEGATIVE_E} e < 0: see ? page 2")
-    } else if let Some(n) = live_a.and_then(steady_note) {
-        n
     } else if let Some(e) = live_a.and_then(|a| a.ensemble.as_ref()) {
         format!("median [p10–p90] of {} runs; % agree", e.runs)
     } else {
@@ -464,8 +526,8 @@ fn sound_of(a: Option<&super::compute::AcousticResult>, view: PulseView) -> Soun
     }
 }
 
-/// Draws one plot panel; returns the chart geometry if it drew the zone grid.
-fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> {
+/// Draws one plot panel; returns where its chart or polar is (for clicks).
+fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Drawn {
     let theme = app.theme;
     let pinned = app.pinned.as_ref();
     let pin_sound = pinned.and_then(|p| p.acoustic.as_deref());
@@ -478,7 +540,9 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 PulseView::Loudest => None,
             };
             let width = title_width(app, Panel::Waveform, area);
-            let title = fit(&theme, &[waveform::title(u0, width)], width);
+            let loudest =
+                app.metrics().filter(|_| !app.design_busy()).and_then(|m| Some((m.u0_max_m_s, m.spl_max_db?)));
+            let title = fit(&theme, &[waveform::title(u0, loudest, width)], width);
             let view = WaveformView {
                 block: panel_block(app, Panel::Waveform, &title),
                 live,
@@ -513,7 +577,9 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
                 range_deg: d.radiation.source.theta_range_deg(),
                 theme,
             };
+            let polar = view.hit_area(area);
             f.render_widget(view, area);
+            return Drawn { polar, ..Drawn::default() };
         }
         Panel::History => {
             let empty: &[(f64, f64)] = &[];
@@ -532,9 +598,9 @@ fn plot(f: &mut Frame, app: &App, which: Panel, area: Rect) -> Option<Geometry> 
             };
             f.render_widget(view, area);
         }
-        Panel::Chart => return chart_panel(f, app, area),
+        Panel::Chart => return Drawn { geometry: chart_panel(f, app, area), chart_shown: true, ..Drawn::default() },
     }
-    None
+    Drawn::default()
 }
 
 fn chart_title(app: &App, width: u16) -> String {
@@ -601,7 +667,8 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
             } else {
                 ResponseState::Computing(app.response.progress.0, app.response.progress.1)
             };
-            let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, theme: app.theme };
+            let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.rest_at_f.as_ref());
+            let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, at_f, theme: app.theme };
             f.render_widget(view, area);
             None
         }
@@ -767,6 +834,14 @@ fn status_line(app: &App) -> Line<'static> {
             ),
         ]);
     }
+    if let Mode::Find(buf, _) = &app.mode {
+        return Line::from(vec![
+            Span::styled(" find: ", Style::default().add_modifier(Modifier::BOLD)),
+            Span::styled(th.text(buf).into_owned(), typed(app)),
+            Span::raw(cursor),
+            Span::styled("  (part of a field's name; ↑↓ choose, Enter selects, Esc cancels)", plain),
+        ]);
+    }
     if let Mode::Editing(buf) = &app.mode {
         let f = app.param();
         let hint = match (f.display_unit(), f.display_range(&app.design)) {
@@ -797,8 +872,14 @@ fn status_line(app: &App) -> Line<'static> {
 /// The footer: the key table's hints (the tour's first while it runs) and, with the mouse on,
 /// `mouse on`; as many whole ones as fit in `width`, chosen by importance
 /// ([`keys::FOOTER_PRIORITY`]) and shown in table order.
-fn footer_line(keys: &Keymap, width: u16, touring: bool, mouse: bool, theme: &Palette) -> Paragraph<'static> {
-    let mut hints = keys.footer_items(touring);
+fn footer_line(
+    keys: &Keymap,
+    width: u16,
+    (touring, animating): (bool, bool),
+    mouse: bool,
+    theme: &Palette,
+) -> Paragraph<'static> {
+    let mut hints = keys.footer_items_in(touring, animating);
     if mouse {
         hints.push(keys::mouse_hint());
     }
@@ -840,10 +921,17 @@ fn caption_box(f: &mut Frame, app: &App, area: Rect) {
     } else {
         " → finish  ← back  z all panels  Esc explore "
     };
-    let block =
+    // The field the step talks about (selected), with its value: the keys change it.
+    let fld = app.param();
+    let field = th.text(&format!(" {}{} = {} ", th.pointer(), fld.label(), fld.display(&app.setup()))).into_owned();
+    let room = usize::from(area.width.saturating_sub(4)).saturating_sub(th.text(keys).chars().count());
+    let mut block =
         th.block(Line::from(Span::styled(title, Style::default().add_modifier(Modifier::BOLD))), true).title_bottom(
             Line::from(th.fit(&th.text(keys), area.width.saturating_sub(2).into()).into_owned()).right_aligned(),
         );
+    if field.chars().count() <= room {
+        block = block.title_bottom(Line::from(Span::styled(field, th.label())).left_aligned());
+    }
     let inner = block.inner(area);
     f.render_widget(Clear, area);
     f.render_widget(block, area);
@@ -1085,6 +1173,22 @@ pub fn list_view(app: &App) -> Option<ListView> {
             *i,
             String::new(),
         ),
+        Mode::Find(buf, i) => {
+            let setup = app.setup();
+            (
+                format!(" find a field: {buf} (↑↓ choose, Enter selects, Esc cancels) "),
+                super::fields::find(buf)
+                    .into_iter()
+                    .map(|k| ListItem {
+                        label: format!("{:<12} {}", k.label(), k.display(&setup)),
+                        detail: format!("{} ({}): {}", k.label(), k.param(), explain::field_hint(k, &app.design)),
+                        problem: false,
+                    })
+                    .collect(),
+                *i,
+                format!("no field matches '{buf}' — Backspace, or Esc to cancel"),
+            )
+        }
         _ => return None,
     };
     let error = if matches!(app.mode, Mode::Saved(_)) { app.load_error.clone() } else { None };

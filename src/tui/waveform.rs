@@ -22,7 +22,9 @@ pub struct WaveformView<'a> {
 
 /// The title of the pulse panel for the loudest impact (`single` None) or one plate impact at
 /// U0 (m/s), the longest that fits in `width` columns.
-pub fn title(single: Option<f64>, width: u16) -> String {
+/// `loudest`: the run's (U0max in m/s, SPLmax in dB) as the readout shows them, named in the
+/// widest title when there is room.
+pub fn title(single: Option<f64>, loudest: Option<(f64, f64)>, width: u16) -> String {
     let options: Vec<String> = match single {
         Some(u0) => vec![
             format!(" p(t) of one impact at U0 {} m/s on a fixed plate (Fig 2) ", crate::units::sig(u0, 3)),
@@ -30,9 +32,17 @@ pub fn title(single: Option<f64>, width: u16) -> String {
             format!(" p(t), one impact, {} m/s ", crate::units::sig(u0, 3)),
             " p(t) one impact ".into(),
         ],
-        None => {
-            vec![" p(t) of the loudest impact of the run ".into(), " p(t), loudest impact ".into(), " p(t) ".into()]
-        }
+        None => loudest
+            .map(|(u0, spl)| {
+                format!(
+                    " p(t) of the loudest impact: U0max {} m/s → SPLmax {} dB ",
+                    crate::units::sig(u0, 5),
+                    crate::units::sig(spl, 4)
+                )
+            })
+            .into_iter()
+            .chain([" p(t) of the loudest impact of the run ".into(), " p(t), loudest impact ".into(), " p(t) ".into()])
+            .collect(),
     };
     let w = usize::from(width).saturating_sub(2);
     options.iter().find(|t| t.chars().count() <= w).unwrap_or(&options[options.len() - 1]).clone()

@@ -526,3 +526,33 @@ fn the_mouse_is_on_by_default_and_off_by_flag_or_config() {
     assert!(!s.lines().nth(39).unwrap_or("").contains("mouse"), "{s}");
     assert!(!s.contains("warning"), "the key is known: {s}");
 }
+
+/// The picture of the animation at 80×24 (its left part, above the status lines).
+fn anim_picture(s: &str) -> String {
+    s.lines().skip(2).take(16).map(|l| l.chars().take(44).collect::<String>()).collect::<Vec<_>>().join("\n")
+}
+
+#[test]
+fn a_plays_the_animation_the_first_impact_flashes_at_its_wall_and_space_pauses() {
+    let t = explorer("", 80, 24);
+    t.wait_for("the design computed", |s| readout_zone(s).is_some());
+    t.keys(&["a"]);
+    let start = t.wait_for("the animation", |s| s.contains("speed 1/1000×") && s.contains("playing"));
+    // 3 s at the slowest speed: 3 ms of the run, and the ball's drawn position moves.
+    std::thread::sleep(Duration::from_secs(3));
+    let later = t.capture();
+    assert_ne!(anim_picture(&start), anim_picture(&later), "the ball moves:\n{start}\n{later}");
+    // The first impact flashes at the wall `thud simulate --json` puts it on (1/100×: ~1 s).
+    let out = Command::new(env!("CARGO_BIN_EXE_thud")).args(["simulate", "--json"]).output().unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let side = if json["impacts"][0]["wall"].as_i64().unwrap() > 0 { "upper wall" } else { "lower wall" };
+    t.keys(&["Home", "]", "]"]);
+    t.wait_for("the first impact's flash", |s| s.contains(&format!("impact 1 at the {side}")));
+    // Space pauses: the screen stops changing.
+    t.keys(&["Space"]);
+    let paused = t.wait_for("paused", |s| s.contains("paused"));
+    std::thread::sleep(Duration::from_secs(1));
+    assert_eq!(t.capture(), paused, "paused, nothing changes");
+    t.keys(&["q"]);
+    assert_eq!(t.wait_file("status").trim(), "0");
+}

@@ -42,6 +42,10 @@ impl App {
             d.thresholds = self.settings.config.thresholds(d.thresholds);
         }
         self.pulse = step.pulse;
+        self.anim = step.animate.then(crate::tui::anim::Anim::default);
+        if let Some(i) = crate::tui::fields::Knob::ALL.iter().position(|k| *k == step.select) {
+            self.selected = i;
+        }
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
         // The step's panel fills the screen, so its plot is shown whole at any size (z: all).
         self.zoom = true;

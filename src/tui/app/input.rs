@@ -6,7 +6,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::state::{App, ChartView, Mode};
 use crate::presets;
-use crate::tui::fields::{Knob, Scope};
+use crate::tui::fields::{self, Knob, Scope};
 use crate::tui::keys::Action;
 use crate::tui::view::{Panel, PulseView};
 use crate::tui::worker::Request;
@@ -42,6 +42,14 @@ fn line_key(k: KeyEvent, mut buf: String, max: usize, selected: bool) -> Line {
             Line::Typing(buf)
         }
         _ => Line::Typing(buf),
+    }
+}
+
+/// The character a key types if it starts a value on the main view: a digit or a point.
+fn typed_start(k: &KeyEvent) -> Option<char> {
+    match k.code {
+        KeyCode::Char(c) if (c.is_ascii_digit() || c == '.') && !k.modifiers.contains(KeyModifiers::CONTROL) => Some(c),
+        _ => None,
     }
 }
 
@@ -85,14 +93,23 @@ impl App {
             Mode::Presets(i) => self.preset_key(k, i),
             Mode::Saved(i) => self.saved_key(k, i),
             Mode::Export(i) => self.export_key(k, i),
+            Mode::Find(buf, i) => {
+                self.find_key(k, buf, i);
+                vec![]
+            }
             Mode::Help(s) | Mode::Glossary(s) => {
                 self.help_key(k, s);
                 vec![]
             }
             Mode::Normal => {
                 let touring = self.tour.is_some();
-                if let Some(a) = self.settings.keys.action_in(&k, touring) {
+                if let Some(a) = self.settings.keys.action_mode(&k, touring, self.anim.is_some()) {
                     self.act(a)
+                } else if let Some(c) = typed_start(&k) {
+                    // A digit or a point starts typing a value into the selected field.
+                    self.mode = Mode::Editing(c.to_string());
+                    self.line_selected = false;
+                    vec![]
                 } else {
                     self.unbound(k);
                     vec![]
@@ -222,8 +239,50 @@ impl App {
                 }
             }
             Action::TourLeave => self.leave_tour(false),
+            Action::Find => self.mode = Mode::Find(String::new(), 0),
+            Action::Field(f) => self.select_field(f),
+            Action::Animate => self.toggle_anim(),
+            Action::AnimPlay | Action::AnimStep { .. } | Action::AnimSpeed { .. } | Action::AnimRestart => {
+                self.anim_key(a);
+            }
         }
         vec![]
+    }
+
+    /// A key in the `/` filter: typing narrows the fields, ↑↓ choose among the matches, Enter
+    /// selects the highlighted one, Esc cancels (the selection stays).
+    fn find_key(&mut self, k: KeyEvent, buf: String, i: usize) {
+        let n = fields::find(&buf).len().max(1);
+        match k.code {
+            KeyCode::Up => self.mode = Mode::Find(buf, (i + n - 1) % n),
+            KeyCode::Down | KeyCode::Tab => self.mode = Mode::Find(buf, (i + 1) % n),
+            _ => match line_key(k, buf, NAME_MAX, false) {
+                Line::Typing(buf) => self.mode = Mode::Find(buf, 0),
+                Line::Cancel => {
+                    self.mode = Mode::Normal;
+                    self.set_status("find cancelled", false);
+                }
+                Line::Submit(buf) => {
+                    self.mode = Mode::Normal;
+                    match fields::find(&buf).get(i) {
+                        Some(&f) => self.select_field(f),
+                        None => self.set_status(&format!("no field matches '{buf}'"), true),
+                    }
+                }
+            },
+        }
+    }
+
+    /// Selects field `f` (the parameters panel gets the focus) and explains it.
+    pub(crate) fn select_field(&mut self, f: Knob) {
+        if let Some(i) = Knob::ALL.iter().position(|k| *k == f) {
+            self.selected = i;
+            // (The tour keeps its step's panel in front.)
+            if self.focus == Panel::Chart && self.tour.is_none() {
+                self.focus = Panel::Params;
+            }
+            self.show_hint();
+        }
     }
 
     /// A key in the value line of the selected field.
@@ -337,8 +396,23 @@ impl App {
         self.export(kind).into_iter().collect()
     }
 
-    /// A left click: the chart cell under it becomes the live design.
+    /// A left click: a field under it is selected, a direction on the polar becomes the
+    /// listener's θ, the chart cell under it becomes the live design.
     pub(crate) fn click(&mut self, x: u16, y: u16) -> Vec<Request> {
+        if self.mode != Mode::Normal {
+            return vec![];
+        }
+        let field = self.field_lines.iter().find(|(r, _)| r.contains(ratatui::layout::Position { x, y }));
+        if let Some(&(_, i)) = field {
+            if let Some(&f) = Knob::ALL.get(i) {
+                self.select_field(f);
+                self.focus = Panel::Params;
+            }
+            return vec![];
+        }
+        if self.polar_hit.is_some_and(|p| p.theta_at(x, y).is_some()) {
+            return self.drag(x, y);
+        }
         let Some((m, g)) = self.chart_geometry.as_ref().and_then(|geo| geo.hit(x, y)) else {
             return vec![];
         };
@@ -346,5 +420,19 @@ impl App {
         let grid = &self.chart.grids.fine;
         let (mass, gap) = (grid.masses_kg[m], grid.gaps_m[g]);
         self.select_design(mass, gap)
+    }
+
+    /// A left drag (or click) on the polar: the listener's θ follows the pointer (whole
+    /// degrees, inside the source's range); θ becomes the selected field.
+    pub(crate) fn drag(&mut self, x: u16, y: u16) -> Vec<Request> {
+        let Some(deg) = self.polar_hit.and_then(|p| p.theta_at(x, y)) else { return vec![] };
+        if self.mode != Mode::Normal {
+            return vec![];
+        }
+        self.select_field(Knob::Theta);
+        if (self.design.observer.theta_rad.to_degrees() - deg).abs() < 1e-9 {
+            return vec![];
+        }
+        self.submit_text(&format!("{deg}"))
     }
 }

@@ -93,3 +93,80 @@ impl App {
         self.set_status(&h, false);
     }
 }
+
+/// The animation view.
+impl App {
+    /// The run the animation plays: the live design's, if computed.
+    fn anim_end_s(&self) -> Option<f64> {
+        self.results.sim.as_ref().map(|s| s.eval.run.final_time_s)
+    }
+
+    /// `a`: shows the animation (from the start, slowest, playing), or leaves it.
+    pub(crate) fn toggle_anim(&mut self) {
+        if self.anim.take().is_some() {
+            self.set_status("animation closed", false);
+            return;
+        }
+        self.anim = Some(crate::tui::anim::Anim::default());
+        self.set_status(
+            "animation: Space plays/pauses, . , one frame, [ ] slower/faster, Home restarts, a closes",
+            false,
+        );
+    }
+
+    /// The animation's own keys.
+    pub(crate) fn anim_key(&mut self, a: Action) {
+        let end = self.anim_end_s().unwrap_or(0.0);
+        let Some(anim) = self.anim.as_mut() else { return };
+        match a {
+            Action::AnimPlay => {
+                if !anim.playing && anim.t_s >= end {
+                    anim.t_s = 0.0;
+                }
+                anim.playing = !anim.playing;
+            }
+            Action::AnimStep { back } => anim.step(back, end),
+            Action::AnimSpeed { faster } => {
+                let n = crate::tui::anim::SPEEDS.len();
+                anim.speed = if faster { (anim.speed + 1).min(n - 1) } else { anim.speed.saturating_sub(1) };
+            }
+            Action::AnimRestart => anim.t_s = 0.0,
+            _ => {}
+        }
+        self.anim_flash_level();
+    }
+
+    /// True while the animation plays (the event loop then draws 30 frames a second).
+    pub fn anim_playing(&self) -> bool {
+        self.anim.as_ref().is_some_and(|a| a.playing) && self.anim_end_s().is_some()
+    }
+
+    /// A frame: `real_s` of real time on.
+    pub(crate) fn anim_advance(&mut self, real_s: f64) {
+        let Some(end) = self.anim_end_s() else { return };
+        if let Some(a) = self.anim.as_mut().filter(|a| a.playing) {
+            a.advance(real_s, end);
+        }
+        self.anim_flash_level();
+    }
+
+    /// The level of the impact flashed now, computed once (the engine's field of its speed).
+    fn anim_flash_level(&mut self) {
+        let Some(sim) = self.results.sim.clone() else { return };
+        let Some(anim) = self.anim.as_mut() else { return };
+        let impacts = &sim.eval.run.impacts;
+        let Some(i) = anim.flashed(impacts) else { return };
+        if anim.spl.is_some_and(|(j, _)| j == i) {
+            return;
+        }
+        let level = self
+            .design
+            .clone()
+            .check()
+            .ok()
+            .and_then(|d| d.impact_field(impacts[i].u_in_m_s).ok())
+            .map(|f| f.spl_db())
+            .filter(|db| db.is_finite());
+        anim.spl = Some((i, level));
+    }
+}

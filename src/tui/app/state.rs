@@ -143,6 +143,9 @@ pub enum Mode {
     Saved(usize),
     /// Choosing what to export; the highlighted index in `files::EXPORTS`.
     Export(usize),
+    /// The `/` filter over the fields: the text typed and the highlighted match (an index
+    /// into [`crate::tui::fields::find`]'s answer for it).
+    Find(String, usize),
 }
 
 /// The status line's message.
@@ -306,6 +309,8 @@ pub struct App {
     pub pulse: PulseView,
     /// The guided tour, while it runs.
     pub tour: Option<TourState>,
+    /// The animation view, while it shows (`a`).
+    pub anim: Option<crate::tui::anim::Anim>,
     /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
     pub(crate) pending_best: bool,
     pub(crate) status: Option<Status>,
@@ -315,6 +320,10 @@ pub struct App {
     pub chart_geometry: Option<Geometry>,
     /// Whether the last frame showed the chart panel.
     pub chart_shown: bool,
+    /// Where the last frame drew each shown field (its line, its index in [`Knob::ALL`]).
+    pub field_lines: Vec<(ratatui::layout::Rect, usize)>,
+    /// Where the last frame drew the polar's canvas (a click or drag there sets θ).
+    pub polar_hit: Option<crate::tui::polar::PolarHit>,
 
     // The host's set-up and the files.
     pub theme: Palette,
@@ -365,6 +374,7 @@ impl App {
             chart_view: ChartView::Zones,
             pulse: PulseView::for_preset(preset),
             tour: None,
+            anim: None,
             pending_best: false,
             status: Some(Status {
                 text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
@@ -374,6 +384,8 @@ impl App {
             quit: false,
             chart_geometry: None,
             chart_shown: false,
+            field_lines: Vec::new(),
+            polar_hit: None,
             theme,
             mouse: false,
             settings: Settings::default(),
@@ -440,10 +452,14 @@ impl App {
         t.tour.steps.get(t.step).map(|s| s.panel)
     }
 
-    /// The zone the chart's marker shows: the live design's own, as the readout shows it.
+    /// The zone the chart's marker shows: the live design's own, as the readout shows it (with
+    /// N > 1 the zone of its own ensemble's medians, never a single run's or a neighbour's).
     pub fn design_zone(&self) -> DesignZone {
-        match self.metrics() {
-            Some(m) if !self.design_busy() => DesignZone::Known(self.zone(m)),
+        match self.acoustic() {
+            Some(a) if !self.design_busy() => DesignZone::Known(match &a.ensemble {
+                Some(e) => e.zone_under(&self.design.thresholds).0,
+                None => self.zone(&a.metrics),
+            }),
             _ if self.results.error.is_some() => DesignZone::Known(None),
             _ => DesignZone::Computing,
         }

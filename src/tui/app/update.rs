@@ -24,6 +24,8 @@ pub enum Msg {
     Tick,
     /// The terminal hung up (see `tui::hangup`): the explorer ends.
     Hangup,
+    /// A frame of the playing animation: this much real time (s) went by since the last one.
+    Frame(f64),
     /// A bracketed paste without its end marker was dropped after its time ran out
     /// (`tui::input_parse`): `bytes` bytes after its start marker.
     PasteDropped { bytes: usize },
@@ -45,6 +47,7 @@ impl App {
             Msg::Input(Event::Key(k)) => self.key(k),
             Msg::Input(Event::Mouse(m)) if self.mouse => match m.kind {
                 MouseEventKind::Down(MouseButton::Left) => self.click(m.column, m.row),
+                MouseEventKind::Drag(MouseButton::Left) => self.drag(m.column, m.row),
                 _ => vec![],
             },
             Msg::Input(_) => vec![],
@@ -55,6 +58,10 @@ impl App {
             }
             Msg::Hangup => {
                 self.quit = true;
+                vec![]
+            }
+            Msg::Frame(real_s) => {
+                self.anim_advance(real_s);
                 vec![]
             }
             Msg::PasteDropped { bytes } => {

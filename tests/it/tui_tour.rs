@@ -1,0 +1,112 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
+//! The guided tour at the sizes a lecturer uses (80×24 and 120×40): every step shows every
+//! gap row of the chart where it shows the chart, every number its caption names, and the
+//! field it talks about selected.
+
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use ratatui::backend::TestBackend;
+use ratatui::Terminal;
+use thud::tui::app::{App, Msg, Panel};
+use thud::tui::compute::{Grid, Grids};
+use thud::tui::{compute_sync, draw, Palette};
+
+fn full_app() -> App {
+    let d = thud::presets::preset("default").unwrap();
+    let grids = Grids { coarse: None, fine: Grid::standard(16, 12) };
+    let mut app = App::with_grids(d, "default", Palette::default(), grids);
+    let reqs = app.initial_requests();
+    compute_sync(&mut app, reqs);
+    app
+}
+
+fn press(app: &mut App, code: KeyCode) {
+    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))));
+    compute_sync(app, reqs);
+}
+
+fn render(app: &mut App, w: u16, h: u16) -> String {
+    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
+    draw(&mut term, app).unwrap();
+    let buf = term.backend().buffer().clone();
+    (0..h).map(|y| (0..w).map(|x| buf[(x, y)].symbol().to_string()).collect::<String>()).collect::<Vec<_>>().join("\n")
+}
+
+/// The numbers a caption names as values (a reference like "Eq 27" or "Fig 2" is no value).
+fn caption_numbers(caption: &str) -> Vec<String> {
+    let words: Vec<&str> = caption.split_whitespace().collect();
+    let mut out = Vec::new();
+    for (i, w) in words.iter().enumerate() {
+        let before = if i > 0 { words[i - 1].trim_start_matches('(') } else { "" };
+        if ["Eq", "Fig", "Table", "step", "twice", "Press"].contains(&before) {
+            continue;
+        }
+        let num: String = w
+            .trim_start_matches(|c: char| !c.is_ascii_digit())
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect();
+        let num = num.trim_end_matches('.').to_string();
+        if !num.is_empty() {
+            out.push(num);
+        }
+    }
+    out
+}
+
+/// True if `num` is on `screen` as a number of its own (not inside a longer one: "4" is not
+/// in "14", "0.7" is in "0.700").
+fn shows(screen: &str, num: &str) -> bool {
+    screen.match_indices(num).any(|(i, _)| {
+        let before = screen[..i].chars().next_back();
+        !before.is_some_and(|c| c.is_ascii_digit() || c == '.')
+    })
+}
+
+#[test]
+fn every_tour_step_shows_every_gap_row_every_number_it_names_and_its_field() {
+    let mut failures = Vec::new();
+    for (w, h) in [(80, 24), (120, 40)] {
+        let mut app = full_app();
+        press(&mut app, KeyCode::Char('T'));
+        let n = app.tour.as_ref().unwrap().tour.steps.len();
+        for i in 0..n {
+            let step = app.tour.as_ref().unwrap().tour.steps[i].clone();
+            let screen = render(&mut app, w, h);
+            if std::env::var_os("SHOW").is_some() {
+                println!("{screen}\n");
+            }
+            // The screen above the caption box: what the step shows.
+            let caption_top = screen.lines().position(|l| l.contains(&format!("tour {}/{n}", i + 1))).unwrap();
+            // and the caption box's last line, which shows the selected field.
+            let shown: String = screen
+                .lines()
+                .take(caption_top)
+                .chain(screen.lines().nth(h as usize - 2))
+                .collect::<Vec<_>>()
+                .join("\n");
+            let at = format!("{w}x{h} step {}", i + 1);
+            if app.param() != step.select {
+                failures.push(format!("{at}: {:?} selected, not {:?}", app.param(), step.select));
+            }
+            let field_line = screen.lines().nth(h as usize - 2).unwrap();
+            if !field_line.contains(&format!("{} = ", step.select.label())) {
+                failures.push(format!("{at}: the field is not shown\n{screen}"));
+            }
+            if step.panel == Panel::Chart {
+                let geo = app.chart_geometry.as_ref().expect("the chart is drawn");
+                let mut rows = geo.rows.clone();
+                rows.sort_unstable();
+                if rows != (0..12).collect::<Vec<_>>() {
+                    failures.push(format!("{at}: gap rows {rows:?}\n{screen}"));
+                }
+            }
+            for num in caption_numbers(&step.caption) {
+                if !shows(&shown, &num) {
+                    failures.push(format!("{at}: '{num}' of the caption is not shown\n{screen}"));
+                }
+            }
+            press(&mut app, KeyCode::Right);
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
