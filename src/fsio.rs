@@ -275,6 +275,16 @@ fn is_stream_device(rdev: u64) -> bool {
     matches!((major, minor), (1, 3) | (5, 0 | 1)) || major == 4 || (136..=143).contains(&major)
 }
 
+/// Whether `path` (links followed) is a terminal: a virtual console or serial line (major 4),
+/// `/dev/tty` or the console (5,0 and 5,1), or a pseudo-terminal (136–143).
+#[must_use]
+pub fn is_terminal(path: &Path) -> bool {
+    fs::metadata(path).is_ok_and(|m| {
+        let (major, minor) = (rustix::fs::major(m.rdev()), rustix::fs::minor(m.rdev()));
+        m.file_type().is_char_device() && (major == 4 || (major == 5 && minor <= 1) || (136..=143).contains(&major))
+    })
+}
+
 /// Whether `meta` (of the file itself, links followed) is a stream thud writes through.
 fn is_stream(meta: &fs::Metadata) -> bool {
     let t = meta.file_type();

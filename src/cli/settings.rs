@@ -58,8 +58,9 @@ pub fn run(a: &ConfigArgs, out: &mut Out) -> Result<(), CliError> {
     if check.problems.is_empty() {
         return out.text(&format!("{path}: no problems\n"));
     }
+    // The file's own text echoed (a `nan` it holds is no result of thud's): written as it is.
     let lines: String = check.problems.iter().map(|p| format!("{p}\n")).collect();
-    out.text(&lines)?;
+    out.raw(lines.as_bytes())?;
     out.flush()?;
     let n = check.problems.len();
     Err(CliError::Refused(format!(
