@@ -402,8 +402,7 @@ fn check_design_key(key: &str, value: &Input) -> Result<(), ThudError> {
 
 /// Every problem of the config `text` read from `path`, in the order they appear: TOML syntax,
 /// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
-/// name no key or bind one key twice. Each has its line and column. Past
-/// [`MAX_LISTED_PROBLEMS`] the rest are one last problem that counts them. Linear in the text.
+/// name no key or bind one key twice. Each has its line and column. Linear in the text.
 pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
     use serde::de::IntoDeserializer;
     use toml::de::{DeTable, DeValue};
@@ -448,16 +447,10 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
         found.extend(problem);
     }
     found.sort_by_key(|(offset, _)| *offset);
-    let more = found.len().saturating_sub(MAX_LISTED_PROBLEMS);
-    let mut listed: Vec<FileProblem> = found.into_iter().take(MAX_LISTED_PROBLEMS).map(|(_, p)| p).collect();
-    if more > 0 {
-        let message = format!("… and {more} more problems (the first {MAX_LISTED_PROBLEMS} are listed)");
-        listed.push(FileProblem { path: path.to_path_buf(), line: None, column: None, message });
-    }
-    listed
+    found.into_iter().map(|(_, p)| p).collect()
 }
 
-/// The most problems [`check_text`] lists; the rest are counted in one last line.
+/// The most problems `thud config check` lists; the rest are counted in one last line.
 pub const MAX_LISTED_PROBLEMS: usize = 100;
 
 /// Keys of `[design]` that are no row of the engine's table (at the key) or values the row

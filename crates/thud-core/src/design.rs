@@ -60,7 +60,11 @@ impl Materials {
     /// K_HZ (N/m^1.5) of a ball of radius `radius_m` (m) of these materials, Eq 2:
     /// K_HZ = (4/3)·√R·E* with 1/E* = (1−ν1²)/E1 + (1−ν2²)/E2, ν1 the ball's ([`Self::sphere_material`]).
     pub fn hertz_stiffness(&self, radius_m: f64) -> Result<f64, ThudError> {
-        Ok(contact::hertz_stiffness(radius_m, &self.sphere_material()?, &contact::material(&self.plate).map_err(|e| e.renamed("plate"))?))
+        Ok(contact::hertz_stiffness(
+            radius_m,
+            &self.sphere_material()?,
+            &contact::material(&self.plate).map_err(|e| e.renamed("plate"))?,
+        ))
     }
 }
 
