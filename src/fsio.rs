@@ -58,12 +58,14 @@ use crate::signals;
 pub const MAX_READ_BYTES: u64 = 1 << 20;
 
 /// Set this environment variable to make every write use a named temporary file, as on a
-/// system without `O_TMPFILE`: the tests use it to check that path too.
+/// system without `O_TMPFILE`: the tests use it to check that path too. Read only in a build
+/// with the `test-hooks` feature (which the test suite turns on, through the package's
+/// dev-dependency on itself): a release binary has no test hook.
 pub const NAMED_TEMPS_FOR_TEST: &str = "THUD_TEST_NAMED_TEMPS";
 
 /// Set this environment variable to a number of milliseconds to hold each write with its
 /// temporary file complete and not yet linked into place: the tests use it to send a signal
-/// mid-write.
+/// mid-write. Read only with the `test-hooks` feature, as [`NAMED_TEMPS_FOR_TEST`].
 pub const HOLD_TEMP_FOR_TEST: &str = "THUD_TEST_HOLD_TEMP_MS";
 
 /// The marker of thud's temporary names: `.NAME` + this + six random characters + `.tmp`.
@@ -339,7 +341,7 @@ pub fn write(path: &Path, bytes: &[u8], overwrite: Overwrite) -> Result<(), FsEr
     };
     let (dir, new_folders) = prepare_dir(path)?;
     let written = (|| {
-        if std::env::var_os(NAMED_TEMPS_FOR_TEST).is_none() {
+        if !named_temps_for_test() {
             if let Some(file) = open_unnamed(&dir, path)? {
                 if write_unnamed(file, &dir, path, bytes, overwrite, permissions.clone())? {
                     sync_dir(&dir);
@@ -814,11 +816,17 @@ fn fill(file: &mut File, bytes: &[u8], permissions: Option<Permissions>) -> io::
     file.sync_all()
 }
 
-/// The test seam of [`HOLD_TEMP_FOR_TEST`].
+/// The test seam of [`HOLD_TEMP_FOR_TEST`] (nothing without the `test-hooks` feature).
 fn hold_for_test() {
+    #[cfg(feature = "test-hooks")]
     if let Some(ms) = std::env::var(HOLD_TEMP_FOR_TEST).ok().and_then(|v| v.parse::<u64>().ok()) {
         std::thread::sleep(Duration::from_millis(ms));
     }
+}
+
+/// The test seam of [`NAMED_TEMPS_FOR_TEST`] (off without the `test-hooks` feature).
+fn named_temps_for_test() -> bool {
+    cfg!(feature = "test-hooks") && std::env::var_os(NAMED_TEMPS_FOR_TEST).is_some()
 }
 
 /// Makes a new name durable by syncing its directory (best effort; not possible everywhere).
