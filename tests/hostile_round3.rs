@@ -120,7 +120,7 @@ fn assert_all_or_nothing(target: &Path, what: &str) -> bool {
     let want = bundle();
     let mut want_names: Vec<String> = want.iter().map(|(n, _)| n.clone()).collect();
     want_names.sort();
-    assert_eq!(names(&target), want_names, "{what}: a partial set was put in place");
+    assert_eq!(names(target), want_names, "{what}: a partial set was put in place");
     for (n, b) in &want {
         assert_eq!(&fs::read(target.join(n)).unwrap(), b, "{what}: {n} differs");
     }

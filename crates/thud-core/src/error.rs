@@ -160,7 +160,11 @@ mod tests {
                 known: "kg, g".into(),
                 plain_unit: "kg",
             },
-            ThudError::UnknownMaterial { name: "unobtainium".into(), known: "steel, acrylic".into() },
+            ThudError::UnknownMaterial {
+                param: "sphere".into(),
+                name: "unobtainium".into(),
+                known: "steel, acrylic".into(),
+            },
             ThudError::RestitutionUnreachable { restitution: 0.5 },
             ThudError::NoImpact,
             ThudError::OutOfRange {
