@@ -402,13 +402,14 @@ fn check_design_key(key: &str, value: &Input) -> Result<(), ThudError> {
 
 /// Every problem of the config `text` read from `path`, in the order they appear: TOML syntax,
 /// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
-/// name no key or bind one key twice. Each has its line and column.
+/// name no key or bind one key twice. Each has its line and column. Linear in the text.
 pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
     use serde::de::IntoDeserializer;
     use toml::de::{DeTable, DeValue};
     type Value<'i> = toml::Spanned<DeValue<'i>>;
+    let lines = store::Lines::new(text);
     let at = |span: std::ops::Range<usize>, message: String| {
-        let (line, column) = store::line_column(text, span.start);
+        let (line, column) = lines.line_column(span.start);
         (span.start, FileProblem { path: path.to_path_buf(), line: Some(line), column: Some(column), message })
     };
     let (table, errors) = DeTable::parse_recoverable(text);
@@ -434,7 +435,11 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
                 None
             }
             "design" => {
-                found.extend(design_problems(value, &at));
+                let problems = design_problems(value, &at);
+                if problems.is_empty() {
+                    found.extend(whole_design_problem(text, value, &at));
+                }
+                found.extend(problems);
                 None
             }
             other => Some(at(key.span(), format!("unknown key '{other}'; the settings are {}", KEYS.join(", ")))),
@@ -444,6 +449,9 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
     found.sort_by_key(|(offset, _)| *offset);
     found.into_iter().map(|(_, p)| p).collect()
 }
+
+/// The most problems `thud config check` lists; the rest are counted in one last line.
+pub const MAX_LISTED_PROBLEMS: usize = 100;
 
 /// Keys of `[design]` that are no row of the engine's table (at the key) or values the row
 /// refuses (at the value).
@@ -481,6 +489,33 @@ fn design_problems(
         }
     }
     found
+}
+
+/// The design every design command builds from `[design]` (the default preset with these
+/// defaults, [`Config::design`]) when each key alone is fine: a value the whole design
+/// refuses (`sphere = "bogus"`, a ball larger than the gap allows) is the problem the commands
+/// would stop on, at the key it names (else at the table).
+fn whole_design_problem(
+    text: &str,
+    value: &toml::Spanned<toml::de::DeValue<'_>>,
+    at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
+) -> Option<(usize, FileProblem)> {
+    #[derive(Deserialize)]
+    struct DesignOnly {
+        #[serde(default)]
+        design: BTreeMap<String, ParamValue>,
+    }
+    let only: DesignOnly = toml::from_str(text).ok()?;
+    let config = Config { design: only.design, ..Config::default() };
+    let base = crate::presets::preset("default").ok()?;
+    let e = config.design(base).err()?;
+    let named = e.param().split(' ').next().unwrap_or_default().to_string();
+    let span = value
+        .get_ref()
+        .as_table()
+        .and_then(|t| t.iter().find(|(k, _)| k.get_ref().as_ref() == named).map(|(_, v)| v.span()))
+        .unwrap_or_else(|| value.span());
+    Some(at(span, e.to_string()))
 }
 
 /// A TOML integer or float as a number.

@@ -46,6 +46,7 @@ use std::os::fd::{AsFd, AsRawFd};
 use std::os::unix::ffi::{OsStrExt, OsStringExt};
 use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::{Duration, SystemTime};
 
 use rustix::fs::{AtFlags, FlockOperation, Mode, OFlags, RenameFlags, CWD};
@@ -57,12 +58,14 @@ use crate::signals;
 pub const MAX_READ_BYTES: u64 = 1 << 20;
 
 /// Set this environment variable to make every write use a named temporary file, as on a
-/// system without `O_TMPFILE`: the tests use it to check that path too.
+/// system without `O_TMPFILE`: the tests use it to check that path too. Read only in a build
+/// with the `test-hooks` feature (which the test suite turns on, through the package's
+/// dev-dependency on itself): a release binary has no test hook.
 pub const NAMED_TEMPS_FOR_TEST: &str = "THUD_TEST_NAMED_TEMPS";
 
 /// Set this environment variable to a number of milliseconds to hold each write with its
 /// temporary file complete and not yet linked into place: the tests use it to send a signal
-/// mid-write.
+/// mid-write. Read only with the `test-hooks` feature, as [`NAMED_TEMPS_FOR_TEST`].
 pub const HOLD_TEMP_FOR_TEST: &str = "THUD_TEST_HOLD_TEMP_MS";
 
 /// The marker of thud's temporary names: `.NAME` + this + six random characters + `.tmp`.
@@ -274,6 +277,16 @@ fn is_stream_device(rdev: u64) -> bool {
     matches!((major, minor), (1, 3) | (5, 0 | 1)) || major == 4 || (136..=143).contains(&major)
 }
 
+/// Whether `path` (links followed) is a terminal: a virtual console or serial line (major 4),
+/// `/dev/tty` or the console (5,0 and 5,1), or a pseudo-terminal (136–143).
+#[must_use]
+pub fn is_terminal(path: &Path) -> bool {
+    fs::metadata(path).is_ok_and(|m| {
+        let (major, minor) = (rustix::fs::major(m.rdev()), rustix::fs::minor(m.rdev()));
+        m.file_type().is_char_device() && (major == 4 || (major == 5 && minor <= 1) || (136..=143).contains(&major))
+    })
+}
+
 /// Whether `meta` (of the file itself, links followed) is a stream thud writes through.
 fn is_stream(meta: &fs::Metadata) -> bool {
     let t = meta.file_type();
@@ -326,16 +339,22 @@ pub fn write(path: &Path, bytes: &[u8], overwrite: Overwrite) -> Result<(), FsEr
         Plan::Create => None,
         Plan::Replace(p) => Some(p),
     };
-    let dir = prepare_dir(path)?;
-    if std::env::var_os(NAMED_TEMPS_FOR_TEST).is_none() {
-        if let Some(file) = open_unnamed(&dir, path)? {
-            if write_unnamed(file, &dir, path, bytes, overwrite, permissions.clone())? {
-                sync_dir(&dir);
-                return Ok(());
+    let (dir, new_folders) = prepare_dir(path)?;
+    let written = (|| {
+        if !named_temps_for_test() {
+            if let Some(file) = open_unnamed(&dir, path)? {
+                if write_unnamed(file, &dir, path, bytes, overwrite, permissions.clone())? {
+                    sync_dir(&dir);
+                    return Ok(());
+                }
             }
         }
+        write_named(&dir, path, bytes, overwrite, permissions, |_| Ok(()))
+    })();
+    if written.is_ok() {
+        new_folders.keep();
     }
-    write_named(&dir, path, bytes, overwrite, permissions, |_| Ok(()))
+    written
 }
 
 /// [`write()`] always through a named temporary file, with a seam: `before_link(temp_path)` runs
@@ -353,16 +372,87 @@ pub fn write_with(
         Plan::Create => None,
         Plan::Replace(p) => Some(p),
     };
-    let dir = prepare_dir(path)?;
-    write_named(&dir, path, bytes, overwrite, permissions, before_link)
+    let (dir, new_folders) = prepare_dir(path)?;
+    write_named(&dir, path, bytes, overwrite, permissions, before_link)?;
+    new_folders.keep();
+    Ok(())
 }
 
-/// Creates the folder of `path` and removes thud's leftovers from it; the folder.
-fn prepare_dir(path: &Path) -> Result<PathBuf, FsError> {
+/// Creates the folder of `path` (and the folders above it that are missing: removed again
+/// unless the caller keeps them) and removes thud's leftovers from it; the folder.
+fn prepare_dir(path: &Path) -> Result<(PathBuf, NewFolders), FsError> {
     let dir = parent_dir(path);
-    fs::create_dir_all(&dir).map_err(io_at(path))?;
+    let new_folders = NewFolders::create(&dir).map_err(io_at(path))?;
     remove_stale_temps(&dir);
-    Ok(dir)
+    Ok((dir, new_folders))
+}
+
+/// The folders a write created above its target: removed again — deepest first, each only if
+/// still empty — when the write fails (a full disk, a refusal) or a signal ends the process;
+/// kept by [`NewFolders::keep`] once the write succeeded. A folder that was there is never
+/// touched.
+#[derive(Debug)]
+#[must_use = "the new folders are removed when this is dropped"]
+pub struct NewFolders {
+    made: Arc<Mutex<Vec<PathBuf>>>,
+    _registration: Option<signals::Registration>,
+}
+
+impl NewFolders {
+    /// Creates `dir` and every missing folder above it, as `create_dir_all` does, noting each
+    /// one this call made.
+    pub fn create(dir: &Path) -> io::Result<NewFolders> {
+        let mut missing = Vec::new();
+        let mut d = dir;
+        loop {
+            match fs::symlink_metadata(d) {
+                Ok(_) => break,
+                Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                    missing.push(d.to_path_buf());
+                    match d.parent() {
+                        Some(p) if !p.as_os_str().is_empty() => d = p,
+                        _ => break,
+                    }
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        let made = Arc::new(Mutex::new(Vec::new()));
+        if missing.is_empty() {
+            return Ok(NewFolders { made, _registration: None });
+        }
+        signals::guarded(|| {
+            let on_signal = made.clone();
+            let registration = signals::on_signal(move || remove_empty(&on_signal)).0;
+            let folders = NewFolders { made, _registration: Some(registration) };
+            for d in missing.iter().rev() {
+                match fs::create_dir(d) {
+                    Ok(()) => folders.made.lock().unwrap_or_else(PoisonError::into_inner).insert(0, d.clone()),
+                    Err(e) if e.kind() == io::ErrorKind::AlreadyExists && d.is_dir() => {}
+                    Err(e) => return Err(e),
+                }
+            }
+            Ok(folders)
+        })
+    }
+
+    /// Keeps the new folders (the write succeeded).
+    pub fn keep(self) {
+        self.made.lock().unwrap_or_else(PoisonError::into_inner).clear();
+    }
+}
+
+impl Drop for NewFolders {
+    fn drop(&mut self) {
+        signals::guarded(|| remove_empty(&self.made));
+    }
+}
+
+/// Removes each folder of `dirs` (deepest first) that is empty.
+fn remove_empty(dirs: &Mutex<Vec<PathBuf>>) {
+    for d in dirs.lock().unwrap_or_else(PoisonError::into_inner).drain(..) {
+        let _ = fs::remove_dir(d);
+    }
 }
 
 /// Writes `bytes` through the stream at `path` (checked again on the opened file).
@@ -605,8 +695,10 @@ fn exchange_into_place(temp: &Path, path: &Path) -> Result<(), FsError> {
 }
 
 /// A temporary folder beside a target folder (`.NAME.thud-XXXXXX.tmp`), `flock`ed for its
-/// life, removed when dropped and on SIGINT/SIGTERM/SIGHUP (after SIGKILL, by the next write
-/// beside it), until [`TempFolder::put_in_place`] gives it the target's name.
+/// life, removed when dropped and on every signal of [`signals::handled`] (after SIGKILL, by
+/// the next write beside it), until [`TempFolder::put_in_place`] gives it the target's name.
+/// Each file is written into it, and it is put in place, as one [`signals::guarded`] step: a
+/// signal's clean-up falls between two files, and nothing is written or renamed after it.
 #[derive(Debug)]
 pub struct TempFolder {
     dir: tempfile::TempDir,
@@ -637,6 +729,11 @@ impl TempFolder {
         self.dir.path()
     }
 
+    /// Writes the new file `name` into the folder ([`write()`], never over anything).
+    pub fn write(&self, name: &str, bytes: &[u8]) -> Result<(), FsError> {
+        signals::guarded(|| write(&self.path().join(name), bytes, Overwrite::Refuse))
+    }
+
     /// Makes the names in the folder durable (best effort).
     pub fn sync(&self) {
         sync_dir(self.path());
@@ -646,6 +743,10 @@ impl TempFolder {
     /// an atomic exchange with the folder there, which is then removed — if it still holds only
     /// regular files named in `names` (else it is swapped back and nothing is replaced).
     pub fn put_in_place(self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
+        signals::guarded(|| self.rename_to(target, replace, names))
+    }
+
+    fn rename_to(&self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
         let temp = self.path();
         let changed = || FsError::Changed(target.to_path_buf());
         if replace {
@@ -678,6 +779,15 @@ impl TempFolder {
     }
 }
 
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        // Removed here, guarded, rather than by `TempDir`'s drop: never beside the clean-up.
+        signals::guarded(|| {
+            let _ = fs::remove_dir_all(self.dir.path());
+        });
+    }
+}
+
 /// Whether the folder `dir` holds only regular files (no links) named in `names`.
 fn only_named_files(dir: &Path, names: &[&str]) -> bool {
     let Ok(entries) = fs::read_dir(dir) else { return false };
@@ -706,11 +816,17 @@ fn fill(file: &mut File, bytes: &[u8], permissions: Option<Permissions>) -> io::
     file.sync_all()
 }
 
-/// The test seam of [`HOLD_TEMP_FOR_TEST`].
+/// The test seam of [`HOLD_TEMP_FOR_TEST`] (nothing without the `test-hooks` feature).
 fn hold_for_test() {
+    #[cfg(feature = "test-hooks")]
     if let Some(ms) = std::env::var(HOLD_TEMP_FOR_TEST).ok().and_then(|v| v.parse::<u64>().ok()) {
         std::thread::sleep(Duration::from_millis(ms));
     }
+}
+
+/// The test seam of [`NAMED_TEMPS_FOR_TEST`] (off without the `test-hooks` feature).
+fn named_temps_for_test() -> bool {
+    cfg!(feature = "test-hooks") && std::env::var_os(NAMED_TEMPS_FOR_TEST).is_some()
 }
 
 /// Makes a new name durable by syncing its directory (best effort; not possible everywhere).

@@ -1,3 +1,3 @@
 fn main() {
-    std::process::exit(thud::cli::main());
+    thud::signals::exit(thud::cli::main());
 }

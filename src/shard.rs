@@ -428,7 +428,7 @@ fn check_ranges(file: &str, s: &Study) -> Result<(), ShardError> {
 /// A number of a part's run outside what any run can give: not finite, beyond
 /// [`MAX_CELL_MAGNITUDE`], or a negative speed or duration.
 #[derive(Debug, Error)]
-#[error("{name} {value} is out of range (a finite number, {})", if *.non_negative { "0 to 1e100" } else { "-1e100 to 1e100" })]
+#[error("{name} {} is out of range (a finite number, {})", crate::units::short(*.value), if *.non_negative { "0 to 1e100" } else { "-1e100 to 1e100" })]
 struct CellOutOfRange {
     /// The column (JSON key) of the number.
     name: &'static str,

@@ -1,7 +1,11 @@
-//! What happens when thud is told to stop: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2,
-//! SIGALRM, SIGXCPU, SIGVTALRM or SIGPROF (every catchable signal whose default action ends the
-//! process, other than the faults a program raises itself) run every registered clean-up (remove a live temporary file, restore the terminal), then the process exits with
-//! status 128 + the signal number, as a shell reports a process killed by that signal.
+//! What happens when thud is told to stop: every signal whose default action ends the process
+//! and that a handler may catch — SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM,
+//! SIGXCPU, SIGVTALRM, SIGPROF, SIGPWR, SIGSTKFLT, SIGIO, SIGABRT, SIGTRAP, SIGSYS, SIGBUS and every real-time
+//! signal SIGRTMIN..=SIGRTMAX — run every registered clean-up (remove a live temporary file or
+//! folder, restore the terminal), then the process exits with status 128 + the signal number,
+//! as a shell reports a process killed by that signal. SIGILL, SIGFPE and SIGSEGV keep their
+//! default action: `signal-hook` refuses them (a real fault must not return into the faulting
+//! code) and catching them otherwise needs `unsafe`, which this crate forbids.
 //!
 //! One handler for the whole process, so the file writer ([`crate::fsio`]) and the terminal
 //! ([`crate::tui::terminal`]) cannot race each other to `exit`. The signal itself is caught by
@@ -9,27 +13,51 @@
 //! ordinary thread that reads that pipe, so they may lock, allocate and do I/O. The handler is
 //! installed the first time something registers a clean-up, so commands that write no file and
 //! draw no screen keep the default signal behaviour.
+//!
+//! Every step that creates, fills or publishes a resource runs inside [`guarded`]; the signal
+//! thread takes the same lock before the clean-ups and keeps it until the process has exited.
+//! So a clean-up never runs in the middle of such a step, and no step runs after one: a writer
+//! cannot re-create a folder the clean-up removed, nor rename a partial one into place.
 
+use std::cell::Cell;
 use std::io;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
-use signal_hook::consts::{SIGALRM, SIGHUP, SIGINT, SIGPROF, SIGQUIT, SIGTERM, SIGUSR1, SIGUSR2, SIGVTALRM, SIGXCPU};
+use libc::{
+    SIGABRT, SIGALRM, SIGBUS, SIGHUP, SIGINT, SIGIO, SIGPROF, SIGPWR, SIGQUIT, SIGSTKFLT, SIGSYS, SIGTERM, SIGTRAP,
+    SIGUSR1, SIGUSR2, SIGVTALRM, SIGXCPU,
+};
 use signal_hook::iterator::Signals;
 
-/// The signals that run the clean-ups and end the process (SIGPIPE is left alone: a closed
-/// pipe is an error on the write, handled where it happens).
-pub const HANDLED: [i32; 10] =
-    [SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGVTALRM, SIGPROF];
+/// The signals with a fixed number that run the clean-ups and end the process (SIGPIPE is left
+/// alone: a closed pipe is an error on the write, handled where it happens; likewise SIGXFSZ).
+/// [`handled`] adds the real-time signals.
+pub const HANDLED: [i32; 17] = [
+    SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGVTALRM, SIGPROF, SIGPWR, SIGSTKFLT, SIGIO,
+    SIGABRT, SIGTRAP, SIGSYS, SIGBUS,
+];
+
+/// Every signal that runs the clean-ups: [`HANDLED`] and SIGRTMIN..=SIGRTMAX (their numbers are
+/// the C library's, so they are asked for at run time).
+#[must_use]
+pub fn handled() -> Vec<i32> {
+    HANDLED.iter().copied().chain(libc::SIGRTMIN()..=libc::SIGRTMAX()).collect()
+}
 
 type Cleanup = Box<dyn Fn() + Send + Sync>;
 
 /// The live clean-ups, each with the id of its [`Registration`].
 static CLEANUPS: Mutex<Vec<(u64, Cleanup)>> = Mutex::new(Vec::new());
 static NEXT_ID: AtomicU64 = AtomicU64::new(0);
-/// Held while a resource is created and its clean-up registered ([`guarded`]), and by the
-/// signal thread before it runs the clean-ups, so a signal never falls between the two.
+/// Held while a resource is created, filled or published ([`guarded`]), and by the signal
+/// thread from before it runs the clean-ups until the process has exited.
 static CRITICAL: Mutex<()> = Mutex::new(());
+
+thread_local! {
+    /// How deep this thread is in [`guarded`] (a guarded step may call another).
+    static DEPTH: Cell<usize> = const { Cell::new(0) };
+}
 
 /// A registered clean-up; dropping it unregisters it (the clean-up is not run).
 #[derive(Debug)]
@@ -54,15 +82,34 @@ pub fn on_signal(cleanup: impl Fn() + Send + Sync + 'static) -> (Registration, i
     (Registration(id), installed)
 }
 
-/// Runs `f` — create a resource and register its clean-up — with the clean-ups held off: the
-/// handler is installed first, and a signal that arrives meanwhile runs the clean-ups only after
-/// `f` returns, so a temporary file created and registered inside `f` is never left behind.
+/// Runs `f` — create a resource and register its clean-up, fill it, or publish it — with the
+/// clean-ups held off: the handler is installed first, and a signal that arrives meanwhile runs
+/// the clean-ups only after `f` returns. Once the clean-ups have started, `f` never runs: the
+/// call waits for the process to exit. A guarded step may itself call `guarded`.
 pub fn guarded<T>(f: impl FnOnce() -> T) -> T {
     // Without a handler the default action ends the process at once; `f`'s resource is then
     // left as it would be without this module, and `on_signal` reports the failure.
     let _ = install();
+    if DEPTH.get() > 0 {
+        return f();
+    }
     let _critical = CRITICAL.lock().unwrap_or_else(PoisonError::into_inner);
-    f()
+    DEPTH.set(1);
+    let out = f();
+    DEPTH.set(0);
+    out
+}
+
+/// Ends the process with `code` unless a signal's clean-ups are under way, in which case it
+/// waits for them (the process then exits with the signal's status). The front end's last call,
+/// so a run that fails because a clean-up removed its folder does not exit first with its own
+/// error while the clean-up is half done.
+pub fn exit(code: i32) -> ! {
+    if DEPTH.get() == 0 {
+        let critical = CRITICAL.lock().unwrap_or_else(PoisonError::into_inner);
+        std::mem::forget(critical);
+    }
+    std::process::exit(code)
 }
 
 /// Installs the handler and its thread (once).
@@ -70,12 +117,15 @@ fn install() -> io::Result<()> {
     static INSTALLED: OnceLock<Result<(), Arc<io::Error>>> = OnceLock::new();
     INSTALLED
         .get_or_init(|| {
-            let mut signals = Signals::new(HANDLED).map_err(Arc::new)?;
+            let mut signals = Signals::new(handled()).map_err(Arc::new)?;
             std::thread::Builder::new()
                 .name("thud-signals".into())
                 .spawn(move || {
                     if let Some(signal) = signals.forever().next() {
+                        // Held until the process has exited: no guarded step runs after this.
+                        let critical = CRITICAL.lock().unwrap_or_else(PoisonError::into_inner);
                         run_cleanups();
+                        std::mem::forget(critical);
                         std::process::exit(128 + signal);
                     }
                 })
@@ -86,9 +136,8 @@ fn install() -> io::Result<()> {
         .map_err(|e| io::Error::new(e.kind(), e.to_string()))
 }
 
-/// Runs every registered clean-up, newest first.
+/// Runs every registered clean-up, newest first (the caller holds [`CRITICAL`]).
 fn run_cleanups() {
-    let _critical = CRITICAL.lock().unwrap_or_else(PoisonError::into_inner);
     let list = CLEANUPS.lock().unwrap_or_else(PoisonError::into_inner);
     for (_, cleanup) in list.iter().rev() {
         cleanup();

@@ -204,6 +204,12 @@ impl<F: ForceFlag> DesignArgs<F> {
         self.text(name).unwrap_or_else(|| format!("{} {unit}", short(value)))
     }
 
+    /// Whether the row `name` was set by the user: as a flag, or as a key of the config's
+    /// `[design]` (a refusal blames what the user set, wherever they set it).
+    fn set(&self, name: &str) -> bool {
+        self.has(name) || from_config(name).is_some()
+    }
+
     /// The engine's refusal ([`limits::check_run`] and the like) in the command line's words:
     /// "`--flag value`: estimate exceeds the limit; hint, or add --no-limit". `counted` names
     /// the flag and value of what the caller counts (`--samples 5`, `--masses/--gaps 20 × 20`,
@@ -211,6 +217,11 @@ impl<F: ForceFlag> DesignArgs<F> {
     fn refuse(&self, ctx: &Ctx, d: &Design, r: Result<(), Refusal>, counted: (&str, &str)) -> Result<(), CliError> {
         let Err(r) = r else { return Ok(()) };
         let (flag, value) = match limits::refused_value(d, r.param) {
+            // Set in the config only: named as its key there.
+            Some((v, unit)) if !self.has(r.param) && from_config(r.param).is_some() => {
+                let key = from_config(r.param).unwrap_or_default();
+                (format!("{key} in {} [design]", crate::config::CONFIG_FILE), format!("{} {unit}", short(v)))
+            }
             Some((v, unit)) => (format!("--{}", r.param), self.shown(r.param, v, unit)),
             None => (counted.0.to_string(), counted.1.to_string()),
         };
@@ -227,7 +238,7 @@ impl<F: ForceFlag> DesignArgs<F> {
         history_samples: usize,
         samples_flag: &str,
     ) -> Result<(), CliError> {
-        let r = limits::check_run(d, &|n| self.has(n), history_samples);
+        let r = limits::check_run(d, &|n| self.set(n), history_samples);
         self.refuse(ctx, d, r, (samples_flag, &history_samples.to_string()))
     }
 
@@ -240,7 +251,7 @@ impl<F: ForceFlag> DesignArgs<F> {
         n_masses: usize,
         n_gaps: usize,
     ) -> Result<(), CliError> {
-        let r = limits::check_sweep(d, &|n| self.has(n), n_masses, n_gaps);
+        let r = limits::check_sweep(d, &|n| self.set(n), n_masses, n_gaps);
         self.refuse(ctx, d, r, ("--masses/--gaps", &format!("{n_masses} × {n_gaps}")))
     }
 
@@ -256,9 +267,15 @@ impl<F: ForceFlag> DesignArgs<F> {
         flag: &str,
         value: &str,
     ) -> Result<(), CliError> {
-        let r = limits::check_runs(d, &|n| self.has(n), cells, runs);
+        let r = limits::check_runs(d, &|n| self.set(n), cells, runs);
         self.refuse(ctx, d, r, (flag, value))
     }
+}
+
+/// The key of the config's `[design]` that sets the row `name` (by its name or alias), if any.
+fn from_config(name: &str) -> Option<String> {
+    let row = params::design_param(name)?;
+    super::settings::load().design.keys().find(|k| k.as_str() == row.name || Some(k.as_str()) == row.alias).cloned()
 }
 
 /// What to change to bring a refused run under its cap, in the command line's words;

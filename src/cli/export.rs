@@ -293,8 +293,15 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions, as_pd
     let overwrite = Overwrite::from_force(common.force);
     let out = &common.out;
     let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    // A terminal, however it is named (`-`, /dev/stdout, /dev/tty, /dev/pts/N), never gets
+    // binary bytes.
     let to_stdout = matches!(plan, Plan::Through(Sink::Stdout));
-    if to_stdout && (kind == Artifact::Wav || as_pdf) && std::io::stdout().is_terminal() {
+    let terminal = match plan {
+        Plan::Through(Sink::Stdout) => std::io::stdout().is_terminal(),
+        Plan::Through(Sink::Stream { .. }) => fsio::is_terminal(out),
+        _ => false,
+    };
+    if terminal && (kind == Artifact::Wav || as_pdf) {
         let (what, reader) = if as_pdf { ("a PDF", "a viewer") } else { ("a WAV", "a player") };
         let why =
             format!("{}: {what} file is binary; redirect standard output to a file or {reader}", fsio::shown(out));

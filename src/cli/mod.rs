@@ -47,7 +47,7 @@ pub struct Cli {
     /// Worker threads for parallel work (sweeps, ensembles, responses, the explorer's chart):
     /// 1 to 1024. Default: RAYON_NUM_THREADS if set, else one per CPU. If the system refuses
     /// some (a pids limit), thud runs with the threads it got and prints one warning.
-    #[arg(long, global = true, value_name = "N")]
+    #[arg(long, global = true, value_name = "N", allow_hyphen_values = true)]
     pub threads: Option<String>,
 }
 
@@ -267,7 +267,7 @@ fn not_utf8(raw: &[std::ffi::OsString]) -> String {
 
 /// The exit code of the explorer: 0, or its error's ([`CliError::report`]: the preset named as
 /// the flag `--preset`) with its line on stderr.
-fn tui_exit(r: Result<(), CliError>) -> i32 {
+fn tui_exit(r: Result<(), CliError>, on_success: impl FnOnce()) -> i32 {
     r.map_or_else(
         |e| {
             let (code, line) = e.report(&numeric_flags());
@@ -276,7 +276,10 @@ fn tui_exit(r: Result<(), CliError>) -> i32 {
             }
             code
         },
-        |()| 0,
+        |()| {
+            on_success();
+            0
+        },
     )
 }
 
@@ -284,9 +287,13 @@ fn tui_exit(r: Result<(), CliError>) -> i32 {
 pub fn run(cli: Cli) -> i32 {
     // The explorer's own threads: input, hang-up watch, signals, five job slots, an export.
     let reserve = if matches!(cli.command, Some(Command::Tui(_)) | None) { 9 } else { 1 };
-    if let Err(e) = start_threads(cli.threads.as_deref(), reserve) {
-        return fail(&e);
-    }
+    // The pool's warnings are printed only beside a success, as the config's: a failure is its
+    // one error line.
+    let thread_warnings = match start_threads(cli.threads.as_deref(), reserve) {
+        Ok(w) => w,
+        Err(e) => return fail(&e),
+    };
+    let warn_threads = || thread_warnings.iter().for_each(|w| warn(w));
     settings::load();
     let checking_config = matches!(cli.command, Some(Command::Config(_)));
     let ctx = Ctx { no_limit: cli.no_limit };
@@ -306,11 +313,12 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Completions(a)) => shell::completions(&a, &mut out),
         Some(Command::Man(a)) => shell::man(&a, &mut out),
         Some(Command::Config(a)) => settings::run(&a, &mut out),
-        Some(Command::Tui(a)) => return tui_exit(tui::run(&a)),
-        None => return tui_exit(tui::run_default()),
+        Some(Command::Tui(a)) => return tui_exit(tui::run(&a), warn_threads),
+        None => return tui_exit(tui::run_default(), warn_threads),
     };
     match result.and_then(|()| out.flush()) {
         Ok(()) => {
+            warn_threads();
             // A config warning only beside a success: a failure is its one error line.
             if let Some(w) = settings::warning().filter(|_| !checking_config) {
                 warn(w);
@@ -332,16 +340,14 @@ fn fail(e: &CliError) -> i32 {
 
 /// Builds the parallel pool ([`crate::threads`]) from `--threads` or `RAYON_NUM_THREADS`,
 /// leaving room for `reserve` other threads;
-/// a pool smaller than wanted is a one-line warning, a bad `--threads` an error.
-fn start_threads(flag: Option<&str>, reserve: usize) -> Result<(), CliError> {
+/// a pool smaller than wanted is a one-line warning (returned, for the caller to print beside a
+/// success), a bad `--threads` an error.
+fn start_threads(flag: Option<&str>, reserve: usize) -> Result<Vec<String>, CliError> {
     let flag = flag.map(|t| count("threads", t, &crate::limits::THREADS)).transpose()?;
     let env = std::env::var(crate::threads::ENV).ok();
     let (wanted, too_many) = crate::threads::wanted(flag, env.as_deref());
     let pool = crate::threads::init(wanted, reserve);
-    for w in too_many.iter().chain(&pool.warning) {
-        warn(w);
-    }
-    Ok(())
+    Ok(too_many.into_iter().chain(pool.warning).collect())
 }
 
 /// `thud limits`: the table of ranges and caps.

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use super::export::out_error;
+use super::export::write_error;
 use super::sweep::Target;
 use super::{budget, CliError, Out, OutputArgs, OutputFormat};
 use crate::error::ThudError;
@@ -77,10 +77,11 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
     target.write(&String::from_utf8_lossy(&bytes), out)
 }
 
-/// A refusal of `paper all`'s folder as the CLI's one-line error naming `--out`.
-fn bundle_error(e: BundleError) -> CliError {
+/// A refusal of `paper all`'s folder `dir` as the CLI's one-line error naming `--out` (exit 2),
+/// or a failure of the write itself (a read-only or full disk: exit 1, as for every writer).
+fn bundle_error(dir: &Path, e: BundleError) -> CliError {
     match e {
-        BundleError::File(f) => out_error(f.path(), &f).into(),
+        BundleError::File(f) => write_error(dir, &f),
         e @ BundleError::Pdf { .. } => CliError::Io(e.to_string()),
         e => ThudError::invalid("--out", e.to_string()).into(),
     }
@@ -95,7 +96,8 @@ fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool) -> Result<(), CliErr
         return Err(ThudError::invalid("--out", "-: `thud paper all` writes a folder of files; give --out DIR").into());
     }
     let expected = report::expected_files_with(true);
-    report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite).map_err(bundle_error)?;
+    report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite)
+        .map_err(|e| bundle_error(dir, e))?;
     let spinner = budget::spinner("reproducing the paper", true);
     let files = report::paper_bundle();
     spinner.finish_and_clear();
@@ -108,13 +110,13 @@ fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool) -> Result<(), CliErr
             }
         })?;
     }
-    let pdfs = if pdf { report::pdf_files(&files).map_err(bundle_error)? } else { Vec::new() };
+    let pdfs = if pdf { report::pdf_files(&files).map_err(|e| bundle_error(dir, e))? } else { Vec::new() };
     let all: Vec<(&str, &[u8])> = files
         .iter()
         .map(|f| (f.name.as_str(), f.contents.as_bytes()))
         .chain(pdfs.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())))
         .collect();
-    report::write_bundle(dir, &all, overwrite).map_err(bundle_error)?;
+    report::write_bundle(dir, &all, overwrite).map_err(|e| bundle_error(dir, e))?;
     super::warn(&format!("wrote {} files to {}", all.len(), fsio::shown(dir)));
     Ok(())
 }

@@ -58,8 +58,14 @@ pub fn run(a: &ConfigArgs, out: &mut Out) -> Result<(), CliError> {
     if check.problems.is_empty() {
         return out.text(&format!("{path}: no problems\n"));
     }
-    let lines: String = check.problems.iter().map(|p| format!("{p}\n")).collect();
-    out.text(&lines)?;
+    // The file's own text echoed (a `nan` it holds is no result of thud's): written as it is.
+    let max = config::MAX_LISTED_PROBLEMS;
+    let mut lines: String =
+        check.problems.iter().take(max).map(|p| format!("{}\n", p.to_string().replace(['\n', '\r'], " "))).collect();
+    if check.problems.len() > max {
+        lines += &format!("{path}: … and {} more problems (the first {max} are listed)\n", check.problems.len() - max);
+    }
+    out.raw(lines.as_bytes())?;
     out.flush()?;
     let n = check.problems.len();
     Err(CliError::Refused(format!(

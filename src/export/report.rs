@@ -218,11 +218,12 @@ fn kind_of(meta: &fs::Metadata) -> String {
 }
 
 /// Writes `files` (name, contents) as the folder `dir`, complete or not at all: into a new temporary folder
-/// `.DIR.thud-XXXXXX.tmp` beside it (locked, removed on every error and on SIGINT/SIGTERM/
-/// SIGHUP; after SIGKILL, by the next run), each file through [`fsio::write`] and synced, then
+/// `.DIR.thud-XXXXXX.tmp` beside it (locked, removed on every error and on every signal of
+/// [`crate::signals::handled`]; after SIGKILL, by the next run), each file through
+/// [`fsio::TempFolder::write`] and synced, then
 /// renamed into place — over nothing, over an empty folder, or (`Replace`) exchanged atomically
-/// with the previous set, which is then removed. A full disk or a kill leaves no partial set,
-/// and a run after a failure starts afresh. A previous set may hold the PDFs of the set's
+/// with the previous set, which is then removed. A full disk or a kill leaves no partial set
+/// (nor a folder created above it), and a run after a failure starts afresh. A previous set may hold the PDFs of the set's
 /// figures ([`pdf_name`]) whether or not this one does.
 pub fn write_bundle(dir: &Path, files: &[(&str, &[u8])], overwrite: Overwrite) -> Result<(), BundleError> {
     let twins: Vec<String> = files.iter().filter_map(|(name, _)| pdf_name(name)).collect();
@@ -234,13 +235,14 @@ pub fn write_bundle(dir: &Path, files: &[(&str, &[u8])], overwrite: Overwrite) -
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    fs::create_dir_all(&parent).map_err(io)?;
+    let new_folders = fsio::NewFolders::create(&parent).map_err(io)?;
     fsio::remove_stale_temps(&parent);
     let temp = fsio::TempFolder::new(&parent, dir).map_err(io)?;
     for (name, contents) in files {
-        fsio::write(&temp.path().join(name), contents, Overwrite::Refuse)?;
+        temp.write(name, contents)?;
     }
     temp.sync();
     temp.put_in_place(dir, plan == BundlePlan::Replace, &names)?;
+    new_folders.keep();
     Ok(())
 }

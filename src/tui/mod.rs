@@ -104,6 +104,7 @@ impl TuiError {
 
 /// Set this environment variable to make the explorer panic right after it took over the
 /// terminal: the end-to-end test uses it to check that the panic hook restores the terminal.
+/// Read only in a build with the `test-hooks` feature (the test suite's; see [`crate::fsio`]).
 pub const PANIC_FOR_TEST: &str = "THUD_TUI_PANIC_FOR_TEST";
 
 /// How often the spinner turns while work is in flight.
@@ -135,6 +136,7 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     }
     // The config's `mouse = false` turned it off in `configure`.
     let (mut term, _guard) = terminal::setup(app.mouse).map_err(TuiError::Terminal)?;
+    #[cfg(feature = "test-hooks")]
     assert!(
         std::env::var_os(PANIC_FOR_TEST).is_none(),
         "{PANIC_FOR_TEST} is set: panicking on purpose to test the terminal restore"

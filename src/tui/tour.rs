@@ -170,7 +170,7 @@ impl Tour {
         let (mut setup, mut preset) = (Setup { design: Design::default(), runs: 1 }, "default".to_string());
         let mut select = Knob::Mass;
         for (i, s) in parsed.steps.into_iter().enumerate() {
-            let at = |m: String| err(format!("step {} ({}): {m}", i + 1, s.title));
+            let at = |m: String| err(format!("step {} ({}): {m}", i + 1, shown_title(&s.title)));
             if let Some(p) = &s.preset {
                 setup.design = presets::preset(p).map_err(|e| at(e.to_string()))?;
                 preset = p.trim().to_ascii_lowercase();
@@ -282,6 +282,20 @@ pub fn source_name(source: &TourSource) -> String {
     match source {
         TourSource::BuiltIn => "the built-in tour".into(),
         TourSource::File(p) => fsio::shown(p),
+    }
+}
+
+/// Longest step title (in characters) a message names; a longer one is cut with "…", so the
+/// problem after it is never cut away (issue 24, item 5).
+const SHOWN_TITLE_CHARS: usize = 24;
+
+/// A step's title for a message: on one line, at most [`SHOWN_TITLE_CHARS`] characters.
+fn shown_title(title: &str) -> String {
+    let flat: String = title.trim().chars().map(|c| if c.is_control() { ' ' } else { c }).collect();
+    if flat.chars().count() <= SHOWN_TITLE_CHARS {
+        flat
+    } else {
+        flat.chars().take(SHOWN_TITLE_CHARS - 1).chain(['…']).collect()
     }
 }
 

@@ -35,6 +35,7 @@ mod forced;
 mod forced_cli;
 mod hostile_files;
 mod hostile_inputs;
+mod hostile_round3;
 mod params_table;
 mod pdf;
 mod response_band;

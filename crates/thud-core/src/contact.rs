@@ -81,7 +81,7 @@ pub fn material(name: &str) -> Result<Material, ThudError> {
     };
     MATERIALS.iter().find(|m| m.name == key).copied().ok_or_else(|| {
         let names: Vec<&str> = MATERIALS.iter().map(|m| m.name).collect();
-        ThudError::UnknownMaterial { name: name.into(), known: names.join(", ") }
+        ThudError::UnknownMaterial { param: "material".into(), name: name.into(), known: names.join(", ") }
     })
 }
 

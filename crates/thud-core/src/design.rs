@@ -53,14 +53,18 @@ impl Materials {
 
     /// The ball's material: the sphere's, with its Poisson ratio overridden by `sphere_nu`.
     pub fn sphere_material(&self) -> Result<contact::Material, ThudError> {
-        let m = contact::material(&self.sphere)?;
+        let m = contact::material(&self.sphere).map_err(|e| e.renamed("sphere"))?;
         Ok(contact::Material { nu: self.sphere_nu.unwrap_or(m.nu), ..m })
     }
 
     /// K_HZ (N/m^1.5) of a ball of radius `radius_m` (m) of these materials, Eq 2:
     /// K_HZ = (4/3)·√R·E* with 1/E* = (1−ν1²)/E1 + (1−ν2²)/E2, ν1 the ball's ([`Self::sphere_material`]).
     pub fn hertz_stiffness(&self, radius_m: f64) -> Result<f64, ThudError> {
-        Ok(contact::hertz_stiffness(radius_m, &self.sphere_material()?, &contact::material(&self.plate)?))
+        Ok(contact::hertz_stiffness(
+            radius_m,
+            &self.sphere_material()?,
+            &contact::material(&self.plate).map_err(|e| e.renamed("plate"))?,
+        ))
     }
 }
 

@@ -41,9 +41,10 @@ pub enum ThudError {
     #[error("invalid {param}: unknown unit '{unit}' in '{text}'; use {known} or a plain number in {plain_unit}")]
     UnknownUnit { param: String, unit: String, text: String, known: String, plain_unit: &'static str },
 
-    /// A material name that is not in the materials table (`known`: the table's names).
-    #[error("invalid material: unknown material '{name}'; known: {known}")]
-    UnknownMaterial { name: String, known: String },
+    /// A material name that is not in the materials table (`known`: the table's names);
+    /// `param` is the parameter that named it (`sphere`, `plate`, or `material` when unknown).
+    #[error("invalid {param}: unknown material '{name}'; known: {known}")]
+    UnknownMaterial { param: String, name: String, known: String },
 
     /// A restitution that no contact damping c1 ≥ 0 reaches for this contact.
     #[error("invalid restitution: {restitution}; not reachable")]
@@ -70,9 +71,9 @@ impl ThudError {
             | Self::UnknownUnit { param, .. }
             | Self::OutOfRange { param, .. }
             | Self::Conflict { param, .. }
-            | Self::Requires { param, .. } => param,
+            | Self::Requires { param, .. }
+            | Self::UnknownMaterial { param, .. } => param,
             Self::Cancelled => "",
-            Self::UnknownMaterial { .. } => "material",
             Self::RestitutionUnreachable { .. } => "restitution",
             Self::NoImpact => "u0",
         }
@@ -93,6 +94,7 @@ impl ThudError {
             Self::UnknownUnit { unit, text, known, plain_unit, .. } => {
                 Self::UnknownUnit { param: param.into(), unit, text, known, plain_unit }
             }
+            Self::UnknownMaterial { name, known, .. } => Self::UnknownMaterial { param: param.into(), name, known },
             other => other,
         }
     }
@@ -158,7 +160,11 @@ mod tests {
                 known: "kg, g".into(),
                 plain_unit: "kg",
             },
-            ThudError::UnknownMaterial { name: "unobtainium".into(), known: "steel, acrylic".into() },
+            ThudError::UnknownMaterial {
+                param: "sphere".into(),
+                name: "unobtainium".into(),
+                known: "steel, acrylic".into(),
+            },
             ThudError::RestitutionUnreachable { restitution: 0.5 },
             ThudError::NoImpact,
             ThudError::OutOfRange {

@@ -1020,9 +1020,10 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
     given.conflict("plate", "k-hz", "K_HZ follows from the materials")?;
     let mut a = PulseDraft::default();
     given.apply(&mut a)?;
-    let sphere = a.sphere.as_deref().map(contact::material).transpose().map_err(|e| given.respell(e))?;
+    let sphere =
+        a.sphere.as_deref().map(contact::material).transpose().map_err(|e| given.respell(e.renamed("sphere")))?;
     let plate = match (&a.plate, &sphere) {
-        (Some(p), _) => Some(contact::material(p).map_err(|e| given.respell(e))?),
+        (Some(p), _) => Some(contact::material(p).map_err(|e| given.respell(e.renamed("plate")))?),
         (None, Some(_)) => Some(contact::material("steel")?),
         (None, None) => None,
     };

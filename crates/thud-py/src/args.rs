@@ -4,7 +4,7 @@
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyString};
+use pyo3::types::{PyBool, PyDict, PyInt, PyString};
 use thud_core::limits::{self, short, Estimate, Range, Refusal, Remedy};
 use thud_core::params::{Input, Spelling};
 use thud_core::ThudError;
@@ -115,6 +115,21 @@ impl<'py> Kwargs<'py> {
             Some(s.to_cow()?.into_owned())
         } else if let Ok(i) = v.extract::<i128>() {
             Some(i.to_string())
+        } else if v.is_instance_of::<PyInt>() {
+            // An int too large for any count (`10**400`): out of range, named as such.
+            let digits = v.str().map_or(0, |s| s.to_string().trim_start_matches('-').len());
+            let sign = if v.lt(0).unwrap_or(false) { "a negative " } else { "an " };
+            return Err(engine_error(
+                py,
+                ThudError::invalid(
+                    name,
+                    format!(
+                        "{sign}integer of {digits} digits is out of range; the {} must be {}",
+                        range.what,
+                        range.describe()
+                    ),
+                ),
+            ));
         } else {
             v.extract::<f64>().ok().map(|f| format!("{f}"))
         };

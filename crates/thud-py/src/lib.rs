@@ -496,6 +496,10 @@ fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<B
 #[pyo3(name = "_thud")]
 fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
+    // NumPy's C API is imported on the first array made, running Python code: a Ctrl-C
+    // pending then made the numpy crate panic (PanicException). Imported here instead, where
+    // an error is an ImportError, and no array conversion runs Python code later.
+    drop(numpy::PyArray1::<f64>::from_vec(py, vec![0.0]));
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ParameterError", py.get_type::<args::ParameterError>())?;
     m.add_class::<PyPulse>()?;

@@ -476,6 +476,44 @@ fn reduce(py: Python<'_>, kind: &str, state: &Json) -> PyResult<Reduced> {
 pub fn _restore(py: Python<'_>, kind: &str, state: &str) -> PyResult<Py<PyAny>> {
     let bad = |e: &dyn fmt::Display| pyo3::exceptions::PyValueError::new_err(format!("not a thud {kind} state: {e}"));
     let v: Json = serde_json::from_str(state).map_err(|e| bad(&e))?;
+    // A state the results' own constructors cannot read is a forged or damaged one: a
+    // ValueError naming the field, never an "internal error" (issue 24, item 6).
+    let forged = |e: PyErr| {
+        if e.is_instance_of::<PyRuntimeError>(py) {
+            let text = e.value(py).to_string();
+            bad(&text.trim_start_matches("internal error: "))
+        } else {
+            e
+        }
+    };
+    if let Some(at) = implausible(&v, "") {
+        return Err(bad(&format!("'{at}' is out of range (a finite number, -1e100 to 1e100)")));
+    }
+    restore_checked(py, kind, v).map_err(forged)
+}
+
+/// The largest magnitude of a number in a result's state: far beyond anything thud computes,
+/// far below where sums of such numbers overflow to ∞ and their differences to NaN (a forged
+/// chart's Table 5 bands). The same bound as `thud merge` holds a part's cells to.
+const MAX_STATE_MAGNITUDE: f64 = 1e100;
+
+/// The path (`record.sweeps.0.points`) of the first number in `v` beyond
+/// [`MAX_STATE_MAGNITUDE`], if any.
+fn implausible(v: &Json, at: &str) -> Option<String> {
+    let join = |k: &dyn fmt::Display| if at.is_empty() { k.to_string() } else { format!("{at}.{k}") };
+    match v {
+        Json::Number(n) => {
+            n.as_f64().is_none_or(|x| !x.is_finite() || x.abs() > MAX_STATE_MAGNITUDE).then(|| at.into())
+        }
+        Json::Array(items) => items.iter().enumerate().find_map(|(i, x)| implausible(x, &join(&i))),
+        Json::Object(map) => map.iter().find_map(|(k, x)| implausible(x, &join(k))),
+        _ => None,
+    }
+}
+
+/// [`_restore`] once the state is JSON.
+fn restore_checked(py: Python<'_>, kind: &str, v: Json) -> PyResult<Py<PyAny>> {
+    let bad = |e: &dyn fmt::Display| pyo3::exceptions::PyValueError::new_err(format!("not a thud {kind} state: {e}"));
     let obj = match kind {
         "Pulse" => PyPulse::from_record(py, v)?.into_pyobject(py)?.into_any(),
         "Run" => PyRun::from_state(py, v)?.into_pyobject(py)?.into_any(),
@@ -1026,6 +1064,10 @@ impl PyChart {
         let bad = |e: serde_json::Error| PyRuntimeError::new_err(format!("internal error: a Chart state: {e}"));
         let part = |k: &str| state.get(k).cloned().ok_or_else(|| missing("Chart state", k));
         let d: Design = serde_json::from_value(part("design")?).map_err(bad)?;
+        // The design as every front end takes one: checked whole (a forged one is refused).
+        d.clone()
+            .check()
+            .map_err(|e| PyRuntimeError::new_err(format!("internal error: a Chart state: design: {e}")))?;
         if state.get("ensembles").is_some() {
             return Self::of_ensembles(py, &d, serde_json::from_value(part("ensembles")?).map_err(bad)?);
         }

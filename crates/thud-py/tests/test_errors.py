@@ -52,9 +52,10 @@ SAME_AS_CLI = [
     ("pulse", {"u0": math.nan}, ["--u0", "nan"], "u0"),
     ("pulse", {"rho_c": 0.5}, ["--rho-c", "0.5"], "rho_c"),
     ("pulse", {"sphere": "tungsten-carbide", "radius": 2}, ["--sphere", "tungsten-carbide", "--radius", "2"], "radius"),
-    # The engine names an unknown material "material", on the command line too.
-    ("pulse", {"sphere": "cheese"}, ["--sphere", "cheese"], "material"),
-    ("simulate", {"sphere": "cheese"}, ["--sphere", "cheese"], "material"),
+    # An unknown material names the parameter that gave it (issue 24, item 5).
+    ("pulse", {"sphere": "cheese"}, ["--sphere", "cheese"], "sphere"),
+    ("simulate", {"sphere": "cheese"}, ["--sphere", "cheese"], "sphere"),
+    ("simulate", {"plate": "cheese"}, ["--plate", "cheese"], "plate"),
     ("pulse", {"points": 1}, ["--points", "1"], "points"),
 ]
 

@@ -1,6 +1,8 @@
 //! What both solvers record along a run: cycle maxima of `x`, the largest `|z'|`, uniform history
 //! samples, and for a forced run the steady-state windows ([`Windows`]). Units: seconds, metres, m/s.
 
+use std::collections::VecDeque;
+
 use super::{EnergyLedger, HistoryPoint, ImpactEvent, Maximum, Run, Truncation};
 
 /// Probes of `x` per forcing period in a steady-state window (for the periodicity check).
@@ -25,8 +27,10 @@ pub(crate) struct Windows {
     k0: usize,
     /// `1/L` (1/s), for attributing a time to its window.
     inv_len: f64,
-    /// The windows still open (at most a few), by index.
-    open: Vec<(usize, WindowAcc)>,
+    /// The windows still open, from the next to close on: `open[i]` is window `closed() + i`.
+    /// A long flight touches many windows (its extrema) before its probes close them, so a
+    /// window is found by its index, not searched for (issue 24, item 2).
+    open: VecDeque<WindowAcc>,
     /// The amplitude of every closed window (m), by index.
     amplitudes: Vec<f32>,
     /// The figures of the last three closed windows, oldest first.
@@ -71,7 +75,7 @@ impl Windows {
             per,
             k0,
             inv_len: 1.0 / len,
-            open: Vec::new(),
+            open: VecDeque::new(),
             amplitudes: Vec::new(),
             recent: Vec::new(),
             next_probe: 0,
@@ -95,15 +99,11 @@ impl Windows {
 
     /// The open window `k`, opened if need be; None if it is closed already.
     fn window(&mut self, k: usize) -> Option<&mut WindowAcc> {
-        if k < self.amplitudes.len() {
-            return None;
+        let at = k.checked_sub(self.amplitudes.len())?;
+        if self.open.len() <= at {
+            self.open.resize_with(at + 1, WindowAcc::default);
         }
-        if let Some(at) = self.open.iter().position(|(i, _)| *i == k) {
-            Some(&mut self.open[at].1)
-        } else {
-            self.open.push((k, WindowAcc::default()));
-            self.open.last_mut().map(|(_, w)| w)
-        }
+        self.open.get_mut(at)
     }
 
     /// `x` (m) at time `t` (s): counts towards the amplitude of the window holding `t`.
@@ -163,10 +163,7 @@ impl Windows {
     /// Closes window `k` (the next one to close) with what it has seen.
     fn close(&mut self, k: usize) {
         debug_assert_eq!(k, self.amplitudes.len());
-        let acc = match self.open.iter().position(|(i, _)| *i == k) {
-            Some(at) => self.open.swap_remove(at).1,
-            None => WindowAcc::default(),
-        };
+        let acc = self.open.pop_front().unwrap_or_default();
         let (start_s, end_s) = self.bounds(k);
         let amplitude_m = acc.max_abs_x;
         let complete = acc.first == 0 && acc.probes.len() == self.per + 1;
