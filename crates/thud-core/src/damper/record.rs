@@ -378,13 +378,12 @@ impl Recorder {
     #[allow(clippy::too_many_arguments)]
     pub fn contact_step(
         &mut self,
-        (t0, x0, v0): (f64, f64, f64),
+        (_t0, x0, v0): (f64, f64, f64),
         (t1, x1, v1): (f64, f64, f64),
         zd1: f64,
         zd_inside: Option<f64>,
         extremum: impl FnOnce() -> (f64, f64),
     ) {
-        let _ = t0;
         self.zdot(zd1);
         if let Some(z) = zd_inside {
             self.zdot(z);
