@@ -44,7 +44,7 @@ const NC: usize = ORDER + 1;
 /// The last coefficients that size a step.
 const TAIL: usize = 6;
 
-/// Relative tolerance on the last two terms of each series (on the contact's own scales).
+/// Relative tolerance of a step, on the contact's own scales (see [`Series::step_size`]).
 /// Chosen so that the release speeds agree with the reference integrator's to its own accuracy
 /// (tests/contact_scheme.rs, docs/model.md §10).
 pub(crate) const TOL: f64 = 1e-11;
