@@ -22,6 +22,7 @@ mod support {
 mod acoustics_paper;
 mod architecture;
 mod cli;
+mod contact_scheme;
 mod cvd;
 mod damper;
 mod design_paper;
@@ -36,6 +37,7 @@ mod forced_cli;
 mod hostile_files;
 mod hostile_inputs;
 mod hostile_round3;
+mod masri_caughey;
 mod params_table;
 mod pdf;
 mod response_band;

@@ -37,6 +37,9 @@ pub(crate) trait Load: Copy {
     const ON: bool;
     /// The force per unit main mass at time `t` (s).
     fn accel(&self, t: f64) -> f64;
+    /// `(f, Ω, θ(t))`: the amplitude per unit main mass (m/s²), the angular frequency (rad/s)
+    /// and the phase at `t` of the force `f·cos θ(t)` (zeros without a force).
+    fn harmonic(&self, t: f64) -> (f64, f64, f64);
     /// The force at the Dormand–Prince stage times `t + c_i·h`, `i = 2 … 7`.
     #[inline(always)]
     fn stages(&self, t: f64, h: f64) -> [f64; 6] {
@@ -54,6 +57,10 @@ impl Load for NoLoad {
     fn accel(&self, _: f64) -> f64 {
         0.0
     }
+    #[inline(always)]
+    fn harmonic(&self, _: f64) -> (f64, f64, f64) {
+        (0.0, 0.0, 0.0)
+    }
 }
 
 impl Load for Harmonic {
@@ -61,6 +68,10 @@ impl Load for Harmonic {
     #[inline(always)]
     fn accel(&self, t: f64) -> f64 {
         Harmonic::accel(self, t)
+    }
+    #[inline(always)]
+    fn harmonic(&self, t: f64) -> (f64, f64, f64) {
+        (self.f, self.omega, self.theta(t))
     }
 
     /// One `sin_cos` a step: `cos(θ + a) = cos θ·cos a − sin θ·sin a` with `a = Ω·c_i·h`, whose

@@ -365,6 +365,43 @@ impl Recorder {
     }
 }
 
+impl Recorder {
+    /// One step inside a contact of the default integrator (`sundman.rs`), from `(t0, x0, v0)`
+    /// to `(t1, x1, v1)` with relative velocity `zd1` at the end: as [`Recorder::step`], but
+    /// with the extremum of `x` inside the step located on the step's interpolant
+    /// (`extremum() → (t, x)`, called only where `x'` changes sign) rather than taken at an end,
+    /// and the largest `|z'|` inside it (`zd_inside`, where the relative speed turns).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn contact_step(
+        &mut self,
+        (_t0, x0, v0): (f64, f64, f64),
+        (t1, x1, v1): (f64, f64, f64),
+        zd1: f64,
+        zd_inside: Option<f64>,
+        extremum: impl FnOnce() -> (f64, f64),
+    ) {
+        self.zdot(zd1);
+        if let Some(z) = zd_inside {
+            self.zdot(z);
+        }
+        let down = v0 > 0.0 && v1 <= 0.0;
+        if down || (v0 < 0.0 && v1 >= 0.0) {
+            let (te, xe) = extremum();
+            if down {
+                self.local_max(te, xe);
+            }
+            if let Some(w) = &mut self.windows {
+                w.x_at(t1, x1);
+                w.x_at(te, xe);
+            }
+        }
+        if x0 <= 0.0 && x1 > 0.0 {
+            self.up_cross();
+        }
+    }
+}
+
 impl Windows {
     /// A step of a discrete integrator (see [`Recorder::step`]) across which `x'` changes sign:
     /// `|x|` at the extremum inside it, from the cubic through both ends' `x` and `x'`.
@@ -381,7 +418,7 @@ impl Windows {
 
 /// The extremum of the cubic Hermite `p(u)`, `u ∈ [0, 1]`, with `p(0) = f0`, `p'(0) = d0`,
 /// `p(1) = f1`, `p'(1) = d1` where `p'` changes sign: `(u, p(u))`.
-fn cubic_extremum(f0: f64, d0: f64, f1: f64, d1: f64) -> (f64, f64) {
+pub(crate) fn cubic_extremum(f0: f64, d0: f64, f1: f64, d1: f64) -> (f64, f64) {
     // p'(u) = A·u² + B·u + d0 with A = 6(f0 − f1) + 3(d0 + d1), B = 6(f1 − f0) − 4d0 − 2d1.
     let a = 6.0 * (f0 - f1) + 3.0 * (d0 + d1);
     let b = 6.0 * (f1 - f0) - 4.0 * d0 - 2.0 * d1;

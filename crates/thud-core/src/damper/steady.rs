@@ -23,7 +23,7 @@ use super::forced::{Forced, Harmonic};
 use super::newmark::NewmarkSim;
 use super::record::{Recorder, WindowStats, Windows};
 pub(crate) use super::stepper::{Start, Stepper};
-use super::{DamperParams, Run, RunOptions, Solver};
+use super::{ContactScheme, DamperParams, Run, RunOptions, Solver};
 
 /// The most forcing periods a settling run adds past its duration.
 pub const SETTLE_PERIODS_MAX: u32 = 2000;
@@ -102,21 +102,25 @@ pub(crate) fn run(
     opts: &RunOptions,
     start: &Start,
     want_end: bool,
+    scheme: ContactScheme,
 ) -> (Run, Option<Start>) {
     let mut rec = Recorder::new(opts.history_samples, p.duration_s);
     let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
     if !p.forced() {
         return match solver {
-            Solver::Event => drive(EventSim::new(p, Free(osc), opts, start, rec), p, None, want_end),
+            Solver::Event => drive(EventSim::new(p, Free(osc), opts, start, rec, scheme), p, None, want_end),
             Solver::Newmark { dt_s } => drive(NewmarkSim::new(p, dt_s, None, opts, start, rec), p, None, want_end),
         };
     }
     rec.windows = Some(Windows::new(p.duration_s, 1.0 / p.freq_hz, p.steady_periods as usize));
     let load = Harmonic::new(p.force_n, p.main_mass_kg, p.freq_hz, start.phase);
     match solver {
-        Solver::Event => {
-            drive(EventSim::new(p, ForcedFlight(Forced::new(osc, load)), opts, start, rec), p, Some(load), want_end)
-        }
+        Solver::Event => drive(
+            EventSim::new(p, ForcedFlight(Forced::new(osc, load)), opts, start, rec, scheme),
+            p,
+            Some(load),
+            want_end,
+        ),
         Solver::Newmark { dt_s } => {
             drive(NewmarkSim::new(p, dt_s, Some(load), opts, start, rec), p, Some(load), want_end)
         }

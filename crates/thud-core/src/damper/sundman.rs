@@ -1,0 +1,643 @@
+//! The default in-contact integrator of the event solver: paper Eq 26 in the square root of the
+//! penetration `σ = √δ` against a Sundman time `θ` with `dt/dθ = σ`, integrated by Taylor
+//! series of high order (docs/model.md §10).
+//!
+//! The Hertz force `K_HZ·δ^{3/2}` is not smooth where a contact starts and ends: near the onset
+//! `δ ≈ u0·t`, so `δ(t)` carries a `t^{7/2}` term, and the same holds at the release. A method
+//! of high order in `t` loses its order there. With `δ = σ²` and `dt = σ·dθ`,
+//!
+//! ```text
+//! dx/dθ = σ·x'               dx'/dθ = σ·(a_M + s·F/M)
+//! dσ/dθ = δ'/2               dδ'/dθ = σ·(−K*·F − s·a_M)
+//! dE_c/dθ = σ·(F − K_HZ·σ³)·δ'    dE_v/dθ = σ·C·x'²        dt/dθ = σ
+//! ```
+//!
+//! with `F = K_HZ·σ³ + c1·δ'` (`0` while the clamp holds under "no tension") and `a_M = (F(t) −
+//! C·x' − K·x)/M`, the symbols of [`super::contact`]. Every right-hand side is a polynomial in
+//! the state (the harmonic force `f·cos φ` with `dφ/dθ = Ω·σ` adds two more), so the solution is
+//! analytic in θ across the onset (a regular point, `dσ/dθ = u0/2 > 0`) and the release (a
+//! simple root of σ), and its Taylor coefficients follow from the state by the recurrences of
+//! automatic differentiation (Cauchy products; Jorba & Zou 2005). A step of order [`ORDER`]
+//! spans about a fifth of a contact; its polynomials are the solution all along the step, so
+//! the release, the peak penetration, the clamp's switches, the time limit, the maxima of `x`
+//! and the extrema of `|z'|` are roots of polynomials, found without further steps.
+//!
+//! The contract is [`super::contact::integrate`]'s: one contact to separation, to the time
+//! limit (cut exactly there, resumable by [`resume`]), or to the step budget.
+
+use nalgebra::SVector;
+
+use crate::contact::{contact_duration, peak_approach};
+
+use super::contact::{ContactOutcome, Load, State, Sys};
+
+/// The integrated state `[x, x', σ, δ', E_contact, E_viscous, t − t_onset]` (m, m/s, √m, m/s,
+/// J, J, s).
+pub(crate) type Y = SVector<f64, 7>;
+
+/// Order of the Taylor polynomials.
+pub(crate) const ORDER: usize = 16;
+
+/// Coefficients per series.
+const NC: usize = ORDER + 1;
+
+/// The last coefficients that size a step.
+const TAIL: usize = 6;
+
+/// Relative tolerance of a step, on the contact's own scales (see [`Series::step_size`]).
+/// Chosen so that the release speeds agree with the reference integrator's to its own accuracy
+/// (tests/contact_scheme.rs, docs/model.md §10).
+pub(crate) const TOL: f64 = 1e-11;
+
+/// What one Taylor step is charged against the run's in-contact step budget
+/// ([`super::CONTACT_STEP_CAP`], counted in the reference's Dormand–Prince steps): about the
+/// steps of the reference it replaces, so the cap keeps its meaning.
+pub(crate) const STEP_COST: usize = 12;
+
+/// The Taylor coefficients of one step, `c_k` of `(θ − θ0)^k`, of the state's seven series.
+#[derive(Clone)]
+pub(crate) struct Series {
+    /// `[x, x', σ, δ', E_c, E_v, t − t_onset]`, each `NC` coefficients.
+    pub c: [[f64; NC]; 7],
+    /// The unclamped bracket `K_HZ·σ³ + c1·δ'` (N).
+    pub raw: [f64; NC],
+}
+
+/// `Σ_{j=0..=k} a_j·b_{k−j}`: coefficient `k` of the product of two series.
+#[inline(always)]
+fn cauchy(a: &[f64; NC], b: &[f64; NC], k: usize) -> f64 {
+    let mut acc = 0.0;
+    for j in 0..=k {
+        acc += a[j] * b[k - j];
+    }
+    acc
+}
+
+impl Series {
+    /// The series of the motion from state `y` (contact onset at `t_onset`, wall `s`), with the
+    /// clamp holding (`clamped`, F = 0) or not.
+    #[inline(always)]
+    fn expand<L: Load>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y, clamped: bool) -> Self {
+        if clamped {
+            Self::expand_in::<L, true>(sys, load, s, t_onset, y)
+        } else {
+            Self::expand_in::<L, false>(sys, load, s, t_onset, y)
+        }
+    }
+
+    /// [`Series::expand`] with the clamp's state `CL` fixed at compile time.
+    #[inline(always)]
+    fn expand_in<L: Load, const CL: bool>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y) -> Self {
+        let clamped = CL;
+        let z = [0.0; NC];
+        let (mut x, mut v, mut sg, mut u, mut ec, mut ev, mut tt) = (z, z, z, z, z, z, z);
+        let (mut s2, mut s3, mut a, mut b, mut sv, mut raw) = (z, z, z, z, z, z);
+        let (mut q2, mut cs, mut sn) = (z, z, z);
+        x[0] = y[0];
+        v[0] = y[1];
+        sg[0] = y[2];
+        u[0] = y[3];
+        ec[0] = y[4];
+        ev[0] = y[5];
+        tt[0] = y[6];
+        let (f, omega, phi) = load.harmonic(t_onset + y[6]);
+        if L::ON {
+            let (sp, cp) = phi.sin_cos();
+            cs[0] = cp;
+            sn[0] = sp;
+        }
+        let (khz, c1, kstar, im) = (sys.k_hz, sys.c1, sys.kstar, sys.inv_big_m);
+        let mut sa = z;
+        let mut sb = z;
+        let mut qq = z;
+        for k in 0..ORDER {
+            // Coefficient k of every product, in one pass over the terms j < k (independent
+            // sums, so they run side by side), then the terms j = k in dependency order.
+            let (mut p_s2, mut p_s3, mut p_sv, mut p_sa, mut p_sb) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            let (mut p_svv, mut p_q2, mut p_qq, mut p_sn, mut p_cs) = (0.0, 0.0, 0.0, 0.0, 0.0);
+            for j in 0..k {
+                let (gj, gk) = (sg[j], sg[k - j]);
+                p_s2 += gj * gk;
+                p_s3 += s2[j] * gk;
+                p_sv += gj * v[k - j];
+                p_sa += gj * a[k - j];
+                p_sb += gj * b[k - j];
+                p_svv += sv[j] * v[k - j];
+                if clamped {
+                    p_q2 += s2[j] * s2[k - j];
+                } else {
+                    p_q2 += u[j] * u[k - j];
+                }
+                p_qq += if clamped { q2[j] * u[k - j] } else { gj * q2[k - j] };
+                if L::ON {
+                    p_sn += gj * sn[k - j];
+                    p_cs += gj * cs[k - j];
+                }
+            }
+            let g0 = sg[0];
+            s2[k] = p_s2 + sg[k] * g0;
+            s3[k] = p_s3 + s2[k] * g0;
+            raw[k] = khz * s3[k] + c1 * u[k];
+            let fk = if clamped { 0.0 } else { raw[k] };
+            let mut spr = (-sys.c * v[k] - sys.k * x[k]) * im;
+            if L::ON {
+                spr += f * cs[k];
+            }
+            a[k] = spr + s * im * fk;
+            b[k] = -kstar * fk - s * spr;
+            sv[k] = p_sv + sg[k] * v[0];
+            // (the j = 0 terms hold a[k] and b[k], zero in the pass above)
+            // (the j = 0 terms hold a[k] and b[k], zero in the pass above; at k = 0 the two
+            // end terms are one)
+            let ends = if k == 0 { 1.0 } else { 2.0 };
+            sa[k] = if k == 0 { g0 * a[0] } else { p_sa + g0 * a[k] + sg[k] * a[0] };
+            sb[k] = if k == 0 { g0 * b[0] } else { p_sb + g0 * b[k] + sg[k] * b[0] };
+            let inv = 1.0 / (k + 1) as f64;
+            x[k + 1] = sv[k] * inv;
+            v[k + 1] = sa[k] * inv;
+            sg[k + 1] = 0.5 * u[k] * inv;
+            u[k + 1] = sb[k] * inv;
+            tt[k + 1] = sg[k] * inv;
+            ev[k + 1] = sys.c * (p_svv + sv[k] * v[0]) * inv;
+            // E_c' = σ·(F − K_HZ·σ³)·δ': c1·σ·δ'² while pressed, −K_HZ·σ⁴·δ' while clamped.
+            if clamped {
+                q2[k] = p_q2 + ends * s2[k] * s2[0];
+                qq[k] = p_qq + q2[k] * u[0];
+                ec[k + 1] = -khz * qq[k] * inv;
+            } else {
+                q2[k] = p_q2 + u[k] * u[0];
+                qq[k] = if k == 0 { g0 * q2[0] } else { p_qq + g0 * q2[k] + sg[k] * q2[0] };
+                ec[k + 1] = c1 * qq[k] * inv;
+            }
+            if L::ON {
+                let w = omega * inv;
+                cs[k + 1] = -w * (p_sn + sg[k] * sn[0]);
+                sn[k + 1] = w * (p_cs + sg[k] * cs[0]);
+            }
+        }
+        s2[ORDER] = cauchy(&sg, &sg, ORDER);
+        s3[ORDER] = cauchy(&s2, &sg, ORDER);
+        raw[ORDER] = khz * s3[ORDER] + c1 * u[ORDER];
+        Series { c: [x, v, sg, u, ec, ev, tt], raw }
+    }
+
+    /// The step (θ units) over which every series' last terms stay below `TOL` of its scale
+    /// `sc[i] + |c_0|`: the radius of convergence estimated from the last [`TAIL`] coefficients
+    /// (more than two: at the onset of a free contact the series of σ holds only every fifth
+    /// power), scaled down to the tolerance.
+    fn step_size(&self, sc: &[f64; 7], guess: f64, lam: f64) -> f64 {
+        // The largest tail term at step `h` relative to its tolerance: `TOL^(k/ORDER)` of the
+        // scale for term k, i.e. a step of `TOL^(1/ORDER)` times the radius of convergence the
+        // tail shows (Jorba & Zou 2005).
+        let ratio = |h: f64| {
+            let mut pw = [0.0; TAIL];
+            let mut p = (h / lam).powi((ORDER + 1 - TAIL) as i32);
+            for w in &mut pw {
+                *w = p;
+                p *= h / lam;
+            }
+            let mut r: f64 = 0.0;
+            for (i, c) in self.c.iter().enumerate() {
+                let inv_e = 1.0 / (sc[i] + c[0].abs());
+                let mut m: f64 = 0.0;
+                for (t, w) in pw.iter().enumerate() {
+                    m = m.max(c[ORDER + 1 - TAIL + t].abs() * w);
+                }
+                r = r.max(m * inv_e);
+            }
+            r
+        };
+        let mut h = guess;
+        for _ in 0..3 {
+            let r = ratio(h);
+            if !(r > 0.0 && r.is_finite()) {
+                return if r == 0.0 { 4.0 * h } else { 0.25 * h };
+            }
+            // The tail terms go as h^(ORDER−TAIL+1) … h^ORDER: shrink by the lowest power,
+            // grow by the highest, so that each guess errs on the safe side.
+            let e = if r > 1.0 { (ORDER + 1 - TAIL) as f64 } else { ORDER as f64 };
+            let next = h * r.powf(-1.0 / e);
+            if r <= 1.0 && r > 0.5 {
+                return h.max(next.min(h * 1.02));
+            }
+            h = next;
+        }
+        h
+    }
+
+    /// Series `i` at `q`: `(value, derivative)` by Horner.
+    #[inline]
+    pub fn eval(&self, i: usize, q: f64) -> (f64, f64) {
+        horner(&self.c[i], q)
+    }
+
+    /// The state at `q`.
+    #[inline]
+    pub fn state(&self, q: f64) -> Y {
+        Y::from(std::array::from_fn::<f64, 7, _>(|i| horner(&self.c[i], q).0))
+    }
+}
+
+/// A polynomial `Σ c_k·q^k` and its derivative at `q`.
+#[inline]
+fn horner(c: &[f64; NC], q: f64) -> (f64, f64) {
+    let mut p = c[ORDER];
+    let mut d = 0.0;
+    for k in (0..ORDER).rev() {
+        d = d * q + p;
+        p = p * q + c[k];
+    }
+    (p, d)
+}
+
+/// A root in `(0, h]` of `f` (value and derivative) with `f(0) = f0`, `f(h) = f1` of opposite
+/// signs or `f1 = 0`: Newton safeguarded by bisection.
+pub(crate) fn root_in(h: f64, f0: f64, f1: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
+    if f1 == 0.0 {
+        return h;
+    }
+    let up = f1 > f0;
+    let (mut lo, mut hi) = (0.0, h);
+    let mut q = h * f0 / (f0 - f1);
+    for _ in 0..80 {
+        if !(q > lo && q < hi) {
+            q = 0.5 * (lo + hi);
+        }
+        let (v, d) = f(q);
+        if v == 0.0 {
+            return q;
+        }
+        if (v > 0.0) == up {
+            hi = q;
+        } else {
+            lo = q;
+        }
+        let next = q - v / d;
+        if hi - lo <= 4.0 * f64::EPSILON * h || (next - q).abs() <= 2.0 * f64::EPSILON * h {
+            return if next > lo && next < hi { next } else { q };
+        }
+        q = next;
+    }
+    q
+}
+
+/// One accepted step of a contact: its series, over `[0, h]` in θ, the contact having started
+/// at `t_onset` (s).
+pub(crate) struct Span<'a> {
+    pub t_onset: f64,
+    pub h: f64,
+    pub ser: &'a Series,
+    pub y0: &'a Y,
+    pub y1: &'a Y,
+}
+
+impl Span<'_> {
+    /// Time (s) at each end.
+    #[inline]
+    pub fn t0(&self) -> f64 {
+        self.t_onset + self.y0[6]
+    }
+
+    #[inline]
+    pub fn t1(&self) -> f64 {
+        self.t_onset + self.y1[6]
+    }
+
+    /// Where `x'` changes sign inside the step (its sign at the ends says it does): `(t, x)` at
+    /// the extremum of x.
+    pub fn x_extremum(&self) -> (f64, f64) {
+        let q = root_in(self.h, self.y0[1], self.y1[1], |q| self.ser.eval(1, q));
+        (self.t_onset + self.ser.eval(6, q).0, self.ser.eval(0, q).0)
+    }
+
+    /// The largest `|δ'|` inside the step where `dδ'/dθ` changes sign; `None` without a sign
+    /// change.
+    pub fn speed_extremum(&self) -> Option<f64> {
+        let c = &self.ser.c[3];
+        let d0 = c[1];
+        let d1 = self.ser.eval(3, self.h).1;
+        if d0 == 0.0 || (d0 > 0.0) == (d1 > 0.0) {
+            return None;
+        }
+        let q = root_in(self.h, d0, d1, |q| {
+            // The derivative of δ' and its own derivative.
+            let mut p = 0.0;
+            let mut dp = 0.0;
+            for k in (1..NC).rev() {
+                dp = dp * q + p;
+                p = p * q + k as f64 * c[k];
+            }
+            (p, dp)
+        });
+        Some(self.ser.eval(3, q).0.abs())
+    }
+
+    /// `(x, penetration δ)` (m) at time `t` (s) in the step.
+    pub fn sample(&self, t: f64) -> (f64, f64) {
+        let target = t - self.t_onset;
+        let (a, b) = (self.y0[6] - target, self.y1[6] - target);
+        let q = if a >= 0.0 {
+            0.0
+        } else if b <= 0.0 {
+            self.h
+        } else {
+            root_in(self.h, a, b, |q| {
+                let (v, d) = self.ser.eval(6, q);
+                (v - target, d)
+            })
+        };
+        let sg = self.ser.eval(2, q).0;
+        (self.ser.eval(0, q).0, sg * sg)
+    }
+}
+
+/// Sees every accepted step of a contact integration.
+pub(crate) trait Observer {
+    fn step(&mut self, span: &Span<'_>);
+}
+
+/// The observer that sees nothing.
+#[cfg(test)]
+pub(crate) struct Unobserved;
+
+#[cfg(test)]
+impl Observer for Unobserved {
+    #[inline(always)]
+    fn step(&mut self, _: &Span<'_>) {}
+}
+
+/// Where and how a contact integration ended.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct End {
+    /// Time (s) and state `[x, x', δ, δ', E_contact, E_viscous]` at the end.
+    pub t: f64,
+    pub y: State,
+    /// Peak penetration (m), where δ' = 0 on the step's series.
+    pub pen_max: f64,
+    pub outcome: ContactOutcome,
+    /// With [`ContactOutcome::EndOfRun`]: everything needed to carry the contact on.
+    pub resume: Option<Resume>,
+}
+
+/// A contact cut by its time limit, as it stood.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Resume {
+    s: f64,
+    sc: [f64; 7],
+    t_onset: f64,
+    y: Y,
+    clamped: bool,
+    switches: usize,
+    pen: f64,
+    h: f64,
+}
+
+/// Clamp switches located exactly per contact (see `contact.rs`); past them the clamp's state
+/// is taken at each step's start.
+const MAX_SWITCHES: usize = 16;
+
+struct Integration<'a, L, O> {
+    sys: &'a Sys,
+    load: L,
+    s: f64,
+    sc: [f64; 7],
+    t_onset: f64,
+    t_limit: f64,
+    y: Y,
+    clamped: bool,
+    switches: usize,
+    pen: f64,
+    /// The last step (θ units), the next one's first guess.
+    h: f64,
+    obs: O,
+}
+
+/// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
+/// until the exit, the time limit `t_limit` or the step budget.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn integrate<L: Load>(
+    sys: &Sys,
+    load: L,
+    s: f64,
+    t0: f64,
+    y0: State,
+    t_limit: f64,
+    budget: &mut usize,
+    obs: impl Observer,
+) -> End {
+    let u0 = y0[3].abs().max(1e-12);
+    let amax = peak_approach(u0, sys.kstar, sys.k_hz);
+    let tau = contact_duration(amax, u0);
+    let e_sc = 0.5 * u0 * u0 / sys.kstar;
+    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax.sqrt(), u0, e_sc, e_sc, tau];
+    let y = Y::from([y0[0], y0[1], 0.0, y0[3], 0.0, 0.0, 0.0]);
+    // The contact's length in θ: about 1.9·τ/√α_max (the integral of dt/√δ over a half sine).
+    let h = 0.3 * tau / amax.sqrt();
+    let it = Integration { sys, load, s, sc, t_onset: t0, t_limit, y, clamped: false, switches: 0, pen: 0.0, h, obs };
+    it.run(budget)
+}
+
+/// Carries on a contact cut by its time limit up to the new limit `t_limit`.
+pub(crate) fn resume<L: Load>(
+    sys: &Sys,
+    load: L,
+    r: &Resume,
+    t_limit: f64,
+    budget: &mut usize,
+    obs: impl Observer,
+) -> End {
+    let it = Integration {
+        sys,
+        load,
+        s: r.s,
+        sc: r.sc,
+        t_onset: r.t_onset,
+        t_limit,
+        y: r.y,
+        clamped: r.clamped,
+        switches: r.switches,
+        pen: r.pen,
+        h: r.h,
+        obs,
+    };
+    it.run(budget)
+}
+
+/// What ends a step early.
+#[derive(Clone, Copy, PartialEq)]
+enum Cut {
+    Exit,
+    Limit,
+    Switch,
+}
+
+impl<L: Load, O: Observer> Integration<'_, L, O> {
+    fn run(mut self, budget: &mut usize) -> End {
+        let tau_lim = self.t_limit - self.t_onset;
+        if self.y[6] >= tau_lim {
+            return self.end(ContactOutcome::EndOfRun);
+        }
+        let nt = self.sys.no_tension && self.sys.c1 > 0.0;
+        // TOL^(1/ORDER): the step as a fraction of the radius of convergence.
+        let lam = TOL.powf(1.0 / ORDER as f64);
+        loop {
+            if *budget < STEP_COST {
+                *budget = 0;
+                return self.end(ContactOutcome::WorkCap);
+            }
+            *budget -= STEP_COST;
+            if nt && self.switches >= MAX_SWITCHES {
+                // Past the located switches the clamp follows the bracket at the step's start.
+                let raw = self.sys.k_hz * self.y[2].powi(3) + self.sys.c1 * self.y[3];
+                self.clamped = raw < 0.0;
+            }
+            let ser = Series::expand(self.sys, &self.load, self.s, self.t_onset, &self.y, self.clamped);
+            let h = ser.step_size(&self.sc, self.h, lam);
+            self.h = h;
+            if !(h > 0.0 && h.is_finite()) {
+                return self.end(ContactOutcome::WorkCap);
+            }
+            // The earliest of the events inside [0, h].
+            let mut cut: Option<(f64, Cut)> = None;
+            let mut consider = |q: f64, c: Cut| {
+                if cut.is_none_or(|(b, _)| q < b) {
+                    cut = Some((q, c));
+                }
+            };
+            let sg1 = ser.eval(2, h).0;
+            if sg1 <= 0.0 {
+                consider(root_in(h, self.y[2], sg1, |q| ser.eval(2, q)), Cut::Exit);
+            }
+            let tt1 = ser.eval(6, h).0;
+            if tt1 >= tau_lim {
+                let a = self.y[6] - tau_lim;
+                consider(
+                    root_in(h, a, tt1 - tau_lim, |q| {
+                        let (v, d) = ser.eval(6, q);
+                        (v - tau_lim, d)
+                    }),
+                    Cut::Limit,
+                );
+            }
+            if nt && self.switches < MAX_SWITCHES {
+                let (r0, r1) = (ser.raw[0], horner(&ser.raw, h).0);
+                if r0 != 0.0 && (r0 > 0.0) != (r1 > 0.0) {
+                    consider(root_in(h, r0, r1, |q| horner(&ser.raw, q)), Cut::Switch);
+                }
+            }
+            let q = cut.map_or(h, |(q, _)| q);
+            let mut yn = ser.state(q);
+            match cut.map(|(_, c)| c) {
+                Some(Cut::Exit) => yn[2] = 0.0,
+                Some(Cut::Limit) => yn[6] = tau_lim,
+                _ => {}
+            }
+            self.advance(&ser, q, yn);
+            match cut.map(|(_, c)| c) {
+                Some(Cut::Exit) => return self.end(ContactOutcome::Separated),
+                Some(Cut::Limit) => return self.end(ContactOutcome::EndOfRun),
+                Some(Cut::Switch) => {
+                    self.clamped = !self.clamped;
+                    self.switches += 1;
+                }
+                None => {}
+            }
+        }
+    }
+
+    /// Moves to `yn`, the end of an accepted step of length `h` on `ser`, showing it to the
+    /// observer, and notes the peak penetration inside it.
+    #[inline(always)]
+    fn advance(&mut self, ser: &Series, h: f64, yn: Y) {
+        if self.y[3] > 0.0 && yn[3] <= 0.0 {
+            let q = root_in(h, self.y[3], yn[3], |q| ser.eval(3, q));
+            let sg = ser.eval(2, q).0.max(self.y[2]).max(yn[2]);
+            self.pen = self.pen.max(sg * sg);
+        }
+        self.pen = self.pen.max(yn[2] * yn[2]);
+        let span = Span { t_onset: self.t_onset, h, ser, y0: &self.y, y1: &yn };
+        self.obs.step(&span);
+        self.y = yn;
+    }
+
+    fn end(&self, outcome: ContactOutcome) -> End {
+        let resume = (outcome == ContactOutcome::EndOfRun).then_some(Resume {
+            s: self.s,
+            sc: self.sc,
+            t_onset: self.t_onset,
+            y: self.y,
+            clamped: self.clamped,
+            switches: self.switches,
+            pen: self.pen,
+            h: self.h,
+        });
+        let y = &self.y;
+        let t = if outcome == ContactOutcome::EndOfRun { self.t_limit } else { self.t_onset + y[6] };
+        End { t, y: State::new(y[0], y[1], y[2] * y[2], y[3], y[4], y[5]), pen_max: self.pen, outcome, resume }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::contact::{self, NoLoad};
+    use super::super::DamperParams;
+    use super::*;
+
+    fn sys(c1: f64, k: f64) -> Sys {
+        let damping = if k > 0.0 { 0.05 } else { 0.0 };
+        let p = DamperParams { stiffness_n_m: k, damping_n_s_m: damping, c1_n_s_m: c1, ..DamperParams::table2() };
+        Sys::new(&p)
+    }
+
+    /// Isolated contacts from the same state: the release speed, time and dissipation of the
+    /// reference (Dormand–Prince in t, whose own error is ~1e-9 of the speed) within 2e-8.
+    #[test]
+    fn isolated_contacts_match_the_reference() {
+        for (c1, k, u0, x0) in
+            [(0.0, 0.0, 1.4, 0.0), (20.0, 0.0, 1.4, 0.0), (20.0, 500.0, 0.3, -0.02), (60.0, 500.0, 2.0, 0.02)]
+        {
+            let s = sys(c1, k);
+            let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
+            let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
+            let mut left = 100_000;
+            let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
+            let mut left = 100_000;
+            let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+            assert_eq!(old.outcome, ContactOutcome::Separated);
+            assert_eq!(new.outcome, ContactOutcome::Separated);
+            assert!((old.y[3] - new.y[3]).abs() < 2e-8 * u0, "{:?} vs {:?}", old.y, new.y);
+            assert!((old.t / new.t - 1.0).abs() < 2e-8, "{} vs {}", old.t, new.t);
+            assert!((old.pen_max / new.pen_max - 1.0).abs() < 2e-8);
+            assert!((old.y[4] - new.y[4]).abs() < 2e-8 * 0.5 * u0 * u0 / s.kstar, "{:?} vs {:?}", old.y, new.y);
+            if c1 == 0.0 && k == 0.0 {
+                // Two free bodies, elastic: the relative speed comes back exactly.
+                assert!((new.y[3] + u0).abs() < 1e-12 * u0, "{}", new.y[3]);
+            }
+        }
+    }
+
+    /// A contact cut by its time limit ends exactly there and carries on as if never cut.
+    #[test]
+    fn a_cut_contact_resumes_where_it_stopped() {
+        let s = sys(20.0, 500.0);
+        let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
+        let mut left = 100_000;
+        let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+        for cut in [0.1, 0.5, 0.93] {
+            let mut left = 100_000;
+            let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, Unobserved);
+            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
+            assert_eq!(first.t, cut * whole.t);
+            let r = first.resume.expect("a cut contact can resume");
+            let end = resume(&s, NoLoad, &r, 1.0, &mut left, Unobserved);
+            assert_eq!(end.outcome, ContactOutcome::Separated);
+            assert!((end.t / whole.t - 1.0).abs() < 1e-12, "{} vs {}", end.t, whole.t);
+            assert!(
+                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-11 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-10,
+                "{cut}: {:?} vs {:?}",
+                end.y,
+                whole.y
+            );
+        }
+    }
+}
