@@ -27,7 +27,34 @@ impl Default for Air {
     }
 }
 
+/// The specific gas constant of dry air R/M (J/(kg·K)), as ISO 2533:1975 (the standard
+/// atmosphere) fixes it: the molar gas constant over dry air's molar mass 0.028 964 4 kg/mol.
+/// docs/model.md §10.
+pub const R_DRY_AIR_J_KG_K: f64 = 287.052_87;
+/// The ratio of specific heats γ = c_p/c_v of dry air near room temperature (dimensionless;
+/// ISO 2533:1975; a diatomic ideal gas, 7/5). docs/model.md §10.
+pub const GAMMA_AIR: f64 = 1.4;
+/// 0 °C in kelvin (the Celsius scale's zero, by definition of the SI).
+pub const ZERO_CELSIUS_K: f64 = 273.15;
+/// Standard room air for the physical model: 20 °C (ISO 554's standard atmosphere for testing)
+/// and the standard sea-level pressure 101 325 Pa (ISO 2533:1975).
+pub const ROOM_TEMPERATURE_C: f64 = 20.0;
+/// The standard sea-level pressure (Pa), ISO 2533:1975.
+pub const STANDARD_PRESSURE_PA: f64 = 101_325.0;
+
 impl Air {
+    /// Dry air as an ideal gas at `temperature_c` (°C) and `pressure_pa` (Pa), docs/model.md §10:
+    /// ρ0 = p/(R·T), c = √(γ·R·T), so ρ0·c = p·√(γ/(R·T)), with R = [`R_DRY_AIR_J_KG_K`],
+    /// γ = [`GAMMA_AIR`] and T = `temperature_c` + 273.15 K. At 20 °C and 101.325 kPa:
+    /// ρ0 = 1.2041 kg/m³, c = 343.24 m/s, ρ0·c = 413.3 Pa·s/m.
+    #[must_use]
+    pub fn from_state(temperature_c: f64, pressure_pa: f64) -> Self {
+        let t_k = temperature_c + ZERO_CELSIUS_K;
+        let rho = pressure_pa / (R_DRY_AIR_J_KG_K * t_k);
+        let c = (GAMMA_AIR * R_DRY_AIR_J_KG_K * t_k).sqrt();
+        Self { rho_c_pa_s_m: rho * c, c_m_s: c }
+    }
+
     pub fn validate(&self) -> Result<(), ThudError> {
         check_positive("rho-c", self.rho_c_pa_s_m, "Pa·s/m")?;
         check_positive("c", self.c_m_s, "m/s")
@@ -637,6 +664,18 @@ pub fn directivity(
 mod tests {
     use super::*;
     use crate::contact::{Impact, Target};
+
+    #[test]
+    fn room_air_from_temperature_and_pressure() {
+        // ρ0 = 101325/(287.05287·293.15) = 1.20412 kg/m³; c = √(1.4·287.05287·293.15) = 343.2369 m/s.
+        let air = Air::from_state(20.0, 101_325.0);
+        assert!((air.c_m_s - 343.2369).abs() < 1e-3, "{air:?}");
+        assert!((air.rho_c_pa_s_m / air.c_m_s - 1.204_12).abs() < 1e-4, "{air:?}");
+        assert!((air.rho_c_pa_s_m - 413.30).abs() < 0.02, "{air:?}");
+        // The speed of sound does not depend on the pressure; the impedance is proportional to it.
+        let thin = Air::from_state(20.0, 50_662.5);
+        assert!((thin.c_m_s - air.c_m_s).abs() < 1e-12 && (2.0 * thin.rho_c_pa_s_m - air.rho_c_pa_s_m).abs() < 1e-9);
+    }
 
     #[test]
     fn theta_range_is_the_open_side_of_each_source() {

@@ -172,8 +172,32 @@ pub const U0: Range = range(
 pub const RHO_C: Range =
     range("rho-c", "air impedance ρ0·c", 1.0, 1e7, "Pa·s/m", "from thin gas (≈ 1) past air (413) to water (1.5e6)");
 /// Speed of sound c (m/s).
-pub const C_SOUND: Range =
-    range("c", "speed of sound c", 1.0, 1e4, "m/s", "every gas, liquid and solid is inside 1–10 000 m/s (air 343)");
+pub const C_SOUND: Range = range(
+    "sound-speed",
+    "speed of sound c",
+    1.0,
+    1e4,
+    "m/s",
+    "every gas, liquid and solid is inside 1–10 000 m/s (air 343)",
+);
+/// Air temperature (°C), from which the physical model takes ρ0 and c.
+pub const AIR_TEMPERATURE: Range = range(
+    "air-temperature",
+    "air temperature",
+    -60.0,
+    60.0,
+    "degC",
+    "the coldest to the hottest air people work in; dry air stays an ideal gas there (c 315–369 m/s)",
+);
+/// Air pressure (Pa), from which the physical model takes ρ0.
+pub const AIR_PRESSURE: Range = range(
+    "air-pressure",
+    "air pressure",
+    2e4,
+    2e5,
+    "Pa",
+    "from above Everest's summit (≈ 33 kPa) to two atmospheres; air is an ideal gas throughout",
+);
 /// Zone threshold L* on SPLmax (dB).
 pub const L_STAR: Range = range(
     "l-star",
@@ -327,7 +351,7 @@ pub const SPHERE_POISSON: Range = range(
 );
 
 /// Every range, in the order `thud` lists them.
-pub const RANGES: [Range; 32] = [
+pub const RANGES: [Range; 34] = [
     MASS,
     GAP,
     V0,
@@ -346,6 +370,8 @@ pub const RANGES: [Range; 32] = [
     U0,
     RHO_C,
     C_SOUND,
+    AIR_TEMPERATURE,
+    AIR_PRESSURE,
     L_STAR,
     E_STAR,
     FULL_SCALE,
@@ -472,7 +498,8 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
     STIFFNESS.check(p.stiffness_n_m)?;
     DAMPING.check(p.damping_n_s_m)?;
     C1.check(p.c1_n_s_m)?;
-    if d.materials.is_none() {
+    let materials = d.materials_used();
+    if materials.is_none() {
         K_HZ.check(p.k_hz)?;
     }
     DURATION.check(p.duration_s)?;
@@ -521,7 +548,7 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
             RADIUS.check(a)?;
         }
     }
-    if let Some(m) = &d.materials {
+    if let Some(m) = &materials {
         if let Some(nu) = m.sphere_nu {
             SPHERE_POISSON.check(nu)?;
         }
@@ -545,7 +572,9 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
     // Degrees back from radians to 1e-9 deg, so 90° stays 90°.
     theta_deg(d.radiation.source).check((d.observer.theta_rad.to_degrees() * 1e9).round() / 1e9)?;
     RHO_C.check(d.radiation.air.rho_c_pa_s_m)?;
-    C_SOUND.check_as("speed of sound", d.radiation.air.c_m_s)?;
+    C_SOUND.check(d.radiation.air.c_m_s)?;
+    AIR_TEMPERATURE.check(d.atmosphere.temperature_c)?;
+    AIR_PRESSURE.check(d.atmosphere.pressure_pa)?;
     L_STAR.check(d.thresholds.spl_db)?;
     E_STAR.check(d.thresholds.inclination_cm_s)?;
     Ok(())
