@@ -696,9 +696,10 @@ fn header_line(app: &App) -> Line<'static> {
     let mut spans = vec![
         Span::styled(" thud ", bold.add_modifier(Modifier::REVERSED)),
         Span::raw(format!(
-            " preset {}{} {bar} m {} g, d {} cm ",
+            " preset {}{} {bar} {} model {bar} m {} g, d {} cm ",
             app.preset,
             if app.modified() { "*" } else { "" },
+            app.design.model.name(),
             sig(p.impact_mass_kg * 1e3, 4),
             sig(p.gap_m * 1e2, 3)
         )),

@@ -846,6 +846,22 @@ fn resolve_ball(base: BaseBall, g: &BallGiven, spell: impl Fn(&str) -> String) -
     Ok((mass, size))
 }
 
+/// `design` with its ball resolved for its material ([`resolve_ball`], the rule every front end
+/// uses): a design whose materials (or physical model) name a ball material takes that
+/// material's density, its mass kept (or, for a ball of fixed radius, its radius kept and its
+/// mass following). The explorer calls this when its materials field changes. A design
+/// without a ball material is returned as it is; a mass outside its range is an error.
+pub fn follow_material(mut design: Design) -> Result<Design, ThudError> {
+    let Some(m) = design.materials_used() else { return Ok(design) };
+    let s = m.sphere_material()?;
+    let ball = BallGiven { material: Some((s.name, s.density_kg_m3)), ..BallGiven::default() };
+    let (mass, size) =
+        resolve_ball(base_ball_of(&design.ball, design.damper.impact_mass_kg), &ball, |n| n.to_string())?;
+    design.damper.impact_mass_kg = mass;
+    design.ball = size;
+    Ok(design)
+}
+
 /// Refuses what the physical model derives itself, given together with it: K_HZ (Eq 2 from the
 /// materials) and the pulse shape (the exact Hertz pulse).
 fn physical_conflicts<T>(given: &Given<T>, model: Model) -> Result<(), ThudError> {
@@ -1327,8 +1343,19 @@ mod tests {
 
     #[test]
     fn combinations_the_command_line_refuses_in_clap_are_refused_here() {
-        let e = err(design(Design::default(), &text(&[("density", "1000"), ("radius", "1cm")]), Spelling::Keyword));
-        assert!(e.starts_with("invalid radius: cannot be combined with density"), "{e}");
+        // A radius and a density fix the ball's mass (no longer a conflict: issue 23); a mass as
+        // well over-determines it, refused when the three disagree.
+        let d = design(Design::default(), &text(&[("density", "1000"), ("radius", "1cm")]), Spelling::Keyword).unwrap();
+        assert!((d.damper.impact_mass_kg - contact::sphere_mass(0.01, 1000.0)).abs() < 1e-15);
+        let e = err(design(
+            Design::default(),
+            &text(&[("density", "1000"), ("radius", "1cm"), ("mass", "40.5g")]),
+            Spelling::Flag,
+        ));
+        assert!(
+            e.starts_with("invalid --density: --mass 0.0405 kg, --radius 0.01 m and --density 1000 kg/m^3 disagree"),
+            "{e}"
+        );
         let e = err(design(Design::default(), &text(&[("plate", "steel")]), Spelling::Keyword));
         assert_eq!(e, "invalid plate: needs sphere as well");
         let e = err(design(Design::default(), &text(&[("dt", "1e-7")]), Spelling::Keyword));
@@ -1348,6 +1375,60 @@ mod tests {
         assert_eq!(d.radiation.source, Source::Dipole);
         let steel = contact::material("steel").unwrap();
         assert_eq!(d.damper.k_hz, contact::hertz_stiffness(d.ball_radius_m(), &steel, &steel));
+    }
+
+    #[test]
+    fn one_ball_whatever_the_command() {
+        // A steel ball of 40.5 g: a = (3m/4πρ)^(1/3) = 10.7 mm, for a design and an impact alike.
+        let steel = contact::material("steel").unwrap();
+        let a = contact::sphere_radius(0.0405, steel.density_kg_m3);
+        assert!((a - 0.010_7).abs() < 1e-4, "{a}");
+        let given = text(&[("sphere", "steel"), ("mass", "40.5g")]);
+        let d = design(Design::default(), &given, Spelling::Flag).unwrap();
+        let p = pulse(None, &given, Spelling::Flag).unwrap();
+        assert!(
+            (d.ball_radius_m() - a).abs() < 1e-15 && (p.radius_m - a).abs() < 1e-15,
+            "{} {}",
+            d.ball_radius_m(),
+            p.radius_m
+        );
+        assert_eq!((d.damper.impact_mass_kg, p.impact.mass_kg), (0.0405, 0.0405));
+        assert_eq!(d.damper.k_hz, p.impact.k_hz, "one ball, one K_HZ");
+        // Only a material: the design keeps its mass, the density follows the material.
+        let d = design(Design::default(), &text(&[("sphere", "steel")]), Spelling::Flag).unwrap();
+        assert!((d.ball_radius_m() - a).abs() < 1e-15);
+        // Mass, radius and density that agree are taken.
+        let r = format!("{}m", contact::sphere_radius(0.0405, 2000.0));
+        let given = text(&[("mass", "40.5g"), ("radius", &r), ("density", "2000")]);
+        assert!(design(Design::default(), &given, Spelling::Flag).is_ok());
+        let e =
+            err(pulse(None, &text(&[("mass", "40.5g"), ("radius", "1cm"), ("density", "2000")]), Spelling::Keyword));
+        assert!(
+            e.starts_with("invalid density: mass 0.0405 kg, radius 0.01 m and density 2000 kg/m^3 disagree"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_physical_model_derives_air_pulse_and_stiffness_and_refuses_them_given() {
+        let d = design(Design::default(), &text(&[("model", "physical")]), Spelling::Flag).unwrap();
+        let sound = d.sound();
+        assert_eq!(sound.pulse, PulseShape::Hertz);
+        assert!((sound.air.rho_c_pa_s_m - 413.29).abs() < 0.01, "{sound:?}");
+        let acrylic_on_steel = Materials::new("acrylic", "steel").hertz_stiffness(d.ball_radius_m()).unwrap();
+        assert_eq!(d.damper.k_hz, acrylic_on_steel);
+        let paper = design(Design::default(), &[], Spelling::Flag).unwrap();
+        assert_eq!(paper.sound(), paper.radiation, "the paper's model takes the radiation as given");
+        let hot = design(Design::default(), &text(&[("model", "physical"), ("air-temperature", "40")]), Spelling::Flag);
+        assert!(hot.unwrap().sound().air.c_m_s > sound.air.c_m_s);
+        let e = err(design(Design::default(), &text(&[("model", "physical"), ("k-hz", "5e8")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --k-hz: cannot be combined with --model physical"), "{e}");
+        let e = err(design(Design::default(), &text(&[("air-temperature", "100")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --air-temperature: 100 degC is out of range"), "{e}");
+        // A pulse of the physical model: its ball's mass from acrylic's density at Fig 2's radius.
+        let p = pulse(None, &text(&[("model", "physical")]), Spelling::Flag).unwrap();
+        assert!((p.impact.mass_kg - contact::sphere_mass(0.01905, 1190.0)).abs() < 1e-15);
+        assert_eq!(p.radiation.pulse, PulseShape::Hertz);
     }
 
     #[test]

@@ -126,7 +126,7 @@ pub fn table1() -> Result<Table, ThudError> {
             "K_HZ = 5.6e8 N/m^1.5 for both radii (as the paper); m = 40.5 g·(a/19.05 mm)³; fixed plate (K* = 1/m)."
                 .into(),
             "The paper's own error column compares its theory with the experiment, in %.".into(),
-            "physical (docs/model.md §10): peak level of the exact Hertz pulse; air at 20 °C, 101.325 kPa (ρ0c 413.3 Pa·s/m, c 343.24 m/s); m = (4/3)πa³·1190 kg/m³ (acrylic); K_HZ from Eq 2, acrylic on steel. Nothing fitted.".into(),
+            "physical (docs/model.md §10): peak level of the exact Hertz pulse; air at 20 °C, 101.325 kPa (ρ0c 413.29 Pa·s/m, c 343.23 m/s); m = (4/3)πa³·1190 kg/m³ (acrylic); K_HZ from Eq 2, acrylic on steel. Nothing fitted.".into(),
         ],
         columns: vec![
             col("radius_mm", "a (mm)"),
