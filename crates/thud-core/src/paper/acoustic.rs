@@ -55,8 +55,8 @@ pub fn table1_spl(radius_m: f64, u0: f64) -> Result<f64, ThudError> {
 
 /// The physical model's Table 1 level (dB) for a sphere of radius `radius_m` at `u0` (m/s)
 /// (docs/model.md §10): the peak level 20·log10(max|p|/20 µPa) of the exact Hertz pulse, heard
-/// as the same dipole at r 28.28 cm, θ 45°, through room air (20 °C, 101.325 kPa: ρ0c 413.3
-/// Pa·s/m, c 343.24 m/s), the ball's mass from acrylic's density (m = (4/3)πa³·1190 kg/m³) and
+/// as the same dipole at r 28.28 cm, θ 45°, through room air (20 °C, 101.325 kPa: ρ0c 413.29
+/// Pa·s/m, c 343.23 m/s), the ball's mass from acrylic's density (m = (4/3)πa³·1190 kg/m³) and
 /// K_HZ from Eq 2 for acrylic on steel at its radius; a fixed plate. Nothing fitted.
 pub fn table1_physical_spl(radius_m: f64, u0: f64) -> Result<f64, ThudError> {
     let (acrylic, steel) = (contact::material("acrylic")?, contact::material("steel")?);
