@@ -74,7 +74,7 @@ fn a_physical_pulse_is_the_table_s_physical_row() {
     ]);
     assert_eq!(p["model"], "physical");
     assert_eq!(p["pulse"], "hertz");
-    // m = (4/3)π(0.01905)³·1190 = 34.41 g; ρ0c = 101325·√(1.4/(287.05287·293.15)) = 413.29.
+    // m = (4/3)π(0.01905)³·1190 = 34.46 g; ρ0c = 101325·√(1.4/(287.05287·293.15)) = 413.29.
     let mass = 4.0 / 3.0 * std::f64::consts::PI * 0.01905f64.powi(3) * 1190.0;
     assert!((p["mass_kg"].as_f64().unwrap() - mass).abs() < 1e-12);
     assert!((p["rho_c_pa_s_m"].as_f64().unwrap() - 413.29).abs() < 0.01);

@@ -805,6 +805,10 @@ impl Knob {
                     if let (Accepts::Choice { names, .. }, Some(get)) = (&row.accepts, row.get) {
                         let i = get(d).max(0.0) as usize;
                         *d = params::set_number(d, row, turn(i, names.len()) as f64);
+                        // The physical model's ball follows its material (the one ball rule).
+                        if let Ok(followed) = params::follow_material(d.clone()) {
+                            *d = followed;
+                        }
                     }
                 }
                 None => {}
@@ -935,7 +939,7 @@ impl Knob {
                 if let Some(row) = self.row() {
                     let Accepts::Choice { names, .. } = row.accepts else { return Err(bad("a number")) };
                     let i = names.iter().position(|n| *n == low).ok_or_else(|| bad(&names.join(" or ")))?;
-                    *d = params::set_number(d, row, i as f64);
+                    *d = params::follow_material(params::set_number(d, row, i as f64))?;
                 }
             }
             Knob::Row(_) if self.row().is_some_and(|r| matches!(r.accepts, Accepts::Switch { .. })) => {
