@@ -417,7 +417,8 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         format!("median [p10–p90] of {} runs; % agree", e.runs)
     } else {
         format!(
-            "SPL: rms over τ at r {} m, θ {}°",
+            "SPL: {} at r {} m, θ {}°",
+            app.design.model.level_name(),
             sig(app.design.observer.r_m, 3),
             sig(app.design.observer.theta_rad.to_degrees(), 3)
         )
