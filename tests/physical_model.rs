@@ -166,3 +166,24 @@ fn the_paper_model_is_the_default_and_names_nothing_new() {
     // The physical level is the peak: above the paper's rms over τ for the same run.
     assert!(physical["spl_max_db"].as_f64().unwrap() > s["spl_max_db"].as_f64().unwrap());
 }
+
+/// `pulse`'s flags are the rows of the engine's impact table (`params::PULSE`), each range the
+/// design row's of the same name where there is one: no flag without a row, no row without a
+/// flag, so the two cannot drift apart again.
+#[test]
+fn pulse_flags_are_the_rows_of_the_impact_table() {
+    use thud::params::{design_param, PULSE};
+    let cmd = thud::cli::Cli::command();
+    let pulse = cmd.find_subcommand("pulse").unwrap();
+    let own = ["preset", "points", "json", "csv", "help", "no-limit", "threads"];
+    let flags: Vec<&str> = pulse.get_arguments().filter_map(|a| a.get_long()).filter(|l| !own.contains(l)).collect();
+    for p in PULSE {
+        assert!(flags.contains(&p.name), "pulse has no --{}", p.name);
+        if let (Some(r), Some(d)) = (p.range(), design_param(p.name).and_then(|d| d.range())) {
+            assert_eq!(r, d, "--{}: one range for one row", p.name);
+        }
+    }
+    for f in &flags {
+        assert!(PULSE.iter().any(|p| p.name == *f), "pulse's --{f} is no row of params::PULSE");
+    }
+}

@@ -454,7 +454,7 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     Param {
         get: Some(|d| if d.model == Model::Physical { 1.0 } else { 0.0 }),
         ..ch("model", Group::Listener, &MODELS, &MODEL_HELPS, "Model",
-            "The model of the world [default: paper]: physical is the measured level (docs/model.md §10)",
+            "The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)",
             |d, i| d.design.model = model(i))
     },
     q("air-temperature", Kind::Temperature, &limits::AIR_TEMPERATURE, Group::Listener, "T",

@@ -324,7 +324,7 @@ def simulate(
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
-    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the measured level (docs/model.md §10)
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
@@ -379,7 +379,7 @@ def simulate(
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
-    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the measured level (docs/model.md §10)
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
@@ -420,7 +420,7 @@ def simulate_ensemble(
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
-    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the measured level (docs/model.md §10)
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
@@ -462,7 +462,7 @@ def sweep(
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
-    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the measured level (docs/model.md §10)
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
@@ -510,7 +510,7 @@ def response(
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
-    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the measured level (docs/model.md §10)
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
