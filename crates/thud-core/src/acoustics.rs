@@ -505,27 +505,51 @@ impl Field {
         (1.0 / self.consts.lambda).min(self.consts.tau / (k * std::f64::consts::PI))
     }
 
-    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-13 s.
-    pub fn extrema(&self) -> Vec<Extremum> {
+    /// p(t) sampled over the pulse: the start, the step and the samples.
+    fn sampled(&self) -> (f64, f64, Vec<f64>) {
         let last = self.sources().map(|s| s.delay_s).fold(0.0, f64::max);
         // After the last forced part the tail falls as e^(−λt): e^(−12) of the peak is nothing.
         let (t0, t1) = (self.arrival_s(), last + self.consts.tau + 12.0 / self.consts.lambda);
         let n = (((t1 - t0) / (0.1 * self.scale_s())).ceil() as usize).clamp(100, 20_000);
         let dt = (t1 - t0) / n as f64;
-        let p: Vec<f64> = (0..=n).map(|i| self.pressure(t0 + i as f64 * dt)).collect();
-        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        (t0, dt, (0..=n).map(|i| self.pressure(t0 + i as f64 * dt)).collect())
+    }
+
+    /// The local extrema of the samples `p` (from `t0`, step `dt`) larger than `floor` (Pa),
+    /// each refined to ~1e-13 s.
+    fn refined(&self, t0: f64, dt: f64, p: &[f64], floor: f64) -> Vec<Extremum> {
         let mut out = Vec::new();
-        for i in 1..n {
+        for i in 1..p.len().saturating_sub(1) {
             let (a, b, c) = (p[i - 1], p[i], p[i + 1]);
             let is_max = b > a && b >= c;
             let is_min = b < a && b <= c;
-            if (is_max || is_min) && b.abs() > 1e-6 * peak {
+            if (is_max || is_min) && b.abs() > floor {
                 let sign = if is_max { 1.0 } else { -1.0 };
                 let t = golden_max(t0 + (i - 1) as f64 * dt, t0 + (i + 1) as f64 * dt, |t| sign * self.pressure(t));
                 out.push(Extremum { t_s: t, p_pa: self.pressure(t) });
             }
         }
         out
+    }
+
+    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-13 s.
+    pub fn extrema(&self) -> Vec<Extremum> {
+        let (t0, dt, p) = self.sampled();
+        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        self.refined(t0, dt, &p, 1e-6 * peak)
+    }
+
+    /// The peak level 20·log10(max|p|/20 µPa) (dB), as [`Field::levels`]' `spl_peak_db` to the
+    /// last bit, refining only the extrema within 20 % of the largest sample (the samples are a
+    /// tenth of the waveform's shortest time scale apart, so the largest extremum is among
+    /// them): the physical model's level, cheap enough for every impact of a run.
+    pub fn peak_db(&self) -> f64 {
+        let (t0, dt, p) = self.sampled();
+        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let ext = self.refined(t0, dt, &p, 0.8 * peak);
+        let p_max = ext.iter().map(|e| e.p_pa).fold(0.0, f64::max);
+        let p_min = ext.iter().map(|e| e.p_pa).fold(0.0, f64::min);
+        20.0 * (p_max.max(-p_min) / P_REF_PA).log10()
     }
 
     /// The extrema larger than `fraction` of the largest |p|: the peaks a person would name.
@@ -664,6 +688,20 @@ pub fn directivity(
 mod tests {
     use super::*;
     use crate::contact::{Impact, Target};
+
+    #[test]
+    fn the_peak_level_alone_is_the_levels_peak_to_the_bit() {
+        let contact = Impact { mass_kg: 0.0405, u0_m_s: 1.4, k_hz: 5.6e8, target: Target::FixedPlate }.contact();
+        for source in Source::ALL {
+            for pulse in [PulseShape::HalfSine, PulseShape::Hertz] {
+                for (r, th) in [(0.7, 45.0), (0.2828, 45.0), (0.05, 80.0), (3.0, 10.0)] {
+                    let rad = Radiation { source, pulse, air: Air::from_state(20.0, 101_325.0), ..Default::default() };
+                    let f = Field::new(0.01905, &contact, &Observer::new(r, th), &rad).unwrap();
+                    assert_eq!(f.peak_db(), f.levels().spl_peak_db, "{source:?} {pulse:?} r {r} θ {th}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn room_air_from_temperature_and_pressure() {

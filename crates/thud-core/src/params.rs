@@ -1245,7 +1245,7 @@ impl PulseInput {
     pub fn level_db(&self, field: &Field) -> f64 {
         match self.model {
             Model::Paper => field.spl_db(),
-            Model::Physical => field.levels().spl_peak_db,
+            Model::Physical => field.peak_db(),
         }
     }
 
