@@ -179,7 +179,7 @@ fn pulse_flags_are_the_rows_of_the_impact_table() {
     let flags: Vec<&str> = pulse.get_arguments().filter_map(|a| a.get_long()).filter(|l| !own.contains(l)).collect();
     for p in PULSE {
         assert!(flags.contains(&p.name), "pulse has no --{}", p.name);
-        if let (Some(r), Some(d)) = (p.range(), design_param(p.name).and_then(|d| d.range())) {
+        if let (Some(r), Some(d)) = (p.range(), design_param(p.name).and_then(thud::params::Param::range)) {
             assert_eq!(r, d, "--{}: one range for one row", p.name);
         }
     }

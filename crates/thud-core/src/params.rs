@@ -856,7 +856,7 @@ pub fn follow_material(mut design: Design) -> Result<Design, ThudError> {
     let s = m.sphere_material()?;
     let ball = BallGiven { material: Some((s.name, s.density_kg_m3)), ..BallGiven::default() };
     let (mass, size) =
-        resolve_ball(base_ball_of(&design.ball, design.damper.impact_mass_kg), &ball, |n| n.to_string())?;
+        resolve_ball(base_ball_of(&design.ball, design.damper.impact_mass_kg), &ball, ToString::to_string)?;
     design.damper.impact_mass_kg = mass;
     design.ball = size;
     Ok(design)

@@ -123,7 +123,7 @@ impl PulseReport {
             waveform: Waveform { t_s, p_pa },
             model: match input.model {
                 crate::design::Model::Paper => String::new(),
-                m => m.name().to_string(),
+                m @ crate::design::Model::Physical => m.name().to_string(),
             },
         }
     }
