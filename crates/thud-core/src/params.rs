@@ -846,7 +846,7 @@ fn resolve_ball(base: BaseBall, g: &BallGiven, spell: impl Fn(&str) -> String) -
     Ok((mass, size))
 }
 
-/// `design` with its ball resolved for its material ([`resolve_ball`], the rule every front end
+/// `design` with its ball resolved for its material (`resolve_ball`, the rule every front end
 /// uses): a design whose materials (or physical model) name a ball material takes that
 /// material's density, its mass kept (or, for a ball of fixed radius, its radius kept and its
 /// mass following). The explorer calls this when its materials field changes. A design
@@ -1133,7 +1133,7 @@ pub struct PulseInput {
 /// a 19.05 mm, m 40.5 g, U0 1.4 m/s, K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at
 /// r 0.7 m, θ 45°), or taken from `base` (a preset: its ball, K_HZ, observer, source and air,
 /// and U0 = its v0; the target stays a fixed plate). The ball is resolved as a design's is
-/// (the one rule, [`resolve_ball`]); with the physical model (`model`, or the base's) the
+/// (the one rule, `resolve_ball`); with the physical model (`model`, or the base's) the
 /// material is the sphere's or the paper's acrylic, K_HZ follows from Eq 2, the pulse is the
 /// exact Hertz pulse and the air follows from its temperature and pressure.
 pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spelling) -> Result<PulseInput, ThudError> {
