@@ -134,6 +134,16 @@ impl From<SourceArg> for Source {
     }
 }
 
+/// The model of the world on the command line (`thud pulse --model`; the design commands take
+/// the engine's row).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ModelArg {
+    /// The paper's: rms level over τ, half-sine pulse, its air and K_HZ.
+    Paper,
+    /// The measured world: peak level, exact Hertz pulse, real air, K_HZ and mass from the materials.
+    Physical,
+}
+
 /// Acceleration pulse shape on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum PulseArg {

@@ -102,7 +102,7 @@ pub fn non_finite_word(text: &str) -> Option<&str> {
 
 /// Checks every number of a paper/restitution table.
 pub fn check_table(t: &Table) -> Result<(), CliError> {
-    for row in &t.rows {
+    for row in t.rows.iter().chain(&t.summary) {
         for (v, c) in row.iter().zip(&t.columns) {
             if let Value::Num(x) = v {
                 if !x.is_finite() {

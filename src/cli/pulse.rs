@@ -3,7 +3,7 @@
 use clap::{Args, ValueEnum};
 
 use super::format::num;
-use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
+use super::{count, CliError, Ctx, ModelArg, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
 use crate::acoustics::{Field, Levels};
 use crate::contact::{Contact, Target};
 use crate::error::ThudError;
@@ -25,6 +25,9 @@ pub struct PulseArgs {
     /// Sphere mass (kg, or e.g. 40.5g). Default: from --radius and --sphere's density, else 40.5 g.
     #[arg(long, value_name = "M", allow_hyphen_values = true)]
     mass: Option<String>,
+    /// Sphere density (kg/m³) [default: --sphere's]: with --mass the radius follows, with --radius the mass.
+    #[arg(long, value_name = "RHO", allow_hyphen_values = true)]
+    density: Option<String>,
     /// Impact speed U0 (m/s) [default: 1.4].
     #[arg(long, value_name = "U", allow_hyphen_values = true)]
     u0: Option<String>,
@@ -60,7 +63,17 @@ pub struct PulseArgs {
     rho_c: Option<String>,
     /// Speed of sound (m/s) [default: 343].
     #[arg(long, value_name = "C", allow_hyphen_values = true)]
-    c: Option<String>,
+    sound_speed: Option<String>,
+    /// The model of the world [default: paper]: physical is the measured level (peak, exact
+    /// Hertz pulse, air from --air-temperature and --air-pressure, K_HZ and mass from the materials).
+    #[arg(long, value_enum)]
+    model: Option<ModelArg>,
+    /// Air temperature (°C) of the physical model: ρ0 and c follow [default: 20].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    air_temperature: Option<String>,
+    /// Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325].
+    #[arg(long, value_name = "P", allow_hyphen_values = true)]
+    air_pressure: Option<String>,
     /// Waveform points.
     #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
     points: String,
@@ -77,11 +90,14 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
         ("plate", &a.plate),
         ("radius", &a.radius),
         ("mass", &a.mass),
+        ("density", &a.density),
         ("k-hz", &a.k_hz),
         ("main-mass", &a.main_mass),
         ("u0", &a.u0),
         ("rho-c", &a.rho_c),
-        ("c", &a.c),
+        ("sound-speed", &a.sound_speed),
+        ("air-temperature", &a.air_temperature),
+        ("air-pressure", &a.air_pressure),
         ("r", &a.r),
         ("theta", &a.theta),
     ];
@@ -89,6 +105,7 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
         ("source", a.source.and_then(|v| v.to_possible_value())),
         ("quad-signs", a.quad_signs.and_then(|v| v.to_possible_value())),
         ("pulse", a.pulse.and_then(|v| v.to_possible_value())),
+        ("model", a.model.and_then(|v| v.to_possible_value())),
     ];
     let given: Vec<(String, Input)> = texts
         .into_iter()
@@ -156,10 +173,17 @@ fn summary(input: &PulseInput, c: &Contact, field: &Field, lv: &Levels) -> Strin
         num(input.radiation.air.c_m_s),
         num(field.arrival_s() * 1e3)
     );
-    s += &format!(
-        "levels    SPL {:.2} dB (rms over τ from the direct arrival)   peak {:.2} dB   SEL {:.2} dB\n",
-        lv.spl_db, lv.spl_peak_db, lv.sel_db
-    );
+    if input.model == crate::design::Model::Physical {
+        s += &format!(
+            "levels    peak {:.2} dB (the physical model's level)   SPL {:.2} dB (rms over τ)   SEL {:.2} dB\n",
+            lv.spl_peak_db, lv.spl_db, lv.sel_db
+        );
+    } else {
+        s += &format!(
+            "levels    SPL {:.2} dB (rms over τ from the direct arrival)   peak {:.2} dB   SEL {:.2} dB\n",
+            lv.spl_db, lv.spl_peak_db, lv.sel_db
+        );
+    }
     s += &format!("pressure  max {:+.4} Pa   min {:+.4} Pa   rms {:.4} Pa\n", lv.p_max_pa, lv.p_min_pa, lv.p_rms_pa);
     s += &format!("extrema   {} (after the direct arrival)\n", field.describe_peaks());
     s

@@ -72,6 +72,7 @@ pub fn run(a: &RestitutionArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         .collect(),
         columns,
         rows,
+        summary: Vec::new(),
     };
     out.table(&table, a.output.format())
 }

@@ -201,8 +201,19 @@ fn summary(d: &ValidDesign, e: &Evaluation, show: usize, truncated: Option<&str>
     if let Some(why) = truncated {
         s += &format!("TRUNCATED {why}\n");
     }
+    let level = match d.model {
+        crate::design::Model::Paper => "SPL = rms over τ from the direct arrival".to_string(),
+        crate::design::Model::Physical => {
+            let air = d.sound().air;
+            format!(
+                "physical model: SPL = peak level, exact Hertz pulse, air ρ0c {} Pa·s/m, c {} m/s",
+                num(air.rho_c_pa_s_m),
+                num(air.c_m_s)
+            )
+        }
+    };
     s += &format!(
-        "listener  {} source ({} signs), r {} m, θ {}°; SPL = rms over τ from the direct arrival\n",
+        "listener  {} source ({} signs), r {} m, θ {}°; {level}\n",
         d.radiation.source.name(),
         d.radiation.quad_signs.name(),
         num(d.observer.r_m),

@@ -570,6 +570,7 @@ mod tests {
                 vec![Value::Text("two\nlines".into()), Value::Text("plain".into())],
             ],
             notes: vec![],
+            summary: Vec::new(),
         };
         let s = table(&t).unwrap();
         assert_eq!(s, "a,b\n\"x, y\",0.5\n\"say \"\"hi\"\"\",\n\"two\nlines\",plain\n");

@@ -40,7 +40,7 @@ pub fn markdown(table: &Table) -> String {
     let mut s = String::new();
     if table.rows.len() <= REPORT_ROWS {
         s += &format!("| {} |\n|{}\n", labels.join(" | "), "---:|".repeat(labels.len()));
-        for row in &table.rows {
+        for row in table.rows.iter().chain(&table.summary) {
             s += &format!("| {} |\n", row.iter().map(md_cell).collect::<Vec<_>>().join(" | "));
         }
     } else {

@@ -113,7 +113,8 @@ pub struct AcousticResult {
 pub struct SingleImpact {
     /// The impact speed (m/s).
     pub u0_m_s: f64,
-    /// SPL (dB, rms over τ from the direct arrival).
+    /// The design's headline level (dB): the paper's SPL (rms over τ from the direct arrival)
+    /// or the physical model's peak level ([`Design::level_db`]).
     pub spl_db: f64,
     /// (ms after the direct arrival, Pa).
     pub waveform: Vec<(f64, f64)>,
@@ -357,7 +358,7 @@ fn plate_impact(d: &Design) -> Impact {
 fn plate_field(d: &Design, observer: &Observer) -> Result<Field, ThudError> {
     let impact = plate_impact(d);
     impact.validate()?;
-    Field::new(d.ball_radius_m(), &impact.contact(), observer, &d.radiation)
+    Field::new(d.ball_radius_m(), &impact.contact(), observer, &d.sound())
 }
 
 /// One impact at U0 = v0 on a fixed plate: waveform, directivity and its peaks (`d` resolved).
@@ -371,10 +372,10 @@ pub fn single_impact(d: &Design) -> Result<SingleImpact, ThudError> {
         .into_iter()
         .filter_map(|(deg, theta_rad)| {
             let at = Observer { theta_rad, ..d.observer };
-            plate_field(d, &at).ok().map(|f| (deg, f.spl_db()))
+            plate_field(d, &at).ok().map(|f| (deg, d.level_db(&f)))
         })
         .collect();
-    Ok(SingleImpact { u0_m_s: d.damper.v0_m_s, spl_db: field.spl_db(), waveform, polar, peaks })
+    Ok(SingleImpact { u0_m_s: d.damper.v0_m_s, spl_db: d.level_db(&field), waveform, polar, peaks })
 }
 
 /// The angles a polar is computed at, as (deg, rad): every [`POLAR_STEP_DEG`] over the valid

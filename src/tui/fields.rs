@@ -795,12 +795,24 @@ impl Knob {
                 }
             }
             Knob::Clamp => d.damper.no_tension = !d.damper.no_tension,
-            Knob::Row(_) => {
-                if let Some(row) = self.row().filter(|r| matches!(r.accepts, Accepts::Switch { .. })) {
+            Knob::Row(_) => match self.row() {
+                Some(row) if matches!(row.accepts, Accepts::Switch { .. }) => {
                     let on = row.get.is_some_and(|get| get(d) != 0.0);
                     *d = params::set_number(d, row, if on { 0.0 } else { 1.0 });
                 }
-            }
+                // A choice that reads back its index (the model): the next or previous name.
+                Some(row) => {
+                    if let (Accepts::Choice { names, .. }, Some(get)) = (&row.accepts, row.get) {
+                        let i = get(d).max(0.0) as usize;
+                        *d = params::set_number(d, row, turn(i, names.len()) as f64);
+                        // The physical model's ball follows its material (the one ball rule).
+                        if let Ok(followed) = params::follow_material(d.clone()) {
+                            *d = followed;
+                        }
+                    }
+                }
+                None => {}
+            },
             Knob::Solver => {
                 d.solver = match d.solver {
                     Solver::Event => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
@@ -819,6 +831,10 @@ impl Knob {
                     next.sphere_nu = now.sphere_nu;
                 }
                 d.materials = next;
+                // The ball's density follows its material (the engine's one ball rule).
+                if let Ok(followed) = params::follow_material(d.clone()) {
+                    *d = followed;
+                }
             }
             _ => {}
         }
@@ -916,6 +932,14 @@ impl Knob {
                             ..Materials::new(s.name, p.name)
                         })
                     }
+                };
+                *d = params::follow_material(d.clone())?;
+            }
+            Knob::Row(_) if self.row().is_some_and(|r| matches!(r.accepts, Accepts::Choice { .. })) => {
+                if let Some(row) = self.row() {
+                    let Accepts::Choice { names, .. } = row.accepts else { return Err(bad("a number")) };
+                    let i = names.iter().position(|n| *n == low).ok_or_else(|| bad(&names.join(" or ")))?;
+                    *d = params::follow_material(params::set_number(d, row, i as f64))?;
                 }
             }
             Knob::Row(_) if self.row().is_some_and(|r| matches!(r.accepts, Accepts::Switch { .. })) => {
@@ -971,6 +995,7 @@ impl Knob {
         let v = row.get.map_or(f64::NAN, |get| get(d));
         match row.accepts {
             Accepts::Switch { .. } => if v == 0.0 { "off" } else { "on" }.into(),
+            Accepts::Choice { names, .. } if v.is_finite() => names.get(v as usize).copied().unwrap_or("—").into(),
             _ if !v.is_finite() => "—".into(),
             Accepts::Count { .. } => format!("{}", v.round()),
             _ => match row.unit() {

@@ -479,7 +479,8 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
         format!("median [p10–p90] of {} runs; % agree", e.runs)
     } else {
         format!(
-            "SPL: rms over τ at r {} m, θ {}°",
+            "SPL: {} at r {} m, θ {}°",
+            app.design.model.level_name(),
             sig(app.design.observer.r_m, 3),
             sig(app.design.observer.theta_rad.to_degrees(), 3)
         )
@@ -763,9 +764,10 @@ fn header_line(app: &App) -> Line<'static> {
     let mut spans = vec![
         Span::styled(" thud ", bold.add_modifier(Modifier::REVERSED)),
         Span::raw(format!(
-            " preset {}{} {bar} m {} g, d {} cm ",
+            " preset {}{} {bar} {} model {bar} m {} g, d {} cm ",
             app.preset,
             if app.modified() { "*" } else { "" },
+            app.design.model.name(),
             sig(p.impact_mass_kg * 1e3, 4),
             sig(p.gap_m * 1e2, 3)
         )),

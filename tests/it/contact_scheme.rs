@@ -1,6 +1,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! The experimental Sundman–Taylor contact scheme against the default Dormand–Prince one
-//! (kept as its reference, `ContactScheme::DormandPrince`), docs/model.md §10.
+//! (kept as its reference, `ContactScheme::DormandPrince`), docs/model.md §11.
 //!
 //! - Where the Hertz law has a closed form (an elastic contact between two free bodies gives its
 //!   relative speed back), the new scheme is exact to 1e-11 and the reference to ~1e-9.

@@ -180,8 +180,8 @@ fn non_finite_results_are_refused_as_out_of_range_inputs() {
     let f = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
     let (csv, wav) = (f("e.csv"), f("p.wav"));
     let cases: Vec<(Vec<&str>, &str)> = vec![
-        (vec!["pulse", "--c", "1e308"], "--c"),
-        (vec!["pulse", "--c", "1e-308"], "--c"),
+        (vec!["pulse", "--sound-speed", "1e308"], "--sound-speed"),
+        (vec!["pulse", "--sound-speed", "1e-308"], "--sound-speed"),
         (vec!["pulse", "--rho-c", "1e308"], "--rho-c"),
         (vec!["pulse", "--k-hz", "1e-308"], "--k-hz"),
         (vec!["pulse", "--u0", "1e308"], "--u0"),
@@ -346,7 +346,7 @@ const PULSE_FLAGS: &[Flag] = &[
     flag("r", Some(L::R), "3g"),
     flag("theta", Some(L::THETA), "3m"),
     flag("rho-c", Some(L::RHO_C), "3kg"),
-    flag("c", Some(L::C_SOUND), "3kg"),
+    flag("sound-speed", Some(L::C_SOUND), "3kg"),
     flag("points", Some(L::POINTS), "3cm"),
 ];
 

@@ -40,6 +40,7 @@ mod hostile_round3;
 mod masri_caughey;
 mod params_table;
 mod pdf;
+mod physical_model;
 mod response_band;
 mod schema;
 mod shards;

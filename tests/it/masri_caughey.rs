@@ -1,7 +1,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! The classic oracle: Masri & Caughey's steady motion of a harmonically forced impact damper
 //! with two symmetric impacts a cycle (instantaneous impacts, restitution r), derived in
-//! docs/model.md §11, against thud's settled forced runs with stiff Hertz contacts, r taken from
+//! docs/model.md §12, against thud's settled forced runs with stiff Hertz contacts, r taken from
 //! thud's own isolated contact at the impact speed (`damper::single_contact`, the code behind
 //! `thud restitution`).
 
@@ -31,7 +31,7 @@ fn free(mm: f64, k: f64, c: f64, (x0, v0): (f64, f64), t: f64) -> (f64, f64) {
     (x, v)
 }
 
-/// Masri & Caughey's symmetric two-impact orbits (docs/model.md §11): main mass `mm` (kg),
+/// Masri & Caughey's symmetric two-impact orbits (docs/model.md §12): main mass `mm` (kg),
 /// spring `k` (N/m), damping `c` (N·s/m), particle `m` (kg), clearance `d` (m), force
 /// `f0·cos(Ωt + φ)` (N, rad/s), restitution `r`.
 #[allow(clippy::too_many_arguments)]
@@ -139,7 +139,7 @@ fn a_stiff_symmetric_two_impact_orbit_is_the_closed_forms() {
 fn softer_contacts_of_the_same_orbit_stay_near_the_closed_form() {
     // The same orbit with K_HZ 100× and 1000× softer (r 0.53 and 0.14 at the impact speed):
     // the closed form with thud's r still gives amplitude and speed within 2 %; the contact
-    // lasts longer and the amplitude grows (docs/model.md §11).
+    // lasts longer and the amplitude grows (docs/model.md §12).
     let mut amps = Vec::new();
     for khz in [5.6e6, 5.6e5] {
         let ((amp, u), mc) = compare(0.03, 1.0, 5.5, khz);

@@ -27,7 +27,34 @@ impl Default for Air {
     }
 }
 
+/// The specific gas constant of dry air R/M (J/(kg·K)), as ISO 2533:1975 (the standard
+/// atmosphere) fixes it: the molar gas constant over dry air's molar mass 0.028 964 4 kg/mol.
+/// docs/model.md §10.
+pub const R_DRY_AIR_J_KG_K: f64 = 287.052_87;
+/// The ratio of specific heats γ = c_p/c_v of dry air near room temperature (dimensionless;
+/// ISO 2533:1975; a diatomic ideal gas, 7/5). docs/model.md §10.
+pub const GAMMA_AIR: f64 = 1.4;
+/// 0 °C in kelvin (the Celsius scale's zero, by definition of the SI).
+pub const ZERO_CELSIUS_K: f64 = 273.15;
+/// Standard room air for the physical model: 20 °C (ISO 554's standard atmosphere for testing)
+/// and the standard sea-level pressure 101 325 Pa (ISO 2533:1975).
+pub const ROOM_TEMPERATURE_C: f64 = 20.0;
+/// The standard sea-level pressure (Pa), ISO 2533:1975.
+pub const STANDARD_PRESSURE_PA: f64 = 101_325.0;
+
 impl Air {
+    /// Dry air as an ideal gas at `temperature_c` (°C) and `pressure_pa` (Pa), docs/model.md §10:
+    /// ρ0 = p/(R·T), c = √(γ·R·T), so ρ0·c = p·√(γ/(R·T)), with R = [`R_DRY_AIR_J_KG_K`],
+    /// γ = [`GAMMA_AIR`] and T = `temperature_c` + 273.15 K. At 20 °C and 101.325 kPa:
+    /// ρ0 = 1.2041 kg/m³, c = 343.23 m/s, ρ0·c = 413.29 Pa·s/m.
+    #[must_use]
+    pub fn from_state(temperature_c: f64, pressure_pa: f64) -> Self {
+        let t_k = temperature_c + ZERO_CELSIUS_K;
+        let rho = pressure_pa / (R_DRY_AIR_J_KG_K * t_k);
+        let c = (GAMMA_AIR * R_DRY_AIR_J_KG_K * t_k).sqrt();
+        Self { rho_c_pa_s_m: rho * c, c_m_s: c }
+    }
+
     pub fn validate(&self) -> Result<(), ThudError> {
         check_positive("rho-c", self.rho_c_pa_s_m, "Pa·s/m")?;
         check_positive("c", self.c_m_s, "m/s")
@@ -478,27 +505,51 @@ impl Field {
         (1.0 / self.consts.lambda).min(self.consts.tau / (k * std::f64::consts::PI))
     }
 
-    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-13 s.
-    pub fn extrema(&self) -> Vec<Extremum> {
+    /// p(t) sampled over the pulse: the start, the step and the samples.
+    fn sampled(&self) -> (f64, f64, Vec<f64>) {
         let last = self.sources().map(|s| s.delay_s).fold(0.0, f64::max);
         // After the last forced part the tail falls as e^(−λt): e^(−12) of the peak is nothing.
         let (t0, t1) = (self.arrival_s(), last + self.consts.tau + 12.0 / self.consts.lambda);
         let n = (((t1 - t0) / (0.1 * self.scale_s())).ceil() as usize).clamp(100, 20_000);
         let dt = (t1 - t0) / n as f64;
-        let p: Vec<f64> = (0..=n).map(|i| self.pressure(t0 + i as f64 * dt)).collect();
-        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        (t0, dt, (0..=n).map(|i| self.pressure(t0 + i as f64 * dt)).collect())
+    }
+
+    /// The local extrema of the samples `p` (from `t0`, step `dt`) larger than `floor` (Pa),
+    /// each refined to ~1e-13 s.
+    fn refined(&self, t0: f64, dt: f64, p: &[f64], floor: f64) -> Vec<Extremum> {
         let mut out = Vec::new();
-        for i in 1..n {
+        for i in 1..p.len().saturating_sub(1) {
             let (a, b, c) = (p[i - 1], p[i], p[i + 1]);
             let is_max = b > a && b >= c;
             let is_min = b < a && b <= c;
-            if (is_max || is_min) && b.abs() > 1e-6 * peak {
+            if (is_max || is_min) && b.abs() > floor {
                 let sign = if is_max { 1.0 } else { -1.0 };
                 let t = golden_max(t0 + (i - 1) as f64 * dt, t0 + (i + 1) as f64 * dt, |t| sign * self.pressure(t));
                 out.push(Extremum { t_s: t, p_pa: self.pressure(t) });
             }
         }
         out
+    }
+
+    /// Local extrema of p(t) over the pulse, in time order, each refined to ~1e-13 s.
+    pub fn extrema(&self) -> Vec<Extremum> {
+        let (t0, dt, p) = self.sampled();
+        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        self.refined(t0, dt, &p, 1e-6 * peak)
+    }
+
+    /// The peak level 20·log10(max|p|/20 µPa) (dB), as [`Field::levels`]' `spl_peak_db` to the
+    /// last bit, refining only the extrema within 20 % of the largest sample (the samples are a
+    /// tenth of the waveform's shortest time scale apart, so the largest extremum is among
+    /// them): the physical model's level, cheap enough for every impact of a run.
+    pub fn peak_db(&self) -> f64 {
+        let (t0, dt, p) = self.sampled();
+        let peak = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let ext = self.refined(t0, dt, &p, 0.8 * peak);
+        let p_max = ext.iter().map(|e| e.p_pa).fold(0.0, f64::max);
+        let p_min = ext.iter().map(|e| e.p_pa).fold(0.0, f64::min);
+        20.0 * (p_max.max(-p_min) / P_REF_PA).log10()
     }
 
     /// The extrema larger than `fraction` of the largest |p|: the peaks a person would name.
@@ -637,6 +688,34 @@ pub fn directivity(
 mod tests {
     use super::*;
     use crate::contact::{Impact, Target};
+
+    #[test]
+    fn the_peak_level_alone_is_the_levels_peak_to_the_bit() {
+        let contact = Impact { mass_kg: 0.0405, u0_m_s: 1.4, k_hz: 5.6e8, target: Target::FixedPlate }.contact();
+        for source in Source::ALL {
+            for pulse in [PulseShape::HalfSine, PulseShape::Hertz] {
+                for (r, th) in [(0.7, 45.0), (0.2828, 45.0), (0.05, 80.0), (3.0, 10.0)] {
+                    let rad = Radiation { source, pulse, air: Air::from_state(20.0, 101_325.0), ..Default::default() };
+                    let f = Field::new(0.01905, &contact, &Observer::new(r, th), &rad).unwrap();
+                    assert_eq!(f.peak_db(), f.levels().spl_peak_db, "{source:?} {pulse:?} r {r} θ {th}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn room_air_from_temperature_and_pressure() {
+        // ρ0 = 101325/(287.05287·293.15) = 1.204 11 kg/m³; c = √(1.4·287.05287·293.15)
+        // = √117 809.3 = 343.234 m/s; ρ0c = 413.29 Pa·s/m (Kinsler et al. list 1.21 kg/m³,
+        // 343 m/s and 415 rayl for 20 °C).
+        let air = Air::from_state(20.0, 101_325.0);
+        assert!((air.c_m_s - 343.234).abs() < 1e-3, "{air:?}");
+        assert!((air.rho_c_pa_s_m / air.c_m_s - 1.204_11).abs() < 1e-5, "{air:?}");
+        assert!((air.rho_c_pa_s_m - 413.29).abs() < 0.01, "{air:?}");
+        // The speed of sound does not depend on the pressure; the impedance is proportional to it.
+        let thin = Air::from_state(20.0, 50_662.5);
+        assert!((thin.c_m_s - air.c_m_s).abs() < 1e-12 && (2.0 * thin.rho_c_pa_s_m - air.rho_c_pa_s_m).abs() < 1e-9);
+    }
 
     #[test]
     fn theta_range_is_the_open_side_of_each_source() {

@@ -68,6 +68,75 @@ impl Materials {
     }
 }
 
+/// Which model of the world a design is heard through (docs/model.md §10).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    /// The paper's: the rms level over τ, the pulse, air and K_HZ as the design gives them
+    /// (the half-sine, ρ0c 400 Pa·s/m unless set otherwise). Reproduces the paper.
+    #[default]
+    Paper,
+    /// The measured world: the peak level a microphone reports, the exact Hertz pulse, air from
+    /// its temperature and pressure, and K_HZ from the materials (Eq 2; acrylic on steel, the
+    /// paper's pair, when none are named). No constant is fitted to the paper's Table 1.
+    Physical,
+}
+
+impl Model {
+    /// Every model, in the order front ends list them.
+    pub const ALL: [Model; 2] = [Model::Paper, Model::Physical];
+
+    /// The model's name, as front ends spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::Paper => "paper",
+            Model::Physical => "physical",
+        }
+    }
+
+    /// What the model's headline level is, for labels ("rms over τ", "peak").
+    pub fn level_name(self) -> &'static str {
+        match self {
+            Model::Paper => "rms over τ",
+            Model::Physical => "peak",
+        }
+    }
+
+    fn is_paper(&self) -> bool {
+        *self == Model::Paper
+    }
+}
+
+/// The air's state, from which the physical model derives ρ0, c and ρ0·c
+/// ([`crate::acoustics::Air::from_state`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Atmosphere {
+    /// Air temperature (°C).
+    pub temperature_c: f64,
+    /// Air pressure (Pa).
+    pub pressure_pa: f64,
+}
+
+impl Default for Atmosphere {
+    /// Room air: 20 °C, 101.325 kPa.
+    fn default() -> Self {
+        Self {
+            temperature_c: crate::acoustics::ROOM_TEMPERATURE_C,
+            pressure_pa: crate::acoustics::STANDARD_PRESSURE_PA,
+        }
+    }
+}
+
+impl Atmosphere {
+    fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// The materials the physical model assumes when a design names none: the paper's acrylic
+/// ball on a steel structure (the pair its K_HZ = 5.6e8 N/m^1.5 and Table 1 are for).
+pub const PHYSICAL_DEFAULT_SPHERE: &str = "acrylic";
+
 /// Which largest contact speed is reported as U0max (docs/model.md §6–7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -121,6 +190,13 @@ pub struct Design {
     pub u0max_rule: U0MaxRule,
     #[serde(default)]
     pub thresholds: Thresholds,
+    /// The model the design is heard through (written only when not the paper's).
+    #[serde(default, skip_serializing_if = "Model::is_paper")]
+    pub model: Model,
+    /// The air's temperature and pressure: the physical model's air (written only when not
+    /// room air).
+    #[serde(default, skip_serializing_if = "Atmosphere::is_default")]
+    pub atmosphere: Atmosphere,
 }
 
 impl Default for Design {
@@ -136,6 +212,8 @@ impl Default for Design {
             solver: Solver::Event,
             u0max_rule: U0MaxRule::Impacts,
             thresholds: Thresholds::default(),
+            model: Model::Paper,
+            atmosphere: Atmosphere::default(),
         }
     }
 }
@@ -171,12 +249,47 @@ impl Design {
         }
     }
 
+    /// The materials K_HZ follows from: the design's own, or with the physical model and none
+    /// named, the paper's acrylic ball on steel ([`PHYSICAL_DEFAULT_SPHERE`]).
+    pub fn materials_used(&self) -> Option<Materials> {
+        match (&self.materials, self.model) {
+            (Some(m), _) => Some(m.clone()),
+            (None, Model::Physical) => Some(Materials::new(PHYSICAL_DEFAULT_SPHERE, "steel")),
+            (None, Model::Paper) => None,
+        }
+    }
+
     /// The Hertz stiffness K_HZ (N/m^1.5) this design runs with: from its materials for the
-    /// ball's current radius (Eq 2) when it has materials, else its own `k_hz`.
+    /// ball's current radius (Eq 2) when it has materials ([`Design::materials_used`]), else
+    /// its own `k_hz`.
     pub fn hertz_stiffness(&self) -> Result<f64, ThudError> {
-        match &self.materials {
+        match self.materials_used() {
             Some(m) => m.hertz_stiffness(self.ball_radius_m()),
             None => Ok(self.damper.k_hz),
+        }
+    }
+
+    /// The radiation the sound is computed with: the design's own with the paper's model; with
+    /// the physical model, the exact Hertz pulse and the air of [`Design::atmosphere`]
+    /// ([`crate::acoustics::Air::from_state`]), the source and its signs as the design says.
+    pub fn sound(&self) -> Radiation {
+        match self.model {
+            Model::Paper => self.radiation,
+            Model::Physical => Radiation {
+                pulse: PulseShape::Hertz,
+                air: crate::acoustics::Air::from_state(self.atmosphere.temperature_c, self.atmosphere.pressure_pa),
+                ..self.radiation
+            },
+        }
+    }
+
+    /// The headline level (dB re 20 µPa) of an impact's `field` under this design's model: the
+    /// paper's rms over τ from the direct arrival (Table 1's convention), or with the physical
+    /// model the peak level 20·log10(max|p|/20 µPa) a microphone's peak reading gives.
+    pub fn level_db(&self, field: &Field) -> f64 {
+        match self.model {
+            Model::Paper => field.spl_db(),
+            Model::Physical => field.peak_db(),
         }
     }
 
@@ -192,7 +305,7 @@ impl Design {
         if let Solver::Newmark { dt_s } = self.solver {
             check_positive("dt", dt_s, "s")?;
         }
-        self.radiation.air.validate()?;
+        self.sound().air.validate()?;
         crate::acoustics::validate_observer(self.ball_radius_m(), &self.observer, self.radiation.source)?;
         if !self.thresholds.spl_db.is_finite() || !self.thresholds.inclination_cm_s.is_finite() {
             return Err(ThudError::invalid("thresholds", "L* and e* must be finite numbers"));
@@ -210,12 +323,13 @@ impl Design {
             target: Target::MovableMass(self.damper.main_mass_kg),
         };
         impact.validate()?;
-        Field::new(self.ball_radius_m(), &impact.contact(), &self.observer, &self.radiation)
+        Field::new(self.ball_radius_m(), &impact.contact(), &self.observer, &self.sound())
     }
 
-    /// SPL (dB, rms over τ from the direct arrival) of an impact at `u0` (m/s).
+    /// The headline level (dB) of an impact at `u0` (m/s): the paper's SPL (rms over τ from
+    /// the direct arrival) or the physical model's peak level ([`Design::level_db`]).
     pub fn impact_spl_db(&self, u0: f64) -> Result<f64, ThudError> {
-        Ok(self.impact_field(u0)?.spl_db())
+        Ok(self.level_db(&self.impact_field(u0)?))
     }
 }
 
@@ -463,7 +577,7 @@ pub(crate) fn run_metrics(run: &Run, design: &Design) -> Result<Metrics, ThudErr
     let sounding = u0_max > 0.0 && (design.u0max_rule == U0MaxRule::WholeRun || !run.impacts.is_empty());
     let (spl_max_db, contact_duration_s) = if sounding {
         let f = design.impact_field(u0_max)?;
-        (Some(f.spl_db()), Some(f.tau_s()))
+        (Some(design.level_db(&f)), Some(f.tau_s()))
     } else {
         (None, None)
     };
@@ -591,7 +705,7 @@ fn run_leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>,
     // Pulses last about a millisecond; build the fields of the impacts near the window only.
     // After the last source's forced part the pressure falls as e^(−λs), λ = c/a: 18/λ later
     // its square is e^(−36) (2e-16) of what it was, and the rest of the integral no more.
-    let a_over_c = design.ball_radius_m() / design.radiation.air.c_m_s;
+    let a_over_c = design.ball_radius_m() / design.sound().air.c_m_s;
     let mut pulses: Vec<(f64, f64, f64, Field)> = Vec::new();
     for i in run.impacts.iter().filter(|i| i.t_s <= b && i.t_s >= a - 1.0) {
         let f = design.impact_field(i.u_in_m_s)?;
@@ -608,7 +722,7 @@ fn run_leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>,
     // The waveform's shortest time scale: a/c and τ/(kπ) (k = 4 for the Hertz pulse's harmonics).
     // Between kinks the pulse is smooth on that scale: a 10-point Gauss–Legendre panel five
     // scales long integrates it to rounding (its error bound there is below 1e-15).
-    let k = if design.radiation.pulse == PulseShape::Hertz { 4.0 } else { 1.0 };
+    let k = if design.sound().pulse == PulseShape::Hertz { 4.0 } else { 1.0 };
     let mut exposure = 0.0;
     let mut i = 0;
     while i < pulses.len() {

@@ -173,8 +173,32 @@ pub const U0: Range = range(
 pub const RHO_C: Range =
     range("rho-c", "air impedance ρ0·c", 1.0, 1e7, "Pa·s/m", "from thin gas (≈ 1) past air (413) to water (1.5e6)");
 /// Speed of sound c (m/s).
-pub const C_SOUND: Range =
-    range("c", "speed of sound c", 1.0, 1e4, "m/s", "every gas, liquid and solid is inside 1–10 000 m/s (air 343)");
+pub const C_SOUND: Range = range(
+    "sound-speed",
+    "speed of sound c",
+    1.0,
+    1e4,
+    "m/s",
+    "every gas, liquid and solid is inside 1–10 000 m/s (air 343)",
+);
+/// Air temperature (°C), from which the physical model takes ρ0 and c.
+pub const AIR_TEMPERATURE: Range = range(
+    "air-temperature",
+    "air temperature",
+    -60.0,
+    60.0,
+    "degC",
+    "the coldest to the hottest air people work in; dry air stays an ideal gas there (c 315–369 m/s)",
+);
+/// Air pressure (Pa), from which the physical model takes ρ0.
+pub const AIR_PRESSURE: Range = range(
+    "air-pressure",
+    "air pressure",
+    2e4,
+    2e5,
+    "Pa",
+    "from above Everest's summit (≈ 33 kPa) to two atmospheres; air is an ideal gas throughout",
+);
 /// Zone threshold L* on SPLmax (dB).
 pub const L_STAR: Range = range(
     "l-star",
@@ -328,7 +352,7 @@ pub const SPHERE_POISSON: Range = range(
 );
 
 /// Every range, in the order `thud` lists them.
-pub const RANGES: [Range; 32] = [
+pub const RANGES: [Range; 34] = [
     MASS,
     GAP,
     V0,
@@ -347,6 +371,8 @@ pub const RANGES: [Range; 32] = [
     U0,
     RHO_C,
     C_SOUND,
+    AIR_TEMPERATURE,
+    AIR_PRESSURE,
     L_STAR,
     E_STAR,
     FULL_SCALE,

@@ -15,9 +15,9 @@
 //! where it goes. The command line then needs its clap field, Python nothing more.
 
 use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
-use crate::contact::{self, Contact, Impact, Material, Target};
+use crate::contact::{self, Contact, Impact, Target};
 use crate::damper::Solver;
-use crate::design::{BallSize, Design, Materials, ValidDesign};
+use crate::design::{BallSize, Design, Materials, Model, ValidDesign};
 use crate::error::ThudError;
 use crate::limits::{self, short, Range};
 use crate::units::{self, Kind};
@@ -287,6 +287,18 @@ pub const PULSES: [&str; 2] = ["half-sine", "hertz"];
 /// What each pulse shape is ([`PULSES`] order).
 const PULSE_HELPS: [&str; 2] = ["The paper's half-sine, Eq 7", "The exact Hertz pulse"];
 
+/// The names of the models, in [`Model::ALL`] order.
+pub const MODELS: [&str; 2] = ["paper", "physical"];
+/// What each model is ([`MODELS`] order).
+const MODEL_HELPS: [&str; 2] = [
+    "The paper's: rms level over τ, half-sine pulse, its air and K_HZ (reproduces the paper)",
+    "The measured world: peak level, exact Hertz pulse, air from temperature and pressure, K_HZ and mass from the materials",
+];
+
+fn model(i: usize) -> Model {
+    Model::ALL[i.min(1)]
+}
+
 fn source(i: usize) -> Source {
     Source::ALL[i.min(2)]
 }
@@ -318,12 +330,24 @@ pub struct DesignDraft {
     plate: Option<String>,
     /// The ball's Poisson ratio ν, for the materials `sphere` names.
     sphere_nu: Option<f64>,
+    /// The ball's radius (m) and density (kg/m³) as given, for [`resolve_ball`].
+    radius_m: Option<f64>,
+    density_kg_m3: Option<f64>,
 }
 
 impl DesignDraft {
     /// A draft of `design` with nothing given yet.
     fn of(design: Design) -> Self {
-        DesignDraft { design, solver: None, dt_s: None, sphere: None, plate: None, sphere_nu: None }
+        DesignDraft {
+            design,
+            solver: None,
+            dt_s: None,
+            sphere: None,
+            plate: None,
+            sphere_nu: None,
+            radius_m: None,
+            density_kg_m3: None,
+        }
     }
 }
 
@@ -391,7 +415,7 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     Param {
         conflicts: Some(Conflict { with: "sphere", why: "K_HZ follows from the materials", names_other: false }),
         ..q("k-hz", Kind::HertzStiffness, &limits::K_HZ, Group::Design, "KH", "Hertz stiffness K_HZ (N/m^1.5)",
-            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v).applies(|d| d.materials.is_none())
+            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v).applies(|d| d.materials_used().is_none())
     },
     Param::new("sphere", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.sphere = Some(s.to_string()) },
         "Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)").value("MATERIAL"),
@@ -421,14 +445,14 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     q("dt", Kind::Time, &limits::DT, Group::Solver, "DT", "Newmark time step (s) [default: 1e-7]",
         |d| match d.solver { Solver::Newmark { dt_s } => dt_s, Solver::Event => NEWMARK_DT_S }, |d, v| d.dt_s = Some(v))
         .applies(|d| matches!(d.solver, Solver::Newmark { .. })),
-    Param {
-        conflicts: Some(Conflict { with: "radius", why: "the radius follows from the mass and the density", names_other: true }),
-        ..q("density", Kind::Density, &limits::DENSITY, Group::Design, "RHO", "Ball density (kg/m³): the radius follows from the mass",
-            |d| match d.ball { BallSize::Density(rho) => rho, BallSize::Radius(_) => f64::NAN }, |d, v| d.design.ball = BallSize::Density(v))
-            .label("ball ρ").applies(|d| matches!(d.ball, BallSize::Density(_)))
-    },
-    q("radius", Kind::Length, &limits::RADIUS, Group::Design, "A", "Ball radius (m), whatever the mass",
-        Design::ball_radius_m, |d, v| d.design.ball = BallSize::Radius(v)).label("ball a")
+    q("density", Kind::Density, &limits::DENSITY, Group::Design, "RHO",
+        "Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass",
+        |d| match d.ball { BallSize::Density(rho) => rho, BallSize::Radius(_) => f64::NAN },
+        |d, v| { d.design.ball = BallSize::Density(v); d.density_kg_m3 = Some(v); }).label("ball ρ")
+        .applies(|d| matches!(d.ball, BallSize::Density(_))),
+    q("radius", Kind::Length, &limits::RADIUS, Group::Design, "A",
+        "Ball radius (m): with --mass as given, else the mass follows from the density",
+        Design::ball_radius_m, |d, v| { d.design.ball = BallSize::Radius(v); d.radius_m = Some(v); }).label("ball a")
         .applies(|d| matches!(d.ball, BallSize::Radius(_))),
     q("r", Kind::Length, &limits::R, Group::Listener, "R", "Observer distance (m)",
         |d| d.observer.r_m, |d, v| d.design.observer.r_m = v),
@@ -441,6 +465,18 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     ch("pulse", Group::Listener, &PULSES, &PULSE_HELPS, "PulseShape",
         "Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse",
         |d, i| d.design.radiation.pulse = pulse_shape(i)),
+    Param {
+        get: Some(|d| if d.model == Model::Physical { 1.0 } else { 0.0 }),
+        ..ch("model", Group::Listener, &MODELS, &MODEL_HELPS, "Model",
+            "The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)",
+            |d, i| d.design.model = model(i))
+    },
+    q("air-temperature", Kind::Temperature, &limits::AIR_TEMPERATURE, Group::Listener, "T",
+        "Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]",
+        |d| d.atmosphere.temperature_c, |d, v| d.design.atmosphere.temperature_c = v).label("air T"),
+    q("air-pressure", Kind::Pressure, &limits::AIR_PRESSURE, Group::Listener, "P",
+        "Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]",
+        |d| d.atmosphere.pressure_pa, |d, v| d.design.atmosphere.pressure_pa = v).label("air p"),
     q("l-star", Kind::Level, &limits::L_STAR, Group::Study, "DB", "Zone threshold L* on SPLmax (dB)",
         |d| d.thresholds.spl_db, |d, v| d.design.thresholds.spl_db = v),
     q("e-star", Kind::Inclination, &limits::E_STAR, Group::Study, "CM_S", "Zone threshold e* on the damping inclination (cm/s)",
@@ -526,7 +562,7 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
             ));
         }
     }
-    if let Some(m) = &d.materials {
+    if let Some(m) = &d.materials_used() {
         let k = m.hertz_stiffness(d.ball_radius_m())?;
         if !limits::K_HZ.contains(k) {
             return Err(ThudError::invalid(
@@ -603,9 +639,9 @@ pub fn stub_keywords(skip: &[&str]) -> String {
 }
 
 /// `design` with the numeric row `p` of [`DESIGN`] set to `value` (internal units; a count is
-/// rounded, a switch is on when `value` ≠ 0), unchecked: the explorer's field for a row the
-/// panel shows as a number. Rows that set more than the design (the solver, its step, the
-/// materials) leave it as it is.
+/// rounded, a switch is on when `value` ≠ 0, a choice is the index of its name), unchecked:
+/// the explorer's field for a row the panel shows as a number. Rows that set more than the
+/// design (the solver, its step, the materials) leave it as it is.
 pub fn set_number(design: &Design, p: &Param<DesignDraft>, value: f64) -> Design {
     let mut draft = DesignDraft::of(design.clone());
     match p.accepts {
@@ -614,6 +650,12 @@ pub fn set_number(design: &Design, p: &Param<DesignDraft>, value: f64) -> Design
             set(&mut draft, if value.is_finite() && value >= 0.0 { value.round() as usize } else { 0 });
         }
         Accepts::Switch { set } => set(&mut draft, value != 0.0),
+        // Only a choice that sets the design alone reads its index back (`get`): the model.
+        Accepts::Choice { set, names, .. } if p.get.is_some() => {
+            if value.is_finite() && value >= 0.0 && value < names.len() as f64 {
+                set(&mut draft, value as usize);
+            }
+        }
         Accepts::Choice { .. } | Accepts::Name { .. } => {}
     }
     draft.design
@@ -784,12 +826,32 @@ fn edit_distance(a: &str, b: &str) -> usize {
 pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Result<ValidDesign, ThudError> {
     let given = Given::new(DESIGN, given, spelling)?;
     given.relations()?;
+    let (base_ball, base_mass) = (base.ball, base.damper.impact_mass_kg);
     let mut draft = DesignDraft::of(base);
     given.apply(&mut draft)?;
-    let DesignDraft { design: mut d, solver, dt_s, sphere, plate, sphere_nu } = draft;
+    let DesignDraft { design: mut d, solver, dt_s, sphere, plate, sphere_nu, radius_m, density_kg_m3 } = draft;
     if let Some(sphere) = sphere {
         d.materials = Some(Materials { sphere, plate: plate.unwrap_or_else(|| "steel".into()), sphere_nu });
     }
+    physical_conflicts(&given, d.model)?;
+    // The ball's material density: the sphere's when one was named, and with the physical
+    // model the material it assumes; none otherwise (the paper's ball, 40.5 g at 19.05 mm).
+    let material = match (given.has("sphere"), d.model) {
+        (true, _) | (false, Model::Physical) => {
+            d.materials_used().map(|m| m.sphere_material()).transpose().map_err(|e| given.respell(e))?
+        }
+        (false, Model::Paper) => None,
+    };
+    let ball = BallGiven {
+        mass_kg: given.has("mass").then_some(d.damper.impact_mass_kg),
+        radius_m,
+        density_kg_m3,
+        material: material.map(|m| (m.name, m.density_kg_m3)),
+    };
+    let base_ball = base_ball_of(&base_ball, base_mass);
+    let (mass, size) = resolve_ball(base_ball, &ball, |n| given.spell(n))?;
+    d.damper.impact_mass_kg = mass;
+    d.ball = size;
     d.solver = match (solver, dt_s, d.solver) {
         (Some(0), _, _) => Solver::Event,
         (Some(_), dt, _) => Solver::Newmark { dt_s: dt.unwrap_or(NEWMARK_DT_S) },
@@ -809,6 +871,138 @@ pub fn design(base: Design, given: &[(String, Input)], spelling: Spelling) -> Re
     check_design(&d).map_err(|e| given.respell(e))?;
     d.validate().map_err(|e| blame_ball(&given, e, &d))?;
     d.check().map_err(|e| given.respell(e))
+}
+
+/// The ball's size as a front end gave it: each of its three numbers, if given, and its
+/// material's name and density (kg/m³), if the ball has a material.
+#[derive(Debug, Clone, Copy, Default)]
+struct BallGiven {
+    mass_kg: Option<f64>,
+    radius_m: Option<f64>,
+    density_kg_m3: Option<f64>,
+    material: Option<(&'static str, f64)>,
+}
+
+/// A base's ball as its mass (kg) and how its size follows.
+#[derive(Debug, Clone, Copy)]
+struct BaseBall {
+    mass_kg: f64,
+    size: BallSize,
+}
+
+fn base_ball_of(size: &BallSize, mass_kg: f64) -> BaseBall {
+    BaseBall { mass_kg, size: *size }
+}
+
+/// Relative disagreement (of the mass) tolerated between a mass, a radius and a density all
+/// given: 0.1 %, what typing four significant digits of each allows.
+const BALL_TOLERANCE: f64 = 1e-3;
+
+/// THE resolution of one ball, the same for every command, Python and the explorer: its mass
+/// (kg) and how its radius follows ([`BallSize`]), from the `base` ball and what was `given`.
+/// A ball is fixed by two of mass, radius and density; a material names a density.
+///
+/// * mass, radius and density: all three must agree (to [`BALL_TOLERANCE`]), else refused in
+///   one line naming the three (`spell` spells a row's name as the user typed it);
+/// * two of them: the third follows (mass and radius given keep both, the material's density
+///   aside: the ball is then not solid material);
+/// * one, or none: the material's density (if it has one), else the base's, fills in; with a
+///   material and only a radius (given, or the base's fixed radius) the mass follows.
+fn resolve_ball(base: BaseBall, g: &BallGiven, spell: impl Fn(&str) -> String) -> Result<(f64, BallSize), ThudError> {
+    use contact::sphere_mass;
+    let material = g.material.map(|(_, rho)| rho);
+    let (mass, size, from) = match (g.mass_kg, g.radius_m, g.density_kg_m3) {
+        (Some(m), Some(r), Some(rho)) => {
+            let implied = sphere_mass(r, rho);
+            if (implied - m).abs() > BALL_TOLERANCE * m {
+                return Err(ThudError::invalid(
+                    spell("density"),
+                    format!(
+                        "{} {} kg, {} {} m and {} {} kg/m^3 disagree: that radius and density make {} kg; give two of the three",
+                        spell("mass"),
+                        short(m),
+                        spell("radius"),
+                        short(r),
+                        spell("density"),
+                        short(rho),
+                        short(implied)
+                    ),
+                ));
+            }
+            (m, BallSize::Density(rho), None)
+        }
+        (Some(m), Some(r), None) => (m, BallSize::Radius(r), None),
+        (None, Some(r), Some(rho)) => (sphere_mass(r, rho), BallSize::Density(rho), Some(("radius", r, rho))),
+        (None, Some(r), None) => match material {
+            Some(rho) => (sphere_mass(r, rho), BallSize::Density(rho), Some(("radius", r, rho))),
+            None => (base.mass_kg, BallSize::Radius(r), None),
+        },
+        (m, None, Some(rho)) => (m.unwrap_or(base.mass_kg), BallSize::Density(rho), None),
+        (m, None, None) => match (material, base.size, m) {
+            (Some(rho), BallSize::Radius(r), None) => {
+                (sphere_mass(r, rho), BallSize::Density(rho), Some(("radius", r, rho)))
+            }
+            (Some(rho), _, m) => (m.unwrap_or(base.mass_kg), BallSize::Density(rho), None),
+            (None, size, m) => (m.unwrap_or(base.mass_kg), size, None),
+        },
+    };
+    // A mass that follows from a radius must be inside the mass range: named by the radius
+    // when it was typed (else the material made it).
+    if let Some((_, r, rho)) = from.filter(|_| !limits::MASS.contains(mass)) {
+        let by = if g.radius_m.is_some() { "radius" } else { "sphere" };
+        return Err(ThudError::invalid(
+            spell(by),
+            format!(
+                "a ball of radius {} m at {} kg/m^3 weighs {} kg; the {} must be {}",
+                short(r),
+                short(rho),
+                short(mass),
+                limits::MASS.what,
+                limits::MASS.describe()
+            ),
+        ));
+    }
+    Ok((mass, size))
+}
+
+/// `design` with its ball resolved for its material (`resolve_ball`, the rule every front end
+/// uses): a design whose materials (or physical model) name a ball material takes that
+/// material's density, its mass kept (or, for a ball of fixed radius, its radius kept and its
+/// mass following). The explorer calls this when its materials field changes. A design
+/// without a ball material is returned as it is; a mass outside its range is an error.
+pub fn follow_material(mut design: Design) -> Result<Design, ThudError> {
+    let Some(m) = design.materials_used() else { return Ok(design) };
+    let s = m.sphere_material()?;
+    let ball = BallGiven { material: Some((s.name, s.density_kg_m3)), ..BallGiven::default() };
+    let (mass, size) =
+        resolve_ball(base_ball_of(&design.ball, design.damper.impact_mass_kg), &ball, ToString::to_string)?;
+    design.damper.impact_mass_kg = mass;
+    design.ball = size;
+    Ok(design)
+}
+
+/// Refuses what the physical model derives itself, given together with it: K_HZ (Eq 2 from the
+/// materials) and the pulse shape (the exact Hertz pulse).
+fn physical_conflicts<T>(given: &Given<T>, model: Model) -> Result<(), ThudError> {
+    if model != Model::Physical {
+        return Ok(());
+    }
+    for (name, why) in [
+        ("k-hz", "the physical model takes K_HZ from the materials (Eq 2)"),
+        ("pulse", "the physical model uses the exact Hertz pulse"),
+        ("rho-c", "the physical model takes the air from its temperature and pressure"),
+        ("sound-speed", "the physical model takes the air from its temperature and pressure"),
+    ] {
+        if given.has(name) {
+            let with = if given.has("model") {
+                format!("{} physical", given.spell("model"))
+            } else {
+                "a physical-model design".to_string()
+            };
+            return Err(ThudError::Conflict { param: given.spell(name), with, why });
+        }
+    }
+    Ok(())
 }
 
 /// The design of a frequency response (`thud response`, Python's `thud.response`): `base`
@@ -966,6 +1160,7 @@ pub fn parse_range(param: &str, text: &str, kind: Kind, range: &Range) -> Result
 pub struct PulseDraft {
     radius_m: Option<f64>,
     mass_kg: Option<f64>,
+    density_kg_m3: Option<f64>,
     u0_m_s: Option<f64>,
     k_hz: Option<f64>,
     sphere: Option<String>,
@@ -978,24 +1173,65 @@ pub struct PulseDraft {
     pulse: Option<PulseShape>,
     rho_c_pa_s_m: Option<f64>,
     c_m_s: Option<f64>,
+    model: Option<Model>,
+    temperature_c: Option<f64>,
+    pressure_pa: Option<f64>,
 }
 
-/// The parameters of one impact, in the order they are checked.
+/// The row of [`DESIGN`] called `name`'s range (every shared row of [`PULSE`] takes its range
+/// from there, so a range is keyed by its row, never by a flag's name).
+const fn design_range(name: &str) -> &'static Range {
+    let mut i = 0;
+    while i < DESIGN.len() {
+        if let Accepts::Quantity { range, .. } = DESIGN[i].accepts {
+            if same_name(DESIGN[i].name, name) {
+                return range;
+            }
+        }
+        i += 1;
+    }
+    panic!("no quantity row of that name in DESIGN")
+}
+
+/// `a == b`, at compile time.
+const fn same_name(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// The parameters of one impact, in the order they are checked. The rows it shares with a
+/// design ([`DESIGN`]) take their help and range from there; its own are the impact speed,
+/// K_HZ as a number and the air's impedance and speed of sound (`sound-speed`, never `c`,
+/// which is the structure's damping in a design).
 pub const PULSE: &[Param<PulseDraft>] = &[
     named("sphere", |d, s| d.sphere = Some(s.to_string())),
     named("plate", |d, s| d.plate = Some(s.to_string())),
-    quantity("radius", Kind::Length, &limits::RADIUS, |d, v| d.radius_m = Some(v)),
-    quantity("mass", Kind::Mass, &limits::MASS, |d, v| d.mass_kg = Some(v)),
-    quantity("k-hz", Kind::HertzStiffness, &limits::K_HZ, |d, v| d.k_hz = Some(v)),
-    quantity("main-mass", Kind::Mass, &limits::MAIN_MASS, |d, v| d.main_mass_kg = Some(v)),
+    quantity("radius", Kind::Length, design_range("radius"), |d, v| d.radius_m = Some(v)),
+    quantity("mass", Kind::Mass, design_range("mass"), |d, v| d.mass_kg = Some(v)),
+    quantity("density", Kind::Density, design_range("density"), |d, v| d.density_kg_m3 = Some(v)),
+    quantity("k-hz", Kind::HertzStiffness, design_range("k-hz"), |d, v| d.k_hz = Some(v)),
+    quantity("main-mass", Kind::Mass, design_range("main-mass"), |d, v| d.main_mass_kg = Some(v)),
     quantity("u0", Kind::Speed, &limits::U0, |d, v| d.u0_m_s = Some(v)),
     quantity("rho-c", Kind::Impedance, &limits::RHO_C, |d, v| d.rho_c_pa_s_m = Some(v)),
-    quantity("c", Kind::Speed, &limits::C_SOUND, |d, v| d.c_m_s = Some(v)),
-    quantity("r", Kind::Length, &limits::R, |d, v| d.r_m = Some(v)),
-    quantity("theta", Kind::Angle, &limits::THETA, |d, v| d.theta_deg = Some(v)),
+    quantity("sound-speed", Kind::Speed, &limits::C_SOUND, |d, v| d.c_m_s = Some(v)),
+    quantity("r", Kind::Length, design_range("r"), |d, v| d.r_m = Some(v)),
+    quantity("theta", Kind::Angle, design_range("theta"), |d, v| d.theta_deg = Some(v)),
     choice("source", &SOURCES, |d, i| d.source = Some(source(i))),
     choice("quad-signs", &QUAD_SIGNS, |d, i| d.quad_signs = Some(quad_signs(i))),
     choice("pulse", &PULSES, |d, i| d.pulse = Some(pulse_shape(i))),
+    choice("model", &MODELS, |d, i| d.model = Some(model(i))),
+    quantity("air-temperature", Kind::Temperature, design_range("air-temperature"), |d, v| d.temperature_c = Some(v)),
+    quantity("air-pressure", Kind::Pressure, design_range("air-pressure"), |d, v| d.pressure_pa = Some(v)),
 ];
 
 /// Everything one impact's sound needs, in SI units, and which parameters were given (to
@@ -1006,6 +1242,8 @@ pub struct PulseInput {
     pub impact: Impact,
     pub observer: Observer,
     pub radiation: Radiation,
+    /// The model the impact is heard through: its headline level ([`PulseInput::level_db`]).
+    pub model: Model,
     /// (`radius` given, `mass` given, `r` given, spelling) for [`PulseInput::field`]'s errors.
     typed: (bool, bool, bool, Spelling),
 }
@@ -1013,34 +1251,66 @@ pub struct PulseInput {
 /// One impact from named parameters. Defaults are the paper's Fig 2 impact (an acrylic sphere,
 /// a 19.05 mm, m 40.5 g, U0 1.4 m/s, K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at
 /// r 0.7 m, θ 45°), or taken from `base` (a preset: its ball, K_HZ, observer, source and air,
-/// and U0 = its v0; the target stays a fixed plate).
+/// and U0 = its v0; the target stays a fixed plate). The ball is resolved as a design's is
+/// (the one rule, `resolve_ball`); with the physical model (`model`, or the base's) the
+/// material is the sphere's or the paper's acrylic, K_HZ follows from Eq 2, the pulse is the
+/// exact Hertz pulse and the air follows from its temperature and pressure.
 pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spelling) -> Result<PulseInput, ThudError> {
     let given = Given::new(PULSE, given, spelling)?;
     given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
     given.conflict("plate", "k-hz", "K_HZ follows from the materials")?;
     let mut a = PulseDraft::default();
     given.apply(&mut a)?;
-    let sphere =
-        a.sphere.as_deref().map(contact::material).transpose().map_err(|e| given.respell(e.renamed("sphere")))?;
-    let plate = match (&a.plate, &sphere) {
-        (Some(p), _) => Some(contact::material(p).map_err(|e| given.respell(e.renamed("plate")))?),
-        (None, Some(_)) => Some(contact::material("steel")?),
-        (None, None) => None,
+    let model = a.model.or(base.map(|d| d.model)).unwrap_or_default();
+    physical_conflicts(&given, model)?;
+    let physical = model == Model::Physical;
+    let base_materials = base.and_then(Design::materials_used);
+    let sphere = match (&a.sphere, &base_materials, physical) {
+        (Some(s), _, _) => Some(contact::material(s).map_err(|e| given.respell(e.renamed("sphere")))?),
+        (None, Some(m), true) => Some(m.sphere_material()?),
+        (None, None, true) => Some(contact::material(crate::design::PHYSICAL_DEFAULT_SPHERE)?),
+        (None, _, false) => None,
     };
-    let (radius_m, mass_kg) = match (a.radius_m, a.mass_kg, sphere) {
-        (Some(r), Some(m), _) => (r, m),
-        (Some(r), None, Some(s)) => {
-            (r, derived(&given, &limits::MASS, contact::sphere_mass(r, s.density_kg_m3), "radius", r, &s)?)
-        }
-        (None, Some(m), Some(s)) => {
-            (derived(&given, &limits::RADIUS, contact::sphere_radius(m, s.density_kg_m3), "mass", m, &s)?, m)
-        }
-        (r, m, _) => (
-            r.or(base.map(Design::ball_radius_m)).unwrap_or(0.01905),
-            m.or(base.as_ref().map(|d| d.damper.impact_mass_kg)).unwrap_or(0.0405),
-        ),
+    let plate = match (&a.plate, &sphere, &base_materials) {
+        (Some(p), _, _) => Some(contact::material(p).map_err(|e| given.respell(e.renamed("plate")))?),
+        (None, Some(_), Some(m)) if physical => Some(contact::material(&m.plate)?),
+        (None, Some(_), _) => Some(contact::material("steel")?),
+        (None, None, _) => None,
     };
-    limits::RADIUS.check_as(&given.spell("radius"), radius_m)?;
+    // The base's ball as the base fixes it (a preset's as a design's: its mass and density, or
+    // its radius); without a base, Fig 2's ball of fixed radius 19.05 mm.
+    let base_ball = base.map_or(BaseBall { mass_kg: 0.0405, size: BallSize::Radius(0.01905) }, |d| {
+        base_ball_of(&d.ball, d.damper.impact_mass_kg)
+    });
+    let ball = BallGiven {
+        mass_kg: a.mass_kg,
+        radius_m: a.radius_m,
+        density_kg_m3: a.density_kg_m3,
+        material: sphere.map(|s| (s.name, s.density_kg_m3)),
+    };
+    let (mass_kg, size) = resolve_ball(base_ball, &ball, |n| given.spell(n))?;
+    let radius_m = match size {
+        BallSize::Radius(r) => r,
+        BallSize::Density(rho) => contact::sphere_radius(mass_kg, rho),
+    };
+    let ball_name = if given.has("radius") || !given.has("mass") { "radius" } else { "mass" };
+    if !limits::RADIUS.contains(radius_m) {
+        let rho = match size {
+            BallSize::Density(rho) => rho,
+            BallSize::Radius(_) => f64::NAN,
+        };
+        return Err(ThudError::invalid(
+            given.spell(ball_name),
+            format!(
+                "{} kg at {} kg/m^3 makes a ball of radius {} m; the {} must be {}",
+                short(mass_kg),
+                short(rho),
+                short(radius_m),
+                limits::RADIUS.what,
+                limits::RADIUS.describe()
+            ),
+        ));
+    }
     limits::MASS.check_as(&given.spell("mass"), mass_kg)?;
     let k_hz = match (a.k_hz, sphere, plate) {
         (Some(k), _, _) => k,
@@ -1052,61 +1322,52 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
             None => 5.6e8,
         },
     };
-    let ball = if given.has("radius") || !given.has("mass") { "radius" } else { "mass" };
-    limits::K_HZ.check_as(&given.spell(ball), k_hz)?;
+    limits::K_HZ.check_as(&given.spell(ball_name), k_hz)?;
     let target = a.main_mass_kg.map_or(Target::FixedPlate, Target::MovableMass);
     let u0 = a.u0_m_s.or(base.as_ref().map(|d| d.damper.v0_m_s)).unwrap_or(1.4);
     limits::U0.check_as(&given.spell("u0"), u0)?;
     let impact = Impact { mass_kg, u0_m_s: u0, k_hz, target };
     impact.validate().map_err(|e| given.respell(e))?;
     let base_air = base.as_ref().map_or(Air::default(), |d| d.radiation.air);
-    let air =
-        Air { rho_c_pa_s_m: a.rho_c_pa_s_m.unwrap_or(base_air.rho_c_pa_s_m), c_m_s: a.c_m_s.unwrap_or(base_air.c_m_s) };
+    let atmosphere = base.map(|d| d.atmosphere).unwrap_or_default();
+    let air = if physical {
+        Air::from_state(
+            a.temperature_c.unwrap_or(atmosphere.temperature_c),
+            a.pressure_pa.unwrap_or(atmosphere.pressure_pa),
+        )
+    } else {
+        Air { rho_c_pa_s_m: a.rho_c_pa_s_m.unwrap_or(base_air.rho_c_pa_s_m), c_m_s: a.c_m_s.unwrap_or(base_air.c_m_s) }
+    };
     let base_observer = base.as_ref().map_or(Observer::new(0.7, 45.0), |d| d.observer);
     let observer =
         Observer::new(a.r_m.unwrap_or(base_observer.r_m), a.theta_deg.unwrap_or(base_observer.theta_rad.to_degrees()));
     let source = a.source.or(base.as_ref().map(|d| d.radiation.source)).unwrap_or(Source::Dipole);
     let quad_signs = a.quad_signs.or(base.as_ref().map(|d| d.radiation.quad_signs)).unwrap_or(QuadSigns::Rigid);
-    let pulse = a.pulse.or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default();
+    let pulse = if physical {
+        PulseShape::Hertz
+    } else {
+        a.pulse.or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default()
+    };
     Ok(PulseInput {
         radius_m,
         impact,
         observer,
         radiation: Radiation { source, quad_signs, air, pulse },
+        model,
         typed: (given.has("radius"), given.has("mass"), given.has("r"), spelling),
     })
 }
 
-/// A ball size derived from the given `from` (radius or mass) and the sphere's density,
-/// checked against `range`; the error names the parameter given.
-fn derived(
-    given: &Given<PulseDraft>,
-    range: &Range,
-    value: f64,
-    from: &str,
-    typed: f64,
-    s: &Material,
-) -> Result<f64, ThudError> {
-    if range.contains(value) {
-        return Ok(value);
-    }
-    Err(ThudError::invalid(
-        given.spell(from),
-        format!(
-            "{} {} of {} ({} kg/m^3) makes a {} of {} {}; it must be {}",
-            short(typed),
-            if from == "radius" { "m" } else { "kg" },
-            s.name,
-            short(s.density_kg_m3),
-            range.what,
-            short(value),
-            range.unit,
-            range.describe()
-        ),
-    ))
-}
-
 impl PulseInput {
+    /// The headline level (dB re 20 µPa) of this impact's `field`: the paper's rms over τ, or
+    /// the physical model's peak level ([`Design::level_db`]).
+    pub fn level_db(&self, field: &Field) -> f64 {
+        match self.model {
+            Model::Paper => field.spl_db(),
+            Model::Physical => field.peak_db(),
+        }
+    }
+
     /// The contact of the impact (Eqs 5–7).
     pub fn contact(&self) -> Contact {
         self.impact.contact()
@@ -1276,8 +1537,19 @@ mod tests {
 
     #[test]
     fn combinations_the_command_line_refuses_in_clap_are_refused_here() {
-        let e = err(design(Design::default(), &text(&[("density", "1000"), ("radius", "1cm")]), Spelling::Keyword));
-        assert!(e.starts_with("invalid radius: cannot be combined with density"), "{e}");
+        // A radius and a density fix the ball's mass (no longer a conflict: issue 23); a mass as
+        // well over-determines it, refused when the three disagree.
+        let d = design(Design::default(), &text(&[("density", "1000"), ("radius", "1cm")]), Spelling::Keyword).unwrap();
+        assert!((d.damper.impact_mass_kg - contact::sphere_mass(0.01, 1000.0)).abs() < 1e-15);
+        let e = err(design(
+            Design::default(),
+            &text(&[("density", "1000"), ("radius", "1cm"), ("mass", "40.5g")]),
+            Spelling::Flag,
+        ));
+        assert!(
+            e.starts_with("invalid --density: --mass 0.0405 kg, --radius 0.01 m and --density 1000 kg/m^3 disagree"),
+            "{e}"
+        );
         let e = err(design(Design::default(), &text(&[("plate", "steel")]), Spelling::Keyword));
         assert_eq!(e, "invalid plate: needs sphere as well");
         let e = err(design(Design::default(), &text(&[("dt", "1e-7")]), Spelling::Keyword));
@@ -1297,6 +1569,60 @@ mod tests {
         assert_eq!(d.radiation.source, Source::Dipole);
         let steel = contact::material("steel").unwrap();
         assert_eq!(d.damper.k_hz, contact::hertz_stiffness(d.ball_radius_m(), &steel, &steel));
+    }
+
+    #[test]
+    fn one_ball_whatever_the_command() {
+        // A steel ball of 40.5 g: a = (3m/4πρ)^(1/3) = 10.7 mm, for a design and an impact alike.
+        let steel = contact::material("steel").unwrap();
+        let a = contact::sphere_radius(0.0405, steel.density_kg_m3);
+        assert!((a - 0.010_7).abs() < 1e-4, "{a}");
+        let given = text(&[("sphere", "steel"), ("mass", "40.5g")]);
+        let d = design(Design::default(), &given, Spelling::Flag).unwrap();
+        let p = pulse(None, &given, Spelling::Flag).unwrap();
+        assert!(
+            (d.ball_radius_m() - a).abs() < 1e-15 && (p.radius_m - a).abs() < 1e-15,
+            "{} {}",
+            d.ball_radius_m(),
+            p.radius_m
+        );
+        assert_eq!((d.damper.impact_mass_kg, p.impact.mass_kg), (0.0405, 0.0405));
+        assert_eq!(d.damper.k_hz, p.impact.k_hz, "one ball, one K_HZ");
+        // Only a material: the design keeps its mass, the density follows the material.
+        let d = design(Design::default(), &text(&[("sphere", "steel")]), Spelling::Flag).unwrap();
+        assert!((d.ball_radius_m() - a).abs() < 1e-15);
+        // Mass, radius and density that agree are taken.
+        let r = format!("{}m", contact::sphere_radius(0.0405, 2000.0));
+        let given = text(&[("mass", "40.5g"), ("radius", &r), ("density", "2000")]);
+        assert!(design(Design::default(), &given, Spelling::Flag).is_ok());
+        let e =
+            err(pulse(None, &text(&[("mass", "40.5g"), ("radius", "1cm"), ("density", "2000")]), Spelling::Keyword));
+        assert!(
+            e.starts_with("invalid density: mass 0.0405 kg, radius 0.01 m and density 2000 kg/m^3 disagree"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_physical_model_derives_air_pulse_and_stiffness_and_refuses_them_given() {
+        let d = design(Design::default(), &text(&[("model", "physical")]), Spelling::Flag).unwrap();
+        let sound = d.sound();
+        assert_eq!(sound.pulse, PulseShape::Hertz);
+        assert!((sound.air.rho_c_pa_s_m - 413.29).abs() < 0.01, "{sound:?}");
+        let acrylic_on_steel = Materials::new("acrylic", "steel").hertz_stiffness(d.ball_radius_m()).unwrap();
+        assert_eq!(d.damper.k_hz, acrylic_on_steel);
+        let paper = design(Design::default(), &[], Spelling::Flag).unwrap();
+        assert_eq!(paper.sound(), paper.radiation, "the paper's model takes the radiation as given");
+        let hot = design(Design::default(), &text(&[("model", "physical"), ("air-temperature", "40")]), Spelling::Flag);
+        assert!(hot.unwrap().sound().air.c_m_s > sound.air.c_m_s);
+        let e = err(design(Design::default(), &text(&[("model", "physical"), ("k-hz", "5e8")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --k-hz: cannot be combined with --model physical"), "{e}");
+        let e = err(design(Design::default(), &text(&[("air-temperature", "100")]), Spelling::Flag));
+        assert!(e.starts_with("invalid --air-temperature: 100 degC is out of range"), "{e}");
+        // A pulse of the physical model: its ball's mass from acrylic's density at Fig 2's radius.
+        let p = pulse(None, &text(&[("model", "physical")]), Spelling::Flag).unwrap();
+        assert!((p.impact.mass_kg - contact::sphere_mass(0.01905, 1190.0)).abs() < 1e-15);
+        assert_eq!(p.radiation.pulse, PulseShape::Hertz);
     }
 
     #[test]

@@ -82,6 +82,9 @@ pub struct PulseReport {
     pub extrema: Vec<Extremum>,
     /// The waveform at `points` points.
     pub waveform: Waveform,
+    /// The model, written only when not the paper's: "physical", whose level is `spl_peak_db`.
+    #[serde(skip_serializing_if = "str::is_empty")]
+    pub model: String,
 }
 
 impl PulseReport {
@@ -118,6 +121,10 @@ impl PulseReport {
             p_min_pa: lv.p_min_pa,
             extrema: field.extrema(),
             waveform: Waveform { t_s, p_pa },
+            model: match input.model {
+                crate::design::Model::Paper => String::new(),
+                m @ crate::design::Model::Physical => m.name().to_string(),
+            },
         }
     }
 }

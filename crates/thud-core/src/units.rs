@@ -38,6 +38,11 @@ pub enum Kind {
     Force,
     /// Hz (plain), kHz, rpm.
     Frequency,
+    /// °C (plain; also "degC", "°C", "C"). A temperature on the Celsius scale: an offset from
+    /// 273.15 K, so kelvin (a different zero) is not a suffix here.
+    Temperature,
+    /// Pa (plain), kPa, hPa, bar, atm.
+    Pressure,
     /// A plain number.
     Number,
 }
@@ -60,6 +65,8 @@ impl Kind {
             Kind::Inclination => &[("", 1.0), ("cm/s", 1.0), ("mm/s", 0.1), ("m/s", 100.0)],
             Kind::Force => &[("", 1.0), ("n", 1.0), ("kn", 1e3)],
             Kind::Frequency => &[("", 1.0), ("hz", 1.0), ("khz", 1e3), ("rpm", 1.0 / 60.0)],
+            Kind::Temperature => &[("", 1.0), ("degc", 1.0), ("°c", 1.0), ("c", 1.0)],
+            Kind::Pressure => &[("", 1.0), ("pa", 1.0), ("hpa", 1e2), ("kpa", 1e3), ("bar", 1e5), ("atm", 101_325.0)],
             Kind::Number => &[("", 1.0)],
         }
     }
@@ -81,6 +88,8 @@ impl Kind {
             Kind::Inclination => "cm/s",
             Kind::Force => "N",
             Kind::Frequency => "Hz",
+            Kind::Temperature => "degC",
+            Kind::Pressure => "Pa",
             Kind::Number => "",
         }
     }
@@ -139,6 +148,8 @@ fn example(kind: Kind) -> &'static str {
         Kind::Time => "2 or 250ms",
         Kind::Force => "1 or 1N",
         Kind::Frequency => "5 or 5Hz",
+        Kind::Temperature => "20 or 20degC",
+        Kind::Pressure => "101325 or 101.325kPa",
         _ => "1.5",
     }
 }
@@ -199,6 +210,10 @@ mod tests {
         assert_eq!(parse("freq", "5Hz", Kind::Frequency).unwrap(), 5.0);
         assert_eq!(parse("freq", "3000rpm", Kind::Frequency).unwrap(), 50.0);
         assert!(parse("freq", "5N", Kind::Frequency).is_err());
+        assert_eq!(parse("air-temperature", "-5degC", Kind::Temperature).unwrap(), -5.0);
+        assert!((parse("air-pressure", "101.325kPa", Kind::Pressure).unwrap() - 101_325.0).abs() < 1e-9);
+        assert_eq!(parse("air-pressure", "1atm", Kind::Pressure).unwrap(), 101_325.0);
+        assert!(parse("air-temperature", "300K", Kind::Temperature).is_err());
     }
 
     #[test]

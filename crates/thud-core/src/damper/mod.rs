@@ -427,7 +427,7 @@ pub fn simulate(p: &DamperParams, solver: Solver, opts: &RunOptions) -> Result<R
     simulate_with(p, solver, opts, ContactScheme::default())
 }
 
-/// How the event solver integrates a contact (docs/model.md §10).
+/// How the event solver integrates a contact (docs/model.md §11).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ContactScheme {
     /// Adaptive Dormand–Prince 5(4) on Eq 26 in `t` and `δ` as written; maxima and `|z'|` at
@@ -438,7 +438,7 @@ pub enum ContactScheme {
     /// right-hand side is a polynomial and the solution is analytic across the onset and the
     /// release, integrated by Taylor series of order 16 (about 13 steps a contact, release
     /// speeds exact to ~1e-12 where the Hertz law has a closed form); maxima and `|z'|` extrema
-    /// located on the series. Not yet faster than the default (docs/model.md §10); a design with
+    /// located on the series. Not yet faster than the default (docs/model.md §11); a design with
     /// `no_tension` falls back to [`ContactScheme::DormandPrince`].
     SundmanTaylor,
 }

@@ -1,6 +1,6 @@
 //! The default in-contact integrator of the event solver: paper Eq 26 in the square root of the
 //! penetration `σ = √δ` against a Sundman time `θ` with `dt/dθ = σ`, integrated by Taylor
-//! series of high order (docs/model.md §10).
+//! series of high order (docs/model.md §11).
 //!
 //! The Hertz force `K_HZ·δ^{3/2}` is not smooth where a contact starts and ends: near the onset
 //! `δ ≈ u0·t`, so `δ(t)` carries a `t^{7/2}` term, and the same holds at the release. A method
@@ -46,7 +46,7 @@ const TAIL: usize = 6;
 
 /// Relative tolerance of a step, on the contact's own scales (see [`Series::step_size`]).
 /// Chosen so that the release speeds agree with the reference integrator's to its own accuracy
-/// (tests/contact_scheme.rs, docs/model.md §10).
+/// (tests/contact_scheme.rs, docs/model.md §11).
 pub(crate) const TOL: f64 = 1e-11;
 
 /// What one Taylor step is charged against the run's in-contact step budget

@@ -1,5 +1,5 @@
 //! The damper's contact damping c1 from measured decays of the structure carrying it, struck
-//! once, every other parameter of the design known (docs/model.md §12.2).
+//! once, every other parameter of the design known (docs/model.md §13.2).
 //!
 //! The ball's motion is chaotic and where it sat when the structure was struck is unknown, so
 //! no single trajectory is fitted point by point. The fit compares what is robust — the

@@ -1,7 +1,7 @@
 //! Calibration from measurements (issue 23, item 4): the structure's f_n, ζ, K and C from a
 //! measured free decay ([`structure`]), and the contact damping c1 of a damper from a measured
 //! decay of the structure carrying it ([`damper`]). Pure: arrays in (time in s, one signal in
-//! m, m/s or m/s²), numbers out; the front ends read the files (docs/model.md §12).
+//! m, m/s or m/s²), numbers out; the front ends read the files (docs/model.md §13).
 //!
 //! This module holds what both fits share: the checked measurement ([`Series`]: finite, time
 //! strictly increasing, not clipped), its slow trend, its noise level, its cycles (upward zero

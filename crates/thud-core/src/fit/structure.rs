@@ -1,5 +1,5 @@
 //! The structure alone, struck once: f_n, ζ, K and C from a measured free decay
-//! (docs/model.md §12.1).
+//! (docs/model.md §13.1).
 //!
 //! The model of the measured signal s(t), whatever its kind:
 //!

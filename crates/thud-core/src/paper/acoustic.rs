@@ -1,10 +1,11 @@
 //! Part 1 of the paper: Table 1 and Figs 2, 3, 5, 6, 7, 12 (contact and radiation).
 
-use crate::acoustics::{Field, Observer, QuadSigns, Radiation, Source};
-use crate::contact::{Contact, Impact, Target};
+use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
+use crate::contact::{self, Contact, Impact, Target};
+use crate::design::Atmosphere;
 use crate::error::ThudError;
 
-use super::{col, Item, Table};
+use super::{col, Item, Table, Value};
 
 /// Every table and figure the acoustics part can reproduce.
 pub const ACOUSTIC_ITEMS: &[Item] = &[
@@ -52,10 +53,45 @@ pub fn table1_spl(radius_m: f64, u0: f64) -> Result<f64, ThudError> {
     Ok(Field::new(radius_m, &contact, &Observer::new(0.2828, 45.0), &radiation(Source::Dipole))?.spl_db())
 }
 
+/// The physical model's Table 1 level (dB) for a sphere of radius `radius_m` at `u0` (m/s)
+/// (docs/model.md §10): the peak level 20·log10(max|p|/20 µPa) of the exact Hertz pulse, heard
+/// as the same dipole at r 28.28 cm, θ 45°, through room air (20 °C, 101.325 kPa: ρ0c 413.29
+/// Pa·s/m, c 343.23 m/s), the ball's mass from acrylic's density (m = (4/3)πa³·1190 kg/m³) and
+/// K_HZ from Eq 2 for acrylic on steel at its radius; a fixed plate. Nothing fitted.
+pub fn table1_physical_spl(radius_m: f64, u0: f64) -> Result<f64, ThudError> {
+    let (acrylic, steel) = (contact::material("acrylic")?, contact::material("steel")?);
+    let mass = contact::sphere_mass(radius_m, acrylic.density_kg_m3);
+    let k_hz = contact::hertz_stiffness(radius_m, &acrylic, &steel);
+    let contact = Impact { mass_kg: mass, u0_m_s: u0, k_hz, target: Target::FixedPlate }.contact();
+    let room = Atmosphere::default();
+    let radiation = Radiation {
+        source: Source::Dipole,
+        quad_signs: QuadSigns::Paper,
+        air: Air::from_state(room.temperature_c, room.pressure_pa),
+        pulse: PulseShape::Hertz,
+    };
+    Ok(Field::new(radius_m, &contact, &Observer::new(0.2828, 45.0), &radiation)?.levels().spl_peak_db)
+}
+
+/// Mean, rms and range (min, max) of `v` (dB), for Table 1's summary rows.
+#[must_use]
+pub fn agreement(v: &[f64]) -> (f64, f64, f64, f64) {
+    let n = v.len().max(1) as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let rms = (v.iter().map(|x| x * x).sum::<f64>() / n).sqrt();
+    let min = v.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (mean, rms, min, max)
+}
+
 pub fn table1() -> Result<Table, ThudError> {
     let mut rows = Vec::new();
+    let (mut paper_diff, mut physical_diff) = (Vec::new(), Vec::new());
     for (a_mm, u0, exp, theory, paper_err) in TABLE1 {
         let model = table1_spl(a_mm * 1e-3, u0)?;
+        let physical = table1_physical_spl(a_mm * 1e-3, u0)?;
+        paper_diff.push(model - exp);
+        physical_diff.push(physical - exp);
         rows.push(vec![
             a_mm.into(),
             u0.into(),
@@ -65,8 +101,23 @@ pub fn table1() -> Result<Table, ThudError> {
             (model - theory).into(),
             (model - exp).into(),
             paper_err.into(),
+            physical.into(),
+            (physical - exp).into(),
         ]);
     }
+    let (pm, pr, plo, phi) = agreement(&paper_diff);
+    let (qm, qr, qlo, qhi) = agreement(&physical_diff);
+    let summary_row = |label: &str, paper: Value, physical: Value| {
+        let mut row = vec![Value::Text(label.into()), Value::Missing, Value::Missing, Value::Missing];
+        row.extend([Value::Missing, Value::Missing, paper, Value::Missing, Value::Missing, physical]);
+        row
+    };
+    let range = |lo: f64, hi: f64| Value::Text(format!("{lo:+.2} … {hi:+.2}"));
+    let summary = vec![
+        summary_row("mean", pm.into(), qm.into()),
+        summary_row("rms", pr.into(), qr.into()),
+        summary_row("range", range(plo, phi), range(qlo, qhi)),
+    ];
     Ok(Table {
         id: "table1",
         title: "Table 1 — SPL of an acrylic sphere on a steel plate (dipole, r 28.28 cm, θ 45°)".into(),
@@ -75,6 +126,7 @@ pub fn table1() -> Result<Table, ThudError> {
             "K_HZ = 5.6e8 N/m^1.5 for both radii (as the paper); m = 40.5 g·(a/19.05 mm)³; fixed plate (K* = 1/m)."
                 .into(),
             "The paper's own error column compares its theory with the experiment, in %.".into(),
+            "physical (docs/model.md §10): peak level of the exact Hertz pulse; air at 20 °C, 101.325 kPa (ρ0c 413.29 Pa·s/m, c 343.23 m/s); m = (4/3)πa³·1190 kg/m³ (acrylic); K_HZ from Eq 2, acrylic on steel. Nothing fitted.".into(),
         ],
         columns: vec![
             col("radius_mm", "a (mm)"),
@@ -85,8 +137,11 @@ pub fn table1() -> Result<Table, ThudError> {
             col("model_minus_paper_db", "model − paper (dB)"),
             col("model_minus_experiment_db", "model − exp (dB)"),
             col("paper_error_pct", "paper's error (%)"),
+            col("spl_physical_db", "physical (dB)"),
+            col("physical_minus_experiment_db", "physical − exp (dB)"),
         ],
         rows,
+        summary,
     })
 }
 
@@ -112,6 +167,7 @@ fn waveform_table(id: &'static str, title: &str, field: &Field, n: usize) -> Tab
         notes,
         columns: vec![col("t_ms", "t after arrival (ms)"), col("p_pa", "p (Pa)")],
         rows: t.iter().zip(&p).map(|(&ti, &pi)| vec![((ti - t_arr) * 1e3).into(), pi.into()]).collect(),
+        summary: Vec::new(),
     }
 }
 
@@ -148,6 +204,7 @@ fn directivity_table(id: &'static str, title: &str, source: Source, thetas_deg: 
         notes: vec!["Fig 2's impact heard at r 0.7 m; SPL is rms over τ from the direct arrival; the paper prints only the plot.".into()],
         columns: vec![col("theta_deg", "θ (deg)"), col("spl_db", "SPL (dB)"), col("p_rms_pa", "p rms (Pa)"), col("spl_peak_db", "peak level (dB)")],
         rows,
+        summary: Vec::new(),
     })
 }
 
@@ -188,6 +245,7 @@ pub fn fig7() -> Result<Table, ThudError> {
         ],
         columns: vec![col("r_m", "r (m)"), col("delta_spl_db", "ΔSPL rms-τ (dB)"), col("delta_peak_db", "Δpeak (dB)"), col("delta_sel_db", "ΔSEL (dB)")],
         rows,
+        summary: Vec::new(),
     })
 }
 
@@ -209,6 +267,7 @@ pub fn fig12() -> Result<Table, ThudError> {
             col("spl_db", "SPL (dB)"),
         ],
         rows,
+        summary: Vec::new(),
     })
 }
 

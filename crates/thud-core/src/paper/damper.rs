@@ -135,6 +135,7 @@ pub fn table3() -> Result<Table, ThudError> {
             col("spl_max_error_db", "error (dB)"),
         ],
         rows,
+        summary: Vec::new(),
     })
 }
 
@@ -189,6 +190,7 @@ pub fn table4() -> Result<Table, ThudError> {
             col("paper_exact_vs_40_5g_pct", "paper exact vs 40.5 g (%)"),
         ],
         rows,
+        summary: Vec::new(),
     })
 }
 
@@ -238,6 +240,7 @@ fn grid_table(id: &'static str, title: &str, chart: &Chart) -> Table {
             col("zone", "zone"),
         ],
         rows,
+        summary: Vec::new(),
     }
 }
 
@@ -281,6 +284,7 @@ pub fn table5() -> Result<Table, ThudError> {
                 ]
             })
             .collect(),
+        summary: Vec::new(),
     })
 }
 
@@ -326,6 +330,7 @@ pub fn fig9() -> Result<Table, ThudError> {
             .iter()
             .map(|h| vec![h.t_s.into(), h.x_m.into(), free_response(&d.damper, h.t_s).into(), h.y_m.into()])
             .collect(),
+        summary: Vec::new(),
     })
 }
 
@@ -348,6 +353,7 @@ pub fn fig13() -> Result<Table, ThudError> {
         ],
         columns: vec![col("mass_g", "m (g)"), col("restitution", "R model"), col("restitution_reference", "R ref (≈)")],
         rows: curve.iter().map(|&(m, r)| vec![(m * 1e3).into(), r.into(), reference(m).into()]).collect(),
+        summary: Vec::new(),
     })
 }
 

@@ -48,6 +48,10 @@ pub struct Table {
     pub notes: Vec<String>,
     pub columns: Vec<Column>,
     pub rows: Vec<Vec<Value>>,
+    /// Rows that summarise `rows` (Table 1's mean, rms and range of the differences), shown
+    /// under them; the first cell names the row. Empty for most tables.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub summary: Vec<Vec<Value>>,
 }
 
 /// A column with machine `key` and human `label`.

@@ -29,6 +29,7 @@ Count = Union[int, str]
 Source = Literal["single", "dipole", "quadrupole"]
 QuadSigns = Literal["paper", "rigid"]
 PulseShape = Literal["half-sine", "hertz"]
+Model = Literal["paper", "physical"]
 Solver = Literal["event", "newmark"]
 FloatArray = npt.NDArray[np.float64]
 #: progress=: True for a bar on stderr (tqdm if installed), or a callable progress(done, total).
@@ -265,6 +266,7 @@ def pulse(
     preset: Optional[str] = None,
     radius: Optional[Quantity] = None,
     mass: Optional[Quantity] = None,
+    density: Optional[Quantity] = None,
     u0: Optional[Quantity] = None,
     k_hz: Optional[Quantity] = None,
     sphere: Optional[str] = None,
@@ -276,7 +278,10 @@ def pulse(
     quad_signs: Optional[QuadSigns] = None,
     pulse: Optional[PulseShape] = None,
     rho_c: Optional[Quantity] = None,
-    c: Optional[Quantity] = None,
+    sound_speed: Optional[Quantity] = None,
+    model: Optional[Model] = None,
+    air_temperature: Optional[Quantity] = None,
+    air_pressure: Optional[Quantity] = None,
     points: Count = 2000,
     no_limit: bool = False,
 ) -> Pulse:
@@ -285,8 +290,11 @@ def pulse(
     Defaults: the paper's Fig 2 impact — acrylic sphere a 19.05 mm, m 40.5 g, U0 1.4 m/s,
     K_HZ 5.6e8 N/m^1.5 on a fixed plate, dipole at r 0.7 m, θ 45°; or those of ``preset``.
 
-    radius (m), mass (kg), u0 (m/s), k_hz (N/m^1.5); sphere/plate: materials (K_HZ from Eq 2);
-    main_mass (kg): a movable target (Eq 8); r (m), theta (degrees); rho_c (Pa·s/m), c (m/s);
+    radius (m), mass (kg), density (kg/m³): the ball (two of the three, or one with the sphere's
+    density), u0 (m/s), k_hz (N/m^1.5); sphere/plate: materials (K_HZ from Eq 2);
+    main_mass (kg): a movable target (Eq 8); r (m), theta (degrees); rho_c (Pa·s/m),
+    sound_speed (m/s); model: "paper" (default) or "physical" (peak level, exact Hertz pulse,
+    air from air_temperature (°C) and air_pressure (Pa), K_HZ and mass from the materials);
     points: waveform points; no_limit: lift the work cap.
     """
 
@@ -309,13 +317,16 @@ def simulate(
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
     dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
-    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
-    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
     r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
     theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -361,13 +372,16 @@ def simulate(
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
     dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
-    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
-    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
     r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
     theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -399,13 +413,16 @@ def simulate_ensemble(
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
     dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
-    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
-    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
     r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
     theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -438,13 +455,16 @@ def sweep(
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
     dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
-    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
-    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
     r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
     theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -483,13 +503,16 @@ def response(
     duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
     dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
-    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
-    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
     r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
     theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
