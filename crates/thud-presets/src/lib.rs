@@ -22,6 +22,7 @@ const SOURCES: &[(&str, &str)] = &[
     ("machine-tool-fixture", include_str!("../../../assets/presets/machine-tool-fixture.toml")),
     ("quiet-nylon", include_str!("../../../assets/presets/quiet-nylon.toml")),
     ("steel-ball", include_str!("../../../assets/presets/steel-ball.toml")),
+    ("forced-rattle", include_str!("../../../assets/presets/forced-rattle.toml")),
 ];
 
 /// A preset's name and one-line description.

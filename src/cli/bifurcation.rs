@@ -1,0 +1,236 @@
+//! `thud bifurcation --vary NAME=FROM:TO:N`: the bifurcation diagram of a forced design over
+//! any numeric parameter (issue 27): per value, after `--transient` periods, the stroboscopic
+//! samples x(kT), x'(kT) over `--periods` N and every impact (phase, wall, relative speed),
+//! the orbit's type and the bands of equal types. Also the shared flags and writers of
+//! `impact-map` and `basins`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::budget;
+use super::design_args::{DesignArgs, ForceAmplitude};
+use super::format::num;
+use super::simulate::describe;
+use super::sweep::Target;
+use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::design::{Design, ValidDesign};
+use crate::dynamics::{self, Bifurcation, Settings};
+use crate::error::ThudError;
+use crate::export::svg::Look;
+use crate::fsio::{self, Overwrite};
+use crate::limits::{self, short};
+use crate::params::Spelling;
+use crate::study::Vary;
+
+/// The flags every study of orbits shares: the transient, the files, the output.
+#[derive(Debug, Clone, Args)]
+pub struct OrbitArgs {
+    /// Forcing periods run before sampling (0 to 1e5) [default: 200]; --periods N sets how many
+    /// are sampled [default here: 100].
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    transient: Option<String>,
+    /// Also write the figure as SVG to this file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Also write the figure as PDF to this file.
+    #[arg(long, value_name = "FILE")]
+    pdf: Option<PathBuf>,
+    /// Write the table (text, --json or --csv) to this file instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Replace the --out, --svg or --pdf file if it exists.
+    #[arg(long)]
+    force: bool,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+impl OrbitArgs {
+    /// The run lengths: `--transient` and the design's `--periods` (if given; else 100).
+    pub(super) fn settings(&self, design: &DesignArgs<ForceAmplitude>, d: &Design) -> Result<Settings, ThudError> {
+        let transient = match &self.transient {
+            Some(t) => limits::TRANSIENT.parse_count("--transient", t)?,
+            None => dynamics::DEFAULT_TRANSIENT_PERIODS as usize,
+        };
+        let periods = if design.has("periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
+        Ok(Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods })
+    }
+
+    /// The targets, each checked before any work.
+    fn targets(&self) -> Result<[Target<'_>; 3], ThudError> {
+        Ok([
+            Target::new(self.out.as_deref(), self.force)?,
+            Target::new(self.svg.as_deref(), self.force)?,
+            Target::new(self.pdf.as_deref(), self.force)?,
+        ])
+    }
+
+    /// Writes the table as `--json`, `--csv` or text, and the figure to `--svg` and `--pdf`.
+    pub(super) fn write(
+        &self,
+        table: impl FnOnce(OutputFormat) -> Result<String, CliError>,
+        figure: impl Fn() -> String,
+        out: &mut Out,
+    ) -> Result<(), CliError> {
+        let [text_target, _, _] = self.targets()?;
+        let text = table(self.output.format())?;
+        if self.svg.is_some() || self.pdf.is_some() {
+            let svg = figure();
+            if let Some(p) = &self.svg {
+                write_bytes(p, svg.as_bytes(), self.force)?;
+            }
+            if let Some(p) = &self.pdf {
+                let pdf = crate::export::pdf::from_svg(&svg)
+                    .map_err(|e| ThudError::invalid("--pdf", format!("cannot draw the PDF: {e}")))?;
+                write_bytes(p, &pdf, self.force)?;
+            }
+        }
+        text_target.write(&text, out)
+    }
+
+    /// Checks the files up front (an existing one without --force is refused before the work).
+    pub(super) fn check_targets(&self) -> Result<(), ThudError> {
+        self.targets().map(|_| ())
+    }
+}
+
+/// Writes `bytes` to `p` through [`fsio`] and says so on stderr.
+fn write_bytes(p: &std::path::Path, bytes: &[u8], force: bool) -> Result<(), CliError> {
+    fsio::write(p, bytes, Overwrite::from_force(force)).map_err(|e| super::export::write_error(p, &e))?;
+    super::warn(&format!("wrote {}", fsio::shown(p)));
+    Ok(())
+}
+
+/// Refuses a study of orbits over `runs` runs whose work is over its cap.
+pub(super) fn check_work(
+    ctx: &Ctx,
+    runs: usize,
+    s: Settings,
+    continuation: bool,
+    counted: (&str, &str),
+) -> Result<(), CliError> {
+    let Err(r) = dynamics::check_work(runs, s, continuation) else { return Ok(()) };
+    let hint = if r.param == dynamics::PERIODS_PARAM {
+        format!(
+            "use fewer values, a shorter --transient or fewer --periods (at most {} periods in all)",
+            short(r.estimate.cap.max)
+        )
+    } else {
+        format!("use at most {} values", short(r.estimate.cap.max))
+    };
+    ctx.enforce(r.estimate, counted.0, counted.1, &hint)
+}
+
+/// The figure's look: the default size, title drawn.
+pub(super) fn look() -> Look {
+    Look::default()
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct BifurcationArgs {
+    #[command(flatten)]
+    design: DesignArgs<ForceAmplitude>,
+    /// The parameter to vary, NAME=FROM:TO:N: any numeric row (freq or f, force or F0, gap,
+    /// mass, c1, …; e.g. f=3Hz:8Hz:200).
+    #[arg(long, value_name = "NAME=FROM:TO:N", allow_hyphen_values = true, required = true)]
+    vary: String,
+    /// Start each value from the previous value's end state, rising then falling (shows
+    /// hysteresis); without it every value starts from the design's own start.
+    #[arg(long)]
+    continuation: bool,
+    #[command(flatten)]
+    orbit: OrbitArgs,
+}
+
+#[derive(serde::Serialize)]
+struct BifurcationJson<'a> {
+    design: &'a Design,
+    #[serde(flatten)]
+    bifurcation: &'a Bifurcation,
+}
+
+pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let d = a.design.design()?;
+    let vary = Vary::parse(&a.vary, Spelling::Flag)?;
+    let s = a.orbit.settings(&a.design, &d)?;
+    a.orbit.check_targets()?;
+    check_work(ctx, vary.values.len(), s, a.continuation, ("--vary", &a.vary))?;
+    let n = vary.values.len() * if a.continuation { 2 } else { 1 };
+    let bar = budget::bar(n as u64, "bifurcation");
+    let b = dynamics::bifurcation(&d, &vary, s, a.continuation, "force-amplitude", None, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
+    super::output::check_finite(&b)?;
+    let title = format!("Bifurcation diagram over {} — {}", vary.name(), short_design(&d));
+    a.orbit.write(
+        |format| render(&d, &b, format),
+        || crate::export::dynamics::bifurcation_svg(&b, &title, &look()),
+        out,
+    )
+}
+
+/// A short name of the design for a figure's title.
+pub(super) fn short_design(d: &ValidDesign) -> String {
+    let p = &d.damper;
+    format!(
+        "F0 {} N, f {} Hz, gap {} mm, m {} g",
+        num(p.force_n),
+        num(p.freq_hz),
+        num(p.gap_m * 1e3),
+        num(p.impact_mass_kg * 1e3)
+    )
+}
+
+/// The bifurcation as `format`.
+fn render(d: &Design, b: &Bifurcation, format: OutputFormat) -> Result<String, CliError> {
+    Ok(match format {
+        OutputFormat::Json => {
+            let mut t = serde_json::to_string_pretty(&BifurcationJson { design: d, bifurcation: b })
+                .map_err(std::io::Error::from)?;
+            t.push('\n');
+            t
+        }
+        OutputFormat::Csv => crate::export::dynamics::bifurcation_csv(b)
+            .map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?,
+        OutputFormat::Text => {
+            let unit = if b.axis.unit.is_empty() { String::new() } else { format!(" ({})", b.axis.unit) };
+            let mut t = format!("base      {}\n", describe(d));
+            t += &format!(
+                "study     {}{unit}: {} values; {} transient periods, then {} sampled\n\n",
+                b.axis.name,
+                b.axis.values.len(),
+                b.settings.transient_periods,
+                b.settings.periods
+            );
+            t += &format!(
+                "{:>12}  {:<9}  {:<12}  {:>8}  {:>14}  {:>12}\n",
+                b.axis.name, "sweep", "orbit", "impacts", "amplitude (mm)", "max u (m/s)"
+            );
+            for p in &b.points {
+                let umax = p.run.impacts.iter().map(|i| i.u_in_m_s).fold(0.0, f64::max);
+                t += &format!(
+                    "{:>12}  {:<9}  {:<12}  {:>8}  {:>14}  {:>12}\n",
+                    num(p.value),
+                    crate::export::dynamics::direction(p.direction),
+                    p.run.orbit.label(),
+                    p.run.impacts.len(),
+                    num(p.run.amplitude_m * 1e3),
+                    num(umax)
+                );
+            }
+            t += "\nbands (consecutive values with the same orbit; m/n = m impacts per n periods, sym = x(t+T/2) = −x(t)):\n";
+            for band in &b.bands {
+                t += &format!(
+                    "  {:<9} {:>10} – {:<10} {:>4} values  {}\n",
+                    crate::export::dynamics::direction(band.direction),
+                    num(band.from),
+                    num(band.to),
+                    band.values,
+                    band.orbit
+                );
+            }
+            t += "\n(--csv: one row per sample and per impact; --json: everything; --svg/--pdf FILE: the figure)\n";
+            t
+        }
+    })
+}
