@@ -65,7 +65,8 @@ pub fn run(a: &BasinsArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     check_work(ctx, n * n, s, false, ("--grid", &a.grid))?;
     let w0 = linspace(w_lo, w_hi, n);
     let bar = super::budget::bar((n * n) as u64, "basins");
-    let b = dynamics::basins(&d, n, &w0, s, "force-amplitude", None, &|_| bar.inc(1))?;
+    let b = dynamics::basins(&d, n, &w0, s, "--force-amplitude", None, &|_| bar.inc(1))
+        .map_err(super::bifurcation::flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&b)?;
     let title = format!("Basins of attraction over the ball's start — {}", short_design(&d));

@@ -122,6 +122,15 @@ pub(super) fn check_work(
     ctx.enforce(r.estimate, counted.0, counted.1, &hint)
 }
 
+/// An engine error about the solver named as its flag (`--solver`).
+pub(super) fn flagged(e: ThudError) -> ThudError {
+    if e.param() == "solver" {
+        e.renamed("--solver")
+    } else {
+        e
+    }
+}
+
 /// The figure's look: the default size, title drawn.
 pub(super) fn look() -> Look {
     Look::default()
@@ -158,7 +167,8 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
     check_work(ctx, vary.values.len(), s, a.continuation, ("--vary", &a.vary))?;
     let n = vary.values.len() * if a.continuation { 2 } else { 1 };
     let bar = budget::bar(n as u64, "bifurcation");
-    let b = dynamics::bifurcation(&d, &vary, s, a.continuation, "force-amplitude", None, &|_| bar.inc(1))?;
+    let b = dynamics::bifurcation(&d, &vary, s, a.continuation, "--force-amplitude", None, &|_| bar.inc(1))
+        .map_err(super::bifurcation::flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&b)?;
     let title = format!("Bifurcation diagram over {} — {}", vary.name(), short_design(&d));

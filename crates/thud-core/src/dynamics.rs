@@ -569,6 +569,7 @@ pub fn basins(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::design::Design;
 
     fn sample(k: usize, x: f64, v: f64) -> Sample {
         Sample { period: k as u32, x_m: x, v_m_s: v, z_m: 0.0, zdot_m_s: 0.0 }
@@ -609,5 +610,90 @@ mod tests {
     fn an_unsettled_drift_is_not_periodic() {
         let drift: Vec<Sample> = (0..60).map(|k| sample(k, 0.01 * (1.0 + 0.01 * k as f64), 0.2)).collect();
         assert!(!matches!(classify(&drift, &[], 0), Orbit::Periodic { .. }));
+    }
+
+    /// The design of the `forced-rattle` preset (assets/presets/forced-rattle.toml).
+    fn forced_rattle() -> Design {
+        let mut d = Design::default();
+        d.damper.damping_n_s_m = 1.5;
+        d.damper.gap_m = 0.01;
+        d.damper.v0_m_s = 0.0;
+        d.damper.force_n = 3.0;
+        d.damper.freq_hz = 7.5;
+        d
+    }
+
+    #[test]
+    fn the_forced_rattle_doubles_its_period_below_7_6_hz() {
+        // Found with `thud bifurcation --preset forced-rattle --vary f=3Hz:8Hz:200` and checked
+        // here on the samples themselves: at 7.7 Hz two impacts a period, every x(kT) the
+        // same; at 7.55 Hz four impacts per two periods, x(kT) alternating between two values
+        // far apart (a period doubling, not a slow transient); lower still, chaos.
+        let vary = Vary::of_values("freq", &[7.55, 7.7], Spelling::Keyword).unwrap();
+        let d = forced_rattle().check().unwrap();
+        let b = bifurcation(&d, &vary, Settings::default(), false, "force", None, &|_| {}).unwrap();
+        let (doubled, single) = (&b.points[0].run, &b.points[1].run);
+        assert_eq!(single.orbit, Orbit::Periodic { impacts: 2, periods: 1, symmetric: false });
+        assert_eq!(doubled.orbit, Orbit::Periodic { impacts: 4, periods: 2, symmetric: false });
+        // x(kT) alternates between two values (10 tolerances apart or more), every other
+        // sample the same to far below that.
+        let tol = PERIODIC_TOLERANCE * doubled.amplitude_m;
+        let split = (doubled.samples[0].x_m - doubled.samples[1].x_m).abs();
+        assert!(split > 5.0 * tol, "x(kT) alternates by {split} m");
+        let even =
+            doubled.samples.iter().step_by(2).map(|s| (s.x_m - doubled.samples[0].x_m).abs()).fold(0.0, f64::max);
+        assert!(even < 0.05 * split, "x(2kT) repeats to {even} m");
+        let spread = single.samples.iter().map(|s| (s.x_m - single.samples[0].x_m).abs()).fold(0.0, f64::max);
+        assert!(spread < 1e-4 * single.amplitude_m, "x(kT) repeats to {spread} m");
+        assert_eq!(single.impacts.len(), 2 * single.samples.len());
+        assert!(single.impacts.iter().all(|i| (0.0..1.0).contains(&i.phase) && i.u_in_m_s > 0.0));
+        // Both walls, once a period each.
+        assert_eq!(single.impacts.iter().filter(|i| i.wall.sign() > 0.0).count(), single.samples.len());
+        let chaos = Vary::of_values("freq", &[7.42], Spelling::Keyword).unwrap();
+        let c = bifurcation(&d, &chaos, Settings::default(), false, "force", None, &|_| {}).unwrap();
+        assert!(matches!(c.points[0].run.orbit, Orbit::Chaotic { .. }), "{:?}", c.points[0].run.orbit);
+    }
+
+    #[test]
+    fn sampling_does_not_change_the_motion() {
+        // The stroboscopic run stops at every half period and resumes; the ordinary run does
+        // not. Their impacts must be the same ones.
+        let mut d = forced_rattle();
+        d.damper.freq_hz = 7.7;
+        let s = Settings { transient_periods: 0, periods: 15 };
+        let d = d.check().unwrap();
+        let strobed = impact_map(&d, s, "force", None).unwrap();
+        // The sampled window is periods 1 to 16 (the first sample is at the first whole turn
+        // after t = 0); the plain run covers it.
+        let t = 1.0 / 7.7;
+        let mut plain = d.design().clone();
+        plain.damper.duration_s = 16.5 * t;
+        let run = crate::design::evaluate(&plain.check().unwrap(), 0, None).unwrap().run;
+        let window: Vec<_> = run.impacts.iter().filter(|i| i.t_s >= t && i.t_s < 16.0 * t).collect();
+        assert_eq!(window.len(), strobed.impacts.len());
+        assert!(window.len() >= 20);
+        for (a, b) in window.iter().zip(&strobed.impacts) {
+            assert!((a.u_in_m_s - b.u_in_m_s).abs() < 1e-9, "{} vs {}", a.u_in_m_s, b.u_in_m_s);
+            assert!(((a.t_s / t).fract() - b.phase).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn continuation_sweeps_up_then_down_and_basins_share_everything() {
+        let d = forced_rattle().check().unwrap();
+        let vary = Vary::of_values("freq", &[7.7, 7.8], Spelling::Keyword).unwrap();
+        let s = Settings { transient_periods: 100, periods: 30 };
+        let b = bifurcation(&d, &vary, s, true, "force", None, &|_| {}).unwrap();
+        let dirs: Vec<(f64, Direction)> = b.points.iter().map(|p| (p.value, p.direction)).collect();
+        assert_eq!(dirs, [(7.7, Direction::Up), (7.8, Direction::Up), (7.8, Direction::Down), (7.7, Direction::Down)]);
+        let mut free = Design::default();
+        free.damper.v0_m_s = 0.0;
+        let e = bifurcation(&free.check().unwrap(), &vary, s, false, "force", None, &|_| {}).unwrap_err();
+        assert_eq!(e.param(), "force");
+        let basins = basins(&d, 3, &[-0.5, 0.5], s, "force", None, &|_| {}).unwrap();
+        assert_eq!(basins.cells.len(), 6);
+        let total: usize = basins.attractors.iter().map(|a| a.starts).sum();
+        assert_eq!(total, 6);
+        assert!((basins.attractors.iter().map(|a| a.share).sum::<f64>() - 1.0).abs() < 1e-12);
     }
 }
