@@ -1,4 +1,4 @@
-//! Research-grade dynamics of a forced impact damper (issue 27, items 1–3; docs/model.md §7):
+//! Research-grade dynamics of a forced impact damper (issue 27, items 1–3; docs/model.md §6.5):
 //! the bifurcation diagram over any numeric parameter, the type of each orbit, the impact map
 //! (the Poincaré section on impacts) and the basins of attraction over the ball's start.
 //!

@@ -366,10 +366,34 @@ fn check_response(
 fn varies(py: Python<'_>, axes: &Bound<'_, PyList>) -> PyResult<Vec<study::Vary>> {
     let mut out = Vec::with_capacity(axes.len());
     for item in axes.iter() {
-        let (name, values): (String, Vec<f64>) = item.extract()?;
-        out.push(study::Vary::of_values(&name, &values, Spelling::Keyword).map_err(|e| engine_error(py, e))?);
+        let (name, values): (String, Vec<Bound<'_, PyAny>>) = item.extract()?;
+        out.push(vary_of(py, &name, &values)?);
     }
     Ok(out)
+}
+
+/// The keyword `name` at `values` (numbers in the row's plain unit, or text with a unit).
+fn vary_of(py: Python<'_>, name: &str, values: &[Bound<'_, PyAny>]) -> PyResult<study::Vary> {
+    let row = study::numeric_row(name, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    let kind = match row.accepts {
+        params::Accepts::Quantity { kind, .. } => Some(kind),
+        _ => None,
+    };
+    let mut xs = Vec::with_capacity(values.len());
+    for v in values {
+        let x = match (args::to_value(v)?, kind) {
+            (params::Input::Num(x), _) => x,
+            (params::Input::Text(t), Some(kind)) => {
+                thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?
+            }
+            _ => {
+                let msg = format!("invalid {name}: expected numbers to vary, not {}", args::kind_of(v));
+                return Err(parameter_error(py, name, msg));
+            }
+        };
+        xs.push(x);
+    }
+    study::Vary::of_values(name, &xs, Spelling::Keyword).map_err(|e| engine_error(py, e))
 }
 
 /// _study(axes, **params) -> str
@@ -389,9 +413,11 @@ fn _study(py: Python<'_>, axes: &Bound<'_, PyList>, params: Option<&Bound<'_, Py
     refuse(py, study::check_grid(&grid, &given), "axes", no_limit)?;
     let progress = Progress::new(py, &kw, grid.cells())?;
     let done = &progress.done;
-    let s = detach::run_watched(py, |cancel| study::sweep(&grid, Some(cancel), &|_, _| Progress::tick(done)), || {
-        progress.report()
-    })?;
+    let s = detach::run_watched(
+        py,
+        |cancel| study::sweep(&grid, Some(cancel), &|_, _| Progress::tick(done)),
+        || progress.report(),
+    )?;
     let s = s.map_err(|e| engine_error(py, e))?;
     if s.cells.len() < grid.cells() {
         return Err(cancelled(py));
@@ -408,12 +434,17 @@ fn _study(py: Python<'_>, axes: &Bound<'_, PyList>, params: Option<&Bound<'_, Py
 /// here 100), continuation. Returns the JSON; `thud.bifurcation` turns it into xarray.
 #[pyfunction]
 #[pyo3(signature = (name, values, **params))]
-fn _bifurcation(py: Python<'_>, name: &str, values: Vec<f64>, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+fn _bifurcation(
+    py: Python<'_>,
+    name: &str,
+    values: Vec<Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
     let kw = Kwargs::new(params, options("bifurcation"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let continuation = kw.switch(py, "continuation")?;
     let d = design_of(py, &kw)?;
-    let vary = study::Vary::of_values(name, &values, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    let vary = vary_of(py, name, &values)?;
     let transient = kw.count(py, "transient", &limits::TRANSIENT, dynamics::DEFAULT_TRANSIENT_PERIODS as usize)?;
     let periods = if args::given(&kw.params, "periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
     let s = dynamics::Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods };

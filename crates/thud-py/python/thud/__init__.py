@@ -88,17 +88,21 @@ def _is_axis(value: _Any) -> bool:
 def _axes(params: _Dict[str, _Any]) -> _List[_Any]:
     """The varied keywords of a call (each a sequence of numbers), taken out of `params`."""
     names = [k for k, v in params.items() if _is_axis(v)]
-    return [(k, [float(x) for x in params.pop(k)]) for k in names]
+    axes = []
+    for k in names:
+        v = params.pop(k)
+        axes.append((k, v.tolist() if hasattr(v, "tolist") else list(v)))
+    return axes
 
 
 def sweep(masses_kg: _Any = None, gaps_m: _Any = None, **params: _Any) -> _Any:
     axes = _axes(params)
     if axes or (masses_kg is None and gaps_m is None):
         # A study over any parameters: sweep(v0=np.linspace(1, 3, 5), c1=[10, 20]) → xarray.
-        if masses_kg is not None:
-            axes.insert(0, ("mass", list(_thud.axis("masses", masses_kg)) if isinstance(masses_kg, str) else [float(x) for x in masses_kg]))
-        if gaps_m is not None:
-            axes.insert(1 if masses_kg is not None else 0, ("gap", list(_thud.axis("gaps", gaps_m)) if isinstance(gaps_m, str) else [float(x) for x in gaps_m]))
+        given = [("mass", "masses", masses_kg), ("gap", "gaps", gaps_m)]
+        lead = [(name, _thud.axis(spec, v).tolist() if isinstance(v, str) else list(v)) for name, spec, v in given
+                if v is not None]
+        axes = lead + axes
         record = _json.loads(_thud._study(axes, **_progress(params, "sweep")))
         return _frames.study_xarray(record)
     return _thud.sweep(masses_kg, gaps_m, **_progress(params, "sweep"))
