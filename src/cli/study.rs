@@ -9,8 +9,7 @@ use super::budget;
 use super::design_args::{DesignArgs, ForceAmplitude};
 use super::format::num;
 use super::simulate::describe;
-use super::sweep::Target;
-use super::{CliError, Ctx, Out, OutputFormat};
+use super::{CliError, Ctx, OutputFormat};
 use crate::design::Design;
 use crate::error::ThudError;
 use crate::params::Spelling;
@@ -29,23 +28,20 @@ struct StudyJson<'a> {
     study: &'a Study,
 }
 
-/// `thud sweep --vary …`: the study, printed as `format` to `target`.
+/// `thud sweep --vary …`: the study, as `format` prints it.
 pub(super) fn sweep_vary(
     design: &DesignArgs<ForceAmplitude>,
     vary: &[String],
     ctx: &Ctx,
     format: OutputFormat,
-    target: &Target,
-    out: &mut Out,
-) -> Result<(), CliError> {
+) -> Result<String, CliError> {
     let d = design.design()?;
     let grid = grid(d.clone(), vary)?;
     design.check_study(ctx, &grid)?;
     let bar = budget::bar(grid.cells() as u64, "sweep");
     let s = study::sweep(&grid, None, &|_, _| bar.inc(1))?;
     bar.finish_and_clear();
-    let text = render(&d, &s, format)?;
-    target.write(&text, out)
+    render(&d, &s, format)
 }
 
 /// The study as `thud sweep --vary` prints it (checked finite).
@@ -158,22 +154,19 @@ pub struct StudyHeader {
     pub study: StudySpec,
 }
 
-/// `thud sweep --vary … --shard K/N`: part K of N of the study's cells (contiguous C-order
+/// `thud sweep --vary … --shard K/N`: part `k` of `n` of the study's cells (contiguous C-order
 /// indices, [`crate::design::shard_range`]) as JSON lines: the header, then one cell a line.
 pub(super) fn write_shard(
     design: &DesignArgs<ForceAmplitude>,
     ctx: &Ctx,
     grid: &Grid,
-    text: &str,
+    (k, n): (usize, usize),
     csv: bool,
-    target: &Target,
-    out: &mut Out,
-) -> Result<(), CliError> {
+) -> Result<String, CliError> {
     if csv {
         return Err(ThudError::invalid("--csv", "parts of a study with --vary are JSON lines; leave out --csv").into());
     }
     let cells = grid.cells();
-    let (k, n) = super::sweep::parse_shard(text, cells)?;
     design.check_study(ctx, grid)?;
     let range = crate::design::shard_range(cells, k, n);
     let spec = StudySpec { design: grid.base.design().clone(), axes: grid.axes() };
@@ -199,7 +192,7 @@ pub(super) fn write_shard(
         s += &serde_json::to_string(c).map_err(std::io::Error::from)?;
         s.push('\n');
     }
-    target.write(&s, out)
+    Ok(s)
 }
 
 /// Whether the first line `first` is the header of a part of a study over any parameter.

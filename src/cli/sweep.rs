@@ -119,9 +119,12 @@ fn vary(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     if let Some(text) = &a.shard {
         let d = a.design.design()?;
         let grid = super::study::grid(d, &a.vary)?;
-        return super::study::write_shard(&a.design, ctx, &grid, text, a.output.csv, &target, out);
+        let part = parse_shard(text, grid.cells())?;
+        let s = super::study::write_shard(&a.design, ctx, &grid, part, a.output.csv)?;
+        return target.write(&s, out);
     }
-    super::study::sweep_vary(&a.design, &a.vary, ctx, a.output.format(), &target, out)
+    let s = super::study::sweep_vary(&a.design, &a.vary, ctx, a.output.format())?;
+    target.write(&s, out)
 }
 
 /// A computed chart: the ordinary one, or one of ensembles.
@@ -249,7 +252,7 @@ impl<'a> Target<'a> {
 }
 
 /// Parses `--shard K/N` for a chart of `cells` cells: whole numbers, 0 ≤ K < N ≤ cells.
-pub(super) fn parse_shard(text: &str, cells: usize) -> Result<(usize, usize), ThudError> {
+fn parse_shard(text: &str, cells: usize) -> Result<(usize, usize), ThudError> {
     let invalid = |why: String| ThudError::invalid("--shard", format!("'{text}': {why}"));
     let Some((k, n)) = text.split_once('/') else {
         return Err(invalid("expected K/N, e.g. 3/64: part K (from 0, like SLURM_ARRAY_TASK_ID) of N".into()));
