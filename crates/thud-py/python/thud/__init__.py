@@ -96,13 +96,10 @@ def _axes(params: _Dict[str, _Any]) -> _List[_Any]:
 
 
 def sweep(masses_kg: _Any = None, gaps_m: _Any = None, **params: _Any) -> _Any:
-    axes = _axes(params)
-    if axes or (masses_kg is None and gaps_m is None):
-        # A study over any parameters: sweep(v0=np.linspace(1, 3, 5), c1=[10, 20]) → xarray.
-        given = [("mass", "masses", masses_kg), ("gap", "gaps", gaps_m)]
-        lead = [(name, _thud.axis(spec, v).tolist() if isinstance(v, str) else list(v)) for name, spec, v in given
-                if v is not None]
-        axes = lead + axes
+    if masses_kg is None and gaps_m is None:
+        # A study over any parameters, the keywords to vary given as sequences:
+        # sweep(v0=np.linspace(1, 3, 5), c1=[10, 20]) → xarray (mass × gap too: mass=[…], gap=[…]).
+        axes = _axes(params)
         record = _json.loads(_thud._study(axes, **_progress(params, "sweep")))
         return _frames.study_xarray(record)
     return _thud.sweep(masses_kg, gaps_m, **_progress(params, "sweep"))
