@@ -243,3 +243,39 @@ fn bad_input_of_the_new_flags_is_one_line_naming_the_flag() {
     refused(&[&["basins", "--ball-position", "1mm"][..], &forced].concat(), "--grid");
     refused(&["impact-map"], "--force-amplitude");
 }
+
+#[test]
+fn a_bifurcation_in_parts_merges_to_the_whole() {
+    let home = tempfile::tempdir().unwrap();
+    let h = home.path();
+    let study = [
+        "bifurcation",
+        "--preset",
+        "forced-rattle",
+        "--vary",
+        "f=7.5Hz:7.8Hz:7",
+        "--transient",
+        "100",
+        "--periods",
+        "30",
+    ];
+    for format in ["--json", "--csv"] {
+        let whole = thud_in(h, &[&study[..], &[format]].concat());
+        assert_eq!(whole.code, 0, "{}", whole.stderr);
+        let mut parts = Vec::new();
+        for k in 0..2 {
+            let part = format!("b{k}{format}.jsonl");
+            let r = thud_in(h, &[&study[..], &["--shard", &format!("{k}/2"), "--out", &part]].concat());
+            assert_eq!(r.code, 0, "{}", r.stderr);
+            parts.push(part);
+        }
+        let merged = thud_in(h, &["merge", &parts[1], &parts[0], format, "--out", "-"]);
+        assert_eq!(merged.code, 0, "{}", merged.stderr);
+        assert_eq!(merged.stdout, whole.stdout, "{format}");
+    }
+    let alone = thud_in(h, &["merge", "b0--json.jsonl", "--json", "--out", "-"]);
+    assert_eq!(alone.code, 2);
+    assert!(alone.stderr.contains("part 1/2 is missing"), "{}", alone.stderr);
+    let r = thud_in(h, &[&study[..], &["--shard", "0/2", "--continuation"]].concat());
+    assert_eq!(r.code, 2, "{}", r.stderr);
+}

@@ -38,10 +38,10 @@ pub struct OrbitArgs {
     pdf: Option<PathBuf>,
     /// Write the table (text, --json or --csv) to this file instead of standard output.
     #[arg(long, value_name = "FILE")]
-    out: Option<PathBuf>,
+    pub(super) out: Option<PathBuf>,
     /// Replace the --out, --svg or --pdf file if it exists.
     #[arg(long)]
-    force: bool,
+    pub(super) force: bool,
     #[command(flatten)]
     output: OutputArgs,
 }
@@ -148,6 +148,10 @@ pub struct BifurcationArgs {
     /// hysteresis); without it every value starts from the design's own start.
     #[arg(long)]
     continuation: bool,
+    /// Compute only part K of N of the values (K from 0, like SLURM_ARRAY_TASK_ID) and write it
+    /// as JSON lines for `thud merge` (not with --continuation, whose values run in turn).
+    #[arg(long, value_name = "K/N", allow_hyphen_values = true, conflicts_with = "continuation")]
+    shard: Option<String>,
     #[command(flatten)]
     orbit: OrbitArgs,
 }
@@ -165,6 +169,9 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
     let s = a.orbit.settings(&a.design, &d)?;
     a.orbit.check_targets()?;
     check_work(ctx, vary.values.len(), s, a.continuation, ("--vary", &a.vary))?;
+    if let Some(text) = &a.shard {
+        return write_part(a, &d, &vary, s, text, out);
+    }
     let n = vary.values.len() * if a.continuation { 2 } else { 1 };
     let bar = budget::bar(n as u64, "bifurcation");
     let b = dynamics::bifurcation(&d, &vary, s, a.continuation, "--force-amplitude", None, &|_| bar.inc(1))
@@ -177,6 +184,162 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         || crate::export::dynamics::bifurcation_svg(&b, &title, &look()),
         out,
     )
+}
+
+/// The `format` of a part of a bifurcation (`thud bifurcation --shard K/N`).
+pub const PART_FORMAT: &str = "thud-bifurcation-shard";
+
+/// What a bifurcation is of: the resolved design, the axis and the run lengths. Its SHA-256
+/// names it (as a chart's study, [`crate::shard::Study::hash`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PartStudy {
+    pub design: Design,
+    pub axis: crate::study::Axis,
+    pub settings: Settings,
+}
+
+impl PartStudy {
+    fn hash(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let canonical = serde_json::to_vec(self).unwrap_or_default();
+        let hex: String = Sha256::digest(&canonical).iter().map(|b| format!("{b:02x}")).collect();
+        format!("sha256:{hex}")
+    }
+}
+
+/// The first line of a part of a bifurcation.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PartHeader {
+    pub format: String,
+    pub format_version: u32,
+    pub thud_version: String,
+    pub hash: String,
+    pub shard: usize,
+    pub shards: usize,
+    pub values: usize,
+    pub first: usize,
+    pub end: usize,
+    pub study: PartStudy,
+}
+
+/// `--shard K/N`: part K of N of the values (contiguous), the header then one point a line.
+fn write_part(
+    a: &BifurcationArgs,
+    d: &ValidDesign,
+    vary: &Vary,
+    s: Settings,
+    text: &str,
+    out: &mut Out,
+) -> Result<(), CliError> {
+    let n_values = vary.values.len();
+    let (k, n) = super::sweep::parse_shard(text, n_values)?;
+    let target = Target::new(a.orbit.out.as_deref(), a.orbit.force)?;
+    let range = crate::design::shard_range(n_values, k, n);
+    let study = PartStudy { design: d.design().clone(), axis: vary.axis(), settings: s };
+    let header = PartHeader {
+        format: PART_FORMAT.into(),
+        format_version: 1,
+        thud_version: env!("CARGO_PKG_VERSION").into(),
+        hash: study.hash(),
+        shard: k,
+        shards: n,
+        values: n_values,
+        first: range.start,
+        end: range.end,
+        study,
+    };
+    let bar = budget::bar((range.end - range.start) as u64, "shard");
+    let points =
+        dynamics::bifurcation_part(d, vary, range, s, "--force-amplitude", None, &|_| bar.inc(1)).map_err(flagged)?;
+    bar.finish_and_clear();
+    super::output::check_finite(&points)?;
+    let mut t = serde_json::to_string(&header).map_err(std::io::Error::from)?;
+    t.push('\n');
+    for p in &points {
+        t += &serde_json::to_string(p).map_err(std::io::Error::from)?;
+        t.push('\n');
+    }
+    target.write(&t, out)
+}
+
+/// Whether `first` (a part's first line) is the header of a part of a bifurcation.
+pub(super) fn is_part(first: &str) -> bool {
+    serde_json::from_str::<serde_json::Value>(first)
+        .ok()
+        .and_then(|v| v.get("format").and_then(|f| f.as_str()).map(|f| f == PART_FORMAT))
+        .unwrap_or(false)
+}
+
+/// Joins the parts (`(name, text)`) of a bifurcation into the one `thud bifurcation` prints:
+/// each part checked (header, hash, its points exactly, each at its value), then together
+/// (one study, one N, every K once); printed as `--json` or `--csv`.
+pub(super) fn merge(parts: &[(String, String)], format: OutputFormat) -> Result<String, CliError> {
+    let refuse = |name: &str, why: String| CliError::Refused(format!("merge: {name} {why}"));
+    let mut read: Vec<(String, PartHeader, Vec<dynamics::BifurcationPoint>)> = Vec::with_capacity(parts.len());
+    for (name, text) in parts {
+        let (first, rest) = text.split_once('\n').unwrap_or((text, ""));
+        let h: PartHeader = serde_json::from_str(first)
+            .map_err(|e| refuse(name, format!("is not a part of a bifurcation: its header does not read ({e})")))?;
+        if h.format != PART_FORMAT || h.format_version != 1 {
+            return Err(refuse(
+                name,
+                format!("is format {} version {}, not {PART_FORMAT} 1", h.format, h.format_version),
+            ));
+        }
+        if h.hash != h.study.hash() {
+            return Err(refuse(name, "has a hash that is not its study's (was the header edited?)".into()));
+        }
+        let mut points = Vec::new();
+        for line in rest.lines().filter(|l| !l.trim().is_empty()) {
+            let p: dynamics::BifurcationPoint = serde_json::from_str(line)
+                .map_err(|e| refuse(name, format!("has a point that does not read ({e})")))?;
+            points.push(p);
+        }
+        read.push((name.clone(), h, points));
+    }
+    let first_name = read[0].0.clone();
+    let h0 = read[0].1.clone();
+    let first_name = first_name.as_str();
+    let n = h0.shards;
+    let vary = Vary::of_values(&h0.study.axis.name, &h0.study.axis.values, Spelling::Flag)
+        .map_err(|e| refuse(first_name, format!("holds a study that does not check: {e}")))?;
+    let design = h0
+        .study
+        .design
+        .clone()
+        .check()
+        .map_err(|e| refuse(first_name, format!("holds a design that does not check: {e}")))?;
+    if h0.values != vary.values.len() || n == 0 || n > h0.values {
+        return Err(refuse(first_name, "has a value count that is not its study's".into()));
+    }
+    let mut seen = vec![false; n];
+    let mut all: Vec<Option<dynamics::BifurcationPoint>> = vec![None; h0.values];
+    for (name, h, points) in read {
+        if h.hash != h0.hash || h.shards != n {
+            return Err(refuse(&name, format!("is of another study or split than {first_name}")));
+        }
+        if h.shard >= n || std::mem::replace(&mut seen[h.shard], true) {
+            return Err(refuse(&name, format!("repeats part {}/{n}", h.shard)));
+        }
+        let range = crate::design::shard_range(h.values, h.shard, n);
+        if (h.first, h.end) != (range.start, range.end) || points.len() != range.len() {
+            return Err(refuse(&name, "does not hold exactly its part's values".into()));
+        }
+        for (i, p) in range.zip(points) {
+            if p.value != vary.values[i] || p.direction != crate::response::Direction::FromRest {
+                return Err(refuse(&name, format!("has value {} out of place", p.value)));
+            }
+            all[i] = Some(p);
+        }
+    }
+    if let Some(k) = seen.iter().position(|s| !s) {
+        return Err(CliError::Refused(format!("merge: part {k}/{n} is missing")));
+    }
+    let points: Vec<dynamics::BifurcationPoint> = all.into_iter().flatten().collect();
+    super::output::check_finite(&points)?;
+    let bands = dynamics::bands(&points);
+    let b = Bifurcation { axis: vary.axis(), settings: h0.study.settings, points, bands };
+    render(&design, &b, format)
 }
 
 /// A short name of the design for a figure's title.

@@ -252,7 +252,7 @@ impl<'a> Target<'a> {
 }
 
 /// Parses `--shard K/N` for a chart of `cells` cells: whole numbers, 0 ≤ K < N ≤ cells.
-fn parse_shard(text: &str, cells: usize) -> Result<(usize, usize), ThudError> {
+pub(super) fn parse_shard(text: &str, cells: usize) -> Result<(usize, usize), ThudError> {
     let invalid = |why: String| ThudError::invalid("--shard", format!("'{text}': {why}"));
     let Some((k, n)) = text.split_once('/') else {
         return Err(invalid("expected K/N, e.g. 3/64: part K (from 0, like SLURM_ARRAY_TASK_ID) of N".into()));

@@ -426,28 +426,72 @@ pub fn bifurcation(
             on_point(done);
         }
     } else {
-        let runs: Vec<Option<OrbitRun>> = designs
-            .par_iter()
-            .enumerate()
-            .map(|(i, d)| {
-                if cancelled() {
-                    return None;
-                }
-                let run = run_orbit(d, &Start::of(&d.damper), s, cancel).0;
-                on_point(i);
-                Some(run)
-            })
-            .collect();
-        for (i, run) in runs.into_iter().enumerate() {
-            let Some(run) = run else { return Err(ThudError::Cancelled) };
-            points.push(BifurcationPoint { value: vary.values[i], direction: Direction::FromRest, run });
-        }
+        points = bifurcation_points(&designs, vary, 0..n, s, cancel, on_point)?;
     }
     if cancelled() {
         return Err(ThudError::Cancelled);
     }
     let bands = bands(&points);
     Ok(Bifurcation { axis: vary.axis(), settings: s, points, bands })
+}
+
+/// The points `range` (indices into `vary`'s values) of a bifurcation without continuation,
+/// each value's design from `designs`, from its own start, in parallel: the part one shard of
+/// `thud bifurcation --shard K/N` computes. `Err(Cancelled)` when `cancel` stopped it.
+fn bifurcation_points(
+    designs: &[ValidDesign],
+    vary: &Vary,
+    range: std::ops::Range<usize>,
+    s: Settings,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<BifurcationPoint>, ThudError> {
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let runs: Vec<Option<OrbitRun>> = range
+        .clone()
+        .into_par_iter()
+        .map(|i| {
+            if cancelled() {
+                return None;
+            }
+            let d = &designs[i];
+            let run = run_orbit(d, &Start::of(&d.damper), s, cancel).0;
+            on_point(i);
+            Some(run)
+        })
+        .collect();
+    let mut points = Vec::with_capacity(runs.len());
+    for (i, run) in range.zip(runs) {
+        let Some(run) = run else { return Err(ThudError::Cancelled) };
+        points.push(BifurcationPoint { value: vary.values[i], direction: Direction::FromRest, run });
+    }
+    if cancelled() {
+        return Err(ThudError::Cancelled);
+    }
+    Ok(points)
+}
+
+/// The points `range` of the bifurcation diagram of `base` over `vary` without continuation
+/// ([`bifurcation`]'s, value for value): one part of `thud bifurcation --shard K/N`.
+pub fn bifurcation_part(
+    base: &ValidDesign,
+    vary: &Vary,
+    range: std::ops::Range<usize>,
+    s: Settings,
+    force: &str,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<BifurcationPoint>, ThudError> {
+    let grid = Grid::new(base.clone(), vec![vary.clone()], Spelling::Flag)?;
+    let range = range.start.min(grid.cells())..range.end.min(grid.cells());
+    let mut designs = Vec::with_capacity(grid.cells());
+    for i in 0..grid.cells() {
+        // Only the part's own designs are run; every one is checked, as the whole would be.
+        let d = grid.point(i)?;
+        check_forced(&d, force)?;
+        designs.push(d);
+    }
+    bifurcation_points(&designs, vary, range, s, cancel, on_point)
 }
 
 /// One attractor of a basin map: the orbit's type and amplitude, and how many starts reach it.
