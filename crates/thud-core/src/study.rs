@@ -271,6 +271,15 @@ impl Grid {
             if axes[..i].iter().any(|b| b.row.name == a.row.name) {
                 return Err(ThudError::invalid(shown(spelling, a.row.name), "is given twice"));
             }
+            // The ball's Poisson ratio counts only in K_HZ from materials.
+            if a.row.requires == Some("sphere") && base.materials.is_none() {
+                let needs = Spelling::Keyword.spell("sphere");
+                let needs = if spelling == Spelling::Flag { "--sphere".to_string() } else { needs };
+                return Err(ThudError::invalid(
+                    shown(spelling, a.row.name),
+                    format!("counts only with materials; give {needs}"),
+                ));
+            }
         }
         Ok(Grid { base, axes })
     }
@@ -445,6 +454,9 @@ mod tests {
         assert_eq!(e.param(), "--vary");
         let e = Vary::of_values("main_mass", &[0.5, -1.0], Spelling::Keyword).unwrap_err();
         assert_eq!(e.param(), "main_mass");
+        let nu = Vary::parse("sphere-poisson=0.2:0.3:2", Spelling::Flag).unwrap();
+        let e = Grid::new(Design::default().check().unwrap(), vec![nu], Spelling::Flag).unwrap_err();
+        assert_eq!(e.param(), "--vary sphere-poisson");
     }
 
     #[test]
