@@ -6,8 +6,8 @@
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
 pub use thud_core::{
-    acoustics, contact, damper, design, ensemble, error, finite, fit, limits, paper, params, report, response, units, walk,
-    ThudError,
+    acoustics, contact, damper, design, dynamics, ensemble, error, finite, fit, limits, paper, params, report,
+    response, study, units, walk, ThudError,
 };
 
 pub mod config;

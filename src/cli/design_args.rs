@@ -171,7 +171,7 @@ impl<F: ForceFlag> DesignArgs<F> {
     }
 
     /// Whether the row `name` was given.
-    fn has(&self, name: &str) -> bool {
+    pub(crate) fn has(&self, name: &str) -> bool {
         self.text(name).is_some()
     }
 
@@ -253,6 +253,14 @@ impl<F: ForceFlag> DesignArgs<F> {
     ) -> Result<(), CliError> {
         let r = limits::check_sweep(d, &|n| self.set(n), n_masses, n_gaps);
         self.refuse(ctx, d, r, ("--masses/--gaps", &format!("{n_masses} × {n_gaps}")))
+    }
+
+    /// Refuses a study over `grid` (`--vary`, repeatable) whose work is over a cap
+    /// ([`crate::study::check_grid`]: the product of every axis, each point's run and their sum).
+    pub(crate) fn check_study(&self, ctx: &Ctx, grid: &crate::study::Grid) -> Result<(), CliError> {
+        let r = crate::study::check_grid(grid, &|n| self.has(n));
+        let shape: Vec<String> = grid.shape().iter().map(ToString::to_string).collect();
+        self.refuse(ctx, &grid.base, r, ("--vary", &shape.join(" × ")))
     }
 
     /// Refuses `cells` cells of `d` with `runs` ensemble runs each (a chart, a chart's part, or

@@ -90,10 +90,36 @@ fn read_part(path: &Path, name: &str, header: &Header) -> Result<Part, CliError>
     Ok(part)
 }
 
+/// The parts read whole when the first is a part of a study over any parameter
+/// (`sweep --vary … --shard K/N`) or of a bifurcation (`bifurcation --shard K/N`); None for
+/// the parts of a mass × gap chart.
+fn study_parts(a: &MergeArgs, names: &[String]) -> Result<Option<Vec<(String, String)>>, CliError> {
+    let Some(first) = a.parts.first() else { return Ok(None) };
+    let text = fsio::read_to_string(first, shard::MAX_PART_BYTES).map_err(|e| unreadable(&names[0], &e))?;
+    let first_line = text.lines().next().unwrap_or("");
+    if !super::study::is_study_part(first_line) && !super::bifurcation::is_part(first_line) {
+        return Ok(None);
+    }
+    let mut parts = vec![(names[0].clone(), text)];
+    for (p, name) in a.parts.iter().zip(names).skip(1) {
+        parts.push((name.clone(), fsio::read_to_string(p, shard::MAX_PART_BYTES).map_err(|e| unreadable(name, &e))?));
+    }
+    Ok(Some(parts))
+}
+
 pub fn run(a: &MergeArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let target = Target::new(Some(a.out.as_path()), a.force)?;
     let band = quantity("band", &a.band, Kind::Inclination, &limits::BAND)?;
     let names: Vec<String> = a.parts.iter().map(|p| fsio::shown(p)).collect();
+    if let Some(text) = study_parts(a, &names)? {
+        if text.first().is_some_and(|(_, t)| super::bifurcation::is_part(t.lines().next().unwrap_or(""))) {
+            let format = if a.output.csv { OutputFormat::Csv } else { OutputFormat::Json };
+            return target.write(&super::bifurcation::merge(&text, format)?, out);
+        }
+        let (d, study) = super::study::merge(&text)?;
+        let format = if a.output.csv { OutputFormat::Csv } else { OutputFormat::Json };
+        return target.write(&super::study::render(&d, &study, format)?, out);
+    }
     let headers = a.parts.iter().zip(&names).map(|(p, n)| read_header(p, n)).collect::<Result<Vec<_>, _>>()?;
     shard::check_set(names.iter().map(String::as_str).zip(headers.iter().map(|(_, h)| h))).map_err(|e| refused(&e))?;
     let s = &headers[0].1.study;

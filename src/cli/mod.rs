@@ -1,12 +1,15 @@
 //! The command-line front end: parses arguments (units at the edge), calls the engine and
 //! prints text, JSON or CSV. No physics here.
 
+mod basins;
+mod bifurcation;
 mod budget;
 pub mod design_args;
 mod errors;
 mod export;
 mod fit;
 mod format;
+mod impact_map;
 mod merge;
 mod output;
 mod paper;
@@ -17,6 +20,7 @@ mod restitution;
 mod settings;
 mod shell;
 mod simulate;
+mod study;
 mod sweep;
 mod tui;
 
@@ -59,6 +63,12 @@ pub enum Command {
     Simulate(Box<simulate::SimulateArgs>),
     /// Sweep a design over impact mass × gap: the design chart and Table 5.
     Sweep(Box<sweep::SweepArgs>),
+    /// The bifurcation diagram of a forced design over any parameter: x(kT), impacts, orbit types.
+    Bifurcation(Box<bifurcation::BifurcationArgs>),
+    /// The impact map (Poincaré section on impacts) of one forced design.
+    ImpactMap(Box<impact_map::ImpactMapArgs>),
+    /// The basins of attraction of a forced design over the ball's start (y0 × w0).
+    Basins(Box<basins::BasinsArgs>),
     /// Join the parts written by `thud sweep --shard K/N` into the whole chart.
     Merge(Box<merge::MergeArgs>),
     /// The frequency response under a harmonic force: amplitude with and without the damper, Leq.
@@ -312,6 +322,9 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Pulse(a)) => pulse::run(&a, &ctx, &mut out),
         Some(Command::Simulate(a)) => simulate::run(&a, &ctx, &mut out),
         Some(Command::Sweep(a)) => sweep::run(&a, &ctx, &mut out),
+        Some(Command::Bifurcation(a)) => bifurcation::run(&a, &ctx, &mut out),
+        Some(Command::ImpactMap(a)) => impact_map::run(&a, &ctx, &mut out),
+        Some(Command::Basins(a)) => basins::run(&a, &ctx, &mut out),
         Some(Command::Merge(a)) => merge::run(&a, &ctx, &mut out),
         Some(Command::Response(a)) => response::run(&a, &ctx, &mut out),
         Some(Command::Restitution(a)) => restitution::run(&a, &ctx, &mut out),

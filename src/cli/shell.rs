@@ -218,7 +218,14 @@ fn examples(path: &[String]) -> Vec<(&'static str, &'static str)> {
         ["sweep"] => vec![
             ("thud sweep --masses 30g:100g:20 --gaps 2cm:5cm:20", "the zone map and Table 5"),
             ("thud sweep --shard 0/8 --out part0.jsonl", "part 0 of 8 for `thud merge`"),
+            ("thud sweep --vary v0=1:3:5 --vary c1=10:60:6 --csv", "a study over any parameters, one row per cell"),
         ],
+        ["bifurcation"] => vec![(
+            "thud bifurcation --preset forced-rattle --vary f=3Hz:8Hz:200 --csv --out bif.csv --svg bif.svg",
+            "x(kT) and the impacts against f, each value's orbit",
+        )],
+        ["impact-map"] => vec![("thud impact-map --preset forced-rattle --svg map.svg", "phase against impact speed")],
+        ["basins"] => vec![("thud basins --preset forced-rattle --grid 20 --svg basins.svg", "which start reaches which orbit")],
         ["merge"] => vec![("thud merge part*.jsonl --json", "the whole chart from its parts")],
         ["response"] => vec![("thud response --force 1N --freqs 3Hz:8Hz:101 --csv", "amplitude and Leq against frequency")],
         ["restitution"] => vec![("thud restitution --json", "restitution against impact mass (Fig 13)")],

@@ -155,6 +155,10 @@ fn ensemble_summary(d: &Design, e: &Ensemble, truncated: Option<&str>) -> String
             m.zone.map_or("—".into(), |z| z.number().to_string())
         );
     }
+    if d.damper.forced() {
+        // The runs' spread comes from the attractors their starts reach (issue 27, item 3).
+        s += "\n(runs that differ may have reached different orbits: `thud basins` maps which ball start reaches which)\n";
+    }
     s
 }
 

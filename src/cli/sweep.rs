@@ -29,6 +29,10 @@ pub struct SweepArgs {
     /// Gaps FROM:TO:N (e.g. 2cm:5cm:20).
     #[arg(long, value_name = "FROM:TO:N", allow_hyphen_values = true, default_value = "2cm:5cm:20")]
     gaps: String,
+    /// Vary any numeric parameter instead of mass × gap, NAME=FROM:TO:N in its units (e.g.
+    /// v0=1:3:5, c1=10:60:6, freq=3Hz:8Hz:50); repeatable: the grid is the product of them.
+    #[arg(long, value_name = "NAME=FROM:TO:N", allow_hyphen_values = true, conflicts_with_all = ["masses", "gaps", "band"])]
+    vary: Vec<String>,
     /// Width of the inclination bands of the Table 5 summary (cm/s) [default: 0.2].
     #[arg(long, value_name = "CM_S", allow_hyphen_values = true)]
     band: Option<String>,
@@ -68,6 +72,9 @@ fn inclination_span(chart: &Chart, zone_by: ZoneBy) -> Option<(f64, f64)> {
 const DEFAULT_BAND_CM_S: f64 = 0.2;
 
 pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    if !a.vary.is_empty() {
+        return vary(a, ctx, out);
+    }
     let d = a.design.design()?;
     let masses = parse_range("masses", &a.masses, Kind::Mass, &limits::MASS)?;
     let gaps = parse_range("gaps", &a.gaps, Kind::Length, &limits::GAP)?;
@@ -97,6 +104,27 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let band_text = a.band.clone().unwrap_or_else(|| format!("{DEFAULT_BAND_CM_S} (the default)"));
     let text = render(ctx, &d, &chart, band, &band_text, a.output.format())?;
     target.write(&text, out)
+}
+
+/// `thud sweep --vary …` ([`super::study`]): one run a cell (no ensemble, no shards yet).
+fn vary(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    if count("ensemble", &a.ensemble, &limits::ENSEMBLE)? > 1 {
+        return Err(ThudError::invalid(
+            "--ensemble",
+            format!("{}: a study with --vary runs one trajectory a cell; leave out --ensemble", a.ensemble),
+        )
+        .into());
+    }
+    let target = Target::new(a.out.as_deref(), a.force)?;
+    if let Some(text) = &a.shard {
+        let d = a.design.design()?;
+        let grid = super::study::grid(d, &a.vary)?;
+        let part = parse_shard(text, grid.cells())?;
+        let s = super::study::write_shard(&a.design, ctx, &grid, part, a.output.csv)?;
+        return target.write(&s, out);
+    }
+    let s = super::study::sweep_vary(&a.design, &a.vary, ctx, a.output.format())?;
+    target.write(&s, out)
 }
 
 /// A computed chart: the ordinary one, or one of ensembles.
@@ -224,7 +252,7 @@ impl<'a> Target<'a> {
 }
 
 /// Parses `--shard K/N` for a chart of `cells` cells: whole numbers, 0 ≤ K < N ≤ cells.
-fn parse_shard(text: &str, cells: usize) -> Result<(usize, usize), ThudError> {
+pub(super) fn parse_shard(text: &str, cells: usize) -> Result<(usize, usize), ThudError> {
     let invalid = |why: String| ThudError::invalid("--shard", format!("'{text}': {why}"));
     let Some((k, n)) = text.split_once('/') else {
         return Err(invalid("expected K/N, e.g. 3/64: part K (from 0, like SLURM_ARRAY_TASK_ID) of N".into()));

@@ -6,6 +6,7 @@
 //! or a file written through [`crate::fsio`] (atomic, never over an existing file), out.
 
 pub mod csv;
+pub mod dynamics;
 pub mod figures;
 pub mod fit;
 pub mod pdf;

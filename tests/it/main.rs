@@ -46,6 +46,7 @@ mod schema;
 mod shards;
 mod shell;
 mod store_config;
+mod study;
 mod tui;
 mod tui_anim;
 mod tui_find;

@@ -11,6 +11,7 @@
 //! - [`damper`]: the 2-DOF impact damper (Eqs 25–26): exact flight, the event-driven solver and
 //!   the Newmark-β reference.
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
+//! - [`dynamics`]: orbits of a forced design: bifurcation diagrams, orbit types, impact maps, basins.
 //! - [`ensemble`]: N runs of a design from evenly spread initial ball offsets, and the
 //!   spread of their metrics (p10 / median / p90, zone-3 probability).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
@@ -19,6 +20,7 @@
 //! - [`limits`]: the range of every parameter and the work cap of every run.
 //! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
 //! - [`response`]: a forced design's steady state and level (`Leq`), and its frequency response.
+//! - [`study`]: studies over any numeric parameter (`--vary NAME=FROM:TO:N`).
 //! - [`units`]: parsing and formatting of quantities with units.
 //! - [`walk`]: one walk over a value's serialized form (every field and number), for the finite
 //!   check and the explorer's cache keys.
@@ -27,6 +29,7 @@ pub mod acoustics;
 pub mod contact;
 pub mod damper;
 pub mod design;
+pub mod dynamics;
 pub mod ensemble;
 pub mod error;
 pub mod finite;
@@ -36,6 +39,7 @@ pub mod paper;
 pub mod params;
 pub mod report;
 pub mod response;
+pub mod study;
 pub mod units;
 pub mod walk;
 

@@ -274,6 +274,16 @@ pub const GRID_N: Range = range(
     "1000 × 1000 cells is the most a chart can show; the work cap limits the product",
 );
 
+/// Forcing periods run before a study of orbits samples its run (`--transient N`).
+pub const TRANSIENT: Range = range(
+    "transient",
+    "transient before sampling",
+    0.0,
+    100_000.0,
+    "periods",
+    "0 samples from the start; 1e5 periods outlast any transient of a damped design, and the work cap bounds the total",
+);
+
 /// Worker threads of the parallel pool (`--threads N`, or `RAYON_NUM_THREADS`).
 pub const THREADS: Range = range(
     "threads",
@@ -795,6 +805,26 @@ pub fn check_sweep(
     over(cell_seconds, "duration", Remedy::ShorterDurationOrFewerCells { max_s }, &per)?;
     newmark(d, given, steps, &per)?;
     main_cycles(d, given, cycles, &per)
+}
+
+/// Refuses a study of `cells` cells (the product of every axis of `thud sweep --vary`, a
+/// bifurcation's values, a basin map's grid) over the cap on cells ([`SWEEP_CELLS`]).
+pub fn check_cells(cells: usize) -> Result<(), Refusal> {
+    let e = Estimate { cap: SWEEP_CELLS, value: cells as f64 };
+    over(e, CELLS_PARAM, Remedy::FewerCells { max: e.cap.max }, "")
+}
+
+/// Refuses a study of `cells` points whose summed work `total` (simulated seconds, Newmark
+/// steps, main-mass cycles over every point, as [`sweep_work`] counts one) is over a cap;
+/// `d` is the point with the longest run (the one the remedy names).
+pub fn check_work_sum(d: &Design, given: &dyn Fn(&str) -> bool, cells: usize, total: [f64; 3]) -> Result<(), Refusal> {
+    let [seconds, steps, cycles] = sweep_work(d, 1);
+    let per = format!(" with {cells} cells");
+    let seconds = Estimate { value: total[0], ..seconds };
+    let max_s = d.damper.duration_s * seconds.cap.max / total[0].max(f64::MIN_POSITIVE);
+    over(seconds, "duration", Remedy::ShorterDurationOrFewerCells { max_s }, &per)?;
+    newmark(d, given, Estimate { value: total[1], ..steps }, &per)?;
+    main_cycles(d, given, Estimate { value: total[2], ..cycles }, &per)
 }
 
 /// Refuses `cells` cells of `d` with `runs` ensemble runs each (a chart, a chart's part, or

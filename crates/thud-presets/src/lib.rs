@@ -22,6 +22,7 @@ const SOURCES: &[(&str, &str)] = &[
     ("machine-tool-fixture", include_str!("../presets/machine-tool-fixture.toml")),
     ("quiet-nylon", include_str!("../presets/quiet-nylon.toml")),
     ("steel-ball", include_str!("../presets/steel-ball.toml")),
+    ("forced-rattle", include_str!("../presets/forced-rattle.toml")),
 ];
 
 /// A preset's name and one-line description.

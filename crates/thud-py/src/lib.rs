@@ -38,7 +38,7 @@ use thud_core::params::{self, Spelling};
 use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
 use thud_core::response::{self, ResponseOptions};
 use thud_core::units::Kind;
-use thud_core::{ensemble, ThudError};
+use thud_core::{dynamics, ensemble, study, ThudError};
 
 use args::{enforce, engine_error, parameter_error, refuse, Kwargs};
 use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
@@ -46,13 +46,15 @@ use progress::Progress;
 
 /// The keywords each function takes beside the engine's named parameters (its run options),
 /// as `_parameters()` hands them to the Python wrapper for the signatures.
-const OPTIONS: [(&str, &[&str]); 6] = [
+const OPTIONS: [(&str, &[&str]); 8] = [
     ("pulse", &["preset", "points", "no_limit"]),
     ("simulate", &["preset", "samples", "ensemble", "no_limit"]),
     ("simulate_ensemble", &["preset", "no_limit"]),
     ("sweep", &["preset", "ensemble", "progress", "no_limit"]),
     ("response", &["preset", "continuation", "ensemble", "progress", "no_limit"]),
     ("fit_damper", &["preset", "quantity", "no_limit"]),
+    ("study", &["preset", "progress", "no_limit"]),
+    ("bifurcation", &["preset", "transient", "continuation", "progress", "no_limit"]),
 ];
 
 /// Waveform points of a pulse unless `points` is given.
@@ -362,6 +364,113 @@ fn check_response(
     refuse(py, r, counted, no_limit)
 }
 
+/// The varied parameters of a study: `(keyword, values)` pairs, each a numeric row of the
+/// engine's table at values in its plain unit, checked by the engine's one parser
+/// ([`study::Vary::of_values`]).
+fn varies(py: Python<'_>, axes: &Bound<'_, PyList>) -> PyResult<Vec<study::Vary>> {
+    let mut out = Vec::with_capacity(axes.len());
+    for item in axes.iter() {
+        let (name, values): (String, Vec<Bound<'_, PyAny>>) = item.extract()?;
+        out.push(vary_of(py, &name, &values)?);
+    }
+    Ok(out)
+}
+
+/// The keyword `name` at `values` (numbers in the row's plain unit, or text with a unit).
+fn vary_of(py: Python<'_>, name: &str, values: &[Bound<'_, PyAny>]) -> PyResult<study::Vary> {
+    let row = study::numeric_row(name, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    let kind = match row.accepts {
+        params::Accepts::Quantity { kind, .. } => Some(kind),
+        _ => None,
+    };
+    let mut xs = Vec::with_capacity(values.len());
+    for v in values {
+        let x = match (args::to_value(v)?, kind) {
+            (params::Input::Num(x), _) => x,
+            (params::Input::Text(t), Some(kind)) => {
+                thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?
+            }
+            _ => {
+                let msg = format!("invalid {name}: expected numbers to vary, not {}", args::kind_of(v));
+                return Err(parameter_error(py, name, msg));
+            }
+        };
+        xs.push(x);
+    }
+    study::Vary::of_values(name, &xs, Spelling::Keyword).map_err(|e| engine_error(py, e))
+}
+
+/// _study(axes, **params) -> str
+///
+/// A study over any numeric parameters (`thud sweep --vary … --json`): `axes` is a list of
+/// (keyword, values); the grid is their product in C order. Returns the JSON `thud sweep --vary
+/// --json` prints ({"design", "axes", "cells"}); `thud.sweep(v0=[…], c1=[…])` turns it into an
+/// xarray Dataset (`thud._frames.study_xarray`).
+#[pyfunction]
+#[pyo3(signature = (axes, **params))]
+fn _study(py: Python<'_>, axes: &Bound<'_, PyList>, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+    let kw = Kwargs::new(params, options("study"))?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let d = design_of(py, &kw)?;
+    let grid = study::Grid::new(d.clone(), varies(py, axes)?, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    let given = |n: &str| args::given(&kw.params, n);
+    refuse(py, study::check_grid(&grid, &given), "axes", no_limit)?;
+    let progress = Progress::new(py, &kw, grid.cells())?;
+    let done = &progress.done;
+    let s = detach::run_watched(
+        py,
+        |cancel| study::sweep(&grid, Some(cancel), &|_, _| Progress::tick(done)),
+        || progress.report(),
+    )?;
+    let s = s.map_err(|e| engine_error(py, e))?;
+    if s.cells.len() < grid.cells() {
+        return Err(cancelled(py));
+    }
+    thud_core::finite::check(&s).map_err(|e| args::non_finite(&e.0))?;
+    json_of(py, &serde_json::json!({ "design": d.design(), "axes": s.axes, "cells": s.cells }))
+}
+
+/// _bifurcation(name, values, **params) -> str
+///
+/// The bifurcation diagram of a forced design over one parameter (`thud bifurcation --vary
+/// NAME=… --json`): per value the stroboscopic samples, the impacts and the orbit's type.
+/// Options: transient (periods before sampling, default 200), periods (sampled, default
+/// here 100), continuation. Returns the JSON; `thud.bifurcation` turns it into xarray.
+#[pyfunction]
+#[pyo3(signature = (name, values, **params))]
+fn _bifurcation(
+    py: Python<'_>,
+    name: &str,
+    values: Vec<Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let kw = Kwargs::new(params, options("bifurcation"))?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let continuation = kw.switch(py, "continuation")?;
+    let d = design_of(py, &kw)?;
+    let vary = vary_of(py, name, &values)?;
+    let transient = kw.count(py, "transient", &limits::TRANSIENT, dynamics::DEFAULT_TRANSIENT_PERIODS as usize)?;
+    let periods = if args::given(&kw.params, "periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
+    let s = dynamics::Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods };
+    refuse(py, dynamics::check_work(vary.values.len(), s, continuation), "values", no_limit)?;
+    let n = vary.values.len() * if continuation { 2 } else { 1 };
+    let progress = Progress::new(py, &kw, n)?;
+    let done = &progress.done;
+    let b = detach::run_watched(
+        py,
+        |cancel| dynamics::bifurcation(&d, &vary, s, continuation, "force", Some(cancel), &|_| Progress::tick(done)),
+        || progress.report(),
+    )?;
+    let b = b.map_err(|e| engine_error(py, e))?;
+    thud_core::finite::check(&b).map_err(|e| args::non_finite(&e.0))?;
+    json_of(py, &serde_json::json!({ "design": d.design(), "bifurcation": b }))
+}
+
+/// `v` (its numbers checked finite before) as JSON text.
+fn json_of(py: Python<'_>, v: &serde_json::Value) -> PyResult<String> {
+    serde_json::to_string(v).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))
+}
+
 /// axis(name, spec) -> numpy.ndarray
 ///
 /// The values of a sweep axis given as "FROM:TO:N" text, exactly as the command line computes
@@ -449,6 +558,7 @@ fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     defaults.set_item("no_limit", false)?;
     defaults.set_item("progress", py.None())?;
     defaults.set_item("quantity", "x")?;
+    defaults.set_item("transient", dynamics::DEFAULT_TRANSIENT_PERIODS)?;
     d.set_item("defaults", defaults)?;
     let refused = PyDict::new(py);
     // A response sweeps the frequency itself (`params::response_design` refuses `freq`).
@@ -512,6 +622,8 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate_ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(response_curve, m)?)?;
+    m.add_function(wrap_pyfunction!(_study, m)?)?;
+    m.add_function(wrap_pyfunction!(_bifurcation, m)?)?;
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;

@@ -434,6 +434,13 @@ impl PyPulse {
         frames(slf.py(), "pulse_frame", slf.as_any())
     }
 
+    /// to_xarray() -> xarray.Dataset
+    ///
+    /// The waveform on the dimension t_s (s): p_pa (Pa); the scalars in `.attrs`. Needs xarray.
+    fn to_xarray(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "pulse_xarray", slf.as_any())
+    }
+
     fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "repr_html", slf.as_any())
     }
@@ -748,6 +755,14 @@ impl PyRun {
         frames(slf.py(), "history_frame", slf.as_any())
     }
 
+    /// to_xarray() -> xarray.Dataset
+    ///
+    /// The time history on the dimension t_s (s): x_m, y_m, x_free_m (m); the metrics and the
+    /// design in `.attrs`. Needs xarray.
+    fn to_xarray(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "run_xarray", slf.as_any())
+    }
+
     fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "repr_html", slf.as_any())
     }
@@ -866,6 +881,14 @@ impl PyEnsemble {
     /// zone 0 = none. Needs pandas.
     fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "ensemble_frame", slf.as_any())
+    }
+
+    /// to_xarray() -> xarray.Dataset
+    ///
+    /// Every run on the dimension run (k), with ball_position_m as a coordinate (m) and each
+    /// run's metrics; the zone, its probability and the agreement in `.attrs`. Needs xarray.
+    fn to_xarray(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "ensemble_xarray", slf.as_any())
     }
 
     fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
@@ -1295,6 +1318,15 @@ impl PyResponse {
     /// pandas.
     fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "response_frame", slf.as_any())
+    }
+
+    /// to_xarray() -> xarray.Dataset
+    ///
+    /// The response on the dimensions direction × freq_hz (Hz; each sweep's points in rising
+    /// frequency; NaN where a sweep has no point): every figure of a point, units in attrs.
+    /// Needs xarray.
+    fn to_xarray(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "response_xarray", slf.as_any())
     }
 
     fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {

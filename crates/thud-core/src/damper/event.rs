@@ -505,6 +505,14 @@ impl<'a, F: Flight> EventSim<'a, F> {
     }
 }
 
+impl<F: Flight> EventSim<'_, F> {
+    /// The state where the run stands: `(x, x', y, y')` (m, m/s); inside a contact, the
+    /// contact's state at that instant (stroboscopic sampling, `strobe.rs`).
+    pub(crate) fn state(&self) -> (f64, f64, f64, f64) {
+        (self.x, self.v, self.y, self.w)
+    }
+}
+
 impl<F: Flight> Stepper for EventSim<'_, F> {
     fn advance_to(&mut self, t_stop: f64) {
         while self.t < t_stop && self.truncated.is_none() {

@@ -26,12 +26,14 @@ mod newmark;
 mod record;
 mod steady;
 mod stepper;
+mod strobe;
 mod sundman;
 
 #[cfg(feature = "timing")]
 pub use event::timing;
 pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 pub(crate) use stepper::Start;
+pub(crate) use strobe::strobe;
 
 use serde::{Deserialize, Serialize};
 

@@ -16,10 +16,13 @@ explicit keyword signatures (``inspect.signature``, ``help``) built at import fr
 own parameter table, so they list exactly the keywords the engine accepts.
 """
 
+import json as _json
 from typing import Any as _Any
+from typing import Dict as _Dict
+from typing import List as _List
 from typing import Union as _Union
 
-from . import _thud
+from . import _frames, _thud
 from ._thud import (
     Chart,
     Ensemble,
@@ -43,6 +46,7 @@ __all__ = [
     "Response",
     "Run",
     "axis",
+    "bifurcation",
     "fit_damper",
     "fit_structure",
     "presets",
@@ -72,8 +76,50 @@ def simulate_ensemble(runs: _Union[int, str], **params: _Any) -> Ensemble:
     return _thud.simulate_ensemble(runs, **params)
 
 
-def sweep(masses_kg: _Any, gaps_m: _Any, **params: _Any) -> Chart:
+def _is_axis(value: _Any) -> bool:
+    """Whether a keyword's value is a list of values to vary (a sequence or an array, not text)."""
+    if isinstance(value, (str, bytes)) or value is None:
+        return False
+    try:
+        iter(value)
+    except TypeError:
+        return False
+    return True
+
+
+def _axes(params: _Dict[str, _Any]) -> _List[_Any]:
+    """The varied keywords of a call (each a sequence of numbers), taken out of `params`."""
+    names = [k for k, v in params.items() if _is_axis(v)]
+    axes = []
+    for k in names:
+        v = params.pop(k)
+        axes.append((k, v.tolist() if hasattr(v, "tolist") else list(v)))
+    return axes
+
+
+def sweep(masses_kg: _Any = None, gaps_m: _Any = None, **params: _Any) -> _Any:
+    if masses_kg is None and gaps_m is None:
+        # A study over any parameters, the keywords to vary given as sequences:
+        # sweep(v0=np.linspace(1, 3, 5), c1=[10, 20]) → xarray (mass × gap too: mass=[…], gap=[…]).
+        axes = _axes(params)
+        record = _json.loads(_thud._study(axes, **_progress(params, "sweep")))
+        return _frames.study_xarray(record)
     return _thud.sweep(masses_kg, gaps_m, **_progress(params, "sweep"))
+
+
+def bifurcation(**params: _Any) -> _Any:
+    """The bifurcation diagram of a forced design over one parameter given as a sequence
+    (``thud bifurcation --vary``): ``bifurcation(freq=np.linspace(3, 8, 200), force=3,
+    preset="forced-rattle")`` → an xarray Dataset (``thud._frames.bifurcation_xarray``).
+    Options: transient (periods run before sampling, default 200), periods (sampled, default
+    100), continuation (rising then falling, each value from the last one's end state),
+    progress, no_limit; every other keyword is the design's, as for ``simulate``."""
+    axes = _axes(params)
+    if len(axes) != 1:
+        raise ParameterError(f"invalid vary: bifurcation varies exactly one parameter given as a sequence, not {len(axes)}")
+    (name, values), = axes
+    record = _json.loads(_thud._bifurcation(name, values, **_progress(params, "bifurcation")))
+    return _frames.bifurcation_xarray(record)
 
 
 def response(freqs_hz: _Any = None, **params: _Any) -> Response:

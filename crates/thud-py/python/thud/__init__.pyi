@@ -97,6 +97,8 @@ class Pulse:
     """Waveform pressure (Pa)."""
     def to_dataframe(self) -> Any:
         """The waveform as a pandas.DataFrame: t_s (s), p_pa (Pa); the scalars in .attrs."""
+    def to_xarray(self) -> Any:
+        """The waveform as an xarray.Dataset on t_s (s): p_pa (Pa); the scalars in attrs."""
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
@@ -149,6 +151,8 @@ class Run:
         """Every impact as a row of a pandas.DataFrame, t_s first (units in the names)."""
     def history_frame(self) -> Any:
         """The time history as a pandas.DataFrame: t_s, x_m, y_m, x_free_m."""
+    def to_xarray(self) -> Any:
+        """The time history as an xarray.Dataset on t_s (s): x_m, y_m, x_free_m (m)."""
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
@@ -231,6 +235,8 @@ class Ensemble:
     truncation_reason: Optional[str]
     def to_dataframe(self) -> Any:
         """One row per run as a pandas.DataFrame: run, ball_position_m, the run's metrics."""
+    def to_xarray(self) -> Any:
+        """Every run as an xarray.Dataset on run (ball_position_m a coordinate, m)."""
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
@@ -257,6 +263,8 @@ class Response:
     {metric: {"p10", "median", "p90"}} and "ensemble" (every run, 2-D: frequency × run)."""
     def to_dataframe(self) -> Any:
         """One row per frequency of each sweep as a pandas.DataFrame: direction, freq_hz, …"""
+    def to_xarray(self) -> Any:
+        """Every figure as an xarray.Dataset on direction × freq_hz (Hz)."""
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
@@ -436,8 +444,8 @@ def simulate_ensemble(
     Ensemble (even of one run), as ``simulate(ensemble=N)``; keywords as for ``simulate``."""
 
 def sweep(
-    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str],
-    gaps_m: Union[Sequence[Quantity], npt.ArrayLike, str],
+    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
+    gaps_m: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
     *,
     preset: Optional[str] = None,
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
@@ -476,13 +484,59 @@ def sweep(
     ensemble: Count = 1,
     progress: ProgressArg = None,
     no_limit: bool = False,
-) -> Chart:
-    """The design chart: the design run for every impact mass × gap on all cores, as
-    ``thud sweep``. masses_kg (kg) and gaps_m (m): sequences, or "FROM:TO:N" text as on the
+) -> Any:
+    """The design chart (a Chart): the design run for every impact mass × gap on all cores, as
+    ``thud sweep``. With design keywords given as sequences instead (``v0=np.linspace(1, 3,
+    5), c1=[10, 20]``; mass × gap too), a study over any parameters as ``thud sweep --vary``:
+    an xarray Dataset with one dimension per varied keyword (C order, units in attrs). masses_kg (kg) and gaps_m (m): sequences, or "FROM:TO:N" text as on the
     command line ("30g:100g:20" — N evenly spaced values, the command line's very numbers).
     Keywords as for ``simulate``; ensemble: N runs a cell (the metrics are then the medians,
     with zone3_probability, agreement, spread and every run). Ctrl-C stops the sweep.
     """
+
+def bifurcation(
+    *,
+    preset: Optional[str] = None,
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    transient: Count = 200,
+    continuation: bool = False,
+    progress: ProgressArg = None,
+    no_limit: bool = False,
+) -> Any:
+    """The bifurcation diagram of a forced design over the one keyword given as a sequence
+    (``freq=np.linspace(3, 8, 200)``), as ``thud bifurcation --vary``: an xarray Dataset of the
+    stroboscopic samples x(kT) on point × period, the impacts on point × impact, each point's
+    value, direction and orbit type ("2/1", "4/2", "chaotic", "not settled"); periods: the
+    sampled periods (default 100 here); transient: periods run first (default 200)."""
 
 def response(
     freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,

@@ -240,3 +240,167 @@ def repr_html(obj: Any) -> str:
         f"<table class='thud'><caption style='text-align:left'><code>{html.escape(repr(obj))}</code></caption>"
         f"<thead><tr><th>field</th><th>value</th><th>unit</th></tr></thead><tbody>{body}</tbody></table>"
     )
+
+
+def _attrs_json(d: Dict[str, Any]) -> Dict[str, Any]:
+    """Scalars as they are, anything nested as JSON text (netCDF attrs hold no dicts)."""
+    out: Dict[str, Any] = {}
+    for k, v in d.items():
+        if v is None:
+            continue
+        if isinstance(v, (dict, list, tuple)):
+            out[k] = json.dumps(jsonable(v))
+        elif isinstance(v, (bool, int, float, str, np.generic)):
+            out[k] = v
+    return out
+
+
+def pulse_xarray(p: Any) -> Any:
+    """Pulse.to_xarray(): p_pa on the dimension t_s; the scalars in attrs."""
+    xr = _need("xarray", "Pulse.to_xarray()")
+    d = p.as_dict()
+    scalars = {k: v for k, v in d.items() if not isinstance(v, (np.ndarray, dict))}
+    coords = {"t_s": ("t_s", np.asarray(p.t_s), {"units": "s", "long_name": "time after contact onset"})}
+    data = {"p_pa": (("t_s",), np.asarray(p.p_pa), {"units": "Pa", "long_name": "sound pressure"})}
+    return xr.Dataset(data, coords=coords, attrs=_attrs_json(scalars))
+
+
+def run_xarray(run: Any) -> Any:
+    """Run.to_xarray(): the time history on the dimension t_s; the metrics and design in attrs."""
+    xr = _need("xarray", "Run.to_xarray()")
+    h = dict(run.history)
+    t = np.asarray(h.pop("t_s", np.zeros(0)))
+    coords = {"t_s": ("t_s", t, {"units": "s", "long_name": "time"})}
+    data = {k: (("t_s",), np.asarray(v), {"units": unit_of(k)}) for k, v in h.items()}
+    d = run.as_dict()
+    scalars = {k: v for k, v in d.items() if not isinstance(v, np.ndarray) and k not in ("impacts", "maxima", "history")}
+    return xr.Dataset(data, coords=coords, attrs=_attrs_json(scalars))
+
+
+def ensemble_xarray(e: Any) -> Any:
+    """Ensemble.to_xarray(): every run on the dimension run, ball_position_m a coordinate."""
+    xr = _need("xarray", "Ensemble.to_xarray()")
+    cols = dict(e.ensemble)
+    n = len(next(iter(cols.values()))) if cols else 0
+    coords: Dict[str, Any] = {"run": ("run", np.arange(n), {"long_name": "run k (ball offset)"})}
+    if "ball_position_m" in cols:
+        coords["ball_position_m"] = ("run", np.asarray(cols.pop("ball_position_m")), {"units": "m"})
+    data = {k: (("run",), np.asarray(v), {"units": unit_of(k)}) for k, v in cols.items()
+            if isinstance(v, np.ndarray) and v.ndim == 1 and len(v) == n}
+    attrs = {"design": e.design, "runs": e.runs, "zone": e.zone, "zone3_probability": e.zone3_probability,
+             "agreement": e.agreement}
+    return xr.Dataset(data, coords=coords, attrs=_attrs_json(attrs))
+
+
+def response_xarray(r: Any) -> Any:
+    """Response.to_xarray(): every figure on direction × freq_hz (each sweep's points in rising
+    frequency; NaN where a sweep has no point at a frequency)."""
+    xr = _need("xarray", "Response.to_xarray()")
+    sweeps = [s for s in r.sweeps if "freq_hz" in s]
+    freqs = np.unique(np.concatenate([np.asarray(s["freq_hz"], dtype=float) for s in sweeps])) if sweeps else np.zeros(0)
+    names = [s["direction"] for s in sweeps]
+    keys: List[str] = []
+    for s in sweeps:
+        for k, v in s.items():
+            if k != "freq_hz" and isinstance(v, np.ndarray) and v.ndim == 1 and k not in keys:
+                keys.append(k)
+        if isinstance(s.get("spread"), dict):
+            for k in _flat_spread(s["spread"]):
+                if k not in keys:
+                    keys.append(k)
+    data: Dict[str, Any] = {}
+    for k in keys:
+        arr = np.full((len(sweeps), len(freqs)), np.nan)
+        for i, s in enumerate(sweeps):
+            v = s.get(k)
+            if v is None and isinstance(s.get("spread"), dict):
+                v = _flat_spread(s["spread"]).get(k)
+            if v is None:
+                continue
+            at = np.searchsorted(freqs, np.asarray(s["freq_hz"], dtype=float))
+            arr[i, at] = np.asarray(v, dtype=float)
+        unit_key = k.rsplit("_", 1)[0] if k.endswith(("_p10", "_median", "_p90")) else k
+        data[k] = (("direction", "freq_hz"), arr, {"units": unit_of(unit_key)})
+    coords = {"direction": ("direction", names), "freq_hz": ("freq_hz", freqs, {"units": "Hz"})}
+    attrs = {"design": r.design, "force_n": r.force_n, "runs": r.runs, "continuation": r.continuation}
+    return xr.Dataset(data, coords=coords, attrs=_attrs_json(attrs))
+
+
+#: The metric fields of a study cell (`thud sweep --vary --json`), in order.
+_STUDY_METRICS = ["n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "zdot_abs_max_m_s",
+                  "spl_max_db", "contact_duration_s", "restitution_mean", "zone"]
+
+
+def study_xarray(record: Dict[str, Any]) -> Any:
+    """A study over any parameters (`thud.sweep(v0=[…], c1=[…])`) as an xarray Dataset: one
+    dimension per varied parameter (its keyword; units in attrs), every metric of every cell
+    (NaN where there is none; zone 0 = none), and with a force the steady amplitude and
+    reduction. The design in attrs as JSON."""
+    xr = _need("xarray", "thud.sweep(**axes)")
+    axes = record["axes"]
+    dims = tuple(a["name"].replace("-", "_") for a in axes)
+    shape = tuple(len(a["values"]) for a in axes)
+    coords = {dim: (dim, np.asarray(a["values"], dtype=float), {"units": a["unit"], "long_name": a["name"]})
+              for dim, a in zip(dims, axes)}
+    cells = record["cells"]
+    data: Dict[str, Any] = {}
+    for k in _STUDY_METRICS:
+        if k in ("n_impacts", "zone"):
+            arr = np.array([c.get(k) or 0 for c in cells], dtype=np.int64)
+        else:
+            arr = np.array([np.nan if c.get(k) is None else c[k] for c in cells], dtype=float)
+        data[k] = (dims, arr.reshape(shape), {"units": unit_of(k)})
+    if any(c.get("steady") for c in cells):
+        for k, name in (("amplitude_m", "steady_amplitude_m"), ("reduction_db", "steady_reduction_db")):
+            arr = np.array([np.nan if not c.get("steady") or c["steady"].get(k) is None else c["steady"][k]
+                            for c in cells], dtype=float)
+            data[name] = (dims, arr.reshape(shape), {"units": unit_of(name)})
+    return xr.Dataset(data, coords=coords, attrs={"design": json.dumps(record["design"])})
+
+
+def bifurcation_xarray(record: Dict[str, Any]) -> Any:
+    """A bifurcation diagram (`thud.bifurcation(freq=[…], …)`) as an xarray Dataset: on
+    point (each value of each sweep) × period the stroboscopic samples x_m, v_m_s, z_m,
+    zdot_m_s at t = kT; per point the parameter's value, the direction and the orbit; the
+    impacts on point × impact (phase, wall, u_in_m_s, u_out_m_s, period; NaN past a point's
+    last impact); the bands in attrs as JSON."""
+    xr = _need("xarray", "thud.bifurcation()")
+    b = record["bifurcation"]
+    axis = b["axis"]
+    name = axis["name"].replace("-", "_")
+    points = b["points"]
+    periods = max((len(p["samples"]) for p in points), default=0)
+    most = max((len(p["impacts"]) for p in points), default=0)
+    data: Dict[str, Any] = {}
+    for k in ("x_m", "v_m_s", "z_m", "zdot_m_s"):
+        arr = np.full((len(points), periods), np.nan)
+        for i, p in enumerate(points):
+            v = [s[k] for s in p["samples"]]
+            arr[i, : len(v)] = v
+        data[k] = (("point", "period"), arr, {"units": unit_of(k)})
+    for k in ("phase", "wall", "u_in_m_s", "u_out_m_s", "period"):
+        arr = np.full((len(points), most), np.nan)
+        for i, p in enumerate(points):
+            v = [float(imp[k]) for imp in p["impacts"]]
+            arr[i, : len(v)] = v
+        attrs = {"units": unit_of(k)} if k not in ("phase",) else {"units": "1", "long_name": "phase of the force (fraction of T)"}
+        data["impact_" + k if k in ("period", "wall", "phase") else k] = (("point", "impact"), arr, attrs)
+    data["amplitude_m"] = (("point",), np.array([p["amplitude_m"] for p in points], dtype=float), {"units": "m"})
+    coords = {
+        name: ("point", np.array([p["value"] for p in points], dtype=float), {"units": axis["unit"], "long_name": axis["name"]}),
+        "direction": ("point", [p["direction"] for p in points]),
+        "orbit": ("point", [_orbit_label(p["orbit"]) for p in points]),
+        "period": ("period", np.arange(periods)),
+    }
+    attrs = {"design": json.dumps(record["design"]), "bands": json.dumps(b["bands"]),
+             "transient_periods": b["settings"]["transient_periods"], "periods": b["settings"]["periods"],
+             "parameter": axis["name"]}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _orbit_label(orbit: Dict[str, Any]) -> str:
+    """The engine's label of an orbit (`2/1 sym`, `chaotic`, `not settled`)."""
+    kind = orbit.get("kind")
+    if kind == "periodic":
+        return f"{orbit['impacts']}/{orbit['periods']}" + (" sym" if orbit.get("symmetric") else "")
+    return "chaotic" if kind == "chaotic" else "not settled"

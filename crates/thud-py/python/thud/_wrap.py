@@ -62,6 +62,7 @@ _OPTION_TYPES: Dict[str, Any] = {
     "progress": ProgressArg,
     "no_limit": bool,
     "quantity": Literal["x", "v", "a"],
+    "transient": Count,
 }
 
 #: The positional parameters of each function (name, annotation, default or P.empty).
@@ -69,10 +70,12 @@ _POSITIONAL: Dict[str, List[Any]] = {
     "pulse": [],
     "simulate": [],
     "simulate_ensemble": [("runs", Count, inspect.Parameter.empty)],
-    "sweep": [("masses_kg", Any, inspect.Parameter.empty), ("gaps_m", Any, inspect.Parameter.empty)],
+    # None, None with keywords given as sequences: a study over any parameters (xarray).
+    "sweep": [("masses_kg", Any, None), ("gaps_m", Any, None)],
     # None: the engine's default band of the design (0.6–1.6 × its natural frequency).
     "response": [("freqs_hz", Any, None)],
     "fit_damper": [("t_s", Any, inspect.Parameter.empty), ("x", Any, inspect.Parameter.empty)],
+    "bifurcation": [],
 }
 
 
@@ -131,11 +134,12 @@ def document(namespace: Dict[str, Any]) -> None:
     keywords' documentation from the engine's table and the engine's signature."""
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
-               "simulate_ensemble": _thud.Ensemble, "sweep": _thud.Chart, "response": _thud.Response,
-               "fit_damper": Dict[str, Any]}
+               "simulate_ensemble": _thud.Ensemble, "sweep": Any, "response": _thud.Response,
+               "fit_damper": Dict[str, Any], "bifurcation": Any}
     for name, ret in returns.items():
         fn = namespace[name]
-        doc = getattr(_thud, name).__doc__ or ""
+        native = getattr(_thud, name, None)
+        doc = (native.__doc__ if native is not None else fn.__doc__) or ""
         # The native docstring opens with "name(**params) -> T": the signature says it now.
         doc = doc.split("\n\n", 1)[-1] if doc.startswith(f"{name}(") else doc
         fn.__doc__ = doc.rstrip() + "\n\n" + keywords_doc(name, table) + "\n"

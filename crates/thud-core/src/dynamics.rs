@@ -1,0 +1,743 @@
+//! Research-grade dynamics of a forced impact damper (issue 27, items 1–3; docs/model.md §6.5):
+//! the bifurcation diagram over any numeric parameter, the type of each orbit, the impact map
+//! (the Poincaré section on impacts) and the basins of attraction over the ball's start.
+//!
+//! Every run is the event solver's forced run ([`crate::damper`]), sampled stroboscopically:
+//! after `transient` forcing periods, the state at every whole and half period of the force
+//! over `periods` periods, and every impact with its phase, wall and relative speed.
+//!
+//! **The orbit's type** ([`classify`]): with `T` the forcing period, the smallest `n ≤`
+//! [`MAX_PERIOD`] with `x((k+n)T) = x(kT)` and `x'((k+n)T) = x'(kT)` for every sample `k`
+//! (within [`PERIODIC_TOLERANCE`] of the samples' largest |x| and |x'|) makes the orbit
+//! periodic of period `nT`, with `m` impacts per `n` periods (the same in every block of `n`
+//! periods), and symmetric when `x(t + T/2) = −x(t)`, `x'(t + T/2) = −x'(t)` at every sample.
+//! Otherwise the 0–1 test for chaos (Gottwald & Melbourne 2004, 2009; [`zero_one_test`]) on
+//! the samples `x(kT)` gives `K`; `K ≥` [`CHAOS_K`] is "chaotic", anything else "not settled"
+//! (a transient still decaying, a quasi-periodic motion, or a period longer than
+//! [`MAX_PERIOD`]).
+//!
+//! Everything is parallel on rayon's global pool and cancellable, as [`crate::design::sweep`].
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::damper::{self, Start, Wall};
+use crate::design::{Design, ValidDesign};
+use crate::error::ThudError;
+use crate::limits::{self, Estimate, Refusal, Remedy};
+use crate::params::Spelling;
+use crate::response::Direction;
+use crate::study::{Axis, Grid, Vary};
+
+/// Forcing periods run before sampling when none are given: enough for the designs of the
+/// presets (light structural damping, the ball's impacts damping most) to reach their orbit.
+pub const DEFAULT_TRANSIENT_PERIODS: u32 = 200;
+/// Forcing periods sampled when none are given.
+pub const DEFAULT_PERIODS: u32 = 100;
+/// The longest period (in forcing periods) [`classify`] looks for.
+pub const MAX_PERIOD: usize = 16;
+/// How close (relative to the samples' largest |x| and |x'|) two samples must be to count as
+/// the same point of an orbit.
+pub const PERIODIC_TOLERANCE: f64 = 1e-3;
+/// The 0–1 test's K at or above which a motion counts as chaotic (Gottwald & Melbourne: K ≈ 1
+/// for chaos, ≈ 0 for regular motion).
+pub const CHAOS_K: f64 = 0.8;
+/// The fewest samples the 0–1 test is run on (Gottwald & Melbourne use thousands; below 50
+/// its K is no more than noise).
+pub const MIN_TEST_SAMPLES: usize = 50;
+
+/// How long each run is: the transient, then the sampled periods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Settings {
+    /// Forcing periods run before sampling.
+    pub transient_periods: u32,
+    /// Forcing periods sampled.
+    pub periods: u32,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings { transient_periods: DEFAULT_TRANSIENT_PERIODS, periods: DEFAULT_PERIODS }
+    }
+}
+
+/// One stroboscopic sample: the state at `t = kT` after the transient (the force's phase 0).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Sample {
+    /// k: forcing periods after the transient.
+    pub period: u32,
+    /// Main-mass displacement x(kT) (m).
+    pub x_m: f64,
+    /// Main-mass velocity x'(kT) (m/s).
+    pub v_m_s: f64,
+    /// The ball relative to the enclosure's centre, z = y − x (m).
+    pub z_m: f64,
+    /// z' (m/s).
+    pub zdot_m_s: f64,
+}
+
+/// One impact after the transient.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ImpactPoint {
+    /// The forcing period it falls in (k, after the transient).
+    pub period: u32,
+    /// The force's phase at onset, as a fraction of the period (0 to 1).
+    pub phase: f64,
+    /// The wall struck (−1 or 1).
+    pub wall: Wall,
+    /// Relative normal speed at onset (m/s).
+    pub u_in_m_s: f64,
+    /// Relative normal speed at exit (m/s).
+    pub u_out_m_s: f64,
+}
+
+/// What an orbit is ([`classify`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Orbit {
+    /// Period `periods`·T with `impacts` impacts in each period; `symmetric`: x(t + T/2) = −x(t).
+    Periodic { impacts: u32, periods: u32, symmetric: bool },
+    /// The 0–1 test's `k` ≥ [`CHAOS_K`].
+    Chaotic { k: f64 },
+    /// Neither: still settling, quasi-periodic, or a longer period; `k` the 0–1 test's K when
+    /// there were samples enough to run it.
+    NotSettled { k: Option<f64> },
+}
+
+impl Orbit {
+    /// `2/1 sym` (2 impacts per period, symmetric), `1/2` (1 impact per 2 periods), `0/1`
+    /// (no impact), `chaotic`, `not settled`.
+    #[must_use]
+    pub fn label(&self) -> String {
+        match *self {
+            Orbit::Periodic { impacts, periods, symmetric } => {
+                format!("{impacts}/{periods}{}", if symmetric { " sym" } else { "" })
+            }
+            Orbit::Chaotic { .. } => "chaotic".to_string(),
+            Orbit::NotSettled { .. } => "not settled".to_string(),
+        }
+    }
+}
+
+/// One run sampled after its transient, and what its orbit is.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OrbitRun {
+    pub orbit: Orbit,
+    /// Largest |x| over the sampled periods (m).
+    pub amplitude_m: f64,
+    pub samples: Vec<Sample>,
+    pub impacts: Vec<ImpactPoint>,
+    /// Whether a work cap or cancellation stopped the run before its end (then the orbit is
+    /// "not settled").
+    pub truncated: bool,
+}
+
+/// Refuses a design that has no force: a study of orbits needs one. `force` names the force's
+/// parameter as the front end calls it.
+fn check_forced(d: &Design, force: &str) -> Result<(), ThudError> {
+    if !d.damper.forced() {
+        return Err(ThudError::invalid(
+            force,
+            "0 N: orbits need a harmonic force; give a force F0 (N) and a frequency",
+        ));
+    }
+    if d.solver != crate::damper::Solver::Event {
+        return Err(ThudError::invalid(
+            "solver",
+            "newmark: orbits are sampled with the event solver; use --solver event",
+        ));
+    }
+    Ok(())
+}
+
+/// Runs `d` from `start` ([`Settings`]) and classifies its orbit; also the end state.
+fn run_orbit(d: &Design, start: &Start, s: Settings, cancel: Option<&AtomicBool>) -> (OrbitRun, Start) {
+    let st = damper::strobe(&d.damper, start, s.transient_periods, s.periods, cancel);
+    let tau = std::f64::consts::TAU;
+    let samples: Vec<Sample> = st
+        .samples
+        .iter()
+        .step_by(2)
+        .enumerate()
+        .map(|(k, s)| Sample {
+            period: u32::try_from(k).unwrap_or(u32::MAX),
+            x_m: s[0],
+            v_m_s: s[1],
+            z_m: s[2],
+            zdot_m_s: s[3],
+        })
+        .collect();
+    let halves: Vec<[f64; 2]> = st.samples.iter().skip(1).step_by(2).map(|s| [s[0], s[1]]).collect();
+    let impacts: Vec<ImpactPoint> = st
+        .impacts
+        .iter()
+        .map(|(i, theta, period)| ImpactPoint {
+            period: *period,
+            phase: theta / tau,
+            wall: i.wall,
+            u_in_m_s: i.u_in_m_s,
+            u_out_m_s: i.u_out_m_s,
+        })
+        .collect();
+    let truncated = st.truncated.is_some() || st.cancelled;
+    let orbit = if truncated { Orbit::NotSettled { k: None } } else { classify(&samples, &halves, st.impacts.len()) };
+    (OrbitRun { orbit, amplitude_m: st.amplitude_m, samples, impacts, truncated }, st.end)
+}
+
+/// The orbit's type from its stroboscopic samples `x(kT)`, `x'(kT)`, the samples half a period
+/// later (`halves`) and the number of impacts over the sampled periods (see the module
+/// documentation).
+#[must_use]
+pub fn classify(samples: &[Sample], halves: &[[f64; 2]], impacts: usize) -> Orbit {
+    let n = samples.len();
+    if n == 0 {
+        return Orbit::NotSettled { k: None };
+    }
+    let sx = samples.iter().map(|s| s.x_m.abs()).chain(halves.iter().map(|h| h[0].abs())).fold(0.0, f64::max);
+    let sv = samples.iter().map(|s| s.v_m_s.abs()).chain(halves.iter().map(|h| h[1].abs())).fold(0.0, f64::max);
+    let (tx, tv) = (PERIODIC_TOLERANCE * sx.max(f64::MIN_POSITIVE), PERIODIC_TOLERANCE * sv.max(f64::MIN_POSITIVE));
+    let same = |a: &Sample, b: &Sample| (a.x_m - b.x_m).abs() <= tx && (a.v_m_s - b.v_m_s).abs() <= tv;
+    // A period must repeat at least twice over the samples to count.
+    let longest = MAX_PERIOD.min(n / 3);
+    for p in 1..=longest {
+        if (0..n - p).all(|k| same(&samples[k], &samples[k + p])) {
+            let blocks = n / p;
+            let m = impacts as f64 * p as f64 / n as f64;
+            let symmetric = p == 1
+                && halves.len() == n
+                && samples.iter().zip(halves).all(|(s, h)| (s.x_m + h[0]).abs() <= tx && (s.v_m_s + h[1]).abs() <= tv);
+            // The impacts must split evenly over the blocks of p periods.
+            if blocks > 0 && (m - m.round()).abs() < 0.5 / blocks as f64 + 1e-9 {
+                return Orbit::Periodic {
+                    impacts: m.round() as u32,
+                    periods: u32::try_from(p).unwrap_or(u32::MAX),
+                    symmetric,
+                };
+            }
+        }
+    }
+    if n < MIN_TEST_SAMPLES {
+        return Orbit::NotSettled { k: None };
+    }
+    let phi: Vec<f64> = samples.iter().map(|s| s.x_m).collect();
+    let k = zero_one_test(&phi);
+    if k >= CHAOS_K {
+        Orbit::Chaotic { k }
+    } else {
+        Orbit::NotSettled { k: Some(k) }
+    }
+}
+
+/// The 0–1 test for chaos of Gottwald & Melbourne (Proc. R. Soc. A 460 (2004) 603–611; the
+/// correlation method of SIAM J. Appl. Dyn. Syst. 8 (2009) 129–145) on the observable `phi`
+/// (N samples): for each of 100 frequencies `c` in (π/5, 4π/5) the translation variables
+/// `p(n) = Σ_{j≤n} φ_j cos jc`, `q(n) = Σ_{j≤n} φ_j sin jc`, their mean square displacement
+/// `M(n)` for `n ≤ N/10` less the oscillatory term `(Eφ)²(1 − cos nc)/(1 − cos c)`, and
+/// `K_c` the correlation of that with `n`; K is the median of the `K_c`. K ≈ 1: chaotic;
+/// K ≈ 0: regular. The frequencies are a golden-ratio sequence (deterministic, no random
+/// numbers in the engine), as evenly spread as the random ones the authors use.
+#[must_use]
+pub fn zero_one_test(phi: &[f64]) -> f64 {
+    let n_all = phi.len();
+    let n_cut = n_all / 10;
+    if n_cut < 3 {
+        return 0.0;
+    }
+    let mean = phi.iter().sum::<f64>() / n_all as f64;
+    let golden = 0.5 * (5f64.sqrt() - 1.0);
+    let pi = std::f64::consts::PI;
+    let mut ks: Vec<f64> = (1..=100)
+        .map(|j| {
+            let c = pi / 5.0 + 3.0 * pi / 5.0 * (f64::from(j) * golden).fract();
+            let (mut p, mut q) = (Vec::with_capacity(n_all), Vec::with_capacity(n_all));
+            let (mut sp, mut sq) = (0.0, 0.0);
+            for (i, f) in phi.iter().enumerate() {
+                let a = (i + 1) as f64 * c;
+                sp += f * a.cos();
+                sq += f * a.sin();
+                p.push(sp);
+                q.push(sq);
+            }
+            let d: Vec<f64> = (1..=n_cut)
+                .map(|n| {
+                    let m = (0..n_all - n).map(|i| (p[i + n] - p[i]).powi(2) + (q[i + n] - q[i]).powi(2)).sum::<f64>()
+                        / (n_all - n) as f64;
+                    m - mean * mean * (1.0 - (n as f64 * c).cos()) / (1.0 - c.cos())
+                })
+                .collect();
+            correlation(&d)
+        })
+        .collect();
+    ks.sort_by(f64::total_cmp);
+    let mid = ks.len() / 2;
+    let k = if ks.len().is_multiple_of(2) { 0.5 * (ks[mid - 1] + ks[mid]) } else { ks[mid] };
+    if k.is_finite() {
+        k
+    } else {
+        0.0
+    }
+}
+
+/// The correlation coefficient of `d` with its index 1, 2, …, n (0 when `d` is constant).
+fn correlation(d: &[f64]) -> f64 {
+    let n = d.len() as f64;
+    let mx = f64::midpoint(n, 1.0);
+    let md = d.iter().sum::<f64>() / n;
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (i, v) in d.iter().enumerate() {
+        let (dx, dy) = ((i + 1) as f64 - mx, v - md);
+        sxy += dx * dy;
+        sxx += dx * dx;
+        syy += dy * dy;
+    }
+    if syy <= 0.0 || sxx <= 0.0 {
+        return 0.0;
+    }
+    sxy / (sxx * syy).sqrt()
+}
+
+/// The impact map of `d` (the Poincaré section on impacts): one run from the design's own
+/// start, sampled after its transient. `force` names the force's parameter (for a design
+/// without one).
+pub fn impact_map(
+    d: &ValidDesign,
+    s: Settings,
+    force: &str,
+    cancel: Option<&AtomicBool>,
+) -> Result<OrbitRun, ThudError> {
+    check_forced(d, force)?;
+    let run = run_orbit(d, &Start::of(&d.damper), s, cancel).0;
+    if run.truncated && cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return Err(ThudError::Cancelled);
+    }
+    Ok(run)
+}
+
+/// One value of a bifurcation diagram.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BifurcationPoint {
+    /// The varied parameter's value (its unit is the axis').
+    pub value: f64,
+    pub direction: Direction,
+    #[serde(flatten)]
+    pub run: OrbitRun,
+}
+
+/// Consecutive values of one sweep whose orbits have the same type.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OrbitBand {
+    pub direction: Direction,
+    /// The first and last value of the band.
+    pub from: f64,
+    pub to: f64,
+    pub values: usize,
+    /// [`Orbit::label`].
+    pub orbit: String,
+}
+
+/// A bifurcation diagram: per value of one parameter, the sampled orbit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Bifurcation {
+    pub axis: Axis,
+    pub settings: Settings,
+    /// In sweep order: the values as given (from the design's own start, or rising with
+    /// continuation), then with continuation the values falling.
+    pub points: Vec<BifurcationPoint>,
+    pub bands: Vec<OrbitBand>,
+}
+
+/// The bands of consecutive points of one direction with the same orbit type.
+#[must_use]
+pub fn bands(points: &[BifurcationPoint]) -> Vec<OrbitBand> {
+    let mut out: Vec<OrbitBand> = Vec::new();
+    for p in points {
+        let label = p.run.orbit.label();
+        match out.last_mut() {
+            Some(b) if b.direction == p.direction && b.orbit == label => {
+                b.to = p.value;
+                b.values += 1;
+            }
+            _ => out.push(OrbitBand { direction: p.direction, from: p.value, to: p.value, values: 1, orbit: label }),
+        }
+    }
+    out
+}
+
+/// The work of a bifurcation over `values` values (each `transient + periods` forcing periods,
+/// twice with continuation): forcing periods against [`limits::RESPONSE_PERIODS`], and the
+/// values against the cap on cells.
+#[must_use]
+pub fn work(values: usize, s: Settings, continuation: bool) -> [Estimate; 2] {
+    let per = f64::from(s.transient_periods) + f64::from(s.periods);
+    let sweeps = if continuation { 2.0 } else { 1.0 };
+    [
+        Estimate { cap: limits::SWEEP_CELLS, value: values as f64 * sweeps },
+        Estimate { cap: limits::RESPONSE_PERIODS, value: values as f64 * per * sweeps },
+    ]
+}
+
+/// Refuses a study of orbits over `values` values whose work ([`work`]) is over a cap.
+pub fn check_work(values: usize, s: Settings, continuation: bool) -> Result<(), Refusal> {
+    let [cells, periods] = work(values, s, continuation);
+    limits::over(cells, limits::CELLS_PARAM, Remedy::FewerCells { max: cells.cap.max }, "")?;
+    limits::over(periods, PERIODS_PARAM, Remedy::FewerCells { max: periods.cap.max }, "")
+}
+
+/// The quantity a refusal of [`check_work`] names for the forcing periods (`--periods`,
+/// `--transient` and the values share it).
+pub const PERIODS_PARAM: &str = "periods";
+
+/// The bifurcation diagram of `base` over `vary` (each value's design checked again as a
+/// whole, [`Grid::point`]): without `continuation` every value from the design's own start, in
+/// parallel; with it, rising through the values each from the previous value's end state, then
+/// falling from where the rise ended (hysteresis shows as two branches). `on_point(i)` is
+/// called as each value finishes; `cancel` stops the work (`Err(Cancelled)`). `force` names
+/// the force's parameter for a design without one.
+pub fn bifurcation(
+    base: &ValidDesign,
+    vary: &Vary,
+    s: Settings,
+    continuation: bool,
+    force: &str,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<Bifurcation, ThudError> {
+    let grid = Grid::new(base.clone(), vec![vary.clone()], Spelling::Flag)?;
+    let n = grid.cells();
+    let designs: Vec<ValidDesign> = (0..n).map(|i| grid.point(i)).collect::<Result<_, _>>()?;
+    for d in &designs {
+        check_forced(d, force)?;
+    }
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let mut points = Vec::with_capacity(if continuation { 2 * n } else { n });
+    if continuation {
+        let mut start = Start::of(&designs[0].damper);
+        let order: Vec<(usize, Direction)> =
+            (0..n).map(|i| (i, Direction::Up)).chain((0..n).rev().map(|i| (i, Direction::Down))).collect();
+        for (done, (i, direction)) in order.into_iter().enumerate() {
+            if cancelled() {
+                return Err(ThudError::Cancelled);
+            }
+            let (run, end) = run_orbit(&designs[i], &start, s, cancel);
+            start = end;
+            points.push(BifurcationPoint { value: vary.values[i], direction, run });
+            on_point(done);
+        }
+    } else {
+        points = bifurcation_points(&designs, vary, 0..n, s, cancel, on_point)?;
+    }
+    if cancelled() {
+        return Err(ThudError::Cancelled);
+    }
+    let bands = bands(&points);
+    Ok(Bifurcation { axis: vary.axis(), settings: s, points, bands })
+}
+
+/// The points `range` (indices into `vary`'s values) of a bifurcation without continuation,
+/// each value's design from `designs`, from its own start, in parallel: the part one shard of
+/// `thud bifurcation --shard K/N` computes. `Err(Cancelled)` when `cancel` stopped it.
+fn bifurcation_points(
+    designs: &[ValidDesign],
+    vary: &Vary,
+    range: std::ops::Range<usize>,
+    s: Settings,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<BifurcationPoint>, ThudError> {
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let runs: Vec<Option<OrbitRun>> = range
+        .clone()
+        .into_par_iter()
+        .map(|i| {
+            if cancelled() {
+                return None;
+            }
+            let d = &designs[i];
+            let run = run_orbit(d, &Start::of(&d.damper), s, cancel).0;
+            on_point(i);
+            Some(run)
+        })
+        .collect();
+    let mut points = Vec::with_capacity(runs.len());
+    for (i, run) in range.zip(runs) {
+        let Some(run) = run else { return Err(ThudError::Cancelled) };
+        points.push(BifurcationPoint { value: vary.values[i], direction: Direction::FromRest, run });
+    }
+    if cancelled() {
+        return Err(ThudError::Cancelled);
+    }
+    Ok(points)
+}
+
+/// The points `range` of the bifurcation diagram of `base` over `vary` without continuation
+/// ([`bifurcation`]'s, value for value): one part of `thud bifurcation --shard K/N`.
+pub fn bifurcation_part(
+    base: &ValidDesign,
+    vary: &Vary,
+    range: std::ops::Range<usize>,
+    s: Settings,
+    force: &str,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<BifurcationPoint>, ThudError> {
+    let grid = Grid::new(base.clone(), vec![vary.clone()], Spelling::Flag)?;
+    let range = range.start.min(grid.cells())..range.end.min(grid.cells());
+    let mut designs = Vec::with_capacity(grid.cells());
+    for i in 0..grid.cells() {
+        // Only the part's own designs are run; every one is checked, as the whole would be.
+        let d = grid.point(i)?;
+        check_forced(&d, force)?;
+        designs.push(d);
+    }
+    bifurcation_points(&designs, vary, range, s, cancel, on_point)
+}
+
+/// One attractor of a basin map: the orbit's type and amplitude, and how many starts reach it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Attractor {
+    /// Its number on the map (0, 1, …: by type, then by amplitude).
+    pub id: usize,
+    pub orbit: Orbit,
+    /// [`Orbit::label`].
+    pub label: String,
+    /// Its amplitude (m): the mean of its starts' largest |x| over the sampled periods.
+    pub amplitude_m: f64,
+    /// Starts that reach it, and their share of all starts.
+    pub starts: usize,
+    pub share: f64,
+}
+
+/// The basins of attraction of a forced design over the ball's start: a grid of `y0` (across
+/// the clearance) × `w0`, each start's attractor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Basins {
+    pub settings: Settings,
+    /// The ball's starting offsets (m): the centres of N equal cells of the clearance.
+    pub y0_m: Vec<f64>,
+    /// The ball's starting velocities (m/s).
+    pub w0_m_s: Vec<f64>,
+    /// The attractor ([`Attractor::id`]) of each start, `cells[i_w · y0.len() + i_y]`.
+    pub cells: Vec<usize>,
+    /// The amplitude (m) each start reached, in the same order.
+    pub amplitudes_m: Vec<f64>,
+    pub attractors: Vec<Attractor>,
+}
+
+/// How close two amplitudes (relative) must be for two starts of the same orbit type to count
+/// as one attractor.
+pub const SAME_ATTRACTOR: f64 = 0.01;
+
+/// The basins of attraction of `d` over `n_y` ball offsets across the clearance (the centres
+/// of `n_y` equal cells, as an ensemble's) × `w0_m_s` starting velocities; everything else
+/// starts as the design says. Starts of the same orbit type whose amplitudes lie within
+/// [`SAME_ATTRACTOR`] of each other (chained) are one attractor. Parallel on rayon's pool;
+/// `on_cell` as each start finishes; `cancel` stops it (`Err(Cancelled)`).
+pub fn basins(
+    d: &ValidDesign,
+    n_y: usize,
+    w0_m_s: &[f64],
+    s: Settings,
+    force: &str,
+    cancel: Option<&AtomicBool>,
+    on_cell: &(dyn Fn(usize) + Sync),
+) -> Result<Basins, ThudError> {
+    check_forced(d, force)?;
+    if n_y == 0 || w0_m_s.is_empty() {
+        return Err(ThudError::invalid("grid", "an empty grid; give at least one start"));
+    }
+    let y0 = crate::ensemble::ball_positions(d.damper.gap_m, n_y);
+    let cells = n_y * w0_m_s.len();
+    let runs: Vec<Option<(Orbit, f64)>> = (0..cells)
+        .into_par_iter()
+        .map(|i| {
+            if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return None;
+            }
+            let mut start = Start::of(&d.damper);
+            start.y = y0[i % n_y];
+            start.w = w0_m_s[i / n_y];
+            let run = run_orbit(d, &start, s, cancel).0;
+            on_cell(i);
+            Some((run.orbit, run.amplitude_m))
+        })
+        .collect();
+    let runs: Vec<(Orbit, f64)> = runs.into_iter().collect::<Option<_>>().ok_or(ThudError::Cancelled)?;
+    // Group: by label, then chains of amplitudes within SAME_ATTRACTOR.
+    let mut order: Vec<usize> = (0..cells).collect();
+    order.sort_by(|&a, &b| runs[a].0.label().cmp(&runs[b].0.label()).then(runs[a].1.total_cmp(&runs[b].1)));
+    let mut ids = vec![0usize; cells];
+    let mut attractors: Vec<Attractor> = Vec::new();
+    let mut sums: Vec<f64> = Vec::new();
+    let mut prev: Option<(String, f64)> = None;
+    for &i in &order {
+        let (orbit, amp) = runs[i];
+        let label = orbit.label();
+        let regular = matches!(orbit, Orbit::Periodic { .. });
+        let joins = match &prev {
+            Some((l, a)) => *l == label && (!regular || (amp - a).abs() <= SAME_ATTRACTOR * a.abs().max(amp.abs())),
+            None => false,
+        };
+        if !joins {
+            attractors.push(Attractor {
+                id: attractors.len(),
+                orbit,
+                label: label.clone(),
+                amplitude_m: 0.0,
+                starts: 0,
+                share: 0.0,
+            });
+            sums.push(0.0);
+        }
+        let id = attractors.len() - 1;
+        ids[i] = id;
+        attractors[id].starts += 1;
+        sums[id] += amp;
+        prev = Some((label, amp));
+    }
+    for (a, sum) in attractors.iter_mut().zip(sums) {
+        a.amplitude_m = sum / a.starts as f64;
+        a.share = a.starts as f64 / cells as f64;
+    }
+    Ok(Basins {
+        settings: s,
+        y0_m: y0,
+        w0_m_s: w0_m_s.to_vec(),
+        cells: ids,
+        amplitudes_m: runs.iter().map(|r| r.1).collect(),
+        attractors,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::design::Design;
+
+    fn sample(k: usize, x: f64, v: f64) -> Sample {
+        Sample { period: k as u32, x_m: x, v_m_s: v, z_m: 0.0, zdot_m_s: 0.0 }
+    }
+
+    #[test]
+    fn periods_and_symmetry_are_read_from_the_samples() {
+        let one: Vec<Sample> = (0..60).map(|k| sample(k, 0.01, 0.2)).collect();
+        let halves = vec![[-0.01, -0.2]; 60];
+        assert_eq!(classify(&one, &halves, 120), Orbit::Periodic { impacts: 2, periods: 1, symmetric: true });
+        let asym = vec![[-0.005, -0.2]; 60];
+        assert_eq!(classify(&one, &asym, 60), Orbit::Periodic { impacts: 1, periods: 1, symmetric: false });
+        let two: Vec<Sample> = (0..60).map(|k| sample(k, if k % 2 == 0 { 0.01 } else { 0.012 }, 0.2)).collect();
+        assert_eq!(classify(&two, &halves, 60), Orbit::Periodic { impacts: 2, periods: 2, symmetric: false });
+    }
+
+    #[test]
+    fn the_zero_one_test_tells_the_logistic_map_from_a_cycle() {
+        // The logistic map at r = 3.97 is chaotic, at r = 3.5 a 4-cycle (Gottwald & Melbourne's
+        // own example, 2009 §3).
+        let orbit = |r: f64| {
+            let mut x = 0.3;
+            (0..3000)
+                .map(|_| {
+                    x = r * x * (1.0 - x);
+                    x
+                })
+                .skip(1000)
+                .collect::<Vec<f64>>()
+        };
+        let chaotic = zero_one_test(&orbit(3.97));
+        let regular = zero_one_test(&orbit(3.5));
+        assert!(chaotic > 0.9, "K = {chaotic}");
+        assert!(regular.abs() < 0.2, "K = {regular}");
+    }
+
+    #[test]
+    fn an_unsettled_drift_is_not_periodic() {
+        let drift: Vec<Sample> = (0..60).map(|k| sample(k, 0.01 * (1.0 + 0.01 * k as f64), 0.2)).collect();
+        assert!(!matches!(classify(&drift, &[], 0), Orbit::Periodic { .. }));
+    }
+
+    /// The design of the `forced-rattle` preset (assets/presets/forced-rattle.toml).
+    fn forced_rattle() -> Design {
+        let mut d = Design::default();
+        d.damper.damping_n_s_m = 1.5;
+        d.damper.gap_m = 0.01;
+        d.damper.v0_m_s = 0.0;
+        d.damper.force_n = 3.0;
+        d.damper.freq_hz = 7.5;
+        d
+    }
+
+    #[test]
+    fn the_forced_rattle_doubles_its_period_below_7_6_hz() {
+        // Found with `thud bifurcation --preset forced-rattle --vary f=3Hz:8Hz:200` and checked
+        // here on the samples themselves: at 7.7 Hz two impacts a period, every x(kT) the
+        // same; at 7.55 Hz four impacts per two periods, x(kT) alternating between two values
+        // far apart (a period doubling, not a slow transient); lower still, chaos.
+        let vary = Vary::of_values("freq", &[7.55, 7.7], Spelling::Keyword).unwrap();
+        let d = forced_rattle().check().unwrap();
+        let b = bifurcation(&d, &vary, Settings::default(), false, "force", None, &|_| {}).unwrap();
+        let (doubled, single) = (&b.points[0].run, &b.points[1].run);
+        assert_eq!(single.orbit, Orbit::Periodic { impacts: 2, periods: 1, symmetric: false });
+        assert_eq!(doubled.orbit, Orbit::Periodic { impacts: 4, periods: 2, symmetric: false });
+        // x(kT) alternates between two values (10 tolerances apart or more), every other
+        // sample the same to far below that.
+        let tol = PERIODIC_TOLERANCE * doubled.amplitude_m;
+        let split = (doubled.samples[0].x_m - doubled.samples[1].x_m).abs();
+        assert!(split > 5.0 * tol, "x(kT) alternates by {split} m");
+        let even =
+            doubled.samples.iter().step_by(2).map(|s| (s.x_m - doubled.samples[0].x_m).abs()).fold(0.0, f64::max);
+        assert!(even < 0.05 * split, "x(2kT) repeats to {even} m");
+        let spread = single.samples.iter().map(|s| (s.x_m - single.samples[0].x_m).abs()).fold(0.0, f64::max);
+        assert!(spread < 1e-4 * single.amplitude_m, "x(kT) repeats to {spread} m");
+        assert_eq!(single.impacts.len(), 2 * single.samples.len());
+        assert!(single.impacts.iter().all(|i| (0.0..1.0).contains(&i.phase) && i.u_in_m_s > 0.0));
+        // Both walls, once a period each.
+        assert_eq!(single.impacts.iter().filter(|i| i.wall.sign() > 0.0).count(), single.samples.len());
+        let chaos = Vary::of_values("freq", &[7.42], Spelling::Keyword).unwrap();
+        let c = bifurcation(&d, &chaos, Settings::default(), false, "force", None, &|_| {}).unwrap();
+        assert!(matches!(c.points[0].run.orbit, Orbit::Chaotic { .. }), "{:?}", c.points[0].run.orbit);
+    }
+
+    #[test]
+    fn sampling_does_not_change_the_motion() {
+        // The stroboscopic run stops at every half period and resumes; the ordinary run does
+        // not. Their impacts must be the same ones.
+        let mut d = forced_rattle();
+        d.damper.freq_hz = 7.7;
+        let s = Settings { transient_periods: 0, periods: 15 };
+        let d = d.check().unwrap();
+        let strobed = impact_map(&d, s, "force", None).unwrap();
+        // The sampled window is periods 1 to 16 (the first sample is at the first whole turn
+        // after t = 0); the plain run covers it.
+        let t = 1.0 / 7.7;
+        let mut plain = d.design().clone();
+        plain.damper.duration_s = 16.5 * t;
+        let run = crate::design::evaluate(&plain.check().unwrap(), 0, None).unwrap().run;
+        let window: Vec<_> = run.impacts.iter().filter(|i| i.t_s >= t && i.t_s < 16.0 * t).collect();
+        assert_eq!(window.len(), strobed.impacts.len());
+        assert!(window.len() >= 20);
+        for (a, b) in window.iter().zip(&strobed.impacts) {
+            assert!((a.u_in_m_s - b.u_in_m_s).abs() < 1e-9, "{} vs {}", a.u_in_m_s, b.u_in_m_s);
+            assert!(((a.t_s / t).fract() - b.phase).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn continuation_sweeps_up_then_down_and_basins_share_everything() {
+        let d = forced_rattle().check().unwrap();
+        let vary = Vary::of_values("freq", &[7.7, 7.8], Spelling::Keyword).unwrap();
+        let s = Settings { transient_periods: 100, periods: 30 };
+        let b = bifurcation(&d, &vary, s, true, "force", None, &|_| {}).unwrap();
+        let dirs: Vec<(f64, Direction)> = b.points.iter().map(|p| (p.value, p.direction)).collect();
+        assert_eq!(dirs, [(7.7, Direction::Up), (7.8, Direction::Up), (7.8, Direction::Down), (7.7, Direction::Down)]);
+        let mut free = Design::default();
+        free.damper.v0_m_s = 0.0;
+        let e = bifurcation(&free.check().unwrap(), &vary, s, false, "force", None, &|_| {}).unwrap_err();
+        assert_eq!(e.param(), "force");
+        let basins = basins(&d, 3, &[-0.5, 0.5], s, "force", None, &|_| {}).unwrap();
+        assert_eq!(basins.cells.len(), 6);
+        let total: usize = basins.attractors.iter().map(|a| a.starts).sum();
+        assert_eq!(total, 6);
+        assert!((basins.attractors.iter().map(|a| a.share).sum::<f64>() - 1.0).abs() < 1e-12);
+    }
+}
