@@ -8,8 +8,8 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-#[path = "support/wait.rs"]
-mod wait;
+
+use crate::support::wait;
 use wait::wait_within;
 
 struct Ran {
