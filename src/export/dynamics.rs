@@ -300,7 +300,7 @@ pub fn basins_svg(b: &Basins, title: &str, look: &Look) -> String {
     let y = Axis::fixed("ball's start velocity w0 (m/s)", cell(&b.w0_m_s, 0).0, cell(&b.w0_m_s, nw - 1).1);
     let frame = Frame::standard(&svg, x, y, true);
     frame.grid(&mut svg);
-    let color = |id: usize| svg::series_color(id, b.attractors.len().max(1));
+    let color = |id: usize| svg::series_color(id);
     for (i, &id) in b.cells.iter().enumerate() {
         let (x0, x1) = cell(&ys, i % ny);
         let (w0, w1) = cell(&b.w0_m_s, i / ny);

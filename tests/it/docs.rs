@@ -43,13 +43,17 @@ fn guide_pages() -> Vec<PathBuf> {
 fn console_sessions_run_as_written() {
     // The sessions run with an empty HOME (no user's config or saved designs) from the
     // repository's root, as a reader who has just cloned it.
+    // The environment is the sessions' own (set on each command, never on this test process,
+    // which the other tests of the binary share).
     let home = tempfile::tempdir().unwrap();
-    std::env::set_var("HOME", home.path());
-    std::env::set_var("XDG_CONFIG_HOME", home.path().join("config"));
-    std::env::set_var("XDG_DATA_HOME", home.path().join("data"));
-    std::env::remove_var("XDG_CONFIG_DIRS");
-    std::env::set_var("NO_COLOR", "1");
+    let at = |sub: &str| home.path().join(sub).to_string_lossy().into_owned();
     let cases = trycmd::TestCases::new();
+    cases
+        .env("HOME", at(""))
+        .env("XDG_CONFIG_HOME", at("config"))
+        .env("XDG_DATA_HOME", at("data"))
+        .env("XDG_CONFIG_DIRS", at("no-config-dirs"))
+        .env("NO_COLOR", "1");
     cases.register_bin("thud", trycmd::cargo::cargo_bin!("thud")).case("README.md");
     for page in guide_pages() {
         cases.case(page);

@@ -1280,7 +1280,7 @@ fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
     let mut app = full_app("default", Palette::default());
     press(&mut app, KeyCode::Char('T'));
     let n = app.tour.as_ref().unwrap().tour.steps.len();
-    assert!((6..=8).contains(&n));
+    assert!((6..=10).contains(&n));
     for i in 0..n {
         let state = app.tour.as_ref().expect("still touring");
         assert_eq!(state.step, i);
