@@ -180,7 +180,10 @@ fn every_row_is_a_config_key_with_its_range() {
             let problems = thud::config::check_text(path, &text);
             assert_eq!(problems.len(), 1, "{text}: {problems:?}");
             let shown = problems[0].to_string();
-            assert!(shown.starts_with(&format!("config.toml:{line}:{}: invalid {}: ", p.name.len() + 4, p.name)), "{shown}");
+            assert!(
+                shown.starts_with(&format!("config.toml:{line}:{}: invalid {}: ", p.name.len() + 4, p.name)),
+                "{shown}"
+            );
             assert!(shown.contains(&range.describe()), "{shown}: the range's line");
             let config: thud::config::Config = toml::from_str(&text).unwrap();
             assert!(config.validate().is_err(), "{text}");

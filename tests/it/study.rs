@@ -8,7 +8,6 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-
 use crate::support::wait;
 use wait::wait_within;
 

@@ -57,7 +57,8 @@ pub(crate) fn strobe(
     let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
     let load = Harmonic::new(p.force_n, p.main_mass_kg, p.freq_hz, phase);
     let opts = RunOptions { history_samples: 0, cancel };
-    let mut sim = EventSim::new(p, ForcedFlight(Forced::new(osc, load)), &opts, start, rec, super::ContactScheme::default());
+    let mut sim =
+        EventSim::new(p, ForcedFlight(Forced::new(osc, load)), &opts, start, rec, super::ContactScheme::default());
     let t_window = at(first);
     sim.advance_to(t_window);
     let n = 2 * periods as usize;
