@@ -103,8 +103,10 @@ def test_wrong_types_and_unknown_values_of_the_other_kinds():
     assert e.param == "samples" and m == "invalid samples: expected a whole number, not a list"
     e, m = raised("pulse", gap=0.04)
     assert e.param == "gap" and "unknown parameter" in m and "(one of: sphere, plate, radius" in m
-    e, m = raised("simulate", density=1000, radius=0.01)
-    assert e.param == "radius" and m.startswith("invalid radius: cannot be combined with density")
+    # radius and density make the mass; all three given and inconsistent over-determine the ball
+    e, m = raised("simulate", mass=0.04, density=1000, radius=0.01)
+    assert e.param == "density" and m.startswith("invalid density: mass 0.04 kg, radius 0.01 m and density")
+    assert "disagree" in m and "give two of the three" in m
     e, m = raised("simulate", dt=1e-7)
     assert e.param == "dt" and m.endswith('add solver="newmark"')
 
