@@ -160,7 +160,7 @@ impl SweepRow {
 
 /// The columns of a chart cell: its mass and gap, then its metrics in the order (and with the
 /// names) of a cell of `sweep --json` (`mass_kg`, `gap_m`, `metrics.*`).
-const SWEEP_HEADER: [&str; 11] = [
+pub(crate) const SWEEP_HEADER: [&str; 11] = [
     "mass_kg",
     "gap_m",
     "n_impacts",

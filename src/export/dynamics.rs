@@ -31,18 +31,19 @@ fn o(v: Option<f64>) -> String {
     v.map_or(String::new(), n)
 }
 
-/// The metric columns of a study cell, in the order (and with the names) of its JSON.
-const METRICS: [&str; 9] = [
-    "n_impacts",
-    "inclination_cm_s",
-    "inclination_fit_cm_s",
-    "u0_max_m_s",
-    "zdot_abs_max_m_s",
-    "spl_max_db",
-    "contact_duration_s",
-    "restitution_mean",
-    "zone",
-];
+/// The metric columns of a study cell, in the order (and with the names) of its JSON: the sweep
+/// CSV's columns after its mass and gap.
+const METRICS: &[&str] = csv_metrics();
+
+const fn csv_metrics() -> &'static [&'static str] {
+    match super::csv::SWEEP_HEADER.split_first() {
+        Some((_, rest)) => match rest.split_first() {
+            Some((_, metrics)) => metrics,
+            None => &[],
+        },
+        None => &[],
+    }
+}
 
 /// A study over any parameter, one row per cell: `index`, each axis (`v0_m_s`, …), the
 /// metrics, and with a force the steady amplitude and reduction.

@@ -78,27 +78,11 @@ const NAMED_ROWS: [&str; 24] = [
     "ball-position",
 ];
 
-/// `a == b`, at compile time.
-const fn same(a: &str, b: &str) -> bool {
-    let (a, b) = (a.as_bytes(), b.as_bytes());
-    if a.len() != b.len() {
-        return false;
-    }
-    let mut i = 0;
-    while i < a.len() {
-        if a[i] != b[i] {
-            return false;
-        }
-        i += 1;
-    }
-    true
-}
-
 /// Whether the row `i` of [`params::DESIGN`] is set by a named field.
 const fn named_row(i: usize) -> bool {
     let mut j = 0;
     while j < NAMED_ROWS.len() {
-        if same(DESIGN[i].name, NAMED_ROWS[j]) {
+        if params::same_name(DESIGN[i].name, NAMED_ROWS[j]) {
             return true;
         }
         j += 1;
@@ -149,7 +133,7 @@ const NAMED: [Knob; 23] = [
 /// The row of [`params::DESIGN`] called `name` (its index; the table's length if none).
 const fn design_row(name: &str) -> usize {
     let mut i = 0;
-    while i < DESIGN.len() && !same(DESIGN[i].name, name) {
+    while i < DESIGN.len() && !params::same_name(DESIGN[i].name, name) {
         i += 1;
     }
     i

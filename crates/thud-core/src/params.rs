@@ -1193,8 +1193,8 @@ const fn design_range(name: &str) -> &'static Range {
     panic!("no quantity row of that name in DESIGN")
 }
 
-/// `a == b`, at compile time.
-const fn same_name(a: &str, b: &str) -> bool {
+/// `a == b`, at compile time (a row looked up by its name in a `const` table).
+pub const fn same_name(a: &str, b: &str) -> bool {
     let (a, b) = (a.as_bytes(), b.as_bytes());
     if a.len() != b.len() {
         return false;
