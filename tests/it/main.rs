@@ -34,6 +34,7 @@ mod files;
 mod fit_cli;
 mod forced;
 mod forced_cli;
+mod hostile_dynamics;
 mod hostile_files;
 mod hostile_inputs;
 mod hostile_round3;

@@ -443,6 +443,7 @@ impl Range {
                 format!("'{t}' is not a whole number; the {} must be {}", self.what, self.describe()),
             )
         })?;
+        let v = crate::units::overflow_checked(param, t, v)?;
         if v.fract() != 0.0 && v.is_finite() {
             return Err(ThudError::invalid(
                 param,

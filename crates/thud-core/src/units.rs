@@ -130,7 +130,20 @@ pub fn parse(param: &str, text: &str, kind: Kind) -> Result<f64, ThudError> {
             plain_unit: kind.plain_unit(),
         }
     })?;
-    Ok(value * factor)
+    overflow_checked(param, text, value * factor)
+}
+
+/// `value`, unless the digits the user typed overflowed to ±∞ (`1e400`, `1e308km`): then an
+/// error quoting the text, not the ∞ it became (explicit `inf` is refused by the ranges).
+pub fn overflow_checked(param: &str, text: &str, value: f64) -> Result<f64, ThudError> {
+    let typed_infinity = text.to_ascii_lowercase().contains("inf");
+    if value.is_infinite() && !typed_infinity {
+        return Err(ThudError::invalid(
+            param,
+            format!("'{}' is beyond the largest number thud holds (about 1.8e308)", text.trim()),
+        ));
+    }
+    Ok(value)
 }
 
 fn looks_like_exponent(t: &str, i: usize) -> bool {
@@ -194,6 +207,17 @@ pub fn short(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Digits that overflow f64 are refused quoting what was typed, not the ∞ they became.
+    #[test]
+    fn overflowing_digits_are_quoted_as_typed() {
+        for (text, kind) in [("1e400", Kind::Mass), ("-1e400 m/s", Kind::Speed), ("1e308kN", Kind::Force)] {
+            let e = parse("mass", text, kind).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("invalid mass: '{}' is beyond", text.trim())), "{e}");
+            assert!(!e.contains("inf"), "{e}");
+        }
+        assert!(parse("mass", "1e308", Kind::Mass).unwrap().is_finite());
+    }
 
     #[test]
     fn suffixes_convert_to_si() {
