@@ -1,11 +1,11 @@
 //! The terminal put back on SIGILL, SIGFPE and SIGSEGV, the three signals whose default action
-//! ends the process and that thud's signal module ([`signal-hook`]) cannot catch.
+//! ends the process and that thud's signal module (through `signal-hook`) cannot catch.
 //!
 //! **Why a crate of its own, by hand.** `signal-hook` refuses these signals outright (its
 //! `FORBIDDEN` list: a handler that returns into a real fault runs the faulting instruction
 //! again), and no well-kept crate offers "restore the terminal, then die by the same signal";
 //! catching them takes `libc::sigaction`, which is `unsafe`. The workspace forbids unsafe code
-//! everywhere else, so this crate is the one place it lives: about forty lines, every block
+//! everywhere else, so this crate is the one place it lives: about 80 lines of code, every block
 //! with its `SAFETY` comment (`clippy::undocumented_unsafe_blocks` is denied).
 //!
 //! **What the handler does.** Only async-signal-safe work, on the alternate signal stack that
