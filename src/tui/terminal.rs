@@ -4,8 +4,8 @@
 //! the panic hook runs (through [`crate::signals`]), then thud exits with 128 + the signal.
 //! SIGILL, SIGFPE and SIGSEGV, which no handler thread can catch, are covered by `thud_fatal`:
 //! armed before raw mode is entered and disarmed once the terminal is restored, it writes the
-//! same restore sequence ([`restore_bytes`]) and puts the saved terminal settings back from the
-//! signal handler itself, and the process then dies by that signal.
+//! same restore sequence (made once, before any fault) and puts the saved terminal settings
+//! back from the signal handler itself, and the process then dies by that signal.
 
 use std::io::{self, Stdout, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
