@@ -3,9 +3,13 @@
 //! SIGXCPU, SIGVTALRM, SIGPROF, SIGPWR, SIGSTKFLT, SIGIO, SIGABRT, SIGTRAP, SIGSYS, SIGBUS and every real-time
 //! signal SIGRTMIN..=SIGRTMAX — run every registered clean-up (remove a live temporary file or
 //! folder, restore the terminal), then the process exits with status 128 + the signal number,
-//! as a shell reports a process killed by that signal. SIGILL, SIGFPE and SIGSEGV keep their
-//! default action: `signal-hook` refuses them (a real fault must not return into the faulting
-//! code) and catching them otherwise needs `unsafe`, which this crate forbids.
+//! as a shell reports a process killed by that signal. SIGILL, SIGFPE and SIGSEGV are not
+//! handled here: `signal-hook` refuses them (a real fault must not return into the faulting
+//! code), and a clean-up on a thread cannot run before a fault's default action. While the
+//! explorer runs, the `thud_fatal` crate (the workspace's one crate with `unsafe`, armed by
+//! [`crate::tui::terminal`]) restores the terminal from their handler itself — async-signal-safe
+//! `write` and `tcsetattr` only — and re-raises them, so the process still dies by the signal.
+//! Elsewhere they keep their default action.
 //!
 //! One handler for the whole process, so the file writer ([`crate::fsio`]) and the terminal
 //! ([`crate::tui::terminal`]) cannot race each other to `exit`. The signal itself is caught by

@@ -2,10 +2,14 @@
 //! SIGHUP (a dropped SSH connection) or SIGINT — leaves the terminal as it was: raw mode off,
 //! alternate screen left, mouse capture off, cursor shown. On a signal the same [`restore`] as
 //! the panic hook runs (through [`crate::signals`]), then thud exits with 128 + the signal.
+//! SIGILL, SIGFPE and SIGSEGV, which no handler thread can catch, are covered by `thud_fatal`:
+//! armed before raw mode is entered and disarmed once the terminal is restored, it writes the
+//! same restore sequence (made once, before any fault) and puts the saved terminal settings
+//! back from the signal handler itself, and the process then dies by that signal.
 
 use std::io::{self, Stdout, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Once;
+use std::sync::{Once, OnceLock};
 
 use crossterm::cursor::{Hide, MoveTo, Show};
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
@@ -49,12 +53,24 @@ pub fn write_restore_sequence(out: &mut impl Write, clear_alternate: bool) -> io
     out.flush()
 }
 
+/// The restore sequence (emptying the alternate screen) as bytes, made once: the fault
+/// handler (`thud_fatal`) may only write what is ready before the fault.
+fn restore_bytes() -> &'static [u8] {
+    static BYTES: OnceLock<Vec<u8>> = OnceLock::new();
+    BYTES.get_or_init(|| {
+        let mut buf = Vec::new();
+        let _ = write_restore_sequence(&mut buf, true);
+        buf
+    })
+}
+
 /// Restores the terminal. Safe to call more than once and when setup never happened; errors
 /// are ignored (there is nothing better to do on the way out).
 pub fn restore() {
     let _ = terminal::disable_raw_mode();
     let on_alternate = ON_ALTERNATE_SCREEN.swap(false, Ordering::SeqCst);
     let _ = write_restore_sequence(&mut io::stdout().lock(), on_alternate);
+    thud_fatal::disarm();
 }
 
 /// Restores the terminal on the way out of a signal, and keeps standard output locked until
@@ -65,6 +81,7 @@ fn restore_for_exit() {
     let mut out = io::stdout().lock();
     let on_alternate = ON_ALTERNATE_SCREEN.swap(false, Ordering::SeqCst);
     let _ = write_restore_sequence(&mut out, on_alternate);
+    thud_fatal::disarm();
     // Held until `exit`: the signal thread exits right after the clean-ups.
     std::mem::forget(out);
 }
@@ -97,6 +114,7 @@ impl Drop for Guard {
 /// terminal is restored before returning.
 pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     use std::io::IsTerminal;
+    use std::os::fd::AsRawFd;
     if !io::stdout().is_terminal() {
         // Nothing was changed, so nothing is restored (no stray escape sequences in a pipe).
         return Err(io::Error::other("standard output is not a terminal"));
@@ -105,7 +123,13 @@ pub fn setup(mouse: bool) -> io::Result<(Term, Guard)> {
     // Registered before the terminal changes, so a signal at any point after is covered. If the
     // handler cannot be installed the explorer still runs (quit, errors and panics restore).
     let (on_signal, _installed) = signals::on_signal(restore_for_exit);
-    terminal::enable_raw_mode()?;
+    // Before raw mode, so the settings it saves are the shell's. Without it the explorer still
+    // runs (SIGILL, SIGFPE and SIGSEGV then keep the bare default action).
+    let _armed = thud_fatal::arm(io::stdout().as_raw_fd(), restore_bytes());
+    if let Err(e) = terminal::enable_raw_mode() {
+        thud_fatal::disarm();
+        return Err(e);
+    }
     let guard = Guard { _on_signal: on_signal };
     let mut out = io::stdout();
     ON_ALTERNATE_SCREEN.store(true, Ordering::SeqCst);

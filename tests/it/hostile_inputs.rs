@@ -886,7 +886,7 @@ else:
 
 /// Item 14: an unterminated bracketed paste times out. crossterm's reader kept everything after
 /// `ESC[200~` until `ESC[201~`, so every later key (q included) was swallowed and memory grew;
-/// the explorer drops such a paste after a second (keeping at most 1 MiB) and reads keys again.
+/// the explorer drops such a paste after a second (keeping none of it) and reads keys again.
 #[test]
 fn an_endless_bracketed_paste_times_out_and_q_quits() {
     let Some((said, err)) = run_pty_script(ENDLESS_PASTE) else { return };

@@ -222,9 +222,10 @@ fn a_signal_restores_the_terminal(signal: &str, number: i32) {
     let bin = env!("CARGO_BIN_EXE_thud");
     let t = Tmux::start(
         |d| {
-            // The inner shell writes its pid and becomes thud (exec), so the pid is thud's.
+            // The inner shell writes its pid and becomes thud (exec), so the pid is thud's. No
+            // core file from the faults (SIGILL, SIGFPE, SIGSEGV).
             format!(
-                "cd '{d}' && sh -c 'echo $$ > pid; exec env XDG_CONFIG_HOME=\"{d}/config\" XDG_DATA_HOME=\"{d}/data\" \"{bin}\" tui --mouse'; \
+                "ulimit -c 0; cd '{d}' && sh -c 'echo $$ > pid; exec env XDG_CONFIG_HOME=\"{d}/config\" XDG_DATA_HOME=\"{d}/data\" \"{bin}\" tui --mouse'; \
                  echo $? > '{d}/status'; stty -a > '{d}/stty'; echo AFTER-THUD; exec sleep 60",
                 d = d.display()
             )
@@ -269,6 +270,16 @@ fn every_ending_signal_restores_the_terminal() {
     for (signal, number) in
         [("QUIT", 3), ("USR1", 10), ("USR2", 12), ("ALRM", 14), ("XCPU", 24), ("VTALRM", 26), ("PROF", 27)]
     {
+        a_signal_restores_the_terminal(signal, number);
+    }
+}
+
+/// SIGILL, SIGFPE and SIGSEGV, which no handler thread may catch, restore the terminal from
+/// their handler (`thud_fatal`), and the process still dies by the signal: the shell reports
+/// 128 + its number.
+#[test]
+fn fault_signals_restore_the_terminal() {
+    for (signal, number) in [("ILL", 4), ("FPE", 8), ("SEGV", 11)] {
         a_signal_restores_the_terminal(signal, number);
     }
 }
