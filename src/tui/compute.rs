@@ -106,6 +106,11 @@ pub struct AcousticResult {
     pub rest_at_f: Option<response::ResponsePoint>,
     /// With N > 1 runs: the ensemble of the design (its runs from N spread ball offsets).
     pub ensemble: Option<Ensemble>,
+    /// The level (dB) of each of the run's impacts at the observer, index as in the run's
+    /// impacts: [`design::impact_spls`], as `thud simulate --json` reports them (None where the
+    /// engine refuses that impact's field). The animation's flash reads it: no field is
+    /// computed on the UI thread.
+    pub impact_spl_db: Vec<Option<f64>>,
 }
 
 /// One impact at U0 = v0 on a fixed plate (K* = 1/m, Eq 8), heard at the design's observer.
@@ -173,6 +178,8 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         polar = directivity(&r, u0);
     }
     let single = single_impact(&r);
+    let impact_spl_db =
+        sim.eval.run.impacts.iter().map(|i| r.impact_spl_db(i.u_in_m_s).ok().filter(|db| db.is_finite())).collect();
     Ok(AcousticResult {
         metrics,
         waveform,
@@ -182,6 +189,7 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         ensemble: None,
         forced_ensemble: None,
         rest_at_f: None,
+        impact_spl_db,
     })
 }
 

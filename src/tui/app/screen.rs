@@ -96,9 +96,11 @@ impl App {
 
 /// The animation view.
 impl App {
-    /// The run the animation plays: the live design's, if computed.
+    /// The end of the runs the animation plays (s): the live design's, and a pinned design's
+    /// if longer; None until the live run is computed.
     fn anim_end_s(&self) -> Option<f64> {
-        self.results.sim.as_ref().map(|s| s.eval.run.final_time_s)
+        let pinned = self.pinned.as_ref().and_then(|p| p.sim.as_ref()).map_or(0.0, |s| s.eval.run.final_time_s);
+        self.results.sim.as_ref().map(|s| s.eval.run.final_time_s.max(pinned))
     }
 
     /// `a`: shows the animation (from the start, slowest, playing), or leaves it.
@@ -133,7 +135,7 @@ impl App {
             Action::AnimRestart => anim.t_s = 0.0,
             _ => {}
         }
-        self.anim_flash_level();
+        self.anim_name_flash(None);
     }
 
     /// True while the animation plays (the event loop then draws 30 frames a second).
@@ -147,26 +149,15 @@ impl App {
         if let Some(a) = self.anim.as_mut().filter(|a| a.playing) {
             a.advance(real_s, end);
         }
-        self.anim_flash_level();
+        self.anim_name_flash(Some(real_s));
     }
 
-    /// The level of the impact flashed now, computed once (the engine's field of its speed).
-    fn anim_flash_level(&mut self) {
-        let Some(sim) = self.results.sim.clone() else { return };
-        let Some(anim) = self.anim.as_mut() else { return };
-        let impacts = &sim.eval.run.impacts;
-        let Some(i) = anim.flashed(impacts) else { return };
-        if anim.spl.is_some_and(|(j, _)| j == i) {
-            return;
+    /// The impact the flash line names ([`crate::tui::anim::Anim::name_flash`]); its level is
+    /// the worker's, computed with the readout (no field is computed here).
+    fn anim_name_flash(&mut self, played_s: Option<f64>) {
+        let Some(sim) = self.results.sim.as_ref() else { return };
+        if let Some(anim) = self.anim.as_mut() {
+            anim.name_flash(&sim.eval.run.impacts, played_s);
         }
-        let level = self
-            .design
-            .clone()
-            .check()
-            .ok()
-            .and_then(|d| d.impact_field(impacts[i].u_in_m_s).ok())
-            .map(|f| f.spl_db())
-            .filter(|db| db.is_finite());
-        anim.spl = Some((i, level));
     }
 }
