@@ -21,6 +21,7 @@ use ratatui::Frame;
 use std::path::PathBuf;
 
 use super::app::{App, ChartView, Mode, Panel, PulseView};
+use super::bifurcation::{BifurcationState, BifurcationView};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
 use super::compute::{default_band, ensemble_under, nearest, AcousticResult, SimResult, AGREEMENT_SURE};
 use super::explain;
@@ -386,8 +387,10 @@ fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
         ));
     }
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
+    // The orbit's type at f from the design's start, as `thud bifurcation` classifies it.
+    let orbit = a.orbit.as_ref().map_or(String::new(), |o| format!("; orbit {}", o.run.orbit.label()));
     Some(format!(
-        "{}, {start}, {} by t {} s{cut}",
+        "{}, {start}, {} by t {} s{cut}{orbit}",
         yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
         sig(s.window_end_s, 3)
@@ -659,6 +662,21 @@ fn chart_title(app: &App, width: u16) -> String {
                 width,
             )
         }
+        ChartView::Bifurcation => {
+            let p = &app.design.damper;
+            let (f0, f) = (sig(p.force_n, 3), sig(p.freq_hz, 4));
+            let refining = if app.bifurcation_busy() { ", refining…" } else { "" };
+            fit(
+                th,
+                &[
+                    format!(" bifurcation: x(kT) over f, F0 {f0} N, from its start; f {f} Hz{refining} "),
+                    format!(" bifurcation: x(kT) over f, f {f} Hz{refining} "),
+                    format!(" bifurcation{refining} "),
+                    " bifurcation ".into(),
+                ],
+                width,
+            )
+        }
     }
 }
 
@@ -681,6 +699,29 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
             };
             let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.rest_at_f.as_ref());
             let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, at_f, theme: app.theme };
+            f.render_widget(view, area);
+            None
+        }
+        ChartView::Bifurcation => {
+            let state = if !app.design.damper.forced() {
+                BifurcationState::NoForce
+            } else if let Some((b, fine)) = app.bifurcation() {
+                BifurcationState::Ready(b, fine)
+            } else if let Some(e) = app.bifurcation.error.as_deref() {
+                BifurcationState::Failed(e)
+            } else {
+                BifurcationState::Computing
+            };
+            let band = default_band(&app.design);
+            let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.orbit.as_ref());
+            let view = BifurcationView {
+                block,
+                state,
+                band_hz: [band.from_hz, band.to_hz],
+                freq_hz: app.design.damper.freq_hz,
+                at_f,
+                theme: app.theme,
+            };
             f.render_widget(view, area);
             None
         }

@@ -26,13 +26,16 @@ impl App {
         }
     }
 
-    /// Switches the chart panel between the zones and the scatter (from the response: zones).
-    pub(crate) fn toggle_chart_view(&mut self) {
+    /// Cycles the chart panel: the zones, the scatter, and with a force on the bifurcation
+    /// diagram over f (from the response: zones); returns the work the diagram needs.
+    pub(crate) fn toggle_chart_view(&mut self) -> Vec<Request> {
         self.chart_view = match self.chart_view {
             ChartView::Zones => ChartView::Scatter,
-            ChartView::Scatter | ChartView::Response => ChartView::Zones,
+            ChartView::Scatter if self.design.damper.forced() => ChartView::Bifurcation,
+            ChartView::Scatter | ChartView::Response | ChartView::Bifurcation => ChartView::Zones,
         };
         self.say_chart_view();
+        self.bifurcation_request().into_iter().collect()
     }
 
     /// Switches the chart panel to the response curve and back to the zones; returns the work
@@ -40,7 +43,7 @@ impl App {
     pub(crate) fn toggle_response(&mut self) -> Vec<Request> {
         self.chart_view = match self.chart_view {
             ChartView::Response => ChartView::Zones,
-            ChartView::Zones | ChartView::Scatter => ChartView::Response,
+            ChartView::Zones | ChartView::Scatter | ChartView::Bifurcation => ChartView::Response,
         };
         self.say_chart_view();
         self.response_request().into_iter().collect()
@@ -61,6 +64,14 @@ impl App {
             }
             ChartView::Response => {
                 format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::Force.label())
+            }
+            ChartView::Bifurcation => {
+                let b = default_band(&self.design);
+                format!(
+                    "bifurcation diagram: x(kT) over f {}–{} Hz, coarse first, f marked",
+                    sig(b.from_hz, 3),
+                    sig(b.to_hz, 3)
+                )
             }
         };
         let text = if self.chart_shown {
