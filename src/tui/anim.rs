@@ -7,9 +7,18 @@
 //! main mass and the ball come from the run's history samples (x and y), the ghost from the
 //! free structure's samples the history panel draws, and each impact from the run's events: at
 //! its onset the ball is placed on the wall it struck (z = ±d/2), so an impact between two
-//! samples is drawn where and when the engine found it. An impact's level is computed once,
-//! when it is first flashed, by the engine's field of that impact speed (as the readout's
-//! SPLmax is for U0max).
+//! samples is drawn where and when the engine found it. An impact's level is the one the worker
+//! computed with the run's readout (the engine's level of each impact, as `thud simulate
+//! --json` lists them): nothing heavier than interpolation runs on the UI thread per frame.
+//!
+//! With a design pinned, its run plays below the live one, to the same scale and clock.
+//!
+//! Bytes over SSH (issue 25: under 30 KB per second of playback at 80×24, 1×): ratatui sends
+//! only the cells that change, so the picture is drawn so that few do. The spring's zigzag
+//! keeps its corners fixed in space (only its end moves), the ghost is its frame's top and
+//! bottom edges (horizontal lines change only at their ends), the time cursor on x(t) is a dot
+//! on the curve and a tick on the axis (not a full-height line), and the line naming the
+//! flashed impact holds each impact at least [`NAME_HOLD_S`] of real time.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -29,6 +38,9 @@ pub const SPEEDS: [f64; 7] = [1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0];
 pub const FRAME_S: f64 = 1.0 / 30.0;
 /// How long an impact stays flashed, in real time (s), whatever the speed.
 pub const FLASH_S: f64 = 0.5;
+/// The least real time (s) the flash line names one impact while playing: at 1× impacts come
+/// every few frames, faster than anyone reads, and each new text resends the line.
+pub const NAME_HOLD_S: f64 = 0.25;
 
 /// The animation's state: the time shown, the speed, playing or paused.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,14 +50,15 @@ pub struct Anim {
     /// Index into [`SPEEDS`].
     pub speed: usize,
     pub playing: bool,
-    /// The level (dB) of the impact last flashed, by its index in the run's impacts.
-    pub spl: Option<(usize, Option<f64>)>,
+    /// The impact the flash line names (its index in the run's impacts) and the real time (s)
+    /// it has named it.
+    pub named: Option<(usize, f64)>,
 }
 
 impl Default for Anim {
     /// From the start, at the slowest speed, playing.
     fn default() -> Self {
-        Self { t_s: 0.0, speed: 0, playing: true, spl: None }
+        Self { t_s: 0.0, speed: 0, playing: true, named: None }
     }
 }
 
@@ -86,6 +99,18 @@ impl Anim {
         let since = FLASH_S * self.rate();
         let i = impacts.partition_point(|e| e.t_s <= self.t_s);
         (i > 0 && self.t_s - impacts[i - 1].t_s <= since).then(|| i - 1)
+    }
+
+    /// Updates the impact the flash line names after the time shown moved: the one flashed
+    /// now, but while playing (`played_s`: the real time of the frame) a named impact is kept
+    /// until it has shown [`NAME_HOLD_S`]. Stepping and restarts name the flashed one at once.
+    pub fn name_flash(&mut self, impacts: &[ImpactEvent], played_s: Option<f64>) {
+        let now = self.flashed(impacts);
+        self.named = match (now, self.named, played_s) {
+            (None, ..) => None,
+            (Some(i), Some((j, age)), Some(dt)) if i == j || age + dt < NAME_HOLD_S => Some((j, age + dt)),
+            (Some(i), ..) => Some((i, 0.0)),
+        };
     }
 }
 
@@ -142,19 +167,40 @@ pub fn sample_at(samples: &[(f64, f64)], t: f64) -> Option<f64> {
     }
 }
 
+/// One run as the animation draws it.
+#[derive(Clone, Copy)]
+pub struct Track<'a> {
+    pub history: &'a [HistoryPoint],
+    pub impacts: &'a [ImpactEvent],
+    /// x(t) (t in s, x in cm).
+    pub history_cm: &'a [(f64, f64)],
+    pub gap_m: f64,
+    pub ball_radius_m: f64,
+    /// The level (dB) of each impact (index as `impacts`), as the worker computed it; empty
+    /// while it computes.
+    pub levels_db: &'a [Option<f64>],
+}
+
 /// The view's data.
 pub struct AnimView<'a> {
     pub block: Block<'a>,
     pub anim: &'a Anim,
-    pub history: &'a [HistoryPoint],
-    pub impacts: &'a [ImpactEvent],
-    /// x(t) with the damper, and without it (t in s, x in cm).
-    pub history_cm: &'a [(f64, f64)],
+    /// The live design's run.
+    pub live: Track<'a>,
+    /// x(t) of the live structure without the damper (t in s, x in cm): the ghost.
     pub free_cm: &'a [(f64, f64)],
-    pub gap_m: f64,
-    pub ball_radius_m: f64,
+    /// The pinned design's run, played below the live one.
+    pub pinned: Option<Track<'a>>,
     pub end_s: f64,
     pub theme: Palette,
+}
+
+/// A run's enclosure in cm: the inner half-width (the ball's centre reaches ±d/2), the outer
+/// half-width and half-height.
+fn enclosure_cm(t: &Track) -> (f64, f64, f64) {
+    let (r, hg) = (100.0 * t.ball_radius_m, 100.0 * 0.5 * t.gap_m);
+    let inner = hg + r;
+    (inner, inner + 0.15 * inner.max(1.0), r + 0.15 * inner.max(1.0))
 }
 
 /// The picture's x bounds (cm): the spring's anchor at the left, the mass's widest swing.
@@ -164,38 +210,35 @@ fn scene_bounds(swing_cm: f64, box_half_cm: f64) -> [f64; 2] {
 }
 
 impl AnimView<'_> {
-    /// The picture: anchor, spring, ghost, mass with its enclosure, ball, the flashed wall.
-    fn scene(&self, buf: &mut Buffer, area: Rect, pose: Pose, ghost_m: Option<f64>, flash: Option<&ImpactEvent>) {
+    /// The picture of `track` over `area` with x bounds `xb` (cm, shared by every run shown):
+    /// anchor, spring, ghost, mass with its enclosure, ball, the flashed wall.
+    fn scene(&self, buf: &mut Buffer, area: Rect, xb: [f64; 2], track: &Track, ghost_m: Option<f64>, pinned: bool) {
         let th = &self.theme;
+        let Some(pose) = pose_at(track.history, track.impacts, 0.5 * track.gap_m, self.anim.t_s) else { return };
+        let flash = self.anim.flashed(track.impacts).and_then(|i| track.impacts.get(i));
         let cm = |m: f64| 100.0 * m;
-        let (r, hg) = (cm(self.ball_radius_m), cm(0.5 * self.gap_m));
-        let inner = hg + r; // the enclosure's inner half-width: the ball's centre reaches ±d/2
-        let box_half = inner + 0.15 * inner.max(1.0);
-        let box_h = r + 0.15 * inner.max(1.0);
-        let swing = self.history_cm.iter().chain(self.free_cm).map(|p| p.1.abs()).fold(0.0, f64::max);
-        let xb = scene_bounds(swing, box_half);
+        let r = cm(track.ball_radius_m);
+        let (inner, box_half, box_h) = enclosure_cm(track);
         // Cells are about twice as tall as wide: the y span matches so circles look round.
         let h_span = (xb[1] - xb[0]) * 2.0 * f64::from(area.height.max(1)) / f64::from(area.width.max(1)) / 2.0;
         let yb = [-h_span, h_span];
+        let dot_y = (yb[1] - yb[0]) / (4.0 * f64::from(area.height.max(1)));
+        let cell_x = (xb[1] - xb[0]) / f64::from(area.width.max(1));
         let anchor = xb[0] + 0.5;
         let spring = |ctx: &mut ratatui::widgets::canvas::Context, to: f64| {
-            let n = 12;
-            // A flat zigzag, one line of cells tall (±1.5 Braille dots): fewer cells change as
-            // it stretches (bytes over SSH).
-            let amp = 1.5 * (yb[1] - yb[0]) / (4.0 * f64::from(area.height.max(1)));
+            // A flat zigzag one line of cells tall (±1.5 Braille dots) with its corners fixed
+            // in space, one a cell: as the mass moves only the cells at its end change.
+            let amp = 1.5 * dot_y;
             let mut prev = (anchor, 0.0);
-            for i in 1..=n {
-                let px = anchor + (to - anchor) * f64::from(i) / f64::from(n);
-                let py = if i == n {
-                    0.0
-                } else if i % 2 == 1 {
-                    amp
-                } else {
-                    -amp
-                };
+            let mut k = 1.0;
+            while anchor + k * cell_x < to - 0.5 * cell_x {
+                let px = anchor + k * cell_x;
+                let py = if k as u32 % 2 == 1 { amp } else { -amp };
                 ctx.draw(&CLine { x1: prev.0, y1: prev.1, x2: px, y2: py, color: Color::Reset });
                 prev = (px, py);
+                k += 1.0;
             }
+            ctx.draw(&CLine { x1: prev.0, y1: prev.1, x2: to, y2: 0.0, color: Color::Reset });
         };
         let frame = |ctx: &mut ratatui::widgets::canvas::Context, x: f64| {
             ctx.draw(&Rectangle {
@@ -214,19 +257,22 @@ impl AnimView<'_> {
         });
         if let Some(g) = ghost_m {
             let g = cm(g);
-            // The ghost's two ends only: enough to read its swing, few cells to resend.
+            // The ghost's top and bottom edges, a dot outside the frame's: enough to read its
+            // swing, and a horizontal line changes only at its ends as it moves.
             stamp(buf, area, xb, yb, th.line_marker_faint(), th.behind(th.ink(Role::Alone)), |ctx| {
-                for end in [g - box_half, g + box_half] {
-                    ctx.draw(&CLine { x1: end, y1: -box_h, x2: end, y2: box_h, color: Color::Reset });
+                for y in [-box_h - dot_y, box_h + dot_y] {
+                    ctx.draw(&CLine { x1: g - box_half, y1: y, x2: g + box_half, y2: y, color: Color::Reset });
                 }
             });
         }
         let x = cm(pose.x_m);
-        stamp(buf, area, xb, yb, th.line_marker(), th.style(Role::Damper), |ctx| {
+        let (body, ball) =
+            if pinned { (th.pinned(), th.pinned()) } else { (th.style(Role::Damper), th.style(Role::Live)) };
+        stamp(buf, area, xb, yb, th.line_marker(), body, |ctx| {
             spring(ctx, x - box_half);
             frame(ctx, x);
         });
-        stamp(buf, area, xb, yb, th.line_marker(), th.style(Role::Live), |ctx| {
+        stamp(buf, area, xb, yb, th.line_marker(), ball, |ctx| {
             ctx.draw(&Circle { x: cm(pose.y_m), y: 0.0, radius: r, color: Color::Reset });
         });
         if let Some(e) = flash {
@@ -239,6 +285,9 @@ impl AnimView<'_> {
                 ctx.draw(&CLine { x1: wx, y1: -box_h, x2: wx, y2: box_h, color: Color::Reset });
             });
         }
+        if pinned {
+            buf.set_stringn(area.x, area.y, "pinned", area.width.into(), th.pinned());
+        }
     }
 }
 
@@ -248,10 +297,10 @@ impl Widget for AnimView<'_> {
         (&self.block).render(area, buf);
         let th = self.theme;
         let a = self.anim;
-        let Some(pose) = pose_at(self.history, self.impacts, 0.5 * self.gap_m, a.t_s) else {
+        if self.live.history.is_empty() {
             buf.set_stringn(inner.x, inner.y, th.text("no run to play yet"), inner.width.into(), Style::default());
             return;
-        };
+        }
         let [top, status, flash_line] =
             Layout::vertical([Constraint::Min(1), Constraint::Length(1), Constraint::Length(1)]).areas(inner);
         let [picture, plot] = if top.width >= 60 {
@@ -259,9 +308,22 @@ impl Widget for AnimView<'_> {
         } else {
             Layout::vertical([Constraint::Percentage(55), Constraint::Percentage(45)]).areas(top)
         };
-        let flashed = a.flashed(self.impacts);
+        // One length scale for every run shown: the widest swing and the widest enclosure.
+        let tracks: Vec<&Track> = std::iter::once(&self.live).chain(self.pinned.as_ref()).collect();
+        let swing =
+            tracks.iter().flat_map(|t| t.history_cm.iter()).chain(self.free_cm).map(|p| p.1.abs()).fold(0.0, f64::max);
+        let box_half = tracks.iter().map(|t| enclosure_cm(t).1).fold(0.0, f64::max);
+        let xb = scene_bounds(swing, box_half);
         let ghost = sample_at(self.free_cm, a.t_s).map(|x| x / 100.0);
-        self.scene(buf, picture, pose, ghost, flashed.and_then(|i| self.impacts.get(i)));
+        match &self.pinned {
+            Some(p) => {
+                let [up, down] =
+                    Layout::vertical([Constraint::Percentage(50), Constraint::Percentage(50)]).areas(picture);
+                self.scene(buf, up, xb, &self.live, ghost, false);
+                self.scene(buf, down, xb, p, None, true);
+            }
+            None => self.scene(buf, picture, xb, &self.live, ghost, false),
+        }
         let state = if a.playing { th.sym("▶ playing", "> playing") } else { th.sym("❚❚ paused", "|| paused") };
         let text = format!("t {} s of {} s   speed {}   {state}", sig(a.t_s, 4), sig(self.end_s, 3), a.speed_text());
         buf.set_stringn(
@@ -271,21 +333,24 @@ impl Widget for AnimView<'_> {
             status.width.into(),
             th.label(),
         );
-        let text = match flashed.and_then(|i| self.impacts.get(i).map(|e| (i, e))) {
+        let named = a.named.and_then(|(i, _)| self.live.impacts.get(i).map(|e| (i, e)));
+        let text = match named {
             Some((i, e)) => {
                 let side = match e.wall {
                     Wall::Upper => "upper wall (right)",
                     Wall::Lower => "lower wall (left)",
                 };
-                let spl = match a.spl {
-                    Some((j, Some(db))) if j == i => format!(", SPL {} dB", sig(db, 4)),
+                let spl = match self.live.levels_db.get(i) {
+                    Some(Some(db)) => format!(", SPL {} dB", sig(*db, 4)),
                     _ => String::new(),
                 };
                 format!("impact {} at the {side}: {} m/s{spl}", i + 1, sig(e.u_in_m_s, 4))
             }
-            None => format!("{} impacts in the run; the ghost: the structure without the ball", self.impacts.len()),
+            None => {
+                format!("{} impacts in the run; the ghost: the structure without the ball", self.live.impacts.len())
+            }
         };
-        let style = if flashed.is_some() { Style::default().add_modifier(Modifier::BOLD) } else { th.label() };
+        let style = if named.is_some() { Style::default().add_modifier(Modifier::BOLD) } else { th.label() };
         buf.set_stringn(
             flash_line.x,
             flash_line.y,
@@ -293,18 +358,26 @@ impl Widget for AnimView<'_> {
             flash_line.width.into(),
             style,
         );
-        let cursor = [(a.t_s, -1e9), (a.t_s, 1e9)];
-        let yb = fit_bounds(self.history_cm.iter().chain(self.free_cm).map(|p| p.1), 0.05);
-        let cursor = [(cursor[0].0, yb[0]), (cursor[1].0, yb[1])];
+        let yb = fit_bounds(tracks.iter().flat_map(|t| t.history_cm.iter()).chain(self.free_cm).map(|p| p.1), 0.05);
+        // The time cursor: a dot on x(t) and a tick on the time axis (a full-height line
+        // would resend a column of cells every time it moves).
+        let now = sample_at(self.live.history_cm, a.t_s).map_or_else(Vec::new, |x| vec![(a.t_s, x)]);
+        let tick = [(a.t_s, yb[0])];
+        let pinned_cm: &[(f64, f64)] = self.pinned.as_ref().map_or(&[], |p| p.history_cm);
+        let mut series =
+            vec![Curve::line("none", self.free_cm, th.behind(th.ink(Role::Alone)), th.line_marker_faint())];
+        if !pinned_cm.is_empty() {
+            series.push(Curve::line("pinned", pinned_cm, th.pinned(), th.line_marker_faint()));
+        }
+        series.push(Curve::line("damper", self.live.history_cm, th.style(Role::Damper), th.line_marker()));
+        let bold = Style::default().add_modifier(Modifier::BOLD);
+        series.push(Curve::points("now", &now, bold, th.mark('●', 'o')));
+        series.push(Curve::points("", &tick, bold, th.mark('▲', '^')));
         LinePlot {
             block: Block::default(),
             x_title: "t (s)",
             y_title: "x (cm)",
-            series: vec![
-                Curve::line("none", self.free_cm, th.behind(th.ink(Role::Alone)), th.line_marker_faint()),
-                Curve::line("damper", self.history_cm, th.style(Role::Damper), th.line_marker()),
-                Curve::line("now", &cursor, Style::default().add_modifier(Modifier::BOLD), th.mark('│', '|')),
-            ],
+            series,
             empty: "no history",
             theme: th,
             y_zero: true,

@@ -124,6 +124,26 @@ impl ResponseKey {
     }
 }
 
+/// What a bifurcation pass depends on: the simulation of the design without its forcing
+/// frequency (f is the varied value; the orbits do not depend on the observer) and the band.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct BifurcationKey {
+    sim: SimKey,
+    /// From and to (Hz).
+    band: [Bits; 2],
+    points: usize,
+}
+
+impl BifurcationKey {
+    /// The key of the bifurcation diagram of `d` over `band`.
+    pub fn of(d: &Design, band: &FreqBand) -> Self {
+        let mut free_f = d.clone();
+        free_f.damper.freq_hz = 0.0;
+        let FreqBand { from_hz, to_hz, points } = *band;
+        Self { sim: SimKey::of(&free_f), band: [from_hz, to_hz].map(Bits::from), points }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

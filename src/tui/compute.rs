@@ -13,10 +13,13 @@ use crate::acoustics::{Field, Observer};
 use crate::contact::{Impact, Target};
 use crate::damper;
 use crate::design::{self, linspace, Cell, Chart, Design, Evaluation, Metrics, Thresholds};
+use crate::dynamics::{self, Bifurcation, BifurcationPoint};
 use crate::ensemble::{self, Ensemble, EnsembleCell, EnsembleChart, Member};
 use crate::error::ThudError;
 use crate::limits;
+use crate::params::Spelling;
 use crate::response::{self, Response, ResponseOptions, Steady};
+use crate::study::Vary;
 
 /// History samples kept for the x(t) plot.
 pub const HISTORY_SAMPLES: usize = 600;
@@ -106,6 +109,15 @@ pub struct AcousticResult {
     pub rest_at_f: Option<response::ResponsePoint>,
     /// With N > 1 runs: the ensemble of the design (its runs from N spread ball offsets).
     pub ensemble: Option<Ensemble>,
+    /// The level (dB) of each of the run's impacts at the observer, index as in the run's
+    /// impacts: [`design::impact_spls`], as `thud simulate --json` reports them (None where the
+    /// engine refuses that impact's field). The animation's flash reads it: no field is
+    /// computed on the UI thread.
+    pub impact_spl_db: Vec<Option<f64>>,
+    /// A forced design: its orbit at its own f, as `thud bifurcation --vary f=f:f:1` samples
+    /// and classifies it ([`orbit_at_f`]); the readout names its type and the bifurcation view
+    /// marks its samples at f. None without a force.
+    pub orbit: Option<dynamics::BifurcationPoint>,
 }
 
 /// One impact at U0 = v0 on a fixed plate (K* = 1/m, Eq 8), heard at the design's observer.
@@ -173,6 +185,8 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         polar = directivity(&r, u0);
     }
     let single = single_impact(&r);
+    let impact_spl_db =
+        sim.eval.run.impacts.iter().map(|i| r.impact_spl_db(i.u_in_m_s).ok().filter(|db| db.is_finite())).collect();
     Ok(AcousticResult {
         metrics,
         waveform,
@@ -182,6 +196,8 @@ pub fn compute_acoustic(d: &Design, sim: &SimResult) -> Result<AcousticResult, T
         ensemble: None,
         forced_ensemble: None,
         rest_at_f: None,
+        impact_spl_db,
+        orbit: None,
     })
 }
 
@@ -209,6 +225,12 @@ pub fn compute_readout(
         match rest_point(d, cancel)? {
             Some(p) => a.rest_at_f = Some(p),
             None => return Ok(None),
+        }
+        match orbit_at_f(d, cancel) {
+            Ok(Some(p)) => a.orbit = Some(p),
+            Ok(None) => return Ok(None),
+            // The engine samples orbits with the event solver only: with Newmark no type is named.
+            Err(_) => {}
         }
         if runs > 1 {
             let opts = ResponseOptions { continuation: false, settle: true };
@@ -488,6 +510,54 @@ pub fn compute_relevel(d: &Design, passes: &ChartPasses) -> ChartPasses {
 /// spring or when overdamped.
 pub fn natural_frequency_hz(d: &Design) -> f64 {
     thud_core::response::natural_frequency_hz(d)
+}
+
+/// The forcing frequencies of the explorer's bifurcation diagram: a coarse pass first, then the
+/// fine one, over the response curve's band ([`default_band`]: 0.6–1.6 × the natural
+/// frequency), so the two views of a forced design span the same f.
+pub const BIFURCATION_VALUES: [usize; 2] = [20, 100];
+
+/// How long each orbit runs in the explorer: the engine's defaults, as `thud bifurcation`
+/// without `--transient` and `--periods` (200 periods of transient, 100 sampled).
+pub fn orbit_settings() -> dynamics::Settings {
+    dynamics::Settings::default()
+}
+
+/// The frequencies of a bifurcation pass of `d` with `points` values over its band.
+pub fn bifurcation_band(d: &Design, points: usize) -> FreqBand {
+    FreqBand { points, ..default_band(d) }
+}
+
+/// `Err` naming the values when a diagram of `values` values would pass the work caps of
+/// every study of orbits ([`dynamics::check_work`], as `thud bifurcation` checks).
+fn check_orbit_work(values: usize) -> Result<(), ThudError> {
+    dynamics::check_work(values, orbit_settings(), false)
+        .map_err(|r| ThudError::invalid("bifurcation", format!("{values} values: {}", r.estimate.describe())))
+}
+
+/// The bifurcation diagram of forced `d` over f for `band` (each value from the design's own
+/// start, as `thud bifurcation --vary f=FROM:TO:N` without continuation): `on_point` hears
+/// each finished value. Refused without a force or over the caps; `None` if cancelled.
+pub fn compute_bifurcation(
+    d: &Design,
+    band: &FreqBand,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(usize) + Sync),
+) -> Result<Option<Bifurcation>, ThudError> {
+    check_orbit_work(band.points)?;
+    let vary = Vary::of_values("f", &band.freqs(), Spelling::Flag)?;
+    match dynamics::bifurcation(&d.clone().check()?, &vary, orbit_settings(), false, "force", cancel, on_point) {
+        Ok(b) => Ok(Some(b)),
+        Err(ThudError::Cancelled) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// The orbit of forced `d` at its own f: the one value of `thud bifurcation --vary f=f:f:1`
+/// (from the design's own start, the engine's default run lengths). `None` if cancelled.
+pub fn orbit_at_f(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<BifurcationPoint>, ThudError> {
+    let band = FreqBand { from_hz: d.damper.freq_hz, to_hz: d.damper.freq_hz, points: 1 };
+    Ok(compute_bifurcation(d, &band, cancel, &|_| {})?.and_then(|b| b.points.into_iter().next()))
 }
 
 #[cfg(test)]

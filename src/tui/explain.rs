@@ -136,6 +136,14 @@ pub fn glossary_for(zone_by: ZoneBy, cx: OnScreen) -> Vec<(&'static str, String)
              settled (the window's amplitude changed by < 1e-3 from the one before; raise the duration if not)."
                 .into(),
         ));
+        g.push((
+            "orbit",
+            "(the forced note's end) A forced design's orbit at its f, as `thud bifurcation` classifies it (200 periods of transient, 100 \
+             sampled at t = kT): m/n, m impacts per n forcing periods (sym: x(t + T/2) = −x(t)); chaotic (the 0–1 \
+             test's K ≥ 0.8); not settled (neither, within 16 periods). `v` cycles the chart to its bifurcation \
+             diagram over f."
+                .into(),
+        ));
     }
     if cx.response_view {
         g.push((

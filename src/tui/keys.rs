@@ -253,7 +253,7 @@ pub const KEYS: &[Binding] = &[
         Action::ToggleChartView,
         "view",
         "v",
-        "chart: zones (mass × gap) / e vs SPLmax",
+        "chart: zones (mass × gap) / e vs SPLmax / with a force, x(kT) over f (bifurcation)",
         "view",
     ),
     bind(

@@ -26,6 +26,7 @@
 
 pub mod anim;
 pub mod app;
+pub mod bifurcation;
 pub mod cache_key;
 pub mod chart;
 pub mod clamp;

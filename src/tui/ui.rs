@@ -21,8 +21,9 @@ use ratatui::Frame;
 use std::path::PathBuf;
 
 use super::app::{App, ChartView, Mode, Panel, PulseView};
+use super::bifurcation::{BifurcationState, BifurcationView};
 use super::chart::{self, CellView, Geometry, ScatterView, ZoneGridView};
-use super::compute::{default_band, ensemble_under, nearest, AcousticResult, AGREEMENT_SURE};
+use super::compute::{default_band, ensemble_under, nearest, AcousticResult, SimResult, AGREEMENT_SURE};
 use super::explain;
 use super::fields::Knob;
 use super::history::{self, HistoryView};
@@ -201,7 +202,7 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
 }
 
 /// The animation view in the whole body: the live design's run in slow motion.
-fn anim_panel(f: &mut Frame, app: &App, anim: &super::anim::Anim, area: Rect) {
+fn anim_panel<'a>(f: &mut Frame, app: &'a App, anim: &'a super::anim::Anim, area: Rect) {
     let th = &app.theme;
     let title = fit(
         th,
@@ -215,19 +216,30 @@ fn anim_panel(f: &mut Frame, app: &App, anim: &super::anim::Anim, area: Rect) {
     // In the tour the animation is the step's panel: marked as the others are.
     let title = if app.tour.is_some() { format!(" {} {}", th.sym("▶", ">"), title.trim_start()) } else { title };
     let block = th.highlight_block(th.text(&title).into_owned());
-    let empty_h: &[crate::damper::HistoryPoint] = &[];
-    let empty: &[(f64, f64)] = &[];
-    let sim = app.results.sim.as_deref();
+    let track = |sim: &'a SimResult, d: &crate::design::Design, sound: Option<&'a AcousticResult>| super::anim::Track {
+        history: &sim.eval.run.history,
+        impacts: &sim.eval.run.impacts,
+        history_cm: &sim.history_cm,
+        gap_m: d.damper.gap_m,
+        ball_radius_m: d.ball_radius_m(),
+        levels_db: sound.map_or(&[], |a| &a.impact_spl_db),
+    };
+    let Some(sim) = app.results.sim.as_deref() else {
+        f.render_widget(Paragraph::new(th.text("no run to play yet").into_owned()).block(block), area);
+        return;
+    };
+    // The levels only while the readout is the live design's (else they may be another run's).
+    let sound = app.results.acoustic.as_deref().filter(|_| !app.design_busy());
+    let pinned = app.pinned.as_ref().and_then(|p| Some(track(p.sim.as_deref()?, &p.design, p.acoustic.as_deref())));
+    let pinned_end = app.pinned.as_ref().and_then(|p| p.sim.as_ref()).map_or(0.0, |s| s.eval.run.final_time_s);
+    let end_s = sim.eval.run.final_time_s.max(pinned_end);
     let view = super::anim::AnimView {
         block,
         anim,
-        history: sim.map_or(empty_h, |s| &s.eval.run.history),
-        impacts: sim.map_or(&[], |s| &s.eval.run.impacts),
-        history_cm: sim.map_or(empty, |s| &s.history_cm),
-        free_cm: sim.map_or(empty, |s| &s.free_cm),
-        gap_m: app.design.damper.gap_m,
-        ball_radius_m: app.design.ball_radius_m(),
-        end_s: sim.map_or(0.0, |s| s.eval.run.final_time_s),
+        live: track(sim, &app.design, sound),
+        free_cm: &sim.free_cm,
+        pinned,
+        end_s,
         theme: app.theme,
     };
     f.render_widget(view, area);
@@ -375,8 +387,10 @@ fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
         ));
     }
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
+    // The orbit's type at f from the design's start, as `thud bifurcation` classifies it.
+    let orbit = a.orbit.as_ref().map_or(String::new(), |o| format!("; orbit {}", o.run.orbit.label()));
     Some(format!(
-        "{}, {start}, {} by t {} s{cut}",
+        "{}, {start}, {} by t {} s{cut}{orbit}",
         yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
         sig(s.window_end_s, 3)
@@ -648,6 +662,21 @@ fn chart_title(app: &App, width: u16) -> String {
                 width,
             )
         }
+        ChartView::Bifurcation => {
+            let p = &app.design.damper;
+            let (f0, f) = (sig(p.force_n, 3), sig(p.freq_hz, 4));
+            let refining = if app.bifurcation_busy() { ", refining…" } else { "" };
+            fit(
+                th,
+                &[
+                    format!(" bifurcation: x(kT) over f, F0 {f0} N, from its start; f {f} Hz{refining} "),
+                    format!(" bifurcation: x(kT) over f, f {f} Hz{refining} "),
+                    format!(" bifurcation{refining} "),
+                    " bifurcation ".into(),
+                ],
+                width,
+            )
+        }
     }
 }
 
@@ -670,6 +699,29 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
             };
             let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.rest_at_f.as_ref());
             let view = ResponseView { block, state, band, freq_hz: app.design.damper.freq_hz, at_f, theme: app.theme };
+            f.render_widget(view, area);
+            None
+        }
+        ChartView::Bifurcation => {
+            let state = if !app.design.damper.forced() {
+                BifurcationState::NoForce
+            } else if let Some((b, fine)) = app.bifurcation() {
+                BifurcationState::Ready(b, fine)
+            } else if let Some(e) = app.bifurcation.error.as_deref() {
+                BifurcationState::Failed(e)
+            } else {
+                BifurcationState::Computing
+            };
+            let band = default_band(&app.design);
+            let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.orbit.as_ref());
+            let view = BifurcationView {
+                block,
+                state,
+                band_hz: [band.from_hz, band.to_hz],
+                freq_hz: app.design.damper.freq_hz,
+                at_f,
+                theme: app.theme,
+            };
             f.render_widget(view, area);
             None
         }

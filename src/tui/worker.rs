@@ -1,7 +1,7 @@
 //! The background worker: what the app asks for ([`Request`]) and what comes back ([`Done`]).
-//! Five kinds of job — simulate the live design, its readout (acoustics, steady state, the
+//! Six kinds of job — simulate the live design, its readout (acoustics, steady state, the
 //! ensemble of N runs), the chart sweep, the chart's levels at a new observer, the frequency
-//! response curve — each in its own [`SingleJob`] slot and thread (newest wins; see
+//! response curve, the bifurcation diagram over f — each in its own [`SingleJob`] slot and thread (newest wins; see
 //! [`super::job`]); exports run each on a short-lived thread of their own, never cancelled.
 //! Results are tagged with the key of the parameters they were computed for (typed, see
 //! [`super::cache_key`]), so the app drops stale ones, and cached by that key so going back
@@ -16,13 +16,15 @@ use std::sync::Arc;
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::cache_key::{ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
+use super::cache_key::{BifurcationKey, ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
 use super::compute::{
-    compute_chart, compute_ensemble_chart, compute_readout, compute_relevel, compute_response, compute_sim, grids_of,
-    AcousticResult, ChartPasses, FreqBand, Grids, SimResult, Stage,
+    bifurcation_band, compute_bifurcation, compute_chart, compute_ensemble_chart, compute_readout, compute_relevel,
+    compute_response, compute_sim, grids_of, AcousticResult, ChartPasses, FreqBand, Grids, SimResult, Stage,
+    BIFURCATION_VALUES,
 };
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
 use crate::design::{Cell, Chart, Design};
+use crate::dynamics::Bifurcation;
 use crate::ensemble::{Ensemble, EnsembleCell, EnsembleChart};
 use crate::error::ThudError;
 use crate::export::{self, Artifact, ExportOptions};
@@ -56,6 +58,9 @@ pub enum ChartWork {
     /// The frequency response of a forced design over a band (its own slot: it never cancels
     /// the zone chart, nor is cancelled by it).
     Response(FreqBand),
+    /// The bifurcation diagram of a forced design over f ([`BIFURCATION_VALUES`]: a coarse
+    /// pass, then the fine one; its own slot, newest wins).
+    Bifurcation,
 }
 
 /// Why a job has no result.
@@ -111,6 +116,12 @@ pub enum Done {
         key: ResponseKey,
         done: usize,
         total: usize,
+    },
+    /// A pass of the bifurcation diagram over f: `key` is the pass's own (its band).
+    Bifurcation {
+        key: BifurcationKey,
+        stage: Stage,
+        result: Result<Arc<Bifurcation>, WorkError>,
     },
     /// The chart's passes relevelled for `sound`; `key` is the chart key.
     Relevel {
@@ -406,6 +417,56 @@ impl Job for ResponseJob {
     }
 }
 
+/// The bifurcation diagram of a forced design over f: the coarse pass, reported, then the
+/// fine one (each cached by its own key; cancelled as soon as a newer design asks).
+struct BifurcationJob {
+    /// The fine pass's key (the job's).
+    key: BifurcationKey,
+    design: Design,
+}
+
+impl BifurcationJob {
+    fn new(design: Design) -> Self {
+        Self { key: BifurcationKey::of(&design, &bifurcation_band(&design, BIFURCATION_VALUES[1])), design }
+    }
+}
+
+impl Job for BifurcationJob {
+    const NAME: &'static str = "bifurcation";
+    type Report = Done;
+    type State = Cache<BifurcationKey, Bifurcation>;
+    type Key = BifurcationKey;
+
+    fn key(&self) -> &BifurcationKey {
+        &self.key
+    }
+
+    fn run(&self, cache: &mut Cache<BifurcationKey, Bifurcation>, cx: &Context<'_, Done>) {
+        for (stage, points) in [(Stage::Coarse, BIFURCATION_VALUES[0]), (Stage::Fine, BIFURCATION_VALUES[1])] {
+            let band = bifurcation_band(&self.design, points);
+            let key = BifurcationKey::of(&self.design, &band);
+            let result = if let Some(hit) = cache.get(&key) {
+                Ok(hit)
+            } else {
+                match compute_bifurcation(&self.design, &band, Some(cx.cancel_flag()), &|_| {}) {
+                    Ok(None) => return,
+                    Ok(Some(b)) => Ok(cache.insert(key.clone(), b)),
+                    Err(e) => Err(e.into()),
+                }
+            };
+            let failed = result.is_err();
+            cx.report(Done::Bifurcation { key, stage, result });
+            if failed {
+                return;
+            }
+        }
+    }
+
+    fn failed(&self, error: JobError) -> Done {
+        Done::Bifurcation { key: self.key.clone(), stage: Stage::Fine, result: Err(error.into()) }
+    }
+}
+
 /// A request as the job that answers it (an export is not a slot's job).
 enum Work {
     Sim(SimJob),
@@ -413,6 +474,7 @@ enum Work {
     Chart(ChartJob),
     Relevel(RelevelJob),
     Response(ResponseJob),
+    Bifurcation(BifurcationJob),
     Export(Box<ExportJob>),
 }
 
@@ -429,6 +491,7 @@ impl From<Request> for Work {
             Request::Chart(design, ChartWork::Response(band)) => {
                 Work::Response(ResponseJob { key: ResponseKey::of(&design, &band), design, band })
             }
+            Request::Chart(design, ChartWork::Bifurcation) => Work::Bifurcation(BifurcationJob::new(design)),
             Request::Relevel(design, passes) => {
                 Work::Relevel(RelevelJob { sound: SoundKey::of(&design), design, passes })
             }
@@ -450,6 +513,7 @@ pub fn run_sync(req: &Request, notify: &(dyn Fn(Done) + Sync)) {
         Work::Chart(j) => once(&j, &cx),
         Work::Relevel(j) => once(&j, &cx),
         Work::Response(j) => once(&j, &cx),
+        Work::Bifurcation(j) => once(&j, &cx),
         Work::Export(j) => notify(j.run()),
     }
 }
@@ -462,10 +526,11 @@ pub struct Worker {
     chart: SingleJob<ChartJob>,
     levels: SingleJob<RelevelJob>,
     response: SingleJob<ResponseJob>,
+    bifurcation: SingleJob<BifurcationJob>,
 }
 
 impl Worker {
-    /// Starts the five threads; results go to `notify` (called from the worker threads). A
+    /// Starts the six threads; results go to `notify` (called from the worker threads). A
     /// thread that cannot start answers each of its requests with that error.
     pub fn start(notify: impl Fn(Done) + Send + Sync + 'static) -> Self {
         let notify: Arc<Sink<Done>> = Arc::new(notify);
@@ -475,6 +540,7 @@ impl Worker {
             chart: SingleJob::start(notify.clone()),
             levels: SingleJob::start(notify.clone()),
             response: SingleJob::start(notify.clone()),
+            bifurcation: SingleJob::start(notify.clone()),
             notify,
         }
     }
@@ -487,6 +553,7 @@ impl Worker {
             Work::Chart(j) => self.chart.spawn(j),
             Work::Relevel(j) => self.levels.spawn(j),
             Work::Response(j) => self.response.spawn(j),
+            Work::Bifurcation(j) => self.bifurcation.spawn(j),
             Work::Export(j) => self.export(j),
         }
     }
@@ -509,6 +576,7 @@ impl Worker {
             || self.chart.is_pending()
             || self.levels.is_pending()
             || self.response.is_pending()
+            || self.bifurcation.is_pending()
     }
 }
 

@@ -50,6 +50,7 @@ mod store_config;
 mod study;
 mod tui;
 mod tui_anim;
+mod tui_bifurcation;
 mod tui_find;
 mod tui_forced;
 mod tui_look;

@@ -109,13 +109,14 @@ impl std::io::Write for Count {
 
 /// Bytes the real backend sends for one second of playback (30 frames) at `w × h`, after the
 /// first full frame; ratatui sends only the cells that changed.
-pub fn bytes_per_second(w: u16, h: u16) -> usize {
+pub fn bytes_per_second(w: u16, h: u16, speed: usize) -> usize {
     use ratatui::backend::CrosstermBackend;
     use ratatui::layout::Rect;
     use ratatui::{TerminalOptions, Viewport};
     use std::sync::atomic::Ordering;
     let mut app = computed_app(Design::default(), false);
     press(&mut app, KeyCode::Char('a'));
+    app.anim.as_mut().unwrap().speed = speed;
     let sent = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
     let opts = TerminalOptions { viewport: Viewport::Fixed(Rect::new(0, 0, w, h)) };
     let mut term = Terminal::with_options(CrosstermBackend::new(Count(sent.clone())), opts).unwrap();
@@ -129,8 +130,38 @@ pub fn bytes_per_second(w: u16, h: u16) -> usize {
 }
 
 #[test]
-fn one_second_of_playback_at_80x24_sends_under_30_kb() {
-    let bytes = bytes_per_second(80, 24);
-    eprintln!("animation at 80x24: {bytes} bytes per second");
-    assert!(bytes > 0 && bytes < 30_000, "{bytes} B/s");
+fn one_second_of_playback_at_80x24_sends_under_30_kb_at_every_speed() {
+    // The slowest and 1× (the most motion, an impact every few frames): under 30 KB (issue 25).
+    for speed in [0, thud::tui::anim::SPEEDS.len() - 1] {
+        let bytes = bytes_per_second(80, 24, speed);
+        eprintln!("animation at 80x24, speed {}: {bytes} bytes per second", thud::tui::anim::SPEEDS[speed]);
+        assert!(bytes > 0 && bytes < 30_000, "speed {speed}: {bytes} B/s");
+    }
+}
+
+/// The lines of the lower half of the animation's picture at 80×24 (the pinned run's).
+fn lower_picture(screen: &str) -> String {
+    screen.lines().skip(10).take(8).map(|l| l.chars().take(44).collect::<String>()).collect::<Vec<_>>().join("\n")
+}
+
+#[test]
+fn a_pinned_design_plays_below_the_live_one_on_the_same_clock() {
+    let mut app = computed_app(Design::default(), false);
+    press(&mut app, KeyCode::Char('p'));
+    // The live design now differs from the pinned one (a heavier ball, a wider gap).
+    let reqs = app.select_design(0.06, 0.05);
+    compute_sync(&mut app, reqs);
+    press(&mut app, KeyCode::Char('a'));
+    let start = render(&mut app, 80, 24);
+    assert!(lower_picture(&start).contains("pinned"), "{start}");
+    assert!(!picture(&start).lines().take(8).any(|l| l.contains("pinned")), "the live run on top:\n{start}");
+    // 20 ms of both runs: the pinned ball and mass move too.
+    app.update(Msg::Frame(20.0));
+    let later = render(&mut app, 80, 24);
+    assert_ne!(lower_picture(&start), lower_picture(&later), "the pinned run plays:\n{start}\n{later}");
+    // Unpinned: one run again.
+    press(&mut app, KeyCode::Char('a'));
+    press(&mut app, KeyCode::Char('p'));
+    press(&mut app, KeyCode::Char('a'));
+    assert!(!render(&mut app, 80, 24).contains("pinned"));
 }

@@ -70,7 +70,24 @@ impl App {
             out.push(self.relevel());
         }
         out.extend(self.response_request());
+        out.extend(self.bifurcation_request());
         out
+    }
+
+    /// The bifurcation diagram's job, if its view is shown, the design is forced and its fine
+    /// pass (which does not depend on f) is neither in nor already asked for.
+    pub(crate) fn bifurcation_request(&mut self) -> Option<Request> {
+        if self.chart_view != ChartView::Bifurcation || !self.design.damper.forced() {
+            return None;
+        }
+        let [_, fine] = self.bifurcation_keys();
+        let have = self.bifurcation.fine.as_ref().is_some_and(|(k, _)| *k == fine);
+        if have || self.bifurcation.asked.as_ref() == Some(&fine) {
+            return None;
+        }
+        self.bifurcation.asked = Some(fine);
+        self.bifurcation.error = None;
+        Some(Request::Chart(self.design.clone(), ChartWork::Bifurcation))
     }
 
     /// The response curve's job, if the response view is shown, the design is forced and its

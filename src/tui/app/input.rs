@@ -213,7 +213,7 @@ impl App {
             }
             Action::Pin => self.toggle_pin(),
             Action::Undo => return self.undo(),
-            Action::ToggleChartView => self.toggle_chart_view(),
+            Action::ToggleChartView => return self.toggle_chart_view(),
             Action::Save => {
                 self.mode = Mode::SaveAs(self.suggested_name());
                 self.line_selected = true;

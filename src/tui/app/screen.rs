@@ -26,13 +26,16 @@ impl App {
         }
     }
 
-    /// Switches the chart panel between the zones and the scatter (from the response: zones).
-    pub(crate) fn toggle_chart_view(&mut self) {
+    /// Cycles the chart panel: the zones, the scatter, and with a force on the bifurcation
+    /// diagram over f (from the response: zones); returns the work the diagram needs.
+    pub(crate) fn toggle_chart_view(&mut self) -> Vec<Request> {
         self.chart_view = match self.chart_view {
             ChartView::Zones => ChartView::Scatter,
-            ChartView::Scatter | ChartView::Response => ChartView::Zones,
+            ChartView::Scatter if self.design.damper.forced() => ChartView::Bifurcation,
+            ChartView::Scatter | ChartView::Response | ChartView::Bifurcation => ChartView::Zones,
         };
         self.say_chart_view();
+        self.bifurcation_request().into_iter().collect()
     }
 
     /// Switches the chart panel to the response curve and back to the zones; returns the work
@@ -40,7 +43,7 @@ impl App {
     pub(crate) fn toggle_response(&mut self) -> Vec<Request> {
         self.chart_view = match self.chart_view {
             ChartView::Response => ChartView::Zones,
-            ChartView::Zones | ChartView::Scatter => ChartView::Response,
+            ChartView::Zones | ChartView::Scatter | ChartView::Bifurcation => ChartView::Response,
         };
         self.say_chart_view();
         self.response_request().into_iter().collect()
@@ -61,6 +64,14 @@ impl App {
             }
             ChartView::Response => {
                 format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::Force.label())
+            }
+            ChartView::Bifurcation => {
+                let b = default_band(&self.design);
+                format!(
+                    "bifurcation diagram: x(kT) over f {}–{} Hz, coarse first, f marked",
+                    sig(b.from_hz, 3),
+                    sig(b.to_hz, 3)
+                )
             }
         };
         let text = if self.chart_shown {
@@ -96,9 +107,11 @@ impl App {
 
 /// The animation view.
 impl App {
-    /// The run the animation plays: the live design's, if computed.
+    /// The end of the runs the animation plays (s): the live design's, and a pinned design's
+    /// if longer; None until the live run is computed.
     fn anim_end_s(&self) -> Option<f64> {
-        self.results.sim.as_ref().map(|s| s.eval.run.final_time_s)
+        let pinned = self.pinned.as_ref().and_then(|p| p.sim.as_ref()).map_or(0.0, |s| s.eval.run.final_time_s);
+        self.results.sim.as_ref().map(|s| s.eval.run.final_time_s.max(pinned))
     }
 
     /// `a`: shows the animation (from the start, slowest, playing), or leaves it.
@@ -133,7 +146,7 @@ impl App {
             Action::AnimRestart => anim.t_s = 0.0,
             _ => {}
         }
-        self.anim_flash_level();
+        self.anim_name_flash(None);
     }
 
     /// True while the animation plays (the event loop then draws 30 frames a second).
@@ -147,26 +160,15 @@ impl App {
         if let Some(a) = self.anim.as_mut().filter(|a| a.playing) {
             a.advance(real_s, end);
         }
-        self.anim_flash_level();
+        self.anim_name_flash(Some(real_s));
     }
 
-    /// The level of the impact flashed now, computed once (the engine's field of its speed).
-    fn anim_flash_level(&mut self) {
-        let Some(sim) = self.results.sim.clone() else { return };
-        let Some(anim) = self.anim.as_mut() else { return };
-        let impacts = &sim.eval.run.impacts;
-        let Some(i) = anim.flashed(impacts) else { return };
-        if anim.spl.is_some_and(|(j, _)| j == i) {
-            return;
+    /// The impact the flash line names ([`crate::tui::anim::Anim::name_flash`]); its level is
+    /// the worker's, computed with the readout (no field is computed here).
+    fn anim_name_flash(&mut self, played_s: Option<f64>) {
+        let Some(sim) = self.results.sim.as_ref() else { return };
+        if let Some(anim) = self.anim.as_mut() {
+            anim.name_flash(&sim.eval.run.impacts, played_s);
         }
-        let level = self
-            .design
-            .clone()
-            .check()
-            .ok()
-            .and_then(|d| d.impact_field(impacts[i].u_in_m_s).ok())
-            .map(|f| f.spl_db())
-            .filter(|db| db.is_finite());
-        anim.spl = Some((i, level));
     }
 }

@@ -9,13 +9,16 @@ use std::sync::Arc;
 
 use crate::config::{self, Config, ConfigLoad, MarkerStyle};
 use crate::design::{Chart, Design, Metrics, Thresholds, Zone};
+use crate::dynamics::Bifurcation;
 use crate::ensemble::Ensemble;
 use crate::presets::{self, PresetInfo};
 use crate::response::Response;
 use crate::store::DesignList;
-use crate::tui::cache_key::{ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
+use crate::tui::cache_key::{BifurcationKey, ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
 use crate::tui::chart::{DesignZone, Geometry};
-use crate::tui::compute::{default_band, AcousticResult, ChartPasses, Grids, SimResult};
+use crate::tui::compute::{
+    bifurcation_band, default_band, AcousticResult, ChartPasses, Grids, SimResult, BIFURCATION_VALUES,
+};
 use crate::tui::fields::{Knob, Setup};
 use crate::tui::keys::{Action, Keymap};
 use crate::tui::theme::Palette;
@@ -119,6 +122,8 @@ pub enum ChartView {
     /// The frequency response of the forced design: amplitude with and without the damper,
     /// and Leq, against the forcing frequency, f marked.
     Response,
+    /// The bifurcation diagram of the forced design over f: x(kT) against f, f marked.
+    Bifurcation,
 }
 
 /// Modal state: the normal screen, or one popup / input line on top of it.
@@ -243,6 +248,16 @@ pub(crate) struct ResponseCurve {
     pub progress: (usize, usize),
 }
 
+/// The bifurcation view's diagram: its coarse and fine passes with the keys they were
+/// computed for, the fine key last asked for, and why it could not be computed.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct BifurcationDiagram {
+    pub coarse: Option<(BifurcationKey, Arc<Bifurcation>)>,
+    pub fine: Option<(BifurcationKey, Arc<Bifurcation>)>,
+    pub asked: Option<BifurcationKey>,
+    pub error: Option<String>,
+}
+
 /// The user's settings and the keys they give.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Settings {
@@ -305,6 +320,8 @@ pub struct App {
     pub zoom: bool,
     pub mode: Mode,
     pub(crate) chart_view: ChartView,
+    /// The bifurcation view's diagram (issue 27).
+    pub(crate) bifurcation: BifurcationDiagram,
     /// Which impact the pulse panel shows.
     pub pulse: PulseView,
     /// The guided tour, while it runs.
@@ -366,6 +383,7 @@ impl App {
             results: Results::default(),
             chart,
             response: ResponseCurve::default(),
+            bifurcation: BifurcationDiagram::default(),
             selected: 0,
             focus: Panel::Params,
             zoom: false,
@@ -478,7 +496,8 @@ impl App {
     /// True while results for the current design are missing or being recomputed.
     pub fn busy(&self) -> bool {
         !self.exports.is_empty()
-            || (self.results.error.is_none() && (self.design_busy() || self.chart_busy() || self.response_busy()))
+            || (self.results.error.is_none()
+                && (self.design_busy() || self.chart_busy() || self.response_busy() || self.bifurcation_busy()))
     }
 
     /// True while the live design's readout is not for its current parameters.
@@ -502,6 +521,31 @@ impl App {
     }
 
     /// True while the chart is still filling in.
+    /// The keys of the live design's bifurcation passes (coarse, fine).
+    pub(crate) fn bifurcation_keys(&self) -> [BifurcationKey; 2] {
+        BIFURCATION_VALUES.map(|n| BifurcationKey::of(&self.design, &bifurcation_band(&self.design, n)))
+    }
+
+    /// The live design's bifurcation diagram as far as it is computed: the fine pass, else the
+    /// coarse one (with `false`: refining).
+    pub fn bifurcation(&self) -> Option<(&Bifurcation, bool)> {
+        let [coarse, fine] = self.bifurcation_keys();
+        let d = &self.bifurcation;
+        match (&d.fine, &d.coarse) {
+            (Some((k, b)), _) if *k == fine => Some((b, true)),
+            (_, Some((k, b))) if *k == coarse => Some((b, false)),
+            _ => None,
+        }
+    }
+
+    /// True while the bifurcation view is shown for a forced design and its fine pass is not in.
+    pub fn bifurcation_busy(&self) -> bool {
+        self.chart_view == ChartView::Bifurcation
+            && self.design.damper.forced()
+            && !self.bifurcation().is_some_and(|(_, fine)| fine)
+            && self.bifurcation.error.is_none()
+    }
+
     pub fn chart_busy(&self) -> bool {
         let (done, total) = self.chart.progress();
         (done < total || self.chart.levels_for != SoundKey::of(&self.design)) && self.chart.error.is_none()

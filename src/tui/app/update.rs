@@ -9,7 +9,9 @@ use crossterm::event::{Event, MouseButton, MouseEventKind};
 
 use super::state::App;
 use crate::design::Chart;
-use crate::tui::cache_key::{ReadoutKey, SimKey, SoundKey};
+use crate::dynamics::Bifurcation;
+use crate::response::Response;
+use crate::tui::cache_key::{BifurcationKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
 use crate::tui::compute::{ChartPasses, Stage};
 use crate::tui::worker::{ChartWork, Done, Request};
 
@@ -148,26 +150,13 @@ impl App {
                 }
             }
             Done::ChartCell { .. } | Done::Chart { .. } | Done::Relevel { .. } => {}
-            Done::Response { key, result } => {
-                if self.response.asked.as_ref() != Some(&key) {
-                    return vec![];
-                }
-                match result {
-                    Ok(r) => {
-                        self.response.curve = Some(r);
-                        self.response.curve_for = Some(key);
-                    }
-                    Err(e) => {
-                        self.response.error = Some(e.to_string());
-                        self.error(format_args!("response curve: {e}"));
-                    }
-                }
-            }
+            Done::Response { key, result } => self.response_done(key, result),
             Done::ResponseProgress { key, done, total } => {
                 if self.response.asked.as_ref() == Some(&key) {
                     self.response.progress = (done, total);
                 }
             }
+            Done::Bifurcation { key, stage, result } => self.bifurcation_pass(key, stage, result),
             Done::Export { kind, path, result } => self.export_finished(kind, &path, result),
         }
         if self.pending_best && !self.chart_busy() {
@@ -175,6 +164,44 @@ impl App {
             return self.best();
         }
         vec![]
+    }
+
+    /// Takes the response curve if it is the one last asked for.
+    fn response_done(&mut self, key: ResponseKey, result: Result<Arc<Response>, crate::tui::worker::WorkError>) {
+        if self.response.asked.as_ref() != Some(&key) {
+            return;
+        }
+        match result {
+            Ok(r) => {
+                self.response.curve = Some(r);
+                self.response.curve_for = Some(key);
+            }
+            Err(e) => {
+                self.response.error = Some(e.to_string());
+                self.error(format_args!("response curve: {e}"));
+            }
+        }
+    }
+
+    /// Takes a pass of the bifurcation diagram if it is the live design's; drops stale ones.
+    fn bifurcation_pass(
+        &mut self,
+        key: BifurcationKey,
+        stage: Stage,
+        result: Result<Arc<Bifurcation>, crate::tui::worker::WorkError>,
+    ) {
+        let [coarse, fine] = self.bifurcation_keys();
+        if key != if stage == Stage::Coarse { coarse } else { fine } {
+            return;
+        }
+        match result {
+            Ok(b) if stage == Stage::Coarse => self.bifurcation.coarse = Some((key, b)),
+            Ok(b) => self.bifurcation.fine = Some((key, b)),
+            Err(e) => {
+                self.bifurcation.error = Some(e.to_string());
+                self.error(format_args!("bifurcation diagram: {e}"));
+            }
+        }
     }
 
     /// Takes the relevelled cells (cells that arrived since the request keep theirs).
