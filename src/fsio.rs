@@ -14,13 +14,13 @@
 //!   `fstat`; a replacement is an atomic exchange (`renameat2(RENAME_EXCHANGE)`) after which
 //!   the replaced entry is inspected, and swapped back if it was not a regular file.
 //! - **No half-written file and no planted symlink.** The contents go to a temporary file in the
-//!   target's folder first, written and synced, then linked into place. On Linux the temporary
-//!   file has no name at all (`O_TMPFILE`, linked with `linkat(AT_EMPTY_PATH)` or through
-//!   `/proc/self/fd`): nothing can be planted at it and nothing is left behind even after
-//!   `kill -9`. Elsewhere (or where the file system lacks `O_TMPFILE`, or `--force` needs a
-//!   name to exchange) it has an unpredictable name `.NAME.thud-XXXXXX.tmp` created
-//!   exclusively (`O_EXCL`, so a symlink there is never followed), removed on every error path
-//!   and, through [`crate::signals`], on SIGINT/SIGTERM/SIGHUP.
+//!   target's folder first, written and synced, then linked into place. On Linux a new file's
+//!   temporary file has no name at all (`O_TMPFILE`, linked with `linkat(AT_EMPTY_PATH)` or
+//!   through `/proc/self/fd`): nothing can be planted at it and nothing is left behind even
+//!   after `kill -9`. Elsewhere (or where the file system lacks `O_TMPFILE`, or `--force` needs
+//!   a name to exchange) it is a `tempfile` named `.NAME.thud-XXXXXX.tmp`, created exclusively
+//!   (`O_EXCL`, so a symlink there is never followed), removed on every error path (its drop)
+//!   and, through [`crate::signals`], on every signal that ends the process.
 //! - **What `kill -9` leaves is removed by the next write.** A named temporary file is
 //!   `flock`ed by its writer for its whole life. Each write first removes, from the folder it
 //!   writes into, every `.*.thud-XXXXXX.tmp` regular file or folder whose lock is free and
@@ -31,12 +31,19 @@
 //! - **Names are bytes.** Paths stay `Path`/`OsStr` end to end; [`shown`] renders one for a
 //!   message with invalid UTF-8 as `\xNN` and control characters escaped.
 //!
-//! Why hand-written around the crates it uses: `tempfile` gives the exclusive random names and
-//! the no-clobber persist, `rustix` the `O_TMPFILE` open, `linkat`, `renameat2`, `flock` and
-//! `fstat` without `unsafe`, and `signal-hook` the signal handling; but no crate puts them
-//! together with a refusal of non-regular targets (`tempfile`'s `persist` and the atomic-write
-//! crates rename over a device node or a symlink), no-clobber as the default, and an anonymous
-//! temporary file that survives `kill -9` without a trace. This module is that glue.
+//! What the crates carry and what is left here. `tempfile` carries the temporary names
+//! (random, created with `O_EXCL` and the asked permissions), their removal on every error path
+//! (`NamedTempFile`'s and `TempDir`'s drop), and the no-clobber publication of a new file
+//! (`persist_noclobber`: `renameat2(RENAME_NOREPLACE)` or link-then-unlink). `rustix` carries
+//! `O_TMPFILE`, `linkat`, `renameat2`, `flock` and `fstat` without `unsafe`, `signal-hook` the
+//! signals. The guards kept by hand, each because no crate has it: the check of what is at
+//! the target and again on the file itself (`tempfile`'s `persist` and the atomic-write crates
+//! rename over a device node or a symlink; thud replaces only a regular
+//! file, writes through a stream, refuses the rest); `--force` as an exchange checked and
+//! undone if the replaced entry was not a regular file; the anonymous temporary file's
+//! `linkat` (`tempfile::tempfile` gives one but cannot name it); the lock-and-age sweep of a
+//! killed run's names; the removal of new parent folders when a write fails; the
+//! bounded, non-blocking reads; and the escaped display of byte names.
 
 use std::ffi::OsString;
 use std::fmt;
@@ -269,28 +276,25 @@ pub enum Plan {
     Through(Sink),
 }
 
-/// The character devices written through: `/dev/null` (1,3), `/dev/tty` (5,0), the console
-/// (5,1), virtual consoles and serial lines (major 4) and pseudo-terminals (136–143). Any
-/// other device (a disk, `/dev/mem`, a watchdog, `/dev/full`…) is refused, never opened.
-fn is_stream_device(rdev: u64) -> bool {
-    let (major, minor) = (rustix::fs::major(rdev), rustix::fs::minor(rdev));
-    matches!((major, minor), (1, 3) | (5, 0 | 1)) || major == 4 || (136..=143).contains(&major)
+/// Whether `meta` (links followed) is a terminal: a virtual console or serial line (major 4),
+/// `/dev/tty` or the console (5,0 and 5,1), or a pseudo-terminal (136–143).
+fn is_tty(meta: &fs::Metadata) -> bool {
+    let (major, minor) = (rustix::fs::major(meta.rdev()), rustix::fs::minor(meta.rdev()));
+    meta.file_type().is_char_device() && (major == 4 || (major == 5 && minor <= 1) || (136..=143).contains(&major))
 }
 
-/// Whether `path` (links followed) is a terminal: a virtual console or serial line (major 4),
-/// `/dev/tty` or the console (5,0 and 5,1), or a pseudo-terminal (136–143).
+/// Whether `path` (links followed) is a terminal (see `is_tty`).
 #[must_use]
 pub fn is_terminal(path: &Path) -> bool {
-    fs::metadata(path).is_ok_and(|m| {
-        let (major, minor) = (rustix::fs::major(m.rdev()), rustix::fs::minor(m.rdev()));
-        m.file_type().is_char_device() && (major == 4 || (major == 5 && minor <= 1) || (136..=143).contains(&major))
-    })
+    fs::metadata(path).is_ok_and(|m| is_tty(&m))
 }
 
-/// Whether `meta` (of the file itself, links followed) is a stream thud writes through.
+/// Whether `meta` (of the file itself, links followed) is a stream thud writes through: a FIFO,
+/// a terminal or `/dev/null` (1,3). Any other device (a disk, `/dev/mem`, a watchdog,
+/// `/dev/full`…) is refused, never opened.
 fn is_stream(meta: &fs::Metadata) -> bool {
-    let t = meta.file_type();
-    t.is_fifo() || (t.is_char_device() && is_stream_device(meta.rdev()))
+    let null = meta.file_type().is_char_device() && meta.rdev() == rustix::fs::makedev(1, 3);
+    meta.file_type().is_fifo() || null || is_tty(meta)
 }
 
 /// Whether `meta` is the file thud's standard output is.
@@ -334,27 +338,7 @@ pub fn check_target(path: &Path, overwrite: Overwrite) -> Result<Plan, FsError> 
 /// if missing), synced, then linked into place without replacing anything (`Refuse`) or
 /// exchanged with the regular file there (`Replace`).
 pub fn write(path: &Path, bytes: &[u8], overwrite: Overwrite) -> Result<(), FsError> {
-    let permissions = match check_target(path, overwrite)? {
-        Plan::Through(sink) => return write_through(path, sink, bytes),
-        Plan::Create => None,
-        Plan::Replace(p) => Some(p),
-    };
-    let (dir, new_folders) = prepare_dir(path)?;
-    let written = (|| {
-        if !named_temps_for_test() {
-            if let Some(file) = open_unnamed(&dir, path)? {
-                if write_unnamed(file, &dir, path, bytes, overwrite, permissions.clone())? {
-                    sync_dir(&dir);
-                    return Ok(());
-                }
-            }
-        }
-        write_named(&dir, path, bytes, overwrite, permissions, |_| Ok(()))
-    })();
-    if written.is_ok() {
-        new_folders.keep();
-    }
-    written
+    write_via(path, bytes, overwrite, !named_temps_for_test(), |_| Ok(()))
 }
 
 /// [`write()`] always through a named temporary file, with a seam: `before_link(temp_path)` runs
@@ -367,24 +351,35 @@ pub fn write_with(
     overwrite: Overwrite,
     before_link: impl FnOnce(&Path) -> io::Result<()>,
 ) -> Result<(), FsError> {
+    write_via(path, bytes, overwrite, false, before_link)
+}
+
+/// The body of [`write()`]: the folders it creates above the target are kept only if it
+/// succeeds, thud's leftovers in the target's folder are removed first, and a new file
+/// (`Refuse`) goes through an anonymous temporary file when `anonymous` and the file system
+/// can name one, else (and always for `Replace`, which needs a name to exchange) a named one.
+fn write_via(
+    path: &Path,
+    bytes: &[u8],
+    overwrite: Overwrite,
+    anonymous: bool,
+    before_link: impl FnOnce(&Path) -> io::Result<()>,
+) -> Result<(), FsError> {
     let permissions = match check_target(path, overwrite)? {
         Plan::Through(sink) => return write_through(path, sink, bytes),
         Plan::Create => None,
         Plan::Replace(p) => Some(p),
     };
-    let (dir, new_folders) = prepare_dir(path)?;
-    write_named(&dir, path, bytes, overwrite, permissions, before_link)?;
-    new_folders.keep();
-    Ok(())
-}
-
-/// Creates the folder of `path` (and the folders above it that are missing: removed again
-/// unless the caller keeps them) and removes thud's leftovers from it; the folder.
-fn prepare_dir(path: &Path) -> Result<(PathBuf, NewFolders), FsError> {
     let dir = parent_dir(path);
     let new_folders = NewFolders::create(&dir).map_err(io_at(path))?;
     remove_stale_temps(&dir);
-    Ok((dir, new_folders))
+    let linked = anonymous && overwrite == Overwrite::Refuse && write_unnamed(&dir, path, bytes)?;
+    if !linked {
+        write_named(&dir, path, bytes, overwrite, permissions, before_link)?;
+    }
+    sync_dir(&dir);
+    new_folders.keep();
+    Ok(())
 }
 
 /// The folders a write created above its target: removed again — deepest first, each only if
@@ -483,19 +478,24 @@ fn write_through(path: &Path, sink: Sink, bytes: &[u8]) -> Result<(), FsError> {
     }
 }
 
-/// An anonymous file in `dir` (`O_TMPFILE`), locked, or `None` where the file system lacks it.
-fn open_unnamed(dir: &Path, path: &Path) -> Result<Option<File>, FsError> {
+/// Writes `bytes` to an anonymous file in `dir` (`O_TMPFILE`: nothing to plant at, nothing left
+/// even after `kill -9`) and gives it the name `path`, never over anything: `linkat` does not
+/// replace, so whatever appeared at the target since the check stays. `Ok(false)`, with
+/// nothing written at `dir`, where the file system has no `O_TMPFILE` or no way to link one.
+fn write_unnamed(dir: &Path, path: &Path, bytes: &[u8]) -> Result<bool, FsError> {
     let flags = OFlags::WRONLY | OFlags::TMPFILE | OFlags::CLOEXEC;
-    match rustix::fs::open(dir, flags, Mode::from_bits_truncate(0o666)) {
-        Ok(fd) => {
-            // Locked before it ever has a name, so no later run takes it for a leftover.
-            rustix::fs::flock(&fd, FlockOperation::LockExclusive).map_err(|e| io_at(path)(e.into()))?;
-            Ok(Some(File::from(fd)))
-        }
+    let mut file = match rustix::fs::open(dir, flags, Mode::from_bits_truncate(0o666)) {
+        Ok(fd) => File::from(fd),
         // The "not supported here" answers to O_TMPFILE (as in `tempfile`), plus EINVAL.
-        Err(Errno::OPNOTSUPP | Errno::ISDIR | Errno::NOENT | Errno::INVAL) => Ok(None),
-        Err(e) => Err(io_at(path)(e.into())),
-    }
+        Err(Errno::OPNOTSUPP | Errno::ISDIR | Errno::NOENT | Errno::INVAL) => return Ok(false),
+        Err(e) => return Err(io_at(path)(e.into())),
+    };
+    fill(&mut file, bytes, None).map_err(io_at(path))?;
+    hold_for_test();
+    link_unnamed(&file, path).map_err(|e| match e {
+        Errno::EXIST => FsError::Exists(path.to_path_buf()),
+        e => io_at(path)(e.into()),
+    })
 }
 
 /// Gives the anonymous `file` the name `to`: `linkat(AT_EMPTY_PATH)` (Linux ≥ 6.10 for an
@@ -513,53 +513,6 @@ fn link_unnamed(file: &File, to: &Path) -> Result<bool, Errno> {
         // No /proc (or its fd links do not lead back here).
         Err(Errno::NOENT | Errno::PERM | Errno::XDEV | Errno::ACCESS) if !Path::new(&by_fd).exists() => Ok(false),
         Err(e) => Err(e),
-    }
-}
-
-/// Fills the anonymous `file` and gives it the name `path`. `Ok(false)` (nothing written at
-/// `dir`) when it cannot be linked here: the caller falls back to a named temporary file.
-fn write_unnamed(
-    mut file: File,
-    dir: &Path,
-    path: &Path,
-    bytes: &[u8],
-    overwrite: Overwrite,
-    permissions: Option<Permissions>,
-) -> Result<bool, FsError> {
-    fill(&mut file, bytes, permissions).map_err(io_at(path))?;
-    hold_for_test();
-    match overwrite {
-        // linkat never replaces: whatever appeared at the target since the check stays.
-        Overwrite::Refuse => link_unnamed(&file, path).map_err(|e| match e {
-            Errno::EXIST => FsError::Exists(path.to_path_buf()),
-            e => io_at(path)(e.into()),
-        }),
-        // No call links over an existing name: link under a fresh exclusive name (the file is
-        // locked, so no other run removes it), then exchange it with the target.
-        Overwrite::Replace => {
-            let mut linked = true;
-            let prefix = temp_prefix(path);
-            let named = signals::guarded(|| {
-                let named = temp_builder(&prefix).make_in(dir, |p| {
-                    if link_unnamed(&file, p)? {
-                        Ok(())
-                    } else {
-                        linked = false;
-                        // Stops make_in: nothing was created under this name.
-                        Err(io::Error::from(io::ErrorKind::Unsupported))
-                    }
-                });
-                named.map(|n| {
-                    let registration = remove_on_signal(n.path());
-                    (n, registration)
-                })
-            });
-            match named {
-                Ok((named, _registration)) => exchange_into_place(named.path(), path).map(|()| true),
-                Err(_) if !linked => Ok(false),
-                Err(e) => Err(io_at(path)(e)),
-            }
-        }
     }
 }
 
