@@ -111,7 +111,7 @@ fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool, ascii: super::AsciiA
     let spinner = budget::spinner("reproducing the paper", true);
     let mut files = report::paper_bundle();
     spinner.finish_and_clear();
-    for f in files.iter_mut().filter(|f| f.name.ends_with(".svg")) {
+    for f in files.iter_mut().filter(|f| Path::new(&f.name).extension().is_some_and(|e| e == "svg")) {
         f.contents = ascii.figure(std::mem::take(&mut f.contents));
     }
     for f in &files {

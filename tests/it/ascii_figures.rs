@@ -90,7 +90,8 @@ fn paper_all_with_ascii_writes_every_figure_in_ascii_and_the_default_keeps_unico
     run_ok(home.path(), &["paper", "all", "--ascii", "--out", &dir.to_string_lossy()]);
     let defaults = thud::export::report::paper_bundle();
     let (mut figures, mut unicode) = (0, 0);
-    for f in defaults.iter().filter(|f| f.name.ends_with(".svg")) {
+    let is_svg = |f: &&thud::export::report::BundleFile| Path::new(&f.name).extension().is_some_and(|e| e == "svg");
+    for f in defaults.iter().filter(is_svg) {
         let ascii = fs::read_to_string(dir.join(&f.name)).unwrap();
         check_pair(&f.name, &f.contents, &ascii);
         figures += 1;
@@ -98,7 +99,7 @@ fn paper_all_with_ascii_writes_every_figure_in_ascii_and_the_default_keeps_unico
     }
     assert!(figures >= 10 && unicode * 2 > figures, "{figures} figures, {unicode} with Unicode by default");
     // The tables and the report are not figures: written as without --ascii.
-    for f in defaults.iter().filter(|f| !f.name.ends_with(".svg")) {
+    for f in defaults.iter().filter(|f| !is_svg(f)) {
         assert_eq!(fs::read_to_string(dir.join(&f.name)).unwrap(), f.contents, "{}", f.name);
     }
     // One item prints a table, not a figure: --ascii is refused there, naming the flag.
