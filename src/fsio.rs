@@ -397,21 +397,13 @@ impl NewFolders {
     /// Creates `dir` and every missing folder above it, as `create_dir_all` does, noting each
     /// one this call made.
     pub fn create(dir: &Path) -> io::Result<NewFolders> {
-        let mut missing = Vec::new();
-        let mut d = dir;
-        loop {
-            match fs::symlink_metadata(d) {
-                Ok(_) => break,
-                Err(e) if e.kind() == io::ErrorKind::NotFound => {
-                    missing.push(d.to_path_buf());
-                    match d.parent() {
-                        Some(p) if !p.as_os_str().is_empty() => d = p,
-                        _ => break,
-                    }
-                }
-                Err(e) => return Err(e),
-            }
-        }
+        // Any other failure to look stops the walk; `create_dir` then reports it.
+        let missing: Vec<&Path> = dir
+            .ancestors()
+            .take_while(|d| {
+                !d.as_os_str().is_empty() && fs::symlink_metadata(d).is_err_and(|e| e.kind() == io::ErrorKind::NotFound)
+            })
+            .collect();
         let made = Arc::new(Mutex::new(Vec::new()));
         if missing.is_empty() {
             return Ok(NewFolders { made, _registration: None });
@@ -422,7 +414,7 @@ impl NewFolders {
             let folders = NewFolders { made, _registration: Some(registration) };
             for d in missing.iter().rev() {
                 match fs::create_dir(d) {
-                    Ok(()) => folders.made.lock().unwrap_or_else(PoisonError::into_inner).insert(0, d.clone()),
+                    Ok(()) => folders.made.lock().unwrap_or_else(PoisonError::into_inner).insert(0, d.to_path_buf()),
                     Err(e) if e.kind() == io::ErrorKind::AlreadyExists && d.is_dir() => {}
                     Err(e) => return Err(e),
                 }
@@ -590,60 +582,46 @@ fn write_named(
     let (mut temp, _registration) = signals::guarded(|| {
         let temp = temp_builder(&prefix).permissions(Permissions::from_mode(0o666)).tempfile_in(dir)?;
         rustix::fs::flock(temp.as_file(), FlockOperation::LockExclusive)?;
-        let registration = remove_on_signal(temp.path());
-        Ok::<_, io::Error>((temp, registration))
+        let name = temp.path().to_path_buf();
+        let registration = signals::on_signal(move || {
+            let _ = fs::remove_file(&name);
+        });
+        Ok::<_, io::Error>((temp, registration.0))
     })
     .map_err(io_at(path))?;
     fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
     before_link(temp.path()).map_err(io_at(temp.path()))?;
     hold_for_test();
-    match overwrite {
-        Overwrite::Refuse => {
-            temp.persist_noclobber(path).map_err(|e| match e.error.kind() {
-                io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
-                _ => io_at(path)(e.error),
-            })?;
-        }
-        // `temp` is dropped after the exchange: its name then holds the replaced file.
-        Overwrite::Replace => exchange_into_place(temp.path(), path)?,
+    let replace = overwrite == Overwrite::Replace;
+    // After an exchange `temp`'s name holds the replaced file: removed when `temp` is dropped.
+    if !(replace && exchange(temp.path(), path, |old| fs::symlink_metadata(old).is_ok_and(|m| m.is_file()))?) {
+        // Nothing is at `path`, or (`Replace`) the file system cannot exchange: then only a
+        // regular file there, checked once more, is renamed over.
+        let regular = replace && fs::symlink_metadata(path).is_ok_and(|m| m.is_file());
+        let placed = if regular { temp.persist(path) } else { temp.persist_noclobber(path) };
+        placed.map_err(|e| match e.error.kind() {
+            io::ErrorKind::AlreadyExists if replace => FsError::Changed(path.to_path_buf()),
+            io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
+            _ => io_at(path)(e.error),
+        })?;
     }
-    sync_dir(dir);
     Ok(())
 }
 
-/// Puts the file named `temp` at `path`, replacing only a regular file: exchanges the two
-/// atomically (`RENAME_EXCHANGE`), then looks at what `temp` now names — the replaced entry —
-/// and swaps back if it is not a regular file. The caller removes `temp` afterwards (the old
-/// file, or after a swap back its own new one). Where the file system cannot exchange, the
-/// target is checked once more and renamed over.
-fn exchange_into_place(temp: &Path, path: &Path) -> Result<(), FsError> {
-    match rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE) {
+/// Exchanges `temp` and `target` atomically (`RENAME_EXCHANGE`) and keeps the exchange if what
+/// `temp` then names — the replaced entry — is `replaceable`; else swaps them back:
+/// [`FsError::Changed`] (a link, device or folder appeared at `target` since the check).
+/// `Ok(false)`, nothing done, when nothing is at `target` or the file system cannot exchange.
+fn exchange(temp: &Path, target: &Path, replaceable: impl Fn(&Path) -> bool) -> Result<bool, FsError> {
+    match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE) {
+        Ok(()) if replaceable(temp) => Ok(true),
         Ok(()) => {
-            let old = fs::symlink_metadata(temp);
-            if old.as_ref().is_ok_and(fs::Metadata::is_file) {
-                let _ = fs::remove_file(temp);
-                return Ok(());
-            }
-            // A link, device or folder appeared at `path` since the check: put it back.
-            rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE)
-                .map_err(|e| io_at(path)(e.into()))?;
-            Err(FsError::Changed(path.to_path_buf()))
+            rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE)
+                .map_err(|e| io_at(target)(e.into()))?;
+            Err(FsError::Changed(target.to_path_buf()))
         }
-        // The target is gone: put the new file there without replacing anything.
-        Err(Errno::NOENT) => rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::NOREPLACE).map_err(|e| {
-            if e == Errno::EXIST {
-                FsError::Changed(path.to_path_buf())
-            } else {
-                io_at(path)(e.into())
-            }
-        }),
-        Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) => {
-            if !fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
-                return Err(FsError::Changed(path.to_path_buf()));
-            }
-            fs::rename(temp, path).map_err(io_at(path))
-        }
-        Err(e) => Err(io_at(path)(e.into())),
+        Err(Errno::NOENT | Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) => Ok(false),
+        Err(e) => Err(io_at(target)(e.into())),
     }
 }
 
@@ -701,27 +679,14 @@ impl TempFolder {
 
     fn rename_to(&self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
         let temp = self.path();
-        let changed = || FsError::Changed(target.to_path_buf());
-        if replace {
-            match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE) {
-                Ok(()) => {
-                    if only_named_files(temp, names) {
-                        return Ok(()); // `temp` now names the old set: removed on drop.
-                    }
-                    rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE)
-                        .map_err(|e| io_at(target)(e.into()))?;
-                    return Err(changed());
-                }
-                Err(Errno::NOENT) => {}
-                Err(e) => return Err(io_at(target)(e.into())),
-            }
+        if replace && exchange(temp, target, |old| only_named_files(old, names))? {
+            return Ok(()); // `temp` now names the old set: removed on drop.
         }
         match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::NOREPLACE) {
             Ok(()) => Ok(()),
             // An empty folder is there: rename(2) replaces only an empty folder.
-            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match e.raw_os_error() {
-                Some(c) if c == Errno::NOTEMPTY.raw_os_error() || c == Errno::NOTDIR.raw_os_error() => changed(),
-                Some(c) if c == Errno::EXIST.raw_os_error() => changed(),
+            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match Errno::from_io_error(&e) {
+                Some(Errno::NOTEMPTY | Errno::NOTDIR | Errno::EXIST) => FsError::Changed(target.to_path_buf()),
                 _ => io_at(target)(e),
             }),
             Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) if !target.exists() => {
@@ -749,15 +714,6 @@ fn only_named_files(dir: &Path, names: &[&str]) -> bool {
             names.iter().any(|n| e.file_name() == std::ffi::OsStr::new(n)) && e.file_type().is_ok_and(|t| t.is_file())
         })
     })
-}
-
-/// Removes `path` if a signal ends the process while the registration lives.
-fn remove_on_signal(path: &Path) -> signals::Registration {
-    let path = path.to_path_buf();
-    signals::on_signal(move || {
-        let _ = fs::remove_file(&path);
-    })
-    .0
 }
 
 /// Writes `bytes`, keeps `permissions` of the file being replaced, and syncs to disk.
