@@ -31,19 +31,23 @@
 //! - **Names are bytes.** Paths stay `Path`/`OsStr` end to end; [`shown`] renders one for a
 //!   message with invalid UTF-8 as `\xNN` and control characters escaped.
 //!
-//! What the crates carry and what is left here. `tempfile` carries the temporary names
-//! (random, created with `O_EXCL` and the asked permissions), their removal on every error path
-//! (`NamedTempFile`'s and `TempDir`'s drop), and the no-clobber publication of a new file
-//! (`persist_noclobber`: `renameat2(RENAME_NOREPLACE)` or link-then-unlink). `rustix` carries
-//! `O_TMPFILE`, `linkat`, `renameat2`, `flock` and `fstat` without `unsafe`, `signal-hook` the
-//! signals. The guards kept by hand, each because no crate has it: the check of what is at
-//! the target and again on the file itself (`tempfile`'s `persist` and the atomic-write crates
-//! rename over a device node or a symlink; thud replaces only a regular
-//! file, writes through a stream, refuses the rest); `--force` as an exchange checked and
-//! undone if the replaced entry was not a regular file; the anonymous temporary file's
-//! `linkat` (`tempfile::tempfile` gives one but cannot name it); the lock-and-age sweep of a
-//! killed run's names; the removal of new parent folders when a write fails; the
-//! bounded, non-blocking reads; and the escaped display of byte names.
+//! **What the crates carry.** `tempfile` carries the named temporary files and folders: random
+//! names created with `O_EXCL` and the asked permissions, removed on every error path by their
+//! drop (`NamedTempFile`, `TempDir`), published without replacing anything by
+//! `persist_noclobber` (`renameat2(RENAME_NOREPLACE)` or link-then-unlink) and, where the file
+//! system cannot exchange, over a regular file by `persist`. `rustix` carries `O_TMPFILE`,
+//! `linkat`, `renameat2`, `flock` and `fstat` without `unsafe`; `signal-hook` the signals
+//! ([`crate::signals`]). **Kept by hand**, each because no crate does it:
+//! - the check of what is at the target, before the work and again on the file itself:
+//!   `tempfile`'s `persist` and the atomic-write crates rename over a symlink or a device node,
+//!   where thud replaces only a regular file, writes through a stream and refuses the rest;
+//! - `--force` (a file, or `paper all`'s folder) as an exchange that is undone when the
+//!   replaced entry may not be replaced (`exchange`);
+//! - the anonymous file's `linkat` (`tempfile::tempfile` opens one but cannot name it), so a
+//!   new file survives `kill -9` without a trace;
+//! - the sweep of a killed run's names (by their `flock` and age), and the removal of the
+//!   parent folders a failed write created ([`NewFolders`]: a full disk leaves none);
+//! - bounded, non-blocking reads, and the escaped display of names that are bytes.
 
 use std::ffi::OsString;
 use std::fmt;
