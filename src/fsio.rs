@@ -14,13 +14,13 @@
 //!   `fstat`; a replacement is an atomic exchange (`renameat2(RENAME_EXCHANGE)`) after which
 //!   the replaced entry is inspected, and swapped back if it was not a regular file.
 //! - **No half-written file and no planted symlink.** The contents go to a temporary file in the
-//!   target's folder first, written and synced, then linked into place. On Linux the temporary
-//!   file has no name at all (`O_TMPFILE`, linked with `linkat(AT_EMPTY_PATH)` or through
-//!   `/proc/self/fd`): nothing can be planted at it and nothing is left behind even after
-//!   `kill -9`. Elsewhere (or where the file system lacks `O_TMPFILE`, or `--force` needs a
-//!   name to exchange) it has an unpredictable name `.NAME.thud-XXXXXX.tmp` created
-//!   exclusively (`O_EXCL`, so a symlink there is never followed), removed on every error path
-//!   and, through [`crate::signals`], on SIGINT/SIGTERM/SIGHUP.
+//!   target's folder first, written and synced, then linked into place. On Linux a new file's
+//!   temporary file has no name at all (`O_TMPFILE`, linked with `linkat(AT_EMPTY_PATH)` or
+//!   through `/proc/self/fd`): nothing can be planted at it and nothing is left behind even
+//!   after `kill -9`. Elsewhere (or where the file system lacks `O_TMPFILE`, or `--force` needs
+//!   a name to exchange) it is a `tempfile` named `.NAME.thud-XXXXXX.tmp`, created exclusively
+//!   (`O_EXCL`, so a symlink there is never followed), removed on every error path (its drop)
+//!   and, through [`crate::signals`], on every signal that ends the process.
 //! - **What `kill -9` leaves is removed by the next write.** A named temporary file is
 //!   `flock`ed by its writer for its whole life. Each write first removes, from the folder it
 //!   writes into, every `.*.thud-XXXXXX.tmp` regular file or folder whose lock is free and
@@ -31,12 +31,23 @@
 //! - **Names are bytes.** Paths stay `Path`/`OsStr` end to end; [`shown`] renders one for a
 //!   message with invalid UTF-8 as `\xNN` and control characters escaped.
 //!
-//! Why hand-written around the crates it uses: `tempfile` gives the exclusive random names and
-//! the no-clobber persist, `rustix` the `O_TMPFILE` open, `linkat`, `renameat2`, `flock` and
-//! `fstat` without `unsafe`, and `signal-hook` the signal handling; but no crate puts them
-//! together with a refusal of non-regular targets (`tempfile`'s `persist` and the atomic-write
-//! crates rename over a device node or a symlink), no-clobber as the default, and an anonymous
-//! temporary file that survives `kill -9` without a trace. This module is that glue.
+//! **What the crates carry.** `tempfile` carries the named temporary files and folders: random
+//! names created with `O_EXCL` and the asked permissions, removed on every error path by their
+//! drop (`NamedTempFile`, `TempDir`), published without replacing anything by
+//! `persist_noclobber` (`renameat2(RENAME_NOREPLACE)` or link-then-unlink) and, where the file
+//! system cannot exchange, over a regular file by `persist`. `rustix` carries `O_TMPFILE`,
+//! `linkat`, `renameat2`, `flock` and `fstat` without `unsafe`; `signal-hook` the signals
+//! ([`crate::signals`]). **Kept by hand**, each because no crate does it:
+//! - the check of what is at the target, before the work and again on the file itself:
+//!   `tempfile`'s `persist` and the atomic-write crates rename over a symlink or a device node,
+//!   where thud replaces only a regular file, writes through a stream and refuses the rest;
+//! - `--force` (a file, or `paper all`'s folder) as an exchange that is undone when the
+//!   replaced entry may not be replaced (`exchange`);
+//! - the anonymous file's `linkat` (`tempfile::tempfile` opens one but cannot name it), so a
+//!   new file survives `kill -9` without a trace;
+//! - the sweep of a killed run's names (by their `flock` and age), and the removal of the
+//!   parent folders a failed write created ([`NewFolders`]: a full disk leaves none);
+//! - bounded, non-blocking reads, and the escaped display of names that are bytes.
 
 use std::ffi::OsString;
 use std::fmt;
@@ -269,28 +280,25 @@ pub enum Plan {
     Through(Sink),
 }
 
-/// The character devices written through: `/dev/null` (1,3), `/dev/tty` (5,0), the console
-/// (5,1), virtual consoles and serial lines (major 4) and pseudo-terminals (136–143). Any
-/// other device (a disk, `/dev/mem`, a watchdog, `/dev/full`…) is refused, never opened.
-fn is_stream_device(rdev: u64) -> bool {
-    let (major, minor) = (rustix::fs::major(rdev), rustix::fs::minor(rdev));
-    matches!((major, minor), (1, 3) | (5, 0 | 1)) || major == 4 || (136..=143).contains(&major)
+/// Whether `meta` (links followed) is a terminal: a virtual console or serial line (major 4),
+/// `/dev/tty` or the console (5,0 and 5,1), or a pseudo-terminal (136–143).
+fn is_tty(meta: &fs::Metadata) -> bool {
+    let (major, minor) = (rustix::fs::major(meta.rdev()), rustix::fs::minor(meta.rdev()));
+    meta.file_type().is_char_device() && (major == 4 || (major == 5 && minor <= 1) || (136..=143).contains(&major))
 }
 
-/// Whether `path` (links followed) is a terminal: a virtual console or serial line (major 4),
-/// `/dev/tty` or the console (5,0 and 5,1), or a pseudo-terminal (136–143).
+/// Whether `path` (links followed) is a terminal (see `is_tty`).
 #[must_use]
 pub fn is_terminal(path: &Path) -> bool {
-    fs::metadata(path).is_ok_and(|m| {
-        let (major, minor) = (rustix::fs::major(m.rdev()), rustix::fs::minor(m.rdev()));
-        m.file_type().is_char_device() && (major == 4 || (major == 5 && minor <= 1) || (136..=143).contains(&major))
-    })
+    fs::metadata(path).is_ok_and(|m| is_tty(&m))
 }
 
-/// Whether `meta` (of the file itself, links followed) is a stream thud writes through.
+/// Whether `meta` (of the file itself, links followed) is a stream thud writes through: a FIFO,
+/// a terminal or `/dev/null` (1,3). Any other device (a disk, `/dev/mem`, a watchdog,
+/// `/dev/full`…) is refused, never opened.
 fn is_stream(meta: &fs::Metadata) -> bool {
-    let t = meta.file_type();
-    t.is_fifo() || (t.is_char_device() && is_stream_device(meta.rdev()))
+    let null = meta.file_type().is_char_device() && meta.rdev() == rustix::fs::makedev(1, 3);
+    meta.file_type().is_fifo() || null || is_tty(meta)
 }
 
 /// Whether `meta` is the file thud's standard output is.
@@ -334,27 +342,7 @@ pub fn check_target(path: &Path, overwrite: Overwrite) -> Result<Plan, FsError> 
 /// if missing), synced, then linked into place without replacing anything (`Refuse`) or
 /// exchanged with the regular file there (`Replace`).
 pub fn write(path: &Path, bytes: &[u8], overwrite: Overwrite) -> Result<(), FsError> {
-    let permissions = match check_target(path, overwrite)? {
-        Plan::Through(sink) => return write_through(path, sink, bytes),
-        Plan::Create => None,
-        Plan::Replace(p) => Some(p),
-    };
-    let (dir, new_folders) = prepare_dir(path)?;
-    let written = (|| {
-        if !named_temps_for_test() {
-            if let Some(file) = open_unnamed(&dir, path)? {
-                if write_unnamed(file, &dir, path, bytes, overwrite, permissions.clone())? {
-                    sync_dir(&dir);
-                    return Ok(());
-                }
-            }
-        }
-        write_named(&dir, path, bytes, overwrite, permissions, |_| Ok(()))
-    })();
-    if written.is_ok() {
-        new_folders.keep();
-    }
-    written
+    write_via(path, bytes, overwrite, !named_temps_for_test(), |_| Ok(()))
 }
 
 /// [`write()`] always through a named temporary file, with a seam: `before_link(temp_path)` runs
@@ -367,24 +355,35 @@ pub fn write_with(
     overwrite: Overwrite,
     before_link: impl FnOnce(&Path) -> io::Result<()>,
 ) -> Result<(), FsError> {
+    write_via(path, bytes, overwrite, false, before_link)
+}
+
+/// The body of [`write()`]: the folders it creates above the target are kept only if it
+/// succeeds, thud's leftovers in the target's folder are removed first, and a new file
+/// (`Refuse`) goes through an anonymous temporary file when `anonymous` and the file system
+/// can name one, else (and always for `Replace`, which needs a name to exchange) a named one.
+fn write_via(
+    path: &Path,
+    bytes: &[u8],
+    overwrite: Overwrite,
+    anonymous: bool,
+    before_link: impl FnOnce(&Path) -> io::Result<()>,
+) -> Result<(), FsError> {
     let permissions = match check_target(path, overwrite)? {
         Plan::Through(sink) => return write_through(path, sink, bytes),
         Plan::Create => None,
         Plan::Replace(p) => Some(p),
     };
-    let (dir, new_folders) = prepare_dir(path)?;
-    write_named(&dir, path, bytes, overwrite, permissions, before_link)?;
-    new_folders.keep();
-    Ok(())
-}
-
-/// Creates the folder of `path` (and the folders above it that are missing: removed again
-/// unless the caller keeps them) and removes thud's leftovers from it; the folder.
-fn prepare_dir(path: &Path) -> Result<(PathBuf, NewFolders), FsError> {
     let dir = parent_dir(path);
     let new_folders = NewFolders::create(&dir).map_err(io_at(path))?;
     remove_stale_temps(&dir);
-    Ok((dir, new_folders))
+    let linked = anonymous && overwrite == Overwrite::Refuse && write_unnamed(&dir, path, bytes)?;
+    if !linked {
+        write_named(&dir, path, bytes, overwrite, permissions, before_link)?;
+    }
+    sync_dir(&dir);
+    new_folders.keep();
+    Ok(())
 }
 
 /// The folders a write created above its target: removed again — deepest first, each only if
@@ -402,21 +401,13 @@ impl NewFolders {
     /// Creates `dir` and every missing folder above it, as `create_dir_all` does, noting each
     /// one this call made.
     pub fn create(dir: &Path) -> io::Result<NewFolders> {
-        let mut missing = Vec::new();
-        let mut d = dir;
-        loop {
-            match fs::symlink_metadata(d) {
-                Ok(_) => break,
-                Err(e) if e.kind() == io::ErrorKind::NotFound => {
-                    missing.push(d.to_path_buf());
-                    match d.parent() {
-                        Some(p) if !p.as_os_str().is_empty() => d = p,
-                        _ => break,
-                    }
-                }
-                Err(e) => return Err(e),
-            }
-        }
+        // Any other failure to look stops the walk; `create_dir` then reports it.
+        let missing: Vec<&Path> = dir
+            .ancestors()
+            .take_while(|d| {
+                !d.as_os_str().is_empty() && fs::symlink_metadata(d).is_err_and(|e| e.kind() == io::ErrorKind::NotFound)
+            })
+            .collect();
         let made = Arc::new(Mutex::new(Vec::new()));
         if missing.is_empty() {
             return Ok(NewFolders { made, _registration: None });
@@ -427,7 +418,7 @@ impl NewFolders {
             let folders = NewFolders { made, _registration: Some(registration) };
             for d in missing.iter().rev() {
                 match fs::create_dir(d) {
-                    Ok(()) => folders.made.lock().unwrap_or_else(PoisonError::into_inner).insert(0, d.clone()),
+                    Ok(()) => folders.made.lock().unwrap_or_else(PoisonError::into_inner).insert(0, d.to_path_buf()),
                     Err(e) if e.kind() == io::ErrorKind::AlreadyExists && d.is_dir() => {}
                     Err(e) => return Err(e),
                 }
@@ -483,19 +474,24 @@ fn write_through(path: &Path, sink: Sink, bytes: &[u8]) -> Result<(), FsError> {
     }
 }
 
-/// An anonymous file in `dir` (`O_TMPFILE`), locked, or `None` where the file system lacks it.
-fn open_unnamed(dir: &Path, path: &Path) -> Result<Option<File>, FsError> {
+/// Writes `bytes` to an anonymous file in `dir` (`O_TMPFILE`: nothing to plant at, nothing left
+/// even after `kill -9`) and gives it the name `path`, never over anything: `linkat` does not
+/// replace, so whatever appeared at the target since the check stays. `Ok(false)`, with
+/// nothing written at `dir`, where the file system has no `O_TMPFILE` or no way to link one.
+fn write_unnamed(dir: &Path, path: &Path, bytes: &[u8]) -> Result<bool, FsError> {
     let flags = OFlags::WRONLY | OFlags::TMPFILE | OFlags::CLOEXEC;
-    match rustix::fs::open(dir, flags, Mode::from_bits_truncate(0o666)) {
-        Ok(fd) => {
-            // Locked before it ever has a name, so no later run takes it for a leftover.
-            rustix::fs::flock(&fd, FlockOperation::LockExclusive).map_err(|e| io_at(path)(e.into()))?;
-            Ok(Some(File::from(fd)))
-        }
+    let mut file = match rustix::fs::open(dir, flags, Mode::from_bits_truncate(0o666)) {
+        Ok(fd) => File::from(fd),
         // The "not supported here" answers to O_TMPFILE (as in `tempfile`), plus EINVAL.
-        Err(Errno::OPNOTSUPP | Errno::ISDIR | Errno::NOENT | Errno::INVAL) => Ok(None),
-        Err(e) => Err(io_at(path)(e.into())),
-    }
+        Err(Errno::OPNOTSUPP | Errno::ISDIR | Errno::NOENT | Errno::INVAL) => return Ok(false),
+        Err(e) => return Err(io_at(path)(e.into())),
+    };
+    fill(&mut file, bytes, None).map_err(io_at(path))?;
+    hold_for_test();
+    link_unnamed(&file, path).map_err(|e| match e {
+        Errno::EXIST => FsError::Exists(path.to_path_buf()),
+        e => io_at(path)(e.into()),
+    })
 }
 
 /// Gives the anonymous `file` the name `to`: `linkat(AT_EMPTY_PATH)` (Linux ≥ 6.10 for an
@@ -513,53 +509,6 @@ fn link_unnamed(file: &File, to: &Path) -> Result<bool, Errno> {
         // No /proc (or its fd links do not lead back here).
         Err(Errno::NOENT | Errno::PERM | Errno::XDEV | Errno::ACCESS) if !Path::new(&by_fd).exists() => Ok(false),
         Err(e) => Err(e),
-    }
-}
-
-/// Fills the anonymous `file` and gives it the name `path`. `Ok(false)` (nothing written at
-/// `dir`) when it cannot be linked here: the caller falls back to a named temporary file.
-fn write_unnamed(
-    mut file: File,
-    dir: &Path,
-    path: &Path,
-    bytes: &[u8],
-    overwrite: Overwrite,
-    permissions: Option<Permissions>,
-) -> Result<bool, FsError> {
-    fill(&mut file, bytes, permissions).map_err(io_at(path))?;
-    hold_for_test();
-    match overwrite {
-        // linkat never replaces: whatever appeared at the target since the check stays.
-        Overwrite::Refuse => link_unnamed(&file, path).map_err(|e| match e {
-            Errno::EXIST => FsError::Exists(path.to_path_buf()),
-            e => io_at(path)(e.into()),
-        }),
-        // No call links over an existing name: link under a fresh exclusive name (the file is
-        // locked, so no other run removes it), then exchange it with the target.
-        Overwrite::Replace => {
-            let mut linked = true;
-            let prefix = temp_prefix(path);
-            let named = signals::guarded(|| {
-                let named = temp_builder(&prefix).make_in(dir, |p| {
-                    if link_unnamed(&file, p)? {
-                        Ok(())
-                    } else {
-                        linked = false;
-                        // Stops make_in: nothing was created under this name.
-                        Err(io::Error::from(io::ErrorKind::Unsupported))
-                    }
-                });
-                named.map(|n| {
-                    let registration = remove_on_signal(n.path());
-                    (n, registration)
-                })
-            });
-            match named {
-                Ok((named, _registration)) => exchange_into_place(named.path(), path).map(|()| true),
-                Err(_) if !linked => Ok(false),
-                Err(e) => Err(io_at(path)(e)),
-            }
-        }
     }
 }
 
@@ -637,60 +586,46 @@ fn write_named(
     let (mut temp, _registration) = signals::guarded(|| {
         let temp = temp_builder(&prefix).permissions(Permissions::from_mode(0o666)).tempfile_in(dir)?;
         rustix::fs::flock(temp.as_file(), FlockOperation::LockExclusive)?;
-        let registration = remove_on_signal(temp.path());
-        Ok::<_, io::Error>((temp, registration))
+        let name = temp.path().to_path_buf();
+        let registration = signals::on_signal(move || {
+            let _ = fs::remove_file(&name);
+        });
+        Ok::<_, io::Error>((temp, registration.0))
     })
     .map_err(io_at(path))?;
     fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
     before_link(temp.path()).map_err(io_at(temp.path()))?;
     hold_for_test();
-    match overwrite {
-        Overwrite::Refuse => {
-            temp.persist_noclobber(path).map_err(|e| match e.error.kind() {
-                io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
-                _ => io_at(path)(e.error),
-            })?;
-        }
-        // `temp` is dropped after the exchange: its name then holds the replaced file.
-        Overwrite::Replace => exchange_into_place(temp.path(), path)?,
+    let replace = overwrite == Overwrite::Replace;
+    // After an exchange `temp`'s name holds the replaced file: removed when `temp` is dropped.
+    if !(replace && exchange(temp.path(), path, |old| fs::symlink_metadata(old).is_ok_and(|m| m.is_file()))?) {
+        // Nothing is at `path`, or (`Replace`) the file system cannot exchange: then only a
+        // regular file there, checked once more, is renamed over.
+        let regular = replace && fs::symlink_metadata(path).is_ok_and(|m| m.is_file());
+        let placed = if regular { temp.persist(path) } else { temp.persist_noclobber(path) };
+        placed.map_err(|e| match e.error.kind() {
+            io::ErrorKind::AlreadyExists if replace => FsError::Changed(path.to_path_buf()),
+            io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
+            _ => io_at(path)(e.error),
+        })?;
     }
-    sync_dir(dir);
     Ok(())
 }
 
-/// Puts the file named `temp` at `path`, replacing only a regular file: exchanges the two
-/// atomically (`RENAME_EXCHANGE`), then looks at what `temp` now names — the replaced entry —
-/// and swaps back if it is not a regular file. The caller removes `temp` afterwards (the old
-/// file, or after a swap back its own new one). Where the file system cannot exchange, the
-/// target is checked once more and renamed over.
-fn exchange_into_place(temp: &Path, path: &Path) -> Result<(), FsError> {
-    match rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE) {
+/// Exchanges `temp` and `target` atomically (`RENAME_EXCHANGE`) and keeps the exchange if what
+/// `temp` then names — the replaced entry — is `replaceable`; else swaps them back:
+/// [`FsError::Changed`] (a link, device or folder appeared at `target` since the check).
+/// `Ok(false)`, nothing done, when nothing is at `target` or the file system cannot exchange.
+fn exchange(temp: &Path, target: &Path, replaceable: impl Fn(&Path) -> bool) -> Result<bool, FsError> {
+    match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE) {
+        Ok(()) if replaceable(temp) => Ok(true),
         Ok(()) => {
-            let old = fs::symlink_metadata(temp);
-            if old.as_ref().is_ok_and(fs::Metadata::is_file) {
-                let _ = fs::remove_file(temp);
-                return Ok(());
-            }
-            // A link, device or folder appeared at `path` since the check: put it back.
-            rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::EXCHANGE)
-                .map_err(|e| io_at(path)(e.into()))?;
-            Err(FsError::Changed(path.to_path_buf()))
+            rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE)
+                .map_err(|e| io_at(target)(e.into()))?;
+            Err(FsError::Changed(target.to_path_buf()))
         }
-        // The target is gone: put the new file there without replacing anything.
-        Err(Errno::NOENT) => rustix::fs::renameat_with(CWD, temp, CWD, path, RenameFlags::NOREPLACE).map_err(|e| {
-            if e == Errno::EXIST {
-                FsError::Changed(path.to_path_buf())
-            } else {
-                io_at(path)(e.into())
-            }
-        }),
-        Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) => {
-            if !fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
-                return Err(FsError::Changed(path.to_path_buf()));
-            }
-            fs::rename(temp, path).map_err(io_at(path))
-        }
-        Err(e) => Err(io_at(path)(e.into())),
+        Err(Errno::NOENT | Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) => Ok(false),
+        Err(e) => Err(io_at(target)(e.into())),
     }
 }
 
@@ -748,27 +683,14 @@ impl TempFolder {
 
     fn rename_to(&self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
         let temp = self.path();
-        let changed = || FsError::Changed(target.to_path_buf());
-        if replace {
-            match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE) {
-                Ok(()) => {
-                    if only_named_files(temp, names) {
-                        return Ok(()); // `temp` now names the old set: removed on drop.
-                    }
-                    rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE)
-                        .map_err(|e| io_at(target)(e.into()))?;
-                    return Err(changed());
-                }
-                Err(Errno::NOENT) => {}
-                Err(e) => return Err(io_at(target)(e.into())),
-            }
+        if replace && exchange(temp, target, |old| only_named_files(old, names))? {
+            return Ok(()); // `temp` now names the old set: removed on drop.
         }
         match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::NOREPLACE) {
             Ok(()) => Ok(()),
             // An empty folder is there: rename(2) replaces only an empty folder.
-            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match e.raw_os_error() {
-                Some(c) if c == Errno::NOTEMPTY.raw_os_error() || c == Errno::NOTDIR.raw_os_error() => changed(),
-                Some(c) if c == Errno::EXIST.raw_os_error() => changed(),
+            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match Errno::from_io_error(&e) {
+                Some(Errno::NOTEMPTY | Errno::NOTDIR | Errno::EXIST) => FsError::Changed(target.to_path_buf()),
                 _ => io_at(target)(e),
             }),
             Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) if !target.exists() => {
@@ -796,15 +718,6 @@ fn only_named_files(dir: &Path, names: &[&str]) -> bool {
             names.iter().any(|n| e.file_name() == std::ffi::OsStr::new(n)) && e.file_type().is_ok_and(|t| t.is_file())
         })
     })
-}
-
-/// Removes `path` if a signal ends the process while the registration lives.
-fn remove_on_signal(path: &Path) -> signals::Registration {
-    let path = path.to_path_buf();
-    signals::on_signal(move || {
-        let _ = fs::remove_file(&path);
-    })
-    .0
 }
 
 /// Writes `bytes`, keeps `permissions` of the file being replaced, and syncs to disk.

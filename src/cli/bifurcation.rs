@@ -43,6 +43,8 @@ pub struct OrbitArgs {
     #[arg(long)]
     pub(super) force: bool,
     #[command(flatten)]
+    ascii: super::AsciiArgs,
+    #[command(flatten)]
     output: OutputArgs,
 }
 
@@ -76,7 +78,7 @@ impl OrbitArgs {
         let [text_target, _, _] = self.targets()?;
         let text = table(self.output.format())?;
         if self.svg.is_some() || self.pdf.is_some() {
-            let svg = figure();
+            let svg = self.ascii.figure(figure());
             if let Some(p) = &self.svg {
                 write_bytes(p, svg.as_bytes(), self.force)?;
             }

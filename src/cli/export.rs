@@ -73,6 +73,8 @@ struct SvgArgs {
     /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
     #[arg(long)]
     no_title: bool,
+    #[command(flatten)]
+    ascii: super::AsciiArgs,
     /// The measurement of `fit` (CSV, as `thud fit --data`); repeated with --damper.
     #[arg(long, value_name = "FILE")]
     data: Vec<std::ffi::OsString>,
@@ -281,8 +283,16 @@ fn samples_at_full_scale(bytes: &[u8], format: SampleFormat) -> usize {
 /// Renders and writes one export; says on stderr what was written. The target and the work are
 /// checked before the work starts, so a refused --out or an over-cap run costs nothing, and the
 /// contents are checked for non-finite numbers before anything is written.
-/// With `as_pdf` the figure's SVG is checked, then converted to PDF ([`pdf::from_svg`]).
-fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions, as_pdf: bool) -> Result<(), CliError> {
+/// With `as_pdf` the figure's SVG is checked, then converted to PDF ([`pdf::from_svg`]); a
+/// figure's text is spelled in ASCII with `ascii` (`--ascii`).
+fn write(
+    ctx: &Ctx,
+    kind: Artifact,
+    common: &Common,
+    opts: &ExportOptions,
+    as_pdf: bool,
+    ascii: super::AsciiArgs,
+) -> Result<(), CliError> {
     let (design, opts) = if kind.is_response() {
         // The design first, then its frequencies: --freqs, or the engine's default band.
         let (d, freqs) = common.design.response_setup(opts.freqs_hz.clone())?;
@@ -318,6 +328,8 @@ fn write(ctx: &Ctx, kind: Artifact, common: &Common, opts: &ExportOptions, as_pd
         other => other.map_err(|e| export_error(out, e, common))?,
     };
     check_contents(kind, &bytes)?;
+    let bytes =
+        if ascii.ascii { ascii.figure(String::from_utf8_lossy(&bytes).into_owned()).into_bytes() } else { bytes };
     let bytes = if as_pdf {
         pdf::from_svg(&String::from_utf8_lossy(&bytes))
             .map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
@@ -406,7 +418,7 @@ fn figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
     }
     let mut opts = s.common.options()?;
     opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
-    write(ctx, kind, &s.common, &opts, as_pdf)
+    write(ctx, kind, &s.common, &opts, as_pdf, s.ascii)
 }
 
 /// `export svg|pdf fit`: the measurement over its fitted model, by `thud fit`'s own reading
@@ -440,6 +452,7 @@ fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
         export::fit::structure(&series, &f, &title, &look)
     };
     super::output::check_text(&svg_text)?;
+    let svg_text = s.ascii.figure(svg_text);
     let bytes = if as_pdf {
         pdf::from_svg(&svg_text).map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
     } else {
@@ -463,7 +476,7 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 CsvWhat::Sweep => Artifact::CsvSweep,
                 CsvWhat::Response => Artifact::CsvResponse,
             };
-            write(ctx, kind, &c.common, &c.common.options()?, false)
+            write(ctx, kind, &c.common, &c.common.options()?, false, super::AsciiArgs::default())
         }
         ExportCommand::Svg(s) => figure(ctx, s, false),
         ExportCommand::Pdf(s) => figure(ctx, s, true),
@@ -473,7 +486,7 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
                 quantity("full-scale", &Some(w.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
             opts.wav.format = w.format.into();
             opts.wav.validate()?;
-            write(ctx, Artifact::Wav, &w.common, &opts, false)
+            write(ctx, Artifact::Wav, &w.common, &opts, false, super::AsciiArgs::default())
         }
     }
 }

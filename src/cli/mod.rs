@@ -95,6 +95,38 @@ pub enum Command {
     Config(settings::ConfigArgs),
 }
 
+/// `--ascii`, one definition for the explorer and every command that writes a figure.
+#[derive(Debug, Clone, Copy, Default, Args)]
+pub struct AsciiArgs {
+    /// Pure ASCII: plain borders, plot glyphs and text (theta, us) for fonts without Braille; in
+    /// a figure every label, tick and title (- for the minus sign, ^2, theta, u for micro).
+    #[arg(long)]
+    pub ascii: bool,
+}
+
+impl AsciiArgs {
+    /// The SVG document `svg` as written: as it is, or with `--ascii` every character beyond
+    /// ASCII spelled as the explorer spells it (`−` → `-`, `²` → `^2`, `θ` → `theta`,
+    /// `µ` → `u`, `τ` → `tau`; anything unknown `?`), escaped for XML (`≤` → `&lt;=`).
+    /// Outside text and the title an SVG of thud's is ASCII already.
+    #[must_use]
+    pub fn figure(self, svg: String) -> String {
+        if !self.ascii || svg.is_ascii() {
+            return svg;
+        }
+        let mut out = String::with_capacity(svg.len());
+        let mut buf = [0u8; 4];
+        for c in svg.chars() {
+            if c.is_ascii() {
+                out.push(c);
+            } else {
+                out += &crate::export::svg::escape(&crate::tui::theme::fold(c.encode_utf8(&mut buf)));
+            }
+        }
+        out
+    }
+}
+
 /// Options of `thud limits`.
 #[derive(Debug, Clone, Copy, Args)]
 pub struct LimitsArgs {

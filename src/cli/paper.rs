@@ -33,6 +33,8 @@ pub struct PaperArgs {
     #[arg(long)]
     pdf: bool,
     #[command(flatten)]
+    ascii: super::AsciiArgs,
+    #[command(flatten)]
     output: OutputArgs,
 }
 
@@ -46,7 +48,14 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
     }
     let id = a.id.as_deref().unwrap_or_default().to_ascii_lowercase();
     if id == "all" {
-        return all(a.out.as_deref(), Overwrite::from_force(a.force), a.pdf);
+        return all(a.out.as_deref(), Overwrite::from_force(a.force), a.pdf, a.ascii);
+    }
+    if a.ascii.ascii {
+        return Err(ThudError::invalid(
+            "--ascii",
+            format!("the figures are written by `thud paper all --ascii --out DIR`; '{id}' prints a table"),
+        )
+        .into());
     }
     if a.pdf {
         return Err(ThudError::invalid(
@@ -90,7 +99,8 @@ fn bundle_error(dir: &Path, e: BundleError) -> CliError {
 /// `thud paper all --out DIR`: every item as CSV (and SVG where plotted; with `pdf` PDF too) plus REPORT.md, as one
 /// folder written complete or not at all ([`report::write_bundle`]). The folder is checked
 /// before the work starts, and every number in every file before the first file is written.
-fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool) -> Result<(), CliError> {
+/// With `ascii` (`--ascii`) every figure's text is spelled in ASCII, in its SVG and its PDF.
+fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool, ascii: super::AsciiArgs) -> Result<(), CliError> {
     let dir = out.ok_or_else(|| ThudError::invalid("--out", "`thud paper all` needs --out DIR"))?;
     if fsio::is_stdout(dir) {
         return Err(ThudError::invalid("--out", "-: `thud paper all` writes a folder of files; give --out DIR").into());
@@ -99,8 +109,11 @@ fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool) -> Result<(), CliErr
     report::check_bundle_targets(dir, expected.iter().map(String::as_str), overwrite)
         .map_err(|e| bundle_error(dir, e))?;
     let spinner = budget::spinner("reproducing the paper", true);
-    let files = report::paper_bundle();
+    let mut files = report::paper_bundle();
     spinner.finish_and_clear();
+    for f in files.iter_mut().filter(|f| Path::new(&f.name).extension().is_some_and(|e| e == "svg")) {
+        f.contents = ascii.figure(std::mem::take(&mut f.contents));
+    }
     for f in &files {
         super::output::check_text(&f.contents).map_err(|e| {
             if let CliError::NonFinite(w) = e {

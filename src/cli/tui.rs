@@ -10,9 +10,8 @@ pub struct TuiArgs {
     /// Starting design: default, paper-fig9, paper-table3.
     #[arg(long, default_value = "default")]
     pub preset: String,
-    /// Pure ASCII: plain borders, plot glyphs and text (theta, us) for fonts without Braille.
-    #[arg(long)]
-    pub ascii: bool,
+    #[command(flatten)]
+    pub ascii: super::AsciiArgs,
     /// Colours: default (dark background), light (light background), mono (none); overrides
     /// the theme of config.toml.
     #[arg(long, value_enum, value_name = "THEME")]
@@ -55,7 +54,7 @@ impl TuiArgs {
         let tour = self.tour.as_ref().map(|file| file.clone().map_or(TourSource::BuiltIn, TourSource::File));
         crate::tui::Options {
             preset: self.preset.clone(),
-            ascii: self.ascii,
+            ascii: self.ascii.ascii,
             mouse: !self.no_mouse,
             export_dir: self.export_dir.clone(),
             tour,

@@ -21,6 +21,7 @@ mod support {
 
 mod acoustics_paper;
 mod architecture;
+mod ascii_figures;
 mod cli;
 mod contact_scheme;
 mod cvd;
