@@ -60,7 +60,7 @@ impl App {
                 )
             }
             ChartView::Response => {
-                format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::Force.label())
+                format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::FORCE.label())
             }
         };
         let text = if self.chart_shown {
