@@ -1187,6 +1187,66 @@ mod tests {
         assert_eq!(w0.display(&d), "0 m/s");
     }
 
+    /// The field list is the engine's table: every row of [`DESIGN`] is set by exactly one
+    /// field, its own (listed where the row is) unless it is a later row of a look (the plate
+    /// with the materials, the Newmark step with the solver); a field of one row has the row's
+    /// name (or a look's shorter one), quantity, range and unit (or a unit of the same quantity
+    /// whose factor is the engine's), and one made from the row alone has the row's label,
+    /// name and plain unit. The one field without a row is the ensemble size N. So a row added
+    /// to the table is a field with no line of the explorer's.
+    #[test]
+    fn every_row_of_the_table_is_one_field_with_its_name_unit_and_range() {
+        for (i, p) in DESIGN.iter().enumerate() {
+            let owners: Vec<Knob> = Knob::ALL.into_iter().filter(|k| k.rows().contains(&p.name)).collect();
+            assert_eq!(owners.len(), 1, "{}: set by {owners:?}", p.name);
+            let k = owners[0];
+            assert_eq!(k.rows()[0] == p.name, k.field().row == i, "{}: listed at its own row", p.name);
+            assert_eq!(k.group(), DESIGN[k.field().row].group);
+            if k.rows() != [p.name] {
+                continue;
+            }
+            assert_eq!(k.row().map(|r| r.name), Some(p.name));
+            assert!(k.param() == p.name || !k.look().name.is_empty(), "{}", p.name);
+            assert_eq!(k.range().as_ref(), p.range(), "{}: the row's range", p.name);
+            let kind = match p.accepts {
+                Accepts::Quantity { kind, .. } => Some(kind),
+                _ => None,
+            };
+            assert_eq!(k.kind(), kind, "{}", p.name);
+            match (kind, k.display_unit()) {
+                (Some(_), Some((unit, to))) if unit == p.unit() => assert_eq!(to, 1.0, "{}", p.name),
+                (Some(kind), Some((unit, to))) => {
+                    let one = units::parse(p.name, &format!("1{unit}"), kind).ok();
+                    assert_eq!(one, Some(to), "{}: 1 {unit} is {to} {}", p.name, p.unit());
+                    assert!((to * k.look().to_shown - 1.0).abs() < 1e-15, "{}: {unit} both ways", p.name);
+                }
+                (Some(_), None) => panic!("{}: a quantity without a unit", p.name),
+                (None, unit) => assert_eq!(unit.is_some(), p.range().is_some(), "{}: a count's unit", p.name),
+            }
+            if k.plain() {
+                assert_eq!((k.label(), k.param(), k.what()), (p.label, p.name, p.help));
+                assert_eq!(
+                    k.display_unit().map(|(unit, _)| unit),
+                    p.range().map(|r| if kind.is_some() { p.unit() } else { r.unit })
+                );
+            }
+        }
+        let own: Vec<Knob> = Knob::ALL.into_iter().filter(|k| k.rows().is_empty()).collect();
+        assert_eq!(own, [Knob::RUNS], "the explorer's own fields");
+        assert_eq!(Knob::RUNS.range(), Some(limits::ENSEMBLE));
+        assert_eq!(Knob::ALL.last(), Some(&Knob::RUNS), "the ensemble size last, with the study");
+        // Grouped as the table groups its rows, and in table order inside a group.
+        let at = |k: &Knob| (Group::ALL.iter().position(|g| *g == k.group()), k.field().row);
+        assert!(Knob::ALL.windows(2).all(|w| at(&w[0]) < at(&w[1])), "{:?}", Knob::ALL);
+        // Every look is of a row of the table and gives a field; names are unique.
+        for look in LOOKS {
+            assert!(Knob::ALL.iter().any(|k| k.rows() == look.rows), "{:?}", look.rows);
+        }
+        for k in Knob::ALL {
+            assert_eq!(Knob::named(k.param()), k, "{} names one field", k.param());
+        }
+    }
+
     #[test]
     fn the_filter_finds_theta_from_th_and_each_field_from_its_name() {
         assert_eq!(find("th").first(), Some(&Knob::THETA));
