@@ -44,6 +44,11 @@ enum Format {
     WholeUnit,
 }
 
+/// A design's valid range for a field (internal units): lowest, highest.
+type Bounds = fn(&Design) -> (f64, f64);
+/// Sets a field from typed text.
+type Parse = fn(&mut Design, &str) -> Result<(), ThudError>;
+
 /// The explorer's columns for a field, beside its row of [`params::DESIGN`]: each one empty
 /// (or `None`) takes the row's default, so a row needs a look only where the panel shows or
 /// edits it otherwise than the row says. The hooks (`get` … `cycled`) are for the few fields
@@ -89,7 +94,7 @@ pub struct Look {
     scope: Option<Scope>,
     /// The valid range of a design in internal units, where it depends on the design (None:
     /// the row's range).
-    bounds: Option<fn(&Design) -> (f64, f64)>,
+    bounds: Option<Bounds>,
     /// The value, where the row's accessor does not give it as the panel shows it.
     get: Option<fn(&Design) -> f64>,
     /// Sets the value, where more than the row's value changes.
@@ -99,7 +104,7 @@ pub struct Look {
     /// Moves a field of several rows to its next (`true`) or previous choice.
     cycle: Option<fn(&mut Design, bool)>,
     /// Sets a field of several rows from typed text.
-    parse: Option<fn(&mut Design, &str) -> Result<(), ThudError>>,
+    parse: Option<Parse>,
     /// What follows any change of the field (a force switched on gets its frequency).
     then: Option<fn(&mut Design)>,
     /// What follows a cycle of the field (θ back inside the new source's open side).
@@ -772,11 +777,8 @@ impl Knob {
         }
         let read = || self.row().and_then(|r| r.get).map_or(f64::NAN, |get| get(d));
         match self.row().map(|r| &r.accepts) {
-            Some(Accepts::Switch { .. }) => match read() {
-                v if v == 0.0 => "off".into(),
-                _ if look.on.is_empty() => "on".into(),
-                _ => look.on.into(),
-            },
+            Some(Accepts::Switch { .. }) if read() == 0.0 => "off".into(),
+            Some(Accepts::Switch { .. }) => if look.on.is_empty() { "on" } else { look.on }.into(),
             Some(Accepts::Choice { names, .. }) => {
                 let v = read();
                 let name = if v.is_finite() { names.get(v as usize).copied() } else { None };
