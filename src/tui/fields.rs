@@ -298,7 +298,7 @@ struct Field {
     look: Look,
 }
 
-/// The look whose rows include `name` at `at` (0: its own row; 1: a later one), if any.
+/// The look whose rows include `name`: as its own (first) row, or (`later`) after it.
 const fn look_at(name: &str, later: bool) -> Option<Look> {
     let mut l = 0;
     while l < LOOKS.len() {
@@ -519,7 +519,7 @@ impl Knob {
     pub const fn named(name: &str) -> Knob {
         let mut i = 0;
         while i < FIELD_COUNT {
-            if params::same_name(Knob(i).name(), name) {
+            if params::same_name(Knob(i).param(), name) {
                 return Knob(i);
             }
             i += 1;
@@ -534,15 +534,6 @@ impl Knob {
 
     const fn look(self) -> Look {
         self.field().look
-    }
-
-    /// [`Knob::param`], at compile time.
-    const fn name(self) -> &'static str {
-        match (self.look().name, self.field().row) {
-            (name, _) if !name.is_empty() => name,
-            (_, i) if i < DESIGN.len() => DESIGN[i].name,
-            _ => "?",
-        }
     }
 
     /// The rows of the engine's table ([`params::DESIGN`]) this field sets (none for the
@@ -579,9 +570,13 @@ impl Knob {
         }
     }
 
-    /// The parameter's name in messages (as on the command line).
-    pub fn param(self) -> &'static str {
-        self.name()
+    /// The parameter's name in messages (as on the command line): the look's, else the row's.
+    pub const fn param(self) -> &'static str {
+        match (self.look().name, self.field().row) {
+            (name, _) if !name.is_empty() => name,
+            (_, i) if i < DESIGN.len() => DESIGN[i].name,
+            _ => "?",
+        }
     }
 
     /// What the field is, for the status line's hint: the look's words, else the row's help.
