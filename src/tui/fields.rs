@@ -484,7 +484,8 @@ pub enum Scope {
 pub const TUI_NEWMARK_DT_S: f64 = 1e-6;
 
 impl Knob {
-    /// All fields, in panel order ([`FIELDS`]).
+    /// All fields, in panel order: grouped as the engine's table groups its rows, in table
+    /// order inside a group, the ensemble size last.
     pub const ALL: [Knob; FIELD_COUNT] = {
         let mut all = [Knob(0); FIELD_COUNT];
         let mut i = 0;
