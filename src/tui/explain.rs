@@ -6,52 +6,15 @@ use super::fields::Knob;
 use crate::design::{Design, ZoneBy};
 use crate::limits;
 
-/// What a parameter is, with the paper's equation where it has one.
-pub fn what(p: Knob) -> &'static str {
-    match p {
-        Knob::Mass => "the ball (impact mass) rattling in the enclosure",
-        Knob::Gap => "total clearance of the ball in its enclosure (d/2 each side)",
-        Knob::R => "distance of the listener from the contact point",
-        Knob::Theta => "listener angle from the plate's normal (0 = along the normal)",
-        Knob::V0 => "initial speed of the main mass, the blow that starts the ring-down (Eq 25)",
-        Knob::MainMass => "the structure being damped (Eq 25)",
-        Knob::K => "stiffness of the structure's spring (Eq 25)",
-        Knob::C => "viscous damping of the structure (Eq 25)",
-        Knob::C1 => "contact damping in the Hertz contact force (Eq 26)",
-        Knob::KHz => "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)",
-        Knob::Materials => "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed",
-        Knob::Source => "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)",
-        Knob::QuadSigns => "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)",
-        Knob::Pulse => "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse",
-        Knob::Clamp => "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)",
-        Knob::Solver => "event-driven (exact flight) or the paper's Newmark-β at a fixed step",
-        Knob::Duration => "simulated time of the ring-down",
-        Knob::LStar => "zone threshold on SPLmax: below L* is quiet",
-        Knob::EStar => "zone threshold on the damping inclination: e ≥ e* is strong",
-        Knob::Force => {
-            "harmonic force F0·cos(2πft) on the main mass (Eq 25 forced); 0 is the paper's free decay, > 0 adds the steady-state readout and the response view (f)"
-        }
-        Knob::Freq => {
-            "forcing frequency f; moves the marker on the response curve (f view) without recomputing it; a force switched on starts at the natural frequency"
-        }
-        Knob::BallPosition => "the ball's start offset from the enclosure's centre, |y0| < d/2 (0: centred, as the paper)",
-        Knob::Runs => {
-            "runs from N ball offsets spread over the clearance (y0 = −d/2 + (k + ½)·d/N): the readout shows median [p10–p90], the chart shades cells where < 70 % of runs agree"
-        }
-        // A field of the engine's table: its help.
-        Knob::Row(_) => p.row().map_or("", |r| r.help),
-    }
-}
-
 /// The status-line hint of parameter `p`: "c1 — contact damping in the Hertz contact force
 /// (Eq 26), N·s/m, 0–1e+06". The range is the one table's ([`crate::limits`]), in the unit
 /// the field shows; θ's is the current source's open side.
 pub fn field_hint(p: Knob, d: &Design) -> String {
     match (p.display_unit(), p.display_range(d)) {
         (Some((unit, _)), Some((lo, hi))) => {
-            format!("{} — {}, {unit}, {}–{}", p.label(), what(p), limits::short(lo), limits::short(hi))
+            format!("{} — {}, {unit}, {}–{}", p.label(), p.what(), limits::short(lo), limits::short(hi))
         }
-        _ => format!("{} — {}; ←→ changes it", p.label(), what(p)),
+        _ => format!("{} — {}; ←→ changes it", p.label(), p.what()),
     }
 }
 
@@ -185,13 +148,13 @@ mod tests {
     #[test]
     fn the_mass_hint_is_in_grams_and_theta_follows_the_source() {
         let d = Design::default();
-        let h = field_hint(Knob::Mass, &d);
+        let h = field_hint(Knob::MASS, &d);
         assert!(h.contains(", g, 0.1–"), "{h}");
-        assert!(field_hint(Knob::Theta, &d).contains("deg, 0–90"));
+        assert!(field_hint(Knob::THETA, &d).contains("deg, 0–90"));
         let mut dip = d.clone();
         dip.radiation.source = crate::acoustics::Source::Dipole;
-        assert!(field_hint(Knob::Theta, &dip).contains("deg, -90–90"));
-        assert!(field_hint(Knob::Source, &d).contains("quadrupole"));
+        assert!(field_hint(Knob::THETA, &dip).contains("deg, -90–90"));
+        assert!(field_hint(Knob::SOURCE, &d).contains("quadrupole"));
     }
 
     #[test]
@@ -203,8 +166,8 @@ mod tests {
             assert!(all.iter().any(|(t, _)| *t == term), "{term}");
         }
         assert!(all.iter().any(|(_, x)| x.contains("N = 16 runs") && x.contains("70 %")));
-        assert!(field_hint(Knob::Runs, &Design::default()).contains("runs, 1–1000"));
-        assert!(field_hint(Knob::BallPosition, &Design::default()).contains("cm, -2–2"));
+        assert!(field_hint(Knob::RUNS, &Design::default()).contains("runs, 1–1000"));
+        assert!(field_hint(Knob::BALL_POSITION, &Design::default()).contains("cm, -2–2"));
     }
 
     #[test]

@@ -2,9 +2,16 @@
 //! typed. Values live in the `Design` in SI units; conversions happen only here, at the edge.
 //! The knobs turn a [`Tunable`]: a design alone, or a [`Setup`] (a design and the explorer's
 //! ensemble size N, which is not part of a design: the command line's `--ensemble`).
+//!
+//! A field is made one way: a row of the engine's table ([`params::DESIGN`]: its name, label,
+//! help, unit, range, group and accessor) seen through a [`Look`], the explorer's own columns
+//! (a unit such as g for the mass, digits, a step, a word for a value). A row without a look
+//! in `LOOKS` is a field with the row's defaults, so a new row needs no line here; the one
+//! look without a row is the explorer's own field, the ensemble size N.
+
+use std::fmt;
 
 use super::compute;
-use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::contact::MATERIALS;
 use crate::damper::Solver;
 use crate::design::{Design, Materials};
@@ -13,121 +20,265 @@ use crate::limits;
 use crate::params::{self, Accepts, Group, DESIGN};
 use crate::units::{self, sig, Kind};
 
-/// One editable parameter of the design (a row of the parameter panel).
+/// One field of the panel (a row of it): its place in [`Knob::ALL`], made from a row of the
+/// engine's table and its [`Look`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Knob(usize);
+
+impl fmt::Debug for Knob {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Knob({})", self.param())
+    }
+}
+
+/// How the panel writes a number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Knob {
-    Mass,
-    Gap,
-    R,
-    Theta,
-    V0,
-    MainMass,
-    K,
-    C,
-    C1,
-    KHz,
-    Materials,
-    Source,
-    QuadSigns,
-    Pulse,
-    Clamp,
-    Solver,
-    Duration,
-    LStar,
-    EStar,
-    /// Amplitude F0 of the harmonic force on the main mass (`--force`).
-    Force,
-    /// Frequency f of the harmonic force (`--freq`).
-    Freq,
-    /// The ball's initial offset y0 from the enclosure's centre (`--ball-position`).
-    BallPosition,
-    /// Runs N of the ensemble (`--ensemble`): the readout's spread and the chart's shading.
-    Runs,
-    /// A field made from the engine's row `DESIGN[i]` alone (a number, a count or a switch no
-    /// field above sets): its name, range, help, unit and accessor are the row's. Every row of
-    /// [`params::DESIGN`] gets a field this way unless a field above already sets it, so a new
-    /// parameter appears in the explorer without a line here.
-    Row(usize),
+enum Format {
+    /// This many significant digits, then the unit shown (`40.50 g`; bare without a unit).
+    Sig(usize),
+    /// Scientific notation with this many decimals, no unit (`3.456e9`).
+    Sci(usize),
+    /// A whole number, bare (`10`).
+    Whole,
+    /// A whole number and the unit shown (`12 runs`).
+    WholeUnit,
 }
 
-/// The rows of [`params::DESIGN`] the named fields set ([`Knob::rows`] of each, in order).
-const NAMED_ROWS: [&str; 24] = [
-    "mass",
-    "gap",
-    "r",
-    "theta",
-    "v0",
-    "main-mass",
-    "k",
-    "c",
-    "c1",
-    "k-hz",
-    "sphere",
-    "plate",
-    "source",
-    "quad-signs",
-    "pulse",
-    "no-tension",
-    "solver",
-    "dt",
-    "duration",
-    "l-star",
-    "e-star",
-    "force",
-    "freq",
-    "ball-position",
-];
+/// A design's valid range for a field (internal units): lowest, highest.
+type Bounds = fn(&Design) -> (f64, f64);
+/// Sets a field from typed text.
+type Parse = fn(&mut Design, &str) -> Result<(), ThudError>;
 
-/// Whether the row `i` of [`params::DESIGN`] is set by a named field.
-const fn named_row(i: usize) -> bool {
-    let mut j = 0;
-    while j < NAMED_ROWS.len() {
-        if params::same_name(DESIGN[i].name, NAMED_ROWS[j]) {
-            return true;
-        }
-        j += 1;
-    }
-    false
+/// The explorer's columns for a field, beside its row of [`params::DESIGN`]: each one empty
+/// (or `None`) takes the row's default, so a row needs a look only where the panel shows or
+/// edits it otherwise than the row says. The hooks (`get` … `cycled`) are for the few fields
+/// that hold more than one number: K_HZ (which the materials may set), the materials and the
+/// solver (two rows each), the source (θ follows its open side).
+#[derive(Clone, Copy)]
+pub struct Look {
+    /// The rows of [`params::DESIGN`] the field sets, its own (where the panel lists it) first;
+    /// none for the explorer's own field, the ensemble size N of a [`Setup`].
+    rows: &'static [&'static str],
+    /// The panel's label (empty: the row's).
+    label: &'static str,
+    /// The name in messages, the tour's key and the `/` filter (empty: the row's).
+    name: &'static str,
+    /// What it is, for the status line's hint (empty: the row's help).
+    what: &'static str,
+    /// The unit a value is shown and a plain number typed in (empty: the row's plain unit),
+    /// and the factors to the internal unit and back (each exact as written: 1/1e-3 is not
+    /// 1e3 in binary, and the panel has always multiplied by the one it shows with).
+    unit: &'static str,
+    to_internal: f64,
+    to_shown: f64,
+    /// How a number is written (None: 4 significant digits for a quantity, bare for a count).
+    format: Option<Format>,
+    /// The range of a field without a row (a row's field has the row's).
+    range: Option<&'static limits::Range>,
+    /// Values shown as words (a force of 0 is "0 (free decay)"); a step that ends within 1e-9
+    /// of such a 0 is that 0, exactly.
+    marks: &'static [(f64, &'static str)],
+    /// A switch's word when on (empty: "on").
+    on: &'static str,
+    /// Words typed for a choice or a switch beyond its names, each with the index it means.
+    words: &'static [(&'static str, usize)],
+    /// Whether a choice takes the first name the typed text begins (`dip` for dipole).
+    prefix: bool,
+    /// Whether the ball follows its material after a change (the one ball rule,
+    /// [`params::follow_material`]).
+    follows: bool,
+    /// How it steps (None: from the row: a ratio for a range above 0, ± otherwise, a count
+    /// doubled or halved, a choice cycled).
+    step: Option<Stepping>,
+    /// What a change recomputes (None: from the row's group).
+    scope: Option<Scope>,
+    /// The valid range of a design in internal units, where it depends on the design (None:
+    /// the row's range).
+    bounds: Option<Bounds>,
+    /// The value, where the row's accessor does not give it as the panel shows it.
+    get: Option<fn(&Design) -> f64>,
+    /// Sets the value, where more than the row's value changes.
+    set: Option<fn(&mut Design, f64)>,
+    /// The value as shown, for a field of several rows.
+    show: Option<fn(&Design) -> String>,
+    /// Moves a field of several rows to its next (`true`) or previous choice.
+    cycle: Option<fn(&mut Design, bool)>,
+    /// Sets a field of several rows from typed text.
+    parse: Option<Parse>,
+    /// What follows any change of the field (a force switched on gets its frequency).
+    then: Option<fn(&mut Design)>,
+    /// What follows a cycle of the field (θ back inside the new source's open side).
+    cycled: Option<fn(&mut Design)>,
+    /// Where a ratio step starts from 0 (a forcing frequency, 0 while no force).
+    start: Option<fn(&Design) -> f64>,
 }
 
-/// How many rows of [`params::DESIGN`] get a [`Knob::Row`] field.
-const ROW_FIELDS: usize = {
-    let mut n = 0;
-    let mut i = 0;
-    while i < DESIGN.len() {
-        if !named_row(i) {
-            n += 1;
+impl Look {
+    /// The look of a field setting `rows` (the row's defaults in every column).
+    const fn of(rows: &'static [&'static str]) -> Self {
+        Look {
+            rows,
+            label: "",
+            name: "",
+            what: "",
+            unit: "",
+            to_internal: 1.0,
+            to_shown: 1.0,
+            format: None,
+            range: None,
+            marks: &[],
+            on: "",
+            words: &[],
+            prefix: false,
+            follows: false,
+            step: None,
+            scope: None,
+            bounds: None,
+            get: None,
+            set: None,
+            show: None,
+            cycle: None,
+            parse: None,
+            then: None,
+            cycled: None,
+            start: None,
         }
-        i += 1;
     }
-    n
-};
 
-/// The named fields of the panel, in panel order (the ensemble size last).
-const NAMED: [Knob; 23] = [
-    Knob::Mass,
-    Knob::Gap,
-    Knob::R,
-    Knob::Theta,
-    Knob::V0,
-    Knob::MainMass,
-    Knob::K,
-    Knob::C,
-    Knob::C1,
-    Knob::KHz,
-    Knob::Materials,
-    Knob::Source,
-    Knob::QuadSigns,
-    Knob::Pulse,
-    Knob::Clamp,
-    Knob::Solver,
-    Knob::Duration,
-    Knob::LStar,
-    Knob::EStar,
-    Knob::Force,
-    Knob::Freq,
-    Knob::BallPosition,
-    Knob::Runs,
+    /// The field of the one row `rows`, labelled `label`, explained by `what`.
+    const fn row(rows: &'static [&'static str], label: &'static str, what: &'static str) -> Self {
+        let mut look = Look::of(rows);
+        look.label = label;
+        look.what = what;
+        look
+    }
+
+    const fn name(mut self, name: &'static str) -> Self {
+        self.name = name;
+        self
+    }
+
+    /// Shown and typed in `unit`, `to_internal` of the internal unit (and `to_shown` back).
+    const fn unit(mut self, unit: &'static str, to_internal: f64, to_shown: f64) -> Self {
+        self.unit = unit;
+        self.to_internal = to_internal;
+        self.to_shown = to_shown;
+        self
+    }
+
+    /// Shown with `n` significant digits.
+    const fn digits(mut self, n: usize) -> Self {
+        self.format = Some(Format::Sig(n));
+        self
+    }
+
+    const fn format(mut self, format: Format) -> Self {
+        self.format = Some(format);
+        self
+    }
+
+    const fn marks(mut self, marks: &'static [(f64, &'static str)]) -> Self {
+        self.marks = marks;
+        self
+    }
+
+    const fn words(mut self, words: &'static [(&'static str, usize)]) -> Self {
+        self.words = words;
+        self
+    }
+
+    const fn step(mut self, step: Stepping) -> Self {
+        self.step = Some(step);
+        self
+    }
+
+    const fn scope(mut self, scope: Scope) -> Self {
+        self.scope = Some(scope);
+        self
+    }
+}
+
+/// The explorer's looks at the rows of [`params::DESIGN`] (in table order), and its own field.
+/// Every other row is a field with the row's defaults.
+#[rustfmt::skip]
+const LOOKS: &[Look] = &[
+    Look::row(&["mass"], "mass m", "the ball (impact mass) rattling in the enclosure")
+        .unit("g", 1e-3, 1e3).digits(4).step(Stepping::Add(1e-3, 1e-4)).scope(Scope::Design),
+    Look::row(&["gap"], "gap d", "total clearance of the ball in its enclosure (d/2 each side)")
+        .unit("cm", 1e-2, 1e2).digits(3).step(Stepping::Add(2e-3, 2e-4)).scope(Scope::Design),
+    Look::row(&["v0"], "v0", "initial speed of the main mass, the blow that starts the ring-down (Eq 25)")
+        .digits(3).step(Stepping::Add(0.1, 0.01)),
+    Look::row(&["main-mass"], "M", "the structure being damped (Eq 25)").digits(3).step(Stepping::Add(0.05, 0.005)),
+    Look::row(&["k"], "K", "stiffness of the structure's spring (Eq 25)").digits(4).step(Stepping::Mul(0.1, 0.01)),
+    Look::row(&["c"], "C", "viscous damping of the structure (Eq 25)").digits(3).step(Stepping::Mul(0.1, 0.01)),
+    Look::row(&["c1"], "c1", "contact damping in the Hertz contact force (Eq 26)").digits(4).step(Stepping::Mul(0.1, 0.01)),
+    // Shows the K_HZ the materials give; a K_HZ typed switches the materials off.
+    Look {
+        get: Some(|d| d.hertz_stiffness().unwrap_or(d.damper.k_hz)),
+        set: Some(|d, v| {
+            d.damper.k_hz = v;
+            d.materials = None;
+        }),
+        ..Look::row(&["k-hz"], "K_HZ", "Hertz contact stiffness, force K_HZ·δ^1.5 (Eqs 1, 26)")
+            .format(Format::Sci(3)).step(Stepping::Mul(0.1, 0.01))
+    },
+    Look {
+        show: Some(show_materials),
+        cycle: Some(cycle_materials),
+        parse: Some(parse_materials),
+        ..Look::row(&["sphere", "plate"], "materials", "ball/plate materials giving K_HZ (Eq 2); off uses the K_HZ typed")
+            .name("materials")
+    },
+    Look { on: "no tension", ..Look::row(&["no-tension"], "clamp", "no tension: the contact force may not pull (Eq 26 clamped at ≥ 0)")
+        .words(&[("no tension", 1), ("no-tension", 1)]) },
+    Look::row(&["duration"], "duration", "simulated time of the ring-down").digits(3).step(Stepping::Add(0.5, 0.1)),
+    Look {
+        show: Some(show_solver),
+        cycle: Some(cycle_solver),
+        parse: Some(parse_solver),
+        ..Look::row(&["solver", "dt"], "solver", "event-driven (exact flight) or the paper's Newmark-β at a fixed step")
+    },
+    Look::row(&["r"], "r", "distance of the listener from the contact point").digits(3).step(Stepping::Add(0.05, 0.01)),
+    Look {
+        bounds: Some(|d| {
+            let r = limits::theta_deg(d.radiation.source);
+            (r.min, r.max)
+        }),
+        ..Look::row(&["theta"], "θ", "listener angle from the plate's normal (0 = along the normal)")
+            .digits(3).step(Stepping::Add(5.0, 1.0))
+    },
+    Look { prefix: true, cycled: Some(clamp_theta), ..Look::row(&["source"], "source",
+        "reflecting surfaces: single (free ball), dipole (plate), quadrupole (wall–floor corner)") },
+    Look::row(&["quad-signs"], "quad signs", "corner wall images: rigid wall, or the paper's signs (a pressure-release wall)"),
+    Look::row(&["pulse"], "pulse", "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse")
+        .words(&[("halfsine", 0), ("sine", 0), ("half sine", 0), ("exact", 1)]),
+    Look { follows: true, ..Look::of(&["model"]) },
+    Look::row(&["l-star"], "L*", "zone threshold on SPLmax: below L* is quiet")
+        .name("L*").digits(4).step(Stepping::Add(1.0, 0.1)),
+    Look::row(&["e-star"], "e*", "zone threshold on the damping inclination: e ≥ e* is strong")
+        .name("e*").digits(3).step(Stepping::Add(0.1, 0.01)),
+    Look {
+        then: Some(force_frequency),
+        ..Look::row(&["force"], "force F0", "harmonic force F0·cos(2πft) on the main mass (Eq 25 forced); 0 is the paper's free decay, > 0 adds the steady-state readout and the response view (f)")
+            .digits(3).marks(&[(0.0, "0 (free decay)")]).step(Stepping::Add(0.1, 0.01))
+    },
+    Look {
+        start: Some(start_frequency_hz),
+        ..Look::row(&["freq"], "freq f", "forcing frequency f; moves the marker on the response curve (f view) without recomputing it; a force switched on starts at the natural frequency")
+            .digits(4).marks(&[(0.0, "— (no force)")]).step(Stepping::Mul(0.02, 0.002))
+    },
+    Look {
+        bounds: Some(|d| (-0.5 * d.damper.gap_m, 0.5 * d.damper.gap_m)),
+        ..Look::row(&["ball-position"], "ball y0", "the ball's start offset from the enclosure's centre, |y0| < d/2 (0: centred, as the paper)")
+            .unit("cm", 1e-2, 1e2).digits(3).marks(&[(0.0, "0 (centred)")]).step(Stepping::Add(1e-3, 1e-4))
+    },
+    // The explorer's own field: the ensemble size N of a [`Setup`], no row of a design.
+    Look {
+        range: Some(&limits::ENSEMBLE),
+        ..Look::row(&[], "ensemble N", "runs from N ball offsets spread over the clearance (y0 = −d/2 + (k + ½)·d/N): the readout shows median [p10–p90], the chart shades cells where < 70 % of runs agree")
+            .name("ensemble").unit("runs", 1.0, 1.0).format(Format::WholeUnit).marks(&[(1.0, "1 (single run)")])
+            .step(Stepping::Count).scope(Scope::All)
+    },
 ];
 
 /// The row of [`params::DESIGN`] called `name` (its index; the table's length if none).
@@ -139,47 +290,100 @@ const fn design_row(name: &str) -> usize {
     i
 }
 
-/// The field that owns the row `i` of [`params::DESIGN`] and lists first there: a named field
-/// at its first row (the materials at `sphere`, the solver at `solver`), else the row's own
-/// [`Knob::Row`]; none at a named field's later rows (`plate`, `dt`).
-const fn field_at_row(i: usize) -> Option<Knob> {
-    if !named_row(i) {
-        return Some(Knob::Row(i));
-    }
-    let mut n = 0;
-    while n < NAMED.len() {
-        if let Some((at, _)) = NAMED[n].named_span() {
-            if design_row(NAMED_ROWS[at]) == i {
-                return Some(NAMED[n]);
+/// One entry of [`FIELDS`]: the index of the field's own row in [`params::DESIGN`]
+/// (`DESIGN.len()` for the explorer's own field) and its look.
+#[derive(Clone, Copy)]
+struct Field {
+    row: usize,
+    look: Look,
+}
+
+/// The look whose rows include `name`: as its own (first) row, or (`later`) after it.
+const fn look_at(name: &str, later: bool) -> Option<Look> {
+    let mut l = 0;
+    while l < LOOKS.len() {
+        let rows = LOOKS[l].rows;
+        let mut r = 0;
+        while r < rows.len() {
+            if (r > 0) == later && params::same_name(rows[r], name) {
+                return Some(LOOKS[l]);
             }
+            r += 1;
         }
-        n += 1;
+        l += 1;
     }
     None
 }
 
+/// Whether the row `i` of [`params::DESIGN`] is a later row of a look (`plate`, `dt`): set by
+/// the field of its first row, with no field of its own.
+const fn later_row(i: usize) -> bool {
+    look_at(DESIGN[i].name, true).is_some()
+}
+
+/// How many fields there are: a field for every row but the later rows of a look, and the
+/// looks without a row.
+const FIELD_COUNT: usize = {
+    let mut n = 0;
+    let mut i = 0;
+    while i < DESIGN.len() {
+        if !later_row(i) {
+            n += 1;
+        }
+        i += 1;
+    }
+    let mut l = 0;
+    while l < LOOKS.len() {
+        if LOOKS[l].rows.is_empty() {
+            n += 1;
+        }
+        l += 1;
+    }
+    n
+};
+
 /// Every field, grouped as the engine's table groups its rows ([`Group::ALL`] order: design,
-/// forcing, listener, solver, study) and in table order inside a group (a field where its
-/// first row is); the ensemble size N, the explorer's own, last in the study group.
-const fn all_fields() -> [Knob; NAMED.len() + ROW_FIELDS] {
-    let mut all = [Knob::Runs; NAMED.len() + ROW_FIELDS];
+/// forcing, listener, solver, study) and in table order inside a group, each the row's look
+/// (or the row's defaults); the explorer's own fields last, in the study group.
+const FIELDS: [Field; FIELD_COUNT] = {
+    // Every look's rows are rows of the table (a look of a renamed row would be lost).
+    let mut l = 0;
+    while l < LOOKS.len() {
+        let mut r = 0;
+        while r < LOOKS[l].rows.len() {
+            assert!(design_row(LOOKS[l].rows[r]) < DESIGN.len(), "a look names a row DESIGN lacks");
+            r += 1;
+        }
+        l += 1;
+    }
+    let mut all = [Field { row: DESIGN.len(), look: Look::of(&[]) }; FIELD_COUNT];
     let mut k = 0;
     let mut g = 0;
     while g < Group::ALL.len() {
         let mut i = 0;
         while i < DESIGN.len() {
-            if DESIGN[i].group as usize == Group::ALL[g] as usize {
-                if let Some(field) = field_at_row(i) {
-                    all[k] = field;
-                    k += 1;
-                }
+            if DESIGN[i].group as usize == Group::ALL[g] as usize && !later_row(i) {
+                let look = match look_at(DESIGN[i].name, false) {
+                    Some(look) => look,
+                    None => Look::of(std::slice::from_ref(&DESIGN[i].name)),
+                };
+                all[k] = Field { row: i, look };
+                k += 1;
             }
             i += 1;
         }
         g += 1;
     }
+    let mut l = 0;
+    while l < LOOKS.len() {
+        if LOOKS[l].rows.is_empty() {
+            all[k] = Field { row: DESIGN.len(), look: LOOKS[l] };
+            k += 1;
+        }
+        l += 1;
+    }
     all
-}
+};
 
 /// What the knobs turn: a design, or a design with the explorer's ensemble size.
 pub trait Tunable: Clone {
@@ -215,11 +419,11 @@ impl Tunable for Design {
 /// cap line, as typing 1e6 is), the whole-design checks and the engine's validation.
 pub fn check_loaded<S: Tunable>(s: &S) -> Result<(), ThudError> {
     // The forcing and the ball's start only where they apply: the whole-design check has them.
-    for k in Knob::ALL.into_iter().filter(|k| !matches!(k, Knob::Force | Knob::Freq | Knob::BallPosition)) {
+    for k in Knob::ALL.into_iter().filter(|k| ![Knob::FORCE, Knob::FREQ, Knob::BALL_POSITION].contains(k)) {
         k.check_range(s)?;
     }
     params::check_design(s.design())?;
-    Knob::Duration.checked(s.clone()).map(drop)
+    Knob::DURATION.checked(s.clone()).map(drop)
 }
 
 /// What the explorer runs: the design and the ensemble size N (runs from N ball offsets spread
@@ -279,160 +483,125 @@ pub enum Scope {
 /// the paper's 1e-7 s so the run stays interactive; type e.g. "1e-7" to change it.
 pub const TUI_NEWMARK_DT_S: f64 = 1e-6;
 
-/// Material choices offered by the materials field (sphere on a steel main mass).
-fn material_choices() -> Vec<Option<Materials>> {
-    std::iter::once(None).chain(MATERIALS.iter().map(|m| Some(Materials::new(m.name, "steel")))).collect()
-}
-
 impl Knob {
-    /// All fields, in panel order: the named fields, a field for every other row of the
-    /// engine's table, the ensemble size.
-    pub const ALL: [Knob; NAMED.len() + ROW_FIELDS] = all_fields();
+    /// All fields, in panel order: grouped as the engine's table groups its rows, in table
+    /// order inside a group, the ensemble size last.
+    pub const ALL: [Knob; FIELD_COUNT] = {
+        let mut all = [Knob(0); FIELD_COUNT];
+        let mut i = 0;
+        while i < FIELD_COUNT {
+            all[i] = Knob(i);
+            i += 1;
+        }
+        all
+    };
+
+    /// The fields the explorer names in its code (keys, messages, tests), by their names.
+    pub const MASS: Knob = Knob::named("mass");
+    pub const GAP: Knob = Knob::named("gap");
+    pub const R: Knob = Knob::named("r");
+    pub const THETA: Knob = Knob::named("theta");
+    pub const V0: Knob = Knob::named("v0");
+    pub const K: Knob = Knob::named("k");
+    pub const C1: Knob = Knob::named("c1");
+    pub const MATERIALS: Knob = Knob::named("materials");
+    pub const SOURCE: Knob = Knob::named("source");
+    pub const SOLVER: Knob = Knob::named("solver");
+    pub const DURATION: Knob = Knob::named("duration");
+    pub const L_STAR: Knob = Knob::named("L*");
+    pub const E_STAR: Knob = Knob::named("e*");
+    pub const FORCE: Knob = Knob::named("force");
+    pub const FREQ: Knob = Knob::named("freq");
+    pub const BALL_POSITION: Knob = Knob::named("ball-position");
+    pub const RUNS: Knob = Knob::named("ensemble");
+
+    /// The field called `name` ([`Knob::param`]), at compile time: no such field is a build
+    /// error where a constant names it.
+    pub const fn named(name: &str) -> Knob {
+        let mut i = 0;
+        while i < FIELD_COUNT {
+            if params::same_name(Knob(i).param(), name) {
+                return Knob(i);
+            }
+            i += 1;
+        }
+        panic!("no explorer field of that name")
+    }
+
+    /// The field's entry of [`FIELDS`].
+    const fn field(self) -> Field {
+        FIELDS[self.0]
+    }
+
+    const fn look(self) -> Look {
+        self.field().look
+    }
 
     /// The rows of the engine's table ([`params::DESIGN`]) this field sets (none for the
     /// ensemble size, which is the explorer's, not a design's).
     pub fn rows(self) -> &'static [&'static str] {
-        match (self, self.named_span()) {
-            (_, Some((at, n))) => &NAMED_ROWS[at..at + n],
-            (Knob::Row(i), None) => DESIGN.get(i).map_or(&[], |p| std::slice::from_ref(&p.name)),
-            _ => &[],
-        }
+        self.look().rows
     }
 
-    /// Where a named field's rows are in [`NAMED_ROWS`]: (first, how many).
-    const fn named_span(self) -> Option<(usize, usize)> {
-        Some(match self {
-            Knob::Mass => (0, 1),
-            Knob::Gap => (1, 1),
-            Knob::R => (2, 1),
-            Knob::Theta => (3, 1),
-            Knob::V0 => (4, 1),
-            Knob::MainMass => (5, 1),
-            Knob::K => (6, 1),
-            Knob::C => (7, 1),
-            Knob::C1 => (8, 1),
-            Knob::KHz => (9, 1),
-            Knob::Materials => (10, 2),
-            Knob::Source => (12, 1),
-            Knob::QuadSigns => (13, 1),
-            Knob::Pulse => (14, 1),
-            Knob::Clamp => (15, 1),
-            Knob::Solver => (16, 2),
-            Knob::Duration => (18, 1),
-            Knob::LStar => (19, 1),
-            Knob::EStar => (20, 1),
-            Knob::Force => (21, 1),
-            Knob::Freq => (22, 1),
-            Knob::BallPosition => (23, 1),
-            Knob::Runs | Knob::Row(_) => return None,
-        })
+    /// Whether the field is its row alone, shown with the row's defaults (no look of the
+    /// explorer's): a row added to the table becomes such a field.
+    pub fn plain(self) -> bool {
+        self.rows().first().is_some_and(|own| !LOOKS.iter().any(|l| l.rows.first() == Some(own)))
     }
 
     /// The group the field is listed under: its first row's in the engine's table; the
     /// ensemble size N (the explorer's own) with the study.
     pub fn group(self) -> Group {
-        self.rows().first().and_then(|n| params::design_param(n)).map_or(Group::Study, |p| p.group)
+        DESIGN.get(self.field().row).map_or(Group::Study, |p| p.group)
     }
 
     /// The engine's row of a field that sets exactly one.
     pub fn row(self) -> Option<&'static params::Param<params::DesignDraft>> {
         match self.rows() {
-            [name] => params::design_param(name),
+            [_] => DESIGN.get(self.field().row),
             _ => None,
         }
     }
 
-    /// Short label for the panel.
+    /// Short label for the panel: the look's, else the row's.
     pub fn label(self) -> &'static str {
-        match self {
-            Knob::Mass => "mass m",
-            Knob::Gap => "gap d",
-            Knob::R => "r",
-            Knob::Theta => "θ",
-            Knob::V0 => "v0",
-            Knob::MainMass => "M",
-            Knob::K => "K",
-            Knob::C => "C",
-            Knob::C1 => "c1",
-            Knob::KHz => "K_HZ",
-            Knob::Materials => "materials",
-            Knob::Source => "source",
-            Knob::QuadSigns => "quad signs",
-            Knob::Pulse => "pulse",
-            Knob::Clamp => "clamp",
-            Knob::Solver => "solver",
-            Knob::Duration => "duration",
-            Knob::LStar => "L*",
-            Knob::EStar => "e*",
-            Knob::Force => "force F0",
-            Knob::Freq => "freq f",
-            Knob::BallPosition => "ball y0",
-            Knob::Runs => "ensemble N",
-            Knob::Row(_) => self.row().map_or("?", |r| r.label),
+        match (self.look().label, DESIGN.get(self.field().row)) {
+            ("", Some(row)) => row.label,
+            (label, _) => label,
         }
     }
 
-    /// The parameter's name in messages (as on the command line).
-    pub fn param(self) -> &'static str {
-        match self {
-            Knob::Mass => "mass",
-            Knob::Gap => "gap",
-            Knob::R => "r",
-            Knob::Theta => "theta",
-            Knob::V0 => "v0",
-            Knob::MainMass => "main-mass",
-            Knob::K => "k",
-            Knob::C => "c",
-            Knob::C1 => "c1",
-            Knob::KHz => "k-hz",
-            Knob::Materials => "materials",
-            Knob::Source => "source",
-            Knob::QuadSigns => "quad-signs",
-            Knob::Pulse => "pulse",
-            Knob::Clamp => "no-tension",
-            Knob::Solver => "solver",
-            Knob::Duration => "duration",
-            Knob::LStar => "L*",
-            Knob::EStar => "e*",
-            Knob::Force => "force",
-            Knob::Freq => "freq",
-            Knob::BallPosition => "ball-position",
-            Knob::Runs => "ensemble",
-            Knob::Row(_) => self.rows().first().copied().unwrap_or("?"),
+    /// The parameter's name in messages (as on the command line): the look's, else the row's.
+    pub const fn param(self) -> &'static str {
+        match (self.look().name, self.field().row) {
+            (name, _) if !name.is_empty() => name,
+            (_, i) if i < DESIGN.len() => DESIGN[i].name,
+            _ => "?",
+        }
+    }
+
+    /// What the field is, for the status line's hint: the look's words, else the row's help.
+    pub fn what(self) -> &'static str {
+        match (self.look().what, DESIGN.get(self.field().row)) {
+            ("", Some(row)) => row.help,
+            (what, _) => what,
         }
     }
 
     /// The unit a typed plain number is read in, and the unit the value is shown in.
     pub fn kind(self) -> Option<Kind> {
-        Some(match self {
-            Knob::Mass => Kind::Mass,
-            Knob::Gap | Knob::R => Kind::Length,
-            Knob::Theta => Kind::Angle,
-            Knob::V0 => Kind::Speed,
-            Knob::MainMass => Kind::Mass,
-            Knob::K => Kind::Stiffness,
-            Knob::C | Knob::C1 => Kind::Damping,
-            Knob::KHz => Kind::HertzStiffness,
-            Knob::Duration => Kind::Time,
-            Knob::LStar => Kind::Level,
-            Knob::EStar => Kind::Inclination,
-            Knob::Force => Kind::Force,
-            Knob::Freq => Kind::Frequency,
-            Knob::BallPosition => Kind::Length,
-            Knob::Row(_) => match self.row()?.accepts {
-                Accepts::Quantity { kind, .. } => kind,
-                _ => return None,
-            },
-            _ => return None,
-        })
+        match self.row()?.accepts {
+            Accepts::Quantity { kind, .. } => Some(kind),
+            _ => None,
+        }
     }
 
     /// The field's valid range: its row's in the engine's table ([`params::DESIGN`], whose
     /// ranges are [`crate::limits`]'s); the ensemble size's is [`limits::ENSEMBLE`].
     pub fn range(self) -> Option<limits::Range> {
-        match self {
-            Knob::Runs => Some(limits::ENSEMBLE),
-            _ => self.row()?.range().copied(),
+        match self.look().range {
+            Some(range) => Some(*range),
+            None => self.row()?.range().copied(),
         }
     }
 
@@ -440,45 +609,25 @@ impl Knob {
     /// degrees; dB; cm/s): a typed plain number is read in this unit (`45` for the mass is
     /// 45 g, as shown), not in the internal one.
     pub fn display_unit(self) -> Option<(&'static str, f64)> {
-        Some(match self {
-            Knob::Mass => ("g", 1e-3),
-            Knob::Gap => ("cm", 1e-2),
-            Knob::R => ("m", 1.0),
-            Knob::Theta => ("deg", 1.0),
-            Knob::V0 => ("m/s", 1.0),
-            Knob::MainMass => ("kg", 1.0),
-            Knob::K => ("N/m", 1.0),
-            Knob::C | Knob::C1 => ("N·s/m", 1.0),
-            Knob::KHz => ("N/m^1.5", 1.0),
-            Knob::Duration => ("s", 1.0),
-            Knob::LStar => ("dB", 1.0),
-            Knob::EStar => ("cm/s", 1.0),
-            Knob::Force => ("N", 1.0),
-            Knob::Freq => ("Hz", 1.0),
-            Knob::BallPosition => ("cm", 1e-2),
-            Knob::Runs => ("runs", 1.0),
-            Knob::Row(_) => match self.row()?.accepts {
-                Accepts::Quantity { kind, .. } => (kind.plain_unit(), 1.0),
-                Accepts::Count { range, .. } => (range.unit, 1.0),
-                _ => return None,
-            },
+        let look = self.look();
+        let plain = match self.row().map(|r| &r.accepts) {
+            Some(Accepts::Quantity { kind, .. }) => kind.plain_unit(),
+            Some(Accepts::Count { range, .. }) => range.unit,
+            None if look.range.is_some() => "",
             _ => return None,
-        })
+        };
+        Some((if look.unit.is_empty() { plain } else { look.unit }, look.to_internal))
     }
+
     /// The valid range in the display unit: (lowest, highest). θ's is the current source's
     /// open side; y0's is inside the clearance, −d/2 to d/2 (both excluded).
     pub fn display_range(self, d: &Design) -> Option<(f64, f64)> {
         let (_, k) = self.display_unit()?;
-        if self == Knob::Theta {
-            let r = limits::theta_deg(d.radiation.source);
-            return Some((r.min, r.max));
-        }
-        if self == Knob::BallPosition {
-            let half = 0.5 * d.damper.gap_m;
-            return Some((-half / k, half / k));
-        }
-        let r = self.range()?;
-        Some((r.min / k, r.max / k))
+        let (lo, hi) = match self.look().bounds {
+            Some(bounds) => bounds(d),
+            None => self.range().map(|r| (r.min, r.max))?,
+        };
+        Some((lo / k, hi / k))
     }
 
     /// Refuses a design whose runs in the explorer would exceed the work caps the command line
@@ -504,10 +653,15 @@ impl Knob {
             .and_then(|()| if runs > 1 { limits::check_runs(d, &given, cells, runs) } else { Ok(()) });
         match refused {
             Err(r) => {
-                // The solver field is named by its step, as the command line's --dt.
-                let (name, shown) = match (self, d.solver) {
-                    (Knob::Solver, Solver::Newmark { dt_s }) => ("dt", format!("{} s", limits::short(dt_s))),
-                    _ => (self.param(), self.display(s)),
+                // Named by a later row of the field that the design uses, with its value (the
+                // solver by its Newmark step, as the command line's --dt), else by the field.
+                let later =
+                    self.rows().iter().skip(1).filter_map(|n| params::design_param(n)).find_map(|p| {
+                        p.get.filter(|_| p.applies.is_some_and(|applies| applies(d))).map(|get| (p, get(d)))
+                    });
+                let (name, shown) = match later {
+                    Some((p, v)) => (p.name, format!("{} {}", limits::short(v), p.unit())),
+                    None => (self.param(), self.display(s)),
                 };
                 Err(ThudError::invalid(name, format!("{shown}: {}", r.estimate.describe())))
             }
@@ -550,93 +704,50 @@ impl Knob {
         Ok(next)
     }
 
-    /// What a change of this field invalidates.
+    /// What a change of this field invalidates: the look's, else by the row's group (the
+    /// listener's rows only the sound, the study's only the zones).
     pub fn scope(self) -> Scope {
-        match self {
-            Knob::R | Knob::Theta | Knob::Source | Knob::QuadSigns | Knob::Pulse => Scope::Acoustics,
-            Knob::Mass | Knob::Gap => Scope::Design,
-            Knob::LStar | Knob::EStar => Scope::Thresholds,
-            Knob::Row(_) => match self.row().map(|p| p.group) {
-                Some(Group::Listener) => Scope::Acoustics,
-                Some(Group::Study) => Scope::Thresholds,
-                _ => Scope::All,
-            },
+        self.look().scope.unwrap_or(match self.group() {
+            Group::Listener => Scope::Acoustics,
+            Group::Study => Scope::Thresholds,
             _ => Scope::All,
-        }
+        })
     }
 
-    /// How the field is stepped.
+    /// How the field is stepped: the look's, else by what its row accepts.
     pub fn step(self) -> Stepping {
-        match self {
-            Knob::Mass => Stepping::Add(1e-3, 1e-4),
-            Knob::Gap => Stepping::Add(2e-3, 2e-4),
-            Knob::R => Stepping::Add(0.05, 0.01),
-            Knob::Theta => Stepping::Add(5.0, 1.0),
-            Knob::V0 => Stepping::Add(0.1, 0.01),
-            Knob::MainMass => Stepping::Add(0.05, 0.005),
-            Knob::K | Knob::C | Knob::C1 | Knob::KHz => Stepping::Mul(0.1, 0.01),
-            Knob::Duration => Stepping::Add(0.5, 0.1),
-            Knob::LStar => Stepping::Add(1.0, 0.1),
-            Knob::EStar => Stepping::Add(0.1, 0.01),
-            Knob::Force => Stepping::Add(0.1, 0.01),
-            Knob::Freq => Stepping::Mul(0.02, 0.002),
-            Knob::BallPosition => Stepping::Add(1e-3, 1e-4),
-            Knob::Runs => Stepping::Count,
-            Knob::Row(_) => match self.row().map(|p| &p.accepts) {
-                Some(Accepts::Quantity { range, .. }) if range.min > 0.0 => Stepping::Mul(0.1, 0.01),
-                Some(Accepts::Quantity { .. }) => Stepping::Add(0.1, 0.01),
-                Some(Accepts::Count { .. }) => Stepping::Count,
-                _ => Stepping::Cycle,
-            },
+        self.look().step.unwrap_or(match self.row().map(|p| &p.accepts) {
+            Some(Accepts::Quantity { range, .. }) if range.min > 0.0 => Stepping::Mul(0.1, 0.01),
+            Some(Accepts::Quantity { .. }) => Stepping::Add(0.1, 0.01),
+            Some(Accepts::Count { .. }) => Stepping::Count,
             _ => Stepping::Cycle,
-        }
+        })
     }
 
     /// The numeric value in internal units (SI; degrees; dB; cm/s), if the field is numeric
-    /// and part of a design (the ensemble size is not: see [`Knob::value`]).
+    /// and part of a design (the ensemble size is not: see [`Knob::value`]); none where the
+    /// design does not use the row (a density while the radius is set).
     pub fn get(self, d: &Design) -> Option<f64> {
-        let p = &d.damper;
-        Some(match self {
-            Knob::Mass => p.impact_mass_kg,
-            Knob::Gap => p.gap_m,
-            Knob::R => d.observer.r_m,
-            Knob::Theta => d.observer.theta_rad.to_degrees(),
-            Knob::V0 => p.v0_m_s,
-            Knob::MainMass => p.main_mass_kg,
-            Knob::K => p.stiffness_n_m,
-            Knob::C => p.damping_n_s_m,
-            Knob::C1 => p.c1_n_s_m,
-            Knob::KHz => d.hertz_stiffness().unwrap_or(p.k_hz),
-            Knob::Duration => p.duration_s,
-            Knob::LStar => d.thresholds.spl_db,
-            Knob::EStar => d.thresholds.inclination_cm_s,
-            Knob::Force => p.force_n,
-            Knob::Freq => p.freq_hz,
-            Knob::BallPosition => p.ball_position_m,
-            // NaN: the design does not use the row (a density while the radius is set).
-            Knob::Row(_) => match self.row()? {
-                row if matches!(row.accepts, Accepts::Quantity { .. } | Accepts::Count { .. }) => {
-                    Some((row.get?)(d)).filter(|v| !v.is_nan())?
-                }
-                _ => return None,
-            },
-            _ => return None,
-        })
+        if let Some(get) = self.look().get {
+            return Some(get(d));
+        }
+        let row = self.row().filter(|r| matches!(r.accepts, Accepts::Quantity { .. } | Accepts::Count { .. }))?;
+        Some((row.get?)(d)).filter(|v| !v.is_nan())
     }
 
     /// The numeric value of this field of `s` (internal units), the ensemble size included.
     pub fn value<S: Tunable>(self, s: &S) -> Option<f64> {
-        match self {
-            Knob::Runs => Some(s.runs() as f64),
-            _ => self.get(s.design()),
+        if self.rows().is_empty() {
+            return Some(s.runs() as f64);
         }
+        self.get(s.design())
     }
 
     /// Sets the numeric value (internal units) on a copy; the ensemble size is refused by a
     /// design alone (it is the explorer's, not the design's).
     fn set<S: Tunable>(self, s: &S, v: f64) -> Result<S, ThudError> {
         let mut s = s.clone();
-        if self == Knob::Runs {
+        if self.rows().is_empty() {
             // A count: rounded, and kept inside 1.. (the range check names a bad one).
             let n = if v.is_finite() && v >= 1.0 { v.round() as usize } else { 0 };
             if !s.set_runs(n) {
@@ -645,76 +756,44 @@ impl Knob {
             return Ok(s);
         }
         let d = s.design_mut();
-        let p = &mut d.damper;
-        match self {
-            Knob::Mass => p.impact_mass_kg = v,
-            Knob::Gap => p.gap_m = v,
-            Knob::R => d.observer.r_m = v,
-            Knob::Theta => d.observer.theta_rad = v.to_radians(),
-            Knob::V0 => p.v0_m_s = v,
-            Knob::MainMass => p.main_mass_kg = v,
-            Knob::K => p.stiffness_n_m = v,
-            Knob::C => p.damping_n_s_m = v,
-            Knob::C1 => p.c1_n_s_m = v,
-            Knob::KHz => {
-                p.k_hz = v;
-                d.materials = None;
-            }
-            Knob::Duration => p.duration_s = v,
-            Knob::LStar => d.thresholds.spl_db = v,
-            Knob::EStar => d.thresholds.inclination_cm_s = v,
-            Knob::Force => p.force_n = v,
-            Knob::Freq => p.freq_hz = v,
-            Knob::BallPosition => p.ball_position_m = v,
-            Knob::Row(_) => {
-                if let Some(row) = self.row() {
-                    *d = params::set_number(d, row, v);
-                }
-            }
-            _ => {}
+        match (self.look().set, self.row()) {
+            (Some(set), _) => set(d, v),
+            (None, Some(row)) => *d = params::set_number(d, row, v),
+            (None, None) => {}
         }
         Ok(s)
     }
 
-    /// The value as people read it: display units, a few significant digits.
+    /// The value as people read it: display units, a few significant digits; a word for a
+    /// switch, a choice or a marked value; — where the design does not use the row.
     pub fn display<S: Tunable>(self, s: &S) -> String {
-        let d = s.design();
-        let p = &d.damper;
-        match self {
-            Knob::Mass => format!("{} g", sig(p.impact_mass_kg * 1e3, 4)),
-            Knob::Gap => format!("{} cm", sig(p.gap_m * 1e2, 3)),
-            Knob::R => format!("{} m", sig(d.observer.r_m, 3)),
-            Knob::Theta => format!("{} deg", sig(d.observer.theta_rad.to_degrees(), 3)),
-            Knob::V0 => format!("{} m/s", sig(p.v0_m_s, 3)),
-            Knob::MainMass => format!("{} kg", sig(p.main_mass_kg, 3)),
-            Knob::K => format!("{} N/m", sig(p.stiffness_n_m, 4)),
-            Knob::C => format!("{} N·s/m", sig(p.damping_n_s_m, 3)),
-            Knob::C1 => format!("{} N·s/m", sig(p.c1_n_s_m, 4)),
-            Knob::KHz => format!("{:.3e}", self.get(d).unwrap_or(p.k_hz)),
-            Knob::Materials => match &d.materials {
-                None => "off (K_HZ)".into(),
-                Some(m) => format!("{}/{}", m.sphere, m.plate),
-            },
-            Knob::Source => d.radiation.source.name().into(),
-            Knob::QuadSigns => d.radiation.quad_signs.name().into(),
-            Knob::Pulse => d.radiation.pulse.name().into(),
-            Knob::Clamp => if p.no_tension { "no tension" } else { "off" }.into(),
-            Knob::Solver => match d.solver {
-                Solver::Event => "event".into(),
-                Solver::Newmark { dt_s } => format!("newmark {}µs", sig(dt_s * 1e6, 2)),
-            },
-            Knob::Duration => format!("{} s", sig(p.duration_s, 3)),
-            Knob::LStar => format!("{} dB", sig(d.thresholds.spl_db, 4)),
-            Knob::EStar => format!("{} cm/s", sig(d.thresholds.inclination_cm_s, 3)),
-            Knob::Force if p.force_n == 0.0 => "0 (free decay)".into(),
-            Knob::Force => format!("{} N", sig(p.force_n, 3)),
-            Knob::Freq if p.freq_hz == 0.0 => "— (no force)".into(),
-            Knob::Freq => format!("{} Hz", sig(p.freq_hz, 4)),
-            Knob::BallPosition if p.ball_position_m == 0.0 => "0 (centred)".into(),
-            Knob::BallPosition => format!("{} cm", sig(p.ball_position_m * 1e2, 3)),
-            Knob::Runs if s.runs() == 1 => "1 (single run)".into(),
-            Knob::Runs => format!("{} runs", s.runs()),
-            Knob::Row(_) => self.row_display(d),
+        let (d, look) = (s.design(), self.look());
+        if let Some(show) = look.show {
+            return show(d);
+        }
+        let read = || self.row().and_then(|r| r.get).map_or(f64::NAN, |get| get(d));
+        match self.row().map(|r| &r.accepts) {
+            Some(Accepts::Switch { .. }) if read() == 0.0 => "off".into(),
+            Some(Accepts::Switch { .. }) => if look.on.is_empty() { "on" } else { look.on }.into(),
+            Some(Accepts::Choice { names, .. }) => {
+                let v = read();
+                let name = if v.is_finite() { names.get(v as usize).copied() } else { None };
+                name.unwrap_or("—").into()
+            }
+            _ => {
+                let Some(v) = self.value(s) else { return "—".into() };
+                if let Some((_, word)) = look.marks.iter().find(|(at, _)| *at == v) {
+                    return (*word).into();
+                }
+                let unit = self.display_unit().map_or("", |(unit, _)| unit);
+                match look.format.unwrap_or(if self.kind().is_some() { Format::Sig(4) } else { Format::Whole }) {
+                    Format::Sig(n) if unit.is_empty() => sig(v * look.to_shown, n),
+                    Format::Sig(n) => format!("{} {unit}", sig(v * look.to_shown, n)),
+                    Format::Sci(n) => format!("{v:.n$e}"),
+                    Format::Whole => format!("{}", v.round()),
+                    Format::WholeUnit => format!("{} {unit}", v.round()),
+                }
+            }
         }
     }
 
@@ -722,23 +801,24 @@ impl Knob {
     /// stepped up from 0 while f is unset gets f at the structure's natural frequency (the
     /// engine's damped frequency of Eq 25), so that a force always has its frequency.
     pub fn stepped<S: Tunable>(self, s: &S, up: bool, fine: bool) -> Result<S, ThudError> {
+        let look = self.look();
         let next = match (self.step(), self.value(s)) {
             (Stepping::Add(c, f), Some(v)) => {
                 let st = if fine { f } else { c };
                 // Snap to the step grid so repeated steps give round numbers.
                 let n = (v / st).round() + if up { 1.0 } else { -1.0 };
                 let v = if ((v / st) - (v / st).round()).abs() < 1e-6 { n * st } else { v + if up { st } else { -st } };
-                // A force stepped down to (near) zero is off, exactly.
-                let v = if self == Knob::Force && v.abs() < 1e-9 { 0.0 } else { v };
-                self.set(s, v)?
+                // A step to (near) a 0 that has its own word (a force off) is that 0, exactly.
+                let zero = v.abs() < 1e-9 && look.marks.iter().any(|(at, _)| *at == 0.0);
+                self.set(s, if zero { 0.0 } else { v })?
             }
-            (Stepping::Mul(_, _), Some(v)) if self == Knob::Freq && v == 0.0 => {
-                self.set(s, start_frequency_hz(s.design()))?
-            }
-            (Stepping::Mul(c, f), Some(v)) => {
-                let k = 1.0 + if fine { f } else { c };
-                self.set(s, if up { v * k } else { v / k })?
-            }
+            (Stepping::Mul(c, f), Some(v)) => match look.start {
+                Some(start) if v == 0.0 => self.set(s, start(s.design()))?,
+                _ => {
+                    let k = 1.0 + if fine { f } else { c };
+                    self.set(s, if up { v * k } else { v / k })?
+                }
+            },
             (Stepping::Count, Some(v)) => {
                 let n = v.round();
                 let next = match (up, fine) {
@@ -751,76 +831,46 @@ impl Knob {
             }
             _ => self.cycled(s, up),
         };
-        self.checked(with_frequency(self, next))
+        self.checked(self.then(next))
     }
 
-    /// The design with a choice field moved to the next (`up`) or previous option.
+    /// `s` after a change of this field, with what the look says follows it.
+    fn then<S: Tunable>(self, mut s: S) -> S {
+        if let Some(then) = self.look().then {
+            then(s.design_mut());
+        }
+        s
+    }
+
+    /// The design with a choice field moved to the next (`up`) or previous option: a switch
+    /// toggled, a choice's next name (the look's own cycle for a field of several rows).
     fn cycled<S: Tunable>(self, s: &S, up: bool) -> S {
         let mut s = s.clone();
-        let d = s.design_mut();
-        let turn = |i: usize, n: usize| if up { (i + 1) % n } else { (i + n - 1) % n };
-        match self {
-            Knob::Source => {
-                let all = Source::ALL;
-                let i = all.iter().position(|s| *s == d.radiation.source).unwrap_or(0);
-                d.radiation.source = all[turn(i, all.len())];
-                clamp_theta(d);
+        let (d, look) = (s.design_mut(), self.look());
+        if let Some(cycle) = look.cycle {
+            cycle(d, up);
+            return s;
+        }
+        let Some(row) = self.row() else { return s };
+        match (&row.accepts, row.get) {
+            (Accepts::Switch { .. }, Some(get)) => {
+                let on = get(d) != 0.0;
+                *d = params::set_number(d, row, if on { 0.0 } else { 1.0 });
             }
-            Knob::QuadSigns => {
-                d.radiation.quad_signs = match d.radiation.quad_signs {
-                    QuadSigns::Paper => QuadSigns::Rigid,
-                    QuadSigns::Rigid => QuadSigns::Paper,
-                }
-            }
-            Knob::Pulse => {
-                d.radiation.pulse = match d.radiation.pulse {
-                    PulseShape::HalfSine => PulseShape::Hertz,
-                    PulseShape::Hertz => PulseShape::HalfSine,
-                }
-            }
-            Knob::Clamp => d.damper.no_tension = !d.damper.no_tension,
-            Knob::Row(_) => match self.row() {
-                Some(row) if matches!(row.accepts, Accepts::Switch { .. }) => {
-                    let on = row.get.is_some_and(|get| get(d) != 0.0);
-                    *d = params::set_number(d, row, if on { 0.0 } else { 1.0 });
-                }
-                // A choice that reads back its index (the model): the next or previous name.
-                Some(row) => {
-                    if let (Accepts::Choice { names, .. }, Some(get)) = (&row.accepts, row.get) {
-                        let i = get(d).max(0.0) as usize;
-                        *d = params::set_number(d, row, turn(i, names.len()) as f64);
-                        // The physical model's ball follows its material (the one ball rule).
-                        if let Ok(followed) = params::follow_material(d.clone()) {
-                            *d = followed;
-                        }
+            // A choice that reads back its index: the next or previous name.
+            (Accepts::Choice { names, .. }, Some(get)) => {
+                let i = get(d).max(0.0) as usize;
+                *d = params::set_number(d, row, turn(i, names.len(), up) as f64);
+                if look.follows {
+                    if let Ok(followed) = params::follow_material(d.clone()) {
+                        *d = followed;
                     }
                 }
-                None => {}
-            },
-            Knob::Solver => {
-                d.solver = match d.solver {
-                    Solver::Event => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
-                    Solver::Newmark { .. } => Solver::Event,
-                }
             }
-            Knob::Materials => {
-                // The next ball material from the current one (whatever its plate and ν); the
-                // plate and a ν the user set are theirs and stay.
-                let all = material_choices();
-                let sphere = |m: &Option<Materials>| m.as_ref().map(|m| m.sphere.clone());
-                let i = all.iter().position(|m| sphere(m) == sphere(&d.materials)).unwrap_or(0);
-                let mut next = all[turn(i, all.len())].clone();
-                if let (Some(next), Some(now)) = (next.as_mut(), d.materials.as_ref()) {
-                    next.plate.clone_from(&now.plate);
-                    next.sphere_nu = now.sphere_nu;
-                }
-                d.materials = next;
-                // The ball's density follows its material (the engine's one ball rule).
-                if let Ok(followed) = params::follow_material(d.clone()) {
-                    *d = followed;
-                }
-            }
-            _ => {}
+            _ => return s,
+        }
+        if let Some(cycled) = look.cycled {
+            cycled(d);
         }
         s
     }
@@ -828,26 +878,19 @@ impl Knob {
     /// The design (or setup) with this field set from typed text (units allowed), validated.
     pub fn parsed<S: Tunable>(self, s: &S, text: &str) -> Result<S, ThudError> {
         let t = text.trim();
-        let next = match (self, self.kind(), self.display_unit()) {
-            // A count, read as the command line reads --ensemble.
-            (Knob::Runs, _, _) => {
-                let n = limits::ENSEMBLE.parse_count(self.param(), t)?;
-                self.set(s, n as f64)?
-            }
-            // A count of the engine's table, read as the command line reads its flag.
-            (Knob::Row(_), None, Some(_)) => match self.range() {
-                Some(r) => self.set(s, r.parse_count(self.param(), t)? as f64)?,
-                None => self.parse_choice(s, t)?,
-            },
+        let next = match (self.kind(), self.display_unit(), self.range()) {
+            // A count (of the engine's table, or the ensemble size), read as the command line
+            // reads its flag.
+            (None, Some(_), Some(r)) => self.set(s, r.parse_count(self.param(), t)? as f64)?,
             // A plain number is in the unit shown.
-            (_, Some(_), Some((_, k))) if t.parse::<f64>().is_ok() => {
+            (Some(_), Some((_, k)), _) if t.parse::<f64>().is_ok() => {
                 self.set(s, t.parse::<f64>().unwrap_or(f64::NAN) * k)?
             }
-            (_, Some(kind), _) => self.set(s, units::parse(self.param(), t, kind)?)?,
-            (_, None, _) => self.parse_choice(s, t)?,
+            (Some(kind), _, _) => self.set(s, units::parse(self.param(), t, kind)?)?,
+            (None, _, _) => self.parse_choice(s, t)?,
         };
         self.applies(&next, t)?;
-        self.checked(with_frequency(self, next))
+        self.checked(self.then(next))
     }
 
     /// Refuses a number typed into a row the design still does not use after it (shown as —:
@@ -862,79 +905,38 @@ impl Knob {
         Err(ThudError::invalid(self.param(), format!("'{typed}' does not apply to {why}")))
     }
 
-    /// Parses a choice field: source names, signs, on/off, event/newmark/a time step, materials.
+    /// Parses a choice field: a name of the row's (or a word of the look's, or the start of a
+    /// name), on/off for a switch; the look's own parse for a field of several rows.
     fn parse_choice<S: Tunable>(self, s: &S, t: &str) -> Result<S, ThudError> {
         let mut s = s.clone();
-        let d = s.design_mut();
+        let (d, look) = (s.design_mut(), self.look());
         let low = t.to_ascii_lowercase();
         let bad = |what: &str| ThudError::invalid(self.param(), format!("'{t}'; expected {what}"));
-        match self {
-            Knob::Source => {
-                d.radiation.source = Source::ALL
-                    .into_iter()
-                    .find(|s| s.name().starts_with(&low) && !low.is_empty())
-                    .ok_or_else(|| bad("single, dipole or quadrupole"))?;
-            }
-            Knob::QuadSigns => {
-                d.radiation.quad_signs = match low.as_str() {
-                    "paper" => QuadSigns::Paper,
-                    "rigid" => QuadSigns::Rigid,
-                    _ => return Err(bad("paper or rigid")),
+        let word = || look.words.iter().find(|(w, _)| *w == low).map(|&(_, i)| i);
+        if let Some(parse) = look.parse {
+            parse(d, t)?;
+            return Ok(s);
+        }
+        match self.row().map(|r| (r, &r.accepts)) {
+            Some((row, Accepts::Choice { names, .. })) => {
+                let i = names
+                    .iter()
+                    .position(|n| *n == low)
+                    .or_else(word)
+                    .or_else(|| names.iter().position(|n| look.prefix && !low.is_empty() && n.starts_with(&low)))
+                    .ok_or_else(|| bad(&one_of(names)))?;
+                *d = params::set_number(d, row, i as f64);
+                if look.follows {
+                    *d = params::follow_material(d.clone())?;
                 }
             }
-            Knob::Pulse => {
-                d.radiation.pulse = match low.as_str() {
-                    "half-sine" | "halfsine" | "sine" | "half sine" => PulseShape::HalfSine,
-                    "hertz" | "exact" => PulseShape::Hertz,
-                    _ => return Err(bad("half-sine or hertz")),
-                }
-            }
-            Knob::Clamp => {
-                d.damper.no_tension = match low.as_str() {
-                    "on" | "yes" | "true" | "no tension" | "no-tension" => true,
-                    "off" | "no" | "false" => false,
-                    _ => return Err(bad("on or off")),
-                }
-            }
-            Knob::Solver => {
-                d.solver = match low.as_str() {
-                    "event" => Solver::Event,
-                    "newmark" => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
-                    _ => Solver::Newmark {
-                        dt_s: units::parse("dt", t.trim_start_matches("newmark").trim(), Kind::Time)?,
-                    },
-                }
-            }
-            Knob::Materials => {
-                d.materials = match low.as_str() {
-                    "off" | "none" | "" => None,
-                    _ => {
-                        let (s, p) = low.split_once('/').unwrap_or((low.as_str(), "steel"));
-                        let (s, p) = (crate::contact::material(s)?, crate::contact::material(p)?);
-                        Some(Materials {
-                            sphere_nu: d.materials.as_ref().and_then(|m| m.sphere_nu),
-                            ..Materials::new(s.name, p.name)
-                        })
-                    }
-                };
-                *d = params::follow_material(d.clone())?;
-            }
-            Knob::Row(_) if self.row().is_some_and(|r| matches!(r.accepts, Accepts::Choice { .. })) => {
-                if let Some(row) = self.row() {
-                    let Accepts::Choice { names, .. } = row.accepts else { return Err(bad("a number")) };
-                    let i = names.iter().position(|n| *n == low).ok_or_else(|| bad(&names.join(" or ")))?;
-                    *d = params::follow_material(params::set_number(d, row, i as f64))?;
-                }
-            }
-            Knob::Row(_) if self.row().is_some_and(|r| matches!(r.accepts, Accepts::Switch { .. })) => {
+            Some((row, Accepts::Switch { .. })) => {
                 let on = match low.as_str() {
-                    "on" | "yes" | "true" => 1.0,
-                    "off" | "no" | "false" => 0.0,
-                    _ => return Err(bad("on or off")),
+                    "on" | "yes" | "true" => 1,
+                    "off" | "no" | "false" => 0,
+                    _ => word().ok_or_else(|| bad("on or off"))?,
                 };
-                if let Some(row) = self.row() {
-                    *d = params::set_number(d, row, on);
-                }
+                *d = params::set_number(d, row, on as f64);
             }
             _ => return Err(bad("a number")),
         }
@@ -971,22 +973,21 @@ pub fn find(typed: &str) -> Vec<Knob> {
     hits.into_iter().map(|(_, _, k)| k).collect()
 }
 
-impl Knob {
-    /// The value of a [`Knob::Row`] field as people read it: a number in its plain unit
-    /// (— when the design does not use it, e.g. a density while the radius is set), or on/off.
-    fn row_display(self, d: &Design) -> String {
-        let Some(row) = self.row() else { return "—".into() };
-        let v = row.get.map_or(f64::NAN, |get| get(d));
-        match row.accepts {
-            Accepts::Switch { .. } => if v == 0.0 { "off" } else { "on" }.into(),
-            Accepts::Choice { names, .. } if v.is_finite() => names.get(v as usize).copied().unwrap_or("—").into(),
-            _ if !v.is_finite() => "—".into(),
-            Accepts::Count { .. } => format!("{}", v.round()),
-            _ => match row.unit() {
-                "" => sig(v, 4),
-                unit => format!("{} {unit}", sig(v, 4)),
-            },
-        }
+/// The index after (`up`) or before `i` of `n`, round.
+fn turn(i: usize, n: usize, up: bool) -> usize {
+    if up {
+        (i + 1) % n
+    } else {
+        (i + n - 1) % n
+    }
+}
+
+/// `names` as a message lists them: "single, dipole or quadrupole".
+fn one_of(names: &[&str]) -> String {
+    match names.split_last() {
+        Some((last, [])) => (*last).to_string(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
     }
 }
 
@@ -1002,14 +1003,12 @@ fn start_frequency_hz(d: &Design) -> f64 {
     }
 }
 
-/// `s` after a change of `knob`: a force switched on while f is unset gets f at
+/// After a change of the force: a force switched on while f is unset gets f at
 /// [`start_frequency_hz`] (a force needs a frequency; the status line shows both).
-fn with_frequency<S: Tunable>(knob: Knob, mut s: S) -> S {
-    let d = s.design_mut();
-    if knob == Knob::Force && d.damper.force_n > 0.0 && d.damper.freq_hz == 0.0 {
+fn force_frequency(d: &mut Design) {
+    if d.damper.force_n > 0.0 && d.damper.freq_hz == 0.0 {
         d.damper.freq_hz = start_frequency_hz(d);
     }
-    s
 }
 
 /// Puts θ back inside the valid range of the source type after the source changed.
@@ -1019,29 +1018,102 @@ fn clamp_theta(d: &mut Design) {
     d.observer.theta_rad = deg.to_radians();
 }
 
+/// The materials field (rows `sphere` and `plate`) as shown: `steel/steel`, or off.
+fn show_materials(d: &Design) -> String {
+    match &d.materials {
+        None => "off (K_HZ)".into(),
+        Some(m) => format!("{}/{}", m.sphere, m.plate),
+    }
+}
+
+/// The next ball material from the current one (whatever its plate and ν; off before the
+/// first); the plate and a ν the user set are theirs and stay, and the ball's density follows
+/// its material (the engine's one ball rule).
+fn cycle_materials(d: &mut Design, up: bool) {
+    let all: Vec<Option<Materials>> =
+        std::iter::once(None).chain(MATERIALS.iter().map(|m| Some(Materials::new(m.name, "steel")))).collect();
+    let sphere = |m: &Option<Materials>| m.as_ref().map(|m| m.sphere.clone());
+    let i = all.iter().position(|m| sphere(m) == sphere(&d.materials)).unwrap_or(0);
+    let mut next = all[turn(i, all.len(), up)].clone();
+    if let (Some(next), Some(now)) = (next.as_mut(), d.materials.as_ref()) {
+        next.plate.clone_from(&now.plate);
+        next.sphere_nu = now.sphere_nu;
+    }
+    d.materials = next;
+    if let Ok(followed) = params::follow_material(d.clone()) {
+        *d = followed;
+    }
+}
+
+/// The materials typed: `brass/steel`, `brass` (on steel), or off; the ball's ν stays.
+fn parse_materials(d: &mut Design, t: &str) -> Result<(), ThudError> {
+    let low = t.to_ascii_lowercase();
+    d.materials = match low.as_str() {
+        "off" | "none" | "" => None,
+        _ => {
+            let (s, p) = low.split_once('/').unwrap_or((low.as_str(), "steel"));
+            let (s, p) = (crate::contact::material(s)?, crate::contact::material(p)?);
+            Some(Materials {
+                sphere_nu: d.materials.as_ref().and_then(|m| m.sphere_nu),
+                ..Materials::new(s.name, p.name)
+            })
+        }
+    };
+    *d = params::follow_material(d.clone())?;
+    Ok(())
+}
+
+/// The solver field (rows `solver` and `dt`) as shown: `event`, or `newmark 1µs`.
+fn show_solver(d: &Design) -> String {
+    match d.solver {
+        Solver::Event => "event".into(),
+        Solver::Newmark { dt_s } => format!("newmark {}µs", sig(dt_s * 1e6, 2)),
+    }
+}
+
+/// Event ↔ Newmark at the explorer's step [`TUI_NEWMARK_DT_S`].
+fn cycle_solver(d: &mut Design, _up: bool) {
+    d.solver = match d.solver {
+        Solver::Event => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
+        Solver::Newmark { .. } => Solver::Event,
+    }
+}
+
+/// The solver typed: `event`, `newmark` (at [`TUI_NEWMARK_DT_S`]), or a Newmark step
+/// (`1e-7`, `newmark 1e-7`).
+fn parse_solver(d: &mut Design, t: &str) -> Result<(), ThudError> {
+    d.solver = match t.to_ascii_lowercase().as_str() {
+        "event" => Solver::Event,
+        "newmark" => Solver::Newmark { dt_s: TUI_NEWMARK_DT_S },
+        _ => Solver::Newmark { dt_s: units::parse("dt", t.trim_start_matches("newmark").trim(), Kind::Time)? },
+    };
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::acoustics::Source;
 
     #[test]
     fn mass_steps_in_grams_and_snaps() {
         let d = Design::default();
-        let up = Knob::Mass.stepped(&d, true, false).unwrap();
+        let up = Knob::MASS.stepped(&d, true, false).unwrap();
         assert!((up.damper.impact_mass_kg - 0.0415).abs() < 1e-12, "{}", up.damper.impact_mass_kg);
-        let fine = Knob::Mass.stepped(&d, true, true).unwrap();
+        let fine = Knob::MASS.stepped(&d, true, true).unwrap();
         assert!((fine.damper.impact_mass_kg - 0.0406).abs() < 1e-12);
-        assert_eq!(Knob::Mass.display(&d), "40.50 g");
+        assert_eq!(Knob::MASS.display(&d), "40.50 g");
     }
 
     #[test]
     fn typed_values_with_units_and_refusals() {
         let d = Design::default();
-        assert!((Knob::Gap.parsed(&d, "3cm").unwrap().damper.gap_m - 0.03).abs() < 1e-15);
-        assert!(Knob::Gap.parsed(&d, "-3cm").is_err());
-        assert!(Knob::Mass.parsed(&d, "abc").is_err());
-        assert!(Knob::Theta.parsed(&d, "120").is_err(), "quadrupole θ is 0–90°");
-        assert_eq!(Knob::Source.parsed(&d, "dip").unwrap().radiation.source, Source::Dipole);
-        let m = Knob::Materials.parsed(&d, "brass/steel").unwrap();
+        assert!((Knob::GAP.parsed(&d, "3cm").unwrap().damper.gap_m - 0.03).abs() < 1e-15);
+        assert!(Knob::GAP.parsed(&d, "-3cm").is_err());
+        assert!(Knob::MASS.parsed(&d, "abc").is_err());
+        assert!(Knob::THETA.parsed(&d, "120").is_err(), "quadrupole θ is 0–90°");
+        assert_eq!(Knob::SOURCE.parsed(&d, "dip").unwrap().radiation.source, Source::Dipole);
+        let m = Knob::MATERIALS.parsed(&d, "brass/steel").unwrap();
         assert_eq!(m.materials.as_ref().unwrap().sphere, "brass");
     }
 
@@ -1050,7 +1122,7 @@ mod tests {
         let mut d = Design::default();
         d.radiation.source = Source::Single;
         d.observer.theta_rad = 150f64.to_radians();
-        let q = Knob::Source.stepped(&d, false, false).unwrap();
+        let q = Knob::SOURCE.stepped(&d, false, false).unwrap();
         assert_eq!(q.radiation.source, Source::Quadrupole);
         assert!((q.observer.theta_rad.to_degrees() - 90.0).abs() < 1e-9);
     }
@@ -1063,7 +1135,7 @@ mod tests {
         assert_eq!(nu.stepped(&d, true, false).unwrap(), d, "a step changes nothing that is not there");
         let e = nu.parsed(&d, "0.28").unwrap_err().to_string();
         assert_eq!(e, "invalid sphere-poisson: '0.28' does not apply to a design without materials");
-        let steel = Knob::Materials.parsed(&d, "steel/steel").unwrap();
+        let steel = Knob::MATERIALS.parsed(&d, "steel/steel").unwrap();
         assert_eq!(nu.display(&steel), "0.3000", "the material's own ν");
         let given = nu.parsed(&steel, "0.28").unwrap();
         assert_eq!(given.materials.as_ref().unwrap().sphere_nu, Some(0.28));
@@ -1082,18 +1154,18 @@ mod tests {
     fn cycling_the_materials_starts_from_the_current_ball_and_keeps_plate_and_nu() {
         let d = Design::default();
         let nu = row_field("sphere-poisson");
-        let set = nu.parsed(&Knob::Materials.parsed(&d, "brass/aluminium").unwrap(), "0.28").unwrap();
-        let next = Knob::Materials.stepped(&set, true, false).unwrap();
+        let set = nu.parsed(&Knob::MATERIALS.parsed(&d, "brass/aluminium").unwrap(), "0.28").unwrap();
+        let next = Knob::MATERIALS.stepped(&set, true, false).unwrap();
         let after = |name: &str| MATERIALS[MATERIALS.iter().position(|m| m.name == name).unwrap() + 1].name;
         let m = next.materials.as_ref().unwrap();
         assert_eq!((m.sphere.as_str(), m.plate.as_str(), m.sphere_nu), (after("brass"), "aluminium", Some(0.28)));
-        let back = Knob::Materials.stepped(&next, false, false).unwrap();
+        let back = Knob::MATERIALS.stepped(&next, false, false).unwrap();
         assert_eq!(back.materials, set.materials, "← undoes →");
     }
 
-    /// The field of the engine's row `name` (a [`Knob::Row`]).
+    /// The field of the engine's row `name`, made from the row alone.
     fn row_field(name: &str) -> Knob {
-        Knob::ALL.into_iter().find(|k| matches!(k, Knob::Row(_)) && k.rows() == [name]).unwrap()
+        Knob::ALL.into_iter().find(|k| k.plain() && k.rows() == [name]).unwrap()
     }
 
     #[test]
@@ -1113,12 +1185,72 @@ mod tests {
         assert_eq!(w0.display(&d), "0 m/s");
     }
 
+    /// The field list is the engine's table: every row of [`DESIGN`] is set by exactly one
+    /// field, its own (listed where the row is) unless it is a later row of a look (the plate
+    /// with the materials, the Newmark step with the solver); a field of one row has the row's
+    /// name (or a look's shorter one), quantity, range and unit (or a unit of the same quantity
+    /// whose factor is the engine's), and one made from the row alone has the row's label,
+    /// name and plain unit. The one field without a row is the ensemble size N. So a row added
+    /// to the table is a field with no line of the explorer's.
+    #[test]
+    fn every_row_of_the_table_is_one_field_with_its_name_unit_and_range() {
+        for (i, p) in DESIGN.iter().enumerate() {
+            let owners: Vec<Knob> = Knob::ALL.into_iter().filter(|k| k.rows().contains(&p.name)).collect();
+            assert_eq!(owners.len(), 1, "{}: set by {owners:?}", p.name);
+            let k = owners[0];
+            assert_eq!(k.rows()[0] == p.name, k.field().row == i, "{}: listed at its own row", p.name);
+            assert_eq!(k.group(), DESIGN[k.field().row].group);
+            if k.rows() != [p.name] {
+                continue;
+            }
+            assert_eq!(k.row().map(|r| r.name), Some(p.name));
+            assert!(k.param() == p.name || !k.look().name.is_empty(), "{}", p.name);
+            assert_eq!(k.range().as_ref(), p.range(), "{}: the row's range", p.name);
+            let kind = match p.accepts {
+                Accepts::Quantity { kind, .. } => Some(kind),
+                _ => None,
+            };
+            assert_eq!(k.kind(), kind, "{}", p.name);
+            match (kind, k.display_unit()) {
+                (Some(_), Some((unit, to))) if unit == p.unit() => assert_eq!(to, 1.0, "{}", p.name),
+                (Some(kind), Some((unit, to))) => {
+                    let one = units::parse(p.name, &format!("1{unit}"), kind).ok();
+                    assert_eq!(one, Some(to), "{}: 1 {unit} is {to} {}", p.name, p.unit());
+                    assert!((to * k.look().to_shown - 1.0).abs() < 1e-15, "{}: {unit} both ways", p.name);
+                }
+                (Some(_), None) => panic!("{}: a quantity without a unit", p.name),
+                (None, unit) => assert_eq!(unit.is_some(), p.range().is_some(), "{}: a count's unit", p.name),
+            }
+            if k.plain() {
+                assert_eq!((k.label(), k.param(), k.what()), (p.label, p.name, p.help));
+                assert_eq!(
+                    k.display_unit().map(|(unit, _)| unit),
+                    p.range().map(|r| if kind.is_some() { p.unit() } else { r.unit })
+                );
+            }
+        }
+        let own: Vec<Knob> = Knob::ALL.into_iter().filter(|k| k.rows().is_empty()).collect();
+        assert_eq!(own, [Knob::RUNS], "the explorer's own fields");
+        assert_eq!(Knob::RUNS.range(), Some(limits::ENSEMBLE));
+        assert_eq!(Knob::ALL.last(), Some(&Knob::RUNS), "the ensemble size last, with the study");
+        // Grouped as the table groups its rows, and in table order inside a group.
+        let at = |k: &Knob| (Group::ALL.iter().position(|g| *g == k.group()), k.field().row);
+        assert!(Knob::ALL.windows(2).all(|w| at(&w[0]) < at(&w[1])), "{:?}", Knob::ALL);
+        // Every look is of a row of the table and gives a field; names are unique.
+        for look in LOOKS {
+            assert!(Knob::ALL.iter().any(|k| k.rows() == look.rows), "{:?}", look.rows);
+        }
+        for k in Knob::ALL {
+            assert_eq!(Knob::named(k.param()), k, "{} names one field", k.param());
+        }
+    }
+
     #[test]
     fn the_filter_finds_theta_from_th_and_each_field_from_its_name() {
-        assert_eq!(find("th").first(), Some(&Knob::Theta));
-        assert_eq!(find("θ").first(), Some(&Knob::Theta));
-        assert_eq!(find("TH").first(), Some(&Knob::Theta), "case is ignored");
-        assert_eq!(find("gap").first(), Some(&Knob::Gap));
+        assert_eq!(find("th").first(), Some(&Knob::THETA));
+        assert_eq!(find("θ").first(), Some(&Knob::THETA));
+        assert_eq!(find("TH").first(), Some(&Knob::THETA), "case is ignored");
+        assert_eq!(find("gap").first(), Some(&Knob::GAP));
         assert_eq!(find("").len(), Knob::ALL.len());
         assert!(find("zzz").is_empty());
         for k in Knob::ALL {
@@ -1130,6 +1262,6 @@ mod tests {
     fn step_below_zero_is_refused() {
         let mut d = Design::default();
         d.damper.impact_mass_kg = 0.001;
-        assert!(Knob::Mass.stepped(&d, false, false).is_err());
+        assert!(Knob::MASS.stepped(&d, false, false).is_err());
     }
 }

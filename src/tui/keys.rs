@@ -204,10 +204,10 @@ pub const KEYS: &[Binding] = &[
         "find a field: type part of its name (th → θ), ↑↓ choose, Enter selects, Esc cancels",
         "find",
     ),
-    bind(KeyCode::Char('m'), NONE, Action::Field(Knob::Mass), "field-mass", "m", "select the ball's mass m", "fields"),
-    bind(KeyCode::Char('g'), NONE, Action::Field(Knob::Gap), "field-gap", "g", "select the gap d", ""),
+    bind(KeyCode::Char('m'), NONE, Action::Field(Knob::MASS), "field-mass", "m", "select the ball's mass m", "fields"),
+    bind(KeyCode::Char('g'), NONE, Action::Field(Knob::GAP), "field-gap", "g", "select the gap d", ""),
     bind(KeyCode::Char('r'), NONE, Action::Field(Knob::R), "field-r", "r", "select the listener's distance r", ""),
-    bind(KeyCode::Char('t'), NONE, Action::Field(Knob::Theta), "field-theta", "t", "select the listener's angle θ", ""),
+    bind(KeyCode::Char('t'), NONE, Action::Field(Knob::THETA), "field-theta", "t", "select the listener's angle θ", ""),
     bind(
         KeyCode::Char('a'),
         NONE,
@@ -694,7 +694,7 @@ impl Keymap {
                         pair(Action::Decrease { fine: false }, Action::Increase { fine: false }, "←→")
                     }
                     // The four field keys as one hint: "mgrt fields".
-                    Action::Field(_) => [Knob::Mass, Knob::Gap, Knob::R, Knob::Theta]
+                    Action::Field(_) => [Knob::MASS, Knob::GAP, Knob::R, Knob::THETA]
                         .into_iter()
                         .filter_map(|f| first(Action::Field(f)).map(|k| k.label.clone()))
                         .collect::<String>(),

@@ -168,7 +168,7 @@ impl Tour {
         }
         let mut steps = Vec::new();
         let (mut setup, mut preset) = (Setup { design: Design::default(), runs: 1 }, "default".to_string());
-        let mut select = Knob::Mass;
+        let mut select = Knob::MASS;
         for (i, s) in parsed.steps.into_iter().enumerate() {
             let at = |m: String| err(format!("step {} ({}): {m}", i + 1, shown_title(&s.title)));
             if let Some(p) = &s.preset {

@@ -597,34 +597,34 @@ fn explorer_fields_use_the_same_ranges() {
     use thud::tui::fields::Knob;
     let d = Design::default();
     for (field, text, name) in [
-        (Knob::Mass, "1e308", "mass"),
-        (Knob::Gap, "1e-308", "gap"),
+        (Knob::MASS, "1e308", "mass"),
+        (Knob::GAP, "1e-308", "gap"),
         (Knob::K, "1e308", "k"),
         (Knob::R, "2km", "r"),
-        (Knob::EStar, "-5", "e*"),
-        (Knob::LStar, "1e308", "L*"),
-        (Knob::Solver, "1e-308", "dt"),
+        (Knob::E_STAR, "-5", "e*"),
+        (Knob::L_STAR, "1e308", "L*"),
+        (Knob::SOLVER, "1e-308", "dt"),
     ] {
         let e = field.parsed(&d, text).unwrap_err().to_string();
         assert!(e.starts_with(&format!("invalid {name}: ")), "{text}: {e}");
     }
-    assert!(Knob::Mass.parsed(&d, "100kg").is_ok());
+    assert!(Knob::MASS.parsed(&d, "100kg").is_ok());
     // The forcing and the ball's start: the same ranges and the same whole-design checks.
     for (field, text) in [
-        (Knob::Force, "1e9"),
-        (Knob::Force, "-1"),
-        (Knob::Freq, "1e9"),
-        (Knob::Freq, "nan"),
-        (Knob::BallPosition, "3cm"),
-        (Knob::BallPosition, "1e308"),
-        (Knob::Runs, "0"),
-        (Knob::Runs, "1e9"),
+        (Knob::FORCE, "1e9"),
+        (Knob::FORCE, "-1"),
+        (Knob::FREQ, "1e9"),
+        (Knob::FREQ, "nan"),
+        (Knob::BALL_POSITION, "3cm"),
+        (Knob::BALL_POSITION, "1e308"),
+        (Knob::RUNS, "0"),
+        (Knob::RUNS, "1e9"),
     ] {
         let e = field.parsed(&d, text).expect_err(text).to_string();
         assert!(e.starts_with("invalid "), "{text}: {e}");
         assert!(!e.contains('\n'), "{text}: {e}");
     }
-    assert!(Knob::BallPosition.parsed(&d, "1cm").is_ok(), "inside d/2 = 2 cm");
+    assert!(Knob::BALL_POSITION.parsed(&d, "1cm").is_ok(), "inside d/2 = 2 cm");
     // Stepping past a bound is refused too.
     let mut big = d.clone();
     big.damper.stiffness_n_m = 1e10;
@@ -641,13 +641,13 @@ fn explorer_refuses_runs_over_the_work_caps() {
     let d = Design::default();
     // 1e6 s is inside the duration's range, but the chart's 192 cells × 1e6 s exceed the
     // sweep's cell-seconds cap.
-    let e = Knob::Duration.parsed(&d, "1e6").unwrap_err().to_string();
+    let e = Knob::DURATION.parsed(&d, "1e6").unwrap_err().to_string();
     assert!(e.starts_with("invalid duration: ") && e.contains("exceed the limit"), "{e}");
     // A Newmark step of 1e-12 s over 2 s is 2e12 steps.
-    let e = Knob::Solver.parsed(&d, "1e-12").unwrap_err().to_string();
+    let e = Knob::SOLVER.parsed(&d, "1e-12").unwrap_err().to_string();
     assert!(e.starts_with("invalid dt: ") && e.contains("Newmark steps exceed the limit"), "{e}");
     // An ordinary duration is fine.
-    assert!(Knob::Duration.parsed(&d, "5").is_ok());
+    assert!(Knob::DURATION.parsed(&d, "5").is_ok());
     // A WAV of 1000 s of a 1000-s design is over the 4.8e7-sample cap only past 1000 s; the
     // chart's cap (192 cells × duration ≤ 2e5 s) already refuses durations past ~1041 s, so
     // the export check is reached with a design built directly.
@@ -958,7 +958,7 @@ fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
     assert!(status.contains("exceed the limit"), "{status}");
     assert_eq!(app.design, before, "nothing loaded");
     // The same line as typing the value.
-    let typed = fields::Knob::Duration.parsed(&Design::default(), "1e6").unwrap_err().to_string();
+    let typed = fields::Knob::DURATION.parsed(&Design::default(), "1e6").unwrap_err().to_string();
     assert!(status.contains(&typed), "{status} / {typed}");
     for name in thud::presets::names() {
         fields::check_loaded(&thud::presets::preset(name).unwrap()).unwrap();

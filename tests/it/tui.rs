@@ -473,18 +473,18 @@ fn work_for_step(field: thud::tui::fields::Knob) -> Vec<&'static str> {
 #[test]
 fn each_change_recomputes_only_what_it_must() {
     use thud::tui::fields::Knob;
-    assert_eq!(work_for_step(Knob::Theta), ["acoustic", "relevel"], "θ: acoustics only");
+    assert_eq!(work_for_step(Knob::THETA), ["acoustic", "relevel"], "θ: acoustics only");
     assert_eq!(work_for_step(Knob::R), ["acoustic", "relevel"], "r: acoustics only");
-    assert_eq!(work_for_step(Knob::Mass), ["sim"], "m: this design only");
-    assert_eq!(work_for_step(Knob::Gap), ["sim"], "d: this design only");
+    assert_eq!(work_for_step(Knob::MASS), ["sim"], "m: this design only");
+    assert_eq!(work_for_step(Knob::GAP), ["sim"], "d: this design only");
     assert_eq!(work_for_step(Knob::K), ["sim", "chart"], "K: design and sweep");
-    assert!(work_for_step(Knob::LStar).is_empty(), "L*: zones are reclassified on draw");
+    assert!(work_for_step(Knob::L_STAR).is_empty(), "L*: zones are reclassified on draw");
 }
 
 #[test]
 fn theta_change_relevels_the_chart_like_a_fresh_sweep() {
     let mut app = computed_app();
-    app.selected = thud::tui::fields::Knob::ALL.iter().position(|f| *f == thud::tui::fields::Knob::Theta).unwrap();
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|f| *f == thud::tui::fields::Knob::THETA).unwrap();
     press(&mut app, KeyCode::Left);
     let fresh = computed_with(app.design.clone());
     for (a, b) in app.chart.fine.cells.iter().zip(&fresh.chart.fine.cells) {
@@ -1386,7 +1386,7 @@ fn forced_app(theme: Palette) -> App {
     let mut app = App::with_grids(Design::default(), "default", theme, grids);
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
-    set_field(&mut app, thud::tui::fields::Knob::Force, "1");
+    set_field(&mut app, thud::tui::fields::Knob::FORCE, "1");
     app
 }
 
@@ -1414,10 +1414,10 @@ fn a_force_switched_on_gets_the_natural_frequency_and_the_steady_readout() {
         row(&screen, label);
     }
     // The y0 field refuses what the command line refuses: outside the clearance.
-    set_field(&mut app, thud::tui::fields::Knob::BallPosition, "2.5");
+    set_field(&mut app, thud::tui::fields::Knob::BALL_POSITION, "2.5");
     assert!(render(&mut app, 120, 40).contains("error: invalid ball-position"));
     assert_eq!(app.design.damper.ball_position_m, 0.0);
-    set_field(&mut app, thud::tui::fields::Knob::BallPosition, "5mm");
+    set_field(&mut app, thud::tui::fields::Knob::BALL_POSITION, "5mm");
     assert_eq!(app.design.damper.ball_position_m, 0.005);
 }
 
@@ -1433,7 +1433,7 @@ fn response_view_snapshots_and_the_marker_moves_without_a_new_curve_job() {
     let before = render(&mut app, 120, 40);
     // Changing f re-simulates the design but never asks for the curve again: it does not
     // depend on f; only the marker (and the line under the plots) moves.
-    app.selected = thud::tui::fields::Knob::ALL.iter().position(|k| *k == thud::tui::fields::Knob::Freq).unwrap();
+    app.selected = thud::tui::fields::Knob::ALL.iter().position(|k| *k == thud::tui::fields::Knob::FREQ).unwrap();
     for _ in 0..3 {
         let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(KeyCode::Right, KeyModifiers::NONE))));
         assert!(!reqs.iter().any(is_response_job), "no new curve job for a new f");
@@ -1491,7 +1491,7 @@ fn ensemble_app(n: usize, theme: Palette) -> App {
     let mut app = App::with_grids(Design::default(), "default", theme, grids);
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
-    set_field(&mut app, thud::tui::fields::Knob::Runs, &n.to_string());
+    set_field(&mut app, thud::tui::fields::Knob::RUNS, &n.to_string());
     assert_eq!(app.runs, n);
     assert!(!app.busy());
     app
@@ -1514,7 +1514,7 @@ fn an_ensemble_readout_shows_the_engines_median_and_p10_p90() {
     let screen = render(&mut app, 80, 24);
     assert!(screen.contains(&format!("[{}–", sig(p.p10.unwrap(), 3))), "{screen}");
     // N back to 1 is today's single trajectory.
-    set_field(&mut app, thud::tui::fields::Knob::Runs, "1");
+    set_field(&mut app, thud::tui::fields::Knob::RUNS, "1");
     let screen = render(&mut app, 120, 40);
     assert!(!row(&screen, "e_fit").split("││").next().unwrap().contains('['), "{screen}");
 }
@@ -1610,7 +1610,7 @@ fn the_readout_shows_the_clis_json_numbers() {
     }
     // With N > 1 the forced figures are the N runs' settled states, median [p10–p90], as
     // `thud response --ensemble N` at this f (from the design's own v0).
-    set_field(&mut app, thud::tui::fields::Knob::Runs, "3");
+    set_field(&mut app, thud::tui::fields::Knob::RUNS, "3");
     let cli = json(&[
         "response",
         "--preset",
@@ -1662,7 +1662,7 @@ fn the_polars_listener_level_is_the_clis_at_non_grid_angles() {
     };
     let mut app = computed_app();
     for theta in ["47", "51", "12.5", "83"] {
-        set_field(&mut app, thud::tui::fields::Knob::Theta, theta);
+        set_field(&mut app, thud::tui::fields::Knob::THETA, theta);
         let loud = json(&["simulate", "--theta", theta, "--json"]);
         let pulse = json(&["pulse", "--preset", "default", "--theta", theta, "--json"]);
         let screen = render(&mut app, 120, 40);
@@ -1756,7 +1756,7 @@ fn a_not_settled_note_is_never_hidden_behind_the_negative_e_note() {
     let mut app = computed_app();
     let reqs = app.select_design(0.050, 0.060);
     compute_sync(&mut app, reqs);
-    set_field(&mut app, thud::tui::fields::Knob::Force, "1");
+    set_field(&mut app, thud::tui::fields::Knob::FORCE, "1");
     let a = app.acoustic().expect("computed");
     let steady = a.steady.expect("forced");
     let e = app.metrics().unwrap().inclination_cm_s.unwrap();
@@ -1834,7 +1834,7 @@ fn the_tour_caption_keys_do_what_the_caption_says() {
     assert!(caption.contains("θ is selected") && caption.contains('+'), "{caption}");
     assert!(!caption.contains("←→"), "← and → move the tour, not θ: {caption}");
     // As written: the step selects θ, then + walks it.
-    assert_eq!(app.param(), Knob::Theta);
+    assert_eq!(app.param(), Knob::THETA);
     let s = render(&mut app, 80, 24);
     let field = s.lines().rev().nth(1).unwrap();
     assert!(field.contains("θ = 45.0 deg"), "the caption box shows the selected θ (no footer in the tour):\n{s}");
@@ -1914,16 +1914,16 @@ fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
     let data = tempfile::tempdir().unwrap();
     let mut app = ensemble_app(4, Palette::default());
     app.data_dir = Some(data.path().to_path_buf());
-    set_field(&mut app, Knob::Force, "1");
-    set_field(&mut app, Knob::Freq, "5.45");
-    set_field(&mut app, Knob::Theta, "51");
+    set_field(&mut app, Knob::FORCE, "1");
+    set_field(&mut app, Knob::FREQ, "5.45");
+    set_field(&mut app, Knob::THETA, "51");
     let (design, runs) = (app.design.clone(), app.runs);
     assert!(design.damper.forced() && runs == 4);
     app.save_as("forced-ensemble");
     // Change everything back, then load it.
-    set_field(&mut app, Knob::Runs, "1");
-    set_field(&mut app, Knob::Force, "0");
-    set_field(&mut app, Knob::Theta, "30");
+    set_field(&mut app, Knob::RUNS, "1");
+    set_field(&mut app, Knob::FORCE, "0");
+    set_field(&mut app, Knob::THETA, "30");
     press(&mut app, KeyCode::Char('L'));
     press(&mut app, KeyCode::Enter);
     assert_eq!(app.design, design, "every field of the design");
@@ -1934,7 +1934,7 @@ fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
     let text = std::fs::read_to_string(&path).unwrap().replace("ensemble = 4", "ensemble = 0");
     assert!(text.contains("ensemble = 0"), "{text}");
     std::fs::write(&path, text).unwrap();
-    set_field(&mut app, Knob::Runs, "1");
+    set_field(&mut app, Knob::RUNS, "1");
     press(&mut app, KeyCode::Char('L'));
     press(&mut app, KeyCode::Enter);
     assert_eq!(app.mode, Mode::Saved(0));
@@ -2060,7 +2060,7 @@ fn the_field_list_is_grouped_by_the_table_s_groups() {
         }
     }
     let mut app = computed_app();
-    app.selected = Knob::ALL.iter().position(|q| *q == Knob::Force).unwrap();
+    app.selected = Knob::ALL.iter().position(|q| *q == Knob::FORCE).unwrap();
     let screen = render(&mut app, 120, 40);
     insta::assert_snapshot!("fields_grouped_120x40", screen);
     let panel: Vec<&str> =
@@ -2316,10 +2316,10 @@ fn readout_columns_at_every_size(app: &mut App) -> (usize, usize) {
 #[test]
 fn readout_columns_never_run_into_each_other_with_pin_ensemble_and_force() {
     let mut app = forced_app(Palette::default());
-    set_field(&mut app, thud::tui::fields::Knob::Runs, "4");
+    set_field(&mut app, thud::tui::fields::Knob::RUNS, "4");
     press(&mut app, KeyCode::Char('p'));
     assert!(app.pinned.is_some());
-    set_field(&mut app, thud::tui::fields::Knob::Gap, "2.5");
+    set_field(&mut app, thud::tui::fields::Knob::GAP, "2.5");
     assert!(!app.busy());
     let (rows, _) = thud::tui::ui::readout_rows(&app);
     assert!(rows.iter().all(|r| r.pinned.is_some()) && rows.iter().any(|r| r.live.contains(" [")), "{rows:?}");

@@ -55,14 +55,14 @@ fn level_at_listener(app: &App) -> String {
 #[test]
 fn slash_th_enter_selects_theta_then_47_sets_it_and_the_polar_reads_47_degrees() {
     let mut app = computed_app();
-    assert_eq!(app.param(), Knob::Mass);
+    assert_eq!(app.param(), Knob::MASS);
     press(&mut app, KeyCode::Char('/'));
     type_text(&mut app, "th");
     assert_eq!(app.mode, Mode::Find("th".into(), 0));
     let screen = render(&mut app, 80, 24);
     assert!(screen.contains("find: th") && screen.contains("θ"), "the filter and its match show:\n{screen}");
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.param(), Knob::Theta, "two keys after / reach θ");
+    assert_eq!(app.param(), Knob::THETA, "two keys after / reach θ");
     type_text(&mut app, "47");
     press(&mut app, KeyCode::Enter);
     assert!((app.design.observer.theta_rad.to_degrees() - 47.0).abs() < 1e-9, "{}", app.design.observer.theta_rad);
@@ -77,19 +77,19 @@ fn esc_cancels_the_filter_and_keeps_the_selection() {
     press(&mut app, KeyCode::Char('/'));
     type_text(&mut app, "gap");
     press(&mut app, KeyCode::Esc);
-    assert_eq!((app.mode.clone(), app.param()), (Mode::Normal, Knob::Mass));
+    assert_eq!((app.mode.clone(), app.param()), (Mode::Normal, Knob::MASS));
     // ↓ moves among the matches; a filter that matches nothing selects nothing.
     press(&mut app, KeyCode::Char('/'));
     type_text(&mut app, "zzz");
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.param(), Knob::Mass);
+    assert_eq!(app.param(), Knob::MASS);
     assert!(app.status().unwrap().error, "{:?}", app.status());
 }
 
 #[test]
 fn m_g_r_t_select_the_headline_inputs_and_the_footer_names_them() {
     let mut app = computed_app();
-    for (c, k) in [('g', Knob::Gap), ('r', Knob::R), ('t', Knob::Theta), ('m', Knob::Mass)] {
+    for (c, k) in [('g', Knob::GAP), ('r', Knob::R), ('t', Knob::THETA), ('m', Knob::MASS)] {
         press(&mut app, KeyCode::Char(c));
         assert_eq!(app.param(), k, "{c}");
     }
@@ -102,9 +102,9 @@ fn m_g_r_t_select_the_headline_inputs_and_the_footer_names_them() {
 fn a_click_selects_a_field_and_a_click_or_drag_on_the_polar_sets_theta() {
     let mut app = computed_app();
     render(&mut app, 120, 40);
-    let (line, i) = app.field_lines.iter().find(|(_, i)| Knob::ALL[*i] == Knob::Gap).copied().unwrap();
+    let (line, i) = app.field_lines.iter().find(|(_, i)| Knob::ALL[*i] == Knob::GAP).copied().unwrap();
     mouse(&mut app, MouseEventKind::Down(MouseButton::Left), line.x + 3, line.y);
-    assert_eq!((app.param(), i), (Knob::Gap, app.selected));
+    assert_eq!((app.param(), i), (Knob::GAP, app.selected));
     // Straight above the polar's centre is the normal, θ 0°.
     render(&mut app, 120, 40);
     let hit = app.polar_hit.unwrap();
@@ -113,7 +113,7 @@ fn a_click_selects_a_field_and_a_click_or_drag_on_the_polar_sets_theta() {
         .find(|&(x, y)| hit.theta_at(x, y) == Some(0.0))
         .expect("a cell at θ 0°");
     mouse(&mut app, MouseEventKind::Down(MouseButton::Left), x, y);
-    assert_eq!(app.param(), Knob::Theta);
+    assert_eq!(app.param(), Knob::THETA);
     assert!(app.design.observer.theta_rad.abs() < 1e-12, "{}", app.design.observer.theta_rad);
     let (x, y) = (0..120u16)
         .flat_map(|x| (0..40u16).map(move |y| (x, y)))

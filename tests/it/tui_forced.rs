@@ -50,10 +50,10 @@ fn cli(args: &[&str]) -> serde_json::Value {
 #[test]
 fn the_forced_readout_and_the_response_view_agree_with_the_cli_each_from_its_stated_start() {
     let mut app = computed_app();
-    set(&mut app, Knob::Mass, "30.89");
-    set(&mut app, Knob::Gap, "5.49");
-    set(&mut app, Knob::Force, "2.17");
-    set(&mut app, Knob::Freq, "4.126");
+    set(&mut app, Knob::MASS, "30.89");
+    set(&mut app, Knob::GAP, "5.49");
+    set(&mut app, Knob::FORCE, "2.17");
+    set(&mut app, Knob::FREQ, "4.126");
     press(&mut app, KeyCode::Char('f'));
     // At 80×24 the chart panel (with the response view) shows beside the history.
     while app.focus != thud::tui::app::Panel::History {
@@ -81,11 +81,11 @@ fn the_forced_readout_and_the_response_view_agree_with_the_cli_each_from_its_sta
 #[test]
 fn the_ensemble_marker_shows_the_readouts_zone_which_is_the_clis() {
     let mut app = computed_app();
-    set(&mut app, Knob::Mass, "31.2");
-    set(&mut app, Knob::Gap, "5.6");
+    set(&mut app, Knob::MASS, "31.2");
+    set(&mut app, Knob::GAP, "5.6");
     set(&mut app, Knob::C1, "45");
     set(&mut app, Knob::V0, "2.6");
-    set(&mut app, Knob::Runs, "12");
+    set(&mut app, Knob::RUNS, "12");
     assert!(!app.busy());
     let json = cli(&[
         "simulate",

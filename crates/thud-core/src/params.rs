@@ -171,7 +171,8 @@ pub struct Param<T: 'static> {
     /// Another parameter this one needs (`plate` needs `sphere`).
     pub requires: Option<&'static str>,
     /// The value in a design (internal units), for numeric rows of [`DESIGN`]: what a front end
-    /// shows as the current or default value.
+    /// shows as the current or default value; for a choice that sets the design alone, the
+    /// index of its name.
     pub get: Option<fn(&Design) -> f64>,
     /// Whether a design holds the row's value (None: every design does): K_HZ is not a design's
     /// own when its materials set it, nor a frequency without a force. [`check_design`] checks
@@ -459,12 +460,15 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     q("theta", Kind::Angle, &limits::THETA, Group::Listener, "DEG", "Observer angle (degrees)",
         |d| d.observer.theta_rad.to_degrees(), |d, v| d.design.observer.theta_rad = v.to_radians()),
     ch("source", Group::Listener, &SOURCES, &[], "Source", "Reflecting surfaces around the impact",
-        |d, i| d.design.radiation.source = source(i)),
+        |d, i| d.design.radiation.source = source(i))
+        .get(|d| Source::ALL.iter().position(|s| *s == d.radiation.source).map_or(f64::NAN, |i| i as f64)),
     ch("quad-signs", Group::Listener, &QUAD_SIGNS, &[], "QuadSigns", "Quadrupole wall-image signs",
-        |d, i| d.design.radiation.quad_signs = quad_signs(i)),
+        |d, i| d.design.radiation.quad_signs = quad_signs(i))
+        .get(|d| if d.radiation.quad_signs == QuadSigns::Paper { 0.0 } else { 1.0 }),
     ch("pulse", Group::Listener, &PULSES, &PULSE_HELPS, "PulseShape",
         "Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse",
-        |d, i| d.design.radiation.pulse = pulse_shape(i)),
+        |d, i| d.design.radiation.pulse = pulse_shape(i))
+        .get(|d| if d.radiation.pulse == PulseShape::HalfSine { 0.0 } else { 1.0 }),
     Param {
         get: Some(|d| if d.model == Model::Physical { 1.0 } else { 0.0 }),
         ..ch("model", Group::Listener, &MODELS, &MODEL_HELPS, "Model",
@@ -650,7 +654,8 @@ pub fn set_number(design: &Design, p: &Param<DesignDraft>, value: f64) -> Design
             set(&mut draft, if value.is_finite() && value >= 0.0 { value.round() as usize } else { 0 });
         }
         Accepts::Switch { set } => set(&mut draft, value != 0.0),
-        // Only a choice that sets the design alone reads its index back (`get`): the model.
+        // Only a choice that sets the design alone reads its index back (`get`): the source,
+        // its signs, the pulse, the model.
         Accepts::Choice { set, names, .. } if p.get.is_some() => {
             if value.is_finite() && value >= 0.0 && value < names.len() as f64 {
                 set(&mut draft, value as usize);

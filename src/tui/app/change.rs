@@ -148,10 +148,10 @@ impl App {
     fn change_message(&self, f: Knob, s: &Setup, extra: &str) -> String {
         let mut m = format!("{} {}{extra}", f.label(), f.display(s));
         let (was, now) = (&self.design.damper, &s.design.damper);
-        if f == Knob::Force && now.freq_hz != was.freq_hz {
-            m += &format!("; {} {} (the natural frequency)", Knob::Freq.label(), Knob::Freq.display(s));
+        if f == Knob::FORCE && now.freq_hz != was.freq_hz {
+            m += &format!("; {} {} (the natural frequency)", Knob::FREQ.label(), Knob::FREQ.display(s));
         }
-        if f == Knob::Freq && self.chart_view == ChartView::Response {
+        if f == Knob::FREQ && self.chart_view == ChartView::Response {
             let band = default_band(&s.design);
             if !band.contains(now.freq_hz) {
                 m += &format!(
@@ -168,8 +168,8 @@ impl App {
     fn off_chart(&self, f: Knob, d: &Design) -> String {
         let g = &self.chart.grids.fine;
         let (values, v, unit, k) = match f {
-            Knob::Mass => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
-            Knob::Gap => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
+            Knob::MASS => (&g.masses_kg, d.damper.impact_mass_kg, "g", 1e3),
+            Knob::GAP => (&g.gaps_m, d.damper.gap_m, "cm", 1e2),
             _ => return String::new(),
         };
         let (Some(lo), Some(hi)) = (values.first(), values.last()) else { return String::new() };
@@ -209,8 +209,8 @@ impl App {
         let d = design::variant(&self.design, mass_kg, gap_m);
         let msg = format!(
             "m {} g, d {} cm",
-            Knob::Mass.display(&d).trim_end_matches(" g"),
-            Knob::Gap.display(&d).trim_end_matches(" cm")
+            Knob::MASS.display(&d).trim_end_matches(" g"),
+            Knob::GAP.display(&d).trim_end_matches(" cm")
         );
         self.apply(d, Scope::Design, msg)
     }

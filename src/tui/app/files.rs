@@ -108,7 +108,7 @@ impl App {
                 // N goes through the field's own check (its range and the work caps).
                 let mut setup = Setup { design: f.design, runs: 1 };
                 if let Some(n) = f.ensemble {
-                    setup = Knob::Runs.parsed(&setup, &n.to_string()).map_err(|e| format!("ensemble N {n}: {e}"))?;
+                    setup = Knob::RUNS.parsed(&setup, &n.to_string()).map_err(|e| format!("ensemble N {n}: {e}"))?;
                 }
                 crate::tui::fields::check_loaded(&setup).map(|()| setup).map_err(|e| e.to_string())
             });

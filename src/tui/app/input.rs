@@ -185,7 +185,7 @@ impl App {
             Action::Decrease { fine } | Action::Increase { fine }
                 if self.focus == Panel::Chart && self.chart_view == ChartView::Response =>
             {
-                return self.step_knob(Knob::Freq, matches!(a, Action::Increase { .. }), fine)
+                return self.step_knob(Knob::FREQ, matches!(a, Action::Increase { .. }), fine)
             }
             Action::Up | Action::Down if self.focus == Panel::Chart && self.chart_view != ChartView::Response => {
                 return self.chart_move(0, a == Action::Up)
@@ -429,7 +429,7 @@ impl App {
         if self.mode != Mode::Normal {
             return vec![];
         }
-        self.select_field(Knob::Theta);
+        self.select_field(Knob::THETA);
         if (self.design.observer.theta_rad.to_degrees() - deg).abs() < 1e-9 {
             return vec![];
         }

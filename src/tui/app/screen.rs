@@ -63,7 +63,7 @@ impl App {
                 )
             }
             ChartView::Response => {
-                format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::Force.label())
+                format!("frequency response: no force; set {} > 0 (↑ from mass m) to draw it", Knob::FORCE.label())
             }
             ChartView::Bifurcation => {
                 let b = default_band(&self.design);
