@@ -120,10 +120,13 @@ fn forced(cmd: &[&str], own: &[(&str, &str)], flag: &str, value: &str) -> Vec<St
     args
 }
 
+/// A command and its own flags with quick values.
+type Study = (&'static [&'static str], &'static [(&'static str, &'static str)]);
+
 #[test]
 fn the_dynamics_commands_keep_the_contract_for_every_own_flag() {
     let home = tempfile::tempdir().unwrap();
-    let studies: [(&[&str], &[(&str, &str)]); 3] = [
+    let studies: [Study; 3] = [
         (&["bifurcation"], &[("--vary", "f=7Hz:8Hz:2"), ("--periods", "4"), ("--transient", "2")]),
         (&["impact-map"], &[("--periods", "4"), ("--transient", "2")]),
         (&["basins"], &[("--grid", "2"), ("--periods", "4"), ("--transient", "2"), ("--w0", "-1:1")]),
