@@ -331,3 +331,28 @@ fn the_guide_s_schema_page_lists_every_table_of_the_definition() {
         }
     }
 }
+
+/// Saved designs and presets in thud 0.1's spelling (`solver = "Event"`, `ball = { density =
+/// … }`, `k_hz = …`) load as the same design as today's spelling.
+#[test]
+fn designs_saved_in_thud_0_1_s_spelling_still_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let designs = thud::store::designs_dir(dir.path());
+    std::fs::create_dir_all(&designs).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/thud-presets/presets");
+    let mut renamed = 0;
+    for name in thud_presets::names() {
+        let text = std::fs::read_to_string(root.join(format!("{name}.toml"))).unwrap();
+        let old = text
+            .replace("density_kg_m3 = ", "density = ")
+            .replace("radius_m = ", "radius = ")
+            .replace("solver = \"event\"", "solver = \"Event\"")
+            .replace("k_hz_n_m1_5 = ", "k_hz = ");
+        assert!(!text.contains("solver = \"Event\"") && !text.contains("\nk_hz = "), "{name}: today's spelling");
+        renamed += usize::from(old != text);
+        std::fs::write(designs.join(format!("{name}.toml")), &old).unwrap();
+        let loaded = thud::store::load_design(dir.path(), name).unwrap();
+        assert_eq!(loaded, thud::presets::preset_file(name).unwrap(), "{name}: the old spelling reads as the new");
+    }
+    assert_eq!(renamed, thud_presets::names().count(), "every preset had a renamed key");
+}

@@ -204,11 +204,11 @@ pub const SWEEP_ENSEMBLE: Table = Table {
     ],
 };
 
-/// A CSV part of `thud sweep --ensemble N --shard K/N --format csv`: one row per run of each
+/// A CSV part of `thud sweep [--ensemble N] --shard K/N --csv --out FILE`: one row per run of each
 /// cell; Python `Chart.runs_frame()` has these columns but `index` and `truncated`.
 pub const SHARD_PART: Table = Table {
     id: "shard_part",
-    written_by: "sweep --shard K/N --format csv (parts read by merge)",
+    written_by: "sweep --shard K/N --csv --out FILE, a part merge reads",
     columns: &[
         INDEX,
         RUN,
