@@ -344,9 +344,10 @@ def response_xarray(r: Any) -> Any:
     return xr.Dataset(data, coords=coords, attrs=_attrs_json(attrs))
 
 
-#: The metric fields of a study cell (`thud sweep --vary --json`), in order.
-_STUDY_METRICS = ["n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "zdot_abs_max_m_s",
-                  "spl_max_db", "contact_duration_s", "restitution_mean", "zone"]
+def _study_metrics() -> List[str]:
+    """The metric fields of a study cell (`thud sweep --vary --json`), in order: the schema's
+    `sweep` columns after mass_kg and gap_m."""
+    return schema_names("sweep")[2:]
 
 
 def study_xarray(record: Dict[str, Any]) -> Any:
@@ -362,7 +363,7 @@ def study_xarray(record: Dict[str, Any]) -> Any:
               for dim, a in zip(dims, axes)}
     cells = record["cells"]
     data: Dict[str, Any] = {}
-    for k in _STUDY_METRICS:
+    for k in _study_metrics():
         if k in ("n_impacts", "zone"):
             arr = np.array([c.get(k) or 0 for c in cells], dtype=np.int64)
         else:
