@@ -501,7 +501,9 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
             }
         };
         let whole = |j: usize| -> Result<usize, ShardError> {
-            rec[j].parse::<usize>().map_err(|_| bad(format!("{} '{}' is not a whole number", CSV_COLUMNS[j].name, &rec[j])))
+            rec[j]
+                .parse::<usize>()
+                .map_err(|_| bad(format!("{} '{}' is not a whole number", CSV_COLUMNS[j].name, &rec[j])))
         };
         let zone = match &rec[13] {
             "" => None,

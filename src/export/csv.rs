@@ -149,7 +149,6 @@ impl SweepRow {
     }
 }
 
-
 /// The design chart, one row per computed cell (mass × gap).
 pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
     table_csv(&schema::SWEEP, chart.cells.iter().flatten().map(|c| SweepRow::new(c.mass_kg, c.gap_m, &c.metrics)))
@@ -372,7 +371,6 @@ struct ResponseEnsembleRow {
     settled_fraction: Num,
     truncated: bool,
 }
-
 
 /// A frequency response of ensembles, one row per frequency and sweep: the p10, median and p90
 /// of each steady figure over the runs (an empty cell where a value does not exist).

@@ -179,7 +179,8 @@ fn each_sweep_cell_is_the_zone_of_its_medians_with_its_zone3_probability() {
     ]);
     let head = csv.lines().next().unwrap();
     assert!(
-        head.starts_with("mass_kg,gap_m,runs,n_impacts,inclination_cm_s,") && head.ends_with(",zone3_probability,agreement")
+        head.starts_with("mass_kg,gap_m,runs,n_impacts,inclination_cm_s,")
+            && head.ends_with(",zone3_probability,agreement")
     );
     assert_eq!(csv.lines().count(), 10);
 }

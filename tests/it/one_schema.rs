@@ -313,7 +313,8 @@ fn tables_markdown() -> String {
 #[test]
 fn the_guide_s_schema_page_lists_every_table_of_the_definition() {
     let page = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/schema.md")).unwrap();
-    let start = page.find("<!-- tables:start -->\n").expect("the tables' start marker") + "<!-- tables:start -->\n".len();
+    let start =
+        page.find("<!-- tables:start -->\n").expect("the tables' start marker") + "<!-- tables:start -->\n".len();
     let end = page.find("<!-- tables:end -->").expect("the tables' end marker");
     let want = tables_markdown();
     assert_eq!(page[start..end], want, "docs/guide/schema.md's tables must read:\n{want}");

@@ -300,7 +300,11 @@ mod tests {
             let names: BTreeSet<&str> = t.names().into_iter().collect();
             assert_eq!(names.len(), t.columns.len(), "{}: a name twice", t.id);
             for c in t.columns {
-                assert!(c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'), "{}", c.name);
+                assert!(
+                    c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'),
+                    "{}",
+                    c.name
+                );
                 assert!(!c.doc.is_empty() && !c.unit.is_empty(), "{}", c.name);
                 if c.name != "truncated" {
                     let was = unit_of.insert(c.name, c.unit);
