@@ -17,7 +17,7 @@
 //! - JSON lines: the header object on the first line, then one `{"index", "mass_kg", "gap_m",
 //!   "runs": [...]}` object per line.
 //! - CSV: the header object on the first line after `# `, then a table with one row per run
-//!   ([`CSV_HEADER`]); an empty field is "none", numbers are Rust's shortest round-trip form.
+//!   ([`CSV_COLUMNS`]); an empty field is "none", numbers are Rust's shortest round-trip form.
 //!
 //! **The hash** is SHA-256 (the `sha2` crate) of the study's canonical JSON: serde_json's compact
 //! form of [`Study`] — fields in declaration order, floats in their shortest round-trip form — so
@@ -181,24 +181,13 @@ pub enum Format {
     Csv,
 }
 
-/// The columns of a CSV part, one row per run.
-pub const CSV_HEADER: [&str; 15] = [
-    "index",
-    "run",
-    "mass_kg",
-    "gap_m",
-    "ball_position_m",
-    "n_impacts",
-    "inclination_cm_s",
-    "inclination_fit_cm_s",
-    "u0_max_m_s",
-    "zdot_abs_max_m_s",
-    "spl_max_db",
-    "contact_duration_s",
-    "restitution_mean",
-    "zone",
-    "truncated",
-];
+/// The columns of a CSV part, one row per run: the schema's `shard_part` table.
+pub const CSV_COLUMNS: &[thud_core::schema::Column] = thud_core::schema::SHARD_PART.columns;
+
+/// The names of [`CSV_COLUMNS`].
+pub fn csv_header() -> Vec<&'static str> {
+    thud_core::schema::SHARD_PART.names()
+}
 
 /// Why a part or a set of parts is refused. `file` is the part as the user named it.
 #[derive(Debug, Error, PartialEq)]
@@ -288,7 +277,7 @@ pub fn write(format: Format, header: &Header, cells: &[PartCell]) -> Result<Stri
         }
         Format::Csv => {
             let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
-            w.write_record(CSV_HEADER)?;
+            w.write_record(csv_header())?;
             for c in cells {
                 for (k, r) in c.runs.iter().enumerate() {
                     let truncated = r.truncated.map(|t| {
@@ -493,16 +482,16 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
         let bad = |why: String| ShardError::BadCell { file: file.to_string(), line, why };
         let rec = rec.map_err(|e| bad(format!("not a CSV row ({e})")))?;
         if i == 0 {
-            if rec.iter().ne(CSV_HEADER) {
-                return Err(bad(format!("the columns must be {}", CSV_HEADER.join(","))));
+            if rec.iter().ne(csv_header()) {
+                return Err(bad(format!("the columns must be {}", csv_header().join(","))));
             }
             continue;
         }
-        if rec.len() != CSV_HEADER.len() {
-            return Err(bad(format!("{} fields; a row has {}", rec.len(), CSV_HEADER.len())));
+        if rec.len() != CSV_COLUMNS.len() {
+            return Err(bad(format!("{} fields; a row has {}", rec.len(), CSV_COLUMNS.len())));
         }
         let num = |j: usize| -> Result<f64, ShardError> {
-            rec[j].parse::<f64>().map_err(|_| bad(format!("{} '{}' is not a number", CSV_HEADER[j], &rec[j])))
+            rec[j].parse::<f64>().map_err(|_| bad(format!("{} '{}' is not a number", CSV_COLUMNS[j].name, &rec[j])))
         };
         let opt = |j: usize| -> Result<Option<f64>, ShardError> {
             if rec[j].is_empty() {
@@ -512,7 +501,9 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
             }
         };
         let whole = |j: usize| -> Result<usize, ShardError> {
-            rec[j].parse::<usize>().map_err(|_| bad(format!("{} '{}' is not a whole number", CSV_HEADER[j], &rec[j])))
+            rec[j]
+                .parse::<usize>()
+                .map_err(|_| bad(format!("{} '{}' is not a whole number", CSV_COLUMNS[j].name, &rec[j])))
         };
         let zone = match &rec[13] {
             "" => None,

@@ -13,6 +13,7 @@ use crate::damper::{free_response, DamperParams, Run};
 use crate::design::{Chart, Metrics};
 use crate::ensemble::{EnsembleChart, Percentiles};
 use crate::paper::{Table, Value};
+use thud_core::schema;
 
 /// A number as CSV writes it: Rust's `Display` (shortest round trip, never an exponent).
 #[derive(Debug, Clone, Copy)]
@@ -34,6 +35,12 @@ fn to_csv<R: Serialize>(header: &[&str], rows: impl IntoIterator<Item = R>) -> R
     into_string(w)
 }
 
+/// The header of the schema's `table`, then one record per row (each row type's fields are
+/// the table's columns in order; the tests below check it).
+fn table_csv<R: Serialize>(table: &schema::Table, rows: impl IntoIterator<Item = R>) -> Result<String, csv::Error> {
+    to_csv(&table.names(), rows)
+}
+
 /// The text of a writer over memory.
 fn into_string(w: csv::Writer<Vec<u8>>) -> Result<String, csv::Error> {
     let bytes = w.into_inner().map_err(|e| csv::Error::from(e.into_error()))?;
@@ -46,13 +53,12 @@ struct WaveformRow {
     t_s: Num,
     p_pa: Num,
 }
-const WAVEFORM_HEADER: [&str; 2] = ["t_s", "p_pa"];
 
 /// The pressure waveform of one impact, `n` uniform samples: `t_s,p_pa` (time after the
 /// contact starts, so the first sound arrives at the propagation delay).
 pub fn waveform(field: &Field, n: usize) -> Result<String, csv::Error> {
     let (t, p) = field.waveform(n);
-    to_csv(&WAVEFORM_HEADER, t.iter().zip(&p).map(|(&t, &p)| WaveformRow { t_s: Num(t), p_pa: Num(p) }))
+    table_csv(&schema::PULSE, t.iter().zip(&p).map(|(&t, &p)| WaveformRow { t_s: Num(t), p_pa: Num(p) }))
 }
 
 #[derive(Serialize)]
@@ -62,13 +68,12 @@ struct HistoryRow {
     y_m: Num,
     x_free_m: Num,
 }
-const HISTORY_HEADER: [&str; 4] = ["t_s", "x_m", "y_m", "x_free_m"];
 
 /// The time history of a run: `t_s,x_m,y_m,x_free_m`, with the main mass's motion without the
 /// damper (`x_free_m`) beside it.
 pub fn history(run: &Run, damper: &DamperParams) -> Result<String, csv::Error> {
-    to_csv(
-        &HISTORY_HEADER,
+    table_csv(
+        &schema::HISTORY,
         run.history.iter().map(|h| HistoryRow {
             t_s: Num(h.t_s),
             x_m: Num(h.x_m),
@@ -80,7 +85,6 @@ pub fn history(run: &Run, damper: &DamperParams) -> Result<String, csv::Error> {
 
 #[derive(Serialize)]
 struct ImpactRow {
-    index: usize,
     t_s: Num,
     wall: i8,
     u_in_m_s: Num,
@@ -91,26 +95,13 @@ struct ImpactRow {
     penetration_max_m: Num,
     spl_db: Option<Num>,
 }
-const IMPACTS_HEADER: [&str; 10] = [
-    "index",
-    "t_s",
-    "wall",
-    "u_in_m_s",
-    "u_out_m_s",
-    "restitution",
-    "t_end_s",
-    "duration_s",
-    "penetration_max_m",
-    "spl_db",
-];
 
 /// The impacts of a run with the SPL of each (`spl_db[k]` for impact k, dB re 20 µPa, rms
 /// over τ from the direct arrival).
 pub fn impacts(run: &Run, spl_db: &[f64]) -> Result<String, csv::Error> {
-    to_csv(
-        &IMPACTS_HEADER,
+    table_csv(
+        &schema::IMPACTS,
         run.impacts.iter().enumerate().map(|(k, i)| ImpactRow {
-            index: k + 1,
             t_s: Num(i.t_s),
             wall: i.wall.into(),
             u_in_m_s: Num(i.u_in_m_s),
@@ -158,85 +149,75 @@ impl SweepRow {
     }
 }
 
-/// The columns of a chart cell: its mass and gap, then its metrics in the order (and with the
-/// names) of a cell of `sweep --json` (`mass_kg`, `gap_m`, `metrics.*`).
-pub(crate) const SWEEP_HEADER: [&str; 11] = [
-    "mass_kg",
-    "gap_m",
-    "n_impacts",
-    "inclination_cm_s",
-    "inclination_fit_cm_s",
-    "u0_max_m_s",
-    "zdot_abs_max_m_s",
-    "spl_max_db",
-    "contact_duration_s",
-    "restitution_mean",
-    "zone",
-];
-
 /// The design chart, one row per computed cell (mass × gap).
 pub fn sweep(chart: &Chart) -> Result<String, csv::Error> {
-    to_csv(&SWEEP_HEADER, chart.cells.iter().flatten().map(|c| SweepRow::new(c.mass_kg, c.gap_m, &c.metrics)))
+    table_csv(&schema::SWEEP, chart.cells.iter().flatten().map(|c| SweepRow::new(c.mass_kg, c.gap_m, &c.metrics)))
 }
 
 #[derive(Serialize)]
 struct EnsembleSweepRow {
-    /// The sweep's columns, for the medians (written in place: no header is serialized).
-    medians: SweepRow,
+    mass_kg: Num,
+    gap_m: Num,
     runs: usize,
+    /// The medians as a design's metrics (written in place: no header is serialized).
+    medians: MetricsRow,
+    inclination_cm_s: Three,
+    inclination_fit_cm_s: Three,
+    u0_max_m_s: Three,
+    spl_max_db: Three,
     zone3_probability: Num,
     agreement: Num,
-    inclination_cm_s_p10: Option<Num>,
-    inclination_cm_s_p90: Option<Num>,
-    inclination_fit_cm_s_p10: Option<Num>,
-    inclination_fit_cm_s_p90: Option<Num>,
-    u0_max_m_s_p10: Option<Num>,
-    u0_max_m_s_p90: Option<Num>,
-    spl_max_db_p10: Option<Num>,
-    spl_max_db_p90: Option<Num>,
 }
-const ENSEMBLE_SWEEP_EXTRA: [&str; 11] = [
-    "runs",
-    "zone3_probability",
-    "agreement",
-    "inclination_cm_s_p10",
-    "inclination_cm_s_p90",
-    "inclination_fit_cm_s_p10",
-    "inclination_fit_cm_s_p90",
-    "u0_max_m_s_p10",
-    "u0_max_m_s_p90",
-    "spl_max_db_p10",
-    "spl_max_db_p90",
-];
 
-/// The design chart of ensembles, one row per computed cell: the sweep's columns for the
-/// cell's medians (its zone that of the medians), then the runs, the zone-3 probability, the
-/// agreement and the p10 and p90 of e, e_fit, U0max and SPLmax.
+#[derive(Serialize)]
+struct MetricsRow {
+    n_impacts: usize,
+    inclination_cm_s: Option<Num>,
+    inclination_fit_cm_s: Option<Num>,
+    u0_max_m_s: Num,
+    zdot_abs_max_m_s: Num,
+    spl_max_db: Option<Num>,
+    contact_duration_s: Option<Num>,
+    restitution_mean: Option<Num>,
+    zone: Option<u8>,
+}
+
+impl From<&Metrics> for MetricsRow {
+    fn from(m: &Metrics) -> Self {
+        MetricsRow {
+            n_impacts: m.n_impacts,
+            inclination_cm_s: m.inclination_cm_s.map(Num),
+            inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
+            u0_max_m_s: Num(m.u0_max_m_s),
+            zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
+            spl_max_db: m.spl_max_db.map(Num),
+            contact_duration_s: m.contact_duration_s.map(Num),
+            restitution_mean: m.restitution_mean.map(Num),
+            zone: m.zone.map(thud_core::design::Zone::number),
+        }
+    }
+}
+
+/// The design chart of ensembles, one row per computed cell: a cell of `sweep --ensemble N
+/// --json` flattened (schema `sweep_ensemble`): mass, gap, runs, the medians as metrics (the
+/// zone that of the medians), the p10, median and p90 of e, e_fit, U0max and SPLmax, the
+/// zone-3 probability and the agreement.
 pub fn sweep_ensemble(chart: &EnsembleChart) -> Result<String, csv::Error> {
-    let header: Vec<&str> = SWEEP_HEADER.iter().chain(&ENSEMBLE_SWEEP_EXTRA).copied().collect();
-    let ends = |p: &Percentiles| (p.p10.map(Num), p.p90.map(Num));
-    to_csv(
-        &header,
+    table_csv(
+        &schema::SWEEP_ENSEMBLE,
         chart.cells.iter().flatten().map(|c| {
-            let (e, m) = (&c.ensemble, &c.ensemble.metrics);
-            let s = &e.spread;
-            let (incl_lo, incl_hi) = ends(&s.inclination_cm_s);
-            let (fit_lo, fit_hi) = ends(&s.inclination_fit_cm_s);
-            let (u0_lo, u0_hi) = ends(&s.u0_max_m_s);
-            let (spl_lo, spl_hi) = ends(&s.spl_max_db);
+            let (e, s) = (&c.ensemble, &c.ensemble.spread);
             EnsembleSweepRow {
-                medians: SweepRow::new(c.mass_kg, c.gap_m, m),
+                mass_kg: Num(c.mass_kg),
+                gap_m: Num(c.gap_m),
                 runs: e.runs,
+                medians: (&e.metrics).into(),
+                inclination_cm_s: (&s.inclination_cm_s).into(),
+                inclination_fit_cm_s: (&s.inclination_fit_cm_s).into(),
+                u0_max_m_s: (&s.u0_max_m_s).into(),
+                spl_max_db: (&s.spl_max_db).into(),
                 zone3_probability: Num(e.zone3_probability),
                 agreement: Num(e.agreement),
-                inclination_cm_s_p10: incl_lo,
-                inclination_cm_s_p90: incl_hi,
-                inclination_fit_cm_s_p10: fit_lo,
-                inclination_fit_cm_s_p90: fit_hi,
-                u0_max_m_s_p10: u0_lo,
-                u0_max_m_s_p90: u0_hi,
-                spl_max_db_p10: spl_lo,
-                spl_max_db_p90: spl_hi,
             }
         }),
     )
@@ -255,25 +236,12 @@ struct MemberRow {
     restitution_mean: Option<Num>,
     zone: Option<u8>,
 }
-/// The columns of one run of an ensemble: the keys of a run of `simulate --ensemble N --json`.
-const MEMBERS_HEADER: [&str; 10] = [
-    "ball_position_m",
-    "n_impacts",
-    "inclination_cm_s",
-    "inclination_fit_cm_s",
-    "u0_max_m_s",
-    "zdot_abs_max_m_s",
-    "spl_max_db",
-    "contact_duration_s",
-    "restitution_mean",
-    "zone",
-];
 
 /// The runs of one design's ensemble, one row each: the ball's initial offset and the run's
 /// metrics.
 pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, csv::Error> {
-    to_csv(
-        &MEMBERS_HEADER,
+    table_csv(
+        &schema::ENSEMBLE,
         members.iter().map(|r| MemberRow {
             ball_position_m: Num(r.ball_position_m),
             n_impacts: r.n_impacts,
@@ -291,8 +259,11 @@ pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, c
 
 #[derive(Serialize)]
 struct ResponseRow {
-    sweep: &'static str,
+    direction: &'static str,
     freq_hz: Num,
+    periods: u32,
+    window_start_s: Num,
+    window_end_s: Num,
     amplitude_m: Num,
     amplitude_linear_m: Option<Num>,
     reduction_db: Option<Num>,
@@ -301,38 +272,24 @@ struct ResponseRow {
     periodic: bool,
     settled: bool,
     truncated: bool,
-    window_start_s: Num,
-    window_end_s: Num,
     final_time_s: Num,
 }
-const RESPONSE_HEADER: [&str; 13] = [
-    "sweep",
-    "freq_hz",
-    "amplitude_m",
-    "amplitude_linear_m",
-    "reduction_db",
-    "impacts_per_period",
-    "leq_db",
-    "periodic",
-    "settled",
-    "truncated",
-    "window_start_s",
-    "window_end_s",
-    "final_time_s",
-];
 
 /// A frequency response, one row per frequency and sweep (`from_rest`, or `up` and `down`);
 /// an empty cell where a value does not exist (no linear amplitude at an undamped resonance,
 /// no level without impacts).
 pub fn response(r: &crate::response::Response) -> Result<String, csv::Error> {
-    to_csv(
-        &RESPONSE_HEADER,
+    table_csv(
+        &schema::RESPONSE,
         r.sweeps.iter().flat_map(|sw| {
             sw.points.iter().map(move |p| {
                 let st = &p.steady;
                 ResponseRow {
-                    sweep: sweep_name(sw.direction),
+                    direction: sweep_name(sw.direction),
                     freq_hz: Num(p.freq_hz),
+                    periods: st.periods,
+                    window_start_s: Num(st.window_start_s),
+                    window_end_s: Num(st.window_end_s),
                     amplitude_m: Num(st.amplitude_m),
                     amplitude_linear_m: st.amplitude_linear_m.map(Num),
                     reduction_db: st.reduction_db.map(Num),
@@ -341,8 +298,6 @@ pub fn response(r: &crate::response::Response) -> Result<String, csv::Error> {
                     periodic: st.periodic,
                     settled: st.settled,
                     truncated: st.truncated,
-                    window_start_s: Num(st.window_start_s),
-                    window_end_s: Num(st.window_end_s),
                     final_time_s: Num(p.final_time_s),
                 }
             })
@@ -404,7 +359,7 @@ impl From<&Percentiles> for Three {
 
 #[derive(Serialize)]
 struct ResponseEnsembleRow {
-    sweep: &'static str,
+    direction: &'static str,
     freq_hz: Num,
     runs: usize,
     amplitude_linear_m: Option<Num>,
@@ -417,36 +372,14 @@ struct ResponseEnsembleRow {
     truncated: bool,
 }
 
-const RESPONSE_ENSEMBLE_HEADER: [&str; 19] = [
-    "sweep",
-    "freq_hz",
-    "runs",
-    "amplitude_linear_m",
-    "amplitude_m_p10",
-    "amplitude_m_median",
-    "amplitude_m_p90",
-    "reduction_db_p10",
-    "reduction_db_median",
-    "reduction_db_p90",
-    "impacts_per_period_p10",
-    "impacts_per_period_median",
-    "impacts_per_period_p90",
-    "leq_db_p10",
-    "leq_db_median",
-    "leq_db_p90",
-    "periodic_fraction",
-    "settled_fraction",
-    "truncated",
-];
-
 /// A frequency response of ensembles, one row per frequency and sweep: the p10, median and p90
 /// of each steady figure over the runs (an empty cell where a value does not exist).
 pub fn response_ensemble(r: &crate::response::ResponseEnsemble) -> Result<String, csv::Error> {
-    to_csv(
-        &RESPONSE_ENSEMBLE_HEADER,
+    table_csv(
+        &schema::RESPONSE_ENSEMBLE,
         r.sweeps.iter().flat_map(|sw| {
             sw.points.iter().map(move |p| ResponseEnsembleRow {
-                sweep: sweep_name(sw.direction),
+                direction: sweep_name(sw.direction),
                 freq_hz: Num(p.freq_hz),
                 runs: p.ensemble.len(),
                 amplitude_linear_m: p.amplitude_linear_m.map(Num),
@@ -462,7 +395,7 @@ pub fn response_ensemble(r: &crate::response::ResponseEnsemble) -> Result<String
     )
 }
 
-/// The name of a sweep of a response in CSV files.
+/// The name of a sweep of a response in CSV files (its `direction` in the JSON).
 fn sweep_name(d: crate::response::Direction) -> &'static str {
     use crate::response::Direction;
     match d {
@@ -487,10 +420,10 @@ mod tests {
     #[test]
     fn each_header_is_its_row_type_s_field_names() {
         let n = Num(0.0);
-        assert_eq!(serde_header(WaveformRow { t_s: n, p_pa: n }), WAVEFORM_HEADER.join(","));
-        assert_eq!(serde_header(HistoryRow { t_s: n, x_m: n, y_m: n, x_free_m: n }), HISTORY_HEADER.join(","));
+        let head = |t: &schema::Table| t.names().join(",");
+        assert_eq!(serde_header(WaveformRow { t_s: n, p_pa: n }), head(&schema::PULSE));
+        assert_eq!(serde_header(HistoryRow { t_s: n, x_m: n, y_m: n, x_free_m: n }), head(&schema::HISTORY));
         let imp = ImpactRow {
-            index: 1,
             t_s: n,
             wall: 1,
             u_in_m_s: n,
@@ -501,7 +434,7 @@ mod tests {
             penetration_max_m: n,
             spl_db: None,
         };
-        assert_eq!(serde_header(imp), IMPACTS_HEADER.join(","));
+        assert_eq!(serde_header(imp), head(&schema::IMPACTS));
         let metrics = crate::design::Metrics {
             n_impacts: 0,
             inclination_cm_s: None,
@@ -514,7 +447,7 @@ mod tests {
             zone: None,
         };
         let sw = SweepRow::new(0.0, 0.0, &metrics);
-        assert_eq!(serde_header(sw), SWEEP_HEADER.join(","));
+        assert_eq!(serde_header(sw), head(&schema::SWEEP));
         let m = MemberRow {
             ball_position_m: n,
             n_impacts: 0,
@@ -527,11 +460,11 @@ mod tests {
             restitution_mean: None,
             zone: None,
         };
-        assert_eq!(serde_header(m), MEMBERS_HEADER.join(","));
+        assert_eq!(serde_header(m), head(&schema::ENSEMBLE));
     }
 
     #[test]
-    fn an_ensemble_chart_row_is_the_sweep_row_of_its_medians_then_the_spread() {
+    fn an_ensemble_chart_row_is_mass_gap_runs_the_medians_then_the_spread() {
         let mut d = crate::design::Design::default();
         d.damper.duration_s = 0.2;
         let chart = crate::ensemble::sweep(&d.check().unwrap(), &[0.03, 0.05], &[0.03], 3, None, &|_, _| {}).unwrap();
@@ -539,9 +472,12 @@ mod tests {
         let medians = sweep(&chart.medians()).unwrap();
         let mut r = csv::Reader::from_reader(text.as_bytes());
         let head: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
-        assert_eq!(head.len(), SWEEP_HEADER.len() + ENSEMBLE_SWEEP_EXTRA.len());
+        assert_eq!(head, schema::SWEEP_ENSEMBLE.names());
         for (line, want) in text.lines().zip(medians.lines()).skip(1) {
-            assert!(line.starts_with(&format!("{want},3,")), "{line} / {want}");
+            // mass, gap, runs, then the medians' metrics: the sweep row with the runs inserted.
+            let cells: Vec<&str> = want.split(',').collect();
+            let with_runs = format!("{},{},3,{},", cells[0], cells[1], cells[2..].join(","));
+            assert!(line.starts_with(&with_runs), "{line} / {with_runs}");
         }
         let rows: Vec<csv::StringRecord> = r.records().map(Result::unwrap).collect();
         assert_eq!(rows.len(), 2);
@@ -549,6 +485,7 @@ mod tests {
         let col = |k: &str| head.iter().position(|h| h == k).unwrap();
         assert_eq!(rows[1][col("zone3_probability")].parse::<f64>().unwrap(), c.ensemble.zone3_probability);
         assert_eq!(rows[1][col("spl_max_db_p90")].parse::<f64>().ok(), c.ensemble.spread.spl_max_db.p90);
+        assert_eq!(rows[1][col("u0_max_m_s_median")].parse::<f64>().ok(), c.ensemble.spread.u0_max_m_s.median);
     }
 
     #[test]

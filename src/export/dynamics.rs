@@ -33,10 +33,10 @@ fn o(v: Option<f64>) -> String {
 
 /// The metric columns of a study cell, in the order (and with the names) of its JSON: the sweep
 /// CSV's columns after its mass and gap.
-const METRICS: &[&str] = csv_metrics();
+const METRICS: &[thud_core::schema::Column] = csv_metrics();
 
-const fn csv_metrics() -> &'static [&'static str] {
-    match super::csv::SWEEP_HEADER.split_first() {
+const fn csv_metrics() -> &'static [thud_core::schema::Column] {
+    match thud_core::schema::SWEEP.columns.split_first() {
         Some((_, rest)) => match rest.split_first() {
             Some((_, metrics)) => metrics,
             None => &[],
@@ -51,7 +51,7 @@ pub fn study_csv(s: &Study) -> Result<String, csv::Error> {
     let forced = s.cells.iter().any(|c| c.steady.is_some());
     let mut header: Vec<String> = vec!["index".into()];
     header.extend(s.axes.iter().map(crate::study::Axis::column));
-    header.extend(METRICS.iter().map(|m| (*m).to_string()));
+    header.extend(METRICS.iter().map(|m| m.name.to_string()));
     if forced {
         header.extend(["steady_amplitude_m".to_string(), "steady_reduction_db".to_string()]);
     }

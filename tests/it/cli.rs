@@ -35,7 +35,7 @@ fn pulse_materials_replace_k_hz() {
     let (code, out, err) = thud(&["pulse", "--sphere", "acrylic", "--plate", "steel", "--json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let k = v["k_hz"].as_f64().unwrap();
+    let k = v["k_hz_n_m1_5"].as_f64().unwrap();
     assert!((k / 5.6e8 - 1.0).abs() < 0.01, "{k}");
 }
 
@@ -195,7 +195,7 @@ fn sphere_poisson_changes_k_hz_and_is_refused_out_of_range_or_without_a_sphere()
             thud(&[&["simulate", "--duration", "0.05", "--sphere", "steel", "--json"][..], args].concat());
         assert_eq!(code, 0, "{err}");
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-        (v["design"]["damper"]["k_hz"].as_f64().unwrap(), out)
+        (v["design"]["damper"]["k_hz_n_m1_5"].as_f64().unwrap(), out)
     };
     let (own, plain) = k_hz(&[]);
     let (given, out) = k_hz(&["--sphere-poisson", "0.28"]);

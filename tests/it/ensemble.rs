@@ -179,7 +179,8 @@ fn each_sweep_cell_is_the_zone_of_its_medians_with_its_zone3_probability() {
     ]);
     let head = csv.lines().next().unwrap();
     assert!(
-        head.starts_with("mass_kg,gap_m,n_impacts,inclination_cm_s,") && head.contains(",zone3_probability,agreement,")
+        head.starts_with("mass_kg,gap_m,runs,n_impacts,inclination_cm_s,")
+            && head.ends_with(",zone3_probability,agreement")
     );
     assert_eq!(csv.lines().count(), 10);
 }
@@ -309,7 +310,7 @@ fn a_response_ensemble_is_its_runs_and_their_spread() {
     let text = ok(&[&base[..], &["--ensemble", "3"]].concat());
     assert!(text.contains("ensemble  3 runs a frequency") && text.contains("median [p10–p90]"), "{text}");
     let csv = ok(&[&base[..], &["--ensemble", "3", "--csv"]].concat());
-    assert!(csv.starts_with("sweep,freq_hz,runs,amplitude_linear_m,amplitude_m_p10,amplitude_m_median,"), "{csv}");
+    assert!(csv.starts_with("direction,freq_hz,runs,amplitude_linear_m,amplitude_m_p10,amplitude_m_median,"), "{csv}");
     assert_eq!(csv.lines().count(), 4);
     // The work is capped over all the runs, before any starts.
     let (code, _, err) =

@@ -91,7 +91,7 @@ fn no_limit_lifts_the_caps() {
     let r = thud(&["simulate", "--solver", "newmark", "--dt", "1e-12", "--duration", "2e-6", "--no-limit", "--json"]);
     assert_eq!(r.code, 0, "{}", r.stderr);
     let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
-    assert_eq!(v["design"]["solver"]["Newmark"]["dt_s"].as_f64(), Some(1e-12));
+    assert_eq!(v["design"]["solver"]["newmark"]["dt_s"].as_f64(), Some(1e-12));
     let refused = thud(&["simulate", "--solver", "newmark", "--dt", "1e-12", "--duration", "2e-2"]);
     assert_eq!(refused.code, 2, "{}", refused.stderr);
 }

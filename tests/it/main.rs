@@ -40,6 +40,7 @@ mod hostile_files;
 mod hostile_inputs;
 mod hostile_round3;
 mod masri_caughey;
+mod one_schema;
 mod params_table;
 mod pdf;
 mod physical_model;

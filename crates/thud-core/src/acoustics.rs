@@ -170,11 +170,14 @@ pub fn impulse_response(t_ret: f64, r: f64, cos_theta: f64, a: f64, air: &Air) -
 }
 
 /// The shape of the sphere's acceleration during the contact.
+/// Written as the `--pulse` flag spells it (`"half-sine"`, `"hertz"`); read also as `"half_sine"`
+/// (thud 0.1's spelling).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "kebab-case")]
 pub enum PulseShape {
     /// The paper's half-sine, Eq 7 (its impulse is 2.342·U0 instead of 2·U0: +17 %).
     #[default]
+    #[serde(alias = "half_sine")]
     HalfSine,
     /// The exact Hertz pulse A = (K_HZ/m)·α^1.5 with α'' = −K*·K_HZ·α^1.5 (impulse exactly
     /// 2·U0·M/(m+M) for an elastic rebound), as a sine series of odd harmonics of π/τ.

@@ -16,9 +16,12 @@ use crate::error::{check_positive, ThudError};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum BallSize {
-    /// From the mass and this density (kg/m³): a = (3m/(4πρ))^(1/3).
+    /// From the mass and this density (kg/m³): a = (3m/(4πρ))^(1/3). Written `density_kg_m3`,
+    /// read also as `density` (thud 0.1's spelling).
+    #[serde(rename = "density_kg_m3", alias = "density")]
     Density(f64),
-    /// A fixed radius (m), whatever the mass.
+    /// A fixed radius (m), whatever the mass. Written `radius_m`, read also as `radius`.
+    #[serde(rename = "radius_m", alias = "radius")]
     Radius(f64),
 }
 
@@ -1336,5 +1339,30 @@ mod tests {
         let d = Design::default();
         let back: Design = serde_json::from_str(&serde_json::to_string(&d).unwrap()).unwrap();
         assert_eq!(back, d);
+    }
+
+    /// One spelling written (units in the keys, enums as the flags spell them); thud 0.1's
+    /// spelling still read, so saved designs and presets load (issue 26, item 5).
+    #[test]
+    fn design_is_written_in_the_one_spelling_and_read_in_the_old_one_too() {
+        let mut d = Design::default();
+        d.radiation.pulse = crate::acoustics::PulseShape::HalfSine;
+        let text = serde_json::to_string(&d).unwrap();
+        for new in ["\"k_hz_n_m1_5\":", "\"density_kg_m3\":", "\"solver\":\"event\"", "\"pulse\":\"half-sine\""] {
+            assert!(text.contains(new), "{new} not in {text}");
+        }
+        let old = text
+            .replace("\"k_hz_n_m1_5\":", "\"k_hz\":")
+            .replace("\"density_kg_m3\":", "\"density\":")
+            .replace("\"solver\":\"event\"", "\"solver\":\"Event\"")
+            .replace("\"pulse\":\"half-sine\"", "\"pulse\":\"half_sine\"");
+        assert_ne!(old, text);
+        assert_eq!(serde_json::from_str::<Design>(&old).unwrap(), d);
+        d.solver = crate::damper::Solver::newmark_default();
+        d.ball = BallSize::Radius(0.01);
+        let text = serde_json::to_string(&d).unwrap();
+        assert!(text.contains("{\"newmark\":{\"dt_s\":") && text.contains("{\"radius_m\":0.01}"), "{text}");
+        let old = text.replace("\"newmark\"", "\"Newmark\"").replace("\"radius_m\"", "\"radius\"");
+        assert_eq!(serde_json::from_str::<Design>(&old).unwrap(), d);
     }
 }

@@ -19,6 +19,7 @@
 //! - [`finite`]: the check that every number of a result is finite before it is handed out.
 //! - [`limits`]: the range of every parameter and the work cap of every run.
 //! - [`params`]: named parameters (the command line's flags, Python's keywords) to a checked design.
+//! - [`schema`]: the one data schema: every table's columns (name, unit, meaning) in order.
 //! - [`response`]: a forced design's steady state and level (`Leq`), and its frequency response.
 //! - [`study`]: studies over any numeric parameter (`--vary NAME=FROM:TO:N`).
 //! - [`units`]: parsing and formatting of quantities with units.
@@ -39,6 +40,7 @@ pub mod paper;
 pub mod params;
 pub mod report;
 pub mod response;
+pub mod schema;
 pub mod study;
 pub mod units;
 pub mod walk;

@@ -41,6 +41,7 @@ pub struct PulseReport {
     /// Impact speed U0 (m/s).
     pub u0_m_s: f64,
     /// Hertz stiffness K_HZ (N/m^1.5).
+    #[serde(rename = "k_hz_n_m1_5")]
     pub k_hz: f64,
     /// Observer distance r (m).
     pub r_m: f64,

@@ -602,6 +602,22 @@ fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<B
     Ok(rows)
 }
 
+/// schema() -> dict
+///
+/// The one data schema: {table: [(name, unit, meaning), …]} for every table thud writes, the
+/// columns in order — the command line's CSV headers (`pulse`, `history`, `impacts`,
+/// `ensemble`, `sweep`, `sweep_ensemble`, `shard_part`, `response`, `response_ensemble`) and
+/// the columns of the DataFrames (`Pulse.to_dataframe()`, `Run.history_frame()`, …).
+#[pyfunction]
+fn schema(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let out = PyDict::new(py);
+    for t in &thud_core::schema::TABLES {
+        let cols: Vec<(&str, &str, &str)> = t.columns.iter().map(|c| (c.name, c.unit, c.doc)).collect();
+        out.set_item(t.id, cols)?;
+    }
+    Ok(out)
+}
+
 #[pymodule]
 #[pyo3(name = "_thud")]
 fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -627,6 +643,7 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;
+    m.add_function(wrap_pyfunction!(schema, m)?)?;
     m.add_function(wrap_pyfunction!(_parameters, m)?)?;
     m.add_function(wrap_pyfunction!(objects::_restore, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_structure, m)?)?;

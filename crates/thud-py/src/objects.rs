@@ -268,7 +268,7 @@ pub struct PyPulse {
     u0_m_s: f64,
     /// Hertz stiffness K_HZ (N/m^1.5).
     #[pyo3(get)]
-    k_hz: f64,
+    k_hz_n_m1_5: f64,
     /// Observer distance r (m).
     #[pyo3(get)]
     r_m: f64,
@@ -363,7 +363,7 @@ impl PyPulse {
             radius_m: number("radius_m")?,
             mass_kg: number("mass_kg")?,
             u0_m_s: number("u0_m_s")?,
-            k_hz: number("k_hz")?,
+            k_hz_n_m1_5: number("k_hz_n_m1_5")?,
             r_m: number("r_m")?,
             theta_deg: number("theta_deg")?,
             source: text(W, &record, "source")?,
@@ -447,6 +447,11 @@ impl PyPulse {
 
     fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
         reduce(py, "Pulse", &self.record)
+    }
+
+    /// Equal when the records are (every field; an unpickled pulse equals its original).
+    fn __eq__(&self, other: PyRef<'_, Self>) -> bool {
+        self.record == other.record
     }
 
     fn __repr__(&self) -> String {
@@ -694,6 +699,18 @@ impl PyRun {
         })
     }
 
+    /// Its pickled state: {"record": …, "history": [[name, [values…]], …]}.
+    fn state(&self, py: Python<'_>) -> PyResult<Json> {
+        let history = self.history.bind(py);
+        let mut series = Vec::new();
+        for (k, v) in history.iter() {
+            let name: String = k.extract()?;
+            let values: Vec<f64> = v.extract()?;
+            series.push(serde_json::json!([name, values]));
+        }
+        Ok(serde_json::json!({"record": self.record, "history": series}))
+    }
+
     /// The run of its pickled state: {"record": …, "history": [[name, [values…]], …]}.
     fn from_state(py: Python<'_>, state: Json) -> PyResult<PyRun> {
         let mut history = Vec::new();
@@ -768,14 +785,12 @@ impl PyRun {
     }
 
     fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
-        let history = self.history.bind(py);
-        let mut series = Vec::new();
-        for (k, v) in history.iter() {
-            let name: String = k.extract()?;
-            let values: Vec<f64> = v.extract()?;
-            series.push(serde_json::json!([name, values]));
-        }
-        reduce(py, "Run", &serde_json::json!({"record": self.record, "history": series}))
+        reduce(py, "Run", &self.state(py)?)
+    }
+
+    /// Equal when the records and the time histories are (an unpickled run equals its original).
+    fn __eq__(&self, py: Python<'_>, other: PyRef<'_, Self>) -> PyResult<bool> {
+        Ok(self.state(py)? == other.state(py)?)
     }
 
     fn __repr__(&self) -> String {
@@ -877,8 +892,9 @@ impl PyEnsemble {
 
     /// to_dataframe() -> pandas.DataFrame
     ///
-    /// One row per run (in order of k): ball_position_m first, then each run's metrics; the
-    /// zone 0 = none. Needs pandas.
+    /// One row per run (the index "run", in order of k), the columns of `thud simulate
+    /// --ensemble N --csv` (`thud.schema()["ensemble"]`): ball_position_m, then each run's
+    /// metrics; the zone 0 = none. Needs pandas.
     fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "ensemble_frame", slf.as_any())
     }
@@ -897,6 +913,11 @@ impl PyEnsemble {
 
     fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
         reduce(py, "Ensemble", &self.record)
+    }
+
+    /// Equal when the records are (every run; an unpickled ensemble equals its original).
+    fn __eq__(&self, other: PyRef<'_, Self>) -> bool {
+        self.record == other.record
     }
 
     fn __repr__(&self) -> String {
@@ -1174,12 +1195,22 @@ impl PyChart {
 
     /// to_dataframe() -> pandas.DataFrame
     ///
-    /// The chart as a tidy table: one row per cell (gap_m, mass_kg, then every metric, zone
-    /// 0 = none), or with ensemble=N one row per run of each cell (gap_m, mass_kg, run, the
-    /// run's ball_position_m and metrics, then its cell's medians as median_* columns, zone3_probability and
-    /// agreement). The thresholds and the design in `.attrs`. Needs pandas.
+    /// The chart as a tidy table, one row per cell, the columns of `thud sweep --csv`
+    /// (`thud.schema()["sweep"]`: mass_kg, gap_m, then every metric, zone 0 = none); with
+    /// ensemble=N those of `thud sweep --ensemble N --csv` (`"sweep_ensemble"`: mass_kg, gap_m,
+    /// runs, the medians as metrics, X_p10 / X_median / X_p90, zone3_probability, agreement;
+    /// every run: `runs_frame()`). The thresholds and the design in `.attrs`. Needs pandas.
     fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "chart_frame", slf.as_any())
+    }
+
+    /// runs_frame() -> pandas.DataFrame
+    ///
+    /// A chart of ensembles, one row per run of each cell: run, mass_kg, gap_m,
+    /// ball_position_m and the run's metrics (the columns of a CSV part of `thud sweep
+    /// --shard` but its index and truncated). Needs pandas.
+    fn runs_frame(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        frames(slf.py(), "chart_runs_frame", slf.as_any())
     }
 
     /// to_xarray() -> xarray.Dataset
@@ -1198,6 +1229,11 @@ impl PyChart {
 
     fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
         reduce(py, "Chart", &self.state)
+    }
+
+    /// Equal when what the charts were made of is (an unpickled chart equals its original).
+    fn __eq__(&self, other: PyRef<'_, Self>) -> bool {
+        self.state == other.state
     }
 
     fn __repr__(&self) -> String {
@@ -1313,9 +1349,10 @@ impl PyResponse {
 
     /// to_dataframe() -> pandas.DataFrame
     ///
-    /// One row per frequency of each sweep: direction, freq_hz, then the point's fields in the
-    /// record's order (with ensemble=N the spread as {figure}_p10 / _median / _p90). Needs
-    /// pandas.
+    /// One row per frequency of each sweep, the columns of `thud response --csv`
+    /// (`thud.schema()["response"]`: direction, freq_hz, then the point's fields in the
+    /// record's order; with ensemble=N `"response_ensemble"`: the spread as {figure}_p10 /
+    /// _median / _p90). Needs pandas.
     fn to_dataframe(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "response_frame", slf.as_any())
     }
@@ -1335,6 +1372,11 @@ impl PyResponse {
 
     fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
         reduce(py, "Response", &serde_json::json!({"record": self.record, "runs": self.runs}))
+    }
+
+    /// Equal when the records and the runs are (an unpickled response equals its original).
+    fn __eq__(&self, other: PyRef<'_, Self>) -> bool {
+        self.record == other.record && self.runs == other.runs
     }
 
     fn __repr__(&self) -> String {

@@ -81,7 +81,7 @@ def test_simulate_with_overrides_newmark_and_materials(cli_json):
     r = thud.simulate(preset="paper-fig9", mass="50g", gap=0.03, solver="newmark", dt=1e-6, duration=0.5,
                       sphere="steel", source="dipole", theta=30, no_tension=True)
     check_run(j, r)
-    assert r.design["solver"] == {"Newmark": {"dt_s": 1e-6}}
+    assert r.design["solver"] == {"newmark": {"dt_s": 1e-6}}
     assert r.design["materials"] == {"sphere": "steel", "plate": "steel"}
 
 

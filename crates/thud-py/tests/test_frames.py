@@ -37,7 +37,7 @@ def test_impacts_frame_is_every_impact_t_s_first_in_the_record_s_order(run, cli_
     j = cli_json("simulate", "--preset", "paper-fig9", "--mass", "50g", "--gap", "0.03")
     # The columns are the record's keys in the order the command line writes them: t_s first.
     first = list(j["impacts"][0])
-    assert list(df.columns) == first and df.columns[0] == "t_s"
+    assert list(df.columns) == first == [c[0] for c in thud.schema()["impacts"]] and df.columns[0] == "t_s"
     for k in df.columns:
         np.testing.assert_array_equal(df[k].to_numpy(), run.impacts[k])
     assert [i["t_s"] for i in j["impacts"]] == df["t_s"].tolist()
@@ -53,7 +53,8 @@ def test_history_frame_is_the_time_history(run):
 def test_chart_to_dataframe_is_tidy_one_row_per_cell(chart):
     df = chart.to_dataframe()
     g, m = len(chart.gaps_m), len(chart.masses_kg)
-    assert len(df) == g * m and list(df.columns[:2]) == ["gap_m", "mass_kg"]
+    assert len(df) == g * m and list(df.columns) == [c[0] for c in thud.schema()["sweep"]]
+    assert list(df.columns[:2]) == ["mass_kg", "gap_m"]
     assert not df.duplicated(["gap_m", "mass_kg"]).any()
     for row in df.itertuples(index=False):
         gi = int(np.flatnonzero(chart.gaps_m == row.gap_m)[0])
@@ -65,17 +66,24 @@ def test_chart_to_dataframe_is_tidy_one_row_per_cell(chart):
     assert df.attrs["thresholds"] == chart.thresholds
 
 
-def test_chart_to_dataframe_with_an_ensemble_is_one_row_per_run(echart):
+def test_chart_to_dataframe_with_an_ensemble_is_one_row_per_cell_and_runs_frame_one_per_run(echart):
     df = echart.to_dataframe()
     g, m, n = len(echart.gaps_m), len(echart.masses_kg), echart.runs
-    assert len(df) == g * m * n and list(df.columns[:4]) == ["gap_m", "mass_kg", "run", "ball_position_m"]
+    assert len(df) == g * m and list(df.columns) == [c[0] for c in thud.schema()["sweep_ensemble"]]
     for row in df.itertuples(index=False):
+        gi = int(np.flatnonzero(echart.gaps_m == row.gap_m)[0])
+        mi = int(np.flatnonzero(echart.masses_kg == row.mass_kg)[0])
+        assert row.runs == n
+        assert row.u0_max_m_s == echart.u0_max_m_s[gi, mi]
+        assert row.u0_max_m_s_p90 == echart.spread["u0_max_m_s"]["p90"][gi, mi]
+        assert row.zone3_probability == echart.zone3_probability[gi, mi]
+    rf = echart.runs_frame()
+    assert len(rf) == g * m * n and list(rf.columns[:4]) == ["run", "mass_kg", "gap_m", "ball_position_m"]
+    for row in rf.itertuples(index=False):
         gi = int(np.flatnonzero(echart.gaps_m == row.gap_m)[0])
         mi = int(np.flatnonzero(echart.masses_kg == row.mass_kg)[0])
         assert row.ball_position_m == echart.ensemble["ball_position_m"][gi, mi, row.run]
         assert row.u0_max_m_s == echart.ensemble["u0_max_m_s"][gi, mi, row.run]
-        assert row.median_u0_max_m_s == echart.u0_max_m_s[gi, mi]
-        assert row.zone3_probability == echart.zone3_probability[gi, mi]
 
 
 def test_chart_to_xarray_is_gap_by_mass_by_run(chart, echart):
@@ -100,7 +108,8 @@ def test_ensemble_response_and_pulse_tables():
     np.testing.assert_array_equal(pf["p_pa"].to_numpy(), p.p_pa)
     e = thud.simulate_ensemble(4, preset="paper-fig9")
     df = e.to_dataframe()
-    assert list(df.columns[:2]) == ["run", "ball_position_m"] and len(df) == 4
+    assert list(df.columns) == [c[0] for c in thud.schema()["ensemble"]] and len(df) == 4
+    assert df.index.name == "run" and df.index.tolist() == [0, 1, 2, 3]
     np.testing.assert_array_equal(df["inclination_cm_s"].to_numpy(), e.ensemble["inclination_cm_s"])
     r = thud.response("4.6Hz:5.4Hz:3", force=1, duration=4, continuation=True)
     rf = r.to_dataframe()

@@ -53,7 +53,8 @@ pub struct DamperParams {
     pub impact_mass_kg: f64,
     /// Total clearance d (m): the ball has d/2 each side when centred.
     pub gap_m: f64,
-    /// Hertz stiffness K_HZ (N/m^1.5).
+    /// Hertz stiffness K_HZ (N/m^1.5); read also as `k_hz` (thud 0.1's spelling).
+    #[serde(rename = "k_hz_n_m1_5", alias = "k_hz")]
     pub k_hz: f64,
     /// Contact damping c1 (N·s/m, ≥ 0).
     pub c1_n_s_m: f64,
@@ -199,11 +200,16 @@ impl DamperParams {
 }
 
 /// Which solver integrates the motion.
+/// Written as the `--solver` flag spells it (`"event"`, `{"newmark": {"dt_s": …}}`); read also
+/// as thud 0.1 wrote it (`"Event"`, `{"Newmark": …}`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Solver {
     /// Event-driven: exact flights, root-found contacts, adaptive DOPRI5 inside contacts.
+    #[serde(alias = "Event")]
     Event,
     /// The paper's uniform Newmark-β (average acceleration) with time step `dt_s` (s).
+    #[serde(alias = "Newmark")]
     Newmark { dt_s: f64 },
 }
 

@@ -34,6 +34,7 @@ from ._thud import (
     axis,
     presets,
     ranges,
+    schema,
 )
 from ._wrap import document as _document
 from ._wrap import with_progress as _progress
@@ -53,6 +54,7 @@ __all__ = [
     "pulse",
     "ranges",
     "response",
+    "schema",
     "simulate",
     "simulate_ensemble",
     "sweep",

@@ -15,7 +15,7 @@ The GIL is released while the engine runs: Python threads run designs in paralle
 bit-for-bit those of ``thud pulse|simulate|sweep|response --json`` for the same design.
 """
 
-from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -53,7 +53,7 @@ class Pulse:
     """Sphere mass m (kg)."""
     u0_m_s: float
     """Impact speed U0 (m/s)."""
-    k_hz: float
+    k_hz_n_m1_5: float
     """Hertz stiffness K_HZ (N/m^1.5)."""
     r_m: float
     """Observer distance r (m)."""
@@ -196,9 +196,12 @@ class Chart:
     """Every run of every cell as 3-D arrays (gap, mass, run): ball_position_m (m), the metrics,
     zone (int8, 0 = none) (None without an ensemble)."""
     def to_dataframe(self) -> Any:
-        """A tidy pandas.DataFrame: one row per cell (gap_m, mass_kg, the metrics), or with an
-        ensemble one row per run of each cell (gap_m, mass_kg, run, its metrics, the cell's
-        median_* metrics, zone3_probability, agreement)."""
+        """A tidy pandas.DataFrame, one row per cell, the columns of `thud sweep --csv`
+        (schema()["sweep"]: mass_kg, gap_m, the metrics); with an ensemble those of `thud sweep
+        --ensemble N --csv` (schema()["sweep_ensemble"]: mass_kg, gap_m, runs, the medians,
+        X_p10 / X_median / X_p90, zone3_probability, agreement)."""
+    def runs_frame(self) -> Any:
+        """A chart of ensembles, one row per run of each cell (run, mass_kg, gap_m, ball_position_m, metrics)."""
     def to_xarray(self) -> Any:
         """An xarray.Dataset on gap_m × mass_kg (× run with an ensemble), units in attrs."""
     def table5(self, band_cm_s: float = 0.2, no_limit: bool = False) -> Dict[str, np.ndarray]:
@@ -592,6 +595,9 @@ def response(
 def axis(name: Literal["masses", "gaps"], spec: str) -> FloatArray:
     """The values of a sweep axis "FROM:TO:N" exactly as the command line computes them:
     axis("masses", "30g:100g:20") (kg), axis("gaps", "2cm:5cm:20") (m)."""
+
+def schema() -> Dict[str, List[Tuple[str, str, str]]]:
+    """The one data schema: {table: [(name, unit, meaning), …]}, the columns in order."""
 
 def presets() -> Dict[str, str]:
     """The named starting designs (``preset=``) with their one-line descriptions."""

@@ -1,11 +1,12 @@
 """Tables, labelled arrays, JSON-ready dicts and HTML for thud's results.
 
 The result classes are native (``thud._thud``); their ``impacts_frame``, ``history_frame``,
-``to_dataframe``, ``to_xarray``, ``as_dict(json=True)`` and ``_repr_html_`` methods call the
-functions here. Every column is taken from the result's own arrays by key (the keys of the
-command line's JSON records, units in the names), so a field added to a record shows up in
-the tables without a change here. pandas and xarray are optional: a method that needs one
-raises ImportError saying what to install.
+``to_dataframe``, ``runs_frame``, ``to_xarray``, ``as_dict(json=True)`` and ``_repr_html_``
+methods call the functions here. Every DataFrame has the columns of one table of the one data
+schema (``thud.schema()``, the engine's ``thud_core::schema``), in its order: the columns of the
+command line's CSV file of the same result. Each column is taken from the result's own arrays
+by key (the keys of the command line's JSON records, units in the names). pandas and xarray
+are optional: a method that needs one raises ImportError saying what to install.
 """
 
 from __future__ import annotations
@@ -71,6 +72,23 @@ def jsonable(value: Any) -> Any:
     return value
 
 
+def schema_names(table: str) -> List[str]:
+    """The column names of the schema's `table` (``thud.schema()[table]``), in order."""
+    from . import _thud
+
+    return [c[0] for c in _thud.schema()[table]]
+
+
+def _table(table: str, sources: Dict[str, Any]) -> Dict[str, Any]:
+    """The columns of the schema's `table`, in order, each taken from `sources` by name."""
+    out: Dict[str, Any] = {}
+    for name in schema_names(table):
+        if name not in sources:
+            raise KeyError(f"the result has no {name!r}, a column of the schema's {table!r} table")
+        out[name] = sources[name]
+    return out
+
+
 def _first(columns: Dict[str, Any], *lead: str) -> Dict[str, Any]:
     """`columns` with the keys `lead` (those present) first, the others in their order."""
     out = {k: columns[k] for k in lead if k in columns}
@@ -89,26 +107,27 @@ def pulse_frame(p: Any) -> Any:
     """Pulse.to_dataframe(): the waveform, t_s (s) and p_pa (Pa); the scalars in .attrs."""
     d = p.as_dict()
     scalars = {k: v for k, v in d.items() if not isinstance(v, (np.ndarray, dict))}
-    return _frame({"t_s": p.t_s, "p_pa": p.p_pa}, scalars, "Pulse.to_dataframe()")
+    return _frame(_table("pulse", {"t_s": p.t_s, "p_pa": p.p_pa}), scalars, "Pulse.to_dataframe()")
 
 
 def impacts_frame(run: Any) -> Any:
-    """Run.impacts_frame(): one row per impact, t_s first, the record's columns in order."""
-    return _frame(_first(dict(run.impacts), "t_s"), {"design": run.design}, "Run.impacts_frame()")
+    """Run.impacts_frame(): one row per impact, the schema's `impacts` columns."""
+    return _frame(_table("impacts", dict(run.impacts)), {"design": run.design}, "Run.impacts_frame()")
 
 
 def history_frame(run: Any) -> Any:
-    """Run.history_frame(): the uniform time history, t_s first."""
-    return _frame(_first(dict(run.history), "t_s"), {"design": run.design}, "Run.history_frame()")
+    """Run.history_frame(): the uniform time history, the schema's `history` columns."""
+    return _frame(_table("history", dict(run.history)), {"design": run.design}, "Run.history_frame()")
 
 
 def ensemble_frame(e: Any) -> Any:
-    """Ensemble.to_dataframe(): one row per run k, ball_position_m first."""
-    cols = _first(dict(e.ensemble), "ball_position_m")
-    n = len(next(iter(cols.values()))) if cols else 0
+    """Ensemble.to_dataframe(): one row per run k (the index, named "run"), the schema's
+    `ensemble` columns (ball_position_m, then the run's metrics)."""
     attrs = {"design": e.design, "runs": e.runs, "zone": e.zone, "zone3_probability": e.zone3_probability,
              "agreement": e.agreement}
-    return _frame({"run": np.arange(n), **cols}, attrs, "Ensemble.to_dataframe()")
+    df = _frame(_table("ensemble", dict(e.ensemble)), attrs, "Ensemble.to_dataframe()")
+    df.index.name = "run"
+    return df
 
 
 def _grids(d: Dict[str, Any], shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
@@ -117,31 +136,38 @@ def _grids(d: Dict[str, Any], shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
 
 
 def chart_frame(c: Any) -> Any:
-    """Chart.to_dataframe(): tidy, one row per cell (gap_m, mass_kg, metrics); with an ensemble
-    one row per run of each cell (gap_m, mass_kg, run, the run's metrics, then the cell's
-    medians as median_*, zone3_probability and agreement)."""
+    """Chart.to_dataframe(): tidy, one row per cell (gap outer, mass inner, as `thud sweep
+    --csv`): the schema's `sweep` columns (mass_kg, gap_m, the metrics); with an ensemble its
+    `sweep_ensemble` columns (mass_kg, gap_m, runs, the medians as metrics, X_p10 / X_median /
+    X_p90 of e, e_fit, U0max and SPLmax, zone3_probability, agreement)."""
     d = c.as_dict()
     gaps, masses = np.asarray(c.gaps_m), np.asarray(c.masses_kg)
     shape = (len(gaps), len(masses))
-    cells = _grids(d, shape)
-    attrs = {"design": c.design, "thresholds": c.thresholds, "runs": c.runs}
     g, m = np.meshgrid(gaps, masses, indexing="ij")
+    sources: Dict[str, Any] = {k: v.ravel() for k, v in _grids(d, shape).items()}
+    sources.update(gap_m=g.ravel(), mass_kg=m.ravel())
+    attrs = {"design": c.design, "thresholds": c.thresholds, "runs": c.runs}
     if not c.runs or c.runs <= 1 or c.ensemble is None:
-        cols = {"gap_m": g.ravel(), "mass_kg": m.ravel()}
-        cols.update((k, v.ravel()) for k, v in cells.items())
-        return _frame(cols, attrs, "Chart.to_dataframe()")
-    n = c.runs
-    runs = _first(_grids(c.ensemble, shape + (n,)), "ball_position_m")
-    cols = {
-        "gap_m": np.repeat(g.ravel(), n),
-        "mass_kg": np.repeat(m.ravel(), n),
-        "run": np.tile(np.arange(n), g.size),
-    }
-    cols.update((k, v.reshape(-1)) for k, v in runs.items())
-    for k, v in cells.items():
-        name = k if k in ("zone3_probability", "agreement") else f"median_{k}"
-        cols[name] = np.repeat(v.ravel(), n)
-    return _frame(cols, attrs, "Chart.to_dataframe()")
+        return _frame(_table("sweep", sources), attrs, "Chart.to_dataframe()")
+    sources["runs"] = np.full(g.size, c.runs, dtype=np.int64)
+    sources.update((k, np.asarray(v).ravel()) for k, v in _flat_spread(c.spread or {}).items())
+    return _frame(_table("sweep_ensemble", sources), attrs, "Chart.to_dataframe()")
+
+
+def chart_runs_frame(c: Any) -> Any:
+    """Chart.runs_frame(): one row per run of each cell of an ensemble chart: the columns of a
+    CSV part of `thud sweep --shard` but its `index` and `truncated` (run, mass_kg, gap_m,
+    ball_position_m, the run's metrics)."""
+    if not c.runs or c.runs <= 1 or c.ensemble is None:
+        raise ValueError("Chart.runs_frame() needs a chart of ensembles (sweep(…, ensemble=N) with N > 1)")
+    gaps, masses = np.asarray(c.gaps_m), np.asarray(c.masses_kg)
+    shape, n = (len(gaps), len(masses)), c.runs
+    g, m = np.meshgrid(gaps, masses, indexing="ij")
+    sources: Dict[str, Any] = {k: v.reshape(-1) for k, v in _grids(c.ensemble, shape + (n,)).items()}
+    sources.update(gap_m=np.repeat(g.ravel(), n), mass_kg=np.repeat(m.ravel(), n), run=np.tile(np.arange(n), g.size))
+    names = [k for k in schema_names("shard_part") if k not in ("index", "truncated")]
+    attrs = {"design": c.design, "thresholds": c.thresholds, "runs": c.runs}
+    return _frame({k: sources[k] for k in names}, attrs, "Chart.runs_frame()")
 
 
 def _flat_spread(spread: Dict[str, Any]) -> Dict[str, Any]:
@@ -181,29 +207,21 @@ def chart_xarray(c: Any) -> Any:
 
 
 def response_frame(r: Any) -> Any:
-    """Response.to_dataframe(): one row per frequency of each sweep (direction, freq_hz, the
-    point's figures; an ensemble's spread as {figure}_p10 / _median / _p90)."""
-    rows: Dict[str, List[Any]] = {}
-    parts = []
+    """Response.to_dataframe(): one row per frequency of each sweep, the schema's `response`
+    columns (direction, freq_hz, the point's figures), with an ensemble its `response_ensemble`
+    columns (direction, freq_hz, runs, each figure's X_p10 / X_median / X_p90, …)."""
+    table = "response_ensemble" if r.runs and r.runs > 1 else "response"
+    names = schema_names(table)
+    rows: Dict[str, List[Any]] = {k: [] for k in names}
     for sweep in r.sweeps:
-        cols: Dict[str, Any] = {}
-        for k, v in sweep.items():
-            if k == "direction" or k == "ensemble":
-                continue
-            if k == "spread" and isinstance(v, dict):
-                cols.update(_flat_spread(v))
-            elif isinstance(v, np.ndarray) and v.ndim == 1:
-                cols[k] = v
-        cols = _first(cols, "freq_hz")
-        n = len(cols.get("freq_hz", []))
-        parts.append(({"direction": [sweep["direction"]] * n, **cols}, n))
-    for cols, _ in parts:
-        for k in cols:
-            rows.setdefault(k, [])
-    for cols, n in parts:
-        for k in rows:
-            v = cols.get(k)
-            rows[k].extend(list(v) if v is not None else [None] * n)
+        sources: Dict[str, Any] = {k: v for k, v in sweep.items() if isinstance(v, np.ndarray) and v.ndim == 1}
+        if isinstance(sweep.get("spread"), dict):
+            sources.update(_flat_spread(sweep["spread"]))
+        n = len(sources.get("freq_hz", []))
+        sources["direction"] = [sweep["direction"]] * n
+        sources["runs"] = [r.runs] * n
+        for k, v in _table(table, sources).items():
+            rows[k].extend(list(v))
     attrs = {"design": r.design, "force_n": r.force_n, "runs": r.runs, "continuation": r.continuation}
     return _frame(rows, attrs, "Response.to_dataframe()")
 
@@ -326,9 +344,10 @@ def response_xarray(r: Any) -> Any:
     return xr.Dataset(data, coords=coords, attrs=_attrs_json(attrs))
 
 
-#: The metric fields of a study cell (`thud sweep --vary --json`), in order.
-_STUDY_METRICS = ["n_impacts", "inclination_cm_s", "inclination_fit_cm_s", "u0_max_m_s", "zdot_abs_max_m_s",
-                  "spl_max_db", "contact_duration_s", "restitution_mean", "zone"]
+def _study_metrics() -> List[str]:
+    """The metric fields of a study cell (`thud sweep --vary --json`), in order: the schema's
+    `sweep` columns after mass_kg and gap_m."""
+    return schema_names("sweep")[2:]
 
 
 def study_xarray(record: Dict[str, Any]) -> Any:
@@ -344,7 +363,7 @@ def study_xarray(record: Dict[str, Any]) -> Any:
               for dim, a in zip(dims, axes)}
     cells = record["cells"]
     data: Dict[str, Any] = {}
-    for k in _STUDY_METRICS:
+    for k in _study_metrics():
         if k in ("n_impacts", "zone"):
             arr = np.array([c.get(k) or 0 for c in cells], dtype=np.int64)
         else:

@@ -1,0 +1,341 @@
+//! The one data schema: every table thud writes (the command line's CSV files, the rows of its
+//! JSON records, Python's DataFrames) as an ordered list of columns, each with its name, unit
+//! and meaning. The CSV writers take their header from here, Python builds its DataFrames from
+//! here (`thud.schema()`), and the tests check the JSON records, the guide's schema page
+//! (docs/guide/schema.md) and Python's columns against it (issue 26, item 5).
+//!
+//! Spelling: snake_case, SI, the unit in the name (`mass_kg`, `gap_m`, `spl_max_db`), a count as
+//! `n_…`, a pure number with no suffix; an ensemble's percentiles of a metric `X` as `X_p10`,
+//! `X_median`, `X_p90`. A table of a JSON record is that record flattened: the keys of a nested
+//! `metrics` object in place, a `spread` object's `{X: {p10, median, p90}}` as `X_p10`,
+//! `X_median`, `X_p90`, and a key of the enclosing record (a response's `direction`, an
+//! ensemble's `runs`) in front.
+
+/// One column: its name (the CSV header, the JSON key, the DataFrame column), its unit
+/// (`"1"` for a pure number, `"—"` for text or a flag) and what it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Column {
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub doc: &'static str,
+}
+
+/// One table: an identifier (`thud.schema()`'s key), what writes it, and its columns in order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Table {
+    pub id: &'static str,
+    pub written_by: &'static str,
+    pub columns: &'static [Column],
+}
+
+impl Table {
+    /// The column names in order.
+    pub fn names(&self) -> Vec<&'static str> {
+        self.columns.iter().map(|c| c.name).collect()
+    }
+}
+
+const fn col(name: &'static str, unit: &'static str, doc: &'static str) -> Column {
+    Column { name, unit, doc }
+}
+
+// Time series.
+const T_S: Column = col("t_s", "s", "time (of a sample; of an impact's onset)");
+const P_PA: Column = col("p_pa", "Pa", "sound pressure at the observer");
+const X_M: Column = col("x_m", "m", "main mass displacement");
+const Y_M: Column = col("y_m", "m", "ball displacement");
+const X_FREE_M: Column = col("x_free_m", "m", "main mass without the damper");
+
+// One impact.
+const WALL: Column = col("wall", "±1", "the wall hit: +1 upper, −1 lower");
+const U_IN_M_S: Column = col("u_in_m_s", "m/s", "relative speed into the contact");
+const U_OUT_M_S: Column = col("u_out_m_s", "m/s", "relative speed out of the contact");
+const RESTITUTION: Column = col("restitution", "1", "u_out/u_in of the impact");
+const T_END_S: Column = col("t_end_s", "s", "contact end");
+const DURATION_S: Column = col("duration_s", "s", "contact duration");
+const PENETRATION_MAX_M: Column = col("penetration_max_m", "m", "largest penetration δ");
+const SPL_DB: Column = col("spl_db", "dB", "SPL, rms over τ from the direct arrival (re 20 µPa)");
+
+// The metrics of a run (design::Metrics, in its serde order).
+const N_IMPACTS: Column = col("n_impacts", "1", "impacts in the run");
+const INCLINATION_CM_S: Column = col("inclination_cm_s", "cm/s", "damping inclination e (Eq 27)");
+const INCLINATION_FIT_CM_S: Column = col("inclination_fit_cm_s", "cm/s", "the robust inclination e_fit");
+const U0_MAX_M_S: Column = col("u0_max_m_s", "m/s", "largest contact speed U0max");
+const ZDOT_ABS_MAX_M_S: Column = col("zdot_abs_max_m_s", "m/s", "largest relative speed |z'| including t = 0");
+const SPL_MAX_DB: Column = col("spl_max_db", "dB", "SPLmax, the SPL of an impact at U0max");
+const CONTACT_DURATION_S: Column = col("contact_duration_s", "s", "Hertz contact duration at U0max");
+const RESTITUTION_MEAN: Column = col("restitution_mean", "1", "mean u_out/u_in over the impacts");
+const ZONE: Column = col("zone", "1–4", "design-chart zone (empty when there is none)");
+
+// Designs, ensembles, parts.
+const MASS_KG: Column = col("mass_kg", "kg", "impact (ball) mass m");
+const GAP_M: Column = col("gap_m", "m", "total clearance d");
+const BALL_POSITION_M: Column = col("ball_position_m", "m", "initial offset y0 of the ball of one run");
+const RUNS: Column = col("runs", "1", "runs N of an ensemble");
+const RUN: Column = col("run", "1", "run k of an ensemble, from 0");
+const INDEX: Column = col("index", "1", "cell number in the grid (row-major, gap outer), from 0");
+const ZONE3_PROBABILITY: Column = col("zone3_probability", "1", "fraction of the runs in zone 3");
+const AGREEMENT: Column = col("agreement", "1", "fraction of the runs in the zone of the medians");
+const TRUNCATED_REASON: Column = col("truncated", "—", "the solver work cap that stopped the run (else empty)");
+
+// A forced response.
+const DIRECTION: Column = col("direction", "—", "the sweep: from_rest, up or down");
+const FREQ_HZ: Column = col("freq_hz", "Hz", "forcing frequency f");
+const PERIODS: Column = col("periods", "1", "forcing periods in the steady-state window");
+const WINDOW_START_S: Column = col("window_start_s", "s", "start of the steady-state window");
+const WINDOW_END_S: Column = col("window_end_s", "s", "end of the steady-state window");
+const AMPLITUDE_M: Column = col("amplitude_m", "m", "steady amplitude of the main mass");
+const AMPLITUDE_LINEAR_M: Column = col("amplitude_linear_m", "m", "the closed-form amplitude without the damper");
+const REDUCTION_DB: Column = col("reduction_db", "dB", "20·log10(linear / damped amplitude)");
+const IMPACTS_PER_PERIOD: Column = col("impacts_per_period", "1", "impacts per forcing period");
+const LEQ_DB: Column = col("leq_db", "dB", "equivalent level Leq over the window");
+const PERIODIC: Column = col("periodic", "—", "true when the steady state is periodic");
+const SETTLED: Column = col("settled", "—", "true when the run settled");
+const TRUNCATED: Column = col("truncated", "—", "true when a work cap stopped a run before its window's end");
+const FINAL_TIME_S: Column = col("final_time_s", "s", "where the run ended");
+const PERIODIC_FRACTION: Column = col("periodic_fraction", "1", "fraction of the runs periodic");
+const SETTLED_FRACTION: Column = col("settled_fraction", "1", "fraction of the runs settled");
+
+/// The three percentiles of an ensemble of the metric `$name` (unit `$unit`).
+macro_rules! spread {
+    ($name:literal, $unit:literal) => {
+        [
+            col(concat!($name, "_p10"), $unit, concat!("10th percentile over the runs of ", $name)),
+            col(concat!($name, "_median"), $unit, concat!("median over the runs of ", $name)),
+            col(concat!($name, "_p90"), $unit, concat!("90th percentile over the runs of ", $name)),
+        ]
+    };
+}
+
+const INCLINATION_SPREAD: [Column; 3] = spread!("inclination_cm_s", "cm/s");
+const FIT_SPREAD: [Column; 3] = spread!("inclination_fit_cm_s", "cm/s");
+const U0_SPREAD: [Column; 3] = spread!("u0_max_m_s", "m/s");
+const SPL_SPREAD: [Column; 3] = spread!("spl_max_db", "dB");
+const AMPLITUDE_SPREAD: [Column; 3] = spread!("amplitude_m", "m");
+const REDUCTION_SPREAD: [Column; 3] = spread!("reduction_db", "dB");
+const IMPACTS_SPREAD: [Column; 3] = spread!("impacts_per_period", "1");
+const LEQ_SPREAD: [Column; 3] = spread!("leq_db", "dB");
+
+/// `thud pulse --csv`, `export csv waveform`; Python `Pulse.to_dataframe()`.
+pub const PULSE: Table = Table { id: "pulse", written_by: "pulse --csv, export csv waveform", columns: &[T_S, P_PA] };
+
+/// `thud simulate --csv`, `export csv history`; Python `Run.history_frame()`.
+pub const HISTORY: Table =
+    Table { id: "history", written_by: "simulate --csv, export csv history", columns: &[T_S, X_M, Y_M, X_FREE_M] };
+
+/// `export csv impacts`, the rows of `simulate --json`'s `impacts`; Python `Run.impacts_frame()`.
+pub const IMPACTS: Table = Table {
+    id: "impacts",
+    written_by: "export csv impacts, simulate --json impacts[]",
+    columns: &[T_S, WALL, U_IN_M_S, U_OUT_M_S, RESTITUTION, T_END_S, DURATION_S, PENETRATION_MAX_M, SPL_DB],
+};
+
+/// `thud simulate --ensemble N --csv`, the rows of its JSON `ensemble`; Python
+/// `Ensemble.to_dataframe()`.
+pub const ENSEMBLE: Table = Table {
+    id: "ensemble",
+    written_by: "simulate --ensemble N --csv, simulate --ensemble N --json ensemble[]",
+    columns: &[
+        BALL_POSITION_M,
+        N_IMPACTS,
+        INCLINATION_CM_S,
+        INCLINATION_FIT_CM_S,
+        U0_MAX_M_S,
+        ZDOT_ABS_MAX_M_S,
+        SPL_MAX_DB,
+        CONTACT_DURATION_S,
+        RESTITUTION_MEAN,
+        ZONE,
+    ],
+};
+
+/// `thud sweep --csv`, `export csv sweep`, a cell of `sweep --json` (`mass_kg`, `gap_m`,
+/// `metrics.*`); Python `Chart.to_dataframe()`.
+pub const SWEEP: Table = Table {
+    id: "sweep",
+    written_by: "sweep --csv, export csv sweep, sweep --json chart.cells[]",
+    columns: &[
+        MASS_KG,
+        GAP_M,
+        N_IMPACTS,
+        INCLINATION_CM_S,
+        INCLINATION_FIT_CM_S,
+        U0_MAX_M_S,
+        ZDOT_ABS_MAX_M_S,
+        SPL_MAX_DB,
+        CONTACT_DURATION_S,
+        RESTITUTION_MEAN,
+        ZONE,
+    ],
+};
+
+/// `thud sweep --ensemble N --csv` and `merge`, a cell of `sweep --ensemble N --json`
+/// flattened (its metrics are the medians); Python `Chart.to_dataframe()` of an ensemble chart.
+pub const SWEEP_ENSEMBLE: Table = Table {
+    id: "sweep_ensemble",
+    written_by: "sweep --ensemble N --csv, merge, sweep --ensemble N --json chart.cells[]",
+    columns: &[
+        MASS_KG,
+        GAP_M,
+        RUNS,
+        N_IMPACTS,
+        INCLINATION_CM_S,
+        INCLINATION_FIT_CM_S,
+        U0_MAX_M_S,
+        ZDOT_ABS_MAX_M_S,
+        SPL_MAX_DB,
+        CONTACT_DURATION_S,
+        RESTITUTION_MEAN,
+        ZONE,
+        INCLINATION_SPREAD[0],
+        INCLINATION_SPREAD[1],
+        INCLINATION_SPREAD[2],
+        FIT_SPREAD[0],
+        FIT_SPREAD[1],
+        FIT_SPREAD[2],
+        U0_SPREAD[0],
+        U0_SPREAD[1],
+        U0_SPREAD[2],
+        SPL_SPREAD[0],
+        SPL_SPREAD[1],
+        SPL_SPREAD[2],
+        ZONE3_PROBABILITY,
+        AGREEMENT,
+    ],
+};
+
+/// A CSV part of `thud sweep [--ensemble N] --shard K/N --csv --out FILE`: one row per run of each
+/// cell; Python `Chart.runs_frame()` has these columns but `index` and `truncated`.
+pub const SHARD_PART: Table = Table {
+    id: "shard_part",
+    written_by: "sweep --shard K/N --csv --out FILE, a part merge reads",
+    columns: &[
+        INDEX,
+        RUN,
+        MASS_KG,
+        GAP_M,
+        BALL_POSITION_M,
+        N_IMPACTS,
+        INCLINATION_CM_S,
+        INCLINATION_FIT_CM_S,
+        U0_MAX_M_S,
+        ZDOT_ABS_MAX_M_S,
+        SPL_MAX_DB,
+        CONTACT_DURATION_S,
+        RESTITUTION_MEAN,
+        ZONE,
+        TRUNCATED_REASON,
+    ],
+};
+
+/// `thud response --csv`: a point of `response --json` with its sweep's `direction` in
+/// front; Python `Response.to_dataframe()`.
+pub const RESPONSE: Table = Table {
+    id: "response",
+    written_by: "response --csv, response --json sweeps[].points[]",
+    columns: &[
+        DIRECTION,
+        FREQ_HZ,
+        PERIODS,
+        WINDOW_START_S,
+        WINDOW_END_S,
+        AMPLITUDE_M,
+        AMPLITUDE_LINEAR_M,
+        REDUCTION_DB,
+        IMPACTS_PER_PERIOD,
+        LEQ_DB,
+        PERIODIC,
+        SETTLED,
+        TRUNCATED,
+        FINAL_TIME_S,
+    ],
+};
+
+/// `thud response --ensemble N --csv`: a point of its JSON flattened, with the sweep's
+/// `direction` and the `runs` in front; Python `Response.to_dataframe()` of an ensemble.
+pub const RESPONSE_ENSEMBLE: Table = Table {
+    id: "response_ensemble",
+    written_by: "response --ensemble N --csv, response --ensemble N --json sweeps[].points[]",
+    columns: &[
+        DIRECTION,
+        FREQ_HZ,
+        RUNS,
+        AMPLITUDE_LINEAR_M,
+        AMPLITUDE_SPREAD[0],
+        AMPLITUDE_SPREAD[1],
+        AMPLITUDE_SPREAD[2],
+        REDUCTION_SPREAD[0],
+        REDUCTION_SPREAD[1],
+        REDUCTION_SPREAD[2],
+        IMPACTS_SPREAD[0],
+        IMPACTS_SPREAD[1],
+        IMPACTS_SPREAD[2],
+        LEQ_SPREAD[0],
+        LEQ_SPREAD[1],
+        LEQ_SPREAD[2],
+        PERIODIC_FRACTION,
+        SETTLED_FRACTION,
+        TRUNCATED,
+    ],
+};
+
+/// Every table, in the guide's order.
+pub const TABLES: [Table; 9] =
+    [PULSE, HISTORY, IMPACTS, ENSEMBLE, SWEEP, SWEEP_ENSEMBLE, SHARD_PART, RESPONSE, RESPONSE_ENSEMBLE];
+
+/// The table `id`, if there is one.
+pub fn table(id: &str) -> Option<&'static Table> {
+    TABLES.iter().find(|t| t.id == id)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::{BTreeMap, BTreeSet};
+
+    #[test]
+    fn names_are_unique_snake_case_and_one_name_has_one_unit() {
+        let mut unit_of: BTreeMap<&str, &str> = BTreeMap::new();
+        for t in &TABLES {
+            let names: BTreeSet<&str> = t.names().into_iter().collect();
+            assert_eq!(names.len(), t.columns.len(), "{}: a name twice", t.id);
+            for c in t.columns {
+                assert!(
+                    c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'),
+                    "{}",
+                    c.name
+                );
+                assert!(!c.doc.is_empty() && !c.unit.is_empty(), "{}", c.name);
+                if c.name != "truncated" {
+                    let was = unit_of.insert(c.name, c.unit);
+                    assert!(was.is_none_or(|u| u == c.unit), "{}: two units", c.name);
+                }
+            }
+        }
+        assert_eq!(table("sweep"), Some(&SWEEP));
+        assert_eq!(table("nothing"), None);
+    }
+
+    #[test]
+    fn a_sweep_cell_is_the_metrics_serde_order_after_mass_and_gap() {
+        let m = crate::design::Metrics {
+            n_impacts: 0,
+            inclination_cm_s: None,
+            inclination_fit_cm_s: None,
+            u0_max_m_s: 0.0,
+            zdot_abs_max_m_s: 0.0,
+            spl_max_db: None,
+            contact_duration_s: None,
+            restitution_mean: None,
+            zone: None,
+        };
+        // serde_json's map sorts its keys: read the order off the text, which keeps it.
+        let text = serde_json::to_string(&m).unwrap_or_default();
+        let mut keys: Vec<(usize, &str)> =
+            text.split('"').skip(1).step_by(2).map(|k| (text.find(&format!("\"{k}\":")).unwrap_or(0), k)).collect();
+        keys.sort_unstable();
+        let keys: Vec<&str> = keys.into_iter().map(|(_, k)| k).collect();
+        assert_eq!(keys, SWEEP.names()[2..].to_vec());
+        assert_eq!(keys, ENSEMBLE.names()[1..].to_vec());
+    }
+}

@@ -1,0 +1,127 @@
+"""One schema (issue 26, item 5): Python's DataFrames have the columns of the engine's one
+definition (``thud.schema()``), which are the command line's CSV headers for the same result —
+pulse, simulate (history, impacts), ensemble, sweep, sweep of ensembles, shard parts, response,
+response of ensembles — and every result compares equal after a pickle round trip."""
+
+import copy
+import pickle
+
+import pytest
+
+import thud
+
+pd = pytest.importorskip("pandas", reason="pandas is not installed")
+
+SCHEMA = thud.schema()
+GRID = ["--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"]
+FORCED = ["--force-amplitude", "1N", "--freqs", "5Hz:6Hz:2", "--duration", "2"]
+
+
+def names(table):
+    return [c[0] for c in SCHEMA[table]]
+
+
+def header(text):
+    """The CSV header of a command's output (the first line not a `#` comment)."""
+    return next(line for line in text.splitlines() if not line.startswith("#")).split(",")
+
+
+def test_the_schema_is_every_table_with_name_unit_and_meaning():
+    assert set(SCHEMA) == {"pulse", "history", "impacts", "ensemble", "sweep", "sweep_ensemble", "shard_part",
+                           "response", "response_ensemble"}
+    for table, cols in SCHEMA.items():
+        assert len({c[0] for c in cols}) == len(cols), table
+        for name, unit, doc in cols:
+            assert name == name.lower() and " " not in name and unit and doc, (table, name)
+    assert names("sweep")[:2] == ["mass_kg", "gap_m"]
+    assert names("response")[0] == "direction"
+
+
+#: (table, the Python table, the command line writing the same table)
+CASES = {
+    "pulse": (lambda: thud.pulse(points=3).to_dataframe(), ["pulse", "--csv", "--points", "3"]),
+    "history": (lambda: thud.simulate(samples=3).history_frame(), ["simulate", "--csv", "--samples", "3"]),
+    "impacts": (lambda: thud.simulate(duration=0.5).impacts_frame(), None),
+    "ensemble": (lambda: thud.simulate_ensemble(3, duration=0.5).to_dataframe(),
+                 ["simulate", "--csv", "--ensemble", "3", "--duration", "0.5"]),
+    "sweep": (lambda: thud.sweep("30g:40g:2", "2cm:3cm:2").to_dataframe(), ["sweep", "--csv", *GRID]),
+    "sweep_ensemble": (lambda: thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5, ensemble=2).to_dataframe(),
+                       ["sweep", "--csv", "--ensemble", "2", "--duration", "0.5", *GRID]),
+    "response": (lambda: thud.response("5Hz:6Hz:2", force=1, duration=2).to_dataframe(), ["response", "--csv", *FORCED]),
+    "response_ensemble": (lambda: thud.response("5Hz:6Hz:2", force=1, duration=2, ensemble=2).to_dataframe(),
+                          ["response", "--csv", "--ensemble", "2", *FORCED]),
+}
+
+
+@pytest.mark.parametrize("table", list(CASES))
+def test_python_columns_are_the_schema_s_and_the_command_line_s(table, cli, tmp_path):
+    frame, args = CASES[table]
+    df = frame()
+    assert list(df.columns) == names(table)
+    if args is None:  # written to a file
+        out = tmp_path / f"{table}.csv"
+        code, _, err = cli("export", "csv", table, "--duration", "0.5", "--out", str(out))
+        assert code == 0, err
+        text = out.read_text()
+    else:
+        code, text, err = cli(*args)
+        assert code == 0, err
+    assert header(text) == list(df.columns), f"thud {args}: the CSV header is Python's columns"
+
+
+def test_the_same_numbers_under_the_same_names(cli):
+    """A DataFrame and the command line's CSV of the same sweep: equal column by column."""
+    import io
+
+    df = thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5, ensemble=2).to_dataframe()
+    code, text, err = cli("sweep", "--csv", "--ensemble", "2", "--duration", "0.5", *GRID)
+    assert code == 0, err
+    csv = pd.read_csv(io.StringIO(text))
+    assert list(csv.columns) == list(df.columns)
+    for k in df.columns:
+        want = csv[k].fillna(0).to_numpy() if k == "zone" else csv[k].to_numpy()
+        assert list(df[k].to_numpy()) == pytest.approx(list(want), rel=0, abs=0, nan_ok=True), k
+
+
+def test_runs_frame_is_the_shard_part_but_its_place_in_the_part(cli, tmp_path):
+    c = thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5, ensemble=2)
+    part = tmp_path / "part.csv"
+    code, _, err = cli("sweep", "--csv", "--ensemble", "2", "--duration", "0.5", *GRID, "--shard", "0/1",
+                       "--out", str(part))
+    assert code == 0, err
+    cols = header(part.read_text())
+    assert cols == names("shard_part")
+    assert list(c.runs_frame().columns) == [k for k in cols if k not in ("index", "truncated")]
+
+
+RESULTS = {
+    "Pulse": lambda: thud.pulse(points=100),
+    "Run": lambda: thud.simulate(duration=0.5, samples=50),
+    "Ensemble": lambda: thud.simulate_ensemble(3, duration=0.5),
+    "Chart": lambda: thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5),
+    "ensemble Chart": lambda: thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5, ensemble=2),
+    "Response": lambda: thud.response("5Hz:6Hz:2", force=1, duration=2),
+    "ensemble Response": lambda: thud.response("5Hz:6Hz:2", force=1, duration=2, ensemble=2),
+}
+OTHER = {
+    "Pulse": lambda: thud.pulse(points=100, u0=1.5),
+    "Run": lambda: thud.simulate(duration=0.5, samples=50, v0=1.5),
+    "Ensemble": lambda: thud.simulate_ensemble(3, duration=0.5, v0=1.5),
+    "Chart": lambda: thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5, v0=1.5),
+    "ensemble Chart": lambda: thud.sweep("30g:40g:2", "2cm:3cm:2", duration=0.5, ensemble=3),
+    "Response": lambda: thud.response("5Hz:6Hz:2", force=1.5, duration=2),
+    "ensemble Response": lambda: thud.response("5Hz:6Hz:2", force=1, duration=2, ensemble=3),
+}
+
+
+@pytest.mark.parametrize("what", list(RESULTS))
+def test_a_result_equals_itself_after_a_pickle_round_trip_and_not_another(what):
+    r = RESULTS[what]()
+    for proto in (2, pickle.HIGHEST_PROTOCOL):
+        back = pickle.loads(pickle.dumps(r, protocol=proto))
+        assert back == r and not (back != r)
+    assert copy.deepcopy(r) == r
+    assert RESULTS[what]() == r, "the same computation twice is the same result"
+    other = OTHER[what]()
+    assert other != r and not (other == r)
+    assert r != "a string" and r != None  # noqa: E711 — comparing with another type is False

@@ -1,0 +1,359 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
+//! One schema (issue 26, item 5): every CSV header the command line writes and every record of
+//! its JSON are the engine's one definition (`thud_core::schema`) — names and order — for
+//! pulse, simulate (history, impacts), ensemble, sweep, sweep of ensembles, response, response
+//! of ensembles, shard parts and merge; and the guide's schema page lists every table as the
+//! definition has it.
+
+use std::path::Path;
+
+use serde_json::Value;
+use thud_core::schema::{self, Table};
+
+use crate::common::thud;
+
+fn ok(args: &[&str]) -> String {
+    let (code, out, err) = thud(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    out
+}
+
+/// The CSV header of `text` (the first line not a `#` comment).
+fn header(text: &str) -> Vec<String> {
+    text.lines().find(|l| !l.starts_with('#')).unwrap().split(',').map(str::to_string).collect()
+}
+
+fn names(t: &Table) -> Vec<String> {
+    t.names().into_iter().map(str::to_string).collect()
+}
+
+/// The keys of a JSON record in their written order (serde_json's map sorts them, so they are
+/// read off the text), nested `metrics` in place and a `spread` `{X: {p10, median, p90}}` as
+/// `X_p10`, `X_median`, `X_p90`; lists (an ensemble's runs) left out.
+fn flat_keys(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut de = serde_json::Deserializer::from_str(text);
+    let v: indexed::Ordered = serde::Deserialize::deserialize(&mut de).unwrap();
+    flatten(&v, "", &mut out);
+    out
+}
+
+/// The top-level keys of a JSON object's text, in their written order, whatever their values.
+fn top_keys(text: &str) -> Vec<String> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    match serde::Deserialize::deserialize(&mut de).unwrap() {
+        indexed::Ordered::Map(entries) => entries.into_iter().map(|(k, _)| k).collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// The text of the first object in the list `list` of the JSON text `text`.
+fn first_record(text: &str, list: &str) -> String {
+    let at = text.find(&format!("\"{list}\": [")).or_else(|| text.find(&format!("\"{list}\":["))).unwrap();
+    object_at(text, at)
+}
+
+/// The text of the object `key` of the JSON text `text`.
+fn object(text: &str, key: &str) -> String {
+    let at = text.find(&format!("\"{key}\": {{")).or_else(|| text.find(&format!("\"{key}\":{{"))).unwrap();
+    object_at(text, at)
+}
+
+/// The first `{…}` of `text` after `at` (no braces inside strings in thud's records).
+fn object_at(text: &str, at: usize) -> String {
+    let open = at + text[at..].find('{').unwrap();
+    let mut depth = 0;
+    for (i, ch) in text[open..].char_indices() {
+        match ch {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return text[open..=open + i].to_string();
+                }
+            }
+            _ => {}
+        }
+    }
+    panic!("an unclosed object")
+}
+
+fn flatten(v: &indexed::Ordered, prefix: &str, out: &mut Vec<String>) {
+    if let indexed::Ordered::Map(entries) = v {
+        for (k, x) in entries {
+            match x {
+                indexed::Ordered::Map(_) if k == "metrics" => flatten(x, "", out),
+                indexed::Ordered::Map(_) if k == "spread" => {
+                    if let indexed::Ordered::Map(metrics) = x {
+                        for (metric, stats) in metrics {
+                            flatten(stats, &format!("{metric}_"), out);
+                        }
+                    }
+                }
+                indexed::Ordered::List => {}
+                _ => out.push(format!("{prefix}{k}")),
+            }
+        }
+    }
+}
+
+/// A JSON value that keeps its keys' order (for the order check only).
+mod indexed {
+    use serde::de::{Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
+    use std::fmt;
+
+    pub enum Ordered {
+        Map(Vec<(String, Ordered)>),
+        List,
+        Scalar,
+    }
+
+    impl<'de> Deserialize<'de> for Ordered {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            struct V;
+            impl<'de> Visitor<'de> for V {
+                type Value = Ordered;
+                fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                    f.write_str("JSON")
+                }
+                fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> Result<Ordered, A::Error> {
+                    let mut v = Vec::new();
+                    while let Some((k, x)) = m.next_entry::<String, Ordered>()? {
+                        v.push((k, x));
+                    }
+                    Ok(Ordered::Map(v))
+                }
+                fn visit_seq<A: SeqAccess<'de>>(self, mut s: A) -> Result<Ordered, A::Error> {
+                    while s.next_element::<Ordered>()?.is_some() {}
+                    Ok(Ordered::List)
+                }
+                fn visit_bool<E>(self, _: bool) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_i64<E>(self, _: i64) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_u64<E>(self, _: u64) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_f64<E>(self, _: f64) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_str<E>(self, _: &str) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_unit<E>(self) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_none<E>(self) -> Result<Ordered, E> {
+                    Ok(Ordered::Scalar)
+                }
+                fn visit_some<D: Deserializer<'de>>(self, d: D) -> Result<Ordered, D::Error> {
+                    Ordered::deserialize(d)
+                }
+            }
+            d.deserialize_any(V)
+        }
+    }
+}
+
+const GRID: [&str; 4] = ["--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"];
+const FORCED: [&str; 6] = ["--force-amplitude", "1N", "--freqs", "5Hz:6Hz:2", "--duration", "2"];
+
+#[test]
+fn every_cli_csv_header_is_the_one_definition() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut checked = Vec::new();
+    let mut check = |what: String, text: &str, t: &Table| {
+        assert_eq!(header(text), names(t), "{what}: the header is not the schema's `{}` table", t.id);
+        checked.push(t.id);
+    };
+    for (what, t) in [
+        ("waveform", &schema::PULSE),
+        ("history", &schema::HISTORY),
+        ("impacts", &schema::IMPACTS),
+        ("sweep", &schema::SWEEP),
+    ] {
+        let out = dir.path().join(format!("{what}.csv"));
+        ok(&[&["export", "csv", what, "--points", "5", "--out", out.to_str().unwrap()][..], &GRID[..]].concat());
+        check(format!("export csv {what}"), &std::fs::read_to_string(&out).unwrap(), t);
+    }
+    let runs: Vec<(&str, Vec<&str>, &Table)> = vec![
+        ("pulse --csv", vec!["pulse", "--csv", "--points", "3"], &schema::PULSE),
+        ("simulate --csv", vec!["simulate", "--csv", "--samples", "3"], &schema::HISTORY),
+        (
+            "simulate --ensemble --csv",
+            vec!["simulate", "--csv", "--ensemble", "3", "--duration", "0.5"],
+            &schema::ENSEMBLE,
+        ),
+        ("sweep --csv", [&["sweep", "--csv"][..], &GRID[..]].concat(), &schema::SWEEP),
+        (
+            "sweep --ensemble --csv",
+            [&["sweep", "--csv", "--ensemble", "2", "--duration", "0.5"][..], &GRID[..]].concat(),
+            &schema::SWEEP_ENSEMBLE,
+        ),
+        ("response --csv", [&["response", "--csv"][..], &FORCED[..]].concat(), &schema::RESPONSE),
+        (
+            "response --ensemble --csv",
+            [&["response", "--csv", "--ensemble", "2"][..], &FORCED[..]].concat(),
+            &schema::RESPONSE_ENSEMBLE,
+        ),
+    ];
+    for (what, args, t) in runs {
+        check(what.to_string(), &ok(&args), t);
+    }
+    // Shard parts (CSV) and their merge.
+    let parts: Vec<String> = (0..2)
+        .map(|k| {
+            let p = dir.path().join(format!("part-{k}.csv"));
+            let shard = format!("{k}/2");
+            let args = [
+                &["sweep", "--csv", "--ensemble", "2", "--duration", "0.5", "--shard", &shard, "--out"][..],
+                &[p.to_str().unwrap()][..],
+                &GRID[..],
+            ]
+            .concat();
+            ok(&args);
+            std::fs::read_to_string(&p).unwrap()
+        })
+        .collect();
+    for (k, part) in parts.iter().enumerate() {
+        check(format!("sweep --shard {k}/2 --csv part"), part, &schema::SHARD_PART);
+    }
+    let paths: Vec<String> =
+        (0..2).map(|k| dir.path().join(format!("part-{k}.csv")).to_str().unwrap().to_string()).collect();
+    let merged = ok(&["merge", &paths[0], &paths[1], "--out", "-", "--csv"]);
+    check("merge --csv".into(), &merged, &schema::SWEEP_ENSEMBLE);
+    let mut ids = checked.clone();
+    ids.sort_unstable();
+    ids.dedup();
+    assert_eq!(ids.len(), schema::TABLES.len(), "every table of the schema is written by some command: {ids:?}");
+}
+
+#[test]
+fn every_cli_json_record_is_the_one_definition() {
+    let pulse = ok(&["pulse", "--json", "--points", "3"]);
+    let v: Value = serde_json::from_str(&pulse).unwrap();
+    assert_eq!(top_keys(&object(&pulse, "waveform")), names(&schema::PULSE), "pulse --json waveform");
+    assert!(v.get("k_hz_n_m1_5").is_some() && v.get("k_hz").is_none(), "the unit in the key");
+
+    let text = ok(&["simulate", "--json", "--duration", "0.5"]);
+    assert_eq!(flat_keys(&first_record(&text, "impacts")), names(&schema::IMPACTS), "simulate --json impacts[]");
+    let sim: Value = serde_json::from_str(&text).unwrap();
+    let design = &sim["design"];
+    assert_eq!(design["solver"], "event", "enums as the flags spell them");
+    assert_eq!(design["radiation"]["pulse"], "half-sine");
+    assert!(design["ball"].get("density_kg_m3").is_some() && design["damper"].get("k_hz_n_m1_5").is_some());
+
+    let ens = ok(&["simulate", "--json", "--ensemble", "3", "--duration", "0.5"]);
+    assert_eq!(flat_keys(&first_record(&ens, "ensemble")), names(&schema::ENSEMBLE), "simulate --ensemble --json");
+
+    let sweep = ok(&[&["sweep", "--json"][..], &GRID[..]].concat());
+    assert_eq!(flat_keys(&first_record(&sweep, "cells")), names(&schema::SWEEP), "sweep --json cells[]");
+    let sweep_ens = ok(&[&["sweep", "--json", "--ensemble", "2", "--duration", "0.5"][..], &GRID[..]].concat());
+    assert_eq!(
+        flat_keys(&first_record(&sweep_ens, "cells")),
+        names(&schema::SWEEP_ENSEMBLE),
+        "sweep --ensemble --json cells[] (flattened)"
+    );
+
+    let resp = ok(&[&["response", "--json"][..], &FORCED[..]].concat());
+    let mut keys = vec!["direction".to_string()];
+    keys.extend(flat_keys(&first_record(&resp, "points")));
+    assert_eq!(keys, names(&schema::RESPONSE), "response --json: direction, then a point");
+    let resp: Value = serde_json::from_str(&resp).unwrap();
+    assert_eq!(resp["sweeps"][0]["direction"], "from_rest");
+
+    let resp_ens = ok(&[&["response", "--json", "--ensemble", "2"][..], &FORCED[..]].concat());
+    let mut keys = vec!["direction".to_string()];
+    keys.extend(flat_keys(&first_record(&resp_ens, "points")));
+    keys.insert(2, "runs".into());
+    assert_eq!(keys, names(&schema::RESPONSE_ENSEMBLE), "response --ensemble --json: direction, runs, a point");
+    let resp_ens: Value = serde_json::from_str(&resp_ens).unwrap();
+    assert_eq!(resp_ens["runs"], 2);
+}
+
+#[test]
+fn a_json_lines_shard_part_holds_the_shard_table_s_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("part.jsonl");
+    let args = [
+        &["sweep", "--ensemble", "2", "--duration", "0.5", "--shard", "0/1", "--out"][..],
+        &[p.to_str().unwrap()][..],
+        &GRID[..],
+    ]
+    .concat();
+    ok(&args);
+    let text = std::fs::read_to_string(&p).unwrap();
+    let cell = text.lines().nth(1).unwrap();
+    // A cell: index, mass_kg, gap_m, then its runs (each a run of an ensemble).
+    assert_eq!(flat_keys(cell), ["index", "mass_kg", "gap_m"], "{cell}");
+    let v: Value = serde_json::from_str(cell).unwrap();
+    let run = serde_json::to_string(&v["runs"][0]).unwrap();
+    let want: Vec<String> = names(&schema::SHARD_PART);
+    let mut have: Vec<String> = v["runs"][0].as_object().unwrap().keys().cloned().collect();
+    have.extend(["index", "run", "mass_kg", "gap_m", "truncated"].map(String::from));
+    have.sort();
+    have.dedup();
+    let mut sorted = want.clone();
+    sorted.sort();
+    assert_eq!(have, sorted, "a run of a JSON part: the CSV part's columns but its place in the grid: {run}");
+}
+
+/// The guide's schema page lists every table of the definition: its id, then its columns in
+/// order, between `<!-- tables:start -->` and `<!-- tables:end -->`.
+fn tables_markdown() -> String {
+    let mut s = String::new();
+    for t in &schema::TABLES {
+        s += &format!("- `{}` ({}): {}\n", t.id, t.written_by, t.names().join(", "));
+    }
+    s
+}
+
+#[test]
+fn the_guide_s_schema_page_lists_every_table_of_the_definition() {
+    let page = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/schema.md")).unwrap();
+    let start =
+        page.find("<!-- tables:start -->\n").expect("the tables' start marker") + "<!-- tables:start -->\n".len();
+    let end = page.find("<!-- tables:end -->").expect("the tables' end marker");
+    let want = tables_markdown();
+    assert_eq!(page[start..end], want, "docs/guide/schema.md's tables must read:\n{want}");
+    // And the page's column table documents every column with its unit.
+    for t in &schema::TABLES {
+        for c in t.columns {
+            // A percentile column `X_p10` is documented as its metric `X`.
+            let name = ["_p10", "_median", "_p90"].iter().find_map(|s| c.name.strip_suffix(s)).unwrap_or(c.name);
+            let row = page
+                .lines()
+                .find(|l| l.starts_with("| `") && l.split(" | ").next().unwrap().contains(&format!("`{name}`")));
+            let row = row.unwrap_or_else(|| panic!("`{}` ({}) has no row in the schema page's table", c.name, t.id));
+            let unit = row.split(" | ").nth(1).unwrap();
+            assert_eq!(unit, c.unit, "`{}` ({}): the page's unit and the schema's", c.name, t.id);
+        }
+    }
+}
+
+/// Saved designs and presets in thud 0.1's spelling (`solver = "Event"`, `ball = { density =
+/// … }`, `k_hz = …`) load as the same design as today's spelling.
+#[test]
+fn designs_saved_in_thud_0_1_s_spelling_still_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let designs = thud::store::designs_dir(dir.path());
+    std::fs::create_dir_all(&designs).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/thud-presets/presets");
+    let mut renamed = 0;
+    for name in thud_presets::names() {
+        let text = std::fs::read_to_string(root.join(format!("{name}.toml"))).unwrap();
+        let old = text
+            .replace("density_kg_m3 = ", "density = ")
+            .replace("radius_m = ", "radius = ")
+            .replace("solver = \"event\"", "solver = \"Event\"")
+            .replace("k_hz_n_m1_5 = ", "k_hz = ");
+        assert!(!text.contains("solver = \"Event\"") && !text.contains("\nk_hz = "), "{name}: today's spelling");
+        renamed += usize::from(old != text);
+        std::fs::write(designs.join(format!("{name}.toml")), &old).unwrap();
+        let loaded = thud::store::load_design(dir.path(), name).unwrap();
+        assert_eq!(loaded, thud::presets::preset_file(name).unwrap(), "{name}: the old spelling reads as the new");
+    }
+    assert_eq!(renamed, thud_presets::names().count(), "every preset had a renamed key");
+}
