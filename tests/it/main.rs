@@ -38,6 +38,7 @@ mod hostile_files;
 mod hostile_inputs;
 mod hostile_round3;
 mod masri_caughey;
+mod masri_caughey_stability;
 mod params_table;
 mod pdf;
 mod physical_model;

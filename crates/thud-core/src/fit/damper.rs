@@ -250,9 +250,7 @@ pub fn observe(s: &Series, d: &Design) -> Result<Observed, ThudError> {
         // The impacts' spikes last a few samples at a fast rate: more than the median takes out.
         let om = 2.0 * PI / period;
         (0..periods)
-            .map(|j| {
-                window_amplitude_robust(&t, &x, j as f64 * period, (j + 1) as f64 * period, om).unwrap_or(0.0)
-            })
+            .map(|j| window_amplitude_robust(&t, &x, j as f64 * period, (j + 1) as f64 * period, om).unwrap_or(0.0))
             .collect()
     } else {
         envelope(&t, &x, period, periods)
@@ -421,8 +419,7 @@ fn smoothed(v: &[f64]) -> Vec<f64> {
     (0..v.len())
         .map(|k| {
             let (a, b) = (k.saturating_sub(1), (k + 1).min(v.len() - 1));
-            let (sum, count) =
-                v[a..=b].iter().filter(|x| !x.is_nan()).fold((0.0, 0usize), |(s, c), x| (s + x, c + 1));
+            let (sum, count) = v[a..=b].iter().filter(|x| !x.is_nan()).fold((0.0, 0usize), |(s, c), x| (s + x, c + 1));
             if count == 0 || v[k].is_nan() {
                 f64::NAN
             } else {
@@ -551,11 +548,7 @@ fn accepted(table: &Table, observed: &[Observed], periods: usize, all: bool, tai
             Some((at(u0), at(u1)))
         })
         .collect();
-    let hull = acc
-        .iter()
-        .map(|a| a.0)
-        .min_by(f64::total_cmp)
-        .zip(acc.iter().map(|a| a.1).max_by(f64::total_cmp));
+    let hull = acc.iter().map(|a| a.0).min_by(f64::total_cmp).zip(acc.iter().map(|a| a.1).max_by(f64::total_cmp));
     Accepted { stat, medians, bands, hull }
 }
 
@@ -858,7 +851,8 @@ mod tests {
             };
             [v, (-k * x - c * v - f_ball) / big_m, w, f_ball / m]
         };
-        let add = |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
+        let add =
+            |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
         let dt = 5e-7;
         let mut s = [0.0, p.v0_m_s, y0, 0.0];
         let (mut t, mut x, mut a) = (vec![0.0], vec![0.0], vec![accel(s)[1]]);
@@ -918,8 +912,11 @@ mod tests {
             // Acceleration at 10 kHz, 2 % noise of K/M·max|x|, offset and drift alike.
             let (t, x, a) = rk4_record(&d, truth, y0_frac * half, 200, &mut g);
             let peak = x.iter().fold(0.0f64, |m, v| m.max(v.abs())) * d.damper.stiffness_n_m / d.damper.main_mass_kg;
-            let y: Vec<f64> =
-                t.iter().zip(&a).map(|(&ti, &ai)| ai + 0.02 * peak * g.normal() + 0.07 * peak + 0.02 * peak * ti).collect();
+            let y: Vec<f64> = t
+                .iter()
+                .zip(&a)
+                .map(|(&ti, &ai)| ai + 0.02 * peak * g.normal() + 0.07 * peak + 0.02 * peak * ti)
+                .collect();
             let sa = Series::new(t, y, Quantity::Acceleration).unwrap();
             for (kind, s) in [("x", sx), ("a", sa)] {
                 let f = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
