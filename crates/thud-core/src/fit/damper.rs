@@ -22,6 +22,15 @@
 //! The draws use a fixed generator, so an answer is repeatable. (The members' own [min, max]
 //! would be a near-100 % band: evenly spread starts reach the ends of the start's range.)
 //!
+//! Two refinements (docs/model.md §13.2): records that differ from the structure's own decay
+//! beyond their noise are compared only with the members the ball was hit in (the starts it
+//! misses give the structure's decay at every c1 and would leave c1 unbounded); and the
+//! interval is the intersection of two such sets at 97.5 % each (Bonferroni), for the whole
+//! decay's statistic and for its first third's, because the whole decay is not monotone in
+//! c1 where the most damped contacts stop the rattle. Where c1 stays poorly bounded the fit
+//! carries a one-line [`DamperFit::note`]. An acceleration's windows are fitted robustly
+//! ([`window_amplitude_robust`]): its impact spikes last more samples than the median removes.
+//!
 //! The signal in any kind is first turned into the main mass's displacement: a velocity is
 //! integrated (trapezoids; its offset becomes a slope, which each period's fit removes), an
 //! acceleration is divided by −K/M after a 5-sample running median takes out the impacts'
