@@ -32,6 +32,7 @@ mod export;
 mod figures;
 mod files;
 mod fit_cli;
+mod fit_note;
 mod forced;
 mod forced_cli;
 mod hostile_files;

@@ -74,6 +74,9 @@ impl Sys {
     }
 }
 
+/// A complex number (re, im).
+type C = (f64, f64);
+
 /// Eigenvalues (re, im) of a 4×4 matrix: the characteristic polynomial by Faddeev–LeVerrier,
 /// its roots by Durand–Kerner.
 fn eigenvalues(a: [[f64; 4]; 4]) -> Vec<(f64, f64)> {
@@ -98,7 +101,6 @@ fn eigenvalues(a: [[f64; 4]; 4]) -> Vec<(f64, f64)> {
         let tr: f64 = (0..4).map(|i| mul(&a, &mk)[i][i]).sum();
         coef[k] = -tr / k as f64;
     }
-    type C = (f64, f64);
     let cm = |a: C, b: C| (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
     let cd = |a: C, b: C| {
         let n = b.0 * b.0 + b.1 * b.1;
