@@ -338,6 +338,9 @@ fn damper_text(f: &DamperFit, saved: Option<&str>) -> String {
         sig(f.first_impact_speed_m_s, 3)
     );
     s += &format!("  envelope residual rms {} m\n", sig(f.residual_rms, 3));
+    if let Some(note) = &f.note {
+        s += &format!("  note: {note}\n");
+    }
     if let Some(p) = saved {
         s += &format!("Saved as {p}\n");
     }

@@ -11,15 +11,24 @@ use thud::damper::{simulate, single_contact, DamperParams, RunOptions, Solver};
 
 /// One symmetric two-impact orbit of the closed form.
 #[derive(Debug, Clone, Copy)]
-struct Orbit {
+pub(crate) struct Orbit {
     /// Relative approach speed at an impact (m/s).
-    u: f64,
+    pub(crate) u: f64,
     /// Largest |x| over the cycle (m).
-    amplitude: f64,
+    pub(crate) amplitude: f64,
+    /// The main mass's position (m) at the upper-wall impact (t = 0), its velocity just after
+    /// (m/s), the particle's velocity just after (m/s), and the phase β (rad) of the steady
+    /// particular motion `X·cos(Ωt + β)`.
+    pub(crate) x0: f64,
+    pub(crate) v_after: f64,
+    pub(crate) w_after: f64,
+    pub(crate) beta: f64,
+    /// The particular motion's amplitude X (m).
+    pub(crate) big_x: f64,
 }
 
 /// The damped oscillator's state `(x, x')` a time `t` after `(x0, v0)` (free, C < 2√(KM)).
-fn free(mm: f64, k: f64, c: f64, (x0, v0): (f64, f64), t: f64) -> (f64, f64) {
+pub(crate) fn free(mm: f64, k: f64, c: f64, (x0, v0): (f64, f64), t: f64) -> (f64, f64) {
     let wn = (k / mm).sqrt();
     let z = c / (2.0 * (k * mm).sqrt());
     let wd = wn * (1.0 - z * z).sqrt();
@@ -35,7 +44,7 @@ fn free(mm: f64, k: f64, c: f64, (x0, v0): (f64, f64), t: f64) -> (f64, f64) {
 /// spring `k` (N/m), damping `c` (N·s/m), particle `m` (kg), clearance `d` (m), force
 /// `f0·cos(Ωt + φ)` (N, rad/s), restitution `r`.
 #[allow(clippy::too_many_arguments)]
-fn masri_caughey(mm: f64, k: f64, c: f64, m: f64, d: f64, f0: f64, omega: f64, r: f64) -> Vec<Orbit> {
+pub(crate) fn masri_caughey(mm: f64, k: f64, c: f64, m: f64, d: f64, f0: f64, omega: f64, r: f64) -> Vec<Orbit> {
     let mu = m / mm;
     let half = PI / omega;
     let big_x = f0 / ((k - mm * omega * omega).powi(2) + (c * omega).powi(2)).sqrt();
@@ -88,7 +97,7 @@ fn masri_caughey(mm: f64, k: f64, c: f64, m: f64, d: f64, f0: f64, omega: f64, r
             let x = big_x * (omega * t + beta).cos() + free(mm, k, c, h0, t).0;
             amplitude = amplitude.max(x.abs());
         }
-        out.push(Orbit { u, amplitude });
+        out.push(Orbit { u, amplitude, x0, v_after: vp, w_after: wp, beta, big_x });
     }
     out
 }

@@ -114,7 +114,8 @@ pub fn fit_structure<'py>(
 /// the design known (the design's keywords, as for `simulate`): c1 and the restitution it
 /// implies at the first impact's speed, each with a 95 % interval, as `thud fit damper --json`
 /// (keys c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr,
-/// restitution_ci, residual_rms). The ball's unknown start is handled by an ensemble of starts.
+/// restitution_ci, residual_rms, and note where c1 is poorly bounded). The ball's unknown start
+/// is handled by an ensemble of starts.
 /// `t_s`, `x` may be lists of records (repeated strikes), fitted together.
 ///
 /// Options: preset: str (default "default"), quantity: "x" | "v" | "a" (default "x"),

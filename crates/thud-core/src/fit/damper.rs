@@ -22,6 +22,15 @@
 //! The draws use a fixed generator, so an answer is repeatable. (The members' own [min, max]
 //! would be a near-100 % band: evenly spread starts reach the ends of the start's range.)
 //!
+//! Two refinements (docs/model.md §13.2): records that differ from the structure's own decay
+//! beyond their noise are compared only with the members the ball was hit in (the starts it
+//! misses give the structure's decay at every c1 and would leave c1 unbounded); and the
+//! interval is the intersection of two such sets at 97.5 % each (Bonferroni), for the whole
+//! decay's statistic and for its first third's, because the whole decay is not monotone in
+//! c1 where the most damped contacts stop the rattle. Where c1 stays poorly bounded the fit
+//! carries a one-line [`DamperFit::note`]. An acceleration's windows are fitted robustly
+//! ([`window_amplitude_robust`]): its impact spikes last more samples than the median removes.
+//!
 //! The signal in any kind is first turned into the main mass's displacement: a velocity is
 //! integrated (trapezoids; its offset becomes a slope, which each period's fit removes), an
 //! acceleration is divided by −K/M after a 5-sample running median takes out the impacts'
@@ -82,6 +91,10 @@ pub struct DamperFit {
     pub envelope_period_s: f64,
     pub measured_envelope_m: Vec<f64>,
     pub model_envelope_m: Vec<f64>,
+    /// A one-line note where the data cannot bound c1 well (the record is the structure's own
+    /// decay, or the interval is open or wider than a factor 3), with what to do.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// A record turned into the main mass's displacement and its envelope.
@@ -131,6 +144,44 @@ pub fn window_amplitude_sloped(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64)
         aty += row * y[i];
     }
     let sol = ata.lu().solve(&aty)?;
+    let amp = sol[2].hypot(sol[3]);
+    amp.is_finite().then_some(amp)
+}
+
+/// [`window_amplitude_sloped`] refitted without the samples whose residual exceeds 4 robust
+/// standard deviations (1.4826 × the median absolute residual): an acceleration's impact
+/// spikes, a few samples each, leave the window's sine.
+#[must_use]
+pub fn window_amplitude_robust(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64) -> Option<f64> {
+    let from = t.partition_point(|&ti| ti < a);
+    let to = t.partition_point(|&ti| ti < b);
+    if to < from + 8 {
+        return None;
+    }
+    let mid = 0.5 * (a + b);
+    let fit = |keep: &dyn Fn(usize) -> bool| {
+        let mut ata = nalgebra::Matrix4::zeros();
+        let mut aty = nalgebra::Vector4::zeros();
+        for i in (from..to).filter(|&i| keep(i)) {
+            let tau = t[i] - mid;
+            let (s, c) = (omega * tau).sin_cos();
+            let row = nalgebra::Vector4::new(1.0, tau, c, s);
+            ata += row * row.transpose();
+            aty += row * y[i];
+        }
+        ata.lu().solve(&aty)
+    };
+    let first = fit(&|_| true)?;
+    let res = |i: usize| {
+        let tau = t[i] - mid;
+        let (s, c) = (omega * tau).sin_cos();
+        y[i] - (first[0] + first[1] * tau + first[2] * c + first[3] * s)
+    };
+    let mut abs: Vec<f64> = (from..to).map(|i| res(i).abs()).collect();
+    abs.sort_by(f64::total_cmp);
+    let cut = 4.0 * 1.4826 * abs[abs.len() / 2];
+    let kept = (from..to).filter(|&i| res(i).abs() <= cut).count();
+    let sol = if kept >= 8 { fit(&|i| res(i).abs() <= cut)? } else { first };
     let amp = sol[2].hypot(sol[3]);
     amp.is_finite().then_some(amp)
 }
@@ -204,7 +255,15 @@ pub fn observe(s: &Series, d: &Design) -> Result<Observed, ThudError> {
             super::MIN_CYCLES
         )));
     }
-    let env = envelope(&t, &x, period, periods);
+    let env = if s.quantity() == Quantity::Acceleration {
+        // The impacts' spikes last a few samples at a fast rate: more than the median takes out.
+        let om = 2.0 * PI / period;
+        (0..periods)
+            .map(|j| window_amplitude_robust(&t, &x, j as f64 * period, (j + 1) as f64 * period, om).unwrap_or(0.0))
+            .collect()
+    } else {
+        envelope(&t, &x, period, periods)
+    };
     // The amplitude's noise: the displacement's white noise over a window's samples.
     let noise = match s.quantity() {
         Quantity::Velocity => noise_sd(y) * period / (2.0 * PI),
@@ -335,7 +394,7 @@ fn quantile(sorted: &[f64], u: f64) -> f64 {
 /// the 2.5 % and 97.5 % points of [`DRAWS`] means of `records` draws from the members'
 /// distribution ([`quantile`] of a uniform number) plus the measurement's noise (normal, sd
 /// `noise`), by a fixed generator.
-fn band(members: &[f64], records: usize, noise: f64) -> (f64, f64) {
+fn band(members: &[f64], records: usize, noise: f64, tail: f64) -> (f64, f64) {
     let mut sorted = members.to_vec();
     sorted.sort_by(f64::total_cmp);
     let mut g = SplitMix(0x5EED_0F17);
@@ -345,7 +404,7 @@ fn band(members: &[f64], records: usize, noise: f64) -> (f64, f64) {
         })
         .collect();
     means.sort_by(f64::total_cmp);
-    (quantile(&means, 0.025), quantile(&means, 0.975))
+    (quantile(&means, tail), quantile(&means, 1.0 - tail))
 }
 
 fn median(v: &[f64]) -> f64 {
@@ -362,15 +421,41 @@ fn median(v: &[f64]) -> f64 {
     }
 }
 
-/// `v` averaged over each point and its neighbours on the grid (the ends over two): the
-/// members' median is a smooth function of c1 seen through the chaos of 39 starts.
+/// `v` averaged over each point and its neighbours on the grid (the ends over two), skipping
+/// NaN (a point without members): the members' median is a smooth function of c1 seen
+/// through the chaos of 39 starts.
 fn smoothed(v: &[f64]) -> Vec<f64> {
     (0..v.len())
         .map(|k| {
             let (a, b) = (k.saturating_sub(1), (k + 1).min(v.len() - 1));
-            v[a..=b].iter().sum::<f64>() / (b - a + 1) as f64
+            let (sum, count) = v[a..=b].iter().filter(|x| !x.is_nan()).fold((0.0, 0usize), |(s, c), x| (s + x, c + 1));
+            if count == 0 || v[k].is_nan() {
+                f64::NAN
+            } else {
+                sum / count as f64
+            }
         })
         .collect()
+}
+
+/// Fewest members (pooled over a grid point and its neighbours) the ball was hit in for a
+/// band to be drawn at that c1.
+const MIN_CLASS_MEMBERS: usize = 8;
+
+/// Whether record `o`'s envelope over its first `periods` periods of `period_s` is the
+/// structure alone's (Eq 25 without the ball, envelope ∝ e^{−σt}, σ = C/2M): every
+/// ln(A_j/A_0) within 5 of its noise standard deviations (the delta method from the
+/// amplitudes' noise) plus 0.02 of −σ·j·T. False when the ball was visibly hit.
+fn structure_alone(d: &ValidDesign, o: &Observed, period_s: f64, periods: usize) -> bool {
+    let sigma = d.damper.damping_n_s_m / (2.0 * d.damper.main_mass_kg);
+    let env = &o.envelope_m;
+    let a0 = env[0].max(f64::MIN_POSITIVE);
+    let sd = o.amplitude_noise_m;
+    (1..periods.min(env.len())).all(|j| {
+        let a = env[j].max(f64::MIN_POSITIVE);
+        let noise = ((sd / a).powi(2) + (sd / a0).powi(2)).sqrt();
+        ((a / a0).ln() + sigma * j as f64 * period_s).abs() <= 5.0 * noise + 0.02
+    })
 }
 
 /// Each grid point's members pooled with its neighbours', each moved by the difference of
@@ -380,7 +465,13 @@ fn pooled(members: &[Vec<f64>], raw_medians: &[f64], medians: &[f64]) -> Vec<Vec
     (0..members.len())
         .map(|k| {
             let (a, b) = (k.saturating_sub(1), (k + 1).min(members.len() - 1));
-            (a..=b).flat_map(|j| members[j].iter().map(move |s| s - raw_medians[j] + medians[k])).collect()
+            if medians[k].is_nan() {
+                return Vec::new();
+            }
+            (a..=b)
+                .filter(|&j| !raw_medians[j].is_nan())
+                .flat_map(|j| members[j].iter().map(move |s| s - raw_medians[j] + medians[k]))
+                .collect()
         })
         .collect()
 }
@@ -414,12 +505,24 @@ fn cross(lc: &[f64], f: &[f64], k: usize, target: f64) -> f64 {
     lc[k] + (lc[k + 1] - lc[k]) * a / (a - b)
 }
 
-/// Compares `observed` records with `table`: the fitted c1, its interval and restitution.
-pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<DamperFit, ThudError> {
-    let periods = observed.iter().map(|o| o.usable).min().unwrap_or(0).min(table.envelopes[0][0].len());
-    if periods < 3 {
-        return Err(bad("too short: fewer than 3 periods to compare"));
-    }
+/// 1 − the interval's confidence.
+const TAIL: f64 = 0.05;
+
+/// One statistic's Neyman construction.
+struct Accepted {
+    /// The records' mean statistic.
+    stat: f64,
+    /// The smoothed medians of the compared members at each c1.
+    medians: Vec<f64>,
+    /// The band [low, high] at each c1.
+    bands: Vec<(f64, f64)>,
+    /// The hull (ln c1) of the accepted c1, `None` when none is.
+    hull: Option<(f64, f64)>,
+}
+
+/// The c1 whose band (2·`tail` outside it) of the mean statistic over the first `periods`
+/// periods holds the records', compared with every member (`all`) or those the ball was hit in.
+fn accepted(table: &Table, observed: &[Observed], periods: usize, all: bool, tail: f64) -> Accepted {
     let n = observed.len();
     let stat = observed.iter().map(|o| statistic(&o.envelope_m, periods)).sum::<f64>() / n as f64;
     let noise =
@@ -427,37 +530,81 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
             / (n * n) as f64)
             .sqrt();
     let lc: Vec<f64> = table.c1_n_s_m.iter().map(|c| c.ln()).collect();
-    let members: Vec<Vec<f64>> =
-        table.envelopes.iter().map(|ms| ms.iter().map(|e| statistic(e, periods)).collect()).collect();
-    let raw_medians: Vec<f64> = members.iter().map(|m| median(m)).collect();
+    let members: Vec<Vec<f64>> = table
+        .envelopes
+        .iter()
+        .zip(&table.first_impact_m_s)
+        .map(|(ms, hit)| {
+            ms.iter().zip(hit).filter(|(_, &u)| all || u > 0.0).map(|(e, _)| statistic(e, periods)).collect()
+        })
+        .collect();
+    let raw_medians: Vec<f64> = members.iter().map(|m| if m.is_empty() { f64::NAN } else { median(m) }).collect();
     let medians = smoothed(&raw_medians);
     let pooled = pooled(&members, &raw_medians, &medians);
-    let bands: Vec<(f64, f64)> = pooled.iter().map(|m| band(m, n, noise)).collect();
-    // The accepted grid points; the interval runs from just below the first to just above the
-    // last, where the band's edge meets the statistic (interpolated in ln c1).
-    let g = lc.len();
+    // A c1 without members the ball was hit in (its own and its neighbours') cannot have
+    // made the record: its band is put out of reach.
+    let bands: Vec<(f64, f64)> = pooled
+        .iter()
+        .map(|m| if m.len() < MIN_CLASS_MEMBERS { (f64::MAX / 4.0, f64::MAX / 4.0) } else { band(m, n, noise, tail) })
+        .collect();
     // The accepted set {c1 : low(c1) ≤ S ≤ high(c1)} with the band's edges straight in ln c1
     // between grid points (so a statistic between two narrow bands finds the c1 between
     // them), and its hull.
-    let accepted: Vec<(f64, f64)> = (0..g - 1)
+    let acc: Vec<(f64, f64)> = (0..lc.len() - 1)
         .filter_map(|k| {
             let (u0, u1) = segment(&bands[k], &bands[k + 1], stat)?;
             let at = |u: f64| lc[k] + u * (lc[k + 1] - lc[k]);
             Some((at(u0), at(u1)))
         })
         .collect();
-    let (Some(lo_ln), Some(hi_ln)) =
-        (accepted.iter().map(|a| a.0).min_by(f64::total_cmp), accepted.iter().map(|a| a.1).max_by(f64::total_cmp))
-    else {
+    let hull = acc.iter().map(|a| a.0).min_by(f64::total_cmp).zip(acc.iter().map(|a| a.1).max_by(f64::total_cmp));
+    Accepted { stat, medians, bands, hull }
+}
+
+/// Compares `observed` records with `table`: the fitted c1, its interval and restitution.
+pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<DamperFit, ThudError> {
+    let periods = observed.iter().map(|o| o.usable).min().unwrap_or(0).min(table.envelopes[0][0].len());
+    if periods < 3 {
+        return Err(bad("too short: fewer than 3 periods to compare"));
+    }
+    let n = observed.len();
+    let lc: Vec<f64> = table.c1_n_s_m.iter().map(|c| c.ln()).collect();
+    let g = lc.len();
+    // What the record shows (docs/model.md §13.2): whether the ball is hit at all depends on
+    // where it sat, not on c1, and a member it missed is the structure's own decay at every
+    // c1; left in, those members put the band's top edge at that decay for every c1 and leave
+    // c1 unbounded. Records that each differ from the structure's own decay beyond their
+    // noise were made by a start the ball was hit from: they are compared with the members the
+    // ball was hit in (the band at each c1 is then the distribution over those starts, so the
+    // 95 % coverage holds). Where one record could be the structure's own decay, all members
+    // are kept.
+    let alone = observed.iter().any(|o| structure_alone(d, o, table.period_s, periods));
+    // Two statistics, each at 97.5 % (so both hold the truth at least 95 % of the time, by
+    // Bonferroni's inequality): the whole decay's and its early part's (the first third, at
+    // least 3 periods). Where the ball ends up riding a wall, the whole decay's statistic is
+    // not monotone in c1 (the most damped contacts stop the rattle and leave a plateau) and
+    // accepts c1 on both sides of the optimum; the early part, where the damper works, is.
+    let early = (periods / 3).max(3).min(periods);
+    let whole = accepted(table, observed, periods, alone, 0.5 * TAIL);
+    let first = accepted(table, observed, early, alone, 0.5 * TAIL);
+    let (Some((lo_w, hi_w)), Some((lo_e, hi_e))) = (whole.hull, first.hull) else {
         // No c1 of the grid's span explains the data: name the nearest band's c1.
-        let dist = |k: usize| (bands[k].0 - stat).max(stat - bands[k].1);
+        let w = if whole.hull.is_none() { &whole } else { &first };
+        let dist = |k: usize| (w.bands[k].0 - w.stat).max(w.stat - w.bands[k].1);
         let k = (0..g).min_by(|&i, &j| dist(i).total_cmp(&dist(j))).unwrap_or(0);
         return Err(bad(format!(
             "no c1 explains the decay: its statistic {} lies outside every band (nearest c1 {} N·s/m); check the design flags (M, K, C, m, d, v0)",
-            crate::units::sig(stat, 4),
+            crate::units::sig(w.stat, 4),
             crate::units::sig(table.c1_n_s_m[k], 4)
         )));
     };
+    // The intersection; where the two do not meet (rarer than 5 %), their hull.
+    let (lo_ln, hi_ln) = if lo_w.max(lo_e) <= hi_w.min(hi_e) {
+        (lo_w.max(lo_e), hi_w.min(hi_e))
+    } else {
+        (lo_w.min(lo_e), hi_w.max(hi_e))
+    };
+    let (stat, medians) = (whole.stat, whole.medians);
     let open = lo_ln <= lc[0] || hi_ln >= lc[g - 1];
     // The point estimate: where the median meets the statistic, inside the interval.
     let best_ln = (0..g - 1)
@@ -466,7 +613,27 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
         .filter(|l| *l >= lo_ln - 1e-12 && *l <= hi_ln + 1e-12)
         .min_by(|a, b| (a - 0.5 * (lo_ln + hi_ln)).abs().total_cmp(&(b - 0.5 * (lo_ln + hi_ln)).abs()))
         .unwrap_or(0.5 * (lo_ln + hi_ln));
+    // The table resolves c1 to one grid step, no finer: each band pools a point's members with
+    // its two neighbours' and the medians are smoothed over three points. Where the start
+    // hardly matters and the noise is small the Neyman set can be narrower than that (seen:
+    // ±0.3 % at c1 300 N·s/m, 0.8 % from the truth of an independent integration), so the
+    // interval holds at least half a step on each side of the estimate.
+    let step = (lc[g - 1] - lc[0]) / (g - 1) as f64;
+    let lo_ln = lo_ln.min(best_ln - 0.5 * step).max(lc[0]);
+    let hi_ln = hi_ln.max(best_ln + 0.5 * step).min(lc[g - 1]);
     let (c1, lo, hi) = (best_ln.exp(), lo_ln.exp(), hi_ln.exp());
+    let note = if alone {
+        Some(String::from(
+            "a decay is the structure's own within its noise (the ball was hardly hit): c1 is not identifiable from it; strike harder (a larger v0) or give several strikes (--data repeated)",
+        ))
+    } else if open || hi / lo > 3.0 {
+        Some(format!(
+            "the data bound c1 only to a factor {} (high/low); give several strikes (--data repeated) to narrow it",
+            crate::units::sig(hi / lo, 2)
+        ))
+    } else {
+        None
+    };
     let k_best = (0..g).min_by(|&i, &j| (lc[i] - best_ln).abs().total_cmp(&(lc[j] - best_ln).abs())).unwrap_or(0);
     let firsts: Vec<f64> = table.first_impact_m_s[k_best].iter().copied().filter(|&u| u > 0.0).collect();
     let u0 = if firsts.is_empty() { d.damper.v0_m_s.abs() } else { median(&firsts) };
@@ -507,6 +674,7 @@ pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<
         envelope_period_s: table.period_s,
         measured_envelope_m: observed[0].envelope_m.clone(),
         model_envelope_m: model,
+        note,
     })
 }
 
@@ -677,5 +845,149 @@ mod tests {
         assert!((u0 - 0.5).abs() < 1e-12 && (u1 - 0.6).abs() < 1e-12, "{u0} {u1}");
         assert_eq!(segment(&a, &b, -0.05), None);
         assert_eq!(segment(&(-1.0, 1.0), &(-1.0, 1.0), 0.0), Some((0.0, 1.0)));
+    }
+
+    /// A record of design `d` with contact damping `c1` and the ball at rest at `y0` made by a
+    /// second, independent integration (fixed-step RK4 of Eqs 25–26 with the Hertz force
+    /// K_HZ·δ^1.5 + c1·δ', no event location; not thud's solver) in steps of 2 µs (about 75
+    /// a contact): the main mass's displacement every 250 steps (2 kHz) and its acceleration
+    /// every 50 (10 kHz), each sample kept with probability 3/4 (uneven): (times, displacement)
+    /// and (times, acceleration).
+    #[allow(clippy::type_complexity)]
+    fn rk4_record(d: &ValidDesign, c1: f64, y0: f64, g: &mut Noise) -> ((Vec<f64>, Vec<f64>), (Vec<f64>, Vec<f64>)) {
+        let p = d.damper;
+        let (big_m, m, k, c, khz, half) =
+            (p.main_mass_kg, p.impact_mass_kg, p.stiffness_n_m, p.damping_n_s_m, p.k_hz, 0.5 * p.gap_m);
+        let accel = |s: [f64; 4]| -> [f64; 4] {
+            let [x, v, y, w] = s;
+            let z = y - x;
+            let delta = z.abs() - half;
+            let f_ball = if delta > 0.0 {
+                let sg = z.signum();
+                -sg * (khz * delta.powf(1.5) + c1 * sg * (w - v))
+            } else {
+                0.0
+            };
+            [v, (-k * x - c * v - f_ball) / big_m, w, f_ball / m]
+        };
+        let add =
+            |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
+        let dt = 2e-6;
+        let mut s = [0.0, p.v0_m_s, y0, 0.0];
+        let (mut tx, mut x) = (vec![0.0], vec![0.0]);
+        let (mut ta, mut a) = (vec![0.0], vec![accel(s)[1]]);
+        let steps = (p.duration_s / dt).round() as usize;
+        for i in 1..=steps {
+            let k1 = accel(s);
+            let k2 = accel(add(s, k1, 0.5 * dt));
+            let k3 = accel(add(s, k2, 0.5 * dt));
+            let k4 = accel(add(s, k3, dt));
+            for j in 0..4 {
+                s[j] += dt / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+            }
+            if i % 250 == 0 && g.uniform() < 0.75 {
+                tx.push(i as f64 * dt);
+                x.push(s[0]);
+            }
+            if i % 50 == 0 && g.uniform() < 0.75 {
+                ta.push(i as f64 * dt);
+                a.push(accel(s)[1]);
+            }
+        }
+        ((tx, x), (ta, a))
+    }
+
+    /// Measured-style records over designs from light to heavy contact damping (the issue's
+    /// acceptance): decays made by an independent RK4, displacement at about 2 kHz with 1 %
+    /// noise and acceleration at about 10 kHz with 2 % noise (of the structure's own
+    /// acceleration amplitude K/M·max|x|; the impacts' spikes stand far above it), each with an
+    /// offset, a drift and uneven sampling. Every 95 % interval holds the truth and is at most a
+    /// factor 3 wide (high/low). The heavy case is the issue's: M 2 kg, K 8000 N/m, m 100 g,
+    /// d 2 cm, c1 100 N·s/m, struck at 0.5 m/s (its interval was [95, 710] N·s/m, open above,
+    /// before the fit conditioned on the record's class, docs/model.md §13.2).
+    #[test]
+    fn measured_style_decays_from_light_to_heavy_damping_are_bracketed_within_a_factor_3() {
+        let heavy = |c1: f64, v0: f64, y0_frac: f64| {
+            let mut des = Design::default();
+            des.damper.main_mass_kg = 2.0;
+            des.damper.stiffness_n_m = 8000.0;
+            des.damper.impact_mass_kg = 0.1;
+            des.damper.gap_m = 0.02;
+            des.damper.v0_m_s = v0;
+            (des, c1, y0_frac)
+        };
+        let cases = [
+            (Design::default(), 10.0, -0.61),
+            (Design::default(), 80.0, 0.23),
+            heavy(100.0, 0.5, 0.37),
+            heavy(300.0, 2.0, -0.8),
+        ];
+        let mut g = Noise(2327);
+        let mut failures = Vec::new();
+        for (des, truth, y0_frac) in cases {
+            let d = des.check().unwrap();
+            let table = Table::build(&d, &grid(&d).unwrap(), STARTS, d.damper.duration_s, None).unwrap().unwrap();
+            let half = 0.5 * d.damper.gap_m;
+            let ((tx, x), (t, a)) = rk4_record(&d, truth, y0_frac * half, &mut g);
+            // Acceleration at 10 kHz, 2 % noise of K/M·max|x|, offset and drift alike.
+            let peak = x.iter().fold(0.0f64, |m, v| m.max(v.abs())) * d.damper.stiffness_n_m / d.damper.main_mass_kg;
+            let y: Vec<f64> = t
+                .iter()
+                .zip(&a)
+                .map(|(&ti, &ai)| ai + 0.02 * peak * g.normal() + 0.07 * peak + 0.02 * peak * ti)
+                .collect();
+            let sa = Series::new(t, y, Quantity::Acceleration).unwrap();
+            // Displacement at 2 kHz, 1 % noise.
+            let y = measured(&tx, &x, 0.01, &mut g);
+            let sx = Series::new(tx, y, Quantity::Displacement).unwrap();
+            for (kind, s) in [("x", sx), ("a", sa)] {
+                let f = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
+                let [lo, hi] = f.c1_n_s_m_ci;
+                eprintln!("c1 {truth} {kind}: {} [{lo:.4}, {hi:.4}] ×{:.2} {:?}", f.c1_n_s_m, hi / lo, f.note);
+                if !(lo <= truth && truth <= hi && hi / lo <= 3.0) {
+                    failures.push(format!("c1 {truth} {kind}: [{lo}, {hi}]"));
+                }
+            }
+        }
+        assert!(failures.is_empty(), "{failures:?}");
+    }
+
+    /// The conditioning on the ball's being hit keeps the interval honest where it matters:
+    /// the heavy design (M 2 kg, K 8000 N/m, m 100 g, d 2 cm, c1 100 N·s/m, struck at
+    /// 0.5 m/s), 40 records from starts drawn uniformly over the clearance — about a fifth of
+    /// them never hit — with 1 % noise, an offset, a drift and uneven 2 kHz sampling. The truth
+    /// falls inside at least 35 times (for a correct 95 % interval P(count ≤ 34) = 1.4 %; 95
+    /// of 100 measured, and 93 of 100 at c1 40), and every interval wider than a factor 3
+    /// carries the note that says so (the records the ball was hardly hit in).
+    #[test]
+    fn the_heavy_design_s_intervals_cover_and_the_wide_ones_say_so() {
+        let mut des = Design::default();
+        des.damper.main_mass_kg = 2.0;
+        des.damper.stiffness_n_m = 8000.0;
+        des.damper.impact_mass_kg = 0.1;
+        des.damper.gap_m = 0.02;
+        des.damper.v0_m_s = 0.5;
+        let d = des.check().unwrap();
+        let truth = 100.0;
+        let table = Table::build(&d, &grid(&d).unwrap(), STARTS, d.damper.duration_s, None).unwrap().unwrap();
+        let mut g = Noise(77);
+        let (mut covered, mut narrow) = (0, 0);
+        let n = 40;
+        for _ in 0..n {
+            let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
+            let s = record(&d, truth, y0, 2000.0, 0.01, &mut g);
+            let fit = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
+            let [lo, hi] = fit.c1_n_s_m_ci;
+            if lo <= truth && truth <= hi {
+                covered += 1;
+            }
+            if hi / lo <= 3.0 {
+                narrow += 1;
+            } else {
+                assert!(fit.note.is_some(), "y0 {y0}: [{lo}, {hi}] without a note");
+            }
+        }
+        eprintln!("covered {covered}/{n}, at most a factor 3 wide {narrow}");
+        assert!(covered >= 35, "covered {covered} of {n}");
     }
 }

@@ -657,5 +657,6 @@ def fit_damper(
 ) -> Dict[str, Any]:
     """The structure with the damper, struck once at the record's start, every other parameter
     known: c1 and its restitution with 95 % intervals, as ``thud fit damper --json`` (keys
-    c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr, residual_rms).
+    c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr, residual_rms,
+    and note where c1 is poorly bounded).
     ``t_s`` and ``x`` may be lists of records (repeated strikes), fitted together."""
