@@ -22,6 +22,7 @@ mod support {
 mod acoustics_paper;
 mod architecture;
 mod cli;
+mod contact_dop853;
 mod contact_scheme;
 mod cvd;
 mod damper;
