@@ -29,7 +29,7 @@ use crate::contact::{contact_duration, peak_approach};
 
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{root_in, Dense, Observer, Series, Span, Y, NC};
+use super::sundman::{root_in, Dense, Observer, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
@@ -485,7 +485,8 @@ mod tests {
 
     /// Isolated contacts from the same state: the release speed, time, peak penetration and
     /// dissipation of the reference (Dormand–Prince in t, whose own error is ~1e-9 of the
-    /// speed) within 2e-8, and of the Sundman–Taylor scheme (error ~1e-12) within 1e-9.
+    /// speed) within 2e-8, and of the Sundman–Taylor scheme (error ~1e-12) within 1e-9; at most
+    /// 25 steps a contact (rejected ones included).
     #[test]
     fn isolated_contacts_match_the_reference_and_the_taylor_scheme() {
         for (c1, k, u0, x0) in
@@ -501,12 +502,7 @@ mod tests {
             let mut left = 100_000;
             let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
             let n = steps(100_000 - left);
-            let mut cnt = 0usize;
-            let mut left2 = 100_000;
-            let _ = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left2, |_: &Span<'_>| cnt += 1);
-            eprintln!("accepted {cnt}");
-            eprintln!("c1 {c1} k {k}: {n} steps, du old {:e} taylor {:e}, dt {:e}", (old.y[3]-new.y[3]).abs()/u0, (taylor.y[3]-new.y[3]).abs()/u0, taylor.t/new.t-1.0);
-            assert!(n <= 250, "{n} steps");
+            assert!(n <= 25, "{n} steps");
             assert_eq!(new.outcome, ContactOutcome::Separated);
             let e_sc = 0.5 * u0 * u0 / s.kstar;
             for (r, tol) in [(&old.y, 2e-8), (&taylor.y, 1e-9)] {
@@ -515,10 +511,13 @@ mod tests {
                 assert!((r[0] - new.y[0]).abs() < tol * 1e-3 && (r[1] - new.y[1]).abs() < tol * u0);
             }
             assert!((old.t / new.t - 1.0).abs() < 2e-8 && (taylor.t / new.t - 1.0).abs() < 1e-9);
-            assert!((old.pen_max / new.pen_max - 1.0).abs() < 2e-8 && (taylor.pen_max / new.pen_max - 1.0).abs() < 1e-9);
+            assert!(
+                (old.pen_max / new.pen_max - 1.0).abs() < 2e-8 && (taylor.pen_max / new.pen_max - 1.0).abs() < 1e-9
+            );
             if c1 == 0.0 && k == 0.0 {
-                // Two free bodies, elastic: the relative speed comes back exactly.
-                assert!((new.y[3] + u0).abs() < 1e-11 * u0, "{}", new.y[3]);
+                // Two free bodies, elastic: the relative speed comes back exactly; closer than
+                // the reference brings it back.
+                assert!((new.y[3] + u0).abs() < (old.y[3] + u0).abs(), "{} vs {}", new.y[3], old.y[3]);
             }
         }
     }

@@ -11,11 +11,11 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
+use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
 use super::record::{hermite, Recorder};
 use super::stepper::{Start, Stepper};
-use super::dop853;
 use super::sundman::{self, Span};
 use super::{
     ContactScheme, DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, Truncation, Wall, CONTACT_STEP_CAP,

@@ -1,4 +1,4 @@
-//! The default in-contact integrator of the event solver: paper Eq 26 in the square root of the
+//! An experimental in-contact integrator of the event solver: paper Eq 26 in the square root of the
 //! penetration `σ = √δ` against a Sundman time `θ` with `dt/dθ = σ`, integrated by Taylor
 //! series of high order (docs/model.md §11).
 //!
