@@ -291,7 +291,8 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
                 *a += h * d;
             }
             let err = self.error(h, &k, &mn);
-            if !(err <= 1.0) {
+            // (`err` is a number or +∞: an estimate that was not a number was made +∞.)
+            if err > 1.0 {
                 let fac = if err.is_finite() { (SAFETY * eighth_root(1.0 / err)).max(FAC_MIN) } else { 0.25 };
                 self.h *= fac;
                 continue;
@@ -373,22 +374,19 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         self.pen = self.pen.max(ye[2] * ye[2]);
         let span = Span::new(self.t_onset, he, Dense::Lazy(&cell, &build), &y0, &ye, (self.k0[3], du1));
         self.obs.step(&span);
-        match cut {
-            Some((_, c)) => {
-                self.m[..4].copy_from_slice(&[ye[0], ye[1], ye[2], ye[3]]);
-                self.q = [ye[4], ye[5], ye[6]];
-                Some(match c {
-                    Cut::Exit => ContactOutcome::Separated,
-                    Cut::Limit => ContactOutcome::EndOfRun,
-                })
-            }
-            None => {
-                self.m = mn;
-                self.q = qn;
-                self.k0 = k[12];
-                self.kq0 = kq[12];
-                None
-            }
+        if let Some((_, c)) = cut {
+            self.m[..4].copy_from_slice(&[ye[0], ye[1], ye[2], ye[3]]);
+            self.q = [ye[4], ye[5], ye[6]];
+            Some(match c {
+                Cut::Exit => ContactOutcome::Separated,
+                Cut::Limit => ContactOutcome::EndOfRun,
+            })
+        } else {
+            self.m = mn;
+            self.q = qn;
+            self.k0 = k[12];
+            self.kq0 = kq[12];
+            None
         }
     }
 

@@ -4,7 +4,7 @@
 //! straight-line stage sums for [`super::dop853`]: the coefficients are those of SciPy's
 //! `dop853_coefficients.py` (a transcription of `dop853.f`), printed as the nearest `f64`, with
 //! the zero entries left out so that no stage multiplies by zero. Generated, not edited by hand.
-#![allow(clippy::unreadable_literal, clippy::excessive_precision)]
+#![allow(clippy::unreadable_literal, clippy::excessive_precision, clippy::too_many_lines)]
 
 /// The stages 2 … 12 of one step from `y` (`k[0]` holds the rate there): `f(i, state, k_i, kq_i)` writes the rate of stage `i`.
 #[inline(always)]
