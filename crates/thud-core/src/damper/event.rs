@@ -11,6 +11,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
+use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
 use super::record::{hermite, Recorder};
@@ -341,6 +342,7 @@ impl sundman::Observer for Track<'_> {
 enum Cut {
     Reference(Resume),
     Sundman(sundman::Resume),
+    Dop853(dop853::Resume),
 }
 
 /// A contact cut by the end of a stretch of the run, to be carried on by the next.
@@ -367,6 +369,12 @@ struct Ended {
 impl From<super::contact::ContactEnd> for Ended {
     fn from(e: super::contact::ContactEnd) -> Self {
         Ended { t: e.t, y: e.y, pen_max: e.pen_max, outcome: e.outcome, resume: e.resume.map(Cut::Reference) }
+    }
+}
+
+impl From<dop853::End> for Ended {
+    fn from(e: dop853::End) -> Self {
+        Ended { t: e.t, y: e.y, pen_max: e.pen_max, outcome: e.outcome, resume: e.resume.map(Cut::Dop853) }
     }
 }
 
@@ -457,6 +465,9 @@ impl<'a, F: Flight> EventSim<'a, F> {
                     ContactScheme::SundmanTaylor => {
                         Ended::from(sundman::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs))
                     }
+                    ContactScheme::SundmanDop853 => {
+                        Ended::from(dop853::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs))
+                    }
                 };
                 (end, (0.0, 0.0))
             }
@@ -464,6 +475,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
                 let end = match &o.resume {
                     Cut::Reference(r) => Ended::from(resume(&sys, load, r, t_stop, &mut self.budget, obs)),
                     Cut::Sundman(r) => Ended::from(sundman::resume(&sys, load, r, t_stop, &mut self.budget, obs)),
+                    Cut::Dop853(r) => Ended::from(dop853::resume(&sys, load, r, t_stop, &mut self.budget, obs)),
                 };
                 (end, o.counted)
             }

@@ -1,4 +1,4 @@
-//! The default in-contact integrator of the event solver: paper Eq 26 in the square root of the
+//! An experimental in-contact integrator of the event solver: paper Eq 26 in the square root of the
 //! penetration `σ = √δ` against a Sundman time `θ` with `dt/dθ = σ`, integrated by Taylor
 //! series of high order (docs/model.md §11).
 //!
@@ -39,7 +39,7 @@ pub(crate) type Y = SVector<f64, 7>;
 pub(crate) const ORDER: usize = 16;
 
 /// Coefficients per series.
-const NC: usize = ORDER + 1;
+pub(crate) const NC: usize = ORDER + 1;
 
 /// The last coefficients that size a step.
 const TAIL: usize = 6;
@@ -281,17 +281,41 @@ pub(crate) fn root_in(h: f64, f0: f64, f1: f64, f: impl Fn(f64) -> (f64, f64)) -
     q
 }
 
+/// The polynomials of one step: ready (a Taylor step's series), or built on first use (the
+/// dense output of a Runge–Kutta step, [`super::dop853`], which costs three more stages and is
+/// wanted only in the steps that hold an event).
+pub(crate) enum Dense<'a> {
+    Ready(&'a Series),
+    Lazy(&'a std::cell::OnceCell<Series>, &'a dyn Fn() -> Series),
+}
+
 /// One accepted step of a contact: its series, over `[0, h]` in θ, the contact having started
 /// at `t_onset` (s).
 pub(crate) struct Span<'a> {
     pub t_onset: f64,
     pub h: f64,
-    pub ser: &'a Series,
+    dense: Dense<'a>,
     pub y0: &'a Y,
     pub y1: &'a Y,
+    /// `dδ'/dθ` at both ends (m/s per θ unit).
+    du: (f64, f64),
 }
 
-impl Span<'_> {
+impl<'a> Span<'a> {
+    /// A step with its polynomials `dense` and `dδ'/dθ` at both ends `du`.
+    pub fn new(t_onset: f64, h: f64, dense: Dense<'a>, y0: &'a Y, y1: &'a Y, du: (f64, f64)) -> Self {
+        Span { t_onset, h, dense, y0, y1, du }
+    }
+
+    /// The step's polynomials.
+    #[inline]
+    pub fn ser(&self) -> &Series {
+        match self.dense {
+            Dense::Ready(s) => s,
+            Dense::Lazy(cell, build) => cell.get_or_init(build),
+        }
+    }
+
     /// Time (s) at each end.
     #[inline]
     pub fn t0(&self) -> f64 {
@@ -306,19 +330,20 @@ impl Span<'_> {
     /// Where `x'` changes sign inside the step (its sign at the ends says it does): `(t, x)` at
     /// the extremum of x.
     pub fn x_extremum(&self) -> (f64, f64) {
-        let q = root_in(self.h, self.y0[1], self.y1[1], |q| self.ser.eval(1, q));
-        (self.t_onset + self.ser.eval(6, q).0, self.ser.eval(0, q).0)
+        let ser = self.ser();
+        let q = root_in(self.h, self.y0[1], self.y1[1], |q| ser.eval(1, q));
+        (self.t_onset + ser.eval(6, q).0, ser.eval(0, q).0)
     }
 
     /// The largest `|δ'|` inside the step where `dδ'/dθ` changes sign; `None` without a sign
     /// change.
     pub fn speed_extremum(&self) -> Option<f64> {
-        let c = &self.ser.c[3];
-        let d0 = c[1];
-        let d1 = self.ser.eval(3, self.h).1;
+        let (d0, d1) = self.du;
         if d0 == 0.0 || (d0 > 0.0) == (d1 > 0.0) {
             return None;
         }
+        let ser = self.ser();
+        let c = &ser.c[3];
         let q = root_in(self.h, d0, d1, |q| {
             // The derivative of δ' and its own derivative.
             let mut p = 0.0;
@@ -329,31 +354,39 @@ impl Span<'_> {
             }
             (p, dp)
         });
-        Some(self.ser.eval(3, q).0.abs())
+        Some(ser.eval(3, q).0.abs())
     }
 
     /// `(x, penetration δ)` (m) at time `t` (s) in the step.
     pub fn sample(&self, t: f64) -> (f64, f64) {
         let target = t - self.t_onset;
         let (a, b) = (self.y0[6] - target, self.y1[6] - target);
+        let ser = self.ser();
         let q = if a >= 0.0 {
             0.0
         } else if b <= 0.0 {
             self.h
         } else {
             root_in(self.h, a, b, |q| {
-                let (v, d) = self.ser.eval(6, q);
+                let (v, d) = ser.eval(6, q);
                 (v - target, d)
             })
         };
-        let sg = self.ser.eval(2, q).0;
-        (self.ser.eval(0, q).0, sg * sg)
+        let sg = ser.eval(2, q).0;
+        (ser.eval(0, q).0, sg * sg)
     }
 }
 
 /// Sees every accepted step of a contact integration.
 pub(crate) trait Observer {
     fn step(&mut self, span: &Span<'_>);
+}
+
+impl<F: FnMut(&Span<'_>)> Observer for F {
+    #[inline(always)]
+    fn step(&mut self, span: &Span<'_>) {
+        self(span);
+    }
 }
 
 /// The observer that sees nothing.
@@ -555,7 +588,8 @@ impl<L: Load, O: Observer> Integration<'_, L, O> {
             self.pen = self.pen.max(sg * sg);
         }
         self.pen = self.pen.max(yn[2] * yn[2]);
-        let span = Span { t_onset: self.t_onset, h, ser, y0: &self.y, y1: &yn };
+        let du = (ser.c[3][1], ser.eval(3, h).1);
+        let span = Span::new(self.t_onset, h, Dense::Ready(ser), &self.y, &yn, du);
         self.obs.step(&span);
         self.y = yn;
     }

@@ -1,0 +1,36 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a measuring tool: a panic is how it fails
+//! The event solver's contact schemes on the Fig 9 design, for instruction counts that do not
+//! depend on the machine's load (docs/model.md §11):
+//!
+//! ```sh
+//! cargo build --release -p thud-core --example contact_cost
+//! valgrind --tool=callgrind target/release/examples/contact_cost SundmanDop853 20
+//! ```
+//!
+//! Runs the design `REPS` times with the scheme named (`DormandPrince`, `SundmanTaylor`,
+//! `SundmanDop853`) and prints the impacts a run; divide the instructions by `REPS` × impacts.
+//! A third argument `forced` runs the forced preset instead (the ensemble's and the
+//! bifurcation diagram's designs).
+
+use thud_core::damper::{simulate_with, ContactScheme, DamperParams, RunOptions, Solver};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let scheme = match args.get(1).map_or("SundmanDop853", String::as_str) {
+        "DormandPrince" => ContactScheme::DormandPrince,
+        "SundmanTaylor" => ContactScheme::SundmanTaylor,
+        "SundmanDop853" => ContactScheme::SundmanDop853,
+        other => panic!("unknown scheme {other}"),
+    };
+    let reps: usize = args.get(2).map_or(1, |r| r.parse().expect("REPS is a count"));
+    let p = if args.get(3).is_some_and(|a| a == "forced") {
+        DamperParams { v0_m_s: 0.0, force_n: 2.0, freq_hz: 5.0, duration_s: 2.0, ..DamperParams::table2() }
+    } else {
+        DamperParams::table2()
+    };
+    let mut n = 0;
+    for _ in 0..reps {
+        n = simulate_with(&p, Solver::Event, &RunOptions::default(), scheme).unwrap().impacts.len();
+    }
+    println!("{scheme:?}: {n} impacts a run, {reps} runs");
+}
