@@ -111,19 +111,11 @@ impl AsciiArgs {
     /// Outside text and the title an SVG of thud's is ASCII already.
     #[must_use]
     pub fn figure(self, svg: String) -> String {
-        if !self.ascii || svg.is_ascii() {
-            return svg;
+        if self.ascii {
+            crate::tui::theme::ascii_figure(svg)
+        } else {
+            svg
         }
-        let mut out = String::with_capacity(svg.len());
-        let mut buf = [0u8; 4];
-        for c in svg.chars() {
-            if c.is_ascii() {
-                out.push(c);
-            } else {
-                out += &crate::export::svg::escape(&crate::tui::theme::fold(c.encode_utf8(&mut buf)));
-            }
-        }
-        out
     }
 }
 

@@ -351,7 +351,19 @@ pub fn render_pdf(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) ->
 /// `path` through [`fsio::write`]: atomically, and never over an existing file (the explorer
 /// picks a free name; a file that appears meanwhile is left alone and reported).
 pub fn export_to_path(kind: Artifact, design: &Design, opts: &ExportOptions, path: &Path) -> Result<(), ExportError> {
+    export_to_path_with(kind, design, opts, path, |bytes| bytes)
+}
+
+/// As [`export_to_path`], with the rendered bytes passed through `finish` before they are
+/// written (the explorer's `--ascii` spelling of a figure).
+pub fn export_to_path_with(
+    kind: Artifact,
+    design: &Design,
+    opts: &ExportOptions,
+    path: &Path,
+    finish: impl FnOnce(Vec<u8>) -> Vec<u8>,
+) -> Result<(), ExportError> {
     let design = design.clone().check()?;
-    fsio::write(path, &render(kind, &design, opts)?, Overwrite::Refuse)?;
+    fsio::write(path, &finish(render(kind, &design, opts)?), Overwrite::Refuse)?;
     Ok(())
 }

@@ -579,6 +579,26 @@ fn ascii_word(c: char) -> Option<&'static str> {
     })
 }
 
+/// An SVG document of thud's with every character beyond ASCII spelled as [`fold`] spells it
+/// (`−` → `-`, `²` → `^2`, `θ` → `theta`), escaped for XML (`≤` → `&lt;=`): what `--ascii`
+/// writes, from the command line and from the explorer's export key alike.
+#[must_use]
+pub fn ascii_figure(svg: String) -> String {
+    if svg.is_ascii() {
+        return svg;
+    }
+    let mut out = String::with_capacity(svg.len());
+    let mut buf = [0u8; 4];
+    for c in svg.chars() {
+        if c.is_ascii() {
+            out.push(c);
+        } else {
+            out += &crate::export::svg::escape(&fold(c.encode_utf8(&mut buf)));
+        }
+    }
+    out
+}
+
 /// `s` in ASCII: known symbols spelled out (`θ` → `theta`, `µs` → `us`), anything else `?`.
 pub fn fold(s: &str) -> String {
     let mut out = String::with_capacity(s.len());

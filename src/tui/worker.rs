@@ -144,13 +144,23 @@ pub struct ExportJob {
     pub design: Design,
     pub options: ExportOptions,
     pub path: PathBuf,
+    /// A figure's text spelled in ASCII (the explorer's `--ascii`), as `thud export --ascii` writes it.
+    pub ascii: bool,
 }
 
 impl ExportJob {
     /// Renders and writes the file (a panic while doing so is reported as a failed export).
     pub fn run(&self) -> Done {
-        let written =
-            job::catch("export", || export::export_to_path(self.kind, &self.design, &self.options, &self.path));
+        let written = job::catch("export", || {
+            let ascii = self.ascii && self.kind.is_figure();
+            export::export_to_path_with(self.kind, &self.design, &self.options, &self.path, |bytes| {
+                if ascii {
+                    crate::tui::theme::ascii_figure(String::from_utf8_lossy(&bytes).into_owned()).into_bytes()
+                } else {
+                    bytes
+                }
+            })
+        });
         let result = match written {
             Ok(r) => r.map_err(WorkError::Export),
             Err(e) => Err(e.into()),

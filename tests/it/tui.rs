@@ -773,6 +773,29 @@ fn export_through_the_key_writes_the_file_and_names_it() {
     assert!(app.exports.is_empty() && !app.busy());
 }
 
+/// With `--ascii` the explorer's figures are spelled as `thud export svg --ascii` spells them:
+/// pure ASCII, where the default keeps the true minus sign.
+#[test]
+fn an_ascii_explorer_exports_ascii_figures() {
+    let out = tempfile::tempdir().unwrap();
+    let mut app = computed_app();
+    app.export_dir = out.path().to_path_buf();
+    let job = |app: &mut thud::tui::App| match app.export(thud::export::Artifact::SvgWaveform) {
+        Some(thud::tui::Request::Export(job)) => job,
+        other => panic!("no export job: {other:?}"),
+    };
+    let unicode = job(&mut app);
+    assert!(matches!(unicode.run(), thud::tui::worker::Done::Export { result: Ok(()), .. }));
+    let text = std::fs::read_to_string(&unicode.path).unwrap();
+    assert!(!text.is_ascii() && text.contains('\u{2212}'), "the default figure keeps the true minus");
+    app.theme = Palette { color: true, ascii: true, light: false };
+    let ascii = job(&mut app);
+    assert!(matches!(ascii.run(), thud::tui::worker::Done::Export { result: Ok(()), .. }));
+    let text = std::fs::read_to_string(&ascii.path).unwrap();
+    let body = text.split_once("?>").map_or(text.as_str(), |(_, b)| b);
+    assert!(text.is_ascii() && body.contains("<svg") && !body.contains('?'), "{}", &text[..200.min(text.len())]);
+}
+
 #[test]
 fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     use std::time::Duration;

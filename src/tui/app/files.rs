@@ -172,7 +172,7 @@ impl App {
             (self.design.clone(), ExportOptions::default())
         };
         self.set_status(&format!("exporting {} to {} …", export_name(kind), self.shown_path(&path)), false);
-        Some(Request::Export(Box::new(ExportJob { kind, design, options, path })))
+        Some(Request::Export(Box::new(ExportJob { kind, design, options, path, ascii: self.theme.ascii })))
     }
 
     /// The export menu's rows: the frequency response's too while it is on screen.
