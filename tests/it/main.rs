@@ -41,6 +41,7 @@ mod masri_caughey;
 mod params_table;
 mod pdf;
 mod physical_model;
+mod pulse_table;
 mod response_band;
 mod schema;
 mod shards;

@@ -12,7 +12,9 @@
 //!
 //! Adding a parameter to a design is one line in [`DESIGN`]: its name, what it accepts
 //! (a quantity of a [`Kind`] inside a [`Range`], a choice of names, a name or a switch) and
-//! where it goes. The command line then needs its clap field, Python nothing more.
+//! where it goes. The command line's flags (its help, completions and man page), Python's
+//! keywords and the explorer's fields are then built from the row; so are `thud pulse`'s from
+//! the rows of [`PULSE`].
 
 use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
 use crate::contact::{self, Contact, Impact, Target};
@@ -141,8 +143,8 @@ impl Group {
 /// declares it too, e.g. in its completions).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Conflict {
-    /// The other parameter.
-    pub with: &'static str,
+    /// The other parameters (each refused with this row, in this order).
+    pub with: &'static [&'static str],
     /// Why, for the message ("K_HZ follows from the materials").
     pub why: &'static str,
     /// Whether the message names the other parameter (the one whose value would be ignored)
@@ -256,21 +258,6 @@ impl<T> Param<T> {
     }
 }
 
-/// Shorthand for a quantity row of the tables.
-const fn quantity<T>(name: &'static str, kind: Kind, range: &'static Range, set: fn(&mut T, f64)) -> Param<T> {
-    Param::new(name, Group::Design, Accepts::Quantity { kind, range, set }, "")
-}
-
-/// Shorthand for a choice row of the tables.
-const fn choice<T>(name: &'static str, names: &'static [&'static str], set: fn(&mut T, usize)) -> Param<T> {
-    Param::new(name, Group::Listener, Accepts::Choice { names, helps: &[], type_name: "", set }, "")
-}
-
-/// Shorthand for a row of the tables that takes a name.
-const fn named<T>(name: &'static str, set: fn(&mut T, &str)) -> Param<T> {
-    Param::new(name, Group::Design, Accepts::Name { set }, "")
-}
-
 /// The names of the solvers, as on the command line.
 pub const SOLVERS: [&str; 2] = ["event", "newmark"];
 /// What each solver is ([`SOLVERS`] order).
@@ -294,6 +281,12 @@ const MODEL_HELPS: [&str; 2] = [
     "The paper's: rms level over τ, half-sine pulse, its air and K_HZ (reproduces the paper)",
     "The measured world: peak level, exact Hertz pulse, air from temperature and pressure, K_HZ and mass from the materials",
 ];
+
+/// The help of the air-temperature rows ([`DESIGN`] and [`PULSE`] alike).
+const AIR_TEMPERATURE_HELP: &str = "Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]";
+/// The help of the air-pressure rows ([`DESIGN`] and [`PULSE`] alike).
+const AIR_PRESSURE_HELP: &str =
+    "Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]";
 
 fn model(i: usize) -> Model {
     Model::ALL[i.min(1)]
@@ -413,7 +406,7 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     q("c1", Kind::Damping, &limits::C1, Group::Design, "C1", "Contact damping c1 (N·s/m)",
         |d| d.damper.c1_n_s_m, |d, v| d.design.damper.c1_n_s_m = v),
     Param {
-        conflicts: Some(Conflict { with: "sphere", why: "K_HZ follows from the materials", names_other: false }),
+        conflicts: Some(Conflict { with: &["sphere"], why: "K_HZ follows from the materials", names_other: false }),
         ..q("k-hz", Kind::HertzStiffness, &limits::K_HZ, Group::Design, "KH", "Hertz stiffness K_HZ (N/m^1.5)",
             |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v).applies(|d| d.materials_used().is_none())
     },
@@ -471,11 +464,9 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
             "The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)",
             |d, i| d.design.model = model(i))
     },
-    q("air-temperature", Kind::Temperature, &limits::AIR_TEMPERATURE, Group::Listener, "T",
-        "Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]",
+    q("air-temperature", Kind::Temperature, &limits::AIR_TEMPERATURE, Group::Listener, "T", AIR_TEMPERATURE_HELP,
         |d| d.atmosphere.temperature_c, |d, v| d.design.atmosphere.temperature_c = v).label("air T"),
-    q("air-pressure", Kind::Pressure, &limits::AIR_PRESSURE, Group::Listener, "P",
-        "Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]",
+    q("air-pressure", Kind::Pressure, &limits::AIR_PRESSURE, Group::Listener, "P", AIR_PRESSURE_HELP,
         |d| d.atmosphere.pressure_pa, |d, v| d.design.atmosphere.pressure_pa = v).label("air p"),
     q("l-star", Kind::Level, &limits::L_STAR, Group::Study, "DB", "Zone threshold L* on SPLmax (dB)",
         |d| d.thresholds.spl_db, |d, v| d.design.thresholds.spl_db = v),
@@ -749,10 +740,13 @@ impl<'a, T> Given<'a, T> {
     /// conflicts with, or without the one it needs (table order).
     fn relations(&self) -> Result<(), ThudError> {
         for p in self.table {
-            match p.conflicts {
-                Some(c) if c.names_other => self.conflict(p.name, c.with, c.why)?,
-                Some(c) => self.conflict(c.with, p.name, c.why)?,
-                None => {}
+            let Some(c) = p.conflicts else { continue };
+            for with in c.with {
+                if c.names_other {
+                    self.conflict(p.name, with, c.why)?;
+                } else {
+                    self.conflict(with, p.name, c.why)?;
+                }
             }
         }
         for p in self.table {
@@ -1209,29 +1203,89 @@ pub const fn same_name(a: &str, b: &str) -> bool {
     true
 }
 
-/// The parameters of one impact, in the order they are checked. The rows it shares with a
-/// design ([`DESIGN`]) take their help and range from there; its own are the impact speed,
-/// K_HZ as a number and the air's impedance and speed of sound (`sound-speed`, never `c`,
-/// which is the structure's damping in a design).
+/// A quantity row of [`PULSE`]: its placeholder and help (one argument per column of the
+/// table, so each row reads as one line of it).
+const fn pq(
+    name: &'static str,
+    kind: Kind,
+    range: &'static Range,
+    value_name: &'static str,
+    help: &'static str,
+    set: fn(&mut PulseDraft, f64),
+) -> Param<PulseDraft> {
+    Param::new(name, Group::Design, Accepts::Quantity { kind, range, set }, help).value(value_name)
+}
+
+/// A choice row of [`PULSE`].
+const fn pch(
+    name: &'static str,
+    names: &'static [&'static str],
+    helps: &'static [&'static str],
+    type_name: &'static str,
+    help: &'static str,
+    set: fn(&mut PulseDraft, usize),
+) -> Param<PulseDraft> {
+    Param::new(name, Group::Listener, Accepts::Choice { names, helps, type_name, set }, help)
+}
+
+/// A row of [`PULSE`] that takes a material's name.
+const fn pname(name: &'static str, help: &'static str, set: fn(&mut PulseDraft, &str)) -> Param<PulseDraft> {
+    Param::new(name, Group::Design, Accepts::Name { set }, help).value("MATERIAL")
+}
+
+/// The parameters of one impact (`thud pulse`'s flags, Python's `pulse` keywords), in the
+/// order they are checked and listed. The rows it shares with a design ([`DESIGN`]) take their
+/// range from there (a range is keyed by its row: [`design_range`]); its helps are an impact's
+/// (its defaults are Fig 2's, not a design's). Its own rows are the impact speed, K_HZ as a
+/// number and the air's impedance and speed of sound (`sound-speed`, never `c`, which is the
+/// structure's damping in a design).
+#[rustfmt::skip]
 pub const PULSE: &[Param<PulseDraft>] = &[
-    named("sphere", |d, s| d.sphere = Some(s.to_string())),
-    named("plate", |d, s| d.plate = Some(s.to_string())),
-    quantity("radius", Kind::Length, design_range("radius"), |d, v| d.radius_m = Some(v)),
-    quantity("mass", Kind::Mass, design_range("mass"), |d, v| d.mass_kg = Some(v)),
-    quantity("density", Kind::Density, design_range("density"), |d, v| d.density_kg_m3 = Some(v)),
-    quantity("k-hz", Kind::HertzStiffness, design_range("k-hz"), |d, v| d.k_hz = Some(v)),
-    quantity("main-mass", Kind::Mass, design_range("main-mass"), |d, v| d.main_mass_kg = Some(v)),
-    quantity("u0", Kind::Speed, &limits::U0, |d, v| d.u0_m_s = Some(v)),
-    quantity("rho-c", Kind::Impedance, &limits::RHO_C, |d, v| d.rho_c_pa_s_m = Some(v)),
-    quantity("sound-speed", Kind::Speed, &limits::C_SOUND, |d, v| d.c_m_s = Some(v)),
-    quantity("r", Kind::Length, design_range("r"), |d, v| d.r_m = Some(v)),
-    quantity("theta", Kind::Angle, design_range("theta"), |d, v| d.theta_deg = Some(v)),
-    choice("source", &SOURCES, |d, i| d.source = Some(source(i))),
-    choice("quad-signs", &QUAD_SIGNS, |d, i| d.quad_signs = Some(quad_signs(i))),
-    choice("pulse", &PULSES, |d, i| d.pulse = Some(pulse_shape(i))),
-    choice("model", &MODELS, |d, i| d.model = Some(model(i))),
-    quantity("air-temperature", Kind::Temperature, design_range("air-temperature"), |d, v| d.temperature_c = Some(v)),
-    quantity("air-pressure", Kind::Pressure, design_range("air-pressure"), |d, v| d.pressure_pa = Some(v)),
+    pname("sphere", "Sphere material (steel, stainless-steel, acrylic, brass, aluminium, glass, rubber, nylon, tungsten-carbide)",
+        |d, s| d.sphere = Some(s.to_string())),
+    pname("plate", "Plate material [default: steel when --sphere is given]", |d, s| d.plate = Some(s.to_string())),
+    pq("radius", Kind::Length, design_range("radius"), "A",
+        "Sphere radius (m, or e.g. 19.05mm). Default: from --mass and --sphere's density, else 19.05 mm",
+        |d, v| d.radius_m = Some(v)),
+    pq("mass", Kind::Mass, design_range("mass"), "M",
+        "Sphere mass (kg, or e.g. 40.5g). Default: from --radius and --sphere's density, else 40.5 g",
+        |d, v| d.mass_kg = Some(v)),
+    pq("density", Kind::Density, design_range("density"), "RHO",
+        "Sphere density (kg/m³) [default: --sphere's]: with --mass the radius follows, with --radius the mass",
+        |d, v| d.density_kg_m3 = Some(v)),
+    Param {
+        conflicts: Some(Conflict { with: &["sphere", "plate"], why: "K_HZ follows from the materials", names_other: false }),
+        ..pq("k-hz", Kind::HertzStiffness, design_range("k-hz"), "K",
+            "Hertz stiffness K_HZ (N/m^1.5) [default: 5.6e8, or from --sphere/--plate]", |d, v| d.k_hz = Some(v))
+    },
+    pq("main-mass", Kind::Mass, design_range("main-mass"), "MM",
+        "Mass of a movable target (kg): K* = (m+M)/(mM) (Eq 8). Default: a fixed plate",
+        |d, v| d.main_mass_kg = Some(v)),
+    pq("u0", Kind::Speed, &limits::U0, "U", "Impact speed U0 (m/s) [default: 1.4]", |d, v| d.u0_m_s = Some(v)),
+    pq("rho-c", Kind::Impedance, &limits::RHO_C, "Z", "Air impedance ρ0·c (Pa·s/m) [default: 400, the paper's]",
+        |d, v| d.rho_c_pa_s_m = Some(v)),
+    pq("sound-speed", Kind::Speed, &limits::C_SOUND, "C", "Speed of sound (m/s) [default: 343]",
+        |d, v| d.c_m_s = Some(v)),
+    pq("r", Kind::Length, design_range("r"), "R", "Observer distance from the contact point (m) [default: 0.7]",
+        |d, v| d.r_m = Some(v)),
+    pq("theta", Kind::Angle, design_range("theta"), "DEG", "Observer angle from the plate's normal (degrees) [default: 45]",
+        |d, v| d.theta_deg = Some(v)),
+    pch("source", &SOURCES, &[], "Source",
+        "Reflecting surfaces: a free sphere, a plate, or a wall–floor corner [default: dipole]",
+        |d, i| d.source = Some(source(i))),
+    pch("quad-signs", &QUAD_SIGNS, &[], "QuadSigns",
+        "Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall [default: rigid]",
+        |d, i| d.quad_signs = Some(quad_signs(i))),
+    pch("pulse", &PULSES, &PULSE_HELPS, "PulseShape",
+        "Acceleration pulse: the paper's half-sine (Eq 7) or the exact Hertz pulse [default: half-sine]",
+        |d, i| d.pulse = Some(pulse_shape(i))),
+    pch("model", &MODELS, &MODEL_HELPS, "Model",
+        "The model of the world [default: paper]: physical is the measured level (peak, exact Hertz pulse, air from --air-temperature and --air-pressure, K_HZ and mass from the materials)",
+        |d, i| d.model = Some(model(i))),
+    pq("air-temperature", Kind::Temperature, design_range("air-temperature"), "T", AIR_TEMPERATURE_HELP,
+        |d, v| d.temperature_c = Some(v)),
+    pq("air-pressure", Kind::Pressure, design_range("air-pressure"), "P", AIR_PRESSURE_HELP,
+        |d, v| d.pressure_pa = Some(v)),
 ];
 
 /// Everything one impact's sound needs, in SI units, and which parameters were given (to
@@ -1257,8 +1311,7 @@ pub struct PulseInput {
 /// exact Hertz pulse and the air follows from its temperature and pressure.
 pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spelling) -> Result<PulseInput, ThudError> {
     let given = Given::new(PULSE, given, spelling)?;
-    given.conflict("sphere", "k-hz", "K_HZ follows from the materials")?;
-    given.conflict("plate", "k-hz", "K_HZ follows from the materials")?;
+    given.relations()?;
     let mut a = PulseDraft::default();
     given.apply(&mut a)?;
     let model = a.model.or(base.map(|d| d.model)).unwrap_or_default();
