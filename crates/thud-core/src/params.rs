@@ -1235,7 +1235,7 @@ const fn pname(name: &'static str, help: &'static str, set: fn(&mut PulseDraft, 
 
 /// The parameters of one impact (`thud pulse`'s flags, Python's `pulse` keywords), in the
 /// order they are checked and listed. The rows it shares with a design ([`DESIGN`]) take their
-/// range from there (a range is keyed by its row: [`design_range`]); its helps are an impact's
+/// range from there (a range is keyed by its row, `design_range`); its helps are an impact's
 /// (its defaults are Fig 2's, not a design's). Its own rows are the impact speed, K_HZ as a
 /// number and the air's impedance and speed of sound (`sound-speed`, never `c`, which is the
 /// structure's damping in a design).
