@@ -36,7 +36,8 @@ const GAP: usize = 2;
 /// why the engine could not make it (shown instead of the table).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table1 {
-    /// One line per measurement: the cells of [`COLUMNS`], formatted.
+    /// One line per measurement: the cells of the columns shown (a, U0, measured, paper, physical,
+    /// both differences), formatted.
     pub rows: Vec<[String; 7]>,
     /// The summary rows the engine gives (mean, rms, range of the differences): the row's
     /// name and the two differences' cells.
@@ -138,29 +139,28 @@ impl Widget for Table1View<'_> {
         let inner = self.block.inner(area);
         self.block.render(area, buf);
         let width = usize::from(inner.width);
-        let mut lines: Vec<Line<'static>> = match &self.table.error {
-            Some(e) => wrap(&format!("no Table 1: {e}"), width)
+        let mut lines: Vec<Line<'static>> = if let Some(e) = &self.table.error {
+            wrap(&format!("no Table 1: {e}"), width)
                 .into_iter()
                 .map(|l| Line::from(Span::styled(th.text(&l).into_owned(), th.error())))
-                .collect(),
-            None => {
-                let body = self.table.lines(th);
-                let table_w = body.iter().map(|l| l.chars().count()).max().unwrap_or(0);
-                let pad = " ".repeat(width.saturating_sub(table_w) / 2);
-                let n_rows = self.table.rows.len();
-                body.iter()
-                    .enumerate()
-                    .map(|(i, l)| {
-                        let text = th.fit(&format!("{pad}{l}"), width).into_owned();
-                        // The heading and the summary in the label's weight, the rows plain.
-                        if i == 0 || i > n_rows {
-                            Line::from(Span::styled(text, th.label()))
-                        } else {
-                            Line::from(text)
-                        }
-                    })
-                    .collect()
-            }
+                .collect()
+        } else {
+            let body = self.table.lines(th);
+            let table_w = body.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+            let pad = " ".repeat(width.saturating_sub(table_w) / 2);
+            let n_rows = self.table.rows.len();
+            body.iter()
+                .enumerate()
+                .map(|(i, l)| {
+                    let text = th.fit(&format!("{pad}{l}"), width).into_owned();
+                    // The heading and the summary in the label's weight, the rows plain.
+                    if i == 0 || i > n_rows {
+                        Line::from(Span::styled(text, th.label()))
+                    } else {
+                        Line::from(text)
+                    }
+                })
+                .collect()
         };
         // The engine's notes (what each model assumes) where the height leaves room for all.
         let notes: Vec<String> = self.table.notes.iter().flat_map(|n| wrap(n, width)).collect();
