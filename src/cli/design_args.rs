@@ -60,6 +60,19 @@ fn flag<F: ForceFlag>(p: &Param<params::DesignDraft>) -> Arg {
         ("force", Some(alias)) if F::NAME == alias => (alias, None),
         (name, alias) => (name, alias),
     };
+    table_flag(p, long, alias, false)
+}
+
+/// The flag `--{long}` (with the visible alias `alias`) of one row `p` of one of the engine's
+/// tables ([`params::DESIGN`], [`params::PULSE`]): its help, placeholder, conflicts and what it
+/// accepts, all from the row. `names_take_hyphens`: a name (a material) may start with `-`
+/// (then the engine refuses it naming the flag, as `thud pulse` has always done).
+pub(crate) fn table_flag<T>(
+    p: &Param<T>,
+    long: &'static str,
+    alias: Option<&'static str>,
+    names_take_hyphens: bool,
+) -> Arg {
     let mut arg = Arg::new(id(long)).long(long).help(p.help).required(false);
     if let Some(alias) = alias {
         arg = arg.visible_alias(alias);
@@ -68,7 +81,7 @@ fn flag<F: ForceFlag>(p: &Param<params::DesignDraft>) -> Arg {
         arg = arg.value_name(p.value_name);
     }
     if let Some(c) = p.conflicts {
-        arg = arg.conflicts_with(id(c.with));
+        arg = arg.conflicts_with_all(c.with.iter().map(|w| id(w)));
     }
     // No clap `requires` for `p.requires`: clap's message names only the flag missing; the
     // engine's ([`params::design`]) names both, as Python's does.
@@ -87,7 +100,17 @@ fn flag<F: ForceFlag>(p: &Param<params::DesignDraft>) -> Arg {
         Accepts::Quantity { .. } | Accepts::Count { .. } => {
             arg.action(ArgAction::Set).allow_hyphen_values(true).value_parser(clap::value_parser!(String))
         }
-        Accepts::Name { .. } => arg.action(ArgAction::Set).value_parser(clap::value_parser!(String)),
+        Accepts::Name { .. } => {
+            arg.action(ArgAction::Set).allow_hyphen_values(names_take_hyphens).value_parser(clap::value_parser!(String))
+        }
+    }
+}
+
+/// The value given to the flag `--{long}` of the row `p` ([`table_flag`]), if it was given.
+pub(crate) fn table_value<T>(p: &Param<T>, m: &ArgMatches, long: &str) -> Option<Input> {
+    match p.accepts {
+        Accepts::Switch { .. } => m.get_flag(&id(long)).then_some(Input::Switch(true)),
+        _ => m.get_one::<String>(&id(long)).map(|t| Input::Text(t.clone())),
     }
 }
 
@@ -124,11 +147,7 @@ impl<F: ForceFlag> FromArgMatches for DesignArgs<F> {
         let mut given = Vec::new();
         for p in params::DESIGN {
             let name = long::<F>(p);
-            let value = match p.accepts {
-                Accepts::Switch { .. } => m.get_flag(&id(name)).then_some(Input::Switch(true)),
-                _ => m.get_one::<String>(&id(name)).map(|t| Input::Text(t.clone())),
-            };
-            given.extend(value.map(|v| (name.to_string(), v)));
+            given.extend(table_value(p, m, name).map(|v| (name.to_string(), v)));
         }
         Ok(DesignArgs { preset, given, force: std::marker::PhantomData })
     }

@@ -24,9 +24,8 @@ mod study;
 mod sweep;
 mod tui;
 
-use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
+use clap::{Args, CommandFactory, Parser, Subcommand};
 
-use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::error::ThudError;
 use crate::limits::Range;
 use crate::units::{self, Kind};
@@ -146,68 +145,6 @@ impl OutputArgs {
             OutputFormat::Csv
         } else {
             OutputFormat::Text
-        }
-    }
-}
-
-/// Source type on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum SourceArg {
-    Single,
-    Dipole,
-    Quadrupole,
-}
-
-impl From<SourceArg> for Source {
-    fn from(s: SourceArg) -> Self {
-        match s {
-            SourceArg::Single => Source::Single,
-            SourceArg::Dipole => Source::Dipole,
-            SourceArg::Quadrupole => Source::Quadrupole,
-        }
-    }
-}
-
-/// The model of the world on the command line (`thud pulse --model`; the design commands take
-/// the engine's row).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ModelArg {
-    /// The paper's: rms level over τ, half-sine pulse, its air and K_HZ.
-    Paper,
-    /// The measured world: peak level, exact Hertz pulse, real air, K_HZ and mass from the materials.
-    Physical,
-}
-
-/// Acceleration pulse shape on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PulseArg {
-    /// The paper's half-sine, Eq 7.
-    HalfSine,
-    /// The exact Hertz pulse.
-    Hertz,
-}
-
-impl From<PulseArg> for PulseShape {
-    fn from(p: PulseArg) -> Self {
-        match p {
-            PulseArg::HalfSine => PulseShape::HalfSine,
-            PulseArg::Hertz => PulseShape::Hertz,
-        }
-    }
-}
-
-/// Quadrupole image signs on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum QuadSignsArg {
-    Paper,
-    Rigid,
-}
-
-impl From<QuadSignsArg> for QuadSigns {
-    fn from(s: QuadSignsArg) -> Self {
-        match s {
-            QuadSignsArg::Paper => QuadSigns::Paper,
-            QuadSignsArg::Rigid => QuadSigns::Rigid,
         }
     }
 }

@@ -1,9 +1,10 @@
 //! `thud pulse`: one Hertzian impact heard at one observer.
 
-use clap::{Args, ValueEnum};
+use clap::{ArgMatches, Args, Command, FromArgMatches};
 
+use super::design_args::{table_flag, table_value};
 use super::format::num;
-use super::{count, CliError, Ctx, ModelArg, Out, OutputArgs, OutputFormat, PulseArg, QuadSignsArg, SourceArg};
+use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::acoustics::{Field, Levels};
 use crate::contact::{Contact, Target};
 use crate::error::ThudError;
@@ -19,61 +20,8 @@ pub struct PulseArgs {
     /// air, and U0 = its v0 (e.g. paper-fig2, paper-table1); the target stays a fixed plate.
     #[arg(long, value_name = "P")]
     preset: Option<String>,
-    /// Sphere radius (m, or e.g. 19.05mm). Default: from --mass and --sphere's density, else 19.05 mm.
-    #[arg(long, value_name = "A", allow_hyphen_values = true)]
-    radius: Option<String>,
-    /// Sphere mass (kg, or e.g. 40.5g). Default: from --radius and --sphere's density, else 40.5 g.
-    #[arg(long, value_name = "M", allow_hyphen_values = true)]
-    mass: Option<String>,
-    /// Sphere density (kg/m³) [default: --sphere's]: with --mass the radius follows, with --radius the mass.
-    #[arg(long, value_name = "RHO", allow_hyphen_values = true)]
-    density: Option<String>,
-    /// Impact speed U0 (m/s) [default: 1.4].
-    #[arg(long, value_name = "U", allow_hyphen_values = true)]
-    u0: Option<String>,
-    /// Hertz stiffness K_HZ (N/m^1.5) [default: 5.6e8, or from --sphere/--plate].
-    #[arg(long, value_name = "K", allow_hyphen_values = true, conflicts_with_all = ["sphere", "plate"])]
-    k_hz: Option<String>,
-    /// Sphere material (steel, stainless-steel, acrylic, brass, aluminium, glass, rubber, nylon, tungsten-carbide).
-    #[arg(long, value_name = "MATERIAL", allow_hyphen_values = true)]
-    sphere: Option<String>,
-    /// Plate material [default: steel when --sphere is given].
-    #[arg(long, value_name = "MATERIAL", allow_hyphen_values = true)]
-    plate: Option<String>,
-    /// Mass of a movable target (kg): K* = (m+M)/(mM) (Eq 8). Default: a fixed plate.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
-    main_mass: Option<String>,
-    /// Observer distance from the contact point (m) [default: 0.7].
-    #[arg(long, value_name = "R", allow_hyphen_values = true)]
-    r: Option<String>,
-    /// Observer angle from the plate's normal (degrees) [default: 45].
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    theta: Option<String>,
-    /// Reflecting surfaces: a free sphere, a plate, or a wall–floor corner [default: dipole].
-    #[arg(long, value_enum)]
-    source: Option<SourceArg>,
-    /// Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall [default: rigid].
-    #[arg(long, value_enum)]
-    quad_signs: Option<QuadSignsArg>,
-    /// Acceleration pulse: the paper's half-sine (Eq 7) or the exact Hertz pulse [default: half-sine].
-    #[arg(long, value_enum)]
-    pulse: Option<PulseArg>,
-    /// Air impedance ρ0·c (Pa·s/m) [default: 400, the paper's].
-    #[arg(long, value_name = "Z", allow_hyphen_values = true)]
-    rho_c: Option<String>,
-    /// Speed of sound (m/s) [default: 343].
-    #[arg(long, value_name = "C", allow_hyphen_values = true)]
-    sound_speed: Option<String>,
-    /// The model of the world [default: paper]: physical is the measured level (peak, exact
-    /// Hertz pulse, air from --air-temperature and --air-pressure, K_HZ and mass from the materials).
-    #[arg(long, value_enum)]
-    model: Option<ModelArg>,
-    /// Air temperature (°C) of the physical model: ρ0 and c follow [default: 20].
-    #[arg(long, value_name = "T", allow_hyphen_values = true)]
-    air_temperature: Option<String>,
-    /// Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325].
-    #[arg(long, value_name = "P", allow_hyphen_values = true)]
-    air_pressure: Option<String>,
+    #[command(flatten)]
+    impact: ImpactArgs,
     /// Waveform points.
     #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
     points: String,
@@ -81,38 +29,43 @@ pub struct PulseArgs {
     output: OutputArgs,
 }
 
+/// The impact's flags: the rows of the engine's table [`params::PULSE`] (name, placeholder,
+/// help, choices, conflicts), built from it by [`Args::augment_args`] and read back by
+/// [`FromArgMatches`], as the design commands' are ([`super::design_args`]): no hand-kept list.
+#[derive(Debug, Clone, Default)]
+pub struct ImpactArgs {
+    /// The flags given, as (row name, value) in table order.
+    given: Vec<(String, Input)>,
+}
+
+impl Args for ImpactArgs {
+    fn augment_args(cmd: Command) -> Command {
+        params::PULSE.iter().fold(cmd, |cmd, p| cmd.arg(table_flag(p, p.name, p.alias, true)))
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
+}
+
+impl FromArgMatches for ImpactArgs {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        let given =
+            params::PULSE.iter().filter_map(|p| table_value(p, m, p.name).map(|v| (p.name.to_string(), v))).collect();
+        Ok(ImpactArgs { given })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
 /// The impact these flags describe: the engine's [`params::pulse`] on the flags given, with the
 /// preset's design (if any) for the defaults.
 fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
     let base = a.preset.as_deref().map(crate::presets::preset).transpose()?;
-    let texts = [
-        ("sphere", &a.sphere),
-        ("plate", &a.plate),
-        ("radius", &a.radius),
-        ("mass", &a.mass),
-        ("density", &a.density),
-        ("k-hz", &a.k_hz),
-        ("main-mass", &a.main_mass),
-        ("u0", &a.u0),
-        ("rho-c", &a.rho_c),
-        ("sound-speed", &a.sound_speed),
-        ("air-temperature", &a.air_temperature),
-        ("air-pressure", &a.air_pressure),
-        ("r", &a.r),
-        ("theta", &a.theta),
-    ];
-    let choices = [
-        ("source", a.source.and_then(|v| v.to_possible_value())),
-        ("quad-signs", a.quad_signs.and_then(|v| v.to_possible_value())),
-        ("pulse", a.pulse.and_then(|v| v.to_possible_value())),
-        ("model", a.model.and_then(|v| v.to_possible_value())),
-    ];
-    let given: Vec<(String, Input)> = texts
-        .into_iter()
-        .filter_map(|(n, t)| t.as_ref().map(|t| (n.to_string(), Input::Text(t.clone()))))
-        .chain(choices.into_iter().filter_map(|(n, c)| c.map(|c| (n.to_string(), Input::Text(c.get_name().into())))))
-        .collect();
-    params::pulse(base.as_ref(), &given, Spelling::Flag)
+    params::pulse(base.as_ref(), &a.impact.given, Spelling::Flag)
 }
 
 pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {

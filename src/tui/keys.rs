@@ -74,6 +74,8 @@ pub enum Action {
     },
     /// Animation: back to the run's start.
     AnimRestart,
+    /// The Table 1 view: the paper's measurements beside both models (again: back).
+    Table1,
 }
 
 /// One binding: the key, its modifiers, the action, its name in `config.toml`'s `[keys]`, how
@@ -301,6 +303,15 @@ pub const KEYS: &[Binding] = &[
         "i",
         "pulse panel: the run's loudest impact / one impact at v0 on a plate (Fig 2)",
         "impact",
+    ),
+    bind(
+        KeyCode::Char('M'),
+        SHIFT,
+        Action::Table1,
+        "table1",
+        "M",
+        "Table 1: measured beside both models, paper and physical (M again: back)",
+        "",
     ),
     bind(
         KeyCode::Char('f'),

@@ -18,7 +18,7 @@
 //! single-slot runner) calling `compute` (the physics each job does), results tagged with the
 //! typed keys of `cache_key` (built on `fingerprint`); `ui` (layout, one function per area, reading the state only)
 //! drawing the widgets `params`, `readout`, `waveform`, `polar`, `history`, `chart`,
-//! `response` (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
+//! `response`, `table1` (Table 1 beside both models) (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
 //! each field and number means), `files` (the export menu), `tour` (the guided tour's
 //! steps), `keys` (the key table), `input_reader` (the input thread) on `input_parse` (the
 //! terminal's bytes to crossterm events, a bracketed paste held to a time and a size), `hangup`
@@ -47,6 +47,7 @@ pub mod polar;
 pub mod readout;
 pub mod response;
 pub mod sgr16;
+pub mod table1;
 pub mod terminal;
 pub mod theme;
 pub mod tour;

@@ -530,6 +530,7 @@ fn ascii_word(c: char) -> Option<&'static str> {
         'Δ' => "delta ",
         'ν' => "nu",
         'π' => "pi",
+        '§' => "section ",
         'ω' => "omega",
         'Ω' => "Omega",
         'β' => "beta",

@@ -18,6 +18,7 @@
 //! best = false                 # optional: jump to the best zone-3 design once the chart is in
 //! select = "theta"             # optional: the field the step talks about (else the first it sets)
 //! animate = false              # optional: play the run in slow motion (the animation view)
+//! table1 = false               # optional: show Table 1 beside both models (the Table 1 view)
 //! caption = "Two to three lines of text."
 //! ```
 
@@ -76,6 +77,8 @@ pub struct TourStep {
     pub select: Knob,
     /// The step plays the run in slow motion (the animation view) instead of its panel.
     pub animate: bool,
+    /// The step shows Table 1 beside both models (the Table 1 view) instead of its panel.
+    pub table1: bool,
 }
 
 /// A checked tour.
@@ -108,6 +111,8 @@ struct StepFile {
     select: Option<String>,
     #[serde(default)]
     animate: bool,
+    #[serde(default)]
+    table1: bool,
 }
 
 /// `text` wrapped greedily at spaces into lines of at most `width` columns (a longer word
@@ -192,6 +197,9 @@ impl Tour {
                     "the caption takes {lines} lines at {CAPTION_WIDTH} columns; keep it to 1–{CAPTION_LINES}"
                 )));
             }
+            if s.animate && s.table1 {
+                return Err(at("a step shows the animation or Table 1, not both".into()));
+            }
             if s.title.trim().is_empty() || s.title.chars().count() > 60 {
                 return Err(at("a step title has 1 to 60 characters".into()));
             }
@@ -213,6 +221,7 @@ impl Tour {
                 sets_thresholds,
                 select,
                 animate: s.animate,
+                table1: s.table1,
             });
         }
         Ok(Tour { title: parsed.title, steps })
@@ -346,17 +355,21 @@ mod tests {
         assert!((d.damper.impact_mass_kg - 0.045).abs() < 1e-12, "a plain 45 is 45 g, as the field shows");
     }
 
-    /// The Table 1 step shows the physical model's level for its row, the one number its
-    /// caption quotes (it names only what is on screen; `thud paper table1` has the rows).
+    /// The Table 1 step shows the Table 1 view (the engine's table beside both models) and its
+    /// caption quotes the engine's mean differences as the view rounds them: the paper's model
+    /// 7.6 dB low, the physical model's residual (the tour test checks both are on screen).
     #[test]
     fn the_table1_step_shows_what_its_caption_says() {
         let t = Tour::load(&TourSource::BuiltIn).unwrap();
         let step = t.steps.iter().find(|s| s.title.contains("measured world")).unwrap();
-        assert_eq!(step.design.model, crate::design::Model::Physical);
-        let shown = super::super::compute::single_impact(&step.design.clone().check().unwrap()).unwrap().spl_db;
-        let row = crate::paper::table1_physical_spl(0.01905, 1.4).unwrap();
-        assert!((shown - row).abs() < 1e-9, "{shown} vs the table's {row}");
-        assert!(step.caption.contains(&format!("{row:.1} dB")), "{row:.1}: {}", step.caption);
+        assert!(step.table1 && !step.animate, "the step shows the Table 1 view");
+        assert_eq!(step.design.model, crate::design::Model::Physical, "the header names the physical model");
+        let view = super::super::table1::Table1::compute();
+        let mean = view.summary.iter().find(|(n, _, _)| n == "mean").unwrap();
+        let paper_low = mean.1.trim_start_matches('−');
+        assert!(mean.1.starts_with('−'), "the paper's model is low: {}", mean.1);
+        assert!(step.caption.contains(&format!("{paper_low} dB low")), "{paper_low}: {}", step.caption);
+        assert!(step.caption.contains(&format!("leaves {} dB", mean.2)), "{}: {}", mean.2, step.caption);
     }
 
     #[test]

@@ -150,6 +150,12 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
             return Drawn::default();
         }
     }
+    if let Some(table) = &app.table1 {
+        if body.width >= 30 && body.height >= 6 {
+            table1_panel(f, app, table, body);
+            return Drawn::default();
+        }
+    }
     if app.zoom && body.width >= 30 && body.height >= 6 {
         return zoomed(f, app, body);
     }
@@ -243,6 +249,28 @@ fn anim_panel<'a>(f: &mut Frame, app: &'a App, anim: &'a super::anim::Anim, area
         theme: app.theme,
     };
     f.render_widget(view, area);
+}
+
+/// The Table 1 view in the whole body: the measurements beside both models (the engine's table).
+fn table1_panel(f: &mut Frame, app: &App, table: &super::table1::Table1, area: Rect) {
+    let th = &app.theme;
+    let title = fit(
+        th,
+        &[
+            " Table 1 (dB): acrylic sphere on a steel plate, dipole at r 28.28 cm, θ 45°: measured and both models "
+                .to_string(),
+            " Table 1 (dB): measured and both models ".to_string(),
+            " Table 1 (dB) ".to_string(),
+        ],
+        area.width.saturating_sub(2),
+    );
+    // In the tour the table is the step's panel: marked as the others are.
+    let block = if app.tour.is_some() {
+        th.highlight_block(th.text(&format!(" {} {}", th.sym("▶", ">"), title.trim_start())).into_owned())
+    } else {
+        th.block(th.text(&title).into_owned(), true)
+    };
+    f.render_widget(super::table1::Table1View { block, table, theme: app.theme }, area);
 }
 
 /// The zoomed panel alone in the whole body.

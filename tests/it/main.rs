@@ -47,6 +47,7 @@ mod one_schema;
 mod params_table;
 mod pdf;
 mod physical_model;
+mod pulse_table;
 mod response_band;
 mod schema;
 mod shards;

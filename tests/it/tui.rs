@@ -1829,9 +1829,15 @@ fn every_tour_step_at_80x24_shows_its_named_panel_with_its_plot() {
         insta::assert_snapshot!(format!("tour_zoomed_step{}_80x24", i + 1), screen);
         assert!(!screen.contains("too small"), "step {} at 80x24:\n{screen}", i + 1);
         let marked = screen.lines().find(|l| l.contains("▶ ")).expect("the step's panel is marked");
-        let title = if step.animate { "animation" } else { panel_title(step.panel) };
+        let title = match (step.animate, step.table1) {
+            (true, _) => "animation",
+            (_, true) => "Table 1",
+            _ => panel_title(step.panel),
+        };
         assert!(marked.contains(title) || step.panel == Panel::Chart, "step {}:\n{screen}", i + 1);
         match step.panel {
+            // The Table 1 view: the measurements beside both models, not a plot.
+            _ if step.table1 => assert!(screen.contains("measured") && screen.contains("physical"), "{screen}"),
             Panel::Chart => {
                 assert!(screen.contains(panel_title(Panel::Chart)) && screen.contains("d (cm)"), "{screen}");
             }

@@ -110,3 +110,62 @@ fn every_tour_step_shows_every_gap_row_every_number_it_names_and_its_field() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
+
+/// The Table 1 step (issue 23 item 5) shows the engine's Table 1 whole at both sizes: every
+/// row's measured level, the paper's model, the physical model and both differences, and the
+/// mean and rms of the differences, each as `thud paper table1 --json` gives it (the engine's
+/// `paper::table1`, read here by column key), to 0.1 dB.
+#[test]
+fn the_table1_step_shows_the_engine_s_table1_at_both_sizes() {
+    use thud::paper::Value;
+    let t = thud::paper::table1().unwrap();
+    let at = |k: &str| t.columns.iter().position(|c| c.key == k).unwrap();
+    let num = |v: &Value| match v {
+        Value::Num(x) => *x,
+        other => panic!("not a number: {other:?}"),
+    };
+    let diff = |x: f64| format!("{x:+.1}").replace('-', "−");
+    let mut want: Vec<String> = Vec::new();
+    for row in &t.rows {
+        for k in ["spl_experiment_db", "spl_model_db", "spl_physical_db"] {
+            want.push(format!("{:.1}", num(&row[at(k)])));
+        }
+        for k in ["model_minus_experiment_db", "physical_minus_experiment_db"] {
+            want.push(diff(num(&row[at(k)])));
+        }
+    }
+    for name in ["mean", "rms"] {
+        let row = t.summary.iter().find(|r| r[0] == Value::Text(name.into())).unwrap();
+        for k in ["model_minus_experiment_db", "physical_minus_experiment_db"] {
+            let x = num(&row[at(k)]);
+            // The rms is a magnitude, shown without a sign.
+            want.push(if name == "rms" { format!("{x:.1}") } else { diff(x) });
+        }
+    }
+    let mut failures = Vec::new();
+    for (w, h) in [(80, 24), (120, 40)] {
+        let mut app = full_app();
+        press(&mut app, KeyCode::Char('T'));
+        let steps = app.tour.as_ref().unwrap().tour.steps.clone();
+        let i = steps.iter().position(|s| s.table1).expect("the tour has a Table 1 step");
+        for _ in 0..i {
+            press(&mut app, KeyCode::Right);
+        }
+        let screen = render(&mut app, w, h);
+        let caption_top = screen.lines().position(|l| l.contains(&format!("tour {}/", i + 1))).unwrap();
+        let shown: String = screen.lines().take(caption_top).collect::<Vec<_>>().join("\n");
+        assert!(shown.contains("Table 1"), "{w}x{h}:\n{screen}");
+        for cell in &want {
+            if !shows(&shown, cell) {
+                failures.push(format!("{w}x{h}: {cell} is not shown\n{screen}"));
+            }
+        }
+        // `M` closes the view and opens it again, outside the tour too.
+        press(&mut app, KeyCode::Esc);
+        press(&mut app, KeyCode::Char('M'));
+        assert!(app.table1.is_none(), "M closes the view");
+        press(&mut app, KeyCode::Char('M'));
+        assert!(render(&mut app, w, h).contains("measured"), "M opens it");
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}

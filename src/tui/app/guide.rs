@@ -43,6 +43,7 @@ impl App {
         }
         self.pulse = step.pulse;
         self.anim = step.animate.then(crate::tui::anim::Anim::default);
+        self.table1 = step.table1.then(crate::tui::table1::Table1::compute);
         if let Some(i) = crate::tui::fields::Knob::ALL.iter().position(|k| *k == step.select) {
             self.selected = i;
         }

@@ -242,6 +242,7 @@ impl App {
             Action::Find => self.mode = Mode::Find(String::new(), 0),
             Action::Field(f) => self.select_field(f),
             Action::Animate => self.toggle_anim(),
+            Action::Table1 => self.toggle_table1(),
             Action::AnimPlay | Action::AnimStep { .. } | Action::AnimSpeed { .. } | Action::AnimRestart => {
                 self.anim_key(a);
             }

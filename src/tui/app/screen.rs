@@ -105,6 +105,25 @@ impl App {
     }
 }
 
+/// The Table 1 view.
+impl App {
+    /// `M`: shows Table 1 (the paper's measurements beside both models, the engine's
+    /// [`crate::paper::table1`]), or leaves it.
+    pub(crate) fn toggle_table1(&mut self) {
+        if self.table1.take().is_some() {
+            self.set_status("Table 1 closed", false);
+            return;
+        }
+        self.anim = None;
+        self.table1 = Some(crate::tui::table1::Table1::compute());
+        let key = self.key_label(Action::Table1).to_string();
+        self.set_status(
+            &format!("Table 1: the measurements beside both models, as thud paper table1 prints them ({key} closes)"),
+            false,
+        );
+    }
+}
+
 /// The animation view.
 impl App {
     /// The end of the runs the animation plays (s): the live design's, and a pinned design's
@@ -120,6 +139,7 @@ impl App {
             self.set_status("animation closed", false);
             return;
         }
+        self.table1 = None;
         self.anim = Some(crate::tui::anim::Anim::default());
         self.set_status(
             "animation: Space plays/pauses, . , one frame, [ ] slower/faster, Home restarts, a closes",

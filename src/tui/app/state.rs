@@ -328,6 +328,8 @@ pub struct App {
     pub tour: Option<TourState>,
     /// The animation view, while it shows (`a`).
     pub anim: Option<crate::tui::anim::Anim>,
+    /// The Table 1 view, while it shows (`M`; the tour's Table 1 step).
+    pub table1: Option<crate::tui::table1::Table1>,
     /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
     pub(crate) pending_best: bool,
     pub(crate) status: Option<Status>,
@@ -393,6 +395,7 @@ impl App {
             pulse: PulseView::for_preset(preset),
             tour: None,
             anim: None,
+            table1: None,
             pending_best: false,
             status: Some(Status {
                 text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
