@@ -6,37 +6,13 @@
 //! panic, never a run past its work cap (each run is killed after 30 s, a failure).
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use crate::support::wait::wait_within;
-
-struct Ran {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
+use crate::common::{self, Ran};
 
 /// Runs thud with HOME, the XDG folders and the working folder inside `home`.
 fn thud_in(home: &Path, args: &[&str]) -> Ran {
-    let child = Command::new(env!("CARGO_BIN_EXE_thud"))
-        .args(args)
-        .current_dir(home)
-        .env("HOME", home)
-        .env("XDG_CONFIG_HOME", home.join("config"))
-        .env("XDG_DATA_HOME", home.join("data"))
-        .env_remove("XDG_CONFIG_DIRS")
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run thud");
-    let out = wait_within(child, Duration::from_secs(30), &format!("{args:?}"));
-    Ran {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into(),
-        stderr: String::from_utf8_lossy(&out.stderr).into(),
-    }
+    common::thud_within(home, args, Duration::from_secs(30))
 }
 
 /// Values no numeric flag may turn into a panic, a hang or a non-finite number.

@@ -3,6 +3,9 @@
 
 use std::path::Path;
 use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use crate::support::wait::wait_within;
 
 /// Runs the built `thud` with `args`: (exit code, stdout, stderr); -1 when a signal ended it.
 pub fn thud(args: &[&str]) -> (i32, String, String) {
@@ -31,4 +34,36 @@ pub fn thud_in(home: &Path, args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stdout).into(),
         String::from_utf8_lossy(&out.stderr).into(),
     )
+}
+
+/// What one run of thud did.
+#[derive(Debug)]
+pub struct Ran {
+    /// The exit code; -1 when a signal ended it.
+    pub code: i32,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+/// As [`thud_in`], with `home` as the working folder too, and the run killed (a test failure)
+/// after `limit`.
+pub fn thud_within(home: &Path, args: &[&str], limit: Duration) -> Ran {
+    let child = Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(args)
+        .current_dir(home)
+        .env("HOME", home)
+        .env("XDG_CONFIG_HOME", home.join("config"))
+        .env("XDG_DATA_HOME", home.join("data"))
+        .env_remove("XDG_CONFIG_DIRS")
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run thud");
+    let out = wait_within(child, limit, &format!("{args:?}"));
+    Ran {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into(),
+        stderr: String::from_utf8_lossy(&out.stderr).into(),
+    }
 }
