@@ -36,7 +36,7 @@ def keyword(line):
 # Each class of bad input, by function: (keywords, the same input on the command line).
 SAME_AS_CLI = [
     ("simulate", {"mass": math.nan}, ["--mass", "NaN"], "mass"),
-    ("simulate", {"gap": math.inf}, ["--gap", "inf"], "gap"),
+    ("simulate", {"gap": "1e999"}, ["--gap", "1e999"], "gap"),
     ("simulate", {"main_mass": 1e308}, ["--main-mass", "1e308"], "main_mass"),
     ("simulate", {"k_hz": -5}, ["--k-hz", "-5"], "k_hz"),
     ("simulate", {"theta": 100}, ["--theta", "100"], "theta"),
