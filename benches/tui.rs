@@ -81,11 +81,13 @@ fn chart_fill(c: &mut Criterion) {
         let _ = tx.send(Msg::Work(d));
     });
     let mut step = 0u32;
+    // The explorer's robust chart (issue 27): N = 16 runs a cell over the same grids.
     let cases = [
-        ("coarse 6x5", Grids { coarse: None, fine: Grid::standard(6, 5) }),
-        ("default: 6x5 then 16x12", Grids::default()),
+        ("coarse 6x5", Grids { coarse: None, fine: Grid::standard(6, 5) }, 1),
+        ("default: 6x5 then 16x12", Grids::default(), 1),
+        ("default: 6x5 then 16x12, N = 16 runs a cell", Grids::default(), 16),
     ];
-    for (name, grids) in cases {
+    for (name, grids, runs) in cases {
         g.bench_function(name, |b| {
             b.iter_custom(|iters| {
                 let mut total = Duration::ZERO;
@@ -94,6 +96,14 @@ fn chart_fill(c: &mut Criterion) {
                     let mut d = Design::default();
                     d.damper.v0_m_s += 1e-9 * f64::from(step);
                     let mut app = App::with_grids(d, "default", Palette::default(), grids.clone());
+                    if runs > 1 {
+                        // N set as a user sets it (the field), not by poking the state.
+                        app.selected = thud::tui::fields::Knob::ALL
+                            .iter()
+                            .position(|k| *k == thud::tui::fields::Knob::RUNS)
+                            .unwrap();
+                        drop(app.submit_text(&runs.to_string()));
+                    }
                     let t0 = Instant::now();
                     for r in app.initial_requests() {
                         worker.submit(r);
