@@ -335,17 +335,25 @@ pub(crate) enum ContactOutcome {
     WorkCap,
 }
 
-/// Where and how a contact integration ended.
+/// Where and how a contact integration ended, by any scheme; `R` is the scheme's state of a
+/// contact cut by its time limit (this module's [`Resume`] for the reference).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ContactEnd {
-    /// Time (s) and state at the end.
+pub(crate) struct ContactEnd<R = Resume> {
+    /// Time (s) and state `[x, x', δ, δ', E_contact, E_viscous]` at the end.
     pub t: f64,
     pub y: State,
     /// Peak penetration (m), refined where δ' = 0.
     pub pen_max: f64,
     pub outcome: ContactOutcome,
     /// With [`ContactOutcome::EndOfRun`]: everything needed to carry the contact on.
-    pub resume: Option<Resume>,
+    pub resume: Option<R>,
+}
+
+impl<R> ContactEnd<R> {
+    /// The same end with its resume state mapped by `f` (the event solver tags it by scheme).
+    pub(crate) fn map_resume<S>(self, f: impl FnOnce(R) -> S) -> ContactEnd<S> {
+        ContactEnd { t: self.t, y: self.y, pen_max: self.pen_max, outcome: self.outcome, resume: self.resume.map(f) }
+    }
 }
 
 /// A contact integration cut by its time limit, as it stood: the step-size controller, the

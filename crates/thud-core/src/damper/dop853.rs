@@ -25,11 +25,9 @@
 
 use std::cell::OnceCell;
 
-use crate::contact::{contact_duration, peak_approach};
-
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{root_in, Dense, Observer, Series, Span, NC, Y};
+use super::sundman::{onset, root_in, Dense, Observer, Onset, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
@@ -97,18 +95,9 @@ impl Rhs<'_> {
     }
 }
 
-/// Where and how a contact integration ended.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct End {
-    /// Time (s) and state `[x, x', δ, δ', E_contact, E_viscous]` at the end.
-    pub t: f64,
-    pub y: State,
-    /// Peak penetration (m), where δ' = 0 on the step's dense output.
-    pub pen_max: f64,
-    pub outcome: ContactOutcome,
-    /// With [`ContactOutcome::EndOfRun`]: everything needed to carry the contact on.
-    pub resume: Option<Resume>,
-}
+/// Where and how a contact integration ended (the peak penetration located on the step's
+/// dense output).
+pub(crate) type End = super::contact::ContactEnd<Resume>;
 
 /// A contact cut by its time limit, as it stood.
 #[derive(Debug, Clone, Copy)]
@@ -166,12 +155,7 @@ pub(crate) fn integrate<L: Load>(
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
-    let u0 = y0[3].abs().max(1e-12);
-    let amax = peak_approach(u0, sys.kstar, sys.k_hz);
-    let tau = contact_duration(amax, u0);
-    let e_sc = 0.5 * u0 * u0 / sys.kstar;
-    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax.sqrt(), u0, e_sc, e_sc, tau];
-    let y = Y::from([y0[0], y0[1], 0.0, y0[3], 0.0, 0.0, 0.0]);
+    let Onset { amax, tau, sc, y } = onset(sys, &y0);
     // The contact's length in θ is about 1.9·τ/√α_max.
     let h = 1.9 * tau / amax.sqrt() / STEPS_NOMINAL;
     let r = Resume { s, sc, t_onset: t0, y, pen: 0.0, h, h_nom: h, had_pos: false };

@@ -357,33 +357,6 @@ struct Open {
     counted: (f64, f64),
 }
 
-/// How a contact integration ended, by either scheme.
-struct Ended {
-    t: f64,
-    y: State,
-    pen_max: f64,
-    outcome: ContactOutcome,
-    resume: Option<Cut>,
-}
-
-impl From<super::contact::ContactEnd> for Ended {
-    fn from(e: super::contact::ContactEnd) -> Self {
-        Ended { t: e.t, y: e.y, pen_max: e.pen_max, outcome: e.outcome, resume: e.resume.map(Cut::Reference) }
-    }
-}
-
-impl From<dop853::End> for Ended {
-    fn from(e: dop853::End) -> Self {
-        Ended { t: e.t, y: e.y, pen_max: e.pen_max, outcome: e.outcome, resume: e.resume.map(Cut::Dop853) }
-    }
-}
-
-impl From<sundman::End> for Ended {
-    fn from(e: sundman::End) -> Self {
-        Ended { t: e.t, y: e.y, pen_max: e.pen_max, outcome: e.outcome, resume: e.resume.map(Cut::Sundman) }
-    }
-}
-
 /// An event-driven run in progress.
 pub(crate) struct EventSim<'a, F: Flight> {
     sys: Sys,
@@ -460,22 +433,31 @@ impl<'a, F: Flight> EventSim<'a, F> {
                 let a_bound = self.flight.contact_a_bound(self.x, self.v);
                 let end = match scheme {
                     ContactScheme::DormandPrince => {
-                        Ended::from(integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, a_bound, obs))
+                        integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, a_bound, obs)
+                            .map_resume(Cut::Reference)
                     }
                     ContactScheme::SundmanTaylor => {
-                        Ended::from(sundman::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs))
+                        sundman::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
+                            .map_resume(Cut::Sundman)
                     }
                     ContactScheme::SundmanDop853 => {
-                        Ended::from(dop853::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs))
+                        dop853::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
+                            .map_resume(Cut::Dop853)
                     }
                 };
                 (end, (0.0, 0.0))
             }
             (Some(o), _) => {
                 let end = match &o.resume {
-                    Cut::Reference(r) => Ended::from(resume(&sys, load, r, t_stop, &mut self.budget, obs)),
-                    Cut::Sundman(r) => Ended::from(sundman::resume(&sys, load, r, t_stop, &mut self.budget, obs)),
-                    Cut::Dop853(r) => Ended::from(dop853::resume(&sys, load, r, t_stop, &mut self.budget, obs)),
+                    Cut::Reference(r) => {
+                        resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Reference)
+                    }
+                    Cut::Sundman(r) => {
+                        sundman::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Sundman)
+                    }
+                    Cut::Dop853(r) => {
+                        dop853::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Dop853)
+                    }
                 };
                 (end, o.counted)
             }

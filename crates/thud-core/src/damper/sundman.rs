@@ -399,18 +399,9 @@ impl Observer for Unobserved {
     fn step(&mut self, _: &Span<'_>) {}
 }
 
-/// Where and how a contact integration ended.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct End {
-    /// Time (s) and state `[x, x', δ, δ', E_contact, E_viscous]` at the end.
-    pub t: f64,
-    pub y: State,
-    /// Peak penetration (m), where δ' = 0 on the step's series.
-    pub pen_max: f64,
-    pub outcome: ContactOutcome,
-    /// With [`ContactOutcome::EndOfRun`]: everything needed to carry the contact on.
-    pub resume: Option<Resume>,
-}
+/// Where and how a contact integration ended (the peak penetration located on the step's
+/// series).
+pub(crate) type End = super::contact::ContactEnd<Resume>;
 
 /// A contact cut by its time limit, as it stood.
 #[derive(Debug, Clone, Copy)]
@@ -445,6 +436,27 @@ struct Integration<'a, L, O> {
     obs: O,
 }
 
+/// A contact's start in the Sundman form, shared by the Taylor and DOP853 schemes: the peak
+/// approach α_max (m, Eq 5) and the Hertz duration τ (s) at the incoming speed u0 = |δ'|, the
+/// error scales in the order of [`Y`], and the state `[x, x', σ = 0, δ', 0, 0, 0]`.
+pub(crate) struct Onset {
+    pub amax: f64,
+    pub tau: f64,
+    pub sc: [f64; 7],
+    pub y: Y,
+}
+
+/// The [`Onset`] of a contact from `y0 = [x, x', 0, u0, 0, 0]`.
+pub(crate) fn onset(sys: &Sys, y0: &State) -> Onset {
+    let u0 = y0[3].abs().max(1e-12);
+    let amax = peak_approach(u0, sys.kstar, sys.k_hz);
+    let tau = contact_duration(amax, u0);
+    let e_sc = 0.5 * u0 * u0 / sys.kstar;
+    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax.sqrt(), u0, e_sc, e_sc, tau];
+    let y = Y::from([y0[0], y0[1], 0.0, y0[3], 0.0, 0.0, 0.0]);
+    Onset { amax, tau, sc, y }
+}
+
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
 /// until the exit, the time limit `t_limit` or the step budget.
 #[allow(clippy::too_many_arguments)]
@@ -458,12 +470,7 @@ pub(crate) fn integrate<L: Load>(
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
-    let u0 = y0[3].abs().max(1e-12);
-    let amax = peak_approach(u0, sys.kstar, sys.k_hz);
-    let tau = contact_duration(amax, u0);
-    let e_sc = 0.5 * u0 * u0 / sys.kstar;
-    let sc = [2.0 * sys.half_gap + y0[0].abs(), y0[1].abs() + u0, amax.sqrt(), u0, e_sc, e_sc, tau];
-    let y = Y::from([y0[0], y0[1], 0.0, y0[3], 0.0, 0.0, 0.0]);
+    let Onset { amax, tau, sc, y } = onset(sys, &y0);
     // The contact's length in θ: about 1.9·τ/√α_max (the integral of dt/√δ over a half sine).
     let h = 0.3 * tau / amax.sqrt();
     let it = Integration { sys, load, s, sc, t_onset: t0, t_limit, y, clamped: false, switches: 0, pen: 0.0, h, obs };
