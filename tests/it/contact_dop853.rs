@@ -14,43 +14,7 @@
 
 use thud::damper::{simulate_with, ContactScheme, DamperParams, Run, RunOptions, Solver};
 
-fn run(p: &DamperParams, scheme: ContactScheme) -> Run {
-    simulate_with(p, Solver::Event, &RunOptions::default(), scheme).unwrap()
-}
-
-/// The largest impact-speed difference (m/s) over the first `n` impacts of two runs.
-fn speed_gap(a: &Run, b: &Run, n: usize) -> f64 {
-    assert!(a.impacts.len() >= n.min(b.impacts.len()));
-    let mut du: f64 = 0.0;
-    for (x, y) in a.impacts.iter().zip(&b.impacts).take(n) {
-        assert_eq!(x.wall, y.wall);
-        du = du.max((x.u_in_m_s - y.u_in_m_s).abs()).max((x.u_out_m_s - y.u_out_m_s).abs());
-    }
-    du
-}
-
-/// `|initial + work − final − dissipated|` relative to the energy that went through the run
-/// (the larger of the initial energy and the work of the force).
-fn ledger_residual(r: &Run) -> f64 {
-    let e = r.energy;
-    (e.initial_j + e.forcing_work_j - e.final_mechanical_j - e.dissipated_contact_j - e.dissipated_viscous_j).abs()
-        / e.initial_j.max(e.forcing_work_j.abs())
-}
-
-/// A small deterministic generator (xorshift64*), uniform in [0, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn within(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
+use crate::contact_scheme::{ledger_residual, run, speed_gap, Rng};
 
 #[test]
 fn the_fig9_design_agrees_with_the_reference_and_closes_its_ledger() {
