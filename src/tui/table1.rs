@@ -49,12 +49,17 @@ pub struct Table1 {
 }
 
 impl Table1 {
-    /// The engine's Table 1 ([`crate::paper::table1`]), formatted for the view.
+    /// The engine's Table 1 ([`crate::paper::table1`]), formatted for the view. It depends on
+    /// no design, so it is computed once a process (about 20 ms, the first time the view or
+    /// the tour's step opens) and copied after.
     pub fn compute() -> Self {
-        match crate::paper::table1() {
-            Ok(t) => Self::of(&t),
-            Err(e) => Self::failed(e.to_string()),
-        }
+        static TABLE: std::sync::OnceLock<Table1> = std::sync::OnceLock::new();
+        TABLE
+            .get_or_init(|| match crate::paper::table1() {
+                Ok(t) => Self::of(&t),
+                Err(e) => Self::failed(e.to_string()),
+            })
+            .clone()
     }
 
     fn failed(error: String) -> Self {
