@@ -88,24 +88,30 @@ impl Study {
     /// `sha256:` and the hex SHA-256 of the study's canonical JSON (see the module doc).
     #[must_use]
     pub fn hash(&self) -> String {
-        // Serializing these plain structs to memory cannot fail.
-        let canonical = serde_json::to_vec(self).unwrap_or_default();
-        let digest = Sha256::digest(&canonical);
-        let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
-        format!("sha256:{hex}")
+        hash_of(self)
     }
 }
 
-/// The first line of a part.
+/// `sha256:` and the hex SHA-256 of `study`'s canonical JSON: the hash every part's header
+/// carries (the chart's, a study's over any parameter, a bifurcation's).
+pub fn hash_of(study: &impl Serialize) -> String {
+    // Serializing these plain structs to memory cannot fail.
+    let canonical = serde_json::to_vec(study).unwrap_or_default();
+    let hex: String = Sha256::digest(&canonical).iter().map(|b| format!("{b:02x}")).collect();
+    format!("sha256:{hex}")
+}
+
+/// The first line of a part: of the mass × gap chart's ([`Study`]), or of a study over any
+/// parameter's (`S` its own description, `thud sweep --vary`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Header {
+pub struct Header<S = Study> {
     /// [`FORMAT`].
     pub format: String,
     /// [`FORMAT_VERSION`].
     pub format_version: u32,
     /// The thud that computed the part.
     pub thud_version: String,
-    /// [`Study::hash`] of `study`.
+    /// [`hash_of`] `study`.
     pub hash: String,
     /// K: which part, 0-based.
     pub shard: usize,
@@ -117,7 +123,7 @@ pub struct Header {
     pub first_cell: usize,
     /// One past the part's last cell.
     pub end_cell: usize,
-    pub study: Study,
+    pub study: S,
 }
 
 impl Header {

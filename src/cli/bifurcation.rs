@@ -202,10 +202,7 @@ pub struct PartStudy {
 
 impl PartStudy {
     fn hash(&self) -> String {
-        use sha2::{Digest, Sha256};
-        let canonical = serde_json::to_vec(self).unwrap_or_default();
-        let hex: String = Sha256::digest(&canonical).iter().map(|b| format!("{b:02x}")).collect();
-        format!("sha256:{hex}")
+        crate::shard::hash_of(self)
     }
 }
 

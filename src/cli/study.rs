@@ -122,10 +122,7 @@ pub struct StudySpec {
 
 impl StudySpec {
     fn hash(&self) -> String {
-        use sha2::{Digest, Sha256};
-        let canonical = serde_json::to_vec(self).unwrap_or_default();
-        let hex: String = Sha256::digest(&canonical).iter().map(|b| format!("{b:02x}")).collect();
-        format!("sha256:{hex}")
+        crate::shard::hash_of(self)
     }
 
     /// The grid again, every value and the base design checked as when it was typed.
@@ -139,20 +136,9 @@ impl StudySpec {
     }
 }
 
-/// The first line of a part of a study.
-#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
-pub struct StudyHeader {
-    pub format: String,
-    pub format_version: u32,
-    pub thud_version: String,
-    pub hash: String,
-    pub shard: usize,
-    pub shards: usize,
-    pub cells: usize,
-    pub first_cell: usize,
-    pub end_cell: usize,
-    pub study: StudySpec,
-}
+/// The first line of a part of a study: the chart's part header around the study's own
+/// description.
+pub type StudyHeader = crate::shard::Header<StudySpec>;
 
 /// `thud sweep --vary … --shard K/N`: part `k` of `n` of the study's cells (contiguous C-order
 /// indices, [`crate::design::shard_range`]) as JSON lines: the header, then one cell a line.
