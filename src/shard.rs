@@ -268,19 +268,22 @@ fn field(v: Option<f64>) -> String {
     v.map_or_else(String::new, |x| x.to_string())
 }
 
+/// A part as JSON lines: `header` on the first line, then one line per record of `rows` (the
+/// chart's, a study's and a bifurcation's parts alike).
+pub fn json_lines<R: Serialize>(header: &impl Serialize, rows: &[R]) -> Result<String, std::io::Error> {
+    let mut s = serde_json::to_string(header)?;
+    s.push('\n');
+    for r in rows {
+        s += &serde_json::to_string(r)?;
+        s.push('\n');
+    }
+    Ok(s)
+}
+
 /// The text of a part: `header`, then `cells` (in index order) in `format`.
 pub fn write(format: Format, header: &Header, cells: &[PartCell]) -> Result<String, csv::Error> {
-    let head = serde_json::to_string(header).map_err(std::io::Error::from)?;
     match format {
-        Format::JsonLines => {
-            let mut s = head;
-            s.push('\n');
-            for c in cells {
-                s += &serde_json::to_string(c).map_err(std::io::Error::from)?;
-                s.push('\n');
-            }
-            Ok(s)
-        }
+        Format::JsonLines => Ok(json_lines(header, cells)?),
         Format::Csv => {
             let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
             w.write_record(csv_header())?;
@@ -311,6 +314,7 @@ pub fn write(format: Format, header: &Header, cells: &[PartCell]) -> Result<Stri
             let bytes = w.into_inner().map_err(|e| csv::Error::from(e.into_error()))?;
             let table = String::from_utf8(bytes)
                 .map_err(|e| csv::Error::from(std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error())))?;
+            let head = serde_json::to_string(header).map_err(std::io::Error::from)?;
             Ok(format!("# {head}\n{table}"))
         }
     }

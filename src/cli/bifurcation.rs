@@ -252,13 +252,7 @@ fn write_part(
         dynamics::bifurcation_part(d, vary, range, s, "--force-amplitude", None, &|_| bar.inc(1)).map_err(flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&points)?;
-    let mut t = serde_json::to_string(&header).map_err(std::io::Error::from)?;
-    t.push('\n');
-    for p in &points {
-        t += &serde_json::to_string(p).map_err(std::io::Error::from)?;
-        t.push('\n');
-    }
-    target.write(&t, out)
+    target.write(&crate::shard::json_lines(&header, &points)?, out)
 }
 
 /// Whether `first` (a part's first line) is the header of a part of a bifurcation.

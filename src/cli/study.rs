@@ -172,13 +172,7 @@ pub(super) fn write_shard(
     let part = study::sweep_cells(grid, range, None, &|_, _| bar.inc(1))?;
     bar.finish_and_clear();
     super::output::check_finite(&part)?;
-    let mut s = serde_json::to_string(&header).map_err(std::io::Error::from)?;
-    s.push('\n');
-    for c in &part {
-        s += &serde_json::to_string(c).map_err(std::io::Error::from)?;
-        s.push('\n');
-    }
-    Ok(s)
+    Ok(crate::shard::json_lines(&header, &part)?)
 }
 
 /// Whether the first line `first` is the header of a part of a study over any parameter.
