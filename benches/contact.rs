@@ -13,7 +13,12 @@ fn schemes(c: &mut Criterion) {
     let n = simulate(&p, Solver::Event, &RunOptions::default()).unwrap().impacts.len();
     eprintln!("fig9: {n} impacts a run");
     let mut g = c.benchmark_group("contact scheme");
-    for scheme in [ContactScheme::DormandPrince, ContactScheme::SundmanTaylor, ContactScheme::SundmanDop853] {
+    for scheme in [
+        ContactScheme::DormandPrince,
+        ContactScheme::SundmanTaylor,
+        ContactScheme::SundmanDop853,
+        ContactScheme::SundmanAdams,
+    ] {
         g.bench_function(format!("event fig9 2 s {scheme:?}"), |b| {
             b.iter(|| simulate_with(black_box(&p), Solver::Event, &RunOptions::default(), scheme).unwrap());
         });

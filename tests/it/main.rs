@@ -23,6 +23,7 @@ mod acoustics_paper;
 mod architecture;
 mod ascii_figures;
 mod cli;
+mod contact_adams;
 mod contact_dop853;
 mod contact_scheme;
 mod cvd;

@@ -20,6 +20,7 @@ fn main() {
         "DormandPrince" => ContactScheme::DormandPrince,
         "SundmanTaylor" => ContactScheme::SundmanTaylor,
         "SundmanDop853" => ContactScheme::SundmanDop853,
+        "SundmanAdams" => ContactScheme::SundmanAdams,
         other => panic!("unknown scheme {other}"),
     };
     let reps: usize = args.get(2).map_or(1, |r| r.parse().expect("REPS is a count"));

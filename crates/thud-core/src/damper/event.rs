@@ -10,6 +10,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use super::adams;
 use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
 use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
@@ -343,6 +344,7 @@ enum Cut {
     Reference(Resume),
     Sundman(sundman::Resume),
     Dop853(dop853::Resume),
+    Adams(adams::Resume),
 }
 
 /// A contact cut by the end of a stretch of the run, to be carried on by the next.
@@ -444,6 +446,10 @@ impl<'a, F: Flight> EventSim<'a, F> {
                         dop853::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
                             .map_resume(Cut::Dop853)
                     }
+                    ContactScheme::SundmanAdams => {
+                        adams::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
+                            .map_resume(Cut::Adams)
+                    }
                 };
                 (end, (0.0, 0.0))
             }
@@ -458,6 +464,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
                     Cut::Dop853(r) => {
                         dop853::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Dop853)
                     }
+                    Cut::Adams(r) => adams::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Adams),
                 };
                 (end, o.counted)
             }

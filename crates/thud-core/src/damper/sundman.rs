@@ -77,7 +77,7 @@ impl Series {
     /// The series of the motion from state `y` (contact onset at `t_onset`, wall `s`), with the
     /// clamp holding (`clamped`, F = 0) or not.
     #[inline(always)]
-    fn expand<L: Load>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y, clamped: bool) -> Self {
+    pub(crate) fn expand<L: Load>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y, clamped: bool) -> Self {
         if clamped {
             Self::expand_in::<L, true>(sys, load, s, t_onset, y)
         } else {
@@ -185,7 +185,7 @@ impl Series {
     /// `sc[i] + |c_0|`: the radius of convergence estimated from the last [`TAIL`] coefficients
     /// (more than two: at the onset of a free contact the series of σ holds only every fifth
     /// power), scaled down to the tolerance.
-    fn step_size(&self, sc: &[f64; 7], guess: f64, lam: f64) -> f64 {
+    pub(crate) fn step_size(&self, sc: &[f64; 7], guess: f64, lam: f64) -> f64 {
         // The largest tail term at step `h` relative to its tolerance: `TOL^(k/ORDER)` of the
         // scale for term k, i.e. a step of `TOL^(1/ORDER)` times the radius of convergence the
         // tail shows (Jorba & Zou 2005).
