@@ -532,30 +532,24 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
 
 /// The readout's title, `width` columns for it: with a force on, the live design's orbit at
 /// its f as the engine classified it with the readout (`a.orbit`, as `thud bifurcation --vary
-/// f=f:f:1`: `readout: orbit 2/1 sym`). The title, not a row or the note: at 80×24 the compact
+/// f=f:f:1`): `readout: orbit 2/1 sym`. The title, not a row or the note: at 80×24 the compact
 /// readout has no row to spare and cuts its one-line note at its edge, and at 120×40 a row
 /// more would push the note (which start the figures are from) off the tall one. With N > 1
 /// runs the rows are the runs' medians over spread ball offsets, the orbit the design's own
-/// start's: it says so (`y0 as set`). Plain ` readout ` while the design computes (no stale
-/// orbit), without a force, or with the Newmark solver (orbits are sampled with the event
-/// solver only).
+/// start's: it says so (`from y0`). Always named `readout`; plain ` readout ` where the orbit
+/// does not fit whole, while the design computes (no stale orbit), without a force, and with
+/// the Newmark solver (orbits are sampled with the event solver only).
 pub fn readout_title(app: &App, width: u16) -> String {
     let plain = " readout ".to_string();
     let live = app.acoustic().filter(|_| !app.design_busy());
     let Some((a, o)) = live.and_then(|a| Some((a, a.orbit.as_ref()?))) else { return plain };
     let label = o.run.orbit.label();
     let options = if a.ensemble.is_some() || a.forced_ensemble.is_some() {
-        vec![
-            format!(" readout: orbit {label} (y0 as set) "),
-            format!(" orbit {label} (y0 as set) "),
-            format!(" orbit {label} (y0) "),
-        ]
+        vec![format!(" readout: orbit {label} from y0 "), plain]
+    } else if matches!(o.run.orbit, crate::dynamics::Orbit::Periodic { .. }) {
+        vec![format!(" readout: orbit {label} (impacts/periods) "), format!(" readout: orbit {label} "), plain]
     } else {
-        let mut v = vec![format!(" readout: orbit {label} "), format!(" orbit {label} ")];
-        if matches!(o.run.orbit, crate::dynamics::Orbit::Periodic { .. }) {
-            v.insert(0, format!(" readout: orbit {label} (impacts/periods) "));
-        }
-        v
+        vec![format!(" readout: orbit {label} "), plain]
     };
     fit(&app.theme, &options, width)
 }

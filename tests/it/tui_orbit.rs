@@ -84,10 +84,47 @@ fn the_default_design_forced_names_its_orbit_and_keeps_its_note_start() {
     set(&mut app, Knob::FORCE, "1");
     let label = engine_label(&app);
     for (size, screen) in screens(&mut app) {
-        println!("{size}\n{screen}");
         let title = readout_title_line(&screen);
         assert!(title.contains(&format!(" readout: orbit {label} ")), "{size}: orbit {label}\n{screen}");
         // The note still says which start the figures are from.
         assert!(screen.contains("settled, after the 2 m/s strike"), "{size}\n{screen}");
+    }
+}
+
+#[test]
+fn with_n_runs_the_title_names_the_designs_own_starts_orbit_and_says_so() {
+    let mut app = app_of(thud::presets::preset("forced-rattle").unwrap(), "forced-rattle");
+    set(&mut app, Knob::RUNS, "4");
+    assert!(app.acoustic().unwrap().forced_ensemble.is_some(), "the readout is the 4 runs'");
+    // The orbit is the design's own start's (the ball's y0 as set), not one of the 4 offsets'.
+    let label = engine_label(&app);
+    for (size, screen) in screens(&mut app) {
+        let title = readout_title_line(&screen);
+        assert!(title.contains(&format!(" readout: orbit {label} from y0 ")), "{size}: orbit {label}\n{screen}");
+    }
+}
+
+#[test]
+fn no_stale_orbit_while_the_design_computes_and_none_without_a_force() {
+    let mut app = app_of(thud::presets::preset("forced-rattle").unwrap(), "forced-rattle");
+    let label = engine_label(&app);
+    assert!(readout_title_line(&render(&mut app, 120, 40)).contains(&format!("orbit {label}")));
+    // A new f, its readout not yet computed: the old f's orbit is not shown for it.
+    app.selected = Knob::ALL.iter().position(|k| *k == Knob::FREQ).unwrap();
+    let reqs = app.submit_text("6");
+    assert!(app.design_busy());
+    for (w, h) in [(80, 24), (120, 40)] {
+        let screen = render(&mut app, w, h);
+        assert!(!readout_title_line(&screen).contains("orbit"), "{w}x{h}\n{screen}");
+    }
+    compute_sync(&mut app, reqs);
+    let label = engine_label(&app);
+    assert!(readout_title_line(&render(&mut app, 80, 24)).contains(&format!("orbit {label} ")));
+    // The paper's free decay has no orbit to name.
+    set(&mut app, Knob::FORCE, "0");
+    assert!(app.acoustic().unwrap().orbit.is_none());
+    for (w, h) in [(80, 24), (120, 40)] {
+        let screen = render(&mut app, w, h);
+        assert!(!screen.contains("orbit"), "{w}x{h}\n{screen}");
     }
 }
