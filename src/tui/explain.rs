@@ -101,10 +101,12 @@ pub fn glossary_for(zone_by: ZoneBy, cx: OnScreen) -> Vec<(&'static str, String)
         ));
         g.push((
             "orbit",
-            "(the forced note's end) A forced design's orbit at its f, as `thud bifurcation` classifies it (200 periods of transient, 100 \
+            "(the readout's title) A forced design's orbit at its f, as `thud bifurcation` classifies it (200 periods of transient, 100 \
              sampled at t = kT): m/n, m impacts per n forcing periods (sym: x(t + T/2) = −x(t)); chaotic (the 0–1 \
-             test's K ≥ 0.8); not settled (neither, within 16 periods). `v` cycles the chart to its bifurcation \
-             diagram over f."
+             test's K ≥ 0.8); not settled (neither, within 16 periods). A run of its own from the design's start: the \
+             note's settled and periodic are the steady run's, going on until its amplitude settles, so they may \
+             differ. With N > 1 runs, 'from y0': the design's own start (the ball at y0 as set), not the runs' \
+             spread offsets. `v` cycles the chart to its bifurcation diagram over f."
                 .into(),
         ));
     }

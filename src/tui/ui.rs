@@ -415,10 +415,10 @@ fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
         ));
     }
     let cut = if s.truncated { ", TRUNCATED" } else { "" };
-    // The orbit's type at f from the design's start, as `thud bifurcation` classifies it.
-    let orbit = a.orbit.as_ref().map_or(String::new(), |o| format!("; orbit {}", o.run.orbit.label()));
+    // The orbit's type is the readout's title ([`readout_title`]), not this note's end: the
+    // note is cut at the readout's edge at 80×24 and 120×40.
     Some(format!(
-        "{}, {start}, {} by t {} s{cut}{orbit}",
+        "{}, {start}, {} by t {} s{cut}",
         yes(s.settled, "settled"),
         yes(s.periodic, "periodic"),
         sig(s.window_end_s, 3)
@@ -530,10 +530,35 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
     (rows, Some(note))
 }
 
+/// The readout's title, `width` columns for it: with a force on, the live design's orbit at
+/// its f as the engine classified it with the readout (`a.orbit`, as `thud bifurcation --vary
+/// f=f:f:1`): `readout: orbit 2/1 sym`. The title, not a row or the note: at 80×24 the compact
+/// readout has no row to spare and cuts its one-line note at its edge, and at 120×40 a row
+/// more would push the note (which start the figures are from) off the tall one. With N > 1
+/// runs the rows are the runs' medians over spread ball offsets, the orbit the design's own
+/// start's: it says so (`from y0`). Always named `readout`; plain ` readout ` where the orbit
+/// does not fit whole, while the design computes (no stale orbit), without a force, and with
+/// the Newmark solver (orbits are sampled with the event solver only).
+pub fn readout_title(app: &App, width: u16) -> String {
+    let plain = " readout ".to_string();
+    let live = app.acoustic().filter(|_| !app.design_busy());
+    let Some((a, o)) = live.and_then(|a| Some((a, a.orbit.as_ref()?))) else { return plain };
+    let label = o.run.orbit.label();
+    let options = if a.ensemble.is_some() || a.forced_ensemble.is_some() {
+        vec![format!(" readout: orbit {label} from y0 "), plain]
+    } else if matches!(o.run.orbit, crate::dynamics::Orbit::Periodic { .. }) {
+        vec![format!(" readout: orbit {label} (impacts/periods) "), format!(" readout: orbit {label} "), plain]
+    } else {
+        vec![format!(" readout: orbit {label} "), plain]
+    };
+    fit(&app.theme, &options, width)
+}
+
 fn readout_widget(f: &mut Frame, app: &App, area: Rect, compact: bool) {
     let (rows, note) = readout_rows(app);
+    let title = readout_title(app, title_width(app, Panel::Readout, area));
     let view = ReadoutView {
-        block: panel_block(app, Panel::Readout, " readout "),
+        block: panel_block(app, Panel::Readout, &title),
         rows: &rows,
         note: note.as_deref(),
         theme: app.theme,

@@ -61,5 +61,6 @@ mod tui_bifurcation;
 mod tui_find;
 mod tui_forced;
 mod tui_look;
+mod tui_orbit;
 mod tui_tmux;
 mod tui_tour;

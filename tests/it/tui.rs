@@ -2311,7 +2311,8 @@ fn readout_columns_at_every_size(app: &mut App) -> (usize, usize) {
             for focus in [thud::tui::app::Panel::Params, thud::tui::app::Panel::History] {
                 app.focus = focus;
                 let screen = render(app, w, h);
-                let lines = panel_lines(&screen, " readout ");
+                // " readout " or " readout: orbit 8/4 " (tests/it/tui_orbit.rs).
+                let lines = panel_lines(&screen, " readout");
                 assert!(lines.len() >= 3, "{w}x{h}: no readout\n{screen}");
                 for line in &lines {
                     let text: String = line.iter().collect::<String>().trim_end().to_string();

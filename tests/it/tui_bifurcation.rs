@@ -83,13 +83,13 @@ fn v_cycles_to_the_bifurcation_diagram_coarse_first_then_fine_with_f_marked_and_
     let screen = render(&mut app, 120, 40);
     insta::assert_snapshot!("bifurcation_forced_rattle_120x40", screen);
     assert!(!screen.contains("refining"), "{screen}");
-    // The line under the diagram names the orbit at f (and the readout's forced note ends
-    // with it where the note has room: 200×60).
+    // The line under the diagram names the orbit at f (and so does the readout's title, at
+    // every size: tests/it/tui_orbit.rs).
     let orbit = app.acoustic().unwrap().orbit.as_ref().unwrap().run.orbit.label();
     let f = thud::units::sig(app.design.damper.freq_hz, 4);
     assert!(screen.contains(&format!("f {f} Hz: orbit {orbit}")), "{screen}");
     let wide = render(&mut app, 200, 60);
-    assert!(wide.contains(&format!("; orbit {orbit}")), "{wide}");
+    assert!(wide.contains(&format!(" readout: orbit {orbit} ")), "{wide}");
     // A change of f moves the marker only: no new job; any other change asks again (the
     // worker's slot cancels the stale one), and the old passes are not shown for it.
     let gap = app.design.damper.gap_m;
