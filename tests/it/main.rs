@@ -22,6 +22,7 @@ mod support {
 mod acoustics_paper;
 mod architecture;
 mod ascii_figures;
+mod chart_cells;
 mod cli;
 mod contact_adams;
 mod contact_dop853;
