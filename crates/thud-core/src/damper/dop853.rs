@@ -89,9 +89,39 @@ impl Rhs<'_> {
             r[4] = -w * m[5];
             r[5] = w * m[4];
         }
+        self.quad(m, q);
+    }
+
+    /// The rates in θ of the quadratures alone (the stages 2 … 5 of a step have zero weight in
+    /// them: `b`, the dense output and the error estimates leave the quadratures' rates there out).
+    #[inline(always)]
+    fn quad<const N: usize>(&self, m: &[f64; N], q: &mut [f64; 3]) {
+        let sys = self.sys;
+        let (v, sg, u) = (m[1], m[2], m[3]);
         q[0] = sg * sys.c1 * (u * u);
         q[1] = sg * sys.c * (v * v);
         q[2] = sg;
+    }
+
+    /// The rates in θ of the motion alone.
+    #[inline(always)]
+    fn motion<L: Load, const N: usize>(&self, m: &[f64; N], r: &mut [f64; N]) {
+        let sys = self.sys;
+        let (x, v, sg, u) = (m[0], m[1], m[2], m[3]);
+        let force = sys.k_hz * (sg * sg * sg) + sys.c1 * u;
+        let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+        if L::ON {
+            spring += self.f * m[4];
+        }
+        r[0] = sg * v;
+        r[1] = sg * (spring + (self.s * sys.inv_big_m) * force);
+        r[2] = 0.5 * u;
+        r[3] = sg * (-sys.kstar * force - self.s * spring);
+        if L::ON {
+            let w = self.omega * sg;
+            r[4] = -w * m[5];
+            r[5] = w * m[4];
+        }
     }
 }
 
@@ -227,7 +257,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
     /// quadratures (the energies and the time) are left out: their rates are smooth functions
     /// of the motion alone, so their errors follow the motion's.
     #[inline(always)]
-    fn error(&self, h: f64, k: &[[f64; N]; 16], mn: &[f64; N]) -> f64 {
+    fn error(&self, h: f64, k: &[[f64; N]; 13], mn: &[f64; N]) -> f64 {
         let (e5, e3) = (tab::weights_e5(k), tab::weights_e3(k));
         let (mut s5, mut s3) = (0.0, 0.0);
         for i in 0..N {
@@ -253,8 +283,8 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         }
         let rhs = self.rhs;
         let h_floor = 1e-14 * self.sc[6] / self.sc[2].max(1e-300);
-        let mut k = [[0.0; N]; 16];
-        let mut kq = [[0.0; 3]; 16];
+        let mut k = [[0.0; N]; 13];
+        let mut kq = [[0.0; 3]; 13];
         loop {
             if *budget < STEP_COST {
                 *budget = 0;
@@ -264,7 +294,12 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
             let h = self.h;
             k[0] = self.k0;
             kq[0] = self.kq0;
-            tab::stages(&self.m, h, &mut k, &mut kq, |_, st, r, qq| rhs.rate::<L, N>(st, r, qq));
+            tab::stages(&self.m, h, &mut k, &mut kq, |i, st, r, qq| {
+                rhs.motion::<L, N>(st, r);
+                if i >= 5 {
+                    rhs.quad(st, qq);
+                }
+            });
             let (db, dbq) = (tab::weights_b(&k), tab::weights_b(&kq));
             let mut mn = self.m;
             for (a, d) in mn.iter_mut().zip(db) {
@@ -310,8 +345,8 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
     fn accept(
         &mut self,
         h: f64,
-        k: &[[f64; N]; 16],
-        kq: &[[f64; 3]; 16],
+        k: &[[f64; N]; 13],
+        kq: &[[f64; 3]; 13],
         mn: [f64; N],
         qn: [f64; 3],
         tau_lim: f64,
@@ -382,14 +417,20 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         rhs: Rhs<'_>,
         (m0, q0): (&[f64; N], &[f64; 3]),
         h: f64,
-        k: &[[f64; N]; 16],
-        kq: &[[f64; 3]; 16],
+        k: &[[f64; N]; 13],
+        kq: &[[f64; 3]; 13],
         (mn, qn): (&[f64; N], &[f64; 3]),
     ) -> Series {
-        let (mut k, mut kq) = (*k, *kq);
-        tab::dense_stages(m0, h, &mut k, &mut kq, |_, st, r, qq| rhs.rate::<L, N>(st, r, qq));
-        let d = [tab::weights_d0(&k), tab::weights_d1(&k), tab::weights_d2(&k), tab::weights_d3(&k)];
-        let dq = [tab::weights_d0(&kq), tab::weights_d1(&kq), tab::weights_d2(&kq), tab::weights_d3(&kq)];
+        // The three more stages' rates, apart from the step's (which are only read).
+        let (mut kx, mut kqx) = ([[0.0; N]; 3], [[0.0; 3]; 3]);
+        tab::dense_stages(m0, h, k, &mut kx, &mut kqx, |_, st, r, qq| rhs.rate::<L, N>(st, r, qq));
+        let d = [tab::weights_d0(k, &kx), tab::weights_d1(k, &kx), tab::weights_d2(k, &kx), tab::weights_d3(k, &kx)];
+        let dq = [
+            tab::weights_d0(kq, &kqx),
+            tab::weights_d1(kq, &kqx),
+            tab::weights_d2(kq, &kqx),
+            tab::weights_d3(kq, &kqx),
+        ];
         // (y0, y1, f0, f1, D·K) of component i of Y.
         let part = |i: usize| -> (f64, f64, f64, f64, [f64; 4]) {
             if i < 4 {
