@@ -276,6 +276,34 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         }
     }
 
+    /// One trial step of length `h` from the state where the contact stands: the stages'
+    /// rates into `k`, `kq` (`k[0]`, `kq[0]` the rates at the start), the state and the
+    /// quadratures at its end and its error norm. Kept out of line: the stages' straight-line
+    /// code is compiled on its own, apart from the events' and the observer's.
+    #[inline(never)]
+    fn trial(&self, h: f64, k: &mut [[f64; N]; 13], kq: &mut [[f64; 3]; 13]) -> ([f64; N], [f64; 3], f64) {
+        let rhs = self.rhs;
+        k[0] = self.k0;
+        kq[0] = self.kq0;
+        tab::stages(&self.m, h, k, kq, |i, st, r, qq| {
+            rhs.motion::<L, N>(st, r);
+            if i >= 5 {
+                rhs.quad(st, qq);
+            }
+        });
+        let (db, dbq) = (tab::weights_b(k), tab::weights_b(kq));
+        let mut mn = self.m;
+        for (a, d) in mn.iter_mut().zip(db) {
+            *a += h * d;
+        }
+        let mut qn = self.q;
+        for (a, d) in qn.iter_mut().zip(dbq) {
+            *a += h * d;
+        }
+        let err = self.error(h, k, &mn);
+        (mn, qn, err)
+    }
+
     fn run(mut self, budget: &mut usize) -> End {
         let tau_lim = self.t_limit - self.t_onset;
         if self.q[2] >= tau_lim {
@@ -292,24 +320,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
             }
             *budget -= STEP_COST;
             let h = self.h;
-            k[0] = self.k0;
-            kq[0] = self.kq0;
-            tab::stages(&self.m, h, &mut k, &mut kq, |i, st, r, qq| {
-                rhs.motion::<L, N>(st, r);
-                if i >= 5 {
-                    rhs.quad(st, qq);
-                }
-            });
-            let (db, dbq) = (tab::weights_b(&k), tab::weights_b(&kq));
-            let mut mn = self.m;
-            for (a, d) in mn.iter_mut().zip(db) {
-                *a += h * d;
-            }
-            let mut qn = self.q;
-            for (a, d) in qn.iter_mut().zip(dbq) {
-                *a += h * d;
-            }
-            let err = self.error(h, &k, &mn);
+            let (mn, qn, err) = self.trial(h, &mut k, &mut kq);
             // (`err` is a number or +∞: an estimate that was not a number was made +∞.)
             if err > 1.0 {
                 let fac = if err.is_finite() { (SAFETY * eighth_root(1.0 / err)).max(FAC_MIN) } else { 0.25 };
