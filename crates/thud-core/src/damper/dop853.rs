@@ -73,22 +73,7 @@ impl Rhs<'_> {
     /// Sundman form of Eq 26 (module doc of [`super::sundman`]).
     #[inline(always)]
     fn rate<L: Load, const N: usize>(&self, m: &[f64; N], r: &mut [f64; N], q: &mut [f64; 3]) {
-        let sys = self.sys;
-        let (x, v, sg, u) = (m[0], m[1], m[2], m[3]);
-        let force = sys.k_hz * (sg * sg * sg) + sys.c1 * u;
-        let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
-        if L::ON {
-            spring += self.f * m[4];
-        }
-        r[0] = sg * v;
-        r[1] = sg * (spring + (self.s * sys.inv_big_m) * force);
-        r[2] = 0.5 * u;
-        r[3] = sg * (-sys.kstar * force - self.s * spring);
-        if L::ON {
-            let w = self.omega * sg;
-            r[4] = -w * m[5];
-            r[5] = w * m[4];
-        }
+        self.motion::<L, N>(m, r);
         self.quad(m, q);
     }
 
