@@ -567,6 +567,29 @@ mod tests {
         }
     }
 
+    /// The bound that spares building a step's polynomials for an extremum of `|δ'|` that cannot
+    /// raise the run's largest `|z'|` (`Span::speed_extremum`) holds: every extremum located is
+    /// still located with the floor just below it. Strongly damped contacts (the tension near
+    /// the release makes `|δ'|` peak inside them), with and without the main spring.
+    #[test]
+    fn the_speed_extremum_bound_never_hides_an_extremum() {
+        let mut found = 0;
+        for (c1, k, u0) in [(20.0, 0.0, 1.4), (60.0, 500.0, 0.3), (60.0, 500.0, 3.0), (200.0, 0.0, 0.5)] {
+            let s = sys(c1, k);
+            let y0 = State::new(0.0, 0.1, 0.0, u0, 0.0, 0.0);
+            let mut left = 100_000;
+            let obs = |sp: &Span<'_>| {
+                if let Some(e) = sp.speed_extremum(0.0) {
+                    found += 1;
+                    assert_eq!(sp.speed_extremum(e * (1.0 - 1e-12)), Some(e), "c1 {c1}, u0 {u0}");
+                }
+            };
+            let end = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, obs);
+            assert_eq!(end.outcome, ContactOutcome::Separated);
+        }
+        assert!(found >= 4, "{found} extrema");
+    }
+
     #[test]
     fn the_step_budget_stops_a_contact() {
         let s = sys(20.0, 0.0);
