@@ -4,7 +4,7 @@
 //!
 //! The Sundman form makes the motion analytic across the onset and the release (every
 //! right-hand side is a polynomial in the state), which is what a method of high order needs
-//! to take long steps: about 15 steps a contact on the Fig 9 design, against the reference's
+//! to take long steps: about 21 steps a contact on the Fig 9 design, against the reference's
 //! 60 steps of order 5 in `t` (where the Hertz law's `δ^{3/2}` costs the order at both ends).
 //! A Runge–Kutta stage of this form is a handful of products, much cheaper than the Taylor
 //! scheme's Cauchy products, so the fewer steps pay.
