@@ -3,7 +3,9 @@
 //! *Solving Ordinary Differential Equations I*, 2nd ed., §II.10, and Hairer's `dop853.f`), as
 //! straight-line stage sums for [`super::dop853`]: the coefficients are those of SciPy's
 //! `dop853_coefficients.py` (a transcription of `dop853.f`), printed as the nearest `f64`, with
-//! the zero entries left out so that no stage multiplies by zero. Generated, not edited by hand.
+//! the zero entries left out so that no stage multiplies by zero. Generated, then the dense-output
+//! stages 14 … 16 moved to their own array (`kx`) so that building a step's dense output reads the
+//! step's rates in place instead of copying them.
 #![allow(clippy::unreadable_literal, clippy::excessive_precision, clippy::too_many_lines)]
 
 /// The stages 2 … 12 of one step from `y` (`k[0]` holds the rate there): `f(i, state, k_i, kq_i)` writes the rate of stage `i`.
@@ -12,8 +14,8 @@
 pub(super) fn stages<const N: usize>(
     y: &[f64; N],
     h: f64,
-    k: &mut [[f64; N]; 16],
-    kq: &mut [[f64; 3]; 16],
+    k: &mut [[f64; N]; 13],
+    kq: &mut [[f64; 3]; 13],
     mut f: impl FnMut(usize, &[f64; N], &mut [f64; N], &mut [f64; 3]),
 ) {
     let mut s = [0.0; N];
@@ -149,7 +151,7 @@ pub(super) fn stages<const N: usize>(
 /// `Σ b_i·k_i`: the eighth-order solution's increment per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_b<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_b<const N: usize>(k: &[[f64; N]; 13]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = 0.054293734116568765 * k[0][m]
@@ -167,7 +169,7 @@ pub(super) fn weights_b<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
 /// `Σ e5_i·k_i`: the fifth-order error estimate per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_e5<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_e5<const N: usize>(k: &[[f64; N]; 13]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = 0.01312004499419488 * k[0][m]
@@ -185,7 +187,7 @@ pub(super) fn weights_e5<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
 /// `Σ e3_i·k_i`: the third-order error estimate per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_e3<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_e3<const N: usize>(k: &[[f64; N]; 13]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = -0.18980075407240762 * k[0][m]
@@ -206,8 +208,9 @@ pub(super) fn weights_e3<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
 pub(super) fn dense_stages<const N: usize>(
     y: &[f64; N],
     h: f64,
-    k: &mut [[f64; N]; 16],
-    kq: &mut [[f64; 3]; 16],
+    k: &[[f64; N]; 13],
+    kx: &mut [[f64; N]; 3],
+    kqx: &mut [[f64; 3]; 3],
     mut f: impl FnMut(usize, &[f64; N], &mut [f64; N], &mut [f64; 3]),
 ) {
     let mut s = [0.0; N];
@@ -223,7 +226,7 @@ pub(super) fn dense_stages<const N: usize>(
                 + -0.008298 * k[12][m]);
     }
     {
-        let (kk, qq) = (&mut k[13], &mut kq[13]);
+        let (kk, qq) = (&mut kx[0], &mut kqx[0]);
         f(13, &s, kk, qq);
     }
     let mut s = [0.0; N];
@@ -236,10 +239,10 @@ pub(super) fn dense_stages<const N: usize>(
                 + -0.00010834732869724932 * k[10][m]
                 + 0.0003825710908356584 * k[11][m]
                 + -0.00034046500868740456 * k[12][m]
-                + 0.1413124436746325 * k[13][m]);
+                + 0.1413124436746325 * kx[0][m]);
     }
     {
-        let (kk, qq) = (&mut k[14], &mut kq[14]);
+        let (kk, qq) = (&mut kx[1], &mut kqx[1]);
         f(14, &s, kk, qq);
     }
     let mut s = [0.0; N];
@@ -251,11 +254,11 @@ pub(super) fn dense_stages<const N: usize>(
                 + 4.06898981839711 * k[7][m]
                 + 0.3567271874552811 * k[8][m]
                 + -0.0013990241651590145 * k[12][m]
-                + 2.9475147891527724 * k[13][m]
-                + -9.15095847217987 * k[14][m]);
+                + 2.9475147891527724 * kx[0][m]
+                + -9.15095847217987 * kx[1][m]);
     }
     {
-        let (kk, qq) = (&mut k[15], &mut kq[15]);
+        let (kk, qq) = (&mut kx[2], &mut kqx[2]);
         f(15, &s, kk, qq);
     }
 }
@@ -263,7 +266,7 @@ pub(super) fn dense_stages<const N: usize>(
 /// Row 1 of the dense-output matrix D: the interpolant's term F3 per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_d0<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_d0<const N: usize>(k: &[[f64; N]; 13], kx: &[[f64; N]; 3]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = -8.428938276109013 * k[0][m]
@@ -275,9 +278,9 @@ pub(super) fn weights_d0<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
             + 2.2404374302607883 * k[10][m]
             + 0.6315787787694688 * k[11][m]
             + -0.08899033645133331 * k[12][m]
-            + 18.148505520854727 * k[13][m]
-            + -9.194632392478356 * k[14][m]
-            + -4.436036387594894 * k[15][m];
+            + 18.148505520854727 * kx[0][m]
+            + -9.194632392478356 * kx[1][m]
+            + -4.436036387594894 * kx[2][m];
     }
     s
 }
@@ -285,7 +288,7 @@ pub(super) fn weights_d0<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
 /// Row 2 of the dense-output matrix D: the interpolant's term F4 per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_d1<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_d1<const N: usize>(k: &[[f64; N]; 13], kx: &[[f64; N]; 3]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = 10.427508642579134 * k[0][m]
@@ -297,9 +300,9 @@ pub(super) fn weights_d1<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
             + -30.674084731089398 * k[10][m]
             + -9.332130526430229 * k[11][m]
             + 15.697238121770845 * k[12][m]
-            + -31.139403219565178 * k[13][m]
-            + -9.35292435884448 * k[14][m]
-            + 35.81684148639408 * k[15][m];
+            + -31.139403219565178 * kx[0][m]
+            + -9.35292435884448 * kx[1][m]
+            + 35.81684148639408 * kx[2][m];
     }
     s
 }
@@ -307,7 +310,7 @@ pub(super) fn weights_d1<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
 /// Row 3 of the dense-output matrix D: the interpolant's term F5 per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_d2<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_d2<const N: usize>(k: &[[f64; N]; 13], kx: &[[f64; N]; 3]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = 19.985053242002433 * k[0][m]
@@ -319,9 +322,9 @@ pub(super) fn weights_d2<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
             + -1.0006050966910838 * k[10][m]
             + 0.7777137798053443 * k[11][m]
             + -2.778205752353508 * k[12][m]
-            + -60.19669523126412 * k[13][m]
-            + 84.32040550667716 * k[14][m]
-            + 11.99229113618279 * k[15][m];
+            + -60.19669523126412 * kx[0][m]
+            + 84.32040550667716 * kx[1][m]
+            + 11.99229113618279 * kx[2][m];
     }
     s
 }
@@ -329,7 +332,7 @@ pub(super) fn weights_d2<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
 /// Row 4 of the dense-output matrix D: the interpolant's term F6 per unit step.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-pub(super) fn weights_d3<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
+pub(super) fn weights_d3<const N: usize>(k: &[[f64; N]; 13], kx: &[[f64; N]; 3]) -> [f64; N] {
     let mut s = [0.0; N];
     for m in 0..N {
         s[m] = -25.69393346270375 * k[0][m]
@@ -341,9 +344,9 @@ pub(super) fn weights_d3<const N: usize>(k: &[[f64; N]; 16]) -> [f64; N] {
             + 104.0996495089623 * k[10][m]
             + 29.8402934266605 * k[11][m]
             + -43.53345659001114 * k[12][m]
-            + 96.32455395918828 * k[13][m]
-            + -39.17726167561544 * k[14][m]
-            + -149.72683625798564 * k[15][m];
+            + 96.32455395918828 * kx[0][m]
+            + -39.17726167561544 * kx[1][m]
+            + -149.72683625798564 * kx[2][m];
     }
     s
 }

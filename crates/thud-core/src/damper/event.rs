@@ -329,7 +329,7 @@ impl sundman::Observer for Track<'_> {
         let (s, hg) = (self.s, self.hg);
         let (a, b) = (sp.y0, sp.y1);
         let (t0, t1) = (sp.t0(), sp.t1());
-        let zd_inside = sp.speed_extremum();
+        let zd_inside = sp.speed_extremum(self.rec.zdot_abs_max);
         self.rec.contact_step((t0, a[0], a[1]), (t1, b[0], b[1]), s * b[3], zd_inside, || sp.x_extremum());
         self.rec.history_until(t1, |ts| {
             let (xs, ds) = sp.sample(ts);

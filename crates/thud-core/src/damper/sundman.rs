@@ -336,10 +336,18 @@ impl<'a> Span<'a> {
     }
 
     /// The largest `|δ'|` inside the step where `dδ'/dθ` changes sign; `None` without a sign
-    /// change.
-    pub fn speed_extremum(&self) -> Option<f64> {
+    /// change, or when it cannot exceed `floor` (m/s): it exceeds the larger of the ends' `|δ'|`
+    /// by at most `h·max|dδ'/dθ|` over the step, bounded here (with a factor 2 to spare) by
+    /// `2·h·(|dδ'/dθ|₀ + |dδ'/dθ|₁)`, the rate at both ends (it is smooth, and its sign changes
+    /// once in a step that is a small part of the contact), so the step's polynomials are not
+    /// built for an extremum that cannot raise the run's largest `|z'|`.
+    pub fn speed_extremum(&self, floor: f64) -> Option<f64> {
         let (d0, d1) = self.du;
         if d0 == 0.0 || (d0 > 0.0) == (d1 > 0.0) {
+            return None;
+        }
+        let bound = self.y0[3].abs().max(self.y1[3].abs()) + 2.0 * self.h * (d0.abs() + d1.abs());
+        if bound <= floor {
             return None;
         }
         let ser = self.ser();
