@@ -13,7 +13,7 @@
 //!
 //! - `newmark`: the Fig 9 design once by Newmark-β at dt 1e-7 s instead (the bench's reference);
 //! - `json`: the chart itself, as JSON (to compare two builds' charts bit for bit);
-//! - a contact scheme (`DormandPrince`, `SundmanTaylor`, `SundmanDop853`): the same runs and
+//! - a contact scheme (`DormandPrince`, `SundmanTaylor`, `SundmanDop853`, `SundmanAdams`): the same runs and
 //!   metrics one by one on one thread with that scheme (`damper::simulate_with`, then
 //!   `design::metrics`), for what the chart would cost with it. With `DormandPrince` (the
 //!   chart's own scheme) the impacts are the chart's.
@@ -46,6 +46,7 @@ fn main() {
         Some("DormandPrince") => Some(ContactScheme::DormandPrince),
         Some("SundmanTaylor") => Some(ContactScheme::SundmanTaylor),
         Some("SundmanDop853") => Some(ContactScheme::SundmanDop853),
+        Some("SundmanAdams") => Some(ContactScheme::SundmanAdams),
         Some("json") => None,
         Some(other) => panic!("unknown scheme {other}"),
     };

@@ -44,7 +44,7 @@ pub(crate) const STEP_COST: usize = 4;
 /// the error estimate allows: the estimate of DOP853 swings by a factor of ten from one step to
 /// the next on this motion, so a controller that chases it rejects one step in four; the
 /// motion in θ is smooth and nearly uniform, so even steps cost less.
-const STEPS_NOMINAL: f64 = 20.0;
+pub(crate) const STEPS_NOMINAL: f64 = 20.0;
 
 /// The step-size controller's safety factor and bounds on the change of step (Hairer's
 /// `dop853.f`: 0.9, 1/3 and 6).
@@ -125,6 +125,16 @@ pub(crate) struct Resume {
     h: f64,
     h_nom: f64,
     had_pos: bool,
+}
+
+impl Resume {
+    /// The state of a contact taken over mid-way from another Sundman scheme (the Adams
+    /// scheme's hand-over, [`super::adams`]): wall `s`, error scales `sc`, onset time
+    /// `t_onset` (s), state `y`, peak penetration so far `pen` (m) and the nominal step `h_nom`
+    /// (θ units).
+    pub(crate) fn taken_over(s: f64, sc: [f64; 7], t_onset: f64, y: Y, pen: f64, h_nom: f64) -> Self {
+        Resume { s, sc, t_onset, y, pen, h: h_nom, h_nom, had_pos: true }
+    }
 }
 
 /// What ends a step early.

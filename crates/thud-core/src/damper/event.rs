@@ -344,7 +344,6 @@ enum Cut {
     Reference(Resume),
     Sundman(sundman::Resume),
     Dop853(dop853::Resume),
-    Adams(adams::Resume),
 }
 
 /// A contact cut by the end of a stretch of the run, to be carried on by the next.
@@ -446,9 +445,10 @@ impl<'a, F: Flight> EventSim<'a, F> {
                         dop853::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
                             .map_resume(Cut::Dop853)
                     }
+                    // (A contact it cuts is carried on by DOP853.)
                     ContactScheme::SundmanAdams => {
                         adams::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
-                            .map_resume(Cut::Adams)
+                            .map_resume(Cut::Dop853)
                     }
                 };
                 (end, (0.0, 0.0))
@@ -464,7 +464,6 @@ impl<'a, F: Flight> EventSim<'a, F> {
                     Cut::Dop853(r) => {
                         dop853::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Dop853)
                     }
-                    Cut::Adams(r) => adams::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Adams),
                 };
                 (end, o.counted)
             }

@@ -443,7 +443,8 @@ pub fn simulate(p: &DamperParams, solver: Solver, opts: &RunOptions) -> Result<R
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ContactScheme {
     /// Adaptive Dormand–Prince 5(4) on Eq 26 in `t` and `δ` as written; maxima and `|z'|` at
-    /// the step ends. The default, and the reference the other scheme is checked against.
+    /// the step ends. The default, the reference the other schemes are checked against, and
+    /// the scheme of a design with `no_tension`.
     #[default]
     DormandPrince,
     /// Experimental: Eq 26 in `σ = √δ` against the Sundman time `dθ = dt/σ`, where every
@@ -460,9 +461,12 @@ pub enum ContactScheme {
     /// [`ContactScheme::DormandPrince`].
     SundmanDop853,
     /// The same Sundman form integrated by an Adams–Bashforth–Moulton pair of order 12/13 on
-    /// about 56 even steps a contact (two evaluations a step), started from the Taylor series
-    /// at the onset; maxima and `|z'|` extrema located on the corrector's polynomial. A design
-    /// with `no_tension` falls back to [`ContactScheme::DormandPrince`].
+    /// even steps (about 58 a Hertz contact, two evaluations a step), started from the Taylor
+    /// series at the onset, and handed over to [`ContactScheme::SundmanDop853`] where the
+    /// motion is not a Hertz hump (a ball pressed against a wall) and for the rest of a contact
+    /// cut by a run's stretch; maxima and `|z'|` extrema located on the corrector's polynomial.
+    /// The fastest scheme on the Fig 9 design (docs/model.md §11). A design with `no_tension`
+    /// falls back to [`ContactScheme::DormandPrince`].
     SundmanAdams,
 }
 
