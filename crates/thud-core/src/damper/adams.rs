@@ -42,11 +42,11 @@ use std::cell::OnceCell;
 use super::adams_tableau::{AB, AM, BASIS, K};
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853;
-use super::sundman::{self, onset, root_in, Dense, Observer, Onset, Series, Span, NC, ORDER, TOL, Y};
+use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Series, Span, NC, ORDER, TOL, Y};
 
 /// Even steps a Hertz contact is cut into (θ units: the contact's estimated length over this).
 /// Chosen so that the release speeds agree with the Taylor scheme's to ~1e-10 of the speed
-/// (`damper::adams` unit tests, tests/it/contact_adams.rs, docs/model.md §11).
+/// (`damper::adams` unit tests, tests/it/contact_sundman.rs, docs/model.md §11).
 pub(crate) const STEPS_NOMINAL: f64 = 64.0;
 
 /// Steps of the contact's start carried by the Taylor series (the history's nodes then lie
@@ -135,13 +135,6 @@ enum Next {
     /// has slowed down: a ball pressed against the wall by the main mass). DOP853, whose steps
     /// adapt, carries the contact on from the last accepted state.
     HandOver,
-}
-
-/// What ends a step early.
-#[derive(Clone, Copy, PartialEq)]
-enum Event {
-    Exit,
-    Limit,
 }
 
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
@@ -338,38 +331,16 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
     /// `START − j` steps from the centre. `Some` when the contact is over.
     fn taylor_start(&mut self, ser: &Series, tau_lim: f64) -> Option<ContactOutcome> {
         let hs = START as f64 * self.h;
-        let mut cut: Option<(f64, Event)> = None;
-        let sg1 = ser.eval(2, hs).0;
-        if sg1 <= 0.0 {
-            cut = Some((root_in(hs, self.y[2], sg1, |q| ser.eval(2, q)), Event::Exit));
-        }
-        let tt1 = ser.eval(6, hs).0;
-        if tt1 >= tau_lim {
-            let q = root_in(hs, self.y[6] - tau_lim, tt1 - tau_lim, |q| {
-                let (v, d) = ser.eval(6, q);
-                (v - tau_lim, d)
-            });
-            if cut.is_none_or(|(b, _)| q < b) {
-                cut = Some((q, Event::Limit));
-            }
-        }
-        let q = cut.map_or(hs, |(q, _)| q);
-        let mut yn = ser.state(q);
-        match cut.map(|(_, c)| c) {
-            Some(Event::Exit) => yn[2] = 0.0,
-            Some(Event::Limit) => yn[6] = tau_lim,
-            None => {}
-        }
+        let y1 = ser.state(hs);
+        let cut = step_end(hs, &self.y, &y1, tau_lim, || ser);
+        let (q, yn) = cut.map_or((hs, y1), |(q, ye, _, _)| (q, ye));
         let y0 = self.y;
         self.note_peak(&y0, &yn, q, |q| ser.eval(3, q), |q| ser.eval(2, q).0);
         let du = (ser.c[3][1], ser.eval(3, q).1);
         self.obs.step(&Span::new(self.t_onset, q, Dense::Ready(ser), &y0, &yn, du));
         self.y = yn;
-        if let Some((_, c)) = cut {
-            return Some(match c {
-                Event::Exit => ContactOutcome::Separated,
-                Event::Limit => ContactOutcome::EndOfRun,
-            });
+        if let Some((_, _, _, outcome)) = cut {
+            return Some(outcome);
         }
         self.m = self.motion(&yn);
         for j in 0..K {
@@ -488,33 +459,8 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let cell = OnceCell::new();
         let build = || dense::<N, W>(wm, &y0, h, rp);
         let ser = || cell.get_or_init(build);
-        let mut cut: Option<(f64, Event)> = None;
-        if mc[2] <= 0.0 {
-            let s = ser();
-            cut = Some((root_in(h, y0[2], y1[2], |q| s.eval(2, q)), Event::Exit));
-        }
-        if mc[N + 2] >= tau_lim {
-            let s = ser();
-            let q = root_in(h, y0[6] - tau_lim, y1[6] - tau_lim, |q| {
-                let (v, d) = s.eval(6, q);
-                (v - tau_lim, d)
-            });
-            if cut.is_none_or(|(b, _)| q < b) {
-                cut = Some((q, Event::Limit));
-            }
-        }
-        let (he, ye, du_end) = match cut {
-            Some((q, c)) => {
-                let s = ser();
-                let mut ye = s.state(q);
-                match c {
-                    Event::Exit => ye[2] = 0.0,
-                    Event::Limit => ye[6] = tau_lim,
-                }
-                (q, ye, s.eval(3, q).1)
-            }
-            None => (h, y1, du1),
-        };
+        let cut = step_end(h, &y0, &y1, tau_lim, ser);
+        let (he, ye, du_end) = cut.map_or((h, y1, du1), |(q, ye, du, _)| (q, ye, du));
         let du0 = wm[0][3];
         if y0[3] > 0.0 && ye[3] <= 0.0 {
             // σ is flat at the peak (σ' = δ'/2 = 0), so its value there is insensitive to where
@@ -527,11 +473,8 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let span = Span::new(self.t_onset, he, Dense::Lazy(&cell, &build), &y0, &ye, (du0, du_end));
         self.obs.step(&span);
         self.y = ye;
-        if let Some((_, c)) = cut {
-            return Some(match c {
-                Event::Exit => ContactOutcome::Separated,
-                Event::Limit => ContactOutcome::EndOfRun,
-            });
+        if let Some((_, _, _, outcome)) = cut {
+            return Some(outcome);
         }
         self.m = mc;
         None
@@ -630,16 +573,10 @@ fn peak_sigma(h: f64, (s0, u0, a0): (f64, f64, f64), (s1, u1, a1): (f64, f64, f6
 
 #[cfg(test)]
 mod tests {
-    use super::super::contact::{self, NoLoad};
-    use super::super::sundman::{self, Unobserved};
-    use super::super::DamperParams;
+    use super::super::contact::NoLoad;
+    use super::super::scheme_checks::{self, sys};
+    use super::super::sundman::Unobserved;
     use super::*;
-
-    fn sys(c1: f64, k: f64) -> Sys {
-        let damping = if k > 0.0 { 0.05 } else { 0.0 };
-        let p = DamperParams { stiffness_n_m: k, damping_n_s_m: damping, c1_n_s_m: c1, ..DamperParams::table2() };
-        Sys::new(&p)
-    }
 
     /// The start's series (fewer products) is the Taylor scheme's series, free and forced.
     #[test]
@@ -667,65 +604,20 @@ mod tests {
     /// cut.
     #[test]
     fn a_cut_contact_resumes_where_it_stopped() {
-        let s = sys(20.0, 500.0);
-        let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
-        let mut left = 100_000;
-        let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
-        for cut in [0.05, 0.1, 0.3, 0.5, 0.7, 0.93, 0.99] {
-            let mut left = 100_000;
-            let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, Unobserved);
-            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
-            assert_eq!(first.t, cut * whole.t);
-            let r = first.resume.expect("a cut contact can resume");
-            let end = dop853::resume(&s, NoLoad, &r, 1.0, &mut left, Unobserved);
-            assert_eq!(end.outcome, ContactOutcome::Separated);
-            assert!((end.t / whole.t - 1.0).abs() < 1e-9, "{} vs {}", end.t, whole.t);
-            assert!(
-                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-9 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-8,
-                "{cut}: {:?} vs {:?}",
-                end.y,
-                whole.y
-            );
-        }
+        scheme_checks::cut_contacts(
+            &[0.05, 0.1, 0.3, 0.5, 0.7, 0.93, 0.99],
+            |s, y0, t_limit, left| integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved),
+            |s, r, left| dop853::resume(s, NoLoad, r, 1.0, left, Unobserved),
+        );
     }
 
-    /// Isolated contacts from the same state: the release speed, time, peak penetration and
-    /// dissipation of the reference (Dormand–Prince in t, whose own error is ~1e-9 of the
-    /// speed) within 2e-8, and of the Sundman–Taylor scheme (error ~1e-12) within 1e-9; at most
-    /// 12 + 64 budget units (the start and the steps) a contact.
+    /// Isolated contacts against the reference and the Taylor scheme, within the start and 64
+    /// steps a contact.
     #[test]
     fn isolated_contacts_match_the_reference_and_the_taylor_scheme() {
-        for (c1, k, u0, x0) in
-            [(0.0, 0.0, 1.4, 0.0), (20.0, 0.0, 1.4, 0.0), (20.0, 500.0, 0.3, -0.02), (60.0, 500.0, 2.0, 0.02)]
-        {
-            let s = sys(c1, k);
-            let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
-            let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
-            let mut left = 100_000;
-            let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
-            let mut left = 100_000;
-            let taylor = sundman::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
-            let mut left = 100_000;
-            let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
-            let used = 100_000 - left;
-            assert!(used <= START_COST + 64 * STEP_COST, "{used} budget units");
-            assert_eq!(new.outcome, ContactOutcome::Separated);
-            let e_sc = 0.5 * u0 * u0 / s.kstar;
-            for (r, tol) in [(&old.y, 2e-8), (&taylor.y, 1e-9)] {
-                assert!((r[3] - new.y[3]).abs() < tol * u0, "{:?} vs {:?}", r, new.y);
-                assert!((r[4] - new.y[4]).abs() < tol * e_sc, "{:?} vs {:?}", r, new.y);
-                assert!((r[0] - new.y[0]).abs() < tol * 1e-3 && (r[1] - new.y[1]).abs() < tol * u0);
-            }
-            assert!((old.t / new.t - 1.0).abs() < 2e-8 && (taylor.t / new.t - 1.0).abs() < 1e-9);
-            assert!(
-                (old.pen_max / new.pen_max - 1.0).abs() < 2e-8 && (taylor.pen_max / new.pen_max - 1.0).abs() < 1e-9
-            );
-            if c1 == 0.0 && k == 0.0 {
-                // Two free bodies, elastic: the relative speed comes back exactly; closer than
-                // the reference brings it back.
-                assert!((new.y[3] + u0).abs() < (old.y[3] + u0).abs(), "{} vs {}", new.y[3], old.y[3]);
-            }
-        }
+        scheme_checks::isolated_contacts(START_COST + 64 * STEP_COST, |s, y0, t_limit, left| {
+            integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved)
+        });
     }
 
     #[test]

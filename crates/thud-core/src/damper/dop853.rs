@@ -27,12 +27,12 @@ use std::cell::OnceCell;
 
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{onset, root_in, Dense, Observer, Onset, Series, Span, NC, Y};
+use super::sundman::{onset, root_in, step_end, Dense, Observer, Onset, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
 /// speeds agree with the reference's to its own accuracy (`damper::dop853` unit tests,
-/// tests/it/contact_dop853.rs, docs/model.md §11).
+/// tests/it/contact_sundman.rs, docs/model.md §11).
 pub(crate) const RTOL: f64 = 3e-10;
 
 /// What one step (accepted or not) is charged against the run's in-contact step budget
@@ -135,13 +135,6 @@ impl Resume {
     pub(crate) fn taken_over(s: f64, sc: [f64; 7], t_onset: f64, y: Y, pen: f64, h_nom: f64) -> Self {
         Resume { s, sc, t_onset, y, pen, h: h_nom, h_nom, had_pos: true }
     }
-}
-
-/// What ends a step early.
-#[derive(Clone, Copy, PartialEq)]
-enum Cut {
-    Exit,
-    Limit,
 }
 
 /// One contact being integrated. `N` is 4 without a force, 6 with one (the phase's cosine
@@ -363,33 +356,8 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         let cell = OnceCell::new();
         let build = || Self::dense(rhs, (&m0, &q0), h, k, kq, (&mn, &qn));
         let ser = || cell.get_or_init(build);
-        let mut cut: Option<(f64, Cut)> = None;
-        if mn[2] <= 0.0 {
-            let s = ser();
-            cut = Some((root_in(h, y0[2], y1[2], |q| s.eval(2, q)), Cut::Exit));
-        }
-        if qn[2] >= tau_lim {
-            let s = ser();
-            let q = root_in(h, y0[6] - tau_lim, y1[6] - tau_lim, |q| {
-                let (v, d) = s.eval(6, q);
-                (v - tau_lim, d)
-            });
-            if cut.is_none_or(|(b, _)| q < b) {
-                cut = Some((q, Cut::Limit));
-            }
-        }
-        let (he, ye, du1) = match cut {
-            Some((q, c)) => {
-                let s = ser();
-                let mut ye = s.state(q);
-                match c {
-                    Cut::Exit => ye[2] = 0.0,
-                    Cut::Limit => ye[6] = tau_lim,
-                }
-                (q, ye, s.eval(3, q).1)
-            }
-            None => (h, y1, k[12][3]),
-        };
+        let cut = step_end(h, &y0, &y1, tau_lim, ser);
+        let (he, ye, du1) = cut.map_or((h, y1, k[12][3]), |(q, ye, du, _)| (q, ye, du));
         if y0[3] > 0.0 && ye[3] <= 0.0 {
             let s = ser();
             let q = root_in(he, y0[3], ye[3], |q| s.eval(3, q));
@@ -399,13 +367,10 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         self.pen = self.pen.max(ye[2] * ye[2]);
         let span = Span::new(self.t_onset, he, Dense::Lazy(&cell, &build), &y0, &ye, (self.k0[3], du1));
         self.obs.step(&span);
-        if let Some((_, c)) = cut {
+        if let Some((_, _, _, outcome)) = cut {
             self.m[..4].copy_from_slice(&[ye[0], ye[1], ye[2], ye[3]]);
             self.q = [ye[4], ye[5], ye[6]];
-            Some(match c {
-                Cut::Exit => ContactOutcome::Separated,
-                Cut::Limit => ContactOutcome::EndOfRun,
-            })
+            Some(outcome)
         } else {
             self.m = mn;
             self.q = qn;
@@ -496,85 +461,29 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::contact::{self, NoLoad};
-    use super::super::sundman::{self, Unobserved};
-    use super::super::DamperParams;
+    use super::super::contact::NoLoad;
+    use super::super::scheme_checks::{self, sys};
+    use super::super::sundman::Unobserved;
     use super::*;
 
-    fn sys(c1: f64, k: f64) -> Sys {
-        let damping = if k > 0.0 { 0.05 } else { 0.0 };
-        let p = DamperParams { stiffness_n_m: k, damping_n_s_m: damping, c1_n_s_m: c1, ..DamperParams::table2() };
-        Sys::new(&p)
-    }
-
-    /// Steps a contact took: the budget it used over the cost of one step.
-    fn steps(used: usize) -> usize {
-        used / STEP_COST
-    }
-
-    /// Isolated contacts from the same state: the release speed, time, peak penetration and
-    /// dissipation of the reference (Dormand–Prince in t, whose own error is ~1e-9 of the
-    /// speed) within 2e-8, and of the Sundman–Taylor scheme (error ~1e-12) within 1e-9; at most
-    /// 25 steps a contact (rejected ones included).
+    /// Isolated contacts against the reference and the Taylor scheme, at most 25 steps a
+    /// contact (rejected ones included).
     #[test]
     fn isolated_contacts_match_the_reference_and_the_taylor_scheme() {
-        for (c1, k, u0, x0) in
-            [(0.0, 0.0, 1.4, 0.0), (20.0, 0.0, 1.4, 0.0), (20.0, 500.0, 0.3, -0.02), (60.0, 500.0, 2.0, 0.02)]
-        {
-            let s = sys(c1, k);
-            let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
-            let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
-            let mut left = 100_000;
-            let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
-            let mut left = 100_000;
-            let taylor = sundman::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
-            let mut left = 100_000;
-            let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
-            let n = steps(100_000 - left);
-            assert!(n <= 25, "{n} steps");
-            assert_eq!(new.outcome, ContactOutcome::Separated);
-            let e_sc = 0.5 * u0 * u0 / s.kstar;
-            for (r, tol) in [(&old.y, 2e-8), (&taylor.y, 1e-9)] {
-                assert!((r[3] - new.y[3]).abs() < tol * u0, "{:?} vs {:?}", r, new.y);
-                assert!((r[4] - new.y[4]).abs() < tol * e_sc, "{:?} vs {:?}", r, new.y);
-                assert!((r[0] - new.y[0]).abs() < tol * 1e-3 && (r[1] - new.y[1]).abs() < tol * u0);
-            }
-            assert!((old.t / new.t - 1.0).abs() < 2e-8 && (taylor.t / new.t - 1.0).abs() < 1e-9);
-            assert!(
-                (old.pen_max / new.pen_max - 1.0).abs() < 2e-8 && (taylor.pen_max / new.pen_max - 1.0).abs() < 1e-9
-            );
-            if c1 == 0.0 && k == 0.0 {
-                // Two free bodies, elastic: the relative speed comes back exactly; closer than
-                // the reference brings it back.
-                assert!((new.y[3] + u0).abs() < (old.y[3] + u0).abs(), "{} vs {}", new.y[3], old.y[3]);
-            }
-        }
+        scheme_checks::isolated_contacts(25 * STEP_COST, |s, y0, t_limit, left| {
+            integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved)
+        });
     }
 
-    /// A contact cut by its time limit ends exactly there and carries on as if never cut.
+    /// A contact cut by its time limit ends exactly there and carries on as if never cut (the
+    /// cut state comes from the dense output, of order 7, then new steps).
     #[test]
     fn a_cut_contact_resumes_where_it_stopped() {
-        let s = sys(20.0, 500.0);
-        let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
-        let mut left = 100_000;
-        let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
-        for cut in [0.1, 0.5, 0.93] {
-            let mut left = 100_000;
-            let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, Unobserved);
-            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
-            assert_eq!(first.t, cut * whole.t);
-            let r = first.resume.expect("a cut contact can resume");
-            let end = resume(&s, NoLoad, &r, 1.0, &mut left, Unobserved);
-            assert_eq!(end.outcome, ContactOutcome::Separated);
-            // The cut state comes from the dense output (order 7), then new steps.
-            assert!((end.t / whole.t - 1.0).abs() < 1e-9, "{} vs {}", end.t, whole.t);
-            assert!(
-                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-9 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-8,
-                "{cut}: {:?} vs {:?}",
-                end.y,
-                whole.y
-            );
-        }
+        scheme_checks::cut_contacts(
+            &[0.1, 0.5, 0.93],
+            |s, y0, t_limit, left| integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved),
+            |s, r, left| resume(s, NoLoad, r, 1.0, left, Unobserved),
+        );
     }
 
     /// The bound that spares building a step's polynomials for an extremum of `|δ'|` that cannot

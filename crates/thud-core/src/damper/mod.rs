@@ -28,6 +28,8 @@ mod flight;
 mod forced;
 mod newmark;
 mod record;
+#[cfg(test)]
+mod scheme_checks;
 mod steady;
 mod stepper;
 mod strobe;

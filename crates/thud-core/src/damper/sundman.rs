@@ -281,6 +281,45 @@ pub(crate) fn root_in(h: f64, f0: f64, f1: f64, f: impl Fn(f64) -> (f64, f64)) -
     q
 }
 
+/// The earliest end of a step of length `h` (θ units) from `y0` to `y1` before its end: the
+/// release (σ back to 0) or the time limit (`t − t_onset` reaching `tau_lim`, s), located on the
+/// step's polynomials (`ser`, built only when one lies in the step): `(q, the state there with σ
+/// or t set exactly, dδ'/dθ there, the outcome it means)`. Shared by the schemes whose steps
+/// end at their own length (DOP853 and Adams; the Taylor scheme also locates the clamp's
+/// switches).
+pub(crate) fn step_end<'s>(
+    h: f64,
+    y0: &Y,
+    y1: &Y,
+    tau_lim: f64,
+    ser: impl Fn() -> &'s Series,
+) -> Option<(f64, Y, f64, ContactOutcome)> {
+    let mut cut: Option<(f64, ContactOutcome)> = None;
+    if y1[2] <= 0.0 {
+        let s = ser();
+        cut = Some((root_in(h, y0[2], y1[2], |q| s.eval(2, q)), ContactOutcome::Separated));
+    }
+    if y1[6] >= tau_lim {
+        let s = ser();
+        let q = root_in(h, y0[6] - tau_lim, y1[6] - tau_lim, |q| {
+            let (v, d) = s.eval(6, q);
+            (v - tau_lim, d)
+        });
+        if cut.is_none_or(|(b, _)| q < b) {
+            cut = Some((q, ContactOutcome::EndOfRun));
+        }
+    }
+    let (q, outcome) = cut?;
+    let s = ser();
+    let mut ye = s.state(q);
+    if outcome == ContactOutcome::Separated {
+        ye[2] = 0.0;
+    } else {
+        ye[6] = tau_lim;
+    }
+    Some((q, ye, s.eval(3, q).1, outcome))
+}
+
 /// The polynomials of one step: ready (a Taylor step's series), or built on first use (the
 /// dense output of a Runge–Kutta step, [`super::dop853`], which costs three more stages and is
 /// wanted only in the steps that hold an event).
