@@ -42,7 +42,7 @@ use std::cell::OnceCell;
 use super::adams_tableau::{AB, AM, BASIS, K};
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853;
-use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Series, Span, NC, ORDER, TOL, Y};
+use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, TOL, Y};
 
 /// Even steps a Hertz contact is cut into (θ units: the contact's estimated length over this).
 /// Chosen so that the release speeds agree with the Taylor scheme's to ~1e-10 of the speed
@@ -72,42 +72,13 @@ pub(crate) const START_COST: usize = sundman::STEP_COST;
 /// What one step is charged: two evaluations against the reference's six, rounded up.
 pub(crate) const STEP_COST: usize = 1;
 
-/// The system's constants a rate needs: the design, the wall's sign and the force's amplitude
-/// per unit main mass (m/s²) and angular frequency (rad/s).
-#[derive(Clone, Copy)]
-struct Rhs<'a> {
-    sys: &'a Sys,
-    s: f64,
-    f: f64,
-    omega: f64,
-}
-
-impl Rhs<'_> {
-    /// The rates in θ of the state row `m` (the motion in `0..N`, the quadratures in `N..N + 3`)
-    /// into `r`, in the same places: the Sundman form of Eq 26 (module doc of
-    /// [`super::sundman`]).
-    #[inline(always)]
-    fn rate<L: Load, const N: usize, const W: usize>(&self, m: &[f64; W], r: &mut [f64; W]) {
-        let sys = self.sys;
-        let (x, v, sg, u) = (m[0], m[1], m[2], m[3]);
-        let force = sys.k_hz * (sg * sg * sg) + sys.c1 * u;
-        let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
-        if L::ON {
-            spring += self.f * m[4];
-        }
-        r[0] = sg * v;
-        r[1] = sg * (spring + (self.s * sys.inv_big_m) * force);
-        r[2] = 0.5 * u;
-        r[3] = sg * (-sys.kstar * force - self.s * spring);
-        if L::ON {
-            let w = self.omega * sg;
-            r[4] = -w * m[5];
-            r[5] = w * m[4];
-        }
-        r[N] = sg * sys.c1 * (u * u);
-        r[N + 1] = sg * sys.c * (v * v);
-        r[N + 2] = sg;
-    }
+/// The rates in θ of the state row `m` (the motion in `0..N`, the quadratures in `N..N + 3`)
+/// into `r`, in the same places.
+#[inline(always)]
+fn rate<L: Load, const N: usize, const W: usize>(rhs: &Rhs<'_>, m: &[f64; W], r: &mut [f64; W]) {
+    rhs.motion::<L, N, W>(m, r);
+    let [c, v, t] = rhs.quad(m);
+    (r[N], r[N + 1], r[N + 2]) = (c, v, t);
 }
 
 /// Where and how a contact integration ended: a contact cut by its time limit is carried on
@@ -359,7 +330,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
                 self.motion(&node)
             };
             let mut r = [0.0; W];
-            self.rhs.rate::<L, N, W>(&mj, &mut r);
+            rate::<L, N, W>(&self.rhs, &mj, &mut r);
             self.fm[j] = r;
             self.fm[j + K] = r;
         }
@@ -415,7 +386,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
                 mp[i] += h * pm[i];
             }
             let mut rp = [0.0; W];
-            rhs.rate::<L, N, W>(&mp, &mut rp);
+            rate::<L, N, W>(&rhs, &mp, &mut rp);
             let mut mc = self.m;
             for i in 0..W {
                 mc[i] += h * (cm[i] + AM[0] * rp[i]);
@@ -433,7 +404,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             }
             calm = if quiet { calm + 1 } else { 0 };
             let mut rc = [0.0; W];
-            rhs.rate::<L, N, W>(&mc, &mut rc);
+            rate::<L, N, W>(&rhs, &mc, &mut rc);
             if let Some(outcome) = self.accept(h, &rp, mc, rc[3], tau_lim) {
                 return Next::Done(outcome);
             }

@@ -27,7 +27,7 @@ use std::cell::OnceCell;
 
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{onset, root_in, step_end, Dense, Observer, Onset, Series, Span, NC, Y};
+use super::sundman::{onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
@@ -58,56 +58,11 @@ fn eighth_root(x: f64) -> f64 {
     x.sqrt().sqrt().sqrt()
 }
 
-/// The system's constants a stage needs: the design, the wall's sign and the force's amplitude
-/// per unit main mass (m/s²) and angular frequency (rad/s).
-#[derive(Clone, Copy)]
-struct Rhs<'a> {
-    sys: &'a Sys,
-    s: f64,
-    f: f64,
-    omega: f64,
-}
-
-impl Rhs<'_> {
-    /// The rates in θ of the motion `m` (into `r`) and of the quadratures (into `q`): the
-    /// Sundman form of Eq 26 (module doc of [`super::sundman`]).
-    #[inline(always)]
-    fn rate<L: Load, const N: usize>(&self, m: &[f64; N], r: &mut [f64; N], q: &mut [f64; 3]) {
-        self.motion::<L, N>(m, r);
-        self.quad(m, q);
-    }
-
-    /// The rates in θ of the quadratures alone (the stages 2 … 5 of a step have zero weight in
-    /// them: `b`, the dense output and the error estimates leave the quadratures' rates there out).
-    #[inline(always)]
-    fn quad<const N: usize>(&self, m: &[f64; N], q: &mut [f64; 3]) {
-        let sys = self.sys;
-        let (v, sg, u) = (m[1], m[2], m[3]);
-        q[0] = sg * sys.c1 * (u * u);
-        q[1] = sg * sys.c * (v * v);
-        q[2] = sg;
-    }
-
-    /// The rates in θ of the motion alone.
-    #[inline(always)]
-    fn motion<L: Load, const N: usize>(&self, m: &[f64; N], r: &mut [f64; N]) {
-        let sys = self.sys;
-        let (x, v, sg, u) = (m[0], m[1], m[2], m[3]);
-        let force = sys.k_hz * (sg * sg * sg) + sys.c1 * u;
-        let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
-        if L::ON {
-            spring += self.f * m[4];
-        }
-        r[0] = sg * v;
-        r[1] = sg * (spring + (self.s * sys.inv_big_m) * force);
-        r[2] = 0.5 * u;
-        r[3] = sg * (-sys.kstar * force - self.s * spring);
-        if L::ON {
-            let w = self.omega * sg;
-            r[4] = -w * m[5];
-            r[5] = w * m[4];
-        }
-    }
+/// The rates of the motion and of the quadratures at the motion `m` (into `r`, `q`).
+#[inline(always)]
+fn rate<L: Load, const N: usize>(rhs: &Rhs<'_>, m: &[f64; N], r: &mut [f64; N], q: &mut [f64; 3]) {
+    rhs.motion::<L, N, N>(m, r);
+    *q = rhs.quad(m);
 }
 
 /// Where and how a contact integration ended (the peak penetration located on the step's
@@ -214,7 +169,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         }
         let q = [r.y[4], r.y[5], r.y[6]];
         let (mut k0, mut kq0) = ([0.0; N], [0.0; 3]);
-        rhs.rate::<L, N>(&m, &mut k0, &mut kq0);
+        rate::<L, N>(&rhs, &m, &mut k0, &mut kq0);
         Integration {
             rhs,
             load: std::marker::PhantomData,
@@ -274,9 +229,9 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
         k[0] = self.k0;
         kq[0] = self.kq0;
         tab::stages(&self.m, h, k, kq, |i, st, r, qq| {
-            rhs.motion::<L, N>(st, r);
+            rhs.motion::<L, N, N>(st, r);
             if i >= 5 {
-                rhs.quad(st, qq);
+                *qq = rhs.quad(st);
             }
         });
         let (db, dbq) = (tab::weights_b(k), tab::weights_b(kq));
@@ -326,7 +281,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
             self.had_pos = true;
             {
                 let (kk, qq) = (&mut k[12], &mut kq[12]);
-                rhs.rate::<L, N>(&mn, kk, qq);
+                rate::<L, N>(&rhs, &mn, kk, qq);
             }
             let fac = (SAFETY * eighth_root(1.0 / err.max(1e-30))).clamp(FAC_MIN, FAC_MAX);
             if let Some(outcome) = self.accept(h, &k, &kq, mn, qn, tau_lim) {
@@ -394,7 +349,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
     ) -> Series {
         // The three more stages' rates, apart from the step's (which are only read).
         let (mut kx, mut kqx) = ([[0.0; N]; 3], [[0.0; 3]; 3]);
-        tab::dense_stages(m0, h, k, &mut kx, &mut kqx, |_, st, r, qq| rhs.rate::<L, N>(st, r, qq));
+        tab::dense_stages(m0, h, k, &mut kx, &mut kqx, |_, st, r, qq| rate::<L, N>(&rhs, st, r, qq));
         let d = [tab::weights_d0(k, &kx), tab::weights_d1(k, &kx), tab::weights_d2(k, &kx), tab::weights_d3(k, &kx)];
         let dq = [
             tab::weights_d0(kq, &kqx),

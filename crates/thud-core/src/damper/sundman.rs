@@ -281,6 +281,50 @@ pub(crate) fn root_in(h: f64, f0: f64, f1: f64, f: impl Fn(f64) -> (f64, f64)) -
     q
 }
 
+/// The system's constants the Sundman form's rates need, for the schemes that evaluate them
+/// stage by stage (DOP853 and Adams): the design, the wall's sign and the force's amplitude per
+/// unit main mass (m/s²) and angular frequency (rad/s).
+#[derive(Clone, Copy)]
+pub(crate) struct Rhs<'a> {
+    pub sys: &'a Sys,
+    pub s: f64,
+    pub f: f64,
+    pub omega: f64,
+}
+
+impl Rhs<'_> {
+    /// The rates in θ of the motion (`m[..N]`: `[x, x', σ, δ']`, and the force's `cos φ`,
+    /// `sin φ` under a [`Load`]) into `r[..N]`: the Sundman form of Eq 26 (module doc).
+    #[inline(always)]
+    pub fn motion<L: Load, const N: usize, const W: usize>(&self, m: &[f64; W], r: &mut [f64; W]) {
+        let sys = self.sys;
+        let (x, v, sg, u) = (m[0], m[1], m[2], m[3]);
+        let force = sys.k_hz * (sg * sg * sg) + sys.c1 * u;
+        let mut spring = (-sys.c * v - sys.k * x) * sys.inv_big_m;
+        if L::ON {
+            spring += self.f * m[4];
+        }
+        r[0] = sg * v;
+        r[1] = sg * (spring + (self.s * sys.inv_big_m) * force);
+        r[2] = 0.5 * u;
+        r[3] = sg * (-sys.kstar * force - self.s * spring);
+        if L::ON && N >= 6 {
+            let w = self.omega * sg;
+            r[4] = -w * m[5];
+            r[5] = w * m[4];
+        }
+    }
+
+    /// The rates in θ of the quadratures `[E_contact, E_viscous, t − t_onset]` (W per θ unit,
+    /// W, s per θ unit) at the motion `m`.
+    #[inline(always)]
+    pub fn quad<const W: usize>(&self, m: &[f64; W]) -> [f64; 3] {
+        let sys = self.sys;
+        let (v, sg, u) = (m[1], m[2], m[3]);
+        [sg * sys.c1 * (u * u), sg * sys.c * (v * v), sg]
+    }
+}
+
 /// The earliest end of a step of length `h` (θ units) from `y0` to `y1` before its end: the
 /// release (σ back to 0) or the time limit (`t − t_onset` reaching `tau_lim`, s), located on the
 /// step's polynomials (`ser`, built only when one lies in the step): `(q, the state there with σ
