@@ -115,3 +115,36 @@ fn maxima_and_the_largest_relative_speed_inside_contacts_are_located() {
         assert!((old.zdot_abs_max_m_s - new.zdot_abs_max_m_s).abs() < 1e-7);
     }
 }
+
+#[test]
+fn extreme_designs_run_to_their_end_and_agree_on_the_first_impact() {
+    // Corners of the design space: a very soft and a very stiff contact, a light and a heavy
+    // ball, a tight clearance, a hard strike, heavy contact damping, and a ball pressed against
+    // a wall by a strong slow force (long contacts, which the Adams scheme hands to DOP853).
+    let base = DamperParams { duration_s: 0.5, ..DamperParams::table2() };
+    let designs = [
+        DamperParams { k_hz: 1e6, ..base },
+        DamperParams { k_hz: 1e12, ..base },
+        DamperParams { impact_mass_kg: 1e-3, ..base },
+        DamperParams { impact_mass_kg: 1.0, ..base },
+        DamperParams { gap_m: 1e-4, ..base },
+        DamperParams { v0_m_s: 10.0, ..base },
+        DamperParams { c1_n_s_m: 1000.0, ..base },
+        DamperParams { v0_m_s: 0.0, force_n: 20.0, freq_hz: 1.0, duration_s: 2.0, ..base },
+    ];
+    for p in designs {
+        let old = run(&p, ContactScheme::DormandPrince);
+        for scheme in SCHEMES {
+            let new = run(&p, scheme);
+            assert!(new.truncated.is_none(), "{scheme:?} {p:?}: {:?}", new.truncated);
+            assert!(!new.impacts.is_empty(), "{scheme:?} {p:?}");
+            assert!(new.impacts.iter().all(|i| i.u_in_m_s.is_finite() && i.u_out_m_s.is_finite()));
+            let du = speed_gap(&old, &new, 1);
+            assert!(du <= 5e-8 * p.v0_m_s.max(1.0), "{scheme:?} {p:?}: {du:e} m/s");
+            // The ledger to 1e-9 of the initial energy, or (where the reference itself does
+            // worse: the heavy ball) no worse than the reference.
+            let (le, le_ref) = (ledger_residual(&new), ledger_residual(&old));
+            assert!(le <= 1e-9_f64.max(le_ref), "{scheme:?} {p:?}: ledger {le:e}, reference {le_ref:e}");
+        }
+    }
+}
