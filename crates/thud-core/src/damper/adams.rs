@@ -86,7 +86,8 @@ fn rate<L: Load, const N: usize, const W: usize>(rhs: &Rhs<'_>, m: &[f64; W], r:
 pub(crate) type End = super::contact::ContactEnd<dop853::Resume>;
 
 /// Where an integration by this scheme starts: wall `s`, error scales, onset time (s), state,
-/// peak penetration so far (m) and the nominal step (θ units).
+/// peak penetration so far (m) and the contact's estimated length in θ
+/// ([`Onset::theta_length`]), which sizes the steps.
 #[derive(Debug, Clone, Copy)]
 struct Start {
     s: f64,
@@ -94,7 +95,7 @@ struct Start {
     t_onset: f64,
     y: Y,
     pen: f64,
-    h: f64,
+    length: f64,
 }
 
 /// How a run of Adams steps ended.
@@ -121,10 +122,10 @@ pub(crate) fn integrate<L: Load>(
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
-    let Onset { amax, tau, sc, y } = onset(sys, &y0);
-    // The contact's length in θ is about 1.9·τ/√α_max.
-    let h = 1.9 * tau / amax.sqrt() / STEPS_NOMINAL;
-    go(sys, load, &Start { s, sc, t_onset: t0, y, pen: 0.0, h }, t_limit, budget, obs)
+    let start = onset(sys, &y0);
+    let length = start.theta_length();
+    let Onset { sc, y, .. } = start;
+    go(sys, load, &Start { s, sc, t_onset: t0, y, pen: 0.0, length }, t_limit, budget, obs)
 }
 
 /// The integration from `r`, with the motion's size chosen by the load.
@@ -151,9 +152,9 @@ struct Integration<'a, L, O, const N: usize, const W: usize> {
     y: Y,
     m: [f64; W],
     pen: f64,
-    /// The step (θ units), and the nominal one this contact started with.
+    /// The step (θ units), and the contact's estimated length in θ.
     h: f64,
-    h_start: f64,
+    length: f64,
     /// The rates (rows) at the last `K` nodes, twice over so that the window `[p, p + K)`
     /// holds them newest first without moving them.
     fm: [[f64; W]; 2 * K],
@@ -174,8 +175,8 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             y: r.y,
             m: [0.0; W],
             pen: r.pen,
-            h: r.h,
-            h_start: r.h,
+            h: r.length / STEPS_NOMINAL,
+            length: r.length,
             fm: [[0.0; W]; 2 * K],
             p: 0,
             obs,
@@ -454,9 +455,14 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
     /// DOP853 carries the contact on from the last accepted state ([`Next::HandOver`]), with
     /// its own nominal step for this contact.
     fn hand_over(self, budget: &mut usize) -> End {
-        let h_nom = self.h_start * STEPS_NOMINAL / dop853::STEPS_NOMINAL;
-        let r = dop853::Resume::taken_over(self.rhs.s, self.sc, self.t_onset, self.y, self.pen, h_nom);
+        let r = self.taken_over(self.y);
         dop853::resume(self.sys, self.load, &r, self.t_limit, budget, self.obs)
+    }
+
+    /// This contact at state `y` as DOP853 carries it on, with its own nominal step.
+    fn taken_over(&self, y: Y) -> dop853::Resume {
+        let h_nom = self.length / dop853::STEPS_NOMINAL;
+        dop853::Resume::taken_over(self.rhs.s, self.sc, self.t_onset, y, self.pen, h_nom)
     }
 
     fn end(&self, outcome: ContactOutcome) -> End {
@@ -465,9 +471,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         // no history, so the contact goes on as the uncut one does, to both schemes' accuracy
         // (a new start of this scheme there would do worse: its history would come from a
         // series centred mid-contact, where the series reaches less far).
-        let h_nom = self.h_start * STEPS_NOMINAL / dop853::STEPS_NOMINAL;
-        let resume = (outcome == ContactOutcome::EndOfRun)
-            .then(|| dop853::Resume::taken_over(self.rhs.s, self.sc, self.t_onset, y, self.pen, h_nom));
+        let resume = (outcome == ContactOutcome::EndOfRun).then(|| self.taken_over(y));
         let t = if outcome == ContactOutcome::EndOfRun { self.t_limit } else { self.t_onset + y[6] };
         End { t, y: State::new(y[0], y[1], y[2] * y[2], y[3], y[4], y[5]), pen_max: self.pen, outcome, resume }
     }
@@ -555,7 +559,7 @@ mod tests {
         use super::super::forced::Harmonic;
         let s = sys(20.0, 500.0);
         let y = Y::from([0.01, -0.2, 3e-3, 0.7, 1e-4, 2e-6, 1e-4]);
-        let r = Start { s: -1.0, sc: [1.0; 7], t_onset: 0.3, y, pen: 0.0, h: 1e-3 };
+        let r = Start { s: -1.0, sc: [1.0; 7], t_onset: 0.3, y, pen: 0.0, length: 0.064 };
         let check = |a: &Series, b: &Series| {
             for i in 0..7 {
                 for k in 0..NC {

@@ -128,9 +128,9 @@ pub(crate) fn integrate<L: Load>(
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
-    let Onset { amax, tau, sc, y } = onset(sys, &y0);
-    // The contact's length in θ is about 1.9·τ/√α_max.
-    let h = 1.9 * tau / amax.sqrt() / STEPS_NOMINAL;
+    let start = onset(sys, &y0);
+    let h = start.theta_length() / STEPS_NOMINAL;
+    let Onset { sc, y, .. } = start;
     let r = Resume { s, sc, t_onset: t0, y, pen: 0.0, h, h_nom: h, had_pos: false };
     go(sys, load, &r, t_limit, budget, obs)
 }

@@ -537,6 +537,15 @@ pub(crate) struct Onset {
     pub y: Y,
 }
 
+impl Onset {
+    /// The contact's length in θ (√m·s/m units, σ·θ being time), about `1.9·τ/√α_max`: the
+    /// integral of `dt/√δ` over the Hertz contact's half sine. The fast schemes size their steps
+    /// from it.
+    pub fn theta_length(&self) -> f64 {
+        1.9 * self.tau / self.amax.sqrt()
+    }
+}
+
 /// The [`Onset`] of a contact from `y0 = [x, x', 0, u0, 0, 0]`.
 pub(crate) fn onset(sys: &Sys, y0: &State) -> Onset {
     let u0 = y0[3].abs().max(1e-12);
