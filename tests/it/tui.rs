@@ -2,6 +2,7 @@
 //! The explorer on ratatui's TestBackend: snapshots of the main screen, keys changing state
 //! and the next frame, tiny terminals, the help overlay and refused input.
 
+use crate::support::explorer::render;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::backend::TestBackend;
 use ratatui::Terminal;
@@ -19,12 +20,6 @@ fn computed_app() -> App {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    draw(&mut term, app).unwrap();
-    term.backend().to_string()
 }
 
 /// Draws one frame without reading it back (TestBackend cannot print a 0-wide buffer).

@@ -2,8 +2,8 @@
 //! The animation view (`a`): the live run in slow motion from the engine's own record, its
 //! keys, the impact flash at the wall the engine found, and a pause that stops the picture.
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-use ratatui::backend::TestBackend;
+use crate::support::explorer::{press, render};
+use crossterm::event::KeyCode;
 use ratatui::Terminal;
 use thud::design::Design;
 use thud::tui::app::{App, Msg};
@@ -16,17 +16,6 @@ fn computed_app(d: Design, ascii: bool) -> App {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
-}
-
-fn press(app: &mut App, code: KeyCode) {
-    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))));
-    compute_sync(app, reqs);
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    draw(&mut term, app).unwrap();
-    term.backend().to_string()
 }
 
 /// The picture's lines (the left part of the animation panel, above its status lines).

@@ -3,13 +3,12 @@
 //! panel to x(kT) over f, coarse pass first, then the fine one, the current f marked and its
 //! orbit named; its samples are `thud bifurcation`'s for the same f.
 
+use crate::support::explorer::render;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-use ratatui::backend::TestBackend;
-use ratatui::Terminal;
 use thud::tui::app::{App, Msg};
 use thud::tui::compute::{Grid, Grids};
 use thud::tui::worker::{run_sync, ChartWork, Request};
-use thud::tui::{compute_sync, draw, Palette};
+use thud::tui::{compute_sync, Palette};
 
 fn forced_app() -> App {
     let d = thud::presets::preset("forced-rattle").unwrap();
@@ -22,12 +21,6 @@ fn forced_app() -> App {
 
 fn key(code: KeyCode) -> Msg {
     Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE)))
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    draw(&mut term, app).unwrap();
-    term.backend().to_string()
 }
 
 /// `thud bifurcation` at the one value `f` (the explorer's run lengths given explicitly).

@@ -3,14 +3,13 @@
 //! inputs (m, g, r, t), a digit that starts typing, a click on a field and a click or drag on
 //! the polar that sets θ.
 
+use crate::support::explorer::render;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use ratatui::backend::TestBackend;
-use ratatui::Terminal;
 use thud::design::Design;
 use thud::tui::app::{App, Mode, Msg};
 use thud::tui::compute::{Grid, Grids};
 use thud::tui::fields::Knob;
-use thud::tui::{compute_sync, draw, Palette};
+use thud::tui::{compute_sync, Palette};
 
 fn computed_app() -> App {
     let grids = Grids { coarse: None, fine: Grid::standard(6, 5) };
@@ -36,12 +35,6 @@ fn type_text(app: &mut App, text: &str) {
 
 fn mouse(app: &mut App, kind: MouseEventKind, x: u16, y: u16) {
     send(app, Msg::Input(Event::Mouse(MouseEvent { kind, column: x, row: y, modifiers: KeyModifiers::NONE })));
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    draw(&mut term, app).unwrap();
-    term.backend().to_string()
 }
 
 /// The engine's level at the listener (θ as set) for the live design, to the polar's digits.

@@ -4,15 +4,14 @@
 //! the response view's value at f (from rest) is `thud response --freqs f:f:1`'s, each says its
 //! start; the chart's marker shows the readout's zone, which is `thud simulate --ensemble`'s.
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-use ratatui::backend::TestBackend;
-use ratatui::Terminal;
+use crate::support::explorer::{press, render, set};
+use crossterm::event::KeyCode;
 use thud::design::Design;
-use thud::tui::app::{App, Msg};
+use thud::tui::app::App;
 use thud::tui::chart::DesignZone;
 use thud::tui::compute::{Grid, Grids};
 use thud::tui::fields::Knob;
-use thud::tui::{compute_sync, draw, Palette};
+use thud::tui::{compute_sync, Palette};
 use thud::units::sig;
 
 fn computed_app() -> App {
@@ -21,24 +20,6 @@ fn computed_app() -> App {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
-}
-
-fn set(app: &mut App, field: Knob, text: &str) {
-    app.selected = Knob::ALL.iter().position(|k| *k == field).unwrap();
-    let reqs = app.submit_text(text);
-    compute_sync(app, reqs);
-    assert!(!app.status().unwrap().error, "{text}: {:?}", app.status());
-}
-
-fn press(app: &mut App, code: KeyCode) {
-    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))));
-    compute_sync(app, reqs);
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    draw(&mut term, app).unwrap();
-    term.backend().to_string()
 }
 
 fn cli(args: &[&str]) -> serde_json::Value {

@@ -4,18 +4,19 @@
 //! ellipsis (pure ASCII with `--ascii`, spelled rather than `?`).
 
 use crate::common;
+use crate::support::explorer::press;
 
 use std::cell::RefCell;
 use std::io::Write;
 use std::rc::Rc;
 
 use clap::Parser;
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use crossterm::event::KeyCode;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use ratatui::Terminal;
-use thud::tui::app::{App, Msg, Panel};
+use thud::tui::app::{App, Panel};
 use thud::tui::compute::{Grid, Grids};
 use thud::tui::sgr16::Depth16;
 use thud::tui::theme::Depth;
@@ -28,11 +29,6 @@ fn app_with(preset: &str, theme: Palette) -> App {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
-}
-
-fn press(app: &mut App, code: KeyCode) {
-    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))));
-    compute_sync(app, reqs);
 }
 
 fn buffer(app: &mut App, w: u16, h: u16) -> Buffer {

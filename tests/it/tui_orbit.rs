@@ -4,14 +4,13 @@
 //! and at 120×40; the label is the engine's for that design (`orbit_at_f`, the one value of
 //! `thud bifurcation --vary f=f:f:1`), never a stale one while the design computes.
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-use ratatui::backend::TestBackend;
-use ratatui::Terminal;
+use crate::support::explorer::{press, render, set};
+use crossterm::event::KeyCode;
 use thud::design::Design;
-use thud::tui::app::{App, Msg, Panel};
+use thud::tui::app::{App, Panel};
 use thud::tui::compute::{orbit_at_f, Grid, Grids};
 use thud::tui::fields::Knob;
-use thud::tui::{compute_sync, draw, Palette};
+use thud::tui::{compute_sync, Palette};
 
 fn app_of(d: Design, preset: &str) -> App {
     let grids = Grids { coarse: None, fine: Grid::standard(4, 4) };
@@ -19,24 +18,6 @@ fn app_of(d: Design, preset: &str) -> App {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
-}
-
-fn set(app: &mut App, field: Knob, text: &str) {
-    app.selected = Knob::ALL.iter().position(|k| *k == field).unwrap();
-    let reqs = app.submit_text(text);
-    compute_sync(app, reqs);
-    assert!(!app.status().unwrap().error, "{text}: {:?}", app.status());
-}
-
-fn press(app: &mut App, code: KeyCode) {
-    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))));
-    compute_sync(app, reqs);
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
-    draw(&mut term, app).unwrap();
-    term.backend().to_string()
 }
 
 /// The orbit's label of the live design, straight from the engine (not the app's copy), and

@@ -3,10 +3,11 @@
 //! gap row of the chart where it shows the chart, every number its caption names, and the
 //! field it talks about selected.
 
-use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use crate::support::explorer::press;
+use crossterm::event::KeyCode;
 use ratatui::backend::TestBackend;
 use ratatui::Terminal;
-use thud::tui::app::{App, Msg, Panel};
+use thud::tui::app::{App, Panel};
 use thud::tui::compute::{Grid, Grids};
 use thud::tui::{compute_sync, draw, Palette};
 
@@ -17,11 +18,6 @@ fn full_app() -> App {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     app
-}
-
-fn press(app: &mut App, code: KeyCode) {
-    let reqs = app.update(Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))));
-    compute_sync(app, reqs);
 }
 
 fn render(app: &mut App, w: u16, h: u16) -> String {
