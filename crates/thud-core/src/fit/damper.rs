@@ -714,6 +714,7 @@ pub fn work_design(d: &ValidDesign, span_s: f64) -> Result<ValidDesign, ThudErro
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::damper::DamperParams;
     use crate::fit::structure::tests::{measured, Noise};
 
     /// The main mass's displacement of `d` with c1 `c1` from a ball at rest at `y0`, sampled at
@@ -793,40 +794,16 @@ mod tests {
         let d = Design::default().check().unwrap();
         let p = d.damper;
         let truth = 25.0;
-        let (big_m, m, k, c, khz, half) =
-            (p.main_mass_kg, p.impact_mass_kg, p.stiffness_n_m, p.damping_n_s_m, p.k_hz, 0.5 * p.gap_m);
-        let accel = |s: [f64; 4]| -> [f64; 4] {
-            let [x, v, y, w] = s;
-            let z = y - x;
-            let delta = z.abs() - half;
-            let f_ball = if delta > 0.0 {
-                let sg = z.signum();
-                -sg * (khz * delta.powf(1.5) + truth * sg * (w - v))
-            } else {
-                0.0
-            };
-            [v, (-k * x - c * v - f_ball) / big_m, w, f_ball / m]
-        };
         let dt = 5e-7;
         let every = 1000; // 2 kHz
-        let mut s = [0.0, p.v0_m_s, 0.37 * half, 0.0];
-        let (mut t, mut x) = (vec![0.0], vec![0.0]);
+        let (mut t, mut x) = (vec![], vec![]);
         let steps = (p.duration_s / dt).round() as usize;
-        for i in 1..=steps {
-            let k1 = accel(s);
-            let add =
-                |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
-            let k2 = accel(add(s, k1, 0.5 * dt));
-            let k3 = accel(add(s, k2, 0.5 * dt));
-            let k4 = accel(add(s, k3, dt));
-            for j in 0..4 {
-                s[j] += dt / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
-            }
+        rk4(&p, truth, 0.37 * 0.5 * p.gap_m, dt, steps, |i, s| {
             if i % every == 0 {
                 t.push(i as f64 * dt);
                 x.push(s[0]);
             }
-        }
+        });
         let mut g = Noise(4);
         let (t, x): (Vec<f64>, Vec<f64>) = t.into_iter().zip(x).filter(|_| g.uniform() < 0.75).unzip();
         let y = measured(&t, &x, 0.015, &mut g);
@@ -856,9 +833,35 @@ mod tests {
     #[allow(clippy::type_complexity)]
     fn rk4_record(d: &ValidDesign, c1: f64, y0: f64, g: &mut Noise) -> ((Vec<f64>, Vec<f64>), (Vec<f64>, Vec<f64>)) {
         let p = d.damper;
+        let dt = 2e-6;
+        let (mut tx, mut x) = (vec![0.0], vec![0.0]);
+        let (mut ta, mut a) = (vec![0.0], vec![]);
+        let steps = (p.duration_s / dt).round() as usize;
+        let accel = rates(&p, c1);
+        rk4(&p, c1, y0, dt, steps, |i, s| {
+            if i == 0 {
+                a.push(accel(s)[1]);
+                return;
+            }
+            if i % 250 == 0 && g.uniform() < 0.75 {
+                tx.push(i as f64 * dt);
+                x.push(s[0]);
+            }
+            if i % 50 == 0 && g.uniform() < 0.75 {
+                ta.push(i as f64 * dt);
+                a.push(accel(s)[1]);
+            }
+        });
+        ((tx, x), (ta, a))
+    }
+
+    /// The rates `[x', x'', y', y'']` of Eqs 25–26 for the independent integration behind the
+    /// records (Hertz force K_HZ·δ^1.5 + c1·δ' on the ball past either wall; not thud's solver)
+    /// of design `p` with contact damping `c1` (N·s/m), at the state `[x, x', y, y']`.
+    fn rates(p: &DamperParams, c1: f64) -> impl Fn([f64; 4]) -> [f64; 4] {
         let (big_m, m, k, c, khz, half) =
             (p.main_mass_kg, p.impact_mass_kg, p.stiffness_n_m, p.damping_n_s_m, p.k_hz, 0.5 * p.gap_m);
-        let accel = |s: [f64; 4]| -> [f64; 4] {
+        move |s: [f64; 4]| {
             let [x, v, y, w] = s;
             let z = y - x;
             let delta = z.abs() - half;
@@ -869,14 +872,18 @@ mod tests {
                 0.0
             };
             [v, (-k * x - c * v - f_ball) / big_m, w, f_ball / m]
-        };
+        }
+    }
+
+    /// A fixed-step RK4 of [`rates`] (no event location): design `p` with contact damping `c1`
+    /// (N·s/m), struck at `p.v0_m_s` with the ball at rest at `y0` (m), `steps` steps of `dt`
+    /// (s); `visit(i, [x, x', y, y'])` sees the start (`i = 0`) and the state after each step.
+    fn rk4(p: &DamperParams, c1: f64, y0: f64, dt: f64, steps: usize, mut visit: impl FnMut(usize, [f64; 4])) {
+        let accel = rates(p, c1);
         let add =
             |a: [f64; 4], b: [f64; 4], h: f64| [a[0] + h * b[0], a[1] + h * b[1], a[2] + h * b[2], a[3] + h * b[3]];
-        let dt = 2e-6;
         let mut s = [0.0, p.v0_m_s, y0, 0.0];
-        let (mut tx, mut x) = (vec![0.0], vec![0.0]);
-        let (mut ta, mut a) = (vec![0.0], vec![accel(s)[1]]);
-        let steps = (p.duration_s / dt).round() as usize;
+        visit(0, s);
         for i in 1..=steps {
             let k1 = accel(s);
             let k2 = accel(add(s, k1, 0.5 * dt));
@@ -885,16 +892,8 @@ mod tests {
             for j in 0..4 {
                 s[j] += dt / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
             }
-            if i % 250 == 0 && g.uniform() < 0.75 {
-                tx.push(i as f64 * dt);
-                x.push(s[0]);
-            }
-            if i % 50 == 0 && g.uniform() < 0.75 {
-                ta.push(i as f64 * dt);
-                a.push(accel(s)[1]);
-            }
+            visit(i, s);
         }
-        ((tx, x), (ta, a))
     }
 
     /// Measured-style records over designs from light to heavy contact damping (the issue's
