@@ -1,6 +1,7 @@
-//! Checks shared by the unit tests of the fast Sundman contact schemes ([`super::dop853`],
-//! [`super::adams`]): the same isolated contacts against the reference and the Taylor scheme,
-//! and a contact cut by its time limit carried on as if never cut.
+//! Checks shared by the unit tests of the Sundman contact schemes: the design of [`sys`] by all
+//! three; the same isolated contacts against the reference and the Taylor scheme, and a contact
+//! cut by its time limit carried on as if never cut, by the fast ones ([`super::dop853`],
+//! [`super::adams`]).
 
 use super::contact::{self, ContactEnd, ContactOutcome, NoLoad, State, Sys};
 use super::sundman::{self, Unobserved};

@@ -721,14 +721,8 @@ impl<L: Load, O: Observer> Integration<'_, L, O> {
 #[cfg(test)]
 mod tests {
     use super::super::contact::{self, NoLoad};
-    use super::super::DamperParams;
+    use super::super::scheme_checks::sys;
     use super::*;
-
-    fn sys(c1: f64, k: f64) -> Sys {
-        let damping = if k > 0.0 { 0.05 } else { 0.0 };
-        let p = DamperParams { stiffness_n_m: k, damping_n_s_m: damping, c1_n_s_m: c1, ..DamperParams::table2() };
-        Sys::new(&p)
-    }
 
     /// Isolated contacts from the same state: the release speed, time and dissipation of the
     /// reference (Dormand–Prince in t, whose own error is ~1e-9 of the speed) within 2e-8.
