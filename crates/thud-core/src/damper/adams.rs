@@ -351,10 +351,9 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         self.pen = self.pen.max(yn[2] * yn[2]);
     }
 
-    /// Adams steps from the current state and history until the contact is over, a step's
-    /// error is too large, or the error has stayed so small for [`CALM_STEPS`] steps that a
-    /// step [`GROWTH`] times as long would keep it within the tolerance (a contact whose motion
-    /// has slowed down: a ball pressed against the wall by the main mass).
+    /// Adams steps from the current state and history until the contact is over or the motion
+    /// is no longer the hump the steps are sized for ([`Next::HandOver`]: a step's difference
+    /// above [`RTOL`], or below [`CALM`] of it for [`CALM_STEPS`] steps).
     fn steps(&mut self, budget: &mut usize, tau_lim: f64) -> Next {
         let h = self.h;
         let rhs = self.rhs;
