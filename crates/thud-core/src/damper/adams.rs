@@ -471,8 +471,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         // (a new start of this scheme there would do worse: its history would come from a
         // series centred mid-contact, where the series reaches less far).
         let resume = (outcome == ContactOutcome::EndOfRun).then(|| self.taken_over(y));
-        let t = if outcome == ContactOutcome::EndOfRun { self.t_limit } else { self.t_onset + y[6] };
-        End { t, y: State::new(y[0], y[1], y[2] * y[2], y[3], y[4], y[5]), pen_max: self.pen, outcome, resume }
+        sundman::ended(&y, (self.t_onset, self.t_limit), self.pen, outcome, resume)
     }
 }
 

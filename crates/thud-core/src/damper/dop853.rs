@@ -27,7 +27,7 @@ use std::cell::OnceCell;
 
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, Y};
+use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
@@ -409,8 +409,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
             h_nom: self.h_nom,
             had_pos: self.had_pos,
         });
-        let t = if outcome == ContactOutcome::EndOfRun { self.t_limit } else { self.t_onset + y[6] };
-        End { t, y: State::new(y[0], y[1], y[2] * y[2], y[3], y[4], y[5]), pen_max: self.pen, outcome, resume }
+        sundman::ended(&y, (self.t_onset, self.t_limit), self.pen, outcome, resume)
     }
 }
 

@@ -29,7 +29,7 @@ use nalgebra::SVector;
 
 use crate::contact::{contact_duration, peak_approach};
 
-use super::contact::{ContactOutcome, Load, State, Sys};
+use super::contact::{ContactEnd, ContactOutcome, Load, State, Sys};
 
 /// The integrated state `[x, x', σ, δ', E_contact, E_viscous, t − t_onset]` (m, m/s, √m, m/s,
 /// J, J, s).
@@ -323,6 +323,20 @@ impl Rhs<'_> {
         let (v, sg, u) = (m[1], m[2], m[3]);
         [sg * sys.c1 * (u * u), sg * sys.c * (v * v), sg]
     }
+}
+
+/// How a Sundman integration ended, in the event solver's terms: at the time limit `t_limit`
+/// (s) or at the state's own time after the onset `t_onset` (s), the state `y` back in `δ = σ²`,
+/// the peak penetration `pen_max` (m), and the scheme's resume state of a cut contact.
+pub(crate) fn ended<R>(
+    y: &Y,
+    (t_onset, t_limit): (f64, f64),
+    pen_max: f64,
+    outcome: ContactOutcome,
+    resume: Option<R>,
+) -> ContactEnd<R> {
+    let t = if outcome == ContactOutcome::EndOfRun { t_limit } else { t_onset + y[6] };
+    ContactEnd { t, y: State::new(y[0], y[1], y[2] * y[2], y[3], y[4], y[5]), pen_max, outcome, resume }
 }
 
 /// The earliest end of a step of length `h` (θ units) from `y0` to `y1` before its end: the
@@ -712,9 +726,7 @@ impl<L: Load, O: Observer> Integration<'_, L, O> {
             pen: self.pen,
             h: self.h,
         });
-        let y = &self.y;
-        let t = if outcome == ContactOutcome::EndOfRun { self.t_limit } else { self.t_onset + y[6] };
-        End { t, y: State::new(y[0], y[1], y[2] * y[2], y[3], y[4], y[5]), pen_max: self.pen, outcome, resume }
+        ended(&self.y, (self.t_onset, self.t_limit), self.pen, outcome, resume)
     }
 }
 
