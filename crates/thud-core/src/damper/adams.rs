@@ -85,8 +85,8 @@ fn rate<L: Load, const N: usize, const W: usize>(rhs: &Rhs<'_>, m: &[f64; W], r:
 /// by DOP853 ([`dop853::resume`]).
 pub(crate) type End = super::contact::ContactEnd<dop853::Resume>;
 
-/// Where an integration by this scheme starts: wall `s`, error scales, onset time (s), state,
-/// peak penetration so far (m) and the contact's estimated length in θ
+/// Where an integration by this scheme starts (always at a contact's onset): wall `s`, error
+/// scales, onset time (s), state and the contact's estimated length in θ
 /// ([`Onset::theta_length`]), which sizes the steps.
 #[derive(Debug, Clone, Copy)]
 struct Start {
@@ -94,7 +94,6 @@ struct Start {
     sc: [f64; 7],
     t_onset: f64,
     y: Y,
-    pen: f64,
     length: f64,
 }
 
@@ -125,7 +124,7 @@ pub(crate) fn integrate<L: Load>(
     let start = onset(sys, &y0);
     let length = start.theta_length();
     let Onset { sc, y, .. } = start;
-    go(sys, load, &Start { s, sc, t_onset: t0, y, pen: 0.0, length }, t_limit, budget, obs)
+    go(sys, load, &Start { s, sc, t_onset: t0, y, length }, t_limit, budget, obs)
 }
 
 /// The integration from `r`, with the motion's size chosen by the load.
@@ -174,7 +173,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             t_limit,
             y: r.y,
             m: [0.0; W],
-            pen: r.pen,
+            pen: 0.0,
             h: r.length / STEPS_NOMINAL,
             length: r.length,
             fm: [[0.0; W]; 2 * K],
@@ -557,7 +556,7 @@ mod tests {
         use super::super::forced::Harmonic;
         let s = sys(20.0, 500.0);
         let y = Y::from([0.01, -0.2, 3e-3, 0.7, 1e-4, 2e-6, 1e-4]);
-        let r = Start { s: -1.0, sc: [1.0; 7], t_onset: 0.3, y, pen: 0.0, length: 0.064 };
+        let r = Start { s: -1.0, sc: [1.0; 7], t_onset: 0.3, y, length: 0.064 };
         let check = |a: &Series, b: &Series| {
             for i in 0..7 {
                 for k in 0..NC {
