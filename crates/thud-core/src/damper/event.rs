@@ -71,8 +71,10 @@ pub mod timing {
 pub(crate) enum Search {
     /// Contact at this flight time (s) on this wall.
     Contact(f64, Wall),
-    /// No contact before the end of the interval.
-    None,
+    /// No contact before the end of the interval; the search had reached this flight time (s),
+    /// its last iterate, from which a longer search of the same flight goes on exactly as if it
+    /// had never stopped.
+    None(f64),
     /// The iteration budget ran out at this flight time.
     Exhausted(f64),
 }
@@ -103,7 +105,9 @@ pub(crate) struct Launch {
 }
 
 /// The contact search of one flight by conservative advancement on both walls' gaps: from
-/// `from` (flight time 0), the first contact within flight time `(0, t_max]` (s) where a gap
+/// `from` (flight time 0), searched from flight time `tau0` (0, or where an earlier search of
+/// the same flight stopped: [`Search::None`]), the first contact within flight time
+/// `(0, t_max]` (s) where a gap
 /// (m, to the walls `hg` either side of the centre) is below `1e-13·hg` and closing.
 /// `flight(τ)` is the main mass's `(x, x')` at flight time `τ`; `bound(x, x')` bounds `|x''|`
 /// (m/s²) over the step from there, which is no longer than `h_max` (s) if given. Never skips a
@@ -113,6 +117,7 @@ pub(crate) struct Launch {
 fn conservative_advance(
     hg: f64,
     from: &Launch,
+    tau0: f64,
     t_max: f64,
     iters: &mut usize,
     flight: impl Fn(f64) -> (f64, f64),
@@ -122,7 +127,7 @@ fn conservative_advance(
     let Launch { x0, v0, y0, w, .. } = *from;
     let gtol = 1e-13 * hg;
     let s_min = 1e-15;
-    let mut tau = 0.0;
+    let mut tau = tau0;
     loop {
         let (x, v) = if tau == 0.0 { (x0, v0) } else { flight(tau) };
         let z = y0 + w * tau - x;
@@ -142,7 +147,7 @@ fn conservative_advance(
         }
         let st = st.max(s_min);
         if tau + st >= t_max {
-            return Search::None;
+            return Search::None(tau);
         }
         tau += st;
         if *iters == 0 {
@@ -162,8 +167,9 @@ pub(crate) trait Flight: Copy {
     /// `(x, x')` a time `tau` after `(x0, v0)` at time `t0`.
     fn advance(&self, t0: f64, x0: f64, v0: f64, tau: f64) -> (f64, f64);
     /// The first contact of the flight from `from` within flight time `(0, t_max]` (s), on
-    /// walls `hg` (m) either side of the centre (see [`conservative_advance`]).
-    fn find_contact(&self, hg: f64, from: &Launch, t_max: f64, iters: &mut usize) -> Search;
+    /// walls `hg` (m) either side of the centre, searched from flight time `tau0` (see
+    /// [`conservative_advance`]).
+    fn find_contact(&self, hg: f64, from: &Launch, tau0: f64, t_max: f64, iters: &mut usize) -> Search;
     /// Records the flight segment `[t0, t0 + tf]`; history samples up to `t1`.
     #[allow(clippy::too_many_arguments)]
     fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64);
@@ -197,10 +203,10 @@ impl Flight for Free {
     /// quadratically onto a transversal one, to a gap below `1e-13·d/2`), with one acceleration
     /// bound for the whole flight (the free oscillator's energy never grows).
     #[inline]
-    fn find_contact(&self, hg: f64, from: &Launch, t_max: f64, iters: &mut usize) -> Search {
+    fn find_contact(&self, hg: f64, from: &Launch, tau0: f64, t_max: f64, iters: &mut usize) -> Search {
         let osc = &self.0;
         let a = osc.accel_bound(from.x0, from.v0);
-        conservative_advance(hg, from, t_max, iters, |tau| osc.advance(from.x0, from.v0, tau), |_, _| a, None)
+        conservative_advance(hg, from, tau0, t_max, iters, |tau| osc.advance(from.x0, from.v0, tau), |_, _| a, None)
     }
 
     /// Analytic maxima, crossings, `|z'|` extrema, history.
@@ -257,11 +263,11 @@ impl Flight for ForcedFlight {
     /// the acceleration bound is taken afresh at each iterate and holds over the next
     /// [`Forced::horizon`] only; no step is longer than that.
     #[inline]
-    fn find_contact(&self, hg: f64, from: &Launch, t_max: f64, iters: &mut usize) -> Search {
+    fn find_contact(&self, hg: f64, from: &Launch, tau0: f64, t_max: f64, iters: &mut usize) -> Search {
         let fo = &self.0;
         let seg = fo.segment(from.t0, from.x0, from.v0);
         let h = fo.horizon();
-        conservative_advance(hg, from, t_max, iters, |tau| seg.at(tau), |x, v| fo.accel_bound(x, v, h), Some(h))
+        conservative_advance(hg, from, tau0, t_max, iters, |tau| seg.at(tau), |x, v| fo.accel_bound(x, v, h), Some(h))
     }
 
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
@@ -378,6 +384,11 @@ pub(crate) struct EventSim<'a, F: Flight> {
     /// Penetration (m) where the run stands, if it stands inside a contact.
     del_end: f64,
     open: Option<Open>,
+    /// The flight the run stands in, if a stretch ended in flight: its launch and the flight
+    /// time its contact search had reached (s). The next stretch carries the same flight on
+    /// from its launch, so the motion does not depend on where the run was stopped (a flight
+    /// restarted from the stop would differ at round-off, which a rattle amplifies).
+    flying: Option<(Launch, f64)>,
     cancel: Option<&'a AtomicBool>,
     scheme: ContactScheme,
 }
@@ -413,6 +424,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
             truncated: None,
             del_end: 0.0,
             open: None,
+            flying: None,
             cancel: opts.cancel,
             // The Taylor scheme does not yet handle the clamp's switches reliably.
             scheme: if p.no_tension { ContactScheme::DormandPrince } else { scheme },
@@ -524,39 +536,47 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
                 self.contact(open.wall, open.t_start, open.u_in, Some(open), t_stop);
                 continue;
             }
-            // Flight.
+            // Flight: a new one from where the run stands, or the one a stretch ended in.
             let (t, x, v, y, w) = (self.t, self.x, self.v, self.y, self.w);
             #[cfg(feature = "timing")]
             let clock = std::time::Instant::now();
-            let from = Launch { t0: t, x0: x, v0: v, y0: y, w };
-            let search = self.flight.find_contact(self.sys.half_gap, &from, t_stop - t, &mut self.iters);
+            let carried = self.flying.take();
+            let (from, tau0) = carried.unwrap_or((Launch { t0: t, x0: x, v0: v, y0: y, w }, 0.0));
+            let search = self.flight.find_contact(self.sys.half_gap, &from, tau0, t_stop - from.t0, &mut self.iters);
             #[cfg(feature = "timing")]
             let (search_ns, clock) = (timing::since(clock), std::time::Instant::now());
+            // Flight time from the launch to the flight's end here, and the wall hit there.
             let (tf, wall) = match search {
                 Search::Contact(tau, wall) => (tau, Some(wall)),
-                Search::None => (t_stop - t, None),
+                Search::None(reached) => {
+                    self.flying = Some((from, reached));
+                    (t_stop - from.t0, None)
+                }
                 Search::Exhausted(tau) => {
                     self.truncated = Some(Truncation::FlightSearch);
                     (tau, None)
                 }
             };
-            let t1 = if matches!(search, Search::None) { t_stop } else { t + tf };
-            self.flight.record(&mut self.rec, t, x, v, y, w, tf, t1);
+            let t1 = if matches!(search, Search::None(_)) { t_stop } else { from.t0 + tf };
+            // What the record and the ledger see runs from where the run stands (what came
+            // before is in them already); the motion is the launch's.
+            let seen = if carried.is_some() { t1 - t } else { tf };
+            self.flight.record(&mut self.rec, t, x, v, y, w, seen, t1);
             #[cfg(feature = "timing")]
             timing::add(|b| {
                 b.search_ns += search_ns;
                 b.flight_record_ns += timing::since(clock);
                 b.flights += 1;
             });
-            let (x1, v1) = self.flight.advance(t, x, v, tf);
-            let (viscous, work) = self.flight.energies(&self.sys, t, x, v, tf, x1, v1);
+            let (x1, v1) = self.flight.advance(from.t0, from.x0, from.v0, tf);
+            let (viscous, work) = self.flight.energies(&self.sys, t, x, v, seen, x1, v1);
             self.energy.dissipated_viscous_j += viscous;
             if <F::L as Load>::ON {
                 self.energy.forcing_work_j += work;
             }
             self.x = x1;
             self.v = v1;
-            self.y = y + w * tf;
+            self.y = from.y0 + w * tf;
             self.t = t1;
             let Some(wall) = wall else { break };
             // Contact: start exactly at δ = 0.

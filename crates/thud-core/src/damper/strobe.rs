@@ -2,8 +2,9 @@
 //! after a transient, every impact, and the state at the end — what the bifurcation diagram,
 //! the impact map and the basins of attraction ([`crate::dynamics`]) are drawn from. The run is
 //! the event solver's ordinary forced run, stopped at each sample time and resumed
-//! ([`Stepper::advance_to`]): a stop inside a contact is resumed where it stood, so sampling
-//! does not change the motion.
+//! ([`Stepper::advance_to`]): a stop in flight carries the same flight on from its launch, and
+//! a stop inside a contact resumes it where it stood, so sampling does not change the motion
+//! (in flight, not by a bit).
 
 use std::sync::atomic::AtomicBool;
 
