@@ -116,8 +116,7 @@ pub(crate) struct Launch {
 #[inline(always)]
 fn conservative_advance(
     hg: f64,
-    from: &Launch,
-    tau0: f64,
+    (from, tau0): (&Launch, f64),
     t_max: f64,
     iters: &mut usize,
     flight: impl Fn(f64) -> (f64, f64),
@@ -206,7 +205,7 @@ impl Flight for Free {
     fn find_contact(&self, hg: f64, from: &Launch, tau0: f64, t_max: f64, iters: &mut usize) -> Search {
         let osc = &self.0;
         let a = osc.accel_bound(from.x0, from.v0);
-        conservative_advance(hg, from, tau0, t_max, iters, |tau| osc.advance(from.x0, from.v0, tau), |_, _| a, None)
+        conservative_advance(hg, (from, tau0), t_max, iters, |tau| osc.advance(from.x0, from.v0, tau), |_, _| a, None)
     }
 
     /// Analytic maxima, crossings, `|z'|` extrema, history.
@@ -267,7 +266,7 @@ impl Flight for ForcedFlight {
         let fo = &self.0;
         let seg = fo.segment(from.t0, from.x0, from.v0);
         let h = fo.horizon();
-        conservative_advance(hg, from, tau0, t_max, iters, |tau| seg.at(tau), |x, v| fo.accel_bound(x, v, h), Some(h))
+        conservative_advance(hg, (from, tau0), t_max, iters, |tau| seg.at(tau), |x, v| fo.accel_bound(x, v, h), Some(h))
     }
 
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
