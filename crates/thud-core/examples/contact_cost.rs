@@ -8,7 +8,8 @@
 //! ```
 //!
 //! Runs the design `REPS` times with the scheme named (`DormandPrince`, `SundmanTaylor`,
-//! `SundmanDop853`) and prints the impacts a run; divide the instructions by `REPS` × impacts.
+//! `SundmanDop853`, `SundmanAdams`) and prints the impacts a run and a digest of the runs' bits
+//! (equal digests: the same runs to the bit); divide the instructions by `REPS` × impacts.
 //! A third argument `forced` runs the forced preset instead (the ensemble's and the
 //! bifurcation diagram's designs).
 
@@ -30,8 +31,17 @@ fn main() {
         DamperParams::table2()
     };
     let mut n = 0;
+    let mut digest = 0xcbf2_9ce4_8422_2325_u64;
     for _ in 0..reps {
-        n = simulate_with(&p, Solver::Event, &RunOptions::default(), scheme).unwrap().impacts.len();
+        let run = simulate_with(&p, Solver::Event, &RunOptions::default(), scheme).unwrap();
+        n = run.impacts.len();
+        // FNV-1a over the bits of every impact's numbers, the run's maxima and its ledger: two
+        // builds that print the same digest computed the same run to the bit.
+        let values = run.impacts.iter().flat_map(|i| [i.t_s, i.u_in_m_s, i.u_out_m_s, i.t_end_s, i.penetration_max_m]);
+        let values = values.chain([run.energy.final_mechanical_j, run.energy.dissipated_contact_j, run.zdot_abs_max_m_s]);
+        for v in values {
+            digest = (digest ^ v.to_bits()).wrapping_mul(0x0100_0000_01b3);
+        }
     }
-    println!("{scheme:?}: {n} impacts a run, {reps} runs");
+    println!("{scheme:?}: {n} impacts a run, {reps} runs, digest {digest:016x}");
 }

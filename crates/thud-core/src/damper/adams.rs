@@ -357,6 +357,17 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let h = self.h;
         let rhs = self.rhs;
         let mut calm = 0;
+        // The history's parts of the predictor (Adams–Bashforth) and of the corrector (Adams–
+        // Moulton) over all but the newest rate, oldest first. Each step adds the newest rate's
+        // term to them, and works out the next step's while its own rates are evaluated: they
+        // need only rates known already, so they run beside the step's chain of dependent
+        // operations instead of after it. (The predictor only needs the motion: no rate
+        // depends on the quadratures.) The sums are the one-pass sums over the window, term
+        // for term in the same order.
+        let Some(wm) = self.fm[self.p..].first_chunk::<K>() else {
+            return Next::HandOver;
+        };
+        let (mut pm_old, mut cm_old) = older_sums::<N, W>(wm, 0);
         loop {
             if *budget < STEP_COST {
                 *budget = 0;
@@ -364,26 +375,25 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             }
             *budget -= STEP_COST;
             let p = self.p;
-            let wm = &self.fm[p..p + K];
-            // The history's parts of the predictor (Adams–Bashforth) and of the corrector
-            // (Adams–Moulton), in one pass over the rates, oldest first: only the last term
-            // waits for the newest rate, so the sums over the older ones run ahead of it.
-            // (The predictor only needs the motion: no rate depends on the quadratures.)
-            let (mut pm, mut cm) = ([0.0; N], [0.0; W]);
-            for j in (0..K).rev() {
-                let (b, a, row) = (AB[j], AM[j + 1], &wm[j]);
-                for i in 0..N {
-                    pm[i] += b * row[i];
-                }
-                for i in 0..W {
-                    cm[i] += a * row[i];
-                }
+            // (A window of known length, so the sums unroll; `p < K` always.)
+            let Some(wm) = self.fm[p..].first_chunk::<K>() else {
+                return Next::HandOver;
+            };
+            let newest = &wm[0];
+            let (mut pm, mut cm) = (pm_old, cm_old);
+            for i in 0..N {
+                pm[i] += AB[0] * newest[i];
             }
-            // Predict, evaluate, correct.
+            for i in 0..W {
+                cm[i] += AM[1] * newest[i];
+            }
             let mut mp = self.m;
             for i in 0..N {
                 mp[i] += h * pm[i];
             }
+            // The next step's window is this one shifted by the rates this step adds.
+            (pm_old, cm_old) = older_sums::<N, W>(wm, 1);
+            // Evaluate, correct.
             let mut rp = [0.0; W];
             rate::<L, N, W>(&rhs, &mp, &mut rp);
             let mut mc = self.m;
@@ -472,6 +482,25 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let resume = (outcome == ContactOutcome::EndOfRun).then(|| self.taken_over(y));
         sundman::ended(&y, (self.t_onset, self.t_limit), self.pen, outcome, resume)
     }
+}
+
+/// The predictor's and the corrector's sums over the window `wm` (rates newest first) but its
+/// newest rate, oldest first: `Σ_{j = K−1 … 1} AB[j]·wm[j − shift]` over the motion and
+/// `Σ_{j = K−1 … 1} AM[j + 1]·wm[j − shift]` over the whole row. `shift = 0` for the window's
+/// own step, `1` for the next step's (whose window is this one after a new newest rate).
+#[inline(always)]
+fn older_sums<const N: usize, const W: usize>(wm: &[[f64; W]; K], shift: usize) -> ([f64; N], [f64; W]) {
+    let (mut pm, mut cm) = ([0.0; N], [0.0; W]);
+    for j in (1..K).rev() {
+        let (b, a, row) = (AB[j], AM[j + 1], &wm[j - shift]);
+        for i in 0..N {
+            pm[i] += b * row[i];
+        }
+        for i in 0..W {
+            cm[i] += a * row[i];
+        }
+    }
+    (pm, cm)
 }
 
 /// The dense output of the step of length `h` from `y` (history rows `wm`, newest first): the
