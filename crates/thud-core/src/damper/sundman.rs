@@ -438,6 +438,7 @@ impl<'a> Span<'a> {
     /// `2·h·(|dδ'/dθ|₀ + |dδ'/dθ|₁)`, the rate at both ends (it is smooth, and its sign changes
     /// once in a step that is a small part of the contact), so the step's polynomials are not
     /// built for an extremum that cannot raise the run's largest `|z'|`.
+    #[inline(always)]
     pub fn speed_extremum(&self, floor: f64) -> Option<f64> {
         let (d0, d1) = self.du;
         if d0 == 0.0 || (d0 > 0.0) == (d1 > 0.0) {
@@ -447,6 +448,14 @@ impl<'a> Span<'a> {
         if bound <= floor {
             return None;
         }
+        self.speed_extremum_inside()
+    }
+
+    /// The largest `|δ'|` inside the step, located on its polynomials ([`Span::speed_extremum`]
+    /// has checked that `dδ'/dθ` changes sign and that it may raise the run's largest `|z'|`).
+    #[inline(never)]
+    fn speed_extremum_inside(&self) -> Option<f64> {
+        let (d0, d1) = self.du;
         let ser = self.ser();
         let c = &ser.c[3];
         let q = root_in(self.h, d0, d1, |q| {
