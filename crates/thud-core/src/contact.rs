@@ -11,7 +11,9 @@ use crate::error::{check_positive, ThudError};
 /// τ = κ·α_max/U0 is the exact duration of an undamped Hertzian impact (the paper rounds κ to
 /// 2.9432). It comes from τ = 2·∫₀^α_max dα/α' with α' from the energy integral, Eq 4.
 pub fn kappa() -> f64 {
-    0.8 * beta(0.4, 0.5)
+    // Worked out once: the event solver sizes every contact with it.
+    static KAPPA: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| 0.8 * beta(0.4, 0.5));
+    *KAPPA
 }
 
 /// Euler's beta function B(x, y) = Γ(x)Γ(y)/Γ(x+y) for positive arguments.

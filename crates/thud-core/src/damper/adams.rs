@@ -42,7 +42,7 @@ use std::cell::OnceCell;
 use super::adams_tableau::{AB, AM, BASIS, K};
 use super::contact::{ContactOutcome, Load, State, Sys};
 use super::dop853;
-use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, TOL, Y};
+use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, Y};
 
 /// Even steps a Hertz contact is cut into (θ units: the contact's estimated length over this).
 /// Chosen so that the release speeds agree with the Taylor scheme's to ~1e-10 of the speed
@@ -207,7 +207,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         }
         *budget -= START_COST;
         // TOL^(1/ORDER): the series' step as a fraction of its radius of convergence.
-        let lam = TOL.powf(1.0 / ORDER as f64);
+        let lam = sundman::step_fraction();
         let ser = self.series();
         let reach = ser.step_size(&self.sc, START as f64 * self.h, lam) / START as f64;
         // Every node of the history within the series' reach; where the series reaches less
@@ -514,9 +514,11 @@ fn dense<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, h: f64, rp: &[f
         fj[..4].copy_from_slice(&row[..4]);
         fj[4..7].copy_from_slice(&row[N..N + 3]);
     }
+    // d_k = Σ_j BASIS[j][k]·f_j, each row summed over j in order in registers.
     let mut d = [[0.0; 8]; K + 1];
-    for (fj, bj) in f.iter().zip(&BASIS) {
-        for (dk, b) in d.iter_mut().zip(bj) {
+    for (k, dk) in d.iter_mut().enumerate() {
+        for (fj, bj) in f.iter().zip(&BASIS) {
+            let b = bj[k];
             for (a, v) in dk.iter_mut().zip(fj) {
                 *a += b * v;
             }

@@ -41,6 +41,13 @@ pub(crate) const ORDER: usize = 16;
 /// Coefficients per series.
 pub(crate) const NC: usize = ORDER + 1;
 
+/// `TOL^(1/ORDER)`: a series' step as a fraction of its radius of convergence (see
+/// [`Series::step_size`]), worked out once.
+pub(crate) fn step_fraction() -> f64 {
+    static LAM: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| TOL.powf(1.0 / ORDER as f64));
+    *LAM
+}
+
 /// The last coefficients that size a step.
 const TAIL: usize = 6;
 
@@ -642,7 +649,7 @@ impl<L: Load, O: Observer> Integration<'_, L, O> {
         }
         let nt = self.sys.no_tension && self.sys.c1 > 0.0;
         // TOL^(1/ORDER): the step as a fraction of the radius of convergence.
-        let lam = TOL.powf(1.0 / ORDER as f64);
+        let lam = step_fraction();
         loop {
             if *budget < STEP_COST {
                 *budget = 0;
