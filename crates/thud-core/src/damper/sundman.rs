@@ -455,13 +455,13 @@ impl<'a> Span<'a> {
         if bound <= floor {
             return None;
         }
-        self.speed_extremum_inside()
+        Some(self.speed_extremum_inside())
     }
 
     /// The largest `|δ'|` inside the step, located on its polynomials ([`Span::speed_extremum`]
     /// has checked that `dδ'/dθ` changes sign and that it may raise the run's largest `|z'|`).
     #[inline(never)]
-    fn speed_extremum_inside(&self) -> Option<f64> {
+    fn speed_extremum_inside(&self) -> f64 {
         let (d0, d1) = self.du;
         let ser = self.ser();
         let c = &ser.c[3];
@@ -475,7 +475,7 @@ impl<'a> Span<'a> {
             }
             (p, dp)
         });
-        Some(ser.eval(3, q).0.abs())
+        ser.eval(3, q).0.abs()
     }
 
     /// `(x, penetration δ)` (m) at time `t` (s) in the step.
