@@ -69,8 +69,9 @@ pub mod timing {
 
 /// Outcome of the search for the next contact in one flight.
 pub(crate) enum Search {
-    /// Contact at this flight time (s) on this wall.
-    Contact(f64, Wall),
+    /// Contact at this flight time (s) on this wall; the main mass's `(x, x')` there when the
+    /// search evaluated the flight at it (flight time > 0), so the caller need not again.
+    Contact(f64, Wall, Option<(f64, f64)>),
     /// No contact before the end of the interval; the search had reached this flight time (s),
     /// its last iterate, from which a longer search of the same flight goes on exactly as if it
     /// had never stopped.
@@ -128,16 +129,17 @@ fn conservative_advance(
     let s_min = 1e-15;
     let mut tau = tau0;
     loop {
-        let (x, v) = if tau == 0.0 { (x0, v0) } else { flight(tau) };
+        let at = (tau != 0.0).then(|| flight(tau));
+        let (x, v) = at.unwrap_or((x0, v0));
         let z = y0 + w * tau - x;
         let zd = w - v;
         let gp = hg - z;
         let gm = hg + z;
         if gp <= gtol && zd > 0.0 {
-            return Search::Contact(tau, Wall::Upper);
+            return Search::Contact(tau, Wall::Upper, at);
         }
         if gm <= gtol && zd < 0.0 {
-            return Search::Contact(tau, Wall::Lower);
+            return Search::Contact(tau, Wall::Lower, at);
         }
         let a = bound(x, v);
         let mut st = safe_step(gp.max(0.0), -zd, a).min(safe_step(gm.max(0.0), zd, a));
@@ -169,9 +171,10 @@ pub(crate) trait Flight: Copy {
     /// walls `hg` (m) either side of the centre, searched from flight time `tau0` (see
     /// [`conservative_advance`]).
     fn find_contact(&self, hg: f64, from: &Launch, tau0: f64, t_max: f64, iters: &mut usize) -> Search;
-    /// Records the flight segment `[t0, t0 + tf]`; history samples up to `t1`.
+    /// Records the flight segment `[t0, t0 + tf]` that ends at the main mass's `end = (x, x')`
+    /// (m, m/s); history samples up to `t1`.
     #[allow(clippy::too_many_arguments)]
-    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64);
+    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64, end: (f64, f64));
     /// A bound on the main mass's acceleration apart from the contact (m/s²), for the first
     /// step of a contact starting at `(x, v)`.
     fn contact_a_bound(&self, x: f64, v: f64) -> f64;
@@ -210,7 +213,7 @@ impl Flight for Free {
 
     /// Analytic maxima, crossings, `|z'|` extrema, history.
     #[inline]
-    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
+    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64, end: (f64, f64)) {
         let osc = &self.0;
         osc.for_each_event(x0, v0, tf, |kind, tau| {
             let (x, v) = osc.advance(x0, v0, tau);
@@ -220,8 +223,7 @@ impl Flight for Free {
                 FlightEvent::ZeroAccel => rec.zdot(w - v),
             }
         });
-        let (_, v1) = osc.advance(x0, v0, tf);
-        rec.zdot(w - v1);
+        rec.zdot(w - end.1);
         rec.history_until(t1, |ts| {
             let tau = (ts - t0).clamp(0.0, tf);
             (osc.advance(x0, v0, tau).0, y0 + w * tau)
@@ -271,7 +273,7 @@ impl Flight for ForcedFlight {
 
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
     /// for the steady windows; history and window probes.
-    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64) {
+    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64, end: (f64, f64)) {
         let seg = self.0.segment(t0, x0, v0);
         rec.x_at(t0, x0);
         seg.for_each_event(tf, |kind, tau, x, v| match kind {
@@ -283,9 +285,8 @@ impl Flight for ForcedFlight {
             ForcedEvent::UpCross => rec.up_cross(),
             ForcedEvent::ZeroAccel => rec.zdot(w - v),
         });
-        let (x1, v1) = seg.at(tf);
-        rec.zdot(w - v1);
-        rec.x_at(t0 + tf, x1);
+        rec.zdot(w - end.1);
+        rec.x_at(t0 + tf, end.0);
         rec.history_until(t1, |ts| {
             let tau = (ts - t0).clamp(0.0, tf);
             (seg.at(tau).0, y0 + w * tau)
@@ -546,7 +547,7 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             let (search_ns, clock) = (timing::since(clock), std::time::Instant::now());
             // Flight time from the launch to the flight's end here, and the wall hit there.
             let (tf, wall) = match search {
-                Search::Contact(tau, wall) => (tau, Some(wall)),
+                Search::Contact(tau, wall, _) => (tau, Some(wall)),
                 Search::None(reached) => {
                     self.flying = Some((from, reached));
                     (t_stop - from.t0, None)
@@ -560,14 +561,19 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             // What the record and the ledger see runs from where the run stands (what came
             // before is in them already); the motion is the launch's.
             let seen = if carried.is_some() { t1 - t } else { tf };
-            self.flight.record(&mut self.rec, t, x, v, y, w, seen, t1);
+            // The motion at the flight's end: the search's own evaluation where it found the
+            // contact (the same closed form at the same flight time).
+            let (x1, v1) = match search {
+                Search::Contact(_, _, Some(end)) => end,
+                _ => self.flight.advance(from.t0, from.x0, from.v0, tf),
+            };
+            self.flight.record(&mut self.rec, t, x, v, y, w, seen, t1, (x1, v1));
             #[cfg(feature = "timing")]
             timing::add(|b| {
                 b.search_ns += search_ns;
                 b.flight_record_ns += timing::since(clock);
                 b.flights += 1;
             });
-            let (x1, v1) = self.flight.advance(from.t0, from.x0, from.v0, tf);
             let (viscous, work) = self.flight.energies(&self.sys, t, x, v, seen, x1, v1);
             self.energy.dissipated_viscous_j += viscous;
             if <F::L as Load>::ON {
