@@ -65,3 +65,4 @@ mod tui_look;
 mod tui_orbit;
 mod tui_tmux;
 mod tui_tour;
+mod unforced_0_1;
