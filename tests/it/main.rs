@@ -51,6 +51,7 @@ mod pdf;
 mod physical_model;
 mod pulse_table;
 mod response_band;
+mod restitution_scheme;
 mod schema;
 mod shards;
 mod shell;
