@@ -1,7 +1,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
 //! The event solver's contact schemes on the Fig 9 design (2 s, 38 impacts) in the same run,
-//! beside the Newmark reference design: the default Dormand–Prince 5(4) in t, the experimental
-//! Sundman–Taylor scheme and the Sundman–DOP853 scheme (docs/model.md §11). Divide by the
+//! beside the Newmark reference design: the reference Dormand–Prince 5(4) in t, the
+//! experimental Sundman–Taylor scheme, the Sundman–DOP853 scheme and the Sundman–Adams scheme,
+//! the default (docs/model.md §11). Divide by the
 //! impacts a run (printed) for the cost per impact.
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -15,15 +15,17 @@
 //! - `json`: the chart itself, as JSON (to compare two builds' charts bit for bit);
 //! - a contact scheme (`DormandPrince`, `SundmanTaylor`, `SundmanDop853`, `SundmanAdams`): the same runs and
 //!   metrics one by one on one thread with that scheme (`damper::simulate_with`, then
-//!   `design::metrics`), for what the chart would cost with it. With `DormandPrince` (the
-//!   chart's own scheme) the impacts are the chart's.
+//!   `design::metrics`), for what the chart would cost with it. With `SundmanAdams` (the
+//!   default, the chart's own scheme) the impacts are the chart's.
 //!
 //! Where the chart's instructions went (20 × 20 × 16 on one thread, 19.13 G; issue 27): the
 //! contact integrator `damper::contact::integrate` 92.7 % (its step control's `log2`/`exp2`
 //! alone 7.8 %), the rest of each contact 0.3 %, the flights (contact search, recording,
 //! energies) 4.2 %, the per-run metrics 2.7 % (the SPL's rms over τ 2.5 %, e, e_fit, U0max and
 //! the zone 0.1 %), the ensemble's summary 0.06 %, rayon and the sweep 0.01 %. One Newmark
-//! design (Fig 9, dt 1e-7 s, 2 s) is 3.26 G. With `SundmanDop853` the runs take 15.23 G.
+//! design (Fig 9, dt 1e-7 s, 2 s) is 3.26 G. With `SundmanDop853` the runs take 15.23 G. (These
+//! counts are of the chart with `DormandPrince`, its scheme before `SundmanAdams` became the
+//! default.)
 
 use thud_core::damper::{simulate_with, ContactScheme, RunOptions, Solver};
 use thud_core::design::{self, linspace, Design};

@@ -7,9 +7,10 @@
 //! valgrind --tool=callgrind target/release/examples/contact_cost SundmanDop853 20
 //! ```
 //!
-//! Runs the design `REPS` times with the scheme named (`DormandPrince`, `SundmanTaylor`,
-//! `SundmanDop853`, `SundmanAdams`) and prints the impacts a run and a digest of the runs' bits
-//! (equal digests: the same runs to the bit); divide the instructions by `REPS` × impacts.
+//! Runs the design `REPS` times with the scheme named (`DormandPrince`, the reference,
+//! `SundmanTaylor`, `SundmanDop853`, `SundmanAdams`, the default) and prints the impacts a run
+//! and a digest of the runs' bits (equal digests: the same runs to the bit); divide the
+//! instructions by `REPS` × impacts.
 //! A third argument `forced` runs the forced preset instead (the ensemble's and the
 //! bifurcation diagram's designs).
 

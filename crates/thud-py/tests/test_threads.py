@@ -111,8 +111,9 @@ def test_ctrl_c_stops_a_long_run(call):
     work = {
         # About 1e9 Newmark steps (tens of seconds of work) …
         "simulate": lambda: thud.simulate(duration=100, samples=2, no_limit=True, **DESIGN),
-        # … and 400 cells of 50 s each (about a minute).
-        "sweep": lambda: thud.sweep("30g:100g:20", "2cm:5cm:20", duration=50),
+        # … and 6,400 cells of 500 s each (about 8 s on two cores with the default contact scheme,
+        # past the work limit; 400 cells of 50 s took 0.4 s, which could end before the Ctrl-C).
+        "sweep": lambda: thud.sweep("30g:100g:80", "2cm:5cm:80", duration=500, no_limit=True),
     }[call]
     t0 = time.perf_counter()
     timer = interrupt_after(0.3)

@@ -14,8 +14,9 @@
 //! - A forced run reports its steady state over its last `N` forcing periods ([`SteadyMotion`],
 //!   docs/model.md §6.2), and can run on past its duration until that settles.
 //!
-//! Two solvers: [`Solver::Event`] (exact flights, root-found contact instants, an adaptive
-//! Dormand–Prince integrator inside contacts; fast and step-size free) and [`Solver::Newmark`]
+//! Two solvers: [`Solver::Event`] (exact flights, root-found contact instants, an integrator
+//! inside contacts, by default the Sundman–Adams scheme checked against an adaptive
+//! Dormand–Prince reference, [`ContactScheme`]; fast and step-size free) and [`Solver::Newmark`]
 //! (the paper's uniform Newmark-β reference). SI units everywhere.
 
 mod adams;
@@ -445,15 +446,14 @@ pub fn simulate(p: &DamperParams, solver: Solver, opts: &RunOptions) -> Result<R
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ContactScheme {
     /// Adaptive Dormand–Prince 5(4) on Eq 26 in `t` and `δ` as written; maxima and `|z'|` at
-    /// the step ends. The default, the reference the other schemes are checked against, and
-    /// the scheme of a design with `no_tension`.
-    #[default]
+    /// the step ends. The reference the other schemes are checked against, and the scheme of a
+    /// design with `no_tension`.
     DormandPrince,
     /// Experimental: Eq 26 in `σ = √δ` against the Sundman time `dθ = dt/σ`, where every
     /// right-hand side is a polynomial and the solution is analytic across the onset and the
     /// release, integrated by Taylor series of order 16 (about 13 steps a contact, release
     /// speeds exact to ~1e-12 where the Hertz law has a closed form); maxima and `|z'|` extrema
-    /// located on the series. Not yet faster than the default (docs/model.md §11); a design with
+    /// located on the series. Slower than the reference (docs/model.md §11); a design with
     /// `no_tension` falls back to [`ContactScheme::DormandPrince`].
     SundmanTaylor,
     /// The same Sundman form integrated by the Runge–Kutta pair DOP853 (order 8, dense output
@@ -467,8 +467,10 @@ pub enum ContactScheme {
     /// series at the onset, and handed over to [`ContactScheme::SundmanDop853`] where the
     /// motion is not a Hertz hump (a ball pressed against a wall) and for the rest of a contact
     /// cut by a run's stretch; maxima and `|z'|` extrema located on the corrector's polynomial.
-    /// The fastest scheme on the Fig 9 design (docs/model.md §11). A design with `no_tension`
-    /// falls back to [`ContactScheme::DormandPrince`].
+    /// The fastest scheme (1.64× the reference on the Fig 9 design, release speeds within ~1e-8
+    /// m/s of it) and the default (docs/model.md §11). A design with `no_tension` falls back to
+    /// [`ContactScheme::DormandPrince`].
+    #[default]
     SundmanAdams,
 }
 
@@ -558,17 +560,52 @@ fn isolated_sys(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool) -> con
 
 /// One isolated contact between ball `m` (kg) and main mass `big_m` (kg), no spring: relative
 /// coordinate `δ'' = −K*·(K_HZ·δ^{3/2} + c1·δ')`, `K* = (m+M)/(m·M)` (Eq 8, 26), at approach speed
-/// `u0` (m/s), by the accurate adaptive integrator. Inputs are assumed positive and finite.
+/// `u0` (m/s), by the event solver's default contact scheme ([`ContactScheme::SundmanAdams`];
+/// [`ContactScheme::DormandPrince`] with `no_tension`), so that the restitution it gives is the
+/// one a run's contact has. Inputs are assumed positive and finite.
 pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, u0: f64) -> SingleContact {
+    single_contact_with(m, big_m, k_hz, c1, no_tension, u0, ContactScheme::default())
+}
+
+/// [`single_contact`] by the contact scheme `scheme` (a design with `no_tension` falls back to
+/// [`ContactScheme::DormandPrince`], as in a run).
+pub fn single_contact_with(
+    m: f64,
+    big_m: f64,
+    k_hz: f64,
+    c1: f64,
+    no_tension: bool,
+    u0: f64,
+    scheme: ContactScheme,
+) -> SingleContact {
     let sys = isolated_sys(m, big_m, k_hz, c1, no_tension);
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
     let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
-    let end = contact::integrate(&sys, contact::NoLoad, 1.0, 0.0, y0, 1e4 * tau, &mut budget, 0.0, contact::Unobserved);
+    let (t_limit, load, b) = (1e4 * tau, contact::NoLoad, &mut budget);
+    let unseen = |_: &sundman::Span<'_>| {};
+    let (t, y, pen_max, outcome) = match if no_tension { ContactScheme::DormandPrince } else { scheme } {
+        ContactScheme::DormandPrince => {
+            let e = contact::integrate(&sys, load, 1.0, 0.0, y0, t_limit, b, 0.0, contact::Unobserved);
+            (e.t, e.y, e.pen_max, e.outcome)
+        }
+        ContactScheme::SundmanTaylor => {
+            let e = sundman::integrate(&sys, load, 1.0, 0.0, y0, t_limit, b, unseen);
+            (e.t, e.y, e.pen_max, e.outcome)
+        }
+        ContactScheme::SundmanDop853 => {
+            let e = dop853::integrate(&sys, load, 1.0, 0.0, y0, t_limit, b, unseen);
+            (e.t, e.y, e.pen_max, e.outcome)
+        }
+        ContactScheme::SundmanAdams => {
+            let e = adams::integrate(&sys, load, 1.0, 0.0, y0, t_limit, b, unseen);
+            (e.t, e.y, e.pen_max, e.outcome)
+        }
+    };
     SingleContact {
-        u_out_m_s: if end.outcome == contact::ContactOutcome::Separated { -end.y[3] } else { 0.0 },
-        duration_s: end.t,
-        penetration_max_m: end.pen_max,
+        u_out_m_s: if outcome == contact::ContactOutcome::Separated { -y[3] } else { 0.0 },
+        duration_s: t,
+        penetration_max_m: pen_max,
     }
 }
 

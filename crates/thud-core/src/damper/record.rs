@@ -366,7 +366,8 @@ impl Recorder {
 }
 
 impl Recorder {
-    /// One step inside a contact of the default integrator (`sundman.rs`), from `(t0, x0, v0)`
+    /// One step inside a contact of a Sundman scheme (`sundman.rs`, `dop853.rs`, `adams.rs`, the
+    /// last the default), from `(t0, x0, v0)`
     /// to `(t1, x1, v1)` with relative velocity `zd1` at the end: as [`Recorder::step`], but
     /// with the extremum of `x` inside the step located on the step's interpolant
     /// (`extremum() → (t, x)`, called only where `x'` changes sign) rather than taken at an end,
