@@ -426,7 +426,9 @@ impl<'a, F: Flight> EventSim<'a, F> {
             open: None,
             flying: None,
             cancel: opts.cancel,
-            // The Taylor scheme does not yet handle the clamp's switches reliably.
+            // Under "no tension" every contact is the reference's: the Taylor scheme does not yet
+            // handle the clamp's switches reliably, and the DOP853 and Adams schemes' rates have
+            // no clamp (their even or smooth steps would straddle its kinks).
             scheme: if p.no_tension { ContactScheme::DormandPrince } else { scheme },
         }
     }
