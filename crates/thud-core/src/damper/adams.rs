@@ -368,6 +368,8 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             return Next::HandOver;
         };
         let (mut pm_old, mut cm_old) = older_sums::<N, W>(wm, 0);
+        // The accepted row, kept here (the history holds its rates).
+        let mut m = self.m;
         loop {
             if *budget < STEP_COST {
                 *budget = 0;
@@ -387,7 +389,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             for i in 0..W {
                 cm[i] += AM[1] * newest[i];
             }
-            let mut mp = self.m;
+            let mut mp = m;
             for i in 0..N {
                 mp[i] += h * pm[i];
             }
@@ -396,7 +398,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             // Evaluate, correct.
             let mut rp = [0.0; W];
             rate::<L, N, W>(&rhs, &mp, &mut rp);
-            let mut mc = self.m;
+            let mut mc = m;
             for i in 0..W {
                 mc[i] += h * (cm[i] + AM[0] * rp[i]);
             }
@@ -414,9 +416,10 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             calm = if quiet { calm + 1 } else { 0 };
             let mut rc = [0.0; W];
             rate::<L, N, W>(&rhs, &mc, &mut rc);
-            if let Some(outcome) = self.accept(h, &rp, mc, rc[3], tau_lim) {
+            if let Some(outcome) = self.accept(h, &rp, &mc, rc[3], tau_lim) {
                 return Next::Done(outcome);
             }
+            m = mc;
             // The new rates enter the history, newest first.
             let np = (p + K - 1) % K;
             self.fm[np] = rc;
@@ -432,32 +435,34 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
     /// `rp` (`du1` the corrected state's `dδ'/dθ`): the release or the time limit inside it cut
     /// it short; the peak penetration is noted and the observer shown the step. `Some` when the
     /// contact is over.
-    fn accept(&mut self, h: f64, rp: &[f64; W], mc: [f64; W], du1: f64, tau_lim: f64) -> Option<ContactOutcome> {
-        let y0 = self.y;
+    fn accept(&mut self, h: f64, rp: &[f64; W], mc: &[f64; W], du1: f64, tau_lim: f64) -> Option<ContactOutcome> {
+        // (The step's start is read in place and its end by reference: a step copies the
+        // state once, into `self.y`.)
         let y1 = Y::from([mc[0], mc[1], mc[2], mc[3], mc[N], mc[N + 1], mc[N + 2]]);
+        let y0 = &self.y;
         let wm = &self.fm[self.p..self.p + K];
         let cell = OnceCell::new();
-        let build = || dense::<N, W>(wm, &y0, h, rp);
+        let build = || dense::<N, W>(wm, y0, h, rp);
         let ser = || cell.get_or_init(build);
-        let cut = step_end(h, &y0, &y1, tau_lim, ser);
-        let (he, ye, du_end) = cut.map_or((h, y1, du1), |(q, ye, du, _)| (q, ye, du));
+        let cut = step_end(h, y0, &y1, tau_lim, ser);
+        let (he, ye, du_end) = match &cut {
+            Some((q, ye, du, _)) => (*q, ye, *du),
+            None => (h, &y1, du1),
+        };
         let du0 = wm[0][3];
+        let mut pen = self.pen;
         if y0[3] > 0.0 && ye[3] <= 0.0 {
             // σ is flat at the peak (σ' = δ'/2 = 0), so its value there is insensitive to where
             // the peak is placed: the quintic Hermite of σ from (σ, σ', σ'') at the step's ends
             // (σ'' = (dδ'/dθ)/2) gives it to the tolerance without the dense output.
             let sg = peak_sigma(he, (y0[2], y0[3], du0), (ye[2], ye[3], du_end)).max(y0[2]).max(ye[2]);
-            self.pen = self.pen.max(sg * sg);
+            pen = pen.max(sg * sg);
         }
-        self.pen = self.pen.max(ye[2] * ye[2]);
-        let span = Span::new(self.t_onset, he, Dense::Lazy(&cell, &build), &y0, &ye, (du0, du_end));
+        self.pen = pen.max(ye[2] * ye[2]);
+        let span = Span::new(self.t_onset, he, Dense::Lazy(&cell, &build), y0, ye, (du0, du_end));
         self.obs.step(&span);
-        self.y = ye;
-        if let Some((_, _, _, outcome)) = cut {
-            return Some(outcome);
-        }
-        self.m = mc;
-        None
+        self.y = *ye;
+        cut.map(|(_, _, _, outcome)| outcome)
     }
 
     /// DOP853 carries the contact on from the last accepted state ([`Next::HandOver`]), with
