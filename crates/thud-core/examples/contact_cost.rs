@@ -39,7 +39,8 @@ fn main() {
         // FNV-1a over the bits of every impact's numbers, the run's maxima and its ledger: two
         // builds that print the same digest computed the same run to the bit.
         let values = run.impacts.iter().flat_map(|i| [i.t_s, i.u_in_m_s, i.u_out_m_s, i.t_end_s, i.penetration_max_m]);
-        let values = values.chain([run.energy.final_mechanical_j, run.energy.dissipated_contact_j, run.zdot_abs_max_m_s]);
+        let values =
+            values.chain([run.energy.final_mechanical_j, run.energy.dissipated_contact_j, run.zdot_abs_max_m_s]);
         for v in values {
             digest = (digest ^ v.to_bits()).wrapping_mul(0x0100_0000_01b3);
         }

@@ -213,7 +213,18 @@ impl Flight for Free {
 
     /// Analytic maxima, crossings, `|z'|` extrema, history.
     #[inline]
-    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64, end: (f64, f64)) {
+    fn record(
+        &self,
+        rec: &mut Recorder,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        y0: f64,
+        w: f64,
+        tf: f64,
+        t1: f64,
+        end: (f64, f64),
+    ) {
         let osc = &self.0;
         osc.for_each_event(x0, v0, tf, |kind, tau| {
             let (x, v) = osc.advance(x0, v0, tau);
@@ -273,7 +284,18 @@ impl Flight for ForcedFlight {
 
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
     /// for the steady windows; history and window probes.
-    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64, end: (f64, f64)) {
+    fn record(
+        &self,
+        rec: &mut Recorder,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        y0: f64,
+        w: f64,
+        tf: f64,
+        t1: f64,
+        end: (f64, f64),
+    ) {
         let seg = self.0.segment(t0, x0, v0);
         rec.x_at(t0, x0);
         seg.for_each_event(tf, |kind, tau, x, v| match kind {
