@@ -209,13 +209,18 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         // TOL^(1/ORDER): the series' step as a fraction of its radius of convergence.
         let lam = sundman::step_fraction();
         let ser = self.series();
-        let reach = ser.step_size(&self.sc, START as f64 * self.h, lam) / START as f64;
         // Every node of the history within the series' reach; where the series reaches less
-        // than half the nominal step (not a Hertz hump there), DOP853 takes the contact.
-        if reach.is_nan() || reach < 0.5 * self.h {
-            return self.hand_over(budget);
+        // than half the nominal step (not a Hertz hump there), DOP853 takes the contact. Most
+        // contacts' series reach the start's steps at the nominal step already (its tail
+        // within the tolerance there): then the step stays, without sizing the reach.
+        let r = ser.tail_ratio(&self.sc, START as f64 * self.h, lam);
+        if !(r > 0.0 && r <= 1.0) {
+            let reach = ser.step_size(&self.sc, START as f64 * self.h, lam) / START as f64;
+            if reach.is_nan() || reach < 0.5 * self.h {
+                return self.hand_over(budget);
+            }
+            self.h = self.h.min(reach);
         }
-        self.h = self.h.min(reach);
         if let Some(outcome) = self.taylor_start(&ser, tau_lim) {
             return self.end(outcome);
         }

@@ -193,27 +193,7 @@ impl Series {
     /// (more than two: at the onset of a free contact the series of σ holds only every fifth
     /// power), scaled down to the tolerance.
     pub(crate) fn step_size(&self, sc: &[f64; 7], guess: f64, lam: f64) -> f64 {
-        // The largest tail term at step `h` relative to its tolerance: `TOL^(k/ORDER)` of the
-        // scale for term k, i.e. a step of `TOL^(1/ORDER)` times the radius of convergence the
-        // tail shows (Jorba & Zou 2005).
-        let ratio = |h: f64| {
-            let mut pw = [0.0; TAIL];
-            let mut p = (h / lam).powi((ORDER + 1 - TAIL) as i32);
-            for w in &mut pw {
-                *w = p;
-                p *= h / lam;
-            }
-            let mut r: f64 = 0.0;
-            for (i, c) in self.c.iter().enumerate() {
-                let inv_e = 1.0 / (sc[i] + c[0].abs());
-                let mut m: f64 = 0.0;
-                for (t, w) in pw.iter().enumerate() {
-                    m = m.max(c[ORDER + 1 - TAIL + t].abs() * w);
-                }
-                r = r.max(m * inv_e);
-            }
-            r
-        };
+        let ratio = |h: f64| self.tail_ratio(sc, h, lam);
         let mut h = guess;
         for _ in 0..3 {
             let r = ratio(h);
@@ -230,6 +210,29 @@ impl Series {
             h = next;
         }
         h
+    }
+
+    /// The largest tail term at step `h` (θ units) relative to its tolerance (scales `sc`,
+    /// `lam` = `TOL^(1/ORDER)`): `TOL^(k/ORDER)` of the scale for term k, i.e. a step of
+    /// `TOL^(1/ORDER)` times the radius of convergence the tail shows (Jorba & Zou 2005). At
+    /// most 1 where the step is within the tolerance.
+    pub(crate) fn tail_ratio(&self, sc: &[f64; 7], h: f64, lam: f64) -> f64 {
+        let mut pw = [0.0; TAIL];
+        let mut p = (h / lam).powi((ORDER + 1 - TAIL) as i32);
+        for w in &mut pw {
+            *w = p;
+            p *= h / lam;
+        }
+        let mut r: f64 = 0.0;
+        for (i, c) in self.c.iter().enumerate() {
+            let inv_e = 1.0 / (sc[i] + c[0].abs());
+            let mut m: f64 = 0.0;
+            for (t, w) in pw.iter().enumerate() {
+                m = m.max(c[ORDER + 1 - TAIL + t].abs() * w);
+            }
+            r = r.max(m * inv_e);
+        }
+        r
     }
 
     /// Series `i` at `q`: `(value, derivative)` by Horner.
