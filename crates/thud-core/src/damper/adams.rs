@@ -240,7 +240,9 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let (sys, s) = (self.sys, self.rhs.s);
         let y = &self.y;
         let z = [0.0; NC];
-        let (mut x, mut v, mut sg, mut u, mut ec, mut ev, mut tt) = (z, z, z, z, z, z, z);
+        // (Built in place: the series is returned without copying its seven rows.)
+        let mut out = Series { c: [z; 7], raw: z };
+        let [x, v, sg, u, ec, ev, tt] = &mut out.c;
         let (mut s2, mut sv, mut am, mut cs, mut sn) = (z, z, z, z, z);
         let mut su = z;
         x[0] = y[0];
@@ -299,7 +301,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
                 sn[n + 1] = omega * pcs * inv;
             }
         }
-        Series { c: [x, v, sg, u, ec, ev, tt], raw: z }
+        out
     }
 
     /// The first [`START`] steps on the series `ser` (centred on the current state), with the
