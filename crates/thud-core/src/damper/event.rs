@@ -171,10 +171,9 @@ pub(crate) trait Flight: Copy {
     /// walls `hg` (m) either side of the centre, searched from flight time `tau0` (see
     /// [`conservative_advance`]).
     fn find_contact(&self, hg: f64, from: &Launch, tau0: f64, t_max: f64, iters: &mut usize) -> Search;
-    /// Records the flight segment `[t0, t0 + tf]` that ends at the main mass's `end = (x, x')`
-    /// (m, m/s); history samples up to `t1`.
-    #[allow(clippy::too_many_arguments)]
-    fn record(&self, rec: &mut Recorder, t0: f64, x0: f64, v0: f64, y0: f64, w: f64, tf: f64, t1: f64, end: (f64, f64));
+    /// Records the flight segment from `from` over flight time `[0, tf]` (s), which ends at the
+    /// main mass's `end = (x, x')` (m, m/s); history samples up to `t1`.
+    fn record(&self, rec: &mut Recorder, from: &Launch, tf: f64, t1: f64, end: (f64, f64));
     /// A bound on the main mass's acceleration apart from the contact (m/s²), for the first
     /// step of a contact starting at `(x, v)`.
     fn contact_a_bound(&self, x: f64, v: f64) -> f64;
@@ -213,18 +212,8 @@ impl Flight for Free {
 
     /// Analytic maxima, crossings, `|z'|` extrema, history.
     #[inline]
-    fn record(
-        &self,
-        rec: &mut Recorder,
-        t0: f64,
-        x0: f64,
-        v0: f64,
-        y0: f64,
-        w: f64,
-        tf: f64,
-        t1: f64,
-        end: (f64, f64),
-    ) {
+    fn record(&self, rec: &mut Recorder, from: &Launch, tf: f64, t1: f64, end: (f64, f64)) {
+        let Launch { t0, x0, v0, y0, w } = *from;
         let osc = &self.0;
         osc.for_each_event(x0, v0, tf, |kind, tau| {
             let (x, v) = osc.advance(x0, v0, tau);
@@ -284,18 +273,8 @@ impl Flight for ForcedFlight {
 
     /// Maxima, minima, crossings and `|z'|` extrema found on the closed form; `|x|` at the ends
     /// for the steady windows; history and window probes.
-    fn record(
-        &self,
-        rec: &mut Recorder,
-        t0: f64,
-        x0: f64,
-        v0: f64,
-        y0: f64,
-        w: f64,
-        tf: f64,
-        t1: f64,
-        end: (f64, f64),
-    ) {
+    fn record(&self, rec: &mut Recorder, from: &Launch, tf: f64, t1: f64, end: (f64, f64)) {
+        let Launch { t0, x0, v0, y0, w } = *from;
         let seg = self.0.segment(t0, x0, v0);
         rec.x_at(t0, x0);
         seg.for_each_event(tf, |kind, tau, x, v| match kind {
@@ -565,7 +544,8 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
             #[cfg(feature = "timing")]
             let clock = std::time::Instant::now();
             let carried = self.flying.take();
-            let (from, tau0) = carried.unwrap_or((Launch { t0: t, x0: x, v0: v, y0: y, w }, 0.0));
+            let here = Launch { t0: t, x0: x, v0: v, y0: y, w };
+            let (from, tau0) = carried.unwrap_or((here, 0.0));
             let search = self.flight.find_contact(self.sys.half_gap, &from, tau0, t_stop - from.t0, &mut self.iters);
             #[cfg(feature = "timing")]
             let (search_ns, clock) = (timing::since(clock), std::time::Instant::now());
@@ -591,7 +571,7 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
                 Search::Contact(_, _, Some(end)) => end,
                 _ => self.flight.advance(from.t0, from.x0, from.v0, tf),
             };
-            self.flight.record(&mut self.rec, t, x, v, y, w, seen, t1, (x1, v1));
+            self.flight.record(&mut self.rec, &here, seen, t1, (x1, v1));
             #[cfg(feature = "timing")]
             timing::add(|b| {
                 b.search_ns += search_ns;
