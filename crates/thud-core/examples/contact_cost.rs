@@ -33,17 +33,22 @@ fn main() {
     };
     let mut n = 0;
     let mut digest = 0xcbf2_9ce4_8422_2325_u64;
+    let mut motion = digest;
     for _ in 0..reps {
         let run = simulate_with(&p, Solver::Event, &RunOptions::default(), scheme).unwrap();
         n = run.impacts.len();
         // FNV-1a over the bits of every impact's numbers, the run's maxima and its ledger: two
         // builds that print the same digest computed the same run to the bit.
         let values = run.impacts.iter().flat_map(|i| [i.t_s, i.u_in_m_s, i.u_out_m_s, i.t_end_s, i.penetration_max_m]);
+        // (The impacts' own numbers alone, for a change that moves only the ledger's bits.)
+        for v in values.clone() {
+            motion = (motion ^ v.to_bits()).wrapping_mul(0x0100_0000_01b3);
+        }
         let values =
             values.chain([run.energy.final_mechanical_j, run.energy.dissipated_contact_j, run.zdot_abs_max_m_s]);
         for v in values {
             digest = (digest ^ v.to_bits()).wrapping_mul(0x0100_0000_01b3);
         }
     }
-    println!("{scheme:?}: {n} impacts a run, {reps} runs, digest {digest:016x}");
+    println!("{scheme:?}: {n} impacts a run, {reps} runs, digest {digest:016x} (impacts {motion:016x})");
 }

@@ -451,7 +451,15 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let cell = OnceCell::new();
         let build = || dense::<N, W>(wm, y0, h, rp);
         let ser = || cell.get_or_init(build);
-        let cut = step_end(h, y0, &y1, tau_lim, ser);
+        // The release alone (nearly every contact's last step) is located on σ's polynomial and
+        // the state there taken from the corrector's weights ([`release`]); the time limit
+        // (once a stretch of a run) on the whole dense output.
+        let cut = if y1[2] <= 0.0 && y1[6] < tau_lim {
+            let (q, ye, du) = release::<N, W>(wm, y0, &y1, h, rp);
+            Some((q, ye, du, ContactOutcome::Separated))
+        } else {
+            step_end(h, y0, &y1, tau_lim, ser)
+        };
         let (he, ye, du_end) = match &cut {
             Some((q, ye, du, _)) => (*q, ye, *du),
             None => (h, &y1, du1),
@@ -520,12 +528,7 @@ fn older_sums<const N: usize, const W: usize>(wm: &[[f64; W]; K], shift: usize) 
 /// nodes `θ_{n+1}` (the predicted state's `rp`, as the corrector used them), `θ_n`, …,
 /// `θ_{n−11}`, as polynomials in `q` in the order of [`Y`].
 fn dense<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, h: f64, rp: &[f64; W]) -> Series {
-    // The rates at the nodes, newest first, in the order of Y's components (and a zero).
-    let mut f = [[0.0; 8]; K + 1];
-    for (fj, row) in f.iter_mut().zip(std::iter::once(rp).chain(wm)) {
-        fj[..4].copy_from_slice(&row[..4]);
-        fj[4..7].copy_from_slice(&row[N..N + 3]);
-    }
+    let f = node_rates::<N, W>(wm, rp);
     // d_k = Σ_j BASIS[j][k]·f_j, each row summed over j in order in registers.
     let mut d = [[0.0; 8]; K + 1];
     for (k, dk) in d.iter_mut().enumerate() {
@@ -551,39 +554,117 @@ fn dense<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, h: f64, rp: &[f
     Series { c, raw: [0.0; NC] }
 }
 
+/// The rates at the nodes of the step from `θ_n`, newest first (the predicted state's `rp`,
+/// then the history `wm`), in the order of [`Y`]'s components (and a zero).
+#[inline(always)]
+fn node_rates<const N: usize, const W: usize>(wm: &[[f64; W]], rp: &[f64; W]) -> [[f64; 8]; K + 1] {
+    let mut f = [[0.0; 8]; K + 1];
+    for (fj, row) in f.iter_mut().zip(std::iter::once(rp).chain(wm)) {
+        fj[..4].copy_from_slice(&row[..4]);
+        fj[4..7].copy_from_slice(&row[N..N + 3]);
+    }
+    f
+}
+
+/// The corrector's basis integrated, `∫_0^w ℓ_j = Σ_i BASIS[j][i]·w^{i+1}/(i+1)`, by the
+/// coefficients `BASIS[j][i]/(i+1)` ([`release`]).
+const BASIS_INT: [[f64; K + 1]; K + 1] = {
+    let mut b = BASIS;
+    let mut j = 0;
+    while j <= K {
+        let mut i = 0;
+        while i <= K {
+            b[j][i] /= (i + 1) as f64;
+            i += 1;
+        }
+        j += 1;
+    }
+    b
+};
+
+/// The release inside the step of length `h` from `y` to `y1` (σ from > 0 to ≤ 0; history
+/// `wm`, predicted rates `rp`): `(q, the state there with σ = 0, dδ'/dθ there)`, on the same
+/// polynomial as the step's dense output ([`dense`]), built for what the release needs only.
+/// σ's polynomial locates it; the state there is `y + h·Σ_j f_j·∫_0^w ℓ_j` and `dδ'/dθ` is
+/// `Σ_j f_j[δ']·ℓ_j(w)` (`w = q/h`, `f_j` the rates at the nodes), with the basis evaluated
+/// once at `w` instead of every component's polynomial built: a tenth of the work.
+fn release<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, y1: &Y, h: f64, rp: &[f64; W]) -> (f64, Y, f64) {
+    let f = node_rates::<N, W>(wm, rp);
+    // σ's rate interpolant in powers of w, and its integral's coefficients.
+    let mut sr = [0.0; K + 1];
+    for (fj, bj) in f.iter().zip(&BASIS) {
+        for (a, b) in sr.iter_mut().zip(bj) {
+            *a += b * fj[2];
+        }
+    }
+    let si: [f64; K + 1] = std::array::from_fn(|i| sr[i] / (i + 1) as f64);
+    let inv_h = 1.0 / h;
+    let q = root_in(h, y[2], y1[2], |q| {
+        let w = q * inv_h;
+        let (mut v, mut d) = (si[K], sr[K]);
+        for i in (0..K).rev() {
+            v = v * w + si[i];
+            d = d * w + sr[i];
+        }
+        (y[2] + q * v, d)
+    });
+    let w = q * inv_h;
+    let mut ye = *y;
+    let mut du = 0.0;
+    for ((fj, bj), ij) in f.iter().zip(&BASIS).zip(&BASIS_INT) {
+        let (mut l, mut a) = (bj[K], ij[K]);
+        for i in (0..K).rev() {
+            l = l * w + bj[i];
+            a = a * w + ij[i];
+        }
+        let a = q * a;
+        for (yi, fi) in ye.iter_mut().zip(fj) {
+            *yi += a * fi;
+        }
+        du += l * fj[3];
+    }
+    ye[2] = 0.0;
+    (q, ye, du)
+}
+
 /// The largest σ on a step of length `h` (θ units) where δ' turns from > 0 to ≤ 0, from
 /// `(σ, δ', dδ'/dθ)` at both ends: σ' = δ'/2 and σ'' = (dδ'/dθ)/2 make the quintic Hermite
-/// interpolant of σ, whose maximum (where δ' = 0, the root of its derivative) is taken by the
-/// Illinois regula falsi.
+/// interpolant of σ, whose maximum is where its derivative vanishes. Two Newton steps on that
+/// derivative from where δ' interpolated linearly vanishes place it: σ is flat there, so a
+/// place off by `ε` (step units) changes σ by about `ε²·h²·σ''/2`, and the linear guess is off
+/// by about a hundredth of the step in a Hertz hump (`h ≈ 1/64` of the contact), which two
+/// steps take below 1e-8, far below σ's round-off (a step that would leave the step is not
+/// taken).
 fn peak_sigma(h: f64, (s0, u0, a0): (f64, f64, f64), (s1, u1, a1): (f64, f64, f64)) -> f64 {
     let (d0, d1) = (0.5 * h * u0, 0.5 * h * u1);
     let (e0, e1) = (0.5 * h * h * a0, 0.5 * h * h * a1);
-    let at = |w: f64| {
-        let (w2, w3) = (w * w, w * w * w);
-        let (w4, w5) = (w3 * w, w3 * w2);
-        let val = (1.0 - 10.0 * w3 + 15.0 * w4 - 6.0 * w5) * s0
-            + (w - 6.0 * w3 + 8.0 * w4 - 3.0 * w5) * d0
-            + 0.5 * (w2 - 3.0 * w3 + 3.0 * w4 - w5) * e0
-            + (10.0 * w3 - 15.0 * w4 + 6.0 * w5) * s1
-            + (-4.0 * w3 + 7.0 * w4 - 3.0 * w5) * d1
-            + 0.5 * (w3 - 2.0 * w4 + w5) * e1;
-        let der = (-30.0 * w2 + 60.0 * w3 - 30.0 * w4) * (s0 - s1)
+    let ds = s0 - s1;
+    let mut w = d0 / (d0 - d1);
+    for _ in 0..2 {
+        let (w2, w3, w4) = (w * w, w * w * w, w * w * w * w);
+        let der = (-30.0 * w2 + 60.0 * w3 - 30.0 * w4) * ds
             + (1.0 - 18.0 * w2 + 32.0 * w3 - 15.0 * w4) * d0
             + 0.5 * (2.0 * w - 9.0 * w2 + 12.0 * w3 - 5.0 * w4) * e0
             + (-12.0 * w2 + 28.0 * w3 - 15.0 * w4) * d1
             + 0.5 * (3.0 * w2 - 8.0 * w3 + 5.0 * w4) * e1;
-        (val, der)
-    };
-    let w = root_in(1.0, d0, d1, |w| {
-        let (w2, w3) = (w * w, w * w * w);
-        let curvature = (-60.0 * w + 180.0 * w2 - 120.0 * w3) * (s0 - s1)
+        let curvature = (-60.0 * w + 180.0 * w2 - 120.0 * w3) * ds
             + (-36.0 * w + 96.0 * w2 - 60.0 * w3) * d0
             + 0.5 * (2.0 - 18.0 * w + 36.0 * w2 - 20.0 * w3) * e0
             + (-24.0 * w + 84.0 * w2 - 60.0 * w3) * d1
             + 0.5 * (6.0 * w - 24.0 * w2 + 20.0 * w3) * e1;
-        (at(w).1, curvature)
-    });
-    at(w).0
+        let next = w - der / curvature;
+        if next > 0.0 && next < 1.0 {
+            w = next;
+        }
+    }
+    let (w2, w3) = (w * w, w * w * w);
+    let (w4, w5) = (w3 * w, w3 * w2);
+    (1.0 - 10.0 * w3 + 15.0 * w4 - 6.0 * w5) * s0
+        + (w - 6.0 * w3 + 8.0 * w4 - 3.0 * w5) * d0
+        + 0.5 * (w2 - 3.0 * w3 + 3.0 * w4 - w5) * e0
+        + (10.0 * w3 - 15.0 * w4 + 6.0 * w5) * s1
+        + (-4.0 * w3 + 7.0 * w4 - 3.0 * w5) * d1
+        + 0.5 * (w3 - 2.0 * w4 + w5) * e1
 }
 
 #[cfg(test)]
@@ -633,6 +714,103 @@ mod tests {
         scheme_checks::isolated_contacts(START_COST + 64 * STEP_COST, |s, y0, t_limit, left| {
             integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved)
         });
+    }
+
+    /// The release located on σ's polynomial with the state from the corrector's weights
+    /// ([`release`]) is the dense output's release, to round-off: the same polynomial,
+    /// evaluated two ways (rates at the nodes from smooth functions of θ; the step from θ = 0
+    /// to h, node j at θ = (1 − j)·h).
+    #[test]
+    fn the_release_is_the_dense_outputs() {
+        let rate_at = |th: f64| {
+            [
+                (1.3 * th).cos(),
+                -0.7 + 0.2 * th * th,
+                -1.0 - 3.0 * th + th * th,
+                0.4 * (2.0 * th).sin() - 0.9,
+                0.3 + th,
+                0.1 - th * th,
+                1.0 + 0.5 * th,
+                0.0,
+            ]
+        };
+        for (h, s0) in [(0.02, 0.012), (0.02, 0.0199), (0.05, 1e-4), (0.01, 0.004)] {
+            let rp = rate_at(h);
+            let wm: Vec<[f64; 8]> = (0..K).map(|j| rate_at(-(j as f64) * h)).collect();
+            let y = Y::from([0.01, -0.2, s0, 0.3, 1e-4, 2e-6, 1e-3]);
+            let ser = dense::<4, 8>(&wm, &y, h, &rp);
+            let y1 = ser.state(h);
+            assert!(y1[2] < 0.0, "{h} {s0}");
+            let (q, ye, du) = release::<4, 8>(&wm, &y, &y1, h, &rp);
+            let qd = root_in(h, y[2], y1[2], |q| ser.eval(2, q));
+            let want = ser.state(qd);
+            assert!((q - qd).abs() <= 1e-13 * h, "{h} {s0}: q {q} vs {qd}");
+            assert_eq!(ye[2], 0.0);
+            for i in [0, 1, 3, 4, 5, 6] {
+                let sc = want[i].abs().max(h);
+                assert!((ye[i] - want[i]).abs() <= 1e-14 * sc, "{h} {s0} {i}: {} vs {}", ye[i], want[i]);
+            }
+            let dd = ser.eval(3, qd).1;
+            assert!((du - dd).abs() <= 1e-13 * dd.abs().max(1.0), "{h} {s0}: {du} vs {dd}");
+        }
+    }
+
+    /// The peak of σ by two Newton steps from the linear guess ([`peak_sigma`]) is the
+    /// maximum of the quintic Hermite interpolant to round-off, and that is the true peak of a
+    /// Hertz-like hump (σ = sin θ, peak 1 at π/2) to the tolerance, wherever the peak falls in
+    /// the step.
+    #[test]
+    fn the_peak_is_the_hermite_maximum() {
+        // The Hermite interpolant's maximum located by the bracketing root finder to round-off
+        // (the reference: the scheme's former way).
+        let by_root = |h: f64, (s0, u0, a0): (f64, f64, f64), (s1, u1, a1): (f64, f64, f64)| {
+            let (d0, d1) = (0.5 * h * u0, 0.5 * h * u1);
+            let (e0, e1) = (0.5 * h * h * a0, 0.5 * h * h * a1);
+            let val = |w: f64| {
+                let (w2, w3) = (w * w, w * w * w);
+                let (w4, w5) = (w3 * w, w3 * w2);
+                (1.0 - 10.0 * w3 + 15.0 * w4 - 6.0 * w5) * s0
+                    + (w - 6.0 * w3 + 8.0 * w4 - 3.0 * w5) * d0
+                    + 0.5 * (w2 - 3.0 * w3 + 3.0 * w4 - w5) * e0
+                    + (10.0 * w3 - 15.0 * w4 + 6.0 * w5) * s1
+                    + (-4.0 * w3 + 7.0 * w4 - 3.0 * w5) * d1
+                    + 0.5 * (w3 - 2.0 * w4 + w5) * e1
+            };
+            // The derivative by a central difference of the exact polynomial is too coarse for
+            // a root: bisect on its sign from the closed form instead.
+            let der = |w: f64| {
+                let (w2, w3, w4) = (w * w, w * w * w, w * w * w * w);
+                (-30.0 * w2 + 60.0 * w3 - 30.0 * w4) * (s0 - s1)
+                    + (1.0 - 18.0 * w2 + 32.0 * w3 - 15.0 * w4) * d0
+                    + 0.5 * (2.0 * w - 9.0 * w2 + 12.0 * w3 - 5.0 * w4) * e0
+                    + (-12.0 * w2 + 28.0 * w3 - 15.0 * w4) * d1
+                    + 0.5 * (3.0 * w2 - 8.0 * w3 + 5.0 * w4) * e1
+            };
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if der(mid) > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            val(0.5 * (lo + hi))
+        };
+        let h = std::f64::consts::PI / 64.0;
+        for k in 0..=40 {
+            // The peak at a fraction k/40 of the step (both ends included).
+            let th0 = std::f64::consts::FRAC_PI_2 - h * k as f64 / 40.0;
+            let end = |th: f64| (th.sin(), 2.0 * th.cos(), -2.0 * th.sin());
+            let (a, b) = (end(th0), end(th0 + h));
+            if !(a.1 > 0.0 && b.1 <= 0.0) {
+                continue;
+            }
+            let got = peak_sigma(h, a, b);
+            let want = by_root(h, a, b);
+            assert!((got - want).abs() <= 4.0 * f64::EPSILON, "k {k}: {got} vs {want}");
+            assert!((got - 1.0).abs() <= 1e-10, "k {k}: {got}");
+        }
     }
 
     #[test]
