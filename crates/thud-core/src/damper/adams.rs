@@ -265,14 +265,14 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
             // σ_{n+1} from δ'_n, so that (σ²)_{n+1}, and with it (σδ')_n, are known.
             sg[n + 1] = 0.5 * u[n] * inv;
             let mut acc = 0.0;
-            for j in 0..=n + 1 {
+            for j in 0..n + 2 {
                 acc += sg[j] * sg[n + 1 - j];
             }
             s2[n + 1] = acc;
             su[n] = (n + 1) as f64 * s2[n + 1];
             am[n] = (-sys.c * v[n] - sys.k * x[n]) * im + if L::ON { f * cs[n] } else { 0.0 };
             let (mut s4, mut q, mut svn, mut pc, mut pv, mut pcs, mut psn) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-            for j in 0..=n {
+            for j in 0..n + 1 {
                 let k = n - j;
                 s4 += s2[j] * s2[k];
                 q += sg[j] * am[k];
@@ -283,7 +283,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
                 }
             }
             sv[n] = svn;
-            for j in 0..=n {
+            for j in 0..n + 1 {
                 let k = n - j;
                 pc += su[j] * u[k];
                 pv += sv[j] * v[k];
@@ -582,12 +582,36 @@ const BASIS_INT: [[f64; K + 1]; K + 1] = {
     b
 };
 
+/// `w^0 … w^K`, each a product of two earlier ones (a chain of four products at most;
+/// written out, as a loop kept them in memory).
+#[inline(always)]
+fn powers(w: f64) -> [f64; K + 1] {
+    const { assert!(K == 12) };
+    let w2 = w * w;
+    let (w3, w4) = (w2 * w, w2 * w2);
+    let w8 = w4 * w4;
+    [1.0, w, w2, w3, w4, w4 * w, w4 * w2, w4 * w3, w8, w8 * w, w8 * w2, w8 * w3, w8 * w4]
+}
+
+/// `Σ_i c_i·p_i` over four running sums (a short chain of additions: the release's sums are
+/// short, and each waits on the last otherwise).
+#[inline(always)]
+fn dot(c: &[f64; K + 1], p: &[f64; K + 1]) -> f64 {
+    let mut a = [0.0; 4];
+    for (i, (ci, pi)) in c.iter().zip(p).enumerate() {
+        a[i % 4] += ci * pi;
+    }
+    (a[0] + a[1]) + (a[2] + a[3])
+}
+
 /// The release inside the step of length `h` from `y` to `y1` (σ from > 0 to ≤ 0; history
 /// `wm`, predicted rates `rp`): `(q, the state there with σ = 0, dδ'/dθ there)`, on the same
 /// polynomial as the step's dense output ([`dense`]), built for what the release needs only.
 /// σ's polynomial locates it; the state there is `y + h·Σ_j f_j·∫_0^w ℓ_j` and `dδ'/dθ` is
 /// `Σ_j f_j[δ']·ℓ_j(w)` (`w = q/h`, `f_j` the rates at the nodes), with the basis evaluated
-/// once at `w` instead of every component's polynomial built: a tenth of the work.
+/// once at `w` instead of every component's polynomial built: a tenth of the work. The
+/// polynomials are summed over the powers of `w` rather than by Horner's rule, whose chain of
+/// dependent operations made the release a sixth of a contact's time.
 fn release<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, y1: &Y, h: f64, rp: &[f64; W]) -> (f64, Y, f64) {
     let f = node_rates::<N, W>(wm, rp);
     // σ's rate interpolant in powers of w, and its integral's coefficients.
@@ -600,28 +624,18 @@ fn release<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, y1: &Y, h: f6
     let si: [f64; K + 1] = std::array::from_fn(|i| sr[i] / (i + 1) as f64);
     let inv_h = 1.0 / h;
     let q = root_in(h, y[2], y1[2], |q| {
-        let w = q * inv_h;
-        let (mut v, mut d) = (si[K], sr[K]);
-        for i in (0..K).rev() {
-            v = v * w + si[i];
-            d = d * w + sr[i];
-        }
-        (y[2] + q * v, d)
+        let pw = powers(q * inv_h);
+        (y[2] + q * dot(&si, &pw), dot(&sr, &pw))
     });
-    let w = q * inv_h;
+    let pw = powers(q * inv_h);
     let mut ye = *y;
     let mut du = 0.0;
     for ((fj, bj), ij) in f.iter().zip(&BASIS).zip(&BASIS_INT) {
-        let (mut l, mut a) = (bj[K], ij[K]);
-        for i in (0..K).rev() {
-            l = l * w + bj[i];
-            a = a * w + ij[i];
-        }
-        let a = q * a;
+        let a = q * dot(ij, &pw);
         for (yi, fi) in ye.iter_mut().zip(fj) {
             *yi += a * fi;
         }
-        du += l * fj[3];
+        du += dot(bj, &pw) * fj[3];
     }
     ye[2] = 0.0;
     (q, ye, du)

@@ -74,7 +74,7 @@ pub(crate) struct Series {
 #[inline(always)]
 fn cauchy(a: &[f64; NC], b: &[f64; NC], k: usize) -> f64 {
     let mut acc = 0.0;
-    for j in 0..=k {
+    for j in 0..k + 1 {
         acc += a[j] * b[k - j];
     }
     acc
