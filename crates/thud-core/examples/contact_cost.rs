@@ -9,8 +9,9 @@
 //!
 //! Runs the design `REPS` times with the scheme named (`DormandPrince`, the reference,
 //! `SundmanTaylor`, `SundmanDop853`, `SundmanAdams`, the default) and prints the impacts a run
-//! and a digest of the runs' bits (equal digests: the same runs to the bit); divide the
-//! instructions by `REPS` × impacts.
+//! and a digest of the runs' bits (equal digests: the same runs to the bit), with the digest of
+//! the impacts' own numbers beside it (for a change meant to move only the ledger's bits);
+//! divide the instructions by `REPS` × impacts.
 //! A third argument `forced` runs the forced preset instead (the ensemble's and the
 //! bifurcation diagram's designs).
 

@@ -72,6 +72,7 @@ pub(crate) struct Series {
 
 /// `Σ_{j=0..=k} a_j·b_{k−j}`: coefficient `k` of the product of two series.
 #[inline(always)]
+#[allow(clippy::range_plus_one, reason = "a half-open range: `0..=k`'s iterator checks its end twice a turn")]
 fn cauchy(a: &[f64; NC], b: &[f64; NC], k: usize) -> f64 {
     let mut acc = 0.0;
     for j in 0..k + 1 {
