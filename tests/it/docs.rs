@@ -230,7 +230,7 @@ fn man_finds_thud_after_man_install() {
     let prefix = tempfile::tempdir().unwrap();
     let bin = prefix.path().join("bin");
     std::fs::create_dir(&bin).unwrap();
-    std::fs::copy(env!("CARGO_BIN_EXE_thud"), bin.join("thud")).unwrap();
+    crate::common::copy_thud(&bin.join("thud"));
     let out = std::process::Command::new(bin.join("thud")).args(["man", "--install"]).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let page = prefix.path().join("share/man/man1/thud.1");

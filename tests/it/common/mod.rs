@@ -67,3 +67,12 @@ pub fn thud_within(home: &Path, args: &[&str], limit: Duration) -> Ran {
         stderr: String::from_utf8_lossy(&out.stderr).into(),
     }
 }
+
+/// Copies the built `thud` to `to`, by a `cp` of its own: a copy written by this process would
+/// hold the file open for writing, and a child another test spawns at that moment inherits that
+/// descriptor until its own exec, so running the copy could fail with "Text file busy"
+/// (ETXTBSY; seen once in CI in `docs::man_finds_thud_after_man_install`).
+pub fn copy_thud(to: &Path) {
+    let status = Command::new("cp").arg(env!("CARGO_BIN_EXE_thud")).arg(to).stdin(Stdio::null()).status();
+    assert!(status.is_ok_and(|s| s.success()), "cp thud {}", to.display());
+}

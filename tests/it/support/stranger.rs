@@ -44,7 +44,7 @@ impl Stranger {
         std::os::unix::fs::chown(dir.path(), Some(uid), Some(uid)).unwrap();
         std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
         let bin = dir.path().join("thud");
-        std::fs::copy(env!("CARGO_BIN_EXE_thud"), &bin).unwrap();
+        crate::common::copy_thud(&bin);
         std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
         let s = Stranger { uid, dir, bin };
         let reachable = Command::new("setpriv")

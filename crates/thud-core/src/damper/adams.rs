@@ -648,42 +648,75 @@ fn release<const N: usize, const W: usize>(wm: &[[f64; W]], y: &Y, y1: &Y, h: f6
 
 /// The largest σ on a step of length `h` (θ units) where δ' turns from > 0 to ≤ 0, from
 /// `(σ, δ', dδ'/dθ)` at both ends: σ' = δ'/2 and σ'' = (dδ'/dθ)/2 make the quintic Hermite
-/// interpolant of σ, whose maximum is where its derivative vanishes. Two Newton steps on that
-/// derivative from where δ' interpolated linearly vanishes place it: σ is flat there, so a
-/// place off by `ε` (step units) changes σ by about `ε²·h²·σ''/2`, and the linear guess is off
-/// by about a hundredth of the step in a Hertz hump (`h ≈ 1/64` of the contact), which two
-/// steps take below 1e-8, far below σ's round-off (a step that would leave the step is not
-/// taken).
-fn peak_sigma(h: f64, (s0, u0, a0): (f64, f64, f64), (s1, u1, a1): (f64, f64, f64)) -> f64 {
-    let (d0, d1) = (0.5 * h * u0, 0.5 * h * u1);
-    let (e0, e1) = (0.5 * h * h * a0, 0.5 * h * h * a1);
-    let ds = s0 - s1;
-    let mut w = d0 / (d0 - d1);
+/// interpolant of σ ([`SigmaHermite`]), whose maximum is where its derivative vanishes. Two
+/// Newton steps on that derivative from where δ' interpolated linearly vanishes place it: σ is
+/// flat there, so a place off by `ε` (step units) changes σ by about `ε²·h²·σ''/2`, and the
+/// linear guess is off by about a hundredth of the step in a Hertz hump (`h ≈ 1/64` of the
+/// contact), which two steps take below 1e-8, far below σ's round-off (a step that would leave
+/// the step is not taken).
+fn peak_sigma(h: f64, end0: (f64, f64, f64), end1: (f64, f64, f64)) -> f64 {
+    let p = SigmaHermite::new(h, end0, end1);
+    let mut w = p.d0 / (p.d0 - p.d1);
     for _ in 0..2 {
-        let (w2, w3, w4) = (w * w, w * w * w, w * w * w * w);
-        let der = (-30.0 * w2 + 60.0 * w3 - 30.0 * w4) * ds
-            + (1.0 - 18.0 * w2 + 32.0 * w3 - 15.0 * w4) * d0
-            + 0.5 * (2.0 * w - 9.0 * w2 + 12.0 * w3 - 5.0 * w4) * e0
-            + (-12.0 * w2 + 28.0 * w3 - 15.0 * w4) * d1
-            + 0.5 * (3.0 * w2 - 8.0 * w3 + 5.0 * w4) * e1;
-        let curvature = (-60.0 * w + 180.0 * w2 - 120.0 * w3) * ds
-            + (-36.0 * w + 96.0 * w2 - 60.0 * w3) * d0
-            + 0.5 * (2.0 - 18.0 * w + 36.0 * w2 - 20.0 * w3) * e0
-            + (-24.0 * w + 84.0 * w2 - 60.0 * w3) * d1
-            + 0.5 * (6.0 * w - 24.0 * w2 + 20.0 * w3) * e1;
-        let next = w - der / curvature;
+        let next = w - p.slope(w) / p.curvature(w);
         if next > 0.0 && next < 1.0 {
             w = next;
         }
     }
-    let (w2, w3) = (w * w, w * w * w);
-    let (w4, w5) = (w3 * w, w3 * w2);
-    (1.0 - 10.0 * w3 + 15.0 * w4 - 6.0 * w5) * s0
-        + (w - 6.0 * w3 + 8.0 * w4 - 3.0 * w5) * d0
-        + 0.5 * (w2 - 3.0 * w3 + 3.0 * w4 - w5) * e0
-        + (10.0 * w3 - 15.0 * w4 + 6.0 * w5) * s1
-        + (-4.0 * w3 + 7.0 * w4 - 3.0 * w5) * d1
-        + 0.5 * (w3 - 2.0 * w4 + w5) * e1
+    p.value(w)
+}
+
+/// The quintic Hermite interpolant of σ over a step of length `h` (θ units), in the step
+/// fraction `w ∈ [0, 1]`, from `(σ, δ', dδ'/dθ)` at both ends (σ' = δ'/2, σ'' = (dδ'/dθ)/2):
+/// the ends' σ, and their first and second derivatives in `w` (`d = h·σ'`, `e = h²·σ''`).
+struct SigmaHermite {
+    s0: f64,
+    s1: f64,
+    d0: f64,
+    d1: f64,
+    e0: f64,
+    e1: f64,
+}
+
+impl SigmaHermite {
+    fn new(h: f64, (s0, u0, a0): (f64, f64, f64), (s1, u1, a1): (f64, f64, f64)) -> Self {
+        SigmaHermite { s0, s1, d0: 0.5 * h * u0, d1: 0.5 * h * u1, e0: 0.5 * h * h * a0, e1: 0.5 * h * h * a1 }
+    }
+
+    /// σ at `w`.
+    fn value(&self, w: f64) -> f64 {
+        let SigmaHermite { s0, s1, d0, d1, e0, e1 } = *self;
+        let (w2, w3) = (w * w, w * w * w);
+        let (w4, w5) = (w3 * w, w3 * w2);
+        (1.0 - 10.0 * w3 + 15.0 * w4 - 6.0 * w5) * s0
+            + (w - 6.0 * w3 + 8.0 * w4 - 3.0 * w5) * d0
+            + 0.5 * (w2 - 3.0 * w3 + 3.0 * w4 - w5) * e0
+            + (10.0 * w3 - 15.0 * w4 + 6.0 * w5) * s1
+            + (-4.0 * w3 + 7.0 * w4 - 3.0 * w5) * d1
+            + 0.5 * (w3 - 2.0 * w4 + w5) * e1
+    }
+
+    /// dσ/dw at `w`.
+    fn slope(&self, w: f64) -> f64 {
+        let SigmaHermite { s0, s1, d0, d1, e0, e1 } = *self;
+        let (w2, w3, w4) = (w * w, w * w * w, w * w * w * w);
+        (-30.0 * w2 + 60.0 * w3 - 30.0 * w4) * (s0 - s1)
+            + (1.0 - 18.0 * w2 + 32.0 * w3 - 15.0 * w4) * d0
+            + 0.5 * (2.0 * w - 9.0 * w2 + 12.0 * w3 - 5.0 * w4) * e0
+            + (-12.0 * w2 + 28.0 * w3 - 15.0 * w4) * d1
+            + 0.5 * (3.0 * w2 - 8.0 * w3 + 5.0 * w4) * e1
+    }
+
+    /// d²σ/dw² at `w`.
+    fn curvature(&self, w: f64) -> f64 {
+        let SigmaHermite { s0, s1, d0, d1, e0, e1 } = *self;
+        let (w2, w3) = (w * w, w * w * w);
+        (-60.0 * w + 180.0 * w2 - 120.0 * w3) * (s0 - s1)
+            + (-36.0 * w + 96.0 * w2 - 60.0 * w3) * d0
+            + 0.5 * (2.0 - 18.0 * w + 36.0 * w2 - 20.0 * w3) * e0
+            + (-24.0 * w + 84.0 * w2 - 60.0 * w3) * d1
+            + 0.5 * (6.0 * w - 24.0 * w2 + 20.0 * w3) * e1
+    }
 }
 
 #[cfg(test)]
@@ -780,41 +813,20 @@ mod tests {
     /// the step.
     #[test]
     fn the_peak_is_the_hermite_maximum() {
-        // The Hermite interpolant's maximum located by the bracketing root finder to round-off
-        // (the reference: the scheme's former way).
-        let by_root = |h: f64, (s0, u0, a0): (f64, f64, f64), (s1, u1, a1): (f64, f64, f64)| {
-            let (d0, d1) = (0.5 * h * u0, 0.5 * h * u1);
-            let (e0, e1) = (0.5 * h * h * a0, 0.5 * h * h * a1);
-            let val = |w: f64| {
-                let (w2, w3) = (w * w, w * w * w);
-                let (w4, w5) = (w3 * w, w3 * w2);
-                (1.0 - 10.0 * w3 + 15.0 * w4 - 6.0 * w5) * s0
-                    + (w - 6.0 * w3 + 8.0 * w4 - 3.0 * w5) * d0
-                    + 0.5 * (w2 - 3.0 * w3 + 3.0 * w4 - w5) * e0
-                    + (10.0 * w3 - 15.0 * w4 + 6.0 * w5) * s1
-                    + (-4.0 * w3 + 7.0 * w4 - 3.0 * w5) * d1
-                    + 0.5 * (w3 - 2.0 * w4 + w5) * e1
-            };
-            // The derivative by a central difference of the exact polynomial is too coarse for
-            // a root: bisect on its sign from the closed form instead.
-            let der = |w: f64| {
-                let (w2, w3, w4) = (w * w, w * w * w, w * w * w * w);
-                (-30.0 * w2 + 60.0 * w3 - 30.0 * w4) * (s0 - s1)
-                    + (1.0 - 18.0 * w2 + 32.0 * w3 - 15.0 * w4) * d0
-                    + 0.5 * (2.0 * w - 9.0 * w2 + 12.0 * w3 - 5.0 * w4) * e0
-                    + (-12.0 * w2 + 28.0 * w3 - 15.0 * w4) * d1
-                    + 0.5 * (3.0 * w2 - 8.0 * w3 + 5.0 * w4) * e1
-            };
+        // The same interpolant's maximum located by bisection on its slope's sign to
+        // round-off (the reference).
+        let by_bisection = |h: f64, a: (f64, f64, f64), b: (f64, f64, f64)| {
+            let p = SigmaHermite::new(h, a, b);
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..200 {
                 let mid = 0.5 * (lo + hi);
-                if der(mid) > 0.0 {
+                if p.slope(mid) > 0.0 {
                     lo = mid;
                 } else {
                     hi = mid;
                 }
             }
-            val(0.5 * (lo + hi))
+            p.value(0.5 * (lo + hi))
         };
         let h = std::f64::consts::PI / 64.0;
         for k in 0..=40 {
@@ -826,7 +838,7 @@ mod tests {
                 continue;
             }
             let got = peak_sigma(h, a, b);
-            let want = by_root(h, a, b);
+            let want = by_bisection(h, a, b);
             assert!((got - want).abs() <= 4.0 * f64::EPSILON, "k {k}: {got} vs {want}");
             assert!((got - 1.0).abs() <= 1e-10, "k {k}: {got}");
         }
