@@ -722,8 +722,8 @@ impl SigmaHermite {
 #[cfg(test)]
 mod tests {
     use super::super::contact::NoLoad;
+    use super::super::contact::Unobserved;
     use super::super::scheme_checks::{self, sys};
-    use super::super::sundman::Unobserved;
     use super::*;
 
     /// The start's series (fewer products) is the Taylor scheme's series, free and forced.

@@ -416,8 +416,8 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
 #[cfg(test)]
 mod tests {
     use super::super::contact::NoLoad;
+    use super::super::contact::Unobserved;
     use super::super::scheme_checks::{self, sys};
-    use super::super::sundman::Unobserved;
     use super::*;
 
     /// Isolated contacts against the reference and the Taylor scheme, at most 25 steps a

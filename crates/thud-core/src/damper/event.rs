@@ -11,7 +11,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::adams;
-use super::contact::{integrate, resume, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
+use super::contact::{integrate, resume, ContactEnd, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
 use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
@@ -345,9 +345,44 @@ impl sundman::Observer for Track<'_> {
     }
 }
 
+/// One contact at wall `s` from its onset `(t0, y0)` (s, state) up to `t_limit` (s) by
+/// `scheme`, charged to `budget`, its steps shown to `obs`: the one place a scheme picks its
+/// integrator (a run's contacts, and `damper::single_contact`'s isolated one). `a_bound` (m/s²)
+/// bounds the main mass's acceleration for the reference's step control.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn onset_contact<L: Load, O: Observer + sundman::Observer>(
+    scheme: ContactScheme,
+    sys: &Sys,
+    load: L,
+    s: f64,
+    t0: f64,
+    y0: State,
+    t_limit: f64,
+    budget: &mut usize,
+    a_bound: f64,
+    obs: O,
+) -> ContactEnd<Cut> {
+    match scheme {
+        ContactScheme::DormandPrince => {
+            integrate(sys, load, s, t0, y0, t_limit, budget, a_bound, obs).map_resume(Cut::Reference)
+        }
+        ContactScheme::SundmanTaylor => {
+            sundman::integrate(sys, load, s, t0, y0, t_limit, budget, obs).map_resume(Cut::Sundman)
+        }
+        ContactScheme::SundmanDop853 => {
+            dop853::integrate(sys, load, s, t0, y0, t_limit, budget, obs).map_resume(Cut::Dop853)
+        }
+        // (A contact it cuts is carried on by DOP853.)
+        ContactScheme::SundmanAdams => {
+            adams::integrate(sys, load, s, t0, y0, t_limit, budget, obs).map_resume(Cut::Dop853)
+        }
+    }
+}
+
 /// Where a cut contact stood, by the scheme that integrates it.
 #[derive(Debug, Clone, Copy)]
-enum Cut {
+pub(crate) enum Cut {
     Reference(Resume),
     Sundman(sundman::Resume),
     Dop853(dop853::Resume),
@@ -427,10 +462,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
             open: None,
             flying: None,
             cancel: opts.cancel,
-            // Under "no tension" every contact is the reference's: the Taylor scheme does not yet
-            // handle the clamp's switches reliably, and the DOP853 and Adams schemes' rates have
-            // no clamp (their even or smooth steps would straddle its kinks).
-            scheme: if p.no_tension { ContactScheme::DormandPrince } else { scheme },
+            scheme: scheme.in_use(p.no_tension),
         }
     }
 
@@ -447,25 +479,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
             (None, scheme) => {
                 let y0 = State::new(self.x, self.v, 0.0, u_in, 0.0, 0.0);
                 let a_bound = self.flight.contact_a_bound(self.x, self.v);
-                let end = match scheme {
-                    ContactScheme::DormandPrince => {
-                        integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, a_bound, obs)
-                            .map_resume(Cut::Reference)
-                    }
-                    ContactScheme::SundmanTaylor => {
-                        sundman::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
-                            .map_resume(Cut::Sundman)
-                    }
-                    ContactScheme::SundmanDop853 => {
-                        dop853::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
-                            .map_resume(Cut::Dop853)
-                    }
-                    // (A contact it cuts is carried on by DOP853.)
-                    ContactScheme::SundmanAdams => {
-                        adams::integrate(&sys, load, s, self.t, y0, t_stop, &mut self.budget, obs)
-                            .map_resume(Cut::Dop853)
-                    }
-                };
+                let end = onset_contact(scheme, &sys, load, s, self.t, y0, t_stop, &mut self.budget, a_bound, obs);
                 (end, (0.0, 0.0))
             }
             (Some(o), _) => {

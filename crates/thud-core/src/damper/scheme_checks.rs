@@ -4,7 +4,7 @@
 //! [`super::adams`]).
 
 use super::contact::{self, ContactEnd, ContactOutcome, NoLoad, State, Sys};
-use super::sundman::{self, Unobserved};
+use super::sundman;
 use super::DamperParams;
 
 /// The Fig 9 ball against the main mass with contact damping `c1` (N·s/m) and main spring `k`
@@ -31,7 +31,7 @@ pub(crate) fn isolated_contacts<R>(max_budget: usize, new: impl Fn(&Sys, State, 
         let mut left = 100_000;
         let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
         let mut left = 100_000;
-        let taylor = sundman::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+        let taylor = sundman::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
         let mut left = 100_000;
         let new = new(&s, y0, 1.0, &mut left);
         let used = 100_000 - left;

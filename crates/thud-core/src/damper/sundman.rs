@@ -514,12 +514,9 @@ impl<F: FnMut(&Span<'_>)> Observer for F {
     }
 }
 
-/// The observer that sees nothing.
-#[cfg(test)]
-pub(crate) struct Unobserved;
-
-#[cfg(test)]
-impl Observer for Unobserved {
+/// The observer that sees nothing ([`super::contact::Unobserved`]) sees no Sundman step
+/// either.
+impl Observer for super::contact::Unobserved {
     #[inline(always)]
     fn step(&mut self, _: &Span<'_>) {}
 }
@@ -769,7 +766,7 @@ mod tests {
             let mut left = 100_000;
             let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
             let mut left = 100_000;
-            let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+            let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
             assert_eq!(old.outcome, ContactOutcome::Separated);
             assert_eq!(new.outcome, ContactOutcome::Separated);
             assert!((old.y[3] - new.y[3]).abs() < 2e-8 * u0, "{:?} vs {:?}", old.y, new.y);
@@ -789,14 +786,14 @@ mod tests {
         let s = sys(20.0, 500.0);
         let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
         let mut left = 100_000;
-        let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+        let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
         for cut in [0.1, 0.5, 0.93] {
             let mut left = 100_000;
-            let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, Unobserved);
+            let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, contact::Unobserved);
             assert_eq!(first.outcome, ContactOutcome::EndOfRun);
             assert_eq!(first.t, cut * whole.t);
             let r = first.resume.expect("a cut contact can resume");
-            let end = resume(&s, NoLoad, &r, 1.0, &mut left, Unobserved);
+            let end = resume(&s, NoLoad, &r, 1.0, &mut left, contact::Unobserved);
             assert_eq!(end.outcome, ContactOutcome::Separated);
             assert!((end.t / whole.t - 1.0).abs() < 1e-12, "{} vs {}", end.t, whole.t);
             assert!(
