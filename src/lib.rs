@@ -6,7 +6,7 @@
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
 pub use thud_core::{
-    acoustics, contact, damper, design, dynamics, ensemble, error, finite, fit, limits, paper, params, report,
+    acoustics, contact, damper, design, dynamics, ensemble, error, finite, fit, limits, orbit, paper, params, report,
     response, study, units, walk, ThudError,
 };
 

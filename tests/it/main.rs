@@ -46,6 +46,7 @@ mod hostile_round3;
 mod masri_caughey;
 mod masri_caughey_stability;
 mod one_schema;
+mod orbit;
 mod params_table;
 mod pdf;
 mod physical_model;

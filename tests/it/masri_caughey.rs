@@ -139,9 +139,11 @@ fn compare(gap: f64, f0: f64, f: f64, khz: f64) -> ((f64, f64), Orbit) {
 #[test]
 fn a_stiff_symmetric_two_impact_orbit_is_the_closed_forms() {
     // d 3 cm, F0 1 N at 5.5 Hz, the paper's K_HZ 5.6e8 (contact ~0.3 ms of a 182 ms period).
+    // Observed: amplitude −0.7 %, impact speed +0.1 % (docs/model.md §12); the tolerances are
+    // what is observed, rounded up.
     let ((amp, u), mc) = compare(0.03, 1.0, 5.5, 5.6e8);
-    assert!((amp / mc.amplitude - 1.0).abs() < 0.02, "amplitude {amp} vs {mc:?}");
-    assert!((u / mc.u - 1.0).abs() < 0.02, "impact speed {u} vs {mc:?}");
+    assert!((amp / mc.amplitude - 1.0).abs() < 0.008, "amplitude {amp} vs {mc:?}");
+    assert!((u / mc.u - 1.0).abs() < 0.002, "impact speed {u} vs {mc:?}");
 }
 
 #[test]
@@ -150,10 +152,11 @@ fn softer_contacts_of_the_same_orbit_stay_near_the_closed_form() {
     // the closed form with thud's r still gives amplitude and speed within 2 %; the contact
     // lasts longer and the amplitude grows (docs/model.md §12).
     let mut amps = Vec::new();
-    for khz in [5.6e6, 5.6e5] {
+    // Observed (docs/model.md §12): −1.2 % and +0.8 %; +1.5 % and +1.4 %; tolerances rounded up.
+    for (khz, amp_tol, u_tol) in [(5.6e6, 0.014, 0.01), (5.6e5, 0.017, 0.016)] {
         let ((amp, u), mc) = compare(0.03, 1.0, 5.5, khz);
-        assert!((amp / mc.amplitude - 1.0).abs() < 0.02, "{khz:e}: amplitude {amp} vs {mc:?}");
-        assert!((u / mc.u - 1.0).abs() < 0.02, "{khz:e}: impact speed {u} vs {mc:?}");
+        assert!((amp / mc.amplitude - 1.0).abs() < amp_tol, "{khz:e}: amplitude {amp} vs {mc:?}");
+        assert!((u / mc.u - 1.0).abs() < u_tol, "{khz:e}: impact speed {u} vs {mc:?}");
         amps.push(amp);
     }
     assert!(amps[1] > amps[0]);

@@ -135,7 +135,7 @@ fn eigenvalues(a: [[f64; 4]; 4]) -> Vec<(f64, f64)> {
 
 /// The moduli of the eigenvalues of the linearised symmetric impact map about `o`, largest
 /// first, and how far `o` is from being the map's fixed point (relative).
-fn stability(p: &DamperParams, o: &Orbit, r: f64) -> (Vec<f64>, f64) {
+pub(crate) fn stability(p: &DamperParams, o: &Orbit, r: f64) -> (Vec<f64>, f64) {
     let sys = Sys {
         mm: p.main_mass_kg,
         k: p.stiffness_n_m,
@@ -169,7 +169,7 @@ fn stability(p: &DamperParams, o: &Orbit, r: f64) -> (Vec<f64>, f64) {
 
 /// The forced Table 2 design (C 0.5 N·s/m) of the agreement tests with clearance `gap` (m),
 /// force `f0` (N) at `f` (Hz), Hertz stiffness `khz` and `duration` (s).
-fn design(gap: f64, f0: f64, f: f64, khz: f64, duration: f64) -> DamperParams {
+pub(crate) fn design(gap: f64, f0: f64, f: f64, khz: f64, duration: f64) -> DamperParams {
     DamperParams {
         gap_m: gap,
         force_n: f0,
@@ -195,7 +195,7 @@ fn thud(p: &DamperParams) -> (f64, f64, f64, f64, f64) {
     (s.amplitude_m, u, asym, s.impacts_per_period, r)
 }
 
-fn orbits(p: &DamperParams, r: f64) -> Vec<Orbit> {
+pub(crate) fn orbits(p: &DamperParams, r: f64) -> Vec<Orbit> {
     masri_caughey(
         p.main_mass_kg,
         p.stiffness_n_m,

@@ -12,6 +12,7 @@
 //!   the Newmark-β reference.
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
 //! - [`dynamics`]: orbits of a forced design: bifurcation diagrams, orbit types, impact maps, basins.
+//! - [`orbit`]: periodic orbits of a forced design by shooting, with their Floquet multipliers.
 //! - [`ensemble`]: N runs of a design from evenly spread initial ball offsets, and the
 //!   spread of their metrics (p10 / median / p90, zone-3 probability).
 //! - [`paper`]: the paper's tables and figures recomputed, with the paper's numbers beside them.
@@ -36,6 +37,7 @@ pub mod error;
 pub mod finite;
 pub mod fit;
 pub mod limits;
+pub mod orbit;
 pub mod paper;
 pub mod params;
 pub mod report;

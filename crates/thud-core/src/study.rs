@@ -245,7 +245,7 @@ pub fn column(name: &str, unit: &str) -> String {
 
 /// `design` with the row set to `value` (the row's plain unit), unchecked. The Newmark step
 /// sets the solver's step (a design on the event solver is moved to Newmark at that step).
-fn set(design: Design, row: &Param<DesignDraft>, value: f64) -> Design {
+pub(crate) fn set(design: Design, row: &Param<DesignDraft>, value: f64) -> Design {
     if row.name == "dt" {
         let mut d = design;
         d.solver = Solver::Newmark { dt_s: value };

@@ -540,6 +540,12 @@ impl<F: Flight> EventSim<'_, F> {
     pub(crate) fn state(&self) -> (f64, f64, f64, f64) {
         (self.x, self.v, self.y, self.w)
     }
+
+    /// Whether the run stands inside a contact (one cut by the stretch's end, or stopped by a
+    /// work cap inside one).
+    pub(crate) fn in_contact(&self) -> bool {
+        self.open.is_some() || self.del_end > 0.0
+    }
 }
 
 impl<F: Flight> Stepper for EventSim<'_, F> {

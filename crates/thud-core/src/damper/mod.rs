@@ -28,6 +28,7 @@ mod event;
 mod flight;
 mod forced;
 mod newmark;
+mod periodic;
 mod record;
 #[cfg(test)]
 mod scheme_checks;
@@ -38,6 +39,7 @@ mod sundman;
 
 #[cfg(feature = "timing")]
 pub use event::timing;
+pub(crate) use periodic::{flow, Flowed};
 pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 pub(crate) use stepper::Start;
 pub(crate) use strobe::strobe;

@@ -1,0 +1,693 @@
+//! Periodic orbits of a forced design found, not waited for (docs/model.md §6.6): shooting on
+//! the stroboscopic map with Floquet multipliers.
+//!
+//! Let `P` map the state `s = (x, x', y, y')` at the force's phase `φ` to the state one forcing
+//! period `T` later (the event solver's ordinary forced run, [`crate::damper`]). A periodic
+//! orbit of period `n·T` is a root of `Pⁿ(s) − s = 0`, found here by Newton's method with a
+//! backtracking line search (damped Newton) from a guess, whether the orbit is stable or not.
+//! The Jacobian `DPⁿ` is taken by forward differences of step [`JACOBIAN_STEP`] (in units of
+//! the state's scale: the half gap plus the linear amplitude for positions, that times `Ω` for
+//! speeds); the truncation error of the step and the map's round-off (about 1e-13 of the scale)
+//! make the Jacobian good to about 1e-6 relative, which Newton's convergence and the
+//! multipliers' precision both need no better than. The Newton step is the least-squares
+//! solution of `(DPⁿ − I)·δ = −r` by SVD, so that a singular system (a ball that never
+//! touches a wall floats anywhere: a line of fixed points) still gives the shortest step.
+//!
+//! The eigenvalues of `DPⁿ` at the orbit are its **Floquet multipliers** (the monodromy of the
+//! stroboscopic map): stable when every `|λ| < 1`; the multiplier of largest modulus says how
+//! the orbit loses (or lost) stability: at +1 (a fold), at −1 (a period doubling), or as a
+//! complex pair (Neimark–Sacker). A **symmetric** orbit (`x(t + T/2) = −x(t)`, Masri &
+//! Caughey's) is found as a fixed point of the half-period map followed by the reflection
+//! `s → −s`; its full-period multipliers are the squares of that map's.
+//!
+//! The section phase `φ` is put where the orbit is in flight (the middle of the longest stretch
+//! of the force's cycle with no contact), so that a small change of the state changes the map
+//! smoothly; the orbit is then reported from the force's phase 0.
+//!
+//! Why not a crate's solver: the map is expensive (every evaluation is `n` forcing periods of
+//! simulation), and the solvers at hand (levenberg-marquardt, used by `fit`) re-evaluate the
+//! Jacobian at every accepted step and hide their evaluation count; a damped Newton on a 4×4
+//! system, with the last Jacobian kept for the multipliers, is a few lines and needs about
+//! half the evaluations.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use nalgebra::{Matrix4, Vector4};
+use serde::{Deserialize, Serialize};
+
+use crate::damper::{self, linear_amplitude_m, DamperParams, Flowed, Wall};
+use crate::design::ValidDesign;
+use crate::error::ThudError;
+
+/// The forward-difference step of the Jacobian, in units of the state's scale.
+pub const JACOBIAN_STEP: f64 = 1e-7;
+/// The residual `|Pⁿ(s) − s|` (largest component, in units of the state's scale) at which
+/// Newton's method stops.
+pub const RESIDUAL_TOLERANCE: f64 = 1e-11;
+/// The longest period (in forcing periods) looked for.
+pub const MAX_ORBIT_PERIODS: u32 = 16;
+/// Forcing periods simulated from the design's start before the first shooting attempt.
+pub const FIRST_TRANSIENT_PERIODS: u32 = 8;
+/// The most forcing periods simulated from the design's start while looking for an orbit.
+pub const MAX_TRANSIENT_PERIODS: u32 = 1024;
+/// Newton iterations allowed per attempt.
+const MAX_NEWTON: u32 = 30;
+
+/// What to look for.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Request {
+    /// The orbit's period in forcing periods `n`; `None`: the smallest that the design's
+    /// motion repeats with.
+    pub periods: Option<u32>,
+    /// Look for a symmetric orbit, `x(t + T/2) = −x(t)` (period one forcing period).
+    pub symmetric: bool,
+    /// Start Newton's method here instead of from the design's own motion.
+    pub guess: Option<Guess>,
+}
+
+/// A state at the force's phase 0: where an orbit is guessed to pass, or passes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Guess {
+    /// Main-mass displacement x (m).
+    pub x_m: f64,
+    /// Main-mass velocity x' (m/s).
+    pub v_m_s: f64,
+    /// The ball relative to the enclosure's centre, z = y − x (m).
+    pub z_m: f64,
+    /// z' (m/s).
+    pub zdot_m_s: f64,
+}
+
+/// How an orbit loses (or lost) stability: where its multiplier of largest modulus crosses, or
+/// would cross, the unit circle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Loss {
+    /// A real multiplier at +1: a fold (saddle-node), or a symmetry-breaking pitchfork.
+    Fold,
+    /// A real multiplier at −1: a period doubling.
+    PeriodDoubling,
+    /// A complex pair: a Neimark–Sacker (torus) bifurcation.
+    NeimarkSacker,
+}
+
+impl Loss {
+    /// `+1 (fold)`, `−1 (period doubling)`, `complex pair (Neimark–Sacker)`.
+    #[must_use]
+    pub fn describe(self) -> &'static str {
+        match self {
+            Loss::Fold => "+1 (fold)",
+            Loss::PeriodDoubling => "-1 (period doubling)",
+            Loss::NeimarkSacker => "complex pair (Neimark-Sacker)",
+        }
+    }
+}
+
+/// One Floquet multiplier.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Multiplier {
+    pub re: f64,
+    pub im: f64,
+    /// |λ|.
+    pub abs: f64,
+}
+
+/// One impact of an orbit, counted from the force's phase 0.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OrbitImpact {
+    /// The forcing period of the orbit it falls in (0 … n − 1).
+    pub period: u32,
+    /// The force's phase at onset, as a fraction of the period (0 to 1).
+    pub phase: f64,
+    /// The wall struck (−1 or 1).
+    pub wall: Wall,
+    /// Relative normal speed at onset (m/s).
+    pub u_in_m_s: f64,
+    /// Relative normal speed at exit (m/s).
+    pub u_out_m_s: f64,
+}
+
+/// A periodic orbit found by shooting.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PeriodicOrbit {
+    /// Its period in forcing periods, n.
+    pub periods: u32,
+    /// Impacts over the n periods, m (the orbit is "m/n").
+    pub impacts_per_orbit: u32,
+    /// Whether `x(t + T/2) = −x(t)` (to 1e-7 of the scale).
+    pub symmetric: bool,
+    /// The state at the force's phase 0: main mass (m, m/s) and the ball relative to the
+    /// enclosure's centre (m, m/s).
+    pub x_m: f64,
+    pub v_m_s: f64,
+    pub z_m: f64,
+    pub zdot_m_s: f64,
+    /// Largest |x| over the orbit (m).
+    pub amplitude_m: f64,
+    /// The same main mass without the ball, in its steady state (m); None where unbounded.
+    pub amplitude_linear_m: Option<f64>,
+    pub impacts: Vec<OrbitImpact>,
+    /// The Floquet multipliers, largest modulus first. An orbit without impacts lists the
+    /// structure's two: the ball floats, a neutral pair at +1 that is not listed.
+    pub multipliers: Vec<Multiplier>,
+    /// Every |λ| < 1.
+    pub stable: bool,
+    /// How the largest multiplier crosses the unit circle (an unstable orbit: how it lost
+    /// stability; a stable one: how it would lose it).
+    pub critical: Loss,
+    /// `|Pⁿ(s) − s|` at the orbit, the largest component (m or m/s).
+    pub residual: f64,
+    /// Newton iterations taken.
+    pub iterations: u32,
+    /// Forcing periods simulated to find it and its multipliers.
+    pub periods_simulated: f64,
+}
+
+impl PeriodicOrbit {
+    /// `3/1`, `2/1 sym`, `4/2` (impacts per periods).
+    #[must_use]
+    pub fn label(&self) -> String {
+        format!("{}/{}{}", self.impacts_per_orbit, self.periods, if self.symmetric { " sym" } else { "" })
+    }
+}
+
+/// The stroboscopic map at one section, in scaled coordinates `u = (x/L, x'/V, y/L, y'/V)`.
+#[derive(Debug, Clone)]
+pub(crate) struct Section<'a> {
+    pub p: DamperParams,
+    /// The force's phase at the section (rad).
+    pub phase: f64,
+    pub periods: u32,
+    pub symmetric: bool,
+    /// Scales: length L (m), speed V = L·Ω (m/s).
+    pub l: f64,
+    pub v: f64,
+    cancel: Option<&'a AtomicBool>,
+    /// Forcing periods simulated so far.
+    pub spent: f64,
+}
+
+impl<'a> Section<'a> {
+    pub fn new(p: DamperParams, phase: f64, periods: u32, symmetric: bool, cancel: Option<&'a AtomicBool>) -> Self {
+        let (l, v) = scales(&p);
+        Section { p, phase, periods, symmetric, l, v, cancel, spent: 0.0 }
+    }
+
+    pub fn scale(&self, s: [f64; 4]) -> Vector4<f64> {
+        Vector4::new(s[0] / self.l, s[1] / self.v, s[2] / self.l, s[3] / self.v)
+    }
+
+    pub fn unscale(&self, u: &Vector4<f64>) -> [f64; 4] {
+        [u[0] * self.l, u[1] * self.v, u[2] * self.l, u[3] * self.v]
+    }
+
+    /// The time (s) the map spans: n periods, or half of one for the symmetric map.
+    fn span(&self) -> f64 {
+        let t = 1.0 / self.p.freq_hz;
+        if self.symmetric {
+            0.5 * t
+        } else {
+            f64::from(self.periods) * t
+        }
+    }
+
+    /// The map (scaled): `Pⁿ(u)`, or `−P_{T/2}(u)` for the symmetric orbit.
+    pub fn map(&mut self, u: &Vector4<f64>) -> Result<Vector4<f64>, ThudError> {
+        let span = self.span();
+        let f = damper::flow(&self.p, self.unscale(u), self.phase, &[span], self.cancel);
+        self.spent += span * self.p.freq_hz;
+        if self.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return Err(ThudError::Cancelled);
+        }
+        let end = f.states.last().copied().filter(|_| !f.halted).ok_or_else(|| {
+            ThudError::invalid("orbit", "a solver work cap stopped the shooting run; the orbit was not found")
+        })?;
+        let sign = if self.symmetric { -1.0 } else { 1.0 };
+        let e = self.scale(end);
+        Ok(e * sign)
+    }
+
+    /// `DPⁿ` at `u` (scaled) by forward differences, given `Pⁿ(u)`.
+    pub fn jacobian(&mut self, u: &Vector4<f64>, pu: &Vector4<f64>) -> Result<Matrix4<f64>, ThudError> {
+        let mut j = Matrix4::zeros();
+        for k in 0..4 {
+            let mut du = *u;
+            du[k] += JACOBIAN_STEP;
+            let col = (self.map(&du)? - pu) / JACOBIAN_STEP;
+            j.set_column(k, &col);
+        }
+        Ok(j)
+    }
+}
+
+/// The state's scales: L (m) the half gap plus the linear steady amplitude (or the half gap
+/// alone where that is unbounded), V = L·Ω (m/s).
+fn scales(p: &DamperParams) -> (f64, f64) {
+    let l = 0.5 * p.gap_m + linear_amplitude_m(p).unwrap_or(0.0);
+    (l, l * std::f64::consts::TAU * p.freq_hz)
+}
+
+/// A root of the map found by Newton's method.
+#[derive(Debug, Clone)]
+pub(crate) struct Root {
+    pub u: Vector4<f64>,
+    /// The Jacobian of the map, taken at the last iterate that was within 1e-6 of the root.
+    pub jac: Matrix4<f64>,
+    /// Largest component of the scaled residual.
+    pub residual: f64,
+    pub iterations: u32,
+}
+
+/// Damped Newton on `map(u) − u = 0` from `u0`. Fails when the residual does not fall below
+/// [`RESIDUAL_TOLERANCE`] within [`MAX_NEWTON`] iterations.
+pub(crate) fn newton(sec: &mut Section, u0: Vector4<f64>) -> Result<Root, ThudError> {
+    let mut u = u0;
+    let mut pu = sec.map(&u)?;
+    let mut r = pu - u;
+    let mut jac_at: Option<(Matrix4<f64>, f64)> = None;
+    for it in 0..=MAX_NEWTON {
+        let rn = r.amax();
+        if !rn.is_finite() {
+            break;
+        }
+        let fresh = jac_at.is_some_and(|(_, at)| at <= 1e-6);
+        if rn <= RESIDUAL_TOLERANCE && fresh {
+            let (jac, _) = jac_at.unwrap_or((Matrix4::zeros(), 0.0));
+            return Ok(Root { u, jac, residual: rn, iterations: it });
+        }
+        let j = sec.jacobian(&u, &pu)?;
+        jac_at = Some((j, rn));
+        if rn <= RESIDUAL_TOLERANCE {
+            return Ok(Root { u, jac: j, residual: rn, iterations: it });
+        }
+        let a = j - Matrix4::identity();
+        let step = a.svd(true, true).solve(&(-r), 1e-12).map_err(|e| ThudError::invalid("orbit", e.to_string()))?;
+        // Backtracking: halve the step until the residual falls (Armijo on |r|).
+        let mut alpha = 1.0;
+        loop {
+            let un = u + step * alpha;
+            let pn = sec.map(&un)?;
+            let rnew = pn - un;
+            if rnew.amax() <= (1.0 - 0.25 * alpha) * rn || (alpha < 1e-3 && rnew.amax() < rn) {
+                u = un;
+                pu = pn;
+                r = rnew;
+                break;
+            }
+            alpha *= 0.5;
+            if alpha < 1e-4 {
+                return Err(not_found("Newton's method stalled"));
+            }
+        }
+    }
+    Err(not_found("Newton's method did not converge"))
+}
+
+fn not_found(why: &str) -> ThudError {
+    ThudError::invalid("orbit", format!("no periodic orbit found: {why}"))
+}
+
+/// The multipliers of a map's Jacobian, largest modulus first.
+pub(crate) fn multipliers(j: &Matrix4<f64>) -> Vec<Multiplier> {
+    let mut m: Vec<Multiplier> =
+        j.complex_eigenvalues().iter().map(|c| Multiplier { re: c.re, im: c.im, abs: c.norm() }).collect();
+    m.sort_by(|a, b| b.abs.total_cmp(&a.abs).then(b.im.total_cmp(&a.im)));
+    m
+}
+
+/// How the multiplier of largest modulus `m` crosses the unit circle.
+pub(crate) fn loss(m: &Multiplier) -> Loss {
+    if m.im.abs() > 1e-9 * m.abs.max(f64::MIN_POSITIVE) {
+        Loss::NeimarkSacker
+    } else if m.re >= 0.0 {
+        Loss::Fold
+    } else {
+        Loss::PeriodDoubling
+    }
+}
+
+/// The middle (rad, in [0, 2π)) of the longest stretch of the force's cycle in which no contact
+/// of `impacts` lies; `phase0` is the force's phase at time 0 of their run. 0 without impacts.
+pub(crate) fn flight_phase(impacts: &[damper::ImpactEvent], phase0: f64, omega: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    if impacts.is_empty() {
+        return 0.0;
+    }
+    let mut spans: Vec<(f64, f64)> = impacts
+        .iter()
+        .map(|i| {
+            let a = (phase0 + omega * i.t_s).rem_euclid(tau);
+            let len = (omega * (i.t_end_s - i.t_s)).clamp(0.0, tau);
+            (a, a + len)
+        })
+        .collect();
+    spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // The gaps between consecutive contacts around the circle.
+    let mut best = (0.0, 0.0);
+    let mut reach = spans[0].1;
+    for w in 1..=spans.len() {
+        let (next_start, next_end) = if w == spans.len() { (spans[0].0 + tau, spans[0].1 + tau) } else { spans[w] };
+        let gap = next_start - reach;
+        if gap > best.1 {
+            best = (reach + 0.5 * gap, gap);
+        }
+        reach = reach.max(next_end);
+    }
+    best.0.rem_euclid(tau)
+}
+
+/// The smallest `n ≤ MAX_ORBIT_PERIODS` with the last two samples each within `tol` (scaled) of
+/// the one `n` periods before.
+fn detect_period(samples: &[Vector4<f64>], tol: f64) -> Option<u32> {
+    let k = samples.len();
+    (1..=MAX_ORBIT_PERIODS as usize)
+        .find(|&n| k >= n + 2 && (0..2).all(|j| (samples[k - 1 - j] - samples[k - 1 - j - n]).amax() <= tol))
+        .map(|n| n as u32)
+}
+
+/// Finds a periodic orbit of the forced design `d` ([`Request`]): from the design's own start
+/// (its motion simulated [`FIRST_TRANSIENT_PERIODS`] periods, then twice as long each time
+/// until Newton's method converges, at most [`MAX_TRANSIENT_PERIODS`]), or from `guess`.
+/// From the design's start, an unstable orbit of period n is passed over for a stable one of
+/// period 2n where Newton's method finds one (the attractor the motion settles to).
+pub fn find(d: &ValidDesign, req: &Request, cancel: Option<&AtomicBool>) -> Result<PeriodicOrbit, ThudError> {
+    if d.solver != damper::Solver::Event {
+        return Err(ThudError::invalid(
+            "solver",
+            "newmark: orbits are found with the event solver; use --solver event",
+        ));
+    }
+    find_damper(&d.damper, req, cancel)
+}
+
+/// [`find`] for the damper's parameters alone (checked by [`DamperParams::validate`]).
+pub fn find_damper(p: &DamperParams, req: &Request, cancel: Option<&AtomicBool>) -> Result<PeriodicOrbit, ThudError> {
+    p.validate()?;
+    let p = *p;
+    if !p.forced() {
+        return Err(ThudError::invalid(
+            "force",
+            "0 N: a periodic orbit needs a harmonic force; give a force and a frequency",
+        ));
+    }
+    if let Some(n) = req.periods {
+        if n == 0 || n > MAX_ORBIT_PERIODS {
+            return Err(ThudError::invalid("period", format!("{n}; must be 1 to {MAX_ORBIT_PERIODS} forcing periods")));
+        }
+        if req.symmetric && n != 1 {
+            return Err(ThudError::invalid("period", format!("{n}; a symmetric orbit has period 1")));
+        }
+    }
+    match req.guess {
+        Some(g) => from_guess(&p, req, g, cancel),
+        None => from_start(&p, req, cancel),
+    }
+}
+
+/// The state (x, x', y, y') of a guess.
+fn absolute(g: &Guess) -> [f64; 4] {
+    [g.x_m, g.v_m_s, g.x_m + g.z_m, g.v_m_s + g.zdot_m_s]
+}
+
+fn from_guess(
+    p: &DamperParams,
+    req: &Request,
+    g: Guess,
+    cancel: Option<&AtomicBool>,
+) -> Result<PeriodicOrbit, ThudError> {
+    let s = absolute(&g);
+    if !s.iter().all(|v| v.is_finite()) || g.z_m.abs() >= 0.5 * p.gap_m {
+        return Err(ThudError::invalid(
+            "guess",
+            "the ball must start inside the clearance, |z| < d/2, with finite numbers",
+        ));
+    }
+    let n = if req.symmetric { 1 } else { req.periods.unwrap_or(1) };
+    // One orbit's worth of motion from the guess tells where the contacts fall.
+    let t = f64::from(n) / p.freq_hz;
+    let probe = damper::flow(p, s, 0.0, &[t], cancel);
+    let phase = flight_phase(&probe.impacts, 0.0, std::f64::consts::TAU * p.freq_hz);
+    let at_section = if phase > 0.0 {
+        damper::flow(p, s, 0.0, &[phase / (std::f64::consts::TAU * p.freq_hz)], cancel).states.first().copied()
+    } else {
+        Some(s)
+    };
+    let s0 = at_section.ok_or_else(|| not_found("the guess's run stopped"))?;
+    shoot(p, req.symmetric, n, phase, s0, f64::from(n) + phase / std::f64::consts::TAU, cancel)
+}
+
+/// Newton's method for period `n` at the section `phase` (rad) from `s0`, `spent` forcing
+/// periods simulated already; an orbit whose true period is a divisor of `n` is solved again
+/// with that period, so that its multipliers are its own.
+fn shoot(
+    p: &DamperParams,
+    symmetric: bool,
+    n: u32,
+    phase: f64,
+    s0: [f64; 4],
+    spent: f64,
+    cancel: Option<&AtomicBool>,
+) -> Result<PeriodicOrbit, ThudError> {
+    let mut sec = Section::new(*p, phase, n, symmetric, cancel);
+    sec.spent = spent;
+    let u0 = sec.scale(s0);
+    let root = newton(&mut sec, u0)?;
+    let orbit = report(&mut sec, &root)?;
+    if orbit.periods == n || symmetric {
+        return Ok(orbit);
+    }
+    let at = sec.unscale(&root.u);
+    let mut again = Section::new(*p, phase, orbit.periods, false, cancel);
+    again.spent = sec.spent;
+    let u0 = again.scale(at);
+    let root = newton(&mut again, u0)?;
+    report(&mut again, &root)
+}
+
+fn from_start(p: &DamperParams, req: &Request, cancel: Option<&AtomicBool>) -> Result<PeriodicOrbit, ThudError> {
+    if !req.symmetric {
+        return attractor(p, req.periods, cancel);
+    }
+    // The symmetric orbit nearest the motion: from the attractor's state, or from the
+    // design's run itself where no attractor is found.
+    match attractor(p, None, cancel) {
+        Ok(near) => {
+            let g = Guess { x_m: near.x_m, v_m_s: near.v_m_s, z_m: near.z_m, zdot_m_s: near.zdot_m_s };
+            let mut o = from_guess(p, req, g, cancel)?;
+            o.periods_simulated += near.periods_simulated;
+            Ok(o)
+        }
+        Err(ThudError::Cancelled) => Err(ThudError::Cancelled),
+        Err(_) => attractor(p, Some(1), cancel).and_then(|near| {
+            let g = Guess { x_m: near.x_m, v_m_s: near.v_m_s, z_m: near.z_m, zdot_m_s: near.zdot_m_s };
+            from_guess(p, req, g, cancel)
+        }),
+    }
+}
+
+/// The periodic orbit the design's motion settles to: its run simulated
+/// [`FIRST_TRANSIENT_PERIODS`] forcing periods, then twice as long each time (at most
+/// [`MAX_TRANSIENT_PERIODS`] in all), with a shooting attempt at each stop for the period the
+/// motion seems to repeat with (`periods` if given, else the smallest `n` with the last two
+/// samples within 5 % of the scale of those `n` periods before, else 1). Without `periods`
+/// a stable orbit is taken; an unstable one of period `n` is passed over for a stable one of
+/// period `2n` where there is one, else kept as the answer if nothing stable turns up.
+fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>) -> Result<PeriodicOrbit, ThudError> {
+    let period = 1.0 / p.freq_hz;
+    let probe_sec = Section::new(*p, 0.0, 1, false, cancel);
+    let mut state = [0.0, p.v0_m_s, p.ball_position_m, p.ball_velocity_m_s];
+    let mut samples: Vec<Vector4<f64>> = vec![probe_sec.scale(state)];
+    let mut spent = 0.0;
+    let mut chunk = FIRST_TRANSIENT_PERIODS;
+    let mut total = 0;
+    let mut last_err =
+        not_found("the motion did not settle to a periodic orbit (chaotic, quasi-periodic, or a longer period)");
+    let mut unstable: Option<PeriodicOrbit> = None;
+    while total < MAX_TRANSIENT_PERIODS {
+        let stops: Vec<f64> = (1..=chunk).map(|k| f64::from(k) * period).collect();
+        let f = damper::flow(p, state, 0.0, &stops, cancel);
+        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return Err(ThudError::Cancelled);
+        }
+        if f.halted || f.states.len() != stops.len() {
+            return Err(not_found("a solver work cap stopped the design's run"));
+        }
+        spent += f64::from(chunk);
+        total += chunk;
+        samples.extend(f.states.iter().map(|s| probe_sec.scale(*s)));
+        state = *f.states.last().unwrap_or(&state);
+        let span = f64::from(chunk) * period;
+        let recent: Vec<damper::ImpactEvent> = f.impacts.into_iter().filter(|i| i.t_s >= span - 2.0 * period).collect();
+        let detected = periods.or_else(|| detect_period(&samples, 0.05));
+        let last_chance = total + chunk.max(8) > MAX_TRANSIENT_PERIODS;
+        let Some(n) = detected.or(last_chance.then_some(1)) else {
+            chunk = (total / 2).max(FIRST_TRANSIENT_PERIODS);
+            continue;
+        };
+        match attempt(p, false, n, state, &recent, spent, cancel) {
+            Ok(orbit) if orbit.stable || periods.is_some() => return Ok(orbit),
+            Ok(orbit) => {
+                spent = orbit.periods_simulated;
+                // An unstable orbit beside a stable one of twice the period: the attractor.
+                if 2 * n <= MAX_ORBIT_PERIODS {
+                    match attempt(p, false, 2 * n, state, &recent, spent, cancel) {
+                        Ok(o2) if o2.stable => return Ok(o2),
+                        Ok(o2) => spent = o2.periods_simulated,
+                        Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
+                        Err(_) => {}
+                    }
+                }
+                unstable = Some(orbit);
+            }
+            Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
+            Err(e) => last_err = e,
+        }
+        chunk = (total / 2).max(FIRST_TRANSIENT_PERIODS);
+    }
+    unstable
+        .map(|mut o| {
+            o.periods_simulated = spent;
+            o
+        })
+        .ok_or(last_err)
+}
+
+/// Shooting for period `n` from `state` at the force's phase 0, the section put in flight by
+/// `impacts` (times from a run that ended at `state` after whole periods).
+fn attempt(
+    p: &DamperParams,
+    symmetric: bool,
+    n: u32,
+    state: [f64; 4],
+    impacts: &[damper::ImpactEvent],
+    spent: f64,
+    cancel: Option<&AtomicBool>,
+) -> Result<PeriodicOrbit, ThudError> {
+    let tau = std::f64::consts::TAU;
+    let omega = tau * p.freq_hz;
+    let phase = flight_phase(impacts, 0.0, omega);
+    let s0 = if phase > 0.0 {
+        let f = damper::flow(p, state, 0.0, &[phase / omega], cancel);
+        f.states.first().copied().ok_or_else(|| not_found("the run to the section stopped"))?
+    } else {
+        state
+    };
+    shoot(p, symmetric, n, phase, s0, spent + phase / tau, cancel)
+}
+
+/// The orbit through the root `root` of the section's map, reported from the force's phase 0.
+pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, ThudError> {
+    let p = sec.p;
+    let tau = std::f64::consts::TAU;
+    let period = 1.0 / p.freq_hz;
+    let n = if sec.symmetric { 1 } else { sec.periods };
+    let s = sec.unscale(&root.u);
+    let t0 = ((tau - sec.phase) / tau).rem_euclid(1.0) * period;
+    let span = f64::from(n) * period;
+    // From the section (in flight) for n periods: every impact of the orbit once. Also the
+    // state at phase 0, at each whole period after it, and half a period after it.
+    let mut stops: Vec<f64> = vec![t0, t0 + 0.5 * period, span];
+    stops.extend((1..n).map(|k| t0 + f64::from(k) * period));
+    stops.sort_by(f64::total_cmp);
+    stops.dedup();
+    let f: Flowed = damper::flow(&p, s, sec.phase, &stops, None);
+    sec.spent += stops.last().copied().unwrap_or(span) / period;
+    if f.halted || f.states.len() != stops.len() {
+        return Err(not_found("a solver work cap stopped the orbit's run"));
+    }
+    let at = |t: f64| stops.iter().position(|&x| x == t).map(|i| f.states[i]);
+    let s0 = at(t0).unwrap_or(s);
+    let u0 = sec.scale(s0);
+    // The smallest period the orbit repeats with.
+    let close = |a: [f64; 4]| (sec.scale(a) - u0).amax() <= 1e-7;
+    let periods = (1..n).find(|&k| n % k == 0 && at(t0 + f64::from(k) * period).is_some_and(close)).unwrap_or(n);
+    let half = at(t0 + 0.5 * period).map(|h| sec.scale(h));
+    let symmetric = sec.symmetric || (periods == 1 && half.is_some_and(|h| (h + u0).amax() <= 1e-7));
+    let whole = f64::from(periods) * period;
+    let mut impacts: Vec<OrbitImpact> = f
+        .impacts
+        .iter()
+        .filter(|i| i.t_s < whole)
+        .map(|i| {
+            let k = ((i.t_s - t0) / period).rem_euclid(f64::from(periods));
+            let period_index = k.floor();
+            OrbitImpact {
+                period: period_index as u32,
+                phase: k - period_index,
+                wall: i.wall,
+                u_in_m_s: i.u_in_m_s,
+                u_out_m_s: i.u_out_m_s,
+            }
+        })
+        .collect();
+    impacts.sort_by(|a, b| (f64::from(a.period) + a.phase).total_cmp(&(f64::from(b.period) + b.phase)));
+    // The monodromy of the full orbit: the symmetric map's squared, the n-fold map's as is
+    // (if the orbit's true period is a divisor of n, its multipliers are the n/k-th roots'
+    // powers; they are reported for n as found).
+    let jac = if sec.symmetric { root.jac * root.jac } else { root.jac };
+    let multipliers = if impacts.is_empty() {
+        // The ball floats: its block is [[1, nT], [0, 1]], a neutral pair; the structure's two.
+        let block = jac.fixed_view::<2, 2>(0, 0).into_owned();
+        let mut m: Vec<Multiplier> =
+            block.complex_eigenvalues().iter().map(|c| Multiplier { re: c.re, im: c.im, abs: c.norm() }).collect();
+        m.sort_by(|a, b| b.abs.total_cmp(&a.abs).then(b.im.total_cmp(&a.im)));
+        m
+    } else {
+        multipliers(&jac)
+    };
+    let lead = multipliers.first().copied().unwrap_or(Multiplier { re: 0.0, im: 0.0, abs: 0.0 });
+    let stable = multipliers.iter().all(|m| m.abs < 1.0);
+    let scale_r = root.residual * sec.l.max(sec.v);
+    Ok(PeriodicOrbit {
+        periods: if sec.symmetric { 1 } else { periods },
+        impacts_per_orbit: impacts.len() as u32,
+        symmetric,
+        x_m: s0[0],
+        v_m_s: s0[1],
+        z_m: s0[2] - s0[0],
+        zdot_m_s: s0[3] - s0[1],
+        amplitude_m: f.amplitude_m,
+        amplitude_linear_m: linear_amplitude_m(&p),
+        impacts,
+        multipliers,
+        stable,
+        critical: loss(&lead),
+        residual: scale_r,
+        iterations: root.iterations,
+        periods_simulated: sec.spent,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_section_is_in_the_middle_of_the_longest_flight() {
+        let omega = std::f64::consts::TAU;
+        let hit = |t: f64, len: f64| damper::ImpactEvent {
+            t_s: t,
+            wall: Wall::Upper,
+            u_in_m_s: 1.0,
+            u_out_m_s: 0.9,
+            t_end_s: t + len,
+            penetration_max_m: 0.0,
+        };
+        // Contacts at phases 0.1–0.2 and 0.5–0.55 of the cycle: the longest gap is 0.55 → 1.1.
+        let phi = flight_phase(&[hit(3.1, 0.1), hit(3.5, 0.05)], 0.0, omega) / omega;
+        assert!((phi - 0.825).abs() < 1e-12, "{phi}");
+        assert_eq!(flight_phase(&[], 0.0, omega), 0.0);
+    }
+
+    #[test]
+    fn multipliers_say_how_stability_is_lost() {
+        let m = |re: f64, im: f64| Multiplier { re, im, abs: re.hypot(im) };
+        assert_eq!(loss(&m(1.2, 0.0)), Loss::Fold);
+        assert_eq!(loss(&m(-1.2, 0.0)), Loss::PeriodDoubling);
+        assert_eq!(loss(&m(0.3, 0.9)), Loss::NeimarkSacker);
+        let j = Matrix4::from_diagonal(&Vector4::new(0.5, -2.0, 0.1, 0.2));
+        let ms = multipliers(&j);
+        assert_eq!(ms[0].re, -2.0);
+        assert!(ms.windows(2).all(|w| w[0].abs >= w[1].abs));
+    }
+}
