@@ -11,6 +11,7 @@ mod fit;
 mod format;
 mod impact_map;
 mod merge;
+mod orbit;
 mod output;
 mod paper;
 mod presets;
@@ -66,6 +67,9 @@ pub enum Command {
     Bifurcation(Box<bifurcation::BifurcationArgs>),
     /// The impact map (Poincaré section on impacts) of one forced design.
     ImpactMap(Box<impact_map::ImpactMapArgs>),
+    /// The periodic orbit of a forced design, stable or not, by shooting: amplitude, impacts,
+    /// Floquet multipliers.
+    Orbit(Box<orbit::OrbitArgs>),
     /// The basins of attraction of a forced design over the ball's start (y0 × w0).
     Basins(Box<basins::BasinsArgs>),
     /// Join the parts written by `thud sweep --shard K/N` into the whole chart.
@@ -285,6 +289,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Sweep(a)) => sweep::run(&a, &ctx, &mut out),
         Some(Command::Bifurcation(a)) => bifurcation::run(&a, &ctx, &mut out),
         Some(Command::ImpactMap(a)) => impact_map::run(&a, &ctx, &mut out),
+        Some(Command::Orbit(a)) => orbit::run(&a, &ctx, &mut out),
         Some(Command::Basins(a)) => basins::run(&a, &ctx, &mut out),
         Some(Command::Merge(a)) => merge::run(&a, &ctx, &mut out),
         Some(Command::Response(a)) => response::run(&a, &ctx, &mut out),

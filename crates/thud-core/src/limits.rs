@@ -274,6 +274,17 @@ pub const GRID_N: Range = range(
     "1000 × 1000 cells is the most a chart can show; the work cap limits the product",
 );
 
+/// The period of a periodic orbit looked for by shooting (`thud orbit --period N`), in forcing
+/// periods.
+pub const ORBIT_PERIODS: Range = range(
+    "period",
+    "orbit's period",
+    1.0,
+    16.0,
+    "periods",
+    "the longest period the orbit classification looks for (dynamics::MAX_PERIOD); longer ones read as chaos or a torus",
+);
+
 /// Forcing periods run before a study of orbits samples its run (`--transient N`).
 pub const TRANSIENT: Range = range(
     "transient",
