@@ -6,8 +6,8 @@
 //! names so that `thud::contact`, `thud::design`, … read the same from either crate.
 
 pub use thud_core::{
-    acoustics, contact, damper, design, dynamics, ensemble, error, finite, fit, limits, orbit, paper, params, report,
-    response, study, units, walk, ThudError,
+    acoustics, contact, continuation, damper, design, dynamics, ensemble, error, finite, fit, limits, orbit, paper,
+    params, report, response, study, units, walk, ThudError,
 };
 
 pub mod config;

@@ -4,6 +4,7 @@
 mod basins;
 mod bifurcation;
 mod budget;
+mod continuation;
 pub mod design_args;
 mod errors;
 mod export;
@@ -70,6 +71,9 @@ pub enum Command {
     /// The periodic orbit of a forced design, stable or not, by shooting: amplitude, impacts,
     /// Floquet multipliers.
     Orbit(Box<orbit::OrbitArgs>),
+    /// Continue a forced design's periodic orbit over one parameter: folds, period doublings,
+    /// torus and grazing points, stable and unstable parts.
+    Continue(Box<continuation::ContinueArgs>),
     /// The basins of attraction of a forced design over the ball's start (y0 × w0).
     Basins(Box<basins::BasinsArgs>),
     /// Join the parts written by `thud sweep --shard K/N` into the whole chart.
@@ -290,6 +294,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Bifurcation(a)) => bifurcation::run(&a, &ctx, &mut out),
         Some(Command::ImpactMap(a)) => impact_map::run(&a, &ctx, &mut out),
         Some(Command::Orbit(a)) => orbit::run(&a, &ctx, &mut out),
+        Some(Command::Continue(a)) => continuation::run(&a, &ctx, &mut out),
         Some(Command::Basins(a)) => basins::run(&a, &ctx, &mut out),
         Some(Command::Merge(a)) => merge::run(&a, &ctx, &mut out),
         Some(Command::Response(a)) => response::run(&a, &ctx, &mut out),

@@ -104,3 +104,119 @@ fn the_orbit_is_independent_of_the_start() {
     }
     assert!(a.residual < 1e-10 && b.residual < 1e-10);
 }
+
+/// Continuation of the linear steady state (a gap too wide for impacts) over 3–8 Hz: every
+/// point is the closed form's amplitude, and no special point is reported.
+#[test]
+fn continuing_the_linear_orbit_follows_the_closed_form() {
+    use thud::continuation::continue_branch;
+    use thud::design::Design;
+    use thud::params::Spelling;
+    use thud::study::Vary;
+    let mut d = Design::default();
+    d.damper = DamperParams { gap_m: 1.0, force_n: 1.0, freq_hz: 3.0, v0_m_s: 0.0, damping_n_s_m: 0.5, ..d.damper };
+    let d = d.check().unwrap();
+    let vary = Vary::of_values("freq", &[3.0, 8.0], Spelling::Flag).unwrap();
+    let b = continue_branch(&d, &vary, &Request::default(), None, &|_| {}).unwrap();
+    assert!(b.ended.is_none() && b.specials.is_empty(), "{:?} {:?}", b.ended, b.specials);
+    assert!(b.points.len() > 50);
+    assert!((b.points.last().unwrap().value - 8.0).abs() < 1e-9);
+    for p in &b.points {
+        let om = 2.0 * PI * p.value;
+        let x = 1.0 / (500.0 - 0.5 * om * om).hypot(0.5 * om);
+        assert!((p.amplitude_m / x - 1.0).abs() < 1e-8, "{} Hz: {} vs {x}", p.value, p.amplitude_m);
+        assert!(p.stable && p.impacts_per_orbit == 0);
+    }
+}
+
+/// The continued branch of Masri & Caughey's stable symmetric orbit over 5.5–6.5 Hz is the
+/// orbit shooting finds at each value from near it, and loses stability once, as a complex pair.
+#[test]
+fn the_continued_branch_is_the_orbit_found_at_each_value() {
+    use thud::continuation::{continue_branch, Special};
+    use thud::design::Design;
+    use thud::params::Spelling;
+    use thud::study::Vary;
+    let mut d = Design::default();
+    d.damper = design(0.03, 1.0, 5.5, 5.6e8, 2.0);
+    let d = d.check().unwrap();
+    let vary = Vary::of_values("freq", &[5.5, 6.5], Spelling::Flag).unwrap();
+    let req = Request { symmetric: true, ..Request::default() };
+    let b = continue_branch(&d, &vary, &req, None, &|_| {}).unwrap();
+    assert!(b.ended.is_none(), "{:?}", b.ended);
+    let changes = b.points.windows(2).filter(|w| w[0].stable != w[1].stable).count();
+    assert_eq!(changes, 1);
+    assert_eq!(b.specials.len(), 1, "{:?}", b.specials);
+    assert_eq!(b.specials[0].kind, Special::NeimarkSacker);
+    for p in b.points.iter().step_by(40) {
+        let mut dp = d.damper;
+        dp.freq_hz = p.value;
+        // Newton's method from 1 % off the branch's point lands on it: it is an orbit.
+        let g = Guess { x_m: p.x_m * 1.01, v_m_s: p.v_m_s * 0.99, z_m: p.z_m * 0.99, zdot_m_s: p.zdot_m_s * 0.99 };
+        let o = find_damper(&dp, &Request { guess: Some(g), ..req }, None).unwrap();
+        assert!((o.amplitude_m - p.amplitude_m).abs() < 1e-9, "{} Hz: {} vs {}", p.value, o.amplitude_m, p.amplitude_m);
+        assert!((o.x_m - p.x_m).abs() < 1e-9 && (o.z_m - p.z_m).abs() < 1e-9);
+        assert_eq!(o.stable, p.stable);
+    }
+}
+
+/// `thud orbit` and `thud continue` on the command line: the JSON is the engine's orbit, and
+/// bad input is refused with exit 2 in one line naming the flag.
+#[test]
+fn the_orbit_commands_print_the_engines_orbit_and_refuse_bad_input() {
+    use super::common::thud;
+    let (code, out, err) = thud(&[
+        "orbit",
+        "--gap",
+        "3cm",
+        "--c",
+        "0.5",
+        "--v0",
+        "0",
+        "--force-amplitude",
+        "1",
+        "--freq",
+        "5.5",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let p = design(0.03, 1.0, 5.5, 5.6e8, 2.0);
+    let o = find_damper(&p, &Request::default(), None).unwrap();
+    assert_eq!(j["amplitude_m"].as_f64().unwrap(), o.amplitude_m);
+    assert_eq!(j["impacts_per_orbit"], 2);
+    assert_eq!(j["stable"], true);
+    for (args, flag) in [
+        (vec!["orbit", "--force-amplitude", "1", "--freq", "5.5", "--period", "0"], "--period"),
+        (vec!["orbit", "--force-amplitude", "1", "--freq", "5.5", "--period", "17"], "--period"),
+        (vec!["orbit", "--force-amplitude", "1", "--freq", "5.5", "--guess", "1,2"], "--guess"),
+        (vec!["orbit", "--force-amplitude", "1", "--freq", "5.5", "--guess", "1mm,0,1m,0"], "--guess"),
+        (vec!["orbit"], "--force-amplitude"),
+        (vec!["continue", "--force-amplitude", "1", "--freq", "5.5", "--vary", "f=5Hz:5Hz"], "--vary"),
+        (vec!["continue", "--force-amplitude", "1", "--freq", "5.5", "--vary", "colour=1:2"], "--vary"),
+    ] {
+        let (code, out, err) = thud(&args);
+        assert_eq!(code, 2, "{args:?}: {out} {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(flag), "{args:?}: {err}");
+    }
+    let (code, out, err) = thud(&[
+        "continue",
+        "--gap",
+        "1m",
+        "--c",
+        "0.5",
+        "--v0",
+        "0",
+        "--force-amplitude",
+        "1",
+        "--freq",
+        "3",
+        "--vary",
+        "f=3Hz:4Hz",
+        "--csv",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("freq_hz,orbit,"), "{out}");
+    assert!(out.lines().count() > 10);
+}

@@ -12,6 +12,7 @@
 //!   the Newmark-β reference.
 //! - [`design`]: a whole design, its metrics (Eq 27), zones and the design chart (sweep).
 //! - [`dynamics`]: orbits of a forced design: bifurcation diagrams, orbit types, impact maps, basins.
+//! - [`continuation`]: pseudo-arclength continuation of periodic orbits, with their bifurcations.
 //! - [`orbit`]: periodic orbits of a forced design by shooting, with their Floquet multipliers.
 //! - [`ensemble`]: N runs of a design from evenly spread initial ball offsets, and the
 //!   spread of their metrics (p10 / median / p90, zone-3 probability).
@@ -29,6 +30,7 @@
 
 pub mod acoustics;
 pub mod contact;
+pub mod continuation;
 pub mod damper;
 pub mod design;
 pub mod dynamics;

@@ -134,7 +134,7 @@ pub struct PeriodicOrbit {
     pub periods: u32,
     /// Impacts over the n periods, m (the orbit is "m/n").
     pub impacts_per_orbit: u32,
-    /// Whether `x(t + T/2) = −x(t)` (to 1e-7 of the scale).
+    /// Whether `x(t + T/2) = −x(t)` (to 1e-6 of the scale).
     pub symmetric: bool,
     /// The state at the force's phase 0: main mass (m, m/s) and the ball relative to the
     /// enclosure's centre (m, m/s).
@@ -222,6 +222,9 @@ impl<'a> Section<'a> {
         let end = f.states.last().copied().filter(|_| !f.halted).ok_or_else(|| {
             ThudError::invalid("orbit", "a solver work cap stopped the shooting run; the orbit was not found")
         })?;
+        if f.in_contact {
+            return Err(not_found(IN_CONTACT));
+        }
         let sign = if self.symmetric { -1.0 } else { 1.0 };
         let e = self.scale(end);
         Ok(e * sign)
@@ -303,7 +306,11 @@ pub(crate) fn newton(sec: &mut Section, u0: Vector4<f64>) -> Result<Root, ThudEr
     Err(not_found("Newton's method did not converge"))
 }
 
-fn not_found(why: &str) -> ThudError {
+/// Why a map evaluation failed when its end fell inside a contact (the section must lie in
+/// flight).
+pub(crate) const IN_CONTACT: &str = "the section fell inside a contact";
+
+pub(crate) fn not_found(why: &str) -> ThudError {
     ThudError::invalid("orbit", format!("no periodic orbit found: {why}"))
 }
 
@@ -599,10 +606,10 @@ pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, Th
     let s0 = at(t0).unwrap_or(s);
     let u0 = sec.scale(s0);
     // The smallest period the orbit repeats with.
-    let close = |a: [f64; 4]| (sec.scale(a) - u0).amax() <= 1e-7;
+    let close = |a: [f64; 4]| (sec.scale(a) - u0).amax() <= 1e-6;
     let periods = (1..n).find(|&k| n % k == 0 && at(t0 + f64::from(k) * period).is_some_and(close)).unwrap_or(n);
     let half = at(t0 + 0.5 * period).map(|h| sec.scale(h));
-    let symmetric = sec.symmetric || (periods == 1 && half.is_some_and(|h| (h + u0).amax() <= 1e-7));
+    let symmetric = sec.symmetric || (periods == 1 && half.is_some_and(|h| (h + u0).amax() <= 1e-6));
     let whole = f64::from(periods) * period;
     let mut impacts: Vec<OrbitImpact> = f
         .impacts

@@ -1,0 +1,453 @@
+//! Pseudo-arclength continuation of a family of periodic orbits in one numeric parameter
+//! (docs/model.md §6.7; Keller 1977; Allgower & Georg, "Numerical Continuation Methods", 1990,
+//! ch. 2 and 8), through folds and along unstable parts, with the fold, period-doubling,
+//! Neimark–Sacker and grazing points located and labelled.
+//!
+//! The unknowns are the orbit's state at the section `u` (scaled as in [`crate::orbit`]) and the
+//! parameter scaled to the range, `λ̃ = (λ − from)/(to − from)`; the family is the curve
+//! `G(u, λ̃) = Pⁿ_λ(u) − u = 0` in these five unknowns. From a point `y_k` with unit tangent
+//! `t_k` (the null vector of `[DG | ∂G/∂λ̃]`, oriented to go on), the predictor is
+//! `y_k + h·t_k`; the corrector is the chord method on `G = 0` and `t_k·(y − y_k) = h` with the
+//! Jacobian of `y_k`. At each converged point the Jacobian is taken anew by forward
+//! differences ([`crate::orbit::JACOBIAN_STEP`]): it gives the multipliers, the next tangent and
+//! the test functions. The step `h` grows by 1.5 after an easy correction and halves after a
+//! failed one.
+//!
+//! A special point lies between two points where a test function changes sign: the tangent's
+//! `λ` component (a fold), `det(DPⁿ + I)` (a multiplier through −1: period doubling), the number
+//! of complex multipliers outside the unit circle (Neimark–Sacker), or the impacts per orbit
+//! (grazing: an impact appears or vanishes; the map is not smooth there and the branch may end).
+//! Folds, doublings and torus points are then located by the secant method on the arclength,
+//! each iterate corrected back onto the branch. Switching to the doubled branch is not done here:
+//! a period-doubling point is reported with the state to start it from (`thud orbit --period 2n`).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use nalgebra::{Matrix4, SMatrix, SVector, Vector4};
+use serde::{Deserialize, Serialize};
+
+use crate::design::ValidDesign;
+use crate::error::ThudError;
+use crate::orbit::{self, PeriodicOrbit, Request, Root, Section};
+use crate::study::Vary;
+
+type V5 = SVector<f64, 5>;
+type M45 = SMatrix<f64, 4, 5>;
+
+/// The most points one branch may have (a work cap; `thud limits` lists it).
+pub const MAX_BRANCH_POINTS: usize = 5000;
+/// The largest step along the branch, as a fraction of the parameter's range.
+const H_MAX: f64 = 0.01;
+/// The smallest: below it the branch ends.
+const H_MIN: f64 = 1e-7;
+/// Chord iterations allowed per correction.
+const MAX_CHORD: u32 = 12;
+
+/// What a special point is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Special {
+    /// The branch turns back in the parameter (a multiplier at +1).
+    Fold,
+    /// A multiplier crosses −1.
+    PeriodDoubling,
+    /// A complex pair crosses the unit circle.
+    NeimarkSacker,
+    /// The impacts per orbit change: an impact appears or vanishes (a grazing contact).
+    Grazing,
+}
+
+impl Special {
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Special::Fold => "fold",
+            Special::PeriodDoubling => "period doubling",
+            Special::NeimarkSacker => "Neimark-Sacker",
+            Special::Grazing => "grazing",
+        }
+    }
+}
+
+/// One point of a branch.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BranchPoint {
+    /// The parameter's value (its row's plain unit).
+    pub value: f64,
+    pub amplitude_m: f64,
+    pub stable: bool,
+    /// Largest |λ|.
+    pub multiplier_abs_max: f64,
+    pub impacts_per_orbit: u32,
+    pub periods: u32,
+    /// `3/1`, `2/1 sym`.
+    pub orbit: String,
+    /// The state at the force's phase 0 (m, m/s).
+    pub x_m: f64,
+    pub v_m_s: f64,
+    pub z_m: f64,
+    pub zdot_m_s: f64,
+}
+
+/// A special point located on a branch.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SpecialPoint {
+    pub kind: Special,
+    /// The parameter's value there.
+    pub value: f64,
+    pub amplitude_m: f64,
+}
+
+/// A continued family of periodic orbits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Branch {
+    /// The varied parameter: its row's name and plain unit.
+    pub name: String,
+    pub unit: String,
+    pub points: Vec<BranchPoint>,
+    pub specials: Vec<SpecialPoint>,
+    /// Why the branch ended before the range's end, if it did.
+    pub ended: Option<String>,
+}
+
+/// A converged point in the continuation's unknowns, with what it needs for the next step.
+#[derive(Debug, Clone)]
+struct Node {
+    y: V5,
+    /// `[DG | ∂G/∂λ̃]` at `y`.
+    jac: M45,
+    /// `DPⁿ` (scaled).
+    dp: Matrix4<f64>,
+    tangent: V5,
+    orbit: PeriodicOrbit,
+}
+
+/// The continuation's problem: the design at each parameter value and the section.
+struct Problem<'a> {
+    base: ValidDesign,
+    vary: &'a Vary,
+    from: f64,
+    to: f64,
+    phase: f64,
+    periods: u32,
+    symmetric: bool,
+    /// The scales of the state, fixed along the branch (those at `from`).
+    l: f64,
+    v: f64,
+    cancel: Option<&'a AtomicBool>,
+}
+
+impl<'a> Problem<'a> {
+    fn value(&self, lt: f64) -> f64 {
+        self.from + lt * (self.to - self.from)
+    }
+
+    fn section(&self, lt: f64) -> Result<Section<'a>, ThudError> {
+        let d = crate::study::set(self.base.design().clone(), self.vary.row, self.value(lt)).check()?;
+        let mut s = Section::new(d.damper, self.phase, self.periods, self.symmetric, self.cancel);
+        s.l = self.l;
+        s.v = self.v;
+        Ok(s)
+    }
+
+    /// `G(y)`.
+    fn g(&self, y: &V5) -> Result<Vector4<f64>, ThudError> {
+        let u = y.fixed_rows::<4>(0).into_owned();
+        Ok(self.section(y[4])?.map(&u)? - u)
+    }
+
+    /// `G(y)`, `[DG | ∂G/∂λ̃]` and `DPⁿ` at `y` by forward differences.
+    fn jacobian(&self, y: &V5, gy: &Vector4<f64>) -> Result<(M45, Matrix4<f64>), ThudError> {
+        let u = y.fixed_rows::<4>(0).into_owned();
+        let mut sec = self.section(y[4])?;
+        let pu = gy + u;
+        let dp = sec.jacobian(&u, &pu)?;
+        let mut j = M45::zeros();
+        j.fixed_view_mut::<4, 4>(0, 0).copy_from(&(dp - Matrix4::identity()));
+        let h = orbit::JACOBIAN_STEP;
+        let mut yl = *y;
+        yl[4] += h;
+        let gl = self.g(&yl)?;
+        j.set_column(4, &((gl - gy) / h));
+        Ok((j, dp))
+    }
+
+    /// The converged point `y` as a node: its Jacobian, tangent (oriented along `previous`)
+    /// and orbit.
+    fn node(&self, y: V5, gy: &Vector4<f64>, previous: Option<&V5>) -> Result<Node, ThudError> {
+        let (jac, dp) = self.jacobian(&y, gy)?;
+        let floats = gy.amax() >= 0.0 && self.floats(&y)?;
+        let mut t = null_vector(&jac, floats);
+        let forward = previous.map_or(t[4] >= 0.0, |p| t.dot(p) >= 0.0);
+        if !forward {
+            t = -t;
+        }
+        let u = y.fixed_rows::<4>(0).into_owned();
+        let mut sec = self.section(y[4])?;
+        let root = Root { u, jac: dp, residual: gy.amax(), iterations: 0 };
+        let orbit = orbit::report(&mut sec, &root)?;
+        Ok(Node { y, jac, dp, tangent: t, orbit })
+    }
+
+    /// Whether the orbit through `y` has no impact (one map evaluation's worth of motion).
+    fn floats(&self, y: &V5) -> Result<bool, ThudError> {
+        let sec = self.section(y[4])?;
+        let u = y.fixed_rows::<4>(0).into_owned();
+        let t = f64::from(self.periods) / sec.p.freq_hz;
+        Ok(crate::damper::flow(&sec.p, sec.unscale(&u), self.phase, &[t], self.cancel).impacts.is_empty())
+    }
+
+    /// The point on the branch at arclength `h` from `n` (predictor and chord corrector).
+    fn correct(&self, n: &Node, h: f64) -> Result<(V5, Vector4<f64>, u32), ThudError> {
+        let mut a = SMatrix::<f64, 5, 5>::zeros();
+        a.fixed_view_mut::<4, 5>(0, 0).copy_from(&n.jac);
+        a.set_row(4, &n.tangent.transpose());
+        // Least squares (SVD): an orbit without impacts has a free ball position, and the
+        // shortest correction leaves it where it is.
+        let svd = a.svd(true, true);
+        let mut y = n.y + n.tangent * h;
+        for it in 1..=MAX_CHORD {
+            let g = self.g(&y)?;
+            let arc = n.tangent.dot(&(y - n.y)) - h;
+            let rhs = V5::new(g[0], g[1], g[2], g[3], arc);
+            let dy = svd.solve(&rhs, 1e-12).map_err(|e| orbit::not_found(e))?;
+            y -= dy;
+            if dy.amax() <= 1e-11 && g.amax() <= 1e-9 {
+                let g = self.g(&y)?;
+                return Ok((y, g, it));
+            }
+            if !y.amax().is_finite() || dy.amax() > 0.5 {
+                break;
+            }
+        }
+        Err(orbit::not_found("the corrector did not converge"))
+    }
+}
+
+/// The unit null vector of a 4×5 matrix of rank 4; with `floats` (an orbit without impacts:
+/// the ball's position is free, a second null direction) the one with no component along the
+/// ball's position.
+fn null_vector(j: &M45, floats: bool) -> V5 {
+    let mut sq = SMatrix::<f64, 5, 5>::zeros();
+    sq.fixed_view_mut::<4, 5>(0, 0).copy_from(j);
+    if floats {
+        sq[(4, 2)] = 1.0;
+    }
+    let svd = sq.svd(false, true);
+    let vt = svd.v_t.unwrap_or_else(SMatrix::<f64, 5, 5>::identity);
+    // The singular values are sorted in decreasing order: the last row spans the null space.
+    let (k, _) = svd.singular_values.argmin();
+    vt.row(k).transpose().normalize()
+}
+
+/// The test functions at a node: the tangent's λ component, det(DPⁿ + I), the complex
+/// multipliers outside the unit circle, and the impacts per orbit.
+fn tests(n: &Node) -> (f64, f64, usize, u32) {
+    let pd = (n.dp + Matrix4::identity()).determinant();
+    let ns = n.orbit.multipliers.iter().filter(|m| m.im.abs() > 1e-9 && m.abs > 1.0).count();
+    (n.tangent[4], pd, ns, n.orbit.impacts_per_orbit)
+}
+
+fn point(p: &Problem, n: &Node) -> BranchPoint {
+    let o = &n.orbit;
+    BranchPoint {
+        value: p.value(n.y[4]),
+        amplitude_m: o.amplitude_m,
+        stable: o.stable,
+        multiplier_abs_max: o.multipliers.first().map_or(0.0, |m| m.abs),
+        impacts_per_orbit: o.impacts_per_orbit,
+        periods: o.periods,
+        orbit: o.label(),
+        x_m: o.x_m,
+        v_m_s: o.v_m_s,
+        z_m: o.z_m,
+        zdot_m_s: o.zdot_m_s,
+    }
+}
+
+/// Continues the orbit of `base` (found by [`orbit::find`] with `req` at the first value of
+/// `vary`) over `vary`'s range (its first and last values), `on_point(λ)` called at each point.
+pub fn continue_branch(
+    base: &ValidDesign,
+    vary: &Vary,
+    req: &Request,
+    cancel: Option<&AtomicBool>,
+    on_point: &dyn Fn(f64),
+) -> Result<Branch, ThudError> {
+    let (Some(&from), Some(&to)) = (vary.values.first(), vary.values.last()) else {
+        return Err(ThudError::invalid("vary", "no values; give NAME=FROM:TO"));
+    };
+    if from == to {
+        return Err(ThudError::invalid("vary", format!("FROM = TO = {from}; give a range")));
+    }
+    let d0 = crate::study::set(base.design().clone(), vary.row, from).check()?;
+    let first = orbit::find(&d0, req, cancel)?;
+    // The section: in flight, from the first orbit's impacts.
+    let probe = Section::new(d0.damper, 0.0, 1, false, cancel);
+    let omega = std::f64::consts::TAU * d0.damper.freq_hz;
+    let t = 1.0 / d0.damper.freq_hz;
+    let s0 = [first.x_m, first.v_m_s, first.x_m + first.z_m, first.v_m_s + first.zdot_m_s];
+    let n = first.periods;
+    let run = crate::damper::flow(&d0.damper, s0, 0.0, &[f64::from(n) * t], cancel);
+    let phase = orbit::flight_phase(&run.impacts, 0.0, omega);
+    let at = crate::damper::flow(&d0.damper, s0, 0.0, &[phase / omega], cancel);
+    let s_phase = at.states.first().copied().ok_or_else(|| orbit::not_found("the run to the section stopped"))?;
+    let p = Problem {
+        base: base.clone(),
+        vary,
+        from,
+        to,
+        phase,
+        periods: n,
+        symmetric: req.symmetric && first.symmetric,
+        l: probe.l,
+        v: probe.v,
+        cancel,
+    };
+    let u0 = Vector4::new(s_phase[0] / p.l, s_phase[1] / p.v, s_phase[2] / p.l, s_phase[3] / p.v);
+    let mut y = V5::new(u0[0], u0[1], u0[2], u0[3], 0.0);
+    // Polish the first point on the fixed scales (the symmetric map's fixed point, too).
+    let mut g = p.g(&y)?;
+    for _ in 0..3 {
+        let (j, _) = p.jacobian(&y, &g)?;
+        let a = j.fixed_view::<4, 4>(0, 0).into_owned();
+        if let Some(step) = a.lu().solve(&(-g)) {
+            for k in 0..4 {
+                y[k] += step[k];
+            }
+        }
+        g = p.g(&y)?;
+        if g.amax() <= 1e-11 {
+            break;
+        }
+    }
+    let mut node = p.node(y, &g, None)?;
+    let mut points = vec![point(&p, &node)];
+    let mut specials = Vec::new();
+    on_point(from);
+    let mut h = H_MAX / 4.0;
+    let mut ended = None;
+    while points.len() < MAX_BRANCH_POINTS {
+        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return Err(ThudError::Cancelled);
+        }
+        let next = p.correct(&node, h).and_then(|(y, g, it)| p.node(y, &g, Some(&node.tangent)).map(|n| (n, it)));
+        let (next, iterations) = match next {
+            Ok(x) => x,
+            Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
+            Err(e) => {
+                h *= 0.5;
+                if h < H_MIN {
+                    ended = Some(format!("at {}: {}", p.value(node.y[4]), e));
+                    break;
+                }
+                continue;
+            }
+        };
+        let out = next.y[4] > 1.0 || next.y[4] < 0.0;
+        locate(&p, &node, &next, h, &mut specials);
+        if out {
+            // The last point on the range's end.
+            if let Ok(end) = land(&p, &node, &next) {
+                points.push(point(&p, &end));
+                on_point(p.value(end.y[4]));
+            }
+            break;
+        }
+        points.push(point(&p, &next));
+        on_point(p.value(next.y[4]));
+        node = next;
+        h = if iterations <= 3 { (h * 1.5).min(H_MAX) } else { h };
+    }
+    if points.len() >= MAX_BRANCH_POINTS {
+        ended = Some(format!("the work cap of {MAX_BRANCH_POINTS} points"));
+    }
+    Ok(Branch { name: vary.name().to_string(), unit: vary.unit().to_string(), points, specials, ended })
+}
+
+/// The point where the step from `a` to `b` crosses the range's end (secant on λ̃).
+fn land(p: &Problem, a: &Node, b: &Node) -> Result<Node, ThudError> {
+    let target = if b.y[4] > 1.0 { 1.0 } else { 0.0 };
+    let mut h = a.tangent.dot(&(b.y - a.y));
+    let mut lo = (0.0, a.y[4] - target);
+    let mut hi = (h, b.y[4] - target);
+    let mut best = None;
+    for _ in 0..6 {
+        h = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
+        let (y, g, _) = p.correct(a, h)?;
+        let n = p.node(y, &g, Some(&a.tangent))?;
+        let f = n.y[4] - target;
+        best = Some(n);
+        if f.abs() < 1e-10 {
+            break;
+        }
+        if f.signum() == lo.1.signum() {
+            lo = (h, f);
+        } else {
+            hi = (h, f);
+        }
+    }
+    best.ok_or_else(|| orbit::not_found("the range's end was not reached"))
+}
+
+/// Finds the special points between `a` and `b` (one step `h` apart) and appends them.
+fn locate(p: &Problem, a: &Node, b: &Node, h: f64, out: &mut Vec<SpecialPoint>) {
+    let (ta, tb) = (tests(a), tests(b));
+    let mut found = |kind: Special, f: &dyn Fn(&Node) -> f64| {
+        let x = secant(p, a, h, f).unwrap_or_else(|| {
+            // Linear interpolation where the secant could not be corrected.
+            let (fa, fb) = (f(a), f(b));
+            let s = fa / (fa - fb);
+            (
+                p.value(a.y[4] + s * (b.y[4] - a.y[4])),
+                a.orbit.amplitude_m + s * (b.orbit.amplitude_m - a.orbit.amplitude_m),
+            )
+        });
+        out.push(SpecialPoint { kind, value: x.0, amplitude_m: x.1 });
+    };
+    if ta.0.signum() != tb.0.signum() {
+        found(Special::Fold, &|n: &Node| n.tangent[4]);
+    }
+    if ta.1.signum() != tb.1.signum() && ta.3 == tb.3 {
+        found(Special::PeriodDoubling, &|n: &Node| (n.dp + Matrix4::identity()).determinant());
+    }
+    if ta.2 != tb.2 && ta.3 == tb.3 {
+        found(Special::NeimarkSacker, &|n: &Node| {
+            n.orbit.multipliers.iter().find(|m| m.im.abs() > 1e-9).map_or(0.0, |m| m.abs - 1.0)
+        });
+    }
+    if ta.3 != tb.3 {
+        let s = 0.5;
+        out.push(SpecialPoint {
+            kind: Special::Grazing,
+            value: p.value(a.y[4] + s * (b.y[4] - a.y[4])),
+            amplitude_m: a.orbit.amplitude_m + s * (b.orbit.amplitude_m - a.orbit.amplitude_m),
+        });
+    }
+}
+
+/// The root of the test function `f` between `a` (arclength 0) and arclength `h` by the secant
+/// method, each iterate corrected onto the branch: (value, amplitude).
+fn secant(p: &Problem, a: &Node, h: f64, f: &dyn Fn(&Node) -> f64) -> Option<(f64, f64)> {
+    let (y, g, _) = p.correct(a, h).ok()?;
+    let b = p.node(y, &g, Some(&a.tangent)).ok()?;
+    let (mut s0, mut f0) = (0.0, f(a));
+    let (mut s1, mut f1) = (h, f(&b));
+    let mut last = (p.value(b.y[4]), b.orbit.amplitude_m);
+    for _ in 0..8 {
+        if f1 == f0 {
+            break;
+        }
+        let s = s1 - f1 * (s1 - s0) / (f1 - f0);
+        let s = s.clamp(0.0, h);
+        let (y, g, _) = p.correct(a, s).ok()?;
+        let n = p.node(y, &g, Some(&a.tangent)).ok()?;
+        last = (p.value(n.y[4]), n.orbit.amplitude_m);
+        let fs = f(&n);
+        if (s - s1).abs() <= 1e-9 * h.abs().max(1e-12) || fs == 0.0 {
+            break;
+        }
+        (s0, f0, s1, f1) = (s1, f1, s, fs);
+    }
+    Some(last)
+}

@@ -1,0 +1,168 @@
+//! `thud continue --vary NAME=FROM:TO`: pseudo-arclength continuation of the design's periodic
+//! orbit over one numeric parameter (docs/model.md §6.7), through folds and along unstable
+//! parts, with its fold, period-doubling, Neimark–Sacker and grazing points. Text (the branch's
+//! stretches and special points), `--json` or `--csv` (one row per point).
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::design_args::{DesignArgs, ForceAmplitude};
+use super::format::num;
+use super::simulate::describe;
+use super::sweep::Target;
+use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::continuation::{self, Branch};
+use crate::design::Design;
+use crate::error::ThudError;
+use crate::orbit::Request;
+use crate::params::Spelling;
+use crate::study::Vary;
+
+#[derive(Debug, Clone, Args)]
+pub struct ContinueArgs {
+    #[command(flatten)]
+    design: DesignArgs<ForceAmplitude>,
+    /// The parameter to continue in, over its range: NAME=FROM:TO (e.g. f=3Hz:8Hz, force=1:4,
+    /// gap=1cm:3cm); the orbit is found at FROM.
+    #[arg(long, value_name = "NAME=FROM:TO", allow_hyphen_values = true)]
+    vary: String,
+    /// The orbit's period in forcing periods at FROM, 1 to 16 [default: the one the design's
+    /// motion repeats with].
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    period: Option<String>,
+    /// Continue the symmetric orbit, x(t + T/2) = −x(t).
+    #[arg(long)]
+    symmetric: bool,
+    /// Write the result (text, --json or --csv) to this file instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Replace the --out file if it exists.
+    #[arg(long)]
+    force: bool,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+#[derive(serde::Serialize)]
+struct BranchJson<'a> {
+    design: &'a Design,
+    #[serde(flatten)]
+    branch: &'a Branch,
+}
+
+/// `NAME=FROM:TO` (or `NAME=FROM:TO:N`, N ignored) as a two-value study axis.
+fn parse_vary(text: &str) -> Result<Vary, ThudError> {
+    let colons = text.split_once('=').map_or(0, |(_, spec)| spec.matches(':').count());
+    let full = if colons == 1 { format!("{text}:2") } else { text.to_string() };
+    let v = Vary::parse(&full, Spelling::Flag)?;
+    let (Some(&a), Some(&b)) = (v.values.first(), v.values.last()) else {
+        return Err(ThudError::invalid("--vary", format!("'{text}'; expected NAME=FROM:TO")));
+    };
+    Vary::of_values(v.name(), &[a, b], Spelling::Flag)
+}
+
+pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let d = a.design.design()?;
+    let target = Target::new(a.out.as_deref(), a.force)?;
+    let vary = parse_vary(&a.vary)?;
+    let periods = a
+        .period
+        .as_deref()
+        .map(|t| {
+            let n = crate::limits::ORBIT_PERIODS.parse_count("--period", t)?;
+            Ok::<u32, ThudError>(u32::try_from(n).unwrap_or(u32::MAX))
+        })
+        .transpose()?;
+    let req = Request { periods, symmetric: a.symmetric, guess: None };
+    let branch = continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(|e| match e.param() {
+        "force" => e.renamed("--force-amplitude"),
+        "period" => e.renamed("--period"),
+        "solver" => e.renamed("--solver"),
+        "vary" => e.renamed("--vary"),
+        _ => e,
+    })?;
+    super::output::check_finite(&branch)?;
+    let text = match a.output.format() {
+        OutputFormat::Json => {
+            let mut t = serde_json::to_string_pretty(&BranchJson { design: &d, branch: &branch })
+                .map_err(std::io::Error::from)?;
+            t.push('\n');
+            t
+        }
+        OutputFormat::Csv => csv(&branch),
+        OutputFormat::Text => text(&d, &branch),
+    };
+    target.write(&text, out)
+}
+
+/// The branch in words: its stretches of one orbit type and stability, and its special points.
+fn text(d: &Design, b: &Branch) -> String {
+    let unit = if b.unit.is_empty() { String::new() } else { format!(" {}", b.unit) };
+    let mut t = format!("design      {}\n", describe(d));
+    t += &format!("branch      {} points over {}", b.points.len(), b.name);
+    if let (Some(f), Some(l)) = (b.points.first(), b.points.last()) {
+        t += &format!(" {}{unit} → {}{unit}", num(f.value), num(l.value));
+    }
+    t += "\n\n  from        to          orbit     stability   amplitude (mm)\n";
+    let mut i = 0;
+    while i < b.points.len() {
+        let p = &b.points[i];
+        let mut j = i;
+        while j + 1 < b.points.len() && b.points[j + 1].orbit == p.orbit && b.points[j + 1].stable == p.stable {
+            j += 1;
+        }
+        let q = &b.points[j];
+        t += &format!(
+            "  {:<10}  {:<10}  {:<8}  {:<10}  {} → {}\n",
+            num(p.value),
+            num(q.value),
+            p.orbit,
+            if p.stable { "stable" } else { "unstable" },
+            num(p.amplitude_m * 1e3),
+            num(q.amplitude_m * 1e3)
+        );
+        i = j + 1;
+    }
+    if b.specials.is_empty() {
+        t += "\nno special point\n";
+    } else {
+        t += "\n  special point      at            amplitude (mm)\n";
+        for s in &b.specials {
+            t += &format!(
+                "  {:<17}  {:<12}  {}\n",
+                s.kind.label(),
+                format!("{}{unit}", num(s.value)),
+                num(s.amplitude_m * 1e3)
+            );
+        }
+    }
+    if let Some(why) = &b.ended {
+        t += &format!("\nthe branch ended early: {why}\n");
+    }
+    t
+}
+
+/// One row per point.
+fn csv(b: &Branch) -> String {
+    let col = crate::study::column(&b.name, &b.unit);
+    let mut t =
+        format!("{col},orbit,periods,impacts_per_orbit,stable,multiplier_abs_max,amplitude_m,x_m,v_m_s,z_m,zdot_m_s\n");
+    for p in &b.points {
+        t += &format!(
+            "{:e},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e}\n",
+            p.value,
+            p.orbit,
+            p.periods,
+            p.impacts_per_orbit,
+            p.stable,
+            p.multiplier_abs_max,
+            p.amplitude_m,
+            p.x_m,
+            p.v_m_s,
+            p.z_m,
+            p.zdot_m_s
+        );
+    }
+    t
+}
