@@ -137,9 +137,7 @@ fn the_continued_branch_is_the_orbit_found_at_each_value() {
     use thud::design::Design;
     use thud::params::Spelling;
     use thud::study::Vary;
-    let mut d = Design::default();
-    d.damper = design(0.03, 1.0, 5.5, 5.6e8, 2.0);
-    let d = d.check().unwrap();
+    let d = Design { damper: design(0.03, 1.0, 5.5, 5.6e8, 2.0), ..Design::default() }.check().unwrap();
     let vary = Vary::of_values("freq", &[5.5, 6.5], Spelling::Flag).unwrap();
     let req = Request { symmetric: true, ..Request::default() };
     let b = continue_branch(&d, &vary, &req, None, &|_| {}).unwrap();
@@ -219,4 +217,62 @@ fn the_orbit_commands_print_the_engines_orbit_and_refuse_bad_input() {
     assert_eq!(code, 0, "{err}");
     assert!(out.starts_with("freq_hz,orbit,"), "{out}");
     assert!(out.lines().count() > 10);
+}
+
+/// `forced-rattle` (docs/model.md §6.7): the stable continued branch of the symmetric 4/1 orbit
+/// from 3.3 Hz equals the simulated stroboscopic samples (after a long transient) to 1e-8 m, and
+/// the period doubling of the asymmetric 4/1 orbit is located within 0.01 Hz of where the
+/// simulated orbit's type changes from 4/1 to 8/2.
+#[test]
+fn forced_rattle_branches_match_the_simulation_and_locate_the_doubling() {
+    use thud::continuation::{continue_branch, Special};
+    use thud::dynamics::{impact_map, Orbit, Settings};
+    use thud::params::Spelling;
+    use thud::study::Vary;
+    let base = thud::presets::preset("forced-rattle").unwrap();
+    let at = |f: f64| {
+        let mut d = base.clone();
+        d.damper.freq_hz = f;
+        d.check().unwrap()
+    };
+    let simulated =
+        |f: f64| impact_map(&at(f), Settings { transient_periods: 500, periods: 32 }, "force", None).unwrap();
+    let vary = Vary::of_values("freq", &[3.3, 3.6], Spelling::Flag).unwrap();
+    let b = continue_branch(&at(3.3), &vary, &Request::default(), None, &|_| {}).unwrap();
+    assert!(b.points.iter().all(|p| p.stable && p.orbit == "4/1 sym"), "{:?}", b.points.iter().find(|p| !p.stable));
+    for p in b.points.iter().step_by(b.points.len() / 3) {
+        let run = simulated(p.value);
+        assert_eq!(run.orbit, Orbit::Periodic { impacts: 4, periods: 1, symmetric: true }, "{} Hz", p.value);
+        for s in &run.samples {
+            assert!((s.x_m - p.x_m).abs() < 1e-8, "{} Hz: x(kT) {} vs the branch's {}", p.value, s.x_m, p.x_m);
+            assert!((s.z_m - p.z_m).abs() < 1e-8, "{} Hz: z(kT) {} vs the branch's {}", p.value, s.z_m, p.z_m);
+        }
+    }
+    let vary = Vary::of_values("freq", &[3.68, 3.8], Spelling::Flag).unwrap();
+    let b = continue_branch(&at(3.68), &vary, &Request::default(), None, &|_| {}).unwrap();
+    let pd: Vec<_> = b.specials.iter().filter(|s| s.kind == Special::PeriodDoubling).collect();
+    assert_eq!(pd.len(), 1, "{:?}", b.specials);
+    let f = pd[0].value;
+    // The simulated diagram, each value started from the previous one's end (following the
+    // attractor up in frequency): where its orbit changes from 4/1 to 8/2.
+    let sweep =
+        Vary::of_values("freq", &(0..=40).map(|i| 3.68 + 0.0025 * f64::from(i)).collect::<Vec<_>>(), Spelling::Flag)
+            .unwrap();
+    let diagram = thud::dynamics::bifurcation(
+        &at(3.68),
+        &sweep,
+        Settings { transient_periods: 300, periods: 32 },
+        true,
+        "force",
+        None,
+        &|_| {},
+    )
+    .unwrap();
+    let up: Vec<_> = diagram.points.iter().filter(|p| p.direction == thud::response::Direction::Up).collect();
+    let first_doubled =
+        up.iter().position(|p| matches!(p.run.orbit, Orbit::Periodic { impacts: 8, periods: 2, .. })).unwrap();
+    assert!(matches!(up[first_doubled - 1].run.orbit, Orbit::Periodic { impacts: 4, periods: 1, .. }));
+    let change = 0.5 * (up[first_doubled - 1].value + up[first_doubled].value);
+    eprintln!("period doubling at {f} Hz; the simulated orbit doubles at {change} Hz");
+    assert!((f - change).abs() < 0.01, "{f} vs {change}");
 }

@@ -53,6 +53,9 @@ pub enum Special {
     PeriodDoubling,
     /// A complex pair crosses the unit circle.
     NeimarkSacker,
+    /// A real multiplier crosses +1 where the branch goes on (no fold): a branch point, e.g.
+    /// the symmetry-breaking pitchfork of a symmetric orbit.
+    BranchPoint,
     /// The impacts per orbit change: an impact appears or vanishes (a grazing contact).
     Grazing,
 }
@@ -64,6 +67,7 @@ impl Special {
             Special::Fold => "fold",
             Special::PeriodDoubling => "period doubling",
             Special::NeimarkSacker => "Neimark-Sacker",
+            Special::BranchPoint => "branch point",
             Special::Grazing => "grazing",
         }
     }
@@ -210,7 +214,7 @@ impl<'a> Problem<'a> {
             let g = self.g(&y)?;
             let arc = n.tangent.dot(&(y - n.y)) - h;
             let rhs = V5::new(g[0], g[1], g[2], g[3], arc);
-            let dy = svd.solve(&rhs, 1e-12).map_err(|e| orbit::not_found(e))?;
+            let dy = svd.solve(&rhs, 1e-12).map_err(orbit::not_found)?;
             y -= dy;
             if dy.amax() <= 1e-11 && g.amax() <= 1e-9 {
                 let g = self.g(&y)?;
@@ -221,6 +225,30 @@ impl<'a> Problem<'a> {
             }
         }
         Err(orbit::not_found("the corrector did not converge"))
+    }
+}
+
+impl Problem<'_> {
+    /// Steps over a point where the corrector fails (a grazing contact: an impact appearing or
+    /// vanishing) by a jump in the parameter, `JUMPS` of the range in the tangent's direction,
+    /// solving by Newton's method at the new value from the last state. The new node's tangent
+    /// keeps the parameter's direction.
+    fn jump(&self, n: &Node) -> Option<Node> {
+        const JUMPS: [f64; 3] = [2e-4, 1e-3, 5e-3];
+        let dir = if n.tangent[4] >= 0.0 { 1.0 } else { -1.0 };
+        for dl in JUMPS {
+            let lt = n.y[4] + dir * dl;
+            let Ok(mut sec) = self.section(lt) else { continue };
+            let u0 = n.y.fixed_rows::<4>(0).into_owned();
+            let Ok(root) = orbit::newton(&mut sec, u0) else { continue };
+            let y = V5::new(root.u[0], root.u[1], root.u[2], root.u[3], lt);
+            let Ok(g) = self.g(&y) else { continue };
+            let along = V5::new(0.0, 0.0, 0.0, 0.0, dir);
+            if let Ok(node) = self.node(y, &g, Some(&along)) {
+                return Some(node);
+            }
+        }
+        None
     }
 }
 
@@ -274,6 +302,65 @@ pub fn continue_branch(
     cancel: Option<&AtomicBool>,
     on_point: &dyn Fn(f64),
 ) -> Result<Branch, ThudError> {
+    let (p, mut node) = start(base, vary, req, cancel)?;
+    let mut b = Branch {
+        name: vary.name().to_string(),
+        unit: vary.unit().to_string(),
+        points: vec![point(&p, &node)],
+        specials: Vec::new(),
+        ended: None,
+    };
+    on_point(p.value(node.y[4]));
+    let mut h = H_MAX / 4.0;
+    while b.points.len() < MAX_BRANCH_POINTS {
+        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return Err(ThudError::Cancelled);
+        }
+        let next = p.correct(&node, h).and_then(|(y, g, it)| p.node(y, &g, Some(&node.tangent)).map(|n| (n, it)));
+        match next {
+            Ok((next, iterations)) => {
+                if advance(&p, &mut node, next, h, &mut b, on_point) {
+                    return Ok(b);
+                }
+                if iterations <= 3 {
+                    h = (h * 1.5).min(H_MAX);
+                }
+            }
+            Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
+            Err(e) => {
+                h *= 0.5;
+                if h >= H_MIN {
+                    continue;
+                }
+                // The corrector fails at any step (a grazing contact: the map's derivatives
+                // blow up): step over the point in the parameter.
+                let Some(next) = p.jump(&node) else {
+                    b.ended = Some(format!("at {} {}: {e}", num6(p.value(node.y[4])), vary.unit()));
+                    return Ok(b);
+                };
+                if advance(&p, &mut node, next, h, &mut b, on_point) {
+                    return Ok(b);
+                }
+                h = H_MAX / 16.0;
+            }
+        }
+    }
+    b.ended = Some(format!("the work cap of {MAX_BRANCH_POINTS} points"));
+    Ok(b)
+}
+
+/// Six significant digits.
+fn num6(v: f64) -> String {
+    format!("{v:.6}")
+}
+
+/// The problem and its first node: the orbit at the range's start, its section in flight.
+fn start<'a>(
+    base: &ValidDesign,
+    vary: &'a Vary,
+    req: &Request,
+    cancel: Option<&'a AtomicBool>,
+) -> Result<(Problem<'a>, Node), ThudError> {
     let (Some(&from), Some(&to)) = (vary.values.first(), vary.values.last()) else {
         return Err(ThudError::invalid("vary", "no values; give NAME=FROM:TO"));
     };
@@ -282,13 +369,11 @@ pub fn continue_branch(
     }
     let d0 = crate::study::set(base.design().clone(), vary.row, from).check()?;
     let first = orbit::find(&d0, req, cancel)?;
-    // The section: in flight, from the first orbit's impacts.
     let probe = Section::new(d0.damper, 0.0, 1, false, cancel);
     let omega = std::f64::consts::TAU * d0.damper.freq_hz;
-    let t = 1.0 / d0.damper.freq_hz;
     let s0 = [first.x_m, first.v_m_s, first.x_m + first.z_m, first.v_m_s + first.zdot_m_s];
     let n = first.periods;
-    let run = crate::damper::flow(&d0.damper, s0, 0.0, &[f64::from(n) * t], cancel);
+    let run = crate::damper::flow(&d0.damper, s0, 0.0, &[f64::from(n) / d0.damper.freq_hz], cancel);
     let phase = orbit::flight_phase(&run.impacts, 0.0, omega);
     let at = crate::damper::flow(&d0.damper, s0, 0.0, &[phase / omega], cancel);
     let s_phase = at.states.first().copied().ok_or_else(|| orbit::not_found("the run to the section stopped"))?;
@@ -304,8 +389,7 @@ pub fn continue_branch(
         v: probe.v,
         cancel,
     };
-    let u0 = Vector4::new(s_phase[0] / p.l, s_phase[1] / p.v, s_phase[2] / p.l, s_phase[3] / p.v);
-    let mut y = V5::new(u0[0], u0[1], u0[2], u0[3], 0.0);
+    let mut y = V5::new(s_phase[0] / p.l, s_phase[1] / p.v, s_phase[2] / p.l, s_phase[3] / p.v, 0.0);
     // Polish the first point on the fixed scales (the symmetric map's fixed point, too).
     let mut g = p.g(&y)?;
     for _ in 0..3 {
@@ -321,48 +405,25 @@ pub fn continue_branch(
             break;
         }
     }
-    let mut node = p.node(y, &g, None)?;
-    let mut points = vec![point(&p, &node)];
-    let mut specials = Vec::new();
-    on_point(from);
-    let mut h = H_MAX / 4.0;
-    let mut ended = None;
-    while points.len() < MAX_BRANCH_POINTS {
-        if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-            return Err(ThudError::Cancelled);
+    let node = p.node(y, &g, None)?;
+    Ok((p, node))
+}
+
+/// Takes `next` as the branch's next point after `node`, with the special points between them;
+/// on the range's end, the last point on it. Returns whether the branch is done.
+fn advance(p: &Problem, node: &mut Node, next: Node, h: f64, b: &mut Branch, on_point: &dyn Fn(f64)) -> bool {
+    locate(p, node, &next, h, &mut b.specials);
+    if next.y[4] > 1.0 || next.y[4] < 0.0 {
+        if let Ok(end) = land(p, node, &next) {
+            b.points.push(point(p, &end));
+            on_point(p.value(end.y[4]));
         }
-        let next = p.correct(&node, h).and_then(|(y, g, it)| p.node(y, &g, Some(&node.tangent)).map(|n| (n, it)));
-        let (next, iterations) = match next {
-            Ok(x) => x,
-            Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
-            Err(e) => {
-                h *= 0.5;
-                if h < H_MIN {
-                    ended = Some(format!("at {}: {}", p.value(node.y[4]), e));
-                    break;
-                }
-                continue;
-            }
-        };
-        let out = next.y[4] > 1.0 || next.y[4] < 0.0;
-        locate(&p, &node, &next, h, &mut specials);
-        if out {
-            // The last point on the range's end.
-            if let Ok(end) = land(&p, &node, &next) {
-                points.push(point(&p, &end));
-                on_point(p.value(end.y[4]));
-            }
-            break;
-        }
-        points.push(point(&p, &next));
-        on_point(p.value(next.y[4]));
-        node = next;
-        h = if iterations <= 3 { (h * 1.5).min(H_MAX) } else { h };
+        return true;
     }
-    if points.len() >= MAX_BRANCH_POINTS {
-        ended = Some(format!("the work cap of {MAX_BRANCH_POINTS} points"));
-    }
-    Ok(Branch { name: vary.name().to_string(), unit: vary.unit().to_string(), points, specials, ended })
+    b.points.push(point(p, &next));
+    on_point(p.value(next.y[4]));
+    *node = next;
+    false
 }
 
 /// The point where the step from `a` to `b` crosses the range's end (secant on λ̃).
@@ -407,6 +468,10 @@ fn locate(p: &Problem, a: &Node, b: &Node, h: f64, out: &mut Vec<SpecialPoint>) 
     };
     if ta.0.signum() != tb.0.signum() {
         found(Special::Fold, &|n: &Node| n.tangent[4]);
+    }
+    let bp = |n: &Node| (n.dp - Matrix4::identity()).determinant();
+    if ta.0.signum() == tb.0.signum() && bp(a).signum() != bp(b).signum() && ta.3 == tb.3 {
+        found(Special::BranchPoint, &bp);
     }
     if ta.1.signum() != tb.1.signum() && ta.3 == tb.3 {
         found(Special::PeriodDoubling, &|n: &Node| (n.dp + Matrix4::identity()).determinant());
