@@ -36,7 +36,8 @@ pub struct OrbitArgs {
     /// Also write the figure as PDF to this file.
     #[arg(long, value_name = "FILE")]
     pdf: Option<PathBuf>,
-    /// Write the table (text, --json or --csv) to this file instead of standard output.
+    /// Write the table (text, --json or --csv) to this file instead of standard output (`-`:
+    /// standard output); an existing file is kept unless --force.
     #[arg(long, value_name = "FILE")]
     pub(super) out: Option<PathBuf>,
     /// Replace the --out, --svg or --pdf file if it exists.

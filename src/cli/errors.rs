@@ -78,10 +78,12 @@ pub fn name_flag(e: &ThudError, flags: &[String]) -> String {
     if param.is_empty() || !flags.iter().any(|f| f == param) {
         return e.to_string();
     }
-    match e.clone().renamed(format!("--{param}")) {
+    // The flag's name: the engine's `force` is `--force-amplitude` (`--force` replaces a file).
+    let flag = format!("--{}", super::design_args::flag_of(param));
+    match e.clone().renamed(flag.clone()) {
         renamed if renamed.param() != param => renamed.to_string(),
         // A variant with a fixed parameter (no impact: `u0`) keeps its words under the flag.
-        _ => ThudError::invalid(format!("--{param}"), e.detail()).to_string(),
+        _ => ThudError::invalid(flag, e.detail()).to_string(),
     }
 }
 

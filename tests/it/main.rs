@@ -37,6 +37,7 @@ mod figures;
 mod files;
 mod fit_cli;
 mod fit_note;
+mod flag_names;
 mod forced;
 mod forced_cli;
 mod hostile_dynamics;
