@@ -117,7 +117,7 @@ fn a_device_fifo_or_folder_is_refused_even_with_force_and_left_as_it_was() {
     if private_full(&dev) {
         targets.push((dev.clone(), "character device; thud writes through only"));
     } else {
-        eprintln!("mknod not permitted: the device case runs on /dev/full in the next test only");
+        crate::support::skip::skip("mknod is not permitted (needs root): the case of a private device");
     }
     for env in STRATEGIES {
         for (target, kind) in &targets {
@@ -337,7 +337,7 @@ fn kill_9_mid_export_leaves_nothing_with_anonymous_temporary_files() {
     // which only SIGINT/SIGTERM/SIGHUP can clean up.)
     let probe = tempfile::tempdir().unwrap();
     if !tmpfile_supported(probe.path()) {
-        eprintln!("O_TMPFILE not supported in {}: skipped", probe.path().display());
+        crate::support::skip::skip(&format!("O_TMPFILE is not supported in {}", probe.path().display()));
         return;
     }
     signal_mid_export_leaves_nothing("-KILL", &[]);

@@ -292,7 +292,10 @@ fn a_closed_pipe_ends_quietly() {
 
 #[test]
 fn a_failed_write_to_stdout_is_reported() {
-    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else { return };
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        crate::support::skip::skip("/dev/full cannot be opened here");
+        return;
+    };
     let home = tempfile::tempdir().unwrap();
     let out = command(home.path(), &["simulate", "--csv"]).stdout(full).stderr(Stdio::piped()).output().unwrap();
     assert_eq!(out.status.code(), Some(1));
@@ -833,7 +836,7 @@ fn run_pty_script(script: &str) -> Option<(String, String)> {
         .env("XDG_DATA_HOME", home.path().join("data"))
         .output()
     else {
-        eprintln!("skipped: python3 (for its pty module) is not installed");
+        crate::support::skip::skip("python3 (for its pty module) is not installed");
         return None;
     };
     Some((String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into()))

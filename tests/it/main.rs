@@ -16,6 +16,7 @@ mod common;
 mod support {
     pub mod explorer;
     pub mod home;
+    pub mod skip;
     pub mod stranger;
     pub mod wait;
 }

@@ -284,7 +284,9 @@ fn pdftoppm(pdf: &Path) -> Option<Pixmap> {
         Ok(s) if s.success() => Some(Pixmap::load_png(prefix.with_extension("png")).unwrap()),
         Ok(s) => panic!("pdftoppm failed: {s}"),
         Err(e) => {
-            println!("skipped: the PDF itself is not rasterized, pdftoppm is not on PATH ({e}); install poppler-utils");
+            crate::support::skip::skip(&format!(
+                "the PDF itself is not rasterized, pdftoppm is not on PATH ({e}); install poppler-utils"
+            ));
             None
         }
     }
