@@ -353,7 +353,7 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
     for r in RANGES.iter().chain([&crate::limits::GRID_N, &crate::limits::THREADS]) {
         let flag =
             if r.param == "N" { "FROM:TO:N".to_string() } else { format!("--{}", design_args::flag_of(r.param)) };
-        s += &format!("  {flag:<15} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);
+        s += &format!("  {flag:<17} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);
     }
     s += "\nWork caps per run (--no-limit lifts them):\n";
     for c in &CAPS {
