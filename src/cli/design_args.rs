@@ -37,21 +37,10 @@ impl ForceFlag for ForceAmplitude {
     const OLD_SPELLING: bool = false;
 }
 
-/// The long flag of the force amplitude on every command.
-pub const FORCE_AMPLITUDE: &str = "force-amplitude";
+pub use super::errors::{flag_of, FORCE_AMPLITUDE};
 
 /// The clap id of the old spelling `--force` where it is refused ([`Force`]).
 const OLD_FORCE: &str = "old_force_spelling";
-
-/// The long flag (without dashes) of an engine parameter named bare (`force` → `force-amplitude`;
-/// every other name is its flag).
-pub fn flag_of(param: &str) -> &str {
-    if param == "force" {
-        FORCE_AMPLITUDE
-    } else {
-        param
-    }
-}
 
 /// A design: a preset, then any flag given explicitly overrides the preset's value. The flags
 /// are the rows of the engine's table [`params::DESIGN`] (name, placeholder, help, choices,
