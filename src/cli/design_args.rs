@@ -199,6 +199,8 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// `--force` where it is the amplitude's old spelling, naming `--force-amplitude`.
     fn base(&self) -> Result<Design, ThudError> {
         if let Some(typed) = &self.old_force {
+            // `--force --json`: the next flag taken as the value is no amplitude.
+            let typed = if typed.starts_with("--") { "" } else { typed.as_str() };
             let shown = super::errors::cut_chars(typed, 20);
             let what = if shown.is_empty() { String::new() } else { format!("{shown}: ") };
             let value = if shown.is_empty() { "F0" } else { shown.as_str() };

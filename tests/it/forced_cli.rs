@@ -128,14 +128,16 @@ fn the_old_spelling_of_the_force_amplitude_names_the_new_one() {
         &["restitution"][..],
         &["fit", "damper", "--data", "decay.csv"][..],
     ] {
-        for old in [&["--force", "1N"][..], &["--force"][..]] {
+        for old in [&["--force", "1N"][..], &["--force"][..], &["--force", "--json"][..]] {
             let args = [cmd, old].concat();
             let r = thud(&args);
             assert_eq!(r.code, 2, "{args:?}: {}", r.stderr);
             assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
             assert!(r.stderr.contains("--force-amplitude"), "{args:?}: {}", r.stderr);
-            if old.len() == 2 {
-                assert!(r.stderr.contains("1N"), "{args:?}: {}", r.stderr);
+            if old == ["--force", "1N"] {
+                assert!(r.stderr.contains("give --force-amplitude 1N"), "{args:?}: {}", r.stderr);
+            } else {
+                assert!(r.stderr.contains("give --force-amplitude F0"), "{args:?}: {}", r.stderr);
             }
             assert!(r.stdout.is_empty(), "{args:?}: {}", r.stdout);
         }
