@@ -99,7 +99,7 @@ fn responses(c: &mut Criterion) {
     cli.damper.v0_m_s = 0.0;
     cli.damper.freq_hz = freqs[0];
     let cli = cli.check().unwrap();
-    g.bench_function("response 101 points settled (thud response --force 1N)", |b| {
+    g.bench_function("response 101 points settled (thud response --force-amplitude 1N)", |b| {
         b.iter(|| response(black_box(&cli), &freqs, &ResponseOptions::default(), None, &|| {}).unwrap());
     });
     g.finish();

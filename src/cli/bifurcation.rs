@@ -36,7 +36,8 @@ pub struct OrbitArgs {
     /// Also write the figure as PDF to this file.
     #[arg(long, value_name = "FILE")]
     pdf: Option<PathBuf>,
-    /// Write the table (text, --json or --csv) to this file instead of standard output.
+    /// Write the table (text, --json or --csv) to this file instead of standard output (`-`:
+    /// standard output); an existing file is kept unless --force.
     #[arg(long, value_name = "FILE")]
     pub(super) out: Option<PathBuf>,
     /// Replace the --out, --svg or --pdf file if it exists.
@@ -59,8 +60,27 @@ impl OrbitArgs {
         Ok(Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods })
     }
 
-    /// The targets, each checked before any work.
+    /// The targets, each checked before any work; two outputs naming one file (or both going
+    /// to standard output) are refused before anything is written.
     fn targets(&self) -> Result<[Target<'_>; 3], ThudError> {
+        let outputs = [
+            ("--out", self.out.as_deref().unwrap_or(std::path::Path::new("-"))),
+            ("--svg", self.svg.as_deref().unwrap_or(std::path::Path::new(""))),
+            ("--pdf", self.pdf.as_deref().unwrap_or(std::path::Path::new(""))),
+        ];
+        for (i, (flag, path)) in outputs.iter().enumerate() {
+            if path.as_os_str().is_empty() {
+                continue;
+            }
+            if let Some((other, _)) = outputs[..i].iter().find(|(_, p)| same_output(p, path)) {
+                let what = if fsio::is_stdout(path) {
+                    format!("standard output carries the {other} output already (without --out, the table)")
+                } else {
+                    format!("'{}' is the {other} file too", fsio::shown(path))
+                };
+                return Err(ThudError::invalid(*flag, format!("{what}; give each output a file of its own")));
+            }
+        }
         Ok([
             Target::new(self.out.as_deref(), self.force)?,
             Target::new(self.svg.as_deref(), self.force)?,
@@ -69,6 +89,8 @@ impl OrbitArgs {
     }
 
     /// Writes the table as `--json`, `--csv` or text, and the figure to `--svg` and `--pdf`.
+    /// Every output is made (and the table checked) before the first file is written, so a
+    /// failure to draw one leaves every file as it was.
     pub(super) fn write(
         &self,
         table: impl FnOnce(OutputFormat) -> Result<String, CliError>,
@@ -77,16 +99,20 @@ impl OrbitArgs {
     ) -> Result<(), CliError> {
         let [text_target, _, _] = self.targets()?;
         let text = table(self.output.format())?;
-        if self.svg.is_some() || self.pdf.is_some() {
-            let svg = self.ascii.figure(figure());
-            if let Some(p) = &self.svg {
-                write_bytes(p, svg.as_bytes(), self.force)?;
-            }
-            if let Some(p) = &self.pdf {
-                let pdf = crate::export::pdf::from_svg(&svg)
-                    .map_err(|e| ThudError::invalid("--pdf", format!("cannot draw the PDF: {e}")))?;
-                write_bytes(p, &pdf, self.force)?;
-            }
+        super::output::check_text(&text)?;
+        let svg = (self.svg.is_some() || self.pdf.is_some()).then(|| self.ascii.figure(figure()));
+        let pdf = match (&self.pdf, &svg) {
+            (Some(_), Some(svg)) => Some(
+                crate::export::pdf::from_svg(svg)
+                    .map_err(|e| ThudError::invalid("--pdf", format!("cannot draw the PDF: {e}")))?,
+            ),
+            _ => None,
+        };
+        if let (Some(p), Some(svg)) = (&self.svg, &svg) {
+            write_bytes(p, svg.as_bytes(), self.force)?;
+        }
+        if let (Some(p), Some(pdf)) = (&self.pdf, &pdf) {
+            write_bytes(p, pdf, self.force)?;
         }
         text_target.write(&text, out)
     }
@@ -94,6 +120,26 @@ impl OrbitArgs {
     /// Checks the files up front (an existing one without --force is refused before the work).
     pub(super) fn check_targets(&self) -> Result<(), ThudError> {
         self.targets().map(|_| ())
+    }
+}
+
+/// Whether two outputs go to one place: both to standard output (`-`), or one file named two
+/// ways (`o.svg`, `./o.svg`, `dir/../o.svg`, a symbolic link to the folder).
+fn same_output(a: &std::path::Path, b: &std::path::Path) -> bool {
+    if fsio::is_stdout(a) || fsio::is_stdout(b) {
+        return fsio::is_stdout(a) && fsio::is_stdout(b);
+    }
+    // The folder resolved, the name as given: the file itself need not exist yet.
+    let place = |p: &std::path::Path| {
+        let dir = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => std::path::Path::new("."),
+        };
+        dir.canonicalize().ok().zip(p.file_name().map(std::ffi::OsStr::to_os_string))
+    };
+    match (place(a), place(b)) {
+        (Some(x), Some(y)) => x == y,
+        _ => a == b,
     }
 }
 

@@ -11,29 +11,36 @@ use crate::params::{self, Accepts, Group, Input, Param, Spelling};
 use crate::presets;
 use crate::units::Kind;
 
-/// The flag that sets the force amplitude F0: `--force` (with the alias `--force-amplitude`)
-/// everywhere but `export` and `sweep`, whose `--force` replaces an existing file; there it is
-/// `--force-amplitude` alone.
+/// The force amplitude F0 is `--force-amplitude` on every command: `--force` replaces an output
+/// file wherever a command writes one. `F` says whether the command has a `--force` of its own
+/// ([`ForceAmplitude`]) or not ([`Force`]: then `--force`, the amplitude's name before, is
+/// refused with a line naming `--force-amplitude`).
 pub trait ForceFlag: Clone + std::fmt::Debug {
-    /// The flag's long name, without dashes.
-    const NAME: &'static str;
+    /// Whether `--force` is the old spelling of the amplitude here (refused, naming the new one).
+    const OLD_SPELLING: bool;
 }
 
-/// `--force F0` (alias `--force-amplitude`).
+/// A command without a file to replace: `--force-amplitude F0`, and `--force` refused with a
+/// line naming `--force-amplitude`.
 #[derive(Debug, Clone)]
 pub struct Force;
 
 impl ForceFlag for Force {
-    const NAME: &'static str = "force";
+    const OLD_SPELLING: bool = true;
 }
 
-/// `--force-amplitude F0` (for `export`, where `--force` replaces a file).
+/// A command whose own `--force` replaces a file: `--force-amplitude F0` alone.
 #[derive(Debug, Clone)]
 pub struct ForceAmplitude;
 
 impl ForceFlag for ForceAmplitude {
-    const NAME: &'static str = "force-amplitude";
+    const OLD_SPELLING: bool = false;
 }
+
+pub use super::errors::{flag_of, FORCE_AMPLITUDE};
+
+/// The clap id of the old spelling `--force` where it is refused ([`Force`]).
+const OLD_FORCE: &str = "old_force_spelling";
 
 /// A design: a preset, then any flag given explicitly overrides the preset's value. The flags
 /// are the rows of the engine's table [`params::DESIGN`] (name, placeholder, help, choices,
@@ -44,8 +51,10 @@ pub struct DesignArgs<F: ForceFlag = Force> {
     /// `--preset`.
     preset: String,
     /// The design flags given, as (row name, value) in table order; the force amplitude under
-    /// the name this command's flag has (`force` or `force-amplitude`).
+    /// its flag's name (`force-amplitude`).
     given: Vec<(String, Input)>,
+    /// `--force` where it is the amplitude's old spelling ([`Force`]), as typed (empty: no value).
+    old_force: Option<String>,
     force: std::marker::PhantomData<F>,
 }
 
@@ -54,10 +63,10 @@ fn id(name: &str) -> String {
     name.replace('-', "_")
 }
 
-/// The flag of one row of the engine's table on a command whose force flag is `F`.
-fn flag<F: ForceFlag>(p: &Param<params::DesignDraft>) -> Arg {
+/// The flag of one row of the engine's table (the force amplitude as `--force-amplitude`).
+fn flag(p: &Param<params::DesignDraft>) -> Arg {
     let (long, alias) = match (p.name, p.alias) {
-        ("force", Some(alias)) if F::NAME == alias => (alias, None),
+        ("force", _) => (FORCE_AMPLITUDE, None),
         (name, alias) => (name, alias),
     };
     table_flag(p, long, alias, false)
@@ -114,11 +123,12 @@ pub(crate) fn table_value<T>(p: &Param<T>, m: &ArgMatches, long: &str) -> Option
     }
 }
 
-/// The row's long flag on a command whose force flag is `F`.
-fn long<F: ForceFlag>(p: &Param<params::DesignDraft>) -> &'static str {
-    match p.alias {
-        Some(alias) if p.name == "force" && F::NAME == alias => alias,
-        _ => p.name,
+/// The row's long flag (the force amplitude's is `--force-amplitude`).
+fn long(p: &Param<params::DesignDraft>) -> &'static str {
+    if p.name == "force" {
+        FORCE_AMPLITUDE
+    } else {
+        p.name
     }
 }
 
@@ -131,9 +141,22 @@ impl<F: ForceFlag> Args for DesignArgs<F> {
             .action(ArgAction::Set)
             .value_parser(clap::value_parser!(String))
             .help("Starting design (`thud presets` lists them: default, paper-fig9, paper-table3, quiet-nylon, …)");
-        let ids = std::iter::once("preset".to_string()).chain(params::DESIGN.iter().map(|p| id(long::<F>(p))));
+        let ids = std::iter::once("preset".to_string()).chain(params::DESIGN.iter().map(|p| id(long(p))));
         let cmd = cmd.group(ArgGroup::new("DesignArgs").multiple(true).args(ids)).arg(preset);
-        params::DESIGN.iter().fold(cmd, |cmd, p| cmd.arg(flag::<F>(p)))
+        let cmd = params::DESIGN.iter().fold(cmd, |cmd, p| cmd.arg(flag(p)));
+        if !F::OLD_SPELLING {
+            return cmd;
+        }
+        // The amplitude's old name, kept only to say the new one (hidden from help).
+        cmd.arg(
+            Arg::new(OLD_FORCE)
+                .long("force")
+                .hide(true)
+                .num_args(0..=1)
+                .allow_hyphen_values(true)
+                .action(ArgAction::Set)
+                .value_parser(clap::value_parser!(String)),
+        )
     }
 
     fn augment_args_for_update(cmd: Command) -> Command {
@@ -146,10 +169,15 @@ impl<F: ForceFlag> FromArgMatches for DesignArgs<F> {
         let preset = m.get_one::<String>("preset").cloned().unwrap_or_else(|| "default".to_string());
         let mut given = Vec::new();
         for p in params::DESIGN {
-            let name = long::<F>(p);
+            let name = long(p);
             given.extend(table_value(p, m, name).map(|v| (name.to_string(), v)));
         }
-        Ok(DesignArgs { preset, given, force: std::marker::PhantomData })
+        let old_force = if F::OLD_SPELLING && m.contains_id(OLD_FORCE) {
+            Some(m.get_one::<String>(OLD_FORCE).cloned().unwrap_or_default())
+        } else {
+            None
+        };
+        Ok(DesignArgs { preset, given, old_force, force: std::marker::PhantomData })
     }
 
     fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
@@ -167,8 +195,23 @@ impl<F: ForceFlag> DesignArgs<F> {
         params::design(self.base()?, &self.given, Spelling::Flag)
     }
 
-    /// The preset with the user's settings: its thresholds and its `[design]` defaults.
+    /// The preset with the user's settings: its thresholds and its `[design]` defaults. Refuses
+    /// `--force` where it is the amplitude's old spelling, naming `--force-amplitude`.
     fn base(&self) -> Result<Design, ThudError> {
+        if let Some(typed) = &self.old_force {
+            // `--force --json`: the next flag taken as the value is no amplitude.
+            let typed = if typed.starts_with("--") { "" } else { typed.as_str() };
+            let shown = super::errors::cut_chars(typed, 20);
+            let what = if shown.is_empty() { String::new() } else { format!("{shown}: ") };
+            let value = if shown.is_empty() { "F0" } else { shown.as_str() };
+            return Err(ThudError::invalid(
+                "--force",
+                format!(
+                    "{what}the force amplitude is --force-amplitude now (--force replaces an output file); \
+                     give --force-amplitude {value}"
+                ),
+            ));
+        }
         let mut d = presets::preset(&self.preset)?;
         let settings = super::settings::load();
         d.thresholds = settings.thresholds(d.thresholds);
@@ -178,13 +221,13 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// The design of a frequency response from these flags and its frequencies: `freqs_hz`
     /// as given, else the engine's default band of the design ([`params::response_setup`]).
     pub fn response_setup(&self, freqs_hz: Option<Vec<f64>>) -> Result<(ValidDesign, Vec<f64>), ThudError> {
-        params::response_setup(self.base()?, &self.given, Spelling::Flag, freqs_hz, F::NAME)
+        params::response_setup(self.base()?, &self.given, Spelling::Flag, freqs_hz, FORCE_AMPLITUDE)
     }
 
     /// The text typed for the row `name` (as in the table; the force under either name).
     fn text(&self, name: &str) -> Option<String> {
         self.given.iter().find_map(|(n, v)| match v {
-            Input::Text(t) if n == name || (name == "force" && n == F::NAME) => Some(t.clone()),
+            Input::Text(t) if n == name || (name == "force" && n == FORCE_AMPLITUDE) => Some(t.clone()),
             _ => None,
         })
     }
@@ -200,9 +243,7 @@ impl<F: ForceFlag> DesignArgs<F> {
         let typed: Vec<String> = params::DESIGN
             .iter()
             .filter(|p| p.range().is_some() && !matches!(p.group, Group::Listener | Group::Study))
-            .filter_map(|p| {
-                self.text(p.name).map(|t| format!("--{} {}", long::<F>(p), super::errors::cut_chars(&t, 20)))
-            })
+            .filter_map(|p| self.text(p.name).map(|t| format!("--{} {}", long(p), super::errors::cut_chars(&t, 20))))
             .collect();
         typed.join(", ")
     }
@@ -241,7 +282,7 @@ impl<F: ForceFlag> DesignArgs<F> {
                 let key = from_config(r.param).unwrap_or_default();
                 (format!("{key} in {} [design]", crate::config::CONFIG_FILE), format!("{} {unit}", short(v)))
             }
-            Some((v, unit)) => (format!("--{}", r.param), self.shown(r.param, v, unit)),
+            Some((v, unit)) => (format!("--{}", flag_of(r.param)), self.shown(r.param, v, unit)),
             None => (counted.0.to_string(), counted.1.to_string()),
         };
         let hint = hint(&r, counted.0);

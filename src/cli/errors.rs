@@ -15,6 +15,19 @@ pub const MAX_VALUE_CHARS: usize = 60;
 /// Longest message (in characters) printed, after the values have been cut.
 const MAX_MESSAGE_CHARS: usize = 400;
 
+/// The long flag of the force amplitude on every command (`--force` replaces a file).
+pub const FORCE_AMPLITUDE: &str = "force-amplitude";
+
+/// The long flag (without dashes) of an engine parameter named bare (`force` → `force-amplitude`;
+/// every other name is its flag).
+pub fn flag_of(param: &str) -> &str {
+    if param == "force" {
+        FORCE_AMPLITUDE
+    } else {
+        param
+    }
+}
+
 /// What can go wrong in a command.
 #[derive(Debug)]
 pub enum CliError {
@@ -78,10 +91,12 @@ pub fn name_flag(e: &ThudError, flags: &[String]) -> String {
     if param.is_empty() || !flags.iter().any(|f| f == param) {
         return e.to_string();
     }
-    match e.clone().renamed(format!("--{param}")) {
+    // The flag's name: the engine's `force` is `--force-amplitude` (`--force` replaces a file).
+    let flag = format!("--{}", flag_of(param));
+    match e.clone().renamed(flag.clone()) {
         renamed if renamed.param() != param => renamed.to_string(),
         // A variant with a fixed parameter (no impact: `u0`) keeps its words under the flag.
-        _ => ThudError::invalid(format!("--{param}"), e.detail()).to_string(),
+        _ => ThudError::invalid(flag, e.detail()).to_string(),
     }
 }
 

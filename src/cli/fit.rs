@@ -40,7 +40,7 @@ struct StructureArgs {
     #[arg(long, value_name = "FILE")]
     data: OsString,
     /// The main mass M (kg; 12kg, 500g): K = M·ω_n², C = 2·M·ζ·ω_n.
-    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     main_mass: String,
     /// Save the fitted structure (the default design with this M, K and C) as a design NAME
     /// for `thud tui --design NAME`.

@@ -361,8 +361,9 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
     }
     let mut s = String::from("Ranges (a plain number is in the unit shown; θ is narrowed by the source type):\n");
     for r in RANGES.iter().chain([&crate::limits::GRID_N, &crate::limits::THREADS]) {
-        let flag = if r.param == "N" { "FROM:TO:N".to_string() } else { format!("--{}", r.param) };
-        s += &format!("  {flag:<15} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);
+        let flag =
+            if r.param == "N" { "FROM:TO:N".to_string() } else { format!("--{}", design_args::flag_of(r.param)) };
+        s += &format!("  {flag:<17} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);
     }
     s += "\nWork caps per run (--no-limit lifts them):\n";
     for c in &CAPS {

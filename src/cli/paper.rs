@@ -14,7 +14,7 @@ use crate::paper;
 
 #[derive(Debug, Clone, Args)]
 pub struct PaperArgs {
-    /// Which table or figure (see --list), or `all` with --out DIR for every one as CSV/SVG (and PDF with --pdf) plus REPORT.md.
+    /// Which table or figure (see --list), or `all` with --out DIR for every one as CSV/SVG (and PDF with --with-pdf) plus REPORT.md.
     #[arg(value_name = "ID", required_unless_present = "list")]
     id: Option<String>,
     /// List every table and figure that can be reproduced.
@@ -31,7 +31,12 @@ pub struct PaperArgs {
     force: bool,
     /// With `all`: each figure also as ID.pdf beside its ID.svg (text in an embedded DejaVu Sans).
     #[arg(long)]
-    pdf: bool,
+    with_pdf: bool,
+    /// `--pdf`, this switch's name before: `--pdf FILE` names a figure's PDF file elsewhere, so
+    /// here it is refused with a line naming `--with-pdf` (hidden from help).
+    #[arg(long = "pdf", hide = true, num_args = 0..=1, value_name = "FILE")]
+    #[allow(clippy::option_option)]
+    old_pdf: Option<Option<PathBuf>>,
     #[command(flatten)]
     ascii: super::AsciiArgs,
     #[command(flatten)]
@@ -46,9 +51,16 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
         }
         return out.text(&s);
     }
+    if a.old_pdf.is_some() {
+        return Err(ThudError::invalid(
+            "--pdf",
+            "`thud paper all` writes each figure's PDF with --with-pdf (--pdf FILE names one figure's PDF on bifurcation, impact-map and basins)",
+        )
+        .into());
+    }
     let id = a.id.as_deref().unwrap_or_default().to_ascii_lowercase();
     if id == "all" {
-        return all(a.out.as_deref(), Overwrite::from_force(a.force), a.pdf, a.ascii);
+        return all(a.out.as_deref(), Overwrite::from_force(a.force), a.with_pdf, a.ascii);
     }
     if a.ascii.ascii {
         return Err(ThudError::invalid(
@@ -57,10 +69,10 @@ pub fn run(a: &PaperArgs, out: &mut Out) -> Result<(), CliError> {
         )
         .into());
     }
-    if a.pdf {
+    if a.with_pdf {
         return Err(ThudError::invalid(
-            "--pdf",
-            format!("PDF figures are made by `thud paper all --pdf --out DIR`, not for '{id}'"),
+            "--with-pdf",
+            format!("PDF figures are made by `thud paper all --with-pdf --out DIR`, not for '{id}'"),
         )
         .into());
     }

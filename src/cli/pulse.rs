@@ -22,7 +22,7 @@ pub struct PulseArgs {
     preset: Option<String>,
     #[command(flatten)]
     impact: ImpactArgs,
-    /// Waveform points.
+    /// Points of the waveform.
     #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
     points: String,
     #[command(flatten)]

@@ -227,12 +227,12 @@ fn examples(path: &[String]) -> Vec<(&'static str, &'static str)> {
         ["impact-map"] => vec![("thud impact-map --preset forced-rattle --svg map.svg", "phase against impact speed")],
         ["basins"] => vec![("thud basins --preset forced-rattle --grid 20 --svg basins.svg", "which start reaches which orbit")],
         ["merge"] => vec![("thud merge part*.jsonl --json", "the whole chart from its parts")],
-        ["response"] => vec![("thud response --force 1N --freqs 3Hz:8Hz:101 --csv", "amplitude and Leq against frequency")],
+        ["response"] => vec![("thud response --force-amplitude 1N --freqs 3Hz:8Hz:101 --csv", "amplitude and Leq against frequency")],
         ["restitution"] => vec![("thud restitution --json", "restitution against impact mass (Fig 13)")],
         ["paper"] => vec![
             ("thud paper table3", "Table 3 beside the paper's numbers"),
             ("thud paper --list", "every item"),
-            ("thud paper all --pdf --out paper/", "every item as CSV, its figure as SVG and PDF"),
+            ("thud paper all --with-pdf --out paper/", "every item as CSV, its figure as SVG and PDF"),
         ],
         ["export"] | ["export", "wav"] => vec![
             ("thud export wav --preset steel-ball --out steel.wav", "the rattle, 16-bit PCM, 20 Pa full scale"),

@@ -7,8 +7,8 @@ use super::CliError;
 /// Options of the explorer.
 #[derive(Debug, Clone, Default, Args)]
 pub struct TuiArgs {
-    /// Starting design: default, paper-fig9, paper-table3.
-    #[arg(long, default_value = "default")]
+    /// Starting design (`thud presets` lists them: default, paper-fig9, paper-table3, quiet-nylon, …).
+    #[arg(long, value_name = "P", default_value = "default")]
     pub preset: String,
     #[command(flatten)]
     pub ascii: super::AsciiArgs,

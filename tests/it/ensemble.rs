@@ -241,7 +241,7 @@ fn an_ensemble_with_a_ball_position_is_refused_naming_both() {
     for args in [
         &["simulate", "--ensemble", "4", "--ball-position", "1cm"][..],
         &["sweep", "--masses", "30g:40g:2", "--gaps", "3cm:4cm:2", "--ensemble", "2", "--ball-position", "0"],
-        &["response", "--force", "1N", "--freqs", "4Hz:5Hz:2", "--ensemble", "3", "--ball-position", "-1cm"],
+        &["response", "--force-amplitude", "1N", "--freqs", "4Hz:5Hz:2", "--ensemble", "3", "--ball-position", "-1cm"],
     ] {
         let (code, out, err) = thud(args);
         assert_eq!(code, 2, "{args:?}: {err}");
@@ -269,7 +269,7 @@ fn an_ensemble_with_a_ball_position_is_refused_naming_both() {
 /// and each frequency's p10/median/p90 are the nearest-rank percentiles of those runs.
 #[test]
 fn a_response_ensemble_is_its_runs_and_their_spread() {
-    let base = ["response", "--force", "1N", "--freqs", "4.6Hz:5.4Hz:3", "--periods", "4", "--duration", "1"];
+    let base = ["response", "--force-amplitude", "1N", "--freqs", "4.6Hz:5.4Hz:3", "--periods", "4", "--duration", "1"];
     let json = |extra: &[&str]| -> Value {
         let args: Vec<&str> = base.iter().chain(extra).chain(&["--json"]).copied().collect();
         serde_json::from_str(&ok(&args)).unwrap()
@@ -314,7 +314,7 @@ fn a_response_ensemble_is_its_runs_and_their_spread() {
     assert_eq!(csv.lines().count(), 4);
     // The work is capped over all the runs, before any starts.
     let (code, _, err) =
-        thud(&["response", "--force", "1", "--freqs", "3:8:1000", "--periods", "100", "--ensemble", "10"]);
+        thud(&["response", "--force-amplitude", "1", "--freqs", "3:8:1000", "--periods", "100", "--ensemble", "10"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("forcing periods"), "{err}");
 }

@@ -308,7 +308,7 @@ fn cli_wav_formats_parse_back_and_pcm_clips_with_a_warning() {
     let loud: Vec<i16> = hound::WavReader::open(p("loud.wav")).unwrap().samples::<i16>().map(Result::unwrap).collect();
     assert!(loud.iter().any(|&v| v == i16::MAX || v == -i16::MAX) && !loud.contains(&i16::MIN));
     if !python3() {
-        eprintln!("python3 not found: Python's wave check skipped");
+        crate::support::skip::skip("python3 is not installed: Python's `wave` check of the files");
         return;
     }
     // Python's standard `wave` module (which refuses WAVE_FORMAT_EXTENSIBLE before 3.12) reads the

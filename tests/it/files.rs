@@ -117,7 +117,7 @@ fn a_device_fifo_or_folder_is_refused_even_with_force_and_left_as_it_was() {
     if private_full(&dev) {
         targets.push((dev.clone(), "character device; thud writes through only"));
     } else {
-        eprintln!("mknod not permitted: the device case runs on /dev/full in the next test only");
+        crate::support::skip::skip("mknod is not permitted (needs root): the case of a private device");
     }
     for env in STRATEGIES {
         for (target, kind) in &targets {
@@ -337,7 +337,7 @@ fn kill_9_mid_export_leaves_nothing_with_anonymous_temporary_files() {
     // which only SIGINT/SIGTERM/SIGHUP can clean up.)
     let probe = tempfile::tempdir().unwrap();
     if !tmpfile_supported(probe.path()) {
-        eprintln!("O_TMPFILE not supported in {}: skipped", probe.path().display());
+        crate::support::skip::skip(&format!("O_TMPFILE is not supported in {}", probe.path().display()));
         return;
     }
     signal_mid_export_leaves_nothing("-KILL", &[]);
@@ -433,4 +433,34 @@ fn a_config_over_the_size_limit_is_refused_and_a_symlinked_one_is_used() {
     assert!(err.is_empty(), "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["design"]["thresholds"]["spl_db"], 90.0);
+}
+
+#[test]
+fn two_outputs_naming_one_file_are_refused_before_anything_is_written() {
+    // `--svg`, `--pdf` and `--out` of one run are three files: two of them naming one place
+    // (however spelled) is refused with one line before any work, and nothing is written or
+    // replaced, with --force too; so is a figure on standard output beside the table.
+    let home = tempfile::tempdir().unwrap();
+    fs::create_dir(home.path().join("sub")).unwrap();
+    fs::write(home.path().join("old.x"), "kept").unwrap();
+    for cmd in ["bifurcation", "impact-map", "basins"] {
+        let base: Vec<&str> = match cmd {
+            "bifurcation" => vec![cmd, "--preset", "forced-rattle", "--vary", "f=7Hz:8Hz:3"],
+            _ => vec![cmd, "--preset", "forced-rattle"],
+        };
+        for (outputs, needles) in [
+            (&["--svg", "o.x", "--out", "o.x"][..], &["--out", "o.x", "--svg"][..]),
+            (&["--svg", "o.x", "--pdf", "sub/../o.x"][..], &["--pdf", "--svg"][..]),
+            (&["--svg", "old.x", "--pdf", "./old.x", "--force"][..], &["--pdf", "old.x"][..]),
+            (&["--out", "p.x", "--pdf", "p.x", "--force"][..], &["--pdf", "p.x", "--out"][..]),
+            (&["--svg", "-"][..], &["--svg", "standard output"][..]),
+            (&["--out", "-", "--pdf", "-"][..], &["--pdf", "standard output"][..]),
+        ] {
+            let args = [&base[..], outputs].concat();
+            let (code, out, err) = run(&args, home.path(), &[]);
+            one_line_exit_2(code, &out, &err, needles);
+            assert_eq!(names(home.path()), ["old.x", "sub"], "{args:?}");
+            assert_eq!(fs::read_to_string(home.path().join("old.x")).unwrap(), "kept", "{args:?}");
+        }
+    }
 }

@@ -44,7 +44,7 @@ fn refused(args: &[&str], needles: &[&str]) {
 /// spells them (issue 26, item 5; CHANGELOG): every number and every other byte as it was.
 #[test]
 fn a_forced_simulation_reports_its_steady_state() {
-    let out = ok(&["simulate", "--v0", "0", "--force", "1N", "--freq", "5.5Hz", "--duration", "6", "--json"]);
+    let out = ok(&["simulate", "--v0", "0", "--force-amplitude", "1N", "--freq", "5.5Hz", "--duration", "6", "--json"]);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let s = &v["steady"];
     for key in ["amplitude_m", "amplitude_linear_m", "reduction_db", "impacts_per_period", "leq_db", "window_start_s"] {
@@ -60,7 +60,7 @@ fn a_forced_simulation_reports_its_steady_state() {
     for key in ["n_impacts", "impacts", "maxima", "energy", "final_time_s", "truncated", "u0_max_m_s"] {
         assert!(!v[key].is_null(), "{key}");
     }
-    let text = ok(&["simulate", "--v0", "0", "--force", "1N", "--freq", "5.5Hz", "--duration", "6"]);
+    let text = ok(&["simulate", "--v0", "0", "--force-amplitude", "1N", "--freq", "5.5Hz", "--duration", "6"]);
     assert!(
         text.contains("steady    last 10 periods")
             && text.contains("Leq")
@@ -75,7 +75,7 @@ fn a_forced_simulation_reports_its_steady_state() {
         "simulate",
         "--v0",
         "0",
-        "--force",
+        "--force-amplitude",
         "1N",
         "--freq",
         "3Hz",
@@ -93,23 +93,55 @@ fn a_forced_simulation_reports_its_steady_state() {
 
 #[test]
 fn forcing_flags_are_checked_and_named() {
-    refused(&["simulate", "--force", "1N"], &["--freq"]);
-    refused(&["simulate", "--force", "-1"], &["--force", "0 to 1e6 N"]);
-    refused(&["simulate", "--force", "1kg", "--freq", "5"], &["--force", "unknown unit"]);
-    refused(&["simulate", "--force", "1", "--freq", "0"], &["--freq"]);
+    refused(&["simulate", "--force-amplitude", "1N"], &["--freq"]);
+    refused(&["simulate", "--force-amplitude", "-1"], &["--force-amplitude", "0 to 1e6 N"]);
+    refused(&["simulate", "--force-amplitude", "1kg", "--freq", "5"], &["--force-amplitude", "unknown unit"]);
+    refused(&["simulate", "--force-amplitude", "1", "--freq", "0"], &["--freq"]);
     refused(&["simulate", "--freq", "1e9Hz"], &["--freq"]);
     refused(&["simulate", "--ball-position", "2.5cm"], &["--ball-position", "d/2"]);
     refused(&["simulate", "--ball-position", "-2cm"], &["--ball-position"]);
     refused(&["simulate", "--ball-velocity", "NaN"], &["--ball-velocity"]);
     refused(&["simulate", "--periods", "0"], &["--periods"]);
     refused(&["simulate", "--periods", "2.5"], &["--periods"]);
-    refused(&["response", "--freqs", "3:8:5"], &["--force"]);
-    refused(&["response", "--force", "1", "--freq", "5"], &["--freq", "--freqs"]);
-    refused(&["response", "--force", "1", "--freqs", "3Hz:8N:5"], &["--freqs"]);
+    refused(&["response", "--freqs", "3:8:5"], &["--force-amplitude"]);
+    refused(&["response", "--force-amplitude", "1", "--freq", "5"], &["--freq", "--freqs"]);
+    refused(&["response", "--force-amplitude", "1", "--freqs", "3Hz:8N:5"], &["--freqs"]);
     refused(&["export", "svg", "response", "--out", "-", "--freqs", "3:4:3"], &["--force-amplitude"]);
     // Settling Newmark runs are budgeted before they start.
-    refused(&["simulate", "--force", "1", "--freq", "5", "--settle", "--solver", "newmark"], &["Newmark steps"]);
-    refused(&["response", "--force", "1", "--freqs", "3:8:1000", "--periods", "1000"], &["--freqs", "forcing periods"]);
+    refused(
+        &["simulate", "--force-amplitude", "1", "--freq", "5", "--settle", "--solver", "newmark"],
+        &["Newmark steps"],
+    );
+    refused(
+        &["response", "--force-amplitude", "1", "--freqs", "3:8:1000", "--periods", "1000"],
+        &["--freqs", "forcing periods"],
+    );
+}
+
+#[test]
+fn the_old_spelling_of_the_force_amplitude_names_the_new_one() {
+    // `--force` replaces an output file; on the commands without one, the amplitude's old name
+    // is refused with one line that names `--force-amplitude` and what was typed.
+    for cmd in [
+        &["simulate", "--freq", "5"][..],
+        &["response"][..],
+        &["restitution"][..],
+        &["fit", "damper", "--data", "decay.csv"][..],
+    ] {
+        for old in [&["--force", "1N"][..], &["--force"][..], &["--force", "--json"][..]] {
+            let args = [cmd, old].concat();
+            let r = thud(&args);
+            assert_eq!(r.code, 2, "{args:?}: {}", r.stderr);
+            assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+            assert!(r.stderr.contains("--force-amplitude"), "{args:?}: {}", r.stderr);
+            if old == ["--force", "1N"] {
+                assert!(r.stderr.contains("give --force-amplitude 1N"), "{args:?}: {}", r.stderr);
+            } else {
+                assert!(r.stderr.contains("give --force-amplitude F0"), "{args:?}: {}", r.stderr);
+            }
+            assert!(r.stdout.is_empty(), "{args:?}: {}", r.stdout);
+        }
+    }
 }
 
 #[test]
@@ -117,11 +149,11 @@ fn forcing_flags_keep_the_contract_at_their_bounds() {
     // Every bound of every new flag, on the commands that take it: finite output or one line.
     use thud::limits as L;
     for (flag, range, extra) in [
-        ("force", L::FORCE, vec!["--freq", "5"]),
-        ("freq", L::FREQ, vec!["--force", "1"]),
+        ("force-amplitude", L::FORCE, vec!["--freq", "5"]),
+        ("freq", L::FREQ, vec!["--force-amplitude", "1"]),
         ("ball-position", L::BALL_POSITION, vec![]),
         ("ball-velocity", L::BALL_VELOCITY, vec![]),
-        ("periods", L::PERIODS, vec!["--force", "1", "--freq", "5"]),
+        ("periods", L::PERIODS, vec!["--force-amplitude", "1", "--freq", "5"]),
     ] {
         for v in [range.min, range.max] {
             let text = format!("{v}");
@@ -130,17 +162,9 @@ fn forcing_flags_keep_the_contract_at_their_bounds() {
                 vec!["simulate"],
                 vec!["sweep", "--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"],
             ] {
-                // `sweep` writes files (`--out`), so its `--force` replaces one and the force
-                // amplitude is `--force-amplitude`, as on `export`.
-                let amplitude =
-                    |f: &'static str| if base[0] == "sweep" && f == "--force" { "--force-amplitude" } else { f };
-                let flag_arg = if base[0] == "sweep" && flag == "force" {
-                    "--force-amplitude".to_string()
-                } else {
-                    format!("--{flag}")
-                };
+                let flag_arg = format!("--{flag}");
                 let mut args: Vec<&str> = base.clone();
-                args.extend(extra.iter().map(|f| amplitude(f)));
+                args.extend(extra.iter().copied());
                 args.extend(["--duration", "0.5", &flag_arg, &text]);
                 let r = thud(&args);
                 match r.code {
@@ -159,7 +183,7 @@ fn forcing_flags_keep_the_contract_at_their_bounds() {
 
 #[test]
 fn response_prints_a_table_a_plot_json_and_csv() {
-    let base = ["response", "--force", "1N", "--freqs", "4.5Hz:5.5Hz:5", "--periods", "5"];
+    let base = ["response", "--force-amplitude", "1N", "--freqs", "4.5Hz:5.5Hz:5", "--periods", "5"];
     let text = ok(&base);
     assert!(
         text.contains("amplitude (mm, log scale) against f") && text.contains("4.500") && text.contains("5.500"),
@@ -222,7 +246,10 @@ fn response_exports_as_svg_and_csv() {
         ],
     );
     assert_eq!(csv.code, 0, "{}", csv.stderr);
-    assert_eq!(csv.stdout, ok(&["response", "--force", "1N", "--freqs", "4.6Hz:5.4Hz:4", "--periods", "4", "--csv"]));
+    assert_eq!(
+        csv.stdout,
+        ok(&["response", "--force-amplitude", "1N", "--freqs", "4.6Hz:5.4Hz:4", "--periods", "4", "--csv"])
+    );
     // export's own --force still means "replace the file".
     let again = thud_in(home.path(), &[&args[..], &["--out", svg.to_str().unwrap()]].concat());
     assert_eq!(again.code, 2);
@@ -233,7 +260,8 @@ fn response_exports_as_svg_and_csv() {
 #[test]
 fn limits_lists_the_new_ranges_and_the_response_cap() {
     let out = ok(&["limits"]);
-    for needle in ["--force", "--freq", "--ball-position", "--ball-velocity", "--periods", "forcing periods"] {
+    for needle in ["--force-amplitude", "--freq", "--ball-position", "--ball-velocity", "--periods", "forcing periods"]
+    {
         assert!(out.contains(needle), "{needle}");
     }
 }

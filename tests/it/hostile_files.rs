@@ -55,7 +55,7 @@ fn namespaces() -> bool {
         .status()
         .is_ok_and(|s| s.success());
     if !ok {
-        eprintln!("skipped: no private mount namespace here (needs root and util-linux `unshare -m`)");
+        crate::support::skip::skip("no private mount namespace here (needs root and util-linux `unshare -m`)");
     }
     ok
 }
@@ -182,8 +182,11 @@ fn kill_9_leaves_nothing_even_without_proc() {
     let home = tempfile::tempdir().unwrap();
     fs::create_dir(home.path().join("out")).unwrap();
     let dir = home.path().join("out").canonicalize().unwrap();
-    if !tmpfile_supported(&dir) || !namespaces() {
-        eprintln!("skipped: O_TMPFILE or namespaces not available here");
+    if !tmpfile_supported(&dir) {
+        crate::support::skip::skip(&format!("O_TMPFILE is not supported in {}", dir.display()));
+        return;
+    }
+    if !namespaces() {
         return;
     }
     let target = dir.join("e.csv");

@@ -292,7 +292,10 @@ fn a_closed_pipe_ends_quietly() {
 
 #[test]
 fn a_failed_write_to_stdout_is_reported() {
-    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else { return };
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        crate::support::skip::skip("/dev/full cannot be opened here");
+        return;
+    };
     let home = tempfile::tempdir().unwrap();
     let out = command(home.path(), &["simulate", "--csv"]).stdout(full).stderr(Stdio::piped()).output().unwrap();
     assert_eq!(out.status.code(), Some(1));
@@ -432,7 +435,7 @@ fn quick(base: &[&str]) -> Vec<String> {
         "sweep" => ["--masses", "30g:60g:3", "--gaps", "2cm:3cm:2"].map(String::from).to_vec(),
         "restitution" => ["--masses", "10g:100g:4"].map(String::from).to_vec(),
         // A forced design (the response needs one) over three frequencies.
-        "response" => ["--force", "1N", "--freqs", "4Hz:6Hz:3"].map(String::from).to_vec(),
+        "response" => ["--force-amplitude", "1N", "--freqs", "4Hz:6Hz:3"].map(String::from).to_vec(),
         // Float samples: the format where a non-finite value could show (PCM codes are integers).
         "export" if base.get(1) == Some(&"wav") => ["--format", "float"].map(String::from).to_vec(),
         _ => vec![],
@@ -728,7 +731,7 @@ fn thread_pools_fall_back_under_a_pids_limit() {
     let grid = ["--masses", "10g:50g:6", "--gaps", "1cm:3cm:4"];
     let commands: Vec<Vec<&str>> = vec![
         [&["sweep"][..], &grid].concat(),
-        vec!["response", "--force", "5", "--freqs", "4:6:5"],
+        vec!["response", "--force-amplitude", "5", "--freqs", "4:6:5"],
         vec!["simulate", "--ensemble", "8"],
         vec!["paper", "table3"],
         [&["sweep"][..], &grid, &["--shard", "1/2", "--out", part]].concat(),
@@ -833,7 +836,7 @@ fn run_pty_script(script: &str) -> Option<(String, String)> {
         .env("XDG_DATA_HOME", home.path().join("data"))
         .output()
     else {
-        eprintln!("skipped: python3 (for its pty module) is not installed");
+        crate::support::skip::skip("python3 (for its pty module) is not installed");
         return None;
     };
     Some((String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into()))

@@ -228,7 +228,7 @@ fn on_small_tmpfs(mount_opts: &str, script: &str) -> Option<Output> {
         .status()
         .is_ok_and(|s| s.success());
     if !probe {
-        eprintln!("skipped: no private mount namespace here (needs root and util-linux `unshare -m`)");
+        crate::support::skip::skip("no private mount namespace here (needs root and util-linux `unshare -m`)");
         return None;
     }
     let full = format!("mount -t tmpfs -o {mount_opts} none \"$D\" || exit 99\ncd \"$D\"\n{script}");
@@ -517,7 +517,7 @@ fn every_signal_that_ends_the_explorer_restores_the_terminal_and_no_binary_goes_
         .env("XDG_DATA_HOME", home.path().join("data"))
         .output()
     else {
-        eprintln!("skipped: python3 (for its pty module) is not installed");
+        crate::support::skip::skip("python3 (for its pty module) is not installed");
         return;
     };
     let said = String::from_utf8_lossy(&out.stdout);

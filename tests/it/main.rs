@@ -16,6 +16,7 @@ mod common;
 mod support {
     pub mod explorer;
     pub mod home;
+    pub mod skip;
     pub mod stranger;
     pub mod wait;
 }
@@ -37,6 +38,7 @@ mod figures;
 mod files;
 mod fit_cli;
 mod fit_note;
+mod flag_names;
 mod forced;
 mod forced_cli;
 mod hostile_dynamics;

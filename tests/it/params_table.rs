@@ -14,14 +14,9 @@ use thud::params::{self, Accepts, DESIGN};
 use thud::tui::explain;
 use thud::tui::fields::Knob;
 
-/// The design commands and the long flag the force amplitude has on each.
-const COMMANDS: [(&[&str], &str); 5] = [
-    (&["simulate"], "force"),
-    (&["sweep"], "force-amplitude"),
-    (&["response"], "force"),
-    (&["restitution"], "force"),
-    (&["export", "csv"], "force-amplitude"),
-];
+/// The design commands, fit damper included.
+const COMMANDS: [&[&str]; 6] =
+    [&["simulate"], &["sweep"], &["response"], &["restitution"], &["export", "csv"], &["fit", "damper"]];
 
 fn stub_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("crates/thud-py/python/thud/__init__.pyi")
@@ -29,13 +24,14 @@ fn stub_path() -> PathBuf {
 
 #[test]
 fn every_row_is_a_flag_of_every_design_command_with_its_help() {
-    for (path, force) in COMMANDS {
+    for path in COMMANDS {
         let mut cmd = Cli::command();
         for sub in path {
             cmd = cmd.find_subcommand(sub).unwrap().clone();
         }
         for p in DESIGN {
-            let long = if p.name == "force" { force } else { p.name };
+            // The force amplitude is `--force-amplitude` on every command (`--force` replaces a file).
+            let long = thud::cli::design_args::flag_of(p.name);
             let arg = cmd.get_arguments().find(|a| a.get_long() == Some(long));
             let arg = arg.unwrap_or_else(|| panic!("{path:?} has no --{long}"));
             assert_eq!(arg.get_help().map(ToString::to_string).as_deref(), Some(p.help), "--{long}");

@@ -229,7 +229,7 @@ fn every_figure_converts_with_every_glyph_of_its_text_in_the_embedded_font() {
     let ro = ExportOptions { freqs_hz: Some(linspace(3.0, 5.0, 5)), ..opts.clone() };
     let bytes = export::render_pdf(Artifact::SvgResponse, &forced, &ro).unwrap();
     assert!(bytes.starts_with(b"%PDF-"));
-    // Every table figure of the paper, through `paper all --pdf`'s own conversion.
+    // Every table figure of the paper, through `paper all --with-pdf`'s own conversion.
     let files = export::report::paper_bundle();
     let pdfs = export::report::pdf_files(&files).unwrap();
     assert_eq!(pdfs.len(), files.iter().filter(|f| f.name.ends_with(".svg")).count());
@@ -284,7 +284,9 @@ fn pdftoppm(pdf: &Path) -> Option<Pixmap> {
         Ok(s) if s.success() => Some(Pixmap::load_png(prefix.with_extension("png")).unwrap()),
         Ok(s) => panic!("pdftoppm failed: {s}"),
         Err(e) => {
-            println!("skipped: the PDF itself is not rasterized, pdftoppm is not on PATH ({e}); install poppler-utils");
+            crate::support::skip::skip(&format!(
+                "the PDF itself is not rasterized, pdftoppm is not on PATH ({e}); install poppler-utils"
+            ));
             None
         }
     }
@@ -363,7 +365,7 @@ fn completions_and_man_pages_offer_export_pdf() {
 fn paper_all_pdf_writes_a_pdf_beside_every_svg() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("paper");
-    let (code, _, err) = thud(&["paper", "all", "--pdf", "--out", out.to_str().unwrap()]);
+    let (code, _, err) = thud(&["paper", "all", "--with-pdf", "--out", out.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let expected = export::report::expected_files_with(true);
     let svgs = expected.iter().filter(|n| n.ends_with(".svg")).count();
@@ -374,11 +376,25 @@ fn paper_all_pdf_writes_a_pdf_beside_every_svg() {
             assert!(bytes.starts_with(b"%PDF-"), "{name}");
         }
     }
-    // A previous set with PDFs is replaced by one without (--force), and --pdf needs `all`.
+    // A previous set with PDFs is replaced by one without (--force), and --with-pdf needs `all`.
     let (code, _, err) = thud(&["paper", "all", "--force", "--out", out.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(!out.join(expected.iter().find(|n| n.ends_with(".pdf")).unwrap()).exists());
-    let (code, _, err) = thud(&["paper", "table1", "--pdf"]);
+    let (code, _, err) = thud(&["paper", "table1", "--with-pdf"]);
     assert_eq!((code, err.lines().count()), (2, 1), "{err}");
-    assert!(err.contains("--pdf"), "{err}");
+    assert!(err.contains("--with-pdf"), "{err}");
+    // `--pdf` names a figure's PDF file (bifurcation, impact-map, basins); its old use here is
+    // refused with one line naming the switch, and nothing is written.
+    for old in [&["paper", "all", "--pdf", "--out"][..], &["paper", "all", "--out"][..]] {
+        let fresh = dir.path().join("fresh");
+        let mut args = old.to_vec();
+        args.push(fresh.to_str().unwrap());
+        if old.len() == 3 {
+            args.extend(["--pdf", "x.pdf"]);
+        }
+        let (code, _, err) = thud(&args);
+        assert_eq!((code, err.lines().count()), (2, 1), "{args:?}: {err}");
+        assert!(err.contains("--with-pdf"), "{err}");
+        assert!(!fresh.exists(), "{args:?}");
+    }
 }

@@ -112,7 +112,7 @@ fn over_determined_balls_and_bad_air_are_refused_in_one_line() {
         (&["sweep", "--radius", "1cm", "--density", "1190", "--mass", "1g"], &["--mass", "--radius", "--density"]),
         (&["simulate", "--air-temperature", "100"], &["--air-temperature", "out of range"]),
         (&["pulse", "--model", "physical", "--air-temperature", "-100degC"], &["--air-temperature"]),
-        (&["response", "--force", "1", "--air-pressure", "5kPa"], &["--air-pressure"]),
+        (&["response", "--force-amplitude", "1", "--air-pressure", "5kPa"], &["--air-pressure"]),
         (&["simulate", "--air-pressure", "1kg"], &["--air-pressure", "unknown unit"]),
         (&["simulate", "--model", "physical", "--k-hz", "5e8"], &["--k-hz", "--model physical"]),
         (&["pulse", "--model", "physical", "--rho-c", "400"], &["--rho-c", "--model physical"]),

@@ -42,7 +42,7 @@ fn k_hz_is_refused_with_either_material_in_either_order() {
         assert!(out.is_empty(), "{args:?}: {out}");
         let line = err.trim_end();
         assert!(!line.contains('\n'), "one line: {err}");
-        assert!(line.contains("cannot be used with") && line.contains("--k-hz <K>"), "{args:?}: {err}");
+        assert!(line.contains("cannot be used with") && line.contains("--k-hz <KH>"), "{args:?}: {err}");
         assert!(line.contains(&format!("'{} <MATERIAL>'", args[if args[0] == "--k-hz" { 2 } else { 0 }])), "{err}");
     }
 }

@@ -39,7 +39,8 @@ fn json_freqs(text: &str) -> Vec<f64> {
 #[test]
 fn thud_response_without_freqs_spans_0_6_to_1_6_times_the_natural_frequency() {
     let home = tempfile::tempdir().unwrap();
-    let json = thud(home.path(), &["response", "--force", "1N", "--periods", "1", "--duration", "0.2", "--json"]);
+    let json =
+        thud(home.path(), &["response", "--force-amplitude", "1N", "--periods", "1", "--duration", "0.2", "--json"]);
     let freqs = json_freqs(&json);
     let f_n = table_2_natural_frequency_hz();
     assert_eq!(freqs.len(), 101);
@@ -51,7 +52,7 @@ fn thud_response_without_freqs_spans_0_6_to_1_6_times_the_natural_frequency() {
     // The band follows the design: K four times as stiff doubles f_n.
     let stiff = thud(
         home.path(),
-        &["response", "--force", "1N", "--k", "2000", "--periods", "1", "--duration", "0.2", "--json"],
+        &["response", "--force-amplitude", "1N", "--k", "2000", "--periods", "1", "--duration", "0.2", "--json"],
     );
     let f_stiff = (2000.0_f64 / 0.5 - (0.05_f64 / 1.0).powi(2)).sqrt() / (2.0 * std::f64::consts::PI);
     let stiff = json_freqs(&stiff);
@@ -62,7 +63,7 @@ fn thud_response_without_freqs_spans_0_6_to_1_6_times_the_natural_frequency() {
         home.path(),
         &[&["export", "csv", "response", "--force-amplitude", "1N", "--out", "-"][..], &args[..]].concat(),
     );
-    let cli = thud(home.path(), &[&["response", "--force", "1N", "--csv"][..], &args[..]].concat());
+    let cli = thud(home.path(), &[&["response", "--force-amplitude", "1N", "--csv"][..], &args[..]].concat());
     assert_eq!(export, cli);
 }
 

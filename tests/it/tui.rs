@@ -1602,7 +1602,8 @@ fn the_readout_shows_the_clis_json_numbers() {
     assert!(row(&screen, "zone").contains(&format!("zone    {zone} ")), "{screen}");
     // A forced design: the settled steady figures (issue 17 item 1: the 2 s run's last
     // periods are still the start-up transient; the readout shows `simulate --settle`'s).
-    let cli = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--settle", "--json"]);
+    let cli =
+        json(&["simulate", "--preset", "paper-fig9", "--force-amplitude", "1N", "--freq", "5Hz", "--settle", "--json"]);
     let st = &cli["steady"];
     let mut forced = d;
     forced.damper.force_n = 1.0;
@@ -1615,7 +1616,7 @@ fn the_readout_shows_the_clis_json_numbers() {
     let settled = if st["settled"].as_bool().unwrap() { "│settled, " } else { "│NOT settled, " };
     let end = sig(num(st, "window_end_s"), 3);
     assert!(screen.contains(settled) && end.parse::<f64>().unwrap() > 2.0, "{settled} {end}\n{screen}");
-    let plain = json(&["simulate", "--preset", "paper-fig9", "--force", "1N", "--freq", "5Hz", "--json"]);
+    let plain = json(&["simulate", "--preset", "paper-fig9", "--force-amplitude", "1N", "--freq", "5Hz", "--json"]);
     for (label, want) in [
         ("U0max", format!("{} m/s", sig(num(&plain, "u0_max_m_s"), 5))),
         ("amp", format!("{} mm", sig(num(st, "amplitude_m") * 1e3, 4))),
@@ -1633,7 +1634,7 @@ fn the_readout_shows_the_clis_json_numbers() {
         "response",
         "--preset",
         "paper-fig9",
-        "--force",
+        "--force-amplitude",
         "1N",
         "--v0",
         "2m/s",
@@ -1781,7 +1782,7 @@ fn a_not_settled_note_is_never_hidden_behind_the_negative_e_note() {
     assert!(e < 0.0 && !steady.settled, "this design: e {e}, settled {}", steady.settled);
     // The same settled state as the command line's.
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
-        .args(["simulate", "--mass", "50g", "--gap", "6cm", "--force", "1N", "--settle", "--json"])
+        .args(["simulate", "--mass", "50g", "--gap", "6cm", "--force-amplitude", "1N", "--settle", "--json"])
         .arg(format!("--freq={}Hz", app.design.damper.freq_hz))
         .output()
         .unwrap();

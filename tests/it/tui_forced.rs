@@ -41,7 +41,7 @@ fn the_forced_readout_and_the_response_view_agree_with_the_cli_each_from_its_sta
         press(&mut app, KeyCode::Tab);
     }
     assert!(!app.busy());
-    let design = ["--mass", "30.89g", "--gap", "5.49cm", "--force", "2.17"];
+    let design = ["--mass", "30.89g", "--gap", "5.49cm", "--force-amplitude", "2.17"];
     let strike = cli(&[&["simulate", "--freq", "4.126", "--settle", "--json"][..], &design[..]].concat());
     let rest = cli(&[&["response", "--freqs", "4.126:4.126:1", "--json"][..], &design[..]].concat());
     let strike_mm = sig(strike["steady"]["amplitude_m"].as_f64().unwrap() * 1e3, 4);

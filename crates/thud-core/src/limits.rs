@@ -565,7 +565,7 @@ pub const MERGED_RUNS: Cap = Cap {
 pub const RESPONSE_PERIODS: Cap = Cap {
     what: "forcing periods",
     max: 2e6,
-    basis: "15 µs a period at ½ impact a period (thud response --force 1N: 112 638 periods, 1.7 s of CPU), up to ≈ 100 µs at 4 impacts a period: 2e6 periods is at most about 100 s on 2 cores",
+    basis: "15 µs a period at ½ impact a period (thud response --force-amplitude 1N: 112 638 periods, 1.7 s of CPU), up to ≈ 100 µs at 4 impacts a period: 2e6 periods is at most about 100 s on 2 cores",
 };
 
 /// Every cap, in the order `thud` lists them.

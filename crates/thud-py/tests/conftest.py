@@ -18,6 +18,20 @@ EXAMPLES = REPO / "examples" / "python"
 #: Measurements printed in the terminal summary (name, value text).
 REPORT = []
 
+#: A CI run (CI=true, as CI services set it): CI installs everything the tests need
+#: (.ci/run), so there a skipped test fails instead of passing unseen.
+IN_CI = os.environ.get("CI", "") not in ("", "false", "0")
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    report = outcome.get_result()
+    if IN_CI and report.skipped and not hasattr(report, "wasxfail"):
+        reason = report.longrepr[2] if isinstance(report.longrepr, tuple) else str(report.longrepr)
+        report.outcome = "failed"
+        report.longrepr = f"skipped in CI (CI={os.environ['CI']}), where .ci/run installs what it needs: {reason}"
+
 
 @pytest.fixture(scope="session")
 def home(tmp_path_factory):

@@ -11,7 +11,7 @@ from test_errors import keyword
 
 #: A short forced case: 3 frequencies around the Fig 9 resonance, windows of 4 periods.
 FREQS = "4.6Hz:5.4Hz:3"
-RESPONSE = ["--force", "1N", "--periods", "4", "--duration", "1"]
+RESPONSE = ["--force-amplitude", "1N", "--periods", "4", "--duration", "1"]
 RESPONSE_KW = dict(force="1N", periods=4, duration=1)
 
 
@@ -51,7 +51,7 @@ def check_response(j, r, runs):
 
 
 def test_a_forced_simulation_equals_the_cli(cli_json):
-    j = cli_json("simulate", "--v0", "0", "--force", "1N", "--freq", "5.5Hz", "--duration", "2", "--periods", "5")
+    j = cli_json("simulate", "--v0", "0", "--force-amplitude", "1N", "--freq", "5.5Hz", "--duration", "2", "--periods", "5")
     r = thud.simulate(v0=0, force="1N", freq=5.5, duration=2, periods=5)
     assert r.steady is not None and r.steady["periods"] == 5 and r.n_impacts > 0
     check_run(j, r)
@@ -77,7 +77,7 @@ def test_the_response_equals_the_cli(cli_json):
 def test_a_response_without_frequencies_runs_the_engine_s_band_as_the_cli(cli_json):
     # Issue 16 item 6: no freqs_hz is the command line's no --freqs: 101 points from 0.6 to
     # 1.6 × the damped natural frequency √(K/M − (C/2M)²)/2π of Table 2 (K 500, M 0.5, C 0.05).
-    j = cli_json("response", "--force", "1N", "--periods", "1", "--duration", "0.2")
+    j = cli_json("response", "--force-amplitude", "1N", "--periods", "1", "--duration", "0.2")
     r = thud.response(force="1N", periods=1, duration=0.2)
     check_response(j, r, 1)
     f_n = np.sqrt(500.0 / 0.5 - (0.05 / (2 * 0.5)) ** 2) / (2 * np.pi)
@@ -141,8 +141,8 @@ def test_a_sweep_of_ensembles_equals_the_cli(cli_json):
 
 # The command line's message for the same input, the flags spelled as keywords.
 SAME_AS_CLI = [
-    ("simulate", {"force": 1}, ["--force", "1"]),
-    ("simulate", {"force": -1, "freq": 5}, ["--force", "-1", "--freq", "5"]),
+    ("simulate", {"force": 1}, ["--force-amplitude", "1"]),
+    ("simulate", {"force": -1, "freq": 5}, ["--force-amplitude", "-1", "--freq", "5"]),
     ("simulate", {"freq": "1e9Hz"}, ["--freq", "1e9Hz"]),
     ("simulate", {"ball_position": "2.5cm"}, ["--ball-position", "2.5cm"]),
     ("simulate", {"ball_velocity": float("nan")}, ["--ball-velocity", "NaN"]),

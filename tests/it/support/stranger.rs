@@ -31,13 +31,13 @@ impl Stranger {
         let root = Command::new("id").arg("-u").output().is_ok_and(|o| o.stdout.starts_with(b"0\n"));
         let setpriv = Command::new("setpriv").arg("--version").output().is_ok_and(|o| o.status.success());
         if !root || !setpriv {
-            eprintln!(
-                "skipped: needs root and setpriv to run thud as another user under ulimit -u (root ignores the limit)"
+            crate::support::skip::skip(
+                "needs root and setpriv to run thud as another user under ulimit -u (root ignores the limit)",
             );
             return None;
         }
         let Some(uid) = free_uid(slot) else {
-            eprintln!("skipped: no user id in {UIDS:?} without processes");
+            crate::support::skip::skip(&format!("no user id in {UIDS:?} without processes"));
             return None;
         };
         let dir = tempfile::Builder::new().prefix("thud-stranger-").tempdir_in("/tmp").unwrap();
@@ -56,7 +56,10 @@ impl Stranger {
             .status()
             .is_ok_and(|st| st.success());
         if !reachable {
-            eprintln!("skipped: user {uid} cannot run {} (is /tmp closed to other users?)", s.bin.display());
+            crate::support::skip::skip(&format!(
+                "user {uid} cannot run {} (is /tmp closed to other users?)",
+                s.bin.display()
+            ));
             return None;
         }
         Some(s)

@@ -166,10 +166,13 @@ pub struct Conflict {
 /// One named parameter: one row of a table, from which every front end takes its flag, keyword,
 /// field, help, range and check.
 pub struct Param<T: 'static> {
-    /// The long flag without dashes (`main-mass`).
+    /// The parameter's name: the long flag without dashes (`main-mass`), the keyword with
+    /// underscores; the force amplitude `force` is the exception on the command line, whose
+    /// flag is its alias.
     pub name: &'static str,
-    /// Another name a front end may hand the parameter in under (`force-amplitude` for `force`,
-    /// on commands whose `--force` means "replace the file"); messages then name it as given.
+    /// Another name a front end may hand the parameter in under (`force-amplitude` for `force`:
+    /// the command line's flag, since its `--force` replaces a file; Python takes both);
+    /// messages then name it as given.
     pub alias: Option<&'static str>,
     pub accepts: Accepts<T>,
     /// One line for people: the command line's help, Python's stub comment, the explorer's hint.

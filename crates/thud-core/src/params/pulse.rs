@@ -118,7 +118,7 @@ pub const PULSE: &[Param<PulseDraft>] = &[
         |d, v| d.density_kg_m3 = Some(v)),
     Param {
         conflicts: Some(Conflict { with: &["sphere", "plate"], why: "K_HZ follows from the materials", names_other: false }),
-        ..pq("k-hz", Kind::HertzStiffness, design_range("k-hz"), "K",
+        ..pq("k-hz", Kind::HertzStiffness, design_range("k-hz"), "KH",
             "Hertz stiffness K_HZ (N/m^1.5) [default: 5.6e8, or from --sphere/--plate]", |d, v| d.k_hz = Some(v))
     },
     pq("main-mass", Kind::Mass, design_range("main-mass"), "MM",
