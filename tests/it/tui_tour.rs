@@ -170,9 +170,9 @@ fn the_table1_step_shows_the_engine_s_table1_at_both_sizes() {
 /// the number the tour runs (and the screen shows as "tour i/N").
 #[test]
 fn the_docs_say_the_tour_s_own_number_of_steps() {
-    let n = thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).unwrap().steps.len();
     const WORDS: [&str; 13] =
         ["zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve"];
+    let n = thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).unwrap().steps.len();
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     for file in ["README.md", "docs/guide/the-explorer.md", "assets/tour.toml"] {
         let text = std::fs::read_to_string(root.join(file)).unwrap().replace("\n# ", " ").replace('\n', " ");
@@ -224,7 +224,7 @@ fn the_tour_s_animation_shows_an_impact_within_2_s_at_80x24() {
     let speed = shown.lines().find_map(|l| l.split("speed ").nth(1)?.split_whitespace().next()).unwrap_or_default();
     eprintln!(
         "at speed {speed}: the first impact flashed after {:.2} s of real time, impact {last} by 2 s",
-        frame as f64 * FRAME_S
+        f64::from(frame) * FRAME_S
     );
     // A few impacts a second: the ball rattles, not one click.
     assert!(last >= 3, "impact {last} by 2 s of real time:\n{shown}");
