@@ -69,7 +69,7 @@ pub fn run(a: &BasinsArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         .map_err(super::bifurcation::flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&b)?;
-    let title = format!("Basins of attraction over the ball's start — {}", short_design(&d));
+    let title = format!("Basins of attraction over the ball's start — {}", short_design(&d, ""));
     a.orbit.write(
         |format| {
             Ok(match format {

@@ -226,7 +226,15 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         .map_err(super::bifurcation::flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&b)?;
-    let title = format!("Bifurcation diagram over {} — {}", vary.name(), short_design(&d));
+    let (lo, hi) = vary.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+    let unit = if vary.unit().is_empty() { String::new() } else { format!(" {}", vary.unit()) };
+    let title = format!(
+        "Bifurcation diagram over {} {}–{}{unit} — {}",
+        vary.name(),
+        short(lo),
+        short(hi),
+        short_design(&d, vary.name())
+    );
     a.orbit.write(
         |format| render(&d, &b, format),
         || crate::export::dynamics::bifurcation_svg(&b, &title, &look()),
@@ -381,16 +389,22 @@ pub(super) fn merge(parts: &[(String, String)], format: OutputFormat) -> Result<
     render(&design, &b, format)
 }
 
-/// A short name of the design for a figure's title.
-pub(super) fn short_design(d: &ValidDesign) -> String {
+/// A short name of the design for a figure's title, each number as typed (`F0 3 N`, not
+/// `3.0000 N`), without the parameter the figure varies (`varied`, its row's name: a diagram
+/// over f is not "at f 7.5 Hz").
+pub(super) fn short_design(d: &ValidDesign, varied: &str) -> String {
     let p = &d.damper;
-    format!(
-        "F0 {} N, f {} Hz, gap {} mm, m {} g",
-        num(p.force_n),
-        num(p.freq_hz),
-        num(p.gap_m * 1e3),
-        num(p.impact_mass_kg * 1e3)
-    )
+    [
+        ("force", format!("F0 {} N", short(p.force_n))),
+        ("freq", format!("f {} Hz", short(p.freq_hz))),
+        ("gap", format!("gap {} mm", short(p.gap_m * 1e3))),
+        ("mass", format!("m {} g", short(p.impact_mass_kg * 1e3))),
+    ]
+    .into_iter()
+    .filter(|(name, _)| *name != varied)
+    .map(|(_, text)| text)
+    .collect::<Vec<_>>()
+    .join(", ")
 }
 
 /// The bifurcation as `format`.
@@ -408,9 +422,10 @@ fn render(d: &Design, b: &Bifurcation, format: OutputFormat) -> Result<String, C
             let unit = if b.axis.unit.is_empty() { String::new() } else { format!(" ({})", b.axis.unit) };
             let mut t = format!("base      {}\n", describe(d));
             t += &format!(
-                "study     {}{unit}: {} values; {} transient periods, then {} sampled\n\n",
+                "study     {}{unit}: {} value{}; {} transient periods, then {} sampled\n\n",
                 b.axis.name,
                 b.axis.values.len(),
+                plural(b.axis.values.len()),
                 b.settings.transient_periods,
                 b.settings.periods
             );
@@ -433,11 +448,12 @@ fn render(d: &Design, b: &Bifurcation, format: OutputFormat) -> Result<String, C
             t += "\nbands (consecutive values with the same orbit; m/n = m impacts per n periods, sym = x(t+T/2) = −x(t)):\n";
             for band in &b.bands {
                 t += &format!(
-                    "  {:<9} {:>10} – {:<10} {:>4} values  {}\n",
+                    "  {:<9} {:>10} – {:<10} {:>4} value{:<1}  {}\n",
                     crate::export::dynamics::direction(band.direction),
                     num(band.from),
                     num(band.to),
                     band.values,
+                    plural(band.values),
                     band.orbit
                 );
             }
@@ -445,4 +461,13 @@ fn render(d: &Design, b: &Bifurcation, format: OutputFormat) -> Result<String, C
             t
         }
     })
+}
+
+/// The plural ending of a count of `n`: "" for one, "s" otherwise.
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
 }

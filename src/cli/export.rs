@@ -124,8 +124,8 @@ impl From<WavFormat> for SampleFormat {
 
 #[derive(Debug, Clone, Args)]
 struct WavArgs {
-    /// Pressure written as sample value 1.0 (Pa; its range: `thud limits`); the same for every design, so files
-    /// compare by ear (never normalised to the loudest sample).
+    /// Pressure written as sample value 1.0 (Pa; its range: `thud limits`); each sample is the mean pressure over
+    /// its interval / this, the same for every design, so files compare by ear (never normalised to the loudest sample).
     #[arg(long, value_name = "PA", default_value = "20", allow_hyphen_values = true)]
     full_scale: String,
     /// Sample format: pcm16 or pcm24 (value/full scale clipped to ±1, times 2^(b−1)−1, rounded),

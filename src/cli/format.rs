@@ -12,14 +12,6 @@ pub enum OutputFormat {
     Csv,
 }
 
-fn cell_text(v: &Value) -> String {
-    match v {
-        Value::Num(x) => num(*x),
-        Value::Text(s) => s.clone(),
-        Value::Missing => "—".into(),
-    }
-}
-
 /// Writes `table` as CSV: a header of column keys, then the rows (the one CSV writer,
 /// [`crate::export::csv::write_table`]).
 pub fn write_csv(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
@@ -29,8 +21,12 @@ pub fn write_csv(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
 /// Writes `table` as aligned text with its title and notes.
 pub fn write_text(out: &mut impl Write, table: &Table) -> std::io::Result<()> {
     writeln!(out, "{}", table.title)?;
-    let cells: Vec<Vec<String>> =
-        table.rows.iter().chain(&table.summary).map(|r| r.iter().map(cell_text).collect()).collect();
+    let cells: Vec<Vec<String>> = table
+        .rows
+        .iter()
+        .chain(&table.summary)
+        .map(|r| r.iter().zip(&table.columns).map(|(v, c)| c.text(v, num)).collect())
+        .collect();
     let widths: Vec<usize> = table
         .columns
         .iter()

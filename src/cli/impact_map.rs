@@ -36,7 +36,7 @@ pub fn run(a: &ImpactMapArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
     check_work(ctx, 1, s, false, ("--transient", &s.transient_periods.to_string()))?;
     let run = dynamics::impact_map(&d, s, "--force-amplitude", None).map_err(super::bifurcation::flagged)?;
     super::output::check_finite(&run)?;
-    let title = format!("Impact map — {}", short_design(&d));
+    let title = format!("Impact map — {}", short_design(&d, ""));
     a.orbit.write(
         |format| {
             Ok(match format {

@@ -124,6 +124,17 @@ impl AsciiArgs {
             svg
         }
     }
+
+    /// Text (a report in Markdown) as written: as it is, or with `--ascii` every character
+    /// beyond ASCII spelled as the explorer spells it (`θ` → `theta`, `−` → `-`).
+    #[must_use]
+    pub fn text(self, text: String) -> String {
+        if self.ascii && !text.is_ascii() {
+            crate::tui::theme::fold(&text)
+        } else {
+            text
+        }
+    }
 }
 
 /// Options of `thud limits`.

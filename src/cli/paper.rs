@@ -111,7 +111,8 @@ fn bundle_error(dir: &Path, e: BundleError) -> CliError {
 /// `thud paper all --out DIR`: every item as CSV (and SVG where plotted; with `pdf` PDF too) plus REPORT.md, as one
 /// folder written complete or not at all ([`report::write_bundle`]). The folder is checked
 /// before the work starts, and every number in every file before the first file is written.
-/// With `ascii` (`--ascii`) every figure's text is spelled in ASCII, in its SVG and its PDF.
+/// With `ascii` (`--ascii`) every figure's text is spelled in ASCII, in its SVG and its PDF,
+/// and so is REPORT.md.
 fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool, ascii: super::AsciiArgs) -> Result<(), CliError> {
     let dir = out.ok_or_else(|| ThudError::invalid("--out", "`thud paper all` needs --out DIR"))?;
     if fsio::is_stdout(dir) {
@@ -123,8 +124,12 @@ fn all(out: Option<&Path>, overwrite: Overwrite, pdf: bool, ascii: super::AsciiA
     let spinner = budget::spinner("reproducing the paper", true);
     let mut files = report::paper_bundle();
     spinner.finish_and_clear();
-    for f in files.iter_mut().filter(|f| Path::new(&f.name).extension().is_some_and(|e| e == "svg")) {
-        f.contents = ascii.figure(std::mem::take(&mut f.contents));
+    for f in &mut files {
+        match Path::new(&f.name).extension().and_then(|e| e.to_str()) {
+            Some("svg") => f.contents = ascii.figure(std::mem::take(&mut f.contents)),
+            Some("md") => f.contents = ascii.text(std::mem::take(&mut f.contents)),
+            _ => {}
+        }
     }
     for f in &files {
         super::output::check_text(&f.contents).map_err(|e| {

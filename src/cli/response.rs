@@ -162,7 +162,7 @@ fn ensemble_text(d: &Design, r: &ResponseEnsemble, continuation: bool) -> String
         num(edge)
     );
     let spread = |p: &crate::ensemble::Percentiles, scale: f64, digits: usize| {
-        let f = |v: Option<f64>| v.map_or("—".into(), |x| format!("{:.digits$}", x * scale));
+        let f = |v: Option<f64>| v.map_or("—".into(), |x| fixed(x * scale, digits));
         format!("{} [{}–{}]", f(p.median), f(p.p10), f(p.p90))
     };
     for sweep in &r.sweeps {
@@ -193,7 +193,17 @@ fn ensemble_text(d: &Design, r: &ResponseEnsemble, continuation: bool) -> String
 }
 
 fn opt(v: Option<f64>, scale: f64, digits: usize) -> String {
-    v.map_or("—".into(), |x| format!("{:.digits$}", x * scale))
+    v.map_or("—".into(), |x| fixed(x * scale, digits))
+}
+
+/// `x` to `digits` decimals, without a minus on a value that rounds to zero ("0.00", not
+/// "-0.00": a cut of −0.001 dB is no cut).
+fn fixed(x: f64, digits: usize) -> String {
+    let s = format!("{x:.digits$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
 }
 
 /// The response as a table and a plot.
@@ -214,7 +224,7 @@ fn text(d: &Design, r: &Response, continuation: bool) -> String {
         for p in &sweep.points {
             let st = &p.steady;
             s += &format!(
-                "  {:>7.3}  {:>10.4}  {:>13.4}  {:>9}  {:>9.3}  {:>9}  {:>8}  {:>7}{}\n",
+                "  {:>7.3}  {:>10.4}  {:>13}  {:>9}  {:>9.3}  {:>9}  {:>8}  {:>7}{}\n",
                 p.freq_hz,
                 st.amplitude_m * 1e3,
                 opt(st.amplitude_linear_m, 1e3, 4),
@@ -309,4 +319,18 @@ pub fn plot(r: &Response, width: usize, height: usize) -> String {
     let pad = (width + 1).saturating_sub(left.len() + right.len());
     s += &format!("{:>9}  {left}{}{right}\n", "", " ".repeat(pad));
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_value_that_rounds_to_zero_has_no_minus() {
+        assert_eq!(fixed(-0.001, 2), "0.00");
+        assert_eq!(fixed(-0.004_9, 2), "0.00");
+        assert_eq!(fixed(-0.005_1, 2), "-0.01");
+        assert_eq!(fixed(149.112_7, 4), "149.1127", "every digit asked for, none cut");
+        assert_eq!(opt(Some(0.149_112_7), 1e3, 4), "149.1127");
+    }
 }

@@ -38,8 +38,9 @@ pub struct ManArgs {
     #[arg(long, requires = "all")]
     force: bool,
     /// Write every page where man(1) finds it for this thud: `share/man/man1` beside the folder
-    /// of the running binary (~/.cargo/bin/thud → ~/.cargo/share/man/man1, ~/.local/bin/thud →
-    /// ~/.local/share/man/man1), replacing the pages of an earlier install; then `man thud`.
+    /// of the `thud` run (~/.cargo/bin/thud → ~/.cargo/share/man/man1, ~/.local/bin/thud →
+    /// ~/.local/share/man/man1; a symbolic link's own folder), or the first folder of MANPATH
+    /// when it is set, replacing the pages of an earlier install; then `man thud`.
     #[arg(long, conflicts_with_all = ["all", "command", "force"])]
     install: bool,
 }
@@ -99,7 +100,36 @@ fn page_root() -> Command {
 pub fn completions(a: &CompletionsArgs, out: &mut Out) -> Result<(), CliError> {
     let mut script = Vec::new();
     clap_complete::generate(a.shell, &mut with_hints(Cli::command()), "thud", &mut script);
+    if a.shell == Shell::Zsh {
+        script = zsh_value_names(&String::from_utf8_lossy(&script)).into_bytes();
+    }
     out.raw(&script)
+}
+
+/// The zsh script with the colons of value names escaped: `_arguments` reads
+/// `--vary=[help]:MESSAGE:ACTION`, so an unescaped `NAME=FROM:TO:N` made `TO` the action and
+/// zsh ran it as a command ("command not found: TO"). clap_complete escapes the help's colons
+/// but not the value name's.
+fn zsh_value_names(script: &str) -> String {
+    fn names(cmd: &Command, into: &mut Vec<String>) {
+        for arg in cmd.get_arguments() {
+            for n in arg.get_value_names().unwrap_or_default() {
+                if n.contains(':') && !into.iter().any(|m| m == n.as_str()) {
+                    into.push(n.to_string());
+                }
+            }
+        }
+        for sub in cmd.get_subcommands() {
+            names(sub, into);
+        }
+    }
+    let mut found = Vec::new();
+    names(&with_hints(Cli::command()), &mut found);
+    let mut out = script.to_string();
+    for n in found {
+        out = out.replace(&format!("]:{n}:"), &format!("]:{}:", n.replace(':', "\\:")));
+    }
+    out
 }
 
 /// `thud man [COMMAND…]`: the man page of thud or of one of its commands, in roff; `thud man
@@ -129,16 +159,43 @@ pub fn man(a: &ManArgs, out: &mut Out) -> Result<(), CliError> {
     out.raw(&page(&cmd, &path)?)
 }
 
-/// `share/man/man1` beside the folder of the running binary: man-db's manpath adds
-/// `DIR/../share/man` for every `DIR` of `PATH`, so the pages are found for the `thud` on `PATH`.
+/// Where `--install` writes: the first folder of `MANPATH` if it is set (man then searches it),
+/// else `share/man/man1` beside the folder of the `thud` that was run, as it was run (a symbolic
+/// link's own folder, not its target's: man-db's manpath adds `DIR/../share/man` for every `DIR`
+/// of `PATH`, so the pages are found for the `thud` on `PATH`, a link to a binary elsewhere too).
 fn install_dir() -> Result<PathBuf, CliError> {
-    let exe = std::env::current_exe()
-        .map_err(|e| ThudError::invalid("--install", format!("cannot find the running thud binary: {e}")))?;
-    let prefix = exe
+    if let Some(first) =
+        std::env::var_os("MANPATH").and_then(|m| std::env::split_paths(&m).find(|p| !p.as_os_str().is_empty()))
+    {
+        return Ok(first.join("man1"));
+    }
+    let bin = invoked_dir().map_or_else(
+        || {
+            let exe = std::env::current_exe()
+                .map_err(|e| ThudError::invalid("--install", format!("cannot find the running thud binary: {e}")))?;
+            exe.parent().map(Path::to_path_buf).ok_or_else(|| {
+                ThudError::invalid("--install", format!("{} has no folder above its own", fsio::shown(&exe)))
+            })
+        },
+        Ok,
+    )?;
+    let prefix = bin
         .parent()
-        .and_then(Path::parent)
-        .ok_or_else(|| ThudError::invalid("--install", format!("{} has no folder above its own", fsio::shown(&exe))))?;
+        .ok_or_else(|| ThudError::invalid("--install", format!("{} has no folder above its own", fsio::shown(&bin))))?;
     Ok(prefix.join("share").join("man").join("man1"))
+}
+
+/// The folder of the `thud` that was run, as the shell found it: the path it was run by (made
+/// absolute, links kept), or the first folder of `PATH` holding a file of its name.
+fn invoked_dir() -> Option<PathBuf> {
+    let argv0 = PathBuf::from(std::env::args_os().next()?);
+    let found = if argv0.components().count() > 1 {
+        std::env::current_dir().ok()?.join(&argv0)
+    } else {
+        let path = std::env::var_os("PATH")?;
+        std::env::split_paths(&path).map(|dir| dir.join(&argv0)).find(|p| p.is_file() && p.is_absolute())?
+    };
+    found.parent().map(Path::to_path_buf)
 }
 
 /// Every page: (file name, the command's path below `thud`, the command), thud(1) first, each

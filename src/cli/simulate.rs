@@ -216,10 +216,15 @@ fn summary(d: &ValidDesign, e: &Evaluation, show: usize, truncated: Option<&str>
             )
         }
     };
+    // The signs are the corner's second wall's: only a quadrupole has one.
+    let signs = if d.radiation.source == crate::acoustics::Source::Quadrupole {
+        format!(" ({} signs)", d.radiation.quad_signs.name())
+    } else {
+        String::new()
+    };
     s += &format!(
-        "listener  {} source ({} signs), r {} m, θ {}°; {level}\n",
+        "listener  {} source{signs}, r {} m, θ {}°; {level}\n",
         d.radiation.source.name(),
-        d.radiation.quad_signs.name(),
         num(d.observer.r_m),
         num(d.observer.theta_rad.to_degrees())
     );

@@ -63,7 +63,11 @@ pub(super) fn render(d: &Design, s: &Study, format: OutputFormat) -> Result<Stri
 /// A table: one row per cell, the varied values then the metrics.
 fn text(d: &Design, s: &Study) -> String {
     let mut t = format!("base      {}\n", describe(d));
-    let dims: Vec<String> = s.axes.iter().map(|a| format!("{} ({} values)", heading(a), a.values.len())).collect();
+    let dims: Vec<String> = s
+        .axes
+        .iter()
+        .map(|a| format!("{} ({} value{})", heading(a), a.values.len(), if a.values.len() == 1 { "" } else { "s" }))
+        .collect();
     t += &format!("study     {} = {} cells\n\n", dims.join(" × "), s.cells.len());
     for a in &s.axes {
         t += &format!("{:>14}", heading(a));

@@ -8,7 +8,6 @@ use serde::Serialize;
 
 use super::budget;
 use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
-use super::format::num;
 use super::simulate::describe;
 use super::{count, quantity, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::{self, Band, Chart, Design, ZoneBy};
@@ -181,8 +180,8 @@ pub(super) fn render(
             let mut s = format!("base      {}\n", describe(d));
             s += &format!(
                 "zones     L* {} dB, e* {} cm/s by {}: 1 noisy & weak, 2 noisy & strong, 3 quiet & strong, 4 quiet & weak\n\n",
-                num(d.thresholds.spl_db),
-                num(d.thresholds.inclination_cm_s),
+                crate::units::short(d.thresholds.spl_db),
+                crate::units::short(d.thresholds.inclination_cm_s),
                 match d.thresholds.zone_by {
                     ZoneBy::Paper => "e (Eq 27)",
                     ZoneBy::Fit => "e_fit",

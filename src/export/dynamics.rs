@@ -248,13 +248,26 @@ pub fn bifurcation_svg(b: &Bifurcation, title: &str, look: &Look) -> String {
     }
     y += 10.0;
     svg.text(lx, y, "orbits (m impacts / n periods):", 11.0, Anchor::Start, 0.0);
-    for band in b.bands.iter().filter(|band| band.values >= 3).take(24) {
+    let listed: Vec<_> = b.bands.iter().filter(|band| band.values >= LISTED_BAND_VALUES).take(LISTED_BANDS).collect();
+    for band in &listed {
         y += 15.0;
-        let span = format!("{}–{}", crate::units::num(band.from), crate::units::num(band.to));
+        let span = format!("{}–{}", crate::units::short(band.from), crate::units::short(band.to));
         svg.text(lx, y, &format!("{span}: {}", band.orbit), 10.0, Anchor::Start, 0.0);
+    }
+    // The list is not the whole story when it leaves bands out: it says so.
+    let left_out = b.bands.len() - listed.len();
+    if left_out > 0 {
+        y += 15.0;
+        let s = if left_out == 1 { "" } else { "s" };
+        svg.text(lx, y, &format!("… and {left_out} band{s} more (in the CSV)"), 10.0, Anchor::Start, 0.0);
     }
     svg.finish()
 }
+
+/// The fewest values a band of one orbit has to be listed in the bifurcation figure's legend.
+const LISTED_BAND_VALUES: usize = 3;
+/// The most bands the bifurcation figure's legend lists.
+const LISTED_BANDS: usize = 24;
 
 /// The x of the legend column right of the frames.
 fn left_of_legend(width: f64, right: f64) -> f64 {

@@ -233,13 +233,17 @@ pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str, look: &Lo
     let (xl, yl) = (frame.px(t.spl_db), frame.py(t.inclination_cm_s));
     let (left, right) = (frame.left, frame.left + frame.width);
     let (top, bottom) = (frame.top, frame.top + frame.height);
-    for (zone, cx, cy) in [
-        (Zone::NoisyWeak, 0.5 * (xl + right), 0.5 * (yl + bottom)),
-        (Zone::NoisyStrong, 0.5 * (xl + right), 0.5 * (top + yl)),
-        (Zone::QuietStrong, 0.5 * (left + xl), 0.5 * (top + yl)),
-        (Zone::QuietWeak, 0.5 * (left + xl), 0.5 * (yl + bottom)),
+    let size = 22.0 * svg.scale();
+    let dots: Vec<(f64, f64)> = points.iter().map(|p| (frame.px(p.spl_db), frame.py(p.e_cm_s))).collect();
+    for (zone, quadrant) in [
+        (Zone::NoisyWeak, [xl, yl, right, bottom]),
+        (Zone::NoisyStrong, [xl, top, right, yl]),
+        (Zone::QuietStrong, [left, top, xl, yl]),
+        (Zone::QuietWeak, [left, yl, xl, bottom]),
     ] {
-        svg.text_fill(cx, cy, &format!("zone {}", zone.number()), 22.0 * svg.scale(), Anchor::Middle, "#b0b0b0");
+        // The label where it covers the fewest designs (none, where the quadrant has room).
+        let (cx, cy) = label_spot(quadrant, (3.6 * size, size), &dots, 4.0 * svg.scale());
+        svg.text_fill(cx, cy + 0.35 * size, &format!("zone {}", zone.number()), size, Anchor::Middle, "#b0b0b0");
     }
     frame.vline(&mut svg, t.spl_db, &format!("L* {} dB", sig(t.spl_db, 4)), "black");
     frame.hline(&mut svg, t.inclination_cm_s, &format!("e* {} cm/s", sig(t.inclination_cm_s, 3)), "black");
@@ -249,6 +253,38 @@ pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str, look: &Lo
     }
     zone_legend(&mut svg, &frame, t, true);
     svg.finish()
+}
+
+/// Where a label of `size` (w, h) goes in `quadrant` [x0, y0, x1, y1] (pixels, either order):
+/// its centre, on a 5 × 5 grid of spots inside the quadrant, whose box (grown by the markers'
+/// radius `r`) holds the fewest of `dots`; of equals, the one nearest the quadrant's centre.
+fn label_spot(quadrant: [f64; 4], size: (f64, f64), dots: &[(f64, f64)], r: f64) -> (f64, f64) {
+    let (x0, x1) = (quadrant[0].min(quadrant[2]), quadrant[0].max(quadrant[2]));
+    let (y0, y1) = (quadrant[1].min(quadrant[3]), quadrant[1].max(quadrant[3]));
+    let centre = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let (hw, hh) = (0.5 * size.0, 0.5 * size.1);
+    let span = |a: f64, b: f64, half: f64| {
+        let (lo, hi) = (a + half, b - half);
+        if hi > lo {
+            (0..5).map(|i| lo + (hi - lo) * f64::from(i) / 4.0).collect()
+        } else {
+            vec![0.5 * (a + b)]
+        }
+    };
+    let covered = |(cx, cy): (f64, f64)| {
+        dots.iter().filter(|(x, y)| (x - cx).abs() <= hw + r && (y - cy).abs() <= hh + r).count()
+    };
+    let mut best = centre;
+    let mut key = (covered(centre), 0.0);
+    for cx in span(x0, x1, hw) {
+        for &cy in &span(y0, y1, hh) {
+            let k = (covered((cx, cy)), (cx - centre.0).hypot(cy - centre.1));
+            if k.0 < key.0 || (k.0 == key.0 && k.1 < key.1) {
+                (best, key) = ((cx, cy), k);
+            }
+        }
+    }
+    best
 }
 
 /// Fig 17 of a design chart.
@@ -621,4 +657,24 @@ pub fn response(r: &crate::response::Response, title: &str, look: &Look) -> Stri
     }
     draw_series_clipped(&mut svg, &bottom, &leq, "level");
     svg.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A label goes where it covers no design when the quadrant has room, nearest the centre.
+    #[test]
+    fn a_zone_label_keeps_clear_of_the_designs() {
+        let quadrant = [0.0, 0.0, 400.0, 300.0];
+        let size = (80.0, 22.0);
+        assert_eq!(label_spot(quadrant, size, &[], 4.0), (200.0, 150.0), "no designs: the centre");
+        // A cloud over the centre: the label moves off it, onto none of the designs.
+        let cloud: Vec<(f64, f64)> =
+            (0..40).map(|i| (150.0 + 2.5 * f64::from(i), 120.0 + 1.5 * f64::from(i % 40))).collect();
+        let (cx, cy) = label_spot(quadrant, size, &cloud, 4.0);
+        let on = cloud.iter().filter(|(x, y)| (x - cx).abs() <= 44.0 && (y - cy).abs() <= 15.0).count();
+        assert_eq!(on, 0, "at ({cx}, {cy})");
+        assert!((cx - 40.0..=360.0).contains(&cx) && (11.0..=289.0).contains(&cy), "inside the quadrant: ({cx}, {cy})");
+    }
 }

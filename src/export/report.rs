@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use crate::design::Thresholds;
 use crate::fsio::{self, FsError, Overwrite};
-use crate::paper::{self, Table, Value};
+use crate::paper::{self, Column, Table, Value};
 use crate::presets;
 use crate::units::num;
 
@@ -25,12 +25,8 @@ pub struct BundleFile {
 }
 
 /// A cell of a markdown table ('|' escaped).
-fn md_cell(v: &Value) -> String {
-    match v {
-        Value::Num(x) => num(*x),
-        Value::Text(s) => s.replace('|', "\\|"),
-        Value::Missing => "—".into(),
-    }
+fn md_cell(v: &Value, c: &Column) -> String {
+    c.text(v, num).replace('|', "\\|")
 }
 
 /// `table` as a markdown table (or, past [`REPORT_ROWS`] rows, a pointer to its CSV), followed
@@ -41,7 +37,10 @@ pub fn markdown(table: &Table) -> String {
     if table.rows.len() <= REPORT_ROWS {
         s += &format!("| {} |\n|{}\n", labels.join(" | "), "---:|".repeat(labels.len()));
         for row in table.rows.iter().chain(&table.summary) {
-            s += &format!("| {} |\n", row.iter().map(md_cell).collect::<Vec<_>>().join(" | "));
+            s += &format!(
+                "| {} |\n",
+                row.iter().zip(&table.columns).map(|(v, c)| md_cell(v, c)).collect::<Vec<_>>().join(" | ")
+            );
         }
     } else {
         s += &format!("*{} rows of {} — in `{}.csv`.*\n", table.rows.len(), labels.join(", "), table.id);

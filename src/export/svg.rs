@@ -829,7 +829,18 @@ pub fn legend(svg: &mut Svg, frame: &Frame, entries: &[(&str, &str)]) {
 /// A complete x–y figure: title, axes, series (and a legend when there are several).
 pub fn line_plot(title: &str, look: &Look, x: Axis, y: Axis, series: &[Series]) -> String {
     let mut svg = Svg::figure(look, (WIDTH, HEIGHT), title);
-    let frame = Frame::standard(&svg, x, y, series.len() > 1);
+    let mut frame = Frame::standard(&svg, x, y, series.len() > 1);
+    if series.len() > 1 {
+        // Room for the longest label right of the frame (a character of 11 px text is at most
+        // about 0.6 em wide), with a margin: the legend never touches the figure's edge.
+        let k = svg.scale();
+        let longest = series.iter().map(|s| minus(&s.label).chars().count()).max().unwrap_or(0) as f64;
+        let need = (12.0 + 30.0 + 0.6 * 11.0 * longest + 12.0) * k;
+        let have = svg.width() - frame.left - frame.width;
+        if need > have {
+            frame.width -= need - have;
+        }
+    }
     frame.draw(&mut svg, title);
     draw_series(&mut svg, &frame, series);
     svg.finish()
@@ -838,6 +849,22 @@ pub fn line_plot(title: &str, look: &Look, x: Axis, y: Axis, series: &[Series]) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A legend's longest label ends inside the figure, a margin from its edge.
+    #[test]
+    fn a_long_legend_label_keeps_clear_of_the_edge() {
+        let pts = vec![(0.0, 1.0), (1.0, 2.0)];
+        let series = [
+            Series::new("measured envelope", pts.clone(), Style::LineMarkers),
+            Series::new("median run at the fitted c1", pts.clone(), Style::Dashed),
+        ];
+        let doc = line_plot("t", &Look::default(), Axis::fit("x", [0.0, 1.0]), Axis::fit("y", [1.0, 2.0]), &series);
+        let at = doc.find(">median run at the fitted c1<").unwrap();
+        let tag = &doc[doc[..at].rfind("<text").unwrap()..at];
+        let x: f64 = tag.split("x=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+        let end = x + 0.6 * 11.0 * "median run at the fitted c1".len() as f64;
+        assert!(end + 10.0 <= WIDTH, "the label ends at {end} of {WIDTH}");
+    }
 
     #[test]
     fn text_is_escaped() {

@@ -2,9 +2,9 @@
 //! acoustic model at the impact's incoming speed) placed at its impact time, over the whole run.
 //!
 //! **Level.** The scale is fixed, never normalised to the loudest sample, so two designs can be
-//! compared by ear: sample value = pressure / full scale, where the full scale (`--full-scale`,
-//! default [`FULL_SCALE_PA`] = 20 Pa, i.e. 120 dB peak re 20 µPa) is the pressure written as
-//! sample value 1.0.
+//! compared by ear: sample value = (the mean pressure over the sample's interval) / full scale,
+//! where the full scale (`--full-scale`, default [`FULL_SCALE_PA`] = 20 Pa, i.e. 120 dB peak re
+//! 20 µPa) is the pressure written as sample value 1.0.
 //!
 //! **Samples.** Mono, 48 kHz by default. [`SampleFormat::Pcm16`] (the default) and
 //! [`SampleFormat::Pcm24`] write signed integers: the value is clipped to [−1, 1] and multiplied

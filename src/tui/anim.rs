@@ -33,7 +33,11 @@ use crate::damper::{HistoryPoint, ImpactEvent, Wall};
 use crate::units::sig;
 
 /// The playback speeds (simulated seconds per real second): 1/1000× to 1×.
-pub const SPEEDS: [f64; 7] = [1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0];
+pub const SPEEDS: [f64; 7] = [1.0 / 1000.0, 1.0 / 300.0, 1.0 / 100.0, 1.0 / 30.0, 1.0 / 10.0, 1.0 / 3.0, 1.0];
+/// The speed the animation opens at (an index into [`SPEEDS`]): 1/10×, where the default
+/// design's ball strikes a few times a second of real time from the start (its first impact
+/// after 0.1 s) and the mass's swing takes about 2 s; `[` slows it down to watch one contact.
+pub const DEFAULT_SPEED: usize = 4;
 /// One frame of real time (s): the view is drawn 30 times a second while it plays.
 pub const FRAME_S: f64 = 1.0 / 30.0;
 /// How long an impact stays flashed, in real time (s), whatever the speed.
@@ -56,13 +60,27 @@ pub struct Anim {
 }
 
 impl Default for Anim {
-    /// From the start, at the slowest speed, playing.
+    /// From the start, at [`DEFAULT_SPEED`], playing.
     fn default() -> Self {
-        Self { t_s: 0.0, speed: 0, playing: true, named: None }
+        Self::at_speed(DEFAULT_SPEED)
+    }
+}
+
+/// A speed as shown: "1/1000×", "1/3×", "1×".
+pub fn rate_text(r: f64) -> String {
+    if r >= 1.0 {
+        "1×".into()
+    } else {
+        format!("1/{}×", (1.0 / r).round())
     }
 }
 
 impl Anim {
+    /// From the start, at speed `speed` (an index into [`SPEEDS`]), playing.
+    pub fn at_speed(speed: usize) -> Self {
+        Self { t_s: 0.0, speed: speed.min(SPEEDS.len() - 1), playing: true, named: None }
+    }
+
     /// Simulated seconds per real second.
     pub fn rate(&self) -> f64 {
         SPEEDS[self.speed.min(SPEEDS.len() - 1)]
@@ -70,12 +88,7 @@ impl Anim {
 
     /// The speed as shown: "1/1000×", "1/3×", "1×".
     pub fn speed_text(&self) -> String {
-        let r = self.rate();
-        if r >= 1.0 {
-            "1×".into()
-        } else {
-            format!("1/{}×", (1.0 / r).round())
-        }
+        rate_text(self.rate())
     }
 
     /// `real_s` of real time on, up to the run's end `end_s` (where it pauses).
@@ -416,8 +429,10 @@ mod tests {
 
     #[test]
     fn speeds_run_from_a_thousandth_to_one_and_playback_stops_at_the_end() {
-        let mut a = Anim::default();
+        let mut a = Anim::at_speed(0);
         assert_eq!(a.speed_text(), "1/1000×");
+        let shown: Vec<String> = SPEEDS.iter().map(|&r| rate_text(r)).collect();
+        assert_eq!(shown, ["1/1000×", "1/300×", "1/100×", "1/30×", "1/10×", "1/3×", "1×"]);
         a.advance(3.0, 2.0);
         assert!((a.t_s - 0.003).abs() < 1e-15 && a.playing);
         a.speed = SPEEDS.len() - 1;

@@ -531,8 +531,12 @@ pub fn bifurcation_band(d: &Design, points: usize) -> FreqBand {
 /// `Err` naming the values when a diagram of `values` values would pass the work caps of
 /// every study of orbits ([`dynamics::check_work`], as `thud bifurcation` checks).
 fn check_orbit_work(values: usize) -> Result<(), ThudError> {
-    dynamics::check_work(values, orbit_settings(), false)
-        .map_err(|r| ThudError::invalid("bifurcation", format!("{values} values: {}", r.estimate.describe())))
+    dynamics::check_work(values, orbit_settings(), false).map_err(|r| {
+        ThudError::invalid(
+            "bifurcation",
+            format!("{values} value{}: {}", if values == 1 { "" } else { "s" }, r.estimate.describe()),
+        )
+    })
 }
 
 /// The bifurcation diagram of forced `d` over f for `band` (each value from the design's own

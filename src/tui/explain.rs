@@ -10,6 +10,15 @@ use crate::limits;
 /// (Eq 26), N·s/m, 0–1e+06". The range is the one table's ([`crate::limits`]), in the unit
 /// the field shows; θ's is the current source's open side.
 pub fn field_hint(p: Knob, d: &Design) -> String {
+    let hint = unit_and_range(p, d);
+    match p.idle(d) {
+        Some(why) => format!("{hint} — {why}"),
+        None => hint,
+    }
+}
+
+/// [`field_hint`] without the word on a field the design does not use.
+fn unit_and_range(p: Knob, d: &Design) -> String {
     match (p.display_unit(), p.display_range(d)) {
         (Some((unit, _)), Some((lo, hi))) => {
             format!("{} — {}, {unit}, {}–{}", p.label(), p.what(), limits::short(lo), limits::short(hi))
@@ -76,6 +85,29 @@ pub fn glossary(zone_by: ZoneBy) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// The forced readout's terms, each said in one line (at most [`ONE_LINE`] characters): a
+/// forced design (F0 > 0) is the main mass driven by F0·cos 2πft, its readout the steady state
+/// of its last N = 10 forcing periods (the window).
+pub fn forced_terms() -> Vec<(&'static str, String)> {
+    [
+        ("orbit", "In the title: m/n (m impacts in n periods), chaotic, not settled."),
+        ("settled", "The window's amplitude is within 1e-3 of the window before it."),
+        ("periodic", "x repeats from one forcing period to the next within 1e-3."),
+        ("amp", "The main mass's largest |x| over the last 10 forcing periods."),
+        ("alone", "The same without the ball: F0/√((K − MΩ²)² + (CΩ)²), Ω = 2πf."),
+        ("cut", "What the ball takes off: 20·log10(alone/amp) dB (> 0: it helps)."),
+        ("Leq", "Energy-average level at the listener of the window's impacts."),
+        ("imp/T", "Impacts per forcing period in the window."),
+    ]
+    .into_iter()
+    .map(|(t, x)| (t, x.to_string()))
+    .collect()
+}
+
+/// The longest explanation of a one-line term: the glossary's text column at 80 columns (less
+/// the borders and the term column, 9 wide with "periodic").
+pub const ONE_LINE: usize = 68;
+
 /// What is on screen beyond the paper's free decay: a force, an ensemble, the response view.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct OnScreen {
@@ -90,25 +122,7 @@ pub struct OnScreen {
 pub fn glossary_for(zone_by: ZoneBy, cx: OnScreen) -> Vec<(&'static str, String)> {
     let mut g = glossary(zone_by);
     if cx.forced || cx.response_view {
-        g.push((
-            "steady",
-            "A forced design (F0 > 0, F0·cos 2πft on the main mass) over its last N = 10 forcing periods: amp, the \
-             largest |x|; alone, the main mass without the ball, F0/√((K − MΩ²)² + (CΩ)²); cut, 20·log10(alone/amp) \
-             dB (> 0: the damper cuts it); Leq, the energy-average level of every impact's pulse at the listener \
-             over that window; imp/T, impacts per period; periodic (x repeats period to period within 1e-3) and \
-             settled (the window's amplitude changed by < 1e-3 from the one before; raise the duration if not)."
-                .into(),
-        ));
-        g.push((
-            "orbit",
-            "(the readout's title) A forced design's orbit at its f, as `thud bifurcation` classifies it (200 periods of transient, 100 \
-             sampled at t = kT): m/n, m impacts per n forcing periods (sym: x(t + T/2) = −x(t)); chaotic (the 0–1 \
-             test's K ≥ 0.8); not settled (neither, within 16 periods). A run of its own from the design's start: the \
-             note's settled and periodic are the steady run's, going on until its amplitude settles, so they may \
-             differ. With N > 1 runs, 'from y0': the design's own start (the ball at y0 as set), not the runs' \
-             spread offsets. `v` cycles the chart to its bifurcation diagram over f."
-                .into(),
-        ));
+        g.extend(forced_terms());
     }
     if cx.response_view {
         g.push((
@@ -127,7 +141,8 @@ pub fn glossary_for(zone_by: ZoneBy, cx: OnScreen) -> Vec<(&'static str, String)
             format!(
                 "N = {} runs of the design from ball offsets y0 = −d/2 + (k + ½)·d/N spread over the clearance, at \
                  rest: the readout shows each number's median [p10–p90] (nearest rank: each is one run's value) and \
-                 the % of runs in the zone of the medians. The chart gives each cell the zone of its medians; a \
+                 the % of runs in the zone of the medians. A forced design's amp and cut are one run's: cut's \
+                 median [p10–p90] is the cut of the runs at amp's median [p90–p10]. The chart gives each cell the zone of its medians; a \
                  cell where fewer than 70 % of its runs agree is shaded ░ (: in ASCII) — that zone is luck.",
                 cx.runs
             ),
@@ -160,16 +175,35 @@ mod tests {
     }
 
     #[test]
+    fn the_air_says_it_is_unused_in_the_paper_model_only() {
+        let air = Knob::ALL.into_iter().find(|k| k.rows() == ["air-temperature"]).unwrap();
+        let paper = Design::default();
+        assert!(field_hint(air, &paper).contains("unused by the paper's model"), "{}", field_hint(air, &paper));
+        assert!(air.shown(&paper).ends_with(" (unused)"), "{}", air.shown(&paper));
+        let mut physical = paper.clone();
+        physical.model = crate::design::Model::Physical;
+        assert!(!field_hint(air, &physical).contains("unused") && !air.shown(&physical).contains("unused"));
+        assert!(!field_hint(Knob::MASS, &paper).contains("unused"), "a field the paper's model uses");
+    }
+
+    #[test]
     fn the_glossary_adds_the_terms_on_screen_only() {
         let plain = glossary_for(ZoneBy::Paper, OnScreen { runs: 1, ..OnScreen::default() });
         assert_eq!(plain, glossary(ZoneBy::Paper));
         let all = glossary_for(ZoneBy::Paper, OnScreen { forced: true, runs: 16, response_view: true });
-        for term in ["steady", "f view", "N runs"] {
+        for term in ["orbit", "settled", "amp", "alone", "cut", "Leq", "imp/T", "f view", "N runs"] {
             assert!(all.iter().any(|(t, _)| *t == term), "{term}");
         }
         assert!(all.iter().any(|(_, x)| x.contains("N = 16 runs") && x.contains("70 %")));
         assert!(field_hint(Knob::RUNS, &Design::default()).contains("runs, 1–1000"));
         assert!(field_hint(Knob::BALL_POSITION, &Design::default()).contains("cm, -2–2"));
+    }
+
+    #[test]
+    fn each_forced_term_is_one_line_at_80_columns() {
+        for (term, text) in forced_terms() {
+            assert!(text.chars().count() <= ONE_LINE, "{term}: {} characters", text.chars().count());
+        }
     }
 
     #[test]

@@ -111,6 +111,8 @@ pub struct Look {
     cycled: Option<fn(&mut Design)>,
     /// Where a ratio step starts from 0 (a forcing frequency, 0 while no force).
     start: Option<fn(&Design) -> f64>,
+    /// Why the design does not use the field now (the air in the paper's model), if it does not.
+    idle: Option<fn(&Design) -> Option<&'static str>>,
 }
 
 impl Look {
@@ -142,6 +144,7 @@ impl Look {
             then: None,
             cycled: None,
             start: None,
+            idle: None,
         }
     }
 
@@ -253,6 +256,8 @@ const LOOKS: &[Look] = &[
     Look::row(&["pulse"], "pulse", "contact acceleration: the paper's half-sine (Eq 7) or the exact Hertz pulse")
         .words(&[("halfsine", 0), ("sine", 0), ("half sine", 0), ("exact", 1)]),
     Look { follows: true, ..Look::of(&["model"]) },
+    Look { idle: Some(paper_air), ..Look::of(&["air-temperature"]) },
+    Look { idle: Some(paper_air), ..Look::of(&["air-pressure"]) },
     Look::row(&["l-star"], "L*", "zone threshold on SPLmax: below L* is quiet")
         .name("L*").digits(4).step(Stepping::Add(1.0, 0.1)),
     Look::row(&["e-star"], "e*", "zone threshold on the damping inclination: e ≥ e* is strong")
@@ -280,6 +285,13 @@ const LOOKS: &[Look] = &[
             .step(Stepping::Count).scope(Scope::All)
     },
 ];
+
+/// The air's temperature and pressure do nothing in the paper's model (its air is the
+/// paper's ρ0c and c); the physical model takes its air from them.
+fn paper_air(d: &Design) -> Option<&'static str> {
+    (d.model == crate::design::Model::Paper)
+        .then_some("unused by the paper's model (its air is ρ0c and c as set); model physical uses it")
+}
 
 /// The row of [`params::DESIGN`] called `name` (its index; the table's length if none).
 const fn design_row(name: &str) -> usize {
@@ -762,6 +774,22 @@ impl Knob {
             (None, None) => {}
         }
         Ok(s)
+    }
+
+    /// Why the design does not use the field now, if it does not (the air in the paper's model).
+    pub fn idle(self, d: &Design) -> Option<&'static str> {
+        self.look().idle.and_then(|why| why(d))
+    }
+
+    /// The value as the panel and the status line show it: [`Knob::display`], marked
+    /// "(unused)" where the design does not use the field.
+    pub fn shown<S: Tunable>(self, s: &S) -> String {
+        let v = self.display(s);
+        if self.idle(s.design()).is_some() {
+            format!("{v} (unused)")
+        } else {
+            v
+        }
     }
 
     /// The value as people read it: display units, a few significant digits; a word for a

@@ -524,6 +524,7 @@ fn ascii_word(c: char) -> Option<&'static str> {
         'µ' | 'μ' => "u",
         'τ' => "tau",
         'λ' => "lambda",
+        'κ' => "kappa",
         'ρ' => "rho",
         'α' => "alpha",
         'δ' => "delta",

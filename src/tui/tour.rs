@@ -18,6 +18,7 @@
 //! best = false                 # optional: jump to the best zone-3 design once the chart is in
 //! select = "theta"             # optional: the field the step talks about (else the first it sets)
 //! animate = false              # optional: play the run in slow motion (the animation view)
+//! speed = "1/10"               # optional, with animate: its playback speed, 1/1000 to 1
 //! table1 = false               # optional: show Table 1 beside both models (the Table 1 view)
 //! caption = "Two to three lines of text."
 //! ```
@@ -27,6 +28,7 @@ use std::path::PathBuf;
 
 use serde::Deserialize;
 
+use super::anim;
 use super::fields::{Knob, Setup};
 use super::view::{Panel, PulseView};
 use crate::design::Design;
@@ -77,6 +79,9 @@ pub struct TourStep {
     pub select: Knob,
     /// The step plays the run in slow motion (the animation view) instead of its panel.
     pub animate: bool,
+    /// The animation's speed (an index into [`crate::tui::anim::SPEEDS`]): the step's `speed`,
+    /// else the animation's default.
+    pub speed: usize,
     /// The step shows Table 1 beside both models (the Table 1 view) instead of its panel.
     pub table1: bool,
 }
@@ -111,6 +116,7 @@ struct StepFile {
     select: Option<String>,
     #[serde(default)]
     animate: bool,
+    speed: Option<toml::Value>,
     #[serde(default)]
     table1: bool,
 }
@@ -200,6 +206,13 @@ impl Tour {
             if s.animate && s.table1 {
                 return Err(at("a step shows the animation or Table 1, not both".into()));
             }
+            let speed = match &s.speed {
+                None => anim::DEFAULT_SPEED,
+                Some(_) if !s.animate => {
+                    return Err(at("speed is the animation's playback speed: the step needs animate = true".into()))
+                }
+                Some(v) => speed(v).map_err(at)?,
+            };
             if s.title.trim().is_empty() || s.title.chars().count() > 60 {
                 return Err(at("a step title has 1 to 60 characters".into()));
             }
@@ -221,11 +234,31 @@ impl Tour {
                 sets_thresholds,
                 select,
                 animate: s.animate,
+                speed,
                 table1: s.table1,
             });
         }
         Ok(Tour { title: parsed.title, steps })
     }
+}
+
+/// The animation speed a step's `speed` names (its index in [`anim::SPEEDS`]): one of the
+/// speeds `[` and `]` step through, written as a fraction ("1/30", "1/30×"), a number (0.1, 1)
+/// or "1×".
+fn speed(value: &toml::Value) -> Result<usize, String> {
+    let shown = match value {
+        toml::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    };
+    let text = shown.trim().trim_end_matches(['×', 'x', 'X']).trim();
+    let rate = match text.split_once('/') {
+        Some((a, b)) => a.trim().parse::<f64>().ok().zip(b.trim().parse::<f64>().ok()).map(|(a, b)| a / b),
+        None => text.parse::<f64>().ok(),
+    };
+    let names: Vec<String> = anim::SPEEDS.iter().map(|&r| anim::rate_text(r)).collect();
+    rate.filter(|r| r.is_finite())
+        .and_then(|r| anim::SPEEDS.iter().position(|&s| ((r - s) / s).abs() < 0.02))
+        .ok_or_else(|| format!("speed '{shown}'; one of {} (the speeds [ and ] step through)", names.join(", ")))
 }
 
 /// The field a step's `set` key names (its name in messages, e.g. `mass`, `theta`, `L*`).
@@ -337,11 +370,35 @@ mod tests {
             (ok.replace("title = \"t\"\n", ""), "x.toml: "),
             ("title = \"t\"\nstep = []\n".to_string(), "0 steps"),
             (ok.replace("panel", "pannel"), "1:"),
+            (ok.replace("caption = \"one line\"", "caption = \"one line\"\nspeed = \"1/10\""), "needs animate = true"),
+            (
+                ok.replace("caption = \"one line\"", "caption = \"one line\"\nanimate = true\nspeed = \"1/20\""),
+                "speed '1/20'; one of 1/1000×, 1/300×, 1/100×, 1/30×, 1/10×, 1/3×, 1×",
+            ),
+            (ok.replace("caption = \"one line\"", "caption = \"one line\"\nanimate = true\nspeed = 2"), "speed '2'"),
         ] {
             let e = Tour::parse("x.toml", &text).unwrap_err().to_string();
             assert!(e.starts_with("tour x.toml: ") && e.contains(want), "{want}: {e}");
             assert!(!e.contains('\n'), "one line: {e}");
         }
+    }
+
+    #[test]
+    fn an_animated_step_sets_its_speed_as_written_or_opens_at_the_default() {
+        let step = |extra: &str| {
+            let text =
+                format!("title = \"t\"\n[[step]]\ntitle = \"a\"\npanel = \"history\"\ncaption = \"c\"\n{extra}\n");
+            Tour::parse("x.toml", &text).unwrap().steps[0].speed
+        };
+        for (written, want) in
+            [("\"1/30\"", 1.0 / 30.0), ("\"1/1000×\"", 1e-3), ("0.1", 0.1), ("1", 1.0), ("\"1x\"", 1.0)]
+        {
+            let i = step(&format!("animate = true\nspeed = {written}"));
+            assert!((anim::SPEEDS[i] - want).abs() < 1e-12, "{written}: {}", anim::SPEEDS[i]);
+        }
+        assert_eq!(step("animate = true"), anim::DEFAULT_SPEED);
+        let t = Tour::load(&TourSource::BuiltIn).unwrap();
+        assert!(t.steps.iter().any(|s| s.animate), "the built-in tour plays the run");
     }
 
     #[test]

@@ -320,7 +320,7 @@ fn title_width(app: &App, which: Panel, area: Rect) -> u16 {
 
 fn params_widget(f: &mut Frame, app: &App, area: Rect) -> Drawn {
     let setup = app.setup();
-    let rows: Vec<(String, String)> = Knob::ALL.iter().map(|p| (p.label().to_string(), p.display(&setup))).collect();
+    let rows: Vec<(String, String)> = Knob::ALL.iter().map(|p| (p.label().to_string(), p.shown(&setup))).collect();
     let groups: Vec<&'static str> = Knob::ALL.iter().map(|p| p.group().title()).collect();
     let view = ParamsView {
         block: panel_block(app, Panel::Params, " parameters "),
@@ -1141,8 +1141,6 @@ fn help_popup(f: &mut Frame, keys: &Keymap, theme: &Palette, scroll: u16, area: 
 fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
     let th = &app.theme;
     let width = 100.min(area.width);
-    let term_w = 8usize;
-    let text_w = (width as usize).saturating_sub(term_w + 3).max(10);
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let mut lines: Vec<Line> = Vec::new();
     let cx = explain::OnScreen {
@@ -1150,7 +1148,11 @@ fn glossary_popup(f: &mut Frame, app: &App, scroll: u16, area: Rect) {
         runs: app.runs,
         response_view: app.chart_view == ChartView::Response,
     };
-    for (term, text) in explain::glossary_for(app.design.thresholds.zone_by, cx) {
+    let glossary = explain::glossary_for(app.design.thresholds.zone_by, cx);
+    // The term column: a blank after the longest term shown (at least 8 wide).
+    let term_w = glossary.iter().map(|(t, _)| th.text(t).chars().count() + 1).max().unwrap_or(0).max(8);
+    let text_w = (width as usize).saturating_sub(term_w + 3).max(10);
+    for (term, text) in glossary {
         let text = th.text(&text).into_owned();
         for (i, l) in wrap(&text, text_w).into_iter().enumerate() {
             let head = if i == 0 { th.text(term).into_owned() } else { String::new() };

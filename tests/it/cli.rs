@@ -217,3 +217,30 @@ fn sphere_poisson_changes_k_hz_and_is_refused_out_of_range_or_without_a_sphere()
         }
     }
 }
+
+/// Words that say only what is so: the observer's bound at its angle, a source's wall signs only
+/// where it has a second wall, and counts as whole numbers.
+#[test]
+fn small_untruths_are_gone() {
+    // Along the normal the sphere reaches 2a = 38.1 mm: 37 mm is inside it, and the error says so.
+    let (code, out, err) = thud(&["pulse", "--r", "0.037", "--theta", "0"]);
+    assert_eq!((code, out.as_str(), err.lines().count()), (2, "", 1), "{err}");
+    assert!(err.contains("0.037") && err.contains("must be > 2a·cos θ = 0.0381 m"), "{err}");
+    assert_eq!(thud(&["pulse", "--r", "0.0382", "--theta", "0"]).0, 0, "just outside");
+    // Only the corner's second wall has signs.
+    for (source, signs) in [("single", false), ("dipole", false), ("quadrupole", true)] {
+        let (code, out, err) = thud(&["simulate", "--source", source, "--duration", "0.2"]);
+        assert_eq!(code, 0, "{err}");
+        let listener = out.lines().find(|l| l.starts_with("listener")).unwrap();
+        assert_eq!(listener.contains("signs"), signs, "{listener}");
+    }
+    // Table 5 counts designs: whole numbers.
+    let (code, out, err) = thud(&["paper", "table5"]);
+    assert_eq!(code, 0, "{err}");
+    let header = out.lines().nth(1).unwrap();
+    let col = header.split("  ").filter(|c| !c.trim().is_empty()).position(|c| c.trim() == "designs").unwrap();
+    for row in out.lines().skip(2).take_while(|l| !l.starts_with("note")) {
+        let cell = row.split_whitespace().nth(col).unwrap();
+        assert!(cell.parse::<u32>().is_ok(), "a count: {cell} in {row}");
+    }
+}

@@ -226,6 +226,63 @@ fn every_page_of_the_guide_is_in_the_book_and_every_link_leads_to_a_file() {
     }
 }
 
+/// Every page of the guide has a title (its first `# …` line) of its own: two pages called
+/// "The explorer" read as one in the book's search and a browser's tabs.
+#[test]
+fn every_guide_page_has_a_title_of_its_own() {
+    let mut seen: Vec<(String, PathBuf)> = Vec::new();
+    for page in guide_pages() {
+        let text = read(page.to_str().unwrap());
+        // The first heading (a page may open with a comment or include its text from elsewhere).
+        let Some(title) = text.lines().find(|l| l.starts_with("# ")).map(str::to_string) else { continue };
+        if let Some((_, other)) = seen.iter().find(|(t, _)| *t == title) {
+            panic!("{} and {} are both titled {title}", other.display(), page.display());
+        }
+        seen.push((title, page));
+    }
+    assert!(seen.iter().any(|(t, _)| t == "# Getting started"), "a getting-started page");
+}
+
+/// `thud man --install` run through a symbolic link on `PATH` (`BIN/thud` → a binary
+/// elsewhere) writes beside the link's folder, where man looks for the `thud` on `PATH`, not
+/// beside the binary's; with `MANPATH` set, into its first folder.
+#[test]
+fn man_install_through_a_link_writes_where_man_looks_and_follows_manpath() {
+    let root = tempfile::tempdir().unwrap();
+    let real = root.path().join("build/release");
+    let bin = root.path().join("prefix/bin");
+    std::fs::create_dir_all(&real).unwrap();
+    std::fs::create_dir_all(&bin).unwrap();
+    crate::common::copy_thud(&real.join("thud"));
+    std::os::unix::fs::symlink(real.join("thud"), bin.join("thud")).unwrap();
+    let path = format!("{}:/usr/bin:/bin", bin.display());
+    // Run by name, as a shell runs it: found on PATH.
+    let out = std::process::Command::new("thud")
+        .args(["man", "--install"])
+        .env("PATH", &path)
+        .env_remove("MANPATH")
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(root.path().join("prefix/share/man/man1/thud.1").is_file(), "beside the link's folder");
+    assert!(!root.path().join("build/share").exists(), "not beside the binary's");
+    // Run by the link's path.
+    std::fs::remove_dir_all(root.path().join("prefix/share")).unwrap();
+    let out =
+        std::process::Command::new(bin.join("thud")).args(["man", "--install"]).env_remove("MANPATH").output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(root.path().join("prefix/share/man/man1/thud.1").is_file());
+    // MANPATH set (":" first is an empty entry, skipped): its first folder.
+    let mine = root.path().join("man");
+    let out = std::process::Command::new(bin.join("thud"))
+        .args(["man", "--install"])
+        .env("MANPATH", format!(":{}:/usr/share/man", mine.display()))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(mine.join("man1/thud-sweep.1").is_file(), "MANPATH's first folder");
+}
+
 /// `thud man --install` writes the pages beside the binary's folder (`BIN/../share/man/man1`),
 /// where man-db's manpath looks for the `thud` on `PATH`: after it `man -w thud` finds thud(1)
 /// with no MANPATH set. Run from a copy of the binary in a temporary prefix.
@@ -235,7 +292,8 @@ fn man_finds_thud_after_man_install() {
     let bin = prefix.path().join("bin");
     std::fs::create_dir(&bin).unwrap();
     crate::common::copy_thud(&bin.join("thud"));
-    let out = std::process::Command::new(bin.join("thud")).args(["man", "--install"]).output().unwrap();
+    let out =
+        std::process::Command::new(bin.join("thud")).args(["man", "--install"]).env_remove("MANPATH").output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let page = prefix.path().join("share/man/man1/thud.1");
     assert!(std::fs::read_to_string(&page).unwrap().starts_with(".TH"), "{}", page.display());
@@ -253,7 +311,8 @@ fn man_finds_thud_after_man_install() {
         assert!(names.iter().all(|n| err.contains(n)), "{args:?}: {err}");
     }
     // A second install replaces the pages (an upgrade), never refuses.
-    let again = std::process::Command::new(bin.join("thud")).args(["man", "--install"]).output().unwrap();
+    let again =
+        std::process::Command::new(bin.join("thud")).args(["man", "--install"]).env_remove("MANPATH").output().unwrap();
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
     // man(1) itself, where it is installed (man-db: Debian's `man-db` package).
     let Ok(man) = std::process::Command::new("man")

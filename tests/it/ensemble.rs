@@ -296,11 +296,17 @@ fn a_response_ensemble_is_its_runs_and_their_spread() {
     }
     for p in points {
         let runs = p["ensemble"].as_array().unwrap();
-        for key in ["amplitude_m", "reduction_db", "impacts_per_period", "leq_db"] {
+        for key in ["amplitude_m", "impacts_per_period", "leq_db"] {
             let col: Vec<Option<f64>> = runs.iter().map(|r| r[key].as_f64()).collect();
             for (pct, name) in [(10, "p10"), (50, "median"), (90, "p90")] {
                 assert_eq!(p["spread"][key][name].as_f64(), nearest_rank(&col, pct), "{key} {name}");
             }
+        }
+        // The cut is the amplitude's runs' (the cut falls as the amplitude grows).
+        for (cut, amp) in [("p10", "p90"), ("median", "median"), ("p90", "p10")] {
+            let a = p["spread"]["amplitude_m"][amp].as_f64();
+            let run = runs.iter().find(|r| r["amplitude_m"].as_f64() == a).unwrap();
+            assert_eq!(p["spread"]["reduction_db"][cut], run["reduction_db"], "cut {cut}: the amplitude's {amp} run");
         }
     }
     let runs_seen: Vec<f64> = points.iter().map(|p| p["spread"]["amplitude_m"]["p90"].as_f64().unwrap()).collect();

@@ -167,3 +167,28 @@ fn man_all_writes_every_page_with_the_extra_sections_and_keeps_existing_ones() {
         assert!(text.contains("An I/O failure") && text.contains("docs/model.md"), "{text}");
     }
 }
+
+/// zsh's `_arguments` reads `--flag=[help]:MESSAGE:ACTION`: a value name with a colon
+/// (`NAME=FROM:TO:N`) must have it escaped, or zsh runs its second part as a command
+/// ("command not found: TO" on `thud sweep --vary <TAB>`).
+#[test]
+fn zsh_completion_specs_have_one_message_and_one_action() {
+    let (code, script, err) = thud(&["completions", "zsh"]);
+    assert_eq!(code, 0, "{err}");
+    let mut checked = 0;
+    for line in script.lines().map(str::trim).filter(|l| l.starts_with('\'') && l.contains("]:")) {
+        let spec = line.trim_end_matches(" \\").trim_end_matches('\'');
+        // (`::` is an optional value: one colon more, not a part more.)
+        let tail = spec[spec.rfind("]:").unwrap() + 2..].trim_start_matches(':');
+        let mut colons = 0;
+        let mut prev = ' ';
+        for c in tail.chars() {
+            colons += usize::from(c == ':' && prev != '\\');
+            prev = c;
+        }
+        assert_eq!(colons, 1, "message and action, no more: {line}");
+        checked += 1;
+    }
+    assert!(checked > 50, "{checked} specs");
+    assert!(script.contains(r"]:NAME=FROM\:TO\:N:"), "the --vary value name, escaped");
+}

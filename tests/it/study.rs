@@ -112,6 +112,32 @@ fn the_forced_rattle_bifurcation_shows_its_period_doubling() {
     assert_eq!(orbit_at(7.425), "chaotic");
     let svg = std::fs::read_to_string(h.join("bif.svg")).unwrap();
     assert!(svg.contains("<title>Bifurcation diagram over freq") && svg.contains("4/2"));
+    // The title names the range that varies, not the design's own f; numbers as typed.
+    assert!(svg.contains("over freq 7.4–7.8 Hz — F0 "), "{}", &svg[..svg.len().min(600)]);
+    assert!(!svg.contains(", f 7.") && !svg.contains(".0000"), "{}", &svg[..svg.len().min(600)]);
+    // The legend's orbit list says when it leaves bands out (those of fewer than 3 values):
+    // the bands are the runs of one orbit over consecutive values of the CSV.
+    let mut values: Vec<(f64, &str)> = Vec::new();
+    for r in &rows {
+        let f: f64 = r[0].parse().unwrap();
+        if values.last().is_none_or(|(g, _)| (f - g).abs() > 1e-12) {
+            values.push((f, r[2]));
+        }
+    }
+    let mut bands: Vec<usize> = Vec::new();
+    for (i, (_, orbit)) in values.iter().enumerate() {
+        if i > 0 && values[i - 1].1 == *orbit {
+            *bands.last_mut().unwrap() += 1;
+        } else {
+            bands.push(1);
+        }
+    }
+    let left_out = bands.len() - bands.iter().filter(|n| **n >= 3).count().min(24);
+    if left_out > 0 {
+        assert!(svg.contains(&format!("… and {left_out} band")), "{left_out} bands left out: {bands:?}");
+    } else {
+        assert!(!svg.contains("… and"), "{bands:?}");
+    }
     assert!(std::fs::read(h.join("bif.pdf")).unwrap().starts_with(b"%PDF"));
     // The text names the bands.
     let text =

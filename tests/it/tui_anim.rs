@@ -28,11 +28,11 @@ fn a_plays_the_run_slowly_flashes_the_first_impact_at_its_wall_and_space_pauses(
     let mut app = computed_app(Design::default(), false);
     press(&mut app, KeyCode::Char('a'));
     let start = render(&mut app, 80, 24);
-    assert!(start.contains("speed 1/1000×") && start.contains("playing"), "{start}");
+    assert!(start.contains("speed 1/10×") && start.contains("playing"), "{start}");
     assert!(app.anim_playing());
-    // 3 s of real time at 1/1000×: 3 ms of the run, and the ball moved on screen.
-    app.update(Msg::Frame(3.0));
-    assert!((app.anim.as_ref().unwrap().t_s - 0.003).abs() < 1e-12);
+    // 0.05 s of real time at 1/10×: 5 ms of the run, and the ball moved on screen.
+    app.update(Msg::Frame(0.05));
+    assert!((app.anim.as_ref().unwrap().t_s - 0.005).abs() < 1e-12);
     let later = render(&mut app, 80, 24);
     assert_ne!(picture(&start), picture(&later), "the drawn ball moves:\n{start}\n{later}");
     // The first impact, where the engine found it (`thud simulate --json`'s first impact).
@@ -41,7 +41,7 @@ fn a_plays_the_run_slowly_flashes_the_first_impact_at_its_wall_and_space_pauses(
     let first = &json["impacts"][0];
     let (t1, wall) = (first["t_s"].as_f64().unwrap(), first["wall"].as_i64().unwrap());
     let now = app.anim.as_ref().unwrap().t_s;
-    app.update(Msg::Frame((t1 - now) / 1e-3 + 0.01));
+    app.update(Msg::Frame((t1 - now) / 0.1 + 0.01));
     let flash = render(&mut app, 80, 24);
     let side = if wall > 0 { "upper wall (right)" } else { "lower wall (left)" };
     let spl = thud::units::sig(first["spl_db"].as_f64().unwrap(), 4);
@@ -56,11 +56,13 @@ fn a_plays_the_run_slowly_flashes_the_first_impact_at_its_wall_and_space_pauses(
     assert!(paused.contains("paused"));
     // ] faster, [ slower, . one frame on, Home back to the start, a closes.
     press(&mut app, KeyCode::Char(']'));
-    assert!(render(&mut app, 80, 24).contains("speed 1/333×"));
+    assert!(render(&mut app, 80, 24).contains("speed 1/3×"));
     press(&mut app, KeyCode::Char('['));
+    press(&mut app, KeyCode::Char('['));
+    assert!(render(&mut app, 80, 24).contains("speed 1/30×"));
     let t = app.anim.as_ref().unwrap().t_s;
     press(&mut app, KeyCode::Char('.'));
-    assert!((app.anim.as_ref().unwrap().t_s - t - 1e-3 / 30.0).abs() < 1e-12);
+    assert!((app.anim.as_ref().unwrap().t_s - t - 1.0 / 30.0 / 30.0).abs() < 1e-12);
     press(&mut app, KeyCode::Home);
     assert_eq!(app.anim.as_ref().unwrap().t_s, 0.0);
     press(&mut app, KeyCode::Char('a'));
@@ -75,11 +77,11 @@ fn the_animation_draws_forced_runs_the_pinned_design_and_ascii() {
     let mut app = computed_app(d, true);
     press(&mut app, KeyCode::Char('p'));
     press(&mut app, KeyCode::Char('a'));
-    app.update(Msg::Frame(30.0));
+    app.update(Msg::Frame(0.3));
     for (w, h) in [(80, 24), (120, 40), (200, 60)] {
         let s = render(&mut app, w, h);
         assert!(s.is_ascii() || s.chars().all(|c| c.is_ascii() || c == '"'), "ascii:\n{s}");
-        assert!(s.contains("speed 1/1000x") && s.contains("t 0.03"), "{w}x{h}:\n{s}");
+        assert!(s.contains("speed 1/10x") && s.contains("t 0.03"), "{w}x{h}:\n{s}");
     }
 }
 
@@ -144,8 +146,8 @@ fn a_pinned_design_plays_below_the_live_one_on_the_same_clock() {
     let start = render(&mut app, 80, 24);
     assert!(lower_picture(&start).contains("pinned"), "{start}");
     assert!(!picture(&start).lines().take(8).any(|l| l.contains("pinned")), "the live run on top:\n{start}");
-    // 20 ms of both runs: the pinned ball and mass move too.
-    app.update(Msg::Frame(20.0));
+    // 20 ms of both runs (0.2 s at 1/10×): the pinned ball and mass move too.
+    app.update(Msg::Frame(0.2));
     let later = render(&mut app, 80, 24);
     assert_ne!(lower_picture(&start), lower_picture(&later), "the pinned run plays:\n{start}\n{later}");
     // Unpinned: one run again.

@@ -165,3 +165,87 @@ fn the_table1_step_shows_the_engine_s_table1_at_both_sizes() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
+
+/// The README, the guide and the built-in tour's own header say how many steps the tour has:
+/// the number the tour runs (and the screen shows as "tour i/N").
+#[test]
+fn the_docs_say_the_tour_s_own_number_of_steps() {
+    const WORDS: [&str; 13] =
+        ["zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve"];
+    let n = thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).unwrap().steps.len();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for file in ["README.md", "docs/guide/the-explorer.md", "assets/tour.toml"] {
+        let text = std::fs::read_to_string(root.join(file)).unwrap().replace("\n# ", " ").replace('\n', " ");
+        let at = text.find("the paper's story in ").unwrap_or_else(|| panic!("{file}: no \"the paper's story in N\""));
+        let said = text[at..].split_whitespace().nth(4).unwrap();
+        assert_eq!(said, WORDS[n], "{file} says the tour has {said} steps; it has {n}");
+    }
+}
+
+/// The tour's animation step at 80×24 plays at a speed where the ball visibly rattles: within
+/// 2 s of real time (60 frames of 1/30 s, as the event loop sends them) an impact is flashed and
+/// named on screen, and the ball has moved.
+#[test]
+fn the_tour_s_animation_shows_an_impact_within_2_s_at_80x24() {
+    use thud::tui::anim::FRAME_S;
+    use thud::tui::app::Msg;
+    let mut app = full_app();
+    press(&mut app, KeyCode::Char('T'));
+    let steps = app.tour.as_ref().unwrap().tour.steps.clone();
+    let i = steps.iter().position(|s| s.animate).expect("the tour has an animation step");
+    for _ in 0..i {
+        press(&mut app, KeyCode::Right);
+    }
+    let first = render(&mut app, 80, 24);
+    assert!(first.contains("playing"), "{first}");
+    let picture =
+        |s: &str| s.lines().skip(2).take(14).map(|l| l.chars().take(40).collect::<String>()).collect::<Vec<_>>();
+    // The impact the flash line names ("impact k at the …"), if any.
+    let named = |s: &str| -> Option<usize> {
+        s.match_indices("impact ").find_map(|(i, w)| {
+            let rest = &s[i + w.len()..];
+            let k: String = rest.chars().take_while(char::is_ascii_digit).collect();
+            rest[k.len()..].starts_with(" at the ").then(|| k.parse().ok()).flatten()
+        })
+    };
+    let (mut first_seen, mut moved, mut last) = (None, false, 0);
+    for frame in 1..=60 {
+        app.update(Msg::Frame(FRAME_S));
+        let screen = render(&mut app, 80, 24);
+        moved |= picture(&screen) != picture(&first);
+        if let Some(k) = named(&screen) {
+            first_seen.get_or_insert(frame);
+            last = last.max(k);
+        }
+    }
+    let shown = render(&mut app, 80, 24);
+    let frame = first_seen.unwrap_or_else(|| panic!("no impact flashed within 2 s of real time:\n{shown}"));
+    assert!(moved, "the ball moved:\n{shown}");
+    let speed = shown.lines().find_map(|l| l.split("speed ").nth(1)?.split_whitespace().next()).unwrap_or_default();
+    eprintln!(
+        "at speed {speed}: the first impact flashed after {:.2} s of real time, impact {last} by 2 s",
+        f64::from(frame) * FRAME_S
+    );
+    // A few impacts a second: the ball rattles, not one click.
+    assert!(last >= 3, "impact {last} by 2 s of real time:\n{shown}");
+}
+
+/// The → that would have been the tour's "next" once more, after its last step, changes
+/// nothing: it says what → does now; the next one changes the design.
+#[test]
+fn the_first_arrow_after_the_tour_says_what_it_does_and_changes_nothing() {
+    let mut app = full_app();
+    press(&mut app, KeyCode::Char('T'));
+    let n = app.tour.as_ref().unwrap().tour.steps.len();
+    for _ in 0..n {
+        press(&mut app, KeyCode::Right);
+    }
+    assert!(app.tour.is_none(), "the last → finishes the tour");
+    let design = app.design.clone();
+    press(&mut app, KeyCode::Right);
+    assert_eq!(app.design, design, "the first → after the tour changes nothing");
+    let status = app.status().unwrap().text.clone();
+    assert!(status.contains("the tour is over") && status.contains("again to"), "{status}");
+    press(&mut app, KeyCode::Right);
+    assert_ne!(app.design, design, "the next → changes the design: {:?}", app.status());
+}

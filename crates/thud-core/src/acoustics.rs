@@ -349,10 +349,19 @@ pub fn validate_observer(a: f64, observer: &Observer, source: Source) -> Result<
     }
     let r1 = (r * r + a * a - 2.0 * a * r * theta.cos()).sqrt();
     if r <= a || r1 <= a {
-        return Err(ThudError::invalid(
-            "r",
-            format!("{r} m puts the observer inside the sphere; must be > the sphere's radius {a:.6} m"),
-        ));
+        // Outside the sphere (centre a along the normal) at θ: r > 2a·cos θ; and r > a.
+        let far = 2.0 * a * theta.cos();
+        let bound = if far > a {
+            format!(
+                "at θ {} deg it must be > 2a·cos θ = {} m (a = {} m, the sphere's radius)",
+                crate::units::short(theta.to_degrees()),
+                crate::units::short(far),
+                crate::units::short(a)
+            )
+        } else {
+            format!("must be > the sphere's radius {} m", crate::units::short(a))
+        };
+        return Err(ThudError::invalid("r", format!("{r} m puts the observer inside the sphere; {bound}")));
     }
     let deg = theta.to_degrees();
     let (lo, hi) = source.theta_range_deg();
@@ -367,6 +376,27 @@ pub fn validate_observer(a: f64, observer: &Observer, source: Source) -> Result<
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod observer_tests {
+    use super::*;
+
+    /// The error names the bound at the angle given: the sphere's far side 2a·cos θ along the
+    /// normal, its radius where that is smaller; a point just past the bound is accepted.
+    #[test]
+    fn an_observer_inside_the_sphere_is_told_the_bound_at_its_angle() {
+        let a = 0.01905;
+        let at =
+            |r_m: f64, deg: f64| validate_observer(a, &Observer { r_m, theta_rad: deg.to_radians() }, Source::Dipole);
+        let e = at(0.037, 0.0).unwrap_err().to_string();
+        assert!(e.contains("must be > 2a·cos θ = 0.0381 m"), "{e}");
+        assert!(at(0.0382, 0.0).is_ok(), "just outside the sphere along the normal");
+        let e = at(0.015, 80.0).unwrap_err().to_string();
+        assert!(e.contains("must be > the sphere's radius 0.01905 m"), "{e}");
+        let far = 2.0 * a * 30f64.to_radians().cos();
+        assert!(at(0.999 * far, 30.0).is_err() && at(1.001 * far, 30.0).is_ok(), "the bound at 30°: {far}");
+    }
 }
 
 /// Levels of one pressure pulse.

@@ -248,7 +248,11 @@ pub struct ResponseMember {
 pub struct SteadySpread {
     /// Largest |x| in the window (m).
     pub amplitude_m: Percentiles,
-    /// The cut of the damper (dB).
+    /// The cut of the damper (dB), of the same runs as the amplitude's percentiles (so that
+    /// amplitude, amplitude without the ball and cut agree): the median is the cut of the run
+    /// of median amplitude, p10 and p90 those of the amplitude's p90 and p10 runs. (The cut
+    /// falls as the amplitude grows; with an even N its own nearest-rank median would be
+    /// another run's.)
     pub reduction_db: Percentiles,
     pub impacts_per_period: Percentiles,
     /// Energy-average level at the observer (dB re 20 µPa).
@@ -278,12 +282,23 @@ impl EnsemblePoint {
         let fraction = |f: &dyn Fn(&Steady) -> bool| {
             runs.iter().filter(|p| f(&p.steady)).count() as f64 / runs.len().max(1) as f64
         };
+        let amplitude_m = pct(&|s| Some(s.amplitude_m));
+        // The cut of the run with amplitude `a` (the run a percentile of the amplitude is):
+        // cut falls as the amplitude grows, so its p10 is the amplitude's p90 run's.
+        let cut_at = |a: Option<f64>| {
+            let a = a?;
+            runs.iter().find(|p| p.steady.amplitude_m.total_cmp(&a).is_eq())?.steady.reduction_db
+        };
         EnsemblePoint {
             freq_hz: runs.first().map_or(0.0, |p| p.freq_hz),
             amplitude_linear_m: runs.first().and_then(|p| p.steady.amplitude_linear_m),
             spread: SteadySpread {
-                amplitude_m: pct(&|s| Some(s.amplitude_m)),
-                reduction_db: pct(&|s| s.reduction_db),
+                amplitude_m,
+                reduction_db: Percentiles {
+                    p10: cut_at(amplitude_m.p90),
+                    median: cut_at(amplitude_m.median),
+                    p90: cut_at(amplitude_m.p10),
+                },
                 impacts_per_period: pct(&|s| Some(s.impacts_per_period)),
                 leq_db: pct(&|s| s.leq_db),
             },
@@ -404,5 +419,39 @@ mod tests {
         assert_eq!(freqs.len(), DEFAULT_POINTS);
         assert!((freqs[0] - 0.6 * f).abs() < 1e-12 && (freqs[100] - 1.6 * f).abs() < 1e-12);
         assert!((freqs[50] - 1.1 * f).abs() < 1e-12, "evenly spaced");
+    }
+
+    /// An even ensemble's amplitude, amplitude without the ball and cut are one run's: the
+    /// cut shown is 20·log10(alone/amp) of the amplitude shown, its p10 and p90 those of the
+    /// amplitude's p90 and p10 runs. (Each quantity's own nearest-rank median would take the
+    /// 2nd largest amplitude and the 2nd smallest cut of 4: two different runs.)
+    #[test]
+    fn an_even_ensemble_s_amplitude_and_cut_are_one_run_s() {
+        let alone = 0.5;
+        let point = |amp: f64| {
+            let steady = Steady {
+                periods: 10,
+                window_start_s: 0.0,
+                window_end_s: 1.0,
+                amplitude_m: amp,
+                amplitude_linear_m: Some(alone),
+                reduction_db: Some(20.0 * (alone / amp).log10()),
+                impacts_per_period: 2.0,
+                leq_db: Some(90.0),
+                periodic: false,
+                settled: true,
+                truncated: false,
+            };
+            ResponsePoint { freq_hz: 5.0, steady, final_time_s: 2.0 }
+        };
+        let runs: Vec<ResponsePoint> = [0.04, 0.01, 0.03, 0.02].into_iter().map(point).collect();
+        let refs: Vec<&ResponsePoint> = runs.iter().collect();
+        let e = EnsemblePoint::of(&[-0.015, -0.005, 0.005, 0.015], &refs);
+        let (amp, cut) = (e.spread.amplitude_m, e.spread.reduction_db);
+        let db = |a: Option<f64>| a.map(|a| 20.0 * (alone / a).log10());
+        assert_eq!(amp.median, Some(0.02), "rank 2 of 4");
+        assert_eq!(cut.median, db(amp.median), "the median run's cut");
+        assert_eq!((cut.p10, cut.p90), (db(amp.p90), db(amp.p10)));
+        assert!(cut.p10 < cut.median && cut.median < cut.p90);
     }
 }

@@ -112,7 +112,12 @@ const FIT_SPREAD: [Column; 3] = spread!("inclination_fit_cm_s", "cm/s");
 const U0_SPREAD: [Column; 3] = spread!("u0_max_m_s", "m/s");
 const SPL_SPREAD: [Column; 3] = spread!("spl_max_db", "dB");
 const AMPLITUDE_SPREAD: [Column; 3] = spread!("amplitude_m", "m");
-const REDUCTION_SPREAD: [Column; 3] = spread!("reduction_db", "dB");
+/// The cut of the runs of the amplitude's percentiles (the cut falls as the amplitude grows).
+const REDUCTION_SPREAD: [Column; 3] = [
+    col("reduction_db_p10", "dB", "reduction_db of the run at the 90th percentile of amplitude_m"),
+    col("reduction_db_median", "dB", "reduction_db of the run of median amplitude_m"),
+    col("reduction_db_p90", "dB", "reduction_db of the run at the 10th percentile of amplitude_m"),
+];
 const IMPACTS_SPREAD: [Column; 3] = spread!("impacts_per_period", "1");
 const LEQ_SPREAD: [Column; 3] = spread!("leq_db", "dB");
 

@@ -147,6 +147,9 @@ impl App {
     /// was switched on with it, and where f falls on the response curve's band.
     fn change_message(&self, f: Knob, s: &Setup, extra: &str) -> String {
         let mut m = format!("{} {}{extra}", f.label(), f.display(s));
+        if let Some(why) = f.idle(&s.design) {
+            m += &format!(" — {why}");
+        }
         let (was, now) = (&self.design.damper, &s.design.damper);
         if f == Knob::FORCE && now.freq_hz != was.freq_hz {
             m += &format!("; {} {} (the natural frequency)", Knob::FREQ.label(), Knob::FREQ.display(s));

@@ -28,6 +28,7 @@ impl App {
             },
         };
         self.tour = Some(TourState { tour, step: 0 });
+        self.tour_over = false;
         self.tour_step(0)
     }
 
@@ -42,7 +43,7 @@ impl App {
             d.thresholds = self.settings.config.thresholds(d.thresholds);
         }
         self.pulse = step.pulse;
-        self.anim = step.animate.then(crate::tui::anim::Anim::default);
+        self.anim = step.animate.then(|| crate::tui::anim::Anim::at_speed(step.speed));
         self.table1 = step.table1.then(crate::tui::table1::Table1::compute);
         if let Some(i) = crate::tui::fields::Knob::ALL.iter().position(|k| *k == step.select) {
             self.selected = i;
@@ -65,6 +66,7 @@ impl App {
     /// Leaves the tour, keeping the design on screen to explore.
     pub(crate) fn leave_tour(&mut self, finished: bool) {
         self.tour = None;
+        self.tour_over = finished;
         self.zoom = false;
         // Finishing lets the last step's jump to the best design happen; Esc keeps the state.
         if !finished {

@@ -103,7 +103,12 @@ impl App {
             }
             Mode::Normal => {
                 let touring = self.tour.is_some();
+                let tour_over = std::mem::take(&mut self.tour_over);
                 if let Some(a) = self.settings.keys.action_mode(&k, touring, self.anim.is_some()) {
+                    if tour_over && matches!(a, Action::Increase { .. } | Action::Decrease { .. }) {
+                        self.after_tour_notice();
+                        return vec![];
+                    }
                     self.act(a)
                 } else if let Some(c) = typed_start(&k) {
                     // A digit or a point starts typing a value into the selected field.
@@ -116,6 +121,27 @@ impl App {
                 }
             }
         }
+    }
+
+    /// The first ← or → after the tour finished (likely one "next" too many) changes nothing:
+    /// it says what those keys do now, so the design never changes unseen.
+    fn after_tour_notice(&mut self) {
+        let (dec, inc) = (
+            self.key_label(Action::Decrease { fine: false }).to_string(),
+            self.key_label(Action::Increase { fine: false }).to_string(),
+        );
+        let what = if self.focus == Panel::Chart && self.chart_view != ChartView::Response {
+            "move the design on the chart".to_string()
+        } else if self.focus == Panel::Chart {
+            format!("change {}", Knob::FREQ.label())
+        } else {
+            format!("change {}", self.param().label())
+        };
+        let tour = self.key_label(Action::Tour).to_string();
+        self.set_status(
+            &format!("the tour is over — press {dec} {inc} again to {what} ({tour}: the tour again)"),
+            false,
+        );
     }
 
     /// A key bound to nothing on the main view: Esc says how to quit, others point to help.

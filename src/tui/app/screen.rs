@@ -133,7 +133,7 @@ impl App {
         self.results.sim.as_ref().map(|s| s.eval.run.final_time_s.max(pinned))
     }
 
-    /// `a`: shows the animation (from the start, slowest, playing), or leaves it.
+    /// `a`: shows the animation (from the start, at its default speed, playing), or leaves it.
     pub(crate) fn toggle_anim(&mut self) {
         if self.anim.take().is_some() {
             self.set_status("animation closed", false);

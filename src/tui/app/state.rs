@@ -326,6 +326,9 @@ pub struct App {
     pub pulse: PulseView,
     /// The guided tour, while it runs.
     pub tour: Option<TourState>,
+    /// The tour just finished: the next key that would change the design (→ as "next" once
+    /// more) only says what it will do from now on.
+    pub(crate) tour_over: bool,
     /// The animation view, while it shows (`a`).
     pub anim: Option<crate::tui::anim::Anim>,
     /// The Table 1 view, while it shows (`M`; the tour's Table 1 step).
@@ -394,6 +397,7 @@ impl App {
             chart_view: ChartView::Zones,
             pulse: PulseView::for_preset(preset),
             tour: None,
+            tour_over: false,
             anim: None,
             table1: None,
             pending_best: false,

@@ -40,6 +40,25 @@ pub struct Column {
     pub label: &'static str,
 }
 
+impl Column {
+    /// Whether the column counts things (designs, impacts): its numbers are whole.
+    #[must_use]
+    pub fn counts(&self) -> bool {
+        self.key == "count" || self.key.starts_with("n_")
+    }
+
+    /// A cell of this column as text: a count whole (`5`, not `5.0000`), other numbers by
+    /// `num`, nothing as "—".
+    pub fn text(&self, v: &Value, num: impl Fn(f64) -> String) -> String {
+        match v {
+            Value::Num(x) if self.counts() && x.fract() == 0.0 && x.abs() < 1e15 => format!("{x:.0}"),
+            Value::Num(x) => num(*x),
+            Value::Text(s) => s.clone(),
+            Value::Missing => "—".into(),
+        }
+    }
+}
+
 /// A reproduced table or figure: columns, rows and notes on conventions and deviations.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Table {
