@@ -288,12 +288,12 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
     /// Whether the row `name` was set by the user: as a flag, or as a key of the config's
     /// `[design]` (a refusal blames what the user set, wherever they set it).
     fn set(&self, name: &str) -> bool {
-        self.has(name) || self.from_config(name).is_some()
+        self.has(name) || self.config_key(name).is_some()
     }
 
     /// The config's `[design]` key that set the row `name` ([`from_config`]); none with
     /// `--design`, which the config's defaults do not change.
-    fn from_config(&self, name: &str) -> Option<String> {
+    fn config_key(&self, name: &str) -> Option<String> {
         self.design.is_none().then(|| from_config(name)).flatten()
     }
 
@@ -305,8 +305,8 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
         let Err(r) = r else { return Ok(()) };
         let (flag, value) = match limits::refused_value(d, r.param) {
             // Set in the config only: named as its key there.
-            Some((v, unit)) if !self.has(r.param) && self.from_config(r.param).is_some() => {
-                let key = self.from_config(r.param).unwrap_or_default();
+            Some((v, unit)) if !self.has(r.param) && self.config_key(r.param).is_some() => {
+                let key = self.config_key(r.param).unwrap_or_default();
                 (format!("{key} in {} [design]", crate::config::CONFIG_FILE), format!("{} {unit}", short(v)))
             }
             Some((v, unit)) => (format!("--{}", r.param), self.shown(r.param, v, unit)),

@@ -97,12 +97,15 @@ enum Column {
 /// Reads a column's name: `<q>_<unit>`, the quantity letter t, x, v or a and its unit with
 /// `_` for `/` (`t_ms`, `x_mm`, `v_m_s`, `a_m_s2`, `a_g`). The unit is looked up in the table
 /// every unit thud reads goes through ([`units::unit_factor`]): a unit name, nothing else (a
-/// number in it, `t_0ms`, `t_10us`, is refused, not read as a factor). The error is the
-/// column's problem, for a line naming the file.
-fn column(name: &str) -> Result<Column, String> {
+/// number in it, `t_0ms`, `t_10us`, is refused, not read as a factor). The error names `data`
+/// and the column, for a line naming the file.
+fn column(name: &str) -> Result<Column, ThudError> {
     let Some((q, unit)) = name.split_once('_') else {
-        return Err(format!(
-            "column '{name}' has no unit; name the columns with their units, e.g. t_s and x_m, v_m_s or a_m_s2"
+        return Err(ThudError::invalid(
+            fit::DATA_PARAM,
+            format!(
+                "column '{name}' has no unit; name the columns with their units, e.g. t_s and x_m, v_m_s or a_m_s2"
+            ),
         ));
     };
     let (kind, what, example) = match q {
@@ -131,7 +134,7 @@ fn column(name: &str) -> Result<Column, String> {
             // A number in the unit (`t_0ms`, `t_10us`) is a mistyped unit, refused; a word
             // (`x_free_m`) names another quantity, left unread.
             if unit.chars().any(|c| c.is_ascii_digit()) {
-                Err(why)
+                Err(ThudError::invalid(fit::DATA_PARAM, why))
             } else {
                 Ok(Column::Unread(why))
             }
@@ -184,20 +187,20 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
         );
     }
     let columns: Vec<Column> =
-        header.iter().map(|h| column(h)).collect::<Result<_, _>>().map_err(|e| data_error(path, e))?;
+        header.iter().map(|h| column(h)).collect::<Result<_, _>>().map_err(|e| data_error(path, e.detail()))?;
     let unread = |kind: &str| {
         columns.iter().zip(&header).find_map(|(c, h)| match c {
             Column::Unread(why) if h.starts_with(kind) => Some(why.clone()),
             _ => None,
         })
     };
-    let Some((ti, _)) = columns.iter().enumerate().find(|(_, c)| matches!(c, Column::Time(_))) else {
+    let time = columns.iter().enumerate().find_map(|(i, c)| match c {
+        Column::Time(f) => Some((i, *f)),
+        _ => None,
+    });
+    let Some((ti, tf)) = time else {
         let why = unread("t_").unwrap_or_else(|| "no time column; the header needs t_s (or t_ms, t_us)".into());
         return Err(data_error(path, why).into());
-    };
-    let tf = match columns[ti] {
-        Column::Time(f) => f,
-        _ => unreachable!("found as a time column"),
     };
     if columns.iter().filter(|c| matches!(c, Column::Time(_))).count() > 1 {
         return Err(data_error(path, "more than one time column; give one of t_s, t_ms or t_us").into());
@@ -228,7 +231,7 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     let (mut t, mut y) = (Vec::new(), Vec::new());
     for rec in r.records() {
         let rec = rec.map_err(|e| data_error(path, format!("cannot read a row: {e}")))?;
-        let row = rec.position().map_or(0, |p| p.line());
+        let row = rec.position().map_or(0, csv::Position::line);
         if rec.len() != header.len() {
             let joined = rec.iter().collect::<Vec<_>>().join(",");
             let why = match other_separator(&joined) {

@@ -229,6 +229,9 @@ fn decay_rows() -> Vec<(f64, f64, f64)> {
         .collect()
 }
 
+/// A signal column made from a row of [`decay_rows`].
+type Signal = Box<dyn Fn(&(f64, f64, f64)) -> f64>;
+
 /// A column's unit is a unit name of thud's one table, nothing else: `t_s`, `t_ms`, `t_us`,
 /// `x_mm`, `a_g`, `a_m_s2` give the same f_n; `t_0ms` and `t_10us` (a number in the unit) are
 /// refused in one line naming the column, never read as a factor.
@@ -238,7 +241,7 @@ fn header_units_are_unit_names_and_a_number_in_one_is_refused() {
     let rows = decay_rows();
     let f_n = (4.0e4f64).sqrt() / (2.0 * std::f64::consts::PI);
     let g = 9.80665;
-    let cases: Vec<(&str, f64, Box<dyn Fn(&(f64, f64, f64)) -> f64>)> = vec![
+    let cases: Vec<(&str, f64, Signal)> = vec![
         ("t_s,x_m", 1.0, Box::new(|r| r.1)),
         ("t_ms,x_mm", 1e3, Box::new(|r| r.1 * 1e3)),
         ("t_us,x_um", 1e6, Box::new(|r| r.1 * 1e6)),
@@ -260,20 +263,17 @@ fn header_units_are_unit_names_and_a_number_in_one_is_refused() {
             run(home.path(), &["fit", "structure", "--data", file.to_str().unwrap(), "--main-mass", "2", "--json"]);
         let bad =
             header.split(',').find(|c| c.contains("0ms") || c.contains("10us") || c.contains("1mm") || *c == "a_s2");
-        match bad {
-            Some(col) => {
-                assert_eq!(code, 2, "{header}: {err}");
-                assert_eq!(err.lines().count(), 1, "{header}: {err}");
-                assert!(err.contains("--data") && err.contains(&format!("column '{col}'")), "{header}: {err}");
-                assert!(err.contains("is not a"), "{header}: {err}");
-            }
-            None => {
-                assert_eq!(code, 0, "{header}: {err}");
-                let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-                let got = v["f_n_hz"].as_f64().unwrap();
-                assert!((got / f_n - 1.0).abs() < 1e-3, "{header}: f_n {got}, truth {f_n}");
-                assert!((v["k_n_m"].as_f64().unwrap() / 8.0e4 - 1.0).abs() < 2e-3, "{header}: {out}");
-            }
+        if let Some(col) = bad {
+            assert_eq!(code, 2, "{header}: {err}");
+            assert_eq!(err.lines().count(), 1, "{header}: {err}");
+            assert!(err.contains("--data") && err.contains(&format!("column '{col}'")), "{header}: {err}");
+            assert!(err.contains("is not a"), "{header}: {err}");
+        } else {
+            assert_eq!(code, 0, "{header}: {err}");
+            let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+            let got = v["f_n_hz"].as_f64().unwrap();
+            assert!((got / f_n - 1.0).abs() < 1e-3, "{header}: f_n {got}, truth {f_n}");
+            assert!((v["k_n_m"].as_f64().unwrap() / 8.0e4 - 1.0).abs() < 2e-3, "{header}: {out}");
         }
     }
 }

@@ -567,7 +567,7 @@ pub const NOT_IDENTIFIABLE: &str = "a decay is the structure's own within its no
 ///
 /// One rule decides what a record can tell (docs/model.md §13.2), stated on the record alone
 /// and not on its sample count: a record whose envelope is the structure's own decay within
-/// its noise ([`structure_alone`]) was made by a start the ball was not (visibly) hit from.
+/// its noise (`structure_alone`) was made by a start the ball was not (visibly) hit from.
 /// Whether the ball is hit depends on where it sat, not on c1, so such a record says nothing
 /// of c1: it is set aside. With no other record the interval is the whole grid (open at both
 /// ends) with the note [`NOT_IDENTIFIABLE`], never a refusal and never a narrow interval made
