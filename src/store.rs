@@ -244,9 +244,31 @@ pub fn save_design(data_dir: &Path, name: &str, file: &DesignFile, overwrite: bo
 /// Loads the saved design `name` from `data_dir`. A file that does not parse or holds an
 /// invalid design is reported as [`StoreError::Invalid`] and left as it is.
 pub fn load_design(data_dir: &Path, name: &str) -> Result<DesignFile, StoreError> {
-    let path = design_path(data_dir, name)?;
-    let text = fsio::read_to_string(&path, fsio::MAX_READ_BYTES)?;
-    Ok(DesignFile::parse(&path, &text)?)
+    load_design_file(&design_path(data_dir, name)?)
+}
+
+/// Reads and validates the design file at `path` (a regular file of at most
+/// [`fsio::MAX_READ_BYTES`]): the one loader of design files, for the explorer's saved designs
+/// and every command's `--design`.
+pub fn load_design_file(path: &Path) -> Result<DesignFile, StoreError> {
+    let text = fsio::read_to_string(path, fsio::MAX_READ_BYTES)?;
+    Ok(DesignFile::parse(path, &text)?)
+}
+
+/// Whether `text`, given for a design, names a file (a path with a `/`, a name ending in
+/// `.toml`, or an existing file) rather than a design saved in the data directory.
+pub fn names_a_file(text: &str) -> bool {
+    text.contains('/') || text.to_ascii_lowercase().ends_with(".toml") || Path::new(text).is_file()
+}
+
+/// The design `text` names: a design file ([`names_a_file`]) or a design saved in the user's
+/// data directory (the explorer's `s`, `thud fit … --save NAME`).
+pub fn load_named_design(text: &str) -> Result<DesignFile, StoreError> {
+    if names_a_file(text) {
+        load_design_file(Path::new(text))
+    } else {
+        load_user_design(text)
+    }
 }
 
 /// Deletes the saved design `name` from `data_dir`.

@@ -42,20 +42,69 @@ pub use super::errors::{flag_of, FORCE_AMPLITUDE};
 /// The clap id of the old spelling `--force` where it is refused ([`Force`]).
 const OLD_FORCE: &str = "old_force_spelling";
 
+/// Which rows of the engine's table [`params::DESIGN`] a command takes as flags.
+pub trait Rows: Clone + std::fmt::Debug {
+    /// Whether the row `name` is a flag of the command.
+    fn takes(name: &str) -> bool;
+}
+
+/// Every row: the commands that run a design.
+#[derive(Debug, Clone)]
+pub struct AllRows;
+
+impl Rows for AllRows {
+    fn takes(_: &str) -> bool {
+        true
+    }
+}
+
+/// The rows a fit of c1 reads: the structure, the ball and its contact, the strike's speed
+/// and how the runs are computed. Not c1 (fitted), the run's length (the record's), the force,
+/// the ball's start (the fit spreads it), the listener or the zones.
+#[derive(Debug, Clone)]
+pub struct FitRows;
+
+/// The rows of [`FitRows`].
+pub const FIT_ROWS: &[&str] = &[
+    "mass",
+    "gap",
+    "v0",
+    "main-mass",
+    "k",
+    "c",
+    "k-hz",
+    "sphere",
+    "plate",
+    "sphere-poisson",
+    "density",
+    "radius",
+    "no-tension",
+    "solver",
+    "dt",
+];
+
+impl Rows for FitRows {
+    fn takes(name: &str) -> bool {
+        FIT_ROWS.contains(&name)
+    }
+}
+
 /// A design: a preset, then any flag given explicitly overrides the preset's value. The flags
 /// are the rows of the engine's table [`params::DESIGN`] (name, placeholder, help, choices,
 /// relations): [`Args::augment_args`] builds them from it and [`FromArgMatches`] reads them
 /// back, so there is no hand-kept list of flags here.
 #[derive(Debug, Clone)]
-pub struct DesignArgs<F: ForceFlag = Force> {
+pub struct DesignArgs<F: ForceFlag = Force, R: Rows = AllRows> {
     /// `--preset`.
     preset: String,
+    /// `--design`: a design file or a saved design's name, instead of the preset.
+    design: Option<String>,
     /// The design flags given, as (row name, value) in table order; the force amplitude under
     /// its flag's name (`force-amplitude`).
     given: Vec<(String, Input)>,
     /// `--force` where it is the amplitude's old spelling ([`Force`]), as typed (empty: no value).
     old_force: Option<String>,
-    force: std::marker::PhantomData<F>,
+    force: std::marker::PhantomData<(F, R)>,
 }
 
 /// The clap id of a row (its name with underscores, as clap's derive spells field names).
@@ -132,7 +181,7 @@ fn long(p: &Param<params::DesignDraft>) -> &'static str {
     }
 }
 
-impl<F: ForceFlag> Args for DesignArgs<F> {
+impl<F: ForceFlag, R: Rows> Args for DesignArgs<F, R> {
     fn augment_args(cmd: Command) -> Command {
         let preset = Arg::new("preset")
             .long("preset")
@@ -141,9 +190,17 @@ impl<F: ForceFlag> Args for DesignArgs<F> {
             .action(ArgAction::Set)
             .value_parser(clap::value_parser!(String))
             .help("Starting design (`thud presets` lists them: default, paper-fig9, paper-table3, quiet-nylon, …)");
-        let ids = std::iter::once("preset".to_string()).chain(params::DESIGN.iter().map(|p| id(long(p))));
-        let cmd = cmd.group(ArgGroup::new("DesignArgs").multiple(true).args(ids)).arg(preset);
-        let cmd = params::DESIGN.iter().fold(cmd, |cmd, p| cmd.arg(flag(p)));
+        let design = Arg::new("design")
+            .long("design")
+            .value_name("FILE")
+            .action(ArgAction::Set)
+            .value_parser(clap::value_parser!(String))
+            .conflicts_with("preset")
+            .help(DESIGN_HELP);
+        let rows = || params::DESIGN.iter().filter(|p| R::takes(p.name));
+        let ids = ["preset".to_string(), "design".to_string()].into_iter().chain(rows().map(|p| id(long(p))));
+        let cmd = cmd.group(ArgGroup::new("DesignArgs").multiple(true).args(ids)).arg(preset).arg(design);
+        let cmd = rows().fold(cmd, |cmd, p| cmd.arg(flag(p)));
         if !F::OLD_SPELLING {
             return cmd;
         }
@@ -164,11 +221,12 @@ impl<F: ForceFlag> Args for DesignArgs<F> {
     }
 }
 
-impl<F: ForceFlag> FromArgMatches for DesignArgs<F> {
+impl<F: ForceFlag, R: Rows> FromArgMatches for DesignArgs<F, R> {
     fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
         let preset = m.get_one::<String>("preset").cloned().unwrap_or_else(|| "default".to_string());
+        let design = m.get_one::<String>("design").cloned();
         let mut given = Vec::new();
-        for p in params::DESIGN {
+        for p in params::DESIGN.iter().filter(|p| R::takes(p.name)) {
             let name = long(p);
             given.extend(table_value(p, m, name).map(|v| (name.to_string(), v)));
         }
@@ -177,7 +235,7 @@ impl<F: ForceFlag> FromArgMatches for DesignArgs<F> {
         } else {
             None
         };
-        Ok(DesignArgs { preset, given, old_force, force: std::marker::PhantomData })
+        Ok(DesignArgs { preset, design, given, old_force, force: std::marker::PhantomData })
     }
 
     fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
@@ -186,7 +244,7 @@ impl<F: ForceFlag> FromArgMatches for DesignArgs<F> {
     }
 }
 
-impl<F: ForceFlag> DesignArgs<F> {
+impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
     /// The design these flags describe, validated: each flag against its range (the error
     /// names the flag as typed), then the whole design (preset values too) and its derived
     /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
@@ -195,8 +253,9 @@ impl<F: ForceFlag> DesignArgs<F> {
         params::design(self.base()?, &self.given, Spelling::Flag)
     }
 
-    /// The preset with the user's settings: its thresholds and its `[design]` defaults. Refuses
-    /// `--force` where it is the amplitude's old spelling, naming `--force-amplitude`.
+    /// The starting design: the `--design` file as it is, else the preset with the user's
+    /// settings (its thresholds and its `[design]` defaults). Refuses `--force` where it is the
+    /// amplitude's old spelling, naming `--force-amplitude`.
     fn base(&self) -> Result<Design, ThudError> {
         if let Some(typed) = &self.old_force {
             // `--force --json`: the next flag taken as the value is no amplitude.
@@ -211,6 +270,9 @@ impl<F: ForceFlag> DesignArgs<F> {
                      give --force-amplitude {value}"
                 ),
             ));
+        }
+        if let Some(text) = &self.design {
+            return load_design(text);
         }
         let mut d = presets::preset(&self.preset)?;
         let settings = super::settings::load();
@@ -267,7 +329,13 @@ impl<F: ForceFlag> DesignArgs<F> {
     /// Whether the row `name` was set by the user: as a flag, or as a key of the config's
     /// `[design]` (a refusal blames what the user set, wherever they set it).
     fn set(&self, name: &str) -> bool {
-        self.has(name) || from_config(name).is_some()
+        self.has(name) || self.config_key(name).is_some()
+    }
+
+    /// The config's `[design]` key that set the row `name` ([`from_config`]); none with
+    /// `--design`, which the config's defaults do not change.
+    fn config_key(&self, name: &str) -> Option<String> {
+        self.design.is_none().then(|| from_config(name)).flatten()
     }
 
     /// The engine's refusal ([`limits::check_run`] and the like) in the command line's words:
@@ -278,8 +346,8 @@ impl<F: ForceFlag> DesignArgs<F> {
         let Err(r) = r else { return Ok(()) };
         let (flag, value) = match limits::refused_value(d, r.param) {
             // Set in the config only: named as its key there.
-            Some((v, unit)) if !self.has(r.param) && from_config(r.param).is_some() => {
-                let key = from_config(r.param).unwrap_or_default();
+            Some((v, unit)) if !self.has(r.param) && self.config_key(r.param).is_some() => {
+                let key = self.config_key(r.param).unwrap_or_default();
                 (format!("{key} in {} [design]", crate::config::CONFIG_FILE), format!("{} {unit}", short(v)))
             }
             Some((v, unit)) => (format!("--{}", flag_of(r.param)), self.shown(r.param, v, unit)),
@@ -338,6 +406,27 @@ impl<F: ForceFlag> DesignArgs<F> {
         let r = limits::check_runs(d, &|n| self.set(n), cells, runs);
         self.refuse(ctx, d, r, (flag, value))
     }
+}
+
+/// The help of `--design` (on every command that takes a design).
+pub const DESIGN_HELP: &str = "Starting design from a design file (what `thud fit … --save FILE.toml` and the explorer's save write) or a saved design's name, instead of --preset; flags override it";
+
+/// The design `--design text` names ([`crate::store::load_named_design`], the loader of the
+/// explorer's saved designs), its errors naming `--design`.
+pub fn load_design(text: &str) -> Result<Design, ThudError> {
+    use crate::store::StoreError;
+    crate::store::load_named_design(text).map(|f| f.design).map_err(|e| match e {
+        StoreError::Thud(e) => e.renamed("design"),
+        StoreError::Io { source, .. }
+            if source.kind() == std::io::ErrorKind::NotFound && !crate::store::names_a_file(text) =>
+        {
+            ThudError::invalid(
+                "design",
+                format!("no file '{text}' and no saved design of that name (a file is named with its path or .toml)"),
+            )
+        }
+        e => ThudError::invalid("design", e.to_string()),
+    })
 }
 
 /// The key of the config's `[design]` that sets the row `name` (by its name or alias), if any.

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use clap::{Args, Subcommand};
 
-use super::design_args::DesignArgs;
+use super::design_args::{DesignArgs, FitRows, Force, Rows};
 use super::{quantity, CliError, Ctx, Out};
 use crate::design::Design;
 use crate::error::ThudError;
@@ -42,9 +42,9 @@ struct StructureArgs {
     /// The main mass M (kg; 12kg, 500g): K = M·ω_n², C = 2·M·ζ·ω_n.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     main_mass: String,
-    /// Save the fitted structure (the default design with this M, K and C) as a design NAME
-    /// for `thud tui --design NAME`.
-    #[arg(long, value_name = "NAME")]
+    /// Save the fitted structure (the default design with this M, K and C) as the design file
+    /// FILE.toml (or a path), or as a saved design NAME; `--design` loads either.
+    #[arg(long, value_name = "FILE|NAME")]
     save: Option<String>,
     /// Print one JSON object.
     #[arg(long)]
@@ -58,9 +58,10 @@ struct DamperArgs {
     #[arg(long, value_name = "FILE", required = true)]
     data: Vec<OsString>,
     #[command(flatten)]
-    design: DesignArgs,
-    /// Save the design with the fitted c1 as NAME for `thud tui --design NAME`.
-    #[arg(long, value_name = "NAME")]
+    design: DesignArgs<Force, FitRows>,
+    /// Save the design with the fitted c1 as the design file FILE.toml (or a path), or as a
+    /// saved design NAME; `--design` loads either.
+    #[arg(long, value_name = "FILE|NAME")]
     save: Option<String>,
     /// Print one JSON object.
     #[arg(long)]
@@ -79,75 +80,181 @@ fn data_error(path: &Path, message: impl std::fmt::Display) -> ThudError {
     ThudError::invalid(fit::DATA_PARAM, format!("{}: {message}", fsio::shown(path)))
 }
 
-/// The SI factor of a time column's unit (`s`, `ms`, `us`).
-fn time_factor(unit: &str) -> Option<f64> {
-    units::parse("t", &format!("1{unit}"), Kind::Time).ok()
+/// What a column of a measurement file holds, from its name.
+#[derive(Debug, Clone, PartialEq)]
+enum Column {
+    /// `t_<time unit>`: the sample times, × the factor to s.
+    Time(f64),
+    /// `x_<length>`, `v_<speed>` or `a_<acceleration>`: the signal, × the factor to SI.
+    Signal(Quantity, f64),
+    /// Any other name with a unit (an index, the ball's `y_m`): not read.
+    Other,
+    /// A name that starts like a time or signal column but whose rest is not a unit
+    /// (`x_free_m`, another quantity): not read; why, for the message when no column is found.
+    Unread(String),
 }
 
-/// The quantity and SI factor of a signal column: `x_<length>`, `v_<length>_s`,
-/// `a_<length>_s2` or `a_g` (standard gravity, 9.80665 m/s²).
-fn signal_column(name: &str) -> Option<(Quantity, f64)> {
-    let (q, unit) = name.split_once('_')?;
-    match q {
-        "x" => units::parse("x", &format!("1{unit}"), Kind::Length).ok().map(|f| (Quantity::Displacement, f)),
-        "v" => {
-            let len = unit.strip_suffix("_s")?;
-            units::parse("v", &format!("1{len}"), Kind::Length).ok().map(|f| (Quantity::Velocity, f))
+/// Reads a column's name: `<q>_<unit>`, the quantity letter t, x, v or a and its unit with
+/// `_` for `/` (`t_ms`, `x_mm`, `v_m_s`, `a_m_s2`, `a_g`). The unit is looked up in the table
+/// every unit thud reads goes through ([`units::unit_factor`]): a unit name, nothing else (a
+/// number in it, `t_0ms`, `t_10us`, is refused, not read as a factor). The error names `data`
+/// and the column, for a line naming the file.
+fn column(name: &str) -> Result<Column, ThudError> {
+    let Some((q, unit)) = name.split_once('_') else {
+        return Err(ThudError::invalid(
+            fit::DATA_PARAM,
+            format!(
+                "column '{name}' has no unit; name the columns with their units, e.g. t_s and x_m, v_m_s or a_m_s2"
+            ),
+        ));
+    };
+    let (kind, what, example) = match q {
+        "t" => (Kind::Time, "time", "t_s, t_ms or t_us"),
+        "x" => (Kind::Length, "length", "x_m, x_mm or x_um"),
+        "v" => (Kind::Speed, "speed", "v_m_s or v_mm_s"),
+        "a" => (Kind::Acceleration, "acceleration", "a_m_s2, a_mm_s2 or a_g"),
+        _ => return Ok(Column::Other),
+    };
+    let unit_text = unit.replace('_', "/");
+    match units::unit_factor(kind, &unit_text).filter(|f| !unit.is_empty() && f.is_finite() && *f > 0.0) {
+        Some(f) if kind == Kind::Time => Ok(Column::Time(f)),
+        Some(f) => {
+            let quantity = match q {
+                "x" => Quantity::Displacement,
+                "v" => Quantity::Velocity,
+                _ => Quantity::Acceleration,
+            };
+            Ok(Column::Signal(quantity, f))
         }
-        "a" if unit == "g" => Some((Quantity::Acceleration, 9.80665)),
-        "a" => {
-            let len = unit.strip_suffix("_s2")?;
-            units::parse("a", &format!("1{len}"), Kind::Length).ok().map(|f| (Quantity::Acceleration, f))
+        None => {
+            let why = format!(
+                "column '{name}': '{unit}' is not a {what} unit (known: {}; '_' stands for '/'); name it e.g. {example}",
+                units::unit_names(kind)
+            );
+            // A number in the unit (`t_0ms`, `t_10us`) is a mistyped unit, refused; a word
+            // (`x_free_m`) names another quantity, left unread.
+            if unit.chars().any(|c| c.is_ascii_digit()) {
+                Err(ThudError::invalid(fit::DATA_PARAM, why))
+            } else {
+                Ok(Column::Unread(why))
+            }
         }
-        _ => None,
     }
-    .filter(|(_, f)| f.is_finite() && *f > 0.0)
+}
+
+/// The header line of `text` (the first line that is neither empty nor a `#` comment).
+fn header_line(text: &str) -> &str {
+    text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#')).unwrap_or("")
+}
+
+/// What a line separated otherwise than by commas is, if it is: "';' separated", "tab
+/// separated".
+fn other_separator(line: &str) -> Option<&'static str> {
+    if line.contains(',') {
+        return None;
+    }
+    if line.contains(';') {
+        Some("';' separated")
+    } else if line.contains('\t') {
+        Some("tab separated")
+    } else {
+        None
+    }
 }
 
 /// Reads one measurement file: the header names a time column and one signal column, each
-/// with its unit; every row two numbers. Errors name `--data` and the file, as one line.
+/// with its unit; every row two numbers. Errors name `--data` and the file, as one line, and
+/// say what they see (a file separated by ';' or tabs, a decimal comma, an empty column name).
 fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     let text = fsio::read_to_string(path, MAX_DATA_BYTES).map_err(|e| data_error(path, e.reason()))?;
-    let mut r = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
+    if let Some(sep) = other_separator(header_line(&text)) {
+        return Err(
+            data_error(path, format!("the header is {sep}: use ',' between columns (and '.' in numbers)")).into()
+        );
+    }
+    let mut r =
+        csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).flexible(true).from_reader(text.as_bytes());
     let header: Vec<String> = r
         .headers()
         .map_err(|e| data_error(path, format!("cannot read the header: {e}")))?
         .iter()
         .map(str::to_ascii_lowercase)
         .collect();
-    let unitless = |h: &String| !h.contains('_');
-    if let Some(h) = header.iter().find(|h| unitless(h)) {
-        return Err(data_error(
-            path,
-            format!("column '{h}' has no unit; name the columns with their units, e.g. t_s and x_m, v_m_s or a_m_s2"),
-        )
-        .into());
+    if let Some(i) = header.iter().position(String::is_empty) {
+        let why = if i + 1 == header.len() { " (a ',' at the end of the header line?)" } else { "" };
+        return Err(
+            data_error(path, format!("column {} of the header has no name{why}; remove it or name it", i + 1)).into()
+        );
     }
-    let Some((ti, tf)) =
-        header.iter().enumerate().find_map(|(i, h)| h.strip_prefix("t_").and_then(time_factor).map(|f| (i, f)))
-    else {
-        return Err(data_error(path, "no time column; the header needs t_s (or t_ms, t_us)").into());
+    let columns: Vec<Column> =
+        header.iter().map(|h| column(h)).collect::<Result<_, _>>().map_err(|e| data_error(path, e.detail()))?;
+    let unread = |kind: &str| {
+        columns.iter().zip(&header).find_map(|(c, h)| match c {
+            Column::Unread(why) if h.starts_with(kind) => Some(why.clone()),
+            _ => None,
+        })
     };
-    let signals: Vec<(usize, Quantity, f64)> =
-        header.iter().enumerate().filter_map(|(i, h)| signal_column(h).map(|(q, f)| (i, q, f))).collect();
+    let time = columns.iter().enumerate().find_map(|(i, c)| match c {
+        Column::Time(f) => Some((i, *f)),
+        _ => None,
+    });
+    let Some((ti, tf)) = time else {
+        let why = unread("t_").unwrap_or_else(|| "no time column; the header needs t_s (or t_ms, t_us)".into());
+        return Err(data_error(path, why).into());
+    };
+    if columns.iter().filter(|c| matches!(c, Column::Time(_))).count() > 1 {
+        return Err(data_error(path, "more than one time column; give one of t_s, t_ms or t_us").into());
+    }
+    let signals: Vec<(usize, Quantity, f64)> = columns
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| match c {
+            Column::Signal(q, f) => Some((i, *q, *f)),
+            _ => None,
+        })
+        .collect();
     let (si, q, sf) = match signals.as_slice() {
         [one] => *one,
         [] => {
+            if let Some(why) = ["x_", "v_", "a_"].iter().find_map(|k| unread(k)) {
+                return Err(data_error(path, why).into());
+            }
             let other = header.iter().enumerate().find(|&(i, _)| i != ti).map_or("", |(_, h)| h.as_str());
             return Err(data_error(
                 path,
-                format!("no signal column with a known unit (found '{other}'); use x_m, v_m_s or a_m_s2 (or x_mm, v_mm_s, a_g, …)"),
+                format!("no signal column (found '{other}'); use x_m, v_m_s or a_m_s2 (or x_mm, v_mm_s, a_g, …)"),
             )
             .into());
         }
         _ => return Err(data_error(path, "more than one signal column; give one of x, v or a").into()),
     };
     let (mut t, mut y) = (Vec::new(), Vec::new());
-    for (i, rec) in r.records().enumerate() {
-        let rec = rec.map_err(|e| data_error(path, format!("row {}: {e}", i + 2)))?;
+    for rec in r.records() {
+        let rec = rec.map_err(|e| data_error(path, format!("cannot read a row: {e}")))?;
+        let row = rec.position().map_or(0, csv::Position::line);
+        if rec.len() != header.len() {
+            let joined = rec.iter().collect::<Vec<_>>().join(",");
+            let why = match other_separator(&joined) {
+                Some(sep) => format!("; it is {sep}: use ',' between columns"),
+                None if rec.len() > header.len()
+                    && rec.iter().all(|c| c.chars().all(|ch| ch.is_ascii_digit() || "+-eE".contains(ch))) =>
+                {
+                    "; a decimal comma? write 0.5, not 0,5".to_string()
+                }
+                None => String::new(),
+            };
+            return Err(data_error(
+                path,
+                format!("line {row} has {} fields but the header {} columns{why}", rec.len(), header.len()),
+            )
+            .into());
+        }
         let cell = |k: usize| -> Result<f64, ThudError> {
             let s = rec.get(k).unwrap_or("");
-            s.parse::<f64>().map_err(|_| data_error(path, format!("row {}: '{s}' is not a number", i + 2)))
+            s.parse::<f64>().map_err(|_| {
+                let hint = if s.contains(',') { " (a decimal comma? write 0.5, not 0,5)" } else { "" };
+                data_error(path, format!("line {row}: '{s}' is not a number{hint}"))
+            })
         };
         t.push(cell(ti)? * tf);
         y.push(cell(si)? * sf);
@@ -161,9 +268,29 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     Series::new(t, y, q).map_err(|e| data_error(path, e.detail()).into())
 }
 
-/// Saves `design` as `name` (refusing to replace one), with a one-line description.
+/// Checks `--save`'s value before the fit: a file (a path, or a name ending in `.toml`) or a
+/// saved design's name.
+fn check_save(name: &str) -> Result<(), ThudError> {
+    if crate::store::names_a_file(name) {
+        return Ok(());
+    }
+    crate::store::check_design_name(name).map_err(|e| e.renamed("save"))
+}
+
+/// Saves `design` as `name` (refusing to replace one), with a one-line description: as the
+/// design file `name` when it names a file ([`crate::store::names_a_file`]), else as a saved
+/// design in the data directory. Either loads with `--design`.
 fn save(name: &str, design: Design, description: String) -> Result<String, CliError> {
     let file = crate::store::DesignFile { description, ensemble: None, design };
+    if crate::store::names_a_file(name) {
+        let path = Path::new(name);
+        let text = file.to_toml().map_err(|e| e.renamed("save"))?;
+        return match fsio::write(path, text.as_bytes(), fsio::Overwrite::Refuse) {
+            Ok(()) => Ok(fsio::shown(path)),
+            Err(e @ fsio::FsError::Io { .. }) => Err(CliError::Io(format!("cannot save the design: {e}"))),
+            Err(e) => Err(ThudError::invalid("save", format!("{e}; choose another file")).into()),
+        };
+    }
     match crate::store::save_user_design(name, &file, false) {
         Ok(path) => Ok(fsio::shown(&path)),
         Err(crate::store::StoreError::Exists(p)) => Err(ThudError::invalid(
@@ -176,9 +303,13 @@ fn save(name: &str, design: Design, description: String) -> Result<String, CliEr
     }
 }
 
-/// `±` a standard error, with 3 significant digits.
+/// `±` a standard error, with 2 significant digits (in powers of ten when far below 1).
 fn pm(v: f64, se: f64) -> String {
-    format!("{} ± {}", sig(v, 5), sig(se, 2))
+    if se != 0.0 && se.abs() < 1e-4 {
+        format!("{} ± {se:.1e}", sig(v, 5))
+    } else {
+        format!("{} ± {}", sig(v, 5), sig(se, 2))
+    }
 }
 
 /// Reads `path` and fits the structure with main mass `m` (kg): the record and its fit.
@@ -191,7 +322,7 @@ pub(super) fn structure_fit(ctx: &Ctx, path: &Path, m: f64) -> Result<(Series, S
 /// Reads every `paths` and fits c1 of `d` to them, the work checked first.
 pub(super) fn damper_fit(
     ctx: &Ctx,
-    flags: &DesignArgs<impl super::design_args::ForceFlag>,
+    flags: &DesignArgs<impl super::design_args::ForceFlag, impl Rows>,
     d: &crate::design::ValidDesign,
     paths: &[OsString],
 ) -> Result<DamperFit, CliError> {
@@ -215,18 +346,18 @@ pub(super) fn damper_fit(
 fn structure(a: &StructureArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let m = quantity("main-mass", &Some(a.main_mass.clone()), Kind::Mass, &limits::MAIN_MASS)?.unwrap_or(1.0);
     if let Some(name) = &a.save {
-        crate::store::check_design_name(name).map_err(|e| e.renamed("save"))?;
+        check_save(name)?;
     }
     let path = Path::new(&a.data);
-    let (_, f) = structure_fit(ctx, path, m)?;
+    let (series, f) = structure_fit(ctx, path, m)?;
     let saved = match (&a.save, f.converged) {
         (Some(name), true) => {
-            let mut d = Design::default();
-            d.damper.main_mass_kg = m;
-            d.damper.stiffness_n_m = f.k_n_m;
-            d.damper.damping_n_s_m = f.c_n_s_m;
-            let d = d.check().map_err(|e| e.renamed("save"))?.into_design();
-            Some(save(name, d, format!("fitted structure from {}", fsio::shown(path)))?)
+            let d = structure_design(&series, &f)?;
+            let description = format!(
+                "fitted structure from {} (the structure alone: the gap is set wide so the ball is never hit; give your damper's --mass, --gap and --c1)",
+                fsio::shown(path)
+            );
+            Some(save(name, d, description)?)
         }
         _ => None,
     };
@@ -236,6 +367,28 @@ fn structure(a: &StructureArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         out.text(&structure_text(&f, saved.as_deref()))?;
     }
     not_converged(f.converged, &f.termination, f.residual_rms, &f.unit)
+}
+
+/// The design of a fitted structure as the record shows it: the default design with the
+/// fitted M, K and C, struck at the record's start velocity for the record's span, with a
+/// clearance wide enough (4 swings of the main mass, at least the default's) that the ball is
+/// never hit, so that `thud simulate --design` replays the record; a damper's flags
+/// (`--mass`, `--gap`, `--c1`) override it.
+fn structure_design(series: &Series, f: &StructureFit) -> Result<Design, ThudError> {
+    let mut d = Design::default();
+    d.damper.main_mass_kg = f.main_mass_kg;
+    d.damper.stiffness_n_m = f.k_n_m;
+    d.damper.damping_n_s_m = f.c_n_s_m;
+    let v0 = fit::structure::start_velocity_m_s(&f.model, series.quantity());
+    if limits::V0.check(v0).is_ok() {
+        d.damper.v0_m_s = v0;
+        let swing = v0.abs() / f.model.omega_d_rad_s;
+        d.damper.gap_m = (4.0 * swing).max(d.damper.gap_m).min(limits::GAP.max);
+    }
+    if limits::DURATION.check(series.span_s()).is_ok() {
+        d.damper.duration_s = series.span_s();
+    }
+    Ok(d.check().map_err(|e| e.renamed("save"))?.into_design())
 }
 
 /// A fit that did not converge: its best estimate was printed; say so, exit 1.
@@ -272,7 +425,7 @@ fn structure_text(f: &StructureFit, saved: Option<&str>) -> String {
 fn damper(a: &DamperArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
     if let Some(name) = &a.save {
-        crate::store::check_design_name(name).map_err(|e| e.renamed("save"))?;
+        check_save(name)?;
     }
     let mut records = Vec::with_capacity(a.data.len());
     for p in &a.data {

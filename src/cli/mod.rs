@@ -196,7 +196,7 @@ fn numeric_flags() -> Vec<String> {
     crate::limits::RANGES
         .iter()
         .map(|r| r.param)
-        .chain(["masses", "gaps", "preset", "freqs", "data", "save"])
+        .chain(["masses", "gaps", "preset", "design", "freqs", "data", "save"])
         .map(str::to_string)
         .collect()
 }

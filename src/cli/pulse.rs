@@ -20,6 +20,9 @@ pub struct PulseArgs {
     /// air, and U0 = its v0 (e.g. paper-fig2, paper-table1); the target stays a fixed plate.
     #[arg(long, value_name = "P")]
     preset: Option<String>,
+    /// Take the defaults from a design file or a saved design's name, as --preset does.
+    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
+    design: Option<String>,
     #[command(flatten)]
     impact: ImpactArgs,
     /// Points of the waveform.
@@ -64,7 +67,10 @@ impl FromArgMatches for ImpactArgs {
 /// The impact these flags describe: the engine's [`params::pulse`] on the flags given, with the
 /// preset's design (if any) for the defaults.
 fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
-    let base = a.preset.as_deref().map(crate::presets::preset).transpose()?;
+    let base = match &a.design {
+        Some(text) => Some(super::design_args::load_design(text)?),
+        None => a.preset.as_deref().map(crate::presets::preset).transpose()?,
+    };
     params::pulse(base.as_ref(), &a.impact.given, Spelling::Flag)
 }
 

@@ -43,6 +43,8 @@ pub enum Kind {
     Temperature,
     /// Pa (plain), kPa, hPa, bar, atm.
     Pressure,
+    /// m/s² (plain; "m/s2"), cm/s², mm/s², µm/s², g (standard gravity, 9.80665 m/s²).
+    Acceleration,
     /// A plain number.
     Number,
 }
@@ -53,7 +55,7 @@ impl Kind {
         match self {
             Kind::Mass => &[("", 1.0), ("kg", 1.0), ("g", 1e-3), ("mg", 1e-6)],
             Kind::Length => &[("", 1.0), ("m", 1.0), ("cm", 1e-2), ("mm", 1e-3), ("um", 1e-6), ("µm", 1e-6)],
-            Kind::Speed => &[("", 1.0), ("m/s", 1.0), ("cm/s", 1e-2), ("mm/s", 1e-3)],
+            Kind::Speed => &[("", 1.0), ("m/s", 1.0), ("cm/s", 1e-2), ("mm/s", 1e-3), ("um/s", 1e-6), ("µm/s", 1e-6)],
             Kind::Angle => &[("", 1.0), ("deg", 1.0), ("°", 1.0), ("rad", 180.0 / std::f64::consts::PI)],
             Kind::Time => &[("", 1.0), ("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("µs", 1e-6), ("ns", 1e-9)],
             Kind::Stiffness => &[("", 1.0), ("n/m", 1.0), ("kn/m", 1e3)],
@@ -67,6 +69,20 @@ impl Kind {
             Kind::Frequency => &[("", 1.0), ("hz", 1.0), ("khz", 1e3), ("rpm", 1.0 / 60.0)],
             Kind::Temperature => &[("", 1.0), ("degc", 1.0), ("°c", 1.0), ("c", 1.0)],
             Kind::Pressure => &[("", 1.0), ("pa", 1.0), ("hpa", 1e2), ("kpa", 1e3), ("bar", 1e5), ("atm", 101_325.0)],
+            Kind::Acceleration => &[
+                ("", 1.0),
+                ("m/s^2", 1.0),
+                ("m/s2", 1.0),
+                ("cm/s^2", 1e-2),
+                ("cm/s2", 1e-2),
+                ("mm/s^2", 1e-3),
+                ("mm/s2", 1e-3),
+                ("um/s^2", 1e-6),
+                ("um/s2", 1e-6),
+                ("µm/s^2", 1e-6),
+                ("µm/s2", 1e-6),
+                ("g", STANDARD_GRAVITY),
+            ],
             Kind::Number => &[("", 1.0)],
         }
     }
@@ -90,9 +106,29 @@ impl Kind {
             Kind::Frequency => "Hz",
             Kind::Temperature => "degC",
             Kind::Pressure => "Pa",
+            Kind::Acceleration => "m/s^2",
             Kind::Number => "",
         }
     }
+}
+
+/// Standard gravity g (m/s²), the unit `g` of an acceleration.
+pub const STANDARD_GRAVITY: f64 = 9.806_65;
+
+/// The factor from `unit` (a unit name of `kind`, any case; "" is the plain number's unit) to
+/// the internal unit, if `unit` is one. The one table every unit thud reads goes through: the
+/// values people type ([`parse`]) and the units in a data file's column names.
+#[must_use]
+pub fn unit_factor(kind: Kind, unit: &str) -> Option<f64> {
+    let key = unit.trim().to_lowercase();
+    kind.units().iter().find(|(u, _)| *u == key).map(|&(_, f)| f)
+}
+
+/// The unit names of `kind` (without the plain number's), for messages: "s, ms, us, µs, ns".
+#[must_use]
+pub fn unit_names(kind: Kind) -> String {
+    let known: Vec<&str> = kind.units().iter().map(|(u, _)| *u).filter(|u| !u.is_empty()).collect();
+    known.join(", ")
 }
 
 /// Parses `text` as a quantity of `kind` into the internal unit (SI; degrees for angles;
@@ -113,22 +149,18 @@ pub fn parse(param: &str, text: &str, kind: Kind) -> Result<f64, ThudError> {
         })
         .map_or(t.len(), |(i, _)| i);
     let (num, unit) = t.split_at(split);
-    let unit_key = unit.trim().to_lowercase();
     let value: f64 = match num.parse() {
         Ok(v) => v,
         Err(_) => {
             return Err(ThudError::NotANumber { param: param.into(), text: text.into(), example: example(kind) });
         }
     };
-    let factor = kind.units().iter().find(|(u, _)| *u == unit_key).map(|&(_, f)| f).ok_or_else(|| {
-        let known: Vec<&str> = kind.units().iter().map(|(u, _)| *u).filter(|u| !u.is_empty()).collect();
-        ThudError::UnknownUnit {
-            param: param.into(),
-            unit: unit.trim().into(),
-            text: text.into(),
-            known: known.join(", "),
-            plain_unit: kind.plain_unit(),
-        }
+    let factor = unit_factor(kind, unit).ok_or_else(|| ThudError::UnknownUnit {
+        param: param.into(),
+        unit: unit.trim().into(),
+        text: text.into(),
+        known: unit_names(kind),
+        plain_unit: kind.plain_unit(),
     })?;
     overflow_checked(param, text, value * factor)
 }
@@ -163,6 +195,7 @@ fn example(kind: Kind) -> &'static str {
         Kind::Frequency => "5 or 5Hz",
         Kind::Temperature => "20 or 20degC",
         Kind::Pressure => "101325 or 101.325kPa",
+        Kind::Acceleration => "9.81 or 1g",
         _ => "1.5",
     }
 }
@@ -251,6 +284,22 @@ mod tests {
         );
         assert!(parse("mass", "", Kind::Mass).is_err());
         assert!(parse("mass", "NaN", Kind::Mass).unwrap().is_nan());
+    }
+
+    /// One table for typed values and the units in data files' column names: a unit name is
+    /// found in any case; a number is not a unit.
+    #[test]
+    fn unit_names_are_looked_up_in_one_table() {
+        assert_eq!(unit_factor(Kind::Time, "ms"), Some(1e-3));
+        assert_eq!(unit_factor(Kind::Time, "US"), Some(1e-6));
+        assert_eq!(unit_factor(Kind::Acceleration, "g"), Some(STANDARD_GRAVITY));
+        assert_eq!(unit_factor(Kind::Acceleration, "mm/s2"), Some(1e-3));
+        assert_eq!(unit_factor(Kind::Speed, "um/s"), Some(1e-6));
+        for bad in ["0ms", "10us", "1ms", "m s"] {
+            assert_eq!(unit_factor(Kind::Time, bad), None, "{bad}");
+        }
+        assert_eq!(parse("a", "2g", Kind::Acceleration).unwrap(), 2.0 * STANDARD_GRAVITY);
+        assert!(unit_names(Kind::Time).starts_with("s, ms"));
     }
 
     #[test]

@@ -134,6 +134,16 @@ impl Series {
         if hi - lo <= 0.0 {
             return Err(bad("the signal is constant; there is no decay to fit"));
         }
+        if hi - lo < MIN_SIGNAL_RANGE {
+            return Err(bad(format!(
+                "the signal spans only {} {}: numbers this small (below {MIN_SIGNAL_RANGE:e}) lose their digits; give it in a smaller unit",
+                crate::units::short(hi - lo),
+                quantity.unit()
+            )));
+        }
+        if let Some(why) = lone_sample(&t_s) {
+            return Err(bad(why));
+        }
         Ok(Self { t_s, values, quantity })
     }
 
@@ -172,6 +182,34 @@ impl Series {
     pub fn is_empty(&self) -> bool {
         self.t_s.is_empty()
     }
+}
+
+/// Smallest range (largest − smallest value) a signal may have: far below it the numbers are
+/// subnormal and carry fewer digits than a fit's residual needs (its standard errors would
+/// come out 0).
+pub const MIN_SIGNAL_RANGE: f64 = 1e-280;
+
+/// Why the times are degenerate, if they are: a span that is not a finite number, or one gap
+/// between samples longer than all the rest of the record (a stray row far from the others,
+/// like a time of 1e305 s after a record of seconds, which would leave every other sample at
+/// one instant of the fit).
+#[must_use]
+pub fn lone_sample(t_s: &[f64]) -> Option<String> {
+    let span = t_s[t_s.len() - 1] - t_s[0];
+    if !span.is_finite() {
+        return Some(format!("the times span {span} s, beyond the largest number thud holds"));
+    }
+    let (i, gap) = t_s.windows(2).map(|w| w[1] - w[0]).enumerate().max_by(|a, b| a.1.total_cmp(&b.1))?;
+    (gap > 0.5 * span).then(|| {
+        format!(
+            "samples {} (t = {} s) and {} (t = {} s) are {} s apart, more than all the rest of the record; cut the record at the gap",
+            i + 1,
+            crate::units::short(t_s[i]),
+            i + 2,
+            crate::units::short(t_s[i + 1]),
+            crate::units::short(gap)
+        )
+    })
 }
 
 /// Why the signal looks clipped, if it does: its largest (or smallest) value held flat for at
@@ -356,6 +394,33 @@ mod tests {
         assert!(Series::new(t.clone(), clip, Quantity::Displacement).unwrap_err().to_string().contains("clipped"));
         assert!(Series::new(t[..10].to_vec(), y[..10].to_vec(), Quantity::Displacement).is_err());
         assert!(Series::new(t, y, Quantity::Displacement).is_ok());
+    }
+
+    /// Degenerate records are refused naming what is wrong: a stray row far after the rest
+    /// (t = 1e305 s), a signal too small for its digits (subnormal numbers), a span beyond f64.
+    #[test]
+    fn degenerate_records_are_refused() {
+        let (t, y) = sine(200, 5.0, 100.0);
+        let mut far = t.clone();
+        far[199] = 1e305;
+        let e = Series::new(far, y.clone(), Quantity::Displacement).unwrap_err().to_string();
+        assert!(e.contains("samples 199") && e.contains("1e305") && e.contains("gap"), "{e}");
+        let tiny: Vec<f64> = y.iter().map(|v| v * 1e-306).collect();
+        let e = Series::new(t.clone(), tiny, Quantity::Displacement).unwrap_err().to_string();
+        assert!(e.contains("spans only") && e.contains("smaller unit"), "{e}");
+        let mut huge = t.clone();
+        huge[0] = -1.7e308;
+        huge[199] = 1.7e308;
+        let e = Series::new(huge, y.clone(), Quantity::Displacement).unwrap_err().to_string();
+        assert!(e.contains("beyond the largest number"), "{e}");
+        // A gap shorter than the rest of the record is a measurement with a gap: kept.
+        let mut gappy = t.clone();
+        for v in &mut gappy[100..] {
+            *v += 0.9;
+        }
+        assert!(Series::new(gappy, y.clone(), Quantity::Displacement).is_ok());
+        let small: Vec<f64> = y.iter().map(|v| v * 1e-270).collect();
+        assert!(Series::new(t, small, Quantity::Displacement).is_ok());
     }
 
     #[test]
