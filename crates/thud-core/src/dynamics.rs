@@ -726,6 +726,31 @@ mod tests {
     }
 
     #[test]
+    fn a_window_counts_the_contact_that_straddles_its_end() {
+        // At 7 Hz the forced rattle is a 3/1 orbit whose third contact begins just before the
+        // force's phase 0 and ends after it: the window must count it at its end (its onset is
+        // inside), as it does not count the one cut by its start. Every length of window then
+        // holds exactly three impacts a period.
+        let mut d = forced_rattle();
+        d.damper.freq_hz = 7.0;
+        let v = d.clone().check().unwrap();
+        for periods in [50, 99, 100, 101] {
+            let s = Settings { transient_periods: DEFAULT_TRANSIENT_PERIODS, periods };
+            let run = impact_map(&v, s, "force", None).unwrap();
+            assert_eq!(run.impacts.len(), 3 * periods as usize, "{periods} periods");
+            assert_eq!(run.orbit, Orbit::Periodic { impacts: 3, periods: 1, symmetric: false }, "{periods} periods");
+            let last = run.impacts.last().unwrap();
+            assert_eq!(last.period, periods - 1);
+        }
+        // The steady windows of an ordinary run (ending at the force's phase 0) count the same.
+        d.damper.settle = true;
+        let run = crate::design::evaluate(&d.check().unwrap(), 0, None).unwrap().run;
+        let st = run.steady.unwrap();
+        assert!(st.settled, "{st:?}");
+        assert_eq!(st.impacts, 3 * st.periods as usize, "{st:?}");
+    }
+
+    #[test]
     fn continuation_sweeps_up_then_down_and_basins_share_everything() {
         let d = forced_rattle().check().unwrap();
         let vary = Vary::of_values("freq", &[7.7, 7.8], Spelling::Keyword).unwrap();

@@ -627,6 +627,10 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
         &self.impacts
     }
 
+    fn open_onset(&self) -> Option<f64> {
+        self.open.as_ref().map(|o| o.t_start)
+    }
+
     fn finish(&mut self) -> Run {
         let mut energy = self.energy;
         energy.final_mechanical_j = self.sys.mechanical_energy(self.x, self.v, self.w, self.del_end);

@@ -456,6 +456,10 @@ impl Stepper for NewmarkSim<'_> {
         &self.nm.out.impacts
     }
 
+    fn open_onset(&self) -> Option<f64> {
+        self.nm.open.map(|o| o.t_s)
+    }
+
     fn finish(&mut self) -> Run {
         let sys = self.sys;
         let st = self.nm.st;

@@ -182,7 +182,11 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
     let last = *recent.last().expect("a forced run closes at least its last window");
     let prev = recent.len().checked_sub(2).map(|i| recent[i]);
     let period = 1.0 / p.freq_hz;
-    let impacts = s.impacts().iter().filter(|i| i.t_s >= last.start_s && i.t_s < last.end_s).count();
+    // Impacts by onset: a contact still open at the window's end (where the run stands) began
+    // in it and counts, as the one cut by the window's start does not.
+    let in_window = |t: f64| t >= last.start_s && t < last.end_s;
+    let open = s.open_onset().filter(|&t| !s.halted() && in_window(t));
+    let impacts = s.impacts().iter().filter(|i| in_window(i.t_s)).count() + usize::from(open.is_some());
     let span = (last.end_s - last.start_s).max(0.0);
     let amplitude_linear_m = linear_amplitude_m(p);
     let reduction_db = match amplitude_linear_m {
