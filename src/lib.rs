@@ -7,7 +7,7 @@
 
 pub use thud_core::{
     acoustics, contact, damper, design, dynamics, ensemble, error, finite, fit, limits, paper, params, report,
-    response, study, units, walk, ThudError,
+    response, study, units, verdict, walk, ThudError,
 };
 
 pub mod config;
