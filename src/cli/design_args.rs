@@ -172,6 +172,8 @@ impl<F: ForceFlag> DesignArgs<F> {
         let mut d = presets::preset(&self.preset)?;
         let settings = super::settings::load();
         d.thresholds = settings.thresholds(d.thresholds);
+        // `--no-limit` lifts the solvers' own caps too.
+        d.damper.no_limit = super::budget::no_limit();
         settings.design(d)
     }
 
