@@ -244,6 +244,17 @@ impl Widget for ReadoutView<'_> {
     }
 }
 
+/// A verdict as the explorer words it, in the readout's title and note and the bifurcation
+/// view's line: `orbit 3/1`, `orbit settled`, `orbit NOT SETTLED`, `orbit TRUNCATED`
+/// (capitals where the figures are not a steady state's).
+pub fn verdict_words(v: &Verdict) -> String {
+    if v.is_marked() {
+        format!("orbit {}", v.label().to_uppercase())
+    } else {
+        format!("orbit {}", v.label())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -272,16 +283,5 @@ mod tests {
         assert_eq!(live + pinned, 21);
         assert!(pinned >= PINNED_MIN && live > pinned, "{live} {pinned}");
         assert_eq!(split(5, [25; 3], [25; 3]), (0, 5));
-    }
-}
-
-/// A verdict as the explorer words it, in the readout's title and note and the bifurcation
-/// view's line: `orbit 3/1`, `orbit settled`, `orbit NOT SETTLED`, `orbit TRUNCATED`
-/// (capitals where the figures are not a steady state's).
-pub fn verdict_words(v: &Verdict) -> String {
-    if v.is_marked() {
-        format!("orbit {}", v.label().to_uppercase())
-    } else {
-        format!("orbit {}", v.label())
     }
 }

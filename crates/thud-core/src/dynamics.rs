@@ -602,22 +602,21 @@ pub fn basins(
                     || ((r.amplitude_m - q.amplitude_m).abs() <= SAME_ATTRACTOR * scale
                         && same_points(&r.points, &q.points, SAME_ATTRACTOR * scale)))
         };
-        let id = match last.iter().position(joins) {
-            Some(id) => id,
-            None => {
-                attractors.push(Attractor {
-                    id: attractors.len(),
-                    orbit: r.orbit,
-                    label: label.clone(),
-                    amplitude_m: 0.0,
-                    starts: 0,
-                    share: 0.0,
-                    mirror: None,
-                });
-                sums.push(0.0);
-                last.push((label, i));
-                attractors.len() - 1
-            }
+        let id = if let Some(id) = last.iter().position(joins) {
+            id
+        } else {
+            attractors.push(Attractor {
+                id: attractors.len(),
+                orbit: r.orbit,
+                label: label.clone(),
+                amplitude_m: 0.0,
+                starts: 0,
+                share: 0.0,
+                mirror: None,
+            });
+            sums.push(0.0);
+            last.push((label, i));
+            attractors.len() - 1
         };
         last[id].1 = i;
         ids[i] = id;

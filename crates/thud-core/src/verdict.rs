@@ -179,7 +179,7 @@ pub fn find_period(n: usize, impacts: usize, same: impl Fn(usize, usize) -> bool
 /// probe; else [`Verdict::NotSettled`] (a window is too short for the 0–1 test).
 #[must_use]
 pub fn window_pattern(probes: &[f64], per: usize, impacts: usize) -> Verdict {
-    let n = if per == 0 { 0 } else { probes.len().saturating_sub(1) / per };
+    let n = probes.len().saturating_sub(1).checked_div(per).unwrap_or(0);
     if n == 0 {
         return Verdict::NotSettled { k: None };
     }
