@@ -7,7 +7,7 @@
 
 pub use thud_core::{
     acoustics, contact, continuation, damper, design, dynamics, ensemble, error, finite, fit, limits, orbit, paper,
-    params, report, response, study, units, walk, ThudError,
+    params, report, response, study, units, verdict, walk, ThudError,
 };
 
 pub mod config;

@@ -113,8 +113,9 @@ fn text(d: &Design, b: &Basins) -> String {
     }
     t += "\nattractors (m/n = m impacts per n periods; sym = x(t+T/2) = −x(t)):\n";
     for a in &b.attractors {
+        let mirror = a.mirror.map_or(String::new(), |m| format!("  the mirror image of {}", letter(m)));
         t += &format!(
-            "  {}  {:<12} amplitude {:>8} mm  {:>5.1} % of starts ({})\n",
+            "  {}  {:<12} amplitude {:>8} mm  {:>5.1} % of starts ({}){mirror}\n",
             letter(a.id),
             a.label,
             num(a.amplitude_m * 1e3),

@@ -4,6 +4,7 @@
 //! given. Long runs show an `indicatif` progress bar on stderr when stderr is a terminal.
 
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -30,6 +31,20 @@ impl Ctx {
             e.describe()
         )))
     }
+}
+
+/// `--no-limit` for this process: the designs the command line builds run without the
+/// solvers' work caps too ([`crate::damper::SOLVER_CAPS`]), not only past the estimates.
+static NO_LIMIT: AtomicBool = AtomicBool::new(false);
+
+/// Sets `--no-limit` for the process (once, from the command line).
+pub fn set_no_limit(on: bool) {
+    NO_LIMIT.store(on, Ordering::Relaxed);
+}
+
+/// Whether `--no-limit` was given.
+pub fn no_limit() -> bool {
+    NO_LIMIT.load(Ordering::Relaxed)
 }
 
 /// A progress bar of `len` steps on stderr, hidden when stderr is not a terminal.

@@ -1,5 +1,5 @@
 //! `thud continue --vary NAME=FROM:TO`: pseudo-arclength continuation of the design's periodic
-//! orbit over one numeric parameter (docs/model.md §6.7), through folds and along unstable
+//! orbit over one numeric parameter (docs/model.md §6.8), through folds and along unstable
 //! parts, with its fold, period-doubling, Neimark–Sacker and grazing points. Text (the branch's
 //! stretches and special points), `--json` or `--csv` (one row per point).
 

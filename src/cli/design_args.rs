@@ -277,6 +277,8 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
         let mut d = presets::preset(&self.preset)?;
         let settings = super::settings::load();
         d.thresholds = settings.thresholds(d.thresholds);
+        // `--no-limit` lifts the solvers' own caps too.
+        d.damper.no_limit = super::budget::no_limit();
         settings.design(d)
     }
 

@@ -297,6 +297,7 @@ pub fn run(cli: Cli) -> i32 {
     settings::load();
     let checking_config = matches!(cli.command, Some(Command::Config(_)));
     let ctx = Ctx { no_limit: cli.no_limit };
+    budget::set_no_limit(cli.no_limit);
     let mut out = Out::new();
     let result = match cli.command {
         Some(Command::Pulse(a)) => pulse::run(&a, &ctx, &mut out),
@@ -368,7 +369,12 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
             .collect();
         let caps: Vec<serde_json::Value> =
             CAPS.iter().map(|c| serde_json::json!({ "what": c.what, "max": c.max, "basis": c.basis })).collect();
-        return out.json(&serde_json::json!({ "ranges": ranges, "caps": caps }));
+        let solver: Vec<serde_json::Value> = crate::damper::SOLVER_CAPS
+            .iter()
+            .map(|c| serde_json::json!({ "what": c.what, "max": c.max, "basis": c.basis }))
+            .collect();
+        return out.json(&serde_json::json!({ "ranges": ranges, "caps": caps, "solver_caps": solver,
+            "settle_periods_max": crate::damper::SETTLE_PERIODS_MAX }));
     }
     let mut s = String::from("Ranges (a plain number is in the unit shown; θ is narrowed by the source type):\n");
     for r in RANGES.iter().chain([&crate::limits::GRID_N, &crate::limits::THREADS]) {
@@ -380,5 +386,13 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
     for c in &CAPS {
         s += &format!("  {:<24} {:>8}   {}\n", c.what, crate::limits::short(c.max), c.basis);
     }
+    s += "\nSolver caps per run (--no-limit lifts them; a run one stops is reported truncated):\n";
+    for c in &crate::damper::SOLVER_CAPS {
+        s += &format!("  {:<34} {:>8}   {}\n", c.what, crate::limits::short(c.max), c.basis);
+    }
+    s += &format!(
+        "\nSettling (part of the settling test, not a work cap): a forced run with --settle goes on at most {} periods past its duration; a motion that has not settled by then is reported not settled\n",
+        crate::damper::SETTLE_PERIODS_MAX
+    );
     out.text(&s)
 }

@@ -1,4 +1,4 @@
-//! `thud orbit`: the periodic orbit of a forced design found by shooting (docs/model.md §6.6):
+//! `thud orbit`: the periodic orbit of a forced design found by shooting (docs/model.md §6.7):
 //! from the design's own motion, or from `--guess`, of a given `--period` or the one the motion
 //! repeats with, optionally `--symmetric`; its amplitude, impacts, Floquet multipliers and
 //! stability as text, `--json` or `--csv` (one row per impact).

@@ -220,31 +220,30 @@ fn text(d: &Design, r: &Response, continuation: bool) -> String {
         if continuation {
             s += &format!("{} sweep\n", sweep.direction.name());
         }
-        s += "   f (Hz)   with (mm)   without (mm)   cut (dB)  impacts/T   Leq (dB)  periodic  settled\n";
+        s += "   f (Hz)   with (mm)   without (mm)   cut (dB)  impacts/T   Leq (dB)  orbit\n";
         for p in &sweep.points {
             let st = &p.steady;
+            let orbit = if st.verdict.is_marked() { st.verdict.label().to_uppercase() } else { st.verdict.label() };
             s += &format!(
-                "  {:>7.3}  {:>10.4}  {:>13}  {:>9}  {:>9.3}  {:>9}  {:>8}  {:>7}{}\n",
+                "  {:>7.3}  {:>10.4}  {:>13}  {:>9}  {:>9.3}  {:>9}  {orbit}\n",
                 p.freq_hz,
                 st.amplitude_m * 1e3,
                 opt(st.amplitude_linear_m, 1e3, 4),
                 opt(st.reduction_db, 1.0, 2),
                 st.impacts_per_period,
                 opt(st.leq_db, 1.0, 2),
-                if st.periodic { "yes" } else { "no" },
-                if st.settled { "yes" } else { "no" },
-                if st.truncated { "  TRUNCATED" } else { "" }
             );
         }
         s += "\n";
     }
+    s += "(orbit: m/n = m impacts per n periods, sym = x(t+T/2) = −x(t); NOT SETTLED and TRUNCATED points are not a steady state)\n";
     s += &plot(r, 61, 14);
     s
 }
 
 /// A text plot of the amplitude (log scale) against the frequency: `*` with the damper (`u`/`d`
 /// for the rising and falling sweeps of a continuation, `d` drawn over `u` where they meet), `o`
-/// without it.
+/// without it; a point that is not a steady state `?` (not settled) or `!` (truncated).
 pub fn plot(r: &Response, width: usize, height: usize) -> String {
     let all: Vec<&response::ResponsePoint> = r.sweeps.iter().flat_map(|s| &s.points).collect();
     let f_lo = all.iter().map(|p| p.freq_hz).fold(f64::INFINITY, f64::min);
@@ -291,16 +290,24 @@ pub fn plot(r: &Response, width: usize, height: usize) -> String {
             Direction::Down => 'd',
         };
         for p in &sweep.points {
+            // A point that is not a steady state is drawn apart.
+            let c = match p.steady.verdict {
+                v if v.is_truncated() => '!',
+                v if v.is_marked() => '?',
+                _ => c,
+            };
             put(p.freq_hz, p.steady.amplitude_m, c, true);
         }
     }
+    let marked = all.iter().any(|p| p.steady.verdict.is_marked());
     let mm = |e: f64| crate::units::sig(10f64.powf(e) * 1e3, 3);
     let with = if r.sweeps.iter().any(|s| s.direction != Direction::FromRest) {
         "u rising and d falling sweep with the damper"
     } else {
         "* with the damper"
     };
-    let mut s = format!("amplitude (mm, log scale) against f: {with}, o without\n");
+    let apart = if marked { ", ? not settled, ! truncated" } else { "" };
+    let mut s = format!("amplitude (mm, log scale) against f: {with}, o without{apart}\n");
     for (i, line) in grid.iter().enumerate() {
         let label = if i == 0 {
             mm(hi)

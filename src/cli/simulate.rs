@@ -286,11 +286,14 @@ fn summary(d: &ValidDesign, e: &Evaluation, show: usize, truncated: Option<&str>
     Ok(s)
 }
 
-fn yes(b: bool) -> &'static str {
-    if b {
-        "yes"
-    } else {
-        "no"
+/// The verdict on a forced motion as the text outputs print it: its label
+/// ([`crate::verdict::Verdict::label`]), in capitals where its figures are not a steady
+/// state's (`NOT SETTLED`, `TRUNCATED`), with `m/n` explained.
+pub(crate) fn verdict_words(v: &crate::verdict::Verdict) -> String {
+    match v {
+        crate::verdict::Verdict::Periodic { .. } => format!("{} (impacts/periods)", v.label()),
+        _ if v.is_marked() => v.label().to_uppercase(),
+        _ => v.label(),
     }
 }
 
@@ -301,15 +304,13 @@ pub(crate) fn steady_line(st: &crate::response::Steady) -> String {
         _ => "without the ball unbounded (no damping at resonance)".into(),
     };
     format!(
-        "steady    last {} periods (t {}–{} s): amplitude {} mm ({linear})\n          {:.3} impacts/period, Leq {} dB; periodic {}, settled {}{}\n",
+        "steady    last {} periods (t {}–{} s): amplitude {} mm ({linear})\n          {:.3} impacts/period, Leq {} dB; orbit {}\n",
         st.periods,
         num(st.window_start_s),
         num(st.window_end_s),
         num(st.amplitude_m * 1e3),
         st.impacts_per_period,
         opt(st.leq_db, 2),
-        yes(st.periodic),
-        yes(st.settled),
-        if st.truncated { "; TRUNCATED" } else { "" }
+        verdict_words(&st.verdict),
     )
 }

@@ -272,6 +272,7 @@ struct ResponseRow {
     periodic: bool,
     settled: bool,
     truncated: bool,
+    verdict: String,
     final_time_s: Num,
 }
 
@@ -298,6 +299,7 @@ pub fn response(r: &crate::response::Response) -> Result<String, csv::Error> {
                     periodic: st.periodic,
                     settled: st.settled,
                     truncated: st.truncated,
+                    verdict: st.verdict.label(),
                     final_time_s: Num(p.final_time_s),
                 }
             })

@@ -195,6 +195,9 @@ fn param_label(name: &str, unit: &str) -> String {
 /// Colour of the rising (or only) sweep and of the falling one (Okabe–Ito blue and vermilion).
 const UP: &str = "#0072B2";
 const DOWN: &str = "#D55E00";
+/// Colour of the values whose orbit is not settled (grey) or whose run was cut short (black).
+const UNSETTLED: &str = "#7F7F7F";
+const TRUNCATED: &str = "#000000";
 
 /// The bifurcation diagram: above, x(kT) (mm) against the parameter; below, the relative
 /// impact speed (m/s) of every impact after the transient. With continuation the rising sweep
@@ -225,23 +228,48 @@ pub fn bifurcation_svg(b: &Bifurcation, title: &str, look: &Look) -> String {
             }
         }
     };
+    // A value whose orbit is not settled, or whose run a work cap cut short, is drawn apart:
+    // its samples are not an orbit's.
+    let apart = |svg: &mut Svg, f: &Frame, vx: f64, vy: f64, truncated: bool| {
+        let (cx, cy) = (f.px(vx), f.py(vy));
+        if (f.left..=f.left + f.width).contains(&cx) && (f.top..=f.top + f.height).contains(&cy) {
+            let (shape, color) = if truncated { (Shape::TriangleDown, TRUNCATED) } else { (Shape::Cross, UNSETTLED) };
+            svg.marker(shape, cx, cy, 1.6, color);
+        }
+    };
     for p in &b.points {
+        let marked = p.run.orbit.is_marked();
+        let truncated = p.run.orbit.is_truncated();
         for s in &p.run.samples {
-            dot(&mut svg, &top, p.value, s.x_m * 1e3, p.direction);
+            if marked {
+                apart(&mut svg, &top, p.value, s.x_m * 1e3, truncated);
+            } else {
+                dot(&mut svg, &top, p.value, s.x_m * 1e3, p.direction);
+            }
         }
         for i in &p.run.impacts {
-            dot(&mut svg, &bottom, p.value, i.u_in_m_s, p.direction);
+            if marked {
+                apart(&mut svg, &bottom, p.value, i.u_in_m_s, truncated);
+            } else {
+                dot(&mut svg, &bottom, p.value, i.u_in_m_s, p.direction);
+            }
         }
     }
     let lx = left_of_legend(width, right);
     let mut y = top_margin + 12.0;
     let continuation = b.points.iter().any(|p| p.direction == Direction::Down);
-    let entries: &[(&str, &str, Shape)] = if continuation {
-        &[(UP, "rising sweep", Shape::Circle), (DOWN, "falling sweep", Shape::Square)]
+    let mut entries: Vec<(&str, &str, Shape)> = if continuation {
+        vec![(UP, "rising sweep", Shape::Circle), (DOWN, "falling sweep", Shape::Square)]
     } else {
-        &[(UP, "each value from the start", Shape::Circle)]
+        vec![(UP, "each value from the start", Shape::Circle)]
     };
-    for (color, label, shape) in entries {
+    if b.points.iter().any(|p| p.run.orbit.is_marked() && !p.run.orbit.is_truncated()) {
+        entries.push((UNSETTLED, "not settled", Shape::Cross));
+    }
+    if b.points.iter().any(|p| p.run.orbit.is_truncated()) {
+        entries.push((TRUNCATED, "truncated (a work cap)", Shape::TriangleDown));
+    }
+    for (color, label, shape) in &entries {
         svg.marker(*shape, lx + 6.0, y - 4.0, 3.0, color);
         svg.text(lx + 16.0, y, label, 11.0, Anchor::Start, 0.0);
         y += 18.0;
@@ -337,7 +365,8 @@ pub fn basins_svg(b: &Basins, title: &str, look: &Look) -> String {
         let yy = frame.top + 10.0 + 20.0 * k as f64;
         svg.rect(lx, yy - 9.0, 14.0, 12.0, &color(a.id), None);
         svg.text_fill(lx + 7.0, yy + 1.0, &letter(a.id), 9.0, Anchor::Middle, "white");
-        let text = format!("{} {:.1} mm, {:.0} %", a.label, a.amplitude_m * 1e3, a.share * 100.0);
+        let mirror = a.mirror.map_or(String::new(), |m| format!(", mirror of {}", letter(m)));
+        let text = format!("{} {:.1} mm, {:.0} %{mirror}", a.label, a.amplitude_m * 1e3, a.share * 100.0);
         svg.text(lx + 20.0, yy, &text, 10.0, Anchor::Start, 0.0);
     }
     svg.finish()

@@ -620,6 +620,20 @@ pub fn response(r: &crate::response::Response, title: &str, look: &Look) -> Stri
         .unwrap_or_default();
     linear.sort_by(|a, b| a.0.total_cmp(&b.0));
     amp.push(Series::new("without (closed form)", linear, Style::Dashed));
+    // Points that are not a steady state (not settled, or cut short by a work cap) are
+    // marked over their sweep's, with a legend entry of their own.
+    for (what, truncated, shape) in [("not settled", false, Shape::Cross), ("truncated", true, Shape::TriangleDown)] {
+        let pts: Vec<(f64, f64)> = r
+            .sweeps
+            .iter()
+            .flat_map(|s| &s.points)
+            .filter(|p| p.steady.verdict.is_marked() && p.steady.verdict.is_truncated() == truncated)
+            .map(|p| (p.freq_hz, p.steady.amplitude_m * 1e3))
+            .collect();
+        if !pts.is_empty() {
+            amp.push(Series::new(what, pts, Style::Markers).shaped(shape).colored("#000000".to_string()));
+        }
+    }
     let leq: Vec<Series> = r
         .sweeps
         .iter()

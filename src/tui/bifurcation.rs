@@ -38,6 +38,8 @@ pub struct BifurcationView<'a> {
     pub freq_hz: f64,
     /// The orbit at exactly f (None while the readout computes it).
     pub at_f: Option<&'a BifurcationPoint>,
+    /// The live design's verdict, as the readout names it.
+    pub verdict: Option<crate::verdict::Verdict>,
     pub theme: Palette,
 }
 
@@ -46,13 +48,14 @@ pub fn samples_mm(points: &[BifurcationPoint]) -> Vec<(f64, f64)> {
     points.iter().flat_map(|p| p.run.samples.iter().map(move |s| (p.value, 1e3 * s.x_m))).collect()
 }
 
-/// The line under the plot: the orbit at f, its type as the engine classifies it.
-pub fn orbit_line(at_f: Option<&BifurcationPoint>, f: f64) -> String {
+/// The line under the plot: the orbit at f, named by the design's one verdict (`verdict`, as
+/// the readout names it; the orbit's own where there is none).
+pub fn orbit_line(at_f: Option<&BifurcationPoint>, verdict: Option<crate::verdict::Verdict>, f: f64) -> String {
     match at_f {
         Some(p) => format!(
-            "f {} Hz: orbit {} (impacts/periods), |x| ≤ {} mm over {} periods",
+            "f {} Hz: {}, |x| ≤ {} mm over {} periods",
             sig(f, 4),
-            p.run.orbit.label(),
+            super::readout::verdict_words(&verdict.unwrap_or(p.run.orbit)),
             sig(1e3 * p.run.amplitude_m, 3),
             p.run.samples.len()
         ),
@@ -101,7 +104,7 @@ impl Widget for BifurcationView<'_> {
             legend: true,
         }
         .render(plot, buf);
-        let text = orbit_line(self.at_f, f);
+        let text = orbit_line(self.at_f, self.verdict, f);
         buf.set_stringn(note.x, note.y, th.fit(&th.text(&text), note.width.into()), note.width.into(), th.label());
     }
 }

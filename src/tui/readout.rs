@@ -16,6 +16,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::theme::{self, Palette};
+use crate::verdict::Verdict;
 use unicode_width::UnicodeWidthStr;
 
 /// One readout row: label, live value, pinned value (if a design is pinned).
@@ -240,6 +241,17 @@ impl Widget for ReadoutView<'_> {
         }
         let lines: Vec<Line> = lines.into_iter().map(|l| self.theme.fit_line(l, w)).collect();
         Paragraph::new(lines).render(inner, buf);
+    }
+}
+
+/// A verdict as the explorer words it, in the readout's title and note and the bifurcation
+/// view's line: `orbit 3/1`, `orbit settled`, `orbit NOT SETTLED`, `orbit TRUNCATED`
+/// (capitals where the figures are not a steady state's).
+pub fn verdict_words(v: &Verdict) -> String {
+    if v.is_marked() {
+        format!("orbit {}", v.label().to_uppercase())
+    } else {
+        format!("orbit {}", v.label())
     }
 }
 

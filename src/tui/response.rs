@@ -69,6 +69,8 @@ pub fn marker_line(at_f: Option<&ResponsePoint>, band: &FreqBand, f: f64, width:
             let cut = s.reduction_db.map_or("—".to_string(), |c| format!("{} dB", sig(c, 3)));
             let leq = s.leq_db.map_or("—".to_string(), |l| format!("{} dB", sig(l, 4)));
             let x = mm(s.amplitude_m);
+            // A point at f that is not a steady state says so first.
+            let x = if s.verdict.is_marked() { format!("{x} ({})", s.verdict.label().to_uppercase()) } else { x };
             vec![
                 format!(
                     "f {fs} Hz from rest: {x} mm (alone {alone} mm), cut {cut}, Leq {leq}, {} impacts/T{off}",
@@ -147,6 +149,15 @@ impl Widget for ResponseView<'_> {
         let without: Vec<(f64, f64)> =
             pts.iter().filter_map(|p| Some((p.freq_hz, db_mm(p.steady.amplitude_linear_m?)?))).collect();
         let leq: Vec<(f64, f64)> = pts.iter().filter_map(|p| Some((p.freq_hz, p.steady.leq_db?))).collect();
+        // Points that are not a steady state (not settled, or cut short by a work cap) are
+        // marked over the curve, with a legend entry of their own.
+        let apart = |truncated: bool| -> Vec<(f64, f64)> {
+            pts.iter()
+                .filter(|p| p.steady.verdict.is_marked() && p.steady.verdict.is_truncated() == truncated)
+                .filter_map(|p| Some((p.freq_hz, db_mm(p.steady.amplitude_m)?)))
+                .collect()
+        };
+        let (unsettled, truncated) = (apart(false), apart(true));
         let xb = [self.band.from_hz, self.band.to_hz];
         let leq_h = if inner.height >= 16 { inner.height * 2 / 5 } else { 0 };
         let [top, bottom, info] =
@@ -154,15 +165,22 @@ impl Widget for ResponseView<'_> {
         let yb = fit_bounds(with.iter().chain(&without).map(|p| p.1), 0.05);
         let mark = self.marker(yb);
         let marker_style = Style::default().add_modifier(Modifier::BOLD | Modifier::REVERSED);
+        let mut series = vec![
+            Curve::line("none", &without, th.behind(th.ink(Role::Alone)), th.mark('○', 'o')),
+            Curve::line("damper", &with, th.style(Role::Damper), th.mark('●', '#')),
+            Curve::line("f", &mark, marker_style, th.mark('│', '|')),
+        ];
+        if !unsettled.is_empty() {
+            series.push(Curve::points("not settled", &unsettled, th.style(Role::Error), th.mark('?', '?')));
+        }
+        if !truncated.is_empty() {
+            series.push(Curve::points("truncated", &truncated, th.style(Role::Error), th.mark('!', '!')));
+        }
         LinePlot {
             block: Block::default(),
             x_title: "f (Hz)",
             y_title: "x (dB re 1 mm)",
-            series: vec![
-                Curve::line("none", &without, th.behind(th.ink(Role::Alone)), th.mark('○', 'o')),
-                Curve::line("damper", &with, th.style(Role::Damper), th.mark('●', '#')),
-                Curve::line("f", &mark, marker_style, th.mark('│', '|')),
-            ],
+            series,
             empty: "no steady amplitude",
             theme: th,
             y_zero: false,

@@ -31,7 +31,7 @@ use super::keys::Keymap;
 use super::keys::{self, Action};
 use super::params::ParamsView;
 use super::polar::{PolarHit, PolarView};
-use super::readout::{ReadoutView, Row};
+use super::readout::{verdict_words, ReadoutView, Row};
 use super::response::{ResponseState, ResponseView};
 use super::theme::{fold_buffer, Palette};
 use super::tour::wrap;
@@ -40,6 +40,7 @@ use crate::design::{Chart, Design, Metrics, Zone, ZoneBy};
 use crate::ensemble::{Ensemble, Percentiles};
 use crate::store;
 use crate::units::sig;
+use crate::verdict::Verdict;
 
 /// Rows of the wide layout's parameter panel: the design's fields. The forcing and ensemble
 /// fields come last and scroll into view when selected (↑ from the first field reaches them).
@@ -403,7 +404,6 @@ pub fn start_words(d: &Design) -> String {
 /// The most important words first: the compact readout cuts the note at its edge.
 fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
     let s = a.steady.as_ref()?;
-    let yes = |b: bool, word: &str| if b { word.to_string() } else { format!("NOT {word}") };
     let start = start_words(d);
     if let Some(e) = &a.forced_ensemble {
         let cut = if e.truncated { ", TRUNCATED" } else { "" };
@@ -414,15 +414,17 @@ fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
             100.0 * e.periodic_fraction
         ));
     }
-    let cut = if s.truncated { ", TRUNCATED" } else { "" };
-    // The orbit's type is the readout's title ([`readout_title`]), not this note's end: the
-    // note is cut at the readout's edge at 80×24 and 120×40.
-    Some(format!(
-        "{}, {start}, {} by t {} s{cut}",
-        yes(s.settled, "settled"),
-        yes(s.periodic, "periodic"),
-        sig(s.window_end_s, 3)
-    ))
+    // The design's one verdict, as the readout's title names it ([`readout_title`]); first,
+    // as the note is cut at the readout's edge at 80×24 and 120×40.
+    let v = design_verdict(a)?;
+    Some(format!("{}, {start}, by t {} s", verdict_words(&v), sig(s.window_end_s, 3)))
+}
+
+/// The verdict on the live design's motion ([`crate::verdict::of_design`]): its settled
+/// run's and its orbit's at f, as one. The readout's title and note, and the bifurcation
+/// view's line at f, all name this one.
+pub fn design_verdict(a: &AcousticResult) -> Option<Verdict> {
+    crate::verdict::of_design(a.steady.as_ref().map(|s| s.verdict), a.orbit.as_ref().map(|o| o.run.orbit))
 }
 
 /// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
@@ -542,14 +544,14 @@ pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
 pub fn readout_title(app: &App, width: u16) -> String {
     let plain = " readout ".to_string();
     let live = app.acoustic().filter(|_| !app.design_busy());
-    let Some((a, o)) = live.and_then(|a| Some((a, a.orbit.as_ref()?))) else { return plain };
-    let label = o.run.orbit.label();
+    let Some((a, v)) = live.and_then(|a| Some((a, design_verdict(a)?))) else { return plain };
+    let words = verdict_words(&v);
     let options = if a.ensemble.is_some() || a.forced_ensemble.is_some() {
-        vec![format!(" readout: orbit {label} from y0 "), plain]
-    } else if matches!(o.run.orbit, crate::dynamics::Orbit::Periodic { .. }) {
-        vec![format!(" readout: orbit {label} (impacts/periods) "), format!(" readout: orbit {label} "), plain]
+        vec![format!(" readout: {words} from y0 "), plain]
+    } else if matches!(v, Verdict::Periodic { .. }) {
+        vec![format!(" readout: {words} (impacts/periods) "), format!(" readout: {words} "), plain]
     } else {
-        vec![format!(" readout: orbit {label} "), plain]
+        vec![format!(" readout: {words} "), plain]
     };
     fit(&app.theme, &options, width)
 }
@@ -766,13 +768,15 @@ fn chart_panel(f: &mut Frame, app: &App, area: Rect) -> Option<Geometry> {
                 BifurcationState::Computing
             };
             let band = default_band(&app.design);
-            let at_f = app.acoustic().filter(|_| !app.design_busy()).and_then(|a| a.orbit.as_ref());
+            let live = app.acoustic().filter(|_| !app.design_busy());
+            let at_f = live.and_then(|a| a.orbit.as_ref());
             let view = BifurcationView {
                 block,
                 state,
                 band_hz: [band.from_hz, band.to_hz],
                 freq_hz: app.design.damper.freq_hz,
                 at_f,
+                verdict: live.and_then(design_verdict),
                 theme: app.theme,
             };
             f.render_widget(view, area);

@@ -101,6 +101,10 @@ fn limits_tables() -> String {
     for c in &CAPS {
         s += &format!("| {} | {} | {} |\n", cell(c.what), short(c.max), cell(c.basis));
     }
+    s += "\n| solver work | cap per run | why |\n|---|---|---|\n";
+    for c in &thud::damper::SOLVER_CAPS {
+        s += &format!("| {} | {} | {} |\n", cell(c.what), short(c.max), cell(c.basis));
+    }
     s
 }
 

@@ -265,3 +265,30 @@ fn limits_lists_the_new_ranges_and_the_response_cap() {
         assert!(out.contains(needle), "{needle}");
     }
 }
+
+/// The solvers' own work caps are listed, a run one stops says `truncated` (not "not
+/// settled"), and `--no-limit` lifts them: the forced rattle at 7.7236 Hz reaches the event
+/// solver's 400 000 in-contact steps after some 6 000 impacts, within 4 100 periods.
+#[test]
+fn a_run_cut_by_a_solver_cap_says_truncated_and_no_limit_lifts_the_cap() {
+    let limits = ok(&["limits"]);
+    for needle in ["event solver: in-contact steps", "event solver: contact searches", "Newmark steps of one run"] {
+        assert!(limits.contains(needle), "{needle} in\n{limits}");
+    }
+    let caps: serde_json::Value = serde_json::from_str(&ok(&["limits", "--json"])).unwrap();
+    let contact =
+        caps["solver_caps"].as_array().unwrap().iter().find(|c| c["what"] == "event solver: in-contact steps");
+    assert_eq!(contact.unwrap()["max"].as_f64(), Some(thud::damper::CONTACT_STEP_CAP as f64));
+    let args = ["bifurcation", "--preset", "forced-rattle", "--vary", "f=7.7236Hz:7.7236Hz:1", "--transient", "4000"];
+    let cut = ok(&args);
+    let band = cut.lines().find(|l| l.trim_start().starts_with("from_rest")).unwrap_or_else(|| panic!("{cut}"));
+    assert!(band.ends_with("truncated") && !cut.contains("not settled"), "{cut}");
+    let json: serde_json::Value = serde_json::from_str(&ok(&[&args[..], &["--json"]].concat())).unwrap();
+    assert_eq!(json["points"][0]["orbit"]["kind"], "truncated");
+    assert_eq!(json["points"][0]["orbit"]["cap"], "contact_steps");
+    let whole = ok(&[&args[..], &["--no-limit"]].concat());
+    let band = whole.lines().find(|l| l.trim_start().starts_with("from_rest")).unwrap_or_else(|| panic!("{whole}"));
+    assert!(!whole.contains("truncated"), "{whole}");
+    // Whole, the run reaches its orbit: two impacts a period (docs/model.md §6.5, above 7.6 Hz).
+    assert!(band.ends_with("2/1"), "{whole}");
+}

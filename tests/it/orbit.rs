@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Periodic orbits by shooting (`thud::orbit`, docs/model.md §6.6) against the references that
+//! Periodic orbits by shooting (`thud::orbit`, docs/model.md §6.7) against the references that
 //! do not come from thud's own shooting: Masri & Caughey's closed-form symmetric orbits and
 //! their stability (tests/it/masri_caughey_stability.rs, instantaneous impacts with thud's
 //! restitution at the impact speed), and the linear structure's closed form.
@@ -219,7 +219,7 @@ fn the_orbit_commands_print_the_engines_orbit_and_refuse_bad_input() {
     assert!(out.lines().count() > 10);
 }
 
-/// `forced-rattle` (docs/model.md §6.7): the stable continued branch of the symmetric 4/1 orbit
+/// `forced-rattle` (docs/model.md §6.8): the stable continued branch of the symmetric 4/1 orbit
 /// from 3.3 Hz equals the simulated stroboscopic samples (after a long transient) to 1e-8 m, and
 /// the period doubling of the asymmetric 4/1 orbit is located within 0.01 Hz of where the
 /// simulated orbit's type changes from 4/1 to 8/2.

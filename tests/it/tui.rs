@@ -1612,10 +1612,26 @@ fn the_readout_shows_the_clis_json_numbers() {
     let reqs = app.initial_requests();
     compute_sync(&mut app, reqs);
     let screen = render(&mut app, 120, 40);
-    // The note says whether that state settled, as the command line does, before the rest.
-    let settled = if st["settled"].as_bool().unwrap() { "│settled, " } else { "│NOT settled, " };
+    // The note leads with the design's verdict, as the command line's runs give it: the
+    // settled run's (`simulate --settle`) and the orbit's at f (`bifurcation`), as one.
+    let orbit = json(&[
+        "bifurcation",
+        "--preset",
+        "paper-fig9",
+        "--force-amplitude",
+        "1N",
+        "--freq",
+        "5Hz",
+        "--vary",
+        "f=5Hz:5Hz:1",
+        "--json",
+    ]);
+    let orbit: thud::verdict::Verdict = serde_json::from_value(orbit["points"][0]["orbit"].clone()).unwrap();
+    let steady: thud::verdict::Verdict = serde_json::from_value(st["verdict"].clone()).unwrap();
+    let v = thud::verdict::of_design(Some(steady), Some(orbit)).unwrap();
+    let settled = format!("│{}, ", thud::tui::readout::verdict_words(&v));
     let end = sig(num(st, "window_end_s"), 3);
-    assert!(screen.contains(settled) && end.parse::<f64>().unwrap() > 2.0, "{settled} {end}\n{screen}");
+    assert!(screen.contains(&settled) && end.parse::<f64>().unwrap() > 2.0, "{settled} {end}\n{screen}");
     let plain = json(&["simulate", "--preset", "paper-fig9", "--force-amplitude", "1N", "--freq", "5Hz", "--json"]);
     for (label, want) in [
         ("U0max", format!("{} m/s", sig(num(&plain, "u0_max_m_s"), 5))),
@@ -1789,9 +1805,12 @@ fn a_not_settled_note_is_never_hidden_behind_the_negative_e_note() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let cli: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(cli["steady"]["amplitude_m"].as_f64().unwrap(), steady.amplitude_m);
+    // The note leads with the design's one verdict, as the title names it.
+    let v = thud::tui::ui::design_verdict(a).expect("forced");
+    let words = format!("│{}, ", thud::tui::readout::verdict_words(&v));
     for (w, h) in [(120, 40), (200, 60)] {
         let screen = render(&mut app, w, h);
-        assert!(screen.contains("│NOT settled, ") && row(&screen, "e").contains("(!)"), "{screen}");
+        assert!(screen.contains(&words) && row(&screen, "e").contains("(!)"), "{words}\n{screen}");
     }
 }
 

@@ -8,8 +8,9 @@ use crate::support::explorer::{press, render, set};
 use crossterm::event::KeyCode;
 use thud::design::Design;
 use thud::tui::app::{App, Panel};
-use thud::tui::compute::{orbit_at_f, Grid, Grids};
+use thud::tui::compute::{orbit_at_f, settled_steady, Grid, Grids};
 use thud::tui::fields::Knob;
+use thud::tui::readout::verdict_words;
 use thud::tui::{compute_sync, Palette};
 
 fn app_of(d: Design, preset: &str) -> App {
@@ -20,13 +21,15 @@ fn app_of(d: Design, preset: &str) -> App {
     app
 }
 
-/// The orbit's label of the live design, straight from the engine (not the app's copy), and
-/// the app's copy agreeing with it.
+/// The verdict on the live design as the readout words it, straight from the engine (its
+/// orbit at f and its settled run, not the app's copies), and the app's copy agreeing with it.
 fn engine_label(app: &App) -> String {
-    let engine = orbit_at_f(&app.design, None).unwrap().unwrap().run.orbit.label();
-    let shown = app.acoustic().unwrap().orbit.as_ref().unwrap().run.orbit.label();
-    assert_eq!(shown, engine, "the worker's orbit is the engine's");
-    engine
+    let orbit = orbit_at_f(&app.design, None).unwrap().unwrap().run.orbit;
+    let shown = app.acoustic().unwrap().orbit.as_ref().unwrap().run.orbit;
+    assert_eq!(shown, orbit, "the worker's orbit is the engine's");
+    let steady = settled_steady(&app.design, None).unwrap().unwrap().verdict;
+    let v = thud::verdict::of_design(Some(steady), Some(orbit)).unwrap();
+    verdict_words(&v).trim_start_matches("orbit ").to_string()
 }
 
 /// The screen's line holding the readout's top border.
@@ -67,8 +70,8 @@ fn the_default_design_forced_names_its_orbit_and_keeps_its_note_start() {
     for (size, screen) in screens(&mut app) {
         let title = readout_title_line(&screen);
         assert!(title.contains(&format!(" readout: orbit {label} ")), "{size}: orbit {label}\n{screen}");
-        // The note still says which start the figures are from.
-        assert!(screen.contains("settled, after the 2 m/s strike"), "{size}\n{screen}");
+        // The note still says which start the figures are from, after the same verdict.
+        assert!(screen.contains(&format!("orbit {label}, after the 2 m/s strike")), "{size}\n{screen}");
     }
 }
 
@@ -107,5 +110,78 @@ fn no_stale_orbit_while_the_design_computes_and_none_without_a_force() {
     for (w, h) in [(80, 24), (120, 40)] {
         let screen = render(&mut app, w, h);
         assert!(!screen.contains("orbit"), "{w}x{h}\n{screen}");
+    }
+}
+
+/// Every verdict the screen names (`orbit 3/1`, `orbit settled`, `orbit NOT SETTLED`, …), in
+/// the order it names them, whole words only (a note cut at the readout's edge names none).
+fn verdicts_on(screen: &str) -> Vec<String> {
+    let words = ["not settled", "settled", "chaotic", "truncated"];
+    let mut out = Vec::new();
+    for line in screen.lines() {
+        let mut rest = line;
+        while let Some(i) = rest.find("orbit ") {
+            let after = &rest[i + "orbit ".len()..];
+            let lower = after.to_lowercase();
+            let ratio: String = after.chars().take_while(|c| c.is_ascii_digit() || *c == '/').collect();
+            let found = if ratio.contains('/') && !ratio.ends_with('/') && !ratio.starts_with('/') {
+                let sym = after[ratio.len()..].starts_with(" sym");
+                Some(format!("{ratio}{}", if sym { " sym" } else { "" }))
+            } else {
+                words.iter().find(|w| lower.starts_with(*w)).map(|w| (*w).to_string())
+            };
+            out.extend(found);
+            rest = after;
+        }
+        // The old wordings of a second verdict may not come back.
+        assert!(!line.contains("NOT settled") && !line.contains("NOT periodic"), "{line}");
+    }
+    out
+}
+
+#[test]
+fn the_explorer_never_shows_two_verdicts_for_one_design() {
+    // Random forced designs (a fixed seed: the same ones every run) about the default design:
+    // ball mass, gap, force and frequency drawn over the explorer's usual ranges, the force's
+    // frequency about the structure's resonance (0.6–1.6 × its natural frequency), the 2 m/s
+    // strike kept. Each must show one verdict: the readout's title and its note the same.
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut uniform = |lo: f64, hi: f64| {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        lo + (hi - lo) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut designs: Vec<Design> = (0..10)
+        .map(|_| {
+            let mut d = Design::default();
+            let fn_hz = d.damper.natural_frequency_hz();
+            d.damper.impact_mass_kg = uniform(0.02, 0.06);
+            d.damper.gap_m = uniform(0.005, 0.04);
+            d.damper.force_n = uniform(0.5, 3.0);
+            d.damper.freq_hz = fn_hz * uniform(0.6, 1.6);
+            d
+        })
+        .collect();
+    // The design the explorer showed two verdicts for: the default with a 1 N force.
+    let mut one_newton = Design::default();
+    one_newton.damper.force_n = 1.0;
+    one_newton.damper.freq_hz = one_newton.damper.natural_frequency_hz();
+    designs.push(one_newton);
+    for d in designs {
+        let what = format!(
+            "m {:.4} kg, d {:.4} m, F0 {:.3} N, f {:.4} Hz",
+            d.damper.impact_mass_kg, d.damper.gap_m, d.damper.force_n, d.damper.freq_hz
+        );
+        let mut app = app_of(d, "default");
+        let label = engine_label(&app);
+        for (size, screen) in screens(&mut app) {
+            let title = readout_title_line(&screen);
+            assert!(title.contains(&format!(" readout: orbit {label} ")), "{what}, {size}: orbit {label}\n{screen}");
+            let seen = verdicts_on(&screen);
+            assert!(!seen.is_empty(), "{what}, {size}\n{screen}");
+            assert!(
+                seen.iter().all(|v| v.to_lowercase() == label.to_lowercase()),
+                "{what}, {size}: {seen:?} for one design\n{screen}"
+            );
+        }
     }
 }

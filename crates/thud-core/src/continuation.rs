@@ -1,5 +1,5 @@
 //! Pseudo-arclength continuation of a family of periodic orbits in one numeric parameter
-//! (docs/model.md §6.7; Keller 1977; Allgower & Georg, "Numerical Continuation Methods", 1990,
+//! (docs/model.md §6.8; Keller 1977; Allgower & Georg, "Numerical Continuation Methods", 1990,
 //! ch. 2 and 8), through folds and along unstable parts, with the fold, period-doubling,
 //! Neimark–Sacker and grazing points located and labelled.
 //!

@@ -664,6 +664,9 @@ pub struct Steady {
     pub settled: bool,
     /// Whether a work cap stopped the run before the window's end.
     pub truncated: bool,
+    /// The verdict on the motion ([`crate::verdict`]): what every surface says of it.
+    #[serde(default)]
+    pub verdict: crate::verdict::Verdict,
 }
 
 /// The steady state of `run` of `design`, if the design is forced.
@@ -691,6 +694,7 @@ fn with_level(m: &SteadyMotion, leq_db: Option<f64>) -> Steady {
         periodic: m.periodic,
         settled: m.settled,
         truncated: m.truncated,
+        verdict: m.verdict,
     }
 }
 

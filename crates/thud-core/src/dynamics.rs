@@ -30,17 +30,14 @@ use crate::limits::{self, Estimate, Refusal, Remedy};
 use crate::params::Spelling;
 use crate::response::Direction;
 use crate::study::{Axis, Grid, Vary};
+use crate::verdict::{self, find_period, Verdict};
 
 /// Forcing periods run before sampling when none are given: enough for the designs of the
 /// presets (light structural damping, the ball's impacts damping most) to reach their orbit.
 pub const DEFAULT_TRANSIENT_PERIODS: u32 = 200;
 /// Forcing periods sampled when none are given.
 pub const DEFAULT_PERIODS: u32 = 100;
-/// The longest period (in forcing periods) [`classify`] looks for.
-pub const MAX_PERIOD: usize = 16;
-/// How close (relative to the samples' largest |x| and |x'|) two samples must be to count as
-/// the same point of an orbit.
-pub const PERIODIC_TOLERANCE: f64 = 1e-3;
+pub use crate::verdict::{MAX_PERIOD, PERIODIC_TOLERANCE};
 /// The 0–1 test's K at or above which a motion counts as chaotic (Gottwald & Melbourne: K ≈ 1
 /// for chaos, ≈ 0 for regular motion).
 pub const CHAOS_K: f64 = 0.8;
@@ -93,33 +90,9 @@ pub struct ImpactPoint {
     pub u_out_m_s: f64,
 }
 
-/// What an orbit is ([`classify`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Orbit {
-    /// Period `periods`·T with `impacts` impacts in each period; `symmetric`: x(t + T/2) = −x(t).
-    Periodic { impacts: u32, periods: u32, symmetric: bool },
-    /// The 0–1 test's `k` ≥ [`CHAOS_K`].
-    Chaotic { k: f64 },
-    /// Neither: still settling, quasi-periodic, or a longer period; `k` the 0–1 test's K when
-    /// there were samples enough to run it.
-    NotSettled { k: Option<f64> },
-}
-
-impl Orbit {
-    /// `2/1 sym` (2 impacts per period, symmetric), `1/2` (1 impact per 2 periods), `0/1`
-    /// (no impact), `chaotic`, `not settled`.
-    #[must_use]
-    pub fn label(&self) -> String {
-        match *self {
-            Orbit::Periodic { impacts, periods, symmetric } => {
-                format!("{impacts}/{periods}{}", if symmetric { " sym" } else { "" })
-            }
-            Orbit::Chaotic { .. } => "chaotic".to_string(),
-            Orbit::NotSettled { .. } => "not settled".to_string(),
-        }
-    }
-}
+/// What an orbit is: the one verdict on a forced motion ([`crate::verdict`]); [`classify`]
+/// gives the pattern of its samples, and a run cut short is [`Verdict::Truncated`].
+pub type Orbit = Verdict;
 
 /// One run sampled after its transient, and what its orbit is.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -130,7 +103,7 @@ pub struct OrbitRun {
     pub samples: Vec<Sample>,
     pub impacts: Vec<ImpactPoint>,
     /// Whether a work cap or cancellation stopped the run before its end (then the orbit is
-    /// "not settled").
+    /// "truncated").
     pub truncated: bool,
 }
 
@@ -154,6 +127,17 @@ fn check_forced(d: &Design, force: &str) -> Result<(), ThudError> {
 
 /// Runs `d` from `start` ([`Settings`]) and classifies its orbit; also the end state.
 fn run_orbit(d: &Design, start: &Start, s: Settings, cancel: Option<&AtomicBool>) -> (OrbitRun, Start) {
+    let (run, end, _) = run_orbit_halves(d, start, s, cancel);
+    (run, end)
+}
+
+/// [`run_orbit`], with the samples half a period after each `x(kT)`: `(x, x')` at `kT + T/2`.
+fn run_orbit_halves(
+    d: &Design,
+    start: &Start,
+    s: Settings,
+    cancel: Option<&AtomicBool>,
+) -> (OrbitRun, Start, Vec<[f64; 2]>) {
     let st = damper::strobe(&d.damper, start, s.transient_periods, s.periods, cancel);
     let tau = std::f64::consts::TAU;
     let samples: Vec<Sample> = st
@@ -181,9 +165,13 @@ fn run_orbit(d: &Design, start: &Start, s: Settings, cancel: Option<&AtomicBool>
             u_out_m_s: i.u_out_m_s,
         })
         .collect();
-    let truncated = st.truncated.is_some() || st.cancelled;
-    let orbit = if truncated { Orbit::NotSettled { k: None } } else { classify(&samples, &halves, st.impacts.len()) };
-    (OrbitRun { orbit, amplitude_m: st.amplitude_m, samples, impacts, truncated }, st.end)
+    let cut = if st.cancelled { Some(None) } else { st.truncated.map(Some) };
+    let truncated = cut.is_some();
+    let pattern = if truncated { Orbit::NotSettled { k: None } } else { classify(&samples, &halves, st.impacts.len()) };
+    // A sampled orbit has no settling test of its own: neither periodic nor chaotic is "not
+    // settled".
+    let orbit = verdict::judge(cut, pattern, None);
+    (OrbitRun { orbit, amplitude_m: st.amplitude_m, samples, impacts, truncated }, st.end, halves)
 }
 
 /// The orbit's type from its stroboscopic samples `x(kT)`, `x'(kT)`, the samples half a period
@@ -199,24 +187,11 @@ pub fn classify(samples: &[Sample], halves: &[[f64; 2]], impacts: usize) -> Orbi
     let sv = samples.iter().map(|s| s.v_m_s.abs()).chain(halves.iter().map(|h| h[1].abs())).fold(0.0, f64::max);
     let (tx, tv) = (PERIODIC_TOLERANCE * sx.max(f64::MIN_POSITIVE), PERIODIC_TOLERANCE * sv.max(f64::MIN_POSITIVE));
     let same = |a: &Sample, b: &Sample| (a.x_m - b.x_m).abs() <= tx && (a.v_m_s - b.v_m_s).abs() <= tv;
-    // A period must repeat at least twice over the samples to count.
-    let longest = MAX_PERIOD.min(n / 3);
-    for p in 1..=longest {
-        if (0..n - p).all(|k| same(&samples[k], &samples[k + p])) {
-            let blocks = n / p;
-            let m = impacts as f64 * p as f64 / n as f64;
-            let symmetric = p == 1
-                && halves.len() == n
-                && samples.iter().zip(halves).all(|(s, h)| (s.x_m + h[0]).abs() <= tx && (s.v_m_s + h[1]).abs() <= tv);
-            // The impacts must split evenly over the blocks of p periods.
-            if blocks > 0 && (m - m.round()).abs() < 0.5 / blocks as f64 + 1e-9 {
-                return Orbit::Periodic {
-                    impacts: m.round() as u32,
-                    periods: u32::try_from(p).unwrap_or(u32::MAX),
-                    symmetric,
-                };
-            }
-        }
+    if let Some((m, p)) = find_period(n, impacts, |k, l| same(&samples[k], &samples[l])) {
+        let symmetric = p == 1
+            && halves.len() == n
+            && samples.iter().zip(halves).all(|(s, h)| (s.x_m + h[0]).abs() <= tx && (s.v_m_s + h[1]).abs() <= tv);
+        return Orbit::periodic(m, p, symmetric);
     }
     if n < MIN_TEST_SAMPLES {
         return Orbit::NotSettled { k: None };
@@ -507,6 +482,45 @@ pub struct Attractor {
     /// Starts that reach it, and their share of all starts.
     pub starts: usize,
     pub share: f64,
+    /// The attractor that is its mirror image (`x → −x`, `z → −z` half a period later), where
+    /// the map holds one: an asymmetric orbit and its mirror are two attractors.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mirror: Option<usize>,
+}
+
+/// Where one start of a basin map ends up: its orbit, amplitude, and for a periodic orbit of
+/// period `n` its last `n` samples `x(kT)` and their mirror image's (`−x(kT + T/2)`), each
+/// sorted (an orbit's points in any order of phase).
+#[derive(Debug, Clone)]
+struct Landing {
+    orbit: Orbit,
+    amplitude_m: f64,
+    points: Vec<f64>,
+    mirrored: Vec<f64>,
+}
+
+impl Landing {
+    fn of(run: &OrbitRun, halves: &[[f64; 2]]) -> Self {
+        let sorted = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v
+        };
+        let (points, mirrored) = match run.orbit {
+            Orbit::Periodic { periods, .. } => {
+                let n = (periods as usize).min(run.samples.len()).min(halves.len());
+                let xs = run.samples[run.samples.len() - n..].iter().map(|s| s.x_m).collect();
+                let ms = halves[halves.len() - n..].iter().map(|h| -h[0]).collect();
+                (sorted(xs), sorted(ms))
+            }
+            _ => (Vec::new(), Vec::new()),
+        };
+        Landing { orbit: run.orbit, amplitude_m: run.amplitude_m, points, mirrored }
+    }
+}
+
+/// Whether two sorted point sets are the same within `tol` (m), point by point.
+fn same_points(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
 }
 
 /// The basins of attraction of a forced design over the ball's start: a grid of `y0` (across
@@ -549,7 +563,7 @@ pub fn basins(
     }
     let y0 = crate::ensemble::ball_positions(d.damper.gap_m, n_y);
     let cells = n_y * w0_m_s.len();
-    let runs: Vec<Option<(Orbit, f64)>> = (0..cells)
+    let runs: Vec<Option<Landing>> = (0..cells)
         .into_par_iter()
         .map(|i| {
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -558,54 +572,79 @@ pub fn basins(
             let mut start = Start::of(&d.damper);
             start.y = y0[i % n_y];
             start.w = w0_m_s[i / n_y];
-            let run = run_orbit(d, &start, s, cancel).0;
+            let (run, _, halves) = run_orbit_halves(d, &start, s, cancel);
             on_cell(i);
-            Some((run.orbit, run.amplitude_m))
+            Some(Landing::of(&run, &halves))
         })
         .collect();
-    let runs: Vec<(Orbit, f64)> = runs.into_iter().collect::<Option<_>>().ok_or(ThudError::Cancelled)?;
-    // Group: by label, then chains of amplitudes within SAME_ATTRACTOR.
+    let runs: Vec<Landing> = runs.into_iter().collect::<Option<_>>().ok_or(ThudError::Cancelled)?;
+    // Group: by label, then (periodic) chains of amplitudes within SAME_ATTRACTOR whose points
+    // x(kT) agree within SAME_ATTRACTOR of the amplitude (an orbit and its mirror image have
+    // the same type and amplitude, not the same points).
     let mut order: Vec<usize> = (0..cells).collect();
-    order.sort_by(|&a, &b| runs[a].0.label().cmp(&runs[b].0.label()).then(runs[a].1.total_cmp(&runs[b].1)));
+    order.sort_by(|&a, &b| {
+        runs[a].orbit.label().cmp(&runs[b].orbit.label()).then(runs[a].amplitude_m.total_cmp(&runs[b].amplitude_m))
+    });
     let mut ids = vec![0usize; cells];
     let mut attractors: Vec<Attractor> = Vec::new();
     let mut sums: Vec<f64> = Vec::new();
-    let mut prev: Option<(String, f64)> = None;
+    // Per attractor: its label and the last start that joined it.
+    let mut last: Vec<(String, usize)> = Vec::new();
     for &i in &order {
-        let (orbit, amp) = runs[i];
-        let label = orbit.label();
-        let regular = matches!(orbit, Orbit::Periodic { .. });
-        let joins = match &prev {
-            Some((l, a)) => *l == label && (!regular || (amp - a).abs() <= SAME_ATTRACTOR * a.abs().max(amp.abs())),
-            None => false,
+        let r = &runs[i];
+        let label = r.orbit.label();
+        let regular = matches!(r.orbit, Orbit::Periodic { .. });
+        let joins = |&(ref l, j): &(String, usize)| {
+            let q = &runs[j];
+            let scale = q.amplitude_m.abs().max(r.amplitude_m.abs());
+            *l == label
+                && (!regular
+                    || ((r.amplitude_m - q.amplitude_m).abs() <= SAME_ATTRACTOR * scale
+                        && same_points(&r.points, &q.points, SAME_ATTRACTOR * scale)))
         };
-        if !joins {
+        let id = if let Some(id) = last.iter().position(joins) {
+            id
+        } else {
             attractors.push(Attractor {
                 id: attractors.len(),
-                orbit,
+                orbit: r.orbit,
                 label: label.clone(),
                 amplitude_m: 0.0,
                 starts: 0,
                 share: 0.0,
+                mirror: None,
             });
             sums.push(0.0);
-        }
-        let id = attractors.len() - 1;
+            last.push((label, i));
+            attractors.len() - 1
+        };
+        last[id].1 = i;
         ids[i] = id;
         attractors[id].starts += 1;
-        sums[id] += amp;
-        prev = Some((label, amp));
+        sums[id] += r.amplitude_m;
     }
     for (a, sum) in attractors.iter_mut().zip(sums) {
         a.amplitude_m = sum / a.starts as f64;
         a.share = a.starts as f64 / cells as f64;
+    }
+    // An asymmetric periodic attractor's mirror image, where another attractor is it.
+    for a in 0..attractors.len() {
+        let ra = &runs[last[a].1];
+        if !matches!(ra.orbit, Orbit::Periodic { symmetric: false, .. }) {
+            continue;
+        }
+        let tol = SAME_ATTRACTOR * ra.amplitude_m.abs();
+        attractors[a].mirror = (0..attractors.len()).find(|&b| {
+            let rb = &runs[last[b].1];
+            b != a && last[b].0 == last[a].0 && same_points(&ra.mirrored, &rb.points, tol)
+        });
     }
     Ok(Basins {
         settings: s,
         y0_m: y0,
         w0_m_s: w0_m_s.to_vec(),
         cells: ids,
-        amplitudes_m: runs.iter().map(|r| r.1).collect(),
+        amplitudes_m: runs.iter().map(|r| r.amplitude_m).collect(),
         attractors,
     })
 }
@@ -623,11 +662,11 @@ mod tests {
     fn periods_and_symmetry_are_read_from_the_samples() {
         let one: Vec<Sample> = (0..60).map(|k| sample(k, 0.01, 0.2)).collect();
         let halves = vec![[-0.01, -0.2]; 60];
-        assert_eq!(classify(&one, &halves, 120), Orbit::Periodic { impacts: 2, periods: 1, symmetric: true });
+        assert_eq!(classify(&one, &halves, 120), Orbit::periodic(2, 1, true));
         let asym = vec![[-0.005, -0.2]; 60];
-        assert_eq!(classify(&one, &asym, 60), Orbit::Periodic { impacts: 1, periods: 1, symmetric: false });
+        assert_eq!(classify(&one, &asym, 60), Orbit::periodic(1, 1, false));
         let two: Vec<Sample> = (0..60).map(|k| sample(k, if k % 2 == 0 { 0.01 } else { 0.012 }, 0.2)).collect();
-        assert_eq!(classify(&two, &halves, 60), Orbit::Periodic { impacts: 2, periods: 2, symmetric: false });
+        assert_eq!(classify(&two, &halves, 60), Orbit::periodic(2, 2, false));
     }
 
     #[test]
@@ -677,8 +716,8 @@ mod tests {
         let d = forced_rattle().check().unwrap();
         let b = bifurcation(&d, &vary, Settings::default(), false, "force", None, &|_| {}).unwrap();
         let (doubled, single) = (&b.points[0].run, &b.points[1].run);
-        assert_eq!(single.orbit, Orbit::Periodic { impacts: 2, periods: 1, symmetric: false });
-        assert_eq!(doubled.orbit, Orbit::Periodic { impacts: 4, periods: 2, symmetric: false });
+        assert_eq!(single.orbit, Orbit::periodic(2, 1, false));
+        assert_eq!(doubled.orbit, Orbit::periodic(4, 2, false));
         // x(kT) alternates between two values (10 tolerances apart or more), every other
         // sample the same to far below that.
         let tol = PERIODIC_TOLERANCE * doubled.amplitude_m;
@@ -723,6 +762,66 @@ mod tests {
             assert_eq!(a.u_in_m_s, b.u_in_m_s);
             assert!(((a.t_s / t).fract() - b.phase).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn a_window_counts_the_contact_that_straddles_its_end() {
+        // At 7 Hz the forced rattle is a 3/1 orbit whose third contact begins just before the
+        // force's phase 0 and ends after it: the window must count it at its end (its onset is
+        // inside), as it does not count the one cut by its start. Every length of window then
+        // holds exactly three impacts a period.
+        let mut d = forced_rattle();
+        d.damper.freq_hz = 7.0;
+        let v = d.clone().check().unwrap();
+        for periods in [50, 99, 100, 101] {
+            let s = Settings { transient_periods: DEFAULT_TRANSIENT_PERIODS, periods };
+            let run = impact_map(&v, s, "force", None).unwrap();
+            assert_eq!(run.impacts.len(), 3 * periods as usize, "{periods} periods");
+            assert_eq!(run.orbit, Orbit::periodic(3, 1, false), "{periods} periods");
+            let last = run.impacts.last().unwrap();
+            assert_eq!(last.period, periods - 1);
+        }
+        // The steady windows of an ordinary run (ending at the force's phase 0) count the same.
+        d.damper.settle = true;
+        let run = crate::design::evaluate(&d.check().unwrap(), 0, None).unwrap().run;
+        let st = run.steady.unwrap();
+        assert!(st.settled, "{st:?}");
+        assert_eq!(st.impacts, 3 * st.periods as usize, "{st:?}");
+    }
+
+    #[test]
+    fn basins_tell_an_asymmetric_orbit_from_its_mirror_image() {
+        // At 7 Hz the forced rattle's orbit is 3/1 and not symmetric: its mirror image
+        // (x → −x, z → −z half a period later) is an orbit too, of the same type and amplitude.
+        // Starts of the ball across the clearance reach both; they are two attractors, each
+        // the other's mirror, and the samples x(kT) of one are −x(kT + T/2) of the other.
+        let mut d = forced_rattle();
+        d.damper.freq_hz = 7.0;
+        let d = d.check().unwrap();
+        let s = Settings { transient_periods: 200, periods: 30 };
+        let w0 = [-2.0, -1.0, -0.3, 0.3, 1.0, 2.0];
+        let b = basins(&d, 8, &w0, s, "force", None, &|_| {}).unwrap();
+        let two: Vec<&Attractor> = b.attractors.iter().filter(|a| a.orbit == Orbit::periodic(3, 1, false)).collect();
+        assert_eq!(two.len(), 2, "{:?}", b.attractors);
+        assert_eq!(two[0].mirror, Some(two[1].id));
+        assert_eq!(two[1].mirror, Some(two[0].id));
+        assert!((two[0].amplitude_m - two[1].amplitude_m).abs() < 1e-3 * two[0].amplitude_m);
+        // The mirror relation on the runs themselves: a start of each attractor.
+        let start_of = |id: usize| {
+            let i = b.cells.iter().position(|&c| c == id).unwrap();
+            let mut st = Start::of(&d.damper);
+            st.y = b.y0_m[i % b.y0_m.len()];
+            st.w = b.w0_m_s[i / b.y0_m.len()];
+            run_orbit_halves(&d, &st, s, None)
+        };
+        let (a, _, _) = start_of(two[0].id);
+        let (_, _, b_halves) = start_of(two[1].id);
+        let tol = 1e-3 * a.amplitude_m;
+        let last = a.samples.last().unwrap().x_m;
+        assert!((last + b_halves.last().unwrap()[0]).abs() < tol, "x(kT) {last} vs −x(kT + T/2)");
+        // The mirror is another orbit: its x(kT) is not the first one's.
+        let (b_run, _, _) = start_of(two[1].id);
+        assert!((last - b_run.samples.last().unwrap().x_m).abs() > 10.0 * tol);
     }
 
     #[test]

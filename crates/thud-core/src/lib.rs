@@ -47,6 +47,7 @@ pub mod response;
 pub mod schema;
 pub mod study;
 pub mod units;
+pub mod verdict;
 pub mod walk;
 
 pub use error::ThudError;

@@ -1,4 +1,4 @@
-//! Periodic orbits of a forced design found, not waited for (docs/model.md §6.6): shooting on
+//! Periodic orbits of a forced design found, not waited for (docs/model.md §6.7): shooting on
 //! the stroboscopic map with Floquet multipliers.
 //!
 //! Let `P` map the state `s = (x, x', y, y')` at the force's phase `φ` to the state one forcing

@@ -92,6 +92,11 @@ const LEQ_DB: Column = col("leq_db", "dB", "equivalent level Leq over the window
 const PERIODIC: Column = col("periodic", "—", "true when the steady state is periodic");
 const SETTLED: Column = col("settled", "—", "true when the run settled");
 const TRUNCATED: Column = col("truncated", "—", "true when a work cap stopped a run before its window's end");
+const VERDICT: Column = col(
+    "verdict",
+    "—",
+    "the verdict on the motion (docs/model.md §6.6): m/n (m impacts per n periods, sym when symmetric), settled, chaotic, not settled or truncated",
+);
 const FINAL_TIME_S: Column = col("final_time_s", "s", "where the run ended");
 const PERIODIC_FRACTION: Column = col("periodic_fraction", "1", "fraction of the runs periodic");
 const SETTLED_FRACTION: Column = col("settled_fraction", "1", "fraction of the runs settled");
@@ -252,6 +257,7 @@ pub const RESPONSE: Table = Table {
         PERIODIC,
         SETTLED,
         TRUNCATED,
+        VERDICT,
         FINAL_TIME_S,
     ],
 };

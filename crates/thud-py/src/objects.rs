@@ -1281,7 +1281,8 @@ pub struct PyResponse {
     /// "direction" and, per frequency, arrays: freq_hz (Hz), amplitude_m and
     /// amplitude_linear_m (m; NaN: unbounded), reduction_db, leq_db (dB; NaN: no impact),
     /// impacts_per_period, periodic, settled, truncated (bool), window_start_s, window_end_s,
-    /// final_time_s (s), periods. With ensemble=N: freq_hz, amplitude_linear_m,
+    /// final_time_s (s), periods, and "verdict" (the verdict on each point's motion, as
+    /// columns: kind, impacts, periods, symmetric, …; `to_dataframe()` gives its labels). With ensemble=N: freq_hz, amplitude_linear_m,
     /// periodic_fraction, settled_fraction, truncated, "spread" {amplitude_m | reduction_db |
     /// impacts_per_period | leq_db: {"p10", "median", "p90"}} and "ensemble" (every run: 2-D
     /// arrays, frequency × run).

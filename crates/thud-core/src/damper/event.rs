@@ -415,6 +415,8 @@ pub(crate) struct EventSim<'a, F: Flight> {
     impacts: Vec<ImpactEvent>,
     budget: usize,
     iters: usize,
+    /// The in-contact steps a run may take: [`CONTACT_STEP_CAP`], unlimited with `no_limit`.
+    contact_cap: usize,
     cancelled: bool,
     truncated: Option<Truncation>,
     /// Penetration (m) where the run stands, if it stands inside a contact.
@@ -454,8 +456,9 @@ impl<'a, F: Flight> EventSim<'a, F> {
             rec,
             energy,
             impacts: Vec::new(),
-            budget: CONTACT_STEP_CAP,
-            iters: FLIGHT_SEARCH_CAP,
+            budget: if p.no_limit { usize::MAX } else { CONTACT_STEP_CAP },
+            iters: if p.no_limit { usize::MAX } else { FLIGHT_SEARCH_CAP },
+            contact_cap: if p.no_limit { usize::MAX } else { CONTACT_STEP_CAP },
             cancelled: false,
             truncated: None,
             del_end: 0.0,
@@ -633,6 +636,10 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
         &self.impacts
     }
 
+    fn open_onset(&self) -> Option<f64> {
+        self.open.as_ref().map(|o| o.t_start)
+    }
+
     fn finish(&mut self) -> Run {
         let mut energy = self.energy;
         energy.final_mechanical_j = self.sys.mechanical_energy(self.x, self.v, self.w, self.del_end);
@@ -644,7 +651,7 @@ impl<F: Flight> Stepper for EventSim<'_, F> {
         if let Some(open) = self.open.take() {
             // Off the record: carry the contact on until the ball leaves the wall.
             self.rec = Recorder::new(0, 0.0);
-            self.budget = CONTACT_STEP_CAP;
+            self.budget = self.contact_cap;
             let t_stop = self.t + 1e3;
             self.contact(open.wall, open.t_start, open.u_in, Some(open), t_stop);
         }

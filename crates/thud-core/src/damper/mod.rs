@@ -94,6 +94,10 @@ pub struct DamperParams {
     /// successive windows changes by less than 1e-3 (at most [`SETTLE_PERIODS_MAX`] periods more).
     #[serde(default, skip_serializing_if = "is_false")]
     pub settle: bool,
+    /// Run without the solvers' work caps ([`SOLVER_CAPS`]: `--no-limit`, Python's
+    /// `no_limit`): how a run is carried out, not part of the design (never written or read).
+    #[serde(skip)]
+    pub no_limit: bool,
 }
 
 /// The steady-state window's length in forcing periods when none is given.
@@ -150,6 +154,7 @@ impl DamperParams {
             ball_velocity_m_s: 0.0,
             steady_periods: DEFAULT_STEADY_PERIODS,
             settle: false,
+            no_limit: false,
         }
     }
 
@@ -378,6 +383,43 @@ pub const FLIGHT_SEARCH_CAP: usize = 2_000_000;
 /// backstop above any run worth waiting for (at about 30 ns a step, some five minutes; the paper's
 /// 2 s at 1e-7 s is 2e7 steps), so that a vanishing `dt` cannot loop for ever.
 pub const NEWMARK_STEP_CAP: u64 = 10_000_000_000;
+
+/// Steps of [`NEWMARK_STEP_CAP`]'s grid (16 at a time) the Newmark solver takes at most to carry
+/// a contact still open at a run's end on to its end (for the next run of a continuation).
+pub const NEWMARK_FINISH_CAP: u64 = 16_000_000;
+
+/// One work cap of the solvers: what it counts, its value, and why it is there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverCap {
+    pub what: &'static str,
+    pub max: f64,
+    pub basis: &'static str,
+}
+
+/// The solvers' own work caps per run, as `thud limits` lists them: `--no-limit` lifts them,
+/// and a run one stops is reported `truncated` ([`Truncation`]) by every output.
+pub const SOLVER_CAPS: [SolverCap; 4] = [
+    SolverCap {
+        what: "event solver: in-contact steps",
+        max: CONTACT_STEP_CAP as f64,
+        basis: "a backstop against an endless chattering contact; a long rattle reaches it too (the forced rattle at 7.7236 Hz after about 6 000 impacts)",
+    },
+    SolverCap {
+        what: "event solver: contact searches",
+        max: FLIGHT_SEARCH_CAP as f64,
+        basis: "a backstop against endless grazing flights",
+    },
+    SolverCap {
+        what: "Newmark steps of one run",
+        max: NEWMARK_STEP_CAP as f64,
+        basis: "a backstop above any run worth waiting for (≈ 30 ns a step: some five minutes)",
+    },
+    SolverCap {
+        what: "Newmark steps finishing a contact",
+        max: NEWMARK_FINISH_CAP as f64,
+        basis: "a contact still open at a run's end is carried on to its end for the next run of a continuation",
+    },
+];
 
 /// Why a run stopped before its duration at a solver work cap.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]

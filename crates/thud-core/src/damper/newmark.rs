@@ -18,7 +18,8 @@ use super::forced::Harmonic;
 use super::record::Recorder;
 use super::stepper::{Start, Stepper};
 use super::{
-    DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, SingleContact, Truncation, Wall, NEWMARK_STEP_CAP,
+    DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, SingleContact, Truncation, Wall, NEWMARK_FINISH_CAP,
+    NEWMARK_STEP_CAP,
 };
 
 /// One Newmark state of both masses: positions `(x, y)` (m), velocities `(x', y')` (m/s) and
@@ -329,6 +330,8 @@ pub(crate) struct NewmarkSim<'a> {
     cancelled: bool,
     truncated: Option<Truncation>,
     cancel: Option<&'a AtomicBool>,
+    /// The grid steps a run may take: [`NEWMARK_STEP_CAP`], unlimited with `no_limit`.
+    step_cap: u64,
 }
 
 /// What [`Newmark`] holds apart from its borrow of the design's constants.
@@ -380,6 +383,7 @@ impl<'a> NewmarkSim<'a> {
             cancelled: false,
             truncated: None,
             cancel: opts.cancel,
+            step_cap: if p.no_limit { u64::MAX } else { NEWMARK_STEP_CAP },
         }
     }
 }
@@ -403,7 +407,7 @@ impl Stepper for NewmarkSim<'_> {
         let n_steps = (t_end / dt).ceil() as u64;
         let mut k_next = self.k_next;
         while k_next <= n_steps {
-            if k_next > NEWMARK_STEP_CAP {
+            if k_next > self.step_cap {
                 self.truncated = Some(Truncation::NewmarkSteps);
                 break;
             }
@@ -456,6 +460,10 @@ impl Stepper for NewmarkSim<'_> {
         &self.nm.out.impacts
     }
 
+    fn open_onset(&self) -> Option<f64> {
+        self.nm.open.map(|o| o.t_s)
+    }
+
     fn finish(&mut self) -> Run {
         let sys = self.sys;
         let st = self.nm.st;
@@ -470,7 +478,8 @@ impl Stepper for NewmarkSim<'_> {
         // Off the record: step on until a contact still open has ended.
         self.nm.out = Ledger::empty();
         let mut guard = 0;
-        while self.nm.open.is_some() && !self.halted() && guard < 1_000_000 {
+        let finish_cap = if self.step_cap == u64::MAX { u64::MAX } else { NEWMARK_FINISH_CAP / 16 };
+        while self.nm.open.is_some() && !self.halted() && guard < finish_cap {
             let t = self.nm.t + 16.0 * self.dt;
             self.advance_to(t);
             guard += 1;

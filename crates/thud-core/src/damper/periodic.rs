@@ -1,5 +1,5 @@
 //! The stroboscopic flow of a forced design, the map periodic orbits are fixed points of
-//! (docs/model.md §6.6): from a state `(x, x', y, y')` at the force's phase `φ`, the event
+//! (docs/model.md §6.7): from a state `(x, x', y, y')` at the force's phase `φ`, the event
 //! solver's ordinary forced run over a given time, with its impacts and the largest `|x|` on
 //! the way. [`crate::orbit`] solves `Pⁿ(s) = s` on it by Newton's method.
 

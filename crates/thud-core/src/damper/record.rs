@@ -37,6 +37,8 @@ pub(crate) struct Windows {
     recent: Vec<WindowStats>,
     /// Index of the next probe; probe `i` is at `D + (i − k0·N·S)·T/S`.
     next_probe: usize,
+    /// The probes of the last closed window (for its pattern, [`crate::verdict::window_pattern`]).
+    last_probes: Vec<f64>,
 }
 
 /// What one window has seen so far.
@@ -79,6 +81,7 @@ impl Windows {
             amplitudes: Vec::new(),
             recent: Vec::new(),
             next_probe: 0,
+            last_probes: Vec::new(),
         };
         while w.probe_time(w.next_probe) < 0.0 {
             w.next_probe += 1;
@@ -175,6 +178,13 @@ impl Windows {
             self.recent.remove(0);
         }
         self.recent.push(WindowStats { start_s: start_s.max(0.0), end_s, amplitude_m, periodic, complete });
+        self.last_probes = acc.probes;
+    }
+
+    /// The probes of `x` (m) of the last closed window, `T/S` apart from its start on (all of
+    /// them when it is complete).
+    pub fn last_probes(&self) -> &[f64] {
+        &self.last_probes
     }
 
     /// Closes the window the run stopped in (a run cut short by a work cap or cancellation).

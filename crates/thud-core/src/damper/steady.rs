@@ -17,11 +17,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::verdict::{self, Verdict};
+
 use super::event::{EventSim, ForcedFlight, Free};
 use super::flight::Oscillator;
 use super::forced::{Forced, Harmonic};
 use super::newmark::NewmarkSim;
-use super::record::{Recorder, WindowStats, Windows};
+use super::record::{Recorder, WindowStats, Windows, PROBES_PER_PERIOD};
 pub(crate) use super::stepper::{Start, Stepper};
 use super::{ContactScheme, DamperParams, Run, RunOptions, Solver};
 
@@ -59,6 +61,10 @@ pub struct SteadyMotion {
     pub truncated: bool,
     /// The amplitude of the window before (m), if the run holds it whole.
     pub previous_amplitude_m: Option<f64>,
+    /// The verdict on the motion ([`crate::verdict`]): the last window's pattern (from its
+    /// probes and impacts), the settling test, and whether the run was cut short.
+    #[serde(default)]
+    pub verdict: Verdict,
 }
 
 /// The steady amplitude (m) of the design's main mass without the ball under its force:
@@ -134,6 +140,8 @@ fn drive<S: Stepper>(mut s: S, p: &DamperParams, load: Option<Harmonic>, want_en
     let mut run = s.finish();
     run.steady = steady.map(|mut m| {
         m.truncated = run.truncated.is_some() || run.cancelled;
+        let cut = if run.cancelled { Some(None) } else { run.truncated.map(Some) };
+        m.verdict = verdict::judge(cut, m.verdict, Some(m.settled));
         if m.truncated {
             // The window ends where the run stopped.
             m.settled = false;
@@ -182,8 +190,17 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
     let last = *recent.last().expect("a forced run closes at least its last window");
     let prev = recent.len().checked_sub(2).map(|i| recent[i]);
     let period = 1.0 / p.freq_hz;
-    let impacts = s.impacts().iter().filter(|i| i.t_s >= last.start_s && i.t_s < last.end_s).count();
+    // Impacts by onset: a contact still open at the window's end (where the run stands) began
+    // in it and counts, as the one cut by the window's start does not.
+    let in_window = |t: f64| t >= last.start_s && t < last.end_s;
+    let open = s.open_onset().filter(|&t| !s.halted() && in_window(t));
+    let impacts = s.impacts().iter().filter(|i| in_window(i.t_s)).count() + usize::from(open.is_some());
     let span = (last.end_s - last.start_s).max(0.0);
+    let pattern = if last.complete {
+        verdict::window_pattern(windows(s).last_probes(), PROBES_PER_PERIOD, impacts)
+    } else {
+        Verdict::NotSettled { k: None }
+    };
     let amplitude_linear_m = linear_amplitude_m(p);
     let reduction_db = match amplitude_linear_m {
         Some(lin) if last.amplitude_m > 0.0 => Some(20.0 * (lin / last.amplitude_m).log10()),
@@ -202,5 +219,7 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
         settled: is_settled,
         truncated: false,
         previous_amplitude_m: prev.filter(|p| p.complete).map(|p| p.amplitude_m),
+        // The pattern until the run's end is known (see `drive`).
+        verdict: pattern,
     }
 }

@@ -32,6 +32,8 @@ pub(crate) trait Stepper {
     fn recorder(&mut self) -> &mut Recorder;
     /// The completed impacts so far.
     fn impacts(&self) -> &[ImpactEvent];
+    /// The onset time (s) of a contact the run stands inside, if it stands inside one.
+    fn open_onset(&self) -> Option<f64>;
     /// The run as it stands (the stepper is spent for recording afterwards).
     fn finish(&mut self) -> Run;
     /// The state at the end of the run, off the record: a contact still open is carried on to

@@ -78,15 +78,6 @@ pub(crate) fn strobe(
         sim.advance_to(end_t);
     }
     let halted = sim.halted();
-    let impacts = sim
-        .impacts()
-        .iter()
-        .filter(|i| i.t_s >= t_window && i.t_s < end_t)
-        .map(|i| {
-            let k = ((load.theta(i.t_s) - load.theta(t_window)) / tau).floor().max(0.0);
-            (*i, load.theta(i.t_s).rem_euclid(tau), k as u32)
-        })
-        .collect();
     let amplitude_m = {
         let w = sim.recorder().windows.as_mut();
         match w {
@@ -100,6 +91,22 @@ pub(crate) fn strobe(
         }
     };
     let run = sim.finish();
+    // A contact that began before the window's end and is still open there belongs to the
+    // window (its onset does): the end state carries it on to its end, which completes it.
+    // Without it every window of a periodic orbit whose contact straddles the force's phase 0
+    // would hold one impact fewer than its periods do (the first period's contact began
+    // before the window).
     let end = sim.end_state(|t| load.theta(t).rem_euclid(tau));
+    let straddling = if halted { &[][..] } else { sim.impacts() };
+    let impacts = run
+        .impacts
+        .iter()
+        .chain(straddling)
+        .filter(|i| i.t_s >= t_window && i.t_s < end_t)
+        .map(|i| {
+            let k = ((load.theta(i.t_s) - load.theta(t_window)) / tau).floor().max(0.0);
+            (*i, load.theta(i.t_s).rem_euclid(tau), k as u32)
+        })
+        .collect();
     Strobed { samples, impacts, amplitude_m, end, truncated: run.truncated, cancelled: run.cancelled }
 }

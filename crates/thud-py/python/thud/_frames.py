@@ -220,6 +220,8 @@ def response_frame(r: Any) -> Any:
         n = len(sources.get("freq_hz", []))
         sources["direction"] = [sweep["direction"]] * n
         sources["runs"] = [r.runs] * n
+        if isinstance(sweep.get("verdict"), dict):
+            sources["verdict"] = _verdict_labels(sweep["verdict"])
         for k, v in _table(table, sources).items():
             rows[k].extend(list(v))
     attrs = {"design": r.design, "force_n": r.force_n, "runs": r.runs, "continuation": r.continuation}
@@ -418,8 +420,18 @@ def bifurcation_xarray(record: Dict[str, Any]) -> Any:
 
 
 def _orbit_label(orbit: Dict[str, Any]) -> str:
-    """The engine's label of an orbit (`2/1 sym`, `chaotic`, `not settled`)."""
+    """The engine's label of a verdict (`2/1 sym`, `settled`, `chaotic`, `not settled`,
+    `truncated`)."""
     kind = orbit.get("kind")
     if kind == "periodic":
-        return f"{orbit['impacts']}/{orbit['periods']}" + (" sym" if orbit.get("symmetric") else "")
-    return "chaotic" if kind == "chaotic" else "not settled"
+        return f"{int(orbit['impacts'])}/{int(orbit['periods'])}" + (" sym" if orbit.get("symmetric") else "")
+    return {"settled": "settled", "chaotic": "chaotic", "truncated": "truncated"}.get(str(kind), "not settled")
+
+
+def _verdict_labels(v: Dict[str, Any]) -> List[str]:
+    """The labels of a column of verdicts (the columns of their fields: kind, impacts, …)."""
+    def at(key: str, i: int) -> Any:
+        col = v.get(key)
+        return None if col is None else col[i]
+    return [_orbit_label({"kind": k, "impacts": at("impacts", i), "periods": at("periods", i),
+                          "symmetric": at("symmetric", i)}) for i, k in enumerate(v.get("kind", []))]
