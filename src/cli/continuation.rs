@@ -66,14 +66,7 @@ pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
     let d = a.design.design()?;
     let target = Target::new(a.out.as_deref(), a.force)?;
     let vary = parse_vary(&a.vary)?;
-    let periods = a
-        .period
-        .as_deref()
-        .map(|t| {
-            let n = crate::limits::ORBIT_PERIODS.parse_count("--period", t)?;
-            Ok::<u32, ThudError>(u32::try_from(n).unwrap_or(u32::MAX))
-        })
-        .transpose()?;
+    let periods = super::orbit::parse_period(a.period.as_deref())?;
     let req = Request { periods, symmetric: a.symmetric, guess: None };
     let branch = continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(|e| match e.param() {
         "force" => e.renamed("--force-amplitude"),

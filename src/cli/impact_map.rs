@@ -66,17 +66,7 @@ fn text(d: &Design, s: dynamics::Settings, run: &OrbitRun) -> String {
         s.periods,
         num(run.amplitude_m * 1e3)
     );
-    t += "  period   phase (T)   wall   u_in (m/s)   u_out (m/s)\n";
-    for i in &run.impacts {
-        t += &format!(
-            "  {:>6}   {:>9}   {:>+4}   {:>10}   {:>11}\n",
-            i.period,
-            format!("{:.4}", i.phase),
-            i.wall,
-            num(i.u_in_m_s),
-            num(i.u_out_m_s)
-        );
-    }
+    t += &super::orbit::impact_table(run.impacts.iter().map(|i| (i.period, i.phase, &i.wall, i.u_in_m_s, i.u_out_m_s)));
     if run.impacts.is_empty() {
         t += "  (no impact after the transient)\n";
     }

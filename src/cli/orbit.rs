@@ -54,14 +54,7 @@ struct OrbitJson<'a> {
 pub fn run(a: &OrbitArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
     let target = Target::new(a.out.as_deref(), a.force)?;
-    let periods = a
-        .period
-        .as_deref()
-        .map(|t| {
-            let n = crate::limits::ORBIT_PERIODS.parse_count("--period", t)?;
-            Ok::<u32, ThudError>(u32::try_from(n).unwrap_or(u32::MAX))
-        })
-        .transpose()?;
+    let periods = parse_period(a.period.as_deref())?;
     let guess = a.guess.as_deref().map(parse_guess).transpose()?;
     let req = Request { periods, symmetric: a.symmetric, guess };
     let o = orbit::find(&d, &req, None).map_err(named)?;
@@ -77,6 +70,31 @@ pub fn run(a: &OrbitArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         OutputFormat::Text => text(&d, &o),
     };
     target.write(&text, out)
+}
+
+/// `--period N` (1 to 16 forcing periods), if given.
+pub(super) fn parse_period(text: Option<&str>) -> Result<Option<u32>, ThudError> {
+    text.map(|t| {
+        let n = crate::limits::ORBIT_PERIODS.parse_count("--period", t)?;
+        Ok(u32::try_from(n).unwrap_or(u32::MAX))
+    })
+    .transpose()
+}
+
+/// The impacts of an orbit, one line each: period, phase (T), wall, u_in and u_out (m/s).
+pub(super) fn impact_table<'a>(rows: impl Iterator<Item = (u32, f64, &'a crate::damper::Wall, f64, f64)>) -> String {
+    let mut t = String::from("  period   phase (T)   wall   u_in (m/s)   u_out (m/s)\n");
+    for (period, phase, wall, u_in, u_out) in rows {
+        t += &format!(
+            "  {:>6}   {:>9}   {:>+4}   {:>10}   {:>11}\n",
+            period,
+            format!("{phase:.4}"),
+            wall,
+            num(u_in),
+            num(u_out)
+        );
+    }
+    t
 }
 
 /// The engine's parameter names as this command's flags.
@@ -152,17 +170,8 @@ fn text(d: &Design, o: &PeriodicOrbit) -> String {
     if o.impacts.is_empty() {
         t += "  (the ball floats: a neutral pair at +1 not listed)";
     }
-    t += "\n\n  period   phase (T)   wall   u_in (m/s)   u_out (m/s)\n";
-    for i in &o.impacts {
-        t += &format!(
-            "  {:>6}   {:>9}   {:>+4}   {:>10}   {:>11}\n",
-            i.period,
-            format!("{:.4}", i.phase),
-            i.wall,
-            num(i.u_in_m_s),
-            num(i.u_out_m_s)
-        );
-    }
+    t += "\n\n";
+    t += &impact_table(o.impacts.iter().map(|i| (i.period, i.phase, &i.wall, i.u_in_m_s, i.u_out_m_s)));
     if o.impacts.is_empty() {
         t += "  (no impact: the ball never touches a wall)\n";
     }

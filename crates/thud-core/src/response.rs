@@ -441,6 +441,7 @@ mod tests {
                 periodic: false,
                 settled: true,
                 truncated: false,
+                verdict: crate::verdict::Verdict::Settled,
             };
             ResponsePoint { freq_hz: 5.0, steady, final_time_s: 2.0 }
         };
