@@ -23,15 +23,17 @@ use crate::study::Vary;
 pub struct ContinueArgs {
     #[command(flatten)]
     design: DesignArgs<ForceAmplitude>,
-    /// The parameter to continue in, over its range: NAME=FROM:TO (e.g. f=3Hz:8Hz, force=1:4,
-    /// gap=1cm:3cm); the orbit is found at FROM.
-    #[arg(long, value_name = "NAME=FROM:TO", allow_hyphen_values = true)]
+    /// The parameter to continue in over its range, NAME=FROM:TO:N as sweep takes it, or
+    /// NAME=FROM:TO (N is not used: the continuation chooses its own steps; e.g. f=3Hz:8Hz);
+    /// the orbit is found at FROM.
+    #[arg(long, value_name = "NAME=FROM:TO:N", allow_hyphen_values = true)]
     vary: String,
-    /// The orbit's period in forcing periods at FROM, 1 to 16 [default: the one the design's
-    /// motion repeats with].
+    /// The orbit's period in forcing periods, 1 to 16 [default: the one the design's motion
+    /// repeats with].
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     period: Option<String>,
-    /// Continue the symmetric orbit, x(t + T/2) = −x(t).
+    /// Look for the symmetric orbit, x(t + T/2) = −x(t) (period one forcing period), stable
+    /// or not.
     #[arg(long)]
     symmetric: bool,
     /// Write the result (text, --json or --csv) to this file instead of standard output.

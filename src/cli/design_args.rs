@@ -201,7 +201,7 @@ impl<F: ForceFlag, R: Rows> Args for DesignArgs<F, R> {
         let ids = ["preset".to_string(), "design".to_string()].into_iter().chain(rows().map(|p| id(long(p))));
         let cmd = cmd.group(ArgGroup::new("DesignArgs").multiple(true).args(ids)).arg(preset).arg(design);
         let cmd = rows().fold(cmd, |cmd, p| cmd.arg(flag(p)));
-        if !F::OLD_SPELLING {
+        if !F::OLD_SPELLING || !R::takes("force") {
             return cmd;
         }
         // The amplitude's old name, kept only to say the new one (hidden from help).

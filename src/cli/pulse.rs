@@ -20,8 +20,7 @@ pub struct PulseArgs {
     /// air, and U0 = its v0 (e.g. paper-fig2, paper-table1); the target stays a fixed plate.
     #[arg(long, value_name = "P")]
     preset: Option<String>,
-    /// Take the defaults from a design file or a saved design's name, as --preset does.
-    #[arg(long, value_name = "FILE", conflicts_with = "preset")]
+    #[arg(long, value_name = "FILE", conflicts_with = "preset", help = super::design_args::DESIGN_HELP)]
     design: Option<String>,
     #[command(flatten)]
     impact: ImpactArgs,

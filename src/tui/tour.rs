@@ -211,7 +211,7 @@ impl Tour {
                 Some(_) if !s.animate => {
                     return Err(at("speed is the animation's playback speed: the step needs animate = true".into()))
                 }
-                Some(v) => speed(v).map_err(at)?,
+                Some(v) => speed(v).map_err(|e| at(e.to_string()))?,
             };
             if s.title.trim().is_empty() || s.title.chars().count() > 60 {
                 return Err(at("a step title has 1 to 60 characters".into()));
@@ -245,7 +245,7 @@ impl Tour {
 /// The animation speed a step's `speed` names (its index in [`anim::SPEEDS`]): one of the
 /// speeds `[` and `]` step through, written as a fraction ("1/30", "1/30×"), a number (0.1, 1)
 /// or "1×".
-fn speed(value: &toml::Value) -> Result<usize, String> {
+fn speed(value: &toml::Value) -> Result<usize, SpeedRefused> {
     let shown = match value {
         toml::Value::String(s) => s.clone(),
         other => other.to_string(),
@@ -258,7 +258,15 @@ fn speed(value: &toml::Value) -> Result<usize, String> {
     let names: Vec<String> = anim::SPEEDS.iter().map(|&r| anim::rate_text(r)).collect();
     rate.filter(|r| r.is_finite())
         .and_then(|r| anim::SPEEDS.iter().position(|&s| ((r - s) / s).abs() < 0.02))
-        .ok_or_else(|| format!("speed '{shown}'; one of {} (the speeds [ and ] step through)", names.join(", ")))
+        .ok_or_else(|| SpeedRefused { shown, names: names.join(", ") })
+}
+
+/// A step's `speed` that is none of the animation's speeds.
+#[derive(Debug, thiserror::Error)]
+#[error("speed '{shown}'; one of {names} (the speeds [ and ] step through)")]
+struct SpeedRefused {
+    shown: String,
+    names: String,
 }
 
 /// The field a step's `set` key names (its name in messages, e.g. `mass`, `theta`, `L*`).

@@ -242,7 +242,12 @@ fn forced_rattle_branches_match_the_simulation_and_locate_the_doubling() {
     assert!(b.points.iter().all(|p| p.stable && p.orbit == "4/1 sym"), "{:?}", b.points.iter().find(|p| !p.stable));
     for p in b.points.iter().step_by(b.points.len() / 3) {
         let run = simulated(p.value);
-        assert_eq!(run.orbit, Orbit::Periodic { impacts: 4, periods: 1, symmetric: true }, "{} Hz", p.value);
+        assert!(
+            matches!(run.orbit, Orbit::Periodic { impacts: 4, periods: 1, symmetric: true, .. }),
+            "{} Hz: {:?}",
+            p.value,
+            run.orbit
+        );
         for s in &run.samples {
             assert!((s.x_m - p.x_m).abs() < 1e-8, "{} Hz: x(kT) {} vs the branch's {}", p.value, s.x_m, p.x_m);
             assert!((s.z_m - p.z_m).abs() < 1e-8, "{} Hz: z(kT) {} vs the branch's {}", p.value, s.z_m, p.z_m);

@@ -175,7 +175,7 @@ fn pulse_flags_are_the_rows_of_the_impact_table() {
     use thud::params::{design_param, PULSE};
     let cmd = thud::cli::Cli::command();
     let pulse = cmd.find_subcommand("pulse").unwrap();
-    let own = ["preset", "points", "json", "csv", "help", "no-limit", "threads"];
+    let own = ["preset", "design", "points", "json", "csv", "help", "no-limit", "threads"];
     let flags: Vec<&str> = pulse.get_arguments().filter_map(|a| a.get_long()).filter(|l| !own.contains(l)).collect();
     for p in PULSE {
         assert!(flags.contains(&p.name), "pulse has no --{}", p.name);
