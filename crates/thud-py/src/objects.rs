@@ -213,12 +213,21 @@ fn stacked(py: Python<'_>, lists: &[&Json], int8: &[&str]) -> PyResult<Py<PyAny>
     reshape(py, d.bind(py).as_any(), &[lists.len(), n])
 }
 
-/// Every array in `value` (a dict of arrays, nested) with its first axis split into `front`.
+/// Every array in `value` (a dict of arrays, nested) with its first axis split into `front`; a
+/// list split into `front[0]` lists of `front[1]` (two axes).
 fn reshape(py: Python<'_>, value: &Bound<'_, PyAny>, front: &[usize]) -> PyResult<Py<PyAny>> {
     if let Ok(d) = value.cast::<PyDict>() {
         let out = PyDict::new(py);
         for (k, v) in d.iter() {
             out.set_item(k, reshape(py, &v, front)?)?;
+        }
+        return Ok(out.into_any().unbind());
+    }
+    if let (Ok(list), [rows, n]) = (value.cast::<PyList>(), front) {
+        // A list column (text, or values with gaps): one list per row, as the arrays are split.
+        let out = PyList::empty(py);
+        for r in 0..*rows {
+            out.append(list.get_slice(r * n, (r + 1) * n))?;
         }
         return Ok(out.into_any().unbind());
     }

@@ -30,7 +30,10 @@ def keyword(line):
     """A command-line error line as Python words it: no "thud: ", flags as keywords."""
     line = line.strip()
     assert line.startswith("thud: ") and "\n" not in line, line
-    return re.sub(r"--([a-z0-9-]+)", lambda m: m.group(1).replace("-", "_"), line[len("thud: "):])
+    # The force amplitude is `--force-amplitude` on the command line and `force` in Python (which
+    # replaces no file, so `force` has one meaning there).
+    flag = lambda m: "force" if m.group(1) == "force-amplitude" else m.group(1).replace("-", "_")  # noqa: E731
+    return re.sub(r"--([a-z0-9-]+)", flag, line[len("thud: "):])
 
 
 # Each class of bad input, by function: (keywords, the same input on the command line).

@@ -16,17 +16,18 @@ RESPONSE_KW = dict(force="1N", periods=4, duration=1)
 
 
 def compare(want, got, where):
-    """A list of JSON values against a Python column: a dict of columns key by key, a 2-D
-    array row by row (one list per row), a 1-D array element by element (None as NaN)."""
+    """A list of JSON values against a Python column: a dict of columns key by key (a key a
+    record lacks, e.g. the `k` of a periodic verdict, as None), a 2-D array row by row (one list
+    per row), a 1-D array or a list element by element (None as NaN or None)."""
     if isinstance(got, dict) and want and isinstance(want[0], list):
         # Lists of records per row (every run at each frequency): 2-D columns, row × item.
         for key in got:
-            compare([[m[key] for m in w] for w in want], got[key], f"{where}.{key}")
+            compare([[m.get(key) for m in w] for w in want], got[key], f"{where}.{key}")
     elif isinstance(got, dict):
         keys = set().union(*(w.keys() for w in want)) if want else set()
         assert keys == set(got), (where, keys, set(got))
         for key in got:
-            compare([w[key] for w in want], got[key], f"{where}.{key}")
+            compare([w.get(key) for w in want], got[key], f"{where}.{key}")
     elif np.ndim(got) == 2:
         assert len(want) == len(got), where
         for w, row in zip(want, got):
@@ -35,9 +36,9 @@ def compare(want, got, where):
         assert len(want) == len(got), where
         for a, b in zip(want, got):
             if a is None:
-                assert np.isnan(b), where
+                assert b is None or np.isnan(b), (where, b)
             else:
-                assert same(a, b.item()), (where, a, b)
+                assert same(a, b.item() if hasattr(b, "item") else b), (where, a, b)
 
 
 def check_response(j, r, runs):
