@@ -180,25 +180,17 @@ impl<'a> Problem<'a> {
     /// and orbit.
     fn node(&self, y: V5, gy: &Vector4<f64>, previous: Option<&V5>) -> Result<Node, ThudError> {
         let (jac, dp) = self.jacobian(&y, gy)?;
-        let floats = gy.amax() >= 0.0 && self.floats(&y)?;
-        let mut t = null_vector(&jac, floats);
-        let forward = previous.map_or(t[4] >= 0.0, |p| t.dot(p) >= 0.0);
-        if !forward {
-            t = -t;
-        }
         let u = y.fixed_rows::<4>(0).into_owned();
         let mut sec = self.section(y[4])?;
         let root = Root { u, jac: dp, residual: gy.amax(), iterations: 0 };
         let orbit = orbit::report(&mut sec, &root)?;
+        // An orbit without impacts: the ball floats (a second null direction of the Jacobian).
+        let mut t = null_vector(&jac, orbit.impacts.is_empty());
+        let forward = previous.map_or(t[4] >= 0.0, |p| t.dot(p) >= 0.0);
+        if !forward {
+            t = -t;
+        }
         Ok(Node { y, jac, dp, tangent: t, orbit })
-    }
-
-    /// Whether the orbit through `y` has no impact (one map evaluation's worth of motion).
-    fn floats(&self, y: &V5) -> Result<bool, ThudError> {
-        let sec = self.section(y[4])?;
-        let u = y.fixed_rows::<4>(0).into_owned();
-        let t = f64::from(self.periods) / sec.p.freq_hz;
-        Ok(crate::damper::flow(&sec.p, sec.unscale(&u), self.phase, &[t], self.cancel).impacts.is_empty())
     }
 
     /// The point on the branch at arclength `h` from `n` (predictor and chord corrector).
