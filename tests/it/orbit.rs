@@ -281,3 +281,51 @@ fn forced_rattle_branches_match_the_simulation_and_locate_the_doubling() {
     eprintln!("period doubling at {f} Hz; the simulated orbit doubles at {change} Hz");
     assert!((f - change).abs() < 0.01, "{f} vs {change}");
 }
+
+/// The sampling window counts impacts over whole periods: the exact 3/1 orbits of forced-rattle
+/// at 6.995–7.070 Hz read 3/1 whatever the number of sampled periods (the last impact of the
+/// last period was once lost: 149 impacts in 50 periods, "not settled").
+#[test]
+fn bifurcation_names_the_3_1_orbit_for_any_number_of_sampled_periods() {
+    use super::common::thud;
+    for periods in ["50", "99", "100", "101"] {
+        let (code, out, err) =
+            thud(&["bifurcation", "--preset", "forced-rattle", "--vary", "f=6.995Hz:7.07Hz:4", "--periods", periods]);
+        assert_eq!(code, 0, "{err}");
+        // The table's rows: freq, sweep, orbit, impacts, amplitude (mm), max u (m/s).
+        let n: u32 = periods.parse().unwrap();
+        let mut seen = 0;
+        for row in out.lines() {
+            let cells: Vec<&str> = row.split_whitespace().collect();
+            if cells.len() != 6 || cells[0].parse::<f64>().is_err() {
+                continue;
+            }
+            assert_eq!(cells[2], "3/1", "--periods {periods}: {row}");
+            assert_eq!(cells[3].parse::<u32>().unwrap(), 3 * n, "--periods {periods}: {row}");
+            seen += 1;
+        }
+        assert_eq!(seen, 4, "--periods {periods}\n{out}");
+    }
+}
+
+/// Found, not waited for: from the design's start, forced-rattle's symmetric 4/1 orbit at
+/// 3.4 Hz takes at most 20 forcing periods of simulation, transient and Jacobians included,
+/// and it is the orbit a long simulation settles to.
+#[test]
+fn an_orbit_from_the_start_takes_at_most_20_periods_of_simulation() {
+    let mut d = thud::presets::preset("forced-rattle").unwrap();
+    d.damper.freq_hz = 3.4;
+    let o = find_damper(&d.damper, &Request::default(), None).unwrap();
+    assert_eq!(o.label(), "4/1 sym");
+    assert!(o.periods_simulated <= 20.0, "{} periods", o.periods_simulated);
+    let run = thud::dynamics::impact_map(
+        &d.check().unwrap(),
+        thud::dynamics::Settings { transient_periods: 500, periods: 8 },
+        "force",
+        None,
+    )
+    .unwrap();
+    for s in &run.samples {
+        assert!((s.x_m - o.x_m).abs() < 1e-8 && (s.z_m - o.z_m).abs() < 1e-8, "{s:?} vs {o:?}");
+    }
+}

@@ -52,6 +52,10 @@ pub const FIRST_TRANSIENT_PERIODS: u32 = 8;
 pub const MAX_TRANSIENT_PERIODS: u32 = 1024;
 /// Newton iterations allowed per attempt.
 const MAX_NEWTON: u32 = 30;
+/// Newton iterations allowed to a speculative attempt (before the motion is seen to repeat).
+const SPECULATIVE_NEWTON: u32 = 8;
+/// Forcing periods simulated to see the motion approach a speculative orbit.
+const APPROACH_PERIODS: u32 = 4;
 
 /// What to look for.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -185,12 +189,17 @@ pub(crate) struct Section<'a> {
     cancel: Option<&'a AtomicBool>,
     /// Forcing periods simulated so far.
     pub spent: f64,
+    /// The last point mapped (scaled) and the contacts of its flow: the Jacobian there is
+    /// chained from them.
+    last: Option<(Vector4<f64>, Vec<damper::ImpactEvent>)>,
+    /// Newton iterations allowed.
+    pub max_newton: u32,
 }
 
 impl<'a> Section<'a> {
     pub fn new(p: DamperParams, phase: f64, periods: u32, symmetric: bool, cancel: Option<&'a AtomicBool>) -> Self {
         let (l, v) = scales(&p);
-        Section { p, phase, periods, symmetric, l, v, cancel, spent: 0.0 }
+        Section { p, phase, periods, symmetric, l, v, cancel, spent: 0.0, last: None, max_newton: MAX_NEWTON }
     }
 
     pub fn scale(&self, s: [f64; 4]) -> Vector4<f64> {
@@ -227,11 +236,34 @@ impl<'a> Section<'a> {
         }
         let sign = if self.symmetric { -1.0 } else { 1.0 };
         let e = self.scale(end);
+        self.last = Some((*u, f.impacts));
         Ok(e * sign)
     }
 
-    /// `DPⁿ` at `u` (scaled) by forward differences, given `Pⁿ(u)`.
+    /// `DPⁿ` at `u` (scaled), given `Pⁿ(u)`: chained from the flights' exact factors and the
+    /// contacts' differenced ones ([`damper::chained_jacobian`]), or by forward differences of
+    /// the whole map where a perturbed contact leaves its window.
     pub fn jacobian(&mut self, u: &Vector4<f64>, pu: &Vector4<f64>) -> Result<Matrix4<f64>, ThudError> {
+        if self.last.as_ref().is_none_or(|(at, _)| at != u) {
+            self.map(u)?;
+        }
+        let impacts = self.last.as_ref().map(|(_, i)| i.clone()).unwrap_or_default();
+        let h = JACOBIAN_STEP;
+        let steps = [h * self.l, h * self.v, h * self.l, h * self.v];
+        let span = self.span();
+        let chained =
+            damper::chained_jacobian(&self.p, self.unscale(u), self.phase, span, &impacts, steps, self.cancel);
+        if let Some((j, simulated)) = chained {
+            self.spent += simulated * self.p.freq_hz;
+            let d = Vector4::new(self.l, self.v, self.l, self.v);
+            let sign = if self.symmetric { -1.0 } else { 1.0 };
+            return Ok(Matrix4::from_fn(|r, c| sign * j[(r, c)] * d[c] / d[r]));
+        }
+        self.full_jacobian(u, pu)
+    }
+
+    /// `DPⁿ` at `u` (scaled) by forward differences of the whole map, given `Pⁿ(u)`.
+    fn full_jacobian(&mut self, u: &Vector4<f64>, pu: &Vector4<f64>) -> Result<Matrix4<f64>, ThudError> {
         let mut j = Matrix4::zeros();
         for k in 0..4 {
             let mut du = *u;
@@ -262,13 +294,13 @@ pub(crate) struct Root {
 }
 
 /// Damped Newton on `map(u) − u = 0` from `u0`. Fails when the residual does not fall below
-/// [`RESIDUAL_TOLERANCE`] within [`MAX_NEWTON`] iterations.
+/// [`RESIDUAL_TOLERANCE`] within the section's `max_newton` iterations.
 pub(crate) fn newton(sec: &mut Section, u0: Vector4<f64>) -> Result<Root, ThudError> {
     let mut u = u0;
     let mut pu = sec.map(&u)?;
     let mut r = pu - u;
     let mut jac_at: Option<(Matrix4<f64>, f64)> = None;
-    for it in 0..=MAX_NEWTON {
+    for it in 0..=sec.max_newton {
         let rn = r.amax();
         if !rn.is_finite() {
             break;
@@ -440,7 +472,7 @@ fn from_guess(
         Some(s)
     };
     let s0 = at_section.ok_or_else(|| not_found("the guess's run stopped"))?;
-    shoot(p, req.symmetric, n, phase, s0, f64::from(n) + phase / std::f64::consts::TAU, cancel)
+    shoot(p, req.symmetric, n, phase, s0, f64::from(n) + phase / std::f64::consts::TAU, MAX_NEWTON, cancel)
 }
 
 /// Newton's method for period `n` at the section `phase` (rad) from `s0`, `spent` forcing
@@ -453,10 +485,12 @@ fn shoot(
     phase: f64,
     s0: [f64; 4],
     spent: f64,
+    budget: u32,
     cancel: Option<&AtomicBool>,
 ) -> Result<PeriodicOrbit, ThudError> {
     let mut sec = Section::new(*p, phase, n, symmetric, cancel);
     sec.spent = spent;
+    sec.max_newton = budget;
     let u0 = sec.scale(s0);
     let root = newton(&mut sec, u0)?;
     let orbit = report(&mut sec, &root)?;
@@ -510,6 +544,7 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
     let mut last_err =
         not_found("the motion did not settle to a periodic orbit (chaotic, quasi-periodic, or a longer period)");
     let mut unstable: Option<PeriodicOrbit> = None;
+    let mut candidate: Option<(PeriodicOrbit, f64)> = None;
     while total < MAX_TRANSIENT_PERIODS {
         let stops: Vec<f64> = (1..=chunk).map(|k| f64::from(k) * period).collect();
         let f = damper::flow(p, state, 0.0, &stops, cancel);
@@ -528,16 +563,42 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
         let detected = periods.or_else(|| detect_period(&samples, 0.05));
         let last_chance = total + chunk.max(8) > MAX_TRANSIENT_PERIODS;
         let Some(n) = detected.or(last_chance.then_some(1)) else {
+            // Nothing repeats yet: Newton's method for the simplest orbit from here, kept if
+            // the motion is seen to approach it.
+            if let Some((o, d)) = candidate.take() {
+                // A stable orbit found before: kept once the motion has come closer to it.
+                let now = distance(p, &o, state);
+                if now < d {
+                    return Ok(PeriodicOrbit { periods_simulated: spent, ..o });
+                }
+                candidate = Some((o, now));
+            } else {
+                match speculate(p, state, &recent, spent, cancel) {
+                    Ok(Speculation::Found(o)) => return Ok(o),
+                    Ok(Speculation::Moved { to, states, spent: s, stable }) => {
+                        samples.extend(states.iter().map(|x| probe_sec.scale(*x)));
+                        total += APPROACH_PERIODS;
+                        state = to;
+                        spent = s;
+                        candidate = stable.map(|o| {
+                            let d = distance(p, &o, to);
+                            (o, d)
+                        });
+                    }
+                    Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
+                    Err(_) => {}
+                }
+            }
             chunk = (total / 2).max(FIRST_TRANSIENT_PERIODS);
             continue;
         };
-        match attempt(p, false, n, state, &recent, spent, cancel) {
+        match attempt(p, false, n, state, &recent, spent, MAX_NEWTON, cancel) {
             Ok(orbit) if orbit.stable || periods.is_some() => return Ok(orbit),
             Ok(orbit) => {
                 spent = orbit.periods_simulated;
                 // An unstable orbit beside a stable one of twice the period: the attractor.
                 if 2 * n <= MAX_ORBIT_PERIODS {
-                    match attempt(p, false, 2 * n, state, &recent, spent, cancel) {
+                    match attempt(p, false, 2 * n, state, &recent, spent, MAX_NEWTON, cancel) {
                         Ok(o2) if o2.stable => return Ok(o2),
                         Ok(o2) => spent = o2.periods_simulated,
                         Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
@@ -559,6 +620,54 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
         .ok_or(last_err)
 }
 
+/// What a speculative attempt gave.
+enum Speculation {
+    /// A stable orbit the motion approaches.
+    Found(PeriodicOrbit),
+    /// None yet: the motion simulated on to `to` (its states at each period on the way),
+    /// `spent` forcing periods in all; the stable orbit found, if any, that it did not yet
+    /// approach.
+    Moved { to: [f64; 4], states: Vec<[f64; 4]>, spent: f64, stable: Option<PeriodicOrbit> },
+}
+
+/// The distance (scaled, largest component) of `state` at the force's phase 0 from the
+/// one-period orbit `o`'s state there.
+fn distance(p: &DamperParams, o: &PeriodicOrbit, state: [f64; 4]) -> f64 {
+    let sec = Section::new(*p, 0.0, 1, false, None);
+    let at = sec.scale([o.x_m, o.v_m_s, o.x_m + o.z_m, o.v_m_s + o.zdot_m_s]);
+    (sec.scale(state) - at).amax()
+}
+
+/// Shooting for a stable orbit of one forcing period from `state` (at the force's phase 0,
+/// `spent` periods simulated so far), with a few Newton steps; the orbit is kept if the motion
+/// from `state`, simulated [`APPROACH_PERIODS`] more periods, comes closer to it (it lies in the
+/// orbit's basin, not another attractor's).
+fn speculate(
+    p: &DamperParams,
+    state: [f64; 4],
+    recent: &[damper::ImpactEvent],
+    spent: f64,
+    cancel: Option<&AtomicBool>,
+) -> Result<Speculation, ThudError> {
+    let period = 1.0 / p.freq_hz;
+    let stops: Vec<f64> = (1..=APPROACH_PERIODS).map(|k| f64::from(k) * period).collect();
+    let orbit = attempt(p, false, 1, state, recent, spent, SPECULATIVE_NEWTON, cancel);
+    let spent = orbit.as_ref().map_or(spent, |o| o.periods_simulated) + f64::from(APPROACH_PERIODS);
+    let f = damper::flow(p, state, 0.0, &stops, cancel);
+    if f.halted || f.states.len() != stops.len() {
+        return Err(not_found("a solver work cap stopped the design's run"));
+    }
+    let to = *f.states.last().unwrap_or(&state);
+    let stable = orbit.ok().filter(|o| o.stable && o.periods == 1);
+    if let Some(o) = &stable {
+        let (d0, d1) = (distance(p, o, state), distance(p, o, to));
+        if d1 < d0 || d0 <= 1e-9 {
+            return Ok(Speculation::Found(PeriodicOrbit { periods_simulated: spent, ..o.clone() }));
+        }
+    }
+    Ok(Speculation::Moved { to, states: f.states, spent, stable })
+}
+
 /// Shooting for period `n` from `state` at the force's phase 0, the section put in flight by
 /// `impacts` (times from a run that ended at `state` after whole periods).
 fn attempt(
@@ -568,6 +677,7 @@ fn attempt(
     state: [f64; 4],
     impacts: &[damper::ImpactEvent],
     spent: f64,
+    budget: u32,
     cancel: Option<&AtomicBool>,
 ) -> Result<PeriodicOrbit, ThudError> {
     let tau = std::f64::consts::TAU;
@@ -579,7 +689,7 @@ fn attempt(
     } else {
         state
     };
-    shoot(p, symmetric, n, phase, s0, spent + phase / tau, cancel)
+    shoot(p, symmetric, n, phase, s0, spent + phase / tau, budget, cancel)
 }
 
 /// The orbit through the root `root` of the section's map, reported from the force's phase 0.
@@ -684,6 +794,35 @@ mod tests {
         let phi = flight_phase(&[hit(3.1, 0.1), hit(3.5, 0.05)], 0.0, omega) / omega;
         assert!((phi - 0.825).abs() < 1e-12, "{phi}");
         assert_eq!(flight_phase(&[], 0.0, omega), 0.0);
+    }
+
+    /// The chained Jacobian (exact flights, differenced contact windows) is the whole map's
+    /// forward-difference Jacobian, at a 3/1 orbit of forced-rattle and off it.
+    #[test]
+    fn the_chained_jacobian_is_the_whole_maps() {
+        let p = DamperParams {
+            impact_mass_kg: 0.0405,
+            gap_m: 0.01,
+            main_mass_kg: 0.5,
+            stiffness_n_m: 500.0,
+            damping_n_s_m: 1.5,
+            force_n: 3.0,
+            freq_hz: 7.0,
+            v0_m_s: 0.0,
+            ..DamperParams::table2()
+        };
+        let o = find_damper(&p, &Request::default(), None).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((o.impacts_per_orbit, o.periods), (3, 1), "{}", o.label());
+        let s = [o.x_m, o.v_m_s, o.x_m + o.z_m, o.v_m_s + o.zdot_m_s];
+        for off in [0.0, 0.02] {
+            let mut sec = Section::new(p, 0.0, 1, false, None);
+            let u = sec.scale(s) * (1.0 + off);
+            let pu = sec.map(&u).unwrap();
+            let chained = sec.jacobian(&u, &pu).unwrap();
+            let whole = sec.full_jacobian(&u, &pu).unwrap();
+            let err = (chained - whole).amax() / whole.amax();
+            assert!(err < 1e-5, "off {off}: {err:e}\n{chained}\n{whole}");
+        }
     }
 
     #[test]

@@ -5,6 +5,8 @@
 
 use std::sync::atomic::AtomicBool;
 
+use nalgebra::{Matrix4, Vector4};
+
 use super::event::{EventSim, ForcedFlight};
 use super::flight::Oscillator;
 use super::forced::{Forced, Harmonic};
@@ -66,6 +68,92 @@ pub(crate) fn flow(
     });
     let run = sim.finish();
     Flowed { states, impacts: run.impacts, amplitude_m, in_contact, halted }
+}
+
+/// The transition matrix of the state `(x, x', y, y')` over `dt` (s) of flight: the
+/// structure's own homogeneous motion (Eq 25 without the force: the force adds no dependence
+/// on the state) beside the ball's straight line.
+fn flight_transition(osc: &Oscillator, dt: f64) -> Matrix4<f64> {
+    let (x1, v1) = osc.advance(1.0, 0.0, dt);
+    let (x2, v2) = osc.advance(0.0, 1.0, dt);
+    Matrix4::new(x1, x2, 0.0, 0.0, v1, v2, 0.0, 0.0, 0.0, 0.0, 1.0, dt, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// The windows `[a, b]` (s) that hold the contacts of `impacts` over a flow of `span`, each
+/// reaching a quarter of the flight on either side (at most [`WINDOW_MARGIN`] of a forcing
+/// period) so that a perturbed contact still starts and ends inside its window; windows that
+/// meet are merged.
+fn contact_windows(impacts: &[ImpactEvent], span: f64, period: f64) -> Vec<(f64, f64)> {
+    let mut windows: Vec<(f64, f64)> = Vec::with_capacity(impacts.len());
+    for (i, imp) in impacts.iter().enumerate() {
+        let before = imp.t_s - if i == 0 { 0.0 } else { impacts[i - 1].t_end_s };
+        let after = impacts.get(i + 1).map_or(span, |n| n.t_s) - imp.t_end_s;
+        let a = (imp.t_s - (0.25 * before).min(WINDOW_MARGIN * period)).max(0.0);
+        let b = (imp.t_end_s + (0.25 * after).min(WINDOW_MARGIN * period)).min(span);
+        match windows.last_mut() {
+            Some(last) if a <= last.1 => last.1 = last.1.max(b),
+            _ => windows.push((a, b)),
+        }
+    }
+    windows
+}
+
+/// The largest margin of a contact's window on either side, as a fraction of a forcing period.
+const WINDOW_MARGIN: f64 = 1e-3;
+
+/// The Jacobian `∂s(span)/∂s(0)` of the flow of [`flow`] from `state` at `phase` over `span`
+/// (s), whose completed contacts are `impacts` (from that flow), with the time (s) simulated to
+/// find it (docs/model.md §6.7). A flight is linear in the state, so its factor is exact
+/// ([`flight_transition`]); each contact's short window is differenced forward with the steps
+/// `steps` (one per state component, m or m/s), so the Jacobian costs five runs over the
+/// contacts alone, not over the whole span. `None` where a run stopped short or a perturbed
+/// contact left its window.
+pub(crate) fn chained_jacobian(
+    p: &DamperParams,
+    state: [f64; 4],
+    phase: f64,
+    span: f64,
+    impacts: &[ImpactEvent],
+    steps: [f64; 4],
+    cancel: Option<&AtomicBool>,
+) -> Option<(Matrix4<f64>, f64)> {
+    let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    let forced = Forced::new(osc, Harmonic::new(p.force_n, p.main_mass_kg, p.freq_hz, phase));
+    let omega = std::f64::consts::TAU * p.freq_hz;
+    let fly = |s: [f64; 4], t0: f64, dt: f64| {
+        let (x, v) = forced.advance(t0, s[0], s[1], dt);
+        [x, v, s[2] + s[3] * dt, s[3]]
+    };
+    let mut jac = Matrix4::identity();
+    let mut s = state;
+    let mut t = 0.0;
+    let mut simulated = 0.0;
+    for (a, b) in contact_windows(impacts, span, 1.0 / p.freq_hz) {
+        jac = flight_transition(&osc, a - t) * jac;
+        s = fly(s, t, a - t);
+        let run = |s0: [f64; 4]| {
+            let f = flow(p, s0, phase + omega * a, &[b - a], cancel);
+            (f.states.first().copied().filter(|_| !f.halted && !f.in_contact), f.impacts.len())
+        };
+        let (end, hits) = run(s);
+        let end = end?;
+        let mut w = Matrix4::zeros();
+        for (k, &h) in steps.iter().enumerate() {
+            let mut sk = s;
+            sk[k] += h;
+            let (e, n) = run(sk);
+            if n != hits {
+                return None;
+            }
+            let e = e?;
+            w.set_column(k, &Vector4::from_fn(|i, _| (e[i] - end[i]) / h));
+        }
+        simulated += 5.0 * (b - a);
+        jac = w * jac;
+        s = end;
+        t = b;
+    }
+    Some((flight_transition(&osc, span - t) * jac, simulated))
 }
 
 #[cfg(test)]
