@@ -1,4 +1,4 @@
-//! Research-grade dynamics of a forced impact damper (issue 27, items 1–3; docs/model.md §6.5):
+//! Research-grade dynamics of a forced impact damper (docs/model.md §6.5):
 //! the bifurcation diagram over any numeric parameter, the type of each orbit, the impact map
 //! (the Poincaré section on impacts) and the basins of attraction over the ball's start.
 //!
@@ -578,6 +578,24 @@ pub fn basins(
         })
         .collect();
     let runs: Vec<Landing> = runs.into_iter().collect::<Option<_>>().ok_or(ThudError::Cancelled)?;
+    let (ids, attractors) = attractors_of(&runs);
+    Ok(Basins {
+        settings: s,
+        y0_m: y0,
+        w0_m_s: w0_m_s.to_vec(),
+        cells: ids,
+        amplitudes_m: runs.iter().map(|r| r.amplitude_m).collect(),
+        attractors,
+    })
+}
+
+/// The attractors the starts' landings `runs` reach, and each start's attractor id: grouped by
+/// label, then (periodic) chains of amplitudes within [`SAME_ATTRACTOR`] whose points x(kT)
+/// agree within [`SAME_ATTRACTOR`] of the amplitude (an orbit and its mirror image have the
+/// same type and amplitude, not the same points); an asymmetric periodic attractor names its
+/// mirror image where another attractor is it.
+fn attractors_of(runs: &[Landing]) -> (Vec<usize>, Vec<Attractor>) {
+    let cells = runs.len();
     // Group: by label, then (periodic) chains of amplitudes within SAME_ATTRACTOR whose points
     // x(kT) agree within SAME_ATTRACTOR of the amplitude (an orbit and its mirror image have
     // the same type and amplitude, not the same points).
@@ -639,14 +657,7 @@ pub fn basins(
             b != a && last[b].0 == last[a].0 && same_points(&ra.mirrored, &rb.points, tol)
         });
     }
-    Ok(Basins {
-        settings: s,
-        y0_m: y0,
-        w0_m_s: w0_m_s.to_vec(),
-        cells: ids,
-        amplitudes_m: runs.iter().map(|r| r.amplitude_m).collect(),
-        attractors,
-    })
+    (ids, attractors)
 }
 
 #[cfg(test)]

@@ -1,3 +1,4 @@
+// Over 800 lines: one integrator, its step, its event location and its energy ledger.
 //! The in-contact integrator of the event solver: adaptive Dormand–Prince 5(4) on the coupled
 //! equations of paper Eq 26 while the ball presses a wall.
 //!

@@ -93,6 +93,7 @@ impl Series {
         }
     }
 
+    // Over 80 lines: one pass of the Taylor recursion, every order's terms built in one loop.
     /// [`Series::expand`] with the clamp's state `CL` fixed at compile time.
     #[inline(always)]
     fn expand_in<L: Load, const CL: bool>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y) -> Self {
