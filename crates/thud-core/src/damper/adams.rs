@@ -41,8 +41,9 @@
 use std::cell::OnceCell;
 
 use super::adams_tableau::{AB, AM, BASIS, K};
-use super::contact::{ContactOutcome, Load, State, Sys};
+use super::contact::{ContactOutcome, Load, Sys};
 use super::dop853;
+use super::integrator::ContactStart;
 use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, Y};
 
 /// Even steps a Hertz contact is cut into (θ units: the contact's estimated length over this).
@@ -111,17 +112,8 @@ enum Next {
 
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
 /// until the exit, the time limit `t_limit` or the step budget.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate<L: Load>(
-    sys: &Sys,
-    load: L,
-    s: f64,
-    t0: f64,
-    y0: State,
-    t_limit: f64,
-    budget: &mut usize,
-    obs: impl Observer,
-) -> End {
+pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize, obs: impl Observer) -> End {
+    let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let start = onset(sys, &y0);
     let length = start.theta_length();
     let Onset { sc, y, .. } = start;

@@ -29,6 +29,7 @@ use nalgebra::{Vector2, Vector4, Vector6};
 use crate::contact::{contact_duration, peak_approach};
 
 use super::forced::Harmonic;
+use super::integrator::ContactStart;
 use super::DamperParams;
 
 /// A force on the main mass as a function of time, per unit main mass (m/s²): none (the
@@ -428,18 +429,8 @@ struct Integration<'a, L, O, const NT: bool> {
 /// `a_bound` (m/s²) bounds the non-contact relative acceleration (used to size the first step of
 /// slow contacts). `obs` sees every accepted step ([`Observer::step`]: states and their
 /// derivatives).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate<L: Load>(
-    sys: &Sys,
-    load: L,
-    s: f64,
-    t0: f64,
-    y0: State,
-    t_limit: f64,
-    budget: &mut usize,
-    a_bound: f64,
-    obs: impl Observer,
-) -> ContactEnd {
+pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize, obs: impl Observer) -> ContactEnd {
+    let ContactStart { sys, load, s, t0, y0, t_limit, a_bound } = start;
     if sys.no_tension {
         run(Integration::<L, _, true>::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
     } else {

@@ -1,5 +1,6 @@
 use super::super::contact::NoLoad;
-use super::super::contact::Unobserved;
+use super::super::contact::{State, Unobserved};
+use super::super::integrator::ContactStart;
 use super::super::scheme_checks::{self, sys};
 use super::*;
 
@@ -31,7 +32,7 @@ fn the_start_series_is_the_taylor_schemes() {
 fn a_cut_contact_resumes_where_it_stopped() {
     scheme_checks::cut_contacts(
         &[0.05, 0.1, 0.3, 0.5, 0.7, 0.93, 0.99],
-        |s, y0, t_limit, left| integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved),
+        |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
         |s, r, left| dop853::resume(s, NoLoad, r, 1.0, left, Unobserved),
     );
 }
@@ -41,7 +42,7 @@ fn a_cut_contact_resumes_where_it_stopped() {
 #[test]
 fn isolated_contacts_match_the_reference_and_the_taylor_scheme() {
     scheme_checks::isolated_contacts(START_COST + 64 * STEP_COST, |s, y0, t_limit, left| {
-        integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved)
+        integrate(ContactStart::free(s, y0, t_limit), left, Unobserved)
     });
 }
 
@@ -126,7 +127,7 @@ fn the_step_budget_stops_a_contact() {
     let s = sys(20.0, 0.0);
     let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
     let mut left = START_COST + 3 * STEP_COST;
-    let end = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+    let end = integrate(ContactStart::free(&s, y0, 1.0), &mut left, Unobserved);
     assert_eq!(end.outcome, ContactOutcome::WorkCap);
     assert_eq!(left, 0);
     assert!(end.y[2] > 0.0);

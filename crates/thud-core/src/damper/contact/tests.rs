@@ -1,3 +1,4 @@
+use super::super::integrator::ContactStart;
 use super::*;
 
 /// The Fig 9 ball against the free main mass (no spring), hitting the upper wall at 1.4 m/s.
@@ -9,7 +10,7 @@ fn sys(c1: f64) -> Sys {
 fn contact(sys: &Sys, t_limit: f64, budget: usize) -> (ContactEnd, usize) {
     let mut left = budget;
     let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
-    let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, Unobserved);
+    let end = integrate(ContactStart::free(sys, y0, t_limit), &mut left, Unobserved);
     (end, budget - left)
 }
 
@@ -59,18 +60,12 @@ fn a_cut_contact_resumes_where_it_stopped() {
         let r = first.resume.expect("a cut contact can resume");
         let mut left = 10_000;
         let mut seen_from = f64::NAN;
-        let end = resume(
-            &s,
-            NoLoad,
-            &r,
-            1.0,
-            &mut left,
-            |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
+        let end =
+            resume(&s, NoLoad, &r, 1.0, &mut left, |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
                 if seen_from.is_nan() {
                     seen_from = t0;
                 }
-            },
-        );
+            });
         assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
         assert_eq!(end.outcome, ContactOutcome::Separated);
         assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);

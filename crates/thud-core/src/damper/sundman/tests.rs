@@ -1,4 +1,5 @@
 use super::super::contact::{self, NoLoad};
+use super::super::integrator::ContactStart;
 use super::super::scheme_checks::sys;
 use super::*;
 
@@ -13,9 +14,13 @@ fn isolated_contacts_match_the_reference() {
         let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
         let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
         let mut left = 100_000;
-        let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
+        let old = contact::integrate(
+            ContactStart { a_bound: a, ..ContactStart::free(&s, y0, 1.0) },
+            &mut left,
+            contact::Unobserved,
+        );
         let mut left = 100_000;
-        let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
+        let new = integrate(ContactStart::free(&s, y0, 1.0), &mut left, contact::Unobserved);
         assert_eq!(old.outcome, ContactOutcome::Separated);
         assert_eq!(new.outcome, ContactOutcome::Separated);
         assert!((old.y[3] - new.y[3]).abs() < 2e-8 * u0, "{:?} vs {:?}", old.y, new.y);
@@ -35,10 +40,10 @@ fn a_cut_contact_resumes_where_it_stopped() {
     let s = sys(20.0, 500.0);
     let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
     let mut left = 100_000;
-    let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
+    let whole = integrate(ContactStart::free(&s, y0, 1.0), &mut left, contact::Unobserved);
     for cut in [0.1, 0.5, 0.93] {
         let mut left = 100_000;
-        let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, contact::Unobserved);
+        let first = integrate(ContactStart::free(&s, y0, cut * whole.t), &mut left, contact::Unobserved);
         assert_eq!(first.outcome, ContactOutcome::EndOfRun);
         assert_eq!(first.t, cut * whole.t);
         let r = first.resume.expect("a cut contact can resume");
