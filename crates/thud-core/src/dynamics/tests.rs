@@ -70,8 +70,7 @@ fn the_forced_rattle_doubles_its_period_below_7_6_hz() {
     let tol = PERIODIC_TOLERANCE * doubled.amplitude_m;
     let split = (doubled.samples[0].x_m - doubled.samples[1].x_m).abs();
     assert!(split > 5.0 * tol, "x(kT) alternates by {split} m");
-    let even =
-        doubled.samples.iter().step_by(2).map(|s| (s.x_m - doubled.samples[0].x_m).abs()).fold(0.0, f64::max);
+    let even = doubled.samples.iter().step_by(2).map(|s| (s.x_m - doubled.samples[0].x_m).abs()).fold(0.0, f64::max);
     assert!(even < 0.05 * split, "x(2kT) repeats to {even} m");
     let spread = single.samples.iter().map(|s| (s.x_m - single.samples[0].x_m).abs()).fold(0.0, f64::max);
     assert!(spread < 1e-4 * single.amplitude_m, "x(kT) repeats to {spread} m");
