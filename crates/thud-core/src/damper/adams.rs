@@ -41,9 +41,8 @@
 use std::cell::OnceCell;
 
 use super::adams_tableau::{AB, AM, BASIS, K};
-use super::contact::{ContactOutcome, Load, Sys};
+use super::contact::{ContactOutcome, ContactStart, Load, Sys};
 use super::dop853;
-use super::integrator::ContactStart;
 use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, Y};
 
 /// Even steps a Hertz contact is cut into (θ units: the contact's estimated length over this).

@@ -29,7 +29,6 @@ use nalgebra::{Vector2, Vector4, Vector6};
 use crate::contact::{contact_duration, peak_approach};
 
 use super::forced::Harmonic;
-use super::integrator::ContactStart;
 use super::DamperParams;
 
 /// A force on the main mass as a function of time, per unit main mass (m/s²): none (the
@@ -298,6 +297,29 @@ fn worse(acc: f64, q: f64) -> f64 {
         q
     } else {
         acc
+    }
+}
+
+/// Where one contact starts: the system, the force on the main mass `load`, the wall `s = ±1`,
+/// the onset time `t0` (s) and state `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0), the end of the
+/// stretch `t_limit` (s), and `a_bound` (m/s²), a bound on the non-contact relative
+/// acceleration that sizes the reference's first step of a slow contact (the other schemes do
+/// not use it).
+#[derive(Clone, Copy)]
+pub(crate) struct ContactStart<'a, L> {
+    pub sys: &'a Sys,
+    pub load: L,
+    pub s: f64,
+    pub t0: f64,
+    pub y0: State,
+    pub t_limit: f64,
+    pub a_bound: f64,
+}
+
+impl<'a> ContactStart<'a, NoLoad> {
+    /// An isolated contact without a force: at wall +1 from time 0, up to `t_limit` (s).
+    pub(crate) fn free(sys: &'a Sys, y0: State, t_limit: f64) -> Self {
+        ContactStart { sys, load: NoLoad, s: 1.0, t0: 0.0, y0, t_limit, a_bound: 0.0 }
     }
 }
 

@@ -119,11 +119,11 @@ struct Integration<'a, L, O, const N: usize> {
 /// until the exit, the time limit `t_limit` or the step budget.
 #[cfg(feature = "research")]
 pub(crate) fn integrate<L: Load>(
-    start: super::integrator::ContactStart<'_, L>,
+    start: super::contact::ContactStart<'_, L>,
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
-    use super::integrator::ContactStart;
+    use super::contact::ContactStart;
     use super::sundman::{onset, Onset};
     let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let start = onset(sys, &y0);
@@ -413,9 +413,9 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::contact::ContactStart;
     use super::super::contact::NoLoad;
     use super::super::contact::{State, Unobserved};
-    use super::super::integrator::ContactStart;
     use super::super::scheme_checks::{self, sys};
     use super::*;
 

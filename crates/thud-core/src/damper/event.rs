@@ -10,11 +10,11 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::contact::{resume, ContactEnd, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
+use super::contact::{resume, ContactEnd, ContactOutcome, ContactStart, Load, NoLoad, Observer, Resume, State, Sys};
 use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
-use super::integrator::{ContactIntegrator, ContactStart, Reference, SundmanAdams};
+use super::integrator::{ContactIntegrator, Reference, SundmanAdams};
 #[cfg(feature = "research")]
 use super::integrator::{SundmanDop853, SundmanTaylor};
 use super::record::{hermite, Recorder};

@@ -646,7 +646,7 @@ pub fn single_contact_with(
     let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
     let mut budget = 200_000;
     let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
-    let start = integrator::ContactStart::free(&sys, y0, 1e4 * tau);
+    let start = contact::ContactStart::free(&sys, y0, 1e4 * tau);
     let e = event::onset_contact(scheme.in_use(no_tension), start, &mut budget, contact::Unobserved);
     SingleContact {
         u_out_m_s: if e.outcome == contact::ContactOutcome::Separated { -e.y[3] } else { 0.0 },

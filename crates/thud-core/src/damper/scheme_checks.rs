@@ -3,8 +3,8 @@
 //! cut by its time limit carried on as if never cut, by the fast ones ([`super::dop853`],
 //! [`super::adams`]).
 
+use super::contact::ContactStart;
 use super::contact::{self, ContactEnd, ContactOutcome, State, Sys};
-use super::integrator::ContactStart;
 use super::sundman;
 use super::DamperParams;
 

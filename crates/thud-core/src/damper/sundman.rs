@@ -601,11 +601,11 @@ pub(crate) fn onset(sys: &Sys, y0: &State) -> Onset {
 /// until the exit, the time limit `t_limit` or the step budget.
 #[cfg(feature = "research")]
 pub(crate) fn integrate<L: Load>(
-    start: super::integrator::ContactStart<'_, L>,
+    start: super::contact::ContactStart<'_, L>,
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
-    use super::integrator::ContactStart;
+    use super::contact::ContactStart;
     let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let Onset { amax, tau, sc, y } = onset(sys, &y0);
     // The contact's length in θ: about 1.9·τ/√α_max (the integral of dt/√δ over a half sine).

@@ -1,6 +1,6 @@
+use super::super::contact::ContactStart;
 use super::super::contact::NoLoad;
 use super::super::contact::{State, Unobserved};
-use super::super::integrator::ContactStart;
 use super::super::scheme_checks::{self, sys};
 use super::*;
 

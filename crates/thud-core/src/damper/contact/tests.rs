@@ -1,4 +1,3 @@
-use super::super::integrator::ContactStart;
 use super::*;
 
 /// The Fig 9 ball against the free main mass (no spring), hitting the upper wall at 1.4 m/s.

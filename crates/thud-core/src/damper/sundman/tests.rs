@@ -1,5 +1,5 @@
+use super::super::contact::ContactStart;
 use super::super::contact::{self, NoLoad};
-use super::super::integrator::ContactStart;
 use super::super::scheme_checks::sys;
 use super::*;
 
