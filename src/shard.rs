@@ -40,7 +40,7 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use thiserror::Error;
 
-use crate::design::{self, Cell, Chart, Design};
+use crate::design::{self, Cell, Chart, Design, Metrics};
 use crate::ensemble::{self, Ensemble, EnsembleCell, EnsembleChart, Member};
 use crate::{limits, params};
 
@@ -298,15 +298,15 @@ pub fn write(format: Format, header: &Header, cells: &[PartCell]) -> Result<Stri
                         c.mass_kg.to_string(),
                         c.gap_m.to_string(),
                         r.ball_position_m.to_string(),
-                        r.n_impacts.to_string(),
-                        field(r.inclination_cm_s),
-                        field(r.inclination_fit_cm_s),
-                        r.u0_max_m_s.to_string(),
-                        r.zdot_abs_max_m_s.to_string(),
-                        field(r.spl_max_db),
-                        field(r.contact_duration_s),
-                        field(r.restitution_mean),
-                        r.zone.map_or_else(String::new, |z| z.number().to_string()),
+                        r.metrics.n_impacts.to_string(),
+                        field(r.metrics.inclination_cm_s),
+                        field(r.metrics.inclination_fit_cm_s),
+                        r.metrics.u0_max_m_s.to_string(),
+                        r.metrics.zdot_abs_max_m_s.to_string(),
+                        field(r.metrics.spl_max_db),
+                        field(r.metrics.contact_duration_s),
+                        field(r.metrics.restitution_mean),
+                        r.metrics.zone.map_or_else(String::new, |z| z.number().to_string()),
                         truncated.unwrap_or_default(),
                     ])?;
                 }
@@ -438,14 +438,15 @@ struct CellOutOfRange {
 
 /// Every number of a run finite and at most [`MAX_CELL_MAGNITUDE`], speeds and durations ≥ 0.
 fn check_member(r: &Member) -> Result<(), CellOutOfRange> {
-    let signed = [("inclination_cm_s", r.inclination_cm_s), ("inclination_fit_cm_s", r.inclination_fit_cm_s)];
+    let signed =
+        [("inclination_cm_s", r.metrics.inclination_cm_s), ("inclination_fit_cm_s", r.metrics.inclination_fit_cm_s)];
     let positive = [
-        ("u0_max_m_s", Some(r.u0_max_m_s)),
-        ("zdot_abs_max_m_s", Some(r.zdot_abs_max_m_s)),
-        ("contact_duration_s", r.contact_duration_s),
-        ("restitution_mean", r.restitution_mean),
+        ("u0_max_m_s", Some(r.metrics.u0_max_m_s)),
+        ("zdot_abs_max_m_s", Some(r.metrics.zdot_abs_max_m_s)),
+        ("contact_duration_s", r.metrics.contact_duration_s),
+        ("restitution_mean", r.metrics.restitution_mean),
     ];
-    let any = [("ball_position_m", Some(r.ball_position_m)), ("spl_max_db", r.spl_max_db)];
+    let any = [("ball_position_m", Some(r.ball_position_m)), ("spl_max_db", r.metrics.spl_max_db)];
     for (name, v, min) in signed
         .iter()
         .chain(&any)
@@ -534,15 +535,17 @@ fn read_csv_cells(file: &str, text: &str) -> Result<Vec<PartCell>, ShardError> {
         let (index, run) = (whole(0)?, whole(1)?);
         let member = Member {
             ball_position_m: num(4)?,
-            n_impacts: whole(5)?,
-            inclination_cm_s: opt(6)?,
-            inclination_fit_cm_s: opt(7)?,
-            u0_max_m_s: num(8)?,
-            zdot_abs_max_m_s: num(9)?,
-            spl_max_db: opt(10)?,
-            contact_duration_s: opt(11)?,
-            restitution_mean: opt(12)?,
-            zone,
+            metrics: Metrics {
+                n_impacts: whole(5)?,
+                inclination_cm_s: opt(6)?,
+                inclination_fit_cm_s: opt(7)?,
+                u0_max_m_s: num(8)?,
+                zdot_abs_max_m_s: num(9)?,
+                spl_max_db: opt(10)?,
+                contact_duration_s: opt(11)?,
+                restitution_mean: opt(12)?,
+                zone,
+            },
             truncated,
         };
         check_member(&member).map_err(|e| bad(e.to_string()))?;
@@ -639,7 +642,7 @@ impl Merged {
         let mut chart = Chart::empty(self.study.masses_kg.clone(), self.study.gaps_m.clone(), self.thresholds());
         for c in &self.cells {
             chart.cells[c.index] =
-                c.runs.first().map(|r| Cell { mass_kg: c.mass_kg, gap_m: c.gap_m, metrics: r.metrics() });
+                c.runs.first().map(|r| Cell { mass_kg: c.mass_kg, gap_m: c.gap_m, metrics: r.metrics });
         }
         chart
     }

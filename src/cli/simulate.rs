@@ -147,12 +147,12 @@ fn ensemble_summary(d: &Design, e: &Ensemble, truncated: Option<&str>) -> String
             "  {:>5}  {:>9.4}  {:>7}  {:>9}  {:>12}  {:>11.4}  {:>11}  {:>4}\n",
             k,
             m.ball_position_m * 1e2,
-            m.n_impacts,
-            opt(m.inclination_cm_s, 4),
-            opt(m.inclination_fit_cm_s, 4),
-            m.u0_max_m_s,
-            opt(m.spl_max_db, 2),
-            m.zone.map_or("—".into(), |z| z.number().to_string())
+            m.metrics.n_impacts,
+            opt(m.metrics.inclination_cm_s, 4),
+            opt(m.metrics.inclination_fit_cm_s, 4),
+            m.metrics.u0_max_m_s,
+            opt(m.metrics.spl_max_db, 2),
+            m.metrics.zone.map_or("—".into(), |z| z.number().to_string())
         );
     }
     if d.damper.forced() {

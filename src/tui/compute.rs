@@ -273,7 +273,8 @@ pub fn rest_point(d: &Design, cancel: Option<&AtomicBool>) -> Result<Option<resp
 /// The ensemble `e` under thresholds `t`: each run's zone and the zone of the medians
 /// reclassified ([`Ensemble::from_members`]), so threshold edits need no new runs.
 pub fn ensemble_under(e: &Ensemble, t: &Thresholds) -> Ensemble {
-    let members = e.ensemble.iter().map(|m| Member { zone: m.metrics().zone(t), ..*m }).collect();
+    let members =
+        e.ensemble.iter().map(|m| Member { metrics: Metrics { zone: m.metrics.zone(t), ..m.metrics }, ..*m }).collect();
     Ensemble::from_members(members, t)
 }
 

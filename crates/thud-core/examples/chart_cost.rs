@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a measuring tool: a panic is how it fails
-//! The robust design chart's cost (issue 27), for instruction counts that do not depend on the
+//! The robust design chart's cost, for instruction counts that do not depend on the
 //! machine's load:
 //!
 //! ```sh
@@ -18,7 +18,7 @@
 //!   `design::metrics`), for what the chart would cost with it. With `SundmanAdams` (the
 //!   default, the chart's own scheme) the impacts are the chart's.
 //!
-//! Where the chart's instructions went (20 × 20 × 16 on one thread, 19.13 G; issue 27): the
+//! Where the chart's instructions went (20 × 20 × 16 on one thread, 19.13 G): the
 //! contact integrator `damper::contact::integrate` 92.7 % (its step control's `log2`/`exp2`
 //! alone 7.8 %), the rest of each contact 0.3 %, the flights (contact search, recording,
 //! energies) 4.2 %, the per-run metrics 2.7 % (the SPL's rms over τ 2.5 %, e, e_fit, U0max and
@@ -75,6 +75,7 @@ fn main() {
         println!("{}", serde_json::to_string(&chart).unwrap());
         return;
     }
-    let impacts: usize = chart.cells.iter().flatten().flat_map(|c| &c.ensemble.ensemble).map(|m| m.n_impacts).sum();
+    let impacts: usize =
+        chart.cells.iter().flatten().flat_map(|c| &c.ensemble.ensemble).map(|m| m.metrics.n_impacts).sum();
     println!("{cells}x{cells} x {runs} runs: {impacts} impacts");
 }

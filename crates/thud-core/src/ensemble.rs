@@ -1,4 +1,4 @@
-//! Ensembles: how much of a design's answer is luck (issue 11, item 3).
+//! Ensembles: how much of a design's answer is luck.
 //!
 //! The rattle is chaotic: e (Eq 27) jumps with the timing of the first impacts, and impact
 //! counts of two accurate solvers part after about a second. So a design is run N times,
@@ -91,29 +91,14 @@ pub struct Spread {
 }
 
 /// One run of an ensemble: the ball's initial offset and that run's metrics (the fields of
-/// [`Metrics`], flat, with the zone written as its number 1–4).
+/// [`Metrics`], written flat beside the offset, with the zone written as its number 1–4).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Member {
     /// Initial offset y0 of the ball from the enclosure's centre (m), at rest.
     pub ball_position_m: f64,
-    pub n_impacts: usize,
-    /// Damping inclination e of Eq 27 (cm/s).
-    pub inclination_cm_s: Option<f64>,
-    /// The robust inclination e_fit (cm/s).
-    pub inclination_fit_cm_s: Option<f64>,
-    /// Largest contact speed by the design's U0max rule (m/s).
-    pub u0_max_m_s: f64,
-    /// Largest |z'| over the run including t = 0 (m/s).
-    pub zdot_abs_max_m_s: f64,
-    /// SPL (dB) of an impact at U0max; none without an impact.
-    pub spl_max_db: Option<f64>,
-    /// Hertz contact duration (s) at U0max.
-    pub contact_duration_s: Option<f64>,
-    /// Mean restitution u_out/u_in over the run's impacts.
-    pub restitution_mean: Option<f64>,
-    /// The run's zone, as its number 1–4.
-    #[serde(with = "design::zone_number")]
-    pub zone: Option<Zone>,
+    /// The run's metrics.
+    #[serde(flatten)]
+    pub metrics: Metrics,
     /// Set when a solver work cap stopped this run before its duration.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncated: Option<Truncation>,
@@ -123,35 +108,7 @@ impl Member {
     /// The member for a run from `ball_position_m` with metrics `m`.
     #[must_use]
     pub fn new(ball_position_m: f64, m: &Metrics, truncated: Option<Truncation>) -> Self {
-        Member {
-            ball_position_m,
-            n_impacts: m.n_impacts,
-            u0_max_m_s: m.u0_max_m_s,
-            zdot_abs_max_m_s: m.zdot_abs_max_m_s,
-            spl_max_db: m.spl_max_db,
-            contact_duration_s: m.contact_duration_s,
-            restitution_mean: m.restitution_mean,
-            inclination_cm_s: m.inclination_cm_s,
-            inclination_fit_cm_s: m.inclination_fit_cm_s,
-            zone: m.zone,
-            truncated,
-        }
-    }
-
-    /// This run's metrics (exactly those it was made from).
-    #[must_use]
-    pub fn metrics(&self) -> Metrics {
-        Metrics {
-            n_impacts: self.n_impacts,
-            inclination_cm_s: self.inclination_cm_s,
-            inclination_fit_cm_s: self.inclination_fit_cm_s,
-            u0_max_m_s: self.u0_max_m_s,
-            zdot_abs_max_m_s: self.zdot_abs_max_m_s,
-            spl_max_db: self.spl_max_db,
-            contact_duration_s: self.contact_duration_s,
-            restitution_mean: self.restitution_mean,
-            zone: self.zone,
-        }
+        Member { ball_position_m, metrics: *m, truncated }
     }
 }
 
@@ -188,7 +145,7 @@ impl Ensemble {
     pub fn zone_under(&self, t: &Thresholds) -> (Option<Zone>, f64) {
         let zone = self.metrics.zone(t);
         let n = self.ensemble.len();
-        let agree = self.ensemble.iter().filter(|m| m.metrics().zone(t) == zone).count();
+        let agree = self.ensemble.iter().filter(|m| m.metrics.zone(t) == zone).count();
         (zone, if n == 0 { 0.0 } else { agree as f64 / n as f64 })
     }
 
@@ -198,29 +155,29 @@ impl Ensemble {
         let n = members.len();
         let pct = |f: &dyn Fn(&Member) -> Option<f64>| Percentiles::of(members.iter().map(f));
         let spread = Spread {
-            inclination_cm_s: pct(&|m| m.inclination_cm_s),
-            inclination_fit_cm_s: pct(&|m| m.inclination_fit_cm_s),
-            u0_max_m_s: pct(&|m| Some(m.u0_max_m_s)),
-            spl_max_db: pct(&|m| m.spl_max_db),
+            inclination_cm_s: pct(&|m| m.metrics.inclination_cm_s),
+            inclination_fit_cm_s: pct(&|m| m.metrics.inclination_fit_cm_s),
+            u0_max_m_s: pct(&|m| Some(m.metrics.u0_max_m_s)),
+            spl_max_db: pct(&|m| m.metrics.spl_max_db),
         };
         let median = |f: &dyn Fn(&Member) -> Option<f64>| pct(f).median;
-        let mut counts: Vec<usize> = members.iter().map(|m| m.n_impacts).collect();
+        let mut counts: Vec<usize> = members.iter().map(|m| m.metrics.n_impacts).collect();
         counts.sort_unstable();
         let mut metrics = Metrics {
             n_impacts: nearest_rank(&counts, 50).unwrap_or(0),
             inclination_cm_s: spread.inclination_cm_s.median,
             inclination_fit_cm_s: spread.inclination_fit_cm_s.median,
             u0_max_m_s: spread.u0_max_m_s.median.unwrap_or(0.0),
-            zdot_abs_max_m_s: median(&|m| Some(m.zdot_abs_max_m_s)).unwrap_or(0.0),
+            zdot_abs_max_m_s: median(&|m| Some(m.metrics.zdot_abs_max_m_s)).unwrap_or(0.0),
             spl_max_db: spread.spl_max_db.median,
-            contact_duration_s: median(&|m| m.contact_duration_s),
-            restitution_mean: median(&|m| m.restitution_mean),
+            contact_duration_s: median(&|m| m.metrics.contact_duration_s),
+            restitution_mean: median(&|m| m.metrics.restitution_mean),
             zone: None,
         };
         metrics.zone = metrics.zone(t);
         let fraction = |k: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
-        let zone3 = members.iter().filter(|m| m.zone == Some(Zone::QuietStrong)).count();
-        let agree = members.iter().filter(|m| m.zone == metrics.zone).count();
+        let zone3 = members.iter().filter(|m| m.metrics.zone == Some(Zone::QuietStrong)).count();
+        let agree = members.iter().filter(|m| m.metrics.zone == metrics.zone).count();
         Ensemble {
             runs: n,
             metrics,
@@ -403,8 +360,7 @@ mod tests {
     }
 
     fn member_with(zone: Option<Zone>, e: f64, spl: f64) -> Member {
-        Member {
-            ball_position_m: 0.0,
+        let metrics = Metrics {
             n_impacts: 5,
             u0_max_m_s: 1.0,
             zdot_abs_max_m_s: 1.0,
@@ -414,8 +370,8 @@ mod tests {
             inclination_cm_s: Some(e),
             inclination_fit_cm_s: Some(e),
             zone,
-            truncated: None,
-        }
+        };
+        Member { ball_position_m: 0.0, metrics, truncated: None }
     }
 
     #[test]
@@ -443,13 +399,16 @@ mod tests {
         let runs: Vec<Member> = [(0.5, 99.0), (1.5, 99.0), (2.0, 102.0), (3.0, 101.0), (0.2, 98.0)]
             .into_iter()
             .map(|(e, spl)| member_with(None, e, spl))
-            .map(|m| Member { zone: m.metrics().zone(&t), ..m })
+            .map(|m| Member { metrics: Metrics { zone: m.metrics.zone(&t), ..m.metrics }, ..m })
             .collect();
         let e = Ensemble::from_members(runs, &t);
         for (spl_db, inclination_cm_s) in [(100.0, 1.0), (98.5, 0.4), (101.5, 2.5), (110.0, 0.1), (90.0, 5.0)] {
             let u = Thresholds { spl_db, inclination_cm_s, ..t };
             let rebuilt = Ensemble::from_members(
-                e.ensemble.iter().map(|m| Member { zone: m.metrics().zone(&u), ..*m }).collect(),
+                e.ensemble
+                    .iter()
+                    .map(|m| Member { metrics: Metrics { zone: m.metrics.zone(&u), ..m.metrics }, ..*m })
+                    .collect(),
                 &u,
             );
             assert_eq!(
@@ -463,7 +422,7 @@ mod tests {
     #[test]
     fn a_member_keeps_the_metrics_it_was_made_of_and_writes_the_zone_as_a_number() {
         let m = member_with(Some(Zone::QuietStrong), 1.5, 99.0);
-        assert_eq!(Member::new(m.ball_position_m, &m.metrics(), None), m);
+        assert_eq!(Member::new(m.ball_position_m, &m.metrics, None), m);
         let json = serde_json::to_string(&m).unwrap();
         assert!(json.contains(r#""zone":3"#) && !json.contains("truncated"), "{json}");
         assert_eq!(serde_json::from_str::<Member>(&json).unwrap(), m);
@@ -494,9 +453,9 @@ mod tests {
             alone.damper.ball_position_m = y0;
             assert_eq!(m.ball_position_m, y0);
             let alone = alone.check().unwrap();
-            assert_eq!(m.metrics(), design::evaluate(&alone, 0, None).unwrap().metrics, "y0 {y0}");
+            assert_eq!(m.metrics, design::evaluate(&alone, 0, None).unwrap().metrics, "y0 {y0}");
         }
-        let spread: Vec<f64> = e.ensemble.iter().filter_map(|m| m.inclination_cm_s).collect();
+        let spread: Vec<f64> = e.ensemble.iter().filter_map(|m| m.metrics.inclination_cm_s).collect();
         assert!(spread.iter().any(|&x| x != spread[0]), "the offsets change e: {spread:?}");
     }
 
@@ -506,7 +465,7 @@ mod tests {
         let single = design::evaluate(&d, 0, None).unwrap().metrics;
         let e = evaluate(&d, 1, None).unwrap().unwrap();
         assert_eq!(e.metrics, single);
-        assert_eq!(e.ensemble[0].metrics(), single);
+        assert_eq!(e.ensemble[0].metrics, single);
         let s = e.spread.inclination_cm_s;
         assert_eq!(
             (s.p10, s.median, s.p90),

@@ -1,3 +1,4 @@
+// Over 800 lines: the one table of every range and every cap, read together.
 //! Every input's range and every run's work budget, in one table that the command line, the
 //! terminal explorer and the config file all use. Pure: no I/O.
 //!

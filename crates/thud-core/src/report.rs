@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::acoustics::{Extremum, Field};
 use crate::contact::Contact;
 use crate::damper::{EnergyLedger, ImpactEvent, Maximum};
-use crate::design::{self, Design, Evaluation, ValidDesign, Zone};
+use crate::design::{self, Design, Evaluation, Metrics, ValidDesign, Zone};
 use crate::ensemble::{Ensemble, Member, Spread};
 use crate::error::ThudError;
 use crate::limits::short;
@@ -176,21 +176,9 @@ pub struct RunReport {
     pub design: Design,
     /// Ball radius (m).
     pub ball_radius_m: f64,
-    pub n_impacts: usize,
-    /// e of Eq 27 and e_fit (cm/s).
-    pub inclination_cm_s: Option<f64>,
-    pub inclination_fit_cm_s: Option<f64>,
-    /// U0max (m/s).
-    pub u0_max_m_s: f64,
-    /// Largest |z'| over the run including t = 0 (m/s).
-    pub zdot_abs_max_m_s: f64,
-    /// SPLmax (dB).
-    pub spl_max_db: Option<f64>,
-    /// Contact duration at U0max (s).
-    pub contact_duration_s: Option<f64>,
-    pub restitution_mean: Option<f64>,
-    /// Zone number 1–4.
-    pub zone: Option<u8>,
+    /// The metrics (Eq 27), written flat with the zone as its number 1–4.
+    #[serde(flatten)]
+    pub metrics: Metrics,
     pub impacts: Vec<ImpactReport>,
     pub maxima: Vec<Maximum>,
     pub energy: EnergyLedger,
@@ -209,20 +197,11 @@ impl RunReport {
     /// The record of `eval`, the evaluation of the design `d`.
     pub fn new(d: &ValidDesign, eval: &Evaluation) -> Result<Self, ThudError> {
         let spls = design::impact_spls(&eval.run, d)?;
-        let m = &eval.metrics;
         let truncation_reason = design::truncation(&eval.run, d.damper.duration_s);
         Ok(RunReport {
             design: d.design().clone(),
             ball_radius_m: d.ball_radius_m(),
-            n_impacts: m.n_impacts,
-            inclination_cm_s: m.inclination_cm_s,
-            inclination_fit_cm_s: m.inclination_fit_cm_s,
-            u0_max_m_s: m.u0_max_m_s,
-            zdot_abs_max_m_s: m.zdot_abs_max_m_s,
-            spl_max_db: m.spl_max_db,
-            contact_duration_s: m.contact_duration_s,
-            restitution_mean: m.restitution_mean,
-            zone: m.zone.map(Zone::number),
+            metrics: eval.metrics,
             impacts: eval.run.impacts.iter().zip(spls).map(|(i, spl)| ImpactReport::new(i, spl)).collect(),
             maxima: eval.run.maxima.clone(),
             energy: eval.run.energy,

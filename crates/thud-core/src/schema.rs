@@ -2,7 +2,7 @@
 //! JSON records, Python's DataFrames) as an ordered list of columns, each with its name, unit
 //! and meaning. The CSV writers take their header from here, Python builds its DataFrames from
 //! here (`thud.schema()`), and the tests check the JSON records, the guide's schema page
-//! (docs/guide/schema.md) and Python's columns against it (issue 26, item 5).
+//! (docs/guide/schema.md) and Python's columns against it.
 //!
 //! Spelling: snake_case, SI, the unit in the name (`mass_kg`, `gap_m`, `spl_max_db`), a count as
 //! `n_…`, a pure number with no suffix; an ensemble's percentiles of a metric `X` as `X_p10`,

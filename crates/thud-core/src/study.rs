@@ -1,4 +1,4 @@
-//! Studies over any numeric parameter (issue 26, item 6): `thud sweep --vary NAME=FROM:TO:N`,
+//! Studies over any numeric parameter: `thud sweep --vary NAME=FROM:TO:N`,
 //! `thud bifurcation --vary …` and Python's `thud.sweep(v0=…, c1=…)` / `thud.bifurcation(…)`.
 //!
 //! One parser ([`Vary::parse`], [`Vary::of_values`]) turns a front end's text or list into a

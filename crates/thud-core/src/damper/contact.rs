@@ -1,3 +1,4 @@
+// Over 800 lines: one integrator, its step, its event location and its energy ledger.
 //! The in-contact integrator of the event solver: adaptive Dormand–Prince 5(4) on the coupled
 //! equations of paper Eq 26 while the ball presses a wall.
 //!
@@ -299,6 +300,29 @@ fn worse(acc: f64, q: f64) -> f64 {
     }
 }
 
+/// Where one contact starts: the system, the force on the main mass `load`, the wall `s = ±1`,
+/// the onset time `t0` (s) and state `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0), the end of the
+/// stretch `t_limit` (s), and `a_bound` (m/s²), a bound on the non-contact relative
+/// acceleration that sizes the reference's first step of a slow contact (the other schemes do
+/// not use it).
+#[derive(Clone, Copy)]
+pub(crate) struct ContactStart<'a, L> {
+    pub sys: &'a Sys,
+    pub load: L,
+    pub s: f64,
+    pub t0: f64,
+    pub y0: State,
+    pub t_limit: f64,
+    pub a_bound: f64,
+}
+
+impl<'a> ContactStart<'a, NoLoad> {
+    /// An isolated contact without a force: at wall +1 from time 0, up to `t_limit` (s).
+    pub(crate) fn free(sys: &'a Sys, y0: State, t_limit: f64) -> Self {
+        ContactStart { sys, load: NoLoad, s: 1.0, t0: 0.0, y0, t_limit, a_bound: 0.0 }
+    }
+}
+
 /// Sees every accepted step of a contact integration: `step(t0, y0, k0, t1, y1, k1)` with the
 /// states at both ends and their derivatives. A closure is one; the event solver's recording is
 /// another, whose `step` is inlined into the step loop (a closure's call is not, and then the
@@ -427,18 +451,8 @@ struct Integration<'a, L, O, const NT: bool> {
 /// `a_bound` (m/s²) bounds the non-contact relative acceleration (used to size the first step of
 /// slow contacts). `obs` sees every accepted step ([`Observer::step`]: states and their
 /// derivatives).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate<L: Load>(
-    sys: &Sys,
-    load: L,
-    s: f64,
-    t0: f64,
-    y0: State,
-    t_limit: f64,
-    budget: &mut usize,
-    a_bound: f64,
-    obs: impl Observer,
-) -> ContactEnd {
+pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize, obs: impl Observer) -> ContactEnd {
+    let ContactStart { sys, load, s, t0, y0, t_limit, a_bound } = start;
     if sys.no_tension {
         run(Integration::<L, _, true>::start(sys, load, s, t0, y0, t_limit, a_bound, obs), budget)
     } else {
@@ -830,101 +844,4 @@ fn refine_root<L: Load, const NT: bool>(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The Fig 9 ball against the free main mass (no spring), hitting the upper wall at 1.4 m/s.
-    fn sys(c1: f64) -> Sys {
-        let p = DamperParams { stiffness_n_m: 0.0, damping_n_s_m: 0.0, c1_n_s_m: c1, ..DamperParams::table2() };
-        Sys::new(&p)
-    }
-
-    fn contact(sys: &Sys, t_limit: f64, budget: usize) -> (ContactEnd, usize) {
-        let mut left = budget;
-        let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
-        let end = integrate(sys, NoLoad, 1.0, 0.0, y0, t_limit, &mut left, 0.0, Unobserved);
-        (end, budget - left)
-    }
-
-    #[test]
-    fn each_way_a_contact_can_end() {
-        let elastic = sys(0.0);
-        let tau = contact_duration(peak_approach(1.4, elastic.kstar, elastic.k_hz), 1.4);
-        let (end, used) = contact(&elastic, 1.0, 10_000);
-        assert_eq!(end.outcome, ContactOutcome::Separated);
-        assert_eq!(end.y[2], 0.0, "the exit is set exactly at δ = 0");
-        assert!((end.t / tau - 1.0).abs() < 1e-6 && (-end.y[3] / 1.4 - 1.0).abs() < 1e-6, "{end:?}");
-        assert!(used < 1000, "{used} steps");
-
-        let (cut, _) = contact(&elastic, 0.5 * tau, 10_000);
-        assert_eq!(cut.outcome, ContactOutcome::EndOfRun);
-        assert_eq!(cut.t, 0.5 * tau);
-        assert!(cut.y[2] > 0.0);
-
-        let (capped, used) = contact(&elastic, 1.0, 5);
-        assert_eq!(capped.outcome, ContactOutcome::WorkCap);
-        assert_eq!(used, 5);
-        assert!(capped.t < tau);
-    }
-
-    #[test]
-    fn stage_loads_by_rotation_are_the_cosines() {
-        let load = Harmonic { f: 2.0, omega: 31.4, phase: 0.7 };
-        for &(t, h) in &[(0.0, 1e-6), (123.456, 3e-5), (7.0, 1.5e-3)] {
-            let fast = load.stages(t, h);
-            for (g, c) in fast.iter().zip([C2, C3, C4, C5, 1.0, 1.0]) {
-                // The direct cosine carries the rounding of θ = Ω·(t + c·h) + φ.
-                let direct = load.accel(t + c * h);
-                let theta_ulp = 4.0 * f64::EPSILON * (load.theta(t) + 1.0);
-                assert!((g - direct).abs() < (theta_ulp + 1e-15) * load.f, "{g} vs {direct}");
-            }
-        }
-    }
-
-    #[test]
-    fn a_cut_contact_resumes_where_it_stopped() {
-        let s = sys(20.0);
-        let tau = contact_duration(peak_approach(1.4, s.kstar, s.k_hz), 1.4);
-        let (whole, _) = contact(&s, 1.0, 10_000);
-        for cut in [0.1, 0.5, 0.93] {
-            let (first, _) = contact(&s, cut * tau, 10_000);
-            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
-            let r = first.resume.expect("a cut contact can resume");
-            let mut left = 10_000;
-            let mut seen_from = f64::NAN;
-            let end = resume(
-                &s,
-                NoLoad,
-                &r,
-                1.0,
-                &mut left,
-                |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
-                    if seen_from.is_nan() {
-                        seen_from = t0;
-                    }
-                },
-            );
-            assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
-            assert_eq!(end.outcome, ContactOutcome::Separated);
-            assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);
-            // The same contact to the integrator's tolerance (RTOL 3e-9 a step).
-            assert!(
-                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-7 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-7,
-                "{cut}: {:?} vs {:?}",
-                end.y,
-                whole.y
-            );
-            assert!((end.pen_max / whole.pen_max - 1.0).abs() < 1e-9);
-        }
-    }
-
-    #[test]
-    fn a_damped_contact_dissipates_what_the_ball_loses() {
-        let s = sys(20.0);
-        let (end, _) = contact(&s, 1.0, 10_000);
-        assert_eq!(end.outcome, ContactOutcome::Separated);
-        // Relative kinetic energy ½·u²/K* before and after; the loss is the contact's dissipation.
-        let lost = 0.5 * (1.4f64.powi(2) - end.y[3].powi(2)) / s.kstar;
-        assert!(lost > 0.0 && (end.y[4] / lost - 1.0).abs() < 1e-6, "{} vs {lost}", end.y[4]);
-    }
-}
+mod tests;

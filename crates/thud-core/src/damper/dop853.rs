@@ -25,9 +25,9 @@
 
 use std::cell::OnceCell;
 
-use super::contact::{ContactOutcome, Load, State, Sys};
+use super::contact::{ContactOutcome, Load, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, Y};
+use super::sundman::{self, root_in, step_end, Dense, Observer, Rhs, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
@@ -117,17 +117,15 @@ struct Integration<'a, L, O, const N: usize> {
 
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
 /// until the exit, the time limit `t_limit` or the step budget.
-#[allow(clippy::too_many_arguments)]
+#[cfg(feature = "research")]
 pub(crate) fn integrate<L: Load>(
-    sys: &Sys,
-    load: L,
-    s: f64,
-    t0: f64,
-    y0: State,
-    t_limit: f64,
+    start: super::contact::ContactStart<'_, L>,
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
+    use super::contact::ContactStart;
+    use super::sundman::{onset, Onset};
+    let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let start = onset(sys, &y0);
     let h = start.theta_length() / STEPS_NOMINAL;
     let Onset { sc, y, .. } = start;
@@ -415,8 +413,9 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::contact::ContactStart;
     use super::super::contact::NoLoad;
-    use super::super::contact::Unobserved;
+    use super::super::contact::{State, Unobserved};
     use super::super::scheme_checks::{self, sys};
     use super::*;
 
@@ -425,7 +424,7 @@ mod tests {
     #[test]
     fn isolated_contacts_match_the_reference_and_the_taylor_scheme() {
         scheme_checks::isolated_contacts(25 * STEP_COST, |s, y0, t_limit, left| {
-            integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved)
+            integrate(ContactStart::free(s, y0, t_limit), left, Unobserved)
         });
     }
 
@@ -435,7 +434,7 @@ mod tests {
     fn a_cut_contact_resumes_where_it_stopped() {
         scheme_checks::cut_contacts(
             &[0.1, 0.5, 0.93],
-            |s, y0, t_limit, left| integrate(s, NoLoad, 1.0, 0.0, y0, t_limit, left, Unobserved),
+            |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
             |s, r, left| resume(s, NoLoad, r, 1.0, left, Unobserved),
         );
     }
@@ -457,7 +456,7 @@ mod tests {
                     assert_eq!(sp.speed_extremum(e * (1.0 - 1e-12)), Some(e), "c1 {c1}, u0 {u0}");
                 }
             };
-            let end = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, obs);
+            let end = integrate(ContactStart::free(&s, y0, 1.0), &mut left, obs);
             assert_eq!(end.outcome, ContactOutcome::Separated);
         }
         assert!(found >= 4, "{found} extrema");
@@ -468,7 +467,7 @@ mod tests {
         let s = sys(20.0, 0.0);
         let y0 = State::new(0.0, 0.0, 0.0, 1.4, 0.0, 0.0);
         let mut left = 3 * STEP_COST + 1;
-        let end = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, Unobserved);
+        let end = integrate(ContactStart::free(&s, y0, 1.0), &mut left, Unobserved);
         assert_eq!(end.outcome, ContactOutcome::WorkCap);
         assert_eq!(left, 0);
         assert!(end.y[2] > 0.0);

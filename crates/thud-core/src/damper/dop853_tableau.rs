@@ -8,6 +8,7 @@
 //! step's rates in place instead of copying them.
 #![allow(clippy::unreadable_literal, clippy::excessive_precision, clippy::too_many_lines)]
 
+// Over 80 lines: the generated stage sums of the tableau, one straight line per stage.
 /// The stages 2 … 12 of one step from `y` (`k[0]` holds the rate there): `f(i, state, k_i, kq_i)` writes the rate of stage `i`.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]

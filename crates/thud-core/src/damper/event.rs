@@ -10,11 +10,13 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::adams;
-use super::contact::{integrate, resume, ContactEnd, ContactOutcome, Load, NoLoad, Observer, Resume, State, Sys};
+use super::contact::{resume, ContactEnd, ContactOutcome, ContactStart, Load, NoLoad, Observer, Resume, State, Sys};
 use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
+use super::integrator::{ContactIntegrator, Reference, SundmanAdams};
+#[cfg(feature = "research")]
+use super::integrator::{SundmanDop853, SundmanTaylor};
 use super::record::{hermite, Recorder};
 use super::stepper::{Start, Stepper};
 use super::sundman::{self, Span};
@@ -345,38 +347,24 @@ impl sundman::Observer for Track<'_> {
     }
 }
 
-/// One contact at wall `s` from its onset `(t0, y0)` (s, state) up to `t_limit` (s) by
-/// `scheme`, charged to `budget`, its steps shown to `obs`: the one place a scheme picks its
-/// integrator (a run's contacts, and `damper::single_contact`'s isolated one). `a_bound` (m/s²)
-/// bounds the main mass's acceleration for the reference's step control.
-#[allow(clippy::too_many_arguments)]
+/// One contact from `start` by `scheme`, charged to `budget`, its steps shown to `obs`: the one
+/// place a scheme picks its integrator (a run's contacts, and `damper::single_contact`'s
+/// isolated one).
 #[inline(always)]
 pub(crate) fn onset_contact<L: Load, O: Observer + sundman::Observer>(
     scheme: ContactScheme,
-    sys: &Sys,
-    load: L,
-    s: f64,
-    t0: f64,
-    y0: State,
-    t_limit: f64,
+    start: ContactStart<'_, L>,
     budget: &mut usize,
-    a_bound: f64,
     obs: O,
 ) -> ContactEnd<Cut> {
     match scheme {
-        ContactScheme::DormandPrince => {
-            integrate(sys, load, s, t0, y0, t_limit, budget, a_bound, obs).map_resume(Cut::Reference)
-        }
-        ContactScheme::SundmanTaylor => {
-            sundman::integrate(sys, load, s, t0, y0, t_limit, budget, obs).map_resume(Cut::Sundman)
-        }
-        ContactScheme::SundmanDop853 => {
-            dop853::integrate(sys, load, s, t0, y0, t_limit, budget, obs).map_resume(Cut::Dop853)
-        }
+        ContactScheme::DormandPrince => Reference::integrate(start, budget, obs).map_resume(Cut::Reference),
+        #[cfg(feature = "research")]
+        ContactScheme::SundmanTaylor => SundmanTaylor::integrate(start, budget, obs).map_resume(Cut::Sundman),
+        #[cfg(feature = "research")]
+        ContactScheme::SundmanDop853 => SundmanDop853::integrate(start, budget, obs).map_resume(Cut::Dop853),
         // (A contact it cuts is carried on by DOP853.)
-        ContactScheme::SundmanAdams => {
-            adams::integrate(sys, load, s, t0, y0, t_limit, budget, obs).map_resume(Cut::Dop853)
-        }
+        ContactScheme::SundmanAdams => SundmanAdams::integrate(start, budget, obs).map_resume(Cut::Dop853),
     }
 }
 
@@ -384,6 +372,7 @@ pub(crate) fn onset_contact<L: Load, O: Observer + sundman::Observer>(
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Cut {
     Reference(Resume),
+    #[cfg(feature = "research")]
     Sundman(sundman::Resume),
     Dop853(dop853::Resume),
 }
@@ -482,7 +471,8 @@ impl<'a, F: Flight> EventSim<'a, F> {
             (None, scheme) => {
                 let y0 = State::new(self.x, self.v, 0.0, u_in, 0.0, 0.0);
                 let a_bound = self.flight.contact_a_bound(self.x, self.v);
-                let end = onset_contact(scheme, &sys, load, s, self.t, y0, t_stop, &mut self.budget, a_bound, obs);
+                let start = ContactStart { sys: &sys, load, s, t0: self.t, y0, t_limit: t_stop, a_bound };
+                let end = onset_contact(scheme, start, &mut self.budget, obs);
                 (end, (0.0, 0.0))
             }
             (Some(o), _) => {
@@ -490,6 +480,7 @@ impl<'a, F: Flight> EventSim<'a, F> {
                     Cut::Reference(r) => {
                         resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Reference)
                     }
+                    #[cfg(feature = "research")]
                     Cut::Sundman(r) => {
                         sundman::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Sundman)
                     }

@@ -29,7 +29,7 @@ pub(crate) struct Windows {
     inv_len: f64,
     /// The windows still open, from the next to close on: `open[i]` is window `closed() + i`.
     /// A long flight touches many windows (its extrema) before its probes close them, so a
-    /// window is found by its index, not searched for (issue 24, item 2).
+    /// window is found by its index, not searched for.
     open: VecDeque<WindowAcc>,
     /// The amplitude of every closed window (m), by index.
     amplitudes: Vec<f32>,

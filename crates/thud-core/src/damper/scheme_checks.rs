@@ -3,7 +3,8 @@
 //! cut by its time limit carried on as if never cut, by the fast ones ([`super::dop853`],
 //! [`super::adams`]).
 
-use super::contact::{self, ContactEnd, ContactOutcome, NoLoad, State, Sys};
+use super::contact::ContactStart;
+use super::contact::{self, ContactEnd, ContactOutcome, State, Sys};
 use super::sundman;
 use super::DamperParams;
 
@@ -29,9 +30,13 @@ pub(crate) fn isolated_contacts<R>(max_budget: usize, new: impl Fn(&Sys, State, 
         let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
         let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
         let mut left = 100_000;
-        let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
+        let old = contact::integrate(
+            ContactStart { a_bound: a, ..ContactStart::free(&s, y0, 1.0) },
+            &mut left,
+            contact::Unobserved,
+        );
         let mut left = 100_000;
-        let taylor = sundman::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
+        let taylor = sundman::integrate(ContactStart::free(&s, y0, 1.0), &mut left, contact::Unobserved);
         let mut left = 100_000;
         let new = new(&s, y0, 1.0, &mut left);
         let used = 100_000 - left;

@@ -1,4 +1,4 @@
-//! Stroboscopic sampling of a forced run (issue 27): the state at every half forcing period
+//! Stroboscopic sampling of a forced run: the state at every half forcing period
 //! after a transient, every impact, and the state at the end — what the bifurcation diagram,
 //! the impact map and the basins of attraction ([`crate::dynamics`]) are drawn from. The run is
 //! the event solver's ordinary forced run, stopped at each sample time and resumed

@@ -66,11 +66,13 @@ pub(crate) const STEP_COST: usize = 12;
 pub(crate) struct Series {
     /// `[x, x', σ, δ', E_c, E_v, t − t_onset]`, each `NC` coefficients.
     pub c: [[f64; NC]; 7],
-    /// The unclamped bracket `K_HZ·σ³ + c1·δ'` (N).
+    /// The unclamped bracket `K_HZ·σ³ + c1·δ'` (N): where the Taylor scheme's clamp switches.
+    #[cfg_attr(not(feature = "research"), allow(dead_code))]
     pub raw: [f64; NC],
 }
 
 /// `Σ_{j=0..=k} a_j·b_{k−j}`: coefficient `k` of the product of two series.
+#[cfg(feature = "research")]
 #[inline(always)]
 #[allow(clippy::range_plus_one, reason = "a half-open range: `0..=k`'s iterator checks its end twice a turn")]
 fn cauchy(a: &[f64; NC], b: &[f64; NC], k: usize) -> f64 {
@@ -84,6 +86,7 @@ fn cauchy(a: &[f64; NC], b: &[f64; NC], k: usize) -> f64 {
 impl Series {
     /// The series of the motion from state `y` (contact onset at `t_onset`, wall `s`), with the
     /// clamp holding (`clamped`, F = 0) or not.
+    #[cfg(feature = "research")]
     #[inline(always)]
     pub(crate) fn expand<L: Load>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y, clamped: bool) -> Self {
         if clamped {
@@ -93,7 +96,9 @@ impl Series {
         }
     }
 
+    // Over 80 lines: one pass of the Taylor recursion, every order's terms built in one loop.
     /// [`Series::expand`] with the clamp's state `CL` fixed at compile time.
+    #[cfg(feature = "research")]
     #[inline(always)]
     fn expand_in<L: Load, const CL: bool>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y) -> Self {
         let clamped = CL;
@@ -523,9 +528,11 @@ impl Observer for super::contact::Unobserved {
 
 /// Where and how a contact integration ended (the peak penetration located on the step's
 /// series).
+#[cfg(feature = "research")]
 pub(crate) type End = super::contact::ContactEnd<Resume>;
 
 /// A contact cut by its time limit, as it stood.
+#[cfg(feature = "research")]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Resume {
     s: f64,
@@ -540,8 +547,10 @@ pub(crate) struct Resume {
 
 /// Clamp switches located exactly per contact (see `contact.rs`); past them the clamp's state
 /// is taken at each step's start.
+#[cfg(feature = "research")]
 const MAX_SWITCHES: usize = 16;
 
+#[cfg(feature = "research")]
 struct Integration<'a, L, O> {
     sys: &'a Sys,
     load: L,
@@ -590,17 +599,14 @@ pub(crate) fn onset(sys: &Sys, y0: &State) -> Onset {
 
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
 /// until the exit, the time limit `t_limit` or the step budget.
-#[allow(clippy::too_many_arguments)]
+#[cfg(feature = "research")]
 pub(crate) fn integrate<L: Load>(
-    sys: &Sys,
-    load: L,
-    s: f64,
-    t0: f64,
-    y0: State,
-    t_limit: f64,
+    start: super::contact::ContactStart<'_, L>,
     budget: &mut usize,
     obs: impl Observer,
 ) -> End {
+    use super::contact::ContactStart;
+    let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let Onset { amax, tau, sc, y } = onset(sys, &y0);
     // The contact's length in θ: about 1.9·τ/√α_max (the integral of dt/√δ over a half sine).
     let h = 0.3 * tau / amax.sqrt();
@@ -609,6 +615,7 @@ pub(crate) fn integrate<L: Load>(
 }
 
 /// Carries on a contact cut by its time limit up to the new limit `t_limit`.
+#[cfg(feature = "research")]
 pub(crate) fn resume<L: Load>(
     sys: &Sys,
     load: L,
@@ -635,6 +642,7 @@ pub(crate) fn resume<L: Load>(
 }
 
 /// What ends a step early.
+#[cfg(feature = "research")]
 #[derive(Clone, Copy, PartialEq)]
 enum Cut {
     Exit,
@@ -642,6 +650,7 @@ enum Cut {
     Switch,
 }
 
+#[cfg(feature = "research")]
 impl<L: Load, O: Observer> Integration<'_, L, O> {
     fn run(mut self, budget: &mut usize) -> End {
         let tau_lim = self.t_limit - self.t_onset;
@@ -748,60 +757,4 @@ impl<L: Load, O: Observer> Integration<'_, L, O> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::super::contact::{self, NoLoad};
-    use super::super::scheme_checks::sys;
-    use super::*;
-
-    /// Isolated contacts from the same state: the release speed, time and dissipation of the
-    /// reference (Dormand–Prince in t, whose own error is ~1e-9 of the speed) within 2e-8.
-    #[test]
-    fn isolated_contacts_match_the_reference() {
-        for (c1, k, u0, x0) in
-            [(0.0, 0.0, 1.4, 0.0), (20.0, 0.0, 1.4, 0.0), (20.0, 500.0, 0.3, -0.02), (60.0, 500.0, 2.0, 0.02)]
-        {
-            let s = sys(c1, k);
-            let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
-            let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
-            let mut left = 100_000;
-            let old = contact::integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, a, contact::Unobserved);
-            let mut left = 100_000;
-            let new = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
-            assert_eq!(old.outcome, ContactOutcome::Separated);
-            assert_eq!(new.outcome, ContactOutcome::Separated);
-            assert!((old.y[3] - new.y[3]).abs() < 2e-8 * u0, "{:?} vs {:?}", old.y, new.y);
-            assert!((old.t / new.t - 1.0).abs() < 2e-8, "{} vs {}", old.t, new.t);
-            assert!((old.pen_max / new.pen_max - 1.0).abs() < 2e-8);
-            assert!((old.y[4] - new.y[4]).abs() < 2e-8 * 0.5 * u0 * u0 / s.kstar, "{:?} vs {:?}", old.y, new.y);
-            if c1 == 0.0 && k == 0.0 {
-                // Two free bodies, elastic: the relative speed comes back exactly.
-                assert!((new.y[3] + u0).abs() < 1e-12 * u0, "{}", new.y[3]);
-            }
-        }
-    }
-
-    /// A contact cut by its time limit ends exactly there and carries on as if never cut.
-    #[test]
-    fn a_cut_contact_resumes_where_it_stopped() {
-        let s = sys(20.0, 500.0);
-        let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
-        let mut left = 100_000;
-        let whole = integrate(&s, NoLoad, 1.0, 0.0, y0, 1.0, &mut left, contact::Unobserved);
-        for cut in [0.1, 0.5, 0.93] {
-            let mut left = 100_000;
-            let first = integrate(&s, NoLoad, 1.0, 0.0, y0, cut * whole.t, &mut left, contact::Unobserved);
-            assert_eq!(first.outcome, ContactOutcome::EndOfRun);
-            assert_eq!(first.t, cut * whole.t);
-            let r = first.resume.expect("a cut contact can resume");
-            let end = resume(&s, NoLoad, &r, 1.0, &mut left, contact::Unobserved);
-            assert_eq!(end.outcome, ContactOutcome::Separated);
-            assert!((end.t / whole.t - 1.0).abs() < 1e-12, "{} vs {}", end.t, whole.t);
-            assert!(
-                (end.y[3] / whole.y[3] - 1.0).abs() < 1e-11 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-10,
-                "{cut}: {:?} vs {:?}",
-                end.y,
-                whole.y
-            );
-        }
-    }
-}
+mod tests;

@@ -6,7 +6,7 @@ use super::{
     MODEL_HELPS, PULSES, PULSE_HELPS, QUAD_SIGNS, SOURCES,
 };
 use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
-use crate::contact::{self, Contact, Impact, Target};
+use crate::contact::{self, Contact, Impact, Material, Target};
 use crate::design::{BallSize, Design, Model};
 use crate::error::ThudError;
 use crate::limits::{self, short, Range};
@@ -180,19 +180,7 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
     let model = a.model.or(base.map(|d| d.model)).unwrap_or_default();
     physical_conflicts(&given, model)?;
     let physical = model == Model::Physical;
-    let base_materials = base.and_then(Design::materials_used);
-    let sphere = match (&a.sphere, &base_materials, physical) {
-        (Some(s), _, _) => Some(contact::material(s).map_err(|e| given.respell(e.renamed("sphere")))?),
-        (None, Some(m), true) => Some(m.sphere_material()?),
-        (None, None, true) => Some(contact::material(crate::design::PHYSICAL_DEFAULT_SPHERE)?),
-        (None, _, false) => None,
-    };
-    let plate = match (&a.plate, &sphere, &base_materials) {
-        (Some(p), _, _) => Some(contact::material(p).map_err(|e| given.respell(e.renamed("plate")))?),
-        (None, Some(_), Some(m)) if physical => Some(contact::material(&m.plate)?),
-        (None, Some(_), _) => Some(contact::material("steel")?),
-        (None, None, _) => None,
-    };
+    let (sphere, plate) = materials(&a, base, physical, &given)?;
     // The base's ball as the base fixes it (a preset's as a design's: its mass and density, or
     // its radius); without a base, Fig 2's ball of fixed radius 19.05 mm.
     let base_ball = base.map_or(BaseBall { mass_kg: 0.0405, size: BallSize::Radius(0.01905) }, |d| {
@@ -244,6 +232,47 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
     limits::U0.check_as(&given.spell("u0"), u0)?;
     let impact = Impact { mass_kg, u0_m_s: u0, k_hz, target };
     impact.validate().map_err(|e| given.respell(e))?;
+    let (observer, radiation) = heard(&a, base, physical);
+    Ok(PulseInput {
+        radius_m,
+        impact,
+        observer,
+        radiation,
+        model,
+        typed: (given.has("radius"), given.has("mass"), given.has("r"), spelling),
+    })
+}
+
+/// The sphere's and the plate's materials of one impact: as named, else (physical model) the
+/// base's or the paper's acrylic sphere; the plate is steel (or, physical, the base's) once a
+/// sphere is known; none without a sphere or a plate.
+fn materials(
+    a: &PulseDraft,
+    base: Option<&Design>,
+    physical: bool,
+    given: &Given<'_, PulseDraft>,
+) -> Result<(Option<Material>, Option<Material>), ThudError> {
+    let base_materials = base.and_then(Design::materials_used);
+    let sphere = match (&a.sphere, &base_materials, physical) {
+        (Some(s), _, _) => Some(contact::material(s).map_err(|e| given.respell(e.renamed("sphere")))?),
+        (None, Some(m), true) => Some(m.sphere_material()?),
+        (None, None, true) => Some(contact::material(crate::design::PHYSICAL_DEFAULT_SPHERE)?),
+        (None, _, false) => None,
+    };
+    let plate = match (&a.plate, &sphere, &base_materials) {
+        (Some(p), _, _) => Some(contact::material(p).map_err(|e| given.respell(e.renamed("plate")))?),
+        (None, Some(_), Some(m)) if physical => Some(contact::material(&m.plate)?),
+        (None, Some(_), _) => Some(contact::material("steel")?),
+        (None, None, _) => None,
+    };
+    Ok((sphere, plate))
+}
+
+/// Where and how one impact is heard: the observer and the radiation the draft `a` gives, else
+/// the base's, else Fig 2's (a dipole at r 0.7 m, θ 45°, the paper's air and half-sine pulse);
+/// with the physical model the air follows from its temperature and pressure and the pulse is
+/// the exact Hertz pulse.
+fn heard(a: &PulseDraft, base: Option<&Design>, physical: bool) -> (Observer, Radiation) {
     let base_air = base.as_ref().map_or(Air::default(), |d| d.radiation.air);
     let atmosphere = base.map(|d| d.atmosphere).unwrap_or_default();
     let air = if physical {
@@ -264,14 +293,7 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
     } else {
         a.pulse.or(base.as_ref().map(|d| d.radiation.pulse)).unwrap_or_default()
     };
-    Ok(PulseInput {
-        radius_m,
-        impact,
-        observer,
-        radiation: Radiation { source, quad_signs, air, pulse },
-        model,
-        typed: (given.has("radius"), given.has("mass"), given.has("r"), spelling),
-    })
+    (observer, Radiation { source, quad_signs, air, pulse })
 }
 
 impl PulseInput {

@@ -144,7 +144,7 @@ fn the_first_problem_in_table_order_is_reported_whatever_the_order_given() {
 
 #[test]
 fn combinations_the_command_line_refuses_in_clap_are_refused_here() {
-    // A radius and a density fix the ball's mass (no longer a conflict: issue 23); a mass as
+    // A radius and a density fix the ball's mass (not a conflict); a mass as
     // well over-determines it, refused when the three disagree.
     let d = design(Design::default(), &text(&[("density", "1000"), ("radius", "1cm")]), Spelling::Keyword).unwrap();
     assert!((d.damper.impact_mass_kg - contact::sphere_mass(0.01, 1000.0)).abs() < 1e-15);
