@@ -24,5 +24,5 @@ mod update;
 
 pub use super::view::{Panel, PulseView};
 pub use change::changes;
-pub use state::{best_zone3, App, Best, ChartState, ChartView, Mode, Options, Pinned, Status, TourState};
+pub use state::{best_zone3, App, Best, ChartState, ChartView, Host, Mode, Options, Pinned, Screen, Status, TourState};
 pub use update::Msg;
