@@ -19,14 +19,14 @@
 //! typed keys of `cache_key` (built on `fingerprint`); `ui` (`draw` and the layout, reading
 //! the state only) drawing one module per area: `header`, `status`, `footer`, `caption` (the
 //! tour's), `popups` (help and the lists), and the panels `params`, `readout`, `waveform`,
-//! `polar`, `history`, `chart`, `response`, `bifurcation`, `anim`, `table1` (Table 1 beside
+//! `polar`, `history`, `chart`, `response`, `bifurcation`, `anim` and `table1` (Table 1 beside
 //! both models), the readout's and the chart's view-models beside their widgets (the small
-//! panels' few lines stay in `ui`, as the app imports those widgets' types), their frames from `titles` (on
-//! `plot` and `theme`, whose ASCII spelling is [`crate::ascii`]'s); `fields` (the editable parameters), `explain` (what
-//! each field and number means), `files` (the export menu), `tour` (the guided tour's
-//! steps), `keys` (the key table), `input_reader` (the input thread) on `input_parse` (the
-//! terminal's bytes to crossterm events, a bracketed paste held to a time and a size), `hangup`
-//! and `terminal` (setup and restore).
+//! panels' few lines stay in `ui`, as the app imports those widgets' types), their frames from
+//! `titles` (on `plot` and `theme`, whose ASCII spelling is [`crate::ascii`]'s); `fields` (the
+//! editable parameters), `explain` (what each field and number means), `files` (the export
+//! menu), `tour` (the guided tour's steps), `keys` (the key table), `input_reader` (the input
+//! thread) on `input_parse` (the terminal's bytes to crossterm events, a bracketed paste held
+//! to a time and a size), `hangup` and `terminal` (setup and restore).
 
 pub mod anim;
 pub mod app;
