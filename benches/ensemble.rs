@@ -1,8 +1,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! The robust design chart (issue 11, item 5): 20 × 20 cells × 16 ensemble runs = 6 400 runs of
+//! The robust design chart: 20 × 20 cells × 16 ensemble runs = 6 400 runs of
 //! 2 s by the event-driven solver, against ONE design by the paper's Newmark-β at dt 1e-7 s
 //! (the Fig 9 design, 2 s), measured side by side in one bench run. Target: the chart under 3×
-//! the Newmark design (issue 11), then under 1.5× (issue 27; measured 1.29–1.33×, docs/model.md
+//! the Newmark design, then under 1.5× (measured 1.29–1.33×, docs/model.md
 //! §11). Both include the metrics (e, e_fit, U0max, SPLmax, zone).
 
 use std::hint::black_box;

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! Benchmarks of forced vibration (issue 11) beside the Newmark reference design, measured in
+//! Benchmarks of forced vibration beside the Newmark reference design, measured in
 //! the same run so that every figure can be given as a ratio to it:
 //!
 //! - the reference: Newmark-β at dt 1e-7 s on the Fig 9 design, 2 s (the paper's method);

@@ -81,7 +81,7 @@ fn chart_fill(c: &mut Criterion) {
         let _ = tx.send(Msg::Work(d));
     });
     let mut step = 0u32;
-    // The explorer's robust chart (issue 27): N = 16 runs a cell over the same grids.
+    // The explorer's robust chart: N = 16 runs a cell over the same grids.
     let cases = [
         ("coarse 6x5", Grids { coarse: None, fine: Grid::standard(6, 5) }, 1),
         ("default: 6x5 then 16x12", Grids::default(), 1),

@@ -1,3 +1,4 @@
+// Over 800 lines: every file rule (no clobber, no symlink, atomic writes) kept in one place, with its tests.
 //! Every file thud writes (exports, sweep parts, merges, `paper all`, saved designs, the config)
 //! and every settings, design or part file it reads goes through this module, so each rule below
 //! holds everywhere:

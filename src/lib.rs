@@ -10,6 +10,7 @@ pub use thud_core::{
     params, report, response, study, units, verdict, walk, ThudError,
 };
 
+pub mod ascii;
 pub mod config;
 pub mod export;
 pub mod fsio;

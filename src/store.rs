@@ -67,7 +67,7 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 }
 
 /// The line starts of a text, found once, so that placing each of many problems costs a
-/// binary search and its own line, not a scan from the start (issue 24, item 3).
+/// binary search and its own line, not a scan from the start.
 #[derive(Debug)]
 pub struct Lines<'t> {
     text: &'t str,

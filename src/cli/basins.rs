@@ -1,5 +1,5 @@
-//! `thud basins --grid N`: the basins of attraction of a forced design over the ball's start
-//! (issue 27): N offsets y0 across the clearance × N velocities w0 over `--w0 FROM:TO`, each
+//! `thud basins --grid N`: the basins of attraction of a forced design over the ball's start:
+//! N offsets y0 across the clearance × N velocities w0 over `--w0 FROM:TO`, each
 //! start's attractor (its orbit's type and amplitude), drawn as a map with the share of each.
 
 use clap::Args;

@@ -1,5 +1,5 @@
 //! `thud bifurcation --vary NAME=FROM:TO:N`: the bifurcation diagram of a forced design over
-//! any numeric parameter (issue 27): per value, after `--transient` periods, the stroboscopic
+//! any numeric parameter: per value, after `--transient` periods, the stroboscopic
 //! samples x(kT), x'(kT) over `--periods` N and every impact (phase, wall, relative speed),
 //! the orbit's type and the bands of equal types. Also the shared flags and writers of
 //! `impact-map` and `basins`.

@@ -1,4 +1,4 @@
-//! `thud impact-map`: the Poincaré section on impacts of one forced design (issue 27): after
+//! `thud impact-map`: the Poincaré section on impacts of one forced design: after
 //! `--transient` periods, every impact over `--periods` N as the force's phase against the
 //! relative impact speed, with the orbit's type.
 

@@ -119,7 +119,7 @@ impl AsciiArgs {
     #[must_use]
     pub fn figure(self, svg: String) -> String {
         if self.ascii {
-            crate::tui::theme::ascii_figure(svg)
+            crate::ascii::figure(svg)
         } else {
             svg
         }
@@ -130,7 +130,7 @@ impl AsciiArgs {
     #[must_use]
     pub fn text(self, text: String) -> String {
         if self.ascii && !text.is_ascii() {
-            crate::tui::theme::fold(&text)
+            crate::ascii::fold(&text)
         } else {
             text
         }
@@ -223,7 +223,7 @@ fn missing_subcommand(args: &[String]) -> Option<(String, Vec<String>)> {
 /// The whole command line: parses the arguments (a clap error becomes one line, exit 2; help
 /// and version print and exit 0), runs the command, returns the exit code.
 pub fn main() -> i32 {
-    // Parsed as the OS gave them: a file name is bytes, not necessarily UTF-8 (issue 18, item 9).
+    // Parsed as the OS gave them: a file name is bytes, not necessarily UTF-8.
     let raw: Vec<std::ffi::OsString> = std::env::args_os().collect();
     let args: Vec<String> = raw.iter().map(|a| a.to_string_lossy().into_owned()).collect();
     match Cli::try_parse_from(&raw) {

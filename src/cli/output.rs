@@ -2,11 +2,12 @@
 //! command quietly, any other failure is reported), and the finite check every number passes
 //! before it leaves — a NaN or ∞ anywhere in a result is an internal error, never a value.
 //!
-//! The check is done on the data where the data is at hand ([`check_finite`] walks anything
-//! `Serialize` — needed because `serde_json` would print NaN as `null`, indistinguishable from
-//! "no value") and on the text where only text is at hand ([`non_finite_word`]: Rust formats a
-//! non-finite `f64` as `NaN`, `inf` or `-inf` whatever the precision). serde has no ready-made
-//! "visit every float" walker, hence the small serializer here.
+//! The check is done on the data where the data is at hand ([`check_finite`]: the engine's
+//! [`crate::finite::check`] visits every number of anything `Serialize` through the one
+//! serializer walk, [`crate::walk`] — needed because `serde_json` would print NaN as `null`,
+//! indistinguishable from "no value") and on the text where only text is at hand
+//! ([`non_finite_word`]: Rust formats a non-finite `f64` as `NaN`, `inf` or `-inf` whatever the
+//! precision).
 
 use std::io::{self, BufWriter, Stdout, Write};
 

@@ -244,6 +244,7 @@ fn text(d: &Design, r: &Response, continuation: bool) -> String {
 /// A text plot of the amplitude (log scale) against the frequency: `*` with the damper (`u`/`d`
 /// for the rising and falling sweeps of a continuation, `d` drawn over `u` where they meet), `o`
 /// without it; a point that is not a steady state `?` (not settled) or `!` (truncated).
+// Over 80 lines: one text canvas: the axes, their ticks and every sweep's marks drawn in order.
 pub fn plot(r: &Response, width: usize, height: usize) -> String {
     let all: Vec<&response::ResponsePoint> = r.sweeps.iter().flat_map(|s| &s.points).collect();
     let f_lo = all.iter().map(|p| p.freq_hz).fold(f64::INFINITY, f64::min);

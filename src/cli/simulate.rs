@@ -156,7 +156,7 @@ fn ensemble_summary(d: &Design, e: &Ensemble, truncated: Option<&str>) -> String
         );
     }
     if d.damper.forced() {
-        // The runs' spread comes from the attractors their starts reach (issue 27, item 3).
+        // The runs' spread comes from the attractors their starts reach.
         s += "\n(runs that differ may have reached different orbits: `thud basins` maps which ball start reaches which)\n";
     }
     s
@@ -199,6 +199,7 @@ pub fn describe(d: &Design) -> String {
     )
 }
 
+// Over 80 lines: the report's lines in the order printed, one short block per figure.
 fn summary(d: &ValidDesign, e: &Evaluation, show: usize, truncated: Option<&str>) -> Result<String, ThudError> {
     let m = &e.metrics;
     let mut s = format!("design    {}\n", describe(d));

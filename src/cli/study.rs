@@ -1,5 +1,5 @@
 //! `thud sweep --vary NAME=FROM:TO:N` (repeatable): a study over any numeric parameter of the
-//! engine's table (issue 26, item 6). The grid is the product of the axes in C order (the last
+//! engine's table. The grid is the product of the axes in C order (the last
 //! `--vary` fastest); each cell is the base design with its values, checked again as a whole,
 //! and run as `thud simulate` runs it (with a force, its steady state too).
 

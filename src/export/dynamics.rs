@@ -1,4 +1,4 @@
-//! Files of the studies and of the dynamics (issues 26 and 27): the CSV tables of a study over
+//! Files of the studies and of the dynamics: the CSV tables of a study over
 //! any parameter (`sweep --vary`), of a bifurcation diagram (one row per sample or impact),
 //! of an impact map and of a basin map; and their figures (SVG, and PDF through [`super::pdf`]):
 //! x(kT) and the impact speed against the parameter, the impact map, the basins.
@@ -202,6 +202,7 @@ const TRUNCATED: &str = "#000000";
 /// The bifurcation diagram: above, x(kT) (mm) against the parameter; below, the relative
 /// impact speed (m/s) of every impact after the transient. With continuation the rising sweep
 /// is drawn in blue dots, the falling one in vermilion squares, so hysteresis shows.
+// Over 80 lines: two stacked panels drawn top to bottom, each step a few lines.
 pub fn bifurcation_svg(b: &Bifurcation, title: &str, look: &Look) -> String {
     let mut svg = Svg::figure(look, (svg::WIDTH, 760.0), title);
     let (width, height) = (svg.width(), svg.height());

@@ -590,6 +590,7 @@ fn round_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
 /// The frequency response (docs/model.md §6.4): the steady amplitude against the forcing
 /// frequency with the damper (one series per sweep) and without it (the closed form), on a log
 /// scale in mm; below, `Leq` at the observer against the frequency.
+// Over 80 lines: two stacked panels (amplitude, Leq) drawn top to bottom.
 pub fn response(r: &crate::response::Response, title: &str, look: &Look) -> String {
     use crate::response::Direction;
     let mut svg = Svg::figure(look, (WIDTH, 760.0), title);

@@ -240,6 +240,7 @@ fn listener(d: &Design) -> String {
 }
 
 /// The contents of an export of `kind` for `design`.
+// Over 80 lines: one match arm per export kind, each a few lines.
 pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Result<Vec<u8>, ExportError> {
     let d = design.clone();
     let points = opts.points.clamp(2, 1_000_000);

@@ -1,3 +1,4 @@
+// Over 800 lines: the writer, its axes and its legends share one private canvas; the rest is its tests.
 //! A small SVG writer: an escaped document builder, axes with "nice" ticks (linear or log),
 //! line/marker plots with a legend, and a cell map. No fonts or system libraries: text is left
 //! to the viewer's sans-serif font. Coordinates are in SVG pixels; data values in the units of

@@ -13,7 +13,7 @@
 //!
 //! With a design pinned, its run plays below the live one, to the same scale and clock.
 //!
-//! Bytes over SSH (issue 25: under 30 KB per second of playback at 80×24, 1×): ratatui sends
+//! Bytes over SSH (under 30 KB per second of playback at 80×24, 1×): ratatui sends
 //! only the cells that change, so the picture is drawn so that few do. The spring's zigzag
 //! keeps its corners fixed in space (only its end moves), the ghost is its frame's top and
 //! bottom edges (horizontal lines change only at their ends), the time cursor on x(t) is a dot
@@ -305,6 +305,7 @@ impl AnimView<'_> {
 }
 
 impl Widget for AnimView<'_> {
+    // Over 80 lines: the frame drawn back to front: enclosure, spring, masses, ghost, x(t), names.
     fn render(self, area: Rect, buf: &mut Buffer) {
         let inner = self.block.inner(area);
         (&self.block).render(area, buf);

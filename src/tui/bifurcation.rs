@@ -1,4 +1,4 @@
-//! The bifurcation view of the chart panel (issue 27, item 4; `v` with a force on): the
+//! The bifurcation view of the chart panel (`v` with a force on): the
 //! stroboscopic samples x(kT) of the forced design's orbit against the forcing frequency f, as
 //! `thud bifurcation --vary f=FROM:TO:N` computes them ([`crate::dynamics::bifurcation`], each
 //! value from the design's own start, the engine's default transient and sampled periods), over

@@ -279,7 +279,7 @@ pub fn ensemble_under(e: &Ensemble, t: &Thresholds) -> Ensemble {
 }
 
 /// Fraction of the runs that must agree with the zone of the medians for a chart cell to be
-/// drawn as sure (issue 11: shaded when fewer than 70 % agree).
+/// drawn as sure (shaded when fewer than 70 % agree).
 pub const AGREEMENT_SURE: f64 = 0.7;
 
 /// The frequencies of a response curve: `points` from `from_hz` to `to_hz`.

@@ -1,3 +1,4 @@
+// Over 800 lines: the field table and its units, steps and typing stay together so every row behaves alike.
 //! The editable parameters of the panel: how each one is shown (display units), stepped and
 //! typed. Values live in the `Design` in SI units; conversions happen only here, at the edge.
 //! The knobs turn a [`Tunable`]: a design alone, or a [`Setup`] (a design and the explorer's

@@ -10,8 +10,8 @@
 //! good: every key, `q` and Ctrl-C included, was swallowed and the buffer grew without bound.
 //! A thin guard around crossterm's own reader cannot fix that: its parser is `pub(crate)`, its
 //! reader reads the terminal itself (standard input or `/dev/tty`, not a source we could
-//! filter), and it has no call to reset or bound a paste in progress (crossterm issue #1060,
-//! still open; the limits of PR #1061 are unreleased) — once `ESC[200~` reached it, only an
+//! filter), and it has no call to reset or bound a paste in progress (upstream the
+//! report is still open and the fix that bounds it unreleased) — once `ESC[200~` reached it, only an
 //! `ESC[201~` from the terminal would free it. The crates
 //! that parse terminal input do not fit better: `termwiz`'s `InputParser` brings a large
 //! dependency tree, and it and `anes`' parser make their own event types (a conversion layer

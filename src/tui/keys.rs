@@ -1,3 +1,4 @@
+// Over 800 lines: the one key table (dispatch, help, footer) with its parsing, overrides and their tests.
 //! The one key table. The `?` help overlay, the footer hints and the key dispatch all read
 //! [`KEYS`] (the explorer) and [`TOUR_KEYS`] (what changes while the guided tour runs), so a
 //! binding cannot exist without being documented.

@@ -16,18 +16,23 @@
 //! message makes to it: `app/state.rs`, `change`, `screen`, `guide`, `files`, `input`,
 //! `update`); `worker` (requests, results, the five job slots) on `job` (the generic
 //! single-slot runner) calling `compute` (the physics each job does), results tagged with the
-//! typed keys of `cache_key` (built on `fingerprint`); `ui` (layout, one function per area, reading the state only)
-//! drawing the widgets `params`, `readout`, `waveform`, `polar`, `history`, `chart`,
-//! `response`, `table1` (Table 1 beside both models) (on `plot` and `theme`); `fields` (the editable parameters), `explain` (what
-//! each field and number means), `files` (the export menu), `tour` (the guided tour's
-//! steps), `keys` (the key table), `input_reader` (the input thread) on `input_parse` (the
-//! terminal's bytes to crossterm events, a bracketed paste held to a time and a size), `hangup`
-//! and `terminal` (setup and restore).
+//! typed keys of `cache_key` (built on `fingerprint`); `ui` (`draw` and the layout, reading
+//! the state only) drawing one module per area: `header`, `status`, `footer`, `caption` (the
+//! tour's), `popups` (help and the lists), and the panels `params`, `readout`, `waveform`,
+//! `polar`, `history`, `chart`, `response`, `bifurcation`, `anim` and `table1` (Table 1 beside
+//! both models), the readout's and the chart's view-models beside their widgets (the small
+//! panels' few lines stay in `ui`, as the app imports those widgets' types), their frames from
+//! `titles` (on `plot` and `theme`, whose ASCII spelling is [`crate::ascii`]'s); `fields` (the
+//! editable parameters), `explain` (what each field and number means), `files` (the export
+//! menu), `tour` (the guided tour's steps), `keys` (the key table), `input_reader` (the input
+//! thread) on `input_parse` (the terminal's bytes to crossterm events, a bracketed paste held
+//! to a time and a size), `hangup` and `terminal` (setup and restore).
 
 pub mod anim;
 pub mod app;
 pub mod bifurcation;
 pub mod cache_key;
+mod caption;
 pub mod chart;
 pub mod clamp;
 pub mod compute;
@@ -35,7 +40,9 @@ pub mod explain;
 pub mod fields;
 pub mod files;
 pub mod fingerprint;
+mod footer;
 pub mod hangup;
+mod header;
 pub mod history;
 pub mod input_parse;
 pub mod input_reader;
@@ -44,12 +51,15 @@ pub mod keys;
 pub mod params;
 pub mod plot;
 pub mod polar;
+mod popups;
 pub mod readout;
 pub mod response;
 pub mod sgr16;
+mod status;
 pub mod table1;
 pub mod terminal;
 pub mod theme;
+mod titles;
 pub mod tour;
 pub mod ui;
 pub mod view;
@@ -121,16 +131,16 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
     let tour_def = opts.tour.as_ref().map(tour::Tour::load).transpose()?;
     let theme = Palette::from_env(opts.ascii);
     let mut app = App::new(design, &opts.preset, theme);
-    app.tour_def = tour_def.map(Arc::new);
+    app.host.tour_def = tour_def.map(Arc::new);
     app.mouse = opts.mouse;
     app.configure(&config::load_user_config());
     if let Some(t) = opts.theme {
         // The command line wins over config.toml (NO_COLOR still wins over both).
         app.theme = Palette { ascii: app.theme.ascii, ..theme }.with_theme(t);
     }
-    app.data_dir = store::Dirs::project().map(|d| d.data_dir);
+    app.host.data_dir = store::Dirs::project().map(|d| d.data_dir);
     if let Some(dir) = &opts.export_dir {
-        app.export_dir.clone_from(dir);
+        app.host.export_dir.clone_from(dir);
     }
     if crate::threads::calling_thread_only() {
         // The worker slots' parallel work would wait for the calling thread forever.
@@ -221,10 +231,7 @@ pub fn event_loop<B: Backend>(
 pub fn draw<B: Backend>(term: &mut Terminal<B>, app: &mut App) -> Result<(), B::Error> {
     let mut drawn = ui::Drawn::default();
     term.draw(|f| drawn = ui::draw(f, app))?;
-    app.chart_geometry = drawn.geometry;
-    app.chart_shown = drawn.chart_shown;
-    app.field_lines = drawn.fields;
-    app.polar_hit = drawn.polar;
+    app.drawn = drawn;
     Ok(())
 }
 

@@ -323,6 +323,7 @@ fn draw_legend(buf: &mut Buffer, inner: Rect, items: &[(String, Style, u8)], ski
 /// Draws the y title (top-left), the y axis with its ticks and labels, the x axis with its
 /// ticks, labels and title (bottom) in `inner`; returns the plotting area. None when `inner`
 /// is too small for a plot.
+// Over 80 lines: the y axis, then the x axis, each with its ticks, labels and title.
 pub fn draw_axes(
     buf: &mut Buffer,
     inner: Rect,

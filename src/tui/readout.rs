@@ -8,6 +8,9 @@
 //! it, losing first the insides of its bracketed parts (`1.4000 m/s […]`), then them (`1.4000
 //! m/s…`), then its end, each cut marked with `…` (`...` in ASCII); beside a pinned design the
 //! live column is as wide as the longest forms that leave the pinned one room for its own.
+//!
+//! Its view-model is here too: the rows of the live and pinned designs, the note under them
+//! and the title naming the design's orbit ([`readout_rows`], [`readout_title`]).
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -15,7 +18,15 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
+use ratatui::Frame;
+
+use super::app::{App, Panel};
+use super::compute::{ensemble_under, AcousticResult};
 use super::theme::{self, Palette};
+use super::titles::{self, panel_block, title_width};
+use crate::design::{Design, Metrics, Zone, ZoneBy};
+use crate::ensemble::{Ensemble, Percentiles};
+use crate::units::sig;
 use crate::verdict::Verdict;
 use unicode_width::UnicodeWidthStr;
 
@@ -253,6 +264,239 @@ pub fn verdict_words(v: &Verdict) -> String {
     } else {
         format!("orbit {}", v.label())
     }
+}
+
+/// Formats one readout value from a design's metrics.
+type Format<'a> = &'a dyn Fn(&Metrics, &Design) -> String;
+
+/// The marker put after a negative e: the glossary (help page 2) explains it.
+pub const NEGATIVE_E: &str = "(!)";
+
+/// "0.597 cm/s [0.512–0.702]": a median with its p10–p90 (the engine's nearest-rank
+/// percentiles of the ensemble), each to `digits` significant digits.
+pub fn spread(p: &Percentiles, digits: usize, unit: &str) -> String {
+    let v = |x: Option<f64>| x.map_or("—".to_string(), |x| sig(x, digits));
+    match p.median {
+        None => "—".to_string(),
+        Some(_) => format!("{} {unit} [{}–{}]", v(p.median), v(p.p10), v(p.p90)),
+    }
+}
+
+/// The readout's extra rows of a forced design: its steady state over the last N periods
+/// (the engine's [`crate::response::Steady`]), in the units people read.
+fn steady_rows(a: &AcousticResult) -> Vec<(&'static str, String)> {
+    let Some(s) = &a.steady else { return vec![] };
+    let opt = |v: Option<f64>, digits: usize, unit: &str| {
+        v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
+    };
+    if let Some(e) = &a.forced_ensemble {
+        // N > 1: the N runs' settled states, median [p10–p90] (the line without the ball is
+        // the same for every run).
+        let p = &e.spread;
+        let mm = |p: &Percentiles| Percentiles {
+            p10: p.p10.map(|x| x * 1e3),
+            median: p.median.map(|x| x * 1e3),
+            p90: p.p90.map(|x| x * 1e3),
+        };
+        return vec![
+            ("amp", spread(&mm(&p.amplitude_m), 4, "mm")),
+            ("alone", opt(e.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
+            ("cut", spread(&p.reduction_db, 3, "dB")),
+            ("Leq", spread(&p.leq_db, 4, "dB")),
+            ("imp/T", spread(&p.impacts_per_period, 3, "")),
+        ];
+    }
+    vec![
+        ("amp", format!("{} mm", sig(s.amplitude_m * 1e3, 4))),
+        ("alone", opt(s.amplitude_linear_m.map(|x| x * 1e3), 4, "mm")),
+        ("cut", opt(s.reduction_db, 3, "dB")),
+        ("Leq", opt(s.leq_db, 4, "dB")),
+        ("imp/T", sig(s.impacts_per_period, 3)),
+    ]
+}
+
+/// Where a design's run starts, as the readout's forced note says it: "after the 2 m/s
+/// strike" (the main mass's v0), "after the ball's 0.5 m/s start" (w0 alone), or "from rest".
+pub fn start_words(d: &Design) -> String {
+    let p = &d.damper;
+    if p.v0_m_s != 0.0 {
+        format!("after the {} m/s strike", crate::units::short(p.v0_m_s))
+    } else if p.ball_velocity_m_s != 0.0 {
+        format!("after the ball's {} m/s start", crate::units::short(p.ball_velocity_m_s))
+    } else {
+        "from rest".to_string()
+    }
+}
+
+/// The note of a forced design: whether its steady state settled, the start it ran from
+/// (the response view's curve runs from rest), whether it is periodic, and its window's end
+/// (after settling, as `thud simulate --settle`); with N > 1 the share of runs that settled.
+/// The most important words first: the compact readout cuts the note at its edge.
+fn steady_note(a: &AcousticResult, d: &Design) -> Option<String> {
+    let s = a.steady.as_ref()?;
+    let start = start_words(d);
+    if let Some(e) = &a.forced_ensemble {
+        let cut = if e.truncated { ", TRUNCATED" } else { "" };
+        return Some(format!(
+            "{} runs: {:.0}% settled, {start}, {:.0}% periodic{cut}",
+            e.ensemble.len(),
+            100.0 * e.settled_fraction,
+            100.0 * e.periodic_fraction
+        ));
+    }
+    // The design's one verdict, as the readout's title names it ([`readout_title`]); first,
+    // as the note is cut at the readout's edge at 80×24 and 120×40.
+    let v = design_verdict(a)?;
+    Some(format!("{}, {start}, by t {} s", verdict_words(&v), sig(s.window_end_s, 3)))
+}
+
+/// The verdict on the live design's motion ([`crate::verdict::of_design`]): its settled
+/// run's and its orbit's at f, as one. The readout's title and note, and the bifurcation
+/// view's line at f, all name this one.
+pub fn design_verdict(a: &AcousticResult) -> Option<Verdict> {
+    crate::verdict::of_design(a.steady.as_ref().map(|s| s.verdict), a.orbit.as_ref().map(|o| o.run.orbit))
+}
+
+/// The ensemble of a readout under the design's thresholds (reclassified on draw as zones are).
+fn ensemble_of(a: &AcousticResult, d: &Design) -> Option<Ensemble> {
+    a.ensemble.as_ref().map(|e| ensemble_under(e, &d.thresholds))
+}
+
+/// The readout values of one design: (label, value) per row.
+fn readout_values(a: &AcousticResult, d: &Design) -> Vec<(&'static str, String)> {
+    let m = &a.metrics;
+    let opt = |v: Option<f64>, digits: usize, unit: &str| {
+        v.map_or("—".to_string(), |v| format!("{} {unit}", sig(v, digits)))
+    };
+    let by = match d.thresholds.zone_by {
+        ZoneBy::Paper => "by e",
+        ZoneBy::Fit => "by e_fit",
+    };
+    let zone = |m: &Metrics| {
+        m.zone(&d.thresholds)
+            .map_or("— (no e or no sound)".into(), |z: Zone| format!("{} {} ({by})", z.number(), z.describe()))
+    };
+    let negative = |e: Option<f64>, v: String| if e.is_some_and(|e| e < 0.0) { format!("{v} {NEGATIVE_E}") } else { v };
+    let mut rows = if let Some(e) = ensemble_of(a, d) {
+        let s = &e.spread;
+        let mm = &e.metrics;
+        vec![
+            ("U0max", spread(&s.u0_max_m_s, 5, "m/s")),
+            ("e", negative(s.inclination_cm_s.median, spread(&s.inclination_cm_s, 3, "cm/s"))),
+            ("e_fit", spread(&s.inclination_fit_cm_s, 3, "cm/s")),
+            ("SPLmax", spread(&s.spl_max_db, 4, "dB")),
+            ("zone", format!("{}, {:.0}%", zone(mm), 100.0 * e.agreement)),
+            ("impacts", mm.n_impacts.to_string()),
+            ("τ@U0max", opt(mm.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
+            ("R mean", opt(mm.restitution_mean, 3, "")),
+        ]
+    } else {
+        let spec: [(&'static str, Format); 8] = [
+            ("U0max", &|m, _| format!("{} m/s", sig(m.u0_max_m_s, 5))),
+            ("e", &|m, _| negative(m.inclination_cm_s, opt(m.inclination_cm_s, 3, "cm/s"))),
+            ("e_fit", &|m, _| opt(m.inclination_fit_cm_s, 3, "cm/s")),
+            ("SPLmax", &|m, _| opt(m.spl_max_db, 4, "dB")),
+            ("zone", &|m, _| zone(m)),
+            ("impacts", &|m, _| m.n_impacts.to_string()),
+            ("τ@U0max", &|m, _| opt(m.contact_duration_s.map(|t| t * 1e6), 4, "µs")),
+            ("R mean", &|m, _| opt(m.restitution_mean, 3, "")),
+        ];
+        spec.iter().map(|(label, f)| (*label, f(m, d))).collect()
+    };
+    rows.extend(steady_rows(a));
+    rows
+}
+
+/// The readout rows of the live (and pinned) design, and the note under them.
+pub fn readout_rows(app: &App) -> (Vec<Row>, Option<String>) {
+    let live_a = app.acoustic().filter(|_| !app.design_busy());
+    let live = live_a.map(|a| readout_values(a, &app.design));
+    let pinned = app.pinned.as_ref().and_then(|p| p.acoustic.as_ref().map(|a| readout_values(a, &p.design)));
+    // The rows the live design has (its last results' while it computes; the plain eight at first).
+    let labels: Vec<&'static str> = match (&live, app.acoustic()) {
+        (Some(v), _) => v.iter().map(|r| r.0).collect(),
+        (None, Some(a)) if app.design.damper.forced() == a.steady.is_some() => {
+            readout_values(a, &app.design).iter().map(|r| r.0).collect()
+        }
+        _ => ["U0max", "e", "e_fit", "SPLmax", "zone", "impacts", "τ@U0max", "R mean"].to_vec(),
+    };
+    let find = |v: &Option<Vec<(&'static str, String)>>, label: &str| {
+        v.as_ref().map(|v| v.iter().find(|r| r.0 == label).map_or(String::new(), |r| r.1.clone()))
+    };
+    let rows = labels
+        .iter()
+        .map(|label| Row {
+            label,
+            live: find(&live, label).unwrap_or_else(|| "…".to_string()).trim_end().to_string(),
+            pinned: find(&pinned, label).map(|p| p.trim_end().to_string()),
+        })
+        .collect();
+    let negative = live_a.is_some_and(|a| match ensemble_of(a, &app.design) {
+        Some(e) => e.spread.inclination_cm_s.median.is_some_and(|e| e < 0.0),
+        None => a.metrics.inclination_cm_s.is_some_and(|e| e < 0.0),
+    });
+    let note = if let Some(e) = &app.results.error {
+        format!("error: {e}")
+    } else if app.design_busy() {
+        "computing…".to_string()
+    } else if let Some(n) = live_a.and_then(|a| steady_note(a, &app.design)) {
+        // A forced design's note first, settled or not: it says which start the figures are
+        // from (the response view's curve runs from rest).
+        if negative {
+            format!("{n}; {NEGATIVE_E} e < 0")
+        } else {
+            n
+        }
+    } else if negative {
+        format!("{NEGATIVE_E} e < 0: see ? page 2")
+    } else if let Some(e) = live_a.and_then(|a| a.ensemble.as_ref()) {
+        format!("median [p10–p90] of {} runs; % agree", e.runs)
+    } else {
+        format!(
+            "SPL: {} at r {} m, θ {}°",
+            app.design.model.level_name(),
+            sig(app.design.observer.r_m, 3),
+            sig(app.design.observer.theta_rad.to_degrees(), 3)
+        )
+    };
+    (rows, Some(note))
+}
+
+/// The readout's title, `width` columns for it: with a force on, the live design's orbit at
+/// its f as the engine classified it with the readout (`a.orbit`, as `thud bifurcation --vary
+/// f=f:f:1`): `readout: orbit 2/1 sym`. The title, not a row or the note: at 80×24 the compact
+/// readout has no row to spare and cuts its one-line note at its edge, and at 120×40 a row
+/// more would push the note (which start the figures are from) off the tall one. With N > 1
+/// runs the rows are the runs' medians over spread ball offsets, the orbit the design's own
+/// start's: it says so (`from y0`). Always named `readout`; plain ` readout ` where the orbit
+/// does not fit whole, while the design computes (no stale orbit), without a force, and with
+/// the Newmark solver (orbits are sampled with the event solver only).
+pub fn readout_title(app: &App, width: u16) -> String {
+    let plain = " readout ".to_string();
+    let live = app.acoustic().filter(|_| !app.design_busy());
+    let Some((a, v)) = live.and_then(|a| Some((a, design_verdict(a)?))) else { return plain };
+    let words = verdict_words(&v);
+    let options = if a.ensemble.is_some() || a.forced_ensemble.is_some() {
+        vec![format!(" readout: {words} from y0 "), plain]
+    } else if matches!(v, Verdict::Periodic { .. }) {
+        vec![format!(" readout: {words} (impacts/periods) "), format!(" readout: {words} "), plain]
+    } else {
+        vec![format!(" readout: {words} "), plain]
+    };
+    titles::fit(&app.theme, &options, width)
+}
+
+pub(super) fn readout_widget(f: &mut Frame, app: &App, area: Rect, compact: bool) {
+    let (rows, note) = readout_rows(app);
+    let title = readout_title(app, title_width(app, Panel::Readout, area));
+    let view = ReadoutView {
+        block: panel_block(app, Panel::Readout, &title),
+        rows: &rows,
+        note: note.as_deref(),
+        theme: app.theme,
+        compact,
+    };
+    f.render_widget(view, area);
 }
 
 #[cfg(test)]

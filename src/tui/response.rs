@@ -1,4 +1,4 @@
-//! The response view of the chart panel (issue 11): the frequency response of the forced
+//! The response view of the chart panel: the frequency response of the forced
 //! design as the engine computes it ([`crate::response::response`], every frequency from rest
 //! and settled, as `thud response`): the steady amplitude with the damper and without it
 //! against the forcing frequency f, and the level Leq of the rattle below, with the current f
@@ -114,6 +114,7 @@ impl ResponseView<'_> {
 }
 
 impl Widget for ResponseView<'_> {
+    // Over 80 lines: the view drawn top to bottom: axes, curves, the f marker, the legend.
     fn render(self, area: Rect, buf: &mut Buffer) {
         let inner = self.block.inner(area);
         (&self.block).render(area, buf);

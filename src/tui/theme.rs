@@ -22,6 +22,9 @@
 
 use std::borrow::Cow;
 
+/// The text fold every `--ascii` output shares ([`crate::ascii`]).
+pub use crate::ascii::fold;
+
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::border;
@@ -517,103 +520,6 @@ const HIGHLIGHT_ASCII: border::Set = border::Set {
     horizontal_bottom: "=",
 };
 
-/// The ASCII spelling of a non-ASCII character in text, if it has one.
-fn ascii_word(c: char) -> Option<&'static str> {
-    Some(match c {
-        'θ' => "theta",
-        'µ' | 'μ' => "u",
-        'τ' => "tau",
-        'λ' => "lambda",
-        'κ' => "kappa",
-        'ρ' => "rho",
-        'α' => "alpha",
-        'δ' => "delta",
-        'Δ' => "delta ",
-        'ν' => "nu",
-        'π' => "pi",
-        '§' => "section ",
-        'ω' => "omega",
-        'Ω' => "Omega",
-        'β' => "beta",
-        'γ' => "gamma",
-        'ε' => "eps",
-        'ζ' => "zeta",
-        'η' => "eta",
-        'σ' => "sigma",
-        'φ' => "phi",
-        '█' | '■' => "#",
-        '┈' | '╌' => "-",
-        '▲' => "^",
-        '▼' => "v",
-        '✓' => "ok",
-        '·' => "*",
-        '—' | '–' | '−' => "-",
-        '×' => "x",
-        '÷' => "/",
-        '≥' => ">=",
-        '≤' => "<=",
-        '≈' | '≃' | '∼' => "~",
-        '±' => "+/-",
-        '≠' => "!=",
-        '∞' => "inf",
-        '√' => "sqrt",
-        '○' | '◇' => "o",
-        '●' | '◆' => "o",
-        '…' | '⋯' => "...",
-        '→' => "->",
-        '←' => "<-",
-        '↑' => "^",
-        '↓' => "v",
-        '°' => "deg",
-        '▶' => ">",
-        '✗' => "x",
-        '²' => "^2",
-        '³' => "^3",
-        '½' => "1/2",
-        '•' => "o",
-        '’' | '‘' => "'",
-        '“' | '”' => "\"",
-        '│' => "|",
-        '─' => "-",
-        '░' => ":",
-        '┌' | '┐' | '└' | '┘' | '┼' | '┬' | '┴' | '├' | '┤' => "+",
-        _ => return None,
-    })
-}
-
-/// An SVG document of thud's with every character beyond ASCII spelled as [`fold`] spells it
-/// (`−` → `-`, `²` → `^2`, `θ` → `theta`), escaped for XML (`≤` → `&lt;=`): what `--ascii`
-/// writes, from the command line and from the explorer's export key alike.
-#[must_use]
-pub fn ascii_figure(svg: String) -> String {
-    if svg.is_ascii() {
-        return svg;
-    }
-    let mut out = String::with_capacity(svg.len());
-    let mut buf = [0u8; 4];
-    for c in svg.chars() {
-        if c.is_ascii() {
-            out.push(c);
-        } else {
-            out += &crate::export::svg::escape(&fold(c.encode_utf8(&mut buf)));
-        }
-    }
-    out
-}
-
-/// `s` in ASCII: known symbols spelled out (`θ` → `theta`, `µs` → `us`), anything else `?`.
-pub fn fold(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        if c.is_ascii() {
-            out.push(c);
-        } else {
-            out.push_str(ascii_word(c).unwrap_or("?"));
-        }
-    }
-    out
-}
-
 /// The one-cell ASCII stand-in for a non-ASCII cell symbol (the frame's last pass).
 fn ascii_cell(sym: &str) -> &'static str {
     let Some(c) = sym.chars().next() else { return " " };
@@ -636,7 +542,7 @@ fn ascii_cell(sym: &str) -> &'static str {
         '≈' | '≃' | '∼' => "~",
         '…' | '⋯' => ".",
         // Anything else the text fold can spell: its first letter (one cell has room for one).
-        _ => ascii_word(c).map_or("?", |w| &w[..1]),
+        _ => crate::ascii::word(c).map_or("?", |w| &w[..1]),
     }
 }
 
@@ -644,7 +550,7 @@ fn ascii_cell(sym: &str) -> &'static str {
 /// frame's last pass has a spelling for it.
 pub fn spellable(c: char) -> bool {
     let mut b = [0; 4];
-    c.is_ascii() || ascii_word(c).is_some() || ascii_cell(c.encode_utf8(&mut b)) != "?"
+    c.is_ascii() || crate::ascii::word(c).is_some() || ascii_cell(c.encode_utf8(&mut b)) != "?"
 }
 
 /// Replaces every non-ASCII cell of `buf` by an ASCII one (the `--ascii` frame's last pass:
@@ -760,13 +666,6 @@ mod tests {
     }
 
     #[test]
-    fn ascii_spells_what_it_can_instead_of_a_question_mark() {
-        let folded = fold("±0.02 dB, e ≈ 0.5, N ≠ 1, ∞, ○○ none ●● damper, cut…");
-        assert_eq!(folded, "+/-0.02 dB, e ~ 0.5, N != 1, inf, oo none oo damper, cut...");
-        assert!(!folded.contains('?'));
-    }
-
-    #[test]
     fn fit_cuts_by_display_width_and_ends_with_the_ellipsis() {
         let (u, a) = (Palette::dark(), Palette { ascii: true, ..Palette::dark() });
         assert_eq!(u.fit("θ 45.0°", 7), "θ 45.0°", "fits: whole");
@@ -787,12 +686,5 @@ mod tests {
         let lines = vec!["one two".to_string(), "three four".into(), "five".into()];
         assert_eq!(u.fit_lines(lines.clone(), 2, 10), ["one two", "three fou…"]);
         assert_eq!(u.fit_lines(lines.clone(), 3, 10), lines);
-    }
-
-    #[test]
-    fn fold_spells_units_and_symbols_in_ascii() {
-        assert_eq!(fold("θ 45.0° τ@U0max 229 µs N·s/m"), "theta 45.0deg tau@U0max 229 us N*s/m");
-        assert_eq!(fold("a — b → c ≥ d"), "a - b -> c >= d");
-        assert!(fold("日本").is_ascii());
     }
 }

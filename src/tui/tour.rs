@@ -336,7 +336,7 @@ pub fn source_name(source: &TourSource) -> String {
 }
 
 /// Longest step title (in characters) a message names; a longer one is cut with "…", so the
-/// problem after it is never cut away (issue 24, item 5).
+/// problem after it is never cut away.
 const SHOWN_TITLE_CHARS: usize = 24;
 
 /// A step's title for a message: on one line, at most [`SHOWN_TITLE_CHARS`] characters.

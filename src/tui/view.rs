@@ -2,6 +2,34 @@
 //! app's state and the guided tour's steps, which name panels and views (kept apart from
 //! `app.rs` so that the tour does not import the app that runs it).
 
+use ratatui::layout::Rect;
+
+use super::chart::Geometry;
+use super::polar::PolarHit;
+
+/// What a frame drew that the app needs to know: where the chart's cells are (for mouse
+/// clicks) and whether the chart was on screen at all.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Drawn {
+    pub geometry: Option<Geometry>,
+    pub chart_shown: bool,
+    /// Where each shown field of the parameters panel is (its line, its index in `Knob::ALL`).
+    pub fields: Vec<(Rect, usize)>,
+    /// Where the polar's canvas is (a click or drag there sets θ).
+    pub polar: Option<PolarHit>,
+}
+
+impl Drawn {
+    /// This and `other` together (each area is drawn once a frame).
+    pub(crate) fn and(mut self, other: Drawn) -> Drawn {
+        self.geometry = self.geometry.or(other.geometry);
+        self.chart_shown |= other.chart_shown;
+        self.fields.extend(other.fields);
+        self.polar = self.polar.or(other.polar);
+        self
+    }
+}
+
 /// The panels; Tab cycles through them (not the readout, which a tour step may point at).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Panel {

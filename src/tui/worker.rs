@@ -155,7 +155,7 @@ impl ExportJob {
             let ascii = self.ascii && self.kind.is_figure();
             export::export_to_path_with(self.kind, &self.design, &self.options, &self.path, |bytes| {
                 if ascii {
-                    crate::tui::theme::ascii_figure(String::from_utf8_lossy(&bytes).into_owned()).into_bytes()
+                    crate::ascii::figure(String::from_utf8_lossy(&bytes).into_owned()).into_bytes()
                 } else {
                     bytes
                 }

@@ -320,7 +320,7 @@ fn string_errors(file: &str, text: &str) -> Vec<String> {
     found
 }
 
-/// Typed errors end to end (issue 16): no `Result<_, String>` in the app, the engine or the
+/// Typed errors end to end: no `Result<_, String>` in the app, the engine or the
 /// Python module, tests included.
 #[test]
 fn no_result_has_a_bare_string_error() {

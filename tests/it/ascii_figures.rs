@@ -1,4 +1,4 @@
-//! Figures under `--ascii` (issue 26, item 4): every figure thud writes — `export svg|pdf`,
+//! Figures under `--ascii`: every figure thud writes — `export svg|pdf`,
 //! `paper all`, the `--svg` of the studies of orbits — holds only ASCII text with `--ascii`
 //! (the minus sign `-`, `^2`, `theta`, `u` for micro, `tau`), each character spelled rather than
 //! dropped, while the default keeps the true minus sign and the Unicode units.

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! The robust design chart (`ensemble::sweep`, issue 27's benchmark) reports, in every cell,
+//! The robust design chart reports, in every cell,
 //! exactly what the engine says of that cell's design on its own: the cell is
 //! `ensemble::evaluate` of the base design at the cell's (mass, gap), to the last bit, and each
 //! of its runs is `design::evaluate` of that design with the ball at the run's offset. However

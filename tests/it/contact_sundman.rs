@@ -1,8 +1,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! The fast Sundman contact schemes, DOP853 and Adams (`ContactScheme::SundmanDop853`,
 //! `ContactScheme::SundmanAdams`, docs/model.md §11), each against the reference Dormand–Prince
-//! scheme (`ContactScheme::DormandPrince`) and the Sundman–Taylor scheme, with the acceptance of
-//! issue 27 item 6:
+//! scheme (`ContactScheme::DormandPrince`) and the Sundman–Taylor scheme, with the acceptance for a
+//! new contact scheme:
 //!
 //! - impact speeds within 5e-8 m/s of the reference on the Fig 9 design (its first 8 impacts,
 //!   before the rattle amplifies the reference's own ~1e-9 error a contact past that; see

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Figures for everyone (issue 26 item 4): the zone colours and the curves' palette stay apart
+//! Figures for everyone: the zone colours and the curves' palette stay apart
 //! for people with red–green colour blindness.
 //!
 //! Each colour is seen as a deuteranope and as a protanope would see it, by the simulation of

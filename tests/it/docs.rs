@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Documentation that cannot drift (issue 26, items 1 and 2).
+//! Documentation that cannot drift.
 //!
 //! - Every ```console session of the README and of the guide (docs/guide/**/*.md) is run by
 //!   trycmd and its output compared (stdout and stderr together, `? CODE` for an exit status,

@@ -4,7 +4,7 @@
     clippy::case_sensitive_file_extension_comparisons,
     clippy::items_after_statements
 )] // a panic is how a test fails; file names here are ours
-//! Files as found (issue 9, "What was found" 1 and "Bounded reads"): the real binary run with
+//! Files as found: the real binary run with
 //! HOME and the XDG folders in a temporary directory. No export replaces an existing file
 //! without --force; none replaces a device, FIFO or folder even with it; none follows a symlink
 //! planted at a temporary name; none leaves a temporary file after success, an error, SIGTERM or

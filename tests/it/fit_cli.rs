@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! `thud fit structure|damper` on the command line (issue 23, item 4): a closed-form decay
+//! `thud fit structure|damper` on the command line: a closed-form decay
 //! (written here, not by thud) recovered through the CSV path with units in the column names,
 //! the JSON keys, `--save` and `--design` reading it back, `thud simulate --csv`'s
 //! output fitted by `fit damper`, and every kind of bad data refused with exit 2 and one line.

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! `thud fit damper` says when c1 cannot be bounded (issue 23): a strike too gentle to reach
+//! `thud fit damper` says when c1 cannot be bounded: a strike too gentle to reach
 //! the ball (M 2 kg, K 8000 N/m, m 100 g, d 2 cm, struck at 0.5 m/s with the ball at rest in
 //! the middle: the main mass swings 7.9 mm, the ball sits 10 mm from either wall) leaves the
 //! structure's own decay, and the fit's last line is a note saying c1 is not identifiable and

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! Forced vibration (issue 11): harmonic forcing of the main mass in both solvers, the ball's
+//! Forced vibration: harmonic forcing of the main mass in both solvers, the ball's
 //! start, the steady state, its settling, its level and the frequency response.
 //! docs/model.md §6.1–6.4.
 

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! Forced vibration on the command line (issue 11): `--force`, `--freq`, `--ball-position`,
+//! Forced vibration on the command line: `--force`, `--freq`, `--ball-position`,
 //! `--ball-velocity`, `--periods`, `--settle` on simulate, sweep and export; `thud response`
 //! (the unforced outputs against those of v0.1: tests/it/unforced_0_1.rs). Runs the built
 //! binary with HOME and the XDG folders in a temporary folder.
@@ -41,7 +41,7 @@ fn refused(args: &[&str], needles: &[&str]) {
 }
 
 /// A file thud 0.1 wrote with the design block's keys and enums renamed as the one schema
-/// spells them (issue 26, item 5; CHANGELOG): every number and every other byte as it was.
+/// spells them (CHANGELOG): every number and every other byte as it was.
 #[test]
 fn a_forced_simulation_reports_its_steady_state() {
     let out = ok(&["simulate", "--v0", "0", "--force-amplitude", "1N", "--freq", "5.5Hz", "--duration", "6", "--json"]);

@@ -1,6 +1,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Hostile input for the commands added after the flag fuzzer was written (issue 24's contract
-//! applied to issues 23 and 27): every own numeric flag of `bifurcation`, `impact-map`,
+//! Hostile input for the commands added after the flag fuzzer was written (the contract
+//! applied to the dynamics and fit commands): every own numeric flag of `bifurcation`, `impact-map`,
 //! `basins` and `fit structure|damper`, fed each hostile value, either runs to exit 0 with only
 //! finite numbers, or exits 2 with one stderr line naming the flag the user typed. Never a
 //! panic, never a run past its work cap (each run is killed after 30 s, a failure).

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Nothing lost, round 2 (issue 18, items 1, 7, 8, 9): the real binary run against special
+//! Nothing lost, round 2: the real binary run against special
 //! files, killed mid-write, and given names that are not UTF-8.
 //!
 //! The device tests run inside a private mount namespace (`unshare -m`) with a fresh tmpfs on

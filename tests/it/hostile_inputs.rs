@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! Hostile and careless input (issue 9, "What was found" 2–4): every numeric flag is range
+//! Hostile and careless input: every numeric flag is range
 //! checked, every run is budgeted before it starts, no NaN/∞ is ever printed as a result, and
 //! every error is one line on stderr naming the flag the user typed. Process runs of the built
 //! binary with HOME and the XDG folders in a temporary folder; each run is killed after 20 s
@@ -658,7 +658,7 @@ fn explorer_refuses_runs_over_the_work_caps() {
     let mut long = d.clone();
     long.damper.duration_s = 2000.0;
     let mut app = thud::tui::App::new(long, "default", thud::tui::Palette::default());
-    app.export_dir = dir.path().to_path_buf();
+    app.host.export_dir = dir.path().to_path_buf();
     assert!(app.export(thud::export::Artifact::Wav).is_none());
     let status = app.status().map(|s| s.text.clone()).unwrap_or_default();
     assert!(status.contains("WAV samples exceed the limit"), "{status}");
@@ -696,7 +696,7 @@ fn new_export_and_man_flags_are_checked_and_named() {
     assert_eq!(r.code, 0, "{}", r.stderr);
 }
 
-// Issue 18, round 2 (thread pools, dead terminals, config problems, loaded files, huge
+// Round 2 (thread pools, dead terminals, config problems, loaded files, huge
 // terminals, help to a full disk).
 
 /// Item 4: `RAYON_NUM_THREADS` far past what the system gives is held to the thread range with
@@ -756,7 +756,7 @@ fn thread_pools_fall_back_under_a_pids_limit() {
                 .unwrap();
             let err = String::from_utf8_lossy(&out.stderr);
             assert_eq!(out.status.code(), Some(0), "ulimit -u {limit}, {args:?}: {err}");
-            // Printed beside the success, after the command's own lines (issue 24, item 5).
+            // Printed beside the success, after the command's own lines.
             let warning = err.lines().find(|l| l.starts_with("thud: warning: ")).unwrap_or("");
             assert!(warning.starts_with("thud: warning: ") && warning.contains(expect), "{args:?}: {err}");
             assert!(!err.contains("panicked"), "{args:?}: {err}");
@@ -951,7 +951,7 @@ fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
     let file = thud::store::DesignFile { description: "a long one".into(), ensemble: None, design: long };
     thud::store::save_design(data.path(), "long", &file, false).unwrap();
     let mut app = App::new(Design::default(), "default", Palette::default());
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     let before = app.design.clone();
     for key in [KeyCode::Char('L'), KeyCode::Enter] {
         app.update(Msg::Input(Event::Key(KeyEvent::new(key, KeyModifiers::NONE))));
@@ -969,7 +969,7 @@ fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
     assert!(thud::tui::tour::Tour::load(&thud::tui::tour::TourSource::BuiltIn).is_ok());
 }
 
-// ---- Issue 18 (lane a): files written and parts merged -------------------------------------
+// ---- Files written and parts merged -------------------------------------------------
 
 /// Asserts a refusal run in `home`: exit 2, one stderr line naming every one of `needles`.
 fn assert_refused_in(home: &Path, args: &[&str], needles: &[&str]) {

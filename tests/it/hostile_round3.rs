@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Nothing lost, round 3 (issue 24, items 1–8): signals mid-write, a full disk, the work cap of
+//! Nothing lost, round 3: signals mid-write, a full disk, the work cap of
 //! a forced response, a huge config, `config check`, errors that name their flag, terminals.
 //!
 //! Runs of the built binary, with HOME and the XDG folders in a temporary folder, each killed

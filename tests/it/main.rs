@@ -23,6 +23,7 @@ mod support {
 
 mod acoustics_paper;
 mod architecture;
+mod architecture_house;
 mod ascii_figures;
 mod chart_cells;
 mod cli;

@@ -1,6 +1,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! The stability of Masri & Caughey's symmetric two-impact orbit (issue 27, item 5;
-//! docs/model.md §12). The published derivation (Masri & Caughey 1966) was not available to
+//! The stability of Masri & Caughey's symmetric two-impact orbit (docs/model.md
+//! §12). The published derivation (Masri & Caughey 1966) was not available to
 //! this project, so the linearised impact-to-impact map is derived numerically from the
 //! closed-form impact map: from the state just after an upper-wall impact (its time, the main
 //! mass's position and velocity, the particle's velocity), the analytic flight (the steady

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! One schema (issue 26, item 5): every CSV header the command line writes and every record of
+//! One schema: every CSV header the command line writes and every record of
 //! its JSON are the engine's one definition (`thud_core::schema`) — names and order — for
 //! pulse, simulate (history, impacts), ensemble, sweep, sweep of ensembles, response, response
 //! of ensembles, shard parts and merge; and the guide's schema page lists every table as the

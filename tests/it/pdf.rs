@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::case_sensitive_file_extension_comparisons)] // a panic is how a test fails; file names here are ours
-//! PDF figures (issue 19 item 9): `thud export pdf` and `thud paper all --pdf`, checked as files
+//! PDF figures: `thud export pdf` and `thud paper all --pdf`, checked as files
 //! (a PDF of one page of the asked size with its font embedded) and as pictures: the exported
 //! SVG and the PDF's own source tree rendered to pixels with resvg (and the PDF file itself with
 //! `pdftoppm` where it is installed), then real properties of the pixels asserted — zone colours

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test or benchmark fails
-//! Issue 23: the physical model beside the paper's, and one ball for every command.
+//! The physical model beside the paper's, and one ball for every command.
 //!
 //! Table 1's experiment against both models (the physical model's agreement bounds), the same
 //! ball radius from `pulse` and `simulate`, over-determined balls and air out of range refused
@@ -16,7 +16,7 @@ fn json(args: &[&str]) -> serde_json::Value {
 }
 
 /// The physical model against the measurements of Table 1 (Akay & Hodgson's, as the paper
-/// prints them): its mean difference within ±1.5 dB and every row within ±3.5 dB (issue 23's
+/// prints them): its mean difference within ±1.5 dB and every row within ±3.5 dB (the
 /// target), while the paper's model stays 6–9 dB low. Each row is recomputed here from the
 /// row's own columns, so the summary cannot disagree with them.
 #[test]

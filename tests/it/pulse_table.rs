@@ -1,4 +1,4 @@
-//! Issue 23 item 2: `thud pulse` takes its flags from the engine's impact table
+//! `thud pulse` takes its flags from the engine's impact table
 //! (`params::PULSE`), as the design commands take theirs from `params::DESIGN`: each flag's
 //! help, placeholder, choices and conflicts are its row's, so there is one place to define one.
 

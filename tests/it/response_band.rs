@@ -2,7 +2,7 @@
 //! The default frequencies of a response are the engine's one definition
 //! (`thud_core::response::default_freqs_hz`: 0.6–1.6 × the damped natural frequency, 101
 //! points): `thud response` and `thud export … response` without `--freqs`, and the explorer's
-//! curve and export, all span it (issue 16 item 6). Python's `thud.response()` without
+//! curve and export, all span it. Python's `thud.response()` without
 //! frequencies is checked against the command line in crates/thud-py/tests/test_forced.py.
 
 use std::path::Path;

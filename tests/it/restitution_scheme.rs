@@ -1,7 +1,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! The isolated contact behind `thud restitution` (`damper::single_contact`) by the default
 //! contact scheme (Sundman–Adams, docs/model.md §11) against the reference Dormand–Prince
-//! scheme, with issue 27's acceptance for a new contact scheme: release speeds within 5e-8 m/s;
+//! scheme, with the acceptance for a new contact scheme: release speeds within 5e-8 m/s;
 //! with `no_tension` the reference itself.
 
 use thud::damper::{single_contact, single_contact_with, ContactScheme};

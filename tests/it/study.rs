@@ -1,8 +1,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! Studies over any parameter and the dynamics of a forced design (issues 26 item 6, 27 items
-//! 1–3), through the built binary: `sweep --vary` against `simulate` cell by cell, its shards
-//! merged back, `bifurcation` on the forced-rattle preset (samples, figure, the period
-//! doubling classified), `impact-map`, `basins`, and the bad input of the new flags.
+//! Studies over any parameter and the dynamics of a forced design, through the built
+//! binary: `sweep --vary` against `simulate` cell by cell, its shards merged back,
+//! `bifurcation` on the forced-rattle preset (samples, figure, the period doubling
+//! classified), `impact-map`, `basins`, and the bad input of the new flags.
 
 use std::path::Path;
 use std::time::Duration;

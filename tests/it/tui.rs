@@ -89,7 +89,7 @@ fn tiny_sizes_render_without_panic() {
     let mut fresh = App::new(Design::default(), "default", Palette::default());
     let mut done = computed_app();
     for app in [&mut fresh, &mut done] {
-        app.data_dir = Some(std::env::temp_dir().join("thud-tui-tiny-sizes-none"));
+        app.host.data_dir = Some(std::env::temp_dir().join("thud-tui-tiny-sizes-none"));
         for mode in [
             Mode::Normal,
             Mode::Help(0),
@@ -200,7 +200,7 @@ fn esc_never_quits_the_main_view_and_q_asks_once_with_unsaved_changes() {
     // Saving makes it unmodified again: q quits.
     let data = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     press(&mut app, KeyCode::Right);
     app.save_as("kept");
     assert!(!render(&mut app, 80, 24).lines().next().unwrap().contains('*'));
@@ -212,7 +212,7 @@ fn esc_never_quits_the_main_view_and_q_asks_once_with_unsaved_changes() {
 fn a_failed_load_keeps_the_list_open_with_the_whole_error() {
     let data = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     app.save_as("good-but-later-broken");
     press(&mut app, KeyCode::Char('L'));
     assert_eq!(app.mode, Mode::Saved(0));
@@ -310,7 +310,7 @@ fn footer_of(screen: &str) -> String {
     screen.lines().last().unwrap().trim_matches('"').to_string()
 }
 
-/// Issue 17: at 80, 120 and 200 columns the footer leaves out no hint that would fit in the
+/// At 80, 120 and 200 columns the footer leaves out no hint that would fit in the
 /// room left, a hint is left out only for more important ones (`v view` is shown at 120), and
 /// with the mouse on it says `mouse on` where it fits.
 #[test]
@@ -538,7 +538,7 @@ fn presets_list_applies_a_preset() {
     let mut app = computed_app();
     press(&mut app, KeyCode::Char('P'));
     assert!(render(&mut app, 120, 40).contains("paper-table3"));
-    let target = app.preset_list.iter().position(|p| p.name == "paper-table3").unwrap();
+    let target = app.host.preset_list.iter().position(|p| p.name == "paper-table3").unwrap();
     for _ in 0..target {
         press(&mut app, KeyCode::Down);
     }
@@ -555,7 +555,7 @@ fn mouse_click_on_the_chart_selects_that_design() {
     let mut app = computed_app();
     app.mouse = true;
     render(&mut app, 120, 40);
-    let geo = app.chart_geometry.clone().expect("chart drawn");
+    let geo = app.drawn.geometry.clone().expect("chart drawn");
     let r = geo.rect(0, 0);
     let click = crossterm::event::MouseEvent {
         kind: crossterm::event::MouseEventKind::Down(crossterm::event::MouseButton::Left),
@@ -582,7 +582,7 @@ fn chart_focus_moves_the_design_across_the_grid() {
     assert!(app.chart.fine.masses_kg.contains(&app.design.damper.impact_mass_kg));
 }
 
-// ---- settings, saved designs and export (issue 5) ----
+// ---- settings, saved designs and export ----
 
 fn status_of(screen: &str) -> &str {
     let lines: Vec<&str> = screen.lines().collect();
@@ -599,7 +599,7 @@ fn clear_line(app: &mut App) {
 fn save_then_load_round_trips_through_the_keys() {
     let data = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     press(&mut app, KeyCode::Right);
     let saved_mass = app.design.damper.impact_mass_kg;
     press(&mut app, KeyCode::Char('s'));
@@ -640,7 +640,7 @@ fn save_then_load_round_trips_through_the_keys() {
 fn saving_with_a_bad_name_or_an_unwritable_dir_is_an_error_line() {
     let data = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     press(&mut app, KeyCode::Char('s'));
     clear_line(&mut app);
     type_text(&mut app, "../evil");
@@ -652,7 +652,7 @@ fn saving_with_a_bad_name_or_an_unwritable_dir_is_an_error_line() {
     // A data dir that is a file: the directory cannot be created.
     let file = data.path().join("not-a-dir");
     std::fs::write(&file, "x").unwrap();
-    app.data_dir = Some(file);
+    app.host.data_dir = Some(file);
     press(&mut app, KeyCode::Char('s'));
     press(&mut app, KeyCode::Enter);
     let screen = render(&mut app, 120, 40);
@@ -667,7 +667,7 @@ fn the_load_list_shows_a_corrupt_saved_file_as_a_problem() {
     std::fs::create_dir_all(&designs).unwrap();
     std::fs::write(designs.join("broken.toml"), "description = \"x\"\n[design\n").unwrap();
     let mut app = computed_app();
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     app.save_as("good");
     let before = app.design.clone();
     press(&mut app, KeyCode::Char('L'));
@@ -742,7 +742,7 @@ fn a_key_override_shows_in_help_and_footer_and_works() {
 fn export_through_the_key_writes_the_file_and_names_it() {
     let out = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.export_dir = out.path().to_path_buf();
+    app.host.export_dir = out.path().to_path_buf();
     press(&mut app, KeyCode::Char('e'));
     assert_eq!(app.mode, Mode::Export(0));
     let screen = render(&mut app, 120, 40);
@@ -765,7 +765,7 @@ fn export_through_the_key_writes_the_file_and_names_it() {
     }
     press(&mut app, KeyCode::Enter);
     assert!(std::fs::read_to_string(out.path().join("thud-chart.svg")).unwrap().contains("<svg"));
-    assert!(app.exports.is_empty() && !app.busy());
+    assert!(app.host.exports.is_empty() && !app.busy());
 }
 
 /// With `--ascii` the explorer's figures are spelled as `thud export svg --ascii` spells them:
@@ -774,7 +774,7 @@ fn export_through_the_key_writes_the_file_and_names_it() {
 fn an_ascii_explorer_exports_ascii_figures() {
     let out = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.export_dir = out.path().to_path_buf();
+    app.host.export_dir = out.path().to_path_buf();
     let job = |app: &mut thud::tui::App| match app.export(thud::export::Artifact::SvgWaveform) {
         Some(thud::tui::Request::Export(job)) => job,
         other => panic!("no export job: {other:?}"),
@@ -796,7 +796,7 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     use std::time::Duration;
     let out = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.export_dir = out.path().to_path_buf();
+    app.host.export_dir = out.path().to_path_buf();
     let (tx, rx) = std::sync::mpsc::channel();
     let worker = thud::tui::Worker::start(move |d| {
         let _ = tx.send(d);
@@ -814,7 +814,7 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     // An export dir that is a file: an error line, no crash.
     let file = out.path().join("plain-file");
     std::fs::write(&file, "x").unwrap();
-    app.export_dir = file;
+    app.host.export_dir = file;
     worker.submit(app.export(thud::export::Artifact::CsvImpacts).unwrap());
     let done = rx.recv_timeout(Duration::from_secs(30)).expect("the export finished");
     app.update(Msg::Work(done));
@@ -822,13 +822,13 @@ fn export_runs_on_the_worker_and_failures_reach_the_status_line() {
     assert!(status_of(&screen).contains("error: export of impacts CSV failed"), "{screen}");
 }
 
-// ---- saving over a name asks first (issue 9); a crashed job is an error, not a hang ----
+// ---- saving over a name asks first; a crashed job is an error, not a hang ----
 
 #[test]
 fn saving_over_an_existing_name_asks_first_and_only_y_overwrites() {
     let data = tempfile::tempdir().unwrap();
     let mut app = computed_app();
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     press(&mut app, KeyCode::Char('s'));
     clear_line(&mut app);
     type_text(&mut app, "mine");
@@ -919,7 +919,7 @@ fn a_panicking_job_is_an_error_in_the_status_line_and_frees_its_slot() {
     assert!(!app.busy());
 }
 
-// ---- an explorer you can teach with (issue 10) ----
+// ---- an explorer you can teach with ----
 
 fn render_with(app: &mut App, w: u16, h: u16) -> (String, ratatui::buffer::Buffer) {
     let mut term = Terminal::new(TestBackend::new(w, h)).unwrap();
@@ -983,7 +983,7 @@ fn snapshots_of_the_main_screen_the_tour_help_page_2_no_color_and_ascii() {
 #[test]
 fn ascii_frames_are_pure_ascii_in_every_mode_and_size() {
     let mut app = full_app("default", Palette { color: false, ascii: true, light: false });
-    app.data_dir = Some(std::env::temp_dir().join("thud-tui-ascii-none"));
+    app.host.data_dir = Some(std::env::temp_dir().join("thud-tui-ascii-none"));
     for mode in [
         Mode::Normal,
         Mode::Help(0),
@@ -1085,11 +1085,11 @@ fn the_default_design_at_200x60_is_marked_with_its_own_zone_not_a_cells() {
     compute_sync(&mut app, reqs);
     show_chart(&mut app);
     let (a, buf_a) = render_with(&mut app, 80, 24);
-    let geo_a = app.chart_geometry.clone().unwrap();
+    let geo_a = app.drawn.geometry.clone().unwrap();
     let reqs = app.select_design(0.0405, 0.0536);
     compute_sync(&mut app, reqs);
     let (b, buf_b) = render_with(&mut app, 80, 24);
-    let geo_b = app.chart_geometry.clone().unwrap();
+    let geo_b = app.drawn.geometry.clone().unwrap();
     // The marker is the grid's reversed cell (`[n]`, or the zone glyph alone in narrow cells).
     let find = |buf: &ratatui::buffer::Buffer, geo: &thud::tui::chart::Geometry| {
         let c = geo.cells;
@@ -1194,7 +1194,7 @@ fn undo_names_what_changed() {
     let screen = render(&mut app, 120, 40);
     assert!(status_of(&screen).contains("undo: mass 41.50 g → 40.50 g"), "{screen}");
     press(&mut app, KeyCode::Char('P'));
-    let t3 = app.preset_list.iter().position(|p| p.name == "paper-table3").unwrap();
+    let t3 = app.host.preset_list.iter().position(|p| p.name == "paper-table3").unwrap();
     for _ in 0..t3 {
         press(&mut app, KeyCode::Down);
     }
@@ -1229,7 +1229,7 @@ fn the_export_menu_names_the_files() {
 #[test]
 fn paper_fig2_opens_on_the_impact_thud_pulse_computes() {
     let app = full_app("paper-fig2", Palette::default());
-    assert_eq!(app.pulse, thud::tui::app::PulseView::Single);
+    assert_eq!(app.screen.pulse, thud::tui::app::PulseView::Single);
     let single = app.acoustic().unwrap().single.clone().unwrap();
     // The same impact through the command line.
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
@@ -1310,7 +1310,7 @@ fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
             let first_words: String = step.caption.split_whitespace().take(3).collect::<Vec<_>>().join(" ");
             assert!(screen.contains(&first_words), "{w}x{h} caption:\n{screen}");
         }
-        assert_eq!(app.pulse, step.pulse);
+        assert_eq!(app.screen.pulse, step.pulse);
         assert!(!app.busy(), "step {i} computed");
         press(&mut app, KeyCode::Right);
     }
@@ -1329,7 +1329,7 @@ fn the_tour_runs_through_every_step_and_leaves_to_the_explorer() {
     press(&mut app, KeyCode::Esc);
     assert!(app.tour.is_none() && !app.quit && app.design == d);
     press(&mut app, KeyCode::Right);
-    assert_eq!(app.param(), app.tour_def.as_ref().unwrap().steps[1].select, "the step's field stays selected");
+    assert_eq!(app.param(), app.host.tour_def.as_ref().unwrap().steps[1].select, "the step's field stays selected");
     assert_ne!(app.design, d, "→ changes values again");
 }
 
@@ -1388,7 +1388,7 @@ fn the_polar_curve_is_never_covered_and_its_parts_have_their_own_glyphs() {
     }
 }
 
-// ---- Forcing, the response view and ensembles (issue 11) ----
+// ---- Forcing, the response view and ensembles ----
 
 /// Selects field `knob` and types `text` into it, computing what it asks for.
 fn set_field(app: &mut App, knob: thud::tui::fields::Knob, text: &str) {
@@ -1417,7 +1417,7 @@ fn is_response_job(r: &thud::tui::Request) -> bool {
 fn a_force_switched_on_gets_the_natural_frequency_and_the_steady_readout() {
     let mut app = forced_app(Palette::default());
     assert_eq!(app.design.damper.force_n, 1.0);
-    // Issue 17 item 6: Table 2's exact natural frequency √(K/M − (C/2M)²)/2π = 5.0329 Hz
+    // Table 2's exact natural frequency √(K/M − (C/2M)²)/2π = 5.0329 Hz
     // (not rounded to 5.03), the value the response band is centred on.
     let p = &app.design.damper;
     let g = p.damping_n_s_m / (2.0 * p.main_mass_kg);
@@ -1568,7 +1568,7 @@ fn an_ensemble_chart_shades_the_cells_where_runs_disagree() {
     }
 }
 
-/// Issue 12: the readout of a design shows the same numbers as `thud simulate --json` for
+/// The readout of a design shows the same numbers as `thud simulate --json` for
 /// it, at the readout's precision (the test fails if the readout showed another number).
 #[test]
 fn the_readout_shows_the_clis_json_numbers() {
@@ -1600,7 +1600,7 @@ fn the_readout_shows_the_clis_json_numbers() {
     }
     let zone = cli["zone"].as_u64().unwrap();
     assert!(row(&screen, "zone").contains(&format!("zone    {zone} ")), "{screen}");
-    // A forced design: the settled steady figures (issue 17 item 1: the 2 s run's last
+    // A forced design: the settled steady figures (the 2 s run's last
     // periods are still the start-up transient; the readout shows `simulate --settle`'s).
     let cli =
         json(&["simulate", "--preset", "paper-fig9", "--force-amplitude", "1N", "--freq", "5Hz", "--settle", "--json"]);
@@ -1678,7 +1678,7 @@ fn the_readout_shows_the_clis_json_numbers() {
     assert!(screen.contains(&format!("3 runs: {:.0}% settled", 100.0 * settled)), "{screen}");
 }
 
-/// Issue 17 item 2: the polar's listener level is the level at the exact θ, as `thud simulate`
+/// The polar's listener level is the level at the exact θ, as `thud simulate`
 /// (the loudest impact, SPLmax) and `thud pulse` (one impact) report it, at angles off the
 /// polar's 5° grid too (it used to show the nearest grid angle's level).
 #[test]
@@ -1712,7 +1712,7 @@ fn the_polars_listener_level_is_the_clis_at_non_grid_angles() {
     }
 }
 
-/// Issue 17 item 3: the `░` legend entry never costs the chart a gap row: at every panel size
+/// The `░` legend entry never costs the chart a gap row: at every panel size
 /// where the chart without it draws all 12 computed rows, the chart with it (and with the
 /// pending entry) draws all 12 too (at 120×40 it used to draw 11).
 #[test]
@@ -1743,14 +1743,14 @@ fn the_chart_draws_every_computed_row_with_the_unsure_legend_too() {
     assert!(checked > 1000, "{checked}");
 }
 
-/// Issue 17 item 4: the export is what is on screen: with N > 1 the sweep CSV is the ensemble
+/// The export is what is on screen: with N > 1 the sweep CSV is the ensemble
 /// chart (`thud sweep --ensemble N --csv` over the chart's grid), and while the frequency
 /// response is shown the menu offers it as CSV and SVG, the curve the view draws.
 #[test]
 fn exports_are_the_ensemble_chart_and_the_response_on_screen() {
     let out = tempfile::tempdir().unwrap();
     let mut app = ensemble_app(2, Palette::default());
-    app.export_dir = out.path().to_path_buf();
+    app.host.export_dir = out.path().to_path_buf();
     let export = |app: &mut App, kind: thud::export::Artifact| {
         press(app, KeyCode::Char('e'));
         let at =
@@ -1771,7 +1771,7 @@ fn exports_are_the_ensemble_chart_and_the_response_on_screen() {
     assert!(file.lines().next().unwrap().contains("agreement"), "{file}");
     // The response: not in the menu until it is shown, then the curve on screen.
     let mut app = forced_app(Palette::default());
-    app.export_dir = out.path().to_path_buf();
+    app.host.export_dir = out.path().to_path_buf();
     assert!(!app.export_menu().iter().any(|(k, _)| k.is_response()));
     press(&mut app, KeyCode::Char('f'));
     export(&mut app, thud::export::Artifact::CsvResponse);
@@ -1783,7 +1783,7 @@ fn exports_are_the_ensemble_chart_and_the_response_on_screen() {
     assert!(render(&mut app, 120, 40).contains("exported response SVG"));
 }
 
-/// Issue 17 item 1: a forced design whose settled run has not settled says so on screen even
+/// A forced design whose settled run has not settled says so on screen even
 /// when its e is negative: the warning ranks above the `(!) e < 0` note (the e row keeps its
 /// `(!)`), and the settled state is the command line's (`simulate --settle`).
 #[test]
@@ -1947,7 +1947,7 @@ fn input_lines_start_with_the_current_value_selected_and_typing_replaces_it() {
     // The save line too: the offered name is selected, typing replaces it.
     press(&mut app, KeyCode::Char('s'));
     assert_eq!(app.mode, Mode::SaveAs("design-1".into()));
-    assert!(app.line_selected);
+    assert!(app.screen.line_selected);
     type_text(&mut app, "mine");
     assert_eq!(app.mode, Mode::SaveAs("mine".into()));
 }
@@ -1957,7 +1957,7 @@ fn a_saved_design_keeps_every_field_the_ensemble_n_and_the_force_included() {
     use thud::tui::fields::Knob;
     let data = tempfile::tempdir().unwrap();
     let mut app = ensemble_app(4, Palette::default());
-    app.data_dir = Some(data.path().to_path_buf());
+    app.host.data_dir = Some(data.path().to_path_buf());
     set_field(&mut app, Knob::FORCE, "1");
     set_field(&mut app, Knob::FREQ, "5.45");
     set_field(&mut app, Knob::THETA, "51");
@@ -2087,7 +2087,7 @@ fn readme_screens_are_what_the_explorer_draws() {
     }
 }
 
-/// Issue 16 item 1: the field list is grouped as the engine's table groups its rows (design,
+/// The field list is grouped as the engine's table groups its rows (design,
 /// forcing, listener, solver, study), each group under its heading and in table order; the
 /// panel scrolls to the selected field with its group's heading above it.
 #[test]
@@ -2117,11 +2117,11 @@ fn the_field_list_is_grouped_by_the_table_s_groups() {
     assert!(render(&mut app, 120, 40).contains("─ study ─"), "the last field, N, is with the study");
 }
 
-// ---- Issue 17 items 5 and 12: the chart's marker and labels, the readout's columns ----
+// ---- The chart's marker and labels, the readout's columns ----
 
 /// The chart's cells in the last frame: (geometry, the cells' views, masses in g, gaps in cm).
 fn chart_of(app: &App) -> (thud::tui::chart::Geometry, Vec<thud::tui::chart::CellView>, Vec<f64>, Vec<f64>) {
-    let geo = app.chart_geometry.clone().expect("chart drawn");
+    let geo = app.drawn.geometry.clone().expect("chart drawn");
     let masses: Vec<f64> = app.chart.fine.masses_kg.iter().map(|m| m * 1e3).collect();
     let gaps: Vec<f64> = app.chart.fine.gaps_m.iter().map(|g| g * 1e2).collect();
     (geo, thud::tui::ui::chart_cells(app), masses, gaps)
@@ -2167,7 +2167,7 @@ fn chart_frames() -> Vec<(String, App, u16, u16)> {
     out
 }
 
-/// Issue 17 item 5: each gap label sits on the glyph line of the row whose gap is nearest its
+/// Each gap label sits on the glyph line of the row whose gap is nearest its
 /// value (within half a row step; never on a spacer line of a tall cell), and each mass label
 /// over the glyph column of the column whose mass is nearest it.
 #[test]
@@ -2220,7 +2220,7 @@ fn cell_glyph(cell: thud::tui::chart::CellView, r: ratatui::layout::Rect, x: u16
     if matches!(cell, CellView::Unsure(_)) { "░" } else { " " }.to_string()
 }
 
-/// Issue 17 item 5: the design's marker stays inside its own cell; the cells beside it (left
+/// The design's marker stays inside its own cell; the cells beside it (left
 /// and right) show the digits and fill they show without it, for designs on a cell, between
 /// cells and between rows, at 80×24, 120×40 and 200×60, on the plain and the ensemble chart.
 #[test]
@@ -2354,7 +2354,7 @@ fn readout_columns_at_every_size(app: &mut App) -> (usize, usize) {
     (checked, legends)
 }
 
-/// Issue 17 item 12: with a pinned design, an ensemble of 4 and a force on, at every size from
+/// With a pinned design, an ensemble of 4 and a force on, at every size from
 /// 60×20 to 200×60, every readout line is its columns (labels, live and pinned values, each
 /// whole or cut with `…`) a blank or more apart; the history legend keeps `●● damper`. Without
 /// the pin too (the compact readout's pairs of spreads).

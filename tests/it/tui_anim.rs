@@ -122,7 +122,7 @@ pub fn bytes_per_second(w: u16, h: u16, speed: usize) -> usize {
 
 #[test]
 fn one_second_of_playback_at_80x24_sends_under_30_kb_at_every_speed() {
-    // The slowest and 1× (the most motion, an impact every few frames): under 30 KB (issue 25).
+    // The slowest and 1× (the most motion, an impact every few frames): under 30 KB.
     for speed in [0, thud::tui::anim::SPEEDS.len() - 1] {
         let bytes = bytes_per_second(80, 24, speed);
         eprintln!("animation at 80x24, speed {}: {bytes} bytes per second", thud::tui::anim::SPEEDS[speed]);

@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! The explorer's bifurcation view (issue 27, item 4): with a force on, `v` cycles the chart
+//! The explorer's bifurcation view: with a force on, `v` cycles the chart
 //! panel to x(kT) over f, coarse pass first, then the fine one, the current f marked and its
 //! orbit named; its samples are `thud bifurcation`'s for the same f.
 

@@ -95,12 +95,12 @@ fn m_g_r_t_select_the_headline_inputs_and_the_footer_names_them() {
 fn a_click_selects_a_field_and_a_click_or_drag_on_the_polar_sets_theta() {
     let mut app = computed_app();
     render(&mut app, 120, 40);
-    let (line, i) = app.field_lines.iter().find(|(_, i)| Knob::ALL[*i] == Knob::GAP).copied().unwrap();
+    let (line, i) = app.drawn.fields.iter().find(|(_, i)| Knob::ALL[*i] == Knob::GAP).copied().unwrap();
     mouse(&mut app, MouseEventKind::Down(MouseButton::Left), line.x + 3, line.y);
     assert_eq!((app.param(), i), (Knob::GAP, app.selected));
     // Straight above the polar's centre is the normal, θ 0°.
     render(&mut app, 120, 40);
-    let hit = app.polar_hit.unwrap();
+    let hit = app.drawn.polar.unwrap();
     let (x, y) = (0..120u16)
         .flat_map(|x| (0..40u16).map(move |y| (x, y)))
         .find(|&(x, y)| hit.theta_at(x, y) == Some(0.0))

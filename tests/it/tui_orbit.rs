@@ -1,5 +1,5 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
-//! The readout names the current orbit's type (issue 27, item 4): with a force on, the
+//! The readout names the current orbit's type: with a force on, the
 //! readout's title says the live design's orbit at f, whole, at 80×24 (both teaching layouts)
 //! and at 120×40; the label is the engine's for that design (`orbit_at_f`, the one value of
 //! `thud bifurcation --vary f=f:f:1`), never a stale one while the design computes.

@@ -458,7 +458,7 @@ fn under_term_xterm_the_real_binary_sends_no_256_colour_code() {
     assert!(sent.contains(";36m") && (sent.contains(";41m") || sent.contains(";41;")), "the classic colour codes");
 }
 
-/// Issue 18 item 14: a stray bracketed-paste start without its end marker (a pasted fragment, a
+/// A stray bracketed-paste start without its end marker (a pasted fragment, a
 /// broken terminal, `printf '\e[200~'` into the pty) no longer swallows every key for good.
 /// Within about a second the explorer drops the paste (its text, a `q` included, is not taken
 /// as keys) and says so; then `q` quits and the terminal is restored.
@@ -498,7 +498,7 @@ fn resize_and_quit(from: (u16, u16), to: (u16, u16)) -> String {
     t.wait_for("the shell after thud", |s| s.contains("AFTER-THUD"))
 }
 
-/// Issue 17 item 15: after a resize and `q`, none of the explorer's text is left on the
+/// After a resize and `q`, none of the explorer's text is left on the
 /// shell's screen (tmux carried the alternate screen's rows beyond the old size over to the
 /// main screen when it was left; the restore empties the alternate screen first).
 #[test]
@@ -510,7 +510,7 @@ fn a_resize_then_quit_leaves_nothing_on_the_shell_screen() {
     }
 }
 
-/// Issue 17 item 16: the mouse is on with no flag (the footer says `mouse on`, and a click on
+/// The mouse is on with no flag (the footer says `mouse on`, and a click on
 /// a chart cell selects it); `--no-mouse` and the config's `mouse = false` turn it off.
 #[test]
 fn the_mouse_is_on_by_default_and_off_by_flag_or_config() {

@@ -89,7 +89,7 @@ fn every_tour_step_shows_every_gap_row_every_number_it_names_and_its_field() {
                 failures.push(format!("{at}: the field is not shown\n{screen}"));
             }
             if step.panel == Panel::Chart {
-                let geo = app.chart_geometry.as_ref().expect("the chart is drawn");
+                let geo = app.drawn.geometry.as_ref().expect("the chart is drawn");
                 let mut rows = geo.rows.clone();
                 rows.sort_unstable();
                 if rows != (0..12).collect::<Vec<_>>() {
@@ -107,7 +107,7 @@ fn every_tour_step_shows_every_gap_row_every_number_it_names_and_its_field() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
-/// The Table 1 step (issue 23 item 5) shows the engine's Table 1 whole at both sizes: every
+/// The Table 1 step shows the engine's Table 1 whole at both sizes: every
 /// row's measured level, the paper's model, the physical model and both differences, and the
 /// mean and rms of the differences, each as `thud paper table1 --json` gives it (the engine's
 /// `paper::table1`, read here by column key), to 0.1 dB.

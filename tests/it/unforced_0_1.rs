@@ -3,7 +3,7 @@
 //! existed; the files in tests/data/unforced were written by that build, with the Dormand–Prince
 //! contact scheme, today's reference): the Fig 9 run as JSON, text and CSV, the Table 3 set-up,
 //! a Newmark run and a sweep — but the design block's renamed keys and enums, and the numbers
-//! the default contact scheme (Sundman–Adams since issue 27, docs/model.md §11) moves within
+//! the default contact scheme (Sundman–Adams, docs/model.md §11) moves within
 //! its accuracy.
 //!
 //! What is compared:
@@ -13,7 +13,7 @@
 //!   numbers: the same text, keys, order and number of values ([`split`]), each number in the
 //!   same format (in the text output the same width and decimals; in JSON and CSV, written in
 //!   their shortest round-trip form, the same kind: integer, decimal or exponent).
-//! - **Within issue 27's acceptance for a new contact scheme**, on the motion up to the end of the
+//! - **Within the acceptance for a new contact scheme**, on the motion up to the end of the
 //!   Fig 9 run's 8th impact (the horizon of that acceptance, [`HORIZON_IMPACTS`]): impact speeds
 //!   within [`SPEED_M_S`]; every other number of that motion (times, restitutions, durations,
 //!   penetrations, SPLs, cycle maxima, sampled positions) within [`REL`]; the largest impact
@@ -38,7 +38,7 @@ use serde_json::Value;
 
 use crate::common;
 
-/// Impact speeds (m/s) within this of 0.1's: issue 27's acceptance for a new contact scheme.
+/// Impact speeds (m/s) within this of 0.1's: the acceptance for a new contact scheme.
 const SPEED_M_S: f64 = 5e-8;
 
 /// Impacts of the Fig 9 run that acceptance covers (its first 8: past them the rattle has

@@ -13,7 +13,7 @@
 //! counts SIGINTs itself (a `signal-hook` handler, installed with the first run, which chains
 //! to Python's own, so Python still raises `KeyboardInterrupt` in the main thread): a run that
 //! sees the count change while it waits is cancelled and raises `KeyboardInterrupt` in its own
-//! thread, within a poll (issue 24, item 6).
+//! thread, within a poll.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};

@@ -498,7 +498,7 @@ pub fn _restore(py: Python<'_>, kind: &str, state: &str) -> PyResult<Py<PyAny>> 
     let bad = |e: &dyn fmt::Display| pyo3::exceptions::PyValueError::new_err(format!("not a thud {kind} state: {e}"));
     let v: Json = serde_json::from_str(state).map_err(|e| bad(&e))?;
     // A state the results' own constructors cannot read is a forged or damaged one: a
-    // ValueError naming the field, never an "internal error" (issue 24, item 6).
+    // ValueError naming the field, never an "internal error".
     let forged = |e: PyErr| {
         if e.is_instance_of::<PyRuntimeError>(py) {
             let text = e.value(py).to_string();

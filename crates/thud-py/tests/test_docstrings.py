@@ -1,6 +1,6 @@
 """help(thud.simulate) and the other functions document every keyword the engine accepts, each
 on one line with its row's help and range: the "Keywords" section is generated from the
-engine's parameter table (issue 16 item 1), so a row missing from it fails here."""
+engine's parameter table, so a row missing from it fails here."""
 
 import pydoc
 

@@ -55,7 +55,7 @@ SAME_AS_CLI = [
     ("pulse", {"u0": math.nan}, ["--u0", "nan"], "u0"),
     ("pulse", {"rho_c": 0.5}, ["--rho-c", "0.5"], "rho_c"),
     ("pulse", {"sphere": "tungsten-carbide", "radius": 2}, ["--sphere", "tungsten-carbide", "--radius", "2"], "radius"),
-    # An unknown material names the parameter that gave it (issue 24, item 5).
+    # An unknown material names the parameter that gave it.
     ("pulse", {"sphere": "cheese"}, ["--sphere", "cheese"], "sphere"),
     ("simulate", {"sphere": "cheese"}, ["--sphere", "cheese"], "sphere"),
     ("simulate", {"plate": "cheese"}, ["--plate", "cheese"], "plate"),

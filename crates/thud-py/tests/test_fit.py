@@ -1,4 +1,4 @@
-"""thud.fit_structure and thud.fit_damper (issue 23, item 4): the command line's fits with the
+"""thud.fit_structure and thud.fit_damper: the command line's fits with the
 same keys. A closed-form decay written here (not by thud) is recovered within 3 standard
 errors; a damper record from thud.simulate is bracketed; bad data raises ParameterError."""
 

@@ -76,7 +76,7 @@ def test_the_response_equals_the_cli(cli_json):
 
 
 def test_a_response_without_frequencies_runs_the_engine_s_band_as_the_cli(cli_json):
-    # Issue 16 item 6: no freqs_hz is the command line's no --freqs: 101 points from 0.6 to
+    # No freqs_hz is the command line's no --freqs: 101 points from 0.6 to
     # 1.6 × the damped natural frequency √(K/M − (C/2M)²)/2π of Table 2 (K 500, M 0.5, C 0.05).
     j = cli_json("response", "--force-amplitude", "1N", "--periods", "1", "--duration", "0.2")
     r = thud.response(force="1N", periods=1, duration=0.2)

@@ -1,4 +1,4 @@
-"""Tables and labelled arrays (item 4 of issue 19): Run.impacts_frame / history_frame,
+"""Tables and labelled arrays: Run.impacts_frame / history_frame,
 Chart.to_dataframe (tidy) and to_xarray, Ensemble and Response tables, as_dict(json=True),
 reprs naming the design, _repr_html_, and a clear ImportError without pandas or xarray."""
 

@@ -1,4 +1,4 @@
-"""Nothing lost, round 3, from Python (issue 24, item 6).
+"""Nothing lost, round 3, from Python.
 
 1. Ctrl-C during a NumPy conversion is a KeyboardInterrupt, never a PanicException.
 2. Ctrl-C with runs in worker threads stops them within about a second.

@@ -1,4 +1,4 @@
-"""Every result pickles and deep-copies to an equal object (item 2 of issue 19), and results
+"""Every result pickles and deep-copies to an equal object, and results
 travel between processes: a multiprocessing.Pool and a 2-worker Dask LocalCluster running
 `thud.simulate` by `client.submit`."""
 

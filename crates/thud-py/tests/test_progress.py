@@ -1,4 +1,4 @@
-"""Progress and cancellation of long sweeps from Python (item 10 of issue 19): a callback
+"""Progress and cancellation of long sweeps from Python: a callback
 hears the engine's own count of finished cells (points), progress=True draws a bar, and a
 callback that raises — KeyboardInterrupt, as Ctrl-C in a notebook — stops the work early."""
 

@@ -1,4 +1,4 @@
-"""The documentation's Python examples run as written (issue 26 item 2; issue 19 item 3).
+"""The documentation's Python examples run as written.
 
 Every ```python block of a page (README.md, every page of the guide under docs/guide, and the
 wheel's own README, crates/thud-py/README.md) runs, in order, in one namespace per page, and

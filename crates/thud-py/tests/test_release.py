@@ -1,4 +1,4 @@
-"""The release workflow and what it ships (issue 26 item 3).
+"""The release workflow and what it ships.
 
 .github/workflows/release.yml parses as YAML and releases exactly what CI builds and tests:
 .ci/run builds and tests the command line on its host (Linux x86_64) and the Python module as

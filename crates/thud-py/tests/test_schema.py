@@ -1,4 +1,4 @@
-"""One schema (issue 26, item 5): Python's DataFrames have the columns of the engine's one
+"""One schema: Python's DataFrames have the columns of the engine's one
 definition (``thud.schema()``), which are the command line's CSV headers for the same result —
 pulse, simulate (history, impacts), ensemble, sweep, sweep of ensembles, shard parts, response,
 response of ensembles — and every result compares equal after a pickle round trip."""

@@ -1,4 +1,4 @@
-"""Every function has an explicit keyword signature (item 3 of issue 19): inspect.signature
+"""Every function has an explicit keyword signature: inspect.signature
 shows the parameters, built from the engine's parameter table, and they are exactly the stub's
 and exactly what the engine accepts (its own list in an "unknown parameter" message)."""
 

@@ -1,4 +1,4 @@
-"""Studies over any parameter and the dynamics from Python (issues 26 item 6, 27 item 1):
+"""Studies over any parameter and the dynamics from Python:
 thud.sweep(v0=…, c1=…) is the command line's `sweep --vary` to the last bit, as an xarray
 Dataset with one dimension per varied keyword; thud.bifurcation is `thud bifurcation`'s;
 to_xarray on every result; bad input named by its keyword."""

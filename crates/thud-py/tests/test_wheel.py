@@ -1,4 +1,4 @@
-"""The wheel installs on real clusters (item 1 of issue 19): one abi3 wheel tagged
+"""The wheel installs on real clusters: one abi3 wheel tagged
 manylinux2014 (manylinux_2_17), needing no glibc symbol newer than 2.17, stripped (no symbol
 table, no debug info), under 5 MB; and an sdist that holds everything a build needs.
 

@@ -16,7 +16,7 @@ use crate::units::sig;
 impl App {
     /// Goes back to the design (and ensemble size and name) before the last change.
     pub(crate) fn undo(&mut self) -> Vec<Request> {
-        if let Some(entry) = self.undo.pop() {
+        if let Some(entry) = self.edits.undo.pop() {
             let then = Setup { design: entry.design, runs: entry.runs };
             let what = changes(&self.setup(), &self.preset, &then, &entry.preset);
             self.design = then.design;
@@ -44,7 +44,7 @@ impl App {
         }
         let old = std::mem::replace(&mut self.design, new.design);
         let old_runs = std::mem::replace(&mut self.runs, new.runs);
-        self.undo.push(UndoEntry { design: old, runs: old_runs, preset: self.preset.clone() });
+        self.edits.undo.push(UndoEntry { design: old, runs: old_runs, preset: self.preset.clone() });
         self.results.error = None;
         self.set_status(&message, false);
         self.requests(scope)
@@ -77,33 +77,33 @@ impl App {
     /// The bifurcation diagram's job, if its view is shown, the design is forced and its fine
     /// pass (which does not depend on f) is neither in nor already asked for.
     pub(crate) fn bifurcation_request(&mut self) -> Option<Request> {
-        if self.chart_view != ChartView::Bifurcation || !self.design.damper.forced() {
+        if self.screen.chart_view != ChartView::Bifurcation || !self.design.damper.forced() {
             return None;
         }
         let [_, fine] = self.bifurcation_keys();
-        let have = self.bifurcation.fine.as_ref().is_some_and(|(k, _)| *k == fine);
-        if have || self.bifurcation.asked.as_ref() == Some(&fine) {
+        let have = self.curves.bifurcation.fine.as_ref().is_some_and(|(k, _)| *k == fine);
+        if have || self.curves.bifurcation.asked.as_ref() == Some(&fine) {
             return None;
         }
-        self.bifurcation.asked = Some(fine);
-        self.bifurcation.error = None;
+        self.curves.bifurcation.asked = Some(fine);
+        self.curves.bifurcation.error = None;
         Some(Request::Chart(self.design.clone(), ChartWork::Bifurcation))
     }
 
     /// The response curve's job, if the response view is shown, the design is forced and its
     /// curve (which does not depend on f) is neither in nor already asked for.
     pub(crate) fn response_request(&mut self) -> Option<Request> {
-        if self.chart_view != ChartView::Response || !self.design.damper.forced() {
+        if self.screen.chart_view != ChartView::Response || !self.design.damper.forced() {
             return None;
         }
         let band = default_band(&self.design);
         let key = ResponseKey::of(&self.design, &band);
-        if self.response.curve_for.as_ref() == Some(&key) || self.response.asked.as_ref() == Some(&key) {
+        if self.curves.response.curve_for.as_ref() == Some(&key) || self.curves.response.asked.as_ref() == Some(&key) {
             return None;
         }
-        self.response.asked = Some(key);
-        self.response.error = None;
-        self.response.progress = (0, band.points);
+        self.curves.response.asked = Some(key);
+        self.curves.response.error = None;
+        self.curves.response.progress = (0, band.points);
         Some(Request::Chart(self.design.clone(), ChartWork::Response(band)))
     }
 
@@ -154,7 +154,7 @@ impl App {
         if f == Knob::FORCE && now.freq_hz != was.freq_hz {
             m += &format!("; {} {} (the natural frequency)", Knob::FREQ.label(), Knob::FREQ.display(s));
         }
-        if f == Knob::FREQ && self.chart_view == ChartView::Response {
+        if f == Knob::FREQ && self.screen.chart_view == ChartView::Response {
             let band = default_band(&s.design);
             if !band.contains(now.freq_hz) {
                 m += &format!(

@@ -27,7 +27,7 @@ impl App {
     /// True if something (a saved design, or anything else) is at `name`'s path in the data
     /// directory. A dangling link counts: saving would replace it.
     fn is_saved(&self, name: &str) -> bool {
-        let path = self.data_dir.as_deref().and_then(|d| store::design_path(d, name).ok());
+        let path = self.host.data_dir.as_deref().and_then(|d| store::design_path(d, name).ok());
         path.is_some_and(|p| p.symlink_metadata().is_ok())
     }
 
@@ -54,7 +54,7 @@ impl App {
             self.error(format_args!("cannot save: {e}"));
             return;
         }
-        let Some(dir) = self.data_dir.clone() else {
+        let Some(dir) = self.host.data_dir.clone() else {
             self.error("cannot save: no home directory, so no data directory");
             return;
         };
@@ -81,15 +81,15 @@ impl App {
 
     /// Opens the list of saved designs (read from the data directory now: a few small files).
     pub(crate) fn open_saved(&mut self) {
-        let Some(dir) = self.data_dir.clone() else {
+        let Some(dir) = self.host.data_dir.clone() else {
             self.error("cannot load: no home directory, so no data directory");
             return;
         };
         match store::list_designs(&dir) {
             Ok(list) => {
                 let i = list.designs.iter().position(|d| d.name == self.preset).unwrap_or(0);
-                self.saved = list;
-                self.load_error = None;
+                self.host.saved = list;
+                self.host.load_error = None;
                 self.mode = Mode::Saved(i);
             }
             Err(e) => {
@@ -101,9 +101,9 @@ impl App {
     /// Loads row `i` of the saved-designs list (the good designs, then the problem files).
     /// A failure keeps the list open on that row with the whole error under it.
     pub(crate) fn load_saved(&mut self, i: usize) -> Vec<Request> {
-        if let Some(entry) = self.saved.designs.get(i) {
+        if let Some(entry) = self.host.saved.designs.get(i) {
             let name = entry.name.clone();
-            let Some(dir) = self.data_dir.clone() else { return vec![] };
+            let Some(dir) = self.host.data_dir.clone() else { return vec![] };
             let loaded = store::load_design(&dir, &name).map_err(|e| e.to_string()).and_then(|f| {
                 // N goes through the field's own check (its range and the work caps).
                 let mut setup = Setup { design: f.design, runs: 1 };
@@ -122,7 +122,7 @@ impl App {
                 Err(e) => self.load_failed(i, format!("cannot load {name}: {e}")),
             };
         }
-        let problem = i.checked_sub(self.saved.designs.len()).and_then(|j| self.saved.problems.get(j));
+        let problem = i.checked_sub(self.host.saved.designs.len()).and_then(|j| self.host.saved.problems.get(j));
         match problem.map(ToString::to_string) {
             Some(p) => self.load_failed(i, format!("cannot load {p}")),
             None => vec![],
@@ -133,7 +133,7 @@ impl App {
     fn load_failed(&mut self, i: usize, why: String) -> Vec<Request> {
         self.mode = Mode::Saved(i);
         self.error(&why);
-        self.load_error = Some(why);
+        self.host.load_error = Some(why);
         vec![]
     }
 
@@ -148,8 +148,8 @@ impl App {
                 return None;
             }
         }
-        let path = unique_path(&self.export_dir, kind.default_file_name(), &self.exports);
-        self.exports.push(path.clone());
+        let path = unique_path(&self.host.export_dir, kind.default_file_name(), &self.host.exports);
+        self.host.exports.push(path.clone());
         // Sweeps use the chart's grid and its N runs a cell, and a response the curve's band
         // and design (from rest, as the view runs it), so the file shows what the screen does
         // (the curve's band is the engine's default, so it is `thud export … response`'s too).
@@ -177,12 +177,12 @@ impl App {
 
     /// The export menu's rows: the frequency response's too while it is on screen.
     pub fn export_menu(&self) -> Vec<(Artifact, &'static str)> {
-        export_menu(self.chart_view == ChartView::Response && self.design.damper.forced())
+        export_menu(self.screen.chart_view == ChartView::Response && self.design.damper.forced())
     }
 
     /// An export ended: the file is no longer pending and the status line says how it went.
     pub(crate) fn export_finished(&mut self, kind: Artifact, path: &Path, result: Result<(), WorkError>) {
-        self.exports.retain(|p| p != path);
+        self.host.exports.retain(|p| p != path);
         let shown = self.shown_path(path);
         match result {
             Ok(()) => self.set_status(&format!("exported {} to {shown}", export_name(kind)), false),
@@ -194,16 +194,16 @@ impl App {
 
     /// The export directory as shown.
     pub(crate) fn export_dir_name(&self) -> String {
-        if self.export_dir == Path::new(".") {
+        if self.host.export_dir == Path::new(".") {
             "the current directory".into()
         } else {
-            self.export_dir.display().to_string()
+            self.host.export_dir.display().to_string()
         }
     }
 
     /// An export path as shown: the file name alone in the current directory.
     fn shown_path(&self, path: &Path) -> String {
-        if self.export_dir == Path::new(".") {
+        if self.host.export_dir == Path::new(".") {
             path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
         } else {
             path.display().to_string()

@@ -16,19 +16,19 @@ impl App {
     /// Starts the guided tour (`tour_def`, else the built-in one) at its first step; returns
     /// the work that step needs. A tour that cannot be loaded is an error in the status line.
     pub fn start_tour(&mut self) -> Vec<Request> {
-        let tour = match &self.tour_def {
+        let tour = match &self.host.tour_def {
             Some(t) => t.clone(),
             None => match Tour::load(&TourSource::BuiltIn) {
                 Ok(t) => {
                     let t = Arc::new(t);
-                    self.tour_def = Some(t.clone());
+                    self.host.tour_def = Some(t.clone());
                     t
                 }
                 Err(e) => return self.error(e),
             },
         };
         self.tour = Some(TourState { tour, step: 0 });
-        self.tour_over = false;
+        self.screen.tour_over = false;
         self.tour_step(0)
     }
 
@@ -40,9 +40,9 @@ impl App {
         let n = state.tour.steps.len();
         let mut d = step.design.clone();
         if !step.sets_thresholds {
-            d.thresholds = self.settings.config.thresholds(d.thresholds);
+            d.thresholds = self.host.settings.config.thresholds(d.thresholds);
         }
-        self.pulse = step.pulse;
+        self.screen.pulse = step.pulse;
         self.anim = step.animate.then(|| crate::tui::anim::Anim::at_speed(step.speed));
         self.table1 = step.table1.then(crate::tui::table1::Table1::compute);
         if let Some(i) = crate::tui::fields::Knob::ALL.iter().position(|k| *k == step.select) {
@@ -50,13 +50,13 @@ impl App {
         }
         self.focus = if Panel::ALL.contains(&step.panel) { step.panel } else { Panel::Params };
         // The step's panel fills the screen, so its plot is shown whole at any size (z: all).
-        self.zoom = true;
+        self.screen.zoom = true;
         self.mode = Mode::Normal;
         let mut reqs = self.apply_setup(Setup { design: d, runs: step.runs }, Scope::All, String::new());
         self.preset.clone_from(&step.preset);
         self.mark_unmodified();
         self.set_status(&format!("tour {}/{n}: {} — → next, ← back, Esc explores from here", i + 1, step.title), false);
-        self.pending_best = step.best;
+        self.screen.pending_best = step.best;
         if step.best && !self.chart_busy() {
             reqs.extend(self.best());
         }
@@ -66,11 +66,11 @@ impl App {
     /// Leaves the tour, keeping the design on screen to explore.
     pub(crate) fn leave_tour(&mut self, finished: bool) {
         self.tour = None;
-        self.tour_over = finished;
-        self.zoom = false;
+        self.screen.tour_over = finished;
+        self.screen.zoom = false;
         // Finishing lets the last step's jump to the best design happen; Esc keeps the state.
         if !finished {
-            self.pending_best = false;
+            self.screen.pending_best = false;
         }
         let text = if finished {
             "tour finished — explore from here (T starts it again)"

@@ -103,8 +103,8 @@ impl App {
             }
             Mode::Normal => {
                 let touring = self.tour.is_some();
-                let tour_over = std::mem::take(&mut self.tour_over);
-                if let Some(a) = self.settings.keys.action_mode(&k, touring, self.anim.is_some()) {
+                let tour_over = std::mem::take(&mut self.screen.tour_over);
+                if let Some(a) = self.host.settings.keys.action_mode(&k, touring, self.anim.is_some()) {
                     if tour_over && matches!(a, Action::Increase { .. } | Action::Decrease { .. }) {
                         self.after_tour_notice();
                         return vec![];
@@ -113,7 +113,7 @@ impl App {
                 } else if let Some(c) = typed_start(&k) {
                     // A digit or a point starts typing a value into the selected field.
                     self.mode = Mode::Editing(c.to_string());
-                    self.line_selected = false;
+                    self.screen.line_selected = false;
                     vec![]
                 } else {
                     self.unbound(k);
@@ -130,7 +130,7 @@ impl App {
             self.key_label(Action::Decrease { fine: false }).to_string(),
             self.key_label(Action::Increase { fine: false }).to_string(),
         );
-        let what = if self.focus == Panel::Chart && self.chart_view != ChartView::Response {
+        let what = if self.focus == Panel::Chart && self.screen.chart_view != ChartView::Response {
             "move the design on the chart".to_string()
         } else if self.focus == Panel::Chart {
             format!("change {}", Knob::FREQ.label())
@@ -162,7 +162,7 @@ impl App {
         let glossary = matches!(self.mode, Mode::Glossary(_));
         let page = if glossary { Mode::Glossary } else { Mode::Help };
         let closes = matches!(k.code, KeyCode::Esc | KeyCode::Char('?' | 'q'))
-            || self.settings.keys.action_for(&k) == Some(Action::Help);
+            || self.host.settings.keys.action_for(&k) == Some(Action::Help);
         match k.code {
             _ if closes => self.mode = Mode::Normal,
             KeyCode::Right | KeyCode::Tab | KeyCode::Char('2') => self.mode = Mode::Glossary(0),
@@ -205,15 +205,17 @@ impl App {
         match a {
             Action::Quit => self.quit_or_ask(),
             Action::Help => self.mode = Mode::Help(0),
-            Action::Zoom => self.zoom = !self.zoom,
+            Action::Zoom => self.screen.zoom = !self.screen.zoom,
             Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
             // The response curve focused: ←→ move the forcing frequency (the marker), ↑↓ select.
             Action::Decrease { fine } | Action::Increase { fine }
-                if self.focus == Panel::Chart && self.chart_view == ChartView::Response =>
+                if self.focus == Panel::Chart && self.screen.chart_view == ChartView::Response =>
             {
                 return self.step_knob(Knob::FREQ, matches!(a, Action::Increase { .. }), fine)
             }
-            Action::Up | Action::Down if self.focus == Panel::Chart && self.chart_view != ChartView::Response => {
+            Action::Up | Action::Down
+                if self.focus == Panel::Chart && self.screen.chart_view != ChartView::Response =>
+            {
                 return self.chart_move(0, a == Action::Up)
             }
             Action::Up => {
@@ -231,10 +233,10 @@ impl App {
             Action::Increase { fine } => return self.step(true, fine),
             Action::Edit => {
                 self.mode = Mode::Editing(self.param().display(&self.setup()));
-                self.line_selected = true;
+                self.screen.line_selected = true;
             }
             Action::Presets => {
-                let i = self.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
+                let i = self.host.preset_list.iter().position(|p| p.name == self.preset).unwrap_or(0);
                 self.mode = Mode::Presets(i);
             }
             Action::Pin => self.toggle_pin(),
@@ -242,7 +244,7 @@ impl App {
             Action::ToggleChartView => return self.toggle_chart_view(),
             Action::Save => {
                 self.mode = Mode::SaveAs(self.suggested_name());
-                self.line_selected = true;
+                self.screen.line_selected = true;
             }
             Action::Load => self.open_saved(),
             Action::Export => self.mode = Mode::Export(0),
@@ -314,7 +316,7 @@ impl App {
 
     /// A key in the value line of the selected field.
     fn edit_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        let selected = std::mem::take(&mut self.line_selected);
+        let selected = std::mem::take(&mut self.screen.line_selected);
         match line_key(k, buf, VALUE_MAX, selected) {
             Line::Typing(buf) => self.mode = Mode::Editing(buf),
             Line::Cancel => {
@@ -336,7 +338,7 @@ impl App {
 
     /// A key in the save line (the name to save under).
     fn save_key(&mut self, k: KeyEvent, buf: String) -> Vec<Request> {
-        let selected = std::mem::take(&mut self.line_selected);
+        let selected = std::mem::take(&mut self.screen.line_selected);
         match line_key(k, buf, NAME_MAX, selected) {
             Line::Typing(buf) => self.mode = Mode::SaveAs(buf),
             Line::Cancel => {
@@ -390,16 +392,16 @@ impl App {
 
     /// A key in the preset list; Enter loads the preset (undoable).
     fn preset_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let ListNav::Choose(i) = self.list_nav(k, i, self.preset_list.len(), Mode::Presets) else { return vec![] };
-        let Some(name) = self.preset_list.get(i).map(|p| p.name) else { return vec![] };
+        let ListNav::Choose(i) = self.list_nav(k, i, self.host.preset_list.len(), Mode::Presets) else { return vec![] };
+        let Some(name) = self.host.preset_list.get(i).map(|p| p.name) else { return vec![] };
         let runs = self.runs;
         let checked = |d: crate::design::Design| {
             crate::tui::fields::check_loaded(&crate::tui::fields::Setup { design: d.clone(), runs }).map(|()| d)
         };
         match presets::preset(name).and_then(checked) {
             Ok(mut d) => {
-                d.thresholds = self.settings.config.thresholds(d.thresholds);
-                self.pulse = PulseView::for_preset(name);
+                d.thresholds = self.host.settings.config.thresholds(d.thresholds);
+                self.screen.pulse = PulseView::for_preset(name);
                 let reqs = self.apply(d, Scope::All, format!("preset {name}"));
                 self.preset = name.to_string();
                 reqs
@@ -410,7 +412,7 @@ impl App {
 
     /// A key in the saved-designs list; Enter loads the design (undoable).
     fn saved_key(&mut self, k: KeyEvent, i: usize) -> Vec<Request> {
-        let n = self.saved.designs.len() + self.saved.problems.len();
+        let n = self.host.saved.designs.len() + self.host.saved.problems.len();
         let ListNav::Choose(i) = self.list_nav(k, i, n, Mode::Saved) else { return vec![] };
         self.load_saved(i)
     }
@@ -429,7 +431,7 @@ impl App {
         if self.mode != Mode::Normal {
             return vec![];
         }
-        let field = self.field_lines.iter().find(|(r, _)| r.contains(ratatui::layout::Position { x, y }));
+        let field = self.drawn.fields.iter().find(|(r, _)| r.contains(ratatui::layout::Position { x, y }));
         if let Some(&(_, i)) = field {
             if let Some(&f) = Knob::ALL.get(i) {
                 self.select_field(f);
@@ -437,10 +439,10 @@ impl App {
             }
             return vec![];
         }
-        if self.polar_hit.is_some_and(|p| p.theta_at(x, y).is_some()) {
+        if self.drawn.polar.is_some_and(|p| p.theta_at(x, y).is_some()) {
             return self.drag(x, y);
         }
-        let Some((m, g)) = self.chart_geometry.as_ref().and_then(|geo| geo.hit(x, y)) else {
+        let Some((m, g)) = self.drawn.geometry.as_ref().and_then(|geo| geo.hit(x, y)) else {
             return vec![];
         };
         self.focus = Panel::Chart;
@@ -452,7 +454,7 @@ impl App {
     /// A left drag (or click) on the polar: the listener's θ follows the pointer (whole
     /// degrees, inside the source's range); θ becomes the selected field.
     pub(crate) fn drag(&mut self, x: u16, y: u16) -> Vec<Request> {
-        let Some(deg) = self.polar_hit.and_then(|p| p.theta_at(x, y)) else { return vec![] };
+        let Some(deg) = self.drawn.polar.and_then(|p| p.theta_at(x, y)) else { return vec![] };
         if self.mode != Mode::Normal {
             return vec![];
         }

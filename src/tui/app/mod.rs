@@ -3,8 +3,9 @@
 //! from the state and never changes it.
 //!
 //! One concern a module, one `impl App` block each, each calling only the ones above it:
-//! - `state`: the state, grouped by concern (the live setup, its results, the chart, the
-//!   response curve, the screen, the host's set-up), and the queries the view reads;
+//! - `state`: the state, grouped by concern (the live setup and its edits, its results, the
+//!   chart, the curves over f, the screen, what the last frame drew, the host's set-up: at
+//!   most 20 fields, each group a type), and the queries the view reads;
 //! - `change`: a new live design (undoable) and the work it needs; undo, stepping and typing
 //!   a field, moving on the chart;
 //! - `screen`: the pin, the chart panel's and the pulse panel's views, the field's hint;
@@ -24,5 +25,5 @@ mod update;
 
 pub use super::view::{Panel, PulseView};
 pub use change::changes;
-pub use state::{best_zone3, App, Best, ChartState, ChartView, Mode, Options, Pinned, Status, TourState};
+pub use state::{best_zone3, App, Best, ChartState, ChartView, Host, Mode, Options, Pinned, Screen, Status, TourState};
 pub use update::Msg;

@@ -29,7 +29,7 @@ impl App {
     /// Cycles the chart panel: the zones, the scatter, and with a force on the bifurcation
     /// diagram over f (from the response: zones); returns the work the diagram needs.
     pub(crate) fn toggle_chart_view(&mut self) -> Vec<Request> {
-        self.chart_view = match self.chart_view {
+        self.screen.chart_view = match self.screen.chart_view {
             ChartView::Zones => ChartView::Scatter,
             ChartView::Scatter if self.design.damper.forced() => ChartView::Bifurcation,
             ChartView::Scatter | ChartView::Response | ChartView::Bifurcation => ChartView::Zones,
@@ -41,7 +41,7 @@ impl App {
     /// Switches the chart panel to the response curve and back to the zones; returns the work
     /// the curve needs (none if it is cached, or without a force).
     pub(crate) fn toggle_response(&mut self) -> Vec<Request> {
-        self.chart_view = match self.chart_view {
+        self.screen.chart_view = match self.screen.chart_view {
             ChartView::Response => ChartView::Zones,
             ChartView::Zones | ChartView::Scatter | ChartView::Bifurcation => ChartView::Response,
         };
@@ -51,7 +51,7 @@ impl App {
 
     /// Says which picture the chart panel shows (and how to bring it on screen).
     fn say_chart_view(&mut self) {
-        let view = match self.chart_view {
+        let view = match self.screen.chart_view {
             ChartView::Zones => "zones over mass × gap".to_string(),
             ChartView::Scatter => "e vs SPLmax (Fig 17)".to_string(),
             ChartView::Response if self.design.damper.forced() => {
@@ -74,7 +74,7 @@ impl App {
                 )
             }
         };
-        let text = if self.chart_shown {
+        let text = if self.drawn.chart_shown {
             format!("chart view: {view}")
         } else {
             format!("chart view: {view}; not on screen: press {} to show the chart", self.key_label(Action::FocusNext))
@@ -84,11 +84,11 @@ impl App {
 
     /// Switches the pulse panel between the run's loudest impact and one impact on a plate.
     pub(crate) fn toggle_pulse(&mut self) {
-        self.pulse = match self.pulse {
+        self.screen.pulse = match self.screen.pulse {
             PulseView::Loudest => PulseView::Single,
             PulseView::Single => PulseView::Loudest,
         };
-        let text = match self.pulse {
+        let text = match self.screen.pulse {
             PulseView::Loudest => "pulse: the loudest impact of the run (at U0max, against the main mass)".to_string(),
             PulseView::Single => format!(
                 "pulse: one impact at U0 = v0 = {} m/s on a fixed plate (as thud pulse; the paper's Fig 2)",

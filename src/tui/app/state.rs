@@ -15,7 +15,7 @@ use crate::presets::{self, PresetInfo};
 use crate::response::Response;
 use crate::store::DesignList;
 use crate::tui::cache_key::{BifurcationKey, ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
-use crate::tui::chart::{DesignZone, Geometry};
+use crate::tui::chart::DesignZone;
 use crate::tui::compute::{
     bifurcation_band, default_band, AcousticResult, ChartPasses, Grids, SimResult, BIFURCATION_VALUES,
 };
@@ -23,7 +23,7 @@ use crate::tui::fields::{Knob, Setup};
 use crate::tui::keys::{Action, Keymap};
 use crate::tui::theme::Palette;
 use crate::tui::tour::{Tour, TourSource};
-use crate::tui::view::{Panel, PulseView};
+use crate::tui::view::{Drawn, Panel, PulseView};
 use crate::tui::worker::Request;
 
 /// The guided tour while it runs: the tour and the step shown.
@@ -298,59 +298,78 @@ pub struct App {
     pub runs: usize,
     /// The name of the preset or saved design the live one came from.
     pub preset: String,
-    /// The setup as last loaded (preset, saved design, tour step) or saved: the live one
-    /// differs from it when the header marks the design modified (`*`).
-    pub(crate) origin: (Design, usize),
-    pub(crate) undo: UndoStack,
+    pub(crate) edits: Edits,
     pub pinned: Option<Pinned>,
 
-    // What was computed: for the live design, the chart, the response curve.
+    // What was computed: for the live design, the chart, the curves over f.
     pub(crate) results: Results,
     pub chart: ChartState,
-    pub(crate) response: ResponseCurve,
+    pub(crate) curves: Curves,
 
-    // The screen: selection, focus, popups, views, the status line.
+    // The screen: selection, focus, popups, views, the tour.
     /// The selected parameter (index into [`Knob::ALL`]).
     pub selected: usize,
     pub focus: Panel,
-    /// The input line's text is selected (just opened with the current value or name):
-    /// typing replaces it.
-    pub line_selected: bool,
-    /// The focused panel fills the body (the `z` key; the tour turns it on).
-    pub zoom: bool,
     pub mode: Mode,
-    pub(crate) chart_view: ChartView,
-    /// The bifurcation view's diagram (issue 27).
-    pub(crate) bifurcation: BifurcationDiagram,
-    /// Which impact the pulse panel shows.
-    pub pulse: PulseView,
     /// The guided tour, while it runs.
     pub tour: Option<TourState>,
-    /// The tour just finished: the next key that would change the design (→ as "next" once
-    /// more) only says what it will do from now on.
-    pub(crate) tour_over: bool,
     /// The animation view, while it shows (`a`).
     pub anim: Option<crate::tui::anim::Anim>,
     /// The Table 1 view, while it shows (`M`; the tour's Table 1 step).
     pub table1: Option<crate::tui::table1::Table1>,
-    /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
-    pub(crate) pending_best: bool,
-    pub(crate) status: Option<Status>,
-    pub(crate) spinner: usize,
     pub quit: bool,
-    /// Where the chart's cells were last drawn (for mouse clicks).
-    pub chart_geometry: Option<Geometry>,
-    /// Whether the last frame showed the chart panel.
-    pub chart_shown: bool,
-    /// Where the last frame drew each shown field (its line, its index in [`Knob::ALL`]).
-    pub field_lines: Vec<(ratatui::layout::Rect, usize)>,
-    /// Where the last frame drew the polar's canvas (a click or drag there sets θ).
-    pub polar_hit: Option<crate::tui::polar::PolarHit>,
+    pub screen: Screen,
+    /// What the last frame drew that a click needs (written back by the draw, one value).
+    pub drawn: Drawn,
 
     // The host's set-up and the files.
     pub theme: Palette,
     /// Mouse clicks select chart cells.
     pub mouse: bool,
+    pub host: Host,
+}
+
+/// The setup as last loaded or saved, and the designs before each change.
+#[derive(Debug, Clone)]
+pub(crate) struct Edits {
+    /// The setup as last loaded (preset, saved design, tour step) or saved: the live one
+    /// differs from it when the header marks the design modified (`*`).
+    pub origin: (Design, usize),
+    pub undo: UndoStack,
+}
+
+/// The live design's curves over f, each computed while its view shows.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Curves {
+    pub response: ResponseCurve,
+    /// The bifurcation view's diagram.
+    pub bifurcation: BifurcationDiagram,
+}
+
+/// The screen's state beside the selection, the mode and the views: the input line, the
+/// zoom, the chart's and the pulse's views, the tour's loose ends and the status line.
+#[derive(Debug, Clone)]
+pub struct Screen {
+    /// The input line's text is selected (just opened with the current value or name):
+    /// typing replaces it.
+    pub line_selected: bool,
+    /// The focused panel fills the body (the `z` key; the tour turns it on).
+    pub zoom: bool,
+    pub(crate) chart_view: ChartView,
+    /// Which impact the pulse panel shows.
+    pub pulse: PulseView,
+    /// The tour just finished: the next key that would change the design (→ as "next" once
+    /// more) only says what it will do from now on.
+    pub(crate) tour_over: bool,
+    /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
+    pub(crate) pending_best: bool,
+    pub(crate) status: Option<Status>,
+    pub(crate) spinner: usize,
+}
+
+/// The host's set-up: the settings and their keys, the lists offered, and where files go.
+#[derive(Debug, Clone)]
+pub struct Host {
     pub(crate) settings: Settings,
     /// The presets offered by the `P` list.
     pub preset_list: Vec<PresetInfo>,
@@ -379,50 +398,49 @@ impl App {
     pub fn with_grids(design: Design, preset: &str, theme: Palette, grids: Grids) -> Self {
         let chart = ChartState::empty(&design, &grids, 1);
         Self {
-            origin: (design.clone(), 1),
+            edits: Edits { origin: (design.clone(), 1), undo: UndoStack::default() },
+            screen: Screen {
+                line_selected: false,
+                zoom: false,
+                chart_view: ChartView::Zones,
+                pulse: PulseView::for_preset(preset),
+                tour_over: false,
+                pending_best: false,
+                status: Some(Status {
+                    text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
+                    error: false,
+                }),
+                spinner: 0,
+            },
             design,
             runs: 1,
             preset: preset.to_string(),
-            undo: UndoStack::default(),
             pinned: None,
             results: Results::default(),
             chart,
-            response: ResponseCurve::default(),
-            bifurcation: BifurcationDiagram::default(),
+            curves: Curves::default(),
             selected: 0,
             focus: Panel::Params,
-            zoom: false,
-            line_selected: false,
             mode: Mode::Normal,
-            chart_view: ChartView::Zones,
-            pulse: PulseView::for_preset(preset),
             tour: None,
-            tour_over: false,
             anim: None,
             table1: None,
-            pending_best: false,
-            status: Some(Status {
-                text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
-                error: false,
-            }),
-            spinner: 0,
             quit: false,
-            chart_geometry: None,
-            chart_shown: false,
-            field_lines: Vec::new(),
-            polar_hit: None,
+            drawn: Drawn::default(),
             theme,
             mouse: false,
-            settings: Settings::default(),
-            preset_list: presets::list().unwrap_or_else(|_| {
-                presets::names().map(|name| PresetInfo { name, description: String::new() }).collect()
-            }),
-            tour_def: None,
-            data_dir: None,
-            export_dir: PathBuf::from("."),
-            saved: DesignList::default(),
-            load_error: None,
-            exports: Vec::new(),
+            host: Host {
+                settings: Settings::default(),
+                preset_list: presets::list().unwrap_or_else(|_| {
+                    presets::names().map(|name| PresetInfo { name, description: String::new() }).collect()
+                }),
+                tour_def: None,
+                data_dir: None,
+                export_dir: PathBuf::from("."),
+                saved: DesignList::default(),
+                load_error: None,
+                exports: Vec::new(),
+            },
         }
     }
 
@@ -440,12 +458,12 @@ impl App {
         self.design.thresholds = c.thresholds(self.design.thresholds);
         self.mark_unmodified();
         let (keys, problems) = Keymap::with_overrides(&c.keys);
-        self.settings.keys = keys;
-        self.settings.config = c.clone();
+        self.host.settings.keys = keys;
+        self.host.settings.config = c.clone();
         let mut warnings: Vec<String> = load.warning().into_iter().collect();
         warnings.extend(problems.iter().map(|p| format!("warning: {}: {p}", load.path.display())));
         if !warnings.is_empty() {
-            self.status = Some(Status { text: warnings.join("; "), error: true });
+            self.screen.status = Some(Status { text: warnings.join("; "), error: true });
         }
     }
 }
@@ -459,7 +477,7 @@ impl App {
 
     /// True if the live design (or N) differs from the one last loaded or saved.
     pub fn modified(&self) -> bool {
-        self.design != self.origin.0 || self.runs != self.origin.1
+        self.design != self.edits.origin.0 || self.runs != self.edits.origin.1
     }
 
     /// The panel that fills the body while zoomed: the focused one (the readout when a tour
@@ -497,12 +515,12 @@ impl App {
 
     /// The status line's message, if any.
     pub fn status(&self) -> Option<&Status> {
-        self.status.as_ref()
+        self.screen.status.as_ref()
     }
 
     /// True while results for the current design are missing or being recomputed.
     pub fn busy(&self) -> bool {
-        !self.exports.is_empty()
+        !self.host.exports.is_empty()
             || (self.results.error.is_none()
                 && (self.design_busy() || self.chart_busy() || self.response_busy() || self.bifurcation_busy()))
     }
@@ -516,15 +534,15 @@ impl App {
     /// not depend on it).
     pub fn response(&self) -> Option<&Response> {
         let key = ResponseKey::of(&self.design, &default_band(&self.design));
-        self.response.curve.as_deref().filter(|_| self.response.curve_for.as_ref() == Some(&key))
+        self.curves.response.curve.as_deref().filter(|_| self.curves.response.curve_for.as_ref() == Some(&key))
     }
 
     /// True while the response view waits for its curve.
     pub fn response_busy(&self) -> bool {
-        self.chart_view == ChartView::Response
+        self.screen.chart_view == ChartView::Response
             && self.design.damper.forced()
             && self.response().is_none()
-            && self.response.error.is_none()
+            && self.curves.response.error.is_none()
     }
 
     /// True while the chart is still filling in.
@@ -537,7 +555,7 @@ impl App {
     /// coarse one (with `false`: refining).
     pub fn bifurcation(&self) -> Option<(&Bifurcation, bool)> {
         let [coarse, fine] = self.bifurcation_keys();
-        let d = &self.bifurcation;
+        let d = &self.curves.bifurcation;
         match (&d.fine, &d.coarse) {
             (Some((k, b)), _) if *k == fine => Some((b, true)),
             (_, Some((k, b))) if *k == coarse => Some((b, false)),
@@ -547,10 +565,10 @@ impl App {
 
     /// True while the bifurcation view is shown for a forced design and its fine pass is not in.
     pub fn bifurcation_busy(&self) -> bool {
-        self.chart_view == ChartView::Bifurcation
+        self.screen.chart_view == ChartView::Bifurcation
             && self.design.damper.forced()
             && !self.bifurcation().is_some_and(|(_, fine)| fine)
-            && self.bifurcation.error.is_none()
+            && self.curves.bifurcation.error.is_none()
     }
 
     pub fn chart_busy(&self) -> bool {
@@ -576,7 +594,7 @@ impl App {
 
     /// The key shown for `action` (its first binding).
     pub fn key_label(&self, action: Action) -> &str {
-        self.settings.keys.label_of(action).unwrap_or("?")
+        self.host.settings.keys.label_of(action).unwrap_or("?")
     }
 }
 
@@ -584,17 +602,17 @@ impl App {
 impl App {
     /// The live setup becomes the one that counts as unmodified (just loaded or saved).
     pub(crate) fn mark_unmodified(&mut self) {
-        self.origin = (self.design.clone(), self.runs);
+        self.edits.origin = (self.design.clone(), self.runs);
     }
 
     /// Shows `e` as an error in the status line; asks for nothing.
     pub(crate) fn error(&mut self, e: impl Display) -> Vec<Request> {
-        self.status = Some(Status { text: format!("error: {e}"), error: true });
+        self.screen.status = Some(Status { text: format!("error: {e}"), error: true });
         vec![]
     }
 
     /// Shows `text` in the status line (red if `error`).
     pub(crate) fn set_status(&mut self, text: &str, error: bool) {
-        self.status = Some(Status { text: text.to_string(), error });
+        self.screen.status = Some(Status { text: text.to_string(), error });
     }
 }

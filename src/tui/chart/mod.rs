@@ -22,6 +22,8 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::widgets::{Block, Paragraph, Widget};
 
+pub mod panel;
+
 use super::plot::{fit_bounds, tick_step, ticks, Curve, LinePlot};
 use super::theme::{Palette, Role};
 use crate::design::Zone;
