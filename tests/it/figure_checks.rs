@@ -27,6 +27,9 @@ struct Look {
 /// A plot area: x, y, width, height.
 type Frame = (f64, f64, f64, f64);
 
+/// A drawn mark: its look and where it is (its centre, or a curve's middle point).
+type Mark = (Look, (f64, f64));
+
 fn num(n: &Node, name: &str) -> f64 {
     n.attribute(name).and_then(|v| v.parse().ok()).unwrap_or(f64::NAN)
 }
@@ -47,7 +50,7 @@ fn points(n: &Node) -> Vec<(f64, f64)> {
 
 /// Each drawn mark of `doc` as (look, where it is): curves, markers and cells; lines of a grid,
 /// axes, ticks and text are not marks. A legend's curve glyph is a short `line`.
-fn marks(doc: &Document) -> (Vec<Frame>, Vec<(Look, (f64, f64))>) {
+fn marks(doc: &Document) -> (Vec<Frame>, Vec<Mark>) {
     let frames: Vec<Frame> = doc
         .descendants()
         .filter(|n| n.has_tag_name("rect") && n.attribute("fill") == Some("none"))
@@ -70,7 +73,7 @@ fn marks(doc: &Document) -> (Vec<Frame>, Vec<(Look, (f64, f64))>) {
             "line" => {
                 // A short line away from every frame is a legend's curve glyph.
                 let (x1, y1, x2, y2) = (num(&n, "x1"), num(&n, "y1"), num(&n, "x2"), num(&n, "y2"));
-                let mid = ((x1 + x2) / 2.0, (y1 + y2) / 2.0);
+                let mid = (f64::midpoint(x1, x2), f64::midpoint(y1, y2));
                 let short = (x2 - x1).hypot(y2 - y1) <= 40.0;
                 if short && (y1 - y2).abs() < 0.01 && !inside(&frames, mid) && stroke != "black" {
                     out.push((look("curve", &stroke), mid));
@@ -201,4 +204,50 @@ fn titles_name_what_varies_over_the_whole_range_drawn() {
     assert!(title.starts_with("Forced vibration under F0 1 N at 5.5 Hz"), "{title}");
     let svg = &made().pictures["history.svg"];
     assert!(svg.contains("<title>Free vibration with and without"), "the free decay's title");
+}
+
+/// The box a text covers (x0, y0, x1, y1): about 0.55 em a character, from its baseline up one
+/// em and down a quarter.
+fn text_box(n: &Node) -> (f64, f64, f64, f64) {
+    let (x, y, size) =
+        (num(n, "x"), num(n, "y"), n.attribute("font-size").and_then(|s| s.parse().ok()).unwrap_or(11.0));
+    let w = 0.55 * size * n.text().unwrap_or_default().chars().count() as f64;
+    let x0 = match n.attribute("text-anchor") {
+        Some("middle") => x - w / 2.0,
+        Some("end") => x - w,
+        _ => x,
+    };
+    (x0, y - 0.75 * size, x0 + w, y + 0.25 * size)
+}
+
+#[test]
+fn labels_inside_a_plot_sit_clear_of_its_data() {
+    let mut checked = 0;
+    for (name, svg) in &made().figures {
+        let doc = Document::parse(svg).unwrap();
+        let (frames, marks) = marks(&doc);
+        // Every marker's centre and every point of every curve inside a plot.
+        let mut data: Vec<(f64, f64)> =
+            marks.iter().filter(|(l, at)| l.kind.starts_with("marker") && inside(&frames, *at)).map(|m| m.1).collect();
+        for n in doc.descendants().filter(|n| n.has_tag_name("polyline")) {
+            data.extend(points(&n).into_iter().filter(|p| inside(&frames, *p)));
+        }
+        // Texts drawn inside a plot on white (a cell's letter or digit is on its cell, not on data).
+        for n in doc.descendants().filter(|n| n.has_tag_name("text") && n.attribute("transform").is_none()) {
+            if !inside(&frames, (num(&n, "x"), num(&n, "y"))) || n.attribute("fill") == Some("white") {
+                continue;
+            }
+            let is_digit = n.text().is_some_and(|t| t.len() <= 2 && t.chars().all(|c| c.is_ascii_alphanumeric()));
+            if is_digit {
+                continue;
+            }
+            // The text's box grown by a marker's radius (3 px): a marker's edge counts too.
+            let (x0, y0, x1, y1) = text_box(&n);
+            let (xs, ys) = (x0 - 3.0..=x1 + 3.0, y0 - 3.0..=y1 + 3.0);
+            let on: Vec<&(f64, f64)> = data.iter().filter(|(x, y)| xs.contains(x) && ys.contains(y)).collect();
+            assert!(on.is_empty(), "{name}: the label {:?} sits on data at {on:?}", n.text());
+            checked += 1;
+        }
+    }
+    assert!(checked >= 4, "the zone and threshold labels of Fig 17 are checked: {checked}");
 }
