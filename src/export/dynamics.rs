@@ -362,7 +362,7 @@ pub fn basins_svg(b: &Basins, title: &str, look: &Look) -> String {
     }
     frame.axes(&mut svg, Some(title), svg::CLIP);
     let lx = frame.left + frame.width + 12.0;
-    for (k, a) in b.attractors.iter().enumerate().take(20) {
+    for (k, a) in b.attractors.iter().enumerate().take(LISTED_ATTRACTORS) {
         let yy = frame.top + 10.0 + 20.0 * k as f64;
         svg.rect(lx, yy - 9.0, 14.0, 12.0, &color(a.id), None);
         svg.text_fill(lx + 7.0, yy + 1.0, &letter(a.id), 9.0, Anchor::Middle, "white");
@@ -370,8 +370,18 @@ pub fn basins_svg(b: &Basins, title: &str, look: &Look) -> String {
         let text = format!("{} {:.1} mm, {:.0} %{mirror}", a.label, a.amplitude_m * 1e3, a.share * 100.0);
         svg.text(lx + 20.0, yy, &text, 10.0, Anchor::Start, 0.0);
     }
+    // The legend is not the whole story when it leaves attractors out: it says so.
+    let left_out = b.attractors.len().saturating_sub(LISTED_ATTRACTORS);
+    if left_out > 0 {
+        let yy = frame.top + 10.0 + 20.0 * LISTED_ATTRACTORS as f64;
+        let s = if left_out == 1 { "" } else { "s" };
+        svg.text(lx, yy, &format!("… and {left_out} attractor{s} more (in --csv)"), 10.0, Anchor::Start, 0.0);
+    }
     svg.finish()
 }
+
+/// The most attractors the basins figure's legend lists.
+const LISTED_ATTRACTORS: usize = 20;
 
 /// The letter of attractor `id` on a map: A … Z, then a … z, then `#`.
 #[must_use]

@@ -6,7 +6,7 @@ use crate::acoustics::{Field, Levels};
 use crate::damper::{free_response, DamperParams, Run};
 use crate::design::{Chart, Thresholds, Zone};
 use crate::paper::{Table, Value};
-use crate::units::sig;
+use crate::units::{short, sig};
 
 use super::svg::{
     draw_series_clipped, legend, line_plot, minus, nice_step, series_color, series_dash, Anchor, Axis, Frame, Look,
@@ -196,8 +196,9 @@ fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds, dots: bool) {
     }
     let x = frame.left + frame.width + 15.0 * k;
     let y = frame.top + (10.0 + 20.0 * entries.len() as f64 + 10.0) * k;
-    svg.text(x, y, &minus(&format!("L* = {} dB", sig(t.spl_db, 4))), 12.0 * k, Anchor::Start, 0.0);
-    let e_star = minus(&format!("e* = {} cm/s", sig(t.inclination_cm_s, 3)));
+    // The thresholds as given (103 dB, 0.9 cm/s), not padded to digits they do not have.
+    svg.text(x, y, &minus(&format!("L* = {} dB", short(t.spl_db))), 12.0 * k, Anchor::Start, 0.0);
+    let e_star = minus(&format!("e* = {} cm/s", short(t.inclination_cm_s)));
     svg.text(x, y + 18.0 * k, &e_star, 12.0 * k, Anchor::Start, 0.0);
 }
 
@@ -245,9 +246,25 @@ pub fn fig17_points(points: &[ZonePoint], t: &Thresholds, title: &str, look: &Lo
         let (cx, cy) = label_spot(quadrant, (3.6 * size, size), &dots, 4.0 * svg.scale());
         svg.text_fill(cx, cy + 0.35 * size, &format!("zone {}", zone.number()), size, Anchor::Middle, "#b0b0b0");
     }
-    frame.vline(&mut svg, t.spl_db, &format!("L* {} dB", sig(t.spl_db, 4)), "black");
-    frame.hline(&mut svg, t.inclination_cm_s, &format!("e* {} cm/s", sig(t.inclination_cm_s, 3)), "black");
+    frame.vline(&mut svg, t.spl_db, &format!("L* {} dB", short(t.spl_db)), "black");
     let r = 4.0 * svg.scale();
+    // The e* line, its label at whichever end and side of the line covers the fewest designs.
+    let k = svg.scale();
+    svg.line((left, yl), (right, yl), "black", 1.5 * k, Some("6 4"));
+    let label = minus(&format!("e* {} cm/s", short(t.inclination_cm_s)));
+    let w = 0.6 * 12.0 * k * label.chars().count() as f64;
+    let covered = |(x0, base): (f64, f64)| {
+        let (x_in, y_in) = (x0 - r..=x0 + w + r, base - 12.0 * k - r..=base + 3.0 * k + r);
+        dots.iter().filter(|(x, y)| x_in.contains(x) && y_in.contains(y)).count()
+    };
+    let spots = [
+        (right - 4.0 * k - w, yl - 5.0 * k),
+        (right - 4.0 * k - w, yl + 16.0 * k),
+        (left + 4.0 * k, yl - 5.0 * k),
+        (left + 4.0 * k, yl + 16.0 * k),
+    ];
+    let spot = spots.iter().copied().min_by_key(|s| covered(*s)).unwrap_or(spots[0]);
+    svg.text(spot.0, spot.1, &label, 12.0 * k, Anchor::Start, 0.0);
     for p in points {
         svg.marker(zone_shape(p.zone), frame.px(p.spl_db), frame.py(p.e_cm_s), r, darker(p.zone));
     }

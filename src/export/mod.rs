@@ -258,8 +258,18 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
         }
         Artifact::CsvHistory => csv::history(&run(&d, points)?.run, &d.damper)?,
         Artifact::SvgHistory => {
+            // A forced run is not a free decay: its title names the force.
+            let motion = if d.damper.forced() {
+                format!(
+                    "Forced vibration under F0 {} N at {} Hz",
+                    crate::units::short(d.damper.force_n),
+                    crate::units::short(d.damper.freq_hz)
+                )
+            } else {
+                "Free vibration".to_string()
+            };
             let title = format!(
-                "Free vibration with and without the damper (m {} g, d {} cm, v0 {} m/s)",
+                "{motion} with and without the damper (m {} g, d {} cm, v0 {} m/s)",
                 crate::units::sig(d.damper.impact_mass_kg * 1e3, 3),
                 crate::units::sig(d.damper.gap_m * 1e2, 3),
                 crate::units::sig(d.damper.v0_m_s, 3)

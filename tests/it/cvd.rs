@@ -158,7 +158,7 @@ fn seen(hex: &str, m: &[[f64; 3]; 3]) -> Lab {
 
 /// The smallest ΔE00 between any two of `colors` for normal vision, a deuteranope and a
 /// protanope: (ΔE, vision, colour, colour).
-fn closest_pair(colors: &[&str]) -> (f64, &'static str, String, String) {
+pub fn closest_pair(colors: &[&str]) -> (f64, &'static str, String, String) {
     let mut worst = (f64::INFINITY, "", String::new(), String::new());
     for (name, m) in [("normal vision", &NORMAL), ("deuteranopia", &DEUTERANOPIA), ("protanopia", &PROTANOPIA)] {
         for (i, a) in colors.iter().enumerate() {
@@ -173,7 +173,7 @@ fn closest_pair(colors: &[&str]) -> (f64, &'static str, String, String) {
     worst
 }
 
-const MIN_DELTA_E: f64 = 10.0;
+pub const MIN_DELTA_E: f64 = 10.0;
 
 #[test]
 fn ciede2000_reproduces_sharma_s_34_test_pairs() {

@@ -1,0 +1,253 @@
+//! Figures that tell the truth, checked on every figure kind thud draws (the ones the gallery's
+//! commands write, the paper's every figure among them: `pictures::made`):
+//! - the legend is complete: every look a series is drawn with (a curve's colour and dash, a
+//!   marker's colour and shape, a map cell's colour) is in the legend, or the legend says it
+//!   leaves some out (an entry starting or ending with "…"); a figure of one look needs none;
+//! - the looks' colours stay apart for people with red–green colour blindness (the check of
+//!   `cvd`, on the colours each figure actually uses).
+//!
+//! A figure is read from its SVG: its plot areas are the frames (`rect` with `fill="none"`),
+//! what is drawn inside them is data, what is drawn outside them is the legend. Continuous
+//! colour scales (a colour bar of many steps) are not a legend of entries and are left out.
+
+use crate::cvd::{closest_pair, MIN_DELTA_E};
+use crate::pictures::made;
+use roxmltree::{Document, Node};
+use std::collections::BTreeSet;
+
+/// How one mark is drawn: what it is (a curve, a marker of a shape, a cell), its colour and
+/// its dash pattern.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+struct Look {
+    kind: String,
+    color: String,
+    dash: String,
+}
+
+/// A plot area: x, y, width, height.
+type Frame = (f64, f64, f64, f64);
+
+/// A drawn mark: its look and where it is (its centre, or a curve's middle point).
+type Mark = (Look, (f64, f64));
+
+fn num(n: &Node, name: &str) -> f64 {
+    n.attribute(name).and_then(|v| v.parse().ok()).unwrap_or(f64::NAN)
+}
+
+fn inside(frames: &[Frame], (x, y): (f64, f64)) -> bool {
+    frames.iter().any(|&(fx, fy, w, h)| x >= fx - 0.5 && x <= fx + w + 0.5 && y >= fy - 0.5 && y <= fy + h + 0.5)
+}
+
+/// The points of a `points` attribute.
+fn points(n: &Node) -> Vec<(f64, f64)> {
+    n.attribute("points")
+        .unwrap_or_default()
+        .split_whitespace()
+        .filter_map(|p| p.split_once(','))
+        .filter_map(|(x, y)| Some((x.parse().ok()?, y.parse().ok()?)))
+        .collect()
+}
+
+/// Each drawn mark of `doc` as (look, where it is): curves, markers and cells; lines of a grid,
+/// axes, ticks and text are not marks. A legend's curve glyph is a short `line`.
+fn marks(doc: &Document) -> (Vec<Frame>, Vec<Mark>) {
+    let frames: Vec<Frame> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("rect") && n.attribute("fill") == Some("none"))
+        .map(|n| (num(&n, "x"), num(&n, "y"), num(&n, "width"), num(&n, "height")))
+        .collect();
+    let in_defs = |n: &Node| n.ancestors().any(|a| a.has_tag_name("defs") || a.has_tag_name("clipPath"));
+    let mut out = vec![];
+    for n in doc.descendants().filter(|n| n.is_element() && !in_defs(n)) {
+        let fill = n.attribute("fill").unwrap_or("black").to_string();
+        let stroke = n.attribute("stroke").unwrap_or("none").to_string();
+        let dash = n.attribute("stroke-dasharray").unwrap_or("solid").to_string();
+        let look = |kind: &str, color: &str| Look { kind: kind.into(), color: color.into(), dash: dash.clone() };
+        match n.tag_name().name() {
+            "polyline" => {
+                let pts = points(&n);
+                if let Some(&p) = pts.get(pts.len() / 2) {
+                    out.push((look("curve", &stroke), p));
+                }
+            }
+            "line" => {
+                // A short line away from every frame is a legend's curve glyph.
+                let (x1, y1, x2, y2) = (num(&n, "x1"), num(&n, "y1"), num(&n, "x2"), num(&n, "y2"));
+                let mid = (f64::midpoint(x1, x2), f64::midpoint(y1, y2));
+                let short = (x2 - x1).hypot(y2 - y1) <= 40.0;
+                if short && (y1 - y2).abs() < 0.01 && !inside(&frames, mid) && stroke != "black" {
+                    out.push((look("curve", &stroke), mid));
+                }
+            }
+            "circle" => out.push((look("marker circle", &fill), (num(&n, "cx"), num(&n, "cy")))),
+            "polygon" => {
+                let pts = points(&n);
+                let c = pts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+                let k = pts.len().max(1) as f64;
+                out.push((look(&format!("marker polygon{}", pts.len()), &fill), (c.0 / k, c.1 / k)));
+            }
+            "rect" if fill != "none" && fill != "white" => {
+                let (x, y, w, h) = (num(&n, "x"), num(&n, "y"), num(&n, "width"), num(&n, "height"));
+                let square_marker = (w - h).abs() < 0.01 && w < 12.0 && n.attribute("stroke").is_none();
+                let kind = if square_marker { "marker square" } else { "cell" };
+                out.push((Look { kind: kind.into(), color: fill, dash: "solid".into() }, (x + w / 2.0, y + h / 2.0)));
+            }
+            _ => {}
+        }
+    }
+    (frames, out)
+}
+
+/// The texts of `doc` outside its frames (the legend's words, the axes' too).
+fn texts_outside(doc: &Document, frames: &[Frame]) -> Vec<String> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text") && !inside(frames, (num(n, "x"), num(n, "y"))))
+        .filter_map(|n| n.text().map(str::to_string))
+        .collect()
+}
+
+/// A map's cells or a colour bar: more than this many colours of cell is a continuous scale.
+const SCALE_COLORS: usize = 12;
+
+/// What one figure draws: its data looks and its legend's.
+fn looks_of(svg: &str) -> (BTreeSet<Look>, BTreeSet<Look>, bool) {
+    let doc = Document::parse(svg).unwrap();
+    let (frames, marks) = marks(&doc);
+    let (mut data, mut legend) = (BTreeSet::new(), BTreeSet::new());
+    for (look, at) in marks {
+        if inside(&frames, at) {
+            data.insert(look);
+        } else {
+            legend.insert(look);
+        }
+    }
+    let cell_colors = |s: &BTreeSet<Look>| s.iter().filter(|l| l.kind == "cell").count();
+    let scale = cell_colors(&data) > SCALE_COLORS || cell_colors(&legend) > SCALE_COLORS;
+    if scale {
+        data.retain(|l| l.kind != "cell");
+        legend.retain(|l| l.kind != "cell");
+    }
+    let says_more = texts_outside(&doc, &frames).iter().any(|t| t.trim().starts_with('…') || t.trim().ends_with('…'));
+    (data, legend, says_more)
+}
+
+#[test]
+fn every_figure_s_legend_names_every_look_it_draws() {
+    let figures = &made().figures;
+    assert!(figures.len() >= 25, "every figure kind: {:?}", figures.keys());
+    for (name, svg) in figures {
+        let (data, legend, says_more) = looks_of(svg);
+        // One series (one colour, one dash, one marker shape: a line with its markers) needs
+        // no legend; its axes say what it is.
+        let count = |f: &dyn Fn(&Look) -> Option<String>| data.iter().filter_map(f).collect::<BTreeSet<_>>().len();
+        let one_series = count(&|l| Some(l.color.clone())) <= 1
+            && count(&|l| (l.kind == "curve").then(|| l.dash.clone())) <= 1
+            && count(&|l| (l.kind != "curve").then(|| l.kind.clone())) <= 1;
+        if one_series || says_more {
+            continue;
+        }
+        let missing: Vec<&Look> = data.iter().filter(|l| !legend.contains(l)).collect();
+        assert!(missing.is_empty(), "{name}: drawn but not in the legend (nor a “…”): {missing:?}\nlegend: {legend:?}");
+    }
+}
+
+#[test]
+fn the_legend_check_fails_on_a_missing_entry_and_passes_on_an_ellipsis() {
+    let frame = r#"<rect x="10" y="10" width="100" height="100" fill="none" stroke="black"/>"#;
+    let curve = |c: &str| format!(r#"<polyline points="20,20 60,60 100,30" fill="none" stroke="{c}"/>"#);
+    let glyph = |c: &str, y: u32| format!(r#"<line x1="120" y1="{y}" x2="144" y2="{y}" stroke="{c}"/>"#);
+    let doc = |body: String| format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{frame}{body}</svg>"#);
+    let complete =
+        doc(format!("{}{}{}{}", curve("#0072B2"), curve("#D55E00"), glyph("#0072B2", 20), glyph("#D55E00", 40)));
+    let (data, legend, more) = looks_of(&complete);
+    assert_eq!((data.len(), more), (2, false));
+    assert!(data.is_subset(&legend));
+    let short = doc(format!("{}{}{}", curve("#0072B2"), curve("#D55E00"), glyph("#0072B2", 20)));
+    let (data, legend, more) = looks_of(&short);
+    assert!(!data.is_subset(&legend) && !more, "a curve missing from the legend is seen");
+    let said = short.replace("</svg>", r#"<text x="120" y="60">… and 1 more</text></svg>"#);
+    assert!(looks_of(&said).2, "a legend that says it leaves some out");
+}
+
+#[test]
+fn every_figure_s_colours_stay_apart_for_red_green_colour_blindness() {
+    for (name, svg) in &made().figures {
+        let (data, legend, _) = looks_of(svg);
+        // The colours that tell series apart: of the data's looks, and the legend's entries.
+        let colors: BTreeSet<&str> = data
+            .iter()
+            .chain(&legend)
+            .map(|l| l.color.as_str())
+            .filter(|c| c.starts_with('#') && c.len() == 7)
+            .collect();
+        let colors: Vec<&str> = colors.into_iter().collect();
+        if colors.len() < 2 {
+            continue;
+        }
+        let (d, vision, a, b) = closest_pair(&colors);
+        assert!(d >= MIN_DELTA_E, "{name}: {a} and {b} are ΔE00 {d:.1} apart with {vision}");
+    }
+}
+
+#[test]
+fn titles_name_what_varies_over_the_whole_range_drawn() {
+    // The bifurcation diagram of the gallery runs f over 6.5–8 Hz: its title says so, not the
+    // design's own frequency.
+    let svg = &made().pictures["bifurcation.svg"];
+    let doc = Document::parse(svg).unwrap();
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).and_then(|n| n.text()).unwrap();
+    assert!(title.contains("6.5–8 Hz") && !title.contains("7.5 Hz"), "{title}");
+    // A forced run's history is not a free decay, and its force is printed as it was given.
+    let svg = &made().pictures["forced.svg"];
+    let doc = Document::parse(svg).unwrap();
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).and_then(|n| n.text()).unwrap();
+    assert!(title.starts_with("Forced vibration under F0 1 N at 5.5 Hz"), "{title}");
+    let svg = &made().pictures["history.svg"];
+    assert!(svg.contains("<title>Free vibration with and without"), "the free decay's title");
+}
+
+/// The box a text covers (x0, y0, x1, y1): about 0.55 em a character, from its baseline up one
+/// em and down a quarter.
+fn text_box(n: &Node) -> (f64, f64, f64, f64) {
+    let (x, y, size) =
+        (num(n, "x"), num(n, "y"), n.attribute("font-size").and_then(|s| s.parse().ok()).unwrap_or(11.0));
+    let w = 0.55 * size * n.text().unwrap_or_default().chars().count() as f64;
+    let x0 = match n.attribute("text-anchor") {
+        Some("middle") => x - w / 2.0,
+        Some("end") => x - w,
+        _ => x,
+    };
+    (x0, y - 0.75 * size, x0 + w, y + 0.25 * size)
+}
+
+#[test]
+fn labels_inside_a_plot_sit_clear_of_its_data() {
+    let mut checked = 0;
+    for (name, svg) in &made().figures {
+        let doc = Document::parse(svg).unwrap();
+        let (frames, marks) = marks(&doc);
+        // Every marker's centre and every point of every curve inside a plot.
+        let mut data: Vec<(f64, f64)> =
+            marks.iter().filter(|(l, at)| l.kind.starts_with("marker") && inside(&frames, *at)).map(|m| m.1).collect();
+        for n in doc.descendants().filter(|n| n.has_tag_name("polyline")) {
+            data.extend(points(&n).into_iter().filter(|p| inside(&frames, *p)));
+        }
+        // Texts drawn inside a plot on white (a cell's letter or digit is on its cell, not on data).
+        for n in doc.descendants().filter(|n| n.has_tag_name("text") && n.attribute("transform").is_none()) {
+            if !inside(&frames, (num(&n, "x"), num(&n, "y"))) || n.attribute("fill") == Some("white") {
+                continue;
+            }
+            let is_digit = n.text().is_some_and(|t| t.len() <= 2 && t.chars().all(|c| c.is_ascii_alphanumeric()));
+            if is_digit {
+                continue;
+            }
+            // The text's box grown by a marker's radius (3 px): a marker's edge counts too.
+            let (x0, y0, x1, y1) = text_box(&n);
+            let (xs, ys) = (x0 - 3.0..=x1 + 3.0, y0 - 3.0..=y1 + 3.0);
+            let on: Vec<&(f64, f64)> = data.iter().filter(|(x, y)| xs.contains(x) && ys.contains(y)).collect();
+            assert!(on.is_empty(), "{name}: the label {:?} sits on data at {on:?}", n.text());
+            checked += 1;
+        }
+    }
+    assert!(checked >= 4, "the zone and threshold labels of Fig 17 are checked: {checked}");
+}
