@@ -16,6 +16,7 @@ mod common;
 mod support {
     pub mod explorer;
     pub mod home;
+    pub mod impact_rk4;
     pub mod skip;
     pub mod stranger;
     pub mod wait;
@@ -37,6 +38,7 @@ mod export;
 mod figures;
 mod files;
 mod fit_cli;
+mod fit_coverage;
 mod fit_note;
 mod flag_names;
 mod forced;
