@@ -367,7 +367,7 @@ fn structure(a: &StructureArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
             );
             // What the fit knows of its values, for `fit damper --design` (relative standard
             // uncertainties: K = M·ω_n² and C = 2·M·σ carry M's and their own).
-            let rel = |se: f64, v: f64| if v != 0.0 { (se / v).abs() } else { 0.0 };
+            let rel = |se: f64, v: f64| if v == 0.0 { 0.0 } else { (se / v).abs() };
             let mut unc = std::collections::BTreeMap::new();
             for (name, u) in [
                 ("main-mass", m_rel),
@@ -502,7 +502,12 @@ fn damper(a: &DamperArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
             let mut dd = d.design().clone();
             dd.damper.c1_n_s_m = f.c1_n_s_m;
             let dd = dd.check().map_err(|e| e.renamed("save"))?.into_design();
-            Some(save(name, dd, format!("fitted c1 from {}", fsio::shown(first)), Default::default())?)
+            Some(save(
+                name,
+                dd,
+                format!("fitted c1 from {}", fsio::shown(first)),
+                std::collections::BTreeMap::default(),
+            )?)
         }
         None => None,
     };

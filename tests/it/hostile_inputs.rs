@@ -951,7 +951,7 @@ fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
     let file = thud::store::DesignFile {
         description: "a long one".into(),
         ensemble: None,
-        uncertainty: Default::default(),
+        uncertainty: std::collections::BTreeMap::default(),
         design: long,
     };
     thud::store::save_design(data.path(), "long", &file, false).unwrap();

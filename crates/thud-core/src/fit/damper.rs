@@ -1357,7 +1357,7 @@ mod tests {
             let peak = clean.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let mut last = 0.0;
             for level in levels {
-                let draws = if level == 0.0 { 1 } else { 300 };
+                let draws: u32 = if level == 0.0 { 1 } else { 300 };
                 let (mut stats, mut predicted) = (Vec::new(), Vec::new());
                 for _ in 0..draws {
                     let y: Vec<f64> = clean.iter().map(|c| c + level * peak * g.normal()).collect();
@@ -1371,8 +1371,8 @@ mod tests {
                 if level == 0.0 {
                     continue;
                 }
-                let mean = stats.iter().sum::<f64>() / draws as f64;
-                let sd = (stats.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / (draws - 1) as f64).sqrt();
+                let mean = stats.iter().sum::<f64>() / f64::from(draws);
+                let sd = (stats.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / f64::from(draws - 1)).sqrt();
                 eprintln!("{q:?} noise {level}: predicted {pred:.5}, drawn {sd:.5}, ratio {:.2}", pred / sd);
                 predicted_at.push((q, level, pred / sd));
             }
