@@ -10,5 +10,10 @@ pub use thud_presets::{list, names, preset, PresetInfo, TABLE3_C1};
 /// The preset called `name` (case-insensitive) with its description, as a design file.
 pub fn preset_file(name: &str) -> Result<DesignFile, ThudError> {
     let p = thud_presets::preset_file(name)?;
-    Ok(DesignFile { description: p.description, ensemble: None, design: p.design })
+    Ok(DesignFile {
+        description: p.description,
+        ensemble: None,
+        uncertainty: std::collections::BTreeMap::default(),
+        design: p.design,
+    })
 }

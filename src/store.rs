@@ -188,6 +188,11 @@ pub struct DesignFile {
     /// Checked on load like a typed N.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ensemble: Option<usize>,
+    /// The relative standard uncertainties of values the design was fitted with (`fit
+    /// structure --save`: its main-mass, k and c), by flag name; `fit damper --design` carries
+    /// them into its interval.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub uncertainty: std::collections::BTreeMap<String, f64>,
     pub design: Design,
 }
 

@@ -296,6 +296,29 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
         })
     }
 
+    /// Takes the uncertainty (`±…`, `+-…`) off the value typed for the row `name`, if one was
+    /// typed with it: the whole text as typed; the design then reads the value alone.
+    pub(crate) fn take_uncertainty(&mut self, name: &str) -> Option<String> {
+        self.given.iter_mut().find_map(|(n, v)| match v {
+            Input::Text(t) if n == name => {
+                let (value, u) = crate::units::split_uncertainty(t);
+                u?;
+                let whole = t.clone();
+                *t = value.to_string();
+                Some(whole)
+            }
+            _ => None,
+        })
+    }
+
+    /// The relative standard uncertainties the `--design` file carries (a fitted structure's),
+    /// by row name, without those of the rows typed here (a typed value replaces the file's).
+    pub(crate) fn file_uncertainty(&self) -> Vec<(String, f64)> {
+        let Some(text) = &self.design else { return Vec::new() };
+        let Ok(file) = crate::store::load_named_design(text) else { return Vec::new() };
+        file.uncertainty.into_iter().filter(|(name, _)| !self.has(name)).collect()
+    }
+
     /// Whether the row `name` was given.
     pub(crate) fn has(&self, name: &str) -> bool {
         self.text(name).is_some()

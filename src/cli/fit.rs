@@ -281,8 +281,13 @@ fn check_save(name: &str) -> Result<(), ThudError> {
 /// Saves `design` as `name` (refusing to replace one), with a one-line description: as the
 /// design file `name` when it names a file ([`crate::store::names_a_file`]), else as a saved
 /// design in the data directory. Either loads with `--design`.
-fn save(name: &str, design: Design, description: String) -> Result<String, CliError> {
-    let file = crate::store::DesignFile { description, ensemble: None, design };
+fn save(
+    name: &str,
+    design: Design,
+    description: String,
+    uncertainty: std::collections::BTreeMap<String, f64>,
+) -> Result<String, CliError> {
+    let file = crate::store::DesignFile { description, ensemble: None, uncertainty, design };
     if crate::store::names_a_file(name) {
         let path = Path::new(name);
         let text = file.to_toml().map_err(|e| e.renamed("save"))?;
@@ -345,7 +350,10 @@ pub(super) fn damper_fit(
 }
 
 fn structure(a: &StructureArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let m = quantity("main-mass", &Some(a.main_mass.clone()), Kind::Mass, &limits::MAIN_MASS)?.unwrap_or(1.0);
+    // The main mass may be typed with its uncertainty (`0.5kg±2%`): K and C carry it on.
+    let (value, u) = units::split_uncertainty(&a.main_mass);
+    let m = quantity("main-mass", &Some(value.to_string()), Kind::Mass, &limits::MAIN_MASS)?.unwrap_or(1.0);
+    let m_rel = if u.is_some() { units::parse_uncertain("main-mass", &a.main_mass, Kind::Mass)?.1 / m } else { 0.0 };
     if let Some(name) = &a.save {
         check_save(name)?;
     }
@@ -358,7 +366,20 @@ fn structure(a: &StructureArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
                 "fitted structure from {} (the structure alone: the gap is set wide so the ball is never hit; give your damper's --mass, --gap and --c1)",
                 fsio::shown(path)
             );
-            Some(save(name, d, description)?)
+            // What the fit knows of its values, for `fit damper --design` (relative standard
+            // uncertainties: K = M·ω_n² and C = 2·M·σ carry M's and their own).
+            let rel = |se: f64, v: f64| if v == 0.0 { 0.0 } else { (se / v).abs() };
+            let mut unc = std::collections::BTreeMap::new();
+            for (name, u) in [
+                ("main-mass", m_rel),
+                ("k", m_rel.hypot(rel(f.k_n_m_stderr, f.k_n_m))),
+                ("c", m_rel.hypot(rel(f.c_n_s_m_stderr, f.c_n_s_m))),
+            ] {
+                if u > 0.0 && u.is_finite() {
+                    unc.insert(name.to_string(), u);
+                }
+            }
+            Some(save(name, d, description, unc)?)
         }
         _ => None,
     };
@@ -423,8 +444,36 @@ fn structure_text(f: &StructureFit, saved: Option<&str>) -> String {
     s
 }
 
+/// The structure values `fit damper` takes with an uncertainty (`--main-mass 0.5kg±2%`), and
+/// their kinds.
+const UNCERTAIN: [(&str, Kind); 6] = [
+    ("main-mass", Kind::Mass),
+    ("k", Kind::Stiffness),
+    ("c", Kind::Damping),
+    ("mass", Kind::Mass),
+    ("gap", Kind::Length),
+    ("v0", Kind::Speed),
+];
+
 fn damper(a: &DamperArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let d = a.design.design()?;
+    // A value typed with `±` (or `+-`) gives the design its value and the fit its relative
+    // standard uncertainty.
+    let mut flags = a.design.clone();
+    let mut given = Vec::new();
+    for (name, kind) in UNCERTAIN {
+        if let Some(whole) = flags.take_uncertainty(name) {
+            let (value, sd) = units::parse_uncertain(name, &whole, kind)?;
+            if let (Some(input), true) = (fit::damper::Input::from_name(name), value != 0.0) {
+                given.push((input, sd / value.abs()));
+            }
+        }
+    }
+    for (name, u) in flags.file_uncertainty() {
+        if let Some(input) = fit::damper::Input::from_name(&name).filter(|_| u.is_finite() && u > 0.0) {
+            given.push((input, u));
+        }
+    }
+    let d = flags.design()?;
     if let Some(name) = &a.save {
         check_save(name)?;
     }
@@ -445,7 +494,7 @@ fn damper(a: &DamperArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     )?;
     let spinner = super::budget::spinner("fitting", true);
     let first = Path::new(&a.data[0]);
-    let f = fit::damper::fit(&d, &records, None)
+    let f = fit::damper::fit_with_inputs(&d, &records, &given, None)
         .map_err(|e| if e.param() == fit::DATA_PARAM { data_error(first, e.detail()) } else { e })?
         .ok_or(ThudError::Cancelled)?;
     spinner.finish_and_clear();
@@ -454,7 +503,12 @@ fn damper(a: &DamperArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
             let mut dd = d.design().clone();
             dd.damper.c1_n_s_m = f.c1_n_s_m;
             let dd = dd.check().map_err(|e| e.renamed("save"))?.into_design();
-            Some(save(name, dd, format!("fitted c1 from {}", fsio::shown(first)))?)
+            Some(save(
+                name,
+                dd,
+                format!("fitted c1 from {}", fsio::shown(first)),
+                std::collections::BTreeMap::default(),
+            )?)
         }
         None => None,
     };
@@ -491,6 +545,14 @@ fn damper_text(f: &DamperFit, saved: Option<&str>) -> String {
         sig(rhi, 4),
         sig(f.first_impact_speed_m_s, 3)
     );
+    for i in &f.inputs {
+        s += &format!(
+            "  {:<12} ± {} % moves c1 by {} %: in the interval\n",
+            i.input.name(),
+            sig(100.0 * i.relative_sd, 2),
+            sig(100.0 * i.ln_c1_shift.exp_m1(), 2)
+        );
+    }
     s += &format!("  envelope residual rms {} m\n", sig(f.residual_rms, 3));
     if let Some(note) = &f.note {
         s += &format!("  note: {note}\n");

@@ -427,7 +427,10 @@ fn a_fitted_structure_loads_with_design_everywhere() {
     // The same fit with the structure typed as flags (the fitted K and C, the file's v0).
     let toml = std::fs::read_to_string(&saved).unwrap();
     let v0 = toml.lines().find_map(|l| l.strip_prefix("v0_m_s = ")).unwrap().trim().to_string();
-    let (k, c) = (fitted["k_n_m"].to_string(), fitted["c_n_s_m"].to_string());
+    // The file carries the fit's standard errors of K and C; typed, they are `±`.
+    assert!(toml.contains("[uncertainty]"), "{toml}");
+    let pm = |key: &str| format!("{}±{}", fitted[key], fitted[format!("{key}_stderr")]);
+    let (k, c) = (pm("k_n_m"), pm("c_n_s_m"));
     let mut typed = vec!["fit", "damper", "--main-mass", "2", "--k", &k, "--c", &c, "--v0", &v0];
     typed.extend(["--data", strike.to_str().unwrap(), "--json"]);
     typed.extend(damper);
@@ -457,4 +460,43 @@ fn a_fitted_structure_loads_with_design_everywhere() {
     // --design and --preset are two starting designs: one at a time.
     let (code, _, err) = run(home.path(), &["simulate", "--design", s, "--preset", "default"]);
     assert_eq!(code, 2, "{err}");
+}
+
+/// The inputs' uncertainty in the interval: a record of M 0.525 kg (c1 60 N·s/m, struck at
+/// 1.4 m/s) fitted with `--main-mass 0.5kg±5%`, and one fitted with `--v0 1.54m/s+-10%` (10 %
+/// off): each interval holds the truth, and the JSON names the input it carried. A `±` that is
+/// not a number is refused in one line naming the flag.
+#[test]
+fn the_inputs_uncertainty_widens_the_interval() {
+    let home = tempfile::tempdir().unwrap();
+    let record = |name: &str, extra: &[&str]| {
+        let mut args = vec!["simulate", "--c1", "60", "--v0", "1.4", "--csv", "--samples", "6001"];
+        args.extend(extra);
+        let (code, csv, err) = run(home.path(), &args);
+        assert_eq!(code, 0, "{err}");
+        let file = home.path().join(name);
+        std::fs::write(&file, csv).unwrap();
+        file
+    };
+    let heavy = record("heavy.csv", &["--main-mass", "0.525", "--ball-position", "0.004"]);
+    let plain = record("plain.csv", &["--ball-position", "0.004"]);
+    for (file, flags, input) in [
+        (&heavy, ["--main-mass", "0.5kg±5%", "--v0", "1.4"], "main-mass"),
+        (&plain, ["--v0", "1.54m/s+-10%", "--main-mass", "0.5"], "v0"),
+    ] {
+        let mut args = vec!["fit", "damper", "--data", file.to_str().unwrap(), "--json"];
+        args.extend(flags);
+        let (code, out, err) = run(home.path(), &args);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let ci = v["c1_n_s_m_ci"].as_array().unwrap();
+        let (lo, hi) = (ci[0].as_f64().unwrap(), ci[1].as_f64().unwrap());
+        assert!(lo <= 60.0 && 60.0 <= hi, "{flags:?}: [{lo}, {hi}]");
+        let carried: Vec<&str> = v["inputs"].as_array().unwrap().iter().map(|i| i["input"].as_str().unwrap()).collect();
+        assert_eq!(carried, [input], "{out}");
+    }
+    let (code, _, err) =
+        run(home.path(), &["fit", "damper", "--data", plain.to_str().unwrap(), "--main-mass", "0.5kg±two%"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("main-mass") && err.contains("0.5kg±two%") && err.trim().lines().count() == 1, "{err}");
 }

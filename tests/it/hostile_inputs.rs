@@ -948,7 +948,12 @@ fn the_explorer_holds_loaded_files_to_the_caps_of_typed_values() {
     let data = tempfile::tempdir().unwrap();
     let mut long = Design::default();
     long.damper.duration_s = 1e6;
-    let file = thud::store::DesignFile { description: "a long one".into(), ensemble: None, design: long };
+    let file = thud::store::DesignFile {
+        description: "a long one".into(),
+        ensemble: None,
+        uncertainty: std::collections::BTreeMap::default(),
+        design: long,
+    };
     thud::store::save_design(data.path(), "long", &file, false).unwrap();
     let mut app = App::new(Design::default(), "default", Palette::default());
     app.host.data_dir = Some(data.path().to_path_buf());

@@ -16,6 +16,7 @@ mod common;
 mod support {
     pub mod explorer;
     pub mod home;
+    pub mod impact_rk4;
     pub mod screen_svg;
     pub mod skip;
     pub mod stranger;
@@ -40,6 +41,7 @@ mod figure_checks;
 mod figures;
 mod files;
 mod fit_cli;
+mod fit_coverage;
 mod fit_note;
 mod flag_names;
 mod forced;

@@ -165,6 +165,47 @@ pub fn parse(param: &str, text: &str, kind: Kind) -> Result<f64, ThudError> {
     overflow_checked(param, text, value * factor)
 }
 
+/// Splits a value typed with its uncertainty, `0.5kg±2%` or `0.5kg+-10g`, into the value's
+/// text and the uncertainty's (`None` without `±` or `+-`).
+#[must_use]
+pub fn split_uncertainty(text: &str) -> (&str, Option<&str>) {
+    for mark in ["±", "+-", "+/-"] {
+        if let Some((value, u)) = text.split_once(mark) {
+            return (value, Some(u));
+        }
+    }
+    (text, None)
+}
+
+/// Parses a quantity of `kind` with an optional standard uncertainty after `±` (or the ASCII
+/// `+-`): `0.5kg±2%` (relative), `0.5kg±10g` or `0.5±0.01` (in a unit of the same kind, a
+/// plain number in the plain unit). Returns the value (as [`parse`]) and its standard
+/// uncertainty in the same internal unit (0 without `±`). An uncertainty that is not a
+/// finite non-negative number of the kind is refused, naming `param` and the text.
+pub fn parse_uncertain(param: &str, text: &str, kind: Kind) -> Result<(f64, f64), ThudError> {
+    let (value_text, u_text) = split_uncertainty(text);
+    let value = parse(param, value_text, kind)?;
+    let Some(u_text) = u_text else { return Ok((value, 0.0)) };
+    let u_text = u_text.trim();
+    let refuse = |why: &str| {
+        ThudError::invalid(
+            param,
+            format!("'{}': {why}; give the uncertainty as e.g. 0.5kg±2% or 0.5kg+-10g", text.trim()),
+        )
+    };
+    let sd = if let Some(pct) = u_text.strip_suffix('%') {
+        let p: f64 = pct.trim().parse().map_err(|_| refuse("the uncertainty is not a number"))?;
+        p / 100.0 * value.abs()
+    } else {
+        parse(param, u_text, kind)
+            .map_err(|_| refuse("the uncertainty is not a number with a unit of the value's kind"))?
+    };
+    if !sd.is_finite() || sd < 0.0 {
+        return Err(refuse("the uncertainty must be a finite number, 0 or more"));
+    }
+    Ok((value, sd))
+}
+
 /// `value`, unless the digits the user typed overflowed to ±∞ (`1e400`, `1e308km`): then an
 /// error quoting the text, not the ∞ it became (explicit `inf` is refused by the ranges).
 pub fn overflow_checked(param: &str, text: &str, value: f64) -> Result<f64, ThudError> {
@@ -306,5 +347,23 @@ mod tests {
     fn sig_formats() {
         assert_eq!(sig(0.30000000000000004, 3), "0.300");
         assert_eq!(sig(264.28, 4), "264.3");
+    }
+
+    #[test]
+    fn a_value_with_its_uncertainty_reads_by_the_same_units() {
+        assert_eq!(parse_uncertain("main-mass", "0.5kg", Kind::Mass).unwrap(), (0.5, 0.0));
+        let (v, u) = parse_uncertain("main-mass", "0.5kg±2%", Kind::Mass).unwrap();
+        assert!((v - 0.5).abs() < 1e-15 && (u - 0.01).abs() < 1e-15, "{v} {u}");
+        let (v, u) = parse_uncertain("main-mass", "500g+-10g", Kind::Mass).unwrap();
+        assert!((v - 0.5).abs() < 1e-15 && (u - 0.01).abs() < 1e-15, "{v} {u}");
+        let (v, u) = parse_uncertain("v0", "1.4 +/- 0.05", Kind::Speed).unwrap();
+        assert!((v - 1.4).abs() < 1e-15 && (u - 0.05).abs() < 1e-15, "{v} {u}");
+        let (v, u) = parse_uncertain("k", "-3kN/m±1%", Kind::Stiffness).unwrap();
+        assert!((v + 3000.0).abs() < 1e-9 && (u - 30.0).abs() < 1e-9, "{v} {u}");
+        for bad in ["0.5kg±", "0.5kg±two%", "0.5kg±-1%", "0.5kg±2cm", "0.5kg±inf", "0.5kg±1e400"] {
+            let e = parse_uncertain("main-mass", bad, Kind::Mass).unwrap_err().to_string();
+            assert!(e.contains("main-mass") && e.contains(bad), "{bad}: {e}");
+        }
+        assert!(parse_uncertain("main-mass", "0.5kq±1%", Kind::Mass).is_err());
     }
 }

@@ -66,7 +66,12 @@ impl App {
             self.preset
         );
         let ensemble = (self.runs > 1).then_some(self.runs);
-        let file = DesignFile { description, ensemble, design: self.design.clone() };
+        let file = DesignFile {
+            description,
+            ensemble,
+            uncertainty: std::collections::BTreeMap::default(),
+            design: self.design.clone(),
+        };
         match store::save_design(&dir, name, &file, overwrite) {
             Ok(path) => {
                 self.preset = name.to_string();
