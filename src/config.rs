@@ -508,14 +508,32 @@ fn whole_design_problem(
     let only: DesignOnly = toml::from_str(text).ok()?;
     let config = Config { design: only.design, ..Config::default() };
     let base = crate::presets::preset("default").ok()?;
-    let e = config.design(base).err()?;
-    let named = e.param().split(' ').next().unwrap_or_default().to_string();
+    let (named, message) = match config.design(base) {
+        Err(e) => (e.param().split(' ').next().unwrap_or_default().to_string(), e.to_string()),
+        Ok(d) => work_problem(&d, &|n| config.design.contains_key(n))?,
+    };
     let span = value
         .get_ref()
         .as_table()
         .and_then(|t| t.iter().find(|(k, _)| k.get_ref().as_ref() == named).map(|(_, v)| v.span()))
         .unwrap_or_else(|| value.span());
-    Some(at(span, e.to_string()))
+    Some(at(span, message))
+}
+
+/// The work cap one run of the design built from the config (the default preset with these
+/// defaults) is over, as every command checks it before it runs ([`crate::limits::check_run`]):
+/// the key to blame and the problem, or `None`.
+fn work_problem(d: &Design, given: &dyn Fn(&str) -> bool) -> Option<(String, String)> {
+    let valid = d.clone().check().ok()?;
+    let r = crate::limits::check_run(&valid, given, 0).err()?;
+    let (v, unit) = crate::limits::refused_value(d, r.param)?;
+    let message = format!(
+        "{} {} {unit}: {} (`thud limits`); a command would refuse it",
+        r.param,
+        crate::limits::short(v),
+        r.estimate.describe()
+    );
+    Some((r.param.to_string(), message))
 }
 
 /// A TOML integer or float as a number.

@@ -167,7 +167,13 @@ fn other_separator(line: &str) -> Option<&'static str> {
 /// say what they see (a file separated by ';' or tabs, a decimal comma, an empty column name).
 fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     let text = fsio::read_to_string(path, MAX_DATA_BYTES).map_err(|e| data_error(path, e.reason()))?;
-    if let Some(sep) = other_separator(header_line(&text)) {
+    series_from_text(path, &text, ctx)
+}
+
+/// The measurement `text` read from `path` (see `read_series`): the reader of outside input
+/// the fuzz targets drive.
+pub fn series_from_text(path: &Path, text: &str, ctx: &Ctx) -> Result<Series, CliError> {
+    if let Some(sep) = other_separator(header_line(text)) {
         return Err(
             data_error(path, format!("the header is {sep}: use ',' between columns (and '.' in numbers)")).into()
         );
@@ -229,7 +235,26 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
         _ => return Err(data_error(path, "more than one signal column; give one of x, v or a").into()),
     };
     let (mut t, mut y) = (Vec::new(), Vec::new());
+    let cap = |rows: usize| {
+        ctx.enforce(
+            Estimate { cap: limits::HISTORY_SAMPLES, value: rows as f64 },
+            "--data",
+            &fsio::shown(path),
+            "use a shorter or decimated record",
+        )
+    };
     for rec in r.records() {
+        // The cap is checked as the rows come: a record far over it is refused at its first
+        // row past the cap, not after all of it is parsed.
+        if t.len() as f64 >= limits::HISTORY_SAMPLES.max && !ctx.no_limit {
+            return Err(CliError::Refused(format!(
+                "--data {}: more than {} rows, over the limit of {} {}; use a shorter or decimated record, or add --no-limit",
+                fsio::shown(path),
+                limits::short(limits::HISTORY_SAMPLES.max),
+                limits::short(limits::HISTORY_SAMPLES.max),
+                limits::HISTORY_SAMPLES.what
+            )));
+        }
         let rec = rec.map_err(|e| data_error(path, format!("cannot read a row: {e}")))?;
         let row = rec.position().map_or(0, csv::Position::line);
         if rec.len() != header.len() {
@@ -259,12 +284,7 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
         t.push(cell(ti)? * tf);
         y.push(cell(si)? * sf);
     }
-    ctx.enforce(
-        Estimate { cap: limits::HISTORY_SAMPLES, value: t.len() as f64 },
-        "--data",
-        &fsio::shown(path),
-        "use a shorter or decimated record",
-    )?;
+    cap(t.len())?;
     Series::new(t, y, q).map_err(|e| data_error(path, e.detail()).into())
 }
 
