@@ -404,6 +404,13 @@ fn check_design_key(key: &str, value: &Input) -> Result<(), ThudError> {
 /// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
 /// name no key or bind one key twice. Each has its line and column. Linear in the text.
 pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
+    check_text_with(path, text, false)
+}
+
+/// [`check_text`], and with `work` also a `[design]` whose one run is over a work cap
+/// ([`work_problem`]): `thud config check` reports it at its key, while a command that loads the
+/// config keeps it and refuses the run itself, naming the key (so `--no-limit` still runs it).
+fn check_text_with(path: &Path, text: &str, work: bool) -> Vec<FileProblem> {
     use serde::de::IntoDeserializer;
     use toml::de::{DeTable, DeValue};
     type Value<'i> = toml::Spanned<DeValue<'i>>;
@@ -437,7 +444,7 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
             "design" => {
                 let problems = design_problems(value, &at);
                 if problems.is_empty() {
-                    found.extend(whole_design_problem(text, value, &at));
+                    found.extend(whole_design_problem(text, value, &at, work));
                 }
                 found.extend(problems);
                 None
@@ -499,6 +506,7 @@ fn whole_design_problem(
     text: &str,
     value: &toml::Spanned<toml::de::DeValue<'_>>,
     at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
+    work: bool,
 ) -> Option<(usize, FileProblem)> {
     #[derive(Deserialize)]
     struct DesignOnly {
@@ -510,7 +518,8 @@ fn whole_design_problem(
     let base = crate::presets::preset("default").ok()?;
     let (named, message) = match config.design(base) {
         Err(e) => (e.param().split(' ').next().unwrap_or_default().to_string(), e.to_string()),
-        Ok(d) => work_problem(&d, &|n| config.design.contains_key(n))?,
+        Ok(d) if work => work_problem(&d, &|n| config.design.contains_key(n))?,
+        Ok(_) => return None,
     };
     let span = value
         .get_ref()
@@ -652,7 +661,7 @@ pub fn check_config(config_dir: &Path) -> ConfigCheck {
     let path = config_path(config_dir);
     match fsio::read_optional(&path, fsio::MAX_READ_BYTES) {
         Ok(None) => ConfigCheck { path, exists: false, problems: vec![] },
-        Ok(Some(text)) => ConfigCheck { problems: check_text(&path, &text), path, exists: true },
+        Ok(Some(text)) => ConfigCheck { problems: check_text_with(&path, &text, true), path, exists: true },
         Err(e) => {
             let problem = FileProblem { path: path.clone(), line: None, column: None, message: e.reason() };
             ConfigCheck { path, exists: true, problems: vec![problem] }

@@ -235,25 +235,11 @@ pub fn series_from_text(path: &Path, text: &str, ctx: &Ctx) -> Result<Series, Cl
         _ => return Err(data_error(path, "more than one signal column; give one of x, v or a").into()),
     };
     let (mut t, mut y) = (Vec::new(), Vec::new());
-    let cap = |rows: usize| {
-        ctx.enforce(
-            Estimate { cap: limits::HISTORY_SAMPLES, value: rows as f64 },
-            "--data",
-            &fsio::shown(path),
-            "use a shorter or decimated record",
-        )
-    };
     for rec in r.records() {
         // The cap is checked as the rows come: a record far over it is refused at its first
         // row past the cap, not after all of it is parsed.
         if t.len() as f64 >= limits::HISTORY_SAMPLES.max && !ctx.no_limit {
-            return Err(CliError::Refused(format!(
-                "--data {}: more than {} rows, over the limit of {} {}; use a shorter or decimated record, or add --no-limit",
-                fsio::shown(path),
-                limits::short(limits::HISTORY_SAMPLES.max),
-                limits::short(limits::HISTORY_SAMPLES.max),
-                limits::HISTORY_SAMPLES.what
-            )));
+            return Err(over_cap(path));
         }
         let rec = rec.map_err(|e| data_error(path, format!("cannot read a row: {e}")))?;
         let row = rec.position().map_or(0, csv::Position::line);
@@ -284,8 +270,24 @@ pub fn series_from_text(path: &Path, text: &str, ctx: &Ctx) -> Result<Series, Cl
         t.push(cell(ti)? * tf);
         y.push(cell(si)? * sf);
     }
-    cap(t.len())?;
+    check_rows(ctx, path, t.len())?;
     Series::new(t, y, q).map_err(|e| data_error(path, e.detail()).into())
+}
+
+/// Refuses a record of `rows` rows over the sample cap (unless `--no-limit`).
+fn check_rows(ctx: &Ctx, path: &Path, rows: usize) -> Result<(), CliError> {
+    let e = Estimate { cap: limits::HISTORY_SAMPLES, value: rows as f64 };
+    ctx.enforce(e, "--data", &fsio::shown(path), "use a shorter or decimated record")
+}
+
+/// The refusal of a record with more rows than the sample cap, made at its first row past it.
+fn over_cap(path: &Path) -> CliError {
+    let max = limits::short(limits::HISTORY_SAMPLES.max);
+    CliError::Refused(format!(
+        "--data {}: more than {max} rows, over the limit of {max} {}; use a shorter or decimated record, or add --no-limit",
+        fsio::shown(path),
+        limits::HISTORY_SAMPLES.what
+    ))
 }
 
 /// Checks `--save`'s value before the fit: a file (a path, or a name ending in `.toml`) or a

@@ -299,11 +299,10 @@ fn config_check_refuses_a_step_every_command_refuses() {
     let (code, out, err) = thud(home.path(), &["config", "check"]);
     assert_eq!(code, 2, "{out}{err}");
     assert!(out.contains(":3:") && out.contains("dt") && out.contains("Newmark steps"), "at dt's line: {out}");
-    // A command reads the config with the same check: the problem is its one warning, and it
-    // runs with the default settings rather than fail.
+    // The commands refuse it with the same cap, naming the key.
     let (code, _, err) = thud(home.path(), &["simulate", "--json"]);
-    assert_eq!(code, 0, "{err}");
-    assert!(err.contains("config.toml:3:") && err.contains("Newmark steps"), "{err}");
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("dt in config.toml [design]") && err.contains("Newmark steps"), "{err}");
     // A step the commands take passes.
     fs::write(dir.join("config.toml"), "[design]\nsolver = \"newmark\"\ndt = 1e-6\n").unwrap();
     let (code, out, err) = thud(home.path(), &["config", "check"]);
