@@ -404,6 +404,13 @@ fn check_design_key(key: &str, value: &Input) -> Result<(), ThudError> {
 /// unknown keys, values of the wrong type or shape, thresholds out of range, key bindings that
 /// name no key or bind one key twice. Each has its line and column. Linear in the text.
 pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
+    check_text_with(path, text, false)
+}
+
+/// [`check_text`], and with `work` also a `[design]` whose one run is over a work cap
+/// ([`work_problem`]): `thud config check` reports it at its key, while a command that loads the
+/// config keeps it and refuses the run itself, naming the key (so `--no-limit` still runs it).
+fn check_text_with(path: &Path, text: &str, work: bool) -> Vec<FileProblem> {
     use serde::de::IntoDeserializer;
     use toml::de::{DeTable, DeValue};
     type Value<'i> = toml::Spanned<DeValue<'i>>;
@@ -437,7 +444,7 @@ pub fn check_text(path: &Path, text: &str) -> Vec<FileProblem> {
             "design" => {
                 let problems = design_problems(value, &at);
                 if problems.is_empty() {
-                    found.extend(whole_design_problem(text, value, &at));
+                    found.extend(whole_design_problem(text, value, &at, work));
                 }
                 found.extend(problems);
                 None
@@ -499,6 +506,7 @@ fn whole_design_problem(
     text: &str,
     value: &toml::Spanned<toml::de::DeValue<'_>>,
     at: &dyn Fn(std::ops::Range<usize>, String) -> (usize, FileProblem),
+    work: bool,
 ) -> Option<(usize, FileProblem)> {
     #[derive(Deserialize)]
     struct DesignOnly {
@@ -508,14 +516,33 @@ fn whole_design_problem(
     let only: DesignOnly = toml::from_str(text).ok()?;
     let config = Config { design: only.design, ..Config::default() };
     let base = crate::presets::preset("default").ok()?;
-    let e = config.design(base).err()?;
-    let named = e.param().split(' ').next().unwrap_or_default().to_string();
+    let (named, message) = match config.design(base) {
+        Err(e) => (e.param().split(' ').next().unwrap_or_default().to_string(), e.to_string()),
+        Ok(d) if work => work_problem(&d, &|n| config.design.contains_key(n))?,
+        Ok(_) => return None,
+    };
     let span = value
         .get_ref()
         .as_table()
         .and_then(|t| t.iter().find(|(k, _)| k.get_ref().as_ref() == named).map(|(_, v)| v.span()))
         .unwrap_or_else(|| value.span());
-    Some(at(span, e.to_string()))
+    Some(at(span, message))
+}
+
+/// The work cap one run of the design built from the config (the default preset with these
+/// defaults) is over, as every command checks it before it runs ([`crate::limits::check_run`]):
+/// the key to blame and the problem, or `None`.
+fn work_problem(d: &Design, given: &dyn Fn(&str) -> bool) -> Option<(String, String)> {
+    let valid = d.clone().check().ok()?;
+    let r = crate::limits::check_run(&valid, given, 0).err()?;
+    let (v, unit) = crate::limits::refused_value(d, r.param)?;
+    let message = format!(
+        "{} {} {unit}: {} (`thud limits`); a command would refuse it",
+        r.param,
+        crate::limits::short(v),
+        r.estimate.describe()
+    );
+    Some((r.param.to_string(), message))
 }
 
 /// A TOML integer or float as a number.
@@ -634,7 +661,7 @@ pub fn check_config(config_dir: &Path) -> ConfigCheck {
     let path = config_path(config_dir);
     match fsio::read_optional(&path, fsio::MAX_READ_BYTES) {
         Ok(None) => ConfigCheck { path, exists: false, problems: vec![] },
-        Ok(Some(text)) => ConfigCheck { problems: check_text(&path, &text), path, exists: true },
+        Ok(Some(text)) => ConfigCheck { problems: check_text_with(&path, &text, true), path, exists: true },
         Err(e) => {
             let problem = FileProblem { path: path.clone(), line: None, column: None, message: e.reason() };
             ConfigCheck { path, exists: true, problems: vec![problem] }

@@ -582,18 +582,7 @@ fn write_named(
     permissions: Option<Permissions>,
     before_link: impl FnOnce(&Path) -> io::Result<()>,
 ) -> Result<(), FsError> {
-    let prefix = temp_prefix(path);
-    // Created and registered with signals held off, so no signal falls between the two.
-    let (mut temp, _registration) = signals::guarded(|| {
-        let temp = temp_builder(&prefix).permissions(Permissions::from_mode(0o666)).tempfile_in(dir)?;
-        rustix::fs::flock(temp.as_file(), FlockOperation::LockExclusive)?;
-        let name = temp.path().to_path_buf();
-        let registration = signals::on_signal(move || {
-            let _ = fs::remove_file(&name);
-        });
-        Ok::<_, io::Error>((temp, registration.0))
-    })
-    .map_err(io_at(path))?;
+    let (mut temp, _registration) = named_temp(dir, path).map_err(io_at(path))?;
     fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
     before_link(temp.path()).map_err(io_at(temp.path()))?;
     hold_for_test();
@@ -611,6 +600,194 @@ fn write_named(
         })?;
     }
     Ok(())
+}
+
+/// A named temporary file in `dir` for the target `path`: created exclusively (never through
+/// a planted link), `flock`ed, and removed on a signal while the registration lives. Created
+/// and registered with signals held off, so no signal falls between the two.
+fn named_temp(dir: &Path, path: &Path) -> io::Result<(tempfile::NamedTempFile, signals::Registration)> {
+    let prefix = temp_prefix(path);
+    signals::guarded(|| {
+        let temp = temp_builder(&prefix).permissions(Permissions::from_mode(0o666)).tempfile_in(dir)?;
+        rustix::fs::flock(temp.as_file(), FlockOperation::LockExclusive)?;
+        let name = temp.path().to_path_buf();
+        let registration = signals::on_signal(move || {
+            let _ = fs::remove_file(&name);
+        });
+        Ok::<_, io::Error>((temp, registration.0))
+    })
+}
+
+/// Set this environment variable to `N` to make [`write_set`] fail after it has put `N` files
+/// of the set in place (the tests check that the files already placed are put back). Read only
+/// with the `test-hooks` feature, as [`NAMED_TEMPS_FOR_TEST`].
+pub const FAIL_SET_AFTER_FOR_TEST: &str = "THUD_TEST_FAIL_SET_AFTER";
+
+/// Set this environment variable to a number of milliseconds to hold [`write_set`] after it
+/// has put the first file of the set in place and before the next (a signal then must wait for
+/// the whole set). Read only with the `test-hooks` feature, as [`NAMED_TEMPS_FOR_TEST`].
+pub const HOLD_SET_FOR_TEST: &str = "THUD_TEST_HOLD_SET_MS";
+
+/// How one file of a set was put in place, so that it can be undone.
+enum Placed {
+    /// Linked where nothing was: undone by removing the name.
+    Created(PathBuf),
+    /// Exchanged with the old file, which the temporary file's name now holds (removed when
+    /// the set is kept): undone by exchanging back.
+    Exchanged(tempfile::NamedTempFile, PathBuf),
+    /// Where the file system cannot exchange: the old file moved to a temporary name first,
+    /// the new one linked in its place; undone by moving the old one back over it.
+    Moved(tempfile::NamedTempFile<()>, PathBuf),
+}
+
+impl Placed {
+    fn undo(self) {
+        match self {
+            Placed::Created(path) => {
+                let _ = fs::remove_file(path);
+            }
+            Placed::Exchanged(old, path) => {
+                if rustix::fs::renameat_with(CWD, old.path(), CWD, &path, RenameFlags::EXCHANGE).is_err() {
+                    // The new file stays; the old one is kept under its temporary name.
+                    let _ = old.keep();
+                }
+            }
+            Placed::Moved(old, path) => {
+                if fs::rename(old.path(), &path).is_err() {
+                    let _ = old.keep();
+                }
+            }
+        }
+    }
+}
+
+/// Writes several files as one set: every file (a new one or, with [`Overwrite::Replace`], a
+/// regular file to replace) is first written to a temporary file in its own folder and synced;
+/// then all are put in place in one [`signals::guarded`] step. If putting one in place fails,
+/// those already placed are put back (the old files return, the new names go) and the error is
+/// returned; a signal before that step leaves the old set (the temporary files are removed), a
+/// signal during it waits for the whole new set. Streams (standard output, a FIFO, a terminal)
+/// cannot be taken back: they are written through after the files are in place. Two entries
+/// naming one path are the caller's to refuse beforehand.
+pub fn write_set(files: &[(&Path, &[u8])], overwrite: Overwrite) -> Result<(), FsError> {
+    let mut streams = Vec::new();
+    let mut staged = Vec::new();
+    let mut folders = Vec::new();
+    let mut dirs = Vec::new();
+    // Each temporary file's clean-up on a signal, kept until the set is in place.
+    let mut registrations = Vec::new();
+    let plans: Vec<Plan> = files.iter().map(|(p, _)| check_target(p, overwrite)).collect::<Result<_, _>>()?;
+    for ((path, bytes), plan) in files.iter().zip(plans) {
+        let permissions = match plan {
+            Plan::Through(sink) => {
+                streams.push((*path, sink, *bytes));
+                continue;
+            }
+            Plan::Create => None,
+            Plan::Replace(p) => Some(p),
+        };
+        let dir = parent_dir(path);
+        folders.push(NewFolders::create(&dir).map_err(io_at(path))?);
+        remove_stale_temps(&dir);
+        let (mut temp, registration) = named_temp(&dir, path).map_err(io_at(path))?;
+        fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
+        staged.push((*path, temp));
+        registrations.push(registration);
+        dirs.push(dir);
+    }
+    hold_for_test();
+    signals::guarded(|| {
+        let mut placed: Vec<Placed> = Vec::new();
+        let mut result = Ok(());
+        for (i, (path, temp)) in staged.into_iter().enumerate() {
+            if i > 0 {
+                hold_set_for_test();
+            }
+            let step = fail_set_for_test(i).and_then(|()| place(temp, path, overwrite));
+            match step {
+                Ok(p) => placed.push(p),
+                Err(e) => {
+                    result = Err(e);
+                    break;
+                }
+            }
+        }
+        if result.is_err() {
+            placed.into_iter().rev().for_each(Placed::undo);
+        }
+        result
+    })?;
+    for dir in &dirs {
+        sync_dir(dir);
+    }
+    drop(registrations);
+    folders.into_iter().for_each(NewFolders::keep);
+    for (path, sink, bytes) in streams {
+        write_through(path, sink, bytes)?;
+    }
+    Ok(())
+}
+
+/// Puts the written, synced temporary file `temp` at `path` (see [`write_set`]).
+fn place(temp: tempfile::NamedTempFile, path: &Path, overwrite: Overwrite) -> Result<Placed, FsError> {
+    let replace = overwrite == Overwrite::Replace;
+    if replace && exchange(temp.path(), path, |old| fs::symlink_metadata(old).is_ok_and(|m| m.is_file()))? {
+        return Ok(Placed::Exchanged(temp, path.to_path_buf()));
+    }
+    let regular = replace && fs::symlink_metadata(path).is_ok_and(|m| m.is_file());
+    let moved = if regular {
+        // No exchange here: the old file goes to a temporary name of its own (never over
+        // anything), so it can come back.
+        let prefix = temp_prefix(path);
+        let old = temp_builder(&prefix)
+            .make_in(parent_dir(path), |to| {
+                rustix::fs::renameat_with(CWD, path, CWD, to, RenameFlags::NOREPLACE).map_err(io::Error::from)
+            })
+            .map_err(io_at(path))?;
+        Some(old)
+    } else {
+        None
+    };
+    match temp.persist_noclobber(path) {
+        Ok(_) => Ok(match moved {
+            Some(old) => Placed::Moved(old, path.to_path_buf()),
+            None => Placed::Created(path.to_path_buf()),
+        }),
+        Err(e) => {
+            if let Some(old) = moved {
+                if rustix::fs::renameat_with(CWD, old.path(), CWD, path, RenameFlags::NOREPLACE).is_err() {
+                    let _ = old.keep();
+                }
+            }
+            Err(match e.error.kind() {
+                io::ErrorKind::AlreadyExists if replace => FsError::Changed(path.to_path_buf()),
+                io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
+                _ => io_at(path)(e.error),
+            })
+        }
+    }
+}
+
+/// The test seam of [`FAIL_SET_AFTER_FOR_TEST`]: an error before the file at index `i` is put
+/// in place when the variable says `i` (nothing without the `test-hooks` feature).
+fn fail_set_for_test(i: usize) -> Result<(), FsError> {
+    #[cfg(feature = "test-hooks")]
+    if std::env::var(FAIL_SET_AFTER_FOR_TEST).ok().and_then(|v| v.parse::<usize>().ok()) == Some(i) {
+        return Err(FsError::Io {
+            path: PathBuf::from(FAIL_SET_AFTER_FOR_TEST),
+            source: io::Error::other("a failure injected by the test between two files of a set"),
+        });
+    }
+    let _ = i;
+    Ok(())
+}
+
+/// The test seam of [`HOLD_SET_FOR_TEST`] (nothing without the `test-hooks` feature).
+fn hold_set_for_test() {
+    #[cfg(feature = "test-hooks")]
+    if let Some(ms) = std::env::var(HOLD_SET_FOR_TEST).ok().and_then(|v| v.parse::<u64>().ok()) {
+        std::thread::sleep(Duration::from_millis(ms));
+    }
 }
 
 /// Exchanges `temp` and `target` atomically (`RENAME_EXCHANGE`) and keeps the exchange if what

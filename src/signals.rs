@@ -124,6 +124,8 @@ fn install() -> io::Result<()> {
             let mut signals = Signals::new(handled()).map_err(Arc::new)?;
             std::thread::Builder::new()
                 .name("thud-signals".into())
+                // Its own size, whatever RUST_MIN_STACK says: the clean-ups must not overflow.
+                .stack_size(256 << 10)
                 .spawn(move || {
                     if let Some(signal) = signals.forever().next() {
                         // Held until the process has exited: no guarded step runs after this.

@@ -56,6 +56,17 @@ pub fn wanted(flag: Option<usize>, env: Option<&str>) -> (usize, Option<String>)
     }
 }
 
+/// The smallest stack a worker thread gets (std's own default): the integrators recurse
+/// little, but a stack of a few bytes (`RUST_MIN_STACK=1`) overflows at the first call.
+pub const MIN_WORKER_STACK: usize = 2 << 20;
+
+/// A worker thread's stack: `RUST_MIN_STACK` (std's variable) when it asks for more than
+/// [`MIN_WORKER_STACK`], else that.
+fn worker_stack() -> usize {
+    let asked = std::env::var("RUST_MIN_STACK").ok().and_then(|v| v.trim().parse::<usize>().ok());
+    asked.map_or(MIN_WORKER_STACK, |n| n.max(MIN_WORKER_STACK))
+}
+
 /// A started thread waiting for the rayon worker it will become.
 struct Parked {
     slot: Sender<ThreadBuilder>,
@@ -68,12 +79,13 @@ fn park(n: usize) -> (Vec<Parked>, Option<std::io::Error>) {
     let mut parked = Vec::with_capacity(n);
     for i in 0..n {
         let (slot, rx) = mpsc::channel::<ThreadBuilder>();
-        let spawned = std::thread::Builder::new().name(format!("thud-pool-{i}")).spawn(move || {
-            // Unused threads see their channel closed and end.
-            if let Ok(worker) = rx.recv() {
-                worker.run();
-            }
-        });
+        let spawned =
+            std::thread::Builder::new().name(format!("thud-pool-{i}")).stack_size(worker_stack()).spawn(move || {
+                // Unused threads see their channel closed and end.
+                if let Ok(worker) = rx.recv() {
+                    worker.run();
+                }
+            });
         match spawned {
             Ok(thread) => parked.push(Parked { slot, thread }),
             Err(e) => return (parked, Some(e)),

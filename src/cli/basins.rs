@@ -50,6 +50,7 @@ fn parse_w0(text: &str) -> Result<(f64, f64), ThudError> {
 }
 
 pub fn run(a: &BasinsArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    super::bifurcation::refuse_run_flags(&a.design, "a basin map")?;
     let d = a.design.design()?;
     let n = count("grid", &a.grid, &limits::GRID_N)?;
     let (w_lo, w_hi) = parse_w0(&a.w0)?;

@@ -108,13 +108,29 @@ impl OrbitArgs {
             ),
             _ => None,
         };
+        // The files as one set: all in place, or (a failure, a signal) none.
+        let mut files: Vec<(&std::path::Path, &[u8])> = Vec::new();
         if let (Some(p), Some(svg)) = (&self.svg, &svg) {
-            write_bytes(p, svg.as_bytes(), self.force)?;
+            files.push((p, svg.as_bytes()));
         }
         if let (Some(p), Some(pdf)) = (&self.pdf, &pdf) {
-            write_bytes(p, pdf, self.force)?;
+            files.push((p, pdf));
         }
-        text_target.write(&text, out)
+        let table_file = text_target.file();
+        if let Some(p) = table_file {
+            files.push((p, text.as_bytes()));
+        }
+        if let Err(e) = fsio::write_set(&files, Overwrite::from_force(self.force)) {
+            let p = e.path().to_path_buf();
+            return Err(super::export::write_error(&p, &e));
+        }
+        for (p, _) in &files {
+            super::warn(&format!("wrote {}", fsio::shown(p)));
+        }
+        match table_file {
+            Some(_) => Ok(()),
+            None => text_target.write(&text, out),
+        }
     }
 
     /// Checks the files up front (an existing one without --force is refused before the work).
@@ -143,10 +159,18 @@ fn same_output(a: &std::path::Path, b: &std::path::Path) -> bool {
     }
 }
 
-/// Writes `bytes` to `p` through [`fsio`] and says so on stderr.
-fn write_bytes(p: &std::path::Path, bytes: &[u8], force: bool) -> Result<(), CliError> {
-    fsio::write(p, bytes, Overwrite::from_force(force)).map_err(|e| super::export::write_error(p, &e))?;
-    super::warn(&format!("wrote {}", fsio::shown(p)));
+/// Refuses the flags of a simulation's length that a study of orbits does not use (it runs
+/// `--transient` and `--periods` forcing periods): `--duration` and `--settle` would change
+/// nothing. `what` names the study ("a bifurcation").
+pub(super) fn refuse_run_flags(design: &DesignArgs<ForceAmplitude>, what: &str) -> Result<(), ThudError> {
+    for flag in ["duration", "settle"] {
+        if design.typed_row(flag) {
+            return Err(ThudError::invalid(
+                format!("--{flag}"),
+                format!("{what} runs --transient and --periods forcing periods, not a simulated time; leave out --{flag} and give --transient N or --periods N"),
+            ));
+        }
+    }
     Ok(())
 }
 
@@ -212,8 +236,9 @@ struct BifurcationJson<'a> {
 }
 
 pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let d = a.design.design()?;
     let vary = Vary::parse(&a.vary, Spelling::Flag)?;
+    refuse_run_flags(&a.design, "a bifurcation")?;
+    let d = a.design.design_over(&[&vary])?;
     let s = a.orbit.settings(&a.design, &d)?;
     a.orbit.check_targets()?;
     check_work(ctx, vary.values.len(), s, a.continuation, ("--vary", &a.vary))?;

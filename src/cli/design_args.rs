@@ -253,6 +253,21 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
         params::design(self.base()?, &self.given, Spelling::Flag)
     }
 
+    /// The design these flags describe for a study that varies `varied`: as [`Self::design`],
+    /// except that a varied frequency supplies the one a force needs (`--vary f=3Hz:8Hz:200`
+    /// with a force and no `--freq`: the study sets every value anyway, the first stands in).
+    pub fn design_over(&self, varied: &[&crate::study::Vary]) -> Result<ValidDesign, ThudError> {
+        let first_freq = varied.iter().find(|v| v.name() == "freq").and_then(|v| v.values.first());
+        match (self.design(), first_freq) {
+            (Err(e), Some(&f)) if e.param() == "--freq" && !self.has("freq") => {
+                let mut given = self.given.clone();
+                given.push(("freq".into(), Input::Num(f)));
+                params::design(self.base()?, &given, Spelling::Flag)
+            }
+            (d, _) => d,
+        }
+    }
+
     /// The starting design: the `--design` file as it is, else the preset with the user's
     /// settings (its thresholds and its `[design]` defaults). Refuses `--force` where it is the
     /// amplitude's old spelling, naming `--force-amplitude`.
@@ -322,6 +337,11 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
     /// Whether the row `name` was given.
     pub(crate) fn has(&self, name: &str) -> bool {
         self.text(name).is_some()
+    }
+
+    /// Whether the row `name` was typed in any form (a value or a switch such as `--settle`).
+    pub(crate) fn typed_row(&self, name: &str) -> bool {
+        self.given.iter().any(|(n, _)| n == name)
     }
 
     /// The numeric flags the user typed that change the run (not the listener's or the

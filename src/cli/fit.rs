@@ -168,7 +168,13 @@ fn other_separator(line: &str) -> Option<&'static str> {
 // Over 80 lines: one pass over the file, each refusal naming what it saw in the user's terms.
 fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     let text = fsio::read_to_string(path, MAX_DATA_BYTES).map_err(|e| data_error(path, e.reason()))?;
-    if let Some(sep) = other_separator(header_line(&text)) {
+    series_from_text(path, &text, ctx)
+}
+
+/// The measurement `text` read from `path` (see `read_series`): the reader of outside input
+/// the fuzz targets drive.
+pub fn series_from_text(path: &Path, text: &str, ctx: &Ctx) -> Result<Series, CliError> {
+    if let Some(sep) = other_separator(header_line(text)) {
         return Err(
             data_error(path, format!("the header is {sep}: use ',' between columns (and '.' in numbers)")).into()
         );
@@ -231,6 +237,11 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     };
     let (mut t, mut y) = (Vec::new(), Vec::new());
     for rec in r.records() {
+        // The cap is checked as the rows come: a record far over it is refused at its first
+        // row past the cap, not after all of it is parsed.
+        if t.len() as f64 >= limits::HISTORY_SAMPLES.max && !ctx.no_limit {
+            return Err(over_cap(path));
+        }
         let rec = rec.map_err(|e| data_error(path, format!("cannot read a row: {e}")))?;
         let row = rec.position().map_or(0, csv::Position::line);
         if rec.len() != header.len() {
@@ -260,13 +271,24 @@ fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
         t.push(cell(ti)? * tf);
         y.push(cell(si)? * sf);
     }
-    ctx.enforce(
-        Estimate { cap: limits::HISTORY_SAMPLES, value: t.len() as f64 },
-        "--data",
-        &fsio::shown(path),
-        "use a shorter or decimated record",
-    )?;
+    check_rows(ctx, path, t.len())?;
     Series::new(t, y, q).map_err(|e| data_error(path, e.detail()).into())
+}
+
+/// Refuses a record of `rows` rows over the sample cap (unless `--no-limit`).
+fn check_rows(ctx: &Ctx, path: &Path, rows: usize) -> Result<(), CliError> {
+    let e = Estimate { cap: limits::HISTORY_SAMPLES, value: rows as f64 };
+    ctx.enforce(e, "--data", &fsio::shown(path), "use a shorter or decimated record")
+}
+
+/// The refusal of a record with more rows than the sample cap, made at its first row past it.
+fn over_cap(path: &Path) -> CliError {
+    let max = limits::short(limits::HISTORY_SAMPLES.max);
+    CliError::Refused(format!(
+        "--data {}: more than {max} rows, over the limit of {max} {}; use a shorter or decimated record, or add --no-limit",
+        fsio::shown(path),
+        limits::HISTORY_SAMPLES.what
+    ))
 }
 
 /// Checks `--save`'s value before the fit: a file (a path, or a name ending in `.toml`) or a

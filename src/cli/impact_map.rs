@@ -30,6 +30,7 @@ struct ImpactMapJson<'a> {
 }
 
 pub fn run(a: &ImpactMapArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    super::bifurcation::refuse_run_flags(&a.design, "an impact map")?;
     let d = a.design.design()?;
     let s = a.orbit.settings(&a.design, &d)?;
     a.orbit.check_targets()?;

@@ -9,6 +9,8 @@ pub mod design_args;
 mod errors;
 mod export;
 mod fit;
+#[doc(hidden)]
+pub use fit::series_from_text as fit_record_from_text;
 mod format;
 mod impact_map;
 mod merge;

@@ -10,15 +10,40 @@ use super::design_args::{DesignArgs, ForceAmplitude};
 use super::format::num;
 use super::simulate::describe;
 use super::{CliError, Ctx, OutputFormat};
-use crate::design::Design;
+use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::params::Spelling;
 use crate::study::{self, Axis, Grid, Study, Vary};
 
 /// Parses every `--vary` (one engine parser, [`Vary::parse`]) into the grid over `base`.
 pub(super) fn grid(base: crate::design::ValidDesign, vary: &[String]) -> Result<Grid, ThudError> {
-    let axes = vary.iter().map(|t| Vary::parse(t, Spelling::Flag)).collect::<Result<Vec<_>, _>>()?;
-    Grid::new(base, axes, Spelling::Flag)
+    Grid::new(base, axes(vary)?, Spelling::Flag)
+}
+
+/// Every `--vary` parsed.
+fn axes(vary: &[String]) -> Result<Vec<Vary>, ThudError> {
+    vary.iter().map(|t| Vary::parse(t, Spelling::Flag)).collect()
+}
+
+/// The design of a study over `vary` (a varied frequency supplies the one a force needs), and
+/// a refusal of a varied frequency that changes nothing: without a force (none given, none
+/// varied) every row would be the same.
+pub(super) fn design_for(design: &DesignArgs<ForceAmplitude>, vary: &[String]) -> Result<ValidDesign, ThudError> {
+    let axes = axes(vary)?;
+    let d = design.design_over(&axes.iter().collect::<Vec<_>>())?;
+    let force_varied = axes.iter().any(|a| a.name() == "force");
+    if let Some(i) = axes.iter().position(|a| a.name() == "freq") {
+        if d.damper.force_n == 0.0 && !force_varied {
+            return Err(ThudError::invalid(
+                "--vary",
+                format!(
+                    "'{}': the frequency changes nothing without a force (every row would be the same); give --force-amplitude F0",
+                    vary[i]
+                ),
+            ));
+        }
+    }
+    Ok(d)
 }
 
 #[derive(Serialize)]
@@ -35,7 +60,7 @@ pub(super) fn sweep_vary(
     ctx: &Ctx,
     format: OutputFormat,
 ) -> Result<String, CliError> {
-    let d = design.design()?;
+    let d = design_for(design, vary)?;
     let grid = grid(d.clone(), vary)?;
     design.check_study(ctx, &grid)?;
     let bar = budget::bar(grid.cells() as u64, "sweep");

@@ -116,7 +116,7 @@ fn vary(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     }
     let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
-        let d = a.design.design()?;
+        let d = super::study::design_for(&a.design, &a.vary)?;
         let grid = super::study::grid(d, &a.vary)?;
         let part = parse_shard(text, grid.cells())?;
         let s = super::study::write_shard(&a.design, ctx, &grid, part, a.output.csv)?;
@@ -234,6 +234,11 @@ impl<'a> Target<'a> {
             fsio::check_target(p, overwrite).map_err(|e| super::export::out_error(p, &e))?;
         }
         Ok(Target { path, overwrite })
+    }
+
+    /// The file it names, if not standard output.
+    pub(super) fn file(&self) -> Option<&'a Path> {
+        self.path
     }
 
     /// Writes `text` (already checked) there; says on stderr which file was written.

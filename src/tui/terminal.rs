@@ -9,7 +9,8 @@
 
 use std::io::{self, Stdout, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Once, OnceLock};
+use std::sync::{mpsc, Once, OnceLock};
+use std::time::Duration;
 
 use crossterm::cursor::{Hide, MoveTo, Show};
 use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
@@ -73,17 +74,31 @@ pub fn restore() {
     thud_fatal::disarm();
 }
 
+/// How long the way out of a signal waits for the terminal to take the restore: a terminal
+/// that does not read (a stalled SSH session, a frozen emulator) must not keep thud alive.
+pub const RESTORE_WAIT: Duration = Duration::from_millis(400);
+
 /// Restores the terminal on the way out of a signal, and keeps standard output locked until
 /// the process exits, so the UI thread cannot draw one more frame (hiding the cursor again)
-/// over the restored screen.
+/// over the restored screen. The restore runs on a thread of its own and is waited for at most
+/// [`RESTORE_WAIT`]: when the terminal stops reading, the UI thread sits in a write holding
+/// standard output, and the restore would wait for it for ever; then thud exits without it
+/// (raw mode is switched off first, which needs no output).
 fn restore_for_exit() {
-    let _ = terminal::disable_raw_mode();
-    let mut out = io::stdout().lock();
-    let on_alternate = ON_ALTERNATE_SCREEN.swap(false, Ordering::SeqCst);
-    let _ = write_restore_sequence(&mut out, on_alternate);
-    thud_fatal::disarm();
-    // Held until `exit`: the signal thread exits right after the clean-ups.
-    std::mem::forget(out);
+    let (done, finished) = mpsc::sync_channel::<()>(1);
+    let spawned = std::thread::Builder::new().name("thud-restore".into()).stack_size(256 << 10).spawn(move || {
+        let _ = terminal::disable_raw_mode();
+        let mut out = io::stdout().lock();
+        let on_alternate = ON_ALTERNATE_SCREEN.swap(false, Ordering::SeqCst);
+        let _ = write_restore_sequence(&mut out, on_alternate);
+        thud_fatal::disarm();
+        // Held until `exit`: the signal thread exits right after the clean-ups.
+        std::mem::forget(out);
+        let _ = done.send(());
+    });
+    if spawned.is_ok() {
+        let _ = finished.recv_timeout(RESTORE_WAIT);
+    }
 }
 
 /// Installs (once) a panic hook that restores the terminal before the default hook prints.

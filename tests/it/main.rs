@@ -50,6 +50,7 @@ mod hostile_dynamics;
 mod hostile_files;
 mod hostile_inputs;
 mod hostile_round3;
+mod hostile_round4;
 mod masri_caughey;
 mod masri_caughey_stability;
 mod one_schema;

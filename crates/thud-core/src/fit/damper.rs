@@ -410,6 +410,14 @@ pub fn grid(d: &ValidDesign) -> Result<Vec<f64>, ThudError> {
     let hi = design::c1_for_restitution(d, u0, 0.02)
         .or_else(|_| design::c1_for_restitution(d, u0, 0.05))?
         .min(crate::limits::C1.max);
+    // A strike so slow (or so fast) that restitution 0.995 needs more c1 than the most damped
+    // end allows, or than a number holds, leaves no grid: the strike's speed is the cause.
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return Err(ThudError::invalid(
+            "v0",
+            format!("{u0:e} m/s is too slow a strike to fit c1 from (no contact damping up to the largest c1 gives restitution 0.995 to 0.02 at that speed); strike faster"),
+        ));
+    }
     Ok(design::linspace(lo.ln(), hi.ln(), GRID_POINTS).into_iter().map(f64::exp).collect())
 }
 

@@ -175,6 +175,22 @@ pub(super) fn edit_distance(a: &str, b: &str) -> usize {
 /// materials) and the pulse shape (the exact Hertz pulse).
 pub(super) fn physical_conflicts<T>(given: &Given<T>, model: Model) -> Result<(), ThudError> {
     if model != Model::Physical {
+        // The paper's air is its ρ0·c and c (`rho-c`, `sound-speed`): a temperature or a
+        // pressure would change nothing, so it is refused rather than ignored.
+        for name in ["air-temperature", "air-pressure"] {
+            if given.has(name) {
+                let with = if given.has("model") {
+                    format!("{} paper", given.spell("model"))
+                } else {
+                    format!("the paper model (the default; give {} physical)", given.spell("model"))
+                };
+                return Err(ThudError::Conflict {
+                    param: given.spell(name),
+                    with,
+                    why: "only the physical model takes the air from its temperature and pressure; the paper model's air is its rho-c and sound-speed",
+                });
+            }
+        }
         return Ok(());
     }
     for (name, why) in [
