@@ -534,6 +534,8 @@ fn from_start(p: &DamperParams, req: &Request, cancel: Option<&AtomicBool>) -> R
 /// a stable orbit is taken; an unstable one of period `n` is passed over for a stable one of
 /// period `2n` where there is one, else kept as the answer if nothing stable turns up.
 fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>) -> Result<PeriodicOrbit, ThudError> {
+    // Over 80 lines: one loop over the transient's stops, each with its three outcomes
+    // (speculate, shoot the detected period, or its double) and their bookkeeping.
     let period = 1.0 / p.freq_hz;
     let probe_sec = Section::new(*p, 0.0, 1, false, cancel);
     let mut state = [0.0, p.v0_m_s, p.ball_position_m, p.ball_velocity_m_s];
@@ -694,6 +696,7 @@ fn attempt(
 
 /// The orbit through the root `root` of the section's map, reported from the force's phase 0.
 pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, ThudError> {
+    // Over 80 lines: one run of the orbit read for every field of the report, in order.
     let p = sec.p;
     let tau = std::f64::consts::TAU;
     let period = 1.0 / p.freq_hz;

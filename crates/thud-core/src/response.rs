@@ -330,7 +330,7 @@ pub struct EnsembleSweep {
     pub points: Vec<EnsemblePoint>,
 }
 
-/// The frequency response of a design from N ball offsets (issue 11, item 3).
+/// The frequency response of a design from N ball offsets (`response --ensemble N`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ResponseEnsemble {
     /// Force amplitude F0 (N).

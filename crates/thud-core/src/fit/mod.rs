@@ -1,4 +1,4 @@
-//! Calibration from measurements (issue 23, item 4): the structure's f_n, ζ, K and C from a
+//! Calibration from measurements: the structure's f_n, ζ, K and C from a
 //! measured free decay ([`structure`]), and the contact damping c1 of a damper from a measured
 //! decay of the structure carrying it ([`damper`]). Pure: arrays in (time in s, one signal in
 //! m, m/s or m/s²), numbers out; the front ends read the files (docs/model.md §13).

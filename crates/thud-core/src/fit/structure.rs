@@ -30,7 +30,7 @@ use crate::error::ThudError;
 
 use std::f64::consts::PI;
 
-/// The fitted structure with standard errors; what `--json` prints (the keys of issue 23).
+/// The fitted structure with standard errors, as `thud fit structure --json` prints it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StructureFit {
     /// Undamped natural frequency f_n = ω_n/2π (Hz).
