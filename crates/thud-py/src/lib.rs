@@ -451,7 +451,17 @@ fn _study(py: Python<'_>, axes: &Bound<'_, PyList>, params: Option<&Bound<'_, Py
         return Err(cancelled(py));
     }
     thud_core::finite::check(&s).map_err(|e| args::non_finite(&e.0))?;
-    json_of(py, &serde_json::json!({ "design": d.design(), "axes": s.axes, "cells": s.cells }))
+    // Each axis with its column as `sweep --vary --csv` heads it (`v0_m_s`): Python's dimension.
+    let mut axes =
+        serde_json::to_value(&s.axes).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    if let Some(list) = axes.as_array_mut() {
+        for (a, axis) in list.iter_mut().zip(&s.axes) {
+            if let Some(m) = a.as_object_mut() {
+                m.insert("column".into(), axis.column().into());
+            }
+        }
+    }
+    json_of(py, &serde_json::json!({ "design": d.design(), "axes": axes, "cells": s.cells }))
 }
 
 /// _bifurcation(name, values, **params) -> str
@@ -488,7 +498,9 @@ fn _bifurcation(
     )?;
     let b = b.map_err(|e| engine_error(py, e))?;
     thud_core::finite::check(&b).map_err(|e| args::non_finite(&e.0))?;
-    json_of(py, &serde_json::json!({ "design": d.design(), "bifurcation": b }))
+    // The parameter's column as `bifurcation --csv` heads it (`freq_hz`): Python's coordinate.
+    let column = study::column(vary.name(), vary.unit());
+    json_of(py, &serde_json::json!({ "design": d.design(), "bifurcation": b, "column": column }))
 }
 
 /// `v` (its numbers checked finite before) as JSON text.
@@ -635,8 +647,11 @@ fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<B
 ///
 /// The one data schema: {table: [(name, unit, meaning), …]} for every table thud writes, the
 /// columns in order — the command line's CSV headers (`pulse`, `history`, `impacts`,
-/// `ensemble`, `sweep`, `sweep_ensemble`, `shard_part`, `response`, `response_ensemble`) and
-/// the columns of the DataFrames (`Pulse.to_dataframe()`, `Run.history_frame()`, …).
+/// `ensemble`, `sweep`, `sweep_ensemble`, `shard_part`, `response`, `response_ensemble`,
+/// `study`, `bifurcation`, `impact_map`, `basins`, `restitution`, `orbit`, `continuation`) and
+/// the columns of the DataFrames (`Pulse.to_dataframe()`, `Run.history_frame()`, …). The name
+/// "{varied}" stands for one column per varied parameter, named by its keyword and unit
+/// (`v0_m_s`, `freq_hz`).
 #[pyfunction]
 fn schema(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let out = PyDict::new(py);
