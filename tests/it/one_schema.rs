@@ -226,28 +226,28 @@ fn every_cli_csv_header_is_the_one_definition() {
     check("merge --csv".into(), &merged, &schema::SWEEP_ENSEMBLE);
     // The tables of studies and orbits: `{varied}` stands for the varied parameters' columns.
     let forced = ["--preset", "forced-rattle", "--transient", "20", "--periods", "4"];
-    let orbits: Vec<(&str, Vec<&str>, &Table, &[&str])> = vec![
+    let orbits: Vec<(&str, Vec<&str>, &Table, Vec<&str>)> = vec![
         (
             "sweep --vary --csv",
             vec!["sweep", "--csv", "--vary", "v0=1:2:2", "--vary", "c1=10:20:2"],
             &schema::STUDY,
-            &["v0_m_s", "c1_n_s_m"],
+            vec!["v0_m_s", "c1_n_s_m"],
         ),
         (
             "bifurcation --csv",
             [&["bifurcation", "--csv", "--vary", "f=7.5:7.6:2"][..], &forced[..]].concat(),
             &schema::BIFURCATION,
-            &["freq_hz"],
+            vec!["freq_hz"],
         ),
-        ("impact-map --csv", [&["impact-map", "--csv"][..], &forced[..]].concat(), &schema::IMPACT_MAP, &[]),
-        ("basins --csv", [&["basins", "--csv", "--grid", "2"][..], &forced[..]].concat(), &schema::BASINS, &[]),
-        ("restitution --csv", vec!["restitution", "--csv"], &schema::RESTITUTION_TABLE, &[]),
-        ("orbit --csv", vec!["orbit", "--csv", "--preset", "forced-rattle"], &schema::ORBIT_TABLE, &[]),
+        ("impact-map --csv", [&["impact-map", "--csv"][..], &forced[..]].concat(), &schema::IMPACT_MAP, vec![]),
+        ("basins --csv", [&["basins", "--csv", "--grid", "2"][..], &forced[..]].concat(), &schema::BASINS, vec![]),
+        ("restitution --csv", vec!["restitution", "--csv"], &schema::RESTITUTION_TABLE, vec![]),
+        ("orbit --csv", vec!["orbit", "--csv", "--preset", "forced-rattle"], &schema::ORBIT_TABLE, vec![]),
         (
             "continue --csv",
             vec!["continue", "--csv", "--preset", "forced-rattle", "--vary", "f=5.5:5.6"],
             &schema::CONTINUATION,
-            &["freq_hz"],
+            vec!["freq_hz"],
         ),
     ];
     for (what, args, t, varied) in orbits {
