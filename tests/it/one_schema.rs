@@ -160,6 +160,51 @@ mod indexed {
 const GRID: [&str; 4] = ["--masses", "30g:40g:2", "--gaps", "2cm:3cm:2"];
 const FORCED: [&str; 6] = ["--force-amplitude", "1N", "--freqs", "5Hz:6Hz:2", "--duration", "2"];
 
+/// The CSV headers of studies and orbits, each the schema's table (`{varied}` stands for the
+/// varied parameters' columns); their ids added to `checked`.
+fn check_study_and_orbit_headers(checked: &mut Vec<&'static str>) {
+    let forced = ["--preset", "forced-rattle", "--transient", "20", "--periods", "4"];
+    let orbits: Vec<(&str, Vec<&str>, &Table, Vec<&str>)> = vec![
+        (
+            "sweep --vary --csv",
+            vec!["sweep", "--csv", "--vary", "v0=1:2:2", "--vary", "c1=10:20:2"],
+            &schema::STUDY,
+            vec!["v0_m_s", "c1_n_s_m"],
+        ),
+        (
+            "bifurcation --csv",
+            [&["bifurcation", "--csv", "--vary", "f=7.5:7.6:2"][..], &forced[..]].concat(),
+            &schema::BIFURCATION,
+            vec!["freq_hz"],
+        ),
+        ("impact-map --csv", [&["impact-map", "--csv"][..], &forced[..]].concat(), &schema::IMPACT_MAP, vec![]),
+        ("basins --csv", [&["basins", "--csv", "--grid", "2"][..], &forced[..]].concat(), &schema::BASINS, vec![]),
+        ("restitution --csv", vec!["restitution", "--csv"], &schema::RESTITUTION_TABLE, vec![]),
+        ("orbit --csv", vec!["orbit", "--csv", "--preset", "forced-rattle"], &schema::ORBIT_TABLE, vec![]),
+        (
+            "continue --csv",
+            vec!["continue", "--csv", "--preset", "forced-rattle", "--vary", "f=5.5:5.6"],
+            &schema::CONTINUATION,
+            vec!["freq_hz"],
+        ),
+    ];
+    for (what, args, t, varied) in orbits {
+        let want: Vec<String> = t
+            .columns
+            .iter()
+            .flat_map(|c| {
+                if *c == schema::VARIED {
+                    varied.iter().map(|v| (*v).to_string()).collect()
+                } else {
+                    vec![c.name.to_string()]
+                }
+            })
+            .collect();
+        assert_eq!(header(&ok(&args)), want, "{what}: the header is not the schema's `{}` table", t.id);
+        checked.push(t.id);
+    }
+}
+
 #[test]
 fn every_cli_csv_header_is_the_one_definition() {
     let dir = tempfile::tempdir().unwrap();
@@ -224,6 +269,7 @@ fn every_cli_csv_header_is_the_one_definition() {
         (0..2).map(|k| dir.path().join(format!("part-{k}.csv")).to_str().unwrap().to_string()).collect();
     let merged = ok(&["merge", &paths[0], &paths[1], "--out", "-", "--csv"]);
     check("merge --csv".into(), &merged, &schema::SWEEP_ENSEMBLE);
+    check_study_and_orbit_headers(&mut checked);
     let mut ids = checked.clone();
     ids.sort_unstable();
     ids.dedup();

@@ -290,9 +290,148 @@ pub const RESPONSE_ENSEMBLE: Table = Table {
     ],
 };
 
+// Studies, orbits and their maps.
+/// A template, not a name: one column per varied parameter, named by its row and unit
+/// ([`crate::study::column`]: `v0_m_s`, `freq_hz`, `c1_n_s_m`).
+pub const VARIED: Column =
+    col("{varied}", "—", "one column per varied parameter, its name and unit (v0_m_s, freq_hz, c1_n_s_m)");
+const ORBIT: Column =
+    col("orbit", "—", "the orbit's type: m/n (impacts per forcing periods), sym, chaotic, not settled");
+const RECORD: Column = col("record", "—", "what the row holds: sample (x(kT)) or impact");
+const PERIOD: Column = col("period", "1", "the forcing period of the sample or impact (from 0)");
+const V_M_S: Column = col("v_m_s", "m/s", "main mass velocity x'");
+const Z_M: Column = col("z_m", "m", "ball relative to the enclosure's centre, z = y − x");
+const ZDOT_M_S: Column = col("zdot_m_s", "m/s", "z'");
+const PHASE: Column = col("phase", "1", "the force's phase at the impact's onset (fraction of the period)");
+const STABLE: Column = col("stable", "—", "every Floquet multiplier inside the unit circle");
+const MULTIPLIER_ABS_MAX: Column = col("multiplier_abs_max", "1", "largest |λ| of the Floquet multipliers");
+const IMPACTS_PER_ORBIT: Column = col("impacts_per_orbit", "1", "impacts over the orbit's n periods, m");
+const ORBIT_AMPLITUDE_M: Column = col("amplitude_m", "m", "steady amplitude of the main mass");
+const ORBIT_PERIODS: Column = col("periods", "1", "the orbit's period in forcing periods, n");
+const STUDY_INDEX: Column = col("index", "1", "cell number in the grid (C order over the varied parameters), from 0");
+
+/// `thud sweep --vary … --csv`, a cell of `sweep --vary --json`; Python `thud.sweep(v0=[…], …)`
+/// (its dimensions are these columns).
+pub const STUDY: Table = Table {
+    id: "study",
+    written_by: "sweep --vary --csv",
+    columns: &[
+        STUDY_INDEX,
+        VARIED,
+        N_IMPACTS,
+        INCLINATION_CM_S,
+        INCLINATION_FIT_CM_S,
+        U0_MAX_M_S,
+        ZDOT_ABS_MAX_M_S,
+        SPL_MAX_DB,
+        CONTACT_DURATION_S,
+        RESTITUTION_MEAN,
+        ZONE,
+    ],
+};
+
+/// `thud bifurcation --csv`: per value its samples x(kT) and its impacts, one row each.
+pub const BIFURCATION: Table = Table {
+    id: "bifurcation",
+    written_by: "bifurcation --csv",
+    columns: &[VARIED, DIRECTION, ORBIT, RECORD, PERIOD, X_M, V_M_S, Z_M, ZDOT_M_S, PHASE, WALL, U_IN_M_S, U_OUT_M_S],
+};
+
+/// `thud impact-map --csv`: the samples x(kT) and the impacts, one row each; Python
+/// `thud.impact_map(…)`.
+pub const IMPACT_MAP: Table = Table {
+    id: "impact_map",
+    written_by: "impact-map --csv",
+    columns: &[ORBIT, RECORD, PERIOD, X_M, V_M_S, Z_M, ZDOT_M_S, PHASE, WALL, U_IN_M_S, U_OUT_M_S],
+};
+
+/// `thud basins --csv`: one row per start.
+pub const BASINS: Table = Table {
+    id: "basins",
+    written_by: "basins --csv",
+    columns: &[
+        col("y0_m", "m", "the ball's start offset from the enclosure's centre"),
+        col("w0_m_s", "m/s", "the ball's start velocity"),
+        col("attractor", "1", "the attractor the start settles on (its id)"),
+        ORBIT,
+        ORBIT_AMPLITUDE_M,
+    ],
+};
+
+/// `thud restitution --csv`: the paper's restitution against the ball's mass (Fig 6), the
+/// mass in grams as the paper's axis.
+pub const RESTITUTION_TABLE: Table = Table {
+    id: "restitution",
+    written_by: "restitution --csv",
+    columns: &[col("mass_g", "g", "ball mass m, in grams as the paper's axis"), RESTITUTION_OF_MASS],
+};
+const RESTITUTION_OF_MASS: Column = col("restitution", "1", "the coefficient of restitution at that mass (Fig 6)");
+
+/// `thud orbit --csv`: the orbit's own columns on every row, then one impact per row; Python
+/// `thud.orbit(…)`.
+pub const ORBIT_TABLE: Table = Table {
+    id: "orbit",
+    written_by: "orbit --csv",
+    columns: &[
+        ORBIT,
+        ORBIT_PERIODS,
+        IMPACTS_PER_ORBIT,
+        col("symmetric", "—", "x(t + T/2) = −x(t)"),
+        ORBIT_AMPLITUDE_M,
+        STABLE,
+        col(
+            "critical",
+            "—",
+            "how the largest multiplier crosses the unit circle: fold, period_doubling, neimark_sacker",
+        ),
+        MULTIPLIER_ABS_MAX,
+        col("impact", "1", "the impact's number in the orbit (from 0)"),
+        PERIOD,
+        col("phase_T", "1", "the force's phase at the impact's onset (fraction of the period T)"),
+        WALL,
+        U_IN_M_S,
+        U_OUT_M_S,
+    ],
+};
+
+/// `thud continue --csv`, a point of `continue --json`; Python `thud.continuation(…)`.
+pub const CONTINUATION: Table = Table {
+    id: "continuation",
+    written_by: "continue --csv",
+    columns: &[
+        VARIED,
+        ORBIT,
+        ORBIT_PERIODS,
+        IMPACTS_PER_ORBIT,
+        STABLE,
+        MULTIPLIER_ABS_MAX,
+        ORBIT_AMPLITUDE_M,
+        X_M,
+        V_M_S,
+        Z_M,
+        ZDOT_M_S,
+    ],
+};
+
 /// Every table, in the guide's order.
-pub const TABLES: [Table; 9] =
-    [PULSE, HISTORY, IMPACTS, ENSEMBLE, SWEEP, SWEEP_ENSEMBLE, SHARD_PART, RESPONSE, RESPONSE_ENSEMBLE];
+pub const TABLES: [Table; 16] = [
+    PULSE,
+    HISTORY,
+    IMPACTS,
+    ENSEMBLE,
+    SWEEP,
+    SWEEP_ENSEMBLE,
+    SHARD_PART,
+    RESPONSE,
+    RESPONSE_ENSEMBLE,
+    STUDY,
+    BIFURCATION,
+    IMPACT_MAP,
+    BASINS,
+    RESTITUTION_TABLE,
+    ORBIT_TABLE,
+    CONTINUATION,
+];
 
 /// The table `id`, if there is one.
 pub fn table(id: &str) -> Option<&'static Table> {
@@ -311,8 +450,11 @@ mod tests {
             let names: BTreeSet<&str> = t.names().into_iter().collect();
             assert_eq!(names.len(), t.columns.len(), "{}: a name twice", t.id);
             for c in t.columns {
+                // `phase_T`: the orbit's CSV names the period T as the paper writes it.
                 assert!(
-                    c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'),
+                    *c == VARIED
+                        || c.name == "phase_T"
+                        || c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'),
                     "{}",
                     c.name
                 );

@@ -41,6 +41,35 @@ pub struct Preset {
     pub design: Design,
 }
 
+/// A design file: what `thud … --save`, `thud fit … --save` and the explorer's save write (a
+/// preset's format, with the explorer's ensemble size N when it saved one). Unknown keys are
+/// refused.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DesignFile {
+    #[serde(default, rename = "description")]
+    _description: String,
+    #[serde(default, rename = "ensemble")]
+    _ensemble: Option<usize>,
+    design: Design,
+}
+
+/// The design of a design file's TOML `text`, validated; the error names `design` and says
+/// where the text is wrong (line and column) and what is wrong.
+pub fn design_file(text: &str) -> Result<Design, ThudError> {
+    let file: DesignFile = toml::from_str(text).map_err(|e| {
+        let at = e.span().map(|s| {
+            let before = &text[..s.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            format!("line {line}, column {column}: ")
+        });
+        ThudError::invalid("design", format!("{}{}", at.unwrap_or_default(), e.message().trim()))
+    })?;
+    file.design.validate()?;
+    Ok(file.design)
+}
+
 /// The names of all presets, in listing order.
 pub fn names() -> impl Iterator<Item = &'static str> {
     SOURCES.iter().map(|(n, _)| *n)

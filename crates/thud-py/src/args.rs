@@ -67,6 +67,10 @@ impl<'py> Kwargs<'py> {
             if value.is_none() {
                 continue;
             }
+            if value.is_instance_of::<PyInt>() && !value.is_instance_of::<PyBool>() && value.extract::<f64>().is_err() {
+                // An int beyond any float (`10**400`): out of range, named as such.
+                return Err(huge_int(value.py(), &name, &value));
+            }
             out.params.push((name, to_value(&value)?));
         }
         Ok(out)
@@ -142,6 +146,19 @@ impl<'py> Kwargs<'py> {
         };
         range.parse_count(name, &text).map_err(|e| engine_error(py, e))
     }
+}
+
+/// The error of an int too large for a float given for the parameter `name`: out of range,
+/// with the parameter's range when it has one.
+fn huge_int(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyErr {
+    let digits = v.str().map_or(0, |s| s.to_string().trim_start_matches('-').len());
+    let sign = if v.lt(0).unwrap_or(false) { "a negative " } else { "an " };
+    let range = limits::RANGES.iter().find(|r| Spelling::Keyword.spell(r.param) == name);
+    let tail = match range {
+        Some(r) => format!("; the {} must be {}", r.what, r.describe()),
+        None => String::new(),
+    };
+    parameter_error(py, name, format!("invalid {name}: {sign}integer of {digits} digits is out of range{tail}"))
 }
 
 /// A Python value as an engine value: str → text (units allowed, `"40.5g"`), bool → switch,

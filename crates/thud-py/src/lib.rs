@@ -25,9 +25,11 @@
 //! Python-facing documentation is in the `#[pyo3]` items and the stub `python/thud/__init__.pyi`.
 
 mod args;
+mod designfile;
 mod detach;
 mod fit;
 mod objects;
+mod orbits;
 mod progress;
 
 use pyo3::prelude::*;
@@ -46,15 +48,18 @@ use progress::Progress;
 
 /// The keywords each function takes beside the engine's named parameters (its run options),
 /// as `_parameters()` hands them to the Python wrapper for the signatures.
-const OPTIONS: [(&str, &[&str]); 8] = [
-    ("pulse", &["preset", "points", "no_limit"]),
-    ("simulate", &["preset", "samples", "ensemble", "no_limit"]),
-    ("simulate_ensemble", &["preset", "no_limit"]),
-    ("sweep", &["preset", "ensemble", "progress", "no_limit"]),
-    ("response", &["preset", "continuation", "ensemble", "progress", "no_limit"]),
-    ("fit_damper", &["preset", "quantity", "no_limit"]),
-    ("study", &["preset", "progress", "no_limit"]),
-    ("bifurcation", &["preset", "transient", "continuation", "progress", "no_limit"]),
+const OPTIONS: [(&str, &[&str]); 11] = [
+    ("pulse", &["preset", "design", "points", "no_limit"]),
+    ("simulate", &["preset", "design", "samples", "ensemble", "no_limit"]),
+    ("simulate_ensemble", &["preset", "design", "no_limit"]),
+    ("sweep", &["preset", "design", "ensemble", "progress", "no_limit"]),
+    ("response", &["preset", "design", "continuation", "ensemble", "progress", "no_limit"]),
+    ("fit_damper", &["preset", "design", "quantity", "no_limit"]),
+    ("study", &["preset", "design", "progress", "no_limit"]),
+    ("bifurcation", &["preset", "design", "transient", "continuation", "progress", "no_limit"]),
+    ("orbit", &["preset", "design", "period", "symmetric", "guess"]),
+    ("continuation", &["preset", "design", "period", "symmetric"]),
+    ("impact_map", &["preset", "design", "transient", "no_limit"]),
 ];
 
 /// Waveform points of a pulse unless `points` is given.
@@ -67,10 +72,18 @@ pub(crate) fn options(name: &str) -> &'static [&'static str] {
     OPTIONS.iter().find(|(n, _)| *n == name).map_or(&[], |(_, o)| o)
 }
 
-/// The preset named by the `preset` option (default: "default"), as the command line loads it
-/// (the app's compiled-in preset files). The user's config file is not read: a script gives
-/// the same numbers on every machine.
+/// The starting design: the `design` option (a design file or a saved design's name, as the
+/// command line's `--design`), else the preset named by the `preset` option (default:
+/// "default"), as the command line loads it (the app's compiled-in preset files). The user's
+/// config file is not read: a script gives the same numbers on every machine.
 fn preset(py: Python<'_>, kw: &Kwargs<'_>, default: Option<&str>) -> PyResult<Option<Design>> {
+    if let Some(file) = kw.option("design") {
+        if kw.option("preset").is_some() {
+            let msg = "invalid design: give design or preset, not both".to_string();
+            return Err(args::parameter_error(py, "design", msg));
+        }
+        return designfile::load(py, file).map(Some);
+    }
     match kw.text(py, "preset")?.as_deref().or(default) {
         None => Ok(None),
         Some(name) => thud_presets::preset(name).map(Some).map_err(|e| engine_error(py, e)),
@@ -376,8 +389,19 @@ fn varies(py: Python<'_>, axes: &Bound<'_, PyList>) -> PyResult<Vec<study::Vary>
     Ok(out)
 }
 
+/// A varied frequency supplies the design's frequency where none is given (its first value),
+/// so `freq=[…]` with a force alone is a forced design.
+pub(crate) fn frequency_from_vary(kw: &mut Kwargs<'_>, vary: &study::Vary) {
+    let freq = Spelling::Keyword.key("freq");
+    if vary.name() == "freq" && !args::given(&kw.params, "freq") {
+        if let Some(&f) = vary.values.first() {
+            kw.params.push((freq, params::Input::Num(f)));
+        }
+    }
+}
+
 /// The keyword `name` at `values` (numbers in the row's plain unit, or text with a unit).
-fn vary_of(py: Python<'_>, name: &str, values: &[Bound<'_, PyAny>]) -> PyResult<study::Vary> {
+pub(crate) fn vary_of(py: Python<'_>, name: &str, values: &[Bound<'_, PyAny>]) -> PyResult<study::Vary> {
     let row = study::numeric_row(name, Spelling::Keyword).map_err(|e| engine_error(py, e))?;
     let kind = match row.accepts {
         params::Accepts::Quantity { kind, .. } => Some(kind),
@@ -427,7 +451,17 @@ fn _study(py: Python<'_>, axes: &Bound<'_, PyList>, params: Option<&Bound<'_, Py
         return Err(cancelled(py));
     }
     thud_core::finite::check(&s).map_err(|e| args::non_finite(&e.0))?;
-    json_of(py, &serde_json::json!({ "design": d.design(), "axes": s.axes, "cells": s.cells }))
+    // Each axis with its column as `sweep --vary --csv` heads it (`v0_m_s`): Python's dimension.
+    let mut axes =
+        serde_json::to_value(&s.axes).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    if let Some(list) = axes.as_array_mut() {
+        for (a, axis) in list.iter_mut().zip(&s.axes) {
+            if let Some(m) = a.as_object_mut() {
+                m.insert("column".into(), axis.column().into());
+            }
+        }
+    }
+    json_of(py, &serde_json::json!({ "design": d.design(), "axes": axes, "cells": s.cells }))
 }
 
 /// _bifurcation(name, values, **params) -> str
@@ -444,11 +478,12 @@ fn _bifurcation(
     values: Vec<Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let kw = Kwargs::new(params, options("bifurcation"))?;
+    let mut kw = Kwargs::new(params, options("bifurcation"))?;
     let no_limit = kw.switch(py, "no_limit")?;
     let continuation = kw.switch(py, "continuation")?;
-    let d = design_of(py, &kw)?;
     let vary = vary_of(py, name, &values)?;
+    frequency_from_vary(&mut kw, &vary);
+    let d = design_of(py, &kw)?;
     let transient = kw.count(py, "transient", &limits::TRANSIENT, dynamics::DEFAULT_TRANSIENT_PERIODS as usize)?;
     let periods = if args::given(&kw.params, "periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
     let s = dynamics::Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods };
@@ -463,11 +498,13 @@ fn _bifurcation(
     )?;
     let b = b.map_err(|e| engine_error(py, e))?;
     thud_core::finite::check(&b).map_err(|e| args::non_finite(&e.0))?;
-    json_of(py, &serde_json::json!({ "design": d.design(), "bifurcation": b }))
+    // The parameter's column as `bifurcation --csv` heads it (`freq_hz`): Python's coordinate.
+    let column = study::column(vary.name(), vary.unit());
+    json_of(py, &serde_json::json!({ "design": d.design(), "bifurcation": b, "column": column }))
 }
 
 /// `v` (its numbers checked finite before) as JSON text.
-fn json_of(py: Python<'_>, v: &serde_json::Value) -> PyResult<String> {
+pub(crate) fn json_of(py: Python<'_>, v: &serde_json::Value) -> PyResult<String> {
     serde_json::to_string(v).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))
 }
 
@@ -559,6 +596,10 @@ fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     defaults.set_item("progress", py.None())?;
     defaults.set_item("quantity", "x")?;
     defaults.set_item("transient", dynamics::DEFAULT_TRANSIENT_PERIODS)?;
+    defaults.set_item("design", py.None())?;
+    defaults.set_item("period", py.None())?;
+    defaults.set_item("symmetric", false)?;
+    defaults.set_item("guess", py.None())?;
     d.set_item("defaults", defaults)?;
     let refused = PyDict::new(py);
     // A response sweeps the frequency itself (`params::response_design` refuses `freq`).
@@ -606,8 +647,11 @@ fn table_rows<'py, T>(py: Python<'py>, table: &[params::Param<T>]) -> PyResult<B
 ///
 /// The one data schema: {table: [(name, unit, meaning), …]} for every table thud writes, the
 /// columns in order — the command line's CSV headers (`pulse`, `history`, `impacts`,
-/// `ensemble`, `sweep`, `sweep_ensemble`, `shard_part`, `response`, `response_ensemble`) and
-/// the columns of the DataFrames (`Pulse.to_dataframe()`, `Run.history_frame()`, …).
+/// `ensemble`, `sweep`, `sweep_ensemble`, `shard_part`, `response`, `response_ensemble`,
+/// `study`, `bifurcation`, `impact_map`, `basins`, `restitution`, `orbit`, `continuation`) and
+/// the columns of the DataFrames (`Pulse.to_dataframe()`, `Run.history_frame()`, …). The name
+/// "{varied}" stands for one column per varied parameter, named by its keyword and unit
+/// (`v0_m_s`, `freq_hz`).
 #[pyfunction]
 fn schema(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let out = PyDict::new(py);
@@ -640,6 +684,9 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(response_curve, m)?)?;
     m.add_function(wrap_pyfunction!(_study, m)?)?;
     m.add_function(wrap_pyfunction!(_bifurcation, m)?)?;
+    m.add_function(wrap_pyfunction!(orbits::_orbit, m)?)?;
+    m.add_function(wrap_pyfunction!(orbits::_continuation, m)?)?;
+    m.add_function(wrap_pyfunction!(orbits::_impact_map, m)?)?;
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;

@@ -28,11 +28,14 @@ def header(text):
 
 def test_the_schema_is_every_table_with_name_unit_and_meaning():
     assert set(SCHEMA) == {"pulse", "history", "impacts", "ensemble", "sweep", "sweep_ensemble", "shard_part",
-                           "response", "response_ensemble"}
+                           "response", "response_ensemble", "study", "bifurcation", "impact_map", "basins",
+                           "restitution", "orbit", "continuation"}
     for table, cols in SCHEMA.items():
         assert len({c[0] for c in cols}) == len(cols), table
         for name, unit, doc in cols:
-            assert name == name.lower() and " " not in name and unit and doc, (table, name)
+            # `{varied}`: one column per varied parameter; `phase_T`: the orbit's CSV names T.
+            plain = name in ("{varied}", "phase_T") or name == name.lower()
+            assert plain and " " not in name and unit and doc, (table, name)
     assert names("sweep")[:2] == ["mass_kg", "gap_m"]
     assert names("response")[0] == "direction"
 
@@ -125,3 +128,36 @@ def test_a_result_equals_itself_after_a_pickle_round_trip_and_not_another(what):
     other = OTHER[what]()
     assert other != r and not (other == r)
     assert r != "a string" and r != None  # noqa: E711 — comparing with another type is False
+
+
+#: (table, a command line writing it with --csv, the varied parameters' columns)
+WRITERS = [
+    ("study", ["sweep", "--vary", "v0=1:2:2", "--vary", "c1=10:20:2"], ["v0_m_s", "c1_n_s_m"]),
+    ("bifurcation", ["bifurcation", "--preset", "forced-rattle", "--vary", "f=7.5:7.6:2", "--transient", "20",
+                     "--periods", "4"], ["freq_hz"]),
+    ("impact_map", ["impact-map", "--preset", "forced-rattle", "--transient", "20", "--periods", "4"], []),
+    ("basins", ["basins", "--preset", "forced-rattle", "--grid", "2", "--transient", "20", "--periods", "4"], []),
+    ("restitution", ["restitution"], []),
+    ("orbit", ["orbit", "--preset", "forced-rattle"], []),
+    ("continuation", ["continue", "--preset", "forced-rattle", "--vary", "f=5.5:5.6"], ["freq_hz"]),
+]
+
+
+@pytest.mark.parametrize("table, args, varied", WRITERS, ids=[w[0] for w in WRITERS])
+def test_every_csv_the_command_line_writes_has_the_schema_s_columns(cli, table, args, varied):
+    code, out, err = cli(*args, "--csv")
+    assert code == 0, err
+    want = []
+    for name in names(table):
+        want += varied if name == "{varied}" else [name]
+    assert header(out) == want
+
+
+def test_python_s_names_are_the_csv_s_columns(cli):
+    o = thud.orbit(preset="forced-rattle")
+    assert list(o.to_dataframe().columns) == names("orbit")[names("orbit").index("impact"):]
+    ds = thud.continuation(preset="forced-rattle", freq=(5.5, 5.6))
+    assert "freq_hz" in ds.coords
+    assert set(names("continuation")[1:]) - {"orbit"} <= set(ds.data_vars)
+    b = thud.bifurcation(preset="forced-rattle", freq=[7.5, 7.6], transient=20, periods=4)
+    assert "freq_hz" in b.coords and b["freq"].attrs["deprecated"] == "use freq_hz"

@@ -11,9 +11,10 @@ import thud
 
 STUB = Path(__file__).resolve().parents[1] / "python" / "thud" / "__init__.pyi"
 TREE = ast.parse(STUB.read_text(encoding="utf-8"))
-OPTIONS = {"pulse": {"preset", "points", "no_limit"}, "simulate": {"preset", "samples", "no_limit", "ensemble"},
-           "sweep": {"preset", "no_limit", "ensemble", "progress"},
-           "response": {"preset", "no_limit", "ensemble", "continuation", "progress"}}
+OPTIONS = {"pulse": {"preset", "design", "points", "no_limit"},
+           "simulate": {"preset", "design", "samples", "no_limit", "ensemble"},
+           "sweep": {"preset", "design", "no_limit", "ensemble", "progress"},
+           "response": {"preset", "design", "no_limit", "ensemble", "continuation", "progress"}}
 #: Design keywords a function refuses although the engine's table has them.
 REFUSED = {"response": {"freq"}}
 

@@ -16,20 +16,32 @@ xr = pytest.importorskip("xarray", reason="xarray is not installed")
 def test_a_study_from_python_is_the_command_line_s(cli_json):
     cli = cli_json("sweep", "--vary", "v0=1:3:5", "--vary", "c1=10:60:6")
     ds = thud.sweep(v0=np.linspace(1, 3, 5), c1=[10, 20, 30, 40, 50, 60])
-    assert ds["u0_max_m_s"].dims == ("v0", "c1")
+    # The dimensions are the CSV's columns.
+    assert ds["u0_max_m_s"].dims == ("v0_m_s", "c1_n_s_m")
     assert ds["u0_max_m_s"].shape == (5, 6)
-    assert ds["v0"].attrs["units"] == "m/s" and ds["c1"].attrs["units"] == "N·s/m"
-    assert list(ds["c1"].values) == [a for a in cli["axes"][1]["values"]]
+    assert ds["v0_m_s"].attrs["units"] == "m/s" and ds["c1_n_s_m"].attrs["units"] == "N·s/m"
+    assert list(ds["c1_n_s_m"].values) == [a for a in cli["axes"][1]["values"]]
     for cell in cli["cells"]:
         i, j = divmod(cell["index"], 6)
-        at = ds.isel(v0=i, c1=j)
-        assert [float(at["v0"]), float(at["c1"])] == cell["values"]
+        at = ds.isel(v0_m_s=i, c1_n_s_m=j)
+        assert [float(at["v0_m_s"]), float(at["c1_n_s_m"])] == cell["values"]
         assert int(at["n_impacts"]) == cell["n_impacts"]
         for key in ("u0_max_m_s", "zdot_abs_max_m_s", "spl_max_db", "inclination_cm_s", "restitution_mean"):
             want = cell[key]
             got = float(at[key])
             assert (np.isnan(got) and want is None) or got == want, (cell["index"], key, got, want)
         assert int(at["zone"]) == (cell["zone"] or 0)
+
+
+def test_a_study_s_dimensions_are_the_csv_s_columns_and_the_keywords_still_select(cli):
+    code, out, err = cli("sweep", "--vary", "v0=1:3:3", "--vary", "c1=10:20:2", "--csv")
+    assert code == 0, err
+    header = out.splitlines()[0].split(",")
+    ds = thud.sweep(v0=[1, 2, 3], c1=[10, 20])
+    assert list(ds["u0_max_m_s"].dims) == header[1:3]
+    # The keywords are deprecated aliases, still indexed.
+    assert ds["v0"].attrs["deprecated"] == "use v0_m_s"
+    assert float(ds["u0_max_m_s"].sel(c1=20, v0=2)) == float(ds["u0_max_m_s"].sel(c1_n_s_m=20, v0_m_s=2))
 
 
 def test_mass_by_gap_is_a_study_too():

@@ -36,20 +36,28 @@ from ._thud import (
     ranges,
     schema,
 )
+from ._results import ImpactMap, Orbit
+from ._results import _restore_record
+from ._results import continuation_xarray as _continuation_xarray
 from ._wrap import document as _document
 from ._wrap import with_progress as _progress
 
 __all__ = [
     "Chart",
     "Ensemble",
+    "ImpactMap",
+    "Orbit",
     "ParameterError",
     "Pulse",
     "Response",
     "Run",
     "axis",
     "bifurcation",
+    "continuation",
     "fit_damper",
     "fit_structure",
+    "impact_map",
+    "orbit",
     "presets",
     "pulse",
     "ranges",
@@ -63,6 +71,8 @@ __all__ = [
 
 def _restore(kind: str, state: str) -> _Any:
     """A result again from its pickled state (what every result's ``__reduce__`` names)."""
+    if kind in ("Orbit", "ImpactMap"):
+        return _restore_record(kind, state)
     return _thud._restore(kind, state)
 
 
@@ -122,6 +132,40 @@ def bifurcation(**params: _Any) -> _Any:
     (name, values), = axes
     record = _json.loads(_thud._bifurcation(name, values, **_progress(params, "bifurcation")))
     return _frames.bifurcation_xarray(record)
+
+
+def orbit(**params: _Any) -> Orbit:
+    """The periodic orbit of a forced design found by shooting (Newton on the stroboscopic
+    map), stable or not, as ``thud orbit --json``: ``orbit(preset="forced-rattle")``,
+    ``orbit(gap=0.02, force=2, freq=6, symmetric=True)``. Options: period (the orbit's period
+    in forcing periods, 1 to 16; default the one the design's motion repeats with), symmetric
+    (look for x(t + T/2) = −x(t)), guess ((x, v, z, zdot) in m, m/s, m, m/s at the force's
+    phase 0, to start Newton's method from instead of the design's motion); every other
+    keyword is the design's, as for ``simulate``."""
+    return Orbit(_json.loads(_thud._orbit(**params)))
+
+
+def continuation(**params: _Any) -> _Any:
+    """The family of periodic orbits of a forced design continued over one parameter
+    (pseudo-arclength, through folds and along unstable parts), as ``thud continue --json``:
+    the parameter given as (FROM, TO), e.g. ``continuation(freq=(3, 8), force=3,
+    preset="forced-rattle")`` → an xarray Dataset on the dimension point (the value, orbit,
+    stability, largest |λ|, amplitude and state at phase 0) with the special points (fold,
+    period doubling, Neimark–Sacker, branch point, grazing) on the dimension special. A varied
+    frequency supplies the design's. Options: period, symmetric (as for ``orbit``)."""
+    axes = _axes(params)
+    if len(axes) != 1:
+        raise ParameterError(f"invalid vary: continuation varies exactly one parameter given as (FROM, TO), not {len(axes)}")
+    (name, values), = axes
+    return _continuation_xarray(_json.loads(_thud._continuation(name, values, **params)))
+
+
+def impact_map(**params: _Any) -> ImpactMap:
+    """The impact map of a forced design, as ``thud impact-map --json``: its stroboscopic
+    samples and every impact over ``periods`` forcing periods after ``transient`` ones
+    (default 200), and the orbit's type. Options: transient, no_limit; every other keyword is
+    the design's, as for ``simulate``."""
+    return ImpactMap(_json.loads(_thud._impact_map(**params)))
 
 
 def response(freqs_hz: _Any = None, **params: _Any) -> Response:

@@ -15,6 +15,7 @@ The GIL is released while the engine runs: Python threads run designs in paralle
 bit-for-bit those of ``thud pulse|simulate|sweep|response --json`` for the same design.
 """
 
+import os
 from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
@@ -32,6 +33,61 @@ PulseShape = Literal["half-sine", "hertz"]
 Model = Literal["paper", "physical"]
 Solver = Literal["event", "newmark"]
 FloatArray = npt.NDArray[np.float64]
+#: An ensemble of N > 1 runs (the range of ensemble=): simulate() then returns an Ensemble.
+EnsembleSize = Literal[
+    2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27,
+    28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47, 48, 49, 50, 51,
+    52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63, 64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75,
+    76, 77, 78, 79, 80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95, 96, 97, 98, 99,
+    100, 101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111, 112, 113, 114, 115, 116, 117, 118,
+    119, 120, 121, 122, 123, 124, 125, 126, 127, 128, 129, 130, 131, 132, 133, 134, 135, 136, 137,
+    138, 139, 140, 141, 142, 143, 144, 145, 146, 147, 148, 149, 150, 151, 152, 153, 154, 155, 156,
+    157, 158, 159, 160, 161, 162, 163, 164, 165, 166, 167, 168, 169, 170, 171, 172, 173, 174, 175,
+    176, 177, 178, 179, 180, 181, 182, 183, 184, 185, 186, 187, 188, 189, 190, 191, 192, 193, 194,
+    195, 196, 197, 198, 199, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213,
+    214, 215, 216, 217, 218, 219, 220, 221, 222, 223, 224, 225, 226, 227, 228, 229, 230, 231, 232,
+    233, 234, 235, 236, 237, 238, 239, 240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251,
+    252, 253, 254, 255, 256, 257, 258, 259, 260, 261, 262, 263, 264, 265, 266, 267, 268, 269, 270,
+    271, 272, 273, 274, 275, 276, 277, 278, 279, 280, 281, 282, 283, 284, 285, 286, 287, 288, 289,
+    290, 291, 292, 293, 294, 295, 296, 297, 298, 299, 300, 301, 302, 303, 304, 305, 306, 307, 308,
+    309, 310, 311, 312, 313, 314, 315, 316, 317, 318, 319, 320, 321, 322, 323, 324, 325, 326, 327,
+    328, 329, 330, 331, 332, 333, 334, 335, 336, 337, 338, 339, 340, 341, 342, 343, 344, 345, 346,
+    347, 348, 349, 350, 351, 352, 353, 354, 355, 356, 357, 358, 359, 360, 361, 362, 363, 364, 365,
+    366, 367, 368, 369, 370, 371, 372, 373, 374, 375, 376, 377, 378, 379, 380, 381, 382, 383, 384,
+    385, 386, 387, 388, 389, 390, 391, 392, 393, 394, 395, 396, 397, 398, 399, 400, 401, 402, 403,
+    404, 405, 406, 407, 408, 409, 410, 411, 412, 413, 414, 415, 416, 417, 418, 419, 420, 421, 422,
+    423, 424, 425, 426, 427, 428, 429, 430, 431, 432, 433, 434, 435, 436, 437, 438, 439, 440, 441,
+    442, 443, 444, 445, 446, 447, 448, 449, 450, 451, 452, 453, 454, 455, 456, 457, 458, 459, 460,
+    461, 462, 463, 464, 465, 466, 467, 468, 469, 470, 471, 472, 473, 474, 475, 476, 477, 478, 479,
+    480, 481, 482, 483, 484, 485, 486, 487, 488, 489, 490, 491, 492, 493, 494, 495, 496, 497, 498,
+    499, 500, 501, 502, 503, 504, 505, 506, 507, 508, 509, 510, 511, 512, 513, 514, 515, 516, 517,
+    518, 519, 520, 521, 522, 523, 524, 525, 526, 527, 528, 529, 530, 531, 532, 533, 534, 535, 536,
+    537, 538, 539, 540, 541, 542, 543, 544, 545, 546, 547, 548, 549, 550, 551, 552, 553, 554, 555,
+    556, 557, 558, 559, 560, 561, 562, 563, 564, 565, 566, 567, 568, 569, 570, 571, 572, 573, 574,
+    575, 576, 577, 578, 579, 580, 581, 582, 583, 584, 585, 586, 587, 588, 589, 590, 591, 592, 593,
+    594, 595, 596, 597, 598, 599, 600, 601, 602, 603, 604, 605, 606, 607, 608, 609, 610, 611, 612,
+    613, 614, 615, 616, 617, 618, 619, 620, 621, 622, 623, 624, 625, 626, 627, 628, 629, 630, 631,
+    632, 633, 634, 635, 636, 637, 638, 639, 640, 641, 642, 643, 644, 645, 646, 647, 648, 649, 650,
+    651, 652, 653, 654, 655, 656, 657, 658, 659, 660, 661, 662, 663, 664, 665, 666, 667, 668, 669,
+    670, 671, 672, 673, 674, 675, 676, 677, 678, 679, 680, 681, 682, 683, 684, 685, 686, 687, 688,
+    689, 690, 691, 692, 693, 694, 695, 696, 697, 698, 699, 700, 701, 702, 703, 704, 705, 706, 707,
+    708, 709, 710, 711, 712, 713, 714, 715, 716, 717, 718, 719, 720, 721, 722, 723, 724, 725, 726,
+    727, 728, 729, 730, 731, 732, 733, 734, 735, 736, 737, 738, 739, 740, 741, 742, 743, 744, 745,
+    746, 747, 748, 749, 750, 751, 752, 753, 754, 755, 756, 757, 758, 759, 760, 761, 762, 763, 764,
+    765, 766, 767, 768, 769, 770, 771, 772, 773, 774, 775, 776, 777, 778, 779, 780, 781, 782, 783,
+    784, 785, 786, 787, 788, 789, 790, 791, 792, 793, 794, 795, 796, 797, 798, 799, 800, 801, 802,
+    803, 804, 805, 806, 807, 808, 809, 810, 811, 812, 813, 814, 815, 816, 817, 818, 819, 820, 821,
+    822, 823, 824, 825, 826, 827, 828, 829, 830, 831, 832, 833, 834, 835, 836, 837, 838, 839, 840,
+    841, 842, 843, 844, 845, 846, 847, 848, 849, 850, 851, 852, 853, 854, 855, 856, 857, 858, 859,
+    860, 861, 862, 863, 864, 865, 866, 867, 868, 869, 870, 871, 872, 873, 874, 875, 876, 877, 878,
+    879, 880, 881, 882, 883, 884, 885, 886, 887, 888, 889, 890, 891, 892, 893, 894, 895, 896, 897,
+    898, 899, 900, 901, 902, 903, 904, 905, 906, 907, 908, 909, 910, 911, 912, 913, 914, 915, 916,
+    917, 918, 919, 920, 921, 922, 923, 924, 925, 926, 927, 928, 929, 930, 931, 932, 933, 934, 935,
+    936, 937, 938, 939, 940, 941, 942, 943, 944, 945, 946, 947, 948, 949, 950, 951, 952, 953, 954,
+    955, 956, 957, 958, 959, 960, 961, 962, 963, 964, 965, 966, 967, 968, 969, 970, 971, 972, 973,
+    974, 975, 976, 977, 978, 979, 980, 981, 982, 983, 984, 985, 986, 987, 988, 989, 990, 991, 992,
+    993, 994, 995, 996, 997, 998, 999, 1000
+]
 #: progress=: True for a bar on stderr (tqdm if installed), or a callable progress(done, total).
 ProgressArg = Union[bool, Callable[[int, int], object], None]
 
@@ -275,6 +331,7 @@ class Response:
 def pulse(
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     radius: Optional[Quantity] = None,
     mass: Optional[Quantity] = None,
     density: Optional[Quantity] = None,
@@ -313,6 +370,7 @@ def pulse(
 def simulate(
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
     gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
     v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
@@ -368,6 +426,49 @@ def simulate(
 def simulate(
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    samples: Count = 2001,
+    ensemble: EnsembleSize,
+    no_limit: bool = False,
+) -> Ensemble: ...
+@overload
+def simulate(
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
     gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
     v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
@@ -409,6 +510,7 @@ def simulate_ensemble(
     runs: Count,
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
     gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
     v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
@@ -446,11 +548,13 @@ def simulate_ensemble(
     """One design from ``runs`` ball offsets y0 = −d/2 + (k + ½)·d/N at rest: always an
     Ensemble (even of one run), as ``simulate(ensemble=N)``; keywords as for ``simulate``."""
 
+@overload
 def sweep(
-    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
-    gaps_m: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
+    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str],
+    gaps_m: Union[Sequence[Quantity], npt.ArrayLike, str],
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
     gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
     v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
@@ -487,7 +591,7 @@ def sweep(
     ensemble: Count = 1,
     progress: ProgressArg = None,
     no_limit: bool = False,
-) -> Any:
+) -> Chart:
     """The design chart (a Chart): the design run for every impact mass × gap on all cores, as
     ``thud sweep``. With design keywords given as sequences instead (``v0=np.linspace(1, 3,
     5), c1=[10, 20]``; mass × gap too), a study over any parameters as ``thud sweep --vary``:
@@ -496,38 +600,86 @@ def sweep(
     Keywords as for ``simulate``; ensemble: N runs a cell (the metrics are then the medians,
     with zone3_probability, agreement, spread and every run). Ctrl-C stops the sweep.
     """
+@overload
+def sweep(
+    masses_kg: None = None,
+    gaps_m: None = None,
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    ensemble: Count = 1,
+    progress: ProgressArg = None,
+    no_limit: bool = False,
+) -> Any: ...
 
 def bifurcation(
     *,
     preset: Optional[str] = None,
-    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
-    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
-    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
-    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
-    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
-    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
-    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
-    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
     sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
     plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
-    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    sphere_poisson: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
     no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
-    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    duration: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Simulated time (s); 1e-6 to 1e6 s
     solver: Optional[Solver] = None,  # Solver
-    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
-    density: Optional[Quantity] = None,  # Ball density (kg/m³): the radius follows from the mass; 10 to 25000 kg/m^3
-    radius: Optional[Quantity] = None,  # Ball radius (m), whatever the mass; 0.0001 to 2 m
-    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
-    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    dt: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Observer angle (degrees); -180 to 180 deg
     source: Optional[Source] = None,  # Reflecting surfaces around the impact
     quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
     pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
-    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
-    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
-    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
-    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
-    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
-    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
     periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
     settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
     transient: Count = 200,
@@ -545,6 +697,7 @@ def response(
     freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
     gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
     v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
@@ -592,6 +745,179 @@ def response(
     frequency (p10/median/p90 of each figure). Ctrl-C stops the response.
     """
 
+class Orbit:
+    """A periodic orbit of a forced design found by shooting (``thud.orbit``; ``thud orbit
+    --json``). SI units."""
+
+    design: Dict[str, Any]
+    periods: int
+    impacts_per_orbit: int
+    symmetric: bool
+    x_m: float
+    v_m_s: float
+    z_m: float
+    zdot_m_s: float
+    amplitude_m: float
+    amplitude_linear_m: Optional[float]
+    impacts: Dict[str, np.ndarray]
+    multipliers: npt.NDArray[np.complex128]
+    stable: bool
+    critical: str
+    residual: float
+    iterations: int
+    periods_simulated: float
+    @property
+    def label(self) -> str: ...
+    def to_dataframe(self) -> Any: ...
+    def to_xarray(self) -> Any: ...
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+
+class ImpactMap:
+    """A forced design's stroboscopic samples and impacts after a transient, and its orbit's
+    type (``thud.impact_map``; ``thud impact-map --json``)."""
+
+    design: Dict[str, Any]
+    settings: Dict[str, int]
+    orbit: str
+    amplitude_m: float
+    truncated: bool
+    samples: Dict[str, np.ndarray]
+    impacts: Dict[str, np.ndarray]
+    def to_dataframe(self) -> Any: ...
+    def to_xarray(self) -> Any: ...
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+
+def orbit(
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    period: Optional[Count] = None,
+    symmetric: bool = False,
+    guess: Optional[Sequence[Quantity]] = None,
+) -> Orbit:
+    """The periodic orbit of a forced design found by shooting, stable or not, as ``thud
+    orbit``: period (forcing periods, 1 to 16), symmetric, guess ((x, v, z, zdot) at phase 0)."""
+
+def continuation(
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    period: Optional[Count] = None,
+    symmetric: bool = False,
+) -> Any:
+    """The family of periodic orbits continued over the one keyword given as (FROM, TO), as
+    ``thud continue``: an xarray Dataset on point (value, orbit, stability, amplitude) and
+    special (fold, period doubling, Neimark–Sacker, branch point, grazing)."""
+
+def impact_map(
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    transient: Count = 200,
+    no_limit: bool = False,
+) -> ImpactMap:
+    """The impact map of a forced design, as ``thud impact-map``: stroboscopic samples and
+    impacts over the sampled periods after ``transient`` ones, and the orbit's type."""
+
 def axis(name: Literal["masses", "gaps"], spec: str) -> FloatArray:
     """The values of a sweep axis "FROM:TO:N" exactly as the command line computes them:
     axis("masses", "30g:100g:20") (kg), axis("gaps", "2cm:5cm:20") (m)."""
@@ -623,6 +949,7 @@ def fit_damper(
     x: Union[Sequence[float], npt.ArrayLike, Sequence[Sequence[float]]],
     *,
     preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
     mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
     gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
     v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s

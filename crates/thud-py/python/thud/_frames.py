@@ -359,10 +359,20 @@ def study_xarray(record: Dict[str, Any]) -> Any:
     reduction. The design in attrs as JSON."""
     xr = _need("xarray", "thud.sweep(**axes)")
     axes = record["axes"]
-    dims = tuple(a["name"].replace("-", "_") for a in axes)
+    # The dimensions are the CSV's columns (`v0_m_s`, `c1_n_s_m`), as `thud sweep --vary --csv`
+    # heads them; the keywords (`v0`, `c1`) remain as deprecated aliases, indexed too, so
+    # `.sel(c1=20)` still works.
+    dims = tuple(a["column"] for a in axes)
     shape = tuple(len(a["values"]) for a in axes)
-    coords = {dim: (dim, np.asarray(a["values"], dtype=float), {"units": a["unit"], "long_name": a["name"]})
-              for dim, a in zip(dims, axes)}
+    coords: Dict[str, Any] = {dim: (dim, np.asarray(a["values"], dtype=float), {"units": a["unit"], "long_name": a["name"]})
+                              for dim, a in zip(dims, axes)}
+    aliases = []
+    for dim, a in zip(dims, axes):
+        old = a["name"].replace("-", "_")
+        if old != dim and old not in coords:
+            coords[old] = (dim, np.asarray(a["values"], dtype=float),
+                           {"units": a["unit"], "long_name": a["name"], "deprecated": f"use {dim}"})
+            aliases.append(old)
     cells = record["cells"]
     data: Dict[str, Any] = {}
     for k in _study_metrics():
@@ -376,7 +386,10 @@ def study_xarray(record: Dict[str, Any]) -> Any:
             arr = np.array([np.nan if not c.get("steady") or c["steady"].get(k) is None else c["steady"][k]
                             for c in cells], dtype=float)
             data[name] = (dims, arr.reshape(shape), {"units": unit_of(name)})
-    return xr.Dataset(data, coords=coords, attrs={"design": json.dumps(record["design"])})
+    ds = xr.Dataset(data, coords=coords, attrs={"design": json.dumps(record["design"])})
+    for old in aliases:
+        ds = ds.set_xindex(old)
+    return ds
 
 
 def bifurcation_xarray(record: Dict[str, Any]) -> Any:
@@ -407,12 +420,18 @@ def bifurcation_xarray(record: Dict[str, Any]) -> Any:
         attrs = {"units": unit_of(k)} if k not in ("phase",) else {"units": "1", "long_name": "phase of the force (fraction of T)"}
         data["impact_" + k if k in ("period", "wall", "phase") else k] = (("point", "impact"), arr, attrs)
     data["amplitude_m"] = (("point",), np.array([p["amplitude_m"] for p in points], dtype=float), {"units": "m"})
+    values = np.array([p["value"] for p in points], dtype=float)
+    column = record.get("column", name)
     coords = {
-        name: ("point", np.array([p["value"] for p in points], dtype=float), {"units": axis["unit"], "long_name": axis["name"]}),
+        # Named as `thud bifurcation --csv`'s first column (`freq_hz`); the keyword (`freq`)
+        # remains as a deprecated alias.
+        column: ("point", values, {"units": axis["unit"], "long_name": axis["name"]}),
         "direction": ("point", [p["direction"] for p in points]),
         "orbit": ("point", [_orbit_label(p["orbit"]) for p in points]),
         "period": ("period", np.arange(periods)),
     }
+    if column != name:
+        coords[name] = ("point", values, {"units": axis["unit"], "long_name": axis["name"], "deprecated": f"use {column}"})
     attrs = {"design": json.dumps(record["design"]), "bands": json.dumps(b["bands"]),
              "transient_periods": b["settings"]["transient_periods"], "periods": b["settings"]["periods"],
              "parameter": axis["name"]}

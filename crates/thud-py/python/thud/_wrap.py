@@ -4,8 +4,9 @@ engine's parameter table (``thud._thud._parameters()``), and ``progress=True`` a
 from __future__ import annotations
 
 import inspect
+import os
 import sys
-from typing import Any, Callable, Dict, List, Literal, Optional, Union
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Union
 
 from . import _thud
 
@@ -55,6 +56,10 @@ ProgressArg = Union[bool, Callable[[int, int], object], None]
 #: The annotation of an option keyword (the run options each function takes itself).
 _OPTION_TYPES: Dict[str, Any] = {
     "preset": Optional[str],
+    "design": Union[str, "os.PathLike[str]", None],
+    "period": Optional[Count],
+    "symmetric": bool,
+    "guess": Optional[Sequence[Quantity]],
     "points": Count,
     "samples": Count,
     "ensemble": Count,
@@ -76,6 +81,9 @@ _POSITIONAL: Dict[str, List[Any]] = {
     "response": [("freqs_hz", Any, None)],
     "fit_damper": [("t_s", Any, inspect.Parameter.empty), ("x", Any, inspect.Parameter.empty)],
     "bifurcation": [],
+    "orbit": [],
+    "continuation": [],
+    "impact_map": [],
 }
 
 
@@ -103,13 +111,14 @@ def _signature(name: str, table: Dict[str, Any], returns: Any) -> inspect.Signat
     defaults = table["defaults"]
     rows = table["pulse" if name == "pulse" else "design"]
     refused = set(table["refused"].get(name, []))
-    if "preset" in options:
-        params.append(P("preset", P.KEYWORD_ONLY, default=None, annotation=_OPTION_TYPES["preset"]))
+    for first in ("preset", "design"):
+        if first in options:
+            params.append(P(first, P.KEYWORD_ONLY, default=None, annotation=_OPTION_TYPES[first]))
     for row in rows:
         if row["name"] not in refused:
             params.append(P(row["name"], P.KEYWORD_ONLY, default=None, annotation=_annotation(row)))
     for o in options:
-        if o != "preset":
+        if o not in ("preset", "design"):
             params.append(P(o, P.KEYWORD_ONLY, default=defaults.get(o), annotation=_OPTION_TYPES[o]))
     return inspect.Signature(params, return_annotation=returns)
 
@@ -135,7 +144,8 @@ def document(namespace: Dict[str, Any]) -> None:
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
                "simulate_ensemble": _thud.Ensemble, "sweep": Any, "response": _thud.Response,
-               "fit_damper": Dict[str, Any], "bifurcation": Any}
+               "fit_damper": Dict[str, Any], "bifurcation": Any, "orbit": "thud.Orbit",
+               "continuation": Any, "impact_map": "thud.ImpactMap"}
     for name, ret in returns.items():
         fn = namespace[name]
         native = getattr(_thud, name, None)

@@ -1,0 +1,237 @@
+"""The results of ``thud.orbit`` and ``thud.impact_map`` and the Dataset of
+``thud.continuation``: built from the record the command line prints with ``--json`` (``thud
+orbit``, ``thud impact-map``, ``thud continue``), handed over as its JSON text, so the numbers
+are the command line's. A result keeps its record: it pickles as that text and two results are
+equal when their records are."""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from ._frames import _need, _orbit_label, unit_of
+
+
+def _columns(rows: List[Dict[str, Any]], keys: List[str]) -> Dict[str, np.ndarray]:
+    """A list of records as a dict of NumPy arrays, one per key (whole numbers as int64, flags
+    as bool, numbers as float64)."""
+    out: Dict[str, np.ndarray] = {}
+    for k in keys:
+        values = [r[k] for r in rows]
+        if all(isinstance(v, bool) for v in values) and values:
+            out[k] = np.array(values, dtype=bool)
+        elif all(isinstance(v, int) and not isinstance(v, bool) for v in values) and values:
+            out[k] = np.array(values, dtype=np.int64)
+        else:
+            out[k] = np.array([np.nan if v is None else v for v in values], dtype=float)
+    return out
+
+
+class _Record:
+    """A result held as the command line's JSON record."""
+
+    _kind = ""
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        self._record = record
+
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """The command line's ``--json`` record (plain lists, numbers and None)."""
+        return _copy(self._record)
+
+    def __reduce__(self) -> Any:
+        from . import _restore
+
+        return (_restore, (self._kind, json.dumps(self._record)))
+
+    def __eq__(self, other: object) -> bool:
+        return type(other) is type(self) and self._record == other._record  # type: ignore[attr-defined]
+
+    def __hash__(self) -> int:
+        return hash(json.dumps(self._record, sort_keys=True))
+
+
+def _copy(record: Dict[str, Any]) -> Dict[str, Any]:
+    out: Dict[str, Any] = json.loads(json.dumps(record))
+    return out
+
+
+class Orbit(_Record):
+    """A periodic orbit of a forced design found by shooting (``thud.orbit``; ``thud orbit
+    --json``): its period n (forcing periods) and impacts m, the state at the force's phase 0,
+    its amplitude, its impacts, its Floquet multipliers and stability. SI units."""
+
+    _kind = "Orbit"
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        super().__init__(record)
+        r = record
+        #: The design as run (the command line's JSON "design" object).
+        self.design: Dict[str, Any] = r["design"]
+        #: The orbit's period in forcing periods, n.
+        self.periods: int = int(r["periods"])
+        #: Impacts over the n periods, m.
+        self.impacts_per_orbit: int = int(r["impacts_per_orbit"])
+        #: Whether x(t + T/2) = −x(t).
+        self.symmetric: bool = bool(r["symmetric"])
+        #: The state at the force's phase 0: x (m), x' (m/s), z = y − x (m), z' (m/s).
+        self.x_m: float = float(r["x_m"])
+        self.v_m_s: float = float(r["v_m_s"])
+        self.z_m: float = float(r["z_m"])
+        self.zdot_m_s: float = float(r["zdot_m_s"])
+        #: Largest |x| over the orbit (m).
+        self.amplitude_m: float = float(r["amplitude_m"])
+        #: The main mass without the ball, in its steady state (m); None where unbounded.
+        self.amplitude_linear_m: Optional[float] = r.get("amplitude_linear_m")
+        #: Every impact: period, phase (fraction of T), wall (±1), u_in_m_s, u_out_m_s.
+        self.impacts: Dict[str, np.ndarray] = _columns(r["impacts"], ["period", "phase", "wall", "u_in_m_s", "u_out_m_s"])
+        #: The Floquet multipliers, largest modulus first (complex).
+        self.multipliers: np.ndarray = np.array([complex(m["re"], m["im"]) for m in r["multipliers"]], dtype=complex)
+        #: Every |λ| < 1.
+        self.stable: bool = bool(r["stable"])
+        #: How the largest multiplier crosses (or would cross) the unit circle: "fold",
+        #: "period_doubling" or "neimark_sacker".
+        self.critical: str = str(r["critical"])
+        #: |Pⁿ(s) − s| at the orbit, the largest component (m or m/s).
+        self.residual: float = float(r["residual"])
+        #: Newton iterations taken.
+        self.iterations: int = int(r["iterations"])
+        #: Forcing periods simulated to find it and its multipliers.
+        self.periods_simulated: float = float(r["periods_simulated"])
+
+    @property
+    def label(self) -> str:
+        """``3/1``, ``2/1 sym``: impacts per periods."""
+        return f"{self.impacts_per_orbit}/{self.periods}" + (" sym" if self.symmetric else "")
+
+    def to_dataframe(self) -> Any:
+        """The impacts as a table, one row per impact (the columns of ``thud orbit --csv``'s
+        impact part: impact, period, phase_T, wall, u_in_m_s, u_out_m_s); the orbit's scalars in
+        ``.attrs``. Needs pandas."""
+        pd = _need("pandas", "Orbit.to_dataframe()")
+        i = self.impacts
+        df = pd.DataFrame({"impact": np.arange(len(i["period"])), "period": i["period"], "phase_T": i["phase"],
+                           "wall": i["wall"], "u_in_m_s": i["u_in_m_s"], "u_out_m_s": i["u_out_m_s"]})
+        df.attrs.update({"orbit": self.label, "amplitude_m": self.amplitude_m, "stable": self.stable,
+                         "critical": self.critical, "design": self.design})
+        return df
+
+    def to_xarray(self) -> Any:
+        """The impacts on the dimension impact, the multipliers (re, im, abs) on multiplier;
+        the orbit's scalars in ``.attrs``. Needs xarray."""
+        xr = _need("xarray", "Orbit.to_xarray()")
+        i = self.impacts
+        data = {
+            "period": (("impact",), i["period"]),
+            "phase_T": (("impact",), i["phase"], {"units": "1", "long_name": "phase of the force (fraction of T)"}),
+            "wall": (("impact",), i["wall"]),
+            "u_in_m_s": (("impact",), i["u_in_m_s"], {"units": "m/s"}),
+            "u_out_m_s": (("impact",), i["u_out_m_s"], {"units": "m/s"}),
+            "multiplier_re": (("multiplier",), self.multipliers.real),
+            "multiplier_im": (("multiplier",), self.multipliers.imag),
+            "multiplier_abs": (("multiplier",), np.abs(self.multipliers)),
+        }
+        attrs = {"orbit": self.label, "periods": self.periods, "impacts_per_orbit": self.impacts_per_orbit,
+                 "symmetric": int(self.symmetric), "amplitude_m": self.amplitude_m, "stable": int(self.stable),
+                 "critical": self.critical, "x_m": self.x_m, "v_m_s": self.v_m_s, "z_m": self.z_m,
+                 "zdot_m_s": self.zdot_m_s, "design": json.dumps(self.design)}
+        return xr.Dataset(data, attrs=attrs)
+
+    def __repr__(self) -> str:
+        lead = float(np.abs(self.multipliers[0])) if len(self.multipliers) else 0.0
+        return (f"Orbit({self.label}, amplitude {self.amplitude_m:.6g} m, "
+                f"{'stable' if self.stable else 'unstable'}, largest |λ| {lead:.4g})")
+
+
+class ImpactMap(_Record):
+    """A forced design's stroboscopic samples and impacts over its sampled periods after a
+    transient, and the orbit's type (``thud.impact_map``; ``thud impact-map --json``)."""
+
+    _kind = "ImpactMap"
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        super().__init__(record)
+        r = record
+        #: The design as run.
+        self.design: Dict[str, Any] = r["design"]
+        #: transient_periods and periods.
+        self.settings: Dict[str, int] = dict(r["settings"])
+        #: The orbit's type: ``3/1``, ``2/1 sym``, ``chaotic``, ``not settled``, ``truncated``.
+        self.orbit: str = _orbit_label(r["orbit"])
+        #: Largest |x| over the sampled periods (m).
+        self.amplitude_m: float = float(r["amplitude_m"])
+        #: Whether a work cap stopped the run before its end.
+        self.truncated: bool = bool(r["truncated"])
+        #: The state at t = kT: x_m, v_m_s, z_m, zdot_m_s.
+        self.samples: Dict[str, np.ndarray] = _columns(r["samples"], ["x_m", "v_m_s", "z_m", "zdot_m_s"])
+        impacts = r["impacts"]
+        keys = list(impacts[0].keys()) if impacts else ["phase", "wall", "u_in_m_s", "u_out_m_s", "period"]
+        #: Every impact of the sampled periods (phase of the force, wall, speeds, period).
+        self.impacts: Dict[str, np.ndarray] = _columns(impacts, keys)
+
+    def to_dataframe(self) -> Any:
+        """The impacts as a table (one row per impact); the orbit and design in ``.attrs``."""
+        pd = _need("pandas", "ImpactMap.to_dataframe()")
+        df = pd.DataFrame(self.impacts)
+        df.attrs.update({"orbit": self.orbit, "amplitude_m": self.amplitude_m, "design": self.design})
+        return df
+
+    def to_xarray(self) -> Any:
+        """The samples on the dimension period, the impacts on impact; the orbit in attrs."""
+        xr = _need("xarray", "ImpactMap.to_xarray()")
+        data: Dict[str, Any] = {k: (("period",), v, {"units": unit_of(k)}) for k, v in self.samples.items()}
+        for k, v in self.impacts.items():
+            data["impact_" + k if k in ("period", "wall", "phase") else k] = (("impact",), v)
+        attrs = {"orbit": self.orbit, "amplitude_m": self.amplitude_m, "truncated": int(self.truncated),
+                 "transient_periods": self.settings["transient_periods"], "periods": self.settings["periods"],
+                 "design": json.dumps(self.design)}
+        return xr.Dataset(data, attrs=attrs)
+
+    def __repr__(self) -> str:
+        n = len(next(iter(self.impacts.values()), []))
+        return f"ImpactMap({self.orbit}, amplitude {self.amplitude_m:.6g} m, {n} impacts)"
+
+
+def _restore_record(kind: str, state: str) -> Any:
+    """A result again from its pickled state (its record's JSON text)."""
+    record = json.loads(state)
+    if kind == "Orbit":
+        return Orbit(record)
+    if kind == "ImpactMap":
+        return ImpactMap(record)
+    raise ValueError(f"not a thud result kind: {kind!r}")
+
+
+def continuation_xarray(record: Dict[str, Any]) -> Any:
+    """A continued branch (``thud.continuation(freq=(3, 8), …)``) as an xarray Dataset: on the
+    dimension point the parameter's value (coordinate named as ``thud continue --csv``'s
+    first column, e.g. ``freq_hz``), the orbit, stability, largest |λ|, impacts per orbit,
+    amplitude and the state at phase 0; the special points (fold, period doubling,
+    Neimark–Sacker, branch point, grazing) on the dimension special; why the branch ended
+    early, if it did, in attrs."""
+    xr = _need("xarray", "thud.continuation()")
+    name, unit = record["name"], record["unit"]
+    col = record["column"]
+    pts = record["points"]
+    c = _columns(pts, ["value", "periods", "impacts_per_orbit", "stable", "multiplier_abs_max", "amplitude_m",
+                       "x_m", "v_m_s", "z_m", "zdot_m_s"])
+    data: Dict[str, Any] = {}
+    for k in ("amplitude_m", "x_m", "v_m_s", "z_m", "zdot_m_s"):
+        data[k] = (("point",), c[k], {"units": unit_of(k)})
+    data["multiplier_abs_max"] = (("point",), c["multiplier_abs_max"])
+    data["stable"] = (("point",), np.array([bool(p["stable"]) for p in pts], dtype=bool))
+    data["periods"] = (("point",), c["periods"])
+    data["impacts_per_orbit"] = (("point",), c["impacts_per_orbit"])
+    specials = record["specials"]
+    data["special_kind"] = (("special",), np.array([s["kind"] for s in specials], dtype=object))
+    data["special_" + col] = (("special",), np.array([s["value"] for s in specials], dtype=float), {"units": unit})
+    data["special_amplitude_m"] = (("special",), np.array([s["amplitude_m"] for s in specials], dtype=float),
+                                   {"units": "m"})
+    coords = {col: ("point", c["value"], {"units": unit, "long_name": name}),
+              "orbit": ("point", np.array([p["orbit"] for p in pts], dtype=object))}
+    attrs = {"parameter": name, "design": json.dumps(record["design"]),
+             "ended": record["ended"] if record.get("ended") is not None else ""}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+

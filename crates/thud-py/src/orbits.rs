@@ -1,0 +1,159 @@
+//! Periodic orbits from Python: `thud.orbit` (`thud orbit`), `thud.continuation` (`thud
+//! continue`) and `thud.impact_map` (`thud impact-map`). Each hands the command line's `--json`
+//! record to the Python layer as JSON text, which builds the result object or the xarray
+//! Dataset from it (`thud/_results.py`).
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString};
+use thud_core::orbit::{self, Guess, Request};
+use thud_core::params::Spelling;
+use thud_core::units::{self, Kind};
+use thud_core::{continuation, dynamics, limits, study, ThudError};
+
+use crate::args::{self, engine_error, parameter_error, refuse, Kwargs};
+use crate::{design_of, detach, json_of, options, vary_of};
+
+/// The `period` option: the orbit's period in forcing periods (1 to 16), if given.
+fn period(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Option<u32>> {
+    if kw.option("period").is_none() {
+        return Ok(None);
+    }
+    let n = kw.count(py, "period", &limits::ORBIT_PERIODS, 1)?;
+    Ok(Some(u32::try_from(n).unwrap_or(u32::MAX)))
+}
+
+/// The `guess` option: (x, v, z, zdot) at the force's phase 0, numbers in m and m/s or texts
+/// with units.
+fn guess(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Option<Guess>> {
+    let Some(v) = kw.option("guess") else { return Ok(None) };
+    let bad = || {
+        let msg = format!(
+            "invalid guess: expected (x, v, z, zdot) in m, m/s, m, m/s, not {}",
+            if v.is_instance_of::<PyString>() { "a str".to_string() } else { args::kind_of(v) }
+        );
+        parameter_error(py, "guess", msg)
+    };
+    if v.is_instance_of::<PyString>() {
+        return Err(bad());
+    }
+    let items: Vec<Bound<'_, PyAny>> = match v.try_iter() {
+        Ok(it) => it.collect::<PyResult<_>>()?,
+        Err(_) => return Err(bad()),
+    };
+    let [x, vel, z, zd] = &items[..] else { return Err(bad()) };
+    let value = |item: &Bound<'_, PyAny>, kind: Kind| -> PyResult<f64> {
+        let x = match args::to_value(item)? {
+            thud_core::params::Input::Num(x) => x,
+            thud_core::params::Input::Text(t) => units::parse("guess", &t, kind).map_err(|e| engine_error(py, e))?,
+            _ => return Err(bad()),
+        };
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(parameter_error(py, "guess", format!("invalid guess: {x} is not a finite number")))
+        }
+    };
+    Ok(Some(Guess {
+        x_m: value(x, Kind::Length)?,
+        v_m_s: value(vel, Kind::Speed)?,
+        z_m: value(z, Kind::Length)?,
+        zdot_m_s: value(zd, Kind::Speed)?,
+    }))
+}
+
+/// The engine's names of the orbit's options as this module's keywords.
+fn keyword(e: ThudError) -> ThudError {
+    match e.param() {
+        "vary" => e.renamed("values"),
+        _ => e,
+    }
+}
+
+/// _orbit(**params) -> str
+///
+/// The periodic orbit of a forced design found by shooting, as `thud orbit --json`. Options:
+/// period (1 to 16 forcing periods; default the one the motion repeats with), symmetric
+/// (look for x(t + T/2) = −x(t)), guess ((x, v, z, zdot) to start Newton's method from).
+#[pyfunction]
+#[pyo3(signature = (**params))]
+pub fn _orbit(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+    let kw = Kwargs::new(params, options("orbit"))?;
+    let d = design_of(py, &kw)?;
+    let req = Request { periods: period(py, &kw)?, symmetric: kw.switch(py, "symmetric")?, guess: guess(py, &kw)? };
+    let o = {
+        let d = d.clone();
+        detach::run(py, move |cancel| orbit::find(&d, &req, Some(cancel)))?
+    };
+    let o = o.map_err(|e| engine_error(py, keyword(e)))?;
+    thud_core::finite::check(&o).map_err(|e| args::non_finite(&e.0))?;
+    let mut v = serde_json::to_value(&o).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    if let Some(m) = v.as_object_mut() {
+        m.insert("design".into(), serde_json::to_value(d.design()).unwrap_or_default());
+    }
+    json_of(py, &v)
+}
+
+/// _continuation(name, values, **params) -> str
+///
+/// The family of periodic orbits of a forced design continued in `name` from the first to the
+/// last of `values`, as `thud continue --json`. Options: period, symmetric (as for `_orbit`).
+#[pyfunction]
+#[pyo3(signature = (name, values, **params))]
+pub fn _continuation(
+    py: Python<'_>,
+    name: &str,
+    values: Vec<Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let mut kw = Kwargs::new(params, options("continuation"))?;
+    let all = vary_of(py, name, &values)?;
+    let (Some(&a), Some(&b)) = (all.values.first(), all.values.last()) else {
+        return Err(parameter_error(py, "values", format!("invalid {name}: give FROM and TO")));
+    };
+    let vary = study::Vary::of_values(name, &[a, b], Spelling::Keyword).map_err(|e| engine_error(py, e))?;
+    crate::frequency_from_vary(&mut kw, &vary);
+    let d = design_of(py, &kw)?;
+    let req = Request { periods: period(py, &kw)?, symmetric: kw.switch(py, "symmetric")?, guess: None };
+    let branch = {
+        let d = d.clone();
+        detach::run(py, move |cancel| continuation::continue_branch(&d, &vary, &req, Some(cancel), &|_| {}))?
+    };
+    let branch = branch.map_err(|e| engine_error(py, keyword(e)))?;
+    thud_core::finite::check(&branch).map_err(|e| args::non_finite(&e.0))?;
+    let mut v =
+        serde_json::to_value(&branch).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    if let Some(m) = v.as_object_mut() {
+        m.insert("design".into(), serde_json::to_value(d.design()).unwrap_or_default());
+        // The parameter's column as `thud continue --csv` heads it (`freq_hz`).
+        m.insert("column".into(), study::column(&branch.name, &branch.unit).into());
+    }
+    json_of(py, &v)
+}
+
+/// _impact_map(**params) -> str
+///
+/// The impact map of a forced design, as `thud impact-map --json`: its stroboscopic samples
+/// and its impacts over `periods` forcing periods after `transient` ones, and the orbit's type.
+#[pyfunction]
+#[pyo3(signature = (**params))]
+pub fn _impact_map(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+    let kw = Kwargs::new(params, options("impact_map"))?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let d = design_of(py, &kw)?;
+    let transient = kw.count(py, "transient", &limits::TRANSIENT, dynamics::DEFAULT_TRANSIENT_PERIODS as usize)?;
+    let periods = if args::given(&kw.params, "periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
+    let s = dynamics::Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods };
+    refuse(py, dynamics::check_work(1, s, false), "transient", no_limit)?;
+    let run = {
+        let d = d.clone();
+        detach::run(py, move |cancel| dynamics::impact_map(&d, s, "force", Some(cancel)))?
+    };
+    let run = run.map_err(|e| engine_error(py, e))?;
+    thud_core::finite::check(&run).map_err(|e| args::non_finite(&e.0))?;
+    let mut v = serde_json::to_value(&run).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    if let Some(m) = v.as_object_mut() {
+        m.insert("design".into(), serde_json::to_value(d.design()).unwrap_or_default());
+        m.insert("settings".into(), serde_json::to_value(s).unwrap_or_default());
+    }
+    json_of(py, &v)
+}
