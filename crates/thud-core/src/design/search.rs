@@ -99,10 +99,9 @@ impl Variable {
             ));
         };
         let canonical = name.trim().replace('_', "-");
-        let row = params::DESIGN
-            .iter()
-            .find(|p| p.name == canonical && is_choosable(p))
-            .ok_or_else(|| ThudError::invalid("--choose", format!("'{name}' is not a choice; one of: {}", choosable())))?;
+        let row = params::DESIGN.iter().find(|p| p.name == canonical && is_choosable(p)).ok_or_else(|| {
+            ThudError::invalid("--choose", format!("'{name}' is not a choice; one of: {}", choosable()))
+        })?;
         let param = format!("--choose {}", row.name);
         let options: Vec<String> = list.split(',').map(|s| s.trim().to_string()).collect();
         for (i, o) in options.iter().enumerate() {
@@ -217,7 +216,9 @@ impl Value {
     fn key(&self) -> u64 {
         match self {
             Value::Number(v) => v.to_bits(),
-            Value::Choice(s) => s.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)),
+            Value::Choice(s) => {
+                s.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3))
+            }
         }
     }
 }
@@ -317,8 +318,9 @@ impl Objective {
             Sense::Minimize => "--minimize",
             Sense::Maximize => "--maximize",
         };
-        let column = Column::named(text)
-            .ok_or_else(|| ThudError::invalid(flag, format!("'{text}' is not a result column; one of: {}", column_names())))?;
+        let column = Column::named(text).ok_or_else(|| {
+            ThudError::invalid(flag, format!("'{text}' is not a result column; one of: {}", column_names()))
+        })?;
         Ok(Objective { column, sense })
     }
 
@@ -368,7 +370,10 @@ impl Constraint {
         } else if let Some((n, v)) = text.split_once(">=").or_else(|| text.split_once('>')) {
             (n, false, v)
         } else {
-            return Err(ThudError::invalid(flag, format!("'{text}'; expected COLUMN<=VALUE or COLUMN>=VALUE, e.g. spl_max_db<=100")));
+            return Err(ThudError::invalid(
+                flag,
+                format!("'{text}'; expected COLUMN<=VALUE or COLUMN>=VALUE, e.g. spl_max_db<=100"),
+            ));
         };
         let name = name.trim();
         let value = value.trim();
@@ -383,14 +388,20 @@ impl Constraint {
             let row = study::numeric_row(name, Spelling::Flag).map_err(|_| {
                 ThudError::invalid(
                     flag,
-                    format!("'{text}': '{name}' is neither a result column ({}) nor a numeric parameter", column_names()),
+                    format!(
+                        "'{text}': '{name}' is neither a result column ({}) nor a numeric parameter",
+                        column_names()
+                    ),
                 )
             })?;
             let kind = match row.accepts {
                 Accepts::Quantity { kind, .. } => kind,
                 _ => Kind::Number,
             };
-            (Bound::Param(row), units::parse(flag, value, kind).map_err(|e| ThudError::invalid(flag, format!("'{text}': {e}")))?)
+            (
+                Bound::Param(row),
+                units::parse(flag, value, kind).map_err(|e| ThudError::invalid(flag, format!("'{text}': {e}")))?,
+            )
         };
         Ok(Constraint { bound, at_most, value, text: text.trim().to_string() })
     }
@@ -476,10 +487,11 @@ impl Problem {
             }
         }
         let forced = self.base.damper.force_n > 0.0;
-        let needs_force = self.objectives.iter().map(|o| o.column).chain(self.constraints.iter().filter_map(|c| match c.bound {
-            Bound::Result(col) => Some(col),
-            Bound::Param(_) => None,
-        }));
+        let needs_force =
+            self.objectives.iter().map(|o| o.column).chain(self.constraints.iter().filter_map(|c| match c.bound {
+                Bound::Result(col) => Some(col),
+                Bound::Param(_) => None,
+            }));
         if !forced {
             if let Some(c) = needs_force.into_iter().find(|c| c.forced()) {
                 return Err(ThudError::invalid(
@@ -488,7 +500,10 @@ impl Problem {
                 ));
             }
             if !self.band_hz.is_empty() {
-                return Err(ThudError::invalid("--over", "a band of frequencies needs a forced design; give --force-amplitude"));
+                return Err(ThudError::invalid(
+                    "--over",
+                    "a band of frequencies needs a forced design; give --force-amplitude",
+                ));
             }
         }
         if !self.band_hz.is_empty() && self.variables.iter().any(|v| v.name() == "freq") {
@@ -571,8 +586,12 @@ impl Problem {
     /// the order of the first objective (then the evaluation order); equal points kept once.
     #[must_use]
     pub fn front(&self, all: &[Candidate]) -> Vec<usize> {
-        let pts: Vec<(usize, Vec<f64>)> =
-            all.iter().enumerate().filter(|(_, c)| c.feasible()).filter_map(|(i, c)| Some((i, c.minimized(&self.objectives)?))).collect();
+        let pts: Vec<(usize, Vec<f64>)> = all
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.feasible())
+            .filter_map(|(i, c)| Some((i, c.minimized(&self.objectives)?)))
+            .collect();
         let mut front: Vec<(usize, &Vec<f64>)> = Vec::new();
         for (i, p) in &pts {
             let dominated = pts.iter().any(|(j, q)| dominates(q, p) || (q == p && j < i));
@@ -593,11 +612,8 @@ impl Problem {
         }
         let sign = |o: &Objective| if o.sense == Sense::Maximize { -1.0 } else { 1.0 };
         let r = [reference[0] * sign(&self.objectives[0]), reference[1] * sign(&self.objectives[1])];
-        let pts: Vec<[f64; 2]> = front
-            .iter()
-            .filter_map(|&i| all[i].minimized(&self.objectives))
-            .map(|p| [p[0], p[1]])
-            .collect();
+        let pts: Vec<[f64; 2]> =
+            front.iter().filter_map(|&i| all[i].minimized(&self.objectives)).map(|p| [p[0], p[1]]).collect();
         Some(hypervolume_2d(&pts, r))
     }
 
@@ -627,7 +643,9 @@ pub fn check_work(problem: &Problem, evaluations: usize, given: &dyn Fn(&str) ->
         .iter()
         .map(|v| match v {
             Variable::Range { .. } => vec![0.0, 1.0],
-            Variable::Choice { options, .. } => (0..options.len()).map(|i| (i as f64 + 0.5) / options.len() as f64).collect(),
+            Variable::Choice { options, .. } => {
+                (0..options.len()).map(|i| (i as f64 + 0.5) / options.len() as f64).collect()
+            }
         })
         .collect();
     let corners: usize = ends.iter().map(Vec::len).product();
@@ -645,7 +663,10 @@ pub fn check_work(problem: &Problem, evaluations: usize, given: &dyn Fn(&str) ->
         let Ok(runs) = problem.runs_at(&problem.decode(&genes)) else { continue };
         for d in runs {
             limits::check_run(&d, given, 0)?;
-            if worst.as_ref().is_none_or(|w| limits::sweep_work(&d, 1)[1].value > limits::sweep_work(w, 1)[1].value || d.damper.duration_s > w.damper.duration_s) {
+            if worst.as_ref().is_none_or(|w| {
+                limits::sweep_work(&d, 1)[1].value > limits::sweep_work(w, 1)[1].value
+                    || d.damper.duration_s > w.damper.duration_s
+            }) {
                 worst = Some(d);
             }
         }
@@ -776,11 +797,8 @@ impl<'a> Archive<'a> {
         let room = if self.cancelled() { 0 } else { self.budget.saturating_sub(st.1.len()) };
         new.truncate(room);
         let first = st.1.len();
-        let done: Vec<Candidate> = new
-            .par_iter()
-            .enumerate()
-            .map(|(i, (_, p))| self.problem.evaluate(first + i, p.clone(), None))
-            .collect();
+        let done: Vec<Candidate> =
+            new.par_iter().enumerate().map(|(i, (_, p))| self.problem.evaluate(first + i, p.clone(), None)).collect();
         if !done.is_empty() {
             for ((k, _), c) in new.into_iter().zip(done) {
                 st.0.insert(k, c.index);
@@ -1044,7 +1062,11 @@ mod tests {
         // Every front point is feasible and no evaluated feasible point dominates it.
         for &i in &a.front {
             let fi = a.all[i].minimized(&p.objectives).unwrap();
-            assert!(a.all.iter().filter(|c| c.feasible()).all(|c| !dominates(&c.minimized(&p.objectives).unwrap(), &fi)));
+            assert!(a
+                .all
+                .iter()
+                .filter(|c| c.feasible())
+                .all(|c| !dominates(&c.minimized(&p.objectives).unwrap(), &fi)));
         }
     }
 
