@@ -1,3 +1,4 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a measurement fails
 //! Measures the design search (docs/model.md, "Design search"): on the acceptance problem
 //! (paper-table3, mass 20–120 g × gap 1–6 cm, min SPLmax, max e, reference 106 dB, 0 cm/s) the
 //! hypervolume of NSGA-II's front at a budget against the front of a 100 × 100 grid, beside

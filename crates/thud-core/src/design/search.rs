@@ -71,9 +71,8 @@ impl Variable {
         let row = study::numeric_row(name, Spelling::Flag)?;
         let param = format!("--vary {}", row.name);
         let parts: Vec<&str> = spec.split(':').collect();
-        let (from, to) = match parts[..] {
-            [from, to] | [from, to, _] => (from, to),
-            _ => return Err(ThudError::invalid(&param, format!("'{spec}'; expected FROM:TO, e.g. 20g:120g"))),
+        let ([from, to] | [from, to, _]) = parts[..] else {
+            return Err(ThudError::invalid(&param, format!("'{spec}'; expected FROM:TO, e.g. 20g:120g")));
         };
         let value = |t: &str| -> Result<f64, ThudError> {
             match row.accepts {
@@ -744,8 +743,11 @@ struct Archive<'a> {
     cancel: Option<&'a AtomicBool>,
     reference: Mutex<Option<Vec<f64>>>,
     on_progress: &'a OnBatch<'a>,
-    state: Mutex<(HashMap<Vec<u64>, usize>, Vec<Candidate>)>,
+    state: Mutex<State>,
 }
+
+/// Each point's key and its index in the archive; the archive in order of evaluation.
+type State = (HashMap<Vec<u64>, usize>, Vec<Candidate>);
 
 impl<'a> Archive<'a> {
     fn new(
@@ -943,7 +945,7 @@ pub fn random_search(problem: &Problem, settings: Settings) -> Result<Outcome, T
     let mut rng = SplitMix(settings.seed);
     let genes: Vec<Vec<f64>> =
         (0..settings.evaluations).map(|_| (0..problem.variables.len()).map(|_| rng.next()).collect()).collect();
-    baseline(problem, settings.evaluations, &genes)
+    Ok(baseline(problem, settings.evaluations, &genes))
 }
 
 /// The baseline of a Latin hypercube of `settings.evaluations` points: each variable's range
@@ -963,14 +965,14 @@ pub fn latin_hypercube(problem: &Problem, settings: Settings) -> Result<Outcome,
             g[k] = (order[i] as f64 + rng.next()) / n as f64;
         }
     }
-    baseline(problem, n, &genes)
+    Ok(baseline(problem, n, &genes))
 }
 
-fn baseline(problem: &Problem, n: usize, genes: &[Vec<f64>]) -> Result<Outcome, ThudError> {
+fn baseline(problem: &Problem, n: usize, genes: &[Vec<f64>]) -> Outcome {
     let quiet = |_: Progress, _: &[Candidate], _: &[usize]| {};
     let archive = Archive::new(problem, n, None, None, &quiet);
     archive.batch(genes);
-    Ok(archive.into_outcome(false))
+    archive.into_outcome(false)
 }
 
 #[cfg(test)]
