@@ -34,26 +34,23 @@ fn main() {
     let reference = [106.0, 0.0];
     let t = Instant::now();
     let known: Option<f64> = args.get(3).and_then(|a| a.parse().ok());
-    let grid_hv = match known {
-        Some(h) => h,
-        None => {
-            let grid = Grid::new(
-                base,
-                vec![
-                    Vary::parse("mass=20g:120g:100", Spelling::Flag).expect("axis"),
-                    Vary::parse("gap=1cm:6cm:100", Spelling::Flag).expect("axis"),
-                ],
-                Spelling::Flag,
-            )
-            .expect("grid");
-            let s = study::sweep(&grid, None, &|_, _| {}).expect("sweep");
-            let pts: Vec<[f64; 2]> =
-                s.cells.iter().filter_map(|c| Some([c.metrics.spl_max_db?, -c.metrics.inclination_cm_s?])).collect();
-            let grid_hv = search::hypervolume_2d(&pts, [106.0, 0.0]);
-            println!("grid 100×100: hypervolume {grid_hv:.6} in {:.2} s", t.elapsed().as_secs_f64());
-            grid_hv
-        }
-    };
+    let grid_hv = known.unwrap_or_else(|| {
+        let grid = Grid::new(
+            base,
+            vec![
+                Vary::parse("mass=20g:120g:100", Spelling::Flag).expect("axis"),
+                Vary::parse("gap=1cm:6cm:100", Spelling::Flag).expect("axis"),
+            ],
+            Spelling::Flag,
+        )
+        .expect("grid");
+        let s = study::sweep(&grid, None, &|_, _| {}).expect("sweep");
+        let pts: Vec<[f64; 2]> =
+            s.cells.iter().filter_map(|c| Some([c.metrics.spl_max_db?, -c.metrics.inclination_cm_s?])).collect();
+        let grid_hv = search::hypervolume_2d(&pts, [106.0, 0.0]);
+        println!("grid 100×100: hypervolume {grid_hv:.6} in {:.2} s", t.elapsed().as_secs_f64());
+        grid_hv
+    });
     println!("budget {budget}, {seeds} seeds: % of the grid's hypervolume (wall s)");
     for seed in 1..=seeds {
         let settings = Settings { evaluations: budget, seed };
