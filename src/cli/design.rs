@@ -216,7 +216,7 @@ fn on_stop(latest: Arc<Mutex<Option<String>>>, out: Option<PathBuf>) -> crate::s
 
 /// Refuses `--save DIR` before the search when DIR holds anything and `--force` is not given.
 fn check_save(dir: &Path, force: bool) -> Result<(), ThudError> {
-    let busy = std::fs::read_dir(dir).map(|mut d| d.next().is_some()).unwrap_or(false);
+    let busy = std::fs::read_dir(dir).is_ok_and(|mut d| d.next().is_some());
     if dir.exists() && !dir.is_dir() {
         return Err(ThudError::invalid("--save", format!("{} is not a folder", fsio::shown(dir))));
     }
@@ -333,6 +333,7 @@ fn binding_line(p: &Problem, o: &Outcome) -> Option<String> {
 }
 
 /// The front as `format` prints it (checked finite).
+#[allow(clippy::too_many_lines)] // one match over the three formats, each a plain table
 fn render(
     p: &Problem,
     o: &Outcome,
