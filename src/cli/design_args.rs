@@ -436,6 +436,17 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
         self.refuse(ctx, &grid.base, r, ("--vary", &shape.join(" × ")))
     }
 
+    /// Refuses a search's work ([`crate::design::search::check_work`]), naming `counted`.
+    pub(crate) fn refuse_work(
+        &self,
+        ctx: &Ctx,
+        d: &Design,
+        r: Result<(), Refusal>,
+        counted: (&str, &str),
+    ) -> Result<(), CliError> {
+        self.refuse(ctx, d, r, counted)
+    }
+
     /// Refuses `cells` cells of `d` with `runs` ensemble runs each (a chart, a chart's part, or
     /// one design with `cells` = 1) whose work is over a cap ([`limits::check_runs`]); the
     /// runs are named by `flag` typed as `value`.

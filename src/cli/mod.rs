@@ -5,6 +5,7 @@ mod basins;
 mod bifurcation;
 mod budget;
 mod continuation;
+mod design;
 pub mod design_args;
 mod errors;
 mod export;
@@ -78,6 +79,8 @@ pub enum Command {
     Continue(Box<continuation::ContinueArgs>),
     /// The basins of attraction of a forced design over the ball's start (y0 × w0).
     Basins(Box<basins::BasinsArgs>),
+    /// The best dampers within your limits: a Pareto front over the variables you give.
+    Design(Box<design::DesignSearchArgs>),
     /// Join the parts written by `thud sweep --shard K/N` into the whole chart.
     Merge(Box<merge::MergeArgs>),
     /// The frequency response under a harmonic force: amplitude with and without the damper, Leq.
@@ -311,6 +314,7 @@ pub fn run(cli: Cli) -> i32 {
         Some(Command::Continue(a)) => continuation::run(&a, &ctx, &mut out),
         Some(Command::Basins(a)) => basins::run(&a, &ctx, &mut out),
         Some(Command::Merge(a)) => merge::run(&a, &ctx, &mut out),
+        Some(Command::Design(a)) => design::run(&a, &ctx, &mut out),
         Some(Command::Response(a)) => response::run(&a, &ctx, &mut out),
         Some(Command::Restitution(a)) => restitution::run(&a, &ctx, &mut out),
         Some(Command::Paper(a)) => paper::run(&a, &mut out),

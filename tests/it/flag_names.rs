@@ -101,8 +101,10 @@ const WORDED: &[(&str, &[&str], &str)] = &[
 ];
 
 /// Placeholders that differ from the flag's elsewhere, with why.
-const PLACEHOLDERS: &[(&str, &str, &str, &str)] =
-    &[("out", "thud paper", "DIR|FILE", "`paper all` writes its set of files into a folder; one ID, a file")];
+const PLACEHOLDERS: &[(&str, &str, &str, &str)] = &[
+    ("out", "thud paper", "DIR|FILE", "`paper all` writes its set of files into a folder; one ID, a file"),
+    ("save", "thud design", "DIR", "`design` saves each front design as a design file in a folder"),
+];
 
 /// Hidden flags: an old name kept only to answer with the new one, or an old switch kept for
 /// scripts. They are refused (tests/it/forced_cli.rs, tests/it/pdf.rs) or do what the default does.

@@ -33,6 +33,7 @@ mod contact_scheme;
 mod contact_sundman;
 mod cvd;
 mod damper;
+mod design;
 mod design_paper;
 mod docs;
 mod ensemble;

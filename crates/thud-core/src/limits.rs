@@ -317,6 +317,16 @@ pub const ENSEMBLE: Range = range(
     "1 is the paper's single trajectory; at 1000 runs one run moves p10 or p90 by 0.1 %, finer than any decision needs",
 );
 
+/// Designs one search evaluates (`thud design --evaluations N`).
+pub const EVALUATIONS: Range = range(
+    "evaluations",
+    "designs a search evaluates",
+    2.0,
+    100_000.0,
+    "",
+    "a two-variable front settles within a few hundred; 1e5 runs of a 2 s design take minutes on a laptop",
+);
+
 /// Amplitude F0 of the harmonic force on the main mass (N).
 pub const FORCE: Range = range(
     "force",

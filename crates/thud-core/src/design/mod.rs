@@ -4,6 +4,7 @@
 mod chart;
 mod metrics;
 mod restitution;
+pub mod search;
 mod table5;
 mod types;
 mod valid;

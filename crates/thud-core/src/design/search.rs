@@ -1,0 +1,1092 @@
+//! The design search of `thud design`: the best dampers within a user's limits, as a Pareto
+//! front.
+//!
+//! A [`Problem`] is a base design, its [`Variable`]s (a numeric row of [`params::DESIGN`] over
+//! a range in the row's plain unit, or a choice among names: `sphere=steel,acrylic,nylon`), its
+//! [`Objective`]s (a result column, as `thud sweep --vary` writes it, to minimise or maximise),
+//! its [`Constraint`]s (`COLUMN<=VALUE` on a result or a parameter) and, for a forced design,
+//! an optional band of forcing frequencies over which every result is taken at its worst.
+//!
+//! One design is evaluated by [`Problem::evaluate`]: the base design with each variable set by
+//! [`study::set`] (a choice of material resolved as the explorer resolves it), checked again as a
+//! whole ([`Design::check`]) and run by [`design::evaluate`]: the same code path as one cell of
+//! `thud sweep --vary` ([`study::sweep_cells`]) and as `thud simulate` of the saved design, so a
+//! front design run again gives exactly its printed objectives.
+//!
+//! The optimiser is NSGA-II from the `moors` crate (chosen by measurement: docs/model.md,
+//! "Design search"), on genes in [0, 1] that [`Problem::decode`] maps to the variables. Every
+//! design the optimiser asks for is evaluated once (a cache keyed by the decoded point: NSGA-II
+//! re-evaluates its survivors each generation, which costs nothing here), each batch on rayon's
+//! pool in a fixed order, so a search is the same for a given seed whatever the thread count.
+//! The front is the non-dominated set of *every* feasible design evaluated (an archive), not
+//! only of the last population. [`random_search`] and [`latin_hypercube`] evaluate the same
+//! budget by the same path, the baselines the optimiser must beat.
+//!
+//! The hypervolume of a two-objective front is computed here ([`hypervolume_2d`]): in two
+//! dimensions it is one sort and a sum of rectangles, exact, a dozen lines; a crate for it
+//! would bring a C library (the Fonseca et al. code) for what is needed in 2-D only. With more
+//! objectives no hypervolume is reported.
+
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+
+use ndarray::Array2;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::design::{self, Design, Materials, Metrics, Steady, ValidDesign};
+use crate::error::ThudError;
+use crate::limits::{self, Range};
+use crate::params::{self, Accepts, DesignDraft, Param, Spelling};
+use crate::study;
+use crate::units::{self, Kind};
+
+/// A variable of the search.
+#[derive(Clone)]
+pub enum Variable {
+    /// A numeric row over `[lo, hi]` in the row's plain unit (a count rounded).
+    Range { row: &'static Param<DesignDraft>, lo: f64, hi: f64 },
+    /// One of `options` (material names for `sphere`/`plate`, choice names otherwise).
+    Choice { row: &'static Param<DesignDraft>, options: Vec<String> },
+}
+
+impl std::fmt::Debug for Variable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Variable::Range { row, lo, hi } => write!(f, "{}={lo}:{hi}", row.name),
+            Variable::Choice { row, options } => write!(f, "{}={}", row.name, options.join(",")),
+        }
+    }
+}
+
+impl Variable {
+    /// `NAME=FROM:TO` (a trailing `:N` is accepted and unused: the search picks the values),
+    /// each end in the row's units and checked against the row's range, as `sweep --vary`
+    /// checks its ends.
+    pub fn parse_range(text: &str) -> Result<Variable, ThudError> {
+        let Some((name, spec)) = text.split_once('=') else {
+            return Err(ThudError::invalid("--vary", format!("'{text}'; expected NAME=FROM:TO, e.g. mass=20g:120g")));
+        };
+        let row = study::numeric_row(name, Spelling::Flag)?;
+        let param = format!("--vary {}", row.name);
+        let parts: Vec<&str> = spec.split(':').collect();
+        let ([from, to] | [from, to, _]) = parts[..] else {
+            return Err(ThudError::invalid(&param, format!("'{spec}'; expected FROM:TO, e.g. 20g:120g")));
+        };
+        let value = |t: &str| -> Result<f64, ThudError> {
+            match row.accepts {
+                Accepts::Quantity { kind, range, .. } => range.check_as(&param, units::parse(&param, t, kind)?),
+                Accepts::Count { range, .. } => Ok(range.parse_count(&param, t)? as f64),
+                _ => Err(ThudError::invalid(&param, "not a number to vary")),
+            }
+        };
+        let (lo, hi) = (value(from)?, value(to)?);
+        if lo >= hi {
+            return Err(ThudError::invalid(&param, format!("'{spec}': FROM must be below TO")));
+        }
+        Ok(Variable::Range { row, lo, hi })
+    }
+
+    /// `NAME=A,B,C`: a material row (`sphere`, `plate`) or a choice row that sets the design
+    /// (`source`, `model`, …), with at least two distinct known names.
+    pub fn parse_choice(text: &str) -> Result<Variable, ThudError> {
+        let Some((name, list)) = text.split_once('=') else {
+            return Err(ThudError::invalid(
+                "--choose",
+                format!("'{text}'; expected NAME=A,B,…, e.g. sphere=steel,acrylic,nylon"),
+            ));
+        };
+        let canonical = name.trim().replace('_', "-");
+        let row = params::DESIGN.iter().find(|p| p.name == canonical && is_choosable(p)).ok_or_else(|| {
+            ThudError::invalid("--choose", format!("'{name}' is not a choice; one of: {}", choosable()))
+        })?;
+        let param = format!("--choose {}", row.name);
+        let options: Vec<String> = list.split(',').map(|s| s.trim().to_string()).collect();
+        for (i, o) in options.iter().enumerate() {
+            if o.is_empty() {
+                return Err(ThudError::invalid(&param, format!("'{list}': an empty name")));
+            }
+            if options[..i].contains(o) {
+                return Err(ThudError::invalid(&param, format!("'{o}' is given twice")));
+            }
+            match row.accepts {
+                Accepts::Choice { names, .. } if !names.contains(&o.as_str()) => {
+                    return Err(ThudError::invalid(&param, format!("'{o}' is not one of: {}", names.join(", "))));
+                }
+                Accepts::Name { .. } => {
+                    crate::contact::material(o).map_err(|e| ThudError::invalid(&param, e.to_string()))?;
+                }
+                _ => {}
+            }
+        }
+        if options.len() < 2 {
+            return Err(ThudError::invalid(&param, format!("'{list}': give at least two names, e.g. A,B")));
+        }
+        Ok(Variable::Choice { row, options })
+    }
+
+    /// The row's name as in the table (`mass`).
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Variable::Range { row, .. } | Variable::Choice { row, .. } => row.name,
+        }
+    }
+
+    /// The variable's key in results: the column of `sweep --vary` (`mass_kg`), a choice bare.
+    #[must_use]
+    pub fn column(&self) -> String {
+        match self {
+            Variable::Range { row, .. } => study::column(row.name, row.unit()),
+            Variable::Choice { row, .. } => row.name.replace('-', "_"),
+        }
+    }
+
+    /// The value of gene `g` (clamped to [0, 1]).
+    fn decode(&self, g: f64) -> Value {
+        let g = if g.is_finite() { g.clamp(0.0, 1.0) } else { 0.0 };
+        match self {
+            Variable::Range { row, lo, hi } => {
+                let v = lo + g * (hi - lo);
+                let v = if matches!(row.accepts, Accepts::Count { .. }) { v.round() } else { v.min(*hi) };
+                Value::Number(v)
+            }
+            Variable::Choice { options, .. } => {
+                let i = ((g * options.len() as f64) as usize).min(options.len() - 1);
+                Value::Choice(options[i].clone())
+            }
+        }
+    }
+
+    /// `d` with this variable set to `value`, unchecked.
+    fn set(&self, d: Design, value: &Value) -> Result<Design, ThudError> {
+        match (self, value) {
+            (Variable::Range { row, .. }, Value::Number(v)) => Ok(study::set(d, row, *v)),
+            (Variable::Choice { row, .. }, Value::Choice(name)) => match row.accepts {
+                Accepts::Name { .. } => {
+                    let mut d = d;
+                    let mut m = d.materials.clone().unwrap_or_else(|| Materials::new("steel", "steel"));
+                    if row.name == "plate" {
+                        m.plate.clone_from(name);
+                    } else {
+                        m.sphere.clone_from(name);
+                        m.sphere_nu = None;
+                    }
+                    d.materials = Some(m);
+                    params::follow_material(d)
+                }
+                Accepts::Choice { names, .. } => {
+                    let i = names.iter().position(|n| n == name).unwrap_or(0);
+                    Ok(params::set_number(&d, row, i as f64))
+                }
+                _ => Ok(d),
+            },
+            _ => Ok(d),
+        }
+    }
+}
+
+/// Rows `--choose` takes: the materials and the choices that set the design alone.
+fn is_choosable(p: &Param<DesignDraft>) -> bool {
+    match p.accepts {
+        Accepts::Name { .. } => matches!(p.name, "sphere" | "plate"),
+        Accepts::Choice { .. } => p.get.is_some(),
+        _ => false,
+    }
+}
+
+/// The rows `--choose` takes, for a message.
+fn choosable() -> String {
+    params::DESIGN.iter().filter(|p| is_choosable(p)).map(|p| p.name).collect::<Vec<_>>().join(", ")
+}
+
+/// The value of one variable at one design.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Value {
+    /// In the row's plain unit.
+    Number(f64),
+    /// A name.
+    Choice(String),
+}
+
+impl Value {
+    fn key(&self) -> u64 {
+        match self {
+            Value::Number(v) => v.to_bits(),
+            Value::Choice(s) => {
+                s.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3))
+            }
+        }
+    }
+}
+
+/// A result column an objective or a constraint reads: the metrics `thud sweep --vary` writes
+/// (same names), and with a force the steady state's amplitude, reduction and Leq.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Column {
+    NImpacts,
+    Inclination,
+    InclinationFit,
+    U0Max,
+    ZdotAbsMax,
+    SplMax,
+    ContactDuration,
+    RestitutionMean,
+    SteadyAmplitude,
+    SteadyReduction,
+    SteadyLeq,
+}
+
+/// Every column, with its name.
+pub const COLUMNS: [(Column, &str); 11] = [
+    (Column::NImpacts, "n_impacts"),
+    (Column::Inclination, "inclination_cm_s"),
+    (Column::InclinationFit, "inclination_fit_cm_s"),
+    (Column::U0Max, "u0_max_m_s"),
+    (Column::ZdotAbsMax, "zdot_abs_max_m_s"),
+    (Column::SplMax, "spl_max_db"),
+    (Column::ContactDuration, "contact_duration_s"),
+    (Column::RestitutionMean, "restitution_mean"),
+    (Column::SteadyAmplitude, "steady_amplitude_m"),
+    (Column::SteadyReduction, "steady_reduction_db"),
+    (Column::SteadyLeq, "steady_leq_db"),
+];
+
+impl Column {
+    /// The column called `name`, or None.
+    #[must_use]
+    pub fn named(name: &str) -> Option<Column> {
+        COLUMNS.iter().find(|(_, n)| *n == name.trim()).map(|(c, _)| *c)
+    }
+
+    /// Its name as the CSV and JSON write it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        COLUMNS.iter().find(|(c, _)| *c == self).map_or("", |(_, n)| n)
+    }
+
+    /// The column's value in one run (None where the run has none: no impact, no force).
+    #[must_use]
+    pub fn value(self, m: &Metrics, steady: Option<&Steady>) -> Option<f64> {
+        match self {
+            Column::NImpacts => Some(m.n_impacts as f64),
+            Column::Inclination => m.inclination_cm_s,
+            Column::InclinationFit => m.inclination_fit_cm_s,
+            Column::U0Max => Some(m.u0_max_m_s),
+            Column::ZdotAbsMax => Some(m.zdot_abs_max_m_s),
+            Column::SplMax => m.spl_max_db,
+            Column::ContactDuration => m.contact_duration_s,
+            Column::RestitutionMean => m.restitution_mean,
+            Column::SteadyAmplitude => steady.map(|s| s.amplitude_m),
+            Column::SteadyReduction => steady.and_then(|s| s.reduction_db),
+            Column::SteadyLeq => steady.and_then(|s| s.leq_db),
+        }
+    }
+
+    fn forced(self) -> bool {
+        matches!(self, Column::SteadyAmplitude | Column::SteadyReduction | Column::SteadyLeq)
+    }
+}
+
+/// The names of every column, for a message.
+fn column_names() -> String {
+    COLUMNS.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", ")
+}
+
+/// Which way an objective goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Sense {
+    Minimize,
+    Maximize,
+}
+
+/// One objective: a column to minimise or maximise (over a band: its worst value there).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Objective {
+    pub column: Column,
+    pub sense: Sense,
+}
+
+impl Objective {
+    /// `--minimize COLUMN` / `--maximize COLUMN`.
+    pub fn parse(text: &str, sense: Sense) -> Result<Objective, ThudError> {
+        let flag = match sense {
+            Sense::Minimize => "--minimize",
+            Sense::Maximize => "--maximize",
+        };
+        let column = Column::named(text).ok_or_else(|| {
+            ThudError::invalid(flag, format!("'{text}' is not a result column; one of: {}", column_names()))
+        })?;
+        Ok(Objective { column, sense })
+    }
+
+    /// Of two values of this objective, the worse one.
+    fn worse(self, a: f64, b: f64) -> f64 {
+        match self.sense {
+            Sense::Minimize => a.max(b),
+            Sense::Maximize => a.min(b),
+        }
+    }
+}
+
+/// What a constraint bounds.
+#[derive(Clone)]
+pub enum Bound {
+    /// A result column (over a band: its worst value there).
+    Result(Column),
+    /// A numeric parameter of the design (the row's plain unit).
+    Param(&'static Param<DesignDraft>),
+}
+
+/// `COLUMN<=VALUE` or `COLUMN>=VALUE`.
+#[derive(Clone)]
+pub struct Constraint {
+    pub bound: Bound,
+    /// True for `<=`, false for `>=`.
+    pub at_most: bool,
+    /// In the column's or the row's plain unit.
+    pub value: f64,
+    /// As the user typed it.
+    pub text: String,
+}
+
+impl std::fmt::Debug for Constraint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl Constraint {
+    /// `COLUMN<=VALUE` / `COLUMN>=VALUE` (`<`, `>` read the same): a result column (a plain
+    /// number in its unit) or a numeric parameter (its units accepted: `mass<=60g`).
+    pub fn parse(text: &str) -> Result<Constraint, ThudError> {
+        let flag = "--require";
+        let (name, at_most, value) = if let Some((n, v)) = text.split_once("<=").or_else(|| text.split_once('<')) {
+            (n, true, v)
+        } else if let Some((n, v)) = text.split_once(">=").or_else(|| text.split_once('>')) {
+            (n, false, v)
+        } else {
+            return Err(ThudError::invalid(
+                flag,
+                format!("'{text}'; expected COLUMN<=VALUE or COLUMN>=VALUE, e.g. spl_max_db<=100"),
+            ));
+        };
+        let name = name.trim();
+        let value = value.trim();
+        let (bound, value) = if let Some(c) = Column::named(name) {
+            let v: f64 = value
+                .parse()
+                .ok()
+                .filter(|v: &f64| v.is_finite())
+                .ok_or_else(|| ThudError::invalid(flag, format!("'{text}': '{value}' is not a number")))?;
+            (Bound::Result(c), v)
+        } else {
+            let row = study::numeric_row(name, Spelling::Flag).map_err(|_| {
+                ThudError::invalid(
+                    flag,
+                    format!(
+                        "'{text}': '{name}' is neither a result column ({}) nor a numeric parameter",
+                        column_names()
+                    ),
+                )
+            })?;
+            let kind = match row.accepts {
+                Accepts::Quantity { kind, .. } => kind,
+                _ => Kind::Number,
+            };
+            (
+                Bound::Param(row),
+                units::parse(flag, value, kind).map_err(|e| ThudError::invalid(flag, format!("'{text}': {e}")))?,
+            )
+        };
+        Ok(Constraint { bound, at_most, value, text: text.trim().to_string() })
+    }
+
+    /// How far inside the bound `actual` is (≥ 0: met), in the bound's unit.
+    fn margin(&self, actual: f64) -> f64 {
+        if self.at_most {
+            self.value - actual
+        } else {
+            actual - self.value
+        }
+    }
+}
+
+/// The most evaluations of one search (`--evaluations`): a count of the limits table.
+pub const EVALUATIONS: &Range = &limits::EVALUATIONS;
+
+/// A design search.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    pub base: ValidDesign,
+    pub variables: Vec<Variable>,
+    pub objectives: Vec<Objective>,
+    pub constraints: Vec<Constraint>,
+    /// Forcing frequencies (Hz) over which each result is taken at its worst; empty: the
+    /// design's own.
+    pub band_hz: Vec<f64>,
+}
+
+/// One evaluated design.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Candidate {
+    /// Its place in the order of evaluation (from 0).
+    pub index: usize,
+    /// One value per variable.
+    pub values: Vec<Value>,
+    /// One value per objective, as the column reads (not negated); None where undefined.
+    pub objectives: Vec<Option<f64>>,
+    /// One margin per constraint (≥ 0: met); None where its column is undefined.
+    pub margins: Vec<Option<f64>>,
+    /// Why the design could not be run (a check it fails), if so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+impl Candidate {
+    /// Whether it ran, every objective is defined and every constraint is met.
+    #[must_use]
+    pub fn feasible(&self) -> bool {
+        self.error.is_none()
+            && self.objectives.iter().all(Option::is_some)
+            && self.margins.iter().all(|m| m.is_some_and(|m| m >= 0.0))
+    }
+
+    /// The objectives to minimise (a maximised one negated); None unless all are defined.
+    fn minimized(&self, objectives: &[Objective]) -> Option<Vec<f64>> {
+        self.objectives
+            .iter()
+            .zip(objectives)
+            .map(|(v, o)| v.map(|v| if o.sense == Sense::Maximize { -v } else { v }))
+            .collect()
+    }
+}
+
+impl Problem {
+    /// Checks the problem as a whole: at least one variable and objective, no row twice, a
+    /// forced column or a band only with a force.
+    pub fn check(&self) -> Result<(), ThudError> {
+        if self.variables.is_empty() {
+            return Err(ThudError::invalid("--vary", "no variable; give --vary NAME=FROM:TO or --choose NAME=A,B"));
+        }
+        if self.objectives.is_empty() {
+            return Err(ThudError::invalid("--minimize", "no objective; give --minimize COLUMN or --maximize COLUMN"));
+        }
+        for (i, v) in self.variables.iter().enumerate() {
+            if self.variables[..i].iter().any(|w| w.name() == v.name()) {
+                return Err(ThudError::invalid(format!("--vary {}", v.name()), "is given twice"));
+            }
+        }
+        for (i, o) in self.objectives.iter().enumerate() {
+            if self.objectives[..i].iter().any(|p| p.column == o.column) {
+                return Err(ThudError::invalid("--minimize", format!("{} is an objective twice", o.column.name())));
+            }
+        }
+        let forced = self.base.damper.force_n > 0.0;
+        let needs_force =
+            self.objectives.iter().map(|o| o.column).chain(self.constraints.iter().filter_map(|c| match c.bound {
+                Bound::Result(col) => Some(col),
+                Bound::Param(_) => None,
+            }));
+        if !forced {
+            if let Some(c) = needs_force.into_iter().find(|c| c.forced()) {
+                return Err(ThudError::invalid(
+                    "--force-amplitude",
+                    format!("{} is a result of a forced design; give --force-amplitude and --freq", c.name()),
+                ));
+            }
+            if !self.band_hz.is_empty() {
+                return Err(ThudError::invalid(
+                    "--over",
+                    "a band of frequencies needs a forced design; give --force-amplitude",
+                ));
+            }
+        }
+        if !self.band_hz.is_empty() && self.variables.iter().any(|v| v.name() == "freq") {
+            return Err(ThudError::invalid("--vary freq", "the band --over sets the frequency; leave out --vary freq"));
+        }
+        Ok(())
+    }
+
+    /// The value of each variable at genes `g` (one gene per variable, in [0, 1]).
+    #[must_use]
+    pub fn decode(&self, g: &[f64]) -> Vec<Value> {
+        self.variables.iter().zip(g).map(|(v, &g)| v.decode(g)).collect()
+    }
+
+    /// The design at `values`, checked as a whole: the one every command runs for it.
+    pub fn design_at(&self, values: &[Value]) -> Result<ValidDesign, ThudError> {
+        let mut d = self.base.design().clone();
+        for (v, x) in self.variables.iter().zip(values) {
+            d = v.set(d, x)?;
+        }
+        d.check()
+    }
+
+    /// The designs one point runs: the design itself, or one per frequency of the band.
+    pub fn runs_at(&self, values: &[Value]) -> Result<Vec<ValidDesign>, ThudError> {
+        let d = self.design_at(values)?;
+        if self.band_hz.is_empty() {
+            return Ok(vec![d]);
+        }
+        let freq = params::design_param("freq").ok_or_else(|| ThudError::invalid("--over", "no frequency row"))?;
+        self.band_hz.iter().map(|&f| study::set(d.design().clone(), freq, f).check()).collect()
+    }
+
+    /// Evaluates one point (index `index` of the search): each of its runs by
+    /// [`design::evaluate`], objectives and result constraints at their worst over the runs.
+    #[must_use]
+    pub fn evaluate(&self, index: usize, values: Vec<Value>, cancel: Option<&AtomicBool>) -> Candidate {
+        let fail = |values: Vec<Value>, e: ThudError| Candidate {
+            index,
+            values,
+            objectives: vec![None; self.objectives.len()],
+            margins: vec![None; self.constraints.len()],
+            error: Some(e.to_string()),
+        };
+        let runs = match self.runs_at(&values) {
+            Ok(r) => r,
+            Err(e) => return fail(values, e),
+        };
+        let mut evals = Vec::with_capacity(runs.len());
+        for r in &runs {
+            match design::evaluate(r, 0, cancel) {
+                Ok(e) => evals.push(e),
+                Err(e) => return fail(values, e),
+            }
+        }
+        let worst = |col: Column, worse: &dyn Fn(f64, f64) -> f64| -> Option<f64> {
+            let mut acc: Option<f64> = None;
+            for e in &evals {
+                let v = col.value(&e.metrics, e.steady.as_ref())?;
+                acc = Some(acc.map_or(v, |a| worse(a, v)));
+            }
+            acc
+        };
+        let objectives = self.objectives.iter().map(|o| worst(o.column, &|a, b| o.worse(a, b))).collect();
+        let margins = self
+            .constraints
+            .iter()
+            .map(|c| match c.bound {
+                Bound::Result(col) => {
+                    let w = if c.at_most { worst(col, &f64::max) } else { worst(col, &f64::min) };
+                    w.map(|v| c.margin(v))
+                }
+                Bound::Param(row) => row.get.map(|get| c.margin(get(runs[0].design()))),
+            })
+            .collect();
+        Candidate { index, values, objectives, margins, error: None }
+    }
+
+    /// The indices (into `all`) of the feasible candidates no other feasible one dominates, in
+    /// the order of the first objective (then the evaluation order); equal points kept once.
+    #[must_use]
+    pub fn front(&self, all: &[Candidate]) -> Vec<usize> {
+        let pts: Vec<(usize, Vec<f64>)> = all
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.feasible())
+            .filter_map(|(i, c)| Some((i, c.minimized(&self.objectives)?)))
+            .collect();
+        let mut front: Vec<(usize, &Vec<f64>)> = Vec::new();
+        for (i, p) in &pts {
+            let dominated = pts.iter().any(|(j, q)| dominates(q, p) || (q == p && j < i));
+            if !dominated {
+                front.push((*i, p));
+            }
+        }
+        front.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]).then(a.0.cmp(&b.0)));
+        front.into_iter().map(|(i, _)| i).collect()
+    }
+
+    /// The hypervolume of `front` (indices into `all`) against `reference` (one value per
+    /// objective, as the columns read): two objectives only.
+    #[must_use]
+    pub fn hypervolume(&self, all: &[Candidate], front: &[usize], reference: &[f64]) -> Option<f64> {
+        if self.objectives.len() != 2 || reference.len() != 2 {
+            return None;
+        }
+        let sign = |o: &Objective| if o.sense == Sense::Maximize { -1.0 } else { 1.0 };
+        let r = [reference[0] * sign(&self.objectives[0]), reference[1] * sign(&self.objectives[1])];
+        let pts: Vec<[f64; 2]> =
+            front.iter().filter_map(|&i| all[i].minimized(&self.objectives)).map(|p| [p[0], p[1]]).collect();
+        Some(hypervolume_2d(&pts, r))
+    }
+
+    /// The constraint that binds when no design is feasible: the one met by the fewest of the
+    /// designs that ran, with the best margin any of them reached (negative).
+    #[must_use]
+    pub fn binding(&self, all: &[Candidate]) -> Option<(usize, f64)> {
+        let ran: Vec<&Candidate> = all.iter().filter(|c| c.error.is_none()).collect();
+        (0..self.constraints.len())
+            .map(|k| {
+                let met = ran.iter().filter(|c| c.margins[k].is_some_and(|m| m >= 0.0)).count();
+                let best = ran.iter().filter_map(|c| c.margins[k]).fold(f64::NEG_INFINITY, f64::max);
+                (k, met, best)
+            })
+            .min_by(|a, b| a.1.cmp(&b.1).then(a.2.total_cmp(&b.2)))
+            .map(|(k, _, best)| (k, best))
+    }
+}
+
+/// Refuses a search of `evaluations` designs whose work is over a cap: each corner of the
+/// variables' box (every variable at its ends or choices, up to 256 corners) run as one design
+/// ([`limits::check_run`]), and the sum over the budget of the longest corner's work times the
+/// runs a point takes (one, or one per frequency of the band) ([`limits::check_work_sum`]).
+pub fn check_work(problem: &Problem, evaluations: usize, given: &dyn Fn(&str) -> bool) -> Result<(), limits::Refusal> {
+    let ends: Vec<Vec<f64>> = problem
+        .variables
+        .iter()
+        .map(|v| match v {
+            Variable::Range { .. } => vec![0.0, 1.0],
+            Variable::Choice { options, .. } => {
+                (0..options.len()).map(|i| (i as f64 + 0.5) / options.len() as f64).collect()
+            }
+        })
+        .collect();
+    let corners: usize = ends.iter().map(Vec::len).product();
+    let mut worst: Option<ValidDesign> = None;
+    for i in 0..corners.min(256) {
+        let mut rest = i;
+        let genes: Vec<f64> = ends
+            .iter()
+            .map(|e| {
+                let g = e[rest % e.len()];
+                rest /= e.len();
+                g
+            })
+            .collect();
+        let Ok(runs) = problem.runs_at(&problem.decode(&genes)) else { continue };
+        for d in runs {
+            limits::check_run(&d, given, 0)?;
+            if worst.as_ref().is_none_or(|w| {
+                limits::sweep_work(&d, 1)[1].value > limits::sweep_work(w, 1)[1].value
+                    || d.damper.duration_s > w.damper.duration_s
+            }) {
+                worst = Some(d);
+            }
+        }
+    }
+    let Some(w) = worst else { return Ok(()) };
+    let n = evaluations * problem.band_hz.len().max(1);
+    let total = limits::sweep_work(&w, n).map(|e| e.value);
+    limits::check_work_sum(&w, given, n, total)
+}
+
+/// Whether `a` dominates `b` (every objective minimised): no worse anywhere, better somewhere.
+#[must_use]
+pub fn dominates(a: &[f64], b: &[f64]) -> bool {
+    a.iter().zip(b).all(|(x, y)| x <= y) && a.iter().zip(b).any(|(x, y)| x < y)
+}
+
+/// The area dominated by `points` (both objectives minimised) and bounded by `reference`:
+/// points not better than the reference in both count nothing.
+#[must_use]
+pub fn hypervolume_2d(points: &[[f64; 2]], reference: [f64; 2]) -> f64 {
+    let mut p: Vec<[f64; 2]> = points.iter().copied().filter(|p| p[0] < reference[0] && p[1] < reference[1]).collect();
+    p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    let mut area = 0.0;
+    let mut y = reference[1];
+    for q in p {
+        if q[1] < y {
+            area += (reference[0] - q[0]) * (y - q[1]);
+            y = q[1];
+        }
+    }
+    area
+}
+
+/// How a search goes, after each batch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    pub evaluations: usize,
+    pub front: usize,
+    pub hypervolume: Option<f64>,
+}
+
+/// The settings of a search.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Settings {
+    /// The budget: designs evaluated at most.
+    pub evaluations: usize,
+    pub seed: u64,
+}
+
+/// What a search found.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Every design evaluated, in order.
+    pub all: Vec<Candidate>,
+    /// The indices into `all` of the front ([`Problem::front`]).
+    pub front: Vec<usize>,
+    /// Whether it was cancelled before its budget was spent.
+    pub partial: bool,
+    /// The reference point of the hypervolume (one value per objective, as the columns read):
+    /// the one given, else the worst value of each objective among the feasible designs of
+    /// the first batch (two objectives only).
+    pub reference: Option<Vec<f64>>,
+    /// The front's hypervolume against `reference`.
+    pub hypervolume: Option<f64>,
+}
+
+/// What a search has found so far, after each batch: for a progress line, or for writing the
+/// front when the search is stopped.
+pub type OnBatch<'a> = dyn Fn(Progress, &[Candidate], &[usize]) + Sync + 'a;
+
+/// The archive a search fills: every point evaluated, once.
+struct Archive<'a> {
+    problem: &'a Problem,
+    budget: usize,
+    cancel: Option<&'a AtomicBool>,
+    reference: Mutex<Option<Vec<f64>>>,
+    on_progress: &'a OnBatch<'a>,
+    state: Mutex<State>,
+}
+
+/// Each point's key and its index in the archive; the archive in order of evaluation.
+type State = (HashMap<Vec<u64>, usize>, Vec<Candidate>);
+
+impl<'a> Archive<'a> {
+    fn new(
+        problem: &'a Problem,
+        budget: usize,
+        cancel: Option<&'a AtomicBool>,
+        reference: Option<&[f64]>,
+        on_progress: &'a OnBatch<'a>,
+    ) -> Self {
+        let reference = Mutex::new(reference.map(<[f64]>::to_vec));
+        Archive { problem, budget, cancel, reference, on_progress, state: Mutex::new((HashMap::new(), Vec::new())) }
+    }
+
+    /// The reference point: the one given, else fixed from the feasible designs of the first
+    /// batch (the worst value of each objective), two objectives only.
+    fn reference(&self, all: &[Candidate]) -> Option<Vec<f64>> {
+        let mut r = self.reference.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if r.is_none() && self.problem.objectives.len() == 2 {
+            let worst: Option<Vec<f64>> = self
+                .problem
+                .objectives
+                .iter()
+                .enumerate()
+                .map(|(k, o)| {
+                    all.iter().filter(|c| c.feasible()).filter_map(|c| c.objectives[k]).reduce(|a, b| o.worse(a, b))
+                })
+                .collect();
+            *r = worst;
+        }
+        r.clone()
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+    }
+
+    /// The candidate of each row of genes (its index into the archive), evaluating the points
+    /// not seen yet (in row order, on rayon's pool) while the budget lasts: None past it.
+    fn batch(&self, genes: &[Vec<f64>]) -> Vec<Option<usize>> {
+        let mut st = self.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let points: Vec<Vec<Value>> = genes.iter().map(|g| self.problem.decode(g)).collect();
+        let keys: Vec<Vec<u64>> = points.iter().map(|p| p.iter().map(Value::key).collect()).collect();
+        let mut new: Vec<(Vec<u64>, Vec<Value>)> = Vec::new();
+        for (k, p) in keys.iter().zip(&points) {
+            if !st.0.contains_key(k) && !new.iter().any(|(n, _)| n == k) {
+                new.push((k.clone(), p.clone()));
+            }
+        }
+        let room = if self.cancelled() { 0 } else { self.budget.saturating_sub(st.1.len()) };
+        new.truncate(room);
+        let first = st.1.len();
+        let done: Vec<Candidate> =
+            new.par_iter().enumerate().map(|(i, (_, p))| self.problem.evaluate(first + i, p.clone(), None)).collect();
+        if !done.is_empty() {
+            for ((k, _), c) in new.into_iter().zip(done) {
+                st.0.insert(k, c.index);
+                st.1.push(c);
+            }
+            let front = self.problem.front(&st.1);
+            let hypervolume = self.reference(&st.1).and_then(|r| self.problem.hypervolume(&st.1, &front, &r));
+            (self.on_progress)(Progress { evaluations: st.1.len(), front: front.len(), hypervolume }, &st.1, &front);
+        }
+        keys.iter().map(|k| st.0.get(k).copied()).collect()
+    }
+
+    fn into_outcome(self, partial: bool) -> Outcome {
+        let (_, all) = self.state.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let front = self.problem.front(&all);
+        let reference = self.reference.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let hypervolume = reference.as_ref().and_then(|r| self.problem.hypervolume(&all, &front, r));
+        Outcome { all, front, partial, reference, hypervolume }
+    }
+}
+
+/// The penalty objective of a point that has no value (not run, undefined, past the budget).
+const PENALTY: f64 = 1e12;
+
+/// The population of NSGA-II for a budget of `n` evaluations: a tenth of it, even, 8 to 100.
+#[must_use]
+pub fn population_size(n: usize) -> usize {
+    ((n / 10).clamp(8, 100) / 2) * 2
+}
+
+/// NSGA-II (`moors`) over `problem` with `settings`: every design it asks for evaluated once
+/// (at most `settings.evaluations`), the front of all of them. `cancel` stops it after the
+/// batch under way (the outcome then marked partial); `on_progress` hears of each batch, with
+/// the hypervolume against `reference` when given (two objectives).
+pub fn search(
+    problem: &Problem,
+    settings: Settings,
+    reference: Option<&[f64]>,
+    cancel: Option<&AtomicBool>,
+    on_progress: &OnBatch<'_>,
+) -> Result<Outcome, ThudError> {
+    use moors::{GaussianMutation, Nsga2Builder, RandomSamplingFloat, SimulatedBinaryCrossover};
+    problem.check()?;
+    let n = settings.evaluations;
+    let archive = Archive::new(problem, n, cancel, reference, on_progress);
+    let n_obj = problem.objectives.len();
+    let n_con = problem.constraints.len() + 1;
+    let nv = problem.variables.len();
+    let rows = |g: &Array2<f64>| -> Vec<Vec<f64>> { g.outer_iter().map(|r| r.to_vec()).collect() };
+    let fitness = |g: &Array2<f64>| -> Array2<f64> {
+        let idx = archive.batch(&rows(g));
+        let st = archive.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut out = Array2::from_elem((idx.len(), n_obj), PENALTY);
+        for (r, i) in idx.iter().enumerate() {
+            if let Some(m) = i.and_then(|i| st.1[i].minimized(&problem.objectives)) {
+                for (k, v) in m.into_iter().enumerate() {
+                    out[[r, k]] = v;
+                }
+            }
+        }
+        out
+    };
+    let constraints = Constraints { archive: &archive, n_con };
+    let pop = population_size(n).min(n);
+    // Offspring that copy a parent cost nothing (the cache): generations go on until the
+    // budget is spent, at most three times as many as the budget would fill.
+    let iterations = 3 * n.saturating_sub(pop).div_ceil(pop).max(1);
+    let mut ga = Nsga2Builder::default()
+        .fitness_fn(fitness)
+        .constraints_fn(constraints)
+        .sampler(RandomSamplingFloat::new(0.0, 1.0))
+        .crossover(SimulatedBinaryCrossover::new(15.0))
+        .mutation(GaussianMutation::new(1.0 / nv as f64, 0.1))
+        .num_vars(nv)
+        .population_size(pop)
+        .num_offsprings(pop)
+        .num_iterations(iterations)
+        .crossover_rate(0.9)
+        .mutation_rate(0.5)
+        .seed(settings.seed)
+        .build()
+        .map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser refused the problem: {e}")))?;
+    ga.run().map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser failed: {e}")))?;
+    drop(ga);
+    let partial = archive.cancelled();
+    Ok(archive.into_outcome(partial))
+}
+
+/// The constraints of a batch for `moors` (≤ 0: met): each constraint's margin negated, then
+/// one that is 0 for a point that ran with every objective defined.
+struct Constraints<'a, 'b> {
+    archive: &'b Archive<'a>,
+    n_con: usize,
+}
+
+impl moors::ConstraintsFn for Constraints<'_, '_> {
+    type Dim = ndarray::Ix2;
+
+    fn call(&self, genes: &Array2<f64>) -> Array2<f64> {
+        let rows: Vec<Vec<f64>> = genes.outer_iter().map(|r| r.to_vec()).collect();
+        let idx = self.archive.batch(&rows);
+        let st = self.archive.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut out = Array2::from_elem((idx.len(), self.n_con), PENALTY);
+        for (r, i) in idx.iter().enumerate() {
+            let Some(c) = i.map(|i| &st.1[i]) else { continue };
+            for (k, m) in c.margins.iter().enumerate() {
+                out[[r, k]] = m.map_or(PENALTY, |m| -m);
+            }
+            let ok = c.error.is_none() && c.objectives.iter().all(Option::is_some);
+            out[[r, self.n_con - 1]] = if ok { 0.0 } else { PENALTY };
+        }
+        out
+    }
+
+    fn lower_bound(&self) -> Option<f64> {
+        Some(0.0)
+    }
+
+    fn upper_bound(&self) -> Option<f64> {
+        Some(1.0)
+    }
+}
+
+/// A small seeded generator for the baselines (SplitMix64).
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The baseline of uniform random designs: `settings.evaluations` points, evaluated as
+/// [`search`] evaluates them.
+pub fn random_search(problem: &Problem, settings: Settings) -> Result<Outcome, ThudError> {
+    problem.check()?;
+    let mut rng = SplitMix(settings.seed);
+    let genes: Vec<Vec<f64>> =
+        (0..settings.evaluations).map(|_| (0..problem.variables.len()).map(|_| rng.next()).collect()).collect();
+    Ok(baseline(problem, settings.evaluations, &genes))
+}
+
+/// The baseline of a Latin hypercube of `settings.evaluations` points: each variable's range
+/// cut in as many equal strata, one point in each, the strata shuffled per variable.
+pub fn latin_hypercube(problem: &Problem, settings: Settings) -> Result<Outcome, ThudError> {
+    problem.check()?;
+    let n = settings.evaluations;
+    let mut rng = SplitMix(settings.seed);
+    let mut genes = vec![vec![0.0; problem.variables.len()]; n];
+    for k in 0..problem.variables.len() {
+        let mut order: Vec<usize> = (0..n).collect();
+        for i in (1..n).rev() {
+            let j = ((rng.next() * (i + 1) as f64) as usize).min(i);
+            order.swap(i, j);
+        }
+        for (i, g) in genes.iter_mut().enumerate() {
+            g[k] = (order[i] as f64 + rng.next()) / n as f64;
+        }
+    }
+    Ok(baseline(problem, n, &genes))
+}
+
+fn baseline(problem: &Problem, n: usize, genes: &[Vec<f64>]) -> Outcome {
+    let quiet = |_: Progress, _: &[Candidate], _: &[usize]| {};
+    let archive = Archive::new(problem, n, None, None, &quiet);
+    archive.batch(genes);
+    archive.into_outcome(false)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn paper_problem() -> Problem {
+        let base = Design::paper_table3().check().unwrap();
+        Problem {
+            base,
+            variables: vec![
+                Variable::parse_range("mass=20g:120g").unwrap(),
+                Variable::parse_range("gap=1cm:6cm").unwrap(),
+            ],
+            objectives: vec![
+                Objective::parse("spl_max_db", Sense::Minimize).unwrap(),
+                Objective::parse("inclination_cm_s", Sense::Maximize).unwrap(),
+            ],
+            constraints: vec![],
+            band_hz: vec![],
+        }
+    }
+
+    #[test]
+    fn hypervolume_of_a_staircase_is_its_rectangles() {
+        // Two points (1, 3) and (2, 1) against (4, 4): boxes of 3×1 and 2×3 sharing 2×1, so
+        // 3 + 6 − 2 = 7; a dominated point and one beyond the reference add nothing.
+        let hv = hypervolume_2d(&[[1.0, 3.0], [2.0, 1.0], [3.0, 3.5], [5.0, 0.0]], [4.0, 4.0]);
+        assert!((hv - 7.0).abs() < 1e-12, "{hv}");
+        assert_eq!(hypervolume_2d(&[], [1.0, 1.0]), 0.0);
+    }
+
+    #[test]
+    fn columns_are_the_sweep_columns() {
+        let sweep: Vec<&str> = crate::schema::SWEEP.columns.iter().map(|c| c.name).collect();
+        for (c, name) in COLUMNS.iter().filter(|(c, _)| !c.forced()) {
+            assert!(sweep.contains(name), "{name} is not a sweep column");
+            assert_eq!(Column::named(name), Some(*c));
+        }
+    }
+
+    #[test]
+    fn parsing_names_what_was_typed() {
+        let e = Variable::parse_range("mass=120g:20g").unwrap_err();
+        assert_eq!(e.param(), "--vary mass");
+        let e = Variable::parse_range("nope=1:2").unwrap_err();
+        assert!(e.to_string().contains("nope"), "{e}");
+        let e = Variable::parse_choice("sphere=steel,unobtainium").unwrap_err();
+        assert!(e.to_string().contains("unobtainium"), "{e}");
+        let e = Objective::parse("spl", Sense::Minimize).unwrap_err();
+        assert_eq!(e.param(), "--minimize");
+        let c = Constraint::parse("mass<=60g").unwrap();
+        assert!((c.value - 0.06).abs() < 1e-15 && c.at_most);
+        let c = Constraint::parse("spl_max_db >= 90").unwrap();
+        assert!(!c.at_most && c.value == 90.0);
+        assert!(Constraint::parse("spl_max_db=90").is_err());
+    }
+
+    #[test]
+    fn a_point_is_the_study_cell_at_its_values() {
+        let p = paper_problem();
+        let values = p.decode(&[0.3, 0.4]);
+        let c = p.evaluate(0, values.clone(), None);
+        let (Value::Number(m), Value::Number(g)) = (&values[0], &values[1]) else { panic!() };
+        let grid = study::Grid::new(
+            p.base.clone(),
+            vec![
+                study::Vary::of_values("mass", &[*m], Spelling::Flag).unwrap(),
+                study::Vary::of_values("gap", &[*g], Spelling::Flag).unwrap(),
+            ],
+            Spelling::Flag,
+        )
+        .unwrap();
+        let cell = &study::sweep(&grid, None, &|_, _| {}).unwrap().cells[0];
+        assert_eq!(c.objectives, vec![cell.metrics.spl_max_db, cell.metrics.inclination_cm_s]);
+    }
+
+    #[test]
+    fn the_search_is_the_same_for_a_seed_and_keeps_its_budget() {
+        let p = paper_problem();
+        let s = Settings { evaluations: 60, seed: 7 };
+        let a = search(&p, s, None, None, &|_, _, _| {}).unwrap();
+        let b = search(&p, s, None, None, &|_, _, _| {}).unwrap();
+        assert!(a.all.len() <= 60 && a.all.len() > 40, "{}", a.all.len());
+        assert_eq!(a.all, b.all);
+        assert_eq!(a.front, b.front);
+        let c = search(&p, Settings { seed: 8, ..s }, None, None, &|_, _, _| {}).unwrap();
+        assert_ne!(a.all, c.all);
+        // Every front point is feasible and no evaluated feasible point dominates it.
+        for &i in &a.front {
+            let fi = a.all[i].minimized(&p.objectives).unwrap();
+            assert!(a
+                .all
+                .iter()
+                .filter(|c| c.feasible())
+                .all(|c| !dominates(&c.minimized(&p.objectives).unwrap(), &fi)));
+        }
+    }
+
+    #[test]
+    fn a_constraint_is_met_by_every_front_design_or_named_when_none_can() {
+        let mut p = paper_problem();
+        p.constraints = vec![Constraint::parse("mass<=60g").unwrap()];
+        let o = search(&p, Settings { evaluations: 40, seed: 1 }, None, None, &|_, _, _| {}).unwrap();
+        assert!(!o.front.is_empty());
+        for &i in &o.front {
+            let Value::Number(m) = o.all[i].values[0] else { panic!() };
+            assert!(m <= 0.06 && o.all[i].margins[0].unwrap() >= 0.0);
+        }
+        p.constraints = vec![Constraint::parse("mass<=60g").unwrap(), Constraint::parse("spl_max_db<=10").unwrap()];
+        let o = search(&p, Settings { evaluations: 24, seed: 1 }, None, None, &|_, _, _| {}).unwrap();
+        assert!(o.front.is_empty());
+        let (k, best) = p.binding(&o.all).unwrap();
+        assert_eq!(k, 1);
+        assert!(best < 0.0);
+    }
+}

@@ -1,0 +1,514 @@
+//! `thud design`: the best dampers within the user's limits, as a Pareto front. The search is
+//! the engine's ([`crate::design::search`]); each design is run as `thud simulate` runs it, so
+//! every front design saved with `--save DIR` and run again gives exactly its printed
+//! objectives.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use clap::Args;
+use serde::Serialize;
+
+use super::design_args::{DesignArgs, ForceAmplitude};
+use super::format::num;
+use super::simulate::describe;
+use super::sweep::Target;
+use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::design::search::{
+    self, Bound, Candidate, Constraint, Objective, Outcome, Problem, Progress, Sense, Settings, Value, Variable,
+};
+use crate::design::Design;
+use crate::error::ThudError;
+use crate::fsio;
+use crate::limits;
+use crate::units::Kind;
+
+#[derive(Debug, Clone, Args)]
+pub struct DesignSearchArgs {
+    #[command(flatten)]
+    design: DesignArgs<ForceAmplitude>,
+    /// A variable of the search, NAME=FROM:TO:N over any numeric parameter in its units (e.g.
+    /// mass=20g:120g, gap=1cm:6cm, c1=10:60); N is unused (the search picks the values) and
+    /// may be left out; repeatable.
+    #[arg(long, value_name = "NAME=FROM:TO:N", allow_hyphen_values = true)]
+    vary: Vec<String>,
+    /// A discrete variable, NAME=A,B,C: the ball's material (sphere=steel,acrylic,nylon), the
+    /// enclosure's (plate=…) or a choice of the design (source=…); repeatable.
+    #[arg(long, value_name = "NAME=A,B,C")]
+    choose: Vec<String>,
+    /// A result column to make as small as possible (spl_max_db, u0_max_m_s,
+    /// steady_amplitude_m, steady_leq_db, …); repeatable.
+    #[arg(long, value_name = "COLUMN")]
+    minimize: Vec<String>,
+    /// A result column to make as large as possible (inclination_cm_s, steady_reduction_db,
+    /// …); repeatable.
+    #[arg(long, value_name = "COLUMN")]
+    maximize: Vec<String>,
+    /// A limit every reported design meets, COLUMN<=VALUE or COLUMN>=VALUE, on a result column
+    /// (a plain number in its unit: spl_max_db<=100) or a parameter (its units: mass<=60g);
+    /// repeatable.
+    #[arg(long, value_name = "COLUMN<=VALUE", allow_hyphen_values = true)]
+    require: Vec<String>,
+    /// A band of forcing frequencies, freqs=FROM:TO:N: each design runs at every one and each
+    /// result is taken at its worst over the band (a forced design).
+    #[arg(long, value_name = "freqs=FROM:TO:N", allow_hyphen_values = true)]
+    over: Option<String>,
+    /// Designs the search evaluates at most (its budget).
+    #[arg(long, value_name = "N", default_value = "400", allow_hyphen_values = true)]
+    evaluations: String,
+    /// The seed of the search: the same seed gives the same front whatever the thread count.
+    #[arg(long, value_name = "N", default_value = "0", allow_hyphen_values = true)]
+    seed: String,
+    /// The reference point of the hypervolume with two objectives, V1,V2 in the columns' units
+    /// (e.g. 106,0) [default: the worst of each objective among the first designs].
+    #[arg(long, value_name = "V1,V2", allow_hyphen_values = true)]
+    reference: Option<String>,
+    /// Save each front design as a design file named design-K.toml in the folder DIR (written
+    /// whole or not at all); `--design DIR/design-K.toml` loads one in every command.
+    #[arg(long, value_name = "DIR")]
+    save: Option<PathBuf>,
+    /// Write to this file instead of standard output (`-`: standard output); an existing file is
+    /// kept unless --force. Written whole or not at all.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Replace the --out file (or the --save folder's previous designs) if it exists.
+    #[arg(long)]
+    force: bool,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+/// The problem the flags describe, every part checked (the error names what was typed).
+fn problem(a: &DesignSearchArgs) -> Result<Problem, ThudError> {
+    let base = a.design.design()?;
+    let mut variables: Vec<Variable> = a.vary.iter().map(|t| Variable::parse_range(t)).collect::<Result<_, _>>()?;
+    for t in &a.choose {
+        variables.push(Variable::parse_choice(t)?);
+    }
+    let mut objectives: Vec<Objective> =
+        a.minimize.iter().map(|t| Objective::parse(t, Sense::Minimize)).collect::<Result<_, _>>()?;
+    for t in &a.maximize {
+        objectives.push(Objective::parse(t, Sense::Maximize)?);
+    }
+    let constraints = a.require.iter().map(|t| Constraint::parse(t)).collect::<Result<Vec<_>, _>>()?;
+    let band_hz = match &a.over {
+        None => Vec::new(),
+        Some(t) => {
+            let spec = t.strip_prefix("freqs=").ok_or_else(|| {
+                ThudError::invalid("--over", format!("'{t}'; expected freqs=FROM:TO:N, e.g. freqs=4.5Hz:5.5Hz:21"))
+            })?;
+            super::design_args::parse_range("over", spec, Kind::Frequency, &limits::FREQ)?
+        }
+    };
+    let p = Problem { base, variables, objectives, constraints, band_hz };
+    p.check()?;
+    Ok(p)
+}
+
+/// `--reference V1,V2`.
+fn reference(text: &str, objectives: usize) -> Result<Vec<f64>, ThudError> {
+    let bad = |why: &str| ThudError::invalid("--reference", format!("'{text}': {why}"));
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|t| t.trim().parse::<f64>().ok().filter(|v| v.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| bad("expected two numbers V1,V2, e.g. 106,0"))?;
+    if v.len() != 2 {
+        return Err(bad("expected two numbers V1,V2, e.g. 106,0"));
+    }
+    if objectives != 2 {
+        return Err(bad("a hypervolume is computed with two objectives only"));
+    }
+    Ok(v)
+}
+
+pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let p = problem(a)?;
+    let evaluations = count("evaluations", &a.evaluations, &limits::EVALUATIONS)?;
+    let seed: u64 = a.seed.trim().parse().map_err(|_| {
+        ThudError::invalid("--seed", format!("'{}' is not a whole number from 0 to {}", a.seed, u64::MAX))
+    })?;
+    let reference = a.reference.as_deref().map(|t| reference(t, p.objectives.len())).transpose()?;
+    let target = Target::new(a.out.as_deref(), a.force)?;
+    if let Some(dir) = &a.save {
+        check_save(dir, a.force)?;
+    }
+    let r = search::check_work(&p, evaluations, &|n| a.design.has(n));
+    a.design.refuse_work(ctx, &p.base, r, ("--evaluations", &a.evaluations))?;
+    let format = a.output.format();
+    // What a stop writes: the front so far, marked partial, kept up to date after each batch.
+    let latest: Arc<Mutex<Option<String>>> = Arc::new(Mutex::new(None));
+    let _stop = on_stop(latest.clone(), a.out.clone().filter(|p| !fsio::is_stdout(p)));
+    let progress = Progress_::new();
+    let settings = Settings { evaluations, seed };
+    let on_batch = |pr: Progress, all: &[Candidate], front: &[usize]| {
+        progress.show(pr);
+        let partial = Outcome {
+            all: all.to_vec(),
+            front: front.to_vec(),
+            partial: true,
+            reference: None,
+            hypervolume: pr.hypervolume,
+        };
+        if let Ok(text) = render(&p, &partial, settings, format, None) {
+            *latest.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(text);
+        }
+    };
+    let outcome = search::search(&p, settings, reference.as_deref(), None, &on_batch)?;
+    progress.done();
+    let saved = match &a.save {
+        Some(dir) => Some(save(dir, &p, &outcome, a.force)?),
+        None => None,
+    };
+    let text = render(&p, &outcome, settings, format, saved.as_deref())?;
+    target.write(&text, out)
+}
+
+/// The progress line on stderr (a terminal only): evaluations, front size, hypervolume.
+struct Progress_ {
+    shown: bool,
+}
+
+impl Progress_ {
+    fn new() -> Self {
+        use std::io::IsTerminal;
+        Progress_ { shown: std::io::stderr().is_terminal() }
+    }
+
+    fn show(&self, p: Progress) {
+        if self.shown {
+            use std::io::Write;
+            let hv = p.hypervolume.map_or(String::new(), |h| format!(", hypervolume {}", num(h)));
+            let _ = write!(std::io::stderr(), "\rdesign: {} evaluations, front {}{hv}   ", p.evaluations, p.front);
+        }
+    }
+
+    fn done(&self) {
+        if self.shown {
+            use std::io::Write;
+            let _ = writeln!(std::io::stderr());
+        }
+    }
+}
+
+/// On a stop signal (Ctrl-C), writes the front found so far (marked partial) to the output
+/// before the process ends: to standard output, or to the `--out` file through a temporary
+/// beside it renamed into place. The `--save` folder is not written.
+fn on_stop(latest: Arc<Mutex<Option<String>>>, out: Option<PathBuf>) -> crate::signals::Registration {
+    crate::signals::on_signal(move || {
+        let Some(text) = latest.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone() else { return };
+        match &out {
+            None => {
+                let _ = fsio::write_stdout(text.as_bytes());
+            }
+            Some(path) => {
+                let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                let tmp = path.with_file_name(format!(".{name}.thud-partial.tmp"));
+                if std::fs::write(&tmp, text.as_bytes()).is_ok() && std::fs::rename(&tmp, path).is_err() {
+                    let _ = std::fs::remove_file(&tmp);
+                }
+            }
+        }
+        super::warn("stopped: wrote the front found so far, marked partial");
+    })
+    .0
+}
+
+/// Refuses `--save DIR` before the search when DIR holds anything and `--force` is not given.
+fn check_save(dir: &Path, force: bool) -> Result<(), ThudError> {
+    let busy = std::fs::read_dir(dir).is_ok_and(|mut d| d.next().is_some());
+    if dir.exists() && !dir.is_dir() {
+        return Err(ThudError::invalid("--save", format!("{} is not a folder", fsio::shown(dir))));
+    }
+    if busy && !force {
+        return Err(ThudError::invalid(
+            "--save",
+            format!("{} is not empty; give a new or empty folder, or --force to replace its designs", fsio::shown(dir)),
+        ));
+    }
+    Ok(())
+}
+
+/// The file name of front design `k` (from 1).
+fn file_name(k: usize, n: usize) -> String {
+    let width = n.to_string().len().max(2);
+    format!("design-{k:0width$}.toml")
+}
+
+/// Writes each front design as a design file into `dir` (whole or not at all); returns the
+/// names in front order.
+fn save(dir: &Path, p: &Problem, o: &Outcome, force: bool) -> Result<Vec<String>, CliError> {
+    let mut files: Vec<(String, String)> = Vec::with_capacity(o.front.len());
+    for (k, &i) in o.front.iter().enumerate() {
+        let c = &o.all[i];
+        let d = p.design_at(&c.values)?.into_design();
+        let what: Vec<String> = p
+            .objectives
+            .iter()
+            .zip(&c.objectives)
+            .map(|(ob, v)| format!("{} {}", ob.column.name(), v.map_or("—".into(), num)))
+            .collect();
+        let file = crate::store::DesignFile {
+            description: format!("thud design: front design {} of {}: {}", k + 1, o.front.len(), what.join(", ")),
+            ensemble: None,
+            design: d,
+        };
+        files.push((file_name(k + 1, o.front.len()), file.to_toml().map_err(|e| e.renamed("save"))?));
+    }
+    let refs: Vec<(&str, &[u8])> = files.iter().map(|(n, t)| (n.as_str(), t.as_bytes())).collect();
+    crate::export::report::write_bundle(dir, &refs, fsio::Overwrite::from_force(force))
+        .map_err(|e| ThudError::invalid("save", e.to_string()))?;
+    super::warn(&format!("saved {} front designs in {}", files.len(), fsio::shown(dir)));
+    Ok(files.into_iter().map(|(n, _)| n).collect())
+}
+
+/// One front design as `--json` writes it.
+#[derive(Serialize)]
+struct FrontJson<'a> {
+    index: usize,
+    /// Each variable by its column (`mass_kg`, `sphere`).
+    variables: serde_json::Map<String, serde_json::Value>,
+    /// Each objective by its column.
+    objectives: serde_json::Map<String, serde_json::Value>,
+    /// Each constraint's margin (≥ 0: met), by the constraint as typed.
+    margins: serde_json::Map<String, serde_json::Value>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    file: Option<&'a str>,
+}
+
+#[derive(Serialize)]
+struct ReportJson<'a> {
+    design: &'a Design,
+    variables: Vec<serde_json::Value>,
+    objectives: Vec<serde_json::Value>,
+    constraints: Vec<&'a str>,
+    #[serde(skip_serializing_if = "<[f64]>::is_empty")]
+    band_hz: &'a [f64],
+    evaluations: usize,
+    budget: usize,
+    seed: u64,
+    partial: bool,
+    reference: Option<&'a [f64]>,
+    hypervolume: Option<f64>,
+    front: Vec<FrontJson<'a>>,
+    /// When no design is feasible: the constraint that binds and its best margin.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    binding: Option<serde_json::Value>,
+}
+
+fn value_json(v: &Value) -> serde_json::Value {
+    match v {
+        Value::Number(x) => serde_json::json!(x),
+        Value::Choice(s) => serde_json::json!(s),
+    }
+}
+
+/// The constraint's margin column in the CSV: `margin_mass_le`, `margin_spl_max_db_ge`.
+fn margin_column(c: &Constraint) -> String {
+    let name = match &c.bound {
+        Bound::Result(col) => col.name().to_string(),
+        Bound::Param(row) => row.name.replace('-', "_"),
+    };
+    format!("margin_{name}_{}", if c.at_most { "le" } else { "ge" })
+}
+
+/// The sentence for an infeasible problem: which constraint binds.
+fn binding_line(p: &Problem, o: &Outcome) -> Option<String> {
+    if !o.front.is_empty() {
+        return None;
+    }
+    let ran = o.all.iter().filter(|c| c.error.is_none()).count();
+    if ran == 0 {
+        let why = o.all.first().and_then(|c| c.error.clone()).unwrap_or_default();
+        return Some(format!("no design of the search could be run ({why})"));
+    }
+    match p.binding(&o.all) {
+        Some((k, best)) => Some(format!(
+            "no design meets every constraint: {} binds (the best of {ran} designs misses it by {})",
+            p.constraints[k].text,
+            num(-best)
+        )),
+        None => Some(format!("no design of {ran} has every objective defined (no impact?)")),
+    }
+}
+
+/// The front as `format` prints it (checked finite).
+#[allow(clippy::too_many_lines)] // one match over the three formats, each a plain table
+fn render(
+    p: &Problem,
+    o: &Outcome,
+    settings: Settings,
+    format: OutputFormat,
+    files: Option<&[String]>,
+) -> Result<String, CliError> {
+    let front: Vec<&Candidate> = o.front.iter().map(|&i| &o.all[i]).collect();
+    let binding = binding_line(p, o);
+    Ok(match format {
+        OutputFormat::Json => {
+            let rows = front
+                .iter()
+                .enumerate()
+                .map(|(k, c)| FrontJson {
+                    index: c.index,
+                    variables: p.variables.iter().zip(&c.values).map(|(v, x)| (v.column(), value_json(x))).collect(),
+                    objectives: p
+                        .objectives
+                        .iter()
+                        .zip(&c.objectives)
+                        .map(|(ob, v)| (ob.column.name().to_string(), serde_json::json!(v)))
+                        .collect(),
+                    margins: p
+                        .constraints
+                        .iter()
+                        .zip(&c.margins)
+                        .map(|(k, m)| (k.text.clone(), serde_json::json!(m)))
+                        .collect(),
+                    file: files.and_then(|f| f.get(k)).map(String::as_str),
+                })
+                .collect();
+            let report = ReportJson {
+                design: p.base.design(),
+                variables: p
+                    .variables
+                    .iter()
+                    .map(|v| match v {
+                        Variable::Range { row, lo, hi } => serde_json::json!({"name": row.name, "column": v.column(),
+                            "unit": row.unit(), "from": lo, "to": hi}),
+                        Variable::Choice { row, options } => {
+                            serde_json::json!({"name": row.name, "column": v.column(), "options": options})
+                        }
+                    })
+                    .collect(),
+                objectives: p
+                    .objectives
+                    .iter()
+                    .map(|o| serde_json::json!({"column": o.column.name(), "sense": o.sense}))
+                    .collect(),
+                constraints: p.constraints.iter().map(|c| c.text.as_str()).collect(),
+                band_hz: &p.band_hz,
+                evaluations: o.all.len(),
+                budget: settings.evaluations,
+                seed: settings.seed,
+                partial: o.partial,
+                reference: o.reference.as_deref(),
+                hypervolume: o.hypervolume,
+                front: rows,
+                binding: binding.map(|b| serde_json::json!(b)),
+            };
+            super::output::check_finite(&report)?;
+            let mut s = serde_json::to_string_pretty(&report).map_err(std::io::Error::from)?;
+            s.push('\n');
+            s
+        }
+        OutputFormat::Csv => {
+            let mut header: Vec<String> = vec!["index".into()];
+            header.extend(p.variables.iter().map(Variable::column));
+            header.extend(p.objectives.iter().map(|o| o.column.name().to_string()));
+            header.extend(p.constraints.iter().map(margin_column));
+            if files.is_some() {
+                header.push("file".into());
+            }
+            let mut w = csv::Writer::from_writer(Vec::new());
+            let csv_error = |e: csv::Error| ThudError::invalid("csv", format!("cannot write: {e}"));
+            w.write_record(&header).map_err(csv_error)?;
+            for (k, c) in front.iter().enumerate() {
+                let mut r = vec![c.index.to_string()];
+                r.extend(c.values.iter().map(|v| match v {
+                    Value::Number(x) => x.to_string(),
+                    Value::Choice(s) => s.clone(),
+                }));
+                r.extend(c.objectives.iter().map(|v| v.map_or(String::new(), |x| x.to_string())));
+                r.extend(c.margins.iter().map(|v| v.map_or(String::new(), |x| x.to_string())));
+                if let Some(f) = files {
+                    r.push(f.get(k).cloned().unwrap_or_default());
+                }
+                w.write_record(&r).map_err(csv_error)?;
+            }
+            let bytes = w.into_inner().map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?;
+            let s = String::from_utf8(bytes).map_err(|e| ThudError::invalid("csv", format!("cannot write: {e}")))?;
+            if let Some(b) = &binding {
+                super::warn(b);
+            }
+            s
+        }
+        OutputFormat::Text => {
+            let mut t = format!("base      {}\n", describe(p.base.design()));
+            let vars: Vec<String> = p.variables.iter().map(|v| format!("{v:?}")).collect();
+            t += &format!("vary      {}\n", vars.join(", "));
+            let obs: Vec<String> = p
+                .objectives
+                .iter()
+                .map(|o| format!("{} {}", if o.sense == Sense::Minimize { "min" } else { "max" }, o.column.name()))
+                .collect();
+            t += &format!("goals     {}\n", obs.join(", "));
+            if !p.constraints.is_empty() {
+                let cs: Vec<&str> = p.constraints.iter().map(|c| c.text.as_str()).collect();
+                t += &format!("require   {}\n", cs.join(", "));
+            }
+            if let (Some(first), Some(last)) = (p.band_hz.first(), p.band_hz.last()) {
+                t += &format!(
+                    "over      {} Hz to {} Hz, {} frequencies: each result at its worst\n",
+                    num(*first),
+                    num(*last),
+                    p.band_hz.len()
+                );
+            }
+            let hv = match (&o.hypervolume, &o.reference) {
+                (Some(h), Some(r)) => format!(", hypervolume {} (reference {}, {})", num(*h), num(r[0]), num(r[1])),
+                _ => String::new(),
+            };
+            t += &format!(
+                "search    {} of {} evaluations, seed {}{}{hv}\n\n",
+                o.all.len(),
+                settings.evaluations,
+                settings.seed,
+                if o.partial { " — PARTIAL (stopped)" } else { "" }
+            );
+            if let Some(b) = &binding {
+                t += &format!("{b}\n");
+                return Ok(t);
+            }
+            t += &format!("front     {} designs\n", front.len());
+            let mut head = format!("{:>6}", "#");
+            for v in &p.variables {
+                head += &format!("  {:>14}", v.column());
+            }
+            for ob in &p.objectives {
+                head += &format!("  {:>18}", ob.column.name());
+            }
+            for c in &p.constraints {
+                head += &format!("  {:>18}", margin_column(c));
+            }
+            if files.is_some() {
+                head += "  file";
+            }
+            t += &head;
+            t += "\n";
+            for (k, c) in front.iter().enumerate() {
+                let mut row = format!("{:>6}", c.index);
+                for v in &c.values {
+                    row += &format!(
+                        "  {:>14}",
+                        match v {
+                            Value::Number(x) => num(*x),
+                            Value::Choice(s) => s.clone(),
+                        }
+                    );
+                }
+                for v in &c.objectives {
+                    row += &format!("  {:>18}", v.map_or("—".into(), num));
+                }
+                for m in &c.margins {
+                    row += &format!("  {:>18}", m.map_or("—".into(), num));
+                }
+                if let Some(f) = files.and_then(|f| f.get(k)) {
+                    row += &format!("  {f}");
+                }
+                t += &row;
+                t += "\n";
+            }
+            t += "\n(--json or --csv for every digit; --save DIR writes each front design as a design file)\n";
+            t
+        }
+    })
+}
