@@ -251,6 +251,7 @@ fn save(dir: &Path, p: &Problem, o: &Outcome, force: bool) -> Result<Vec<String>
         let file = crate::store::DesignFile {
             description: format!("thud design: front design {} of {}: {}", k + 1, o.front.len(), what.join(", ")),
             ensemble: None,
+            uncertainty: std::collections::BTreeMap::new(),
             design: d,
         };
         files.push((file_name(k + 1, o.front.len()), file.to_toml().map_err(|e| e.renamed("save"))?));
@@ -333,6 +334,7 @@ fn binding_line(p: &Problem, o: &Outcome) -> Option<String> {
 }
 
 /// The front as `format` prints it (checked finite).
+// Over 80 lines: one match over the three formats, each a plain table.
 #[allow(clippy::too_many_lines)] // one match over the three formats, each a plain table
 fn render(
     p: &Problem,

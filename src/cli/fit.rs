@@ -165,14 +165,13 @@ fn other_separator(line: &str) -> Option<&'static str> {
 /// Reads one measurement file: the header names a time column and one signal column, each
 /// with its unit; every row two numbers. Errors name `--data` and the file, as one line, and
 /// say what they see (a file separated by ';' or tabs, a decimal comma, an empty column name).
-// Over 80 lines: one pass over the file, each refusal naming what it saw in the user's terms.
 fn read_series(path: &Path, ctx: &Ctx) -> Result<Series, CliError> {
     let text = fsio::read_to_string(path, MAX_DATA_BYTES).map_err(|e| data_error(path, e.reason()))?;
     series_from_text(path, &text, ctx)
 }
 
-/// The measurement `text` read from `path` (see `read_series`): the reader of outside input
-/// the fuzz targets drive.
+/// The measurement `text` read from `path` (see `read_series`): the reader of outside input.
+// Over 80 lines: one pass over the file, each refusal naming what it saw in the user's terms.
 pub fn series_from_text(path: &Path, text: &str, ctx: &Ctx) -> Result<Series, CliError> {
     if let Some(sep) = other_separator(header_line(text)) {
         return Err(

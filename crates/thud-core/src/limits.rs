@@ -421,6 +421,10 @@ pub const RANGES: [Range; 34] = [
     PERIODS,
 ];
 
+/// The counts beside the design's ranges (sweep axes, threads, an orbit's period, a forced
+/// study's transient, a design search's evaluations), listed after them by `thud limits`.
+pub const COUNTS: [&Range; 5] = [&GRID_N, &THREADS, &ORBIT_PERIODS, &TRANSIENT, &EVALUATIONS];
+
 impl Range {
     /// Whether `value` is finite and inside the range, to a relative 1e-9 (so `10um`, which
     /// parses to 9.999999999999999e-6 m, is inside a range from 1e-5 m).
@@ -904,7 +908,7 @@ mod tests {
 
     #[test]
     fn every_range_is_ordered_and_finite() {
-        for r in RANGES.iter().chain([&GRID_N, &THREADS]) {
+        for r in RANGES.iter().chain(COUNTS) {
             assert!(r.min.is_finite() && r.max.is_finite() && r.min < r.max, "{}", r.param);
             assert!(!r.reason.is_empty() && !r.what.is_empty(), "{}", r.param);
         }

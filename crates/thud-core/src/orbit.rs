@@ -472,11 +472,11 @@ fn from_guess(
         Some(s)
     };
     let s0 = at_section.ok_or_else(|| not_found("the guess's run stopped"))?;
-    shoot(p, req.symmetric, n, phase, s0, f64::from(n) + phase / std::f64::consts::TAU, MAX_NEWTON, cancel)
+    shoot(p, req.symmetric, n, phase, s0, (f64::from(n) + phase / std::f64::consts::TAU, MAX_NEWTON), cancel)
 }
 
 /// Newton's method for period `n` at the section `phase` (rad) from `s0`, `spent` forcing
-/// periods simulated already; an orbit whose true period is a divisor of `n` is solved again
+/// periods simulated already, at most `budget` Newton steps; an orbit whose true period is a divisor of `n` is solved again
 /// with that period, so that its multipliers are its own.
 fn shoot(
     p: &DamperParams,
@@ -484,8 +484,7 @@ fn shoot(
     n: u32,
     phase: f64,
     s0: [f64; 4],
-    spent: f64,
-    budget: u32,
+    (spent, budget): (f64, u32),
     cancel: Option<&AtomicBool>,
 ) -> Result<PeriodicOrbit, ThudError> {
     let mut sec = Section::new(*p, phase, n, symmetric, cancel);
@@ -594,13 +593,13 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
             chunk = (total / 2).max(FIRST_TRANSIENT_PERIODS);
             continue;
         };
-        match attempt(p, false, n, state, &recent, spent, MAX_NEWTON, cancel) {
+        match attempt(p, n, state, &recent, spent, MAX_NEWTON, cancel) {
             Ok(orbit) if orbit.stable || periods.is_some() => return Ok(orbit),
             Ok(orbit) => {
                 spent = orbit.periods_simulated;
                 // An unstable orbit beside a stable one of twice the period: the attractor.
                 if 2 * n <= MAX_ORBIT_PERIODS {
-                    match attempt(p, false, 2 * n, state, &recent, spent, MAX_NEWTON, cancel) {
+                    match attempt(p, 2 * n, state, &recent, spent, MAX_NEWTON, cancel) {
                         Ok(o2) if o2.stable => return Ok(o2),
                         Ok(o2) => spent = o2.periods_simulated,
                         Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
@@ -653,7 +652,7 @@ fn speculate(
 ) -> Result<Speculation, ThudError> {
     let period = 1.0 / p.freq_hz;
     let stops: Vec<f64> = (1..=APPROACH_PERIODS).map(|k| f64::from(k) * period).collect();
-    let orbit = attempt(p, false, 1, state, recent, spent, SPECULATIVE_NEWTON, cancel);
+    let orbit = attempt(p, 1, state, recent, spent, SPECULATIVE_NEWTON, cancel);
     let spent = orbit.as_ref().map_or(spent, |o| o.periods_simulated) + f64::from(APPROACH_PERIODS);
     let f = damper::flow(p, state, 0.0, &stops, cancel);
     if f.halted || f.states.len() != stops.len() {
@@ -670,11 +669,11 @@ fn speculate(
     Ok(Speculation::Moved { to, states: f.states, spent, stable })
 }
 
-/// Shooting for period `n` from `state` at the force's phase 0, the section put in flight by
-/// `impacts` (times from a run that ended at `state` after whole periods).
+/// Shooting for an orbit of period `n` from `state` at the force's phase 0, the section put in
+/// flight by `impacts` (times from a run that ended at `state` after whole periods), at most
+/// `budget` Newton steps.
 fn attempt(
     p: &DamperParams,
-    symmetric: bool,
     n: u32,
     state: [f64; 4],
     impacts: &[damper::ImpactEvent],
@@ -691,7 +690,7 @@ fn attempt(
     } else {
         state
     };
-    shoot(p, symmetric, n, phase, s0, spent + phase / tau, budget, cancel)
+    shoot(p, false, n, phase, s0, (spent + phase / tau, budget), cancel)
 }
 
 /// The orbit through the root `root` of the section's map, reported from the force's phase 0.

@@ -8,7 +8,7 @@
 //! an optional band of forcing frequencies over which every result is taken at its worst.
 //!
 //! One design is evaluated by [`Problem::evaluate`]: the base design with each variable set by
-//! [`study::set`] (a choice of material resolved as the explorer resolves it), checked again as a
+//! `study::set` (a choice of material resolved as the explorer resolves it), checked again as a
 //! whole ([`Design::check`]) and run by [`design::evaluate`]: the same code path as one cell of
 //! `thud sweep --vary` ([`study::sweep_cells`]) and as `thud simulate` of the saved design, so a
 //! front design run again gives exactly its printed objectives.
