@@ -247,12 +247,11 @@ impl<'a> Section<'a> {
         if self.last.as_ref().is_none_or(|(at, _)| at != u) {
             self.map(u)?;
         }
-        let impacts = self.last.as_ref().map(|(_, i)| i.clone()).unwrap_or_default();
+        let impacts = self.last.as_ref().map_or(&[][..], |(_, i)| i.as_slice());
         let h = JACOBIAN_STEP;
         let steps = [h * self.l, h * self.v, h * self.l, h * self.v];
-        let span = self.span();
         let chained =
-            damper::chained_jacobian(&self.p, self.unscale(u), self.phase, span, &impacts, steps, self.cancel);
+            damper::chained_jacobian(&self.p, self.unscale(u), self.phase, self.span(), impacts, steps, self.cancel);
         if let Some((j, simulated)) = chained {
             self.spent += simulated * self.p.freq_hz;
             let d = Vector4::new(self.l, self.v, self.l, self.v);
