@@ -23,9 +23,10 @@ use crate::study::Vary;
 pub struct ContinueArgs {
     #[command(flatten)]
     design: DesignArgs<ForceAmplitude>,
-    /// The parameter to continue in over its range, NAME=FROM:TO:N as sweep takes it, or
-    /// NAME=FROM:TO (N is not used: the continuation chooses its own steps; e.g. f=3Hz:8Hz);
-    /// the orbit is found at FROM.
+    /// The parameter to continue in over its range: NAME=FROM:TO (e.g. f=3Hz:8Hz) continues
+    /// the orbit found at FROM; NAME=FROM:TO:N (e.g. f=3Hz:8Hz:26) every branch through the
+    /// stable orbits the motion settles to at N evenly spaced values, each both ways. The
+    /// continuation chooses its own steps.
     #[arg(long, value_name = "NAME=FROM:TO:N", allow_hyphen_values = true)]
     vary: String,
     /// The orbit's period in forcing periods, 1 to 16 [default: the one the design's motion
@@ -53,30 +54,78 @@ struct BranchJson<'a> {
     branch: &'a Branch,
 }
 
-/// `NAME=FROM:TO` (or `NAME=FROM:TO:N`, N ignored) as a two-value study axis.
-fn parse_vary(text: &str) -> Result<Vary, ThudError> {
+#[derive(serde::Serialize)]
+struct FamilyJson<'a> {
+    design: &'a Design,
+    name: &'a str,
+    unit: &'a str,
+    branches: &'a [Branch],
+}
+
+/// `NAME=FROM:TO` as a two-value study axis, and `NAME=FROM:TO:N`'s N (the seed values).
+fn parse_vary(text: &str) -> Result<(Vary, Option<usize>), ThudError> {
     let colons = text.split_once('=').map_or(0, |(_, spec)| spec.matches(':').count());
     let full = if colons == 1 { format!("{text}:2") } else { text.to_string() };
     let v = Vary::parse(&full, Spelling::Flag)?;
     let (Some(&a), Some(&b)) = (v.values.first(), v.values.last()) else {
         return Err(ThudError::invalid("--vary", format!("'{text}'; expected NAME=FROM:TO")));
     };
-    Vary::of_values(v.name(), &[a, b], Spelling::Flag)
+    let seeds = (colons == 2).then_some(v.values.len());
+    if let Some(n) = seeds.filter(|&n| n > continuation::MAX_SEEDS) {
+        return Err(ThudError::invalid(
+            "--vary",
+            format!("'{text}': {n} seed values; give 2 to {}", continuation::MAX_SEEDS),
+        ));
+    }
+    Ok((Vary::of_values(v.name(), &[a, b], Spelling::Flag)?, seeds))
 }
 
-pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let d = a.design.design()?;
-    let target = Target::new(a.out.as_deref(), a.force)?;
-    let vary = parse_vary(&a.vary)?;
-    let periods = super::orbit::parse_period(a.period.as_deref())?;
-    let req = Request { periods, symmetric: a.symmetric, guess: None };
-    let branch = continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(|e| match e.param() {
+fn renamed(e: ThudError) -> ThudError {
+    match e.param() {
         "force" => e.renamed("--force-amplitude"),
         "period" => e.renamed("--period"),
         "solver" => e.renamed("--solver"),
         "vary" => e.renamed("--vary"),
         _ => e,
-    })?;
+    }
+}
+
+pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let d = a.design.design()?;
+    let target = Target::new(a.out.as_deref(), a.force)?;
+    let (vary, seeds) = parse_vary(&a.vary)?;
+    let periods = super::orbit::parse_period(a.period.as_deref())?;
+    if let Some(n) = seeds {
+        if periods.is_some() || a.symmetric {
+            return Err(ThudError::invalid(
+                "--vary",
+                format!("'{}' with N: the branches start from the motion's own orbits; give NAME=FROM:TO with --period or --symmetric", a.vary),
+            )
+            .into());
+        }
+        if d.solver != crate::damper::Solver::Event {
+            return Err(renamed(ThudError::invalid(
+                "solver",
+                "newmark: orbits are found with the event solver; use --solver event",
+            ))
+            .into());
+        }
+        let branches = continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?;
+        super::output::check_finite(&branches)?;
+        let text = match a.output.format() {
+            OutputFormat::Json => {
+                let family = FamilyJson { design: &d, name: vary.name(), unit: vary.unit(), branches: &branches };
+                let mut t = serde_json::to_string_pretty(&family).map_err(std::io::Error::from)?;
+                t.push('\n');
+                t
+            }
+            OutputFormat::Csv => family_csv(&vary, &branches),
+            OutputFormat::Text => family_text(&d, &vary, n, &branches),
+        };
+        return target.write(&text, out);
+    }
+    let req = Request { periods, symmetric: a.symmetric, guess: None };
+    let branch = continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(renamed)?;
     super::output::check_finite(&branch)?;
     let text = match a.output.format() {
         OutputFormat::Json => {
@@ -89,6 +138,44 @@ pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
         OutputFormat::Text => text(&d, &branch),
     };
     target.write(&text, out)
+}
+
+/// The branches of a family in words, one after the other.
+fn family_text(d: &Design, vary: &Vary, seeds: usize, branches: &[Branch]) -> String {
+    let mut t = format!("design      {}\n", describe(d));
+    t += &format!(
+        "family      {} branches through the stable orbits the motion settles to at {seeds} values of {}\n",
+        branches.len(),
+        vary.name()
+    );
+    for (k, b) in branches.iter().enumerate() {
+        t += &format!("\n[branch {}]\n", k + 1);
+        let body = text(d, b);
+        t += body.split_once('\n').map_or(body.as_str(), |(_, rest)| rest);
+    }
+    t
+}
+
+/// One row per point of every branch, the branch's number (from 1) first.
+fn family_csv(vary: &Vary, branches: &[Branch]) -> String {
+    let mut t = String::new();
+    for (k, b) in branches.iter().enumerate() {
+        let rows = csv(b);
+        let (header, body) = rows.split_once('\n').unwrap_or((rows.as_str(), ""));
+        if k == 0 {
+            t += &format!("branch,{header}\n");
+        }
+        for row in body.lines() {
+            t += &format!("{},{row}\n", k + 1);
+        }
+    }
+    if branches.is_empty() {
+        t += &format!(
+            "branch,{},orbit,periods,impacts_per_orbit,stable,multiplier_abs_max,amplitude_m,x_m,v_m_s,z_m,zdot_m_s\n",
+            crate::study::column(vary.name(), vary.unit())
+        );
+    }
+    t
 }
 
 /// The branch in words: its stretches of one orbit type and stability, and its special points.

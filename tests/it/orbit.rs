@@ -329,3 +329,131 @@ fn an_orbit_from_the_start_takes_at_most_20_periods_of_simulation() {
         assert!((s.x_m - o.x_m).abs() < 1e-8 && (s.z_m - o.z_m).abs() < 1e-8, "{s:?} vs {o:?}");
     }
 }
+
+/// `thud response`'s settling points are the periodic orbits their motion settles to, solved
+/// for by shooting: on Table 2 with F0 1 N (the default response), each impacting point equals
+/// a 600-period simulation's last 20 periods (amplitude to 1e-8 m, the same impacts a period,
+/// `Leq` to 1e-6 dB) and is marked as found exactly; where no impact occurs the amplitude is the
+/// linear closed form's to 1e-9 relative.
+#[test]
+fn response_points_are_the_orbits_their_motion_settles_to() {
+    use thud::damper::{simulate, RunOptions, Solver};
+    use thud::design::Design;
+    use thud::response::{response, ResponseOptions};
+    use thud::verdict::{Source, Verdict};
+    let mut d = Design::default();
+    d.damper.force_n = 1.0;
+    d.damper.v0_m_s = 0.0;
+    d.damper.freq_hz = 3.5;
+    let d = d.check().unwrap();
+    let freqs = [3.5, 5.2, 5.4];
+    let r = response(&d, &freqs, &ResponseOptions::default(), None, &|| {}).unwrap();
+    for p in &r.sweeps[0].points {
+        assert!(
+            matches!(p.steady.verdict, Verdict::Periodic { source: Source::Exact, .. }),
+            "{} Hz: {:?}",
+            p.freq_hz,
+            p.steady.verdict
+        );
+        let mut long = d.design().clone();
+        long.damper.freq_hz = p.freq_hz;
+        long.damper.settle = false;
+        long.damper.steady_periods = 20;
+        long.damper.duration_s = 600.0 / p.freq_hz;
+        let long = long.check().unwrap();
+        let run = simulate(&long.damper, Solver::Event, &RunOptions::default()).unwrap();
+        let s = thud::design::steady(&run, &long).unwrap().unwrap();
+        eprintln!(
+            "{} Hz: {} amplitude {:e} vs {:e} m, Leq {:?} vs {:?}",
+            p.freq_hz,
+            p.steady.verdict.label(),
+            p.steady.amplitude_m,
+            s.amplitude_m,
+            p.steady.leq_db,
+            s.leq_db
+        );
+        assert_eq!(p.steady.impacts_per_period, s.impacts_per_period, "{} Hz", p.freq_hz);
+        if p.steady.impacts_per_period == 0.0 {
+            // Without impacts the structure's own transient decays as e^(-C·t/2M): 2e-4 of it is
+            // left after 600 periods at 3.5 Hz (C 0.05 N·s/m), so the reference is the closed form.
+            let lin = p.steady.amplitude_linear_m.unwrap();
+            let off = p.steady.amplitude_m / lin - 1.0;
+            assert!(off.abs() < 1e-9, "{} Hz: {} vs {lin}", p.freq_hz, p.steady.amplitude_m);
+            continue;
+        }
+        assert!((p.steady.amplitude_m - s.amplitude_m).abs() < 1e-8, "{} Hz", p.freq_hz);
+        match (p.steady.leq_db, s.leq_db) {
+            (Some(a), Some(b)) => assert!((a - b).abs() < 1e-6, "{} Hz: Leq {a} vs {b}", p.freq_hz),
+            (a, b) => assert_eq!(a, b, "{} Hz", p.freq_hz),
+        }
+    }
+}
+
+/// forced-rattle's period-doubling cascade (docs/model.md §6.8): the continued 2/1 branch from
+/// 7.7 Hz down to 7.45 Hz locates its period doubling within 0.01 Hz of where the simulated
+/// attractor, followed down in frequency, changes from 2/1 to 4/2; and `thud continue
+/// --vary f=3Hz:8Hz:26` continues every branch through the motion's own orbits, whose stable
+/// points equal the simulated stroboscopic samples to 1e-8 m.
+#[test]
+fn forced_rattle_family_matches_the_simulation_and_locates_the_cascade() {
+    use thud::continuation::{continue_branch, continue_family, Special};
+    use thud::dynamics::{impact_map, Orbit, Settings};
+    use thud::params::Spelling;
+    use thud::study::Vary;
+    let base = thud::presets::preset("forced-rattle").unwrap();
+    let at = |f: f64| {
+        let mut d = base.clone();
+        d.damper.freq_hz = f;
+        d.check().unwrap()
+    };
+    let vary = Vary::of_values("freq", &[7.7, 7.45], Spelling::Flag).unwrap();
+    let b = continue_branch(&at(7.7), &vary, &Request::default(), None, &|_| {}).unwrap();
+    let pd: Vec<_> = b.specials.iter().filter(|s| s.kind == Special::PeriodDoubling).collect();
+    assert!(!pd.is_empty(), "{:?}", b.specials);
+    let f = pd[0].value;
+    let sweep =
+        Vary::of_values("freq", &(0..=100).map(|i| 7.45 + 0.0025 * f64::from(i)).collect::<Vec<_>>(), Spelling::Flag)
+            .unwrap();
+    let diagram = thud::dynamics::bifurcation(
+        &at(7.45),
+        &sweep,
+        Settings { transient_periods: 300, periods: 32 },
+        true,
+        "force",
+        None,
+        &|_| {},
+    )
+    .unwrap();
+    let mut down: Vec<_> = diagram.points.iter().filter(|p| p.direction == thud::response::Direction::Down).collect();
+    down.sort_by(|a, b| b.value.total_cmp(&a.value));
+    let first_doubled =
+        down.iter().position(|p| !matches!(p.run.orbit, Orbit::Periodic { impacts: 2, periods: 1, .. })).unwrap();
+    assert!(first_doubled > 0);
+    eprintln!("cascade: {:?} at {} Hz", down[first_doubled].run.orbit, down[first_doubled].value);
+    let change = 0.5 * (down[first_doubled - 1].value + down[first_doubled].value);
+    eprintln!("period doubling at {f} Hz; the simulated 2/1 orbit changes at {change} Hz");
+    assert!((f - change).abs() < 0.01, "{f} vs {change}");
+
+    let vary = Vary::of_values("freq", &[3.0, 8.0], Spelling::Flag).unwrap();
+    let family = continue_family(&at(3.0), &vary, 26, None, &|_| {}).unwrap();
+    let points: usize = family.iter().map(|b| b.points.len()).sum();
+    eprintln!("family: {} branches, {points} points", family.len());
+    for b in &family {
+        eprintln!("  {} → {}: {:?}", b.points[0].value, b.points.last().unwrap().value, b.ended);
+    }
+    assert!(family.len() >= 2, "{}", family.len());
+    let mut checked = 0;
+    for b in &family {
+        for p in b.points.iter().filter(|p| p.stable && p.periods == 1 && p.multiplier_abs_max < 0.9).step_by(97) {
+            let run = impact_map(&at(p.value), Settings { transient_periods: 600, periods: 8 }, "force", None).unwrap();
+            if !matches!(run.orbit, Orbit::Periodic { .. }) {
+                continue; // another attractor beside this one: the simulation from rest went there
+            }
+            let on = run.samples.iter().all(|s| (s.x_m - p.x_m).abs() < 1e-8 && (s.z_m - p.z_m).abs() < 1e-8);
+            let other = run.samples.iter().all(|s| (s.x_m - p.x_m).abs() > 1e-6);
+            assert!(on || other, "{} Hz: {:?} vs {:?}", p.value, run.samples.first(), p);
+            checked += usize::from(on);
+        }
+    }
+    assert!(checked >= 3, "{checked} stable points checked against the simulation");
+}

@@ -294,15 +294,27 @@ pub fn continue_branch(
     cancel: Option<&AtomicBool>,
     on_point: &dyn Fn(f64),
 ) -> Result<Branch, ThudError> {
-    let (p, mut node) = start(base, vary, req, cancel)?;
+    let (p, node) = start(base, vary, req, cancel)?;
+    follow(&p, node, cancel, on_point)
+}
+
+/// Follows the branch of problem `p` from `node` to the range's end (or until it ends).
+fn follow(
+    p: &Problem,
+    mut node: Node,
+    cancel: Option<&AtomicBool>,
+    on_point: &dyn Fn(f64),
+) -> Result<Branch, ThudError> {
+    let vary = p.vary;
     let mut b = Branch {
         name: vary.name().to_string(),
         unit: vary.unit().to_string(),
-        points: vec![point(&p, &node)],
+        points: vec![point(p, &node)],
         specials: Vec::new(),
         ended: None,
     };
     on_point(p.value(node.y[4]));
+    let first = node.y;
     let mut h = H_MAX / 4.0;
     while b.points.len() < MAX_BRANCH_POINTS {
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -311,7 +323,13 @@ pub fn continue_branch(
         let next = p.correct(&node, h).and_then(|(y, g, it)| p.node(y, &g, Some(&node.tangent)).map(|n| (n, it)));
         match next {
             Ok((next, iterations)) => {
-                if advance(&p, &mut node, next, h, &mut b, on_point) {
+                // Back where it started: a closed branch (an isola), followed once round.
+                let closes = b.points.len() > 2 && (next.y - first).norm() < h && (node.y - first).norm() >= h;
+                if advance(p, &mut node, next, h, &mut b, on_point) {
+                    return Ok(b);
+                }
+                if closes {
+                    b.ended = Some(ISOLA.to_string());
                     return Ok(b);
                 }
                 if iterations <= 3 {
@@ -330,7 +348,7 @@ pub fn continue_branch(
                     b.ended = Some(format!("at {} {}: {e}", num6(p.value(node.y[4])), vary.unit()));
                     return Ok(b);
                 };
-                if advance(&p, &mut node, next, h, &mut b, on_point) {
+                if advance(p, &mut node, next, h, &mut b, on_point) {
                     return Ok(b);
                 }
                 h = H_MAX / 16.0;
@@ -341,9 +359,118 @@ pub fn continue_branch(
     Ok(b)
 }
 
+/// The branches of periodic orbits over `vary`'s range through the stable orbits the design's
+/// motion settles to at `seeds` evenly spaced values of it (from the design's own start, as
+/// `thud response` finds them, [`orbit::settle_to`]): each continued from its seed both ways
+/// to the range's ends (or until it ends), through folds and along unstable parts. A seed
+/// whose orbit lies on a branch already continued (the same orbit type, within 1e-6 of the
+/// scale at the branch's point nearest in value) starts none. Seeds where the motion settles
+/// to no periodic orbit (chaos, a long period) start none either. The branches come in the
+/// order of their seeds, each point in the order of the parameter along its way.
+pub fn continue_family(
+    base: &ValidDesign,
+    vary: &Vary,
+    seeds: usize,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(f64) + Sync),
+) -> Result<Vec<Branch>, ThudError> {
+    use rayon::prelude::*;
+    let (from, to) = range(vary)?;
+    if !(2..=MAX_SEEDS).contains(&seeds) {
+        return Err(ThudError::invalid("vary", format!("{seeds} seed values; give 2 to {MAX_SEEDS}")));
+    }
+    let values = crate::design::linspace(from, to, seeds);
+    let found: Vec<Option<(f64, PeriodicOrbit)>> = values
+        .par_iter()
+        .map(|&v| {
+            let d = crate::study::set(base.design().clone(), vary.row, v).check().ok()?;
+            let p = &d.damper;
+            let start = [0.0, p.v0_m_s, p.ball_position_m, p.ball_velocity_m_s];
+            orbit::settle_to(p, start, 0.0, cancel).ok().map(|o| (v, o))
+        })
+        .collect();
+    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return Err(ThudError::Cancelled);
+    }
+    let mut branches: Vec<Branch> = Vec::new();
+    for (v, o) in found.into_iter().flatten() {
+        if branches.iter().any(|b| passes(b, v, &o)) {
+            continue;
+        }
+        branches.push(both_ways(base, vary, v, &o, cancel, on_point)?);
+    }
+    Ok(branches)
+}
+
+/// Why a branch that closed on itself ended.
+const ISOLA: &str = "the branch closed on itself (an isola), followed once round";
+
+/// The most seed values of [`continue_family`].
+pub const MAX_SEEDS: usize = 1000;
+
+/// Whether branch `b` passes through the orbit `o` at `value`, or through its mirror image
+/// (`s(t) → −s(t + T/2)`: the same type and amplitude): a step of the branch across `value`
+/// (two successive points on either side of it) of `o`'s type whose amplitude, interpolated
+/// to `value`, is `o`'s within 1e-3 (relative).
+fn passes(b: &Branch, value: f64, o: &PeriodicOrbit) -> bool {
+    b.points.windows(2).any(|w| {
+        let (p, q) = (&w[0], &w[1]);
+        let across = (p.value - value) * (q.value - value) <= 0.0 && p.value != q.value;
+        let same = |x: &BranchPoint| x.periods == o.periods && x.impacts_per_orbit == o.impacts_per_orbit;
+        if !across || !same(p) || !same(q) {
+            return false;
+        }
+        let s = (value - p.value) / (q.value - p.value);
+        let amplitude = p.amplitude_m + s * (q.amplitude_m - p.amplitude_m);
+        (amplitude - o.amplitude_m).abs() <= 1e-3 * o.amplitude_m.max(1e-12)
+    })
+}
+
+/// The branch through the orbit `o` at `value`, continued down and up the range and joined.
+fn both_ways(
+    base: &ValidDesign,
+    vary: &Vary,
+    value: f64,
+    o: &PeriodicOrbit,
+    cancel: Option<&AtomicBool>,
+    on_point: &dyn Fn(f64),
+) -> Result<Branch, ThudError> {
+    let (p, up) = start_at(base, vary, value, o, false, cancel)?;
+    let mut down_node = up.clone();
+    down_node.tangent = -down_node.tangent;
+    let mut b = follow(&p, up, cancel, on_point)?;
+    if b.ended.as_deref() == Some(ISOLA) {
+        return Ok(b);
+    }
+    let down = follow(&p, down_node, cancel, on_point)?;
+    let mut points: Vec<BranchPoint> = down.points.into_iter().skip(1).rev().collect();
+    points.append(&mut b.points);
+    b.points = points;
+    let mut specials = down.specials;
+    specials.reverse();
+    specials.append(&mut b.specials);
+    b.specials = specials;
+    b.ended = match (down.ended, b.ended) {
+        (Some(d), Some(u)) => Some(format!("{d}; {u}")),
+        (d, u) => d.or(u),
+    };
+    Ok(b)
+}
+
 /// Six significant digits.
 fn num6(v: f64) -> String {
     format!("{v:.6}")
+}
+
+/// The range of `vary`: its first and last values, which must differ.
+fn range(vary: &Vary) -> Result<(f64, f64), ThudError> {
+    let (Some(&from), Some(&to)) = (vary.values.first(), vary.values.last()) else {
+        return Err(ThudError::invalid("vary", "no values; give NAME=FROM:TO"));
+    };
+    if from == to {
+        return Err(ThudError::invalid("vary", format!("FROM = TO = {from}; give a range")));
+    }
+    Ok((from, to))
 }
 
 /// The problem and its first node: the orbit at the range's start, its section in flight.
@@ -353,14 +480,24 @@ fn start<'a>(
     req: &Request,
     cancel: Option<&'a AtomicBool>,
 ) -> Result<(Problem<'a>, Node), ThudError> {
-    let (Some(&from), Some(&to)) = (vary.values.first(), vary.values.last()) else {
-        return Err(ThudError::invalid("vary", "no values; give NAME=FROM:TO"));
-    };
-    if from == to {
-        return Err(ThudError::invalid("vary", format!("FROM = TO = {from}; give a range")));
-    }
+    let (from, _) = range(vary)?;
     let d0 = crate::study::set(base.design().clone(), vary.row, from).check()?;
     let first = orbit::find(&d0, req, cancel)?;
+    start_at(base, vary, from, &first, req.symmetric, cancel)
+}
+
+/// The problem and its first node from the orbit `first` of the design at `value`, a value of
+/// the range (the tangent pointing up the range).
+fn start_at<'a>(
+    base: &ValidDesign,
+    vary: &'a Vary,
+    value: f64,
+    first: &PeriodicOrbit,
+    symmetric: bool,
+    cancel: Option<&'a AtomicBool>,
+) -> Result<(Problem<'a>, Node), ThudError> {
+    let (from, to) = range(vary)?;
+    let d0 = crate::study::set(base.design().clone(), vary.row, value).check()?;
     let probe = Section::new(d0.damper, 0.0, 1, false, cancel);
     let omega = std::f64::consts::TAU * d0.damper.freq_hz;
     let s0 = [first.x_m, first.v_m_s, first.x_m + first.z_m, first.v_m_s + first.zdot_m_s];
@@ -376,12 +513,13 @@ fn start<'a>(
         to,
         phase,
         periods: n,
-        symmetric: req.symmetric && first.symmetric,
+        symmetric: symmetric && first.symmetric,
         l: probe.l,
         v: probe.v,
         cancel,
     };
-    let mut y = V5::new(s_phase[0] / p.l, s_phase[1] / p.v, s_phase[2] / p.l, s_phase[3] / p.v, 0.0);
+    let lt = (value - from) / (to - from);
+    let mut y = V5::new(s_phase[0] / p.l, s_phase[1] / p.v, s_phase[2] / p.l, s_phase[3] / p.v, lt);
     // Polish the first point on the fixed scales (the symmetric map's fixed point, too).
     let mut g = p.g(&y)?;
     for _ in 0..3 {

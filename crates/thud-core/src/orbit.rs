@@ -532,11 +532,59 @@ fn from_start(p: &DamperParams, req: &Request, cancel: Option<&AtomicBool>) -> R
 /// a stable orbit is taken; an unstable one of period `n` is passed over for a stable one of
 /// period `2n` where there is one, else kept as the answer if nothing stable turns up.
 fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>) -> Result<PeriodicOrbit, ThudError> {
+    attractor_from(p, [0.0, p.v0_m_s, p.ball_position_m, p.ball_velocity_m_s], periods, usize::MAX, cancel)
+}
+
+/// Impacts a settling motion may take while its orbit is looked for ([`settle_to`]): a motion
+/// that rattles more than this before it repeats is left to the simulation (whose own work
+/// caps, `thud limits`, then apply), which judges it over its windows.
+pub const SETTLE_IMPACTS_MAX: usize = 5000;
+
+/// The stable periodic orbit that the motion from `start` settles to: `start` is the state
+/// `(x, x', y, y')` (m, m/s) with the force at phase `phase` (rad). The motion is first run on
+/// to the force's next phase 0. An unstable orbit (nothing stable turned up) or none is an
+/// error: the caller simulates such a motion instead. What `thud response` computes per
+/// frequency (docs/model.md §6.7).
+pub(crate) fn settle_to(
+    p: &DamperParams,
+    start: [f64; 4],
+    phase: f64,
+    cancel: Option<&AtomicBool>,
+) -> Result<PeriodicOrbit, ThudError> {
+    p.validate()?;
+    if !p.forced() {
+        return Err(ThudError::invalid("force", "0 N: a periodic orbit needs a harmonic force"));
+    }
+    let tau = std::f64::consts::TAU;
+    let to_zero = ((tau - phase.rem_euclid(tau)) / tau).rem_euclid(1.0) / p.freq_hz;
+    let (state, spent) = if to_zero > 0.0 {
+        let f = damper::flow(p, start, phase, &[to_zero], cancel);
+        let s = f.states.first().copied().filter(|_| !f.halted).ok_or_else(|| not_found("the run stopped"))?;
+        (s, to_zero * p.freq_hz)
+    } else {
+        (start, 0.0)
+    };
+    let o = attractor_from(p, state, None, SETTLE_IMPACTS_MAX, cancel)?;
+    if !o.stable {
+        return Err(not_found("the motion's orbit is unstable"));
+    }
+    Ok(PeriodicOrbit { periods_simulated: o.periods_simulated + spent, ..o })
+}
+
+/// [`attractor`] from the state `start` at the force's phase 0, given up (an error) once the
+/// transient has taken more than `impacts_max` impacts.
+fn attractor_from(
+    p: &DamperParams,
+    start: [f64; 4],
+    periods: Option<u32>,
+    impacts_max: usize,
+    cancel: Option<&AtomicBool>,
+) -> Result<PeriodicOrbit, ThudError> {
     // Over 80 lines: one loop over the transient's stops, each with its three outcomes
     // (speculate, shoot the detected period, or its double) and their bookkeeping.
     let period = 1.0 / p.freq_hz;
     let probe_sec = Section::new(*p, 0.0, 1, false, cancel);
-    let mut state = [0.0, p.v0_m_s, p.ball_position_m, p.ball_velocity_m_s];
+    let mut state = start;
     let mut samples: Vec<Vector4<f64>> = vec![probe_sec.scale(state)];
     let mut spent = 0.0;
     let mut chunk = FIRST_TRANSIENT_PERIODS;
@@ -545,6 +593,7 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
         not_found("the motion did not settle to a periodic orbit (chaotic, quasi-periodic, or a longer period)");
     let mut unstable: Option<PeriodicOrbit> = None;
     let mut candidate: Option<(PeriodicOrbit, f64)> = None;
+    let mut impacts_seen = 0;
     while total < MAX_TRANSIENT_PERIODS {
         let stops: Vec<f64> = (1..=chunk).map(|k| f64::from(k) * period).collect();
         let f = damper::flow(p, state, 0.0, &stops, cancel);
@@ -556,6 +605,10 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
         }
         spent += f64::from(chunk);
         total += chunk;
+        impacts_seen += f.impacts.len();
+        if impacts_seen > impacts_max {
+            return Err(not_found("the motion rattles on: more impacts than the search allows"));
+        }
         samples.extend(f.states.iter().map(|s| probe_sec.scale(*s)));
         state = *f.states.last().unwrap_or(&state);
         let span = f64::from(chunk) * period;
