@@ -15,7 +15,8 @@ use super::simulate::describe;
 use super::sweep::Target;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::search::{
-    self, Bound, Candidate, Constraint, Objective, Outcome, Problem, Progress, Robust, Sense, Settings, Value, Variable,
+    self, Bound, Candidate, Column, Constraint, Objective, Outcome, Problem, Progress, Robust, Sense, Settings, Value,
+    Variable,
 };
 use crate::design::Design;
 use crate::error::ThudError;
@@ -285,7 +286,14 @@ fn figure(p: &Problem, o: &Outcome) -> String {
         o.all.len(),
         if o.partial { " (partial)" } else { "" }
     );
-    front_svg(&FrontFigure { title, objectives, variables }, &crate::export::svg::Look::default())
+    // SPLmax against e: the design's thresholds are the zones' borders.
+    let t = &p.base.thresholds;
+    let zone_borders = match (p.objectives[0].column, p.objectives[1].column) {
+        (Column::SplMax, Column::Inclination) => Some((t.spl_db, t.inclination_cm_s)),
+        (Column::Inclination, Column::SplMax) => Some((t.inclination_cm_s, t.spl_db)),
+        _ => None,
+    };
+    front_svg(&FrontFigure { title, objectives, variables, zone_borders }, &crate::export::svg::Look::default())
 }
 
 /// Writes the report (to `--out` or standard output) and the figure to `--svg`/`--pdf`, the

@@ -26,7 +26,13 @@ pub struct FrontFigure {
     pub title: String,
     pub objectives: Panel,
     pub variables: Option<Panel>,
+    /// The zones' borders in the objectives' panel, when its axes are SPLmax and e: the
+    /// design's thresholds as (x, y) in the axes' units, drawn as dashed lines.
+    pub zone_borders: Option<(f64, f64)>,
 }
+
+/// The colour of the zones' borders.
+const BORDER: &str = "#555555";
 
 /// The figure as SVG.
 #[must_use]
@@ -42,11 +48,16 @@ pub fn front_svg(f: &FrontFigure, look: &Look) -> String {
     let h = (svg.height() - top_margin - gap * panels.len() as f64) / panels.len() as f64;
     for (i, (p, clip, style)) in panels.iter().enumerate() {
         let all = || p.evaluated.iter().chain(&p.front);
-        let x = Axis::fit(&p.x_label, all().map(|q| q.0));
-        let y = Axis::fit(&p.y_label, all().map(|q| q.1));
+        let borders = f.zone_borders.filter(|_| i == 0);
+        let x = Axis::fit(&p.x_label, all().map(|q| q.0).chain(borders.map(|b| b.0)));
+        let y = Axis::fit(&p.y_label, all().map(|q| q.1).chain(borders.map(|b| b.1)));
         let top = top_margin + i as f64 * (h + gap);
         let frame = Frame { left, top, width: svg.width() - left - right, height: h, x, y };
         frame.draw_panel(&mut svg, (i == 0).then_some(f.title.as_str()), clip);
+        if let Some((bx, by)) = borders {
+            frame.vline(&mut svg, bx, "zone border", BORDER);
+            frame.hline(&mut svg, by, "zone border", BORDER);
+        }
         let series = [
             Series::new("designs evaluated", p.evaluated.clone(), Style::Markers)
                 .colored(EVALUATED.into())
@@ -76,13 +87,16 @@ mod tests {
 
     #[test]
     fn the_front_is_drawn_over_the_designs_evaluated_with_a_legend_of_both() {
-        let f = FrontFigure { title: "front".into(), objectives: panel(), variables: None };
+        let f = FrontFigure { title: "front".into(), objectives: panel(), variables: None, zone_borders: None };
         let doc = front_svg(&f, &Look::default());
         assert!(doc.contains(">designs evaluated<") && doc.contains(">Pareto front<"));
         assert!(doc.contains(FRONT) && doc.contains(EVALUATED));
         // One panel: one clip path; two numeric variables: a second panel below it.
         assert!(doc.contains("front-objectives") && !doc.contains("front-variables"));
-        let two = FrontFigure { variables: Some(panel()), ..f };
+        let two = FrontFigure { variables: Some(panel()), ..f.clone() };
         assert!(front_svg(&two, &Look::default()).contains("front-variables"));
+        assert!(!doc.contains("zone border"));
+        let zoned = front_svg(&FrontFigure { zone_borders: Some((103.0, 0.9)), ..f }, &Look::default());
+        assert_eq!(zoned.matches(">zone border<").count(), 2);
     }
 }
