@@ -15,7 +15,8 @@ use super::simulate::describe;
 use super::sweep::Target;
 use super::{count, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::search::{
-    self, Bound, Candidate, Constraint, Objective, Outcome, Problem, Progress, Sense, Settings, Value, Variable,
+    self, Bound, Candidate, Column, Constraint, Objective, Outcome, Problem, Progress, Robust, Sense, Settings, Value,
+    Variable,
 };
 use crate::design::Design;
 use crate::error::ThudError;
@@ -53,6 +54,16 @@ pub struct DesignSearchArgs {
     /// result is taken at its worst over the band (a forced design).
     #[arg(long, value_name = "freqs=FROM:TO:N", allow_hyphen_values = true)]
     over: Option<String>,
+    /// Robust mode: each design runs N times, from ball offsets spread evenly over the
+    /// clearance (y0 = −d/2 + (k + ½)·d/N, at rest), and each result is taken at --quantile
+    /// over the runs (1: the single trajectory).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    ensemble: Option<String>,
+    /// With --ensemble: the share Q of the ball offsets that do at least as well as each
+    /// reported result (the Q-quantile of a column minimised or bounded above, the
+    /// (1 − Q)-quantile of one maximised or bounded below, by nearest rank) [default: 0.5]
+    #[arg(long, value_name = "Q", allow_hyphen_values = true)]
+    quantile: Option<String>,
     /// Designs the search evaluates at most (its budget).
     #[arg(long, value_name = "N", default_value = "400", allow_hyphen_values = true)]
     evaluations: String,
@@ -71,7 +82,14 @@ pub struct DesignSearchArgs {
     /// kept unless --force. Written whole or not at all.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
-    /// Replace the --out file (or the --save folder's previous designs) if it exists.
+    /// Also write the figure as SVG to this file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Also write the figure as PDF to this file.
+    #[arg(long, value_name = "FILE")]
+    pdf: Option<PathBuf>,
+    /// Replace the --out, --svg or --pdf file (or the --save folder's previous designs) if it
+    /// exists.
     #[arg(long)]
     force: bool,
     #[command(flatten)]
@@ -100,9 +118,40 @@ fn problem(a: &DesignSearchArgs) -> Result<Problem, ThudError> {
             super::design_args::parse_range("over", spec, Kind::Frequency, &limits::FREQ)?
         }
     };
-    let p = Problem { base, variables, objectives, constraints, band_hz };
+    let robust = robust(a)?;
+    let p = Problem { base, variables, objectives, constraints, band_hz, robust };
     p.check()?;
     Ok(p)
+}
+
+/// `--ensemble N --quantile Q`: robust mode, or None without `--ensemble`.
+fn robust(a: &DesignSearchArgs) -> Result<Option<Robust>, ThudError> {
+    let quantile = a
+        .quantile
+        .as_deref()
+        .map(|t| {
+            t.trim().parse::<f64>().ok().filter(|q| *q > 0.0 && *q <= 1.0).ok_or_else(|| {
+                ThudError::invalid("--quantile", format!("'{t}' is not a fraction above 0 and at most 1 (e.g. 0.9)"))
+            })
+        })
+        .transpose()?;
+    let Some(text) = &a.ensemble else {
+        if let Some(t) = &a.quantile {
+            return Err(ThudError::invalid(
+                "--quantile",
+                format!("{t}: a quantile over ball offsets needs --ensemble N"),
+            ));
+        }
+        return Ok(None);
+    };
+    let runs = count("ensemble", text, &limits::ENSEMBLE)?;
+    if a.design.has("ball-position") {
+        return Err(ThudError::invalid(
+            "--ball-position",
+            format!("cannot be combined with --ensemble {text}: the ensemble sets the ball's initial offsets"),
+        ));
+    }
+    Robust::new(runs, quantile.unwrap_or(0.5)).map(Some)
 }
 
 /// `--reference V1,V2`.
@@ -130,6 +179,7 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
     })?;
     let reference = a.reference.as_deref().map(|t| reference(t, p.objectives.len())).transpose()?;
     let target = Target::new(a.out.as_deref(), a.force)?;
+    check_figure(a, &p)?;
     if let Some(dir) = &a.save {
         check_save(dir, a.force)?;
     }
@@ -161,7 +211,129 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
         None => None,
     };
     let text = render(&p, &outcome, settings, format, saved.as_deref())?;
-    target.write(&text, out)
+    if a.svg.is_none() && a.pdf.is_none() {
+        return target.write(&text, out);
+    }
+    write_with_figure(a, &target, &text, &figure(&p, &outcome), out)
+}
+
+/// Refuses `--svg`/`--pdf` up front where no figure can be drawn (not two objectives), a file
+/// there without `--force`, or two outputs naming one file.
+fn check_figure(a: &DesignSearchArgs, p: &Problem) -> Result<(), ThudError> {
+    let outputs = [("--out", a.out.as_deref()), ("--svg", a.svg.as_deref()), ("--pdf", a.pdf.as_deref())];
+    for (flag, path) in &outputs[1..] {
+        let Some(path) = path else { continue };
+        if p.objectives.len() != 2 {
+            return Err(ThudError::invalid(
+                *flag,
+                format!(
+                    "{}: the front is drawn for two objectives; give two of --minimize/--maximize",
+                    fsio::shown(path)
+                ),
+            ));
+        }
+        if fsio::is_stdout(path) {
+            return Err(ThudError::invalid(*flag, "'-': the figure goes to a file; give a file name"));
+        }
+        Target::new(Some(path), a.force)?;
+    }
+    for (i, (flag, path)) in outputs.iter().enumerate() {
+        let Some(path) = path else { continue };
+        if let Some((other, _)) =
+            outputs[..i].iter().find(|(_, q)| q.is_some_and(|q| super::bifurcation::same_output(q, path)))
+        {
+            return Err(ThudError::invalid(
+                *flag,
+                format!("'{}' is the {other} file too; give each output a file of its own", fsio::shown(path)),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The figure of the search: the front among every feasible design evaluated, in the
+/// objectives (as the columns read), and in the variables when there are two numeric ones.
+fn figure(p: &Problem, o: &Outcome) -> String {
+    use crate::export::front::{front_svg, FrontFigure, Panel};
+    let feasible: Vec<&Candidate> = o.all.iter().filter(|c| c.feasible()).collect();
+    let front: Vec<&Candidate> = o.front.iter().map(|&i| &o.all[i]).collect();
+    let pair = |c: &Candidate| -> Option<(f64, f64)> { Some((c.objectives[0]?, c.objectives[1]?)) };
+    let label = |ob: &Objective| {
+        format!("{} ({})", ob.column.name(), if ob.sense == Sense::Minimize { "minimised" } else { "maximised" })
+    };
+    let objectives = Panel {
+        x_label: label(&p.objectives[0]),
+        y_label: label(&p.objectives[1]),
+        evaluated: feasible.iter().filter_map(|c| pair(c)).collect(),
+        front: front.iter().filter_map(|c| pair(c)).collect(),
+    };
+    let numbers = |c: &Candidate| -> Option<(f64, f64)> {
+        match (&c.values[0], &c.values[1]) {
+            (Value::Number(x), Value::Number(y)) => Some((*x, *y)),
+            _ => None,
+        }
+    };
+    let two_numbers = p.variables.len() == 2 && p.variables.iter().all(|v| matches!(v, Variable::Range { .. }));
+    let variables = two_numbers.then(|| Panel {
+        x_label: p.variables[0].column(),
+        y_label: p.variables[1].column(),
+        evaluated: feasible.iter().filter_map(|c| numbers(c)).collect(),
+        front: front.iter().filter_map(|c| numbers(c)).collect(),
+    });
+    let title = format!(
+        "Pareto front: {} designs of {} evaluated{}",
+        front.len(),
+        o.all.len(),
+        if o.partial { " (partial)" } else { "" }
+    );
+    // SPLmax against e: the design's thresholds are the zones' borders.
+    let t = &p.base.thresholds;
+    let zone_borders = match (p.objectives[0].column, p.objectives[1].column) {
+        (Column::SplMax, Column::Inclination) => Some((t.spl_db, t.inclination_cm_s)),
+        (Column::Inclination, Column::SplMax) => Some((t.inclination_cm_s, t.spl_db)),
+        _ => None,
+    };
+    front_svg(&FrontFigure { title, objectives, variables, zone_borders }, &crate::export::svg::Look::default())
+}
+
+/// Writes the report (to `--out` or standard output) and the figure to `--svg`/`--pdf`, the
+/// files as one set: all in place, or (a failure, a signal) none.
+fn write_with_figure(
+    a: &DesignSearchArgs,
+    target: &Target,
+    text: &str,
+    svg: &str,
+    out: &mut Out,
+) -> Result<(), CliError> {
+    super::output::check_text(text)?;
+    let pdf = match &a.pdf {
+        Some(_) => Some(
+            crate::export::pdf::from_svg(svg)
+                .map_err(|e| ThudError::invalid("--pdf", format!("cannot draw the PDF: {e}")))?,
+        ),
+        None => None,
+    };
+    let mut files: Vec<(&Path, &[u8])> = Vec::new();
+    if let Some(p) = &a.svg {
+        files.push((p, svg.as_bytes()));
+    }
+    if let (Some(p), Some(pdf)) = (&a.pdf, &pdf) {
+        files.push((p, pdf));
+    }
+    if let Some(p) = target.file() {
+        files.push((p, text.as_bytes()));
+    }
+    if let Err(e) = fsio::write_set(&files, fsio::Overwrite::from_force(a.force)) {
+        let p = e.path().to_path_buf();
+        return Err(super::export::write_error(&p, &e));
+    }
+    for (p, _) in &files {
+        super::warn(&format!("wrote {}", fsio::shown(p)));
+    }
+    match target.file() {
+        Some(_) => Ok(()),
+        None => target.write(text, out),
+    }
 }
 
 /// The progress line on stderr (a terminal only): evaluations, front size, hypervolume.
@@ -250,7 +422,7 @@ fn save(dir: &Path, p: &Problem, o: &Outcome, force: bool) -> Result<Vec<String>
             .collect();
         let file = crate::store::DesignFile {
             description: format!("thud design: front design {} of {}: {}", k + 1, o.front.len(), what.join(", ")),
-            ensemble: None,
+            ensemble: p.robust.map(|r| r.runs),
             uncertainty: std::collections::BTreeMap::new(),
             design: d,
         };
@@ -285,6 +457,9 @@ struct ReportJson<'a> {
     constraints: Vec<&'a str>,
     #[serde(skip_serializing_if = "<[f64]>::is_empty")]
     band_hz: &'a [f64],
+    /// Robust mode: the ball offsets (runs) and the quantile each result is taken at.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ensemble: Option<Robust>,
     evaluations: usize,
     budget: usize,
     seed: u64,
@@ -388,6 +563,7 @@ fn render(
                     .collect(),
                 constraints: p.constraints.iter().map(|c| c.text.as_str()).collect(),
                 band_hz: &p.band_hz,
+                ensemble: p.robust,
                 evaluations: o.all.len(),
                 budget: settings.evaluations,
                 seed: settings.seed,
@@ -453,6 +629,13 @@ fn render(
                     num(*first),
                     num(*last),
                     p.band_hz.len()
+                );
+            }
+            if let Some(r) = &p.robust {
+                t += &format!(
+                    "robust    {} ball offsets: each result as {} % of them do at least as well\n",
+                    r.runs,
+                    num(100.0 * r.quantile)
                 );
             }
             let hv = match (&o.hypervolume, &o.reference) {

@@ -9,6 +9,7 @@ pub mod csv;
 pub mod dynamics;
 pub mod figures;
 pub mod fit;
+pub mod front;
 pub mod pdf;
 pub mod report;
 pub mod svg;

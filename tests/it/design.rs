@@ -174,6 +174,8 @@ fn an_infeasible_problem_names_the_constraint_that_binds() {
 
 #[test]
 fn a_forced_band_front_is_the_worst_over_the_band_of_simulate_runs() {
+    // The default structure (M 0.5 kg, K 500 N/m) resonates at 5.03 Hz: the band 4.5–5.5 Hz
+    // brackets it. Worst steady amplitude against worst Leq, the ball at most 80 g.
     let home = tempfile::tempdir().unwrap();
     let dir = home.path().join("band");
     let freqs = ["4.5", "5", "5.5"];
@@ -196,7 +198,9 @@ fn a_forced_band_front_is_the_worst_over_the_band_of_simulate_runs() {
             "--minimize",
             "steady_amplitude_m",
             "--minimize",
-            "spl_max_db",
+            "steady_leq_db",
+            "--require",
+            "mass<=80g",
             "--evaluations",
             "24",
             "--seed",
@@ -211,15 +215,86 @@ fn a_forced_band_front_is_the_worst_over_the_band_of_simulate_runs() {
     assert!(!front.is_empty());
     for d in front {
         let file = dir.join(d["file"].as_str().unwrap());
-        let (mut amp, mut spl) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let (mut amp, mut leq) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for f in freqs {
             let run = json_in(home.path(), &["simulate", "--design", file.to_str().unwrap(), "--freq", f, "--json"]);
             amp = amp.max(run["steady"]["amplitude_m"].as_f64().unwrap());
-            spl = spl.max(run["spl_max_db"].as_f64().unwrap());
+            leq = leq.max(run["steady"]["leq_db"].as_f64().unwrap());
+            assert!(run["design"]["damper"]["impact_mass_kg"].as_f64().unwrap() <= 0.08);
         }
         assert_eq!(Some(amp), d["objectives"]["steady_amplitude_m"].as_f64(), "{}", file.display());
-        assert_eq!(Some(spl), d["objectives"]["spl_max_db"].as_f64());
+        assert_eq!(Some(leq), d["objectives"]["steady_leq_db"].as_f64());
+        let mass = d["variables"]["mass_kg"].as_f64().unwrap();
+        assert!((d["margins"]["mass<=80g"].as_f64().unwrap() - (0.08 - mass)).abs() < 1e-15);
     }
+}
+
+#[test]
+fn a_robust_front_design_run_again_as_an_ensemble_gives_its_printed_quantiles() {
+    // --ensemble 8 --quantile 0.9: SPLmax (minimised) is the ensemble's p90, e (maximised) its
+    // p10, as `thud simulate --ensemble 8` prints them for the saved design.
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path().join("robust");
+    let mut args = PAPER.to_vec();
+    args.extend([
+        "inclination_cm_s",
+        "--ensemble",
+        "8",
+        "--quantile",
+        "0.9",
+        "--require",
+        "spl_max_db<=104",
+        "--evaluations",
+        "24",
+        "--seed",
+        "4",
+        "--save",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let report = json_in(home.path(), &args);
+    assert_eq!(report["ensemble"]["runs"], 8);
+    let front = report["front"].as_array().unwrap();
+    assert!(!front.is_empty());
+    for d in front {
+        let file = dir.join(d["file"].as_str().unwrap());
+        let run = json_in(home.path(), &["simulate", "--design", file.to_str().unwrap(), "--ensemble", "8", "--json"]);
+        let spread = &run["spread"];
+        assert_eq!(spread["spl_max_db"]["p90"].as_f64(), d["objectives"]["spl_max_db"].as_f64(), "{run}");
+        assert_eq!(spread["inclination_cm_s"]["p10"].as_f64(), d["objectives"]["inclination_cm_s"].as_f64());
+        assert!(spread["spl_max_db"]["p90"].as_f64().unwrap() <= 104.0);
+    }
+    // Where it cannot apply: one line naming what was typed.
+    let cases: &[(&[&str], &str)] = &[
+        (&["--quantile", "0.9"], "--quantile"),
+        (&["--ensemble", "8", "--quantile", "1.5"], "1.5"),
+        (&["--ensemble", "0"], "--ensemble"),
+        (&["--ensemble", "4", "--ball-position", "1mm"], "--ball-position"),
+    ];
+    for (rest, needle) in cases {
+        let mut a = PAPER.to_vec();
+        a.push("inclination_cm_s");
+        a.extend_from_slice(rest);
+        let (code, out, err) = thud_in(home.path(), &a);
+        assert_eq!((code, out.as_str(), err.lines().count()), (2, "", 1), "{a:?}: {err}");
+        assert!(err.contains(needle), "{a:?}: '{needle}' not in {err}");
+    }
+    let forced = [
+        "design",
+        "--force-amplitude",
+        "2",
+        "--freq",
+        "5",
+        "--vary",
+        "mass=20g:120g",
+        "--minimize",
+        "steady_amplitude_m",
+        "--ensemble",
+        "4",
+    ];
+    let (code, _, err) = thud_in(home.path(), &forced);
+    assert_eq!((code, err.lines().count()), (2, 1), "{err}");
+    assert!(err.contains("--ensemble") && err.contains("steady_amplitude_m"), "{err}");
 }
 
 #[test]
@@ -244,5 +319,61 @@ fn bad_input_is_one_line_naming_what_was_typed() {
         assert!(out.is_empty(), "{args:?}");
         assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
         assert!(err.contains(needle), "{args:?}: '{needle}' not in {err}");
+    }
+}
+
+/// Starts `thud design` with `args` (stdout piped), sends SIGINT after `wait`, and returns its
+/// exit code and what it wrote.
+fn interrupted(home: &Path, args: &[&str], wait: std::time::Duration) -> (Option<i32>, String, String) {
+    use std::process::{Command, Stdio};
+    let child = Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(args)
+        .env("HOME", home)
+        .env("XDG_CONFIG_HOME", home.join("config"))
+        .env("XDG_DATA_HOME", home.join("data"))
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(wait);
+    let pid = child.id().to_string();
+    assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+    let out = crate::support::wait::wait_within(child, std::time::Duration::from_secs(60), "the interrupted design");
+    (out.status.code(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+#[test]
+fn ctrl_c_writes_the_front_found_so_far_marked_partial() {
+    let home = tempfile::tempdir().unwrap();
+    let mut args = PAPER.to_vec();
+    args.extend(["inclination_cm_s", "--require", "mass<=100g", "--evaluations", "100000", "--seed", "3", "--json"]);
+    // A budget no machine spends in the wait: the signal comes mid-search. Before the first
+    // batch there is no front to write yet, so the wait doubles until one is there.
+    let mut wait = std::time::Duration::from_millis(1500);
+    let (code, out, err) = loop {
+        let (code, out, err) = interrupted(home.path(), &args, wait);
+        if !out.is_empty() || wait > std::time::Duration::from_secs(20) {
+            break (code, out, err);
+        }
+        wait *= 2;
+    };
+    assert_eq!(code, Some(130), "ended as by SIGINT: {err}");
+    assert!(err.contains("stopped: wrote the front found so far, marked partial"), "{err}");
+    let report: Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("{e}: {out}"));
+    assert_eq!(report["partial"], true);
+    let evaluated = report["evaluations"].as_u64().unwrap();
+    assert!(evaluated > 0 && evaluated < 100_000, "{evaluated}");
+    let front = report["front"].as_array().unwrap();
+    assert!(!front.is_empty(), "{report}");
+    for d in front {
+        assert!(d["variables"]["mass_kg"].as_f64().unwrap() <= 0.1, "{d}");
+        assert!(d["margins"]["mass<=100g"].as_f64().unwrap() >= 0.0, "{d}");
+        assert!(d["index"].as_u64().unwrap() < evaluated);
+    }
+    // No two front designs dominate one another.
+    let pts = front_points(&report);
+    for a in &pts {
+        assert!(!pts.iter().any(|b| b.0 <= a.0 && b.1 <= a.1 && b != a), "{a:?} is dominated in {pts:?}");
     }
 }

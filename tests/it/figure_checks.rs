@@ -251,3 +251,41 @@ fn labels_inside_a_plot_sit_clear_of_its_data() {
     }
     assert!(checked >= 4, "the zone and threshold labels of Fig 17 are checked: {checked}");
 }
+
+#[test]
+fn the_design_front_figure_names_every_look_and_keeps_its_colours_apart() {
+    // `thud design --svg`: the front over every design evaluated, in the objectives and (two
+    // numeric variables) in the variables; the same two checks as every gallery figure.
+    let home = tempfile::tempdir().unwrap();
+    let svg = home.path().join("front.svg");
+    let args = [
+        "design",
+        "--preset",
+        "paper-table3",
+        "--vary",
+        "mass=20g:120g",
+        "--vary",
+        "gap=1cm:6cm",
+        "--minimize",
+        "spl_max_db",
+        "--maximize",
+        "inclination_cm_s",
+        "--evaluations",
+        "40",
+        "--seed",
+        "1",
+        "--svg",
+        svg.to_str().unwrap(),
+        "--json",
+    ];
+    let (code, _, err) = crate::common::thud_in(home.path(), &args);
+    assert_eq!(code, 0, "{err}");
+    let doc = std::fs::read_to_string(&svg).unwrap();
+    let (data, legend, _) = looks_of(&doc);
+    assert!(data.len() >= 2, "the designs and the front: {data:?}");
+    let missing: Vec<&Look> = data.iter().filter(|l| !legend.contains(l)).collect();
+    assert!(missing.is_empty(), "drawn but not in the legend: {missing:?}");
+    let colors: Vec<&str> = data.iter().map(|l| l.color.as_str()).collect::<BTreeSet<_>>().into_iter().collect();
+    let (d, vision, a, b) = closest_pair(&colors);
+    assert!(d >= MIN_DELTA_E, "{a} and {b} are ΔE00 {d:.1} apart with {vision}");
+}

@@ -30,6 +30,7 @@ fn main() {
         ],
         constraints: vec![],
         band_hz: vec![],
+        robust: None,
     };
     let reference = [106.0, 0.0];
     let t = Instant::now();

@@ -1,0 +1,79 @@
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a measurement fails
+//! Measures NSGA-II's knobs (docs/model.md, "Design search") on four variables (mass, gap, c1,
+//! the ball's material; min SPLmax, max e; reference 110 dB, 0 cm/s): the median hypervolume
+//! over seeds against random search and a Latin hypercube of the same budget.
+//!
+//! `cargo run --release -p thud-core --example design_tune [BUDGET] [SEEDS] [POP,SIGMA,GENES,RATE,ETA]…`
+
+use std::time::Instant;
+
+use thud_core::design::search::{self, Objective, Outcome, Problem, Sense, Settings, Tuning, Variable};
+use thud_core::design::Design;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let budget: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(150);
+    let seeds: u64 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(10);
+    let p = Problem {
+        base: Design::paper_table3().check().expect("the preset checks"),
+        variables: vec![
+            Variable::parse_range("mass=20g:120g").expect("range"),
+            Variable::parse_range("gap=1cm:6cm").expect("range"),
+            Variable::parse_range("c1=10:60").expect("range"),
+            Variable::parse_choice("sphere=steel,acrylic,nylon").expect("choice"),
+        ],
+        objectives: vec![
+            Objective::parse("spl_max_db", Sense::Minimize).expect("column"),
+            Objective::parse("inclination_cm_s", Sense::Maximize).expect("column"),
+        ],
+        constraints: vec![],
+        band_hz: vec![],
+        robust: None,
+    };
+    let reference = [110.0, 0.0];
+    let hv = |o: &Outcome| p.hypervolume(&o.all, &o.front, &reference).unwrap();
+    let mut tunings = vec![Tuning::default()];
+    for t in args.iter().skip(3) {
+        let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
+        tunings.push(Tuning {
+            population: (v[0] > 0.0).then_some(v[0] as usize),
+            sigma: v[1],
+            genes_mutated: v[2],
+            mutation_rate: v[3],
+            crossover_eta: v[4],
+        });
+    }
+    let (mut random, mut lhs) = (Vec::new(), Vec::new());
+    let t = Instant::now();
+    for seed in 1..=seeds {
+        let s = Settings { evaluations: budget, seed };
+        random.push(hv(&search::random_search(&p, s).unwrap()));
+        lhs.push(hv(&search::latin_hypercube(&p, s).unwrap()));
+    }
+    println!(
+        "budget {budget}, {seeds} seeds: random median {:.4}, LHS median {:.4} ({:.1} s)",
+        median(random),
+        median(lhs),
+        t.elapsed().as_secs_f64()
+    );
+    for tuning in tunings {
+        let t = Instant::now();
+        let v: Vec<f64> = (1..=seeds)
+            .map(|seed| {
+                let s = Settings { evaluations: budget, seed };
+                hv(&search::search_tuned(&p, s, tuning, Some(&reference), None, &|_, _, _| {}).unwrap())
+            })
+            .collect();
+        println!("{tuning:?}: median {:.4} ({:.1} s) {v:.3?}", median(v.clone()), t.elapsed().as_secs_f64());
+    }
+}
