@@ -238,3 +238,13 @@ def test_the_stub_s_keywords_are_the_runtime_s_and_the_engine_s():
     search = {"preset", "design", "vary", "choose", "minimize", "maximize", "require", "over", "evaluations",
               "seed", "reference", "no_limit"}
     assert set(runtime) == engine | search
+
+
+@pytest.mark.parametrize("cls", ["Front", "Designer"])
+def test_every_public_attribute_is_in_the_stub(cls):
+    tree = ast.parse(STUB.read_text(encoding="utf-8"))
+    node = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == cls)
+    stubbed = {n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
+    stubbed |= {n.name for n in node.body if isinstance(n, ast.FunctionDef) and not n.name.startswith("_")}
+    obj = thud.design(**PAPER, evaluations=20) if cls == "Front" else thud.Designer(**PAPER, evaluations=20)
+    assert stubbed == {n for n in dir(obj) if not n.startswith("_")}
