@@ -169,6 +169,13 @@ def _restore_front(state: str) -> Front:
     return Front(json.loads(state))
 
 
+def _error(param: str, message: str) -> Exception:
+    """A ParameterError naming `param` (its ``.param``), as the engine's."""
+    e = _thud.ParameterError(message)
+    e.param = param  # type: ignore[attr-defined]
+    return e
+
+
 def design(**params: Any) -> Front:
     return Front(json.loads(_thud._design(**params)))
 
@@ -177,8 +184,8 @@ def _read(result: Any, column: str) -> Optional[float]:
     """The value of `column` in one told result: a mapping by column, or a ``Run``."""
     if isinstance(result, Mapping):
         if column not in result:
-            raise _thud.ParameterError(f"invalid results: a result has no {column!r}; give every column of "
-                                       f"Designer.columns")
+            raise _error("results", f"invalid results: a result has no {column!r}; give every column of "
+                                    f"Designer.columns")
         v = result[column]
     elif column in _STEADY:
         steady = getattr(result, "steady", None)
@@ -186,8 +193,8 @@ def _read(result: Any, column: str) -> Optional[float]:
     elif hasattr(result, column):
         v = getattr(result, column)
     else:
-        raise _thud.ParameterError(f"invalid results: expected a mapping by column or a thud.Run, not "
-                                   f"{type(result).__name__}")
+        raise _error("results", f"invalid results: expected a mapping by column or a thud.Run, not "
+                                f"{type(result).__name__}")
     return None if v is None else float(v)
 
 
@@ -201,9 +208,14 @@ class Designer:
     The same NSGA-II as ``thud.design`` (same operators, generations and seed): told the
     results ``thud.simulate`` gives, it finds exactly ``thud.design``'s front. The search waits
     for a whole batch (its population) to be told before it asks for the next, so ``ask(n)``
-    returns fewer than n points (or none) while points asked are still out."""
+    returns fewer than n points (or none) while points asked are still out. A band (``over``)
+    is ``thud.design``'s alone: a Designer is told one run's results per design."""
 
     def __init__(self, **params: Any) -> None:
+        if params.get("over") is not None:
+            # A told result is one run's; a band's worst over its frequencies is thud.design's.
+            raise _error("over", "invalid over: a Designer is told one run's results per design; "
+                                 "search a band with thud.design")
         self._native = _thud._Designer(**params)
         self._base: Dict[str, Any] = {k: v for k, v in params.items() if k not in _SEARCH and v is not None}
         record = json.loads(self._native.result())
@@ -238,7 +250,7 @@ class Designer:
         "gap": 0.021}``); fewer, or none, while the batch under way waits for points already
         asked; none once ``done``."""
         if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            raise _thud.ParameterError(f"invalid n: expected a whole number ≥ 1, not {n!r}")
+            raise _error("n", f"invalid n: expected a whole number ≥ 1, not {n!r}")
         rows = self._native.ask(n)
         return [dict(zip(self._front_keys, row)) for row in rows]
 
@@ -247,14 +259,14 @@ class Designer:
         a mapping by column (``{"spl_max_db": 99.7, "inclination_cm_s": 0.79}``, None where the
         run has no value), or an exception or text saying why the point could not be run."""
         if len(xs) != len(results):
-            raise _thud.ParameterError(f"invalid results: {len(results)} results for {len(xs)} points")
+            raise _error("results", f"invalid results: {len(results)} results for {len(xs)} points")
         columns = self.columns
         for x, r in zip(xs, results):
             try:
                 values = [x[k] for k in self._front_keys]
             except (KeyError, TypeError):
-                raise _thud.ParameterError(f"invalid xs: expected a point as ask gave it (keys "
-                                           f"{', '.join(self._front_keys)}), not {x!r}") from None
+                raise _error("xs", f"invalid xs: expected a point as ask gave it (keys "
+                                  f"{', '.join(self._front_keys)}), not {x!r}") from None
             told: Union[str, List[Optional[float]]]
             if isinstance(r, (str, BaseException)):
                 told = str(r) or type(r).__name__
