@@ -82,7 +82,10 @@ pub struct AskTell {
 
 impl std::fmt::Debug for AskTell {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("AskTell").field("evaluations", &self.all.len()).field("done", &self.finished).finish()
+        f.debug_struct("AskTell")
+            .field("evaluations", &self.all.len())
+            .field("done", &self.finished)
+            .finish_non_exhaustive()
     }
 }
 
@@ -199,7 +202,8 @@ impl AskTell {
             Err(why) => failed(&self.problem, index, values.to_vec(), why),
         };
         slots[i] = Some(candidate);
-        self.finish_batch_if_told()
+        self.finish_batch_if_told();
+        Ok(())
     }
 
     /// What the search has found so far (marked partial until [`Self::done`]).
@@ -219,44 +223,42 @@ impl AskTell {
     /// Waits for the algorithm's next batch; settles at once the points whose design fails
     /// its check (never asked); marks the search done when the algorithm has ended.
     fn next_batch(&mut self) -> Result<(), ThudError> {
-        match self.batches.recv() {
-            Ok((first, points)) => {
-                let mut slots: Vec<Option<Candidate>> = vec![None; points.len()];
-                self.waiting.clear();
-                for (i, p) in points.iter().enumerate() {
-                    match self.problem.runs_at(p) {
-                        Ok(_) => self.waiting.push_back(i),
-                        Err(e) => slots[i] = Some(failed(&self.problem, first + i, p.clone(), e.to_string())),
-                    }
+        let Ok((first, points)) = self.batches.recv() else {
+            // The algorithm has ended (its generations run, or it failed).
+            self.finished = true;
+            if let Some(t) = self.thread.take() {
+                match t.join() {
+                    Ok(Ok(())) => {}
+                    Ok(Err(e)) => self.failure = Some(e),
+                    Err(_) => self.failure = Some("the optimiser stopped unexpectedly".into()),
                 }
-                self.points = points;
-                self.current = Some((first, slots));
-                self.finish_batch_if_told()
             }
-            Err(_) => {
-                self.finished = true;
-                if let Some(t) = self.thread.take() {
-                    match t.join() {
-                        Ok(Ok(())) => {}
-                        Ok(Err(e)) => self.failure = Some(e),
-                        Err(_) => self.failure = Some("the optimiser stopped unexpectedly".into()),
-                    }
-                }
-                match &self.failure {
-                    Some(e) => Err(ThudError::invalid("evaluations", e.clone())),
-                    None => Ok(()),
-                }
+            return match &self.failure {
+                Some(e) => Err(ThudError::invalid("evaluations", e.clone())),
+                None => Ok(()),
+            };
+        };
+        let mut slots: Vec<Option<Candidate>> = vec![None; points.len()];
+        self.waiting.clear();
+        for (i, p) in points.iter().enumerate() {
+            match self.problem.runs_at(p) {
+                Ok(_) => self.waiting.push_back(i),
+                Err(e) => slots[i] = Some(failed(&self.problem, first + i, p.clone(), e.to_string())),
             }
         }
+        self.points = points;
+        self.current = Some((first, slots));
+        self.finish_batch_if_told();
+        Ok(())
     }
 
     /// Hands a fully told batch back to the algorithm and keeps its candidates.
-    fn finish_batch_if_told(&mut self) -> Result<(), ThudError> {
+    fn finish_batch_if_told(&mut self) {
         let complete = self.current.as_ref().is_some_and(|(_, s)| s.iter().all(Option::is_some));
         if !complete {
-            return Ok(());
+            return;
         }
-        let Some((_, slots)) = self.current.take() else { return Ok(()) };
+        let Some((_, slots)) = self.current.take() else { return };
         let done: Vec<Candidate> = slots.into_iter().flatten().collect();
         self.all.extend(done.iter().cloned());
         if !self.given_reference && self.reference.is_none() && self.problem.objectives.len() == 2 {
@@ -264,7 +266,6 @@ impl AskTell {
         }
         // The algorithm gone (it failed): the next ask finds out.
         let _ = self.answers.send(done);
-        Ok(())
     }
 }
 
@@ -484,13 +485,12 @@ mod tests {
             let xs = at.ask(n).unwrap();
             for x in xs.iter().rev() {
                 let c = p.evaluate(0, x.clone(), None);
-                let told = match c.error {
-                    Some(e) => Err(e),
-                    None => {
-                        let runs = p.runs_at(x).unwrap();
-                        let e = crate::design::evaluate(&runs[0], 0, None).unwrap();
-                        Ok(columns.iter().map(|col| col.value(&e.metrics, e.steady.as_ref())).collect())
-                    }
+                let told = if let Some(e) = c.error {
+                    Err(e)
+                } else {
+                    let runs = p.runs_at(x).unwrap();
+                    let e = crate::design::evaluate(&runs[0], 0, None).unwrap();
+                    Ok(columns.iter().map(|col| col.value(&e.metrics, e.steady.as_ref())).collect())
                 };
                 at.tell(x, told).unwrap();
             }
