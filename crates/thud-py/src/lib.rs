@@ -25,6 +25,8 @@
 //! Python-facing documentation is in the `#[pyo3]` items and the stub `python/thud/__init__.pyi`.
 
 mod args;
+#[path = "design.rs"]
+mod design_search;
 mod designfile;
 mod detach;
 mod fit;
@@ -695,5 +697,7 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(objects::_restore, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_structure, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_damper, m)?)?;
+    m.add_function(wrap_pyfunction!(design_search::_design, m)?)?;
+    m.add_class::<design_search::PyDesigner>()?;
     Ok(())
 }

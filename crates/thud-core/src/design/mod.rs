@@ -1,6 +1,7 @@
 //! A damper design and what it is worth: damping inclination (Eq 27), peak contact speed, peak
 //! SPL, zones (Figs 15–17), the design sweep over mass × gap and Table 5. Pure functions.
 
+pub mod asktell;
 mod chart;
 mod metrics;
 mod restitution;

@@ -36,6 +36,7 @@ from ._thud import (
     ranges,
     schema,
 )
+from ._design import Designer, Front, design
 from ._results import ImpactMap, Orbit
 from ._results import _restore_record
 from ._results import continuation_xarray as _continuation_xarray
@@ -44,7 +45,9 @@ from ._wrap import with_progress as _progress
 
 __all__ = [
     "Chart",
+    "Designer",
     "Ensemble",
+    "Front",
     "ImpactMap",
     "Orbit",
     "ParameterError",
@@ -54,6 +57,7 @@ __all__ = [
     "axis",
     "bifurcation",
     "continuation",
+    "design",
     "fit_damper",
     "fit_structure",
     "impact_map",

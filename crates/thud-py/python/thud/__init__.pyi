@@ -987,3 +987,168 @@ def fit_damper(
     c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr, residual_rms,
     and note where c1 is poorly bounded).
     ``t_s`` and ``x`` may be lists of records (repeated strikes), fitted together."""
+
+
+# ---- The design search (thud design): design(), Front, Designer ----
+
+from typing import Mapping
+
+#: A value of one design variable: a number in the row's plain unit (an int for a count) or a
+#: name; a point is handed out as keywords (Any, so it spreads into ``simulate(**x)``).
+DesignValue = Any
+#: One text in the command line's words, or a list of them ("mass=20g:120g").
+Texts = Union[str, Sequence[str], None]
+
+class Front:
+    """The Pareto front of a design search (``thud.design``; ``thud design --json``): every
+    non-dominated design with its variables, objectives and constraint margins, and the
+    search's budget, seed, reference point and hypervolume."""
+    design: Dict[str, Any]
+    variables: List[Dict[str, Any]]
+    objectives: List[Dict[str, Any]]
+    constraints: List[str]
+    band_hz: List[float]
+    evaluations: int
+    budget: int
+    seed: int
+    partial: bool
+    reference: Optional[List[float]]
+    hypervolume: Optional[float]
+    binding: Optional[str]
+    @property
+    def designs(self) -> List[Dict[str, Any]]:
+        """The front designs: index, variables, objectives and margins, each a dict by column."""
+    def keywords(self, k: int) -> Dict[str, DesignValue]:
+        """The k-th front design's variables as keywords, for ``thud.simulate(**base, **kw)``."""
+    def to_dataframe(self) -> Any:
+        """One row per front design: index, variables, objectives, margins (``--csv``'s columns)."""
+    def to_xarray(self) -> Any:
+        """The front on the dimension design; the search in attrs."""
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """The command line's ``thud design --json`` record."""
+    def __len__(self) -> int: ...
+
+def design(
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    vary: Texts = None,
+    choose: Texts = None,
+    minimize: Texts = None,
+    maximize: Texts = None,
+    require: Texts = None,
+    over: Optional[str] = None,
+    evaluations: Union[int, str] = 400,
+    seed: int = 0,
+    reference: Optional[Sequence[float]] = None,
+    no_limit: bool = False,
+) -> Front:
+    """The best dampers within the user's limits, as a Pareto front (``thud design``)."""
+
+class Designer:
+    """The design search in ask/tell form: ask for points, evaluate them anywhere, tell the
+    results back, until ``done``; ``result()`` is the Front."""
+    def __init__(
+        self,
+        *,
+        preset: Optional[str] = None,
+        design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+        mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+        gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+        v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+        main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+        k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+        c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+        c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+        k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+        sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+        plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+        sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+        no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+        duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+        solver: Optional[Solver] = None,  # Solver
+        dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+        density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+        radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+        r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+        theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+        source: Optional[Source] = None,  # Reflecting surfaces around the impact
+        quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+        pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+        model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+        air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+        air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+        l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+        e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+        force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+        freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+        ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+        ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+        periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+        settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+        vary: Texts = None,
+        choose: Texts = None,
+        minimize: Texts = None,
+        maximize: Texts = None,
+        require: Texts = None,
+        over: Optional[str] = None,
+        evaluations: Union[int, str] = 400,
+        seed: int = 0,
+        reference: Optional[Sequence[float]] = None,
+        no_limit: bool = False,
+    ) -> None: ...
+    @property
+    def base(self) -> Dict[str, Any]:
+        """The base design's keywords, to run a point with: ``thud.simulate(**d.base, **x)``."""
+    @property
+    def columns(self) -> List[str]:
+        """The result columns a told result carries."""
+    @property
+    def done(self) -> bool:
+        """Whether the search is over."""
+    @property
+    def outstanding(self) -> int:
+        """Points asked and not told yet."""
+    def ask(self, n: int = 1) -> List[Dict[str, DesignValue]]:
+        """Up to n points to evaluate, each the variables as keywords."""
+    def tell(
+        self,
+        xs: Sequence[Mapping[str, DesignValue]],
+        results: Sequence[Union[Run, Mapping[str, Optional[float]], str, BaseException]],
+    ) -> None:
+        """What each point gave: a Run, a dict by column, or why it could not be run."""
+    def result(self) -> Front:
+        """The front of every design told so far (partial until done)."""
