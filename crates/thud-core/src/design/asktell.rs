@@ -473,6 +473,7 @@ mod tests {
             ],
             constraints,
             band_hz: vec![],
+            robust: None,
         }
     }
 
