@@ -19,11 +19,8 @@ use std::thread::JoinHandle;
 
 use ndarray::Array2;
 
-use super::search::{self, Bound, Candidate, Column, Objective, Outcome, Problem, Sense, Settings, Value};
+use super::search::{self, Bound, Candidate, Column, Objective, Outcome, Problem, Sense, Settings, Value, PENALTY};
 use crate::error::ThudError;
-
-/// The penalty objective of a point without a value: the search's.
-const PENALTY: f64 = 1e12;
 
 /// A point's identity: its values, bit for bit.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -433,16 +430,7 @@ impl<B: Fn(&Array2<f64>) -> Vec<Option<usize>>> moors::ConstraintsFn for MirrorC
     fn call(&self, genes: &Array2<f64>) -> Array2<f64> {
         let idx = (self.batch)(genes);
         let st = self.archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let mut out = Array2::from_elem((idx.len(), self.n_con), PENALTY);
-        for (r, i) in idx.iter().enumerate() {
-            let Some(c) = i.map(|i| &st.all[i]) else { continue };
-            for (k, m) in c.margins.iter().enumerate() {
-                out[[r, k]] = m.map_or(PENALTY, |m| -m);
-            }
-            let ok = c.error.is_none() && c.objectives.iter().all(Option::is_some);
-            out[[r, self.n_con - 1]] = if ok { 0.0 } else { PENALTY };
-        }
-        out
+        search::constraint_rows(&st.all, &idx, self.n_con)
     }
 
     fn lower_bound(&self) -> Option<f64> {

@@ -907,7 +907,7 @@ impl<'a> Archive<'a> {
 }
 
 /// The penalty objective of a point that has no value (not run, undefined, past the budget).
-const PENALTY: f64 = 1e12;
+pub(super) const PENALTY: f64 = 1e12;
 
 /// The population of NSGA-II for a budget of `n` evaluations: a tenth of it, even, 8 to 100.
 #[must_use]
@@ -1021,16 +1021,7 @@ impl moors::ConstraintsFn for Constraints<'_, '_> {
         let rows: Vec<Vec<f64>> = genes.outer_iter().map(|r| r.to_vec()).collect();
         let idx = self.archive.batch(&rows);
         let st = self.archive.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let mut out = Array2::from_elem((idx.len(), self.n_con), PENALTY);
-        for (r, i) in idx.iter().enumerate() {
-            let Some(c) = i.map(|i| &st.1[i]) else { continue };
-            for (k, m) in c.margins.iter().enumerate() {
-                out[[r, k]] = m.map_or(PENALTY, |m| -m);
-            }
-            let ok = c.error.is_none() && c.objectives.iter().all(Option::is_some);
-            out[[r, self.n_con - 1]] = if ok { 0.0 } else { PENALTY };
-        }
-        out
+        constraint_rows(&st.1, &idx, self.n_con)
     }
 
     fn lower_bound(&self) -> Option<f64> {
@@ -1040,6 +1031,23 @@ impl moors::ConstraintsFn for Constraints<'_, '_> {
     fn upper_bound(&self) -> Option<f64> {
         Some(1.0)
     }
+}
+
+/// The constraint rows `moors` reads for a batch whose points are the archived candidates
+/// `idx` of `all` (None: a point over the budget): each constraint's margin negated (≤ 0 is
+/// met), then one row that is 0 where the design evaluated and every objective has a value;
+/// [`PENALTY`] where a value is missing.
+pub(super) fn constraint_rows(all: &[Candidate], idx: &[Option<usize>], n_con: usize) -> Array2<f64> {
+    let mut out = Array2::from_elem((idx.len(), n_con), PENALTY);
+    for (r, i) in idx.iter().enumerate() {
+        let Some(c) = i.map(|i| &all[i]) else { continue };
+        for (k, m) in c.margins.iter().enumerate() {
+            out[[r, k]] = m.map_or(PENALTY, |m| -m);
+        }
+        let ok = c.error.is_none() && c.objectives.iter().all(Option::is_some);
+        out[[r, n_con - 1]] = if ok { 0.0 } else { PENALTY };
+    }
+    out
 }
 
 /// A small seeded generator for the baselines (SplitMix64).
