@@ -44,6 +44,11 @@ pub enum ConfigAction {
     Check,
 }
 
+/// What `thud config check` reads and what it leaves to the commands, said after "no problems".
+const CHECKED: &str = "checked: the TOML syntax, every key and value, and [design] on the default preset \
+     against `thud limits`; not checked: [design] on another --preset, or with a command's own \
+     flags (each command checks those when it runs)";
+
 /// `thud config check`: every problem of the user's `config.toml` on standard output, then one
 /// line on stderr and exit 2 if there was any.
 pub fn run(a: &ConfigArgs, out: &mut Out) -> Result<(), CliError> {
@@ -56,7 +61,7 @@ pub fn run(a: &ConfigArgs, out: &mut Out) -> Result<(), CliError> {
         return out.text(&format!("{path}: no such file; the defaults are used\n"));
     }
     if check.problems.is_empty() {
-        return out.text(&format!("{path}: no problems\n"));
+        return out.text(&format!("{path}: no problems; {CHECKED}\n"));
     }
     // The file's own text echoed (a `nan` it holds is no result of thud's): written as it is.
     let max = config::MAX_LISTED_PROBLEMS;

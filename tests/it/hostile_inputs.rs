@@ -935,6 +935,13 @@ fn config_warnings_stay_apart_from_errors_and_config_check_lists_every_problem()
     let r = thud_in(home.path(), &["config", "check"]);
     assert_eq!((r.code, r.stderr.as_str()), (0, ""), "{}", r.stdout);
     assert!(r.stdout.contains("no problems"), "{}", r.stdout);
+    // The closing line says what was checked and what is left to the commands.
+    assert_eq!(r.stdout.lines().count(), 1, "{}", r.stdout);
+    assert!(
+        r.stdout.contains("checked: the TOML syntax") && r.stdout.contains("not checked: [design] on another --preset"),
+        "{}",
+        r.stdout
+    );
 }
 
 /// Item 10: a saved design is held to the caps of typed values: a duration of 1e6 s (inside
