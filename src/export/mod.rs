@@ -11,6 +11,7 @@ pub mod figures;
 pub mod fit;
 pub mod pdf;
 pub mod report;
+pub mod studies;
 pub mod svg;
 pub mod wav;
 
