@@ -141,7 +141,7 @@ impl OrbitArgs {
 
 /// Whether two outputs go to one place: both to standard output (`-`), or one file named two
 /// ways (`o.svg`, `./o.svg`, `dir/../o.svg`, a symbolic link to the folder).
-pub(super) fn same_output(a: &std::path::Path, b: &std::path::Path) -> bool {
+fn same_output(a: &std::path::Path, b: &std::path::Path) -> bool {
     if fsio::is_stdout(a) || fsio::is_stdout(b) {
         return fsio::is_stdout(a) && fsio::is_stdout(b);
     }

@@ -4,7 +4,6 @@
 
 use std::path::Path;
 
-use super::sweep::Target;
 use super::{AsciiArgs, CliError, Out};
 use crate::error::ThudError;
 use crate::fsio::{self, Overwrite};
@@ -24,10 +23,10 @@ impl<'a> FigureOutputs<'a> {
         self.svg.is_some() || self.pdf.is_some()
     }
 
-    /// The table's target, every file checked first (an existing one without --force is
-    /// refused before the work); two outputs naming one file, or both going to standard
-    /// output, are refused before anything is written.
-    pub(super) fn check(&self) -> Result<Target<'a>, ThudError> {
+    /// Every file checked first (an existing one without --force is refused before the work);
+    /// two outputs naming one file, or both going to standard output, are refused before
+    /// anything is written.
+    pub(super) fn check(&self) -> Result<(), ThudError> {
         let outputs = [
             ("--out", self.out.unwrap_or(Path::new("-"))),
             ("--svg", self.svg.unwrap_or(Path::new(""))),
@@ -37,7 +36,7 @@ impl<'a> FigureOutputs<'a> {
             if path.as_os_str().is_empty() {
                 continue;
             }
-            if let Some((other, _)) = outputs[..i].iter().find(|(_, p)| super::bifurcation::same_output(p, path)) {
+            if let Some((other, _)) = outputs[..i].iter().find(|(_, p)| same_output(p, path)) {
                 let what = if fsio::is_stdout(path) {
                     format!("standard output carries the {other} output already (without --out, the table)")
                 } else {
@@ -46,16 +45,22 @@ impl<'a> FigureOutputs<'a> {
                 return Err(ThudError::invalid(*flag, format!("{what}; give each output a file of its own")));
             }
         }
-        Target::new(self.svg, self.force)?;
-        Target::new(self.pdf, self.force)?;
-        Target::new(self.out, self.force)
+        for p in [self.svg, self.pdf, self.table_file()].into_iter().flatten() {
+            fsio::check_target(p, Overwrite::from_force(self.force)).map_err(|e| super::export::out_error(p, &e))?;
+        }
+        Ok(())
+    }
+
+    /// The table's file, if not standard output.
+    fn table_file(&self) -> Option<&'a Path> {
+        self.out.filter(|p| !fsio::is_stdout(p))
     }
 
     /// Writes `text` (the table) to `--out` or standard output and `figure` (an SVG document)
     /// to `--svg` and `--pdf`. Every output is made before the first file is written, so a
     /// failure to draw one leaves every file as it was.
     pub(super) fn write(&self, text: &str, figure: Option<String>, out: &mut Out) -> Result<(), CliError> {
-        let table = self.check()?;
+        self.check()?;
         super::output::check_text(text)?;
         let svg = figure.filter(|_| self.wants_figure()).map(|f| self.ascii.figure(f));
         let pdf = match (self.pdf, &svg) {
@@ -72,7 +77,7 @@ impl<'a> FigureOutputs<'a> {
         if let (Some(p), Some(pdf)) = (self.pdf, &pdf) {
             files.push((p, pdf));
         }
-        if let Some(p) = table.file() {
+        if let Some(p) = self.table_file() {
             files.push((p, text.as_bytes()));
         }
         if let Err(e) = fsio::write_set(&files, Overwrite::from_force(self.force)) {
@@ -82,9 +87,29 @@ impl<'a> FigureOutputs<'a> {
         for (p, _) in &files {
             super::warn(&format!("wrote {}", fsio::shown(p)));
         }
-        match table.file() {
+        match self.table_file() {
             Some(_) => Ok(()),
-            None => table.write(text, out),
+            None => out.text(text),
         }
+    }
+}
+
+/// Whether two outputs go to one place: both to standard output (`-`), or one file named two
+/// ways (`o.svg`, `./o.svg`, `dir/../o.svg`, a symbolic link to the folder).
+fn same_output(a: &Path, b: &Path) -> bool {
+    if fsio::is_stdout(a) || fsio::is_stdout(b) {
+        return fsio::is_stdout(a) && fsio::is_stdout(b);
+    }
+    // The folder resolved, the name as given: the file itself need not exist yet.
+    let place = |p: &Path| {
+        let dir = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        dir.canonicalize().ok().zip(p.file_name().map(std::ffi::OsStr::to_os_string))
+    };
+    match (place(a), place(b)) {
+        (Some(x), Some(y)) => x == y,
+        _ => a == b,
     }
 }

@@ -104,7 +104,8 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
     a.design.check_ensemble(runs)?;
     let files = a.outputs();
-    let target = files.check()?;
+    files.check()?;
+    let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
         let (k, n) = parse_shard(text, masses.len() * gaps.len())?;
         let study = Study { design: d.into_design(), masses_kg: masses, gaps_m: gaps, band_cm_s: band, ensemble: runs };
@@ -161,7 +162,8 @@ fn vary(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         .into());
     }
     let files = a.outputs();
-    let target = files.check()?;
+    files.check()?;
+    let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
         let d = super::study::design_for(&a.design, &a.vary)?;
         let grid = super::study::grid(d, &a.vary)?;
