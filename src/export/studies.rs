@@ -228,13 +228,12 @@ fn heat_maps(xs: &[f64], ys: &[f64], labels: (&str, &str), maps: &[HeatMap], tit
         let mut missing = false;
         for i in 0..xs.len() {
             for j in 0..ys.len() {
-                let fill = match (map.value)(i, j).filter(|v| v.is_finite()) {
-                    Some(v) => viridis(if hi > lo { (v - lo) / (hi - lo) } else { 0.5 }),
-                    None => {
-                        missing = true;
-                        NO_VALUE.to_string()
-                    }
-                };
+                let value = (map.value)(i, j).filter(|v| v.is_finite());
+                missing |= value.is_none();
+                let fill = value.map_or_else(
+                    || NO_VALUE.to_string(),
+                    |v| viridis(if hi > lo { (v - lo) / (hi - lo) } else { 0.5 }),
+                );
                 let (px0, px1) = (frame.px(ex[i]), frame.px(ex[i + 1]));
                 let (py0, py1) = (frame.py(ey[j + 1]), frame.py(ey[j]));
                 let (l, t) = (px0.min(px1), py0.min(py1));
