@@ -356,3 +356,14 @@ fn the_colour_bar_check_fails_on_a_bar_that_turns_back_to_its_start() {
     let svg = format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{frame}{viridis}{bar}</svg>"#);
     assert!(bar_problems("viridis", &svg).is_empty(), "{:?}", bar_problems("viridis", &svg));
 }
+
+#[test]
+fn the_gallery_s_basins_show_more_than_one_attractor() {
+    // A basins figure of one flat colour tells nothing: the gallery's (and the guide's) run at
+    // 7.5 Hz shows at least two attractors, each a colour of its own in the map and the legend.
+    let svg = &made().pictures["basins.svg"];
+    let (data, legend, _) = looks_of(svg);
+    let cells: BTreeSet<&str> = data.iter().filter(|l| l.kind == "cell").map(|l| l.color.as_str()).collect();
+    assert!(cells.len() >= 2, "one colour of cell: {cells:?}");
+    assert!(cells.iter().all(|c| legend.iter().any(|l| l.color == *c)), "{cells:?} against {legend:?}");
+}
