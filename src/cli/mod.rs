@@ -9,6 +9,7 @@ mod design;
 pub mod design_args;
 mod errors;
 mod export;
+mod figure_out;
 mod fit;
 #[doc(hidden)]
 pub use fit::series_from_text as fit_record_from_text;

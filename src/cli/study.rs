@@ -53,20 +53,37 @@ struct StudyJson<'a> {
     study: &'a Study,
 }
 
-/// `thud sweep --vary …`: the study, as `format` prints it.
+/// `thud sweep --vary …`: the study, as `format` prints it, and the study itself.
 pub(super) fn sweep_vary(
     design: &DesignArgs<ForceAmplitude>,
     vary: &[String],
     ctx: &Ctx,
     format: OutputFormat,
-) -> Result<String, CliError> {
+) -> Result<(String, Study), CliError> {
     let d = design_for(design, vary)?;
     let grid = grid(d.clone(), vary)?;
     design.check_study(ctx, &grid)?;
     let bar = budget::bar(grid.cells() as u64, "sweep");
     let s = study::sweep(&grid, None, &|_, _| bar.inc(1))?;
     bar.finish_and_clear();
-    render(&d, &s, format)
+    Ok((render(&d, &s, format)?, s))
+}
+
+/// The figure of a study over one or two parameters (None over more), titled with what varies
+/// over its whole range.
+pub(super) fn figure(s: &Study) -> Option<String> {
+    let range = |a: &Axis| {
+        let (lo, hi) = a.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+        let unit = if a.unit.is_empty() { String::new() } else { format!(" {}", a.unit) };
+        if hi > lo {
+            format!("{} {}–{}{unit}", a.name, crate::units::short(lo), crate::units::short(hi))
+        } else {
+            format!("{} {}{unit}", a.name, crate::units::short(lo))
+        }
+    };
+    let over: Vec<String> = s.axes.iter().map(range).collect();
+    let title = format!("Study over {}", over.join(" × "));
+    crate::export::studies::study(s, &title, &crate::export::svg::Look::default())
 }
 
 /// The study as `thud sweep --vary` prints it (checked finite).
@@ -93,7 +110,8 @@ fn text(d: &Design, s: &Study) -> String {
         .iter()
         .map(|a| format!("{} ({} value{})", heading(a), a.values.len(), if a.values.len() == 1 { "" } else { "s" }))
         .collect();
-    t += &format!("study     {} = {} cells\n\n", dims.join(" × "), s.cells.len());
+    let n = s.cells.len();
+    t += &format!("study     {} = {n} cell{}\n\n", dims.join(" × "), if n == 1 { "" } else { "s" });
     for a in &s.axes {
         t += &format!("{:>14}", heading(a));
     }

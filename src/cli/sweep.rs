@@ -8,11 +8,13 @@ use serde::Serialize;
 
 use super::budget;
 use super::design_args::{parse_range, DesignArgs, ForceAmplitude};
+use super::figure_out::FigureOutputs;
 use super::simulate::describe;
 use super::{count, quantity, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::{self, Band, Chart, Design, ZoneBy};
 use crate::ensemble::{self, EnsembleChart};
 use crate::error::ThudError;
+use crate::export::svg::Look;
 use crate::fsio::{self, Overwrite};
 use crate::limits::{self, short};
 use crate::shard::{self, Header, PartCell, Study};
@@ -47,11 +49,32 @@ pub struct SweepArgs {
     /// kept unless --force. Written whole or not at all.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
-    /// Replace the --out file if it exists.
-    #[arg(long, requires = "out")]
+    /// Also write the figure as SVG to this file.
+    #[arg(long, value_name = "FILE", conflicts_with = "shard")]
+    svg: Option<PathBuf>,
+    /// Also write the figure as PDF to this file.
+    #[arg(long, value_name = "FILE", conflicts_with = "shard")]
+    pdf: Option<PathBuf>,
+    /// Replace the --out, --svg or --pdf file if it exists.
+    #[arg(long)]
     force: bool,
     #[command(flatten)]
+    ascii: super::AsciiArgs,
+    #[command(flatten)]
     output: OutputArgs,
+}
+
+impl SweepArgs {
+    /// Where the table and its figure go.
+    fn outputs(&self) -> FigureOutputs<'_> {
+        FigureOutputs {
+            out: self.out.as_deref(),
+            svg: self.svg.as_deref(),
+            pdf: self.pdf.as_deref(),
+            force: self.force,
+            ascii: self.ascii,
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -80,6 +103,8 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let band = quantity("band", &a.band, Kind::Inclination, &limits::BAND)?.unwrap_or(DEFAULT_BAND_CM_S);
     let runs = count("ensemble", &a.ensemble, &limits::ENSEMBLE)?;
     a.design.check_ensemble(runs)?;
+    let files = a.outputs();
+    files.check()?;
     let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
         let (k, n) = parse_shard(text, masses.len() * gaps.len())?;
@@ -102,7 +127,29 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     };
     let band_text = a.band.clone().unwrap_or_else(|| format!("{DEFAULT_BAND_CM_S} (the default)"));
     let text = render(ctx, &d, &chart, band, &band_text, a.output.format())?;
-    target.write(&text, out)
+    let figure = files.wants_figure().then(|| match &chart {
+        Charted::Plain(c) => crate::export::figures::design_chart(
+            c,
+            &format!("Design chart: zone of each impact mass × gap — {}", short_base(&d)),
+            &Look::default(),
+        ),
+        Charted::Ensemble(e) => crate::export::studies::ensemble_chart(
+            e,
+            &format!("Ensemble chart: {} runs a cell over impact mass × gap — {}", e.runs, short_base(&d)),
+            &Look::default(),
+        ),
+    });
+    files.write(&text, figure, out)
+}
+
+/// The base design in a figure's title: what the chart holds fixed.
+fn short_base(d: &Design) -> String {
+    let p = &d.damper;
+    let mut s = format!("v0 {} m/s", short(p.v0_m_s));
+    if p.force_n != 0.0 {
+        s += &format!(", F0 {} N at {} Hz", short(p.force_n), short(p.freq_hz));
+    }
+    s
 }
 
 /// `thud sweep --vary …` ([`super::study`]): one run a cell (no ensemble, no shards yet).
@@ -114,6 +161,8 @@ fn vary(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         )
         .into());
     }
+    let files = a.outputs();
+    files.check()?;
     let target = Target::new(a.out.as_deref(), a.force)?;
     if let Some(text) = &a.shard {
         let d = super::study::design_for(&a.design, &a.vary)?;
@@ -122,8 +171,20 @@ fn vary(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         let s = super::study::write_shard(&a.design, ctx, &grid, part, a.output.csv)?;
         return target.write(&s, out);
     }
-    let s = super::study::sweep_vary(&a.design, &a.vary, ctx, a.output.format())?;
-    target.write(&s, out)
+    if files.wants_figure() && !(1..=2).contains(&a.vary.len()) {
+        let flag = if a.svg.is_some() { "--svg" } else { "--pdf" };
+        return Err(ThudError::invalid(
+            flag,
+            format!(
+                "a figure draws a study over one or two parameters, not {}; leave out {flag} or give at most two --vary",
+                a.vary.len()
+            ),
+        )
+        .into());
+    }
+    let (text, study) = super::study::sweep_vary(&a.design, &a.vary, ctx, a.output.format())?;
+    let figure = files.wants_figure().then(|| super::study::figure(&study)).flatten();
+    files.write(&text, figure, out)
 }
 
 /// A computed chart: the ordinary one, or one of ensembles.

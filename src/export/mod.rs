@@ -12,6 +12,7 @@ pub mod fit;
 pub mod front;
 pub mod pdf;
 pub mod report;
+pub mod studies;
 pub mod svg;
 pub mod wav;
 

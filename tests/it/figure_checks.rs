@@ -289,3 +289,119 @@ fn the_design_front_figure_names_every_look_and_keeps_its_colours_apart() {
     let (d, vision, a, b) = closest_pair(&colors);
     assert!(d >= MIN_DELTA_E, "{a} and {b} are ΔE00 {d:.1} apart with {vision}");
 }
+
+/// The colour bars of `svg`, each its slices' colours top to bottom, and the swatches outside
+/// every frame (a legend's cells, e.g. "no value"). A bar is a box (`fill="none"`) filled by
+/// more than [`SCALE_COLORS`] colours of slices as wide as it.
+fn color_bars(svg: &str) -> (Vec<Vec<String>>, Vec<String>) {
+    let doc = Document::parse(svg).unwrap();
+    let (frames, _) = marks(&doc);
+    let filled: Vec<(f64, f64, f64, f64, String)> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("rect"))
+        .filter(|n| !n.ancestors().any(|a| a.has_tag_name("clipPath") || a.has_tag_name("defs")))
+        .filter_map(|n| {
+            let fill = n.attribute("fill")?;
+            (fill != "none" && fill != "white")
+                .then(|| (num(&n, "x"), num(&n, "y"), num(&n, "width"), num(&n, "height"), fill.to_string()))
+        })
+        .collect();
+    let mut bars = vec![];
+    for &(fx, fy, fw, fh) in &frames {
+        let mut slices: Vec<&(f64, f64, f64, f64, String)> = filled
+            .iter()
+            .filter(|r| {
+                (r.0 - fx).abs() < 0.01 && (r.2 - fw).abs() < 0.01 && r.1 >= fy - 0.5 && r.1 + r.3 <= fy + fh + 1.0
+            })
+            .collect();
+        slices.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let distinct: BTreeSet<&String> = slices.iter().map(|r| &r.4).collect();
+        if distinct.len() > SCALE_COLORS {
+            bars.push(slices.into_iter().map(|r| r.4.clone()).collect());
+        }
+    }
+    let swatches = filled
+        .iter()
+        .filter(|r| r.2 < 40.0 && !inside(&frames, (r.0 + r.2 / 2.0, r.1 + r.3 / 2.0)))
+        .map(|r| r.4.clone())
+        .collect();
+    (bars, swatches)
+}
+
+/// A colour bar is read by the order of its colours: two slices a quarter of the bar or more
+/// apart stay ΔE00 [`MIN_DELTA_E`] apart for normal vision and with red–green colour
+/// blindness, and so does a swatch beside it (a "no value" cell) from every slice.
+fn bar_problems(name: &str, svg: &str) -> Vec<String> {
+    let (bars, swatches) = color_bars(svg);
+    let mut problems = vec![];
+    for bar in &bars {
+        let quarter = bar.len().div_ceil(4);
+        for i in 0..bar.len() {
+            for j in i + quarter..bar.len() {
+                let (d, vision, a, b) = closest_pair(&[&bar[i], &bar[j]]);
+                if d < MIN_DELTA_E {
+                    problems.push(format!("{name}: the bar's {a} and {b} are ΔE00 {d:.1} apart with {vision}"));
+                }
+            }
+        }
+        for s in swatches.iter().filter(|s| s.starts_with('#') && s.len() == 7) {
+            for c in bar {
+                let (d, vision, a, b) = closest_pair(&[s, c]);
+                if d < MIN_DELTA_E {
+                    problems
+                        .push(format!("{name}: the swatch {a} and the bar's {b} are ΔE00 {d:.1} apart with {vision}"));
+                }
+            }
+        }
+    }
+    problems
+}
+
+#[test]
+fn every_colour_bar_reads_in_order_with_red_green_colour_blindness() {
+    let mut bars = 0;
+    for (name, svg) in &made().figures {
+        bars += color_bars(svg).0.len();
+        let problems = bar_problems(name, svg);
+        assert!(problems.is_empty(), "{}", problems.join("\n"));
+    }
+    // The paper's Fig 15, the study over two parameters (a map per metric) and the ensemble
+    // chart (four maps) draw colour bars.
+    assert!(bars >= 7, "{bars} colour bars");
+}
+
+#[test]
+fn the_colour_bar_check_fails_on_a_bar_that_turns_back_to_its_start() {
+    // A rainbow from blue through green back to blue: its ends are one colour.
+    let frame = r#"<rect x="10" y="10" width="100" height="100" fill="none" stroke="black"/>"#;
+    let slices: String = (0..16)
+        .map(|k| {
+            let c =
+                if k < 8 { format!("#00{:02x}ff", k * 32) } else { format!("#{:02x}{:02x}ff", 2 * k, (15 - k) * 32) };
+            format!(r#"<rect x="130" y="{}" width="18" height="5" fill="{c}"/>"#, 10 + 5 * k)
+        })
+        .collect();
+    let bar = r#"<rect x="130" y="10" width="18" height="80" fill="none" stroke="black"/>"#;
+    let svg = format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{frame}{slices}{bar}</svg>"#);
+    assert_eq!(color_bars(&svg).0.len(), 1);
+    assert!(!bar_problems("test", &svg).is_empty(), "a bar whose ends look alike is seen");
+    let viridis: String = (0..16)
+        .map(|k| {
+            let c = thud::export::studies::viridis(f64::from(k) / 15.0);
+            format!(r#"<rect x="130" y="{}" width="18" height="5" fill="{c}"/>"#, 10 + 5 * k)
+        })
+        .collect();
+    let svg = format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{frame}{viridis}{bar}</svg>"#);
+    assert!(bar_problems("viridis", &svg).is_empty(), "{:?}", bar_problems("viridis", &svg));
+}
+
+#[test]
+fn the_gallery_s_basins_show_more_than_one_attractor() {
+    // A basins figure of one flat colour tells nothing: the gallery's (and the guide's) run at
+    // 7.5 Hz shows at least two attractors, each a colour of its own in the map and the legend.
+    let svg = &made().pictures["basins.svg"];
+    let (data, legend, _) = looks_of(svg);
+    let cells: BTreeSet<&str> = data.iter().filter(|l| l.kind == "cell").map(|l| l.color.as_str()).collect();
+    assert!(cells.len() >= 2, "one colour of cell: {cells:?}");
+    assert!(cells.iter().all(|c| legend.iter().any(|l| l.color == *c)), "{cells:?} against {legend:?}");
+}

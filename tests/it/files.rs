@@ -443,9 +443,10 @@ fn two_outputs_naming_one_file_are_refused_before_anything_is_written() {
     let home = tempfile::tempdir().unwrap();
     fs::create_dir(home.path().join("sub")).unwrap();
     fs::write(home.path().join("old.x"), "kept").unwrap();
-    for cmd in ["bifurcation", "impact-map", "basins"] {
+    for cmd in ["bifurcation", "impact-map", "basins", "sweep"] {
         let base: Vec<&str> = match cmd {
             "bifurcation" => vec![cmd, "--preset", "forced-rattle", "--vary", "f=7Hz:8Hz:3"],
+            "sweep" => vec![cmd, "--vary", "v0=1:2:2"],
             _ => vec![cmd, "--preset", "forced-rattle"],
         };
         for (outputs, needles) in [

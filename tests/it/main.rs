@@ -68,6 +68,7 @@ mod shards;
 mod shell;
 mod store_config;
 mod study;
+mod sweep_figures;
 mod tui;
 mod tui_anim;
 mod tui_bifurcation;

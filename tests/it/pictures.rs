@@ -91,6 +91,26 @@ pub const FIGURES: &[Figure] = &[
         made: "restitution.svg",
     },
     Figure {
+        file: "ensemble.svg",
+        heading: "An ensemble chart: how much the ball's start matters in each cell",
+        commands: &[
+            "thud sweep --preset paper-table3 --masses 30g:100g:8 --gaps 2cm:5cm:6 --ensemble 4 --svg ensemble.svg",
+        ],
+        made: "ensemble.svg",
+    },
+    Figure {
+        file: "study-1d.svg",
+        heading: "A study over one parameter: each metric against the strike speed",
+        commands: &["thud sweep --vary v0=0.5:3:11 --svg study-1d.svg"],
+        made: "study-1d.svg",
+    },
+    Figure {
+        file: "study-2d.svg",
+        heading: "A study over two parameters: a heat map of each metric",
+        commands: &["thud sweep --vary v0=1:3:9 --vary c1=10:60:6 --svg study-2d.svg"],
+        made: "study-2d.svg",
+    },
+    Figure {
         file: "bifurcation.svg",
         heading: "A bifurcation diagram over the forcing frequency",
         commands: &["thud bifurcation --preset forced-rattle --vary f=6.5Hz:8Hz:30 --periods 16 --svg bifurcation.svg"],
@@ -158,7 +178,7 @@ const SHOWN: &[(&str, &[&str])] = &[
     ("docs/guide/commands/simulate.md", &["history.svg"]),
     ("docs/guide/commands/forced.md", &["forced.svg"]),
     ("docs/guide/commands/response.md", &["response.svg"]),
-    ("docs/guide/commands/sweep.md", &["chart.svg", "fig17.svg"]),
+    ("docs/guide/commands/sweep.md", &["chart.svg", "fig17.svg", "ensemble.svg", "study-1d.svg", "study-2d.svg"]),
     ("docs/guide/commands/restitution.md", &["restitution.svg"]),
     ("docs/guide/commands/paper.md", &["paper-fig2.svg", "paper-fig11.svg"]),
     ("docs/guide/commands/export.md", &["waveform.svg"]),
