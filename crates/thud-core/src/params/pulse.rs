@@ -127,19 +127,21 @@ pub fn pulse(base: Option<&Design>, given: &[(String, Input)], spelling: Spellin
 /// 19.05 mm, m 40.5 g, U0 1.4 m/s as the main mass's start, K_HZ 5.6e8 N/m^1.5, heard as a
 /// dipole at r 0.7 m, θ 45° through the paper's air and half-sine pulse).
 fn fig2_impact() -> Design {
-    let mut d = Design::default();
-    d.ball = BallSize::Radius(0.01905);
+    let mut d = Design {
+        ball: BallSize::Radius(0.01905),
+        materials: None,
+        observer: Observer::new(0.7, 45.0),
+        radiation: Radiation {
+            source: Source::Dipole,
+            quad_signs: QuadSigns::Rigid,
+            air: Air::default(),
+            pulse: PulseShape::default(),
+        },
+        ..Design::default()
+    };
     d.damper.impact_mass_kg = 0.0405;
     d.damper.v0_m_s = 1.4;
     d.damper.k_hz = 5.6e8;
-    d.materials = None;
-    d.observer = Observer::new(0.7, 45.0);
-    d.radiation = Radiation {
-        source: Source::Dipole,
-        quad_signs: QuadSigns::Rigid,
-        air: Air::default(),
-        pulse: PulseShape::default(),
-    };
     d
 }
 
