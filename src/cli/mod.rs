@@ -199,8 +199,8 @@ pub(crate) fn warn(line: &str) {
 /// The flags engine errors name bare, without dashes: the parameters of the range table, the
 /// sweep axes and the preset (the message names the flag).
 fn numeric_flags() -> Vec<String> {
-    crate::limits::RANGES
-        .iter()
+    crate::params::listed_ranges()
+        .into_iter()
         .map(|r| r.param)
         .chain(["masses", "gaps", "preset", "design", "freqs", "data", "save"])
         .map(str::to_string)
@@ -365,12 +365,13 @@ fn start_threads(flag: Option<&str>, reserve: usize) -> Result<Vec<String>, CliE
 
 /// `thud limits`: the table of ranges and caps.
 fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
-    use crate::limits::{CAPS, COUNTS, RANGES};
+    use crate::limits::{CAPS, COUNTS};
+    let ranges = crate::params::listed_ranges();
     if a.json {
         // The sweep axis's N is a part of FROM:TO:N, not a flag: the text lists it, the JSON
         // the flags.
-        let ranges: Vec<serde_json::Value> = RANGES
-            .iter()
+        let ranges: Vec<serde_json::Value> = ranges
+            .into_iter()
             .chain(COUNTS.into_iter().filter(|r| r.param != crate::limits::GRID_N.param))
             .map(|r| {
                 serde_json::json!({ "param": r.param, "what": r.what, "min": r.min, "max": r.max,
@@ -387,7 +388,7 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
             "settle_periods_max": crate::damper::SETTLE_PERIODS_MAX }));
     }
     let mut s = String::from("Ranges (a plain number is in the unit shown; θ is narrowed by the source type):\n");
-    for r in RANGES.iter().chain(COUNTS) {
+    for r in ranges.into_iter().chain(COUNTS) {
         let flag =
             if r.param == "N" { "FROM:TO:N".to_string() } else { format!("--{}", design_args::flag_of(r.param)) };
         s += &format!("  {flag:<17} {:<26} {:<24} {}\n", r.what, r.describe(), r.reason);

@@ -259,6 +259,8 @@ const LOOKS: &[Look] = &[
     Look { follows: true, ..Look::of(&["model"]) },
     Look { idle: Some(paper_air), ..Look::of(&["air-temperature"]) },
     Look { idle: Some(paper_air), ..Look::of(&["air-pressure"]) },
+    Look { idle: Some(physical_air), ..Look::of(&["rho-c"]) },
+    Look { idle: Some(physical_air), ..Look::of(&["sound-speed"]) },
     Look::row(&["l-star"], "L*", "zone threshold on SPLmax: below L* is quiet")
         .name("L*").digits(4).step(Stepping::Add(1.0, 0.1)),
     Look::row(&["e-star"], "e*", "zone threshold on the damping inclination: e ≥ e* is strong")
@@ -292,6 +294,13 @@ const LOOKS: &[Look] = &[
 fn paper_air(d: &Design) -> Option<&'static str> {
     (d.model == crate::design::Model::Paper)
         .then_some("unused by the paper's model (its air is ρ0c and c as set); model physical uses it")
+}
+
+/// The paper model's air (ρ0c and c) does nothing in the physical model, which takes its air
+/// from the temperature and pressure.
+fn physical_air(d: &Design) -> Option<&'static str> {
+    (d.model == crate::design::Model::Physical)
+        .then_some("unused by the physical model (its air follows from air T and air p); model paper uses it")
 }
 
 /// The row of [`params::DESIGN`] called `name` (its index; the table's length if none).

@@ -86,10 +86,10 @@ fn console_sessions_fail_when_an_output_changes() {
 
 /// The range table and the work caps as Markdown, from the engine's table.
 fn limits_tables() -> String {
-    use thud::limits::{short, CAPS, GRID_N, RANGES, THREADS};
+    use thud::limits::{short, CAPS, GRID_N, THREADS};
     let cell = |s: &str| s.replace('|', "\\|");
     let mut s = String::from("| flag | what | range | why |\n|---|---|---|---|\n");
-    for r in RANGES.iter().chain([&GRID_N, &THREADS]) {
+    for r in thud::params::listed_ranges().into_iter().chain([&GRID_N, &THREADS]) {
         let flag = if r.param == "N" {
             "`FROM:TO:N`".to_string()
         } else {

@@ -65,6 +65,7 @@ mod response_band;
 mod restitution_scheme;
 mod schema;
 mod shards;
+mod shared_rows;
 mod shell;
 mod store_config;
 mod study;

@@ -9,7 +9,6 @@ use std::path::{Path, PathBuf};
 
 use clap::CommandFactory;
 use thud::cli::Cli;
-use thud::limits::RANGES;
 use thud::params::{self, Accepts, DESIGN};
 use thud::tui::explain;
 use thud::tui::fields::Knob;
@@ -53,8 +52,10 @@ fn every_row_is_a_flag_of_every_design_command_with_its_help() {
 fn every_numeric_row_is_listed_by_thud_limits_with_its_range() {
     for p in DESIGN {
         if let Some(range) = p.range() {
-            let listed =
-                RANGES.iter().find(|r| r.param == p.name).unwrap_or_else(|| panic!("{} is not listed", p.name));
+            let listed = params::listed_ranges()
+                .into_iter()
+                .find(|r| r.param == p.name)
+                .unwrap_or_else(|| panic!("{} is not listed", p.name));
             assert_eq!(listed, range, "{}", p.name);
         }
     }
@@ -83,6 +84,9 @@ fn every_row_has_an_explorer_field_with_its_range_and_help() {
     }
 }
 
+/// A quantity's type in a study's overload (`sweep(mass=[…], gap=[…])`).
+const STUDY_QUANTITY: &str = "Union[Quantity, Sequence[Quantity], npt.ArrayLike, None]";
+
 /// The line after which a stub function's keyword block starts.
 const PRESET_LINE: &str = "    preset: Optional[str] = None,\n";
 
@@ -104,16 +108,28 @@ fn the_python_stub_lists_every_row_as_the_table_says() {
         ("simulate_ensemble", params::stub_keywords(&["ball-position"])),
         ("sweep", params::stub_keywords(&[])),
         ("response", params::stub_keywords(&["freq"])),
+        ("pulse", params::impact_stub_keywords()),
     ];
     if std::env::var_os("THUD_BLESS").is_some() {
         let mut out = String::new();
         let mut rest = text.as_str();
         while let Some((at, block)) = next_def(rest, &blocks) {
-            let open = at + rest[at..].find(PRESET_LINE).unwrap() + PRESET_LINE.len();
-            let end = open + rest[open..].find("    settle: Optional[bool] = None,").unwrap();
+            let mut open = at + rest[at..].find(PRESET_LINE).unwrap() + PRESET_LINE.len();
+            if rest[open..].starts_with("    design: ") {
+                open += rest[open..].find('\n').unwrap() + 1;
+            }
+            // The block ends at its last row's line (`settle` for a design's).
+            let last = block.lines().last().unwrap();
+            let last = &last[..=last.find(':').unwrap()];
+            let end = open + rest[open..].find(last).unwrap();
             let end = end + rest[end..].find('\n').unwrap() + 1;
             out += &rest[..open];
-            out += block;
+            // A study's overload keeps its sequences.
+            out += &if rest[open..end].contains(STUDY_QUANTITY) {
+                block.replace("Optional[Quantity]", STUDY_QUANTITY)
+            } else {
+                block.clone()
+            };
             rest = &rest[end..];
         }
         out += rest;
@@ -128,7 +144,7 @@ fn the_python_stub_lists_every_row_as_the_table_says() {
         let body = &body[..body.find("\"\"\"").unwrap_or(body.len())];
         let name = &body[..body.find('(').unwrap()];
         // A study's overload (`sweep(mass=[…], gap=[…])`) takes a sequence for each quantity.
-        let study = block.replace("Optional[Quantity]", "Union[Quantity, Sequence[Quantity], npt.ArrayLike, None]");
+        let study = block.replace("Optional[Quantity]", STUDY_QUANTITY);
         assert!(
             body.contains(block.as_str()) || body.contains(study.as_str()),
             "the stub's {name} keywords differ from the table:\n{block}"

@@ -288,12 +288,9 @@ pub fn sweep(
     cancel: Option<&AtomicBool>,
     on_cell: &(dyn Fn(usize, &EnsembleCell) + Sync),
 ) -> Result<EnsembleChart, ThudError> {
-    let all = masses_kg.len() * gaps_m.len();
-    let cells = sweep_cells(base, masses_kg, gaps_m, n, 0..all, cancel, on_cell)?;
     let mut chart = EnsembleChart::empty(masses_kg.to_vec(), gaps_m.to_vec(), n, base.thresholds);
-    for (i, cell) in cells {
-        chart.cells[i] = Some(cell);
-    }
+    let cells = sweep_cells(base, masses_kg, gaps_m, n, 0..chart.cells.len(), cancel, on_cell)?;
+    design::place(&mut chart.cells, cells);
     Ok(chart)
 }
 

@@ -39,6 +39,24 @@ const fn col(name: &'static str, unit: &'static str, doc: &'static str) -> Colum
     Column { name, unit, doc }
 }
 
+/// The columns of `parts` one after the other, as one array of `N`, their count (checked when
+/// the crate is built): a table made of the column groups it shares with others.
+const fn join<const N: usize>(parts: &[&[Column]]) -> [Column; N] {
+    let mut out = [col("", "", ""); N];
+    let (mut k, mut p) = (0, 0);
+    while p < parts.len() {
+        let mut i = 0;
+        while i < parts[p].len() {
+            out[k] = parts[p][i];
+            k += 1;
+            i += 1;
+        }
+        p += 1;
+    }
+    assert!(k == N, "a joined table's length is the count of its columns");
+    out
+}
+
 // Time series.
 const T_S: Column = col("t_s", "s", "time (of a sample; of an impact's onset)");
 const P_PA: Column = col("p_pa", "Pa", "sound pressure at the observer");
@@ -66,6 +84,18 @@ const SPL_MAX_DB: Column = col("spl_max_db", "dB", "SPLmax, the SPL of an impact
 const CONTACT_DURATION_S: Column = col("contact_duration_s", "s", "Hertz contact duration at U0max");
 const RESTITUTION_MEAN: Column = col("restitution_mean", "1", "mean u_out/u_in over the impacts");
 const ZONE: Column = col("zone", "1–4", "design-chart zone (empty when there is none)");
+/// The metrics of a run, in order (every table of runs or cells carries them).
+const METRICS: [Column; 9] = [
+    N_IMPACTS,
+    INCLINATION_CM_S,
+    INCLINATION_FIT_CM_S,
+    U0_MAX_M_S,
+    ZDOT_ABS_MAX_M_S,
+    SPL_MAX_DB,
+    CONTACT_DURATION_S,
+    RESTITUTION_MEAN,
+    ZONE,
+];
 
 // Designs, ensembles, parts.
 const MASS_KG: Column = col("mass_kg", "kg", "impact (ball) mass m");
@@ -145,18 +175,7 @@ pub const IMPACTS: Table = Table {
 pub const ENSEMBLE: Table = Table {
     id: "ensemble",
     written_by: "simulate --ensemble N --csv, simulate --ensemble N --json ensemble[]",
-    columns: &[
-        BALL_POSITION_M,
-        N_IMPACTS,
-        INCLINATION_CM_S,
-        INCLINATION_FIT_CM_S,
-        U0_MAX_M_S,
-        ZDOT_ABS_MAX_M_S,
-        SPL_MAX_DB,
-        CONTACT_DURATION_S,
-        RESTITUTION_MEAN,
-        ZONE,
-    ],
+    columns: &join::<10>(&[&[BALL_POSITION_M], &METRICS]),
 };
 
 /// `thud sweep --csv`, `export csv sweep`, a cell of `sweep --json` (`mass_kg`, `gap_m`,
@@ -164,19 +183,7 @@ pub const ENSEMBLE: Table = Table {
 pub const SWEEP: Table = Table {
     id: "sweep",
     written_by: "sweep --csv, export csv sweep, sweep --json chart.cells[]",
-    columns: &[
-        MASS_KG,
-        GAP_M,
-        N_IMPACTS,
-        INCLINATION_CM_S,
-        INCLINATION_FIT_CM_S,
-        U0_MAX_M_S,
-        ZDOT_ABS_MAX_M_S,
-        SPL_MAX_DB,
-        CONTACT_DURATION_S,
-        RESTITUTION_MEAN,
-        ZONE,
-    ],
+    columns: &join::<11>(&[&[MASS_KG, GAP_M], &METRICS]),
 };
 
 /// `thud sweep --ensemble N --csv` and `merge`, a cell of `sweep --ensemble N --json`
@@ -184,34 +191,15 @@ pub const SWEEP: Table = Table {
 pub const SWEEP_ENSEMBLE: Table = Table {
     id: "sweep_ensemble",
     written_by: "sweep --ensemble N --csv, merge, sweep --ensemble N --json chart.cells[]",
-    columns: &[
-        MASS_KG,
-        GAP_M,
-        RUNS,
-        N_IMPACTS,
-        INCLINATION_CM_S,
-        INCLINATION_FIT_CM_S,
-        U0_MAX_M_S,
-        ZDOT_ABS_MAX_M_S,
-        SPL_MAX_DB,
-        CONTACT_DURATION_S,
-        RESTITUTION_MEAN,
-        ZONE,
-        INCLINATION_SPREAD[0],
-        INCLINATION_SPREAD[1],
-        INCLINATION_SPREAD[2],
-        FIT_SPREAD[0],
-        FIT_SPREAD[1],
-        FIT_SPREAD[2],
-        U0_SPREAD[0],
-        U0_SPREAD[1],
-        U0_SPREAD[2],
-        SPL_SPREAD[0],
-        SPL_SPREAD[1],
-        SPL_SPREAD[2],
-        ZONE3_PROBABILITY,
-        AGREEMENT,
-    ],
+    columns: &join::<26>(&[
+        &[MASS_KG, GAP_M, RUNS],
+        &METRICS,
+        &INCLINATION_SPREAD,
+        &FIT_SPREAD,
+        &U0_SPREAD,
+        &SPL_SPREAD,
+        &[ZONE3_PROBABILITY, AGREEMENT],
+    ]),
 };
 
 /// A CSV part of `thud sweep [--ensemble N] --shard K/N --csv --out FILE`: one row per run of each
@@ -219,23 +207,7 @@ pub const SWEEP_ENSEMBLE: Table = Table {
 pub const SHARD_PART: Table = Table {
     id: "shard_part",
     written_by: "sweep --shard K/N --csv --out FILE, a part merge reads",
-    columns: &[
-        INDEX,
-        RUN,
-        MASS_KG,
-        GAP_M,
-        BALL_POSITION_M,
-        N_IMPACTS,
-        INCLINATION_CM_S,
-        INCLINATION_FIT_CM_S,
-        U0_MAX_M_S,
-        ZDOT_ABS_MAX_M_S,
-        SPL_MAX_DB,
-        CONTACT_DURATION_S,
-        RESTITUTION_MEAN,
-        ZONE,
-        TRUNCATED_REASON,
-    ],
+    columns: &join::<15>(&[&[INDEX, RUN, MASS_KG, GAP_M, BALL_POSITION_M], &METRICS, &[TRUNCATED_REASON]]),
 };
 
 /// `thud response --csv`: a point of `response --json` with its sweep's `direction` in
@@ -267,27 +239,14 @@ pub const RESPONSE: Table = Table {
 pub const RESPONSE_ENSEMBLE: Table = Table {
     id: "response_ensemble",
     written_by: "response --ensemble N --csv, response --ensemble N --json sweeps[].points[]",
-    columns: &[
-        DIRECTION,
-        FREQ_HZ,
-        RUNS,
-        AMPLITUDE_LINEAR_M,
-        AMPLITUDE_SPREAD[0],
-        AMPLITUDE_SPREAD[1],
-        AMPLITUDE_SPREAD[2],
-        REDUCTION_SPREAD[0],
-        REDUCTION_SPREAD[1],
-        REDUCTION_SPREAD[2],
-        IMPACTS_SPREAD[0],
-        IMPACTS_SPREAD[1],
-        IMPACTS_SPREAD[2],
-        LEQ_SPREAD[0],
-        LEQ_SPREAD[1],
-        LEQ_SPREAD[2],
-        PERIODIC_FRACTION,
-        SETTLED_FRACTION,
-        TRUNCATED,
-    ],
+    columns: &join::<19>(&[
+        &[DIRECTION, FREQ_HZ, RUNS, AMPLITUDE_LINEAR_M],
+        &AMPLITUDE_SPREAD,
+        &REDUCTION_SPREAD,
+        &IMPACTS_SPREAD,
+        &LEQ_SPREAD,
+        &[PERIODIC_FRACTION, SETTLED_FRACTION, TRUNCATED],
+    ]),
 };
 
 // Studies, orbits and their maps.
@@ -308,42 +267,26 @@ const MULTIPLIER_ABS_MAX: Column = col("multiplier_abs_max", "1", "largest |λ| 
 const IMPACTS_PER_ORBIT: Column = col("impacts_per_orbit", "1", "impacts over the orbit's n periods, m");
 const ORBIT_AMPLITUDE_M: Column = col("amplitude_m", "m", "steady amplitude of the main mass");
 const ORBIT_PERIODS: Column = col("periods", "1", "the orbit's period in forcing periods, n");
+/// The samples x(kT) and the impacts of a forced run, one row each (an impact map's table).
+const SAMPLES_AND_IMPACTS: [Column; 11] =
+    [ORBIT, RECORD, PERIOD, X_M, V_M_S, Z_M, ZDOT_M_S, PHASE, WALL, U_IN_M_S, U_OUT_M_S];
 const STUDY_INDEX: Column = col("index", "1", "cell number in the grid (C order over the varied parameters), from 0");
 
 /// `thud sweep --vary … --csv`, a cell of `sweep --vary --json`; Python `thud.sweep(v0=[…], …)`
 /// (its dimensions are these columns).
-pub const STUDY: Table = Table {
-    id: "study",
-    written_by: "sweep --vary --csv",
-    columns: &[
-        STUDY_INDEX,
-        VARIED,
-        N_IMPACTS,
-        INCLINATION_CM_S,
-        INCLINATION_FIT_CM_S,
-        U0_MAX_M_S,
-        ZDOT_ABS_MAX_M_S,
-        SPL_MAX_DB,
-        CONTACT_DURATION_S,
-        RESTITUTION_MEAN,
-        ZONE,
-    ],
-};
+pub const STUDY: Table =
+    Table { id: "study", written_by: "sweep --vary --csv", columns: &join::<11>(&[&[STUDY_INDEX, VARIED], &METRICS]) };
 
 /// `thud bifurcation --csv`: per value its samples x(kT) and its impacts, one row each.
 pub const BIFURCATION: Table = Table {
     id: "bifurcation",
     written_by: "bifurcation --csv",
-    columns: &[VARIED, DIRECTION, ORBIT, RECORD, PERIOD, X_M, V_M_S, Z_M, ZDOT_M_S, PHASE, WALL, U_IN_M_S, U_OUT_M_S],
+    columns: &join::<13>(&[&[VARIED, DIRECTION], &SAMPLES_AND_IMPACTS]),
 };
 
 /// `thud impact-map --csv`: the samples x(kT) and the impacts, one row each; Python
 /// `thud.impact_map(…)`.
-pub const IMPACT_MAP: Table = Table {
-    id: "impact_map",
-    written_by: "impact-map --csv",
-    columns: &[ORBIT, RECORD, PERIOD, X_M, V_M_S, Z_M, ZDOT_M_S, PHASE, WALL, U_IN_M_S, U_OUT_M_S],
-};
+pub const IMPACT_MAP: Table = Table { id: "impact_map", written_by: "impact-map --csv", columns: &SAMPLES_AND_IMPACTS };
 
 /// `thud basins --csv`: one row per start.
 pub const BASINS: Table = Table {

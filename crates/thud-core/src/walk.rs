@@ -230,49 +230,27 @@ impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::Serializer for &mut Walker<F
     }
 }
 
-impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeSeq for &mut Walker<F> {
-    type Ok = ();
-    type Error = Stop;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> R {
-        self.close(false)
-    }
+/// A compound of unnamed elements (a sequence, a tuple, a tuple struct or variant): each
+/// element walked in turn; `variant` closes an enum variant's compound too.
+macro_rules! unnamed {
+    ($compound:ident, $method:ident, $variant:literal) => {
+        impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::$compound for &mut Walker<F> {
+            type Ok = ();
+            type Error = Stop;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
+                value.serialize(&mut **self)
+            }
+            fn end(self) -> R {
+                self.close($variant)
+            }
+        }
+    };
 }
 
-impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeTuple for &mut Walker<F> {
-    type Ok = ();
-    type Error = Stop;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> R {
-        self.close(false)
-    }
-}
-
-impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeTupleStruct for &mut Walker<F> {
-    type Ok = ();
-    type Error = Stop;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> R {
-        self.close(false)
-    }
-}
-
-impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeTupleVariant for &mut Walker<F> {
-    type Ok = ();
-    type Error = Stop;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> R {
-        value.serialize(&mut **self)
-    }
-    fn end(self) -> R {
-        self.close(true)
-    }
-}
+unnamed!(SerializeSeq, serialize_element, false);
+unnamed!(SerializeTuple, serialize_element, false);
+unnamed!(SerializeTupleStruct, serialize_field, false);
+unnamed!(SerializeTupleVariant, serialize_field, true);
 
 impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeMap for &mut Walker<F> {
     type Ok = ();
@@ -288,29 +266,25 @@ impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeMap for &mut Walker
     }
 }
 
-impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeStruct for &mut Walker<F> {
-    type Ok = ();
-    type Error = Stop;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> R {
-        self.step(Step::Name(key))?;
-        self.under(key, value)
-    }
-    fn end(self) -> R {
-        self.close(false)
-    }
+/// A compound of named fields (a struct or a struct variant): each field walked under its name.
+macro_rules! named {
+    ($compound:ident, $variant:literal) => {
+        impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::$compound for &mut Walker<F> {
+            type Ok = ();
+            type Error = Stop;
+            fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> R {
+                self.step(Step::Name(key))?;
+                self.under(key, value)
+            }
+            fn end(self) -> R {
+                self.close($variant)
+            }
+        }
+    };
 }
 
-impl<F: FnMut(&[&'static str], Step<'_>) -> R> ser::SerializeStructVariant for &mut Walker<F> {
-    type Ok = ();
-    type Error = Stop;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, value: &T) -> R {
-        self.step(Step::Name(key))?;
-        self.under(key, value)
-    }
-    fn end(self) -> R {
-        self.close(true)
-    }
-}
+named!(SerializeStruct, false);
+named!(SerializeStructVariant, true);
 
 #[cfg(test)]
 mod tests {

@@ -153,7 +153,7 @@ impl<'py> Kwargs<'py> {
 fn huge_int(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyErr {
     let digits = v.str().map_or(0, |s| s.to_string().trim_start_matches('-').len());
     let sign = if v.lt(0).unwrap_or(false) { "a negative " } else { "an " };
-    let range = limits::RANGES.iter().find(|r| Spelling::Keyword.spell(r.param) == name);
+    let range = thud_core::params::listed_ranges().into_iter().find(|r| Spelling::Keyword.spell(r.param) == name);
     let tail = match range {
         Some(r) => format!("; the {} must be {}", r.what, r.describe()),
         None => String::new(),

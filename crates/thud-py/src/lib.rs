@@ -548,7 +548,7 @@ fn presets(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 #[pyfunction]
 fn ranges(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     let rows = PyList::empty(py);
-    for r in &limits::RANGES {
+    for r in params::listed_ranges() {
         let row = PyDict::new(py);
         row.set_item("param", Spelling::Keyword.spell(r.param))?;
         row.set_item("what", r.what)?;

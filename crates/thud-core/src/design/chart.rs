@@ -79,13 +79,17 @@ pub fn sweep(
     cancel: Option<&AtomicBool>,
     on_cell: &(dyn Fn(usize, &Cell) + Sync),
 ) -> Result<Chart, ThudError> {
-    let n = masses_kg.len() * gaps_m.len();
-    let cells = sweep_cells(base, masses_kg, gaps_m, 0..n, cancel, on_cell)?;
     let mut chart = Chart::empty(masses_kg.to_vec(), gaps_m.to_vec(), base.thresholds);
-    for (i, cell) in cells {
-        chart.cells[i] = Some(cell);
-    }
+    let cells = sweep_cells(base, masses_kg, gaps_m, 0..chart.cells.len(), cancel, on_cell)?;
+    place(&mut chart.cells, cells);
     Ok(chart)
+}
+
+/// The `(index, cell)` pairs `cells` put in their places of a chart's `slots` (row-major).
+pub(crate) fn place<C>(slots: &mut [Option<C>], cells: Vec<(usize, C)>) {
+    for (i, cell) in cells {
+        slots[i] = Some(cell);
+    }
 }
 
 /// The cells `range` of the chart [`sweep`] would compute (row-major indices, `g·masses + m`),

@@ -130,6 +130,13 @@ impl Atmosphere {
     fn is_default(&self) -> bool {
         *self == Self::default()
     }
+
+    /// The air of this state, as the physical model hears through it
+    /// ([`crate::acoustics::Air::from_state`]).
+    #[must_use]
+    pub fn air(&self) -> crate::acoustics::Air {
+        crate::acoustics::Air::from_state(self.temperature_c, self.pressure_pa)
+    }
 }
 
 /// The materials the physical model assumes when a design names none: the paper's acrylic
@@ -274,11 +281,7 @@ impl Design {
     pub fn sound(&self) -> Radiation {
         match self.model {
             Model::Paper => self.radiation,
-            Model::Physical => Radiation {
-                pulse: PulseShape::Hertz,
-                air: crate::acoustics::Air::from_state(self.atmosphere.temperature_c, self.atmosphere.pressure_pa),
-                ..self.radiation
-            },
+            Model::Physical => Radiation { pulse: PulseShape::Hertz, air: self.atmosphere.air(), ..self.radiation },
         }
     }
 

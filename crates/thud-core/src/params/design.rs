@@ -2,8 +2,8 @@
 
 use super::{
     base_ball_of, edit_distance, model, physical_conflicts, pulse_shape, quad_signs, resolve_ball, source, Accepts,
-    BallGiven, Conflict, Given, Group, Input, Param, Spelling, AIR_PRESSURE_HELP, AIR_TEMPERATURE_HELP, MODELS,
-    MODEL_HELPS, PULSES, PULSE_HELPS, QUAD_SIGNS, SOLVERS, SOLVER_HELPS, SOURCES,
+    BallGiven, Conflict, Given, Group, ImpactSide, Input, Param, Spelling, AIR_PRESSURE_HELP, AIR_TEMPERATURE_HELP,
+    MODELS, MODEL_HELPS, PULSES, PULSE_HELPS, QUAD_SIGNS, SOLVERS, SOLVER_HELPS, SOURCES,
 };
 use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::damper::Solver;
@@ -12,25 +12,26 @@ use crate::error::ThudError;
 use crate::limits::{self, short, Range};
 use crate::units::Kind;
 
-/// A design being built from a base design and named parameters.
+/// A design, or a single impact, being built from a base design and named parameters: the
+/// one draft every row of [`PARAMS`] writes to.
 #[derive(Debug, Clone)]
 pub struct DesignDraft {
     pub design: Design,
     /// `solver`, as an index into [`SOLVERS`].
     solver: Option<usize>,
     dt_s: Option<f64>,
-    sphere: Option<String>,
-    plate: Option<String>,
+    pub(super) sphere: Option<String>,
+    pub(super) plate: Option<String>,
     /// The ball's Poisson ratio ν, for the materials `sphere` names.
     sphere_nu: Option<f64>,
     /// The ball's radius (m) and density (kg/m³) as given, for [`resolve_ball`].
-    radius_m: Option<f64>,
-    density_kg_m3: Option<f64>,
+    pub(super) radius_m: Option<f64>,
+    pub(super) density_kg_m3: Option<f64>,
 }
 
 impl DesignDraft {
     /// A draft of `design` with nothing given yet.
-    fn of(design: Design) -> Self {
+    pub(super) fn of(design: Design) -> Self {
         DesignDraft {
             design,
             solver: None,
@@ -84,21 +85,30 @@ const fn sw(
     Param::new(name, group, Accepts::Switch { set }, help).get(get)
 }
 
-/// The parameters of a design (`simulate`, `sweep`, `export`, `response`; Python's `simulate`,
-/// `sweep`, `response`; the explorer's fields), in the order they are checked and listed.
-/// Each row is the one definition of its parameter: the command line's flag (and its help,
-/// completion and man page), Python's keyword (and its stub), the explorer's field, its range
-/// ([`crate::limits`]) and where its value goes.
+/// Every named parameter, in the order they are checked and listed: a design's (`simulate`,
+/// `sweep`, `export`, `response`; Python's `simulate`, `sweep`, `response`; the explorer's
+/// fields; the config file) and a single impact's (`thud pulse`, Python's `pulse`), each row
+/// saying where it applies ([`Where`]; the views [`DESIGN`] and [`PULSE`]). Each row is the
+/// one definition of its parameter: the command line's flag (and its help, completion and man
+/// page), Python's keyword (and its stub), the explorer's field, its range
+/// ([`crate::limits`]) and where its value goes in the one draft ([`DesignDraft`]), which the
+/// design and the impact builders both read.
 #[rustfmt::skip]
-pub const DESIGN: &[Param<DesignDraft>] = &[
+pub const PARAMS: &[Param<DesignDraft>] = &[
     q("mass", Kind::Mass, &limits::MASS, Group::Design, "M", "Impact mass m (kg, or e.g. 40.5g)",
-        |d| d.damper.impact_mass_kg, |d, v| d.design.damper.impact_mass_kg = v),
+        |d| d.damper.impact_mass_kg, |d, v| d.design.damper.impact_mass_kg = v)
+        .both("Sphere mass (kg, or e.g. 40.5g). Default: from --radius and --sphere's density, else 40.5 g"),
     q("gap", Kind::Length, &limits::GAP, Group::Design, "D", "Total clearance d (m, or e.g. 4cm)",
         |d| d.damper.gap_m, |d, v| d.design.damper.gap_m = v),
     q("v0", Kind::Speed, &limits::V0, Group::Forcing, "V", "Initial velocity of the main mass (m/s)",
         |d| d.damper.v0_m_s, |d, v| d.design.damper.v0_m_s = v),
+    // An impact's speed is where a design's main mass starts (a preset's U0 is its v0).
+    Param::new("u0", Group::Forcing, Accepts::Quantity { kind: Kind::Speed, range: &limits::U0,
+        set: |d: &mut DesignDraft, v| d.design.damper.v0_m_s = v }, "Impact speed U0 (m/s) [default: 1.4]")
+        .value("U").impact_only(),
     q("main-mass", Kind::Mass, &limits::MAIN_MASS, Group::Design, "MM", "Main mass M (kg)",
-        |d| d.damper.main_mass_kg, |d, v| d.design.damper.main_mass_kg = v),
+        |d| d.damper.main_mass_kg, |d, v| d.design.damper.main_mass_kg = v)
+        .both("Mass of a movable target (kg): K* = (m+M)/(mM) (Eq 8). Default: a fixed plate"),
     q("k", Kind::Stiffness, &limits::STIFFNESS, Group::Design, "K", "Spring stiffness K (N/m)",
         |d| d.damper.stiffness_n_m, |d, v| d.design.damper.stiffness_n_m = v),
     q("c", Kind::Damping, &limits::DAMPING, Group::Design, "C", "Viscous damping C (N·s/m)",
@@ -107,15 +117,24 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         |d| d.damper.c1_n_s_m, |d, v| d.design.damper.c1_n_s_m = v),
     Param {
         conflicts: Some(Conflict { with: &["sphere"], why: "K_HZ follows from the materials", names_other: false }),
+        impact: ImpactSide {
+            help: "Hertz stiffness K_HZ (N/m^1.5) [default: 5.6e8, or from --sphere/--plate]",
+            conflicts: Some(Conflict { with: &["sphere", "plate"], why: "K_HZ follows from the materials", names_other: false }),
+            requires: None,
+        },
         ..q("k-hz", Kind::HertzStiffness, &limits::K_HZ, Group::Design, "KH", "Hertz stiffness K_HZ (N/m^1.5)",
-            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v).applies(|d| d.materials_used().is_none())
+            |d| d.damper.k_hz, |d, v| d.design.damper.k_hz = v).applies(|d| d.materials_used().is_none()).both("")
+            .only_in(Model::Paper, "the physical model takes K_HZ from the materials (Eq 2)")
     },
     Param::new("sphere", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.sphere = Some(s.to_string()) },
-        "Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)").value("MATERIAL"),
+        "Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)").value("MATERIAL")
+        .both("Sphere material (steel, stainless-steel, acrylic, brass, aluminium, glass, rubber, nylon, tungsten-carbide)"),
+    // An impact takes a plate alone (on the paper's acrylic sphere); a design's plate needs its ball's material.
     Param {
         requires: Some("sphere"),
         ..Param::new("plate", Group::Design, Accepts::Name { set: |d: &mut DesignDraft, s| d.plate = Some(s.to_string()) },
             "Enclosure material (with --sphere) [default: steel]").value("MATERIAL")
+            .both("Plate material [default: steel when --sphere is given]")
     },
     // A design without materials has no ball ν: NaN, which a front end shows as not applicable.
     Param {
@@ -142,35 +161,57 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
         "Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass",
         |d| match d.ball { BallSize::Density(rho) => rho, BallSize::Radius(_) => f64::NAN },
         |d, v| { d.design.ball = BallSize::Density(v); d.density_kg_m3 = Some(v); }).label("ball ρ")
-        .applies(|d| matches!(d.ball, BallSize::Density(_))),
+        .applies(|d| matches!(d.ball, BallSize::Density(_)))
+        .both("Sphere density (kg/m³) [default: --sphere's]: with --mass the radius follows, with --radius the mass"),
     q("radius", Kind::Length, &limits::RADIUS, Group::Design, "A",
         "Ball radius (m): with --mass as given, else the mass follows from the density",
         Design::ball_radius_m, |d, v| { d.design.ball = BallSize::Radius(v); d.radius_m = Some(v); }).label("ball a")
-        .applies(|d| matches!(d.ball, BallSize::Radius(_))),
+        .applies(|d| matches!(d.ball, BallSize::Radius(_)))
+        .both("Sphere radius (m, or e.g. 19.05mm). Default: from --mass and --sphere's density, else 19.05 mm"),
     q("r", Kind::Length, &limits::R, Group::Listener, "R", "Observer distance (m)",
-        |d| d.observer.r_m, |d, v| d.design.observer.r_m = v),
+        |d| d.observer.r_m, |d, v| d.design.observer.r_m = v)
+        .both("Observer distance from the contact point (m) [default: 0.7]"),
     q("theta", Kind::Angle, &limits::THETA, Group::Listener, "DEG", "Observer angle (degrees)",
-        |d| d.observer.theta_rad.to_degrees(), |d, v| d.design.observer.theta_rad = v.to_radians()),
+        |d| d.observer.theta_rad.to_degrees(), |d, v| d.design.observer.theta_rad = v.to_radians())
+        .both("Observer angle from the plate's normal (degrees) [default: 45]"),
     ch("source", Group::Listener, &SOURCES, &[], "Source", "Reflecting surfaces around the impact",
         |d, i| d.design.radiation.source = source(i))
-        .get(|d| Source::ALL.iter().position(|s| *s == d.radiation.source).map_or(f64::NAN, |i| i as f64)),
+        .get(|d| Source::ALL.iter().position(|s| *s == d.radiation.source).map_or(f64::NAN, |i| i as f64))
+        .both("Reflecting surfaces: a free sphere, a plate, or a wall–floor corner [default: dipole]"),
     ch("quad-signs", Group::Listener, &QUAD_SIGNS, &[], "QuadSigns", "Quadrupole wall-image signs",
         |d, i| d.design.radiation.quad_signs = quad_signs(i))
-        .get(|d| if d.radiation.quad_signs == QuadSigns::Paper { 0.0 } else { 1.0 }),
+        .get(|d| if d.radiation.quad_signs == QuadSigns::Paper { 0.0 } else { 1.0 })
+        .both("Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall [default: rigid]"),
     ch("pulse", Group::Listener, &PULSES, &PULSE_HELPS, "PulseShape",
         "Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse",
         |d, i| d.design.radiation.pulse = pulse_shape(i))
-        .get(|d| if d.radiation.pulse == PulseShape::HalfSine { 0.0 } else { 1.0 }),
+        .get(|d| if d.radiation.pulse == PulseShape::HalfSine { 0.0 } else { 1.0 })
+        .only_in(Model::Paper, "the physical model uses the exact Hertz pulse")
+        .both("Acceleration pulse: the paper's half-sine (Eq 7) or the exact Hertz pulse [default: half-sine]"),
     Param {
         get: Some(|d| if d.model == Model::Physical { 1.0 } else { 0.0 }),
         ..ch("model", Group::Listener, &MODELS, &MODEL_HELPS, "Model",
             "The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)",
             |d, i| d.design.model = model(i))
+            .both("The model of the world [default: paper]: physical is the measured level (peak, exact Hertz pulse, air from --air-temperature and --air-pressure, K_HZ and mass from the materials)")
     },
     q("air-temperature", Kind::Temperature, &limits::AIR_TEMPERATURE, Group::Listener, "T", AIR_TEMPERATURE_HELP,
-        |d| d.atmosphere.temperature_c, |d, v| d.design.atmosphere.temperature_c = v).label("air T"),
+        |d| d.atmosphere.temperature_c, |d, v| d.design.atmosphere.temperature_c = v).label("air T").both("")
+        .only_in(Model::Physical, PAPER_AIR),
     q("air-pressure", Kind::Pressure, &limits::AIR_PRESSURE, Group::Listener, "P", AIR_PRESSURE_HELP,
-        |d| d.atmosphere.pressure_pa, |d, v| d.design.atmosphere.pressure_pa = v).label("air p"),
+        |d| d.atmosphere.pressure_pa, |d, v| d.design.atmosphere.pressure_pa = v).label("air p").both("")
+        .only_in(Model::Physical, PAPER_AIR),
+    // The paper model's air (`sound-speed`, never `c`, which is the structure's damping).
+    q("rho-c", Kind::Impedance, &limits::RHO_C, Group::Listener, "Z",
+        "Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]",
+        |d| d.radiation.air.rho_c_pa_s_m, |d, v| d.design.radiation.air.rho_c_pa_s_m = v)
+        .label("air ρ0c").applies(|d| d.model == Model::Paper).both("")
+        .only_in(Model::Paper, PHYSICAL_AIR),
+    q("sound-speed", Kind::Speed, &limits::C_SOUND, Group::Listener, "C",
+        "Speed of sound c of the paper model (m/s) [default: 343]",
+        |d| d.radiation.air.c_m_s, |d, v| d.design.radiation.air.c_m_s = v)
+        .label("air c").applies(|d| d.model == Model::Paper).both("")
+        .only_in(Model::Paper, PHYSICAL_AIR),
     q("l-star", Kind::Level, &limits::L_STAR, Group::Study, "DB", "Zone threshold L* on SPLmax (dB)",
         |d| d.thresholds.spl_db, |d, v| d.design.thresholds.spl_db = v),
     q("e-star", Kind::Inclination, &limits::E_STAR, Group::Study, "CM_S", "Zone threshold e* on the damping inclination (cm/s)",
@@ -197,6 +238,57 @@ pub const DESIGN: &[Param<DesignDraft>] = &[
     sw("settle", Group::Solver, "Run a forced run on past --duration, N periods at a time, until its steady amplitude settles",
         |d| f64::from(u8::from(d.damper.settle)), |d, on| d.design.damper.settle = on),
 ];
+
+/// Why the paper model refuses the air's state.
+const PAPER_AIR: &str = "only the physical model takes the air from its temperature and pressure; the paper model's air is its rho-c and sound-speed";
+/// Why the physical model refuses the paper's air.
+const PHYSICAL_AIR: &str = "the physical model takes the air from its temperature and pressure";
+
+/// How many rows of [`PARAMS`] reach a design (`impact` false) or an impact (`impact` true).
+const fn count(impact: bool) -> usize {
+    let (mut i, mut n) = (0, 0);
+    while i < PARAMS.len() {
+        if reaches(&PARAMS[i], impact) {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
+}
+
+const fn reaches(p: &Param<DesignDraft>, impact: bool) -> bool {
+    if impact {
+        p.used_in.impact()
+    } else {
+        p.used_in.design()
+    }
+}
+
+/// The `N` rows of [`PARAMS`] that reach a design or an impact, in table order; an impact's as
+/// it reads them ([`ImpactSide`]).
+const fn view<const N: usize>(impact: bool) -> [Param<DesignDraft>; N] {
+    let mut out = [PARAMS[0]; N];
+    let (mut i, mut k) = (0, 0);
+    while i < PARAMS.len() {
+        if reaches(&PARAMS[i], impact) {
+            out[k] = if impact { PARAMS[i].as_impact() } else { PARAMS[i] };
+            k += 1;
+        }
+        i += 1;
+    }
+    out
+}
+
+const DESIGN_ROWS: usize = count(false);
+const IMPACT_ROWS: usize = count(true);
+
+/// The rows of [`PARAMS`] that apply to a design, in table order: every design command's
+/// flags, Python's design keywords, the explorer's fields and the config file's keys.
+pub const DESIGN: &[Param<DesignDraft>] = &view::<DESIGN_ROWS>(false);
+
+/// The rows of [`PARAMS`] that apply to a single impact, in table order, each as an impact
+/// reads it ([`ImpactSide`]): `thud pulse`'s flags and Python's `pulse` keywords.
+pub const PULSE: &[Param<DesignDraft>] = &view::<IMPACT_ROWS>(true);
 
 /// The Newmark step a design takes when the newmark solver is asked for without a step (s):
 /// the paper's.
@@ -273,7 +365,7 @@ pub fn check_design(d: &Design) -> Result<(), ThudError> {
             ));
         }
     }
-    // The air is no row of the table (a single impact's parameters, [`PULSE`]).
+    // The air of either model (the rows above check the paper model's as typed).
     limits::RHO_C.check(d.radiation.air.rho_c_pa_s_m)?;
     limits::C_SOUND.check_as("speed of sound", d.radiation.air.c_m_s)?;
     Ok(())
@@ -317,8 +409,18 @@ impl<'de> serde::Deserialize<'de> for ValidDesign {
 /// `    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg`.
 /// A test keeps the checked-in stub equal to this.
 pub fn stub_keywords(skip: &[&str]) -> String {
+    stub_lines(DESIGN, skip)
+}
+
+/// The keyword lines of Python's `pulse` in its stub: the rows of [`PULSE`], as
+/// [`stub_keywords`] writes a design's.
+pub fn impact_stub_keywords() -> String {
+    stub_lines(PULSE, &[])
+}
+
+fn stub_lines(table: &[Param<DesignDraft>], skip: &[&str]) -> String {
     let mut out = String::new();
-    for p in DESIGN.iter().filter(|p| !skip.contains(&p.name)) {
+    for p in table.iter().filter(|p| !skip.contains(&p.name)) {
         let ty = match p.accepts {
             Accepts::Quantity { .. } => "Quantity",
             Accepts::Count { .. } => "Count",

@@ -171,42 +171,22 @@ pub(super) fn edit_distance(a: &str, b: &str) -> usize {
     row[b.len()]
 }
 
-/// Refuses what the physical model derives itself, given together with it: K_HZ (Eq 2 from the
-/// materials) and the pulse shape (the exact Hertz pulse).
+/// Refuses a row given under a model it has no meaning in (its `only_in` column, [`Param`]):
+/// with the physical model, what it derives itself (K_HZ from the materials, the exact Hertz
+/// pulse, the air from its state); with the paper model, the air's state (its air is ρ0·c and
+/// c). Table order.
 pub(super) fn physical_conflicts<T>(given: &Given<T>, model: Model) -> Result<(), ThudError> {
-    if model != Model::Physical {
-        // The paper's air is its ρ0·c and c (`rho-c`, `sound-speed`): a temperature or a
-        // pressure would change nothing, so it is refused rather than ignored.
-        for name in ["air-temperature", "air-pressure"] {
-            if given.has(name) {
-                let with = if given.has("model") {
-                    format!("{} paper", given.spell("model"))
-                } else {
-                    format!("the paper model (the default; give {} physical)", given.spell("model"))
-                };
-                return Err(ThudError::Conflict {
-                    param: given.spell(name),
-                    with,
-                    why: "only the physical model takes the air from its temperature and pressure; the paper model's air is its rho-c and sound-speed",
-                });
+    for p in given.table {
+        let Some((only, why)) = p.only_in.filter(|(only, _)| *only != model && given.has(p.name)) else { continue };
+        let with = match (only, given.has("model")) {
+            (Model::Physical, true) => format!("{} paper", given.spell("model")),
+            (Model::Physical, false) => {
+                format!("the paper model (the default; give {} physical)", given.spell("model"))
             }
-        }
-        return Ok(());
-    }
-    for (name, why) in [
-        ("k-hz", "the physical model takes K_HZ from the materials (Eq 2)"),
-        ("pulse", "the physical model uses the exact Hertz pulse"),
-        ("rho-c", "the physical model takes the air from its temperature and pressure"),
-        ("sound-speed", "the physical model takes the air from its temperature and pressure"),
-    ] {
-        if given.has(name) {
-            let with = if given.has("model") {
-                format!("{} physical", given.spell("model"))
-            } else {
-                "a physical-model design".to_string()
-            };
-            return Err(ThudError::Conflict { param: given.spell(name), with, why });
-        }
+            (Model::Paper, true) => format!("{} physical", given.spell("model")),
+            (Model::Paper, false) => "a physical-model design".to_string(),
+        };
+        return Err(ThudError::Conflict { param: given.spell(p.name), with, why });
     }
     Ok(())
 }

@@ -5,16 +5,19 @@
 //! values with the same one-line message.
 //!
 //! A front end hands in `(name, Input)` pairs, names as [`Spelling::key`] spells them: the long
-//! flags without dashes (`main-mass`) from the command line, keywords (`main_mass`) from Python. The tables [`DESIGN`] and [`PULSE`] list the known names; values are parsed
-//! and applied in table order (not the order given), so every front end reports the same first
-//! problem. Messages name the parameter the way the front end's user typed it ([`Spelling`]):
-//! `invalid --main-mass: …` on the command line, `invalid main_mass: …` in Python.
+//! flags without dashes (`main-mass`) from the command line, keywords (`main_mass`) from Python.
+//! The one table [`PARAMS`] lists the known names, each row saying where it applies
+//! ([`Where`]: a design, a single impact, or both); [`DESIGN`] and [`PULSE`] are its two views.
+//! Values are parsed and applied in table order (not the order given), so every front end
+//! reports the same first problem. Messages name the parameter the way the front end's user
+//! typed it ([`Spelling`]): `invalid --main-mass: …` on the command line, `invalid main_mass: …`
+//! in Python.
 //!
-//! Adding a parameter to a design is one line in [`DESIGN`]: its name, what it accepts
-//! (a quantity of a [`Kind`] inside a [`Range`], a choice of names, a name or a switch) and
-//! where it goes. The command line's flags (its help, completions and man page), Python's
-//! keywords and the explorer's fields are then built from the row; so are `thud pulse`'s from
-//! the rows of [`PULSE`].
+//! Adding a parameter is one row in [`PARAMS`]: its name, what it accepts (a quantity of a
+//! [`Kind`] inside a [`Range`], a choice of names, a name or a switch), where its value goes in
+//! the one draft ([`DesignDraft`]) and where it applies. The command line's flags (its help,
+//! completions and man page) for the design commands and `thud pulse`, Python's keywords, the
+//! config file's keys, the explorer's fields and `thud limits` are then built from the row.
 
 use crate::acoustics::{PulseShape, QuadSigns, Source};
 use crate::design::{Design, Model};
@@ -29,7 +32,7 @@ mod pulse;
 mod tests;
 
 pub use ball::follow_material;
-use ball::{base_ball_of, resolve_ball, BallGiven, BaseBall};
+use ball::{base_ball_of, resolve_ball, BallGiven};
 pub use design::*;
 pub use given::parse_range;
 use given::{edit_distance, physical_conflicts, Given};
@@ -163,8 +166,40 @@ pub struct Conflict {
     pub names_other: bool,
 }
 
-/// One named parameter: one row of a table, from which every front end takes its flag, keyword,
-/// field, help, range and check.
+/// Where a row of [`PARAMS`] applies: to a design (`simulate`, `sweep`, …, the explorer, the
+/// config file), to a single impact (`thud pulse`, Python's `pulse`), or to both. The views
+/// [`DESIGN`] and [`PULSE`] are the rows of each.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Where {
+    Design,
+    Impact,
+    Both,
+}
+
+impl Where {
+    /// Whether a row of this reach is a design's ([`DESIGN`]).
+    pub const fn design(self) -> bool {
+        matches!(self, Where::Design | Where::Both)
+    }
+
+    /// Whether a row of this reach is an impact's ([`PULSE`]).
+    pub const fn impact(self) -> bool {
+        matches!(self, Where::Impact | Where::Both)
+    }
+}
+
+/// How a row reads for a single impact ([`PULSE`]) where it differs from a design's: its help
+/// (an impact's defaults are Fig 2's, not a design's; empty: the row's help) and its relations
+/// (an impact takes a plate without a sphere, on the paper's acrylic one).
+#[derive(Debug, Clone, Copy)]
+pub struct ImpactSide {
+    pub help: &'static str,
+    pub conflicts: Option<Conflict>,
+    pub requires: Option<&'static str>,
+}
+
+/// One named parameter: one row of the table [`PARAMS`], from which every front end takes its
+/// flag, keyword, field, help, range and check.
 pub struct Param<T: 'static> {
     /// The parameter's name: the long flag without dashes (`main-mass`), the keyword with
     /// underscores; the force amplitude `force` is the exception on the command line, whose
@@ -194,7 +229,31 @@ pub struct Param<T: 'static> {
     /// own when its materials set it, nor a frequency without a force. [`check_design`] checks
     /// the value against the row's range wherever the row applies.
     pub applies: Option<fn(&Design) -> bool>,
+    /// Where the row applies: a design, an impact or both ([`Where`]).
+    pub used_in: Where,
+    /// The row as an impact reads it ([`ImpactSide`]).
+    pub impact: ImpactSide,
+    /// The one model the row means something in, and why (None: both): given under the other,
+    /// it is refused, not ignored.
+    pub only_in: Option<(Model, &'static str)>,
 }
+
+// By hand: a derive would ask `T: Copy`, and a row holds only functions of `T`.
+impl<T> Clone for Param<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T> Copy for Param<T> {}
+
+impl<T> Clone for Accepts<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T> Copy for Accepts<T> {}
 
 impl<T> Param<T> {
     /// Shorthand: a row of `group` with no placeholder, relation or accessor yet.
@@ -211,7 +270,40 @@ impl<T> Param<T> {
             requires: None,
             get: None,
             applies: None,
+            used_in: Where::Design,
+            impact: ImpactSide { help: "", conflicts: None, requires: None },
+            only_in: None,
         }
+    }
+
+    /// The row meaning something in the model `model` only, for the reason `why`.
+    const fn only_in(mut self, model: Model, why: &'static str) -> Self {
+        self.only_in = Some((model, why));
+        self
+    }
+
+    /// The row applying to a single impact too, with the impact's help `help` (empty: the
+    /// row's) and no relation ([`ImpactSide`]).
+    const fn both(mut self, help: &'static str) -> Self {
+        self.used_in = Where::Both;
+        self.impact.help = help;
+        self
+    }
+
+    /// The row applying to a single impact only.
+    const fn impact_only(mut self) -> Self {
+        self.used_in = Where::Impact;
+        self
+    }
+
+    /// The row as an impact reads it: its impact help and relations in place of a design's.
+    const fn as_impact(mut self) -> Self {
+        if !self.impact.help.is_empty() {
+            self.help = self.impact.help;
+        }
+        self.conflicts = self.impact.conflicts;
+        self.requires = self.impact.requires;
+        self
     }
 
     /// The row with the placeholder `value_name`.
@@ -273,6 +365,19 @@ impl<T> Param<T> {
     }
 }
 
+/// The ranges `thud limits` lists: the range table's ([`crate::limits::RANGES`]), then the
+/// range of any row of [`PARAMS`] it lacks (a row may hold its range itself), in table order.
+pub fn listed_ranges() -> Vec<&'static Range> {
+    let table: &'static [Range] = &crate::limits::RANGES;
+    let mut out: Vec<&'static Range> = table.iter().collect();
+    for r in PARAMS.iter().filter_map(Param::range) {
+        if !out.iter().any(|o| o.param == r.param) {
+            out.push(r);
+        }
+    }
+    out
+}
+
 /// The names of the solvers, as on the command line.
 pub const SOLVERS: [&str; 2] = ["event", "newmark"];
 /// What each solver is ([`SOLVERS`] order).
@@ -297,9 +402,9 @@ const MODEL_HELPS: [&str; 2] = [
     "The measured world: peak level, exact Hertz pulse, air from temperature and pressure, K_HZ and mass from the materials",
 ];
 
-/// The help of the air-temperature rows ([`DESIGN`] and [`PULSE`] alike).
+/// The help of the air-temperature row.
 const AIR_TEMPERATURE_HELP: &str = "Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]";
-/// The help of the air-pressure rows ([`DESIGN`] and [`PULSE`] alike).
+/// The help of the air-pressure row.
 const AIR_PRESSURE_HELP: &str =
     "Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]";
 

@@ -332,24 +332,24 @@ def pulse(
     *,
     preset: Optional[str] = None,
     design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
-    radius: Optional[Quantity] = None,
-    mass: Optional[Quantity] = None,
-    density: Optional[Quantity] = None,
-    u0: Optional[Quantity] = None,
-    k_hz: Optional[Quantity] = None,
-    sphere: Optional[str] = None,
-    plate: Optional[str] = None,
-    main_mass: Optional[Quantity] = None,
-    r: Optional[Quantity] = None,
-    theta: Optional[Quantity] = None,
-    source: Optional[Source] = None,
-    quad_signs: Optional[QuadSigns] = None,
-    pulse: Optional[PulseShape] = None,
-    rho_c: Optional[Quantity] = None,
-    sound_speed: Optional[Quantity] = None,
-    model: Optional[Model] = None,
-    air_temperature: Optional[Quantity] = None,
-    air_pressure: Optional[Quantity] = None,
+    mass: Optional[Quantity] = None,  # Sphere mass (kg, or e.g. 40.5g). Default: from --radius and --sphere's density, else 40.5 g; 0.0001 to 100 kg
+    u0: Optional[Quantity] = None,  # Impact speed U0 (m/s) [default: 1.4]; 0.0001 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Mass of a movable target (kg): K* = (m+M)/(mM) (Eq 8). Default: a fixed plate; 0.001 to 1e6 kg
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5) [default: 5.6e8, or from --sphere/--plate]; 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Sphere material (steel, stainless-steel, acrylic, brass, aluminium, glass, rubber, nylon, tungsten-carbide)
+    plate: Optional[str] = None,  # Plate material [default: steel when --sphere is given]
+    density: Optional[Quantity] = None,  # Sphere density (kg/m³) [default: --sphere's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Sphere radius (m, or e.g. 19.05mm). Default: from --mass and --sphere's density, else 19.05 mm; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance from the contact point (m) [default: 0.7]; 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle from the plate's normal (degrees) [default: 45]; -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces: a free sphere, a plate, or a wall–floor corner [default: dipole]
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs: the paper's (pressure-release wall) or a rigid wall [default: rigid]
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse: the paper's half-sine (Eq 7) or the exact Hertz pulse [default: half-sine]
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the measured level (peak, exact Hertz pulse, air from --air-temperature and --air-pressure, K_HZ and mass from the materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     points: Count = 2000,
     no_limit: bool = False,
 ) -> Pulse:
@@ -396,6 +396,8 @@ def simulate(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -452,6 +454,8 @@ def simulate(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -494,6 +498,8 @@ def simulate(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -536,6 +542,8 @@ def simulate_ensemble(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -580,6 +588,8 @@ def sweep(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -632,6 +642,8 @@ def sweep(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -674,6 +686,8 @@ def bifurcation(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -723,6 +737,8 @@ def response(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -816,6 +832,8 @@ def orbit(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -860,6 +878,8 @@ def continuation(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Union[Quantity, Sequence[Quantity], npt.ArrayLike, None] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
@@ -904,6 +924,8 @@ def impact_map(
     model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
     air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
     air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    rho_c: Optional[Quantity] = None,  # Air impedance ρ0·c of the paper model (Pa·s/m) [default: 400, the paper's]; 1 to 1e7 Pa·s/m
+    sound_speed: Optional[Quantity] = None,  # Speed of sound c of the paper model (m/s) [default: 343]; 1 to 10000 m/s
     l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
     e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
     force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
