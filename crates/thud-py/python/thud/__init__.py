@@ -36,13 +36,14 @@ from ._thud import (
     ranges,
     schema,
 )
-from ._results import ImpactMap, Orbit
+from ._results import Basins, ImpactMap, Orbit, Restitution
 from ._results import _restore_record
 from ._results import continuation_xarray as _continuation_xarray
 from ._wrap import document as _document
 from ._wrap import with_progress as _progress
 
 __all__ = [
+    "Basins",
     "Chart",
     "Ensemble",
     "ImpactMap",
@@ -50,8 +51,10 @@ __all__ = [
     "ParameterError",
     "Pulse",
     "Response",
+    "Restitution",
     "Run",
     "axis",
+    "basins",
     "bifurcation",
     "continuation",
     "fit_damper",
@@ -62,6 +65,7 @@ __all__ = [
     "pulse",
     "ranges",
     "response",
+    "restitution",
     "schema",
     "simulate",
     "simulate_ensemble",
@@ -71,7 +75,7 @@ __all__ = [
 
 def _restore(kind: str, state: str) -> _Any:
     """A result again from its pickled state (what every result's ``__reduce__`` names)."""
-    if kind in ("Orbit", "ImpactMap"):
+    if kind in ("Orbit", "ImpactMap", "Basins", "Restitution"):
         return _restore_record(kind, state)
     return _thud._restore(kind, state)
 
@@ -166,6 +170,24 @@ def impact_map(**params: _Any) -> ImpactMap:
     (default 200), and the orbit's type. Options: transient, no_limit; every other keyword is
     the design's, as for ``simulate``."""
     return ImpactMap(_json.loads(_thud._impact_map(**params)))
+
+
+def basins(grid: _Union[int, str] = 20, w0: _Any = (-1.0, 1.0), **params: _Any) -> Basins:
+    """The basins of attraction of a forced design over the ball's start, as ``thud basins
+    --json``: ``grid`` offsets y0 across the clearance × ``grid`` velocities w0 over ``w0``
+    (FROM, TO) in m/s (default −1 to 1); each start's attractor and amplitude. Options:
+    transient, no_limit; every other keyword is the design's (not ball_position or
+    ball_velocity: the basins set the ball's start)."""
+    return Basins(_json.loads(_thud._basins(grid, tuple(w0), **params)))
+
+
+def restitution(masses_kg: _Any = "5g:100g:20", u0: _Union[float, str] = 1.4, target: _Any = None,
+                **params: _Any) -> Restitution:
+    """The restitution R of one isolated contact at approach speed ``u0`` (m/s) against the
+    impact mass, as ``thud restitution`` (Fig 13): masses_kg a sequence (kg) or "FROM:TO:N"
+    text (default "5g:100g:20"); with ``target`` (a wanted R in (0, 1]) also the c1 that gives
+    it for each mass. Every other keyword is the design's."""
+    return Restitution(_json.loads(_thud._restitution(masses_kg, u0, target, **params)))
 
 
 def response(freqs_hz: _Any = None, **params: _Any) -> Response:

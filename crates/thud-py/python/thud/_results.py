@@ -194,14 +194,105 @@ class ImpactMap(_Record):
         return f"ImpactMap({self.orbit}, amplitude {self.amplitude_m:.6g} m, {n} impacts)"
 
 
+class Basins(_Record):
+    """The basins of attraction of a forced design over the ball's start (``thud.basins``;
+    ``thud basins --json``): per start (y0, w0) the attractor it settles on and the amplitude it
+    reached; the attractors with their orbit type and amplitude."""
+
+    _kind = "Basins"
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        super().__init__(record)
+        r = record
+        #: The design as run.
+        self.design: Dict[str, Any] = r["design"]
+        #: The ball's starting offsets (m) and velocities (m/s).
+        self.y0_m: np.ndarray = np.array(r["y0_m"], dtype=float)
+        self.w0_m_s: np.ndarray = np.array(r["w0_m_s"], dtype=float)
+        shape = (len(self.w0_m_s), len(self.y0_m))
+        #: The attractor of each start, shape (len(w0_m_s), len(y0_m)).
+        self.attractor: np.ndarray = np.array(r["cells"], dtype=np.int64).reshape(shape)
+        #: The amplitude each start reached (m), same shape.
+        self.amplitude_m: np.ndarray = np.array(r["amplitudes_m"], dtype=float).reshape(shape)
+        #: The attractors, in id order (their orbit type, amplitude, …).
+        self.attractors: List[Dict[str, Any]] = list(r["attractors"])
+
+    def to_dataframe(self) -> Any:
+        """One row per start, the columns of ``thud basins --csv`` (y0_m, w0_m_s, attractor,
+        orbit, amplitude_m). Needs pandas."""
+        pd = _need("pandas", "Basins.to_dataframe()")
+        w, y = np.meshgrid(self.w0_m_s, self.y0_m, indexing="ij")
+        labels = [a.get("label", "") for a in self.attractors]
+        ids = self.attractor.ravel()
+        return pd.DataFrame({"y0_m": y.ravel(), "w0_m_s": w.ravel(), "attractor": ids,
+                             "orbit": [labels[i] if i < len(labels) else "" for i in ids],
+                             "amplitude_m": self.amplitude_m.ravel()})
+
+    def to_xarray(self) -> Any:
+        """attractor and amplitude_m on w0_m_s × y0_m. Needs xarray."""
+        xr = _need("xarray", "Basins.to_xarray()")
+        coords = {"w0_m_s": ("w0_m_s", self.w0_m_s, {"units": "m/s"}), "y0_m": ("y0_m", self.y0_m, {"units": "m"})}
+        data = {"attractor": (("w0_m_s", "y0_m"), self.attractor),
+                "amplitude_m": (("w0_m_s", "y0_m"), self.amplitude_m, {"units": "m"})}
+        return xr.Dataset(data, coords=coords, attrs={"attractors": json.dumps(self.attractors),
+                                                      "design": json.dumps(self.design)})
+
+    def __repr__(self) -> str:
+        return f"Basins({self.attractor.shape[1]} × {self.attractor.shape[0]} starts, {len(self.attractors)} attractors)"
+
+
+class Restitution(_Record):
+    """The restitution R = u_out/U0 of one isolated contact against the impact mass
+    (``thud.restitution``; ``thud restitution``), and with a target R the c1 that gives it."""
+
+    _kind = "Restitution"
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        super().__init__(record)
+        r = record
+        #: The design as run.
+        self.design: Dict[str, Any] = r["design"]
+        #: The approach speed U0 (m/s).
+        self.u0_m_s: float = float(r["u0_m_s"])
+        #: The wanted restitution, if given.
+        self.target: Optional[float] = r.get("target")
+        #: The impact masses (kg).
+        self.masses_kg: np.ndarray = np.array(r["masses_kg"], dtype=float)
+        #: R at each mass.
+        self.restitution: np.ndarray = np.array(r["restitution"], dtype=float)
+        c1 = r.get("c1_for_target_n_s_m")
+        #: The c1 (N·s/m) that gives the target R at each mass; None without a target.
+        self.c1_for_target_n_s_m: Optional[np.ndarray] = None if c1 is None else np.array(c1, dtype=float)
+
+    def to_dataframe(self) -> Any:
+        """The columns of ``thud restitution --csv``: mass_g (the paper's axis), restitution, and
+        with a target c1_for_target_n_s_m. Needs pandas."""
+        pd = _need("pandas", "Restitution.to_dataframe()")
+        cols: Dict[str, Any] = {"mass_g": self.masses_kg * 1e3, "restitution": self.restitution}
+        if self.c1_for_target_n_s_m is not None:
+            cols["c1_for_target_n_s_m"] = self.c1_for_target_n_s_m
+        return pd.DataFrame(cols)
+
+    def to_xarray(self) -> Any:
+        """restitution (and c1_for_target_n_s_m) on mass_kg. Needs xarray."""
+        xr = _need("xarray", "Restitution.to_xarray()")
+        data: Dict[str, Any] = {"restitution": (("mass_kg",), self.restitution)}
+        if self.c1_for_target_n_s_m is not None:
+            data["c1_for_target_n_s_m"] = (("mass_kg",), self.c1_for_target_n_s_m, {"units": "N·s/m"})
+        return xr.Dataset(data, coords={"mass_kg": ("mass_kg", self.masses_kg, {"units": "kg"})},
+                          attrs={"u0_m_s": self.u0_m_s, "design": json.dumps(self.design)})
+
+    def __repr__(self) -> str:
+        return f"Restitution({len(self.masses_kg)} masses at U0 {self.u0_m_s:g} m/s)"
+
+
 def _restore_record(kind: str, state: str) -> Any:
     """A result again from its pickled state (its record's JSON text)."""
     record = json.loads(state)
-    if kind == "Orbit":
-        return Orbit(record)
-    if kind == "ImpactMap":
-        return ImpactMap(record)
-    raise ValueError(f"not a thud result kind: {kind!r}")
+    kinds = {"Orbit": Orbit, "ImpactMap": ImpactMap, "Basins": Basins, "Restitution": Restitution}
+    if kind not in kinds:
+        raise ValueError(f"not a thud result kind: {kind!r}")
+    return kinds[kind](record)
 
 
 def continuation_xarray(record: Dict[str, Any]) -> Any:
