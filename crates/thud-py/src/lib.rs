@@ -31,6 +31,7 @@ mod fit;
 mod objects;
 mod orbits;
 mod progress;
+mod render;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
@@ -700,6 +701,8 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(orbits::_impact_map, m)?)?;
     m.add_function(wrap_pyfunction!(orbits::_basins, m)?)?;
     m.add_function(wrap_pyfunction!(orbits::_restitution, m)?)?;
+    m.add_function(wrap_pyfunction!(render::_render, m)?)?;
+    m.add_function(wrap_pyfunction!(render::_figure, m)?)?;
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;

@@ -36,15 +36,17 @@ from ._thud import (
     ranges,
     schema,
 )
-from ._results import Basins, ImpactMap, Orbit, Restitution
+from ._results import Basins, DamperFit, ImpactMap, Orbit, Restitution, StructureFit
 from ._results import _restore_record
 from ._results import continuation_xarray as _continuation_xarray
+from ._figures import attach as _attach_figures
 from ._wrap import document as _document
 from ._wrap import with_progress as _progress
 
 __all__ = [
     "Basins",
     "Chart",
+    "DamperFit",
     "Ensemble",
     "ImpactMap",
     "Orbit",
@@ -53,6 +55,7 @@ __all__ = [
     "Response",
     "Restitution",
     "Run",
+    "StructureFit",
     "axis",
     "basins",
     "bifurcation",
@@ -194,17 +197,18 @@ def response(freqs_hz: _Any = None, **params: _Any) -> Response:
     return _thud.response(freqs_hz, **_progress(params, "response"))
 
 
-def fit_structure(t_s: _Any, x: _Any, *, main_mass: _Union[float, str], quantity: str = "x") -> _Any:
+def fit_structure(t_s: _Any, x: _Any, *, main_mass: _Union[float, str], quantity: str = "x") -> StructureFit:
     """The structure alone, struck once: f_n, ζ, K and C with standard errors from a measured
-    free decay, as ``thud fit structure --json`` (a dict: f_n_hz, zeta, k_n_m, c_n_s_m, each
+    free decay, as ``thud fit structure --json`` (a ``StructureFit``, a dict: f_n_hz, zeta, k_n_m, c_n_s_m, each
     with ``_stderr``, residual_rms, converged, …). ``t_s``: times (s, increasing, any spacing);
     ``x``: the signal as ``quantity`` "x" (m), "v" (m/s) or "a" (m/s²), offset and drift
     allowed; ``main_mass``: M (kg, or e.g. "2kg"). Bad data raises ParameterError."""
-    return _thud.fit_structure(t_s, x, main_mass=main_mass, quantity=quantity)
+    return StructureFit(_thud.fit_structure(t_s, x, main_mass=main_mass, quantity=quantity))
 
 
-def fit_damper(t_s: _Any, x: _Any, **params: _Any) -> _Any:
-    return _thud.fit_damper(t_s, x, **params)
+def fit_damper(t_s: _Any, x: _Any, **params: _Any) -> DamperFit:
+    return DamperFit(_thud.fit_damper(t_s, x, **params))
 
 
 _document(globals())
+_attach_figures()

@@ -212,6 +212,15 @@ class Run:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The time history as SVG, the bytes of ``thud export svg history`` (``--points`` the
+        run's samples); an existing file is kept unless overwrite."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The time history as a one-page PDF (``thud export pdf history``)."""
+    def to_wav(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, full_scale: float = 20.0,
+               format: Literal["pcm16", "pcm24", "float"] = "pcm16") -> None:
+        """The damper's sound over the run (``thud export wav``): 48 kHz mono, sample = mean
+        pressure over its interval / full_scale Pa."""
 
 class Chart:
     """The design chart of a sweep. Every metric is a 2-D array of shape
@@ -266,6 +275,13 @@ class Chart:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
+               overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The design chart (or Fig 17) as SVG, the bytes of ``thud export svg chart|fig17`` over
+        this chart's masses and gaps."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
+               overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The design chart (or Fig 17) as a one-page PDF (``thud export pdf chart|fig17``)."""
 
 class Ensemble:
     """One design from N ball offsets y0 = −d/2 + (k + ½)·d/N at rest (``simulate(ensemble=N)``):
@@ -327,6 +343,10 @@ class Response:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The frequency response as SVG (``thud export svg response`` over these frequencies)."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The frequency response as a one-page PDF (``thud export pdf response``)."""
 
 def pulse(
     *,
@@ -786,6 +806,8 @@ class ImpactMap:
     def to_dataframe(self) -> Any: ...
     def to_xarray(self) -> Any: ...
     def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
 
 def orbit(
     *,
@@ -931,6 +953,8 @@ class Basins:
     def to_dataframe(self) -> Any: ...
     def to_xarray(self) -> Any: ...
     def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
 
 class Restitution:
     """R = u_out/U0 of one isolated contact against the impact mass (``thud.restitution``)."""
@@ -944,6 +968,8 @@ class Restitution:
     def to_dataframe(self) -> Any: ...
     def to_xarray(self) -> Any: ...
     def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
 
 def basins(
     grid: Count = 20,
@@ -1048,13 +1074,31 @@ def ranges() -> List[Dict[str, object]]:
     keyword), what, min, max, unit (of a plain number) and reason."""
 
 
+class StructureFit(Dict[str, Any]):
+    """The structure's fit, a dict of ``thud fit structure --json``'s keys (``thud.fit_structure``)."""
+
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_dataframe(self) -> Any:
+        """One row, the ``--json`` keys as columns. Needs pandas."""
+    def to_xarray(self) -> Any:
+        """The fitted values as 0-d variables, the rest in attrs. Needs xarray."""
+
+class DamperFit(Dict[str, Any]):
+    """The damper's fit, a dict of ``thud fit damper --json``'s keys (``thud.fit_damper``)."""
+
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_dataframe(self) -> Any:
+        """The measured and model envelopes, one row a period (t_s); the numbers in attrs. Needs pandas."""
+    def to_xarray(self) -> Any:
+        """The envelopes on t_s, c1 and restitution with their intervals. Needs xarray."""
+
 def fit_structure(
     t_s: Union[Sequence[float], npt.ArrayLike],
     x: Union[Sequence[float], npt.ArrayLike],
     *,
     main_mass: Quantity,
     quantity: Literal["x", "v", "a"] = "x",
-) -> Dict[str, Any]:
+) -> StructureFit:
     """The structure alone, struck once: f_n, ζ, K and C with standard errors from a measured
     free decay, as ``thud fit structure --json`` (keys f_n_hz, zeta, k_n_m, c_n_s_m, each with
     ``_stderr``, residual_rms, converged)."""
@@ -1096,7 +1140,7 @@ def fit_damper(
     settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
     quantity: Literal["x", "v", "a"] = "x",
     no_limit: bool = False,
-) -> Dict[str, Any]:
+) -> DamperFit:
     """The structure with the damper, struck once at the record's start, every other parameter
     known: c1 and its restitution with 95 % intervals, as ``thud fit damper --json`` (keys
     c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr, residual_rms,

@@ -146,7 +146,7 @@ def document(namespace: Dict[str, Any]) -> None:
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
                "simulate_ensemble": _thud.Ensemble, "sweep": Any, "response": _thud.Response,
-               "fit_damper": Dict[str, Any], "bifurcation": Any, "orbit": "thud.Orbit",
+               "fit_damper": "thud.DamperFit", "bifurcation": Any, "orbit": "thud.Orbit",
                "continuation": Any, "impact_map": "thud.ImpactMap", "basins": "thud.Basins",
                "restitution": "thud.Restitution"}
     for name, ret in returns.items():
