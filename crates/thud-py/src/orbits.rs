@@ -213,6 +213,9 @@ pub fn _basins(
     json_of(py, &v)
 }
 
+/// The restitution curve (mass, R) and, with a target R, the c1 that gives it at each mass.
+type Restitutions = (Vec<(f64, f64)>, Option<Vec<f64>>);
+
 /// _restitution(masses_kg, u0, target, **params) -> str
 ///
 /// The restitution of one isolated contact at approach speed `u0` (m/s) against the impact
@@ -251,7 +254,7 @@ pub fn _restitution(
     args::enforce(py, contacts, "masses_kg", &hint, no_limit)?;
     let out = {
         let d = d.clone();
-        detach::run(py, move |_| -> Result<(Vec<(f64, f64)>, Option<Vec<f64>>), ThudError> {
+        detach::run(py, move |_| -> Result<Restitutions, ThudError> {
             let curve = thud_core::design::restitution_curve(&d, &masses, u0)?;
             let c1 = match target {
                 None => None,

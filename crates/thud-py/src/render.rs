@@ -116,18 +116,15 @@ pub fn _render<'py>(
         ensemble_runs: 1,
         look: Look { size, title },
     };
-    let bytes =
-        detach::run(
-            py,
-            move |_| {
-                if pdf {
-                    artifact::render_pdf(kind, &d, &opts)
-                } else {
-                    artifact::render(kind, &d, &opts)
-                }
-            },
-        )?;
-    let bytes = bytes.map_err(|e| match e {
+    // The error boxed: it crosses the thread boundary of `detach::run` by value.
+    let bytes = detach::run(py, move |_| {
+        if pdf {
+            artifact::render_pdf(kind, &d, &opts).map_err(Box::new)
+        } else {
+            artifact::render(kind, &d, &opts).map_err(Box::new)
+        }
+    })?;
+    let bytes = bytes.map_err(|e| match *e {
         RenderError::Invalid(t) => engine_error(py, t),
         other => engine_error(py, ThudError::invalid("render", other.to_string())),
     })?;
