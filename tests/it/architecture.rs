@@ -8,8 +8,12 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 /// The crates whose modules are checked, as (name, source root).
-const CRATES: [(&str, &str); 3] =
-    [("thud", "src"), ("thud-core", "crates/thud-core/src"), ("thud-py", "crates/thud-py/src")];
+const CRATES: [(&str, &str); 4] = [
+    ("thud", "src"),
+    ("thud-core", "crates/thud-core/src"),
+    ("thud-render", "crates/thud-render/src"),
+    ("thud-py", "crates/thud-py/src"),
+];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -293,6 +297,16 @@ fn the_python_module_builds_on_the_engine_alone() {
     }
     // The check sees the app's own crates: the app itself does depend on them.
     assert!(locked_closure("thud").contains("ratatui"));
+}
+
+#[test]
+fn the_renderers_build_on_the_engine_alone() {
+    let all = locked_closure("thud-render");
+    assert!(all.contains("thud-core") && all.contains("svg2pdf"), "{all:?}");
+    // Bytes from results: no app, no terminal, no command line, no progress bar, no Python.
+    for ui in ["thud", "ratatui", "crossterm", "clap", "directories", "pyo3", "indicatif", "signal-hook"] {
+        assert!(!all.contains(ui), "thud-render depends on {ui}");
+    }
 }
 
 /// The places a file's text names a `Result` whose error is a bare `String` (`Result<T, String>`),

@@ -33,6 +33,7 @@ mod fit;
 mod objects;
 mod orbits;
 mod progress;
+mod render;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
@@ -50,7 +51,7 @@ use progress::Progress;
 
 /// The keywords each function takes beside the engine's named parameters (its run options),
 /// as `_parameters()` hands them to the Python wrapper for the signatures.
-const OPTIONS: [(&str, &[&str]); 11] = [
+const OPTIONS: [(&str, &[&str]); 13] = [
     ("pulse", &["preset", "design", "points", "no_limit"]),
     ("simulate", &["preset", "design", "samples", "ensemble", "no_limit"]),
     ("simulate_ensemble", &["preset", "design", "no_limit"]),
@@ -62,6 +63,8 @@ const OPTIONS: [(&str, &[&str]); 11] = [
     ("orbit", &["preset", "design", "period", "symmetric", "guess"]),
     ("continuation", &["preset", "design", "period", "symmetric"]),
     ("impact_map", &["preset", "design", "transient", "no_limit"]),
+    ("basins", &["preset", "design", "transient", "no_limit"]),
+    ("restitution", &["preset", "design", "no_limit"]),
 ];
 
 /// Waveform points of a pulse unless `points` is given.
@@ -217,7 +220,13 @@ pub(crate) fn cancelled(py: Python<'_>) -> PyErr {
 
 /// An axis of a sweep: a sequence of numbers in SI units, or "FROM:TO:N" text as on the
 /// command line ("30g:100g:20"), each value inside `range`.
-fn axis(py: Python<'_>, name: &str, value: &Bound<'_, PyAny>, kind: Kind, range: &limits::Range) -> PyResult<Vec<f64>> {
+pub(crate) fn axis(
+    py: Python<'_>,
+    name: &str,
+    value: &Bound<'_, PyAny>,
+    kind: Kind,
+    range: &limits::Range,
+) -> PyResult<Vec<f64>> {
     let values: Vec<f64> = if let Ok(s) = value.cast::<PyString>() {
         params::parse_range(name, &s.to_cow()?, kind, range).map_err(|e| engine_error(py, e))?
     } else {
@@ -610,6 +619,9 @@ fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     refused.set_item("simulate_ensemble", vec![Spelling::Keyword.spell("ball-position")])?;
     // A damper fit spreads the ball's start itself (an ensemble over starts).
     refused.set_item("fit_damper", vec![Spelling::Keyword.spell("ball-position")])?;
+    // The basins set the ball's start themselves.
+    refused
+        .set_item("basins", vec![Spelling::Keyword.spell("ball-position"), Spelling::Keyword.spell("ball-velocity")])?;
     d.set_item("refused", refused)?;
     Ok(d)
 }
@@ -689,6 +701,10 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(orbits::_orbit, m)?)?;
     m.add_function(wrap_pyfunction!(orbits::_continuation, m)?)?;
     m.add_function(wrap_pyfunction!(orbits::_impact_map, m)?)?;
+    m.add_function(wrap_pyfunction!(orbits::_basins, m)?)?;
+    m.add_function(wrap_pyfunction!(orbits::_restitution, m)?)?;
+    m.add_function(wrap_pyfunction!(render::_render, m)?)?;
+    m.add_function(wrap_pyfunction!(render::_figure, m)?)?;
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;

@@ -157,3 +157,129 @@ pub fn _impact_map(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResu
     }
     json_of(py, &v)
 }
+
+/// _basins(grid, w0, **params) -> str
+///
+/// The basins of attraction of a forced design over the ball's start, as `thud basins
+/// --json`: `grid` offsets y0 across the clearance × `grid` velocities w0 from `w0[0]` to
+/// `w0[1]` (m/s); each start's attractor and amplitude. Options: transient, no_limit.
+#[pyfunction]
+#[pyo3(signature = (grid, w0, **params))]
+pub fn _basins(
+    py: Python<'_>,
+    grid: &Bound<'_, PyAny>,
+    w0: (Bound<'_, PyAny>, Bound<'_, PyAny>),
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let kw = Kwargs::new(params, options("basins"))?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let d = design_of(py, &kw)?;
+    let given = PyDict::new(py);
+    given.set_item("grid", grid)?;
+    let n = Kwargs::new(Some(&given), &["grid"])?.count(py, "grid", &limits::GRID_N, 20)?;
+    let speed = |v: &Bound<'_, PyAny>| -> PyResult<f64> {
+        let x = match args::to_value(v)? {
+            thud_core::params::Input::Num(x) => x,
+            thud_core::params::Input::Text(t) => {
+                units::parse("w0", &t, Kind::Speed).map_err(|e| engine_error(py, e))?
+            }
+            _ => {
+                let msg = format!("invalid w0: expected (FROM, TO) in m/s, not {}", args::kind_of(v));
+                return Err(parameter_error(py, "w0", msg));
+            }
+        };
+        limits::BALL_VELOCITY.check_as("w0", x).map_err(|e| engine_error(py, e))
+    };
+    let (lo, hi) = (speed(&w0.0)?, speed(&w0.1)?);
+    if args::given(&kw.params, "ball-position") || args::given(&kw.params, "ball-velocity") {
+        let msg = "invalid grid: the basins set the ball's start; leave out ball_position and ball_velocity";
+        return Err(parameter_error(py, "grid", msg.to_string()));
+    }
+    let transient = kw.count(py, "transient", &limits::TRANSIENT, dynamics::DEFAULT_TRANSIENT_PERIODS as usize)?;
+    let periods = if args::given(&kw.params, "periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
+    let s = dynamics::Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods };
+    refuse(py, dynamics::check_work(n * n, s, false), "grid", no_limit)?;
+    let w = thud_core::design::linspace(lo, hi, n);
+    let b = {
+        let d = d.clone();
+        detach::run(py, move |cancel| dynamics::basins(&d, n, &w, s, "force", Some(cancel), &|_| {}))?
+    };
+    let b = b.map_err(|e| engine_error(py, e))?;
+    thud_core::finite::check(&b).map_err(|e| args::non_finite(&e.0))?;
+    let mut v = serde_json::to_value(&b).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    if let Some(m) = v.as_object_mut() {
+        m.insert("design".into(), serde_json::to_value(d.design()).unwrap_or_default());
+    }
+    json_of(py, &v)
+}
+
+/// The restitution curve (mass, R) and, with a target R, the c1 that gives it at each mass.
+type Restitutions = (Vec<(f64, f64)>, Option<Vec<f64>>);
+
+/// _restitution(masses_kg, u0, target, **params) -> str
+///
+/// The restitution of one isolated contact at approach speed `u0` (m/s) against the impact
+/// mass, as `thud restitution --json`'s rows: {"design", "u0_m_s", "masses_kg", "restitution",
+/// "c1_for_target_n_s_m" (with a target R)}.
+#[pyfunction]
+#[pyo3(signature = (masses_kg, u0, target, **params))]
+pub fn _restitution(
+    py: Python<'_>,
+    masses_kg: &Bound<'_, PyAny>,
+    u0: &Bound<'_, PyAny>,
+    target: Option<&Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let kw = Kwargs::new(params, options("restitution"))?;
+    let no_limit = kw.switch(py, "no_limit")?;
+    let d = design_of(py, &kw)?;
+    let masses = crate::axis(py, "masses_kg", masses_kg, Kind::Mass, &limits::MASS)?;
+    let number = |name: &str, v: &Bound<'_, PyAny>, kind: Kind, range: &limits::Range| -> PyResult<f64> {
+        let x = match args::to_value(v)? {
+            thud_core::params::Input::Num(x) => x,
+            thud_core::params::Input::Text(t) => units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?,
+            _ => {
+                let msg = format!("invalid {name}: expected a number, not {}", args::kind_of(v));
+                return Err(parameter_error(py, name, msg));
+            }
+        };
+        range.check_as(name, x).map_err(|e| engine_error(py, e))
+    };
+    let u0 = number("u0", u0, Kind::Speed, &limits::U0)?;
+    let target =
+        target.filter(|t| !t.is_none()).map(|t| number("target", t, Kind::Number, &limits::TARGET)).transpose()?;
+    let contacts = limits::restitution_contacts(masses.len(), target.is_some());
+    let per_mass = contacts.value / masses.len() as f64;
+    let hint = format!("use at most {} masses", limits::short((contacts.cap.max / per_mass).floor()));
+    args::enforce(py, contacts, "masses_kg", &hint, no_limit)?;
+    let out = {
+        let d = d.clone();
+        detach::run(py, move |_| -> Result<Restitutions, ThudError> {
+            let curve = thud_core::design::restitution_curve(&d, &masses, u0)?;
+            let c1 = match target {
+                None => None,
+                Some(t) => Some(
+                    curve
+                        .iter()
+                        .map(|&(m, _)| {
+                            let v = thud_core::design::variant(&d, m, d.damper.gap_m).check()?;
+                            thud_core::design::c1_for_restitution(&v, u0, t)
+                        })
+                        .collect::<Result<Vec<f64>, ThudError>>()?,
+                ),
+            };
+            Ok((curve, c1))
+        })?
+    };
+    let (curve, c1) = out.map_err(|e| engine_error(py, e))?;
+    let v = serde_json::json!({
+        "design": d.design(),
+        "u0_m_s": u0,
+        "target": target,
+        "masses_kg": curve.iter().map(|c| c.0).collect::<Vec<f64>>(),
+        "restitution": curve.iter().map(|c| c.1).collect::<Vec<f64>>(),
+        "c1_for_target_n_s_m": c1,
+    });
+    thud_core::finite::check(&v).map_err(|e| args::non_finite(&e.0))?;
+    json_of(py, &v)
+}

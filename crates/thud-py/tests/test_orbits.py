@@ -161,3 +161,39 @@ def test_orbit_refusals_name_their_keyword():
     with pytest.raises(thud.ParameterError) as info:
         thud.continuation(preset="forced-rattle", freq=(5.5, 6.5), gap=[0.01, 0.02])
     assert "exactly one parameter" in str(info.value)
+
+
+def test_basins_equal_thud_basins(cli, cli_json):
+    b = thud.basins(3, (-0.5, 0.5), preset="forced-rattle", transient=20, periods=4)
+    j = cli_json("basins", "--preset", "forced-rattle", "--grid", "3", "--w0", "-0.5:0.5", "--transient", "20",
+                 "--periods", "4")
+    assert b.as_dict() == j
+    assert b.attractor.shape == (3, 3) and list(b.attractor.ravel()) == j["cells"]
+    assert pickle.loads(pickle.dumps(b)) == b
+    code, out, err = cli("basins", "--preset", "forced-rattle", "--grid", "3", "--w0", "-0.5:0.5", "--transient",
+                         "20", "--periods", "4", "--csv")
+    assert code == 0, err
+    rows = [line.split(",") for line in out.splitlines()[1:]]
+    df = b.to_dataframe()
+    assert list(df.columns) == out.splitlines()[0].split(",")
+    assert [float(r[0]) for r in rows] == list(df["y0_m"]) and [int(r[2]) for r in rows] == list(df["attractor"])
+    assert [r[3] for r in rows] == list(df["orbit"])
+    with pytest.raises(thud.ParameterError) as info:
+        thud.basins(3, preset="forced-rattle", ball_velocity=0.1)
+    assert info.value.param in ("grid", "ball_velocity")
+
+
+def test_restitution_equals_thud_restitution(cli_json):
+    r = thud.restitution("10g:20g:2", target=0.5)
+    j = cli_json("restitution", "--masses", "10g:20g:2", "--target", "0.5")
+    assert list(r.restitution) == [row["restitution"] for row in j["rows"]]
+    assert list(r.c1_for_target_n_s_m) == [row["c1_for_target_n_s_m"] for row in j["rows"]]
+    df = r.to_dataframe()
+    assert list(df.columns) == [c["key"] for c in j["columns"]]
+    assert list(df["mass_g"]) == [row["mass_g"] for row in j["rows"]]
+    assert pickle.loads(pickle.dumps(r)) == r
+    plain = thud.restitution([0.01, 0.02], u0="1.4m/s")
+    assert list(plain.restitution) == list(r.restitution) and plain.c1_for_target_n_s_m is None
+    with pytest.raises(thud.ParameterError) as info:
+        thud.restitution(target=2)
+    assert info.value.param == "target"

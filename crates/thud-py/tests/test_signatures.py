@@ -74,8 +74,11 @@ def test_simulate_ensemble_always_returns_an_ensemble_and_equals_simulate_s():
 def test_every_public_function_and_method_has_a_signature_without_catch_alls():
     for name in thud.__all__:
         obj = getattr(thud, name)
+        # A fit is a dict: the methods it takes unchanged from dict are Python's own (no signature).
+        builtin = set().union(*(vars(b) for b in obj.__mro__[1:] if b.__module__ == "builtins")) \
+            if isinstance(obj, type) else set()
         targets = [obj] if not isinstance(obj, type) else \
-            [getattr(obj, m) for m in dir(obj) if not m.startswith("_") and callable(getattr(obj, m))]
+            [getattr(obj, m) for m in dir(obj) if not m.startswith("_") and m not in builtin and callable(getattr(obj, m))]
         if isinstance(obj, type) and issubclass(obj, BaseException):
             continue
         for f in targets:

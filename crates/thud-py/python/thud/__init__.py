@@ -37,14 +37,17 @@ from ._thud import (
     schema,
 )
 from ._design import Designer, Front, design
-from ._results import ImpactMap, Orbit
+from ._results import Basins, DamperFit, ImpactMap, Orbit, Restitution, StructureFit
 from ._results import _restore_record
 from ._results import continuation_xarray as _continuation_xarray
+from ._figures import attach as _attach_figures
 from ._wrap import document as _document
 from ._wrap import with_progress as _progress
 
 __all__ = [
+    "Basins",
     "Chart",
+    "DamperFit",
     "Designer",
     "Ensemble",
     "Front",
@@ -53,8 +56,11 @@ __all__ = [
     "ParameterError",
     "Pulse",
     "Response",
+    "Restitution",
     "Run",
+    "StructureFit",
     "axis",
+    "basins",
     "bifurcation",
     "continuation",
     "design",
@@ -66,6 +72,7 @@ __all__ = [
     "pulse",
     "ranges",
     "response",
+    "restitution",
     "schema",
     "simulate",
     "simulate_ensemble",
@@ -75,7 +82,7 @@ __all__ = [
 
 def _restore(kind: str, state: str) -> _Any:
     """A result again from its pickled state (what every result's ``__reduce__`` names)."""
-    if kind in ("Orbit", "ImpactMap"):
+    if kind in ("Orbit", "ImpactMap", "Basins", "Restitution"):
         return _restore_record(kind, state)
     return _thud._restore(kind, state)
 
@@ -172,21 +179,40 @@ def impact_map(**params: _Any) -> ImpactMap:
     return ImpactMap(_json.loads(_thud._impact_map(**params)))
 
 
+def basins(grid: _Union[int, str] = 20, w0: _Any = (-1.0, 1.0), **params: _Any) -> Basins:
+    """The basins of attraction of a forced design over the ball's start, as ``thud basins
+    --json``: ``grid`` offsets y0 across the clearance × ``grid`` velocities w0 over ``w0``
+    (FROM, TO) in m/s (default −1 to 1); each start's attractor and amplitude. Options:
+    transient, no_limit; every other keyword is the design's (not ball_position or
+    ball_velocity: the basins set the ball's start)."""
+    return Basins(_json.loads(_thud._basins(grid, tuple(w0), **params)))
+
+
+def restitution(masses_kg: _Any = "5g:100g:20", u0: _Union[float, str] = 1.4, target: _Any = None,
+                **params: _Any) -> Restitution:
+    """The restitution R of one isolated contact at approach speed ``u0`` (m/s) against the
+    impact mass, as ``thud restitution`` (Fig 13): masses_kg a sequence (kg) or "FROM:TO:N"
+    text (default "5g:100g:20"); with ``target`` (a wanted R in (0, 1]) also the c1 that gives
+    it for each mass. Every other keyword is the design's."""
+    return Restitution(_json.loads(_thud._restitution(masses_kg, u0, target, **params)))
+
+
 def response(freqs_hz: _Any = None, **params: _Any) -> Response:
     return _thud.response(freqs_hz, **_progress(params, "response"))
 
 
-def fit_structure(t_s: _Any, x: _Any, *, main_mass: _Union[float, str], quantity: str = "x") -> _Any:
+def fit_structure(t_s: _Any, x: _Any, *, main_mass: _Union[float, str], quantity: str = "x") -> StructureFit:
     """The structure alone, struck once: f_n, ζ, K and C with standard errors from a measured
-    free decay, as ``thud fit structure --json`` (a dict: f_n_hz, zeta, k_n_m, c_n_s_m, each
+    free decay, as ``thud fit structure --json`` (a ``StructureFit``, a dict: f_n_hz, zeta, k_n_m, c_n_s_m, each
     with ``_stderr``, residual_rms, converged, …). ``t_s``: times (s, increasing, any spacing);
     ``x``: the signal as ``quantity`` "x" (m), "v" (m/s) or "a" (m/s²), offset and drift
     allowed; ``main_mass``: M (kg, or e.g. "2kg"). Bad data raises ParameterError."""
-    return _thud.fit_structure(t_s, x, main_mass=main_mass, quantity=quantity)
+    return StructureFit(_thud.fit_structure(t_s, x, main_mass=main_mass, quantity=quantity))
 
 
-def fit_damper(t_s: _Any, x: _Any, **params: _Any) -> _Any:
-    return _thud.fit_damper(t_s, x, **params)
+def fit_damper(t_s: _Any, x: _Any, **params: _Any) -> DamperFit:
+    return DamperFit(_thud.fit_damper(t_s, x, **params))
 
 
 _document(globals())
+_attach_figures()

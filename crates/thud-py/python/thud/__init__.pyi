@@ -212,6 +212,15 @@ class Run:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The time history as SVG, the bytes of ``thud export svg history`` (``--points`` the
+        run's samples); an existing file is kept unless overwrite."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The time history as a one-page PDF (``thud export pdf history``)."""
+    def to_wav(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, full_scale: float = 20.0,
+               format: Literal["pcm16", "pcm24", "float"] = "pcm16") -> None:
+        """The damper's sound over the run (``thud export wav``): 48 kHz mono, sample = mean
+        pressure over its interval / full_scale Pa."""
 
 class Chart:
     """The design chart of a sweep. Every metric is a 2-D array of shape
@@ -266,6 +275,13 @@ class Chart:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
+               overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The design chart (or Fig 17) as SVG, the bytes of ``thud export svg chart|fig17`` over
+        this chart's masses and gaps."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
+               overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The design chart (or Fig 17) as a one-page PDF (``thud export pdf chart|fig17``)."""
 
 class Ensemble:
     """One design from N ball offsets y0 = −d/2 + (k + ½)·d/N at rest (``simulate(ensemble=N)``):
@@ -327,6 +343,10 @@ class Response:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The frequency response as SVG (``thud export svg response`` over these frequencies)."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The frequency response as a one-page PDF (``thud export pdf response``)."""
 
 def pulse(
     *,
@@ -802,6 +822,8 @@ class ImpactMap:
     def to_dataframe(self) -> Any: ...
     def to_xarray(self) -> Any: ...
     def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
 
 def orbit(
     *,
@@ -940,6 +962,125 @@ def impact_map(
     """The impact map of a forced design, as ``thud impact-map``: stroboscopic samples and
     impacts over the sampled periods after ``transient`` ones, and the orbit's type."""
 
+class Basins:
+    """The basins of attraction of a forced design over the ball's start (``thud.basins``;
+    ``thud basins --json``)."""
+
+    design: Dict[str, Any]
+    y0_m: FloatArray
+    w0_m_s: FloatArray
+    attractor: npt.NDArray[np.int64]
+    amplitude_m: FloatArray
+    attractors: List[Dict[str, Any]]
+    def to_dataframe(self) -> Any: ...
+    def to_xarray(self) -> Any: ...
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+
+class Restitution:
+    """R = u_out/U0 of one isolated contact against the impact mass (``thud.restitution``)."""
+
+    design: Dict[str, Any]
+    u0_m_s: float
+    target: Optional[float]
+    masses_kg: FloatArray
+    restitution: FloatArray
+    c1_for_target_n_s_m: Optional[FloatArray]
+    def to_dataframe(self) -> Any: ...
+    def to_xarray(self) -> Any: ...
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None: ...
+
+def basins(
+    grid: Count = 20,
+    w0: Tuple[Quantity, Quantity] = (-1.0, 1.0),
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    transient: Count = 200,
+    no_limit: bool = False,
+) -> Basins:
+    """The basins of attraction over the ball's start, as ``thud basins``: grid × grid starts
+    (y0 across the clearance, w0 over ``w0`` in m/s)."""
+
+def restitution(
+    masses_kg: Union[Sequence[Quantity], npt.ArrayLike, str] = "5g:100g:20",
+    u0: Quantity = 1.4,
+    target: Optional[Quantity] = None,
+    *,
+    preset: Optional[str] = None,
+    design: Union[str, "os.PathLike[str]", None] = None,  # A design file (what --save, fit --save and the explorer write) or a saved design's name, instead of preset
+    mass: Optional[Quantity] = None,  # Impact mass m (kg, or e.g. 40.5g); 0.0001 to 100 kg
+    gap: Optional[Quantity] = None,  # Total clearance d (m, or e.g. 4cm); 1e-5 to 10 m
+    v0: Optional[Quantity] = None,  # Initial velocity of the main mass (m/s); -100 to 100 m/s
+    main_mass: Optional[Quantity] = None,  # Main mass M (kg); 0.001 to 1e6 kg
+    k: Optional[Quantity] = None,  # Spring stiffness K (N/m); 0 to 1e10 N/m
+    c: Optional[Quantity] = None,  # Viscous damping C (N·s/m); 0 to 1e6 N·s/m
+    c1: Optional[Quantity] = None,  # Contact damping c1 (N·s/m); 0 to 1e6 N·s/m
+    k_hz: Optional[Quantity] = None,  # Hertz stiffness K_HZ (N/m^1.5); 10000 to 1e13 N/m^1.5
+    sphere: Optional[str] = None,  # Ball material: K_HZ then follows from the materials and the ball's radius (Eq 2)
+    plate: Optional[str] = None,  # Enclosure material (with --sphere) [default: steel]
+    sphere_poisson: Optional[Quantity] = None,  # The ball's Poisson ratio ν in K_HZ (Eq 2), instead of its material's (with --sphere); 0 to 0.5
+    no_tension: Optional[bool] = None,  # Clamp the contact force at ≥ 0 (a contact cannot pull)
+    duration: Optional[Quantity] = None,  # Simulated time (s); 1e-6 to 1e6 s
+    solver: Optional[Solver] = None,  # Solver
+    dt: Optional[Quantity] = None,  # Newmark time step (s) [default: 1e-7]; 1e-14 to 0.001 s
+    density: Optional[Quantity] = None,  # Ball density (kg/m³) [default: the --sphere material's]: with --mass the radius follows, with --radius the mass; 10 to 25000 kg/m^3
+    radius: Optional[Quantity] = None,  # Ball radius (m): with --mass as given, else the mass follows from the density; 0.0001 to 2 m
+    r: Optional[Quantity] = None,  # Observer distance (m); 0.001 to 1000 m
+    theta: Optional[Quantity] = None,  # Observer angle (degrees); -180 to 180 deg
+    source: Optional[Source] = None,  # Reflecting surfaces around the impact
+    quad_signs: Optional[QuadSigns] = None,  # Quadrupole wall-image signs
+    pulse: Optional[PulseShape] = None,  # Acceleration pulse of each impact's sound: half-sine (Eq 7) or the exact Hertz pulse
+    model: Optional[Model] = None,  # The model of the world [default: paper]: physical is the level a microphone reads (peak, real air, materials)
+    air_temperature: Optional[Quantity] = None,  # Air temperature (°C) of the physical model: ρ0 and c follow [default: 20]; -60 to 60 degC
+    air_pressure: Optional[Quantity] = None,  # Air pressure (Pa, or e.g. 101.325kPa) of the physical model: ρ0 follows [default: 101325]; 20000 to 2e5 Pa
+    l_star: Optional[Quantity] = None,  # Zone threshold L* on SPLmax (dB); 0 to 200 dB
+    e_star: Optional[Quantity] = None,  # Zone threshold e* on the damping inclination (cm/s); 0 to 1000 cm/s
+    force: Optional[Quantity] = None,  # Amplitude F0 of a harmonic force F0·cos(2π·f·t) on the main mass (N, or e.g. 2N) [default: 0, the paper's free decay]; needs --freq; 0 to 1e6 N (alias force_amplitude)
+    freq: Optional[Quantity] = None,  # Frequency f of the harmonic force (Hz, or e.g. 5Hz); 0.001 to 1e5 Hz
+    ball_position: Optional[Quantity] = None,  # The ball's initial offset y0 from the enclosure's centre (m, or e.g. -1cm; |y0| < d/2) [default: 0, centred]; -5 to 5 m
+    ball_velocity: Optional[Quantity] = None,  # The ball's initial velocity w0 (m/s) [default: 0]; -100 to 100 m/s
+    periods: Optional[Count] = None,  # Forcing periods N of the steady-state window of a forced run [default: 10]; 1 to 1000 periods
+    settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
+    no_limit: bool = False,
+) -> Restitution:
+    """R of one isolated contact at ``u0`` against the impact mass, as ``thud restitution``;
+    with ``target`` also the c1 that gives it."""
+
 def axis(name: Literal["masses", "gaps"], spec: str) -> FloatArray:
     """The values of a sweep axis "FROM:TO:N" exactly as the command line computes them:
     axis("masses", "30g:100g:20") (kg), axis("gaps", "2cm:5cm:20") (m)."""
@@ -955,13 +1096,31 @@ def ranges() -> List[Dict[str, object]]:
     keyword), what, min, max, unit (of a plain number) and reason."""
 
 
+class StructureFit(Dict[str, Any]):
+    """The structure's fit, a dict of ``thud fit structure --json``'s keys (``thud.fit_structure``)."""
+
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_dataframe(self) -> Any:
+        """One row, the ``--json`` keys as columns. Needs pandas."""
+    def to_xarray(self) -> Any:
+        """The fitted values as 0-d variables, the rest in attrs. Needs xarray."""
+
+class DamperFit(Dict[str, Any]):
+    """The damper's fit, a dict of ``thud fit damper --json``'s keys (``thud.fit_damper``)."""
+
+    def as_dict(self, json: bool = False) -> Dict[str, Any]: ...
+    def to_dataframe(self) -> Any:
+        """The measured and model envelopes, one row a period (t_s); the numbers in attrs. Needs pandas."""
+    def to_xarray(self) -> Any:
+        """The envelopes on t_s, c1 and restitution with their intervals. Needs xarray."""
+
 def fit_structure(
     t_s: Union[Sequence[float], npt.ArrayLike],
     x: Union[Sequence[float], npt.ArrayLike],
     *,
     main_mass: Quantity,
     quantity: Literal["x", "v", "a"] = "x",
-) -> Dict[str, Any]:
+) -> StructureFit:
     """The structure alone, struck once: f_n, ζ, K and C with standard errors from a measured
     free decay, as ``thud fit structure --json`` (keys f_n_hz, zeta, k_n_m, c_n_s_m, each with
     ``_stderr``, residual_rms, converged)."""
@@ -1003,7 +1162,7 @@ def fit_damper(
     settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
     quantity: Literal["x", "v", "a"] = "x",
     no_limit: bool = False,
-) -> Dict[str, Any]:
+) -> DamperFit:
     """The structure with the damper, struck once at the record's start, every other parameter
     known: c1 and its restitution with 95 % intervals, as ``thud fit damper --json`` (keys
     c1_n_s_m, c1_n_s_m_stderr, c1_n_s_m_ci, restitution, restitution_stderr, residual_rms,

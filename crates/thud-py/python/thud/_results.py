@@ -7,7 +7,7 @@ equal when their records are."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -51,6 +51,34 @@ class _Record:
 
     def __hash__(self) -> int:
         return hash(json.dumps(self._record, sort_keys=True))
+
+
+class _Drawn(_Record):
+    """A result whose command draws it from its record (``--svg``, ``--pdf``)."""
+
+    _figure = ""
+
+    def _bytes(self, pdf: bool, size: Optional[Tuple[float, float]], title: bool) -> bytes:
+        from . import _thud
+        from ._files import look
+
+        data: bytes = _thud._figure(self._figure, json.dumps(self._record), pdf, **look(size, title))
+        return data
+
+    def to_svg(self, path: Any, *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None,
+               title: bool = True) -> None:
+        """The figure the command's ``--svg`` draws, byte for byte. An existing file is kept
+        unless ``overwrite``; a symbolic link is never written through."""
+        from ._files import write_file
+
+        write_file(path, self._bytes(False, size, title), overwrite)
+
+    def to_pdf(self, path: Any, *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None,
+               title: bool = True) -> None:
+        """The figure as the command's ``--pdf`` writes it (one page, embedded font)."""
+        from ._files import write_file
+
+        write_file(path, self._bytes(True, size, title), overwrite)
 
 
 def _copy(record: Dict[str, Any]) -> Dict[str, Any]:
@@ -145,11 +173,12 @@ class Orbit(_Record):
                 f"{'stable' if self.stable else 'unstable'}, largest |λ| {lead:.4g})")
 
 
-class ImpactMap(_Record):
+class ImpactMap(_Drawn):
     """A forced design's stroboscopic samples and impacts over its sampled periods after a
     transient, and the orbit's type (``thud.impact_map``; ``thud impact-map --json``)."""
 
     _kind = "ImpactMap"
+    _figure = "impact_map"
 
     def __init__(self, record: Dict[str, Any]) -> None:
         super().__init__(record)
@@ -194,14 +223,127 @@ class ImpactMap(_Record):
         return f"ImpactMap({self.orbit}, amplitude {self.amplitude_m:.6g} m, {n} impacts)"
 
 
+class Basins(_Drawn):
+    """The basins of attraction of a forced design over the ball's start (``thud.basins``;
+    ``thud basins --json``): per start (y0, w0) the attractor it settles on and the amplitude it
+    reached; the attractors with their orbit type and amplitude."""
+
+    _kind = "Basins"
+    _figure = "basins"
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        super().__init__(record)
+        r = record
+        #: The design as run.
+        self.design: Dict[str, Any] = r["design"]
+        #: The ball's starting offsets (m) and velocities (m/s).
+        self.y0_m: np.ndarray = np.array(r["y0_m"], dtype=float)
+        self.w0_m_s: np.ndarray = np.array(r["w0_m_s"], dtype=float)
+        shape = (len(self.w0_m_s), len(self.y0_m))
+        #: The attractor of each start, shape (len(w0_m_s), len(y0_m)).
+        self.attractor: np.ndarray = np.array(r["cells"], dtype=np.int64).reshape(shape)
+        #: The amplitude each start reached (m), same shape.
+        self.amplitude_m: np.ndarray = np.array(r["amplitudes_m"], dtype=float).reshape(shape)
+        #: The attractors, in id order (their orbit type, amplitude, …).
+        self.attractors: List[Dict[str, Any]] = list(r["attractors"])
+
+    def to_dataframe(self) -> Any:
+        """One row per start, the columns of ``thud basins --csv`` (y0_m, w0_m_s, attractor,
+        orbit, amplitude_m). Needs pandas."""
+        pd = _need("pandas", "Basins.to_dataframe()")
+        w, y = np.meshgrid(self.w0_m_s, self.y0_m, indexing="ij")
+        labels = [a.get("label", "") for a in self.attractors]
+        ids = self.attractor.ravel()
+        return pd.DataFrame({"y0_m": y.ravel(), "w0_m_s": w.ravel(), "attractor": ids,
+                             "orbit": [labels[i] if i < len(labels) else "" for i in ids],
+                             "amplitude_m": self.amplitude_m.ravel()})
+
+    def to_xarray(self) -> Any:
+        """attractor and amplitude_m on w0_m_s × y0_m. Needs xarray."""
+        xr = _need("xarray", "Basins.to_xarray()")
+        coords = {"w0_m_s": ("w0_m_s", self.w0_m_s, {"units": "m/s"}), "y0_m": ("y0_m", self.y0_m, {"units": "m"})}
+        data = {"attractor": (("w0_m_s", "y0_m"), self.attractor),
+                "amplitude_m": (("w0_m_s", "y0_m"), self.amplitude_m, {"units": "m"})}
+        return xr.Dataset(data, coords=coords, attrs={"attractors": json.dumps(self.attractors),
+                                                      "design": json.dumps(self.design)})
+
+    def __repr__(self) -> str:
+        return f"Basins({self.attractor.shape[1]} × {self.attractor.shape[0]} starts, {len(self.attractors)} attractors)"
+
+
+class Restitution(_Record):
+    """The restitution R = u_out/U0 of one isolated contact against the impact mass
+    (``thud.restitution``; ``thud restitution``), and with a target R the c1 that gives it."""
+
+    _kind = "Restitution"
+
+    def __init__(self, record: Dict[str, Any]) -> None:
+        super().__init__(record)
+        r = record
+        #: The design as run.
+        self.design: Dict[str, Any] = r["design"]
+        #: The approach speed U0 (m/s).
+        self.u0_m_s: float = float(r["u0_m_s"])
+        #: The wanted restitution, if given.
+        self.target: Optional[float] = r.get("target")
+        #: The impact masses (kg).
+        self.masses_kg: np.ndarray = np.array(r["masses_kg"], dtype=float)
+        #: R at each mass.
+        self.restitution: np.ndarray = np.array(r["restitution"], dtype=float)
+        c1 = r.get("c1_for_target_n_s_m")
+        #: The c1 (N·s/m) that gives the target R at each mass; None without a target.
+        self.c1_for_target_n_s_m: Optional[np.ndarray] = None if c1 is None else np.array(c1, dtype=float)
+
+    def to_dataframe(self) -> Any:
+        """The columns of ``thud restitution --csv``: mass_g (the paper's axis), restitution, and
+        with a target c1_for_target_n_s_m. Needs pandas."""
+        pd = _need("pandas", "Restitution.to_dataframe()")
+        cols: Dict[str, Any] = {"mass_g": self.masses_kg * 1e3, "restitution": self.restitution}
+        if self.c1_for_target_n_s_m is not None:
+            cols["c1_for_target_n_s_m"] = self.c1_for_target_n_s_m
+        return pd.DataFrame(cols)
+
+    def to_xarray(self) -> Any:
+        """restitution (and c1_for_target_n_s_m) on mass_kg. Needs xarray."""
+        xr = _need("xarray", "Restitution.to_xarray()")
+        data: Dict[str, Any] = {"restitution": (("mass_kg",), self.restitution)}
+        if self.c1_for_target_n_s_m is not None:
+            data["c1_for_target_n_s_m"] = (("mass_kg",), self.c1_for_target_n_s_m, {"units": "N·s/m"})
+        return xr.Dataset(data, coords={"mass_kg": ("mass_kg", self.masses_kg, {"units": "kg"})},
+                          attrs={"u0_m_s": self.u0_m_s, "design": json.dumps(self.design)})
+
+    def _figure(self, pdf: bool, size: Optional[Tuple[float, float]], title: bool) -> bytes:
+        from ._files import look, render
+
+        return render("restitution", self.design, pdf, u0=self.u0_m_s,
+                      masses_kg=[float(m) for m in self.masses_kg], **look(size, title))
+
+    def to_svg(self, path: Any, *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None,
+               title: bool = True) -> None:
+        """R against the impact mass as SVG (Fig 13): ``thud export svg restitution`` over these
+        masses at this U0. An existing file is kept unless ``overwrite``."""
+        from ._files import write_file
+
+        write_file(path, self._figure(False, size, title), overwrite)
+
+    def to_pdf(self, path: Any, *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None,
+               title: bool = True) -> None:
+        """R against the impact mass as a one-page PDF (``thud export pdf restitution``)."""
+        from ._files import write_file
+
+        write_file(path, self._figure(True, size, title), overwrite)
+
+    def __repr__(self) -> str:
+        return f"Restitution({len(self.masses_kg)} masses at U0 {self.u0_m_s:g} m/s)"
+
+
 def _restore_record(kind: str, state: str) -> Any:
     """A result again from its pickled state (its record's JSON text)."""
     record = json.loads(state)
-    if kind == "Orbit":
-        return Orbit(record)
-    if kind == "ImpactMap":
-        return ImpactMap(record)
-    raise ValueError(f"not a thud result kind: {kind!r}")
+    kinds = {"Orbit": Orbit, "ImpactMap": ImpactMap, "Basins": Basins, "Restitution": Restitution}
+    if kind not in kinds:
+        raise ValueError(f"not a thud result kind: {kind!r}")
+    return kinds[kind](record)
 
 
 def continuation_xarray(record: Dict[str, Any]) -> Any:
@@ -235,3 +377,80 @@ def continuation_xarray(record: Dict[str, Any]) -> Any:
              "ended": record["ended"] if record.get("ended") is not None else ""}
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
+
+
+class _Fit(Dict[str, Any]):
+    """A fit as the command line's ``thud fit … --json`` object: a dict of its keys (``f["zeta"]``),
+    with tables. Pickles to an equal dict of the same class."""
+
+    def as_dict(self, json: bool = False) -> Dict[str, Any]:
+        """The ``--json`` object (a plain dict copy)."""
+        return _copy(dict(self))
+
+    def _scalars(self) -> Dict[str, Any]:
+        return {k: v for k, v in self.items() if isinstance(v, (bool, int, float, str)) or v is None}
+
+
+class StructureFit(_Fit):
+    """The structure's fit (``thud.fit_structure``; ``thud fit structure --json``): f_n_hz, zeta,
+    k_n_m, c_n_s_m with their ``_stderr``, main_mass_kg, residual_rms, converged, …"""
+
+    def to_dataframe(self) -> Any:
+        """One row: every number and word of the fit, the ``--json`` keys as columns. Needs pandas."""
+        pd = _need("pandas", "StructureFit.to_dataframe()")
+        return pd.DataFrame([self._scalars()])
+
+    def to_xarray(self) -> Any:
+        """The fitted values as 0-d variables (their standard errors beside them), the rest in
+        attrs. Needs xarray."""
+        xr = _need("xarray", "StructureFit.to_xarray()")
+        scalars = self._scalars()
+        data = {k: v for k, v in scalars.items() if isinstance(v, float)}
+        attrs = {k: (str(v) if isinstance(v, bool) or v is None else v) for k, v in scalars.items() if k not in data}
+        return xr.Dataset({k: ((), v) for k, v in data.items()}, attrs=attrs)
+
+    def __repr__(self) -> str:
+        return f"StructureFit(f_n {self.get('f_n_hz', float('nan')):.6g} Hz, zeta {self.get('zeta', float('nan')):.4g})"
+
+
+class DamperFit(_Fit):
+    """The damper's fit (``thud.fit_damper``; ``thud fit damper --json``): c1_n_s_m with its
+    standard error and 95 % interval c1_n_s_m_ci, restitution (same), residual_rms, the
+    measured and model envelopes, note, …"""
+
+    def to_dataframe(self) -> Any:
+        """The envelopes, one row a period: t_s (the period's start), measured_envelope_m,
+        model_envelope_m; the fit's numbers in ``.attrs``. Needs pandas."""
+        pd = _need("pandas", "DamperFit.to_dataframe()")
+        measured = list(self.get("measured_envelope_m") or [])
+        model = list(self.get("model_envelope_m") or [])
+        n = max(len(measured), len(model))
+        pad = lambda v: v + [float("nan")] * (n - len(v))  # noqa: E731
+        period = float(self.get("envelope_period_s") or 0.0)
+        df = pd.DataFrame({"t_s": [i * period for i in range(n)], "measured_envelope_m": pad(measured),
+                           "model_envelope_m": pad(model)})
+        df.attrs.update(self._scalars())
+        return df
+
+    def to_xarray(self) -> Any:
+        """The envelopes on t_s (s), c1 and restitution with their intervals as variables, the
+        rest in attrs. Needs xarray."""
+        xr = _need("xarray", "DamperFit.to_xarray()")
+        df = self.to_dataframe()
+        ds = xr.Dataset({"measured_envelope_m": (("t_s",), df["measured_envelope_m"].to_numpy(), {"units": "m"}),
+                         "model_envelope_m": (("t_s",), df["model_envelope_m"].to_numpy(), {"units": "m"})},
+                        coords={"t_s": ("t_s", df["t_s"].to_numpy(), {"units": "s"})})
+        for key in ("c1_n_s_m_ci", "restitution_ci"):
+            if key in self:
+                ds[key] = (("bound",), np.array(self[key], dtype=float))
+        ds = ds.assign_coords(bound=["low", "high"]) if "bound" in ds.dims else ds
+        scalars = self._scalars()
+        for k, v in scalars.items():
+            if isinstance(v, float):
+                ds[k] = ((), v)
+            else:
+                ds.attrs[k] = str(v) if isinstance(v, bool) or v is None else v
+        return ds
+
+    def __repr__(self) -> str:
+        return f"DamperFit(c1 {self.get('c1_n_s_m', float('nan')):.6g} N·s/m)"

@@ -84,6 +84,8 @@ _POSITIONAL: Dict[str, List[Any]] = {
     "orbit": [],
     "continuation": [],
     "impact_map": [],
+    "basins": [("grid", Count, 20), ("w0", Any, (-1.0, 1.0))],
+    "restitution": [("masses_kg", Any, "5g:100g:20"), ("u0", Quantity, 1.4), ("target", Optional[Quantity], None)],
 }
 
 
@@ -144,8 +146,9 @@ def document(namespace: Dict[str, Any]) -> None:
     table = _thud._parameters()
     returns = {"pulse": _thud.Pulse, "simulate": Union[_thud.Run, _thud.Ensemble],
                "simulate_ensemble": _thud.Ensemble, "sweep": Any, "response": _thud.Response,
-               "fit_damper": Dict[str, Any], "bifurcation": Any, "orbit": "thud.Orbit",
-               "continuation": Any, "impact_map": "thud.ImpactMap"}
+               "fit_damper": "thud.DamperFit", "bifurcation": Any, "orbit": "thud.Orbit",
+               "continuation": Any, "impact_map": "thud.ImpactMap", "basins": "thud.Basins",
+               "restitution": "thud.Restitution"}
     for name, ret in returns.items():
         fn = namespace[name]
         native = getattr(_thud, name, None)

@@ -17,7 +17,7 @@ use thiserror::Error;
 
 /// The embedded font: DejaVu Sans (Book), subset to Latin, Greek, punctuation, arrows,
 /// super/subscripts and mathematical operators (`assets/fonts/LICENSE-DejaVu.txt`).
-pub const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans-thud.ttf");
+pub const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans-thud.ttf");
 
 /// The family name of [`FONT`].
 pub const FONT_FAMILY: &str = "DejaVu Sans";
@@ -97,8 +97,8 @@ mod tests {
 
     /// A figure with `text` in it.
     fn figure(text: &str) -> String {
-        let mut s = crate::export::svg::Svg::new(600.0, 400.0, "t");
-        s.text(10.0, 50.0, text, 14.0, crate::export::svg::Anchor::Start, 0.0);
+        let mut s = crate::svg::Svg::new(600.0, 400.0, "t");
+        s.text(10.0, 50.0, text, 14.0, crate::svg::Anchor::Start, 0.0);
         s.finish()
     }
 

@@ -4,9 +4,9 @@
 //! x(kT) and the impact speed against the parameter, the impact map, the basins.
 
 use super::svg::{self, Anchor, Axis, Frame, Look, Shape, Svg};
-use crate::dynamics::{Basins, Bifurcation, OrbitRun};
 use crate::response::Direction;
 use crate::study::Study;
+use thud_core::dynamics::{Basins, Bifurcation, OrbitRun};
 
 /// `header`, then one record per row, as CSV text (the `csv` crate; numbers in Rust's
 /// shortest round-trip form).
