@@ -519,6 +519,18 @@ fn damper(a: &DamperArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
         .map_err(|e| if e.param() == fit::DATA_PARAM { data_error(first, e.detail()) } else { e })?
         .ok_or(ThudError::Cancelled)?;
     spinner.finish_and_clear();
+    if let (Some(v), Some(sd)) = (f.v0_m_s_record, f.v0_m_s_record_stderr) {
+        let stated = given.iter().rev().find(|(i, _)| *i == fit::damper::Input::V0).map_or(0.0, |(_, u)| *u);
+        let strike = fit::strike::Strike { v0_m_s: v, stderr_m_s: sd };
+        if fit::strike::disagreement(d.damper.v0_m_s, stated, &strike).is_some() {
+            super::warn(&format!(
+                "the record's strike was {} ± {} m/s, not the design's v0 {} m/s: the difference is carried into c1's interval (give --v0 the record's value, or its uncertainty with ±)",
+                sig(v, 4),
+                sig(sd, 2),
+                sig(d.damper.v0_m_s, 4)
+            ));
+        }
+    }
     let saved = match &a.save {
         Some(name) => {
             let mut dd = d.design().clone();
@@ -566,6 +578,9 @@ fn damper_text(f: &DamperFit, saved: Option<&str>) -> String {
         sig(rhi, 4),
         sig(f.first_impact_speed_m_s, 3)
     );
+    if let (Some(v), Some(sd)) = (f.v0_m_s_record, f.v0_m_s_record_stderr) {
+        s += &format!("  v0 of the record's strike {} m/s\n", pm(v, sd));
+    }
     for i in &f.inputs {
         s += &format!(
             "  {:<12} ± {} % moves c1 by {} %: in the interval\n",

@@ -464,8 +464,10 @@ fn a_fitted_structure_loads_with_design_everywhere() {
 
 /// The inputs' uncertainty in the interval: a record of M 0.525 kg (c1 60 N·s/m, struck at
 /// 1.4 m/s) fitted with `--main-mass 0.5kg±5%`, and one fitted with `--v0 1.54m/s+-10%` (10 %
-/// off): each interval holds the truth, and the JSON names the input it carried. A `±` that is
-/// not a number is refused in one line naming the flag.
+/// off), and one with `--v0 1.54` (10 % off, no uncertainty stated: the record's own strike
+/// disagrees, a one-line warning says so and the difference is carried): each interval holds
+/// the truth, the JSON names the input it carried and v0 read from the record is within 2 %
+/// of 1.4 m/s. A `±` that is not a number is refused in one line naming the flag.
 #[test]
 fn the_inputs_uncertainty_widens_the_interval() {
     let home = tempfile::tempdir().unwrap();
@@ -483,6 +485,9 @@ fn the_inputs_uncertainty_widens_the_interval() {
     for (file, flags, input) in [
         (&heavy, ["--main-mass", "0.5kg±5%", "--v0", "1.4"], "main-mass"),
         (&plain, ["--v0", "1.54m/s+-10%", "--main-mass", "0.5"], "v0"),
+        // 10 % off with no uncertainty stated: the record's strike disagrees, says so in one
+        // line and carries the difference.
+        (&plain, ["--v0", "1.54", "--main-mass", "0.5"], "v0"),
     ] {
         let mut args = vec!["fit", "damper", "--data", file.to_str().unwrap(), "--json"];
         args.extend(flags);
@@ -494,7 +499,25 @@ fn the_inputs_uncertainty_widens_the_interval() {
         assert!(lo <= 60.0 && 60.0 <= hi, "{flags:?}: [{lo}, {hi}]");
         let carried: Vec<&str> = v["inputs"].as_array().unwrap().iter().map(|i| i["input"].as_str().unwrap()).collect();
         assert_eq!(carried, [input], "{out}");
+        // v0 read from the record's strike: 1.4 m/s within 2 % where the design's M is the
+        // record's (the reading uses M: 5 % off in M reads it 7 % high, and M's uncertainty
+        // is carried into the reading's, so it is not a disagreement).
+        let read = v["v0_m_s_record"].as_f64().unwrap();
+        if file == &plain {
+            assert!((read / 1.4 - 1.0).abs() <= 0.02, "{flags:?}: {read}");
+        }
+        assert!(v["v0_m_s_record_stderr"].as_f64().unwrap() > 0.0, "{out}");
+        let warned = flags[1] == "1.54";
+        assert_eq!(err.contains("strike was"), warned, "{flags:?}: {err}");
+        if warned {
+            assert_eq!(err.lines().count(), 1, "{err}");
+            assert!(err.contains("1.54"), "{err}");
+        }
     }
+    // The text names it too.
+    let (code, text, err) = run(home.path(), &["fit", "damper", "--data", plain.to_str().unwrap(), "--v0", "1.4"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("v0 of the record's strike"), "{text}");
     let (code, _, err) =
         run(home.path(), &["fit", "damper", "--data", plain.to_str().unwrap(), "--main-mass", "0.5kg±two%"]);
     assert_eq!(code, 2, "{err}");

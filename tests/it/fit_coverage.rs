@@ -6,6 +6,7 @@
 use rayon::prelude::*;
 use thud::design::{self, Design};
 use thud::fit::damper::{self, Table};
+use thud::fit::strike;
 use thud::fit::{Quantity, Series};
 
 use crate::support::impact_rk4::{self, Draws};
@@ -88,22 +89,39 @@ fn fitted(c: &Case, table: &Table, span: f64, s: &Series) -> (bool, f64, bool, S
     let [lo, hi] = f.c1_n_s_m_ci;
     let covered = lo <= c.truth && c.truth <= hi;
     let far = c.truth < lo / 1.05 || c.truth > hi * 1.05;
-    let line = format!("truth {:.4} [{lo:.4}, {hi:.4}] ×{:.2} note {:?}", c.truth, hi / lo, f.note.is_some());
+    let mut line = format!("truth {:.4} [{lo:.4}, {hi:.4}] ×{:.2} note {:?}", c.truth, hi / lo, f.note.is_some());
+    if c.truth < lo / 1.05 || c.truth > hi * 1.05 {
+        line += &format!(
+            "\n    stat {:.4} periods {} first impact {:.3} grid [{:.3}, {:.3}]\n    measured {:?}\n    model    {:?}",
+            f.statistic,
+            f.periods,
+            f.first_impact_speed_m_s,
+            table.c1_n_s_m[0],
+            table.c1_n_s_m[table.c1_n_s_m.len() - 1],
+            f.measured_envelope_m,
+            f.model_envelope_m
+        );
+    }
     (covered, hi / lo, far && f.note.is_none(), line)
 }
 
 /// The acceptance: over 40 random designs (`case`), for each of the displacement, velocity
 /// and acceleration records, the 95 % interval holds the truth in at least 37 (92 %; for a
 /// correct 95 % interval P(count ≤ 36) = 14 %: the issue's bar) and its median width
-/// (high/low) is at most a factor 2. Measured: 38, 40 and 37 of 40, median widths ×1.22,
-/// ×1.30 and ×1.98. The intervals that miss the truth by more than 5 % without a note are
-/// listed (2 of the 120 here: a displacement by 8 %, an acceleration by 50 %); the issue asks
-/// for none, which this does not yet assert. About 30 s of CPU (41 × 39 runs a design).
+/// (high/low) is at most a factor 2. Measured: 38, 40 and 38 of 40, median widths ×1.35,
+/// ×1.35 and ×1.98. The intervals that miss the truth by more than 5 % without a note are
+/// listed (1 of the 120 here: acceleration case 11, truth 80.1 and [111, 188]); the issue
+/// asks for none, which this does not yet assert. v0 read from each record's strike
+/// (`strike::strike_speed`) is within 3 of its stated standard uncertainties for every
+/// displacement and velocity record (measured: within 2 % of the truth in 37 and 40 of 40,
+/// worst 2.6 % and 1.9 %); an acceleration's is listed (12 of 40 within 2 %, median 3.4 %,
+/// worst 3.7 of its standard uncertainties). About 30 s of CPU (41 × 39 runs a design);
+/// 2–3 minutes on a busy 2-core machine.
 #[test]
 fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kind() {
     let n = 40;
     let started = std::time::Instant::now();
-    let results: Vec<Vec<(bool, f64, bool, String)>> = (0..n as u64)
+    let results: Vec<_> = (0..n as u64)
         .into_par_iter()
         .map(|k| {
             let c = case(1000 + k);
@@ -111,9 +129,19 @@ fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kin
             let table = Table::build(&c.design, &damper::grid(&c.design).unwrap(), damper::STARTS, span, None)
                 .unwrap()
                 .unwrap();
-            c.records.iter().map(|s| fitted(&c, &table, span, s)).collect()
+            let fits: Vec<(bool, f64, bool, String)> = c.records.iter().map(|s| fitted(&c, &table, span, s)).collect();
+            let strikes: Vec<(f64, f64)> = c
+                .records
+                .iter()
+                .map(|s| match strike::strike_speed(s, c.design.design()) {
+                    Ok(st) => (st.v0_m_s / c.design.damper.v0_m_s - 1.0, st.stderr_m_s / c.design.damper.v0_m_s),
+                    Err(_) => (f64::INFINITY, 0.0),
+                })
+                .collect();
+            (fits, strikes)
         })
         .collect();
+    let (results, strikes): (Vec<Vec<(bool, f64, bool, String)>>, Vec<Vec<(f64, f64)>>) = results.into_iter().unzip();
     eprintln!("{n} designs in {:.1} s", started.elapsed().as_secs_f64());
     let mut failures = Vec::new();
     for (kind, name) in ["displacement", "velocity", "acceleration"].iter().enumerate() {
@@ -129,6 +157,22 @@ fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kin
             if r[kind].2 {
                 eprintln!("  {name} {i}: misses by more than 5 % without a note: {}", r[kind].3);
             }
+        }
+        // v0 read from the record's strike: within 3 of its stated standard uncertainties in
+        // every case, and the share within 2 % of the truth.
+        let errors: Vec<(f64, f64)> = strikes.iter().map(|s| s[kind]).collect();
+        let within2 = errors.iter().filter(|(e, _)| e.abs() <= 0.02).count();
+        let mut abs: Vec<f64> = errors.iter().map(|(e, _)| e.abs()).collect();
+        abs.sort_by(f64::total_cmp);
+        let worst_z = errors.iter().map(|(e, sd)| e.abs() / sd).fold(0.0f64, f64::max);
+        eprintln!(
+            "{name}: v0 from the record within 2 % in {within2}/{n}, median error {:.2} %, worst {:.2} %, worst {worst_z:.2} sd",
+            100.0 * 0.5 * (abs[n / 2 - 1] + abs[n / 2]),
+            100.0 * abs[n - 1]
+        );
+        // (An acceleration's uncertainty is not yet calibrated: listed, not asserted.)
+        if kind < 2 && worst_z > strike::DISAGREE_SDS {
+            failures.push(format!("{name}: a v0 from the record {worst_z:.2} of its standard uncertainties off"));
         }
         if covered < 37 {
             failures.push(format!("{name}: covered {covered} of {n}"));

@@ -9,6 +9,7 @@
 //! ([`window_amplitude`]).
 
 pub mod damper;
+pub mod strike;
 pub mod structure;
 
 use nalgebra::{Matrix3, Vector3};
