@@ -25,7 +25,7 @@ pub struct ContinueArgs {
     design: DesignArgs<ForceAmplitude>,
     /// The parameter to continue in over its range: NAME=FROM:TO (e.g. f=3Hz:8Hz) continues
     /// the orbit found at FROM; NAME=FROM:TO:N (e.g. f=3Hz:8Hz:26) every branch through the
-    /// stable orbits the motion settles to at N evenly spaced values, each both ways. The
+    /// stable orbits found from the design's start at N evenly spaced values, each both ways. The
     /// continuation chooses its own steps.
     #[arg(long, value_name = "NAME=FROM:TO:N", allow_hyphen_values = true)]
     vary: String,
@@ -144,7 +144,7 @@ pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
 fn family_text(d: &Design, vary: &Vary, seeds: usize, branches: &[Branch]) -> String {
     let mut t = format!("design      {}\n", describe(d));
     t += &format!(
-        "family      {} branches through the stable orbits the motion settles to at {seeds} values of {}\n",
+        "family      {} branches through the stable orbits found from the start at {seeds} values of {}\n",
         branches.len(),
         vary.name()
     );

@@ -148,7 +148,12 @@ fn ensemble_text(d: &Design, r: &ResponseEnsemble, continuation: bool) -> String
     let mut s = format!("design    {}\n", describe(d));
     let half = 0.5 * d.damper.gap_m;
     let edge = (half - half / r.runs as f64) * 1e2;
-    s += &forcing_line(d, r.force_n, continuation);
+    s += &format!(
+        "forcing   F0 {} N on the main mass; steady state over the last {} periods, each frequency {}, settled\n",
+        num(r.force_n),
+        d.damper.steady_periods,
+        if continuation { "from the previous one's final state (up, then down)" } else { "from rest" }
+    );
     s += &format!(
         "ensemble  {} runs a frequency, the ball at rest from y0 = −d/2 + (k + ½)·d/{} ({} to {} cm); median [p10–p90] by nearest rank\n\n",
         r.runs,
@@ -201,24 +206,15 @@ fn fixed(x: f64, digits: usize) -> String {
     }
 }
 
-/// The forcing line: the force, where each frequency starts, and how its steady state is found
-/// (the periodic orbit its motion settles to, by shooting, with the event solver; else the last
-/// window of a settled run).
-fn forcing_line(d: &Design, force_n: f64, continuation: bool) -> String {
-    let start = if continuation { "from the previous one's final state (up, then down)" } else { "from rest" };
-    let n = d.damper.steady_periods;
-    let how = if d.solver == crate::damper::Solver::Event {
-        format!("the periodic orbit its motion settles to (shooting), else its last {n} periods once settled")
-    } else {
-        format!("steady state over the last {n} periods")
-    };
-    format!("forcing   F0 {} N on the main mass; each frequency {start}: {how}\n", short(force_n))
-}
-
 /// The response as a table and a plot.
 fn text(d: &Design, r: &Response, continuation: bool) -> String {
     let mut s = format!("design    {}\n", describe(d));
-    s += &forcing_line(d, r.force_n, continuation);
+    s += &format!(
+        "forcing   F0 {} N on the main mass; steady state over the last {} periods, each frequency {}, settled\n",
+        num(r.force_n),
+        d.damper.steady_periods,
+        if continuation { "from the previous one's final state (up, then down)" } else { "from rest" }
+    );
     s += "without   the main mass alone: F0/√((K − MΩ²)² + (CΩ)²), its steady state in closed form\n\n";
     for sweep in &r.sweeps {
         if continuation {

@@ -540,11 +540,11 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
 /// caps, `thud limits`, then apply), which judges it over its windows.
 pub const SETTLE_IMPACTS_MAX: usize = 5000;
 
-/// The stable periodic orbit that the motion from `start` settles to: `start` is the state
-/// `(x, x', y, y')` (m, m/s) with the force at phase `phase` (rad). The motion is first run on
-/// to the force's next phase 0. An unstable orbit (nothing stable turned up) or none is an
-/// error: the caller simulates such a motion instead. What `thud response` computes per
-/// frequency (docs/model.md §6.7).
+/// A stable periodic orbit found by the attractor search ([`attractor`]) from `start`: the
+/// state `(x, x', y, y')` (m, m/s) with the force at phase `phase` (rad), the motion first run
+/// on to the force's next phase 0. An unstable orbit (nothing stable turned up) or none is an
+/// error. Where attractors coexist it is not always the one the motion from `start` reaches
+/// (docs/model.md §6.7): the seeds of a family's continuation, not a steady state to report.
 pub(crate) fn settle_to(
     p: &DamperParams,
     start: [f64; 4],

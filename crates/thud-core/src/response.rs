@@ -15,13 +15,11 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::damper::{self, RunOptions, Start};
-use crate::design::{impacts_leq_db, run_steady, Design, ValidDesign};
 pub use crate::design::{leq_db, steady, Steady};
+use crate::design::{run_steady, Design, ValidDesign};
 use crate::ensemble::Percentiles;
 use crate::error::{check_positive, ThudError};
 use crate::limits::{self, Estimate, Refusal, Remedy};
-use crate::orbit::{self, PeriodicOrbit};
-use crate::verdict::{Source, Verdict};
 
 /// How the points of a frequency response start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -151,73 +149,11 @@ pub fn at_frequency(base: &Design, freq_hz: f64, settle: bool) -> Design {
     d
 }
 
-/// One frequency from `start`: the point and the state it ended in. A settling point of the
-/// event solver is the stable periodic orbit its motion settles to, solved for by shooting
-/// ([`orbit_point`]); a motion that settles to none (chaotic, quasi-periodic, a period over
-/// [`orbit::MAX_ORBIT_PERIODS`], or an unstable orbit), a fixed window (`settle` off) and the
-/// Newmark solver are simulated and judged over their last window (docs/model.md §6.2).
+/// One frequency from `start`: the point and the state it ended in.
 fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Option<Start>), ThudError> {
-    if d.damper.settle && d.solver == damper::Solver::Event {
-        let state = [start.x, start.v, start.y, start.w];
-        if let Ok(o) = orbit::settle_to(&d.damper, state, start.phase, None) {
-            return orbit_point(d, &o);
-        }
-    }
     let (run, end) = damper::run_from(&d.damper, d.solver, &RunOptions::default(), start, want_end)?;
     let s = run_steady(&run, d)?.ok_or_else(|| ThudError::invalid("force", "a response needs a force > 0"))?;
     Ok((ResponsePoint { freq_hz: d.damper.freq_hz, steady: s, final_time_s: run.final_time_s }, end))
-}
-
-/// The steady state of the stable periodic orbit `o` of `d` (period `n·T`, `m` impacts), and
-/// its state at the force's phase 0 (where a rising or falling sweep goes on from). The
-/// window is the orbit's last turn, ending where its shooting's simulation ended
-/// ([`PeriodicOrbit::periods_simulated`], in whole periods); the amplitude, the impacts and
-/// their speeds are the orbit's own, exact to the shooting's tolerance; `Leq` is its sound
-/// over one turn, the turns before it sounding into it (a periodic sound's energy average over
-/// whole turns). The verdict: periodic `m/n`, found exactly.
-fn orbit_point(d: &Design, o: &PeriodicOrbit) -> Result<(ResponsePoint, Option<Start>), ThudError> {
-    let period = 1.0 / d.damper.freq_hz;
-    let n = o.periods;
-    let turn = f64::from(n) * period;
-    // Turns before the window whose pulses may still sound in it (a pulse lasts well under
-    // 50 ms), and the window's own.
-    let before = ((0.05 / turn).ceil() as u32).clamp(1, 1000);
-    let impacts: Vec<damper::ImpactEvent> = (0..=before)
-        .flat_map(|k| {
-            o.impacts.iter().map(move |i| {
-                let t = (f64::from(k * n + i.period) + i.phase) * period;
-                damper::ImpactEvent::onset(t, i.wall, i.u_in_m_s, 0.0).ended(t, i.u_out_m_s)
-            })
-        })
-        .collect();
-    let leq_db = impacts_leq_db(&impacts, d, f64::from(before) * turn, f64::from(before + 1) * turn)?;
-    let end_s = o.periods_simulated.ceil().max(f64::from(n)) * period;
-    let amplitude_m = o.amplitude_m;
-    let reduction_db = match o.amplitude_linear_m {
-        Some(lin) if amplitude_m > 0.0 => Some(20.0 * (lin / amplitude_m).log10()),
-        _ => None,
-    };
-    let steady = Steady {
-        periods: n,
-        window_start_s: end_s - turn,
-        window_end_s: end_s,
-        amplitude_m,
-        amplitude_linear_m: o.amplitude_linear_m,
-        reduction_db,
-        impacts_per_period: f64::from(o.impacts_per_orbit) / f64::from(n),
-        leq_db,
-        periodic: n == 1,
-        settled: true,
-        truncated: false,
-        verdict: Verdict::Periodic {
-            impacts: o.impacts_per_orbit,
-            periods: n,
-            symmetric: o.symmetric,
-            source: Source::Exact,
-        },
-    };
-    let end = Start { x: o.x_m, v: o.v_m_s, y: o.x_m + o.z_m, w: o.v_m_s + o.zdot_m_s, phase: 0.0 };
-    Ok((ResponsePoint { freq_hz: d.damper.freq_hz, steady, final_time_s: end_s }, Some(end)))
 }
 
 /// The frequency response of `base` (which must have a force) over `freqs_hz`: per frequency

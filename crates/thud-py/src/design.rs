@@ -13,7 +13,7 @@ use std::sync::Mutex;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
-use thud_core::design::asktell::AskTell;
+use thud_core::design::asktell::{AskTell, Failure};
 use thud_core::design::search::{
     self, Bound as Limit, Candidate, Constraint, Objective, Outcome, Problem, Sense, Settings, Value, Variable,
 };
@@ -380,8 +380,8 @@ impl PyDesigner {
     fn tell(&self, py: Python<'_>, values: &Bound<'_, PyAny>, result: &Bound<'_, PyAny>) -> PyResult<()> {
         let mut at = self.lock();
         let x = values_of(py, &at, values)?;
-        let told: Result<Vec<Option<f64>>, String> = if let Ok(s) = result.cast::<PyString>() {
-            Err(s.to_cow()?.into_owned())
+        let told: Result<Vec<Option<f64>>, Failure> = if let Ok(s) = result.cast::<PyString>() {
+            Err(Failure(s.to_cow()?.into_owned()))
         } else {
             let v: Vec<Option<f64>> = result.extract()?;
             if let Some(bad) = v.iter().flatten().find(|x| !x.is_finite()) {

@@ -22,6 +22,11 @@ use ndarray::Array2;
 use super::search::{self, Bound, Candidate, Column, Objective, Outcome, Problem, Sense, Settings, Value, PENALTY};
 use crate::error::ThudError;
 
+/// Why a told point could not be run, or why the optimiser stopped: the words to show.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct Failure(pub String);
+
 /// A point's identity: its values, bit for bit.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 enum Key {
@@ -73,7 +78,7 @@ pub struct AskTell {
     reference: Option<Vec<f64>>,
     given_reference: bool,
     finished: bool,
-    thread: Option<JoinHandle<Result<(), String>>>,
+    thread: Option<JoinHandle<Result<(), Failure>>>,
     failure: Option<String>,
 }
 
@@ -176,7 +181,7 @@ impl AskTell {
     /// Tells what the point `values` (as asked) gave: `Ok` with one value per column of
     /// [`Self::columns`] (None where the run has none, e.g. no impact), or `Err` with why it
     /// could not be run. Refuses a point not asked or told already.
-    pub fn tell(&mut self, values: &[Value], result: Result<Vec<Option<f64>>, String>) -> Result<(), ThudError> {
+    pub fn tell(&mut self, values: &[Value], result: Result<Vec<Option<f64>>, Failure>) -> Result<(), ThudError> {
         let k = key(values);
         let Some(i) = self.asked.remove(&k) else {
             return Err(ThudError::invalid("tell", format!("{} was not asked, or is told already", shown(values))));
@@ -196,7 +201,7 @@ impl AskTell {
         let index = *first + i;
         let candidate = match result {
             Ok(v) => candidate(&self.problem, &self.columns, index, values.to_vec(), &v),
-            Err(why) => failed(&self.problem, index, values.to_vec(), why),
+            Err(why) => failed(&self.problem, index, values.to_vec(), why.0),
         };
         slots[i] = Some(candidate);
         self.finish_batch_if_told();
@@ -226,7 +231,7 @@ impl AskTell {
             if let Some(t) = self.thread.take() {
                 match t.join() {
                     Ok(Ok(())) => {}
-                    Ok(Err(e)) => self.failure = Some(e),
+                    Ok(Err(e)) => self.failure = Some(e.0),
                     Err(_) => self.failure = Some("the optimiser stopped unexpectedly".into()),
                 }
             }
@@ -340,7 +345,7 @@ fn run(
     settings: Settings,
     batches: &Sender<Batch>,
     answers: &Receiver<Vec<Candidate>>,
-) -> Result<(), String> {
+) -> Result<(), Failure> {
     use moors::{GaussianMutation, Nsga2Builder, RandomSamplingFloat, SimulatedBinaryCrossover};
     let n = settings.evaluations;
     let archive = std::sync::Mutex::new(Mirror { seen: HashMap::new(), all: Vec::new(), gone: false });
@@ -405,8 +410,8 @@ fn run(
         .mutation_rate(0.5)
         .seed(settings.seed)
         .build()
-        .map_err(|e| format!("the optimiser refused the problem: {e}"))?;
-    ga.run().map_err(|e| format!("the optimiser failed: {e}"))
+        .map_err(|e| Failure(format!("the optimiser refused the problem: {e}")))?;
+    ga.run().map_err(|e| Failure(format!("the optimiser failed: {e}")))
 }
 
 /// The algorithm's copy of the archive: each point's index, every candidate in order.
@@ -475,7 +480,7 @@ mod tests {
             for x in xs.iter().rev() {
                 let c = p.evaluate(0, x.clone(), None);
                 let told = if let Some(e) = c.error {
-                    Err(e)
+                    Err(Failure(e))
                 } else {
                     let runs = p.runs_at(x).unwrap();
                     let e = crate::design::evaluate(&runs[0], 0, None).unwrap();

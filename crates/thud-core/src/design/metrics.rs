@@ -279,17 +279,6 @@ pub fn leq_db(run: &Run, design: &ValidDesign, a: f64, b: f64) -> Result<Option<
 
 /// [`leq_db`] of a run of a design derived from a [`ValidDesign`] (resolved and valid).
 fn run_leq_db(run: &Run, design: &Design, a: f64, b: f64) -> Result<Option<f64>, ThudError> {
-    impacts_leq_db(&run.impacts, design, a, b)
-}
-
-/// [`leq_db`] of the sound of `impacts` (onsets and incoming speeds) of a run of `design`
-/// over `[a, b]` (s).
-pub(crate) fn impacts_leq_db(
-    impacts: &[crate::damper::ImpactEvent],
-    design: &Design,
-    a: f64,
-    b: f64,
-) -> Result<Option<f64>, ThudError> {
     if b <= a {
         return Ok(None);
     }
@@ -298,7 +287,7 @@ pub(crate) fn impacts_leq_db(
     // its square is e^(−36) (2e-16) of what it was, and the rest of the integral no more.
     let a_over_c = design.ball_radius_m() / design.sound().air.c_m_s;
     let mut pulses: Vec<(f64, f64, f64, Field)> = Vec::new();
-    for i in impacts.iter().filter(|i| i.t_s <= b && i.t_s >= a - 1.0) {
+    for i in run.impacts.iter().filter(|i| i.t_s <= b && i.t_s >= a - 1.0) {
         let f = design.impact_field(i.u_in_m_s)?;
         let last = f.sources().map(|s| s.delay_s).fold(0.0, f64::max);
         let (start, end) = (i.t_s + f.arrival_s(), i.t_s + last + f.tau_s() + 18.0 * a_over_c);
