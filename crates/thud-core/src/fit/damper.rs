@@ -1129,7 +1129,8 @@ mod tests {
     }
 
     /// Three strikes fitted together: the interval holds the truth and is narrower than one
-    /// strike's (the full path, [`fit`]).
+    /// strike's (the full path, [`fit`]), on records noisy enough that one strike's interval is
+    /// wider than the table's resolution.
     #[test]
     fn repeated_strikes_narrow_the_interval() {
         let mut design = Design::default();
@@ -1138,7 +1139,7 @@ mod tests {
         let truth = 80.0;
         let mut g = Noise(99);
         let records: Vec<Series> =
-            [-0.3, 0.1, 0.42].iter().map(|f| record(&d, truth, f * d.damper.gap_m, 3000.0, 0.015, &mut g)).collect();
+            [-0.3, 0.1, 0.42].iter().map(|f| record(&d, truth, f * d.damper.gap_m, 3000.0, 0.06, &mut g)).collect();
         let one = fit(&d, &records[..1], None).unwrap().unwrap();
         let three = fit(&d, &records, None).unwrap().unwrap();
         for f in [&one, &three] {
@@ -1147,8 +1148,9 @@ mod tests {
             assert!(f.restitution_ci[0] <= f.restitution && f.restitution <= f.restitution_ci[1]);
         }
         let width = |f: &DamperFit| f.c1_n_s_m_ci[1] / f.c1_n_s_m_ci[0];
-        // Both may sit at the floor of one grid step each side (the table's resolution).
-        assert!(width(&three) <= width(&one), "{} vs {}", width(&three), width(&one));
+        // Noise enough (6 % of the peak) that one strike's interval lies above the floor of one
+        // grid step each side (the table's resolution), where narrowing can show.
+        assert!(width(&three) < width(&one), "{} vs {}", width(&three), width(&one));
         assert_eq!(three.records, 3);
     }
 
