@@ -117,6 +117,11 @@ fn fitted(c: &Case, table: &Table, span: f64, s: &Series) -> (bool, f64, bool, S
 /// worst 2.6 % and 1.9 %); an acceleration's is listed (12 of 40 within 2 %, median 3.4 %,
 /// worst 3.7 of its standard uncertainties). About 30 s of CPU (41 × 39 runs a design);
 /// 2–3 minutes on a busy 2-core machine.
+/// Per record kind of one design: covered, width ratio, noted, and the note.
+type Fits = Vec<(bool, f64, bool, String)>;
+/// Per record kind of one design: v0 from the record's relative error and its uncertainty.
+type Strikes = Vec<(f64, f64)>;
+
 #[test]
 fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kind() {
     let n = 40;
@@ -141,7 +146,7 @@ fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kin
             (fits, strikes)
         })
         .collect();
-    let (results, strikes): (Vec<Vec<(bool, f64, bool, String)>>, Vec<Vec<(f64, f64)>>) = results.into_iter().unzip();
+    let (results, strikes): (Vec<Fits>, Vec<Strikes>) = results.into_iter().unzip();
     eprintln!("{n} designs in {:.1} s", started.elapsed().as_secs_f64());
     let mut failures = Vec::new();
     for (kind, name) in ["displacement", "velocity", "acceleration"].iter().enumerate() {

@@ -361,7 +361,7 @@ fn follow(
 
 /// The branches of periodic orbits over `vary`'s range through the stable orbits the attractor
 /// search finds from the design's own start at `seeds` evenly spaced values of it
-/// ([`orbit::settle_to`]): each continued from its seed both ways
+/// (`orbit::settle_to`): each continued from its seed both ways
 /// to the range's ends (or until it ends), through folds and along unstable parts. A seed
 /// whose orbit lies on a branch already continued (the same orbit type, within 1e-6 of the
 /// scale at the branch's point nearest in value) starts none. Seeds where the motion settles

@@ -535,7 +535,7 @@ fn attractor(p: &DamperParams, periods: Option<u32>, cancel: Option<&AtomicBool>
     attractor_from(p, [0.0, p.v0_m_s, p.ball_position_m, p.ball_velocity_m_s], periods, usize::MAX, cancel)
 }
 
-/// Impacts a settling motion may take while its orbit is looked for ([`settle_to`]): a motion
+/// Impacts a settling motion may take while its orbit is looked for (`settle_to`): a motion
 /// that rattles more than this before it repeats is left to the simulation (whose own work
 /// caps, `thud limits`, then apply), which judges it over its windows.
 pub const SETTLE_IMPACTS_MAX: usize = 5000;

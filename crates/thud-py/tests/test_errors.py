@@ -105,7 +105,7 @@ def test_wrong_types_and_unknown_values_of_the_other_kinds():
     e, m = raised("simulate", samples=[3])
     assert e.param == "samples" and m == "invalid samples: expected a whole number, not a list"
     e, m = raised("pulse", gap=0.04)
-    assert e.param == "gap" and "unknown parameter" in m and "(one of: sphere, plate, radius" in m
+    assert e.param == "gap" and "unknown parameter" in m and "(one of: mass, u0, main_mass, k_hz, sphere, plate, density, radius" in m
     # radius and density make the mass; all three given and inconsistent over-determine the ball
     e, m = raised("simulate", mass=0.04, density=1000, radius=0.01)
     assert e.param == "density" and m.startswith("invalid density: mass 0.04 kg, radius 0.01 m and density")

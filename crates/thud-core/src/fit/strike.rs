@@ -161,7 +161,7 @@ impl Draws {
 /// (M, K, C, the ball's mass m and the clearance d are the design's; its v0 is not used).
 ///
 /// The uncertainty: the record's white noise (its level from the samples' second differences)
-/// drawn [`DRAWS`] times through the same fit, and the ball's term m·(z(T) − z(0)), a constant
+/// drawn `DRAWS` times through the same fit, and the ball's term m·(z(T) − z(0)), a constant
 /// error in R up to m·d/M, taken uniform over ±d and carried by the fit's weight on a
 /// constant; at least [`FLOOR`] of v0.
 pub fn strike_speed(s: &Series, d: &Design) -> Result<Strike, ThudError> {

@@ -88,7 +88,7 @@ const fn sw(
 /// Every named parameter, in the order they are checked and listed: a design's (`simulate`,
 /// `sweep`, `export`, `response`; Python's `simulate`, `sweep`, `response`; the explorer's
 /// fields; the config file) and a single impact's (`thud pulse`, Python's `pulse`), each row
-/// saying where it applies ([`Where`]; the views [`DESIGN`] and [`PULSE`]). Each row is the
+/// saying where it applies ([`Where`](super::Where); the views [`DESIGN`] and [`PULSE`]). Each row is the
 /// one definition of its parameter: the command line's flag (and its help, completion and man
 /// page), Python's keyword (and its stub), the explorer's field, its range
 /// ([`crate::limits`]) and where its value goes in the one draft ([`DesignDraft`]), which the
