@@ -260,24 +260,10 @@ fn forced_rattle_branches_match_the_simulation_and_locate_the_doubling() {
     let f = pd[0].value;
     // The simulated diagram, each value started from the previous one's end (following the
     // attractor up in frequency): where its orbit changes from 4/1 to 8/2.
-    let sweep =
-        Vary::of_values("freq", &(0..=40).map(|i| 3.68 + 0.0025 * f64::from(i)).collect::<Vec<_>>(), Spelling::Flag)
-            .unwrap();
-    let diagram = thud::dynamics::bifurcation(
-        &at(3.68),
-        &sweep,
-        Settings { transient_periods: 300, periods: 32 },
-        true,
-        "force",
-        None,
-        &|_| {},
-    )
-    .unwrap();
-    let up: Vec<_> = diagram.points.iter().filter(|p| p.direction == thud::response::Direction::Up).collect();
-    let first_doubled =
-        up.iter().position(|p| matches!(p.run.orbit, Orbit::Periodic { impacts: 8, periods: 2, .. })).unwrap();
-    assert!(matches!(up[first_doubled - 1].run.orbit, Orbit::Periodic { impacts: 4, periods: 1, .. }));
-    let change = 0.5 * (up[first_doubled - 1].value + up[first_doubled].value);
+    let up = followed(3.68, 40, thud::response::Direction::Up);
+    let first_doubled = up.iter().position(|p| matches!(p.1, Orbit::Periodic { impacts: 8, periods: 2, .. })).unwrap();
+    assert!(matches!(up[first_doubled - 1].1, Orbit::Periodic { impacts: 4, periods: 1, .. }));
+    let change = 0.5 * (up[first_doubled - 1].0 + up[first_doubled].0);
     eprintln!("period doubling at {f} Hz; the simulated orbit doubles at {change} Hz");
     assert!((f - change).abs() < 0.01, "{f} vs {change}");
 }
@@ -352,26 +338,12 @@ fn forced_rattle_family_matches_the_simulation_and_locates_the_cascade() {
     let pd: Vec<_> = b.specials.iter().filter(|s| s.kind == Special::PeriodDoubling).collect();
     assert!(!pd.is_empty(), "{:?}", b.specials);
     let f = pd[0].value;
-    let sweep =
-        Vary::of_values("freq", &(0..=100).map(|i| 7.45 + 0.0025 * f64::from(i)).collect::<Vec<_>>(), Spelling::Flag)
-            .unwrap();
-    let diagram = thud::dynamics::bifurcation(
-        &at(7.45),
-        &sweep,
-        Settings { transient_periods: 300, periods: 32 },
-        true,
-        "force",
-        None,
-        &|_| {},
-    )
-    .unwrap();
-    let mut down: Vec<_> = diagram.points.iter().filter(|p| p.direction == thud::response::Direction::Down).collect();
-    down.sort_by(|a, b| b.value.total_cmp(&a.value));
+    let down = followed(7.45, 100, thud::response::Direction::Down);
     let first_doubled =
-        down.iter().position(|p| !matches!(p.run.orbit, Orbit::Periodic { impacts: 2, periods: 1, .. })).unwrap();
+        down.iter().position(|p| !matches!(p.1, Orbit::Periodic { impacts: 2, periods: 1, .. })).unwrap();
     assert!(first_doubled > 0);
-    eprintln!("cascade: {:?} at {} Hz", down[first_doubled].run.orbit, down[first_doubled].value);
-    let change = 0.5 * (down[first_doubled - 1].value + down[first_doubled].value);
+    eprintln!("cascade: {:?} at {} Hz", down[first_doubled].1, down[first_doubled].0);
+    let change = 0.5 * (down[first_doubled - 1].0 + down[first_doubled].0);
     eprintln!("period doubling at {f} Hz; the simulated 2/1 orbit changes at {change} Hz");
     assert!((f - change).abs() < 0.01, "{f} vs {change}");
 
@@ -397,4 +369,27 @@ fn forced_rattle_family_matches_the_simulation_and_locates_the_cascade() {
         }
     }
     assert!(checked >= 3, "{checked} stable points checked against the simulation");
+}
+
+/// forced-rattle's simulated bifurcation diagram over `from + 0.0025·i` Hz (i = 0 to `n`), each
+/// value started from the previous one's end (the attractor followed up, then down), the
+/// points of `direction` in the order it travels: (frequency, orbit).
+fn followed(from: f64, n: u32, direction: thud::response::Direction) -> Vec<(f64, thud::dynamics::Orbit)> {
+    use thud::params::Spelling;
+    use thud::study::Vary;
+    let mut d = thud::presets::preset("forced-rattle").unwrap();
+    d.damper.freq_hz = from;
+    let values: Vec<f64> = (0..=n).map(|i| from + 0.0025 * f64::from(i)).collect();
+    let sweep = Vary::of_values("freq", &values, Spelling::Flag).unwrap();
+    let settings = thud::dynamics::Settings { transient_periods: 300, periods: 32 };
+    let diagram =
+        thud::dynamics::bifurcation(&d.check().unwrap(), &sweep, settings, true, "force", None, &|_| {}).unwrap();
+    let mut points: Vec<(f64, thud::dynamics::Orbit)> =
+        diagram.points.iter().filter(|p| p.direction == direction).map(|p| (p.value, p.run.orbit)).collect();
+    if direction == thud::response::Direction::Down {
+        points.sort_by(|a, b| b.0.total_cmp(&a.0));
+    } else {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    points
 }
