@@ -7,7 +7,10 @@
 //! - a forced run (5.5 Hz, F0 2 N, d 1 cm, 8 s): the cost per impact with forcing;
 //! - the frequency response: 101 frequencies from rest, 40 forcing periods each (F0 3 N,
 //!   d 2 cm, about 3 impacts a period), on every core; and the settled response `thud response`
-//!   computes by default (F0 1 N, Table 2).
+//!   computes by default (F0 1 N, Table 2);
+//! - periodic orbits: forced-rattle's orbit at 3.4 Hz found from the design's start (`thud
+//!   orbit`), and its family continued over 3–8 Hz from 26 seed values (`thud continue --vary
+//!   f=3Hz:8Hz:26`), on every core.
 //!
 //! With `--features timing` it also prints where the event solver's time goes on the Fig 9
 //! design (contact search, flight recording, contacts).
@@ -105,5 +108,30 @@ fn responses(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, reference, per_impact, responses);
+fn orbits(c: &mut Criterion) {
+    use thud::continuation::continue_family;
+    use thud::orbit::{find_damper, Request};
+    use thud::params::Spelling;
+    use thud::study::Vary;
+    let mut d = thud::presets::preset("forced-rattle").unwrap();
+    d.damper.freq_hz = 3.4;
+    let at = d.damper;
+    d.damper.freq_hz = 3.0;
+    let d = d.check().unwrap();
+    let vary = Vary::of_values("freq", &[3.0, 8.0], Spelling::Flag).unwrap();
+    let family = continue_family(&d, &vary, 26, None, &|_| {}).unwrap();
+    let points: usize = family.iter().map(|b| b.points.len()).sum();
+    eprintln!("forced-rattle family over 3–8 Hz: {} branches, {points} points", family.len());
+    let mut g = c.benchmark_group("orbits");
+    g.sample_size(10);
+    g.bench_function("orbit forced-rattle 3.4 Hz from the start", |b| {
+        b.iter(|| find_damper(black_box(&at), &Request::default(), None).unwrap());
+    });
+    g.bench_function("continue forced-rattle 3-8 Hz 26 seeds all cores", |b| {
+        b.iter(|| continue_family(black_box(&d), &vary, 26, None, &|_| {}).unwrap());
+    });
+    g.finish();
+}
+
+criterion_group!(benches, reference, per_impact, responses, orbits);
 criterion_main!(benches);

@@ -90,7 +90,7 @@ fn renamed(e: ThudError) -> ThudError {
     }
 }
 
-pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design()?;
     let target = Target::new(a.out.as_deref(), a.force)?;
     let (vary, seeds) = parse_vary(&a.vary)?;
@@ -110,6 +110,7 @@ pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
             ))
             .into());
         }
+        ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
         let branches = continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?;
         super::output::check_finite(&branches)?;
         let text = match a.output.format() {
@@ -119,7 +120,10 @@ pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
                 t.push('\n');
                 t
             }
-            OutputFormat::Csv => family_csv(&vary, &branches),
+            OutputFormat::Csv => {
+                warn_truncated(&branches);
+                family_csv(&vary, &branches)
+            }
             OutputFormat::Text => family_text(&d, &vary, n, &branches),
         };
         return target.write(&text, out);
@@ -134,10 +138,21 @@ pub fn run(a: &ContinueArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> 
             t.push('\n');
             t
         }
-        OutputFormat::Csv => csv(&branch),
+        OutputFormat::Csv => {
+            warn_truncated(std::slice::from_ref(&branch));
+            csv(&branch)
+        }
         OutputFormat::Text => text(&d, &branch),
     };
     target.write(&text, out)
+}
+
+/// The CSV has no column for why a branch ended: a branch its work cap cut says so on stderr
+/// (the text and the JSON say it in the branch's `ended`).
+fn warn_truncated(branches: &[Branch]) {
+    for (k, _) in branches.iter().enumerate().filter(|(_, b)| b.truncated()) {
+        super::warn(&format!("branch {} was cut short by {}; --no-limit lifts it", k + 1, continuation::CAPPED));
+    }
 }
 
 /// The branches of a family in words, one after the other.

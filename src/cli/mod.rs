@@ -385,7 +385,9 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
             .map(|c| serde_json::json!({ "what": c.what, "max": c.max, "basis": c.basis }))
             .collect();
         return out.json(&serde_json::json!({ "ranges": ranges, "caps": caps, "solver_caps": solver,
-            "settle_periods_max": crate::damper::SETTLE_PERIODS_MAX }));
+            "settle_periods_max": crate::damper::SETTLE_PERIODS_MAX,
+            "orbit_transient_periods_max": crate::orbit::MAX_TRANSIENT_PERIODS,
+            "orbit_seed_impacts_max": crate::orbit::SETTLE_IMPACTS_MAX }));
     }
     let mut s = String::from("Ranges (a plain number is in the unit shown; θ is narrowed by the source type):\n");
     for r in ranges.into_iter().chain(COUNTS) {
@@ -404,6 +406,11 @@ fn limits(a: &LimitsArgs, out: &mut Out) -> Result<(), CliError> {
     s += &format!(
         "\nSettling (part of the settling test, not a work cap): a forced run with --settle goes on at most {} periods past its duration; a motion that has not settled by then is reported not settled\n",
         crate::damper::SETTLE_PERIODS_MAX
+    );
+    s += &format!(
+        "Orbits (part of the search, not a work cap): `orbit` and the seeds of `continue --vary NAME=FROM:TO:N` follow the motion at most {} periods (a seed at most {} impacts) before Newton's method takes over; a motion still not repeating is reported as no orbit found\n",
+        crate::orbit::MAX_TRANSIENT_PERIODS,
+        crate::orbit::SETTLE_IMPACTS_MAX
     );
     out.text(&s)
 }

@@ -7,11 +7,13 @@
 //! parameter scaled to the range, `λ̃ = (λ − from)/(to − from)`; the family is the curve
 //! `G(u, λ̃) = Pⁿ_λ(u) − u = 0` in these five unknowns. From a point `y_k` with unit tangent
 //! `t_k` (the null vector of `[DG | ∂G/∂λ̃]`, oriented to go on), the predictor is
-//! `y_k + h·t_k`; the corrector is the chord method on `G = 0` and `t_k·(y − y_k) = h` with the
-//! Jacobian of `y_k`. At each converged point the Jacobian is taken anew by forward
-//! differences ([`crate::orbit::JACOBIAN_STEP`]): it gives the multipliers, the next tangent and
-//! the test functions. The step `h` grows by 1.5 after an easy correction and halves after a
-//! failed one.
+//! `y_k + h·t_k`; the corrector is quasi-Newton on `G = 0` and `t_k·(y − y_k) = h`, from the
+//! Jacobian of `y_k` updated by Broyden's formula after each iteration. At each converged point
+//! the Jacobian is taken anew ([`crate::orbit::JACOBIAN_STEP`]): it gives the multipliers, the
+//! next tangent and the test functions. The step `h` follows the corrector's contraction, the
+//! predictor's distance and the tangent's turn against nominal values (Allgower & Georg §6.1),
+//! changing by at most a factor of 2 a step, and halves after a failed correction. The two
+//! directions from a family's seed run on two threads.
 //!
 //! A special point lies between two points where a test function changes sign: the tangent's
 //! `λ` component (a fold), `det(DPⁿ + I)` (a multiplier through −1: period doubling), the number
@@ -34,13 +36,22 @@ use crate::study::Vary;
 type V5 = SVector<f64, 5>;
 type M45 = SMatrix<f64, 4, 5>;
 
-/// The most points one branch may have (a work cap; `thud limits` lists it).
-pub const MAX_BRANCH_POINTS: usize = 5000;
-/// The largest step along the branch, as a fraction of the parameter's range.
-const H_MAX: f64 = 0.01;
+/// The most points one branch may have: [`crate::limits::BRANCH_POINTS`], lifted by the
+/// design's `no_limit` (`--no-limit`).
+pub const MAX_BRANCH_POINTS: usize = crate::limits::BRANCH_POINTS.max as usize;
+/// The largest step along the branch, in the scaled unknowns (the parameter as a fraction of
+/// its range).
+const H_MAX: f64 = 0.05;
+/// The step control's nominal values (Allgower & Georg 1990, §6.1): the corrector's
+/// contraction, the predictor's distance from the branch (scaled unknowns) and the tangent's
+/// turn (rad) per step. A step that exceeds them is followed by a shorter one, one well under
+/// them by a longer one.
+const NOMINAL_CONTRACTION: f64 = 0.3;
+const NOMINAL_DISTANCE: f64 = 0.05;
+const NOMINAL_TURN: f64 = 0.1;
 /// The smallest: below it the branch ends.
 const H_MIN: f64 = 1e-7;
-/// Chord iterations allowed per correction.
+/// Corrector iterations allowed per step.
 const MAX_CHORD: u32 = 12;
 
 /// What a special point is.
@@ -156,14 +167,22 @@ impl<'a> Problem<'a> {
 
     /// `G(y)`.
     fn g(&self, y: &V5) -> Result<Vector4<f64>, ThudError> {
-        let u = y.fixed_rows::<4>(0).into_owned();
-        Ok(self.section(y[4])?.map(&u)? - u)
+        Ok(self.g_with(y)?.0)
     }
 
-    /// `G(y)`, `[DG | ∂G/∂λ̃]` and `DPⁿ` at `y` by forward differences.
-    fn jacobian(&self, y: &V5, gy: &Vector4<f64>) -> Result<(M45, Matrix4<f64>), ThudError> {
+    /// `G(y)` and the section that mapped `y`, which keeps that run's contacts for the
+    /// Jacobian there.
+    fn g_with(&self, y: &V5) -> Result<(Vector4<f64>, Section<'a>), ThudError> {
         let u = y.fixed_rows::<4>(0).into_owned();
         let mut sec = self.section(y[4])?;
+        let g = sec.map(&u)? - u;
+        Ok((g, sec))
+    }
+
+    /// `[DG | ∂G/∂λ̃]` and `DPⁿ` at `y` (given `G(y)`, and `sec`, the section at `y`'s value),
+    /// `∂G/∂λ̃` by a forward difference.
+    fn jacobian(&self, y: &V5, gy: &Vector4<f64>, sec: &mut Section) -> Result<(M45, Matrix4<f64>), ThudError> {
+        let u = y.fixed_rows::<4>(0).into_owned();
         let pu = gy + u;
         let dp = sec.jacobian(&u, &pu)?;
         let mut j = M45::zeros();
@@ -177,11 +196,20 @@ impl<'a> Problem<'a> {
     }
 
     /// The converged point `y` as a node: its Jacobian, tangent (oriented along `previous`)
-    /// and orbit.
-    fn node(&self, y: V5, gy: &Vector4<f64>, previous: Option<&V5>) -> Result<Node, ThudError> {
-        let (jac, dp) = self.jacobian(&y, gy)?;
+    /// and orbit. `sec`: the section that mapped `y` last, if at hand (it saves a run).
+    fn node(
+        &self,
+        y: V5,
+        gy: &Vector4<f64>,
+        previous: Option<&V5>,
+        sec: Option<Section<'a>>,
+    ) -> Result<Node, ThudError> {
+        let mut sec = match sec {
+            Some(s) => s,
+            None => self.section(y[4])?,
+        };
+        let (jac, dp) = self.jacobian(&y, gy, &mut sec)?;
         let u = y.fixed_rows::<4>(0).into_owned();
-        let mut sec = self.section(y[4])?;
         let root = Root { u, jac: dp, residual: gy.amax(), iterations: 0 };
         let orbit = orbit::report(&mut sec, &root)?;
         // An orbit without impacts: the ball floats (a second null direction of the Jacobian).
@@ -193,31 +221,67 @@ impl<'a> Problem<'a> {
         Ok(Node { y, jac, dp, tangent: t, orbit })
     }
 
-    /// The point on the branch at arclength `h` from `n` (predictor and chord corrector).
-    fn correct(&self, n: &Node, h: f64) -> Result<(V5, Vector4<f64>, u32), ThudError> {
+    /// The point on the branch at arclength `h` from `n`: the predictor `n.y + h·t`, then
+    /// quasi-Newton on `G = 0`, `t·(y − n.y) = h`, starting from `n`'s Jacobian and updated by
+    /// Broyden's rank-one formula after each step (Allgower & Georg 1990, §7.2), so it converges
+    /// superlinearly where the chord method with a frozen Jacobian converges only linearly.
+    fn correct(&self, n: &Node, h: f64) -> Result<Corrected<'a>, ThudError> {
         let mut a = SMatrix::<f64, 5, 5>::zeros();
         a.fixed_view_mut::<4, 5>(0, 0).copy_from(&n.jac);
         a.set_row(4, &n.tangent.transpose());
-        // Least squares (SVD): an orbit without impacts has a free ball position, and the
-        // shortest correction leaves it where it is.
-        let svd = a.svd(true, true);
         let mut y = n.y + n.tangent * h;
+        let mut g = self.g(&y)?;
+        let (mut first, mut second) = (0.0, 0.0);
         for it in 1..=MAX_CHORD {
-            let g = self.g(&y)?;
             let arc = n.tangent.dot(&(y - n.y)) - h;
             let rhs = V5::new(g[0], g[1], g[2], g[3], arc);
-            let dy = svd.solve(&rhs, 1e-12).map_err(orbit::not_found)?;
+            // Least squares (SVD): an orbit without impacts has a free ball position, and the
+            // shortest correction leaves it where it is.
+            let dy = a.svd(true, true).solve(&rhs, 1e-12).map_err(orbit::not_found)?;
             y -= dy;
-            if dy.amax() <= 1e-11 && g.amax() <= 1e-9 {
-                let g = self.g(&y)?;
-                return Ok((y, g, it));
-            }
             if !y.amax().is_finite() || dy.amax() > 0.5 {
                 break;
             }
+            match it {
+                1 => first = dy.norm(),
+                2 => second = dy.norm(),
+                _ => {}
+            }
+            let (next, sec) = self.g_with(&y)?;
+            if dy.amax() <= 1e-11 && next.amax() <= 1e-9 {
+                let contraction = if first > 0.0 { second / first } else { 0.0 };
+                return Ok(Corrected { y, g: next, sec, distance: first, contraction });
+            }
+            broyden(&mut a, &(-dy), &(next - g));
+            g = next;
         }
         Err(orbit::not_found("the corrector did not converge"))
     }
+}
+
+/// A corrected point: `y` with `G(y)`, the predictor's distance from the branch (the first
+/// correction's length) and the corrector's contraction (the second correction's length over
+/// the first's), which set the next step.
+struct Corrected<'a> {
+    y: V5,
+    g: Vector4<f64>,
+    /// The section that mapped `y`.
+    sec: Section<'a>,
+    distance: f64,
+    contraction: f64,
+}
+
+/// Broyden's update of the `G` rows of `a` for the step `s` that changed `G` by `dg`:
+/// `A ← A + (dg − A·s)·sᵀ / (sᵀs)`, the arclength row (linear) left as it is.
+fn broyden(a: &mut SMatrix<f64, 5, 5>, s: &V5, dg: &Vector4<f64>) {
+    let ss = s.norm_squared();
+    if ss == 0.0 {
+        return;
+    }
+    let rows = a.fixed_view::<4, 5>(0, 0).into_owned();
+    let update = (dg - rows * s) * s.transpose() / ss;
+    let mut rows = a.fixed_view_mut::<4, 5>(0, 0);
+    rows += update;
 }
 
 impl Problem<'_> {
@@ -234,9 +298,9 @@ impl Problem<'_> {
             let u0 = n.y.fixed_rows::<4>(0).into_owned();
             let Ok(root) = orbit::newton(&mut sec, u0) else { continue };
             let y = V5::new(root.u[0], root.u[1], root.u[2], root.u[3], lt);
-            let Ok(g) = self.g(&y) else { continue };
+            let Ok((g, sec)) = self.g_with(&y) else { continue };
             let along = V5::new(0.0, 0.0, 0.0, 0.0, dir);
-            if let Ok(node) = self.node(y, &g, Some(&along)) {
+            if let Ok(node) = self.node(y, &g, Some(&along), Some(sec)) {
                 return Some(node);
             }
         }
@@ -316,13 +380,18 @@ fn follow(
     on_point(p.value(node.y[4]));
     let first = node.y;
     let mut h = H_MAX / 4.0;
-    while b.points.len() < MAX_BRANCH_POINTS {
+    let cap = if p.base.damper.no_limit { usize::MAX } else { MAX_BRANCH_POINTS };
+    while b.points.len() < cap {
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             return Err(ThudError::Cancelled);
         }
-        let next = p.correct(&node, h).and_then(|(y, g, it)| p.node(y, &g, Some(&node.tangent)).map(|n| (n, it)));
+        let next = p.correct(&node, h).and_then(|c| {
+            let (distance, contraction) = (c.distance, c.contraction);
+            p.node(c.y, &c.g, Some(&node.tangent), Some(c.sec)).map(|n| (n, distance, contraction))
+        });
         match next {
-            Ok((next, iterations)) => {
+            Ok((next, distance, contraction)) => {
+                let factor = step_factor(distance, contraction, node.tangent.dot(&next.tangent));
                 // Back where it started: a closed branch (an isola), followed once round.
                 let closes = b.points.len() > 2 && (next.y - first).norm() < h && (node.y - first).norm() >= h;
                 if advance(p, &mut node, next, h, &mut b, on_point) {
@@ -332,9 +401,7 @@ fn follow(
                     b.ended = Some(ISOLA.to_string());
                     return Ok(b);
                 }
-                if iterations <= 3 {
-                    h = (h * 1.5).min(H_MAX);
-                }
+                h = (h / factor).min(H_MAX);
             }
             Err(ThudError::Cancelled) => return Err(ThudError::Cancelled),
             Err(e) => {
@@ -355,7 +422,7 @@ fn follow(
             }
         }
     }
-    b.ended = Some(format!("the work cap of {MAX_BRANCH_POINTS} points"));
+    b.ended = Some(CAPPED.to_string());
     Ok(b)
 }
 
@@ -402,6 +469,17 @@ pub fn continue_family(
     Ok(branches)
 }
 
+/// Why a branch cut by its work cap ([`MAX_BRANCH_POINTS`]) ended.
+pub const CAPPED: &str = "the work cap of 5000 points of a continued branch (thud limits)";
+
+impl Branch {
+    /// Whether the branch's work cap cut it short.
+    #[must_use]
+    pub fn truncated(&self) -> bool {
+        self.ended.as_deref().is_some_and(|e| e.contains(CAPPED))
+    }
+}
+
 /// Why a branch that closed on itself ended.
 const ISOLA: &str = "the branch closed on itself (an isola), followed once round";
 
@@ -433,16 +511,18 @@ fn both_ways(
     value: f64,
     o: &PeriodicOrbit,
     cancel: Option<&AtomicBool>,
-    on_point: &dyn Fn(f64),
+    on_point: &(dyn Fn(f64) + Sync),
 ) -> Result<Branch, ThudError> {
     let (p, up) = start_at(base, vary, value, o, false, cancel)?;
     let mut down_node = up.clone();
     down_node.tangent = -down_node.tangent;
-    let mut b = follow(&p, up, cancel, on_point)?;
+    // The two directions on two threads; an isola's second one is dropped.
+    let (b, down) = rayon::join(|| follow(&p, up, cancel, on_point), || follow(&p, down_node, cancel, on_point));
+    let mut b = b?;
     if b.ended.as_deref() == Some(ISOLA) {
         return Ok(b);
     }
-    let down = follow(&p, down_node, cancel, on_point)?;
+    let down = down?;
     let mut points: Vec<BranchPoint> = down.points.into_iter().skip(1).rev().collect();
     points.append(&mut b.points);
     b.points = points;
@@ -455,6 +535,16 @@ fn both_ways(
         (d, u) => d.or(u),
     };
     Ok(b)
+}
+
+/// The step's change factor from the last step's corrector and the turn of the tangent
+/// (Allgower & Georg 1990, §6.1): the largest of √(κ/κ̃), √(δ/δ̃) and α/α̃ against their
+/// nominal values, held to [1/2, 2]; the next step is `h / factor`.
+fn step_factor(distance: f64, contraction: f64, cos_turn: f64) -> f64 {
+    let angle = cos_turn.clamp(-1.0, 1.0).acos();
+    let f =
+        (contraction / NOMINAL_CONTRACTION).sqrt().max((distance / NOMINAL_DISTANCE).sqrt()).max(angle / NOMINAL_TURN);
+    f.clamp(0.5, 2.0)
 }
 
 /// Six significant digits.
@@ -523,7 +613,7 @@ fn start_at<'a>(
     // Polish the first point on the fixed scales (the symmetric map's fixed point, too).
     let mut g = p.g(&y)?;
     for _ in 0..3 {
-        let (j, _) = p.jacobian(&y, &g)?;
+        let (j, _) = p.jacobian(&y, &g, &mut p.section(y[4])?)?;
         let a = j.fixed_view::<4, 4>(0, 0).into_owned();
         if let Some(step) = a.lu().solve(&(-g)) {
             for k in 0..4 {
@@ -535,7 +625,7 @@ fn start_at<'a>(
             break;
         }
     }
-    let node = p.node(y, &g, None)?;
+    let node = p.node(y, &g, None, None)?;
     Ok((p, node))
 }
 
@@ -565,8 +655,8 @@ fn land(p: &Problem, a: &Node, b: &Node) -> Result<Node, ThudError> {
     let mut best = None;
     for _ in 0..6 {
         h = lo.0 - lo.1 * (hi.0 - lo.0) / (hi.1 - lo.1);
-        let (y, g, _) = p.correct(a, h)?;
-        let n = p.node(y, &g, Some(&a.tangent))?;
+        let c = p.correct(a, h)?;
+        let n = p.node(c.y, &c.g, Some(&a.tangent), Some(c.sec))?;
         let f = n.y[4] - target;
         best = Some(n);
         if f.abs() < 1e-10 {
@@ -624,8 +714,8 @@ fn locate(p: &Problem, a: &Node, b: &Node, h: f64, out: &mut Vec<SpecialPoint>) 
 /// The root of the test function `f` between `a` (arclength 0) and arclength `h` by the secant
 /// method, each iterate corrected onto the branch: (value, amplitude).
 fn secant(p: &Problem, a: &Node, h: f64, f: &dyn Fn(&Node) -> f64) -> Option<(f64, f64)> {
-    let (y, g, _) = p.correct(a, h).ok()?;
-    let b = p.node(y, &g, Some(&a.tangent)).ok()?;
+    let c = p.correct(a, h).ok()?;
+    let b = p.node(c.y, &c.g, Some(&a.tangent), Some(c.sec)).ok()?;
     let (mut s0, mut f0) = (0.0, f(a));
     let (mut s1, mut f1) = (h, f(&b));
     let mut last = (p.value(b.y[4]), b.orbit.amplitude_m);
@@ -635,8 +725,8 @@ fn secant(p: &Problem, a: &Node, h: f64, f: &dyn Fn(&Node) -> f64) -> Option<(f6
         }
         let s = s1 - f1 * (s1 - s0) / (f1 - f0);
         let s = s.clamp(0.0, h);
-        let (y, g, _) = p.correct(a, s).ok()?;
-        let n = p.node(y, &g, Some(&a.tangent)).ok()?;
+        let c = p.correct(a, s).ok()?;
+        let n = p.node(c.y, &c.g, Some(&a.tangent), Some(c.sec)).ok()?;
         last = (p.value(n.y[4]), n.orbit.amplitude_m);
         let fs = f(&n);
         if (s - s1).abs() <= 1e-9 * h.abs().max(1e-12) || fs == 0.0 {
@@ -645,4 +735,29 @@ fn secant(p: &Problem, a: &Node, h: f64, f: &dyn Fn(&Node) -> f64) -> Option<(f6
         (s0, f0, s1, f1) = (s1, f1, s, fs);
     }
     Some(last)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cap_s_note_names_the_cap_thud_limits_lists() {
+        assert!(CAPPED.contains(&MAX_BRANCH_POINTS.to_string()));
+        assert!(crate::limits::CAPS.iter().any(|c| c.max as usize == MAX_BRANCH_POINTS && CAPPED.contains(c.what)));
+    }
+
+    /// Broyden's update makes the matrix map the step to the change it saw, and leaves the
+    /// arclength row alone.
+    #[test]
+    fn broyden_s_update_meets_the_secant_condition() {
+        let mut a = SMatrix::<f64, 5, 5>::from_fn(|r, c| if r == c { 2.0 } else { 0.1 * (r + c) as f64 });
+        let row = a.row(4).into_owned();
+        let s = V5::new(0.1, -0.2, 0.3, 0.05, 0.01);
+        let dg = Vector4::new(1.0, 2.0, -1.0, 0.5);
+        broyden(&mut a, &s, &dg);
+        let seen = a.fixed_view::<4, 5>(0, 0) * s;
+        assert!((seen - dg).amax() < 1e-12, "{seen} vs {dg}");
+        assert_eq!(a.row(4).into_owned(), row);
+    }
 }

@@ -583,8 +583,24 @@ pub const RESPONSE_PERIODS: Cap = Cap {
     basis: "15 µs a period at ½ impact a period (thud response --force-amplitude 1N: 112 638 periods, 1.7 s of CPU), up to ≈ 100 µs at 4 impacts a period: 2e6 periods is at most about 100 s on 2 cores",
 };
 
+/// Points of one continued branch (`thud continue`): each point is an orbit corrected onto the
+/// branch with its Jacobian, about nine runs of the orbit's period.
+pub const BRANCH_POINTS: Cap = Cap {
+    what: "points of a continued branch",
+    max: 5000.0,
+    basis: "≈ 2 ms a point (forced-rattle's family over 3–8 Hz: 2 726 points in 5.9 s of one core): 5000 points is about 10 s a branch",
+};
+
+/// Forcing periods the seeds of a continued family may simulate (`thud continue --vary
+/// NAME=FROM:TO:N`): the attractor search at each of the N values runs at most
+/// [`crate::orbit::MAX_TRANSIENT_PERIODS`] periods. Each branch is then capped by
+/// [`BRANCH_POINTS`] as it goes.
+pub fn family_seed_periods(seeds: usize) -> Estimate {
+    Estimate { cap: RESPONSE_PERIODS, value: seeds as f64 * f64::from(crate::orbit::MAX_TRANSIENT_PERIODS) }
+}
+
 /// Every cap, in the order `thud` lists them.
-pub const CAPS: [Cap; 13] = [
+pub const CAPS: [Cap; 14] = [
     NEWMARK_STEPS,
     CYCLES,
     HISTORY_SAMPLES,
@@ -598,6 +614,7 @@ pub const CAPS: [Cap; 13] = [
     RUN_SECONDS,
     MERGED_RUNS,
     RESPONSE_PERIODS,
+    BRANCH_POINTS,
 ];
 
 /// One estimate of the work of a run, against its cap.
