@@ -109,9 +109,10 @@ fn fitted(c: &Case, table: &Table, span: f64, s: &Series) -> (bool, f64, bool, S
 /// and acceleration records, the 95 % interval holds the truth in at least 37 (92 %; for a
 /// correct 95 % interval P(count ≤ 36) = 14 %: the issue's bar) and its median width
 /// (high/low) is at most a factor 2. Measured: 38, 40 and 38 of 40, median widths ×1.35,
-/// ×1.35 and ×1.98. The intervals that miss the truth by more than 5 % without a note are
-/// listed (1 of the 120 here: acceleration case 11, truth 80.1 and [111, 188]); the issue
-/// asks for none, which this does not yet assert. v0 read from each record's strike
+/// ×1.35 and ×1.98. No interval misses the truth by more than 5 % without a note (the issue's
+/// rule; of the 3 of 120 that miss by far, 2 note a wide or open interval and 1, acceleration
+/// case 11, truth 80.1 and [111, 188], that its low end rests on the first periods alone).
+/// v0 read from each record's strike
 /// (`strike::strike_speed`) is within 3 of its stated standard uncertainties for every
 /// displacement and velocity record (measured: within 2 % of the truth in 37 and 40 of 40,
 /// worst 2.6 % and 1.9 %); an acceleration's is listed (12 of 40 within 2 %, median 3.4 %,
@@ -178,6 +179,11 @@ fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kin
         // (An acceleration's uncertainty is not yet calibrated: listed, not asserted.)
         if kind < 2 && worst_z > strike::DISAGREE_SDS {
             failures.push(format!("{name}: a v0 from the record {worst_z:.2} of its standard uncertainties off"));
+        }
+        // The issue's rule: an interval that misses the truth by more than 5 % says so.
+        let unflagged = results.iter().filter(|r| r[kind].2).count();
+        if unflagged > 0 {
+            failures.push(format!("{name}: {unflagged} intervals miss by more than 5 % without a note"));
         }
         if covered < 37 {
             failures.push(format!("{name}: covered {covered} of {n}"));
