@@ -109,14 +109,15 @@ fn fitted(c: &Case, table: &Table, span: f64, s: &Series) -> (bool, f64, bool, S
 /// and acceleration records, the 95 % interval holds the truth in at least 37 (92 %; for a
 /// correct 95 % interval P(count ≤ 36) = 14 %: the issue's bar) and its median width
 /// (high/low) is at most a factor 2. Measured: 38, 40 and 38 of 40, median widths ×1.35,
-/// ×1.35 and ×1.98. The intervals that miss the truth by more than 5 % without a note are
-/// listed (1 of the 120 here: acceleration case 11, truth 80.1 and [111, 188]); the issue
-/// asks for none, which this does not yet assert. v0 read from each record's strike
-/// (`strike::strike_speed`) is within 3 of its stated standard uncertainties for every
-/// displacement and velocity record (measured: within 2 % of the truth in 37 and 40 of 40,
-/// worst 2.6 % and 1.9 %); an acceleration's is listed (12 of 40 within 2 %, median 3.4 %,
-/// worst 3.7 of its standard uncertainties). About 30 s of CPU (41 × 39 runs a design);
-/// 2–3 minutes on a busy 2-core machine.
+/// ×1.35 and ×1.98. No interval misses the truth by more than 5 % without a note (the issue's
+/// rule; of the 3 of 120 that miss by far, 2 note a wide or open interval and 1, acceleration
+/// case 11, truth 80.1 and [111, 188], that its low end rests on the first periods alone).
+/// v0 read from each record's strike (`strike::strike_speed`) is within 3 of its stated
+/// standard uncertainties for every record, and within 2 % of the truth in at least 38 of 40
+/// (95 %) displacements and velocities (measured: 38 and 40 of 40, worst 2.04 % and 1.92 %,
+/// worst 1.8 and 2.1 standard uncertainties); an acceleration's share within 2 % is listed
+/// (19 of 40, median 2.5 %, worst 2.7 standard uncertainties: its noise, not a bias).
+/// About 30 s of CPU (41 × 39 runs a design); 3 minutes on a busy 2-core machine.
 /// Per record kind of one design: covered, width ratio, noted, and the note.
 type Fits = Vec<(bool, f64, bool, String)>;
 /// Per record kind of one design: v0 from the record's relative error and its uncertainty.
@@ -175,9 +176,20 @@ fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kin
             100.0 * 0.5 * (abs[n / 2 - 1] + abs[n / 2]),
             100.0 * abs[n - 1]
         );
-        // (An acceleration's uncertainty is not yet calibrated: listed, not asserted.)
-        if kind < 2 && worst_z > strike::DISAGREE_SDS {
+        // Its stated uncertainty holds for every kind (so a right --v0 is not warned of).
+        if worst_z > strike::DISAGREE_SDS {
             failures.push(format!("{name}: a v0 from the record {worst_z:.2} of its standard uncertainties off"));
+        }
+        // The issue's 2 % in 95 % of the cases (38 of 40) for a displacement and a velocity.
+        // An acceleration's is listed: its noise, 1–3 % of an impact's spike, is as large as
+        // the structure's own motion, and its stated uncertainty (about 3 %) says so.
+        if kind < 2 && within2 < 38 {
+            failures.push(format!("{name}: v0 from the record within 2 % in {within2} of {n}"));
+        }
+        // The issue's rule: an interval that misses the truth by more than 5 % says so.
+        let unflagged = results.iter().filter(|r| r[kind].2).count();
+        if unflagged > 0 {
+            failures.push(format!("{name}: {unflagged} intervals miss by more than 5 % without a note"));
         }
         if covered < 37 {
             failures.push(format!("{name}: covered {covered} of {n}"));

@@ -44,14 +44,17 @@ const DRAWS: usize = 32;
 /// contacts.
 pub const FLOOR: f64 = 0.005;
 
-/// The window of T (in periods of the structure) the fit uses: from half a period (the ball's
-/// term is then at most m·d/(M·T)) to 3 periods for a displacement or a velocity (their noise
-/// grows in the double integral as √T); 1 to 8 for an acceleration, whose displacement is
-/// noisy sample by sample (the spikes' scale) and needs the longer average.
-fn window_periods(q: Quantity) -> (f64, f64) {
+/// The windows of T (in periods of the structure) the fit may use; each record's is the one
+/// whose standard uncertainty (its noise and the ball's term, [`strike_speed`]) is least. A
+/// window starts late enough for the ball's term, at most m·d/(M·T), to be small and ends
+/// before the noise, which grows in the double integral as √T, takes over. A displacement or
+/// a velocity: ½ or 1 to 3 periods. An acceleration's displacement is noisy sample by sample
+/// (the spikes set its noise), so where the balance lies depends on the record: from ¼–1½
+/// periods (a quiet one) to 1–8 (a noisy one).
+fn windows(q: Quantity) -> &'static [(f64, f64)] {
     match q {
-        Quantity::Displacement | Quantity::Velocity => (0.5, 3.0),
-        Quantity::Acceleration => (1.0, 8.0),
+        Quantity::Displacement | Quantity::Velocity => &[(0.5, 3.0), (1.0, 3.0)],
+        Quantity::Acceleration => &[(0.25, 1.5), (0.5, 2.0), (0.5, 3.0), (1.0, 4.0), (1.0, 6.0), (1.0, 8.0)],
     }
 }
 
@@ -171,15 +174,15 @@ pub fn strike_speed(s: &Series, d: &Design) -> Result<Strike, ThudError> {
         return Err(ThudError::invalid("k", "the structure has no free vibration; v0 cannot be read from a record"));
     }
     let period = 1.0 / f_n;
-    let (a, b) = window_periods(s.quantity());
-    let setup = Setup {
+    let setup = |(a, b): (f64, f64)| Setup {
         w2: p.stiffness_n_m / p.main_mass_kg,
         s2: p.damping_n_s_m / p.main_mass_kg,
         mu: p.impact_mass_kg / p.main_mass_kg,
         from: a * period,
         to: (b * period).min(s.span_s()),
     };
-    if setup.to < setup.from + 0.5 * period {
+    let short = |w: &Setup| w.to < w.from + 0.5 * period;
+    if windows(s.quantity()).iter().all(|&w| short(&setup(w))) {
         return Err(bad("too short to read the strike's speed from: it needs a period of the structure"));
     }
     let t0 = s.t_s()[0];
@@ -194,29 +197,42 @@ pub fn strike_speed(s: &Series, d: &Design) -> Result<Strike, ThudError> {
         Quantity::Velocity => [1, 2],
         _ => [0, 1],
     };
+    let w2 = p.stiffness_n_m / p.main_mass_kg;
     let as_x = |y: &[f64]| -> Vec<f64> {
         match s.quantity() {
             Quantity::Displacement => y.to_vec(),
             Quantity::Velocity => integral(&t, y),
-            Quantity::Acceleration => y.iter().map(|a| -a / setup.w2).collect(),
+            Quantity::Acceleration => y.iter().map(|a| -a / w2).collect(),
         }
     };
     let fail = || bad("the strike's speed cannot be read from the record (too few samples in its first periods)");
-    let v0 = setup.solve(&t, &as_x(&raw), polys, false).ok_or_else(fail)?;
-    // The noise's share, by drawing the record's own white noise through the same (linear) fit.
+    let x = as_x(&raw);
+    // The same draws of the record's own white noise for every window.
     let level = noise_sd(&raw);
     let mut g = Draws(0x5EED_57A1);
-    let mut sq = 0.0;
-    for _ in 0..DRAWS {
-        let noise: Vec<f64> = t.iter().map(|_| level * g.normal()).collect();
-        let e = setup.solve(&t, &as_x(&noise), polys, false).ok_or_else(fail)?;
-        sq += e * e;
-    }
-    let from_noise = (sq / DRAWS as f64).sqrt();
+    let draws: Vec<Vec<f64>> =
+        (0..DRAWS).map(|_| as_x(&t.iter().map(|_| level * g.normal()).collect::<Vec<_>>())).collect();
     let zeros = vec![0.0; t.len()];
-    let weight = setup.solve(&t, &zeros, polys, true).ok_or_else(fail)?;
-    let from_ball = setup.mu * p.gap_m * weight.abs() / 3f64.sqrt();
-    Ok(Strike { v0_m_s: v0, stderr_m_s: from_noise.hypot(from_ball).max(FLOOR * v0.abs()) })
+    // One window's reading: v0 and its standard uncertainty, the noise's share by drawing the
+    // record's white noise through the same (linear) fit.
+    let read = |w: &Setup| -> Option<Strike> {
+        let v0 = w.solve(&t, &x, polys, false)?;
+        let mut sq = 0.0;
+        for noise in &draws {
+            sq += w.solve(&t, noise, polys, false)?.powi(2);
+        }
+        let from_noise = (sq / DRAWS as f64).sqrt();
+        let weight = w.solve(&t, &zeros, polys, true)?;
+        let from_ball = w.mu * p.gap_m * weight.abs() / 3f64.sqrt();
+        Some(Strike { v0_m_s: v0, stderr_m_s: from_noise.hypot(from_ball).max(FLOOR * v0.abs()) })
+    };
+    windows(s.quantity())
+        .iter()
+        .map(|&w| setup(w))
+        .filter(|w| !short(w))
+        .filter_map(|w| read(&w))
+        .min_by(|a, b| a.stderr_m_s.total_cmp(&b.stderr_m_s))
+        .ok_or_else(fail)
 }
 
 /// The records' strike speeds combined (inverse-variance weighted mean): one v0 for strikes
