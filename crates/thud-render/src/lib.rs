@@ -11,5 +11,6 @@ pub mod csv;
 pub mod dynamics;
 pub mod figures;
 pub mod pdf;
+pub mod studies;
 pub mod svg;
 pub mod wav;
