@@ -4,6 +4,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
+use serde::Deserialize;
 use thud_core::design::Design;
 use thud_core::limits;
 use thud_core::ThudError;
@@ -83,15 +84,7 @@ pub fn _render<'py>(
         within(py, "freqs_hz", *f, &limits::FREQ)?;
     }
     check_size(py, size)?;
-    let format = match format {
-        "pcm16" => SampleFormat::Pcm16,
-        "pcm24" => SampleFormat::Pcm24,
-        "float" => SampleFormat::Float,
-        _ => {
-            let msg = format!("invalid format: '{format}'; expected pcm16, pcm24 or float");
-            return Err(parameter_error(py, "format", msg));
-        }
-    };
+    let format = sample_format(py, format)?;
     let full_scale_pa = within(py, "full_scale", full_scale, &limits::FULL_SCALE)?;
     if pdf && !kind.is_figure() {
         return Err(parameter_error(
@@ -183,6 +176,56 @@ pub fn _figure<'py>(
         thud_render::pdf::from_svg(&svg).map_err(|e| engine_error(py, ThudError::invalid("render", e.to_string())))?
     } else {
         svg.into_bytes()
+    };
+    Ok(PyBytes::new(py, &bytes))
+}
+
+/// The sample format `format` names ("pcm16", "pcm24" or "float").
+fn sample_format(py: Python<'_>, format: &str) -> PyResult<SampleFormat> {
+    Ok(match format {
+        "pcm16" => SampleFormat::Pcm16,
+        "pcm24" => SampleFormat::Pcm24,
+        "float" => SampleFormat::Float,
+        _ => {
+            let msg = format!("invalid format: '{format}'; expected pcm16, pcm24 or float");
+            return Err(parameter_error(py, "format", msg));
+        }
+    })
+}
+
+/// What a pulse is made into: its figure (as SVG or PDF) or its sound.
+pub enum PulseFile {
+    /// `thud export svg pulse` (`pdf`: `thud export pdf pulse`) at this size and with or without the title.
+    Figure { pdf: bool, size: Option<(f64, f64)>, title: bool },
+    /// `thud export wav pulse --full-scale … --format …`.
+    Sound { full_scale: f64, format: String },
+}
+
+/// The bytes `thud export svg|pdf|wav pulse` writes for the pulse whose record (`thud pulse
+/// --json`) is `record`: the same impact, so the same bytes.
+pub fn pulse_bytes<'py>(py: Python<'py>, record: &serde_json::Value, what: PulseFile) -> PyResult<Bound<'py, PyBytes>> {
+    let spec = thud_render::pulse::PulseSpec::deserialize(record)
+        .map_err(|e| parameter_error(py, "record", format!("invalid record: not a thud pulse ({e})")))?;
+    let failed = |e: String| engine_error(py, ThudError::invalid("render", e));
+    let bytes = match what {
+        PulseFile::Figure { pdf, size, title } => {
+            check_size(py, size)?;
+            let svg = thud_render::pulse::svg(&spec, &Look { size, title }).map_err(|e| engine_error(py, e))?;
+            if pdf {
+                thud_render::pdf::from_svg(&svg).map_err(|e| failed(e.to_string()))?
+            } else {
+                svg.into_bytes()
+            }
+        }
+        PulseFile::Sound { full_scale, format } => {
+            let format = sample_format(py, &format)?;
+            let full_scale_pa = within(py, "full_scale", full_scale, &limits::FULL_SCALE)?;
+            let opts = WavOptions { format, full_scale_pa, ..WavOptions::default() };
+            thud_render::pulse::sound(&spec, &opts).map_err(|e| match e {
+                thud_render::wav::WavError::Invalid(t) => engine_error(py, t),
+                other @ thud_render::wav::WavError::NonFinite(_) => failed(other.to_string()),
+            })?
+        }
     };
     Ok(PyBytes::new(py, &bytes))
 }

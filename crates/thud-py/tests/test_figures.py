@@ -45,6 +45,29 @@ def test_a_run_draws_its_history_and_plays_its_sound_as_the_cli_exports_them(cli
                              *RUN)
 
 
+def test_a_pulse_draws_its_waveform_and_plays_its_sound_as_the_cli_exports_them(cli, tmp_path):
+    p = thud.pulse(u0=2, theta=30, main_mass=3, source="quadrupole", points=500)
+    args = ["--u0", "2", "--theta", "30", "--main-mass", "3", "--source", "quadrupole"]
+    svg = written(tmp_path, p.to_svg)
+    assert b"U0 2 m/s" in svg and b"quadrupole" in svg
+    assert svg == exported(cli, tmp_path, "svg", "pulse", "--points", "500", *args)
+    pdf = written(tmp_path, lambda path: p.to_pdf(path, size=(600, 400), title=False))
+    assert pdf.startswith(b"%PDF")
+    assert pdf == exported(cli, tmp_path, "pdf", "pulse", "--points", "500", "--size", "600x400", "--no-title", *args)
+    wav = written(tmp_path, p.to_wav)
+    assert wav[:4] == b"RIFF" and wav == exported(cli, tmp_path, "wav", "pulse", *args)
+    assert any(wav[44:]), "the pulse is heard"
+    loud = written(tmp_path, lambda path: p.to_wav(path, full_scale=0.5, format="pcm24"))
+    assert loud == exported(cli, tmp_path, "wav", "pulse", "--full-scale", "0.5", "--format", "pcm24", *args)
+    # Another impact draws another figure; an unpickled pulse draws its original's.
+    import pickle
+    assert written(tmp_path, pickle.loads(pickle.dumps(p)).to_svg) == svg
+    assert written(tmp_path, thud.pulse(u0=2, points=500).to_svg) != svg
+    physical = thud.pulse(model="physical", sphere="steel", r=0.5)
+    assert written(tmp_path, physical.to_svg) == exported(cli, tmp_path, "svg", "pulse", "--model", "physical",
+                                                          "--sphere", "steel", "--r", "0.5")
+
+
 def test_a_chart_draws_its_zones_and_fig17_as_the_cli_exports_them(cli, tmp_path):
     chart = thud.sweep("30g:60g:3", "2cm:4cm:2", **RUN_KW)
     axes = ["--masses", "30g:60g:3", "--gaps", "2cm:4cm:2", *RUN]
