@@ -9,6 +9,7 @@ use thud_core::design::Design;
 use thud_core::limits;
 use thud_core::ThudError;
 use thud_render::artifact::{self, Artifact, ExportOptions, RenderError};
+use thud_render::dynamics::short_design;
 use thud_render::svg::{self, Look};
 use thud_render::wav::{SampleFormat, WavOptions};
 
@@ -124,19 +125,6 @@ pub fn _render<'py>(
     Ok(PyBytes::new(py, &bytes))
 }
 
-/// The design in a figure's title as the command line's orbit figures write it: "F0 3 N, f 5 Hz,
-/// gap 20 mm, m 40 g" (`thud basins`, `thud impact-map`; the test compares the bytes).
-fn short_design(d: &Design) -> String {
-    let p = &d.damper;
-    [
-        format!("F0 {} N", limits::short(p.force_n)),
-        format!("f {} Hz", limits::short(p.freq_hz)),
-        format!("gap {} mm", limits::short(p.gap_m * 1e3)),
-        format!("m {} g", limits::short(p.impact_mass_kg * 1e3)),
-    ]
-    .join(", ")
-}
-
 /// _figure(kind, record, pdf=False, size=None, title=True) -> bytes
 ///
 /// The figure `thud basins --svg` (kind "basins") or `thud impact-map --svg` (kind
@@ -159,12 +147,12 @@ pub fn _figure<'py>(
     let svg = match kind {
         "basins" => {
             let b: thud_core::dynamics::Basins = serde_json::from_value(value).map_err(bad)?;
-            let t = format!("Basins of attraction over the ball's start — {}", short_design(&design));
+            let t = format!("Basins of attraction over the ball's start — {}", short_design(&design, ""));
             thud_render::dynamics::basins_svg(&b, &t, &look)
         }
         "impact_map" => {
             let run: thud_core::dynamics::OrbitRun = serde_json::from_value(value).map_err(bad)?;
-            let t = format!("Impact map — {}", short_design(&design));
+            let t = format!("Impact map — {}", short_design(&design, ""));
             thud_render::dynamics::impact_map_svg(&run, &t, &look)
         }
         _ => {
@@ -231,7 +219,7 @@ pub fn pulse_bytes<'py>(py: Python<'py>, record: &serde_json::Value, what: Pulse
 }
 
 /// Refuses a figure size outside what `--size` takes.
-fn check_size(py: Python<'_>, size: Option<(f64, f64)>) -> PyResult<()> {
+pub fn check_size(py: Python<'_>, size: Option<(f64, f64)>) -> PyResult<()> {
     if let Some((w, h)) = size {
         let (min, max) = (svg::MIN_SIZE, svg::MAX_SIZE);
         if !(min.0..=max.0).contains(&w) || !(min.1..=max.1).contains(&h) {

@@ -80,6 +80,21 @@ def test_a_chart_draws_its_zones_and_fig17_as_the_cli_exports_them(cli, tmp_path
     assert not (tmp_path / "never.svg").exists()
 
 
+def test_a_chart_of_ensembles_draws_the_ensemble_chart_of_sweep(cli, tmp_path):
+    chart = thud.sweep("30g:60g:2", "2cm:4cm:2", ensemble=3, **RUN_KW)
+    args = ["sweep", "--masses", "30g:60g:2", "--gaps", "2cm:4cm:2", "--ensemble", "3", *RUN, "--out",
+            str(tmp_path / "table.txt")]
+    code, _, err = cli(*args, "--svg", str(tmp_path / "cli.svg"), "--pdf", str(tmp_path / "cli.pdf"))
+    assert code == 0, err
+    svg = written(tmp_path, chart.to_svg)
+    assert b"Ensemble chart: 3 runs a cell" in svg and svg == (tmp_path / "cli.svg").read_bytes()
+    assert written(tmp_path, chart.to_pdf) == (tmp_path / "cli.pdf").read_bytes()
+    assert svg != written(tmp_path, thud.sweep("30g:60g:2", "2cm:4cm:2", **RUN_KW).to_svg)
+    with pytest.raises(thud.ParameterError) as info:
+        chart.to_svg(tmp_path / "never.svg", figure="fig17")
+    assert info.value.param == "figure" and "ensemble" in str(info.value)
+
+
 def test_a_response_draws_its_figure_as_the_cli_exports_it(cli, tmp_path):
     r = thud.response("4.6Hz:5.4Hz:3", force="1N", periods=4, duration=1)
     args = ["--freqs", "4.6Hz:5.4Hz:3", "--force-amplitude", "1N", "--periods", "4", "--duration", "1"]

@@ -276,6 +276,8 @@ class Chart:
         (schema()["sweep"]: mass_kg, gap_m, the metrics); with an ensemble those of `thud sweep
         --ensemble N --csv` (schema()["sweep_ensemble"]: mass_kg, gap_m, runs, the medians,
         X_p10 / X_median / X_p90, zone3_probability, agreement)."""
+    def _ensemble_figure(self, pdf: bool = False, size: Optional[Tuple[float, float]] = None,
+                         title: bool = True) -> bytes: ...
     def runs_frame(self) -> Any:
         """A chart of ensembles, one row per run of each cell (run, mass_kg, gap_m, ball_position_m, metrics)."""
     def to_xarray(self) -> Any:
@@ -289,7 +291,8 @@ class Chart:
     def to_svg(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
                overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
         """The design chart (or Fig 17) as SVG, the bytes of ``thud export svg chart|fig17`` over
-        this chart's masses and gaps."""
+        this chart's masses and gaps; with ensemble=N the ensemble chart of ``thud sweep
+        --ensemble N --svg``."""
     def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
                overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
         """The design chart (or Fig 17) as a one-page PDF (``thud export pdf chart|fig17``)."""

@@ -43,6 +43,12 @@ def run_to_wav(self: Any, path: PathLike, *, overwrite: bool = False, full_scale
 def _chart_figure(chart: Any, figure: str, pdf: bool, size: Size, title: bool) -> bytes:
     if figure not in ("chart", "fig17"):
         raise _refuse("figure", f"invalid figure: '{figure}'; expected chart or fig17")
+    if chart.runs > 1:
+        if figure != "chart":
+            raise _refuse("figure", f"invalid figure: '{figure}'; a chart of ensembles draws its ensemble chart "
+                          "(figure=\"chart\"), as `thud sweep --ensemble N --svg`")
+        data: bytes = chart._ensemble_figure(pdf, **look(size, title))
+        return data
     return render(figure, chart.design, pdf, masses_kg=[float(m) for m in chart.masses_kg],
                   gaps_m=[float(g) for g in chart.gaps_m], **look(size, title))
 
@@ -50,7 +56,9 @@ def _chart_figure(chart: Any, figure: str, pdf: bool, size: Size, title: bool) -
 def chart_to_svg(self: Any, path: PathLike, *, figure: str = "chart", overwrite: bool = False, size: Size = None,
                  title: bool = True) -> None:
     """The design chart as SVG, ``thud export svg chart`` (``figure="fig17"``: the Fig 17 zone
-    chart) over this chart's masses and gaps; an existing file is kept unless ``overwrite``."""
+    chart) over this chart's masses and gaps; of a chart of ensembles (``ensemble=N``), the
+    ensemble chart of ``thud sweep --ensemble N --svg``. An existing file is kept unless
+    ``overwrite``."""
     write_file(path, _chart_figure(self, figure, False, size, title), overwrite)
 
 
