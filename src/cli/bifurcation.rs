@@ -414,23 +414,8 @@ pub(super) fn merge(parts: &[(String, String)], format: OutputFormat) -> Result<
     render(&design, &b, format)
 }
 
-/// A short name of the design for a figure's title, each number as typed (`F0 3 N`, not
-/// `3.0000 N`), without the parameter the figure varies (`varied`, its row's name: a diagram
-/// over f is not "at f 7.5 Hz").
-pub(super) fn short_design(d: &ValidDesign, varied: &str) -> String {
-    let p = &d.damper;
-    [
-        ("force", format!("F0 {} N", short(p.force_n))),
-        ("freq", format!("f {} Hz", short(p.freq_hz))),
-        ("gap", format!("gap {} mm", short(p.gap_m * 1e3))),
-        ("mass", format!("m {} g", short(p.impact_mass_kg * 1e3))),
-    ]
-    .into_iter()
-    .filter(|(name, _)| *name != varied)
-    .map(|(_, text)| text)
-    .collect::<Vec<_>>()
-    .join(", ")
-}
+/// A short name of the design for a figure's title (one copy, shared with the Python module).
+pub(super) use thud_render::dynamics::short_design;
 
 /// The bifurcation as `format`.
 fn render(d: &Design, b: &Bifurcation, format: OutputFormat) -> Result<String, CliError> {

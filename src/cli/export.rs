@@ -25,11 +25,11 @@ pub struct ExportArgs {
 enum ExportCommand {
     /// Data as CSV: waveform (t_s,p_pa), history (t_s,x_m,y_m,x_free_m), impacts, sweep, response.
     Csv(CsvArgs),
-    /// Figures as SVG: waveform, directivity, history, restitution, chart, fig17, response.
+    /// Figures as SVG: waveform, directivity, history, restitution, chart, fig17, response, fit; `svg pulse`: the pulse of `thud pulse`.
     Svg(SvgArgs),
     /// Figures as PDF, one page the figure's size (1 px = 0.75 pt), text in an embedded DejaVu Sans: the figures of `svg`.
     Pdf(SvgArgs),
-    /// The damper's sound at the observer: 48 kHz mono, 16-bit PCM (--format), 1.0 = --full-scale Pa.
+    /// The damper's sound at the observer: 48 kHz mono, 16-bit PCM (--format), 1.0 = --full-scale Pa; `wav pulse`: the pulse of `thud pulse`.
     Wav(WavArgs),
 }
 
@@ -64,9 +64,12 @@ struct CsvArgs {
 }
 
 #[derive(Debug, Clone, Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 struct SvgArgs {
-    #[arg(value_enum)]
-    what: SvgWhat,
+    #[command(subcommand)]
+    pulse: Option<PulseFigure>,
+    #[arg(value_enum, required = true)]
+    what: Option<SvgWhat>,
     /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
     #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
     size: Option<String>,
@@ -83,6 +86,60 @@ struct SvgArgs {
     damper: bool,
     #[command(flatten)]
     common: Common,
+}
+
+/// The pulse's figure, a command of its own: its flags are `thud pulse`'s.
+#[derive(Debug, Clone, Subcommand)]
+enum PulseFigure {
+    /// The pulse of `thud pulse` (same flags): the pressure of one impact at its observer.
+    Pulse(PulseFigureArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+struct PulseFigureArgs {
+    #[command(flatten)]
+    source: super::pulse::PulseSource,
+    /// Points of the waveform.
+    #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
+    points: String,
+    /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
+    size: Option<String>,
+    /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
+    #[arg(long)]
+    no_title: bool,
+    #[command(flatten)]
+    ascii: super::AsciiArgs,
+    #[command(flatten)]
+    target: Target,
+}
+
+/// The pulse's sound, a command of its own: its flags are `thud pulse`'s.
+#[derive(Debug, Clone, Subcommand)]
+enum PulseSound {
+    /// The pulse of `thud pulse` (same flags) as sound: the impact's pressure at its observer from the contact's start, then 0.1 s of silence.
+    Pulse(PulseSoundArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+struct PulseSoundArgs {
+    #[command(flatten)]
+    source: super::pulse::PulseSource,
+    #[command(flatten)]
+    sound: SoundArgs,
+    #[command(flatten)]
+    target: Target,
+}
+
+/// The file an export writes.
+#[derive(Debug, Clone, Args)]
+struct Target {
+    /// The file to write (`-`: standard output). An existing file is kept unless --force.
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+    /// Replace the --out file if it exists (atomically; never a device, FIFO or folder).
+    #[arg(long)]
+    force: bool,
 }
 
 /// The figure size `--size WxH` asks for (px), each side within [`svg::MIN_SIZE`] and
@@ -123,7 +180,19 @@ impl From<WavFormat> for SampleFormat {
 }
 
 #[derive(Debug, Clone, Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 struct WavArgs {
+    #[command(subcommand)]
+    pulse: Option<PulseSound>,
+    #[command(flatten)]
+    sound: SoundArgs,
+    #[command(flatten)]
+    common: Common,
+}
+
+/// How a WAV's samples are scaled and stored.
+#[derive(Debug, Clone, Args)]
+struct SoundArgs {
     /// Pressure written as sample value 1.0 (Pa; its range: `thud limits`); each sample is the mean pressure over
     /// its interval / this, the same for every design, so files compare by ear (never normalised to the loudest sample).
     #[arg(long, value_name = "PA", default_value = "20", allow_hyphen_values = true)]
@@ -132,8 +201,17 @@ struct WavArgs {
     /// or float (32-bit, unclipped).
     #[arg(long, value_enum, default_value = "pcm16")]
     format: WavFormat,
-    #[command(flatten)]
-    common: Common,
+}
+
+impl SoundArgs {
+    /// The WAV options these flags ask for, checked.
+    fn options(&self) -> Result<WavOptions, ThudError> {
+        let full_scale_pa =
+            quantity("full-scale", &Some(self.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
+        let opts = WavOptions { full_scale_pa, format: self.format.into(), ..WavOptions::default() };
+        opts.validate()?;
+        Ok(opts)
+    }
 }
 
 /// The options every export takes.
@@ -160,8 +238,8 @@ struct Common {
     #[arg(long, value_name = "N", default_value = "2001", allow_hyphen_values = true)]
     points: String,
     /// The file to write (`-`: standard output). An existing file is kept unless --force.
-    #[arg(long, value_name = "FILE")]
-    out: PathBuf,
+    #[arg(long, value_name = "FILE", required = true)]
+    out: Option<PathBuf>,
     /// Replace the --out file if it exists (atomically; never a device, FIFO or folder).
     #[arg(long)]
     force: bool,
@@ -171,6 +249,11 @@ struct Common {
 const EXPORT_POINTS_MAX: usize = 1_000_000;
 
 impl Common {
+    /// The `--out` file (clap asks for it unless the command is `pulse`, which has its own).
+    fn out(&self) -> Result<&Path, ThudError> {
+        self.out.as_deref().ok_or_else(|| ThudError::invalid("--out", "missing: give the file to write, --out FILE"))
+    }
+
     fn options(&self) -> Result<ExportOptions, ThudError> {
         let points = count("points", &self.points, &limits::POINTS)?;
         if points > EXPORT_POINTS_MAX {
@@ -301,7 +384,7 @@ fn write(
         (common.design.design()?, opts)
     };
     let overwrite = Overwrite::from_force(common.force);
-    let out = &common.out;
+    let out = common.out()?;
     let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
     // A terminal, however it is named (`-`, /dev/stdout, /dev/tty, /dev/pts/N), never gets
     // binary bytes.
@@ -402,7 +485,13 @@ pub(super) fn out_error(out: &Path, e: &FsError) -> ThudError {
 
 /// `export svg` or (`as_pdf`) `export pdf`: one figure, sized and titled as asked.
 fn figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
-    let kind = match s.what {
+    if let Some(PulseFigure::Pulse(p)) = &s.pulse {
+        return pulse_figure(ctx, p, as_pdf);
+    }
+    let Some(what) = s.what else {
+        return Err(ThudError::invalid("WHAT", "missing: name the figure (e.g. waveform)").into());
+    };
+    let kind = match what {
         SvgWhat::Waveform => Artifact::SvgWaveform,
         SvgWhat::Directivity => Artifact::SvgDirectivity,
         SvgWhat::History => Artifact::SvgHistory,
@@ -429,7 +518,7 @@ fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
     };
     let look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
     let d = s.common.design.design()?;
-    let out = &s.common.out;
+    let out = s.common.out()?;
     let overwrite = Overwrite::from_force(s.common.force);
     let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
     let to_stdout = matches!(plan, Plan::Through(Sink::Stdout));
@@ -466,6 +555,84 @@ fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
     Ok(())
 }
 
+/// `export svg|pdf pulse`: the pulse `thud pulse` computes for the same flags, as a figure.
+fn pulse_figure(ctx: &Ctx, p: &PulseFigureArgs, as_pdf: bool) -> Result<(), CliError> {
+    let look = svg::Look { size: p.size.as_deref().map(parse_size).transpose()?, title: !p.no_title };
+    let points = super::pulse::points(ctx, &p.points)?;
+    let input = super::pulse::resolve(&p.source)?;
+    let out = &p.target.out;
+    let overwrite = Overwrite::from_force(p.target.force);
+    let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    refuse_binary_terminal(out, &plan, as_pdf.then_some(("a PDF", "a viewer")))?;
+    let svg_text = thud_render::pulse::svg(&thud_render::pulse::PulseSpec::new(&input, points)?, &look)?;
+    super::output::check_text(&svg_text)?;
+    let svg_text = p.ascii.figure(svg_text);
+    let bytes = if as_pdf {
+        pdf::from_svg(&svg_text).map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
+    } else {
+        svg_text.into_bytes()
+    };
+    deliver(out, &plan, &bytes, overwrite)
+}
+
+/// `export wav pulse`: the pulse `thud pulse` computes for the same flags, as sound.
+fn pulse_sound(p: &PulseSoundArgs) -> Result<(), CliError> {
+    let opts = p.sound.options()?;
+    let input = super::pulse::resolve(&p.source)?;
+    let out = &p.target.out;
+    let overwrite = Overwrite::from_force(p.target.force);
+    let plan = fsio::check_target(out, overwrite).map_err(|e| out_error(out, &e))?;
+    refuse_binary_terminal(out, &plan, Some(("a WAV", "a player")))?;
+    let spec = thud_render::pulse::PulseSpec::new(&input, 2)?;
+    let bytes = match thud_render::pulse::sound(&spec, &opts) {
+        Ok(b) => b,
+        Err(WavError::NonFinite(p)) => return Err(CliError::NonFinite(format!("{p} Pa in a WAV sample"))),
+        Err(WavError::Invalid(t)) => return Err(t.into()),
+    };
+    warn_clipped(&bytes, &opts);
+    deliver(out, &plan, &bytes, overwrite)
+}
+
+/// Refuses binary bytes (`binary`: what they are and what reads them) for a terminal,
+/// however it is named (`-`, /dev/stdout, /dev/tty, /dev/pts/N).
+fn refuse_binary_terminal(out: &Path, plan: &Plan, binary: Option<(&str, &str)>) -> Result<(), CliError> {
+    let terminal = match plan {
+        Plan::Through(Sink::Stdout) => std::io::stdout().is_terminal(),
+        Plan::Through(Sink::Stream { .. }) => fsio::is_terminal(out),
+        _ => false,
+    };
+    match binary {
+        Some((what, reader)) if terminal => {
+            let why =
+                format!("{}: {what} file is binary; redirect standard output to a file or {reader}", fsio::shown(out));
+            Err(ThudError::invalid("--out", why).into())
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Warns when samples of a PCM WAV reached full scale (clipped).
+fn warn_clipped(bytes: &[u8], opts: &WavOptions) {
+    let clipped = samples_at_full_scale(bytes, opts.format);
+    if clipped > 0 {
+        super::warn(&format!(
+            "{clipped} samples reached full scale ({} Pa) and were clipped; raise --full-scale or use --format float",
+            short(opts.full_scale_pa)
+        ));
+    }
+}
+
+/// Writes `bytes` to `out` as `plan` says (standard output, or the file atomically), saying on
+/// stderr what was written.
+fn deliver(out: &Path, plan: &Plan, bytes: &[u8], overwrite: Overwrite) -> Result<(), CliError> {
+    if matches!(plan, Plan::Through(Sink::Stdout)) {
+        return Ok(fsio::write_stdout(bytes)?);
+    }
+    fsio::write(out, bytes, overwrite).map_err(|e| write_error(out, &e))?;
+    super::warn(&format!("wrote {}", fsio::shown(out)));
+    Ok(())
+}
+
 pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
     match &a.what {
         ExportCommand::Csv(c) => {
@@ -481,11 +648,11 @@ pub fn run(a: &ExportArgs, ctx: &Ctx) -> Result<(), CliError> {
         ExportCommand::Svg(s) => figure(ctx, s, false),
         ExportCommand::Pdf(s) => figure(ctx, s, true),
         ExportCommand::Wav(w) => {
+            if let Some(PulseSound::Pulse(p)) = &w.pulse {
+                return pulse_sound(p);
+            }
             let mut opts = w.common.options()?;
-            opts.wav.full_scale_pa =
-                quantity("full-scale", &Some(w.full_scale.clone()), Unit::Number, &limits::FULL_SCALE)?.unwrap_or(20.0);
-            opts.wav.format = w.format.into();
-            opts.wav.validate()?;
+            opts.wav = w.sound.options()?;
             write(ctx, Artifact::Wav, &w.common, &opts, false, super::AsciiArgs::default())
         }
     }

@@ -16,6 +16,19 @@ use crate::report::PulseReport;
 /// K_HZ 5.6e8 N/m^1.5, on a fixed plate, heard as a dipole at r 0.7 m, θ 45°.
 #[derive(Debug, Clone, Args)]
 pub struct PulseArgs {
+    #[command(flatten)]
+    source: PulseSource,
+    /// Points of the waveform.
+    #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
+    points: String,
+    #[command(flatten)]
+    output: OutputArgs,
+}
+
+/// The impact of `thud pulse` (and of `thud export svg|pdf|wav pulse`): a preset or design
+/// for the defaults, then the impact's flags.
+#[derive(Debug, Clone, Args)]
+pub struct PulseSource {
     /// Take the defaults from a preset (`thud presets`): its ball, K_HZ, observer, source and
     /// air, and U0 = its v0 (e.g. paper-fig2, paper-table1); the target stays a fixed plate.
     #[arg(long, value_name = "P")]
@@ -24,11 +37,6 @@ pub struct PulseArgs {
     design: Option<String>,
     #[command(flatten)]
     impact: ImpactArgs,
-    /// Points of the waveform.
-    #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
-    points: String,
-    #[command(flatten)]
-    output: OutputArgs,
 }
 
 /// The impact's flags: the rows of the engine's table [`params::PULSE`] (name, placeholder,
@@ -65,7 +73,7 @@ impl FromArgMatches for ImpactArgs {
 
 /// The impact these flags describe: the engine's [`params::pulse`] on the flags given, with the
 /// preset's design (if any) for the defaults.
-fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
+pub(super) fn resolve(a: &PulseSource) -> Result<PulseInput, ThudError> {
     let base = match &a.design {
         Some(text) => Some(super::design_args::load_design(text)?),
         None => a.preset.as_deref().map(crate::presets::preset).transpose()?,
@@ -73,15 +81,21 @@ fn resolve(a: &PulseArgs) -> Result<PulseInput, ThudError> {
     params::pulse(base.as_ref(), &a.impact.given, Spelling::Flag)
 }
 
-pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let points = count("points", &a.points, &limits::POINTS)?;
+/// The waveform's points `--points` asks for, within its range and cap.
+pub(super) fn points(ctx: &Ctx, typed: &str) -> Result<usize, CliError> {
+    let points = count("points", typed, &limits::POINTS)?;
     ctx.enforce(
         limits::waveform_points(points),
         "--points",
-        &a.points,
+        typed,
         &format!("use --points ≤ {}", short(limits::WAVEFORM_POINTS.max)),
     )?;
-    let input = resolve(a)?;
+    Ok(points)
+}
+
+pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
+    let points = points(ctx, &a.points)?;
+    let input = resolve(&a.source)?;
     let contact = input.contact();
     let field = input.field(&contact)?;
     match a.output.format() {

@@ -14,6 +14,7 @@ use super::{count, quantity, CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::design::{self, Band, Chart, Design, ZoneBy};
 use crate::ensemble::{self, EnsembleChart};
 use crate::error::ThudError;
+use crate::export::studies::short_base;
 use crate::export::svg::Look;
 use crate::fsio::{self, Overwrite};
 use crate::limits::{self, short};
@@ -133,23 +134,11 @@ pub fn run(a: &SweepArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
             &format!("Design chart: zone of each impact mass × gap — {}", short_base(&d)),
             &Look::default(),
         ),
-        Charted::Ensemble(e) => crate::export::studies::ensemble_chart(
-            e,
-            &format!("Ensemble chart: {} runs a cell over impact mass × gap — {}", e.runs, short_base(&d)),
-            &Look::default(),
-        ),
+        Charted::Ensemble(e) => {
+            crate::export::studies::ensemble_chart(e, &crate::export::studies::ensemble_title(e, &d), &Look::default())
+        }
     });
     files.write(&text, figure, out)
-}
-
-/// The base design in a figure's title: what the chart holds fixed.
-fn short_base(d: &Design) -> String {
-    let p = &d.damper;
-    let mut s = format!("v0 {} m/s", short(p.v0_m_s));
-    if p.force_n != 0.0 {
-        s += &format!(", F0 {} N at {} Hz", short(p.force_n), short(p.freq_hz));
-    }
-    s
 }
 
 /// `thud sweep --vary …` ([`super::study`]): one run a cell (no ensemble, no shards yet).

@@ -8,9 +8,8 @@
 pub mod fit;
 pub mod front;
 pub mod report;
-pub mod studies;
 // The renderers live in their own crate (shared with the Python module), by their old paths.
-pub use thud_render::{csv, dynamics, figures, pdf, svg, wav};
+pub use thud_render::{csv, dynamics, figures, pdf, studies, svg, wav};
 
 use std::path::Path;
 

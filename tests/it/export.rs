@@ -168,6 +168,49 @@ fn cli_export_commands_write_their_files() {
 }
 
 #[test]
+fn cli_export_pulse_draws_and_plays_the_impact_thud_pulse_computes() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).to_string_lossy().into_owned();
+    let impact = ["--u0", "2", "--theta", "30", "--sphere", "steel"];
+    let (code, json, err) = thud(&[&["pulse", "--json"][..], &impact[..]].concat(), dir.path());
+    assert_eq!(code, 0, "{err}");
+    let record: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let (arrival, p_max, p_min) = (
+        record["arrival_s"].as_f64().unwrap(),
+        record["p_max_pa"].as_f64().unwrap(),
+        record["p_min_pa"].as_f64().unwrap(),
+    );
+    let svg = p("pulse.svg");
+    let (code, _, err) = thud(&[&["export", "svg", "pulse", "--out", &svg][..], &impact[..]].concat(), dir.path());
+    assert_eq!(code, 0, "{err}");
+    let title = svg_title(&fs::read_to_string(&svg).unwrap());
+    assert!(title.contains("U0 2 m/s") && title.contains("θ 30°"), "{title}");
+    let wav = p("pulse.wav");
+    let args = [&["export", "wav", "pulse", "--format", "float", "--full-scale", "1", "--out", &wav][..], &impact[..]];
+    let (code, _, err) = thud(&args.concat(), dir.path());
+    assert_eq!(code, 0, "{err}");
+    let samples: Vec<f32> = hound::WavReader::open(&wav).unwrap().samples::<f32>().map(Result::unwrap).collect();
+    // Silent until the direct wave arrives (in the interval of sample k, or, on its very end,
+    // the next), then the pulse: each sample a mean over 1/48000 s, so within the pulse's
+    // extremes and near them.
+    let first = samples.iter().position(|&v| v != 0.0).unwrap();
+    let k = (arrival * 48_000.0 + 0.5).floor() as usize;
+    assert!(first == k || first == k + 1, "first sound at sample {first}, the wave arrives in {k}");
+    let (hi, lo) = samples.iter().fold((0f32, 0f32), |(h, l), &v| (h.max(v), l.min(v)));
+    assert!(f64::from(hi) <= p_max && f64::from(hi) > 0.8 * p_max, "{hi} against {p_max}");
+    assert!(f64::from(lo) >= p_min && f64::from(lo) < 0.8 * p_min, "{lo} against {p_min}");
+    // Then silence, for a tenth of a second after the pulse.
+    assert!(samples.len() > first + 4800 && samples[samples.len() - 4000..].iter().all(|&v| v == 0.0));
+    // The design's flags are not the pulse's; a ball that reaches the observer is named as typed.
+    let (code, _, err) = thud(&["export", "svg", "pulse", "--gap", "2cm", "--out", &p("x.svg")], dir.path());
+    assert_eq!((code, err.trim().lines().count()), (2, 1), "{err}");
+    let (code, _, err) = thud(&["export", "wav", "pulse", "--radius", "1", "--out", &p("x.wav")], dir.path());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.starts_with("thud: invalid --radius: the ball reaches the observer"), "{err}");
+    assert!(!dir.path().join("x.svg").exists() && !dir.path().join("x.wav").exists());
+}
+
+#[test]
 fn cli_export_errors_are_one_line_with_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let blocker = dir.path().join("file");

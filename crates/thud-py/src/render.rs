@@ -4,10 +4,12 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
+use serde::Deserialize;
 use thud_core::design::Design;
 use thud_core::limits;
 use thud_core::ThudError;
 use thud_render::artifact::{self, Artifact, ExportOptions, RenderError};
+use thud_render::dynamics::short_design;
 use thud_render::svg::{self, Look};
 use thud_render::wav::{SampleFormat, WavOptions};
 
@@ -83,15 +85,7 @@ pub fn _render<'py>(
         within(py, "freqs_hz", *f, &limits::FREQ)?;
     }
     check_size(py, size)?;
-    let format = match format {
-        "pcm16" => SampleFormat::Pcm16,
-        "pcm24" => SampleFormat::Pcm24,
-        "float" => SampleFormat::Float,
-        _ => {
-            let msg = format!("invalid format: '{format}'; expected pcm16, pcm24 or float");
-            return Err(parameter_error(py, "format", msg));
-        }
-    };
+    let format = sample_format(py, format)?;
     let full_scale_pa = within(py, "full_scale", full_scale, &limits::FULL_SCALE)?;
     if pdf && !kind.is_figure() {
         return Err(parameter_error(
@@ -131,19 +125,6 @@ pub fn _render<'py>(
     Ok(PyBytes::new(py, &bytes))
 }
 
-/// The design in a figure's title as the command line's orbit figures write it: "F0 3 N, f 5 Hz,
-/// gap 20 mm, m 40 g" (`thud basins`, `thud impact-map`; the test compares the bytes).
-fn short_design(d: &Design) -> String {
-    let p = &d.damper;
-    [
-        format!("F0 {} N", limits::short(p.force_n)),
-        format!("f {} Hz", limits::short(p.freq_hz)),
-        format!("gap {} mm", limits::short(p.gap_m * 1e3)),
-        format!("m {} g", limits::short(p.impact_mass_kg * 1e3)),
-    ]
-    .join(", ")
-}
-
 /// _figure(kind, record, pdf=False, size=None, title=True) -> bytes
 ///
 /// The figure `thud basins --svg` (kind "basins") or `thud impact-map --svg` (kind
@@ -166,12 +147,12 @@ pub fn _figure<'py>(
     let svg = match kind {
         "basins" => {
             let b: thud_core::dynamics::Basins = serde_json::from_value(value).map_err(bad)?;
-            let t = format!("Basins of attraction over the ball's start — {}", short_design(&design));
+            let t = format!("Basins of attraction over the ball's start — {}", short_design(&design, ""));
             thud_render::dynamics::basins_svg(&b, &t, &look)
         }
         "impact_map" => {
             let run: thud_core::dynamics::OrbitRun = serde_json::from_value(value).map_err(bad)?;
-            let t = format!("Impact map — {}", short_design(&design));
+            let t = format!("Impact map — {}", short_design(&design, ""));
             thud_render::dynamics::impact_map_svg(&run, &t, &look)
         }
         _ => {
@@ -187,8 +168,58 @@ pub fn _figure<'py>(
     Ok(PyBytes::new(py, &bytes))
 }
 
+/// The sample format `format` names ("pcm16", "pcm24" or "float").
+fn sample_format(py: Python<'_>, format: &str) -> PyResult<SampleFormat> {
+    Ok(match format {
+        "pcm16" => SampleFormat::Pcm16,
+        "pcm24" => SampleFormat::Pcm24,
+        "float" => SampleFormat::Float,
+        _ => {
+            let msg = format!("invalid format: '{format}'; expected pcm16, pcm24 or float");
+            return Err(parameter_error(py, "format", msg));
+        }
+    })
+}
+
+/// What a pulse is made into: its figure (as SVG or PDF) or its sound.
+pub enum PulseFile {
+    /// `thud export svg pulse` (`pdf`: `thud export pdf pulse`) at this size and with or without the title.
+    Figure { pdf: bool, size: Option<(f64, f64)>, title: bool },
+    /// `thud export wav pulse --full-scale … --format …`.
+    Sound { full_scale: f64, format: String },
+}
+
+/// The bytes `thud export svg|pdf|wav pulse` writes for the pulse whose record (`thud pulse
+/// --json`) is `record`: the same impact, so the same bytes.
+pub fn pulse_bytes<'py>(py: Python<'py>, record: &serde_json::Value, what: PulseFile) -> PyResult<Bound<'py, PyBytes>> {
+    let spec = thud_render::pulse::PulseSpec::deserialize(record)
+        .map_err(|e| parameter_error(py, "record", format!("invalid record: not a thud pulse ({e})")))?;
+    let failed = |e: String| engine_error(py, ThudError::invalid("render", e));
+    let bytes = match what {
+        PulseFile::Figure { pdf, size, title } => {
+            check_size(py, size)?;
+            let svg = thud_render::pulse::svg(&spec, &Look { size, title }).map_err(|e| engine_error(py, e))?;
+            if pdf {
+                thud_render::pdf::from_svg(&svg).map_err(|e| failed(e.to_string()))?
+            } else {
+                svg.into_bytes()
+            }
+        }
+        PulseFile::Sound { full_scale, format } => {
+            let format = sample_format(py, &format)?;
+            let full_scale_pa = within(py, "full_scale", full_scale, &limits::FULL_SCALE)?;
+            let opts = WavOptions { format, full_scale_pa, ..WavOptions::default() };
+            thud_render::pulse::sound(&spec, &opts).map_err(|e| match e {
+                thud_render::wav::WavError::Invalid(t) => engine_error(py, t),
+                other @ thud_render::wav::WavError::NonFinite(_) => failed(other.to_string()),
+            })?
+        }
+    };
+    Ok(PyBytes::new(py, &bytes))
+}
+
 /// Refuses a figure size outside what `--size` takes.
-fn check_size(py: Python<'_>, size: Option<(f64, f64)>) -> PyResult<()> {
+pub fn check_size(py: Python<'_>, size: Option<(f64, f64)>) -> PyResult<()> {
     if let Some((w, h)) = size {
         let (min, max) = (svg::MIN_SIZE, svg::MAX_SIZE);
         if !(min.0..=max.0).contains(&w) || !(min.1..=max.1).contains(&h) {

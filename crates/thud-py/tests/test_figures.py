@@ -45,6 +45,29 @@ def test_a_run_draws_its_history_and_plays_its_sound_as_the_cli_exports_them(cli
                              *RUN)
 
 
+def test_a_pulse_draws_its_waveform_and_plays_its_sound_as_the_cli_exports_them(cli, tmp_path):
+    p = thud.pulse(u0=2, theta=30, main_mass=3, source="quadrupole", points=500)
+    args = ["--u0", "2", "--theta", "30", "--main-mass", "3", "--source", "quadrupole"]
+    svg = written(tmp_path, p.to_svg)
+    assert b"U0 2 m/s" in svg and b"quadrupole" in svg
+    assert svg == exported(cli, tmp_path, "svg", "pulse", "--points", "500", *args)
+    pdf = written(tmp_path, lambda path: p.to_pdf(path, size=(600, 400), title=False))
+    assert pdf.startswith(b"%PDF")
+    assert pdf == exported(cli, tmp_path, "pdf", "pulse", "--points", "500", "--size", "600x400", "--no-title", *args)
+    wav = written(tmp_path, p.to_wav)
+    assert wav[:4] == b"RIFF" and wav == exported(cli, tmp_path, "wav", "pulse", *args)
+    assert any(wav[44:]), "the pulse is heard"
+    loud = written(tmp_path, lambda path: p.to_wav(path, full_scale=0.5, format="pcm24"))
+    assert loud == exported(cli, tmp_path, "wav", "pulse", "--full-scale", "0.5", "--format", "pcm24", *args)
+    # Another impact draws another figure; an unpickled pulse draws its original's.
+    import pickle
+    assert written(tmp_path, pickle.loads(pickle.dumps(p)).to_svg) == svg
+    assert written(tmp_path, thud.pulse(u0=2, points=500).to_svg) != svg
+    physical = thud.pulse(model="physical", sphere="steel", r=0.5)
+    assert written(tmp_path, physical.to_svg) == exported(cli, tmp_path, "svg", "pulse", "--model", "physical",
+                                                          "--sphere", "steel", "--r", "0.5")
+
+
 def test_a_chart_draws_its_zones_and_fig17_as_the_cli_exports_them(cli, tmp_path):
     chart = thud.sweep("30g:60g:3", "2cm:4cm:2", **RUN_KW)
     axes = ["--masses", "30g:60g:3", "--gaps", "2cm:4cm:2", *RUN]
@@ -55,6 +78,21 @@ def test_a_chart_draws_its_zones_and_fig17_as_the_cli_exports_them(cli, tmp_path
         chart.to_svg(tmp_path / "never.svg", figure="polar")  # type: ignore[arg-type]
     assert info.value.param == "figure" and "polar" in str(info.value)
     assert not (tmp_path / "never.svg").exists()
+
+
+def test_a_chart_of_ensembles_draws_the_ensemble_chart_of_sweep(cli, tmp_path):
+    chart = thud.sweep("30g:60g:2", "2cm:4cm:2", ensemble=3, **RUN_KW)
+    args = ["sweep", "--masses", "30g:60g:2", "--gaps", "2cm:4cm:2", "--ensemble", "3", *RUN, "--out",
+            str(tmp_path / "table.txt")]
+    code, _, err = cli(*args, "--svg", str(tmp_path / "cli.svg"), "--pdf", str(tmp_path / "cli.pdf"))
+    assert code == 0, err
+    svg = written(tmp_path, chart.to_svg)
+    assert b"Ensemble chart: 3 runs a cell" in svg and svg == (tmp_path / "cli.svg").read_bytes()
+    assert written(tmp_path, chart.to_pdf) == (tmp_path / "cli.pdf").read_bytes()
+    assert svg != written(tmp_path, thud.sweep("30g:60g:2", "2cm:4cm:2", **RUN_KW).to_svg)
+    with pytest.raises(thud.ParameterError) as info:
+        chart.to_svg(tmp_path / "never.svg", figure="fig17")
+    assert info.value.param == "figure" and "ensemble" in str(info.value)
 
 
 def test_a_response_draws_its_figure_as_the_cli_exports_it(cli, tmp_path):

@@ -6,6 +6,7 @@
 use super::svg::{self, Anchor, Axis, Frame, Look, Shape, Svg};
 use crate::response::Direction;
 use crate::study::Study;
+use crate::units::short;
 use thud_core::dynamics::{Basins, Bifurcation, OrbitRun};
 
 /// `header`, then one record per row, as CSV text (the `csv` crate; numbers in Rust's
@@ -198,6 +199,25 @@ const DOWN: &str = "#D55E00";
 /// Colour of the values whose orbit is not settled (grey) or whose run was cut short (black).
 const UNSETTLED: &str = "#7F7F7F";
 const TRUNCATED: &str = "#000000";
+
+/// A short name of the design for a figure's title, each number as typed (`F0 3 N`, not
+/// `3.0000 N`), without the parameter the figure varies (`varied`, its row's name: a diagram
+/// over f is not "at f 7.5 Hz"; "" for none): the titles of `thud bifurcation`, `thud basins`
+/// and `thud impact-map`, and of the Python figures of the same results.
+pub fn short_design(d: &thud_core::design::Design, varied: &str) -> String {
+    let p = &d.damper;
+    [
+        ("force", format!("F0 {} N", short(p.force_n))),
+        ("freq", format!("f {} Hz", short(p.freq_hz))),
+        ("gap", format!("gap {} mm", short(p.gap_m * 1e3))),
+        ("mass", format!("m {} g", short(p.impact_mass_kg * 1e3))),
+    ]
+    .into_iter()
+    .filter(|(name, _)| *name != varied)
+    .map(|(_, text)| text)
+    .collect::<Vec<_>>()
+    .join(", ")
+}
 
 /// The bifurcation diagram: above, x(kT) (mm) against the parameter; below, the relative
 /// impact speed (m/s) of every impact after the transient. With continuation the rising sweep

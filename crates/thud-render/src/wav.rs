@@ -24,6 +24,7 @@
 
 use thiserror::Error;
 
+use crate::acoustics::Field;
 use crate::damper::Run;
 use crate::design::ValidDesign;
 use crate::error::{check_positive, ThudError};
@@ -128,18 +129,35 @@ pub fn render(design: &ValidDesign, run: &Run, sample_rate: u32) -> Result<Vec<f
     let dt = 1.0 / f64::from(sample_rate);
     let mut p = vec![0.0; n];
     for impact in &run.impacts {
-        let field = d.impact_field(impact.u_in_m_s)?;
-        let (start, end) = (impact.t_s + field.arrival_s(), impact.t_s + field.end_s());
-        let k0 = ((start / dt - 0.5).floor().max(0.0) as usize).min(n);
-        let k1 = ((end / dt + 0.5).ceil().max(0.0) as usize).min(n);
-        for (k, sample) in p.iter_mut().enumerate().take(k1).skip(k0) {
-            let t0 = (k as f64 - 0.5) * dt - impact.t_s;
-            let sum: f64 =
-                (0..OVERSAMPLE).map(|j| field.pressure(t0 + (j as f64 + 0.5) * dt / OVERSAMPLE as f64)).sum();
-            *sample += sum / OVERSAMPLE as f64;
-        }
+        add_pulse(&mut p, &d.impact_field(impact.u_in_m_s)?, impact.t_s, dt);
     }
     Ok(p)
+}
+
+/// Adds to the samples `p` (interval `dt`, the first centred on t = 0) the pressure of `field`
+/// whose contact starts at `t_impact` (s), each sample the mean over its interval.
+fn add_pulse(p: &mut [f64], field: &Field, t_impact: f64, dt: f64) {
+    let n = p.len();
+    let (start, end) = (t_impact + field.arrival_s(), t_impact + field.end_s());
+    let k0 = ((start / dt - 0.5).floor().max(0.0) as usize).min(n);
+    let k1 = ((end / dt + 0.5).ceil().max(0.0) as usize).min(n);
+    for (k, sample) in p.iter_mut().enumerate().take(k1).skip(k0) {
+        let t0 = (k as f64 - 0.5) * dt - t_impact;
+        let sum: f64 = (0..OVERSAMPLE).map(|j| field.pressure(t0 + (j as f64 + 0.5) * dt / OVERSAMPLE as f64)).sum();
+        *sample += sum / OVERSAMPLE as f64;
+    }
+}
+
+/// Silence after a single pulse's sound (s), so a player has a click to play.
+pub const PULSE_TAIL_S: f64 = 0.1;
+
+/// The pressure (Pa) of one impact's `field` at its observer, one value per sample from the
+/// contact's start to [`PULSE_TAIL_S`] after the last wave has decayed.
+pub fn render_pulse(field: &Field, sample_rate: u32) -> Vec<f64> {
+    let n = sample_count(field.end_s() + PULSE_TAIL_S, sample_rate);
+    let mut p = vec![0.0; n];
+    add_pulse(&mut p, field, 0.0, 1.0 / f64::from(sample_rate));
+    p
 }
 
 /// The integer code of sample value `v` in a PCM format whose largest code is `max`: clipped to
@@ -216,6 +234,13 @@ pub fn clipped_samples(pressure_pa: &[f64], opts: &WavOptions) -> usize {
 pub fn damper_sound(design: &ValidDesign, run: &Run, opts: &WavOptions) -> Result<Vec<u8>, WavError> {
     opts.validate()?;
     encode(&render(design, run, opts.sample_rate)?, opts)
+}
+
+/// The WAV file of one impact's `field` at its observer (`thud export wav pulse`):
+/// [`render_pulse`] then [`encode`].
+pub fn pulse_sound(field: &Field, opts: &WavOptions) -> Result<Vec<u8>, WavError> {
+    opts.validate()?;
+    encode(&render_pulse(field, opts.sample_rate), opts)
 }
 
 #[cfg(test)]

@@ -158,6 +158,17 @@ class Pulse:
     def as_dict(self, json: bool = False) -> Dict[str, Any]:
         """Every field in one dict; json=True: plain lists, numbers and None (NaN → None)."""
     def _repr_html_(self) -> str: ...
+    def _file(self, kind: str, size: Optional[Tuple[float, float]] = None, title: bool = True,
+              full_scale: float = 20.0, format: str = "pcm16") -> bytes: ...
+    def to_svg(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The pressure against time after the direct arrival as SVG, the bytes of ``thud export
+        svg pulse`` (same flags, ``--points`` the pulse's samples); an existing file is kept unless overwrite."""
+    def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
+        """The pulse as a one-page PDF (``thud export pdf pulse``)."""
+    def to_wav(self, path: Union[str, "os.PathLike[str]"], *, overwrite: bool = False, full_scale: float = 20.0,
+               format: Literal["pcm16", "pcm24", "float"] = "pcm16") -> None:
+        """The pulse's sound (``thud export wav pulse``): 48 kHz mono from the contact's start to
+        0.1 s after the last wave, sample = mean pressure over its interval / full_scale Pa."""
 
 class Run:
     """One damper design run through its impacts: the fields of ``thud simulate --json`` and
@@ -265,6 +276,8 @@ class Chart:
         (schema()["sweep"]: mass_kg, gap_m, the metrics); with an ensemble those of `thud sweep
         --ensemble N --csv` (schema()["sweep_ensemble"]: mass_kg, gap_m, runs, the medians,
         X_p10 / X_median / X_p90, zone3_probability, agreement)."""
+    def _ensemble_figure(self, pdf: bool = False, size: Optional[Tuple[float, float]] = None,
+                         title: bool = True) -> bytes: ...
     def runs_frame(self) -> Any:
         """A chart of ensembles, one row per run of each cell (run, mass_kg, gap_m, ball_position_m, metrics)."""
     def to_xarray(self) -> Any:
@@ -278,7 +291,8 @@ class Chart:
     def to_svg(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
                overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
         """The design chart (or Fig 17) as SVG, the bytes of ``thud export svg chart|fig17`` over
-        this chart's masses and gaps."""
+        this chart's masses and gaps; with ensemble=N the ensemble chart of ``thud sweep
+        --ensemble N --svg``."""
     def to_pdf(self, path: Union[str, "os.PathLike[str]"], *, figure: Literal["chart", "fig17"] = "chart",
                overwrite: bool = False, size: Optional[Tuple[float, float]] = None, title: bool = True) -> None:
         """The design chart (or Fig 17) as a one-page PDF (``thud export pdf chart|fig17``)."""

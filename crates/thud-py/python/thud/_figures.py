@@ -1,5 +1,5 @@
-"""``to_svg``, ``to_pdf`` and ``to_wav`` of the native results (Run, Chart, Response): the file
-``thud export svg|pdf|wav`` writes for the result's design and axes, byte for byte."""
+"""``to_svg``, ``to_pdf`` and ``to_wav`` of the native results (Pulse, Run, Chart, Response): the
+file ``thud export svg|pdf|wav`` writes for the result's impact, design and axes, byte for byte."""
 
 from typing import Any, Dict, Optional, Tuple
 
@@ -43,6 +43,12 @@ def run_to_wav(self: Any, path: PathLike, *, overwrite: bool = False, full_scale
 def _chart_figure(chart: Any, figure: str, pdf: bool, size: Size, title: bool) -> bytes:
     if figure not in ("chart", "fig17"):
         raise _refuse("figure", f"invalid figure: '{figure}'; expected chart or fig17")
+    if chart.runs > 1:
+        if figure != "chart":
+            raise _refuse("figure", f"invalid figure: '{figure}'; a chart of ensembles draws its ensemble chart "
+                          "(figure=\"chart\"), as `thud sweep --ensemble N --svg`")
+        data: bytes = chart._ensemble_figure(pdf, **look(size, title))
+        return data
     return render(figure, chart.design, pdf, masses_kg=[float(m) for m in chart.masses_kg],
                   gaps_m=[float(g) for g in chart.gaps_m], **look(size, title))
 
@@ -50,7 +56,9 @@ def _chart_figure(chart: Any, figure: str, pdf: bool, size: Size, title: bool) -
 def chart_to_svg(self: Any, path: PathLike, *, figure: str = "chart", overwrite: bool = False, size: Size = None,
                  title: bool = True) -> None:
     """The design chart as SVG, ``thud export svg chart`` (``figure="fig17"``: the Fig 17 zone
-    chart) over this chart's masses and gaps; an existing file is kept unless ``overwrite``."""
+    chart) over this chart's masses and gaps; of a chart of ensembles (``ensemble=N``), the
+    ensemble chart of ``thud sweep --ensemble N --svg``. An existing file is kept unless
+    ``overwrite``."""
     write_file(path, _chart_figure(self, figure, False, size, title), overwrite)
 
 
@@ -82,9 +90,33 @@ def response_to_pdf(self: Any, path: PathLike, *, overwrite: bool = False, size:
     write_file(path, _response_figure(self, True, size, title), overwrite)
 
 
+def pulse_to_svg(self: Any, path: PathLike, *, overwrite: bool = False, size: Size = None,
+                 title: bool = True) -> None:
+    """The pulse's pressure against time after the direct arrival as SVG: ``thud export svg
+    pulse`` with this pulse's flags and ``--points`` its samples. ``size`` (width, height) in px;
+    ``title=False`` leaves the title off; an existing file is kept unless ``overwrite``."""
+    write_file(path, self._file("svg", **look(size, title)), overwrite)
+
+
+def pulse_to_pdf(self: Any, path: PathLike, *, overwrite: bool = False, size: Size = None,
+                 title: bool = True) -> None:
+    """The pulse as a one-page PDF (``thud export pdf pulse``); as ``to_svg``."""
+    write_file(path, self._file("pdf", **look(size, title)), overwrite)
+
+
+def pulse_to_wav(self: Any, path: PathLike, *, overwrite: bool = False, full_scale: float = 20.0,
+                 format: str = "pcm16") -> None:
+    """The pulse's sound at the observer as WAV (``thud export wav pulse``): 48 kHz mono from the
+    contact's start to 0.1 s after the last wave, each sample the mean pressure over its interval
+    / ``full_scale`` Pa; ``format`` "pcm16", "pcm24" or "float". An existing file is kept unless
+    ``overwrite``."""
+    write_file(path, self._file("wav", full_scale=full_scale, format=format), overwrite)
+
+
 def attach() -> None:
     """The methods on the native classes."""
-    for cls, methods in ((_thud.Run, {"to_svg": run_to_svg, "to_pdf": run_to_pdf, "to_wav": run_to_wav}),
+    for cls, methods in ((_thud.Pulse, {"to_svg": pulse_to_svg, "to_pdf": pulse_to_pdf, "to_wav": pulse_to_wav}),
+                         (_thud.Run, {"to_svg": run_to_svg, "to_pdf": run_to_pdf, "to_wav": run_to_wav}),
                          (_thud.Chart, {"to_svg": chart_to_svg, "to_pdf": chart_to_pdf}),
                          (_thud.Response, {"to_svg": response_to_svg, "to_pdf": response_to_pdf})):
         for name, fn in methods.items():

@@ -286,6 +286,37 @@ impl PyChart {
         frames(slf.py(), "chart_frame", slf.as_any())
     }
 
+    /// _ensemble_figure(pdf=False, size=None, title=True) -> bytes
+    ///
+    /// The figure `thud sweep --ensemble N --svg` (`pdf=True`: `--pdf`) draws for this chart of
+    /// ensembles: each cell's median damping and SPLmax and the width of their p10–p90 band.
+    #[pyo3(signature = (pdf = false, size = None, title = true))]
+    fn _ensemble_figure<'py>(
+        &self,
+        py: Python<'py>,
+        pdf: bool,
+        size: Option<(f64, f64)>,
+        title: bool,
+    ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
+        let bad = |e: serde_json::Error| PyRuntimeError::new_err(format!("internal error: a Chart state: {e}"));
+        let Some(ensembles) = self.state.get("ensembles") else {
+            let msg = "invalid ensemble: a chart of one run a cell draws the zone chart (to_svg with figure=\"chart\")";
+            return Err(parameter_error(py, "ensemble", msg.into()));
+        };
+        let e: EnsembleChart = serde_json::from_value(ensembles.clone()).map_err(bad)?;
+        let d: Design = serde_json::from_value(self.state.get("design").cloned().unwrap_or_default()).map_err(bad)?;
+        crate::render::check_size(py, size)?;
+        let look = thud_render::svg::Look { size, title };
+        let svg = thud_render::studies::ensemble_chart(&e, &thud_render::studies::ensemble_title(&e, &d), &look);
+        let bytes = if pdf {
+            thud_render::pdf::from_svg(&svg)
+                .map_err(|e| engine_error(py, thud_core::ThudError::invalid("render", e.to_string())))?
+        } else {
+            svg.into_bytes()
+        };
+        Ok(pyo3::types::PyBytes::new(py, &bytes))
+    }
+
     /// runs_frame() -> pandas.DataFrame
     ///
     /// A chart of ensembles, one row per run of each cell: run, mass_kg, gap_m,

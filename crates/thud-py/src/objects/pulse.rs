@@ -1,7 +1,7 @@
 //! `Pulse`: one Hertzian impact heard at one observer.
 
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 use serde_json::Value as Json;
 use thud_core::limits::short;
 use thud_core::params::PulseInput;
@@ -10,6 +10,7 @@ use thud_core::ThudError;
 
 use super::convert::{array, checked, columns, fill, frames, missing, num, order_of, plain, rows_of, text};
 use super::pickle::{reduce, Reduced};
+use crate::render::{pulse_bytes, PulseFile};
 
 /// Everything a `Pulse` holds, computed without the GIL.
 pub struct PulseData(PulseReport);
@@ -195,6 +196,31 @@ impl PyPulse {
 
     fn _repr_html_(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
         frames(slf.py(), "repr_html", slf.as_any())
+    }
+
+    /// _file(kind, size=None, title=True, full_scale=20.0, format="pcm16") -> bytes
+    ///
+    /// The bytes `thud export svg|pdf|wav pulse` (kind "svg", "pdf" or "wav") writes for this
+    /// impact; the Python package writes them to a file (`to_svg`, `to_pdf`, `to_wav`).
+    #[pyo3(signature = (kind, size = None, title = true, full_scale = 20.0, format = "pcm16".to_string()))]
+    fn _file<'py>(
+        &self,
+        py: Python<'py>,
+        kind: &str,
+        size: Option<(f64, f64)>,
+        title: bool,
+        full_scale: f64,
+        format: String,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let what = match kind {
+            "svg" | "pdf" => PulseFile::Figure { pdf: kind == "pdf", size, title },
+            "wav" => PulseFile::Sound { full_scale, format },
+            _ => {
+                let msg = format!("invalid kind: '{kind}'; expected svg, pdf or wav");
+                return Err(crate::args::parameter_error(py, "kind", msg));
+            }
+        };
+        pulse_bytes(py, &self.record, what)
     }
 
     fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {

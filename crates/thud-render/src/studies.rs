@@ -315,6 +315,22 @@ pub fn ensemble_chart(e: &EnsembleChart, title: &str, look: &Look) -> String {
     heat_maps(&xs, &ys, ("impact mass m (g)", "total clearance d (cm)"), &maps, title, look)
 }
 
+/// The base design in a figure's title: what the chart holds fixed.
+pub fn short_base(d: &crate::design::Design) -> String {
+    let p = &d.damper;
+    let mut s = format!("v0 {} m/s", short(p.v0_m_s));
+    if p.force_n != 0.0 {
+        s += &format!(", F0 {} N at {} Hz", short(p.force_n), short(p.freq_hz));
+    }
+    s
+}
+
+/// The title of the ensemble chart `e` of the base design `d` (`thud sweep --ensemble N --svg`,
+/// and Python's `Chart.to_svg` of an ensemble).
+pub fn ensemble_title(e: &EnsembleChart, d: &crate::design::Design) -> String {
+    format!("Ensemble chart: {} runs a cell over impact mass × gap — {}", e.runs, short_base(d))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
