@@ -83,7 +83,7 @@ fn a_stopped_design_search_writes_its_partial_front_never_through_a_planted_link
     let left: Vec<String> = fs::read_dir(home.path())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".tmp") && n != OLD_PARTIAL_NAME)
+        .filter(|n| Path::new(n).extension().is_some_and(|x| x == "tmp") && n != OLD_PARTIAL_NAME)
         .collect();
     assert!(left.is_empty(), "no temporary file is left: {left:?}");
 }
@@ -101,14 +101,14 @@ fn a_stopped_design_search_writes_its_partial_front_through_a_fifo_and_keeps_it(
             use std::os::unix::fs::OpenOptionsExt;
             let nonblock = rustix::fs::OFlags::NONBLOCK.bits() as i32;
             let mut f = fs::OpenOptions::new().read(true).custom_flags(nonblock).open(&fifo).unwrap();
-            let (mut got, mut buf, start) = (Vec::new(), [0u8; 1 << 16], Instant::now());
+            let (mut got, mut buf, start) = (Vec::new(), vec![0u8; 1 << 16], Instant::now());
             while start.elapsed() < TIMEOUT {
                 match f.read(&mut buf) {
                     Ok(0) if !got.is_empty() => break,
                     Ok(0) => std::thread::sleep(Duration::from_millis(20)),
                     Ok(n) => got.extend_from_slice(&buf[..n]),
                     Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
-                        std::thread::sleep(Duration::from_millis(5))
+                        std::thread::sleep(Duration::from_millis(5));
                     }
                     Err(e) => panic!("reading the FIFO: {e}"),
                 }
