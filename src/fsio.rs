@@ -359,6 +359,35 @@ pub fn write_with(
     write_via(path, bytes, overwrite, false, before_link)
 }
 
+/// [`write()`] from a signal's clean-up ([`signals::on_signal`]), which may neither register a
+/// clean-up nor enter a guarded step (the signal thread holds both locks): the target checked
+/// as `write` checks it (a planted link refused, a stream written through, never replaced), the
+/// contents written to a temporary file created new beside it (never through a link at its
+/// name), then linked into place without replacing anything (`Refuse`) or renamed over the
+/// regular file there (`Replace`). No folder is created; on an error the target is as it was
+/// and the temporary file is gone.
+pub fn write_from_cleanup(path: &Path, bytes: &[u8], overwrite: Overwrite) -> Result<(), FsError> {
+    let permissions = match check_target(path, overwrite)? {
+        Plan::Through(sink) => return write_through(path, sink, bytes),
+        Plan::Create => None,
+        Plan::Replace(p) => Some(p),
+    };
+    let prefix = temp_prefix(path);
+    let mut temp = temp_builder(&prefix)
+        .permissions(Permissions::from_mode(0o666))
+        .tempfile_in(parent_dir(path))
+        .map_err(io_at(path))?;
+    rustix::fs::flock(temp.as_file(), FlockOperation::LockExclusive).map_err(|e| io_at(path)(e.into()))?;
+    fill(temp.as_file_mut(), bytes, permissions).map_err(io_at(path))?;
+    let regular = overwrite == Overwrite::Replace && fs::symlink_metadata(path).is_ok_and(|m| m.is_file());
+    let placed = if regular { temp.persist(path) } else { temp.persist_noclobber(path) };
+    placed.map_err(|e| match e.error.kind() {
+        io::ErrorKind::AlreadyExists => FsError::Exists(path.to_path_buf()),
+        _ => io_at(path)(e.error),
+    })?;
+    Ok(())
+}
+
 /// The body of [`write()`]: the folders it creates above the target are kept only if it
 /// succeeds, thud's leftovers in the target's folder are removed first, and a new file
 /// (`Refuse`) goes through an anonymous temporary file when `anonymous` and the file system

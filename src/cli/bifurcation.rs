@@ -83,8 +83,8 @@ impl OrbitArgs {
         }
         Ok([
             Target::new(self.out.as_deref(), self.force)?,
-            Target::new(self.svg.as_deref(), self.force)?,
-            Target::new(self.pdf.as_deref(), self.force)?,
+            Target::new(self.svg.as_deref(), self.force).map_err(|e| e.renamed("--svg"))?,
+            Target::new(self.pdf.as_deref(), self.force).map_err(|e| e.renamed("--pdf"))?,
         ])
     }
 
@@ -122,7 +122,11 @@ impl OrbitArgs {
         }
         if let Err(e) = fsio::write_set(&files, Overwrite::from_force(self.force)) {
             let p = e.path().to_path_buf();
-            return Err(super::export::write_error(&p, &e));
+            let flag = [("--svg", &self.svg), ("--pdf", &self.pdf)]
+                .into_iter()
+                .find(|(_, f)| f.as_deref() == Some(p.as_path()))
+                .map_or("--out", |(flag, _)| flag);
+            return Err(super::export::write_error_as(flag, &p, &e));
         }
         for (p, _) in &files {
             super::warn(&format!("wrote {}", fsio::shown(p)));

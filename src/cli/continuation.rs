@@ -65,6 +65,21 @@ struct FamilyJson<'a> {
 /// `NAME=FROM:TO` as a two-value study axis, and `NAME=FROM:TO:N`'s N (the seed values).
 fn parse_vary(text: &str) -> Result<(Vary, Option<usize>), ThudError> {
     let colons = text.split_once('=').map_or(0, |(_, spec)| spec.matches(':').count());
+    if colons == 2 {
+        // N counts seed values: 2 to MAX_SEEDS (a sweep axis's 1 is no range to continue over).
+        let n = text.rsplit(':').next().unwrap_or_default().trim();
+        let whole =
+            n.parse::<f64>().is_ok_and(|x| x.fract() == 0.0 && (2.0..=continuation::MAX_SEEDS as f64).contains(&x));
+        if !whole {
+            return Err(ThudError::invalid(
+                "--vary",
+                format!(
+                    "'{text}': N = '{n}'; give a whole number of seed values from 2 to {}",
+                    continuation::MAX_SEEDS
+                ),
+            ));
+        }
+    }
     let full = if colons == 1 { format!("{text}:2") } else { text.to_string() };
     let v = Vary::parse(&full, Spelling::Flag)?;
     let (Some(&a), Some(&b)) = (v.values.first(), v.values.last()) else {
@@ -91,9 +106,10 @@ fn renamed(e: ThudError) -> ThudError {
 }
 
 pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
-    let d = a.design.design()?;
-    let target = Target::new(a.out.as_deref(), a.force)?;
     let (vary, seeds) = parse_vary(&a.vary)?;
+    // A varied frequency is the design's (FROM stands in for --freq).
+    let d = a.design.design_over(&[&vary])?;
+    let target = Target::new(a.out.as_deref(), a.force)?;
     let periods = super::orbit::parse_period(a.period.as_deref())?;
     if let Some(n) = seeds {
         if periods.is_some() || a.symmetric {

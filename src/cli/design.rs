@@ -165,6 +165,9 @@ fn reference(text: &str, objectives: usize) -> Result<Vec<f64>, ThudError> {
     if v.len() != 2 {
         return Err(bad("expected two numbers V1,V2, e.g. 106,0"));
     }
+    if v.iter().any(|x| x.abs() > search::REFERENCE_MAX) {
+        return Err(bad(&format!("each value must be within ±{:e}", search::REFERENCE_MAX)));
+    }
     if objectives != 2 {
         return Err(bad("a hypervolume is computed with two objectives only"));
     }
@@ -188,7 +191,7 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
     let format = a.output.format();
     // What a stop writes: the front so far, marked partial, kept up to date after each batch.
     let latest: Arc<Mutex<Option<String>>> = Arc::new(Mutex::new(None));
-    let _stop = on_stop(latest.clone(), a.out.clone().filter(|p| !fsio::is_stdout(p)));
+    let stop = on_stop(latest.clone(), a.out.clone().filter(|p| !fsio::is_stdout(p)), a.force);
     let progress = Progress_::new();
     let settings = Settings { evaluations, seed };
     let on_batch = |pr: Progress, all: &[Candidate], front: &[usize]| {
@@ -205,6 +208,9 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
         }
     };
     let outcome = search::search(&p, settings, reference.as_deref(), None, &on_batch)?;
+    // The search is over: from here a stop leaves the outputs as the writes below leave them
+    // (the old files, or the new set), never a partial front beside a complete --save folder.
+    drop(stop);
     progress.done();
     let saved = match &a.save {
         Some(dir) => Some(save(dir, &p, &outcome, a.force)?),
@@ -235,7 +241,7 @@ fn check_figure(a: &DesignSearchArgs, p: &Problem) -> Result<(), ThudError> {
         if fsio::is_stdout(path) {
             return Err(ThudError::invalid(*flag, "'-': the figure goes to a file; give a file name"));
         }
-        Target::new(Some(path), a.force)?;
+        Target::new(Some(path), a.force).map_err(|e| e.renamed(*flag))?;
     }
     for (i, (flag, path)) in outputs.iter().enumerate() {
         let Some(path) = path else { continue };
@@ -325,7 +331,11 @@ fn write_with_figure(
     }
     if let Err(e) = fsio::write_set(&files, fsio::Overwrite::from_force(a.force)) {
         let p = e.path().to_path_buf();
-        return Err(super::export::write_error(&p, &e));
+        let flag = [("--svg", &a.svg), ("--pdf", &a.pdf)]
+            .into_iter()
+            .find(|(_, f)| f.as_deref() == Some(p.as_path()))
+            .map_or("--out", |(flag, _)| flag);
+        return Err(super::export::write_error_as(flag, &p, &e));
     }
     for (p, _) in &files {
         super::warn(&format!("wrote {}", fsio::shown(p)));
@@ -364,9 +374,9 @@ impl Progress_ {
 }
 
 /// On a stop signal (Ctrl-C), writes the front found so far (marked partial) to the output
-/// before the process ends: to standard output, or to the `--out` file through a temporary
-/// beside it renamed into place. The `--save` folder is not written.
-fn on_stop(latest: Arc<Mutex<Option<String>>>, out: Option<PathBuf>) -> crate::signals::Registration {
+/// before the process ends: to standard output, or to the `--out` file as every write is made
+/// ([`fsio::write_from_cleanup`]). The `--save` folder is not written.
+fn on_stop(latest: Arc<Mutex<Option<String>>>, out: Option<PathBuf>, force: bool) -> crate::signals::Registration {
     crate::signals::on_signal(move || {
         let Some(text) = latest.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone() else { return };
         match &out {
@@ -374,10 +384,11 @@ fn on_stop(latest: Arc<Mutex<Option<String>>>, out: Option<PathBuf>) -> crate::s
                 let _ = fsio::write_stdout(text.as_bytes());
             }
             Some(path) => {
-                let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-                let tmp = path.with_file_name(format!(".{name}.thud-partial.tmp"));
-                if std::fs::write(&tmp, text.as_bytes()).is_ok() && std::fs::rename(&tmp, path).is_err() {
-                    let _ = std::fs::remove_file(&tmp);
+                // As the run's own write would: a stream written through, a planted link or
+                // anything new at the path (without --force) left alone.
+                if let Err(e) = fsio::write_from_cleanup(path, text.as_bytes(), fsio::Overwrite::from_force(force)) {
+                    super::warn(&format!("stopped: the front so far was not written: {e}"));
+                    return;
                 }
             }
         }

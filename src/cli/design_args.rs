@@ -250,7 +250,18 @@ impl<F: ForceFlag, R: Rows> DesignArgs<F, R> {
     /// quantities. The mapping from flags to the design is the engine's ([`params::design`]),
     /// shared with the Python module.
     pub fn design(&self) -> Result<ValidDesign, ThudError> {
-        params::design(self.base()?, &self.given, Spelling::Flag)
+        params::design(self.base()?, &self.given, Spelling::Flag).map_err(|e| self.named_as_file(e))
+    }
+
+    /// A value out of range that the `--design` file holds (no flag typed it) is named as the
+    /// file's: "invalid --design: rig.toml: invalid --duration: 1e300 s is out of range; …".
+    fn named_as_file(&self, e: ThudError) -> ThudError {
+        match (&self.design, &e) {
+            (Some(file), ThudError::OutOfRange { param, .. }) if !self.has(param.trim_start_matches("--")) => {
+                ThudError::invalid("--design", format!("{file}: {e}"))
+            }
+            _ => e,
+        }
     }
 
     /// The design these flags describe for a study that varies `varied`: as [`Self::design`],

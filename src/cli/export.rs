@@ -451,12 +451,17 @@ fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
 /// is a link, is not writable through, a FIFO without a reader) is bad input (exit 2), a
 /// failure of the write itself is I/O (exit 1); the line is [`out_error`]'s.
 pub(super) fn write_error(out: &Path, e: &FsError) -> CliError {
+    write_error_as("--out", out, e)
+}
+
+/// [`write_error`] naming the flag that gave the file (`--svg`, `--pdf`, `--out`).
+pub(super) fn write_error_as(flag: &str, out: &Path, e: &FsError) -> CliError {
     match e {
         FsError::Exists(_) | FsError::NotRegular { .. } | FsError::Link(_) | FsError::NoReader(_) => {
-            CliError::Input(out_error(out, e))
+            CliError::Input(out_error(out, e).renamed(flag))
         }
         FsError::Changed(_) | FsError::TooLarge { .. } | FsError::Io { .. } => {
-            CliError::Io(out_error(out, e).to_string())
+            CliError::Io(out_error(out, e).renamed(flag).to_string())
         }
     }
 }

@@ -45,10 +45,18 @@ impl<'a> FigureOutputs<'a> {
                 return Err(ThudError::invalid(*flag, format!("{what}; give each output a file of its own")));
             }
         }
-        for p in [self.svg, self.pdf, self.table_file()].into_iter().flatten() {
-            fsio::check_target(p, Overwrite::from_force(self.force)).map_err(|e| super::export::out_error(p, &e))?;
+        for (flag, p) in self.files() {
+            fsio::check_target(p, Overwrite::from_force(self.force))
+                .map_err(|e| super::export::out_error(p, &e).renamed(flag))?;
         }
         Ok(())
+    }
+
+    /// Each file with the flag that named it (the table's only if not standard output).
+    fn files(&self) -> impl Iterator<Item = (&'static str, &'a Path)> {
+        [("--svg", self.svg), ("--pdf", self.pdf), ("--out", self.table_file())]
+            .into_iter()
+            .filter_map(|(flag, p)| p.map(|p| (flag, p)))
     }
 
     /// The table's file, if not standard output.
@@ -82,7 +90,8 @@ impl<'a> FigureOutputs<'a> {
         }
         if let Err(e) = fsio::write_set(&files, Overwrite::from_force(self.force)) {
             let p = e.path().to_path_buf();
-            return Err(super::export::write_error(&p, &e));
+            let flag = self.files().find(|(_, f)| *f == p).map_or("--out", |(flag, _)| flag);
+            return Err(super::export::write_error_as(flag, &p, &e));
         }
         for (p, _) in &files {
             super::warn(&format!("wrote {}", fsio::shown(p)));

@@ -144,6 +144,9 @@ fn reference(py: Python<'_>, kw: &Kwargs<'_>, objectives: usize) -> PyResult<Opt
     if r.len() != 2 || r.iter().any(|x| !x.is_finite()) {
         return Err(bad("expected two finite numbers (V1, V2), e.g. (106, 0)"));
     }
+    if r.iter().any(|x| x.abs() > search::REFERENCE_MAX) {
+        return Err(bad(&format!("each value must be within ±{:e}", search::REFERENCE_MAX)));
+    }
     if objectives != 2 {
         return Err(bad("a hypervolume is computed with two objectives only"));
     }

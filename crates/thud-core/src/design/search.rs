@@ -74,6 +74,10 @@ impl Variable {
         let ([from, to] | [from, to, _]) = parts[..] else {
             return Err(ThudError::invalid(&param, format!("'{spec}'; expected FROM:TO, e.g. 20g:120g")));
         };
+        // N is unused (the search picks the values), but when given it is a count as a sweep's.
+        if let [_, _, n] = parts[..] {
+            limits::GRID_N.parse_count(&param, n)?;
+        }
         let value = |t: &str| -> Result<f64, ThudError> {
             match row.accepts {
                 Accepts::Quantity { kind, range, .. } => range.check_as(&param, units::parse(&param, t, kind)?),
@@ -530,7 +534,10 @@ impl Problem {
         }
         for (i, v) in self.variables.iter().enumerate() {
             if self.variables[..i].iter().any(|w| w.name() == v.name()) {
-                return Err(ThudError::invalid(format!("--vary {}", v.name()), "is given twice"));
+                return Err(ThudError::invalid(
+                    format!("--vary {}", v.name()),
+                    "varied twice; give each parameter once",
+                ));
             }
         }
         for (i, o) in self.objectives.iter().enumerate() {
@@ -759,6 +766,11 @@ pub fn check_work(problem: &Problem, evaluations: usize, given: &dyn Fn(&str) ->
     let total = limits::sweep_work(&w, n).map(|e| e.value);
     limits::check_work_sum(&w, given, n, total)
 }
+
+/// The largest size of a value of the hypervolume's reference point: the hypervolume is a
+/// product of two spans from it, so with the objectives' own values far below this it stays a
+/// finite number.
+pub const REFERENCE_MAX: f64 = 1e150;
 
 /// Whether `a` dominates `b` (every objective minimised): no worse anywhere, better somewhere.
 #[must_use]

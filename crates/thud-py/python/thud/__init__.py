@@ -185,7 +185,13 @@ def basins(grid: _Union[int, str] = 20, w0: _Any = (-1.0, 1.0), **params: _Any) 
     (FROM, TO) in m/s (default −1 to 1); each start's attractor and amplitude. Options:
     transient, no_limit; every other keyword is the design's (not ball_position or
     ball_velocity: the basins set the ball's start)."""
-    return Basins(_json.loads(_thud._basins(grid, tuple(w0), **params)))
+    try:
+        lo, hi = w0
+    except (TypeError, ValueError):
+        e = ParameterError(f"invalid w0: expected (FROM, TO) in m/s, e.g. (-1, 1), not {w0!r}")
+        e.param = "w0"  # type: ignore[attr-defined]
+        raise e from None
+    return Basins(_json.loads(_thud._basins(grid, (lo, hi), **params)))
 
 
 def restitution(masses_kg: _Any = "5g:100g:20", u0: _Union[float, str] = 1.4, target: _Any = None,

@@ -195,7 +195,12 @@ def _read(result: Any, column: str) -> Optional[float]:
     else:
         raise _error("results", f"invalid results: expected a mapping by column or a thud.Run, not "
                                 f"{type(result).__name__}")
-    return None if v is None else float(v)
+    if v is None:
+        return None
+    try:
+        return float(v)
+    except (TypeError, ValueError, OverflowError):
+        raise _error("results", f"invalid results: {column} is {v!r}, not a number") from None
 
 
 class Designer:
@@ -251,7 +256,8 @@ class Designer:
         asked; none once ``done``."""
         if isinstance(n, bool) or not isinstance(n, int) or n < 1:
             raise _error("n", f"invalid n: expected a whole number ≥ 1, not {n!r}")
-        rows = self._native.ask(n)
+        # "Up to n": a count past what any search holds asks for all there is.
+        rows = self._native.ask(min(n, 2**63 - 1))
         return [dict(zip(self._front_keys, row)) for row in rows]
 
     def tell(self, xs: Sequence[Mapping[str, Union[float, int, str]]], results: Sequence[Any]) -> None:
