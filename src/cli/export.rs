@@ -10,7 +10,7 @@ use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::export::wav::{SampleFormat, WavError, WavOptions};
-use crate::export::{self, pdf, svg, Artifact, ExportError, ExportOptions};
+use crate::export::{self, pdf, svg, Artifact, ExportError, ExportOptions, RenderError};
 use crate::fsio::{self, FsError, Overwrite, Plan, Sink};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
@@ -322,7 +322,7 @@ fn write(
     let bytes = export::render(kind, &design, opts);
     spinner.finish_and_clear();
     let bytes = match bytes {
-        Err(ExportError::Wav(WavError::NonFinite(p))) => {
+        Err(ExportError::Render(RenderError::Wav(WavError::NonFinite(p)))) => {
             return Err(CliError::NonFinite(format!("{p} Pa in a WAV sample")))
         }
         other => other.map_err(|e| export_error(out, e, common))?,
@@ -356,11 +356,17 @@ fn write(
 /// An export failure as the CLI's one-line error.
 fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
     match e {
-        ExportError::Invalid(t) => no_impact(t, common),
+        ExportError::Render(RenderError::Invalid(t)) => no_impact(t, common),
         ExportError::File(f) => out_error(out, &f),
-        ExportError::Csv(c) => ThudError::invalid("--out", format!("cannot write {}: {c}", fsio::shown(out))),
-        ExportError::Wav(w) => ThudError::invalid("--out", format!("cannot write {}: {w}", fsio::shown(out))),
-        ExportError::Pdf(p) => ThudError::invalid("--out", format!("cannot write {}: {p}", fsio::shown(out))),
+        ExportError::Render(RenderError::Csv(c)) => {
+            ThudError::invalid("--out", format!("cannot write {}: {c}", fsio::shown(out)))
+        }
+        ExportError::Render(RenderError::Wav(w)) => {
+            ThudError::invalid("--out", format!("cannot write {}: {w}", fsio::shown(out)))
+        }
+        ExportError::Render(RenderError::Pdf(p)) => {
+            ThudError::invalid("--out", format!("cannot write {}: {p}", fsio::shown(out)))
+        }
     }
 }
 
