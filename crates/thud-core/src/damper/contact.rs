@@ -332,9 +332,9 @@ pub(crate) struct Stretch<'a, L> {
     pub t_limit: f64,
 }
 
+#[cfg(test)]
 impl<'a> Stretch<'a, NoLoad> {
     /// A stretch without a force, up to `t_limit` (s).
-    #[cfg(test)]
     pub(crate) fn free(sys: &'a Sys, t_limit: f64) -> Self {
         Stretch { sys, load: NoLoad, t_limit }
     }
