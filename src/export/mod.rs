@@ -20,15 +20,22 @@ use crate::design::{Design, ValidDesign};
 use crate::fsio::{self, FsError, Overwrite};
 pub use thud_render::artifact::{directivity_points, response_freqs, Artifact, ExportOptions, RenderError};
 
-/// Why an export was not made.
+/// Why an export to a file was not made.
 #[derive(Debug, Error)]
 pub enum ExportError {
     /// The bytes were not made (an invalid design or option, or a CSV, WAV or PDF failure).
+    /// Boxed: the file's error beside it would make every result carry both.
     #[error(transparent)]
-    Render(#[from] RenderError),
+    Render(Box<RenderError>),
     /// The file could not be written (it exists, is not a regular file, or the system refused).
     #[error("cannot write {0}")]
     File(#[from] FsError),
+}
+
+impl From<RenderError> for ExportError {
+    fn from(e: RenderError) -> Self {
+        ExportError::Render(Box::new(e))
+    }
 }
 
 /// The contents of an export of `kind` for `design` ([`thud_render::artifact::render`]).
