@@ -63,24 +63,7 @@ impl OrbitArgs {
     /// The targets, each checked before any work; two outputs naming one file (or both going
     /// to standard output) are refused before anything is written.
     fn targets(&self) -> Result<[Target<'_>; 3], ThudError> {
-        let outputs = [
-            ("--out", self.out.as_deref().unwrap_or(std::path::Path::new("-"))),
-            ("--svg", self.svg.as_deref().unwrap_or(std::path::Path::new(""))),
-            ("--pdf", self.pdf.as_deref().unwrap_or(std::path::Path::new(""))),
-        ];
-        for (i, (flag, path)) in outputs.iter().enumerate() {
-            if path.as_os_str().is_empty() {
-                continue;
-            }
-            if let Some((other, _)) = outputs[..i].iter().find(|(_, p)| same_output(p, path)) {
-                let what = if fsio::is_stdout(path) {
-                    format!("standard output carries the {other} output already (without --out, the table)")
-                } else {
-                    format!("'{}' is the {other} file too", fsio::shown(path))
-                };
-                return Err(ThudError::invalid(*flag, format!("{what}; give each output a file of its own")));
-            }
-        }
+        super::figure_out::distinct_outputs(self.out.as_deref(), self.svg.as_deref(), self.pdf.as_deref())?;
         Ok([
             Target::new(self.out.as_deref(), self.force)?,
             Target::new(self.svg.as_deref(), self.force).map_err(|e| e.renamed("--svg"))?,
@@ -140,26 +123,6 @@ impl OrbitArgs {
     /// Checks the files up front (an existing one without --force is refused before the work).
     pub(super) fn check_targets(&self) -> Result<(), ThudError> {
         self.targets().map(|_| ())
-    }
-}
-
-/// Whether two outputs go to one place: both to standard output (`-`), or one file named two
-/// ways (`o.svg`, `./o.svg`, `dir/../o.svg`, a symbolic link to the folder).
-pub(super) fn same_output(a: &std::path::Path, b: &std::path::Path) -> bool {
-    if fsio::is_stdout(a) || fsio::is_stdout(b) {
-        return fsio::is_stdout(a) && fsio::is_stdout(b);
-    }
-    // The folder resolved, the name as given: the file itself need not exist yet.
-    let place = |p: &std::path::Path| {
-        let dir = match p.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => std::path::Path::new("."),
-        };
-        dir.canonicalize().ok().zip(p.file_name().map(std::ffi::OsStr::to_os_string))
-    };
-    match (place(a), place(b)) {
-        (Some(x), Some(y)) => x == y,
-        _ => a == b,
     }
 }
 

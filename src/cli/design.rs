@@ -246,7 +246,7 @@ fn check_figure(a: &DesignSearchArgs, p: &Problem) -> Result<(), ThudError> {
     for (i, (flag, path)) in outputs.iter().enumerate() {
         let Some(path) = path else { continue };
         if let Some((other, _)) =
-            outputs[..i].iter().find(|(_, q)| q.is_some_and(|q| super::bifurcation::same_output(q, path)))
+            outputs[..i].iter().find(|(_, q)| q.is_some_and(|q| super::figure_out::same_output(q, path)))
         {
             return Err(ThudError::invalid(
                 *flag,

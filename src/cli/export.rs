@@ -10,7 +10,7 @@ use super::{budget, count, quantity, CliError, Ctx};
 use crate::design::{Design, ValidDesign};
 use crate::error::ThudError;
 use crate::export::wav::{SampleFormat, WavError, WavOptions};
-use crate::export::{self, pdf, svg, Artifact, ExportError, ExportOptions};
+use crate::export::{self, pdf, svg, Artifact, ExportError, ExportOptions, RenderError};
 use crate::fsio::{self, FsError, Overwrite, Plan, Sink};
 use crate::limits::{self, short};
 use crate::units::Kind as Unit;
@@ -404,12 +404,7 @@ fn write(
     let spinner = budget::spinner("exporting", long);
     let bytes = export::render(kind, &design, opts);
     spinner.finish_and_clear();
-    let bytes = match bytes {
-        Err(ExportError::Wav(WavError::NonFinite(p))) => {
-            return Err(CliError::NonFinite(format!("{p} Pa in a WAV sample")))
-        }
-        other => other.map_err(|e| export_error(out, e, common))?,
-    };
+    let bytes = bytes.map_err(|e| export_error(out, e, common))?;
     check_contents(kind, &bytes)?;
     let bytes =
         if ascii.ascii { ascii.figure(String::from_utf8_lossy(&bytes).into_owned()).into_bytes() } else { bytes };
@@ -436,14 +431,21 @@ fn write(
     Ok(())
 }
 
-/// An export failure as the CLI's one-line error.
-fn export_error(out: &Path, e: ExportError, common: &Common) -> ThudError {
-    match e {
-        ExportError::Invalid(t) => no_impact(t, common),
-        ExportError::File(f) => out_error(out, &f),
-        ExportError::Csv(c) => ThudError::invalid("--out", format!("cannot write {}: {c}", fsio::shown(out))),
-        ExportError::Wav(w) => ThudError::invalid("--out", format!("cannot write {}: {w}", fsio::shown(out))),
-        ExportError::Pdf(p) => ThudError::invalid("--out", format!("cannot write {}: {p}", fsio::shown(out))),
+/// An export failure as the CLI's one-line error (a sample that is not a number is the
+/// engine's bug, not bad input).
+fn export_error(out: &Path, e: ExportError, common: &Common) -> CliError {
+    let r = match e {
+        ExportError::File(f) => return out_error(out, &f).into(),
+        ExportError::Render(r) => *r,
+    };
+    let cannot =
+        |why: &dyn std::fmt::Display| ThudError::invalid("--out", format!("cannot write {}: {why}", fsio::shown(out)));
+    match r {
+        RenderError::Invalid(t) => no_impact(t, common).into(),
+        RenderError::Wav(WavError::NonFinite(p)) => CliError::NonFinite(format!("{p} Pa in a WAV sample")),
+        RenderError::Csv(c) => cannot(&c).into(),
+        RenderError::Wav(w) => cannot(&w).into(),
+        RenderError::Pdf(p) => cannot(&p).into(),
     }
 }
 

@@ -27,24 +27,7 @@ impl<'a> FigureOutputs<'a> {
     /// two outputs naming one file, or both going to standard output, are refused before
     /// anything is written.
     pub(super) fn check(&self) -> Result<(), ThudError> {
-        let outputs = [
-            ("--out", self.out.unwrap_or(Path::new("-"))),
-            ("--svg", self.svg.unwrap_or(Path::new(""))),
-            ("--pdf", self.pdf.unwrap_or(Path::new(""))),
-        ];
-        for (i, (flag, path)) in outputs.iter().enumerate() {
-            if path.as_os_str().is_empty() {
-                continue;
-            }
-            if let Some((other, _)) = outputs[..i].iter().find(|(_, p)| same_output(p, path)) {
-                let what = if fsio::is_stdout(path) {
-                    format!("standard output carries the {other} output already (without --out, the table)")
-                } else {
-                    format!("'{}' is the {other} file too", fsio::shown(path))
-                };
-                return Err(ThudError::invalid(*flag, format!("{what}; give each output a file of its own")));
-            }
-        }
+        distinct_outputs(self.out, self.svg, self.pdf)?;
         for (flag, p) in self.files() {
             fsio::check_target(p, Overwrite::from_force(self.force))
                 .map_err(|e| super::export::out_error(p, &e).renamed(flag))?;
@@ -103,9 +86,33 @@ impl<'a> FigureOutputs<'a> {
     }
 }
 
+/// Refuses two of a command's outputs (`--out`, `--svg`, `--pdf`) naming one file, or both
+/// going to standard output (`--out` missing or `-`: the table), naming the later flag.
+pub(super) fn distinct_outputs(out: Option<&Path>, svg: Option<&Path>, pdf: Option<&Path>) -> Result<(), ThudError> {
+    let outputs = [
+        ("--out", out.unwrap_or(Path::new("-"))),
+        ("--svg", svg.unwrap_or(Path::new(""))),
+        ("--pdf", pdf.unwrap_or(Path::new(""))),
+    ];
+    for (i, (flag, path)) in outputs.iter().enumerate() {
+        if path.as_os_str().is_empty() {
+            continue;
+        }
+        if let Some((other, _)) = outputs[..i].iter().find(|(_, p)| same_output(p, path)) {
+            let what = if fsio::is_stdout(path) {
+                format!("standard output carries the {other} output already (without --out, the table)")
+            } else {
+                format!("'{}' is the {other} file too", fsio::shown(path))
+            };
+            return Err(ThudError::invalid(*flag, format!("{what}; give each output a file of its own")));
+        }
+    }
+    Ok(())
+}
+
 /// Whether two outputs go to one place: both to standard output (`-`), or one file named two
 /// ways (`o.svg`, `./o.svg`, `dir/../o.svg`, a symbolic link to the folder).
-fn same_output(a: &Path, b: &Path) -> bool {
+pub(super) fn same_output(a: &Path, b: &Path) -> bool {
     if fsio::is_stdout(a) || fsio::is_stdout(b) {
         return fsio::is_stdout(a) && fsio::is_stdout(b);
     }

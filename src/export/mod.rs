@@ -16,25 +16,16 @@ use std::path::Path;
 use thiserror::Error;
 
 use crate::design::{Design, ValidDesign};
-use crate::error::ThudError;
 use crate::fsio::{self, FsError, Overwrite};
 pub use thud_render::artifact::{directivity_points, response_freqs, Artifact, ExportOptions, RenderError};
 
-/// Why an export was not made.
+/// Why an export to a file was not made.
 #[derive(Debug, Error)]
 pub enum ExportError {
-    /// The design or an option is not valid.
+    /// The bytes were not made (an invalid design or option, or a CSV, WAV or PDF failure).
+    /// Boxed: the file's error beside it would make every result carry both.
     #[error(transparent)]
-    Invalid(#[from] ThudError),
-    /// The table could not be written as CSV.
-    #[error("cannot write the CSV: {0}")]
-    Csv(#[from] ::csv::Error),
-    /// The sound could not be encoded (a non-finite pressure: a bug).
-    #[error("cannot write the WAV: {0}")]
-    Wav(wav::WavError),
-    /// The figure could not be converted to PDF (a glyph missing from the embedded font: a bug).
-    #[error(transparent)]
-    Pdf(#[from] pdf::PdfError),
+    Render(Box<RenderError>),
     /// The file could not be written (it exists, is not a regular file, or the system refused).
     #[error("cannot write {0}")]
     File(#[from] FsError),
@@ -42,12 +33,7 @@ pub enum ExportError {
 
 impl From<RenderError> for ExportError {
     fn from(e: RenderError) -> Self {
-        match e {
-            RenderError::Invalid(t) => ExportError::Invalid(t),
-            RenderError::Csv(c) => ExportError::Csv(c),
-            RenderError::Wav(w) => ExportError::Wav(w),
-            RenderError::Pdf(p) => ExportError::Pdf(p),
-        }
+        ExportError::Render(Box::new(e))
     }
 }
 
@@ -77,7 +63,7 @@ pub fn export_to_path_with(
     path: &Path,
     finish: impl FnOnce(Vec<u8>) -> Vec<u8>,
 ) -> Result<(), ExportError> {
-    let design = design.clone().check()?;
+    let design = design.clone().check().map_err(RenderError::from)?;
     fsio::write(path, &finish(render(kind, &design, opts)?), Overwrite::Refuse)?;
     Ok(())
 }

@@ -1,3 +1,4 @@
+// Over 800 lines: one shooting method (the section's map, Newton, multipliers, report) and its searches.
 //! Periodic orbits of a forced design found, not waited for (docs/model.md §6.7): shooting on
 //! the stroboscopic map with Floquet multipliers.
 //!

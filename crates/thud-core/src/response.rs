@@ -429,20 +429,22 @@ mod tests {
     fn an_even_ensemble_s_amplitude_and_cut_are_one_run_s() {
         let alone = 0.5;
         let point = |amp: f64| {
-            let steady = Steady {
+            let motion = crate::damper::SteadyMotion {
                 periods: 10,
                 window_start_s: 0.0,
                 window_end_s: 1.0,
                 amplitude_m: amp,
                 amplitude_linear_m: Some(alone),
                 reduction_db: Some(20.0 * (alone / amp).log10()),
+                impacts: 20,
                 impacts_per_period: 2.0,
-                leq_db: Some(90.0),
                 periodic: false,
                 settled: true,
                 truncated: false,
+                previous_amplitude_m: None,
                 verdict: crate::verdict::Verdict::Settled,
             };
+            let steady = Steady { motion, leq_db: Some(90.0) };
             ResponsePoint { freq_hz: 5.0, steady, final_time_s: 2.0 }
         };
         let runs: Vec<ResponsePoint> = [0.04, 0.01, 0.03, 0.02].into_iter().map(point).collect();

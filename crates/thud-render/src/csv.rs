@@ -119,33 +119,14 @@ pub fn impacts(run: &Run, spl_db: &[f64]) -> Result<String, csv::Error> {
 struct SweepRow {
     mass_kg: Num,
     gap_m: Num,
-    n_impacts: usize,
-    inclination_cm_s: Option<Num>,
-    inclination_fit_cm_s: Option<Num>,
-    u0_max_m_s: Num,
-    zdot_abs_max_m_s: Num,
-    spl_max_db: Option<Num>,
-    contact_duration_s: Option<Num>,
-    restitution_mean: Option<Num>,
-    zone: Option<u8>,
+    /// The cell's metrics (written in place: no header is serialized).
+    metrics: MetricsRow,
 }
 
 impl SweepRow {
     /// The row of the cell at (`mass_kg`, `gap_m`) with metrics `m`.
     fn new(mass_kg: f64, gap_m: f64, m: &Metrics) -> Self {
-        SweepRow {
-            mass_kg: Num(mass_kg),
-            gap_m: Num(gap_m),
-            n_impacts: m.n_impacts,
-            inclination_cm_s: m.inclination_cm_s.map(Num),
-            inclination_fit_cm_s: m.inclination_fit_cm_s.map(Num),
-            u0_max_m_s: Num(m.u0_max_m_s),
-            zdot_abs_max_m_s: Num(m.zdot_abs_max_m_s),
-            spl_max_db: m.spl_max_db.map(Num),
-            contact_duration_s: m.contact_duration_s.map(Num),
-            restitution_mean: m.restitution_mean.map(Num),
-            zone: m.zone.map(thud_core::design::Zone::number),
-        }
+        SweepRow { mass_kg: Num(mass_kg), gap_m: Num(gap_m), metrics: m.into() }
     }
 }
 
@@ -226,15 +207,8 @@ pub fn sweep_ensemble(chart: &EnsembleChart) -> Result<String, csv::Error> {
 #[derive(Serialize)]
 struct MemberRow {
     ball_position_m: Num,
-    n_impacts: usize,
-    inclination_cm_s: Option<Num>,
-    inclination_fit_cm_s: Option<Num>,
-    u0_max_m_s: Num,
-    zdot_abs_max_m_s: Num,
-    spl_max_db: Option<Num>,
-    contact_duration_s: Option<Num>,
-    restitution_mean: Option<Num>,
-    zone: Option<u8>,
+    /// The run's metrics (written in place: no header is serialized).
+    metrics: MetricsRow,
 }
 
 /// The runs of one design's ensemble, one row each: the ball's initial offset and the run's
@@ -242,18 +216,7 @@ struct MemberRow {
 pub fn ensemble_members(members: &[crate::ensemble::Member]) -> Result<String, csv::Error> {
     table_csv(
         &schema::ENSEMBLE,
-        members.iter().map(|r| MemberRow {
-            ball_position_m: Num(r.ball_position_m),
-            n_impacts: r.metrics.n_impacts,
-            inclination_cm_s: r.metrics.inclination_cm_s.map(Num),
-            inclination_fit_cm_s: r.metrics.inclination_fit_cm_s.map(Num),
-            u0_max_m_s: Num(r.metrics.u0_max_m_s),
-            zdot_abs_max_m_s: Num(r.metrics.zdot_abs_max_m_s),
-            spl_max_db: r.metrics.spl_max_db.map(Num),
-            contact_duration_s: r.metrics.contact_duration_s.map(Num),
-            restitution_mean: r.metrics.restitution_mean.map(Num),
-            zone: r.metrics.zone.map(thud_core::design::Zone::number),
-        }),
+        members.iter().map(|r| MemberRow { ball_position_m: Num(r.ball_position_m), metrics: (&r.metrics).into() }),
     )
 }
 
@@ -437,32 +400,26 @@ mod tests {
             spl_db: None,
         };
         assert_eq!(serde_header(imp), head(&schema::IMPACTS));
-        let metrics = crate::design::Metrics {
-            n_impacts: 0,
-            inclination_cm_s: None,
-            inclination_fit_cm_s: None,
-            u0_max_m_s: 0.0,
-            zdot_abs_max_m_s: 0.0,
-            spl_max_db: None,
-            contact_duration_s: None,
-            restitution_mean: None,
-            zone: None,
-        };
-        let sw = SweepRow::new(0.0, 0.0, &metrics);
-        assert_eq!(serde_header(sw), head(&schema::SWEEP));
-        let m = MemberRow {
-            ball_position_m: n,
-            n_impacts: 0,
-            inclination_cm_s: None,
-            inclination_fit_cm_s: None,
-            u0_max_m_s: n,
-            zdot_abs_max_m_s: n,
-            spl_max_db: None,
-            contact_duration_s: None,
-            restitution_mean: None,
-            zone: None,
-        };
-        assert_eq!(serde_header(m), head(&schema::ENSEMBLE));
+        // The metrics' columns close a chart cell's row and an ensemble member's.
+        let metrics = crate::design::Metrics { n_impacts: 7, ..Default::default() };
+        let names = |t: &schema::Table, skip: usize| t.names()[skip..].join(",");
+        assert_eq!(serde_header(MetricsRow::from(&metrics)), names(&schema::SWEEP, 2));
+        assert_eq!(serde_header(MetricsRow::from(&metrics)), names(&schema::ENSEMBLE, 1));
+        // Before them, a cell's mass and gap and a member's ball offset, each one column.
+        let cell = record(SweepRow::new(1.5, 2.5, &metrics));
+        assert_eq!(cell.len(), schema::SWEEP.names().len());
+        assert_eq!(cell[..3], ["1.5", "2.5", "7"]);
+        let member = record(MemberRow { ball_position_m: Num(-0.5), metrics: (&metrics).into() });
+        assert_eq!(member.len(), schema::ENSEMBLE.names().len());
+        assert_eq!(member[..2], ["-0.5", "7"]);
+    }
+
+    /// The cells a row type writes, without a header.
+    fn record<R: Serialize>(row: R) -> Vec<String> {
+        let mut w = csv::WriterBuilder::new().has_headers(false).from_writer(Vec::new());
+        w.serialize(row).unwrap();
+        let line = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        line.trim_end().split(',').map(str::to_string).collect()
     }
 
     #[test]

@@ -41,7 +41,7 @@
 use std::cell::OnceCell;
 
 use super::adams_tableau::{AB, AM, BASIS, K};
-use super::contact::{ContactOutcome, ContactStart, Load, Sys};
+use super::contact::{ContactOutcome, ContactStart, Load, Stretch, Sys};
 use super::dop853;
 use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, Y};
 
@@ -238,16 +238,10 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
         let z = [0.0; NC];
         // (Built in place: the series is returned without copying its seven rows.)
         let mut out = Series { c: [z; 7], raw: z };
+        sundman::seed(&mut out.c, y);
         let [x, v, sg, u, ec, ev, tt] = &mut out.c;
         let (mut s2, mut sv, mut am, mut cs, mut sn) = (z, z, z, z, z);
         let mut su = z;
-        x[0] = y[0];
-        v[0] = y[1];
-        sg[0] = y[2];
-        u[0] = y[3];
-        ec[0] = y[4];
-        ev[0] = y[5];
-        tt[0] = y[6];
         if L::ON {
             let (sp, cp) = self.load.harmonic(self.t_onset + y[6]).2.sin_cos();
             cs[0] = cp;
@@ -480,7 +474,7 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
     /// its own nominal step for this contact.
     fn hand_over(self, budget: &mut usize) -> End {
         let r = self.taken_over(self.y);
-        dop853::resume(self.sys, self.load, &r, self.t_limit, budget, self.obs)
+        dop853::resume(Stretch { sys: self.sys, load: self.load, t_limit: self.t_limit }, &r, budget, self.obs)
     }
 
     /// This contact at state `y` as DOP853 carries it on, with its own nominal step.

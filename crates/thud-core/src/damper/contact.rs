@@ -323,6 +323,23 @@ impl<'a> ContactStart<'a, NoLoad> {
     }
 }
 
+/// The stretch a contact cut by the end of the one before carries on over: the system, the
+/// force on the main mass `load` and the new end of the stretch `t_limit` (s).
+#[derive(Clone, Copy)]
+pub(crate) struct Stretch<'a, L> {
+    pub sys: &'a Sys,
+    pub load: L,
+    pub t_limit: f64,
+}
+
+#[cfg(test)]
+impl<'a> Stretch<'a, NoLoad> {
+    /// A stretch without a force, up to `t_limit` (s).
+    pub(crate) fn free(sys: &'a Sys, t_limit: f64) -> Self {
+        Stretch { sys, load: NoLoad, t_limit }
+    }
+}
+
 /// Sees every accepted step of a contact integration: `step(t0, y0, k0, t1, y1, k1)` with the
 /// states at both ends and their derivatives. A closure is one; the event solver's recording is
 /// another, whose `step` is inlined into the step loop (a closure's call is not, and then the
@@ -460,16 +477,10 @@ pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize,
     }
 }
 
-/// Carries on a contact cut by its time limit (`r`, from [`ContactEnd::resume`]) up to the new
-/// time limit `t_limit`, as [`integrate`] would have had it not been cut.
-pub(crate) fn resume<L: Load>(
-    sys: &Sys,
-    load: L,
-    r: &Resume,
-    t_limit: f64,
-    budget: &mut usize,
-    obs: impl Observer,
-) -> ContactEnd {
+/// Carries on a contact cut by its time limit (`r`, from [`ContactEnd::resume`]) over the
+/// stretch `at`, as [`integrate`] would have had it not been cut.
+pub(crate) fn resume<L: Load>(at: Stretch<'_, L>, r: &Resume, budget: &mut usize, obs: impl Observer) -> ContactEnd {
+    let Stretch { sys, load, t_limit } = at;
     if sys.no_tension {
         run(Integration::<L, _, true>::resumed(sys, load, r, t_limit, obs), budget)
     } else {

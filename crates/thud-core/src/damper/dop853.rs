@@ -25,7 +25,9 @@
 
 use std::cell::OnceCell;
 
-use super::contact::{ContactOutcome, Load, Sys};
+#[cfg(feature = "research")]
+use super::contact::ContactStart;
+use super::contact::{ContactOutcome, Load, Stretch, Sys};
 use super::dop853_tableau as tab;
 use super::sundman::{self, root_in, step_end, Dense, Observer, Rhs, Series, Span, NC, Y};
 
@@ -118,12 +120,7 @@ struct Integration<'a, L, O, const N: usize> {
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
 /// until the exit, the time limit `t_limit` or the step budget.
 #[cfg(feature = "research")]
-pub(crate) fn integrate<L: Load>(
-    start: super::contact::ContactStart<'_, L>,
-    budget: &mut usize,
-    obs: impl Observer,
-) -> End {
-    use super::contact::ContactStart;
+pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize, obs: impl Observer) -> End {
     use super::sundman::{onset, Onset};
     let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let start = onset(sys, &y0);
@@ -133,16 +130,9 @@ pub(crate) fn integrate<L: Load>(
     go(sys, load, &r, t_limit, budget, obs)
 }
 
-/// Carries on a contact cut by its time limit up to the new limit `t_limit`.
-pub(crate) fn resume<L: Load>(
-    sys: &Sys,
-    load: L,
-    r: &Resume,
-    t_limit: f64,
-    budget: &mut usize,
-    obs: impl Observer,
-) -> End {
-    go(sys, load, r, t_limit, budget, obs)
+/// Carries on a contact cut by its time limit over the stretch `at`.
+pub(crate) fn resume<L: Load>(at: Stretch<'_, L>, r: &Resume, budget: &mut usize, obs: impl Observer) -> End {
+    go(at.sys, at.load, r, at.t_limit, budget, obs)
 }
 
 /// The integration from `r`, with the state's size chosen by the load.
@@ -414,7 +404,6 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
 #[cfg(test)]
 mod tests {
     use super::super::contact::ContactStart;
-    use super::super::contact::NoLoad;
     use super::super::contact::{State, Unobserved};
     use super::super::scheme_checks::{self, sys};
     use super::*;
@@ -435,7 +424,7 @@ mod tests {
         scheme_checks::cut_contacts(
             &[0.1, 0.5, 0.93],
             |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
-            |s, r, left| resume(s, NoLoad, r, 1.0, left, Unobserved),
+            |s, r, left| resume(Stretch::free(s, 1.0), r, left, Unobserved),
         );
     }
 

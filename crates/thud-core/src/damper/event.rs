@@ -10,7 +10,9 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::contact::{resume, ContactEnd, ContactOutcome, ContactStart, Load, NoLoad, Observer, Resume, State, Sys};
+use super::contact::{
+    resume, ContactEnd, ContactOutcome, ContactStart, Load, NoLoad, Observer, Resume, State, Stretch, Sys,
+};
 use super::dop853;
 use super::flight::{FlightEvent, Oscillator};
 use super::forced::{Forced, ForcedEvent, Harmonic};
@@ -476,17 +478,12 @@ impl<'a, F: Flight> EventSim<'a, F> {
                 (end, (0.0, 0.0))
             }
             (Some(o), _) => {
+                let at = Stretch { sys: &sys, load, t_limit: t_stop };
                 let end = match &o.resume {
-                    Cut::Reference(r) => {
-                        resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Reference)
-                    }
+                    Cut::Reference(r) => resume(at, r, &mut self.budget, obs).map_resume(Cut::Reference),
                     #[cfg(feature = "research")]
-                    Cut::Sundman(r) => {
-                        sundman::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Sundman)
-                    }
-                    Cut::Dop853(r) => {
-                        dop853::resume(&sys, load, r, t_stop, &mut self.budget, obs).map_resume(Cut::Dop853)
-                    }
+                    Cut::Sundman(r) => sundman::resume(at, r, &mut self.budget, obs).map_resume(Cut::Sundman),
+                    Cut::Dop853(r) => dop853::resume(at, r, &mut self.budget, obs).map_resume(Cut::Dop853),
                 };
                 (end, o.counted)
             }

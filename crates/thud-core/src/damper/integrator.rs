@@ -20,72 +20,56 @@ pub(crate) trait ContactIntegrator {
     ) -> ContactEnd<Self::Resume>;
 }
 
-/// Adaptive Dormand–Prince 5(4) on Eq 26 as written: the reference.
-pub(crate) struct Reference;
+/// One scheme: its marker type, where a contact it cut resumes, and its contact function.
+macro_rules! scheme {
+    ($(#[$meta:meta])* $name:ident, $resume:ty, $integrate:path) => {
+        $(#[$meta])*
+        pub(crate) struct $name;
 
-impl ContactIntegrator for Reference {
-    type Resume = contact::Resume;
+        $(#[$meta])*
+        impl ContactIntegrator for $name {
+            type Resume = $resume;
 
-    #[inline(always)]
-    fn integrate<L: Load, O: contact::Observer + sundman::Observer>(
-        start: ContactStart<'_, L>,
-        budget: &mut usize,
-        obs: O,
-    ) -> ContactEnd<Self::Resume> {
-        contact::integrate(start, budget, obs)
-    }
+            #[inline(always)]
+            fn integrate<L: Load, O: contact::Observer + sundman::Observer>(
+                start: ContactStart<'_, L>,
+                budget: &mut usize,
+                obs: O,
+            ) -> ContactEnd<Self::Resume> {
+                $integrate(start, budget, obs)
+            }
+        }
+    };
 }
 
-/// The Sundman form by Taylor series (research only).
-#[cfg(feature = "research")]
-pub(crate) struct SundmanTaylor;
+scheme!(
+    /// Adaptive Dormand–Prince 5(4) on Eq 26 as written: the reference.
+    Reference,
+    contact::Resume,
+    contact::integrate
+);
 
-#[cfg(feature = "research")]
-impl ContactIntegrator for SundmanTaylor {
-    type Resume = sundman::Resume;
+scheme!(
+    /// The Sundman form by Taylor series (research only).
+    #[cfg(feature = "research")]
+    SundmanTaylor,
+    sundman::Resume,
+    sundman::integrate
+);
 
-    #[inline(always)]
-    fn integrate<L: Load, O: contact::Observer + sundman::Observer>(
-        start: ContactStart<'_, L>,
-        budget: &mut usize,
-        obs: O,
-    ) -> ContactEnd<Self::Resume> {
-        sundman::integrate(start, budget, obs)
-    }
-}
+scheme!(
+    /// The Sundman form by DOP853 from the onset (research only; the default scheme hands its
+    /// contacts over to DOP853 midway).
+    #[cfg(feature = "research")]
+    SundmanDop853,
+    dop853::Resume,
+    dop853::integrate
+);
 
-/// The Sundman form by DOP853 from the onset (research only; the default scheme hands its
-/// contacts over to DOP853 midway).
-#[cfg(feature = "research")]
-pub(crate) struct SundmanDop853;
-
-#[cfg(feature = "research")]
-impl ContactIntegrator for SundmanDop853 {
-    type Resume = dop853::Resume;
-
-    #[inline(always)]
-    fn integrate<L: Load, O: contact::Observer + sundman::Observer>(
-        start: ContactStart<'_, L>,
-        budget: &mut usize,
-        obs: O,
-    ) -> ContactEnd<Self::Resume> {
-        dop853::integrate(start, budget, obs)
-    }
-}
-
-/// The Sundman form by the Adams–Bashforth–Moulton pair, handing over to DOP853 off the Hertz
-/// hump: the default.
-pub(crate) struct SundmanAdams;
-
-impl ContactIntegrator for SundmanAdams {
-    type Resume = dop853::Resume;
-
-    #[inline(always)]
-    fn integrate<L: Load, O: contact::Observer + sundman::Observer>(
-        start: ContactStart<'_, L>,
-        budget: &mut usize,
-        obs: O,
-    ) -> ContactEnd<Self::Resume> {
-        adams::integrate(start, budget, obs)
-    }
-}
+scheme!(
+    /// The Sundman form by the Adams–Bashforth–Moulton pair, handing over to DOP853 off the
+    /// Hertz hump: the default.
+    SundmanAdams,
+    dop853::Resume,
+    adams::integrate
+);

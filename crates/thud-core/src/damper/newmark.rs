@@ -213,9 +213,9 @@ impl Ledger {
     }
 }
 
-/// A Newmark run in progress on the uniform grid `t_k = k·dt`.
-struct Newmark<'a> {
-    sys: &'a Sys,
+/// A Newmark run in progress on the uniform grid `t_k = k·dt` (the design's constants, which
+/// every step reads, are passed in).
+struct Newmark {
     /// The force on the main mass, if any.
     load: Option<Harmonic>,
     /// The accepted state at time `t` (s).
@@ -228,17 +228,16 @@ struct Newmark<'a> {
     out: Ledger,
 }
 
-impl Newmark<'_> {
+impl Newmark {
     /// The force (N) on the main mass at time `t`, if there is one.
     #[inline]
-    fn force(&self, t: f64) -> Option<f64> {
-        self.load.map(|l| self.sys.big_m * l.accel(t))
+    fn force(&self, sys: &Sys, t: f64) -> Option<f64> {
+        self.load.map(|l| sys.big_m * l.accel(t))
     }
 
     /// One flight step up to `t_next` (`h` long), or up to the contact onset inside it.
-    fn flight(&mut self, h: f64, t_next: f64) -> StepOutcome {
-        let sys = self.sys;
-        let n1 = flight_step(sys, &self.st, h, self.force(t_next));
+    fn flight(&mut self, sys: &Sys, h: f64, t_next: f64) -> StepOutcome {
+        let n1 = flight_step(sys, &self.st, h, self.force(sys, t_next));
         let z1 = n1.pos[1] - n1.pos[0];
         let d1 = z1.abs() - sys.half_gap;
         if d1 > 0.0 && self.splits < MAX_SPLITS {
@@ -249,12 +248,12 @@ impl Newmark<'_> {
             let st0 = self.st;
             let t0 = self.t;
             let (theta, mut sub) = split(g0, d1, n1, |th| {
-                let q = flight_step(sys, &st0, th * h, self.force(t0 + th * h));
+                let q = flight_step(sys, &st0, th * h, self.force(sys, t0 + th * h));
                 (q.pen(sys, s).0, q)
             });
             let t1 = self.t + theta * h;
             self.out.commit(sys, None, self.t, &self.st, t1, &sub);
-            contact_accels(sys, s, &mut sub, self.force(t1));
+            contact_accels(sys, s, &mut sub, self.force(sys, t1));
             self.st = sub;
             self.t = t1;
             self.open = Some(ImpactEvent::onset(t1, wall, sub.pen(sys, s).1, 0.0));
@@ -265,7 +264,7 @@ impl Newmark<'_> {
         if d1 > 0.0 {
             // Out of splits: switch to contact at the step end.
             let wall = Wall::facing(z1);
-            let load = self.force(t_next);
+            let load = self.force(sys, t_next);
             contact_accels(sys, wall.sign(), &mut self.st, load);
             self.open = Some(ImpactEvent::onset(t_next, wall, self.st.pen(sys, wall.sign()).1, d1));
         }
@@ -273,10 +272,9 @@ impl Newmark<'_> {
     }
 
     /// One step in contact `cur` up to `t_next` (`h` long), or up to the exit inside it.
-    fn contact(&mut self, mut cur: ImpactEvent, h: f64, t_next: f64) -> StepOutcome {
-        let sys = self.sys;
+    fn contact(&mut self, sys: &Sys, mut cur: ImpactEvent, h: f64, t_next: f64) -> StepOutcome {
         let s = cur.wall.sign();
-        let n1 = contact_step(sys, s, &self.st, h, self.force(t_next));
+        let n1 = contact_step(sys, s, &self.st, h, self.force(sys, t_next));
         let d1 = n1.pen(sys, s).0;
         if d1 < 0.0 && self.splits < MAX_SPLITS {
             self.splits += 1;
@@ -284,15 +282,15 @@ impl Newmark<'_> {
             let st0 = self.st;
             let t0 = self.t;
             let (theta, mut sub) = split(g0, d1, n1, |th| {
-                let q = contact_step(sys, s, &st0, th * h, self.force(t0 + th * h));
+                let q = contact_step(sys, s, &st0, th * h, self.force(sys, t0 + th * h));
                 (q.pen(sys, s).0, q)
             });
             let t1 = self.t + theta * h;
             self.out.commit(sys, Some(cur.wall), self.t, &self.st, t1, &sub);
-            flight_accels(sys, &mut sub, self.force(t1));
+            flight_accels(sys, &mut sub, self.force(sys, t1));
             self.st = sub;
             self.t = t1;
-            self.close(cur, t1);
+            self.close(sys, cur, t1);
             return StepOutcome::ToSwitch { theta };
         }
         self.out.commit(sys, Some(cur.wall), self.t, &self.st, t_next, &n1);
@@ -300,9 +298,9 @@ impl Newmark<'_> {
         self.st = n1;
         if d1 < 0.0 {
             // Out of splits: leave the contact at the step end.
-            let load = self.force(t_next);
+            let load = self.force(sys, t_next);
             flight_accels(sys, &mut self.st, load);
-            self.close(cur, t_next);
+            self.close(sys, cur, t_next);
         } else {
             self.open = Some(cur);
         }
@@ -310,8 +308,8 @@ impl Newmark<'_> {
     }
 
     /// Ends the contact `cur` at time `t_end` (s) with the current state's exit speed.
-    fn close(&mut self, cur: ImpactEvent, t_end: f64) {
-        let u_out = -self.st.pen(self.sys, cur.wall.sign()).1;
+    fn close(&mut self, sys: &Sys, cur: ImpactEvent, t_end: f64) {
+        let u_out = -self.st.pen(sys, cur.wall.sign()).1;
         self.out.impacts.push(cur.ended(t_end, u_out));
         self.open = None;
     }
@@ -320,7 +318,7 @@ impl Newmark<'_> {
 /// A Newmark run in progress, advanced stretch by stretch ([`Stepper`]).
 pub(crate) struct NewmarkSim<'a> {
     sys: Sys,
-    nm: NewmarkState,
+    nm: Newmark,
     dt: f64,
     /// The next grid point to reach, `k_next·dt`.
     k_next: u64,
@@ -332,16 +330,6 @@ pub(crate) struct NewmarkSim<'a> {
     cancel: Option<&'a AtomicBool>,
     /// The grid steps a run may take: [`NEWMARK_STEP_CAP`], unlimited with `no_limit`.
     step_cap: u64,
-}
-
-/// What [`Newmark`] holds apart from its borrow of the design's constants.
-struct NewmarkState {
-    load: Option<Harmonic>,
-    st: St,
-    t: f64,
-    open: Option<ImpactEvent>,
-    splits: u32,
-    out: Ledger,
 }
 
 impl<'a> NewmarkSim<'a> {
@@ -368,7 +356,7 @@ impl<'a> NewmarkSim<'a> {
         };
         NewmarkSim {
             sys,
-            nm: NewmarkState {
+            nm: Newmark {
                 load,
                 st,
                 t: 0.0,
@@ -394,16 +382,7 @@ impl Stepper for NewmarkSim<'_> {
             return;
         }
         let dt = self.dt;
-        let state = std::mem::replace(&mut self.nm, NewmarkState::empty());
-        let mut nm = Newmark {
-            sys: &self.sys,
-            load: state.load,
-            st: state.st,
-            t: state.t,
-            open: state.open,
-            splits: state.splits,
-            out: state.out,
-        };
+        let (sys, nm) = (&self.sys, &mut self.nm);
         let n_steps = (t_end / dt).ceil() as u64;
         let mut k_next = self.k_next;
         while k_next <= n_steps {
@@ -423,8 +402,8 @@ impl Stepper for NewmarkSim<'_> {
                 break;
             }
             let outcome = match nm.open {
-                None => nm.flight(h, t_next),
-                Some(cur) => nm.contact(cur, h, t_next),
+                None => nm.flight(sys, h, t_next),
+                Some(cur) => nm.contact(sys, cur, h, t_next),
             };
             let next_grid_step = match outcome {
                 StepOutcome::ToGridPoint => {
@@ -445,7 +424,6 @@ impl Stepper for NewmarkSim<'_> {
         }
         self.k_next = k_next;
         self.t_reached = if halted { nm.t } else { t_end };
-        self.nm = NewmarkState { load: nm.load, st: nm.st, t: nm.t, open: nm.open, splits: nm.splits, out: nm.out };
     }
 
     fn halted(&self) -> bool {
@@ -486,20 +464,6 @@ impl Stepper for NewmarkSim<'_> {
         }
         let st = self.nm.st;
         Start { x: st.pos[0], v: st.vel[0], y: st.pos[1], w: st.vel[1], phase: phase_at(self.nm.t) }
-    }
-}
-
-impl NewmarkState {
-    fn empty() -> Self {
-        let zero = Vector2::zeros();
-        NewmarkState {
-            load: None,
-            st: St { pos: zero, vel: zero, acc: zero, load: 0.0 },
-            t: 0.0,
-            open: None,
-            splits: 0,
-            out: Ledger::empty(),
-        }
     }
 }
 

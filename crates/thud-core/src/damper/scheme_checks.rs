@@ -16,13 +16,10 @@ pub(crate) fn sys(c1: f64, k: f64) -> Sys {
     Sys::new(&p)
 }
 
-/// Isolated contacts from the same state, integrated by `new` (design, start, time limit (s),
-/// budget): the release speed, time, peak penetration and dissipation of the reference
-/// (Dormand–Prince in t, whose own error is ~1e-9 of the speed) within 2e-8, and of the
-/// Sundman–Taylor scheme (error ~1e-12) within 1e-9; at most `max_budget` budget units a
-/// contact; and for two free elastic bodies the relative speed back closer than the reference
-/// brings it.
-pub(crate) fn isolated_contacts<R>(max_budget: usize, new: impl Fn(&Sys, State, f64, &mut usize) -> ContactEnd<R>) {
+/// The isolated contacts every scheme is checked on (contact damping, main spring, approach
+/// speed, main-mass offset), each shown to `check` with its design, its start and the
+/// reference's integration of it.
+pub(crate) fn with_reference(mut check: impl FnMut(&Sys, State, &ContactEnd)) {
     for (c1, k, u0, x0) in
         [(0.0, 0.0, 1.4, 0.0), (20.0, 0.0, 1.4, 0.0), (20.0, 500.0, 0.3, -0.02), (60.0, 500.0, 2.0, 0.02)]
     {
@@ -35,6 +32,19 @@ pub(crate) fn isolated_contacts<R>(max_budget: usize, new: impl Fn(&Sys, State, 
             &mut left,
             contact::Unobserved,
         );
+        check(&s, y0, &old);
+    }
+}
+
+/// Isolated contacts from the same state, integrated by `new` (design, start, time limit (s),
+/// budget): the release speed, time, peak penetration and dissipation of the reference
+/// (Dormand–Prince in t, whose own error is ~1e-9 of the speed) within 2e-8, and of the
+/// Sundman–Taylor scheme (error ~1e-12) within 1e-9; at most `max_budget` budget units a
+/// contact; and for two free elastic bodies the relative speed back closer than the reference
+/// brings it.
+pub(crate) fn isolated_contacts<R>(max_budget: usize, new: impl Fn(&Sys, State, f64, &mut usize) -> ContactEnd<R>) {
+    with_reference(|s, y0, old| {
+        let (s, u0) = (*s, y0[3]);
         let mut left = 100_000;
         let taylor = sundman::integrate(ContactStart::free(&s, y0, 1.0), &mut left, contact::Unobserved);
         let mut left = 100_000;
@@ -50,12 +60,12 @@ pub(crate) fn isolated_contacts<R>(max_budget: usize, new: impl Fn(&Sys, State, 
         }
         assert!((old.t / new.t - 1.0).abs() < 2e-8 && (taylor.t / new.t - 1.0).abs() < 1e-9);
         assert!((old.pen_max / new.pen_max - 1.0).abs() < 2e-8 && (taylor.pen_max / new.pen_max - 1.0).abs() < 1e-9);
-        if c1 == 0.0 && k == 0.0 {
+        if s.c1 == 0.0 && s.k == 0.0 {
             // Two free bodies, elastic: the relative speed comes back exactly; closer than the
             // reference brings it back.
             assert!((new.y[3] + u0).abs() < (old.y[3] + u0).abs(), "{} vs {}", new.y[3], old.y[3]);
         }
-    }
+    });
 }
 
 /// A contact cut by its time limit at each fraction `cuts` of its duration, by `integrate`

@@ -49,7 +49,9 @@ pub struct SteadyMotion {
     pub amplitude_linear_m: Option<f64>,
     /// `20·log10(amplitude_linear/amplitude)` (dB): how much the damper cuts the amplitude.
     pub reduction_db: Option<f64>,
-    /// Impacts whose onset lies in the window.
+    /// Impacts whose onset lies in the window (0 in a design's [`crate::design::Steady`] read
+    /// back from JSON, which does not write it).
+    #[serde(default)]
     pub impacts: usize,
     /// Those impacts per forcing period.
     pub impacts_per_period: f64,

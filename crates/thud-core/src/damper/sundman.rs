@@ -30,6 +30,8 @@ use nalgebra::SVector;
 use crate::contact::{contact_duration, peak_approach};
 
 use super::contact::{ContactEnd, ContactOutcome, Load, State, Sys};
+#[cfg(feature = "research")]
+use super::contact::{ContactStart, Stretch};
 
 /// The integrated state `[x, x', σ, δ', E_contact, E_viscous, t − t_onset]` (m, m/s, √m, m/s,
 /// J, J, s).
@@ -71,6 +73,15 @@ pub(crate) struct Series {
     pub raw: [f64; NC],
 }
 
+/// Sets the constant terms of the state's seven series `c` (`[x, x', σ, δ', E_c, E_v, t −
+/// t_onset]`) to the state `y`.
+#[inline(always)]
+pub(crate) fn seed(c: &mut [[f64; NC]; 7], y: &Y) {
+    for (row, &yi) in c.iter_mut().zip(y.iter()) {
+        row[0] = yi;
+    }
+}
+
 /// `Σ_{j=0..=k} a_j·b_{k−j}`: coefficient `k` of the product of two series.
 #[cfg(feature = "research")]
 #[inline(always)]
@@ -103,16 +114,11 @@ impl Series {
     fn expand_in<L: Load, const CL: bool>(sys: &Sys, load: &L, s: f64, t_onset: f64, y: &Y) -> Self {
         let clamped = CL;
         let z = [0.0; NC];
-        let (mut x, mut v, mut sg, mut u, mut ec, mut ev, mut tt) = (z, z, z, z, z, z, z);
+        let mut c = [z; 7];
+        seed(&mut c, y);
+        let [mut x, mut v, mut sg, mut u, mut ec, mut ev, mut tt] = c;
         let (mut s2, mut s3, mut a, mut b, mut sv, mut raw) = (z, z, z, z, z, z);
         let (mut q2, mut cs, mut sn) = (z, z, z);
-        x[0] = y[0];
-        v[0] = y[1];
-        sg[0] = y[2];
-        u[0] = y[3];
-        ec[0] = y[4];
-        ev[0] = y[5];
-        tt[0] = y[6];
         let (f, omega, phi) = load.harmonic(t_onset + y[6]);
         if L::ON {
             let (sp, cp) = phi.sin_cos();
@@ -600,12 +606,7 @@ pub(crate) fn onset(sys: &Sys, y0: &State) -> Onset {
 /// Integrates one contact at wall `s` from `y0 = [x, x', 0, u0, 0, 0]` (u0 > 0) at time `t0`
 /// until the exit, the time limit `t_limit` or the step budget.
 #[cfg(feature = "research")]
-pub(crate) fn integrate<L: Load>(
-    start: super::contact::ContactStart<'_, L>,
-    budget: &mut usize,
-    obs: impl Observer,
-) -> End {
-    use super::contact::ContactStart;
+pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize, obs: impl Observer) -> End {
     let ContactStart { sys, load, s, t0, y0, t_limit, .. } = start;
     let Onset { amax, tau, sc, y } = onset(sys, &y0);
     // The contact's length in θ: about 1.9·τ/√α_max (the integral of dt/√δ over a half sine).
@@ -614,16 +615,10 @@ pub(crate) fn integrate<L: Load>(
     it.run(budget)
 }
 
-/// Carries on a contact cut by its time limit up to the new limit `t_limit`.
+/// Carries on a contact cut by its time limit over the stretch `at`.
 #[cfg(feature = "research")]
-pub(crate) fn resume<L: Load>(
-    sys: &Sys,
-    load: L,
-    r: &Resume,
-    t_limit: f64,
-    budget: &mut usize,
-    obs: impl Observer,
-) -> End {
+pub(crate) fn resume<L: Load>(at: Stretch<'_, L>, r: &Resume, budget: &mut usize, obs: impl Observer) -> End {
+    let Stretch { sys, load, t_limit } = at;
     let it = Integration {
         sys,
         load,

@@ -56,8 +56,8 @@ impl Zone {
     }
 }
 
-/// What one design is worth.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// What one design is worth (the default: a run with no impact and no motion).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Metrics {
     pub n_impacts: usize,
     /// Damping inclination e (Eq 27) from the first two cycle maxima (cm/s); None if < 2 maxima.
@@ -212,34 +212,48 @@ pub(crate) fn evaluate_checked(
 }
 
 /// The steady state of a forced run of a design: the motion over the last window
-/// ([`SteadyMotion`]) and the level of the rattle over it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// ([`SteadyMotion`], whose fields it reads as its own) and the level of the rattle over it.
+///
+/// Written (JSON, CSV, Python) as the window, amplitudes, impacts per period, `leq_db`, the
+/// three flags and the verdict, in that order: without the motion's impact count and previous
+/// amplitude, which a `Steady` read back from JSON holds as 0 and None.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 pub struct Steady {
-    /// Forcing periods N in the window.
-    pub periods: u32,
-    /// The window (s).
-    pub window_start_s: f64,
-    pub window_end_s: f64,
-    /// Largest |x| in the window (m).
-    pub amplitude_m: f64,
-    /// The main mass without the ball: `F0/√((K − MΩ²)² + (CΩ)²)` (m); None where unbounded.
-    pub amplitude_linear_m: Option<f64>,
-    /// `20·log10(amplitude_linear/amplitude)` (dB, > 0 when the damper cuts the amplitude).
-    pub reduction_db: Option<f64>,
-    /// Impacts per forcing period in the window.
-    pub impacts_per_period: f64,
+    /// The motion over the last window.
+    #[serde(flatten)]
+    pub motion: SteadyMotion,
     /// Energy-average level at the observer over the window (dB re 20 µPa); None when no
     /// impact sounds in it.
     pub leq_db: Option<f64>,
-    /// Whether x repeats from period to period within 1e-3 of the amplitude.
-    pub periodic: bool,
-    /// Whether the amplitude of the window is within 1e-3 of the window before's.
-    pub settled: bool,
-    /// Whether a work cap stopped the run before the window's end.
-    pub truncated: bool,
-    /// The verdict on the motion ([`crate::verdict`]): what every surface says of it.
-    #[serde(default)]
-    pub verdict: crate::verdict::Verdict,
+}
+
+impl std::ops::Deref for Steady {
+    type Target = SteadyMotion;
+
+    fn deref(&self) -> &SteadyMotion {
+        &self.motion
+    }
+}
+
+impl Serialize for Steady {
+    fn serialize<S: serde::Serializer>(&self, ser: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let m = &self.motion;
+        let mut st = ser.serialize_struct("Steady", 12)?;
+        st.serialize_field("periods", &m.periods)?;
+        st.serialize_field("window_start_s", &m.window_start_s)?;
+        st.serialize_field("window_end_s", &m.window_end_s)?;
+        st.serialize_field("amplitude_m", &m.amplitude_m)?;
+        st.serialize_field("amplitude_linear_m", &m.amplitude_linear_m)?;
+        st.serialize_field("reduction_db", &m.reduction_db)?;
+        st.serialize_field("impacts_per_period", &m.impacts_per_period)?;
+        st.serialize_field("leq_db", &self.leq_db)?;
+        st.serialize_field("periodic", &m.periodic)?;
+        st.serialize_field("settled", &m.settled)?;
+        st.serialize_field("truncated", &m.truncated)?;
+        st.serialize_field("verdict", &m.verdict)?;
+        st.end()
+    }
 }
 
 /// The steady state of `run` of `design`, if the design is forced.
@@ -251,24 +265,7 @@ pub fn steady(run: &Run, design: &ValidDesign) -> Result<Option<Steady>, ThudErr
 /// response's design at one frequency).
 pub(crate) fn run_steady(run: &Run, design: &Design) -> Result<Option<Steady>, ThudError> {
     let Some(m) = run.steady else { return Ok(None) };
-    Ok(Some(with_level(&m, run_leq_db(run, design, m.window_start_s, m.window_end_s)?)))
-}
-
-fn with_level(m: &SteadyMotion, leq_db: Option<f64>) -> Steady {
-    Steady {
-        periods: m.periods,
-        window_start_s: m.window_start_s,
-        window_end_s: m.window_end_s,
-        amplitude_m: m.amplitude_m,
-        amplitude_linear_m: m.amplitude_linear_m,
-        reduction_db: m.reduction_db,
-        impacts_per_period: m.impacts_per_period,
-        leq_db,
-        periodic: m.periodic,
-        settled: m.settled,
-        truncated: m.truncated,
-        verdict: m.verdict,
-    }
+    Ok(Some(Steady { motion: m, leq_db: run_leq_db(run, design, m.window_start_s, m.window_end_s)? }))
 }
 
 /// `Leq` (dB re 20 µPa) of the impacts of `run` of `design` over `[a, b]` (s); None when no

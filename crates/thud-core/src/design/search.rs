@@ -1,3 +1,4 @@
+// Over 800 lines: one search problem (its variables, objectives, constraints and evaluation) and the searchers over it.
 //! The design search of `thud design`: the best dampers within a user's limits, as a Pareto
 //! front.
 //!

@@ -1,3 +1,4 @@
+// Over 800 lines: one fit of c1 from records (envelopes, the table of runs, comparison, inputs), in order.
 //! The damper's contact damping c1 from measured decays of the structure carrying it, struck
 //! once, every other parameter of the design known (docs/model.md §13.2).
 //!
@@ -314,6 +315,7 @@ fn median5(y: &[f64]) -> Vec<f64> {
 
 /// A record as the main mass's displacement and its envelope for design `d` (its K and M turn
 /// an acceleration into displacement; its period sets the windows).
+// Over 80 lines: one record read in order: its displacement, each period's amplitude and noise, the bias taken out.
 pub fn observe(s: &Series, d: &Design) -> Result<Observed, ThudError> {
     let period = period_s(d)?;
     let t0 = s.t_s()[0];
@@ -709,6 +711,7 @@ pub const NOT_IDENTIFIABLE: &str = "a decay is the structure's own within its no
 /// of round-off between the record and the runs the ball missed. The records that show the
 /// ball are compared with the members the ball was hit in (the band at each c1 is then the
 /// distribution over those starts, so the 95 % coverage holds).
+// Over 80 lines: the two statistics' intervals, where they meet, the estimate and the grid's resolution.
 pub fn compare(d: &ValidDesign, table: &Table, observed: &[Observed]) -> Result<DamperFit, ThudError> {
     let periods = observed.iter().map(|o| o.usable).min().unwrap_or(0).min(table.envelopes[0][0].len());
     if periods < 3 {
@@ -990,6 +993,7 @@ pub struct InputShift {
 /// A design v0 that the records' own strike ([`super::strike`]) disagrees with beyond
 /// [`super::strike::DISAGREE_SDS`] of their joint uncertainty is carried with the relative
 /// uncertainty that covers the difference ([`super::strike::disagreement`]).
+// Over 80 lines: the fit, then each input's uncertainty propagated in turn (GUM §5.1).
 pub fn fit_with_inputs(
     d: &ValidDesign,
     records: &[Series],

@@ -204,6 +204,7 @@ fn log_decrement(t: &[f64], y: &[f64], crossings: &[f64], omega: f64, noise: f64
 
 /// Fits the structure's free decay in `s` with main mass `main_mass_kg` (kg). Errors name
 /// `data` (too short, no decay) or `main-mass`.
+// Over 80 lines: one Levenberg–Marquardt fit, from its start through its uncertainties, in order.
 pub fn fit(s: &Series, main_mass_kg: f64) -> Result<StructureFit, ThudError> {
     crate::limits::MAIN_MASS.check(main_mass_kg)?;
     let l = look(s)?;

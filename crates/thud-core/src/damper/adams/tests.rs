@@ -33,7 +33,7 @@ fn a_cut_contact_resumes_where_it_stopped() {
     scheme_checks::cut_contacts(
         &[0.05, 0.1, 0.3, 0.5, 0.7, 0.93, 0.99],
         |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
-        |s, r, left| dop853::resume(s, NoLoad, r, 1.0, left, Unobserved),
+        |s, r, left| dop853::resume(Stretch::free(s, 1.0), r, left, Unobserved),
     );
 }
 

@@ -59,12 +59,16 @@ fn a_cut_contact_resumes_where_it_stopped() {
         let r = first.resume.expect("a cut contact can resume");
         let mut left = 10_000;
         let mut seen_from = f64::NAN;
-        let end =
-            resume(&s, NoLoad, &r, 1.0, &mut left, |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
+        let end = resume(
+            Stretch::free(&s, 1.0),
+            &r,
+            &mut left,
+            |t0: f64, _: &State, _: &State, _: f64, _: &State, _: &State| {
                 if seen_from.is_nan() {
                     seen_from = t0;
                 }
-            });
+            },
+        );
         assert_eq!(seen_from, cut * tau, "the first step starts where the cut left it");
         assert_eq!(end.outcome, ContactOutcome::Separated);
         assert!((end.t / whole.t - 1.0).abs() < 1e-8, "{} vs {}", end.t, whole.t);

@@ -1,37 +1,27 @@
+use super::super::contact;
 use super::super::contact::ContactStart;
-use super::super::contact::{self, NoLoad};
-use super::super::scheme_checks::sys;
+use super::super::scheme_checks::{self, sys};
 use super::*;
 
 /// Isolated contacts from the same state: the release speed, time and dissipation of the
 /// reference (Dormand–Prince in t, whose own error is ~1e-9 of the speed) within 2e-8.
 #[test]
 fn isolated_contacts_match_the_reference() {
-    for (c1, k, u0, x0) in
-        [(0.0, 0.0, 1.4, 0.0), (20.0, 0.0, 1.4, 0.0), (20.0, 500.0, 0.3, -0.02), (60.0, 500.0, 2.0, 0.02)]
-    {
-        let s = sys(c1, k);
-        let y0 = State::new(x0, 0.1, 0.0, u0, 0.0, 0.0);
-        let a = 10.0 * (k * x0.abs() / 0.5 + 1.0);
+    scheme_checks::with_reference(|s, y0, old| {
+        let u0 = y0[3];
         let mut left = 100_000;
-        let old = contact::integrate(
-            ContactStart { a_bound: a, ..ContactStart::free(&s, y0, 1.0) },
-            &mut left,
-            contact::Unobserved,
-        );
-        let mut left = 100_000;
-        let new = integrate(ContactStart::free(&s, y0, 1.0), &mut left, contact::Unobserved);
+        let new = integrate(ContactStart::free(s, y0, 1.0), &mut left, contact::Unobserved);
         assert_eq!(old.outcome, ContactOutcome::Separated);
         assert_eq!(new.outcome, ContactOutcome::Separated);
         assert!((old.y[3] - new.y[3]).abs() < 2e-8 * u0, "{:?} vs {:?}", old.y, new.y);
         assert!((old.t / new.t - 1.0).abs() < 2e-8, "{} vs {}", old.t, new.t);
         assert!((old.pen_max / new.pen_max - 1.0).abs() < 2e-8);
         assert!((old.y[4] - new.y[4]).abs() < 2e-8 * 0.5 * u0 * u0 / s.kstar, "{:?} vs {:?}", old.y, new.y);
-        if c1 == 0.0 && k == 0.0 {
+        if s.c1 == 0.0 && s.k == 0.0 {
             // Two free bodies, elastic: the relative speed comes back exactly.
             assert!((new.y[3] + u0).abs() < 1e-12 * u0, "{}", new.y[3]);
         }
-    }
+    });
 }
 
 /// A contact cut by its time limit ends exactly there and carries on as if never cut.
@@ -47,7 +37,7 @@ fn a_cut_contact_resumes_where_it_stopped() {
         assert_eq!(first.outcome, ContactOutcome::EndOfRun);
         assert_eq!(first.t, cut * whole.t);
         let r = first.resume.expect("a cut contact can resume");
-        let end = resume(&s, NoLoad, &r, 1.0, &mut left, contact::Unobserved);
+        let end = resume(Stretch::free(&s, 1.0), &r, &mut left, contact::Unobserved);
         assert_eq!(end.outcome, ContactOutcome::Separated);
         assert!((end.t / whole.t - 1.0).abs() < 1e-12, "{} vs {}", end.t, whole.t);
         assert!(
