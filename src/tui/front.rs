@@ -19,6 +19,7 @@ use super::plot::{fit_bounds, Curve, LinePlot};
 use super::theme::{Palette, Role};
 use crate::design::search::{Column, Problem, Sense, Value, Variable};
 use crate::design::Design;
+use crate::error::ThudError;
 use crate::params::{DesignDraft, Param, Spelling};
 use crate::study;
 
@@ -124,7 +125,8 @@ impl Front {
                  shows one run's, so it could not show them"
                 .into()));
         }
-        let variables = r.variables.iter().map(|v| variable(v).map_err(&bad)).collect::<Result<Vec<_>, _>>()?;
+        let variables =
+            r.variables.iter().map(|v| variable(v).map_err(|e| bad(e.to_string()))).collect::<Result<Vec<_>, _>>()?;
         let objectives = r
             .objectives
             .iter()
@@ -200,17 +202,14 @@ impl Front {
 }
 
 /// The variable a report's entry describes, checked as `--vary`/`--choose` check theirs.
-fn variable(v: &VariableJson) -> Result<Variable, String> {
+fn variable(v: &VariableJson) -> Result<Variable, ThudError> {
     match (&v.options, v.from, v.to) {
-        (Some(options), _, _) => {
-            Variable::parse_choice(&format!("{}={}", v.name, options.join(","))).map_err(|e| e.to_string())
-        }
+        (Some(options), _, _) => Variable::parse_choice(&format!("{}={}", v.name, options.join(","))),
         (None, Some(lo), Some(hi)) if lo < hi => {
-            let row: &'static Param<DesignDraft> =
-                study::numeric_row(&v.name, Spelling::Flag).map_err(|e| e.to_string())?;
+            let row: &'static Param<DesignDraft> = study::numeric_row(&v.name, Spelling::Flag)?;
             Ok(Variable::Range { row, lo, hi })
         }
-        _ => Err(format!("variable '{}' has neither a range nor options", v.name)),
+        _ => Err(ThudError::invalid(format!("variable {}", v.name), "neither a range (from < to) nor options")),
     }
 }
 
