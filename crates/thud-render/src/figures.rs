@@ -142,7 +142,7 @@ fn draw_cells(
     frame.axes(svg, Some(title), super::svg::CLIP);
 }
 
-/// The cells of [`draw_cells`] alone (no grid, no axes): for a panel that draws its own.
+/// The cells of a cell chart alone (no grid, no axes): for a panel that draws its own.
 pub fn cells(svg: &mut Svg, frame: &Frame, xs: &[f64], ys: &[f64], cell: impl Fn(usize, usize) -> (String, String)) {
     let (ex, ey) = (edges(xs), edges(ys));
     let most = 14.0 * svg.scale();
