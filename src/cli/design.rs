@@ -207,10 +207,12 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
             *latest.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(text);
         }
     };
+    let started = std::time::Instant::now();
     let outcome = search::search(&p, settings, reference.as_deref(), None, &on_batch)?;
     // The search is over: from here a stop leaves the outputs as the writes below leave them
     // (the old files, or the new set), never a partial front beside a complete --save folder.
     drop(stop);
+    let search_s = started.elapsed().as_secs_f64();
     progress.done();
     let saved = match &a.save {
         Some(dir) => Some(save(dir, &p, &outcome, a.force)?),
@@ -220,7 +222,69 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
     if a.svg.is_none() && a.pdf.is_none() {
         return target.write(&text, out);
     }
-    write_with_figure(a, &target, &text, &figure(&p, &outcome), out)
+    let zones = zone_chart(a, &p, evaluations, search_s / outcome.all.len().max(1) as f64);
+    write_with_figure(a, &target, &text, &figure(&p, &outcome, zones), out)
+}
+
+/// Cells a side of the zone chart behind the front: about the search's budget in all, 8 to 40.
+fn chart_side(evaluations: usize) -> usize {
+    ((evaluations as f64).sqrt().round() as usize).clamp(8, 40)
+}
+
+/// The zone chart behind the front in the variables' panel, for two numeric (not counted)
+/// variables of a problem of single runs at the design's own frequency: the engine's study of
+/// those two axes over their ranges ([`crate::study::sweep`], as `thud sweep --vary` runs it),
+/// [`chart_side`] cells a side, its work checked as a study's. Its cost, estimated from the
+/// search's own pace (`per_design_s`), is said before it runs; a refused chart is left out
+/// with a line saying why.
+fn zone_chart(
+    a: &DesignSearchArgs,
+    p: &Problem,
+    evaluations: usize,
+    per_design_s: f64,
+) -> Option<crate::export::front::ZoneChart> {
+    use crate::params::{Accepts, Spelling};
+    use crate::study::{self, Grid, Vary};
+    if !p.band_hz.is_empty() || p.robust.is_some() {
+        return None;
+    }
+    let [Variable::Range { row: rx, lo: x0, hi: x1 }, Variable::Range { row: ry, lo: y0, hi: y1 }] = &p.variables[..]
+    else {
+        return None;
+    };
+    if [rx, ry].iter().any(|r| !matches!(r.accepts, Accepts::Quantity { .. })) {
+        return None;
+    }
+    let n = chart_side(evaluations);
+    let axis = |row, lo, hi| Vary { row, values: crate::design::linspace(lo, hi, n) };
+    let grid = Grid::new(p.base.clone(), vec![axis(*rx, *x0, *x1), axis(*ry, *y0, *y1)], Spelling::Flag).ok()?;
+    if let Err(r) = study::check_grid(&grid, &|name| a.design.has(name)) {
+        super::warn(&format!("the zone chart behind the front is left out: {r}"));
+        return None;
+    }
+    super::warn(&format!(
+        "zone chart behind the front: {n} × {n} designs, about {} s",
+        crate::units::sig(per_design_s * (n * n) as f64, 2)
+    ));
+    let s = match study::sweep(&grid, None, &|_, _| {}) {
+        Ok(s) => s,
+        Err(e) => {
+            super::warn(&format!("the zone chart behind the front is left out: {e}"));
+            return None;
+        }
+    };
+    let mut zones = vec![None; n * n];
+    for c in &s.cells {
+        // The study's C order: the second axis fastest.
+        let ij = grid.indices(c.index);
+        zones[ij[1] * n + ij[0]] = c.metrics.zone;
+    }
+    Some(crate::export::front::ZoneChart {
+        xs: grid.axes[0].values.clone(),
+        ys: grid.axes[1].values.clone(),
+        zones,
+        thresholds: p.base.thresholds,
+    })
 }
 
 /// Refuses `--svg`/`--pdf` up front where no figure can be drawn (not two objectives), a file
@@ -258,8 +322,9 @@ fn check_figure(a: &DesignSearchArgs, p: &Problem) -> Result<(), ThudError> {
 }
 
 /// The figure of the search: the front among every feasible design evaluated, in the
-/// objectives (as the columns read), and in the variables when there are two numeric ones.
-fn figure(p: &Problem, o: &Outcome) -> String {
+/// objectives (as the columns read), and in the variables when there are two numeric ones
+/// (over `zones`, the zone chart of those two variables, when computed).
+fn figure(p: &Problem, o: &Outcome, zones: Option<crate::export::front::ZoneChart>) -> String {
     use crate::export::front::{front_svg, FrontFigure, Panel};
     let feasible: Vec<&Candidate> = o.all.iter().filter(|c| c.feasible()).collect();
     let front: Vec<&Candidate> = o.front.iter().map(|&i| &o.all[i]).collect();
@@ -299,7 +364,7 @@ fn figure(p: &Problem, o: &Outcome) -> String {
         (Column::Inclination, Column::SplMax) => Some((t.inclination_cm_s, t.spl_db)),
         _ => None,
     };
-    front_svg(&FrontFigure { title, objectives, variables, zone_borders }, &crate::export::svg::Look::default())
+    front_svg(&FrontFigure { title, objectives, variables, zone_borders, zones }, &crate::export::svg::Look::default())
 }
 
 /// Writes the report (to `--out` or standard output) and the figure to `--svg`/`--pdf`, the

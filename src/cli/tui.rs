@@ -32,6 +32,11 @@ pub struct TuiArgs {
     #[arg(long, value_name = "FILE", num_args = 0..=1)]
     #[allow(clippy::option_option)]
     pub tour: Option<Option<std::path::PathBuf>>,
+    /// Open the front view on the design front of FILE, the report `thud design … --json`
+    /// writes: ↑↓ walk along it, Enter loads the selected design (D shows and hides the view).
+    /// The explorer starts on the search's starting design.
+    #[arg(long, value_name = "FILE")]
+    pub front: Option<std::path::PathBuf>,
 }
 
 /// `thud` with no subcommand: the explorer on a terminal, the help text otherwise (pipes,
@@ -59,6 +64,7 @@ impl TuiArgs {
             export_dir: self.export_dir.clone(),
             tour,
             theme: self.theme,
+            front: self.front.clone(),
         }
     }
 }

@@ -77,6 +77,9 @@ pub enum Action {
     AnimRestart,
     /// The Table 1 view: the paper's measurements beside both models (again: back).
     Table1,
+    /// The front view: the design front of `thud tui --front FILE`, ↑↓ walk along it, Enter
+    /// loads the selected design (again: back).
+    FrontView,
 }
 
 /// One binding: the key, its modifiers, the action, its name in `config.toml`'s `[keys]`, how
@@ -322,6 +325,15 @@ pub const KEYS: &[Binding] = &[
         "f",
         "chart: frequency response (F0 > 0), f marked (chart focused: ←→ move f) / zones",
         "response",
+    ),
+    bind(
+        KeyCode::Char('D'),
+        SHIFT,
+        Action::FrontView,
+        "front",
+        "D",
+        "design front of thud tui --front FILE: ↑↓ walk, Enter loads (D again: back)",
+        "",
     ),
 ];
 

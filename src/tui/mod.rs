@@ -19,9 +19,10 @@
 //! typed keys of `cache_key` (built on `fingerprint`); `ui` (`draw` and the layout, reading
 //! the state only) drawing one module per area: `header`, `status`, `footer`, `caption` (the
 //! tour's), `popups` (help and the lists), and the panels `params`, `readout`, `waveform`,
-//! `polar`, `history`, `chart`, `response`, `bifurcation`, `anim` and `table1` (Table 1 beside
-//! both models), the readout's and the chart's view-models beside their widgets (the small
-//! panels' few lines stay in `ui`, as the app imports those widgets' types), their frames from
+//! `polar`, `history`, `chart`, `response`, `bifurcation`, `anim`, `table1` (Table 1 beside
+//! both models) and `front` (the design front of `thud tui --front FILE`), the readout's and
+//! the chart's view-models beside their widgets (the small panels' few lines stay in `ui`, as
+//! the app imports those widgets' types), their frames from
 //! `titles` (on `plot` and `theme`, whose ASCII spelling is [`crate::ascii`]'s); `fields` (the
 //! editable parameters), `explain` (what each field and number means), `files` (the export
 //! menu), `tour` (the guided tour's steps), `keys` (the key table), `input_reader` (the input
@@ -41,6 +42,7 @@ pub mod fields;
 pub mod files;
 pub mod fingerprint;
 mod footer;
+pub mod front;
 pub mod hangup;
 mod header;
 pub mod history;
@@ -99,6 +101,9 @@ pub enum TuiError {
     /// A thread the explorer needs could not be started.
     #[error("cannot start the explorer's {0} thread ({1}); the system refuses new threads (a pids limit?)")]
     Thread(&'static str, #[source] std::io::Error),
+    /// The `--front` file cannot be read or is not a front the explorer can show.
+    #[error(transparent)]
+    Front(#[from] front::FrontError),
     /// The terminal hung up while the explorer ran (its input reports POLLHUP).
     #[error("the terminal is gone (its input hung up); the explorer ended")]
     TerminalGone,
@@ -108,7 +113,7 @@ impl TuiError {
     /// The exit status: 1 for a terminal or system failure, 2 for bad input (preset, tour).
     pub fn exit_code(&self) -> i32 {
         match self {
-            TuiError::Preset(_) | TuiError::Tour(_) => 2,
+            TuiError::Preset(_) | TuiError::Tour(_) | TuiError::Front(_) => 2,
             TuiError::Terminal(_) | TuiError::Draw(_) | TuiError::Thread(..) | TuiError::TerminalGone => 1,
         }
     }
@@ -126,11 +131,17 @@ const TICK: Duration = Duration::from_millis(120);
 /// or after the screen is restored. The user's `config.toml` is read (never written): a
 /// problem with it is shown in the status line and the defaults are used.
 pub fn run(opts: &Options) -> Result<(), TuiError> {
-    let design = presets::preset(&opts.preset)?;
+    let front = opts.front.as_deref().map(front::Front::load).transpose()?;
+    // With a front the explorer starts on the search's starting design.
+    let design = match &front {
+        Some(f) => f.base.clone(),
+        None => presets::preset(&opts.preset)?,
+    };
     fields::check_loaded(&design)?;
     let tour_def = opts.tour.as_ref().map(tour::Tour::load).transpose()?;
     let theme = Palette::from_env(opts.ascii);
-    let mut app = App::new(design, &opts.preset, theme);
+    let name = if front.is_some() { "front-start" } else { opts.preset.as_str() };
+    let mut app = App::new(design, name, theme);
     app.host.tour_def = tour_def.map(Arc::new);
     app.mouse = opts.mouse;
     app.configure(&config::load_user_config());
@@ -139,6 +150,10 @@ pub fn run(opts: &Options) -> Result<(), TuiError> {
         app.theme = Palette { ascii: app.theme.ascii, ..theme }.with_theme(t);
     }
     app.host.data_dir = store::Dirs::project().map(|d| d.data_dir);
+    if let Some(f) = front {
+        app.host.front = Some(Arc::new(f));
+        app.act(keys::Action::FrontView);
+    }
     if let Some(dir) = &opts.export_dir {
         app.host.export_dir.clone_from(dir);
     }

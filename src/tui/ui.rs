@@ -134,6 +134,12 @@ fn body_panels(f: &mut Frame, app: &App, body: Rect) -> Drawn {
             return Drawn::default();
         }
     }
+    if let (Some(k), Some(front)) = (app.screen.front, app.host.front.as_deref()) {
+        if body.width >= 30 && body.height >= 10 {
+            front_panel(f, app, front, k, body);
+            return Drawn::default();
+        }
+    }
     if app.screen.zoom && body.width >= 30 && body.height >= 6 {
         return zoomed(f, app, body);
     }
@@ -227,6 +233,48 @@ fn anim_panel<'a>(f: &mut Frame, app: &'a App, anim: &'a super::anim::Anim, area
         theme: app.theme,
     };
     f.render_widget(view, area);
+}
+
+/// The front view in the whole body: the front beside the readout (under it on a narrow
+/// screen), so a loaded design's readout shows beside the front's numbers.
+fn front_panel(f: &mut Frame, app: &App, front: &super::front::Front, k: usize, area: Rect) {
+    use super::keys::Action;
+    let th = &app.theme;
+    let (plot, readout, compact) = if area.width >= 100 {
+        let [readout, plot] = Layout::horizontal([Constraint::Length(40), Constraint::Min(1)]).areas(area);
+        (plot, readout, false)
+    } else {
+        let h = if area.height >= 19 { 7 } else { 6 };
+        let [plot, readout] = Layout::vertical([Constraint::Min(1), Constraint::Length(h)]).areas(area);
+        (plot, readout, true)
+    };
+    readout::readout_widget(f, app, readout, compact);
+    let title = fit(
+        th,
+        &[
+            format!(" design front of {}: {} designs, the selected one highlighted ", front.file, front.points.len()),
+            format!(" design front: {} designs ", front.points.len()),
+            " front ".to_string(),
+        ],
+        plot.width,
+    );
+    let live_is = front.position(&app.design);
+    // The live design's objectives: its readout's, once computed for it.
+    let live = app
+        .acoustic()
+        .filter(|_| !app.design_busy())
+        .map(|a| front.objectives.iter().map(|(c, _)| c.value(&a.metrics, a.steady.as_ref())).collect());
+    let key = |a: Action| app.key_label(a).to_string();
+    let view = super::front::FrontView {
+        block: th.highlight_block(th.text(&title).into_owned()),
+        front,
+        selected: k,
+        live,
+        live_is,
+        keys: [format!("{}{}", key(Action::Up), key(Action::Down)), key(Action::Edit), key(Action::FrontView)],
+        theme: *th,
+    };
+    f.render_widget(view, plot);
 }
 
 /// The Table 1 view in the whole body: the measurements beside both models (the engine's table).

@@ -283,6 +283,7 @@ fn the_design_front_figure_names_every_look_and_keeps_its_colours_apart() {
     let doc = std::fs::read_to_string(&svg).unwrap();
     let (data, legend, _) = looks_of(&doc);
     assert!(data.len() >= 2, "the designs and the front: {data:?}");
+    assert!(data.iter().any(|l| l.kind == "cell"), "the zone chart behind the variables' designs: {data:?}");
     let missing: Vec<&Look> = data.iter().filter(|l| !legend.contains(l)).collect();
     assert!(missing.is_empty(), "drawn but not in the legend: {missing:?}");
     let colors: Vec<&str> = data.iter().map(|l| l.color.as_str()).collect::<BTreeSet<_>>().into_iter().collect();

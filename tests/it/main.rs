@@ -34,6 +34,8 @@ mod contact_sundman;
 mod cvd;
 mod damper;
 mod design;
+mod design_figure;
+mod design_front;
 mod design_paper;
 mod docs;
 mod ensemble;

@@ -113,7 +113,7 @@ pub fn zone_shape(zone: Option<Zone>) -> Shape {
 const ZONES: [Zone; 4] = [Zone::NoisyWeak, Zone::NoisyStrong, Zone::QuietStrong, Zone::QuietWeak];
 
 /// Cell edges (axis units) around grid values: midpoints, and half a step outside the ends.
-fn edges(values: &[f64]) -> Vec<f64> {
+pub fn edges(values: &[f64]) -> Vec<f64> {
     match values {
         [] => vec![],
         [v] => vec![v - 0.5 * v.abs().max(1e-9) * 0.1, v + 0.5 * v.abs().max(1e-9) * 0.1],
@@ -138,6 +138,12 @@ fn draw_cells(
     cell: impl Fn(usize, usize) -> (String, String),
 ) {
     frame.grid(svg);
+    cells(svg, frame, xs, ys, cell);
+    frame.axes(svg, Some(title), super::svg::CLIP);
+}
+
+/// The cells of a cell chart alone (no grid, no axes): for a panel that draws its own.
+pub fn cells(svg: &mut Svg, frame: &Frame, xs: &[f64], ys: &[f64], cell: impl Fn(usize, usize) -> (String, String)) {
     let (ex, ey) = (edges(xs), edges(ys));
     let most = 14.0 * svg.scale();
     let font =
@@ -153,7 +159,6 @@ fn draw_cells(
             }
         }
     }
-    frame.axes(svg, Some(title), super::svg::CLIP);
 }
 
 /// The design chart: impact mass × gap cells coloured by zone, with the zone number in each.
@@ -175,7 +180,7 @@ pub fn design_chart(chart: &Chart, title: &str, look: &Look) -> String {
 
 /// The legend of the four zones, with the thresholds: cell swatches for a cell chart, or the
 /// dots of Fig 17 (`dots`) in their colours.
-fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds, dots: bool) {
+pub fn zone_legend(svg: &mut Svg, frame: &Frame, t: &Thresholds, dots: bool) {
     let labels: Vec<String> = ZONES.iter().map(|z| format!("{} {}", z.number(), z.describe())).collect();
     let mut entries: Vec<(&str, &str)> = ZONES
         .iter()

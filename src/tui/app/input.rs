@@ -207,6 +207,10 @@ impl App {
             Action::Help => self.mode = Mode::Help(0),
             Action::Zoom => self.screen.zoom = !self.screen.zoom,
             Action::FocusNext | Action::FocusPrev => self.focus = self.focus.cycle(a == Action::FocusNext),
+            // The front view: ↑↓ walk along the front, Enter loads the selected design.
+            Action::Up | Action::Down if self.front_shown() => self.front_walk(a == Action::Down),
+            Action::Edit if self.front_shown() => return self.front_load(),
+            Action::FrontView => self.toggle_front(),
             // The response curve focused: ←→ move the forcing frequency (the marker), ↑↓ select.
             Action::Decrease { fine } | Action::Increase { fine }
                 if self.focus == Panel::Chart && self.screen.chart_view == ChartView::Response =>

@@ -115,6 +115,7 @@ impl App {
             return;
         }
         self.anim = None;
+        self.screen.front = None;
         self.table1 = Some(crate::tui::table1::Table1::compute());
         let key = self.key_label(Action::Table1).to_string();
         self.set_status(
@@ -140,6 +141,7 @@ impl App {
             return;
         }
         self.table1 = None;
+        self.screen.front = None;
         self.anim = Some(crate::tui::anim::Anim::default());
         self.set_status(
             "animation: Space plays/pauses, . , one frame, [ ] slower/faster, Home restarts, a closes",
@@ -190,5 +192,83 @@ impl App {
         if let Some(anim) = self.anim.as_mut() {
             anim.name_flash(&sim.eval.run.impacts, played_s);
         }
+    }
+}
+
+/// The front view.
+impl App {
+    /// True while the front view shows (a front is loaded and `D` opened it).
+    pub fn front_shown(&self) -> bool {
+        self.screen.front.is_some() && self.host.front.is_some()
+    }
+
+    /// `D`: shows the front of `--front FILE` (the live design selected if it is one of its
+    /// designs, else the first), or leaves it; without a front, says how to give one.
+    pub(crate) fn toggle_front(&mut self) {
+        if self.screen.front.take().is_some() {
+            self.set_status("front view closed", false);
+            return;
+        }
+        let Some(front) = self.host.front.clone() else {
+            self.set_status(
+                "no design front: start the explorer with thud tui --front FILE (the report thud design --json writes)",
+                false,
+            );
+            return;
+        };
+        self.anim = None;
+        self.table1 = None;
+        self.screen.front = Some(front.position(&self.design).unwrap_or(0));
+        self.front_hint();
+    }
+
+    /// The status line of the front view: its keys.
+    pub(crate) fn front_hint(&mut self) {
+        let Some(front) = self.host.front.clone() else { return };
+        let (up, down, load, close) = (
+            self.key_label(Action::Up).to_string(),
+            self.key_label(Action::Down).to_string(),
+            self.key_label(Action::Edit).to_string(),
+            self.key_label(Action::FrontView).to_string(),
+        );
+        self.set_status(
+            &format!(
+                "front of {} ({} designs): {up}{down} walk along it, {load} loads the selected design, {close} closes",
+                front.file,
+                front.points.len()
+            ),
+            false,
+        );
+    }
+
+    /// ↑↓ in the front view: the previous or next design along the front (in the order of the
+    /// first objective), stopping at the ends.
+    pub(crate) fn front_walk(&mut self, next: bool) {
+        let n = self.host.front.as_ref().map_or(0, |f| f.points.len());
+        if let Some(k) = self.screen.front.as_mut() {
+            *k = if next { (*k + 1).min(n.saturating_sub(1)) } else { k.saturating_sub(1) };
+        }
+    }
+
+    /// Enter in the front view: the selected design becomes the live one (one run, the user's
+    /// thresholds; undoable); its readout then gives the front's objectives.
+    pub(crate) fn front_load(&mut self) -> Vec<Request> {
+        let (Some(front), Some(k)) = (self.host.front.clone(), self.screen.front) else { return vec![] };
+        let Some(p) = front.points.get(k) else { return vec![] };
+        let mut design = p.design.clone();
+        design.thresholds = self.host.settings.config.thresholds(design.thresholds);
+        let setup = crate::tui::fields::Setup { design, runs: 1 };
+        if let Err(e) = crate::tui::fields::check_loaded(&setup) {
+            return self.error(format!("front design {}: {e}", k + 1));
+        }
+        let name = format!("front-{}", k + 1);
+        let reqs = self.apply_setup(
+            setup,
+            crate::tui::fields::Scope::All,
+            format!("front design {} of {} loaded (u undoes)", k + 1, front.points.len()),
+        );
+        self.preset = name;
+        self.mark_unmodified();
+        reqs
     }
 }

@@ -281,11 +281,21 @@ pub struct Options {
     pub tour: Option<TourSource>,
     /// `--theme`: overrides the `theme` of `config.toml`.
     pub theme: Option<config::Theme>,
+    /// `--front FILE`: the report of `thud design --json` whose front the front view shows.
+    pub front: Option<PathBuf>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Self { preset: "default".into(), ascii: false, mouse: true, export_dir: None, tour: None, theme: None }
+        Self {
+            preset: "default".into(),
+            ascii: false,
+            mouse: true,
+            export_dir: None,
+            tour: None,
+            theme: None,
+            front: None,
+        }
     }
 }
 
@@ -363,6 +373,8 @@ pub struct Screen {
     pub(crate) tour_over: bool,
     /// Jump to the best zone-3 design as soon as the chart is complete (a tour step asks).
     pub(crate) pending_best: bool,
+    /// The front view shows, with this front design selected (`D`; `--front FILE`).
+    pub front: Option<usize>,
     pub(crate) status: Option<Status>,
     pub(crate) spinner: usize,
 }
@@ -385,6 +397,8 @@ pub struct Host {
     pub(crate) load_error: Option<String>,
     /// Export files being written.
     pub exports: Vec<PathBuf>,
+    /// The design front the front view shows (`--front FILE`).
+    pub front: Option<Arc<crate::tui::front::Front>>,
 }
 
 /// Making an app.
@@ -406,6 +420,7 @@ impl App {
                 pulse: PulseView::for_preset(preset),
                 tour_over: false,
                 pending_best: false,
+                front: None,
                 status: Some(Status {
                     text: "ready — ? help (twice: what the numbers mean), T guided tour".into(),
                     error: false,
@@ -440,6 +455,7 @@ impl App {
                 saved: DesignList::default(),
                 load_error: None,
                 exports: Vec::new(),
+                front: None,
             },
         }
     }
