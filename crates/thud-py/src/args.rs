@@ -150,7 +150,7 @@ impl<'py> Kwargs<'py> {
 
 /// The error of an int too large for a float given for the parameter `name`: out of range,
 /// with the parameter's range when it has one.
-fn huge_int(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyErr {
+pub(crate) fn huge_int(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyErr {
     let digits = v.str().map_or(0, |s| s.to_string().trim_start_matches('-').len());
     let sign = if v.lt(0).unwrap_or(false) { "a negative " } else { "an " };
     let range = thud_core::params::listed_ranges().into_iter().find(|r| Spelling::Keyword.spell(r.param) == name);

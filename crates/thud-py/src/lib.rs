@@ -240,6 +240,13 @@ pub(crate) fn axis(
         };
         let mut out = Vec::with_capacity(seq.len());
         for v in &seq {
+            if v.is_instance_of::<pyo3::types::PyInt>()
+                && !v.is_instance_of::<pyo3::types::PyBool>()
+                && v.extract::<f64>().is_err()
+            {
+                // An int beyond any float (`10**400`): out of range, named as such.
+                return Err(args::huge_int(py, name, v));
+            }
             let x = match args::to_value(v)? {
                 params::Input::Num(x) => x,
                 params::Input::Text(t) => thud_core::units::parse(name, &t, kind).map_err(|e| engine_error(py, e))?,

@@ -114,3 +114,11 @@ def test_a_forged_huge_number_does_not_load():
     assert text != state
     with pytest.raises(ValueError, match="spl_max_db"):
         thud._restore(kind, text)
+
+
+@pytest.mark.parametrize("value", [10**400, -(10**400)])
+def test_a_huge_int_in_an_axis_is_out_of_range(value):
+    with pytest.raises(thud.ParameterError) as e:
+        thud.restitution(masses_kg=[0.01, value])
+    assert "out of range" in str(e.value) and "not an int" not in str(e.value), str(e.value)
+    assert e.value.param == "masses_kg"
