@@ -14,11 +14,11 @@ use super::format::num;
 use super::simulate::describe;
 use super::sweep::Target;
 use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
+use crate::continuation;
 use crate::design::{Design, ValidDesign};
 use crate::dynamics::{self, Bifurcation, Settings};
 use crate::error::ThudError;
 use crate::export::svg::Look;
-use crate::fsio::{self, Overwrite};
 use crate::limits::{self, short};
 use crate::params::Spelling;
 use crate::study::Vary;
@@ -60,69 +60,39 @@ impl OrbitArgs {
         Ok(Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods })
     }
 
-    /// The targets, each checked before any work; two outputs naming one file (or both going
-    /// to standard output) are refused before anything is written.
-    fn targets(&self) -> Result<[Target<'_>; 3], ThudError> {
-        super::figure_out::distinct_outputs(self.out.as_deref(), self.svg.as_deref(), self.pdf.as_deref())?;
-        Ok([
-            Target::new(self.out.as_deref(), self.force)?,
-            Target::new(self.svg.as_deref(), self.force).map_err(|e| e.renamed("--svg"))?,
-            Target::new(self.pdf.as_deref(), self.force).map_err(|e| e.renamed("--pdf"))?,
-        ])
+    /// Where the table and its figure go.
+    fn outputs(&self) -> super::figure_out::FigureOutputs<'_> {
+        super::figure_out::FigureOutputs {
+            out: self.out.as_deref(),
+            svg: self.svg.as_deref(),
+            pdf: self.pdf.as_deref(),
+            force: self.force,
+            ascii: self.ascii,
+        }
     }
 
-    /// Writes the table as `--json`, `--csv` or text, and the figure to `--svg` and `--pdf`.
-    /// Every output is made (and the table checked) before the first file is written, so a
-    /// failure to draw one leaves every file as it was.
+    /// Whether a figure is asked for (`--svg` or `--pdf`).
+    pub(super) fn wants_figure(&self) -> bool {
+        self.outputs().wants_figure()
+    }
+
+    /// Writes the table as `--json`, `--csv` or text, and the figure to `--svg` and `--pdf`,
+    /// as one set ([`super::figure_out::FigureOutputs::write`]).
     pub(super) fn write(
         &self,
         table: impl FnOnce(OutputFormat) -> Result<String, CliError>,
         figure: impl Fn() -> String,
         out: &mut Out,
     ) -> Result<(), CliError> {
-        let [text_target, _, _] = self.targets()?;
+        let outputs = self.outputs();
+        outputs.check()?;
         let text = table(self.output.format())?;
-        super::output::check_text(&text)?;
-        let svg = (self.svg.is_some() || self.pdf.is_some()).then(|| self.ascii.figure(figure()));
-        let pdf = match (&self.pdf, &svg) {
-            (Some(_), Some(svg)) => Some(
-                crate::export::pdf::from_svg(svg)
-                    .map_err(|e| ThudError::invalid("--pdf", format!("cannot draw the PDF: {e}")))?,
-            ),
-            _ => None,
-        };
-        // The files as one set: all in place, or (a failure, a signal) none.
-        let mut files: Vec<(&std::path::Path, &[u8])> = Vec::new();
-        if let (Some(p), Some(svg)) = (&self.svg, &svg) {
-            files.push((p, svg.as_bytes()));
-        }
-        if let (Some(p), Some(pdf)) = (&self.pdf, &pdf) {
-            files.push((p, pdf));
-        }
-        let table_file = text_target.file();
-        if let Some(p) = table_file {
-            files.push((p, text.as_bytes()));
-        }
-        if let Err(e) = fsio::write_set(&files, Overwrite::from_force(self.force)) {
-            let p = e.path().to_path_buf();
-            let flag = [("--svg", &self.svg), ("--pdf", &self.pdf)]
-                .into_iter()
-                .find(|(_, f)| f.as_deref() == Some(p.as_path()))
-                .map_or("--out", |(flag, _)| flag);
-            return Err(super::export::write_error_as(flag, &p, &e));
-        }
-        for (p, _) in &files {
-            super::warn(&format!("wrote {}", fsio::shown(p)));
-        }
-        match table_file {
-            Some(_) => Ok(()),
-            None => text_target.write(&text, out),
-        }
+        outputs.write(&text, outputs.wants_figure().then(figure), out)
     }
 
     /// Checks the files up front (an existing one without --force is refused before the work).
     pub(super) fn check_targets(&self) -> Result<(), ThudError> {
-        self.targets().map(|_| ())
+        self.outputs().check()
     }
 }
 
@@ -191,8 +161,37 @@ pub struct BifurcationArgs {
     /// as JSON lines for `thud merge` (not with --continuation, whose values run in turn).
     #[arg(long, value_name = "K/N", allow_hyphen_values = true, conflicts_with = "continuation")]
     shard: Option<String>,
+    /// Draw the periodic orbits' branches over the --svg/--pdf figure's x(kT) panel, stable
+    /// solid, unstable dashed: every branch through the stable orbits found from the design's
+    /// start at N evenly spaced values of the range, continued both ways (as `thud continue
+    /// --vary NAME=FROM:TO:N`, which gives their numbers); N from 2 to 1000.
+    #[arg(long, value_name = "N", allow_hyphen_values = true, conflicts_with = "shard")]
+    branches: Option<String>,
     #[command(flatten)]
     orbit: OrbitArgs,
+}
+
+/// `--branches N`: a whole number of seed values from 2 to [`continuation::MAX_SEEDS`], given
+/// with a figure (the branches are drawn, not tabled) and the event solver.
+fn parse_branches(a: &BifurcationArgs, d: &Design) -> Result<Option<usize>, ThudError> {
+    let Some(text) = &a.branches else { return Ok(None) };
+    let max = continuation::MAX_SEEDS;
+    let n = text.trim().parse::<f64>().ok().filter(|x| x.fract() == 0.0 && (2.0..=max as f64).contains(x)).ok_or_else(
+        || ThudError::invalid("--branches", format!("'{text}'; give a whole number of seed values from 2 to {max}")),
+    )?;
+    if !a.orbit.wants_figure() {
+        return Err(ThudError::invalid(
+            "--branches",
+            format!("'{text}' draws the branches in the figure; give --svg or --pdf too (their numbers: thud continue --vary NAME=FROM:TO:N)"),
+        ));
+    }
+    if d.solver != crate::damper::Solver::Event {
+        return Err(ThudError::invalid(
+            "--solver",
+            "newmark: orbits are continued with the event solver; use --solver event with --branches",
+        ));
+    }
+    Ok(Some(n as usize))
 }
 
 #[derive(serde::Serialize)]
@@ -209,6 +208,10 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
     let s = a.orbit.settings(&a.design, &d)?;
     a.orbit.check_targets()?;
     check_work(ctx, vary.values.len(), s, a.continuation, ("--vary", &a.vary))?;
+    let seeds = parse_branches(a, &d)?;
+    if let (Some(n), Some(text)) = (seeds, &a.branches) {
+        ctx.enforce(crate::limits::family_seed_periods(n), "--branches", text, "give fewer seed values")?;
+    }
     if let Some(text) = &a.shard {
         return write_part(a, &d, &vary, s, text, out);
     }
@@ -218,6 +221,10 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         .map_err(super::bifurcation::flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&b)?;
+    let branches = match seeds {
+        Some(n) => continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(flagged)?,
+        None => Vec::new(),
+    };
     let (lo, hi) = vary.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
     let unit = if vary.unit().is_empty() { String::new() } else { format!(" {}", vary.unit()) };
     let title = format!(
@@ -229,7 +236,7 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
     );
     a.orbit.write(
         |format| render(&d, &b, format),
-        || crate::export::dynamics::bifurcation_svg(&b, &title, &look()),
+        || crate::export::dynamics::bifurcation_with_branches_svg(&b, &branches, &title, &look()),
         out,
     )
 }

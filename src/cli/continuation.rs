@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::design_args::{DesignArgs, ForceAmplitude};
+use super::figure_out::FigureOutputs;
 use super::format::num;
 use super::simulate::describe;
-use super::sweep::Target;
 use super::{CliError, Ctx, Out, OutputArgs, OutputFormat};
 use crate::continuation::{self, Branch};
 use crate::design::Design;
@@ -37,14 +37,62 @@ pub struct ContinueArgs {
     /// or not.
     #[arg(long)]
     symmetric: bool,
-    /// Write the result (text, --json or --csv) to this file instead of standard output.
+    /// At each period doubling, also continue the branch of the doubled orbit born there (found
+    /// just past the doubling, where a supercritical doubling's doubled orbit is stable), and at
+    /// its doublings in turn, up to a period of 16.
+    #[arg(long)]
+    doublings: bool,
+    /// Also write the figure as SVG to this file: each branch's amplitude against the
+    /// parameter, stable solid, unstable dashed, the special points marked.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Also write the figure as PDF to this file.
+    #[arg(long, value_name = "FILE")]
+    pdf: Option<PathBuf>,
+    /// Write the result (text, --json or --csv) to this file instead of standard output (`-`:
+    /// standard output); an existing file is kept unless --force.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
-    /// Replace the --out file if it exists.
+    /// Replace the --out, --svg or --pdf file if it exists.
     #[arg(long)]
     force: bool,
     #[command(flatten)]
+    ascii: super::AsciiArgs,
+    #[command(flatten)]
     output: OutputArgs,
+}
+
+impl ContinueArgs {
+    /// Where the table and its figure go.
+    fn outputs(&self) -> FigureOutputs<'_> {
+        FigureOutputs {
+            out: self.out.as_deref(),
+            svg: self.svg.as_deref(),
+            pdf: self.pdf.as_deref(),
+            force: self.force,
+            ascii: self.ascii,
+        }
+    }
+}
+
+/// The figure's title: what varies over which range, and the rest of the design.
+fn title(d: &Design, vary: &Vary) -> String {
+    let (lo, hi) = vary.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+    let unit = if vary.unit().is_empty() { String::new() } else { format!(" {}", vary.unit()) };
+    format!(
+        "Orbits continued over {} {}–{}{unit} — {}",
+        vary.name(),
+        crate::limits::short(lo),
+        crate::limits::short(hi),
+        super::bifurcation::short_design(d, vary.name())
+    )
+}
+
+/// The figure of `branches` as SVG, if one is asked for.
+fn figure(a: &ContinueArgs, d: &Design, vary: &Vary, branches: &[Branch]) -> Option<String> {
+    a.outputs()
+        .wants_figure()
+        .then(|| crate::export::continuation::continuation_svg(branches, &title(d, vary), &super::bifurcation::look()))
 }
 
 #[derive(serde::Serialize)]
@@ -109,58 +157,61 @@ pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let (vary, seeds) = parse_vary(&a.vary)?;
     // A varied frequency is the design's (FROM stands in for --freq).
     let d = a.design.design_over(&[&vary])?;
-    let target = Target::new(a.out.as_deref(), a.force)?;
+    a.outputs().check()?;
     let periods = super::orbit::parse_period(a.period.as_deref())?;
-    if let Some(n) = seeds {
-        if periods.is_some() || a.symmetric {
-            return Err(ThudError::invalid(
-                "--vary",
-                format!("'{}' with N: the branches start from the motion's own orbits; give NAME=FROM:TO with --period or --symmetric", a.vary),
-            )
-            .into());
-        }
-        if d.solver != crate::damper::Solver::Event {
-            return Err(renamed(ThudError::invalid(
-                "solver",
-                "newmark: orbits are found with the event solver; use --solver event",
-            ))
-            .into());
-        }
-        ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
-        let branches = continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?;
-        super::output::check_finite(&branches)?;
-        let text = match a.output.format() {
-            OutputFormat::Json => {
-                let family = FamilyJson { design: &d, name: vary.name(), unit: vary.unit(), branches: &branches };
-                let mut t = serde_json::to_string_pretty(&family).map_err(std::io::Error::from)?;
-                t.push('\n');
-                t
+    let mut branches = match seeds {
+        Some(n) => {
+            if periods.is_some() || a.symmetric {
+                return Err(ThudError::invalid(
+                    "--vary",
+                    format!("'{}' with N: the branches start from the motion's own orbits; give NAME=FROM:TO with --period or --symmetric", a.vary),
+                )
+                .into());
             }
-            OutputFormat::Csv => {
-                warn_truncated(&branches);
-                family_csv(&vary, &branches)
+            if d.solver != crate::damper::Solver::Event {
+                return Err(renamed(ThudError::invalid(
+                    "solver",
+                    "newmark: orbits are found with the event solver; use --solver event",
+                ))
+                .into());
             }
-            OutputFormat::Text => family_text(&d, &vary, n, &branches),
-        };
-        return target.write(&text, out);
-    }
-    let req = Request { periods, symmetric: a.symmetric, guess: None };
-    let branch = continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(renamed)?;
-    super::output::check_finite(&branch)?;
-    let text = match a.output.format() {
-        OutputFormat::Json => {
-            let mut t = serde_json::to_string_pretty(&BranchJson { design: &d, branch: &branch })
-                .map_err(std::io::Error::from)?;
-            t.push('\n');
-            t
+            ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
+            continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?
         }
-        OutputFormat::Csv => {
-            warn_truncated(std::slice::from_ref(&branch));
-            csv(&branch)
+        None => {
+            let req = Request { periods, symmetric: a.symmetric, guess: None };
+            vec![continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(renamed)?]
         }
-        OutputFormat::Text => text(&d, &branch),
     };
-    target.write(&text, out)
+    if a.doublings {
+        branches = continuation::with_doublings(&d, &vary, branches, None, &|_| {}).map_err(renamed)?;
+    }
+    super::output::check_finite(&branches)?;
+    // One branch as it is; a family (N seeds, or the doubled branches added) branch by branch.
+    let text = match (a.output.format(), branches.as_slice()) {
+        (OutputFormat::Json, [branch]) if seeds.is_none() => json(&BranchJson { design: &d, branch })?,
+        (OutputFormat::Json, _) => {
+            json(&FamilyJson { design: &d, name: vary.name(), unit: vary.unit(), branches: &branches })?
+        }
+        (OutputFormat::Csv, [branch]) if seeds.is_none() => {
+            warn_truncated(&branches);
+            csv(branch)
+        }
+        (OutputFormat::Csv, _) => {
+            warn_truncated(&branches);
+            family_csv(&vary, &branches)
+        }
+        (OutputFormat::Text, [branch]) if seeds.is_none() => text(&d, branch),
+        (OutputFormat::Text, _) => family_text(&d, &vary, seeds, a.doublings, &branches),
+    };
+    a.outputs().write(&text, figure(a, &d, &vary, &branches), out)
+}
+
+/// Pretty JSON with a final newline.
+fn json(value: &impl serde::Serialize) -> Result<String, CliError> {
+    let mut t = serde_json::to_string_pretty(value).map_err(std::io::Error::from)?;
+    t.push('\n');
+    Ok(t)
 }
 
 /// The CSV has no column for why a branch ended: a branch its work cap cut says so on stderr
@@ -172,13 +223,14 @@ fn warn_truncated(branches: &[Branch]) {
 }
 
 /// The branches of a family in words, one after the other.
-fn family_text(d: &Design, vary: &Vary, seeds: usize, branches: &[Branch]) -> String {
+fn family_text(d: &Design, vary: &Vary, seeds: Option<usize>, doublings: bool, branches: &[Branch]) -> String {
     let mut t = format!("design      {}\n", describe(d));
-    t += &format!(
-        "family      {} branches through the stable orbits found from the start at {seeds} values of {}\n",
-        branches.len(),
-        vary.name()
-    );
+    let through = match seeds {
+        Some(n) => format!("through the stable orbits found from the start at {n} values of {}", vary.name()),
+        None => format!("through the orbit found at the first value of {}", vary.name()),
+    };
+    let doubled = if doublings { ", and the doubled orbits born at their period doublings" } else { "" };
+    t += &format!("family      {} branches {through}{doubled}\n", branches.len());
     for (k, b) in branches.iter().enumerate() {
         t += &format!("\n[branch {}]\n", k + 1);
         let body = text(d, b);

@@ -9,7 +9,7 @@ pub mod fit;
 pub mod front;
 pub mod report;
 // The renderers live in their own crate (shared with the Python module), by their old paths.
-pub use thud_render::{csv, dynamics, figures, pdf, studies, svg, wav};
+pub use thud_render::{continuation, csv, dynamics, figures, pdf, studies, svg, wav};
 
 use std::path::Path;
 

@@ -5,6 +5,9 @@
 //! the response view's band. A coarse pass is drawn first, then the fine one replaces it; the
 //! current f is marked, with its own orbit's samples (computed for exactly f with the readout,
 //! as `thud bifurcation --vary f=f:f:1`), and the line under the plot names that orbit's type.
+//! After the fine pass, the periodic orbits' branches continued over the band (as `thud
+//! bifurcation --branches 12` draws them) are drawn over the samples: stable ones as lines,
+//! unstable ones dotted.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -13,6 +16,7 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 
 use super::plot::{fit_bounds, Curve, LinePlot};
 use super::theme::{Palette, Role};
+use crate::continuation::Branch;
 use crate::dynamics::{Bifurcation, BifurcationPoint};
 use crate::units::sig;
 
@@ -38,6 +42,9 @@ pub struct BifurcationView<'a> {
     pub freq_hz: f64,
     /// The orbit at exactly f (None while the readout computes it).
     pub at_f: Option<&'a BifurcationPoint>,
+    /// The periodic orbits' branches over the band, drawn over the samples (None until
+    /// computed, after the fine pass).
+    pub branches: Option<&'a [Branch]>,
     /// The live design's verdict, as the readout names it.
     pub verdict: Option<crate::verdict::Verdict>,
     pub theme: Palette,
@@ -82,20 +89,30 @@ impl Widget for BifurcationView<'_> {
         let [plot, note] = Layout::vertical([Constraint::Min(1), Constraint::Length(1)]).areas(inner);
         let pts = samples_mm(&b.points);
         let here: Vec<(f64, f64)> = self.at_f.map_or_else(Vec::new, |p| samples_mm(std::slice::from_ref(p)));
-        let yb = fit_bounds(pts.iter().chain(&here).map(|p| p.1), 0.05);
+        let (stable, unstable) = self.branches.map_or_else(Default::default, crate::export::continuation::strobe_lines);
+        let yb = fit_bounds(pts.iter().chain(&here).chain(&stable).chain(&unstable).map(|p| p.1), 0.05);
         let f = self.freq_hz;
         let marker = [(f, yb[0]), (f, yb[1])];
         let bold = Style::default().add_modifier(Modifier::BOLD);
         let name = if fine { "x(kT)" } else { "x(kT), coarse" };
+        let mut series = vec![
+            Curve::line("f", &marker, th.behind(th.ink(Role::Grid)), th.mark('│', '|')),
+            Curve::points(name, &pts, th.style(Role::Damper), th.marker()),
+        ];
+        // The continued branches over the samples (stable a line, unstable dotted), under the
+        // orbit at f.
+        if !stable.is_empty() {
+            series.push(Curve::line("stable orbit", &stable, th.style(Role::Fit), th.marker()));
+        }
+        if !unstable.is_empty() {
+            series.push(Curve::line("unstable orbit", &unstable, th.style(Role::Alone), th.mark('·', '.')));
+        }
+        series.push(Curve::points("at f", &here, bold.patch(th.style(Role::Live)), th.mark('●', 'o')));
         LinePlot {
             block: Block::default(),
             x_title: "f (Hz)",
             y_title: "x(kT) (mm)",
-            series: vec![
-                Curve::line("f", &marker, th.behind(th.ink(Role::Grid)), th.mark('│', '|')),
-                Curve::points(name, &pts, th.style(Role::Damper), th.marker()),
-                Curve::points("at f", &here, bold.patch(th.style(Role::Live)), th.mark('●', 'o')),
-            ],
+            series,
             empty: "no samples",
             theme: th,
             y_zero: true,

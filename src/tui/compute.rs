@@ -11,6 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::acoustics::{Field, Observer};
 use crate::contact::{Impact, Target};
+use crate::continuation;
 use crate::damper;
 use crate::design::{self, linspace, Cell, Chart, Design, Evaluation, Metrics, Thresholds};
 use crate::dynamics::{self, Bifurcation, BifurcationPoint};
@@ -552,6 +553,33 @@ pub fn compute_bifurcation(
     check_orbit_work(band.points)?;
     let vary = Vary::of_values("f", &band.freqs(), Spelling::Flag)?;
     match dynamics::bifurcation(&d.clone().check()?, &vary, orbit_settings(), false, "force", cancel, on_point) {
+        Ok(b) => Ok(Some(b)),
+        Err(ThudError::Cancelled) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// Seed values of the periodic orbits' branches the bifurcation view draws over its band.
+pub const BRANCH_SEEDS: usize = 12;
+
+/// The periodic orbits' branches of forced `d` over `band`, continued both ways from the stable
+/// orbits found from the design's start at [`BRANCH_SEEDS`] values (as `thud bifurcation
+/// --branches 12` draws them); none for the Newmark solver (orbits are the event solver's).
+/// `None` if cancelled.
+pub fn compute_branches(
+    d: &Design,
+    band: &FreqBand,
+    cancel: Option<&AtomicBool>,
+) -> Result<Option<Vec<continuation::Branch>>, ThudError> {
+    if d.solver != crate::damper::Solver::Event {
+        return Ok(Some(Vec::new()));
+    }
+    let work = limits::family_seed_periods(BRANCH_SEEDS);
+    if work.exceeded() {
+        return Err(ThudError::invalid("branches", work.describe()));
+    }
+    let vary = Vary::of_values("f", &[band.from_hz, band.to_hz], Spelling::Flag)?;
+    match continuation::continue_family(&d.clone().check()?, &vary, BRANCH_SEEDS, cancel, &|_| {}) {
         Ok(b) => Ok(Some(b)),
         Err(ThudError::Cancelled) => Ok(None),
         Err(e) => Err(e),

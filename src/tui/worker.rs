@@ -18,11 +18,12 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::cache_key::{BifurcationKey, ChartKey, ReadoutKey, ResponseKey, SimKey, SoundKey};
 use super::compute::{
-    bifurcation_band, compute_bifurcation, compute_chart, compute_ensemble_chart, compute_readout, compute_relevel,
-    compute_response, compute_sim, grids_of, AcousticResult, ChartPasses, FreqBand, Grids, SimResult, Stage,
-    BIFURCATION_VALUES,
+    bifurcation_band, compute_bifurcation, compute_branches, compute_chart, compute_ensemble_chart, compute_readout,
+    compute_relevel, compute_response, compute_sim, grids_of, AcousticResult, ChartPasses, FreqBand, Grids, SimResult,
+    Stage, BIFURCATION_VALUES,
 };
 use super::job::{self, Context, Job, JobError, SingleJob, Sink};
+use crate::continuation::Branch;
 use crate::design::{Cell, Chart, Design};
 use crate::dynamics::Bifurcation;
 use crate::ensemble::{Ensemble, EnsembleCell, EnsembleChart};
@@ -122,6 +123,11 @@ pub enum Done {
         key: BifurcationKey,
         stage: Stage,
         result: Result<Arc<Bifurcation>, WorkError>,
+    },
+    /// The periodic orbits' branches over the fine pass's band: `key` is the fine pass's.
+    Branches {
+        key: BifurcationKey,
+        result: Result<Arc<Vec<Branch>>, WorkError>,
     },
     /// The chart's passes relevelled for `sound`; `key` is the chart key.
     Relevel {
@@ -470,6 +476,17 @@ impl Job for BifurcationJob {
                 return;
             }
         }
+        // Then the branches over the fine pass's band, drawn over its samples.
+        let result = match compute_branches(
+            &self.design,
+            &bifurcation_band(&self.design, BIFURCATION_VALUES[1]),
+            Some(cx.cancel_flag()),
+        ) {
+            Ok(None) => return,
+            Ok(Some(b)) => Ok(Arc::new(b)),
+            Err(e) => Err(e.into()),
+        };
+        cx.report(Done::Branches { key: self.key.clone(), result });
     }
 
     fn failed(&self, error: JobError) -> Done {

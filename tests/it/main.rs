@@ -27,6 +27,7 @@ mod acoustics_paper;
 mod architecture;
 mod architecture_house;
 mod ascii_figures;
+mod branch_figures;
 mod chart_cells;
 mod cli;
 mod contact_scheme;

@@ -484,3 +484,52 @@ fn the_family_s_seed_count_is_guarded_and_its_cap_listed() {
     let j: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert!(j["caps"].as_array().unwrap().iter().any(|c| c["what"] == cap.what && c["max"] == cap.max));
 }
+
+/// Branch switching at a period doubling (`continue --doublings`): forced-rattle's 4/1 orbit
+/// doubles near 3.73 Hz; the doubled branch born there is continued, reaches back to the
+/// doubling (within 0.01 Hz), is of period 2 where it is stable, and its stable points are the
+/// motion's: the simulated attractor, followed up in frequency from the 4/1 orbit at 3.68 Hz,
+/// is 8/2 there with x(kT) at its two periods equal to the branch's two samples to 1e-8 m.
+#[test]
+fn the_doubled_branch_is_switched_onto_at_the_period_doubling() {
+    use thud::continuation::{continue_branch, with_doublings, Special};
+    use thud::dynamics::{bifurcation, Orbit, Settings};
+    use thud::params::Spelling;
+    use thud::response::Direction;
+    use thud::study::Vary;
+    let mut d = thud::presets::preset("forced-rattle").unwrap();
+    d.damper.freq_hz = 3.68;
+    let d = d.check().unwrap();
+    let vary = Vary::of_values("freq", &[3.68, 3.8], Spelling::Flag).unwrap();
+    let b = continue_branch(&d, &vary, &Request::default(), None, &|_| {}).unwrap();
+    let pd = b.specials.iter().find(|s| s.kind == Special::PeriodDoubling).unwrap().value;
+    let all = with_doublings(&d, &vary, vec![b], None, &|_| {}).unwrap();
+    assert!(all.len() >= 2, "no doubled branch: {:?}", all.iter().map(|b| &b.ended).collect::<Vec<_>>());
+    let doubled = &all[1];
+    let nearest = doubled.points.iter().map(|p| (p.value - pd).abs()).fold(f64::INFINITY, f64::min);
+    assert!(nearest < 0.01, "the doubled branch comes no closer than {nearest} Hz to the doubling at {pd} Hz");
+    let stable: Vec<_> = doubled.points.iter().filter(|p| p.stable && p.value > pd && p.value < 3.78).collect();
+    assert!(!stable.is_empty(), "no stable doubled orbit past the doubling");
+    assert!(stable.iter().all(|p| p.periods == 2 && p.strobe_m.len() == 2), "{:?}", stable[0]);
+    // The simulated attractor followed up from 3.68 Hz over a fine grid and the branch's values.
+    let picked: Vec<_> = stable.iter().step_by((stable.len() / 3).max(1)).collect();
+    let mut values: Vec<f64> = (0..=40).map(|i| 3.68 + 0.0025 * f64::from(i)).collect();
+    values.extend(picked.iter().map(|p| p.value));
+    values.sort_by(f64::total_cmp);
+    let sweep = Vary::of_values("freq", &values, Spelling::Flag).unwrap();
+    let settings = Settings { transient_periods: 300, periods: 32 };
+    let diagram = bifurcation(&d, &sweep, settings, true, "force", None, &|_| {}).unwrap();
+    for p in &picked {
+        let sim = diagram.points.iter().find(|q| q.direction == Direction::Up && q.value == p.value).unwrap();
+        assert!(
+            matches!(sim.run.orbit, Orbit::Periodic { impacts: 8, periods: 2, .. }),
+            "{} Hz: {:?}",
+            p.value,
+            sim.run.orbit
+        );
+        for s in &sim.run.samples {
+            let off = p.strobe_m.iter().map(|x| (x - s.x_m).abs()).fold(f64::INFINITY, f64::min);
+            assert!(off < 1e-8, "{} Hz: x(kT) {} is {off:e} m from the branch's {:?}", p.value, s.x_m, p.strobe_m);
+        }
+    }
+}

@@ -1,7 +1,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic is how a test fails
 //! The explorer's bifurcation view: with a force on, `v` cycles the chart
 //! panel to x(kT) over f, coarse pass first, then the fine one, the current f marked and its
-//! orbit named; its samples are `thud bifurcation`'s for the same f.
+//! orbit named; its samples are `thud bifurcation`'s for the same f; then the periodic orbits'
+//! branches over the band, `thud continue`'s, drawn over the samples.
 
 use crate::support::explorer::render;
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -60,7 +61,8 @@ fn v_cycles_to_the_bifurcation_diagram_coarse_first_then_fine_with_f_marked_and_
     let done = std::sync::Mutex::new(Vec::new());
     run_sync(&reqs[0], &|d| done.lock().unwrap().push(d));
     let mut done = done.into_inner().unwrap();
-    assert_eq!(done.len(), 2, "{done:?}");
+    assert_eq!(done.len(), 3, "{done:?}");
+    let branches = done.pop().unwrap();
     let fine = done.pop().unwrap();
     let coarse = done.pop().unwrap();
     let waiting = render(&mut app, 120, 40);
@@ -83,6 +85,31 @@ fn v_cycles_to_the_bifurcation_diagram_coarse_first_then_fine_with_f_marked_and_
     assert!(screen.contains(&format!("f {f} Hz: orbit {orbit}")), "{screen}");
     let wide = render(&mut app, 200, 60);
     assert!(wide.contains(&format!(" readout: orbit {orbit} ")), "{wide}");
+    // Then the branches, drawn over the samples: `thud continue`'s for the same band and seeds.
+    app.update(Msg::Work(branches));
+    let drawn = app.branches().unwrap().to_vec();
+    assert!(!drawn.is_empty());
+    let screen = render(&mut app, 120, 40);
+    insta::assert_snapshot!("bifurcation_forced_rattle_branches_120x40", screen);
+    assert!(screen.contains("stable orbit"), "{screen}");
+    let band = thud::tui::compute::bifurcation_band(&app.design, thud::tui::compute::BIFURCATION_VALUES[1]);
+    let vary = format!("f={}:{}:{}", band.from_hz, band.to_hz, thud::tui::compute::BRANCH_SEEDS);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_thud"))
+        .args(["continue", "--preset", "forced-rattle", "--vary", &vary, "--json"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let cli: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let cli = cli["branches"].as_array().unwrap();
+    assert_eq!(cli.len(), drawn.len());
+    for (c, b) in cli.iter().zip(&drawn) {
+        let pts = c["points"].as_array().unwrap();
+        assert_eq!(pts.len(), b.points.len());
+        for (cp, bp) in pts.iter().zip(&b.points) {
+            assert_eq!((cp["value"].as_f64().unwrap(), cp["x_m"].as_f64().unwrap()), (bp.value, bp.x_m));
+            assert_eq!(bp.strobe_m.first(), Some(&bp.x_m));
+        }
+    }
     // A change of f moves the marker only: no new job; any other change asks again (the
     // worker's slot cancels the stale one), and the old passes are not shown for it.
     let gap = app.design.damper.gap_m;

@@ -102,6 +102,11 @@ pub struct BranchPoint {
     pub v_m_s: f64,
     pub z_m: f64,
     pub zdot_m_s: f64,
+    /// x(kT) at each of the orbit's periods (m, [`PeriodicOrbit::strobe_m`]): what a
+    /// bifurcation diagram's samples are, for drawing the branch over them. Not written to
+    /// files (x_m is the first).
+    #[serde(skip)]
+    pub strobe_m: Vec<f64>,
 }
 
 /// A special point located on a branch.
@@ -346,6 +351,7 @@ fn point(p: &Problem, n: &Node) -> BranchPoint {
         v_m_s: o.v_m_s,
         z_m: o.z_m,
         zdot_m_s: o.zdot_m_s,
+        strobe_m: o.strobe_m.clone(),
     }
 }
 
@@ -467,6 +473,73 @@ pub fn continue_family(
         branches.push(both_ways(base, vary, v, &o, cancel, on_point)?);
     }
     Ok(branches)
+}
+
+/// How far past a period doubling the doubled orbit is looked for: this share of the range.
+const PAST_DOUBLING: f64 = 0.01;
+
+/// `branches` with, for each period doubling on them (and on the branches this adds, while
+/// the doubled period is at most [`orbit::MAX_ORBIT_PERIODS`]), the branch of the doubled orbit
+/// born there, continued both ways: branch switching at a period doubling. The doubled orbit is
+/// found by the attractor search from the undoubled orbit's state just past the doubling
+/// ([`PAST_DOUBLING`] of the range, on the side where the undoubled orbit is unstable), where a
+/// supercritical doubling's doubled orbit is stable; a doubling where none is found there (a
+/// subcritical one: its doubled orbit is unstable), or whose doubled orbit lies on a branch
+/// already continued, adds none. The added branches come after the given ones, in the order of
+/// their doublings.
+pub fn with_doublings(
+    base: &ValidDesign,
+    vary: &Vary,
+    mut branches: Vec<Branch>,
+    cancel: Option<&AtomicBool>,
+    on_point: &(dyn Fn(f64) + Sync),
+) -> Result<Vec<Branch>, ThudError> {
+    let (from, to) = range(vary)?;
+    let mut k = 0;
+    while k < branches.len() {
+        let doublings: Vec<SpecialPoint> =
+            branches[k].specials.iter().filter(|s| s.kind == Special::PeriodDoubling).cloned().collect();
+        for pd in &doublings {
+            let Some((value, o)) = doubled_orbit(base, vary, &branches[k], pd, (from, to), cancel)? else { continue };
+            if branches.iter().any(|b| passes(b, value, &o)) {
+                continue;
+            }
+            branches.push(both_ways(base, vary, value, &o, cancel, on_point)?);
+        }
+        k += 1;
+    }
+    Ok(branches)
+}
+
+/// The doubled orbit born at the period doubling `pd` of branch `b`, found just past it (see
+/// [`with_doublings`]), with the value it was found at; `None` where there is none to find.
+fn doubled_orbit(
+    base: &ValidDesign,
+    vary: &Vary,
+    b: &Branch,
+    pd: &SpecialPoint,
+    (from, to): (f64, f64),
+    cancel: Option<&AtomicBool>,
+) -> Result<Option<(f64, PeriodicOrbit)>, ThudError> {
+    // The step of the branch across the doubling: its unstable end gives the side and the state.
+    let across = b.points.windows(2).find(|w| {
+        let (p, q) = (&w[0], &w[1]);
+        (p.value - pd.value) * (q.value - pd.value) <= 0.0 && p.stable != q.stable
+    });
+    let Some(w) = across else { return Ok(None) };
+    let unstable = if w[0].stable { &w[1] } else { &w[0] };
+    if 2 * unstable.periods > orbit::MAX_ORBIT_PERIODS {
+        return Ok(None);
+    }
+    let side = if unstable.value >= pd.value { 1.0 } else { -1.0 };
+    let value = (pd.value + side * PAST_DOUBLING * (to - from).abs()).clamp(from.min(to), from.max(to));
+    let d = crate::study::set(base.design().clone(), vary.row, value).check()?;
+    let s = [unstable.x_m, unstable.v_m_s, unstable.x_m + unstable.z_m, unstable.v_m_s + unstable.zdot_m_s];
+    match orbit::settle_to(&d.damper, s, 0.0, cancel) {
+        Ok(o) if o.periods == 2 * unstable.periods => Ok(Some((value, o))),
+        Err(ThudError::Cancelled) => Err(ThudError::Cancelled),
+        _ => Ok(None),
+    }
 }
 
 /// Why a branch cut by its work cap ([`MAX_BRANCH_POINTS`]) ended.

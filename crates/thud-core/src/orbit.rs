@@ -147,6 +147,11 @@ pub struct PeriodicOrbit {
     pub v_m_s: f64,
     pub z_m: f64,
     pub zdot_m_s: f64,
+    /// The main mass at the force's phase 0 at each of the orbit's periods in turn, x(kT) for
+    /// k = 0 … periods − 1 (m): the stroboscopic samples a bifurcation diagram draws. Not
+    /// written to files (x_m is the first).
+    #[serde(skip)]
+    pub strobe_m: Vec<f64>,
     /// Largest |x| over the orbit (m).
     pub amplitude_m: f64,
     /// The same main mass without the ball, in its steady state (m); None where unbounded.
@@ -776,6 +781,7 @@ pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, Th
     let half = at(t0 + 0.5 * period).map(|h| sec.scale(h));
     let symmetric = sec.symmetric || (periods == 1 && half.is_some_and(|h| (h + u0).amax() <= 1e-6));
     let whole = f64::from(periods) * period;
+    let strobe_m = (0..periods).filter_map(|k| at(t0 + f64::from(k) * period)).map(|s| s[0]).collect();
     let mut impacts: Vec<OrbitImpact> = f
         .impacts
         .iter()
@@ -818,6 +824,7 @@ pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, Th
         v_m_s: s0[1],
         z_m: s0[2] - s0[0],
         zdot_m_s: s0[3] - s0[1],
+        strobe_m,
         amplitude_m: f.amplitude_m,
         amplitude_linear_m: linear_amplitude_m(&p),
         impacts,
@@ -877,6 +884,42 @@ mod tests {
             let whole = sec.full_jacobian(&u, &pu).unwrap();
             let err = (chained - whole).amax() / whole.amax();
             assert!(err < 1e-5, "off {off}: {err:e}\n{chained}\n{whole}");
+        }
+    }
+
+    /// The stroboscopic samples of a period-2 orbit (forced-rattle's 12/2 at 5.3116 Hz) are x at
+    /// the force's phase 0 at each of its two periods: a run from the orbit's state over eight
+    /// periods passes through them in turn, to 1e-9 m.
+    #[test]
+    fn the_strobe_samples_are_x_at_each_period_of_the_orbit() {
+        let p = DamperParams {
+            impact_mass_kg: 0.0405,
+            gap_m: 0.01,
+            main_mass_kg: 0.5,
+            stiffness_n_m: 500.0,
+            damping_n_s_m: 1.5,
+            force_n: 3.0,
+            freq_hz: 5.3116,
+            v0_m_s: 0.0,
+            ..DamperParams::table2()
+        };
+        let o = find_damper(&p, &Request { periods: Some(2), ..Request::default() }, None)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((o.periods, o.strobe_m.len()), (2, 2), "{}", o.label());
+        assert_eq!(o.strobe_m[0], o.x_m);
+        assert!(
+            (o.strobe_m[1] - o.strobe_m[0]).abs() > 1e-6,
+            "a period-2 orbit's two samples differ: {:?}",
+            o.strobe_m
+        );
+        let period = 1.0 / p.freq_hz;
+        let stops: Vec<f64> = (1..=8).map(|k| f64::from(k) * period).collect();
+        let s = [o.x_m, o.v_m_s, o.x_m + o.z_m, o.v_m_s + o.zdot_m_s];
+        let f = damper::flow(&p, s, 0.0, &stops, None);
+        assert_eq!(f.states.len(), stops.len());
+        for (k, state) in f.states.iter().enumerate() {
+            let want = o.strobe_m[(k + 1) % 2];
+            assert!((state[0] - want).abs() < 1e-9, "period {}: x {} vs {}", k + 1, state[0], want);
         }
     }
 

@@ -185,7 +185,7 @@ pub fn direction(d: Direction) -> &'static str {
 }
 
 /// The label of the varied parameter on an axis: `freq (Hz)`.
-fn param_label(name: &str, unit: &str) -> String {
+pub(crate) fn param_label(name: &str, unit: &str) -> String {
     if unit.is_empty() {
         name.to_string()
     } else {
@@ -222,8 +222,20 @@ pub fn short_design(d: &thud_core::design::Design, varied: &str) -> String {
 /// The bifurcation diagram: above, x(kT) (mm) against the parameter; below, the relative
 /// impact speed (m/s) of every impact after the transient. With continuation the rising sweep
 /// is drawn in blue dots, the falling one in vermilion squares, so hysteresis shows.
-// Over 80 lines: two stacked panels drawn top to bottom, each step a few lines.
 pub fn bifurcation_svg(b: &Bifurcation, title: &str, look: &Look) -> String {
+    bifurcation_with_branches_svg(b, &[], title, look)
+}
+
+/// [`bifurcation_svg`] with continued `branches` over the x(kT) panel
+/// ([`super::continuation::overlay`]): each branch's x(kT) at each of its orbit's periods,
+/// stable solid, unstable dashed.
+// Over 80 lines: two stacked panels drawn top to bottom, each step a few lines.
+pub fn bifurcation_with_branches_svg(
+    b: &Bifurcation,
+    branches: &[thud_core::continuation::Branch],
+    title: &str,
+    look: &Look,
+) -> String {
     let mut svg = Svg::figure(look, (svg::WIDTH, 760.0), title);
     let (width, height) = (svg.width(), svg.height());
     let top_margin = Frame::top_margin(&svg);
@@ -232,7 +244,8 @@ pub fn bifurcation_svg(b: &Bifurcation, title: &str, look: &Look) -> String {
     let values = || b.points.iter().map(|p| p.value);
     let x = Axis::fit(&param_label(&b.axis.name, &b.axis.unit), values());
     let xs = b.points.iter().flat_map(|p| p.run.samples.iter().map(|s| s.x_m * 1e3));
-    let y1 = Axis::fit("x(kT), main mass at the force's phase 0 (mm)", xs.chain([0.0]));
+    let on_branches = branches.iter().flat_map(|br| br.points.iter().flat_map(|p| p.strobe_m.iter().map(|x| x * 1e3)));
+    let y1 = Axis::fit("x(kT), main mass at the force's phase 0 (mm)", xs.chain(on_branches).chain([0.0]));
     let us = b.points.iter().flat_map(|p| p.run.impacts.iter().map(|i| i.u_in_m_s));
     let y2 = Axis::fit("relative impact speed (m/s)", us.chain([0.0]));
     let right = 190.0;
@@ -294,6 +307,9 @@ pub fn bifurcation_svg(b: &Bifurcation, title: &str, look: &Look) -> String {
         svg.marker(*shape, lx + 6.0, y - 4.0, 3.0, color);
         svg.text(lx + 16.0, y, label, 11.0, Anchor::Start, 0.0);
         y += 18.0;
+    }
+    if !branches.is_empty() {
+        y = super::continuation::overlay(&mut svg, &top, "strobe", branches, (lx, y));
     }
     y += 10.0;
     svg.text(lx, y, "orbits (m impacts / n periods):", 11.0, Anchor::Start, 0.0);

@@ -7,6 +7,7 @@
 use thud_core::{acoustics, contact, damper, design, ensemble, error, paper, response, study, units};
 
 pub mod artifact;
+pub mod continuation;
 pub mod csv;
 pub mod dynamics;
 pub mod figures;

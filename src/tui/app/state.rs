@@ -249,11 +249,13 @@ pub(crate) struct ResponseCurve {
 }
 
 /// The bifurcation view's diagram: its coarse and fine passes with the keys they were
-/// computed for, the fine key last asked for, and why it could not be computed.
+/// computed for, the periodic orbits' branches over the fine pass's band (with its key), the
+/// fine key last asked for, and why it could not be computed.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct BifurcationDiagram {
     pub coarse: Option<(BifurcationKey, Arc<Bifurcation>)>,
     pub fine: Option<(BifurcationKey, Arc<Bifurcation>)>,
+    pub branches: Option<(BifurcationKey, Arc<Vec<crate::continuation::Branch>>)>,
     pub asked: Option<BifurcationKey>,
     pub error: Option<String>,
 }
@@ -575,6 +577,15 @@ impl App {
         match (&d.fine, &d.coarse) {
             (Some((k, b)), _) if *k == fine => Some((b, true)),
             (_, Some((k, b))) if *k == coarse => Some((b, false)),
+            _ => None,
+        }
+    }
+
+    /// The periodic orbits' branches over the live design's band, once computed.
+    pub fn branches(&self) -> Option<&[crate::continuation::Branch]> {
+        let [_, fine] = self.bifurcation_keys();
+        match &self.curves.bifurcation.branches {
+            Some((k, b)) if *k == fine => Some(b.as_slice()),
             _ => None,
         }
     }

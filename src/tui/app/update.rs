@@ -158,6 +158,16 @@ impl App {
                 }
             }
             Done::Bifurcation { key, stage, result } => self.bifurcation_pass(key, stage, result),
+            Done::Branches { key, result } => {
+                if key == self.bifurcation_keys()[1] {
+                    match result {
+                        Ok(b) => self.curves.bifurcation.branches = Some((key, b)),
+                        Err(e) => {
+                            self.error(format_args!("orbit branches: {e}"));
+                        }
+                    }
+                }
+            }
             Done::Export { kind, path, result } => self.export_finished(kind, &path, result),
         }
         if self.screen.pending_best && !self.chart_busy() {

@@ -115,6 +115,7 @@ fn bifurcation_panel(f: &mut Frame, app: &App, block: Block<'static>, area: Rect
         band_hz: [band.from_hz, band.to_hz],
         freq_hz: app.design.damper.freq_hz,
         at_f,
+        branches: app.branches(),
         verdict: live.and_then(design_verdict),
         theme: app.theme,
     };
