@@ -47,6 +47,7 @@ use serde::{Deserialize, Serialize};
 use super::{bad, noise_sd, Quantity, Series};
 use crate::damper::{self, RunOptions};
 use crate::design::{self, Design, ValidDesign};
+use crate::draws::SplitMix64;
 use crate::error::ThudError;
 
 /// Ensemble members (ball starts) per c1.
@@ -449,32 +450,6 @@ impl Table {
     }
 }
 
-/// A small fixed generator (SplitMix64) for the draws of several records' means: repeatable.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-}
-
-impl SplitMix {
-    /// Uniform in [0, 1).
-    fn uniform(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Standard normal (Box–Muller).
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform().max(1e-300), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
-    }
-}
-
 /// The members' quantile function at `u` ∈ [0, 1]: the sorted members at their plotting
 /// positions (i + ½)/N — where the evenly spread starts sit — joined by straight lines, flat
 /// beyond the first and last.
@@ -498,7 +473,7 @@ fn quantile(sorted: &[f64], u: f64) -> f64 {
 fn band(members: &[f64], records: usize, noise: f64, tail: f64) -> (f64, f64) {
     let mut sorted = members.to_vec();
     sorted.sort_by(f64::total_cmp);
-    let mut g = SplitMix(0x5EED_0F17);
+    let mut g = SplitMix64(0x5EED_0F17);
     let mut means: Vec<f64> = (0..DRAWS)
         .map(|_| {
             (0..records).map(|_| quantile(&sorted, g.uniform())).sum::<f64>() / records as f64 + noise * g.normal()
