@@ -1102,10 +1102,16 @@ fn baseline(problem: &Problem, n: usize, genes: &[Vec<f64>]) -> Outcome {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     fn paper_problem() -> Problem {
+        paper_problem_with(vec![])
+    }
+
+    /// The paper's Table 3 design searched over its ball's mass and clearance for a low peak
+    /// level and a steep inclination, under `constraints`.
+    pub(in crate::design) fn paper_problem_with(constraints: Vec<Constraint>) -> Problem {
         let base = Design::paper_table3().check().unwrap();
         Problem {
             base,
@@ -1117,7 +1123,7 @@ mod tests {
                 Objective::parse("spl_max_db", Sense::Minimize).unwrap(),
                 Objective::parse("inclination_cm_s", Sense::Maximize).unwrap(),
             ],
-            constraints: vec![],
+            constraints,
             band_hz: vec![],
             robust: None,
         }
