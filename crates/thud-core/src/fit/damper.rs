@@ -1054,6 +1054,14 @@ mod tests {
         Series::new(t, y, Quantity::Displacement).unwrap()
     }
 
+    /// The fit of one record of `d` with c1 `truth` (2 kHz, 1 % noise), the ball at rest at a
+    /// random offset `y0` in the clearance: `(y0, the fit)`.
+    fn fit_one_record(d: &ValidDesign, table: &Table, truth: f64, g: &mut Noise) -> (f64, DamperFit) {
+        let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
+        let s = record(d, truth, y0, 2000.0, 0.01, g);
+        (y0, compare(d, table, &[observe(&s, d).unwrap()]).unwrap())
+    }
+
     /// The interval is honest: over 60 synthetic records of one design, each from a ball start
     /// drawn at random (uniform in the clearance, at rest), with 1 % noise, an offset, a drift
     /// and uneven 2 kHz sampling, the truth falls inside the 95 % interval of at least 53 (57 measured;
@@ -1071,9 +1079,7 @@ mod tests {
         let (mut covered, mut ratios) = (0, Vec::new());
         let n = 60;
         for _ in 0..n {
-            let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
-            let s = record(&d, truth, y0, 2000.0, 0.01, &mut g);
-            let fit = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
+            let (_, fit) = fit_one_record(&d, &table, truth, &mut g);
             let [lo, hi] = fit.c1_n_s_m_ci;
             if lo <= truth && truth <= hi {
                 covered += 1;
@@ -1328,9 +1334,7 @@ mod tests {
         let (mut covered, mut narrow) = (0, 0);
         let n = 40;
         for _ in 0..n {
-            let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
-            let s = record(&d, truth, y0, 2000.0, 0.01, &mut g);
-            let fit = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
+            let (y0, fit) = fit_one_record(&d, &table, truth, &mut g);
             let [lo, hi] = fit.c1_n_s_m_ci;
             if lo <= truth && truth <= hi {
                 covered += 1;
