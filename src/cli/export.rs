@@ -70,14 +70,8 @@ struct SvgArgs {
     pulse: Option<PulseFigure>,
     #[arg(value_enum, required = true)]
     what: Option<SvgWhat>,
-    /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
-    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
-    size: Option<String>,
-    /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
-    #[arg(long)]
-    no_title: bool,
     #[command(flatten)]
-    ascii: super::AsciiArgs,
+    style: FigureStyle,
     /// The measurement of `fit` (CSV, as `thud fit --data`); repeated with --damper.
     #[arg(long, value_name = "FILE")]
     data: Vec<std::ffi::OsString>,
@@ -86,6 +80,26 @@ struct SvgArgs {
     damper: bool,
     #[command(flatten)]
     common: Common,
+}
+
+/// How a figure looks: `--size`, `--no-title`, `--ascii`, the same for every figure.
+#[derive(Debug, Clone, Args)]
+struct FigureStyle {
+    /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
+    size: Option<String>,
+    /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
+    #[arg(long)]
+    no_title: bool,
+    #[command(flatten)]
+    ascii: super::AsciiArgs,
+}
+
+impl FigureStyle {
+    /// The figure's size and title as asked.
+    fn look(&self) -> Result<svg::Look, CliError> {
+        Ok(svg::Look { size: self.size.as_deref().map(parse_size).transpose()?, title: !self.no_title })
+    }
 }
 
 /// The pulse's figure, a command of its own: its flags are `thud pulse`'s.
@@ -102,14 +116,8 @@ struct PulseFigureArgs {
     /// Points of the waveform.
     #[arg(long, value_name = "N", default_value = "2000", allow_hyphen_values = true)]
     points: String,
-    /// Figure size WxH in px, width 480 to 4000, height 320 to 4000 [default: 860x540; response 860x760].
-    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
-    size: Option<String>,
-    /// Leave the title off the figure (for a caption of its own); an SVG keeps it as <title>.
-    #[arg(long)]
-    no_title: bool,
     #[command(flatten)]
-    ascii: super::AsciiArgs,
+    style: FigureStyle,
     #[command(flatten)]
     target: Target,
 }
@@ -513,8 +521,8 @@ fn figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
         return Err(ThudError::invalid(flag, "is for the figure `fit` only").into());
     }
     let mut opts = s.common.options()?;
-    opts.look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
-    write(ctx, kind, &s.common, &opts, as_pdf, s.ascii)
+    opts.look = s.style.look()?;
+    write(ctx, kind, &s.common, &opts, as_pdf, s.style.ascii)
 }
 
 /// `export svg|pdf fit`: the measurement over its fitted model, by `thud fit`'s own reading
@@ -523,7 +531,7 @@ fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
     let Some(first) = s.data.first() else {
         return Err(ThudError::invalid("--data", "the figure `fit` needs a measurement: give --data FILE").into());
     };
-    let look = svg::Look { size: s.size.as_deref().map(parse_size).transpose()?, title: !s.no_title };
+    let look = s.style.look()?;
     let d = s.common.design.design()?;
     let out = s.common.out()?;
     let overwrite = Overwrite::from_force(s.common.force);
@@ -548,7 +556,7 @@ fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
         export::fit::structure(&series, &f, &title, &look)
     };
     super::output::check_text(&svg_text)?;
-    let svg_text = s.ascii.figure(svg_text);
+    let svg_text = s.style.ascii.figure(svg_text);
     let bytes = if as_pdf {
         pdf::from_svg(&svg_text).map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
     } else {
@@ -564,7 +572,7 @@ fn fit_figure(ctx: &Ctx, s: &SvgArgs, as_pdf: bool) -> Result<(), CliError> {
 
 /// `export svg|pdf pulse`: the pulse `thud pulse` computes for the same flags, as a figure.
 fn pulse_figure(ctx: &Ctx, p: &PulseFigureArgs, as_pdf: bool) -> Result<(), CliError> {
-    let look = svg::Look { size: p.size.as_deref().map(parse_size).transpose()?, title: !p.no_title };
+    let look = p.style.look()?;
     let points = super::pulse::points(ctx, &p.points)?;
     let input = super::pulse::resolve(&p.source)?;
     let out = &p.target.out;
@@ -573,7 +581,7 @@ fn pulse_figure(ctx: &Ctx, p: &PulseFigureArgs, as_pdf: bool) -> Result<(), CliE
     refuse_binary_terminal(out, &plan, as_pdf.then_some(("a PDF", "a viewer")))?;
     let svg_text = thud_render::pulse::svg(&thud_render::pulse::PulseSpec::new(&input, points)?, &look)?;
     super::output::check_text(&svg_text)?;
-    let svg_text = p.ascii.figure(svg_text);
+    let svg_text = p.style.ascii.figure(svg_text);
     let bytes = if as_pdf {
         pdf::from_svg(&svg_text).map_err(|e| CliError::Io(format!("cannot write {}: {e}", fsio::shown(out))))?
     } else {

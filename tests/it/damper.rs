@@ -54,7 +54,7 @@ fn undamped_single_contact_matches_closed_form() {
         assert!((acc.u_out_m_s / u0 - 1.0).abs() < 1e-6, "elastic rebound {}", acc.u_out_m_s);
         let amax = peak_approach(u0, k_star(m, big_m), k);
         assert!((acc.penetration_max_m / amax - 1.0).abs() < 1e-6);
-        let nm = single_contact_newmark(m, big_m, k, 0.0, false, u0, 1e-7);
+        let nm = IsolatedContact { m, big_m, k_hz: k, c1: 0.0, no_tension: false }.newmark(u0, 1e-7);
         assert!((nm.duration_s / tau - 1.0).abs() < 5e-5, "newmark τ {} vs {tau}", nm.duration_s);
     }
 }
@@ -67,7 +67,9 @@ fn contact_damping_lengthens_the_contact() {
         let d20 = single_contact(0.04, 0.5, 5.6e8, 20.0, false, u0).duration_s;
         let r = d20 / d0 - 1.0;
         assert!((0.006..0.009).contains(&r), "u0 {u0}: +{:.3} %", 100.0 * r);
-        let nm = single_contact_newmark(0.04, 0.5, 5.6e8, 20.0, false, u0, 1e-7).duration_s;
+        let nm = IsolatedContact { m: 0.04, big_m: 0.5, k_hz: 5.6e8, c1: 20.0, no_tension: false }
+            .newmark(u0, 1e-7)
+            .duration_s;
         assert!((nm / d20 - 1.0).abs() < 5e-5, "newmark {nm} vs {d20}");
     }
 }

@@ -8,6 +8,7 @@ use std::path::Path;
 use serde_json::Value;
 
 use crate::common;
+use crate::support::design_problem::PAPER_PROBLEM as PAPER;
 
 fn thud_in(home: &Path, args: &[&str]) -> (i32, String, String) {
     common::thud_in(home, args)
@@ -37,19 +38,6 @@ fn area(points: &[(f64, f64)], r: (f64, f64)) -> f64 {
     }
     total
 }
-
-const PAPER: [&str; 10] = [
-    "design",
-    "--preset",
-    "paper-table3",
-    "--vary",
-    "mass=20g:120g",
-    "--vary",
-    "gap=1cm:6cm",
-    "--minimize",
-    "spl_max_db",
-    "--maximize",
-];
 
 /// The (SPLmax, −e) of each front design of a `thud design --json` report.
 fn front_points(report: &Value) -> Vec<(f64, f64)> {
@@ -88,7 +76,7 @@ fn four_hundred_evaluations_reach_97_percent_of_the_grid_front() {
     assert!(grid_hv > 0.0);
     for seed in ["1", "2", "3"] {
         let mut args = PAPER.to_vec();
-        args.extend(["inclination_cm_s", "--evaluations", "400", "--seed", seed, "--reference", "106,0", "--json"]);
+        args.extend(["--evaluations", "400", "--seed", seed, "--reference", "106,0", "--json"]);
         let report = json_in(home.path(), &args);
         assert_eq!(report["evaluations"], 400, "seed {seed}");
         assert_eq!(report["partial"], false);
@@ -107,7 +95,6 @@ fn every_saved_front_design_simulates_to_its_printed_objectives_and_meets_every_
     let dir_s = dir.to_str().unwrap();
     let mut args = PAPER.to_vec();
     args.extend([
-        "inclination_cm_s",
         "--require",
         "mass<=60g",
         "--require",
@@ -148,7 +135,7 @@ fn the_front_is_the_same_for_a_seed_on_any_number_of_threads() {
     let home = tempfile::tempdir().unwrap();
     let mut args = vec!["--threads", "1"];
     args.extend(PAPER);
-    args.extend(["inclination_cm_s", "--evaluations", "48", "--seed", "9", "--csv"]);
+    args.extend(["--evaluations", "48", "--seed", "9", "--csv"]);
     let one = ok_in(home.path(), &args);
     args[1] = "2";
     let two = ok_in(home.path(), &args);
@@ -163,7 +150,7 @@ fn the_front_is_the_same_for_a_seed_on_any_number_of_threads() {
 fn an_infeasible_problem_names_the_constraint_that_binds() {
     let home = tempfile::tempdir().unwrap();
     let mut args = PAPER.to_vec();
-    args.extend(["inclination_cm_s", "--require", "mass<=100g", "--require", "spl_max_db<=20", "--evaluations", "20"]);
+    args.extend(["--require", "mass<=100g", "--require", "spl_max_db<=20", "--evaluations", "20"]);
     let text = ok_in(home.path(), &args);
     assert!(text.contains("spl_max_db<=20 binds"), "{text}");
     args.push("--json");
@@ -237,7 +224,6 @@ fn a_robust_front_design_run_again_as_an_ensemble_gives_its_printed_quantiles() 
     let dir = home.path().join("robust");
     let mut args = PAPER.to_vec();
     args.extend([
-        "inclination_cm_s",
         "--ensemble",
         "8",
         "--quantile",
@@ -273,7 +259,6 @@ fn a_robust_front_design_run_again_as_an_ensemble_gives_its_printed_quantiles() 
     ];
     for (rest, needle) in cases {
         let mut a = PAPER.to_vec();
-        a.push("inclination_cm_s");
         a.extend_from_slice(rest);
         let (code, out, err) = thud_in(home.path(), &a);
         assert_eq!((code, out.as_str(), err.lines().count()), (2, "", 1), "{a:?}: {err}");
@@ -347,7 +332,7 @@ fn interrupted(home: &Path, args: &[&str], wait: std::time::Duration) -> (Option
 fn ctrl_c_writes_the_front_found_so_far_marked_partial() {
     let home = tempfile::tempdir().unwrap();
     let mut args = PAPER.to_vec();
-    args.extend(["inclination_cm_s", "--require", "mass<=100g", "--evaluations", "100000", "--seed", "3", "--json"]);
+    args.extend(["--require", "mass<=100g", "--evaluations", "100000", "--seed", "3", "--json"]);
     // A budget no machine spends in the wait: the signal comes mid-search. Before the first
     // batch there is no front to write yet, so the wait doubles until one is there.
     let mut wait = std::time::Duration::from_millis(1500);

@@ -16,28 +16,12 @@ use thud::tui::{compute_sync, Palette};
 use thud::units::sig;
 
 use crate::common;
+use crate::support::design_problem::paper_problem_with;
 use crate::support::explorer::{press, render};
 
 /// A small search of the paper's problem (SPLmax against e over mass × gap), its report.
 fn report(home: &std::path::Path) -> String {
-    let args = [
-        "design",
-        "--preset",
-        "paper-table3",
-        "--vary",
-        "mass=20g:120g",
-        "--vary",
-        "gap=1cm:6cm",
-        "--minimize",
-        "spl_max_db",
-        "--maximize",
-        "inclination_cm_s",
-        "--evaluations",
-        "60",
-        "--seed",
-        "3",
-        "--json",
-    ];
+    let args = paper_problem_with(&["--evaluations", "60", "--seed", "3", "--json"]);
     let (code, out, err) = common::thud_in(home, &args);
     assert_eq!(code, 0, "{err}");
     out

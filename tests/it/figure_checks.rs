@@ -258,18 +258,7 @@ fn the_design_front_figure_names_every_look_and_keeps_its_colours_apart() {
     // numeric variables) in the variables; the same two checks as every gallery figure.
     let home = tempfile::tempdir().unwrap();
     let svg = home.path().join("front.svg");
-    let args = [
-        "design",
-        "--preset",
-        "paper-table3",
-        "--vary",
-        "mass=20g:120g",
-        "--vary",
-        "gap=1cm:6cm",
-        "--minimize",
-        "spl_max_db",
-        "--maximize",
-        "inclination_cm_s",
+    let args = crate::support::design_problem::paper_problem_with(&[
         "--evaluations",
         "40",
         "--seed",
@@ -277,7 +266,7 @@ fn the_design_front_figure_names_every_look_and_keeps_its_colours_apart() {
         "--svg",
         svg.to_str().unwrap(),
         "--json",
-    ];
+    ]);
     let (code, _, err) = crate::common::thud_in(home.path(), &args);
     assert_eq!(code, 0, "{err}");
     let doc = std::fs::read_to_string(&svg).unwrap();

@@ -14,6 +14,7 @@
 mod common;
 /// Helpers of the file, process and pids-limit tests.
 mod support {
+    pub mod design_problem;
     pub mod explorer;
     pub mod home;
     pub mod impact_rk4;

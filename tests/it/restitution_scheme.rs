@@ -4,7 +4,7 @@
 //! scheme, with the acceptance for a new contact scheme: release speeds within 5e-8 m/s;
 //! with `no_tension` the reference itself.
 
-use thud::damper::{single_contact, single_contact_with, ContactScheme};
+use thud::damper::{single_contact, ContactScheme, IsolatedContact};
 
 #[test]
 fn the_restitution_contact_agrees_with_the_reference() {
@@ -13,8 +13,13 @@ fn the_restitution_contact_agrees_with_the_reference() {
         for &c1 in &[0.0, 20.0, 100.0, 500.0] {
             for &u0 in &[0.3, 1.4, 3.0] {
                 let new = single_contact(m, 0.5, 5.6e8, c1, false, u0);
-                let old = single_contact_with(m, 0.5, 5.6e8, c1, false, u0, ContactScheme::DormandPrince);
-                assert_eq!(new, single_contact_with(m, 0.5, 5.6e8, c1, false, u0, ContactScheme::SundmanAdams));
+                let old = IsolatedContact { m, big_m: 0.5, k_hz: 5.6e8, c1, no_tension: false }
+                    .by(ContactScheme::DormandPrince, u0);
+                assert_eq!(
+                    new,
+                    IsolatedContact { m, big_m: 0.5, k_hz: 5.6e8, c1, no_tension: false }
+                        .by(ContactScheme::SundmanAdams, u0)
+                );
                 let du = (new.u_out_m_s - old.u_out_m_s).abs();
                 // (A contact so damped that it does not end within 1e4 of its elastic duration
                 // gives 0 by both.) Duration and peak penetration go as powers of the speed ≤ 4/5 (Hertz), so within
@@ -34,6 +39,14 @@ fn the_restitution_contact_agrees_with_the_reference() {
     eprintln!("restitution contact: worst {:e} m/s, {:e} relative", worst.0, worst.1);
     // No tension: the reference, as in a run.
     let clamped = single_contact(0.0405, 0.5, 5.6e8, 100.0, true, 1.4);
-    assert_eq!(clamped, single_contact_with(0.0405, 0.5, 5.6e8, 100.0, true, 1.4, ContactScheme::DormandPrince));
-    assert_eq!(clamped, single_contact_with(0.0405, 0.5, 5.6e8, 100.0, true, 1.4, ContactScheme::SundmanAdams));
+    assert_eq!(
+        clamped,
+        IsolatedContact { m: 0.0405, big_m: 0.5, k_hz: 5.6e8, c1: 100.0, no_tension: true }
+            .by(ContactScheme::DormandPrince, 1.4)
+    );
+    assert_eq!(
+        clamped,
+        IsolatedContact { m: 0.0405, big_m: 0.5, k_hz: 5.6e8, c1: 100.0, no_tension: true }
+            .by(ContactScheme::SundmanAdams, 1.4)
+    );
 }

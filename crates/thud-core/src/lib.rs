@@ -33,6 +33,7 @@ pub mod contact;
 pub mod continuation;
 pub mod damper;
 pub mod design;
+mod draws;
 pub mod dynamics;
 pub mod ensemble;
 pub mod error;

@@ -605,67 +605,65 @@ pub struct SingleContact {
     pub penetration_max_m: f64,
 }
 
-fn isolated_sys(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool) -> contact::Sys {
-    let p = DamperParams {
-        main_mass_kg: big_m,
-        stiffness_n_m: 0.0,
-        damping_n_s_m: 0.0,
-        impact_mass_kg: m,
-        gap_m: 0.02,
-        k_hz,
-        c1_n_s_m: c1,
-        no_tension,
-        v0_m_s: 0.0,
-        duration_s: 1.0,
-        ..DamperParams::table2()
-    };
-    contact::Sys::new(&p)
-}
-
 /// One isolated contact between ball `m` (kg) and main mass `big_m` (kg), no spring: relative
-/// coordinate `δ'' = −K*·(K_HZ·δ^{3/2} + c1·δ')`, `K* = (m+M)/(m·M)` (Eq 8, 26), at approach speed
-/// `u0` (m/s), by the event solver's default contact scheme ([`ContactScheme::SundmanAdams`];
-/// [`ContactScheme::DormandPrince`] with `no_tension`), so that the restitution it gives is the
-/// one a run's contact has. Inputs are assumed positive and finite.
-pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, u0: f64) -> SingleContact {
-    single_contact_with(m, big_m, k_hz, c1, no_tension, u0, ContactScheme::default())
+/// coordinate `δ'' = −K*·(K_HZ·δ^{3/2} + c1·δ')`, `K* = (m+M)/(m·M)` (Eq 8, 26), contact damping
+/// `c1` (N·s/m), with or without tension. Inputs are assumed positive and finite.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IsolatedContact {
+    pub m: f64,
+    pub big_m: f64,
+    pub k_hz: f64,
+    pub c1: f64,
+    pub no_tension: bool,
 }
 
-/// [`single_contact`] by the contact scheme `scheme` (a design with `no_tension` falls back to
-/// [`ContactScheme::DormandPrince`], as in a run).
-pub fn single_contact_with(
-    m: f64,
-    big_m: f64,
-    k_hz: f64,
-    c1: f64,
-    no_tension: bool,
-    u0: f64,
-    scheme: ContactScheme,
-) -> SingleContact {
-    let sys = isolated_sys(m, big_m, k_hz, c1, no_tension);
-    let tau = contact_duration(peak_approach(u0, sys.kstar, k_hz), u0);
-    let mut budget = 200_000;
-    let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
-    let start = contact::ContactStart::free(&sys, y0, 1e4 * tau);
-    let e = event::onset_contact(scheme.in_use(no_tension), start, &mut budget, contact::Unobserved);
-    SingleContact {
-        u_out_m_s: if e.outcome == contact::ContactOutcome::Separated { -e.y[3] } else { 0.0 },
-        duration_s: e.t,
-        penetration_max_m: e.pen_max,
+impl IsolatedContact {
+    fn sys(&self) -> contact::Sys {
+        let p = DamperParams {
+            main_mass_kg: self.big_m,
+            stiffness_n_m: 0.0,
+            damping_n_s_m: 0.0,
+            impact_mass_kg: self.m,
+            gap_m: 0.02,
+            k_hz: self.k_hz,
+            c1_n_s_m: self.c1,
+            no_tension: self.no_tension,
+            v0_m_s: 0.0,
+            duration_s: 1.0,
+            ..DamperParams::table2()
+        };
+        contact::Sys::new(&p)
+    }
+
+    /// The contact at approach speed `u0` (m/s) by the contact scheme `scheme` (a design with
+    /// `no_tension` falls back to [`ContactScheme::DormandPrince`], as in a run).
+    #[must_use]
+    pub fn by(&self, scheme: ContactScheme, u0: f64) -> SingleContact {
+        let sys = self.sys();
+        let tau = contact_duration(peak_approach(u0, sys.kstar, self.k_hz), u0);
+        let mut budget = 200_000;
+        let y0 = contact::State::new(0.0, 0.0, 0.0, u0, 0.0, 0.0);
+        let start = contact::ContactStart::free(&sys, y0, 1e4 * tau);
+        let e = event::onset_contact(scheme.in_use(self.no_tension), start, &mut budget, contact::Unobserved);
+        SingleContact {
+            u_out_m_s: if e.outcome == contact::ContactOutcome::Separated { -e.y[3] } else { 0.0 },
+            duration_s: e.t,
+            penetration_max_m: e.pen_max,
+        }
+    }
+
+    /// The contact at approach speed `u0` (m/s) by the Newmark reference with step `dt_s` (s).
+    #[must_use]
+    pub fn newmark(&self, u0: f64, dt_s: f64) -> SingleContact {
+        newmark::single(&self.sys(), u0, dt_s)
     }
 }
 
-/// The same isolated contact by the Newmark reference with step `dt_s` (s).
-pub fn single_contact_newmark(
-    m: f64,
-    big_m: f64,
-    k_hz: f64,
-    c1: f64,
-    no_tension: bool,
-    u0: f64,
-    dt_s: f64,
-) -> SingleContact {
-    newmark::single(&isolated_sys(m, big_m, k_hz, c1, no_tension), u0, dt_s)
+/// The [`IsolatedContact`] at approach speed `u0` (m/s) by the event solver's default contact
+/// scheme ([`ContactScheme::SundmanAdams`]; [`ContactScheme::DormandPrince`] with `no_tension`),
+/// so that the restitution it gives is the one a run's contact has.
+pub fn single_contact(m: f64, big_m: f64, k_hz: f64, c1: f64, no_tension: bool, u0: f64) -> SingleContact {
+    IsolatedContact { m, big_m, k_hz, c1, no_tension }.by(ContactScheme::default(), u0)
 }
 
 /// The contact damping c1 (N·s/m) that gives restitution `r = u_out/u0` for one isolated contact

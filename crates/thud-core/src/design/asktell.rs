@@ -450,25 +450,8 @@ impl<B: Fn(&Array2<f64>) -> Vec<Option<usize>>> moors::ConstraintsFn for MirrorC
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::design::search::{Constraint, Variable};
-    use crate::design::Design;
-
-    fn problem(constraints: Vec<Constraint>) -> Problem {
-        Problem {
-            base: Design::paper_table3().check().unwrap(),
-            variables: vec![
-                Variable::parse_range("mass=20g:120g").unwrap(),
-                Variable::parse_range("gap=1cm:6cm").unwrap(),
-            ],
-            objectives: vec![
-                Objective::parse("spl_max_db", Sense::Minimize).unwrap(),
-                Objective::parse("inclination_cm_s", Sense::Maximize).unwrap(),
-            ],
-            constraints,
-            band_hz: vec![],
-            robust: None,
-        }
-    }
+    use crate::design::search::tests::paper_problem_with as problem;
+    use crate::design::search::Constraint;
 
     /// Drives an ask/tell search to its end, evaluating each point as the search does, `n`
     /// points asked at a time, told in reverse order.

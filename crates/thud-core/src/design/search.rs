@@ -37,6 +37,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::design::{self, Design, Materials, Metrics, Steady, ValidDesign};
+use crate::draws::SplitMix64;
 use crate::error::ThudError;
 use crate::limits::{self, Range};
 use crate::params::{self, Accepts, DesignDraft, Param, Spelling};
@@ -1063,27 +1064,13 @@ pub(super) fn constraint_rows(all: &[Candidate], idx: &[Option<usize>], n_con: u
     out
 }
 
-/// A small seeded generator for the baselines (SplitMix64).
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The baseline of uniform random designs: `settings.evaluations` points, evaluated as
 /// [`search`] evaluates them.
 pub fn random_search(problem: &Problem, settings: Settings) -> Result<Outcome, ThudError> {
     problem.check()?;
-    let mut rng = SplitMix(settings.seed);
+    let mut rng = SplitMix64(settings.seed);
     let genes: Vec<Vec<f64>> =
-        (0..settings.evaluations).map(|_| (0..problem.variables.len()).map(|_| rng.next()).collect()).collect();
+        (0..settings.evaluations).map(|_| (0..problem.variables.len()).map(|_| rng.uniform()).collect()).collect();
     Ok(baseline(problem, settings.evaluations, &genes))
 }
 
@@ -1092,16 +1079,16 @@ pub fn random_search(problem: &Problem, settings: Settings) -> Result<Outcome, T
 pub fn latin_hypercube(problem: &Problem, settings: Settings) -> Result<Outcome, ThudError> {
     problem.check()?;
     let n = settings.evaluations;
-    let mut rng = SplitMix(settings.seed);
+    let mut rng = SplitMix64(settings.seed);
     let mut genes = vec![vec![0.0; problem.variables.len()]; n];
     for k in 0..problem.variables.len() {
         let mut order: Vec<usize> = (0..n).collect();
         for i in (1..n).rev() {
-            let j = ((rng.next() * (i + 1) as f64) as usize).min(i);
+            let j = ((rng.uniform() * (i + 1) as f64) as usize).min(i);
             order.swap(i, j);
         }
         for (i, g) in genes.iter_mut().enumerate() {
-            g[k] = (order[i] as f64 + rng.next()) / n as f64;
+            g[k] = (order[i] as f64 + rng.uniform()) / n as f64;
         }
     }
     Ok(baseline(problem, n, &genes))
@@ -1115,10 +1102,16 @@ fn baseline(problem: &Problem, n: usize, genes: &[Vec<f64>]) -> Outcome {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     fn paper_problem() -> Problem {
+        paper_problem_with(vec![])
+    }
+
+    /// The paper's Table 3 design searched over its ball's mass and clearance for a low peak
+    /// level and a steep inclination, under `constraints`.
+    pub(in crate::design) fn paper_problem_with(constraints: Vec<Constraint>) -> Problem {
         let base = Design::paper_table3().check().unwrap();
         Problem {
             base,
@@ -1130,7 +1123,7 @@ mod tests {
                 Objective::parse("spl_max_db", Sense::Minimize).unwrap(),
                 Objective::parse("inclination_cm_s", Sense::Maximize).unwrap(),
             ],
-            constraints: vec![],
+            constraints,
             band_hz: vec![],
             robust: None,
         }

@@ -30,7 +30,7 @@
 //! decay's statistic and for its first third's, because the whole decay is not monotone in
 //! c1 where the most damped contacts stop the rattle. Where c1 stays poorly bounded the fit
 //! carries a one-line [`DamperFit::note`]. An acceleration's windows are fitted robustly
-//! ([`window_amplitude_robust`]): its impact spikes last more samples than the median removes.
+//! ([`window_fit`]): its impact spikes last more samples than the median removes.
 //!
 //! The signal in any kind is first turned into the main mass's displacement: a velocity is
 //! integrated (trapezoids; its offset becomes a slope, which each period's fit removes), an
@@ -47,6 +47,7 @@ use serde::{Deserialize, Serialize};
 use super::{bad, noise_sd, Quantity, Series};
 use crate::damper::{self, RunOptions};
 use crate::design::{self, Design, ValidDesign};
+use crate::draws::SplitMix64;
 use crate::error::ThudError;
 
 /// Ensemble members (ball starts) per c1.
@@ -139,94 +140,96 @@ fn period_s(d: &Design) -> Result<f64, ThudError> {
     }
 }
 
+/// The samples of `y` at `t` in [a, b) and the regressor row of the sloped sine
+/// `c + s·τ + p cos ωτ + q sin ωτ` at each (τ from the window's middle).
+struct SlopedWindow<'a> {
+    t: &'a [f64],
+    y: &'a [f64],
+    from: usize,
+    to: usize,
+    mid: f64,
+    omega: f64,
+}
+
+impl<'a> SlopedWindow<'a> {
+    /// The window, `None` with fewer than 8 samples in it.
+    fn new(t: &'a [f64], y: &'a [f64], a: f64, b: f64, omega: f64) -> Option<Self> {
+        let (from, to, mid) = super::window_span(t, a, b, 8)?;
+        Some(Self { t, y, from, to, mid, omega })
+    }
+
+    fn row(&self, i: usize) -> nalgebra::Vector4<f64> {
+        let tau = self.t[i] - self.mid;
+        let (s, c) = (self.omega * tau).sin_cos();
+        nalgebra::Vector4::new(1.0, tau, c, s)
+    }
+
+    /// The normal equations (AᵀA, Aᵀy) over the samples `keep` keeps.
+    fn normal(&self, keep: &dyn Fn(usize) -> bool) -> (nalgebra::Matrix4<f64>, nalgebra::Vector4<f64>) {
+        let mut ata = nalgebra::Matrix4::zeros();
+        let mut aty = nalgebra::Vector4::zeros();
+        for i in (self.from..self.to).filter(|&i| keep(i)) {
+            let r = self.row(i);
+            ata += r * r.transpose();
+            aty += r * self.y[i];
+        }
+        (ata, aty)
+    }
+
+    /// The residual of sample `i` from the fit `sol`.
+    fn residual(&self, i: usize, sol: &nalgebra::Vector4<f64>) -> f64 {
+        self.y[i] - self.row(i).dot(sol)
+    }
+
+    /// The robust cut of the fit `sol`, 4 robust standard deviations (1.4826 × the median
+    /// absolute residual); `None` where it would keep fewer than 8 samples.
+    fn robust_cut(&self, sol: &nalgebra::Vector4<f64>) -> Option<f64> {
+        let mut abs: Vec<f64> = (self.from..self.to).map(|i| self.residual(i, sol).abs()).collect();
+        abs.sort_by(f64::total_cmp);
+        let c = 4.0 * 1.4826 * abs[abs.len() / 2];
+        ((self.from..self.to).filter(|&i| self.residual(i, sol).abs() <= c).count() >= 8).then_some(c)
+    }
+}
+
 /// The amplitude of `y` over [a, b): the least-squares `c + s·τ + p cos ωτ + q sin ωτ`
 /// (τ from the window's middle), `√(p² + q²)`. `None` with fewer than 8 samples or a singular fit.
 #[must_use]
 pub fn window_amplitude_sloped(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64) -> Option<f64> {
-    let from = t.partition_point(|&ti| ti < a);
-    let to = t.partition_point(|&ti| ti < b);
-    if to < from + 8 {
-        return None;
-    }
-    let mid = 0.5 * (a + b);
-    let mut ata = nalgebra::Matrix4::zeros();
-    let mut aty = nalgebra::Vector4::zeros();
-    for i in from..to {
-        let tau = t[i] - mid;
-        let (s, c) = (omega * tau).sin_cos();
-        let row = nalgebra::Vector4::new(1.0, tau, c, s);
-        ata += row * row.transpose();
-        aty += row * y[i];
-    }
+    let w = SlopedWindow::new(t, y, a, b, omega)?;
+    let (ata, aty) = w.normal(&|_| true);
     let sol = ata.lu().solve(&aty)?;
     let amp = sol[2].hypot(sol[3]);
     amp.is_finite().then_some(amp)
 }
 
 /// The least-squares `c + s·τ + p cos ωτ + q sin ωτ` over [a, b) (τ from the window's middle)
-/// of `y` at `t`, robust or not (as [`window_amplitude_robust`] and [`window_amplitude_sloped`]):
-/// `(amplitude A = √(p² + q²), its standard error)`. The standard error is the least-squares
+/// of `y` at `t`, robust or not: `(amplitude A = √(p² + q²), its standard error)`. Robust, the
+/// fit is refitted twice without the samples whose residual exceeds 4 robust standard
+/// deviations (1.4826 × the median absolute residual): an acceleration's impact spikes, a few
+/// samples each, leave the window's sine. The standard error is the least-squares
 /// one from the window's own residual, cov = s²·(AᵀA)⁻¹ with s² = RSS/(n − 4) over the samples
 /// kept, carried to A by its first derivatives (p² var p + q² var q + 2pq cov(p, q))/A²: the
 /// slope and the sine are correlated over one period, so this is larger than s·√(2/n).
 #[must_use]
 pub fn window_fit(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64, robust: bool) -> Option<(f64, f64)> {
-    let from = t.partition_point(|&ti| ti < a);
-    let to = t.partition_point(|&ti| ti < b);
-    if to < from + 8 {
-        return None;
-    }
-    let mid = 0.5 * (a + b);
-    let row = |i: usize| {
-        let tau = t[i] - mid;
-        let (s, c) = (omega * tau).sin_cos();
-        nalgebra::Vector4::new(1.0, tau, c, s)
-    };
-    let normal = |keep: &dyn Fn(usize) -> bool| {
-        let mut ata = nalgebra::Matrix4::zeros();
-        let mut aty = nalgebra::Vector4::zeros();
-        for i in (from..to).filter(|&i| keep(i)) {
-            let r = row(i);
-            ata += r * r.transpose();
-            aty += r * y[i];
-        }
-        (ata, aty)
-    };
-    let (ata, aty) = normal(&|_| true);
+    let w = SlopedWindow::new(t, y, a, b, omega)?;
+    let (ata, aty) = w.normal(&|_| true);
     let first = ata.lu().solve(&aty)?;
-    let cut = if robust {
-        let mut abs: Vec<f64> = (from..to).map(|i| (y[i] - row(i).dot(&first)).abs()).collect();
-        abs.sort_by(f64::total_cmp);
-        let c = 4.0 * 1.4826 * abs[abs.len() / 2];
-        if (from..to).filter(|&i| (y[i] - row(i).dot(&first)).abs() <= c).count() >= 8 {
-            c
-        } else {
-            f64::INFINITY
-        }
-    } else {
-        f64::INFINITY
-    };
+    let cut = if robust { w.robust_cut(&first).unwrap_or(f64::INFINITY) } else { f64::INFINITY };
     // A second pass from the fit without the first pass's outliers (spikes pull the first fit).
     let (first, cut) = if robust && cut.is_finite() {
-        let (ata, aty) = normal(&|i| (y[i] - row(i).dot(&first)).abs() <= cut);
+        let (ata, aty) = w.normal(&|i| w.residual(i, &first).abs() <= cut);
         let second = ata.lu().solve(&aty).unwrap_or(first);
-        let mut abs: Vec<f64> = (from..to).map(|i| (y[i] - row(i).dot(&second)).abs()).collect();
-        abs.sort_by(f64::total_cmp);
-        let c = 4.0 * 1.4826 * abs[abs.len() / 2];
-        if (from..to).filter(|&i| (y[i] - row(i).dot(&second)).abs() <= c).count() >= 8 {
-            (second, c)
-        } else {
-            (first, cut)
-        }
+        w.robust_cut(&second).map_or((first, cut), |c| (second, c))
     } else {
         (first, cut)
     };
-    let keep = |i: usize| (y[i] - row(i).dot(&first)).abs() <= cut;
-    let (ata, aty) = normal(&keep);
+    let keep = |i: usize| w.residual(i, &first).abs() <= cut;
+    let (ata, aty) = w.normal(&keep);
     let inv = ata.try_inverse()?;
     let sol = inv * aty;
-    let kept: Vec<usize> = (from..to).filter(|&i| keep(i)).collect();
-    let rss: f64 = kept.iter().map(|&i| (y[i] - row(i).dot(&sol)).powi(2)).sum();
+    let kept: Vec<usize> = (w.from..w.to).filter(|&i| keep(i)).collect();
+    let rss: f64 = kept.iter().map(|&i| w.residual(i, &sol).powi(2)).sum();
     let s2 = rss / (kept.len().saturating_sub(4).max(1)) as f64;
     let (p, q) = (sol[2], sol[3]);
     let amp = p.hypot(q);
@@ -236,44 +239,6 @@ pub fn window_fit(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64, robust: bool
         s2 * 0.5 * (inv[(2, 2)] + inv[(3, 3)])
     };
     (amp.is_finite() && var.is_finite()).then(|| (amp, var.max(0.0).sqrt()))
-}
-
-/// [`window_amplitude_sloped`] refitted without the samples whose residual exceeds 4 robust
-/// standard deviations (1.4826 × the median absolute residual): an acceleration's impact
-/// spikes, a few samples each, leave the window's sine.
-#[must_use]
-pub fn window_amplitude_robust(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64) -> Option<f64> {
-    let from = t.partition_point(|&ti| ti < a);
-    let to = t.partition_point(|&ti| ti < b);
-    if to < from + 8 {
-        return None;
-    }
-    let mid = 0.5 * (a + b);
-    let fit = |keep: &dyn Fn(usize) -> bool| {
-        let mut ata = nalgebra::Matrix4::zeros();
-        let mut aty = nalgebra::Vector4::zeros();
-        for i in (from..to).filter(|&i| keep(i)) {
-            let tau = t[i] - mid;
-            let (s, c) = (omega * tau).sin_cos();
-            let row = nalgebra::Vector4::new(1.0, tau, c, s);
-            ata += row * row.transpose();
-            aty += row * y[i];
-        }
-        ata.lu().solve(&aty)
-    };
-    let first = fit(&|_| true)?;
-    let res = |i: usize| {
-        let tau = t[i] - mid;
-        let (s, c) = (omega * tau).sin_cos();
-        y[i] - (first[0] + first[1] * tau + first[2] * c + first[3] * s)
-    };
-    let mut abs: Vec<f64> = (from..to).map(|i| res(i).abs()).collect();
-    abs.sort_by(f64::total_cmp);
-    let cut = 4.0 * 1.4826 * abs[abs.len() / 2];
-    let kept = (from..to).filter(|&i| res(i).abs() <= cut).count();
-    let sol = if kept >= 8 { fit(&|i| res(i).abs() <= cut)? } else { first };
-    let amp = sol[2].hypot(sol[3]);
-    amp.is_finite().then_some(amp)
 }
 
 /// The envelope of `x` at times `t` (from 0): the amplitude over each of `periods` periods of
@@ -485,32 +450,6 @@ impl Table {
     }
 }
 
-/// A small fixed generator (SplitMix64) for the draws of several records' means: repeatable.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-}
-
-impl SplitMix {
-    /// Uniform in [0, 1).
-    fn uniform(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Standard normal (Box–Muller).
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform().max(1e-300), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
-    }
-}
-
 /// The members' quantile function at `u` ∈ [0, 1]: the sorted members at their plotting
 /// positions (i + ½)/N — where the evenly spread starts sit — joined by straight lines, flat
 /// beyond the first and last.
@@ -534,7 +473,7 @@ fn quantile(sorted: &[f64], u: f64) -> f64 {
 fn band(members: &[f64], records: usize, noise: f64, tail: f64) -> (f64, f64) {
     let mut sorted = members.to_vec();
     sorted.sort_by(f64::total_cmp);
-    let mut g = SplitMix(0x5EED_0F17);
+    let mut g = SplitMix64(0x5EED_0F17);
     let mut means: Vec<f64> = (0..DRAWS)
         .map(|_| {
             (0..records).map(|_| quantile(&sorted, g.uniform())).sum::<f64>() / records as f64 + noise * g.normal()
@@ -1115,6 +1054,14 @@ mod tests {
         Series::new(t, y, Quantity::Displacement).unwrap()
     }
 
+    /// The fit of one record of `d` with c1 `truth` (2 kHz, 1 % noise), the ball at rest at a
+    /// random offset `y0` in the clearance: `(y0, the fit)`.
+    fn fit_one_record(d: &ValidDesign, table: &Table, truth: f64, g: &mut Noise) -> (f64, DamperFit) {
+        let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
+        let s = record(d, truth, y0, 2000.0, 0.01, g);
+        (y0, compare(d, table, &[observe(&s, d).unwrap()]).unwrap())
+    }
+
     /// The interval is honest: over 60 synthetic records of one design, each from a ball start
     /// drawn at random (uniform in the clearance, at rest), with 1 % noise, an offset, a drift
     /// and uneven 2 kHz sampling, the truth falls inside the 95 % interval of at least 53 (57 measured;
@@ -1132,9 +1079,7 @@ mod tests {
         let (mut covered, mut ratios) = (0, Vec::new());
         let n = 60;
         for _ in 0..n {
-            let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
-            let s = record(&d, truth, y0, 2000.0, 0.01, &mut g);
-            let fit = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
+            let (_, fit) = fit_one_record(&d, &table, truth, &mut g);
             let [lo, hi] = fit.c1_n_s_m_ci;
             if lo <= truth && truth <= hi {
                 covered += 1;
@@ -1389,9 +1334,7 @@ mod tests {
         let (mut covered, mut narrow) = (0, 0);
         let n = 40;
         for _ in 0..n {
-            let y0 = (g.uniform() - 0.5) * d.damper.gap_m * 0.999;
-            let s = record(&d, truth, y0, 2000.0, 0.01, &mut g);
-            let fit = compare(&d, &table, &[observe(&s, &d).unwrap()]).unwrap();
+            let (y0, fit) = fit_one_record(&d, &table, truth, &mut g);
             let [lo, hi] = fit.c1_n_s_m_ci;
             if lo <= truth && truth <= hi {
                 covered += 1;

@@ -309,17 +309,20 @@ pub fn up_crossings(t: &[f64], y: &[f64], h: f64) -> Vec<f64> {
     out
 }
 
+/// The samples of sorted times `t` with `a ≤ t < b` (`from..to`) and the window's middle;
+/// `None` with fewer than `min` of them.
+fn window_span(t: &[f64], a: f64, b: f64, min: usize) -> Option<(usize, usize, f64)> {
+    let from = t.partition_point(|&ti| ti < a);
+    let to = t.partition_point(|&ti| ti < b);
+    (to >= from + min).then_some((from, to, 0.5 * (a + b)))
+}
+
 /// The amplitude of `y` over the samples with `a ≤ t < b` at angular frequency `omega`
 /// (rad/s): the least-squares `c + p·cos ωt + q·sin ωt` through them, `√(p² + q²)`. `None`
 /// with fewer than 6 samples in the window or a singular fit.
 #[must_use]
 pub fn window_amplitude(t: &[f64], y: &[f64], a: f64, b: f64, omega: f64) -> Option<f64> {
-    let from = t.partition_point(|&ti| ti < a);
-    let to = t.partition_point(|&ti| ti < b);
-    if to < from + 6 {
-        return None;
-    }
-    let mid = 0.5 * (a + b);
+    let (from, to, mid) = window_span(t, a, b, 6)?;
     let mut ata = Matrix3::zeros();
     let mut aty = Vector3::zeros();
     for i in from..to {

@@ -20,10 +20,9 @@
 //! flight M·x'' = −K·x − C·x'), after the impacts' spikes are taken out (the impulses are
 //! too short for its samples to integrate, and the momentum identity does not need them).
 
-use std::f64::consts::PI;
-
 use super::{bad, noise_sd, Quantity, Series};
 use crate::design::Design;
+use crate::draws::SplitMix64;
 use crate::error::ThudError;
 
 /// The strike's speed read from a record, with its standard uncertainty.
@@ -142,24 +141,6 @@ impl Setup {
     }
 }
 
-/// A small fixed generator (SplitMix64, Box–Muller) for the noise draws: repeatable.
-struct Draws(u64);
-
-impl Draws {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform().max(1e-300), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
-    }
-}
-
 /// The strike's speed v0 from record `s` of design `d`'s structure struck at its first sample
 /// (M, K, C, the ball's mass m and the clearance d are the design's; its v0 is not used).
 ///
@@ -209,7 +190,7 @@ pub fn strike_speed(s: &Series, d: &Design) -> Result<Strike, ThudError> {
     let x = as_x(&raw);
     // The same draws of the record's own white noise for every window.
     let level = noise_sd(&raw);
-    let mut g = Draws(0x5EED_57A1);
+    let mut g = SplitMix64(0x5EED_57A1);
     let draws: Vec<Vec<f64>> =
         (0..DRAWS).map(|_| as_x(&t.iter().map(|_| level * g.normal()).collect::<Vec<_>>())).collect();
     let zeros = vec![0.0; t.len()];

@@ -348,23 +348,8 @@ pub(crate) mod tests {
     use super::*;
     use crate::damper::{self, DamperParams, RunOptions, Solver};
 
-    /// A small repeatable generator for test noise (SplitMix64 and Box–Muller).
-    pub(crate) struct Noise(pub u64);
-
-    impl Noise {
-        pub(crate) fn uniform(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        pub(crate) fn normal(&mut self) -> f64 {
-            let (u, v) = (self.uniform().max(1e-300), self.uniform());
-            (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
-        }
-    }
+    /// The repeatable generator of test noise.
+    pub(crate) use crate::draws::SplitMix64 as Noise;
 
     /// Uneven times: a mean rate `rate_hz` with each step jittered ±40 %.
     pub(crate) fn uneven_times(span_s: f64, rate_hz: f64, g: &mut Noise) -> Vec<f64> {

@@ -152,7 +152,8 @@ pub fn table4() -> Result<Table, ThudError> {
         .map(|&(u0, nm, exact, err)| {
             let closed = closed_form_duration(m, big_m, k_hz, u0);
             let closed_405 = closed_form_duration(m_paper, big_m, k_hz, u0);
-            let newmark = damper::single_contact_newmark(m, big_m, k_hz, 0.0, false, u0, 1e-7).duration_s;
+            let newmark =
+                damper::IsolatedContact { m, big_m, k_hz, c1: 0.0, no_tension: false }.newmark(u0, 1e-7).duration_s;
             let damped = damper::single_contact(m, big_m, k_hz, 20.0, false, u0).duration_s;
             vec![
                 u0.into(),
