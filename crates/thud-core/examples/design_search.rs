@@ -20,6 +20,27 @@ use thud_core::design::Design;
 use thud_core::params::Spelling;
 use thud_core::study::{self, Grid, Vary};
 
+/// A setting of the search from `POP,SIGMA,GENES,RATE,ETA[,LATIN,PM_ETA,DISTINCT,ALGO,KIDS]`.
+fn knobs(t: &str) -> Tuning {
+    let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
+    Tuning {
+        population: (v[0] > 0.0).then_some(v[0] as usize),
+        sigma: v[1],
+        genes_mutated: v[2],
+        mutation_rate: v[3],
+        crossover_eta: v[4],
+        start: if v.get(5).is_some_and(|&x| x > 0.0) { Start::Latin } else { Start::Uniform },
+        polynomial_eta: v.get(6).copied().filter(|&x| x > 0.0),
+        distinct: v.get(7).is_some_and(|&x| x > 0.0),
+        algorithm: match v.get(8).map_or(0, |&x| x as u8) {
+            1 => search::Algorithm::Spea2,
+            2 => search::Algorithm::AgeMoea,
+            _ => search::Algorithm::Nsga2,
+        },
+        offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let budget: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(400);
@@ -59,29 +80,7 @@ fn main() {
         println!("grid 100×100: hypervolume {grid_hv:.6} in {:.2} s", t.elapsed().as_secs_f64());
         grid_hv
     });
-    let tunings: Vec<Tuning> = args
-        .iter()
-        .skip(4)
-        .map(|t| {
-            let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
-            Tuning {
-                population: (v[0] > 0.0).then_some(v[0] as usize),
-                sigma: v[1],
-                genes_mutated: v[2],
-                mutation_rate: v[3],
-                crossover_eta: v[4],
-                start: if v.get(5).is_some_and(|&x| x > 0.0) { Start::Latin } else { Start::Uniform },
-                polynomial_eta: v.get(6).copied().filter(|&x| x > 0.0),
-                distinct: v.get(7).is_some_and(|&x| x > 0.0),
-                algorithm: match v.get(8).map_or(0, |&x| x as u8) {
-                    1 => search::Algorithm::Spea2,
-                    2 => search::Algorithm::AgeMoea,
-                    _ => search::Algorithm::Nsga2,
-                },
-                offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),
-            }
-        })
-        .collect();
+    let tunings: Vec<Tuning> = args.iter().skip(4).map(|t| knobs(t)).collect();
     if !tunings.is_empty() {
         for tuning in [Tuning::default()].into_iter().chain(tunings) {
             let t = Instant::now();

@@ -69,11 +69,11 @@ pub enum Mutation {
 }
 
 impl MutationOperator for Mutation {
-    fn mutate<'a>(&self, mut individual: ArrayViewMut1<'a, f64>, rng: &mut impl RandomGenerator) {
+    fn mutate(&self, mut individual: ArrayViewMut1<'_, f64>, rng: &mut impl RandomGenerator) {
         match *self {
             Mutation::Gaussian(ref m) => m.mutate(individual, rng),
             Mutation::Polynomial { gene_rate, eta } => {
-                for g in individual.iter_mut() {
+                for g in &mut individual {
                     if rng.gen_bool(gene_rate) {
                         *g = polynomial_step(g.clamp(0.0, 1.0), eta, rng.gen_range_f64(0.0, 1.0));
                     }
