@@ -4,17 +4,42 @@
 //! hypervolume of NSGA-II's front at a budget against the front of a 100 × 100 grid, beside
 //! random search and a Latin hypercube of the same budget, with wall times.
 //!
-//! `cargo run --release -p thud-core --example design_search [BUDGET] [SEEDS] [GRID_HV|-] [POP,SIGMA,GENES,RATE,ETA]…`
+//! `cargo run --release -p thud-core --example design_search [BUDGET] [SEEDS] [GRID_HV|-] [POP,SIGMA,GENES,RATE,ETA[,LATIN,PM_ETA,DISTINCT,ALGO,KIDS]]…`
+//!
+//! LATIN 1: a Latin-hypercube first population; PM_ETA > 0: polynomial mutation of that index in
+//! place of the Gaussian (SIGMA unused); DISTINCT 1: a generation's repeated children drawn again; ALGO 1: SPEA2, 2:
+//! AGE-MOEA (0: NSGA-II); KIDS > 0: children a generation (else the population).
 //!
 //! With knobs after the grid's hypervolume (`-`: compute it), each setting of NSGA-II is
 //! measured on the same seeds instead of the defaults beside the baselines.
 
 use std::time::Instant;
 
-use thud_core::design::search::{self, Objective, Problem, Sense, Settings, Tuning, Variable};
+use thud_core::design::search::{self, Objective, Problem, Sense, Settings, Start, Tuning, Variable};
 use thud_core::design::Design;
 use thud_core::params::Spelling;
 use thud_core::study::{self, Grid, Vary};
+
+/// A setting of the search from `POP,SIGMA,GENES,RATE,ETA[,LATIN,PM_ETA,DISTINCT,ALGO,KIDS]`.
+fn knobs(t: &str) -> Tuning {
+    let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
+    Tuning {
+        population: (v[0] > 0.0).then_some(v[0] as usize),
+        sigma: v[1],
+        genes_mutated: v[2],
+        mutation_rate: v[3],
+        crossover_eta: v[4],
+        start: if v.get(5).is_some_and(|&x| x > 0.0) { Start::Latin } else { Start::Uniform },
+        polynomial_eta: v.get(6).copied().filter(|&x| x > 0.0),
+        distinct: v.get(7).is_some_and(|&x| x > 0.0),
+        algorithm: match v.get(8).map_or(0, |&x| x as u8) {
+            1 => search::Algorithm::Spea2,
+            2 => search::Algorithm::AgeMoea,
+            _ => search::Algorithm::Nsga2,
+        },
+        offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),
+    }
+}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -55,20 +80,7 @@ fn main() {
         println!("grid 100×100: hypervolume {grid_hv:.6} in {:.2} s", t.elapsed().as_secs_f64());
         grid_hv
     });
-    let tunings: Vec<Tuning> = args
-        .iter()
-        .skip(4)
-        .map(|t| {
-            let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
-            Tuning {
-                population: (v[0] > 0.0).then_some(v[0] as usize),
-                sigma: v[1],
-                genes_mutated: v[2],
-                mutation_rate: v[3],
-                crossover_eta: v[4],
-            }
-        })
-        .collect();
+    let tunings: Vec<Tuning> = args.iter().skip(4).map(|t| knobs(t)).collect();
     if !tunings.is_empty() {
         for tuning in [Tuning::default()].into_iter().chain(tunings) {
             let t = Instant::now();

@@ -3,11 +3,15 @@
 //! the ball's material; min SPLmax, max e; reference 110 dB, 0 cm/s): the median hypervolume
 //! over seeds against random search and a Latin hypercube of the same budget.
 //!
-//! `cargo run --release -p thud-core --example design_tune [BUDGET] [SEEDS] [POP,SIGMA,GENES,RATE,ETA]…`
+//! `cargo run --release -p thud-core --example design_tune [BUDGET] [SEEDS] [POP,SIGMA,GENES,RATE,ETA[,LATIN,PM_ETA,DISTINCT,ALGO,KIDS]]…`
+//!
+//! LATIN 1: a Latin-hypercube first population; PM_ETA > 0: polynomial mutation of that index in
+//! place of the Gaussian (SIGMA unused); DISTINCT 1: a generation's repeated children drawn again; ALGO 1: SPEA2, 2:
+//! AGE-MOEA (0: NSGA-II); KIDS > 0: children a generation (else the population).
 
 use std::time::Instant;
 
-use thud_core::design::search::{self, Objective, Outcome, Problem, Sense, Settings, Tuning, Variable};
+use thud_core::design::search::{self, Objective, Outcome, Problem, Sense, Settings, Start, Tuning, Variable};
 use thud_core::design::Design;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -51,6 +55,15 @@ fn main() {
             genes_mutated: v[2],
             mutation_rate: v[3],
             crossover_eta: v[4],
+            start: if v.get(5).is_some_and(|&x| x > 0.0) { Start::Latin } else { Start::Uniform },
+            polynomial_eta: v.get(6).copied().filter(|&x| x > 0.0),
+            distinct: v.get(7).is_some_and(|&x| x > 0.0),
+            algorithm: match v.get(8).map_or(0, |&x| x as u8) {
+                1 => search::Algorithm::Spea2,
+                2 => search::Algorithm::AgeMoea,
+                _ => search::Algorithm::Nsga2,
+            },
+            offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),
         });
     }
     let (mut random, mut lhs) = (Vec::new(), Vec::new());

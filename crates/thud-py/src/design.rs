@@ -5,10 +5,14 @@
 //! ([`thud_core::design::search`]); the result is the command line's `--json` record, handed
 //! over as JSON text, which the Python layer (`thud/_design.py`) turns into a `Front`.
 //!
-//! `_design` runs the whole search without the GIL (Ctrl-C stops it: KeyboardInterrupt).
+//! `_design` runs the whole search without the GIL, reporting its evaluations to a
+//! `progress(done, total)` callback. Ctrl-C (or a callback that raises) stops it after the
+//! batch under way and its exception propagates, carrying the front found so far (marked
+//! partial) as JSON text in `_thud_front`, which the Python layer makes the exception's `front`.
 //! `_Designer` is the ask/tell form ([`thud_core::design::asktell`]): the points go out, the
 //! caller evaluates them anywhere and tells the result columns back.
 
+use std::sync::atomic::Ordering;
 use std::sync::Mutex;
 
 use pyo3::prelude::*;
@@ -23,10 +27,29 @@ use thud_core::units::Kind;
 use thud_core::ThudError;
 
 use crate::args::{self, engine_error, parameter_error, refuse, Kwargs};
+use crate::progress::Progress;
 use crate::{design_of, detach, json_of};
 
-/// The keywords of `design` and `Designer` beside the design's own.
+/// The keywords of `design` beside the design's own: `Designer`'s, and `progress`.
 pub const OPTIONS: &[&str] = &[
+    "preset",
+    "design",
+    "vary",
+    "choose",
+    "minimize",
+    "maximize",
+    "require",
+    "over",
+    "evaluations",
+    "seed",
+    "reference",
+    "no_limit",
+    "progress",
+];
+
+/// The keywords of `Designer` beside the design's own (its caller evaluates, so it has no
+/// progress of its own).
+pub const DESIGNER_OPTIONS: &[&str] = &[
     "preset",
     "design",
     "vary",
@@ -283,14 +306,41 @@ fn record_text(py: Python<'_>, p: &Problem, o: &Outcome, s: Settings) -> PyResul
 /// _design(**params) -> str
 ///
 /// The design search of `thud design`, as `thud design --json` prints it (JSON text; the
-/// Python layer makes a `Front` of it).
+/// Python layer makes a `Front` of it). `progress(done, total)` hears the designs evaluated
+/// out of the budget. An interrupt (Ctrl-C, or the callback's exception) propagates with the
+/// partial front's record in its `_thud_front`.
 #[pyfunction]
 #[pyo3(signature = (**params))]
 pub fn _design(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
     let kw = Kwargs::new(params, OPTIONS)?;
     let (p, settings, reference) = setup(py, &kw)?;
-    let o = detach::run(py, |cancel| search::search(&p, settings, reference.as_deref(), Some(cancel), &|_, _, _| {}))?
-        .map_err(|e| error(py, e))?;
+    let progress = Progress::new(py, &kw, settings.evaluations)?;
+    let done = &progress.done;
+    // The outcome is kept here too: an interrupt's error carries the front found so far.
+    let kept: Mutex<Option<Outcome>> = Mutex::new(None);
+    let on_batch = |at: search::Progress, _: &[Candidate], _: &[usize]| done.store(at.evaluations, Ordering::Relaxed);
+    let ran = detach::run_watched(
+        py,
+        |cancel| {
+            let o = search::search(&p, settings, reference.as_deref(), Some(cancel), &on_batch);
+            if let Ok(o) = &o {
+                *kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(o.clone());
+            }
+            o
+        },
+        || progress.report(),
+    );
+    let o = match ran {
+        Ok(o) => o.map_err(|e| error(py, e))?,
+        Err(stop) => {
+            let partial = kept.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner);
+            if let Some(o) = partial {
+                let text = record_text(py, &p, &o, settings)?;
+                stop.value(py).setattr("_thud_front", text)?;
+            }
+            return Err(stop);
+        }
+    };
     if o.partial {
         return Err(crate::cancelled(py));
     }
@@ -334,7 +384,7 @@ impl PyDesigner {
     #[new]
     #[pyo3(signature = (**params))]
     fn new(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let kw = Kwargs::new(params, OPTIONS)?;
+        let kw = Kwargs::new(params, DESIGNER_OPTIONS)?;
         let (p, settings, reference) = setup(py, &kw)?;
         let at = AskTell::new(p, settings, reference).map_err(|e| error(py, e))?;
         Ok(PyDesigner { inner: Mutex::new(at) })

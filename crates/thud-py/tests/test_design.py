@@ -4,7 +4,8 @@
   its tables are `--csv`'s; it pickles to an equal object.
 - Every front design, run again with thud.simulate, gives exactly its objectives.
 - A Designer told the results thud.simulate gives reaches exactly thud.design's front.
-- Bad input names the keyword; the GIL is released; Ctrl-C stops a search.
+- Bad input names the keyword; the GIL is released; progress hears the evaluations; Ctrl-C
+  stops a search and its KeyboardInterrupt carries the front found so far, marked partial.
 """
 
 import ast
@@ -216,13 +217,64 @@ def test_ctrl_c_stops_a_search():
     t0 = time.perf_counter()
     timer.start()
     try:
-        with pytest.raises(KeyboardInterrupt):
+        with pytest.raises(KeyboardInterrupt) as e:
             thud.design(**PAPER, evaluations=5000, seed=1, duration=200, no_limit=True)
     finally:
         timer.cancel()
     elapsed = time.perf_counter() - t0
     REPORT.append(("Ctrl-C stopped thud.design after", f"{elapsed:.2f} s"))
     assert elapsed < 5, f"the search went on for {elapsed:.1f} s after Ctrl-C"
+    # The front found so far rides on the interrupt, marked partial, within the budget.
+    front = e.value.front
+    assert isinstance(front, thud.Front) and front.partial
+    assert front.evaluations < front.budget == 5000
+    assert not hasattr(e.value, "_thud_front")
+
+
+def test_progress_hears_the_evaluations_out_of_the_budget():
+    heard = []
+    front = thud.design(**PAPER, evaluations=120, seed=2, progress=lambda done, total: heard.append((done, total)))
+    assert heard and all(total == 120 for _, total in heard)
+    done = [d for d, _ in heard]
+    assert done == sorted(done) and done[-1] == front.evaluations
+    assert not front.partial
+    with pytest.raises(thud.ParameterError) as bad:
+        thud.design(**PAPER, evaluations=20, progress="yes")
+    assert bad.value.param == "progress"
+    with pytest.raises(thud.ParameterError) as bad:
+        thud.Designer(**PAPER, evaluations=20, progress=print)
+    assert bad.value.param == "progress"
+
+
+def test_a_search_stopped_keeps_the_front_of_what_it_evaluated():
+    """A progress callback that raises KeyboardInterrupt (Ctrl-C in a notebook) stops the
+    search after the batch under way; the exception's front is exactly the front of the
+    designs evaluated until then: a Designer told the same designs reaches the same one."""
+    def stop(done, total):
+        if done >= 100:
+            raise KeyboardInterrupt
+
+    # Runs of 4 s (the preset's are shorter) keep the search well past the first polls.
+    with pytest.raises(KeyboardInterrupt) as e:
+        thud.design(**PAPER, evaluations=400, seed=4, duration=4, progress=stop)
+    front = e.value.front
+    assert front.partial and 100 <= front.evaluations < 400, front
+    designer = thud.Designer(**PAPER, evaluations=400, seed=4, duration=4)
+    while designer.result().evaluations < front.evaluations:
+        xs = designer.ask(front.evaluations - designer.result().evaluations)
+        designer.tell(xs, [thud.simulate(**designer.base, **x, samples=2) for x in xs])
+    same = designer.result()
+    assert same.evaluations == front.evaluations
+    assert same.designs == front.designs and same.hypervolume == front.hypervolume
+    # Any other exception of the callback stops it the same way and carries the front too.
+
+    def fail(done, total):
+        if done >= 100:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError) as e2:
+        thud.design(**PAPER, evaluations=400, seed=4, duration=4, progress=fail)
+    assert e2.value.front.partial and e2.value.front.evaluations < 400
 
 
 def stub_keywords(name, cls=None):
@@ -239,12 +291,13 @@ def test_the_stub_s_keywords_are_the_runtime_s_and_the_engine_s():
 
     runtime = {p.name: p.default for p in inspect.signature(thud.design).parameters.values()}
     assert stub_keywords("design") == runtime
-    assert stub_keywords("__init__", "Designer") == runtime
+    # A Designer's caller evaluates the designs: it has no progress of its own.
+    assert stub_keywords("__init__", "Designer") == {k: v for k, v in runtime.items() if k != "progress"}
     with pytest.raises(thud.ParameterError) as e:
         thud.design(**PAPER, nonesuch=1)
     engine = set(str(e.value).split("(one of: ")[1].rstrip(")").split(", "))
     search = {"preset", "design", "vary", "choose", "minimize", "maximize", "require", "over", "evaluations",
-              "seed", "reference", "no_limit"}
+              "seed", "reference", "no_limit", "progress"}
     assert set(runtime) == engine | search
 
 

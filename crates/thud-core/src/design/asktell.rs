@@ -346,8 +346,9 @@ fn run(
     batches: &Sender<Batch>,
     answers: &Receiver<Vec<Candidate>>,
 ) -> Result<(), Failure> {
-    use moors::{GaussianMutation, Nsga2Builder, RandomSamplingFloat, SimulatedBinaryCrossover};
+    use moors::{Nsga2Builder, SimulatedBinaryCrossover};
     let n = settings.evaluations;
+    let tuning = search::Tuning::default();
     let archive = std::sync::Mutex::new(Mirror { seen: HashMap::new(), all: Vec::new(), gone: false });
     let batch = |genes: &Array2<f64>| -> Vec<Option<usize>> {
         let mut st = archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -394,20 +395,22 @@ fn run(
         out
     };
     let constraints = MirrorConstraints { batch: &batch, archive: &archive, n_con };
-    let pop = search::population_size(n).min(n);
-    let iterations = 3 * n.saturating_sub(pop).div_ceil(pop).max(1);
+    let pop = tuning.population_for(n);
+    let kids = tuning.offspring_for(pop);
+    let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
     let mut ga = Nsga2Builder::default()
         .fitness_fn(fitness)
         .constraints_fn(constraints)
-        .sampler(RandomSamplingFloat::new(0.0, 1.0))
-        .crossover(SimulatedBinaryCrossover::new(15.0))
-        .mutation(GaussianMutation::new(1.0 / nv as f64, 0.1))
+        .sampler(tuning.start)
+        .crossover(SimulatedBinaryCrossover::new(tuning.crossover_eta))
+        .mutation(tuning.mutation(nv))
+        .duplicates_cleaner(search::Distinct(tuning.distinct))
         .num_vars(nv)
         .population_size(pop)
-        .num_offsprings(pop)
+        .num_offsprings(kids)
         .num_iterations(iterations)
         .crossover_rate(0.9)
-        .mutation_rate(0.5)
+        .mutation_rate(tuning.mutation_rate)
         .seed(settings.seed)
         .build()
         .map_err(|e| Failure(format!("the optimiser refused the problem: {e}")))?;

@@ -6,6 +6,7 @@ mod chart;
 mod metrics;
 mod restitution;
 pub mod search;
+mod search_operators;
 mod table5;
 mod types;
 mod valid;

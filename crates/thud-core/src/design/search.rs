@@ -36,6 +36,7 @@ use ndarray::Array2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+pub use crate::design::search_operators::{Algorithm, Distinct, Mutation, Start};
 use crate::design::{self, Design, Materials, Metrics, Steady, ValidDesign};
 use crate::draws::SplitMix64;
 use crate::error::ThudError;
@@ -957,11 +958,57 @@ pub struct Tuning {
     pub mutation_rate: f64,
     /// The distribution index of the simulated binary crossover.
     pub crossover_eta: f64,
+    /// How the first population is drawn.
+    pub start: Start,
+    /// The distribution index of a polynomial mutation in place of the Gaussian one (`sigma`
+    /// then unused); None: Gaussian.
+    pub polynomial_eta: Option<f64>,
+    /// Whether a generation's children repeating a parent or each other are drawn again.
+    pub distinct: bool,
+    /// The algorithm of `moors` (its selection and survival; the operators above either way).
+    pub algorithm: Algorithm,
+    /// Children a generation: None for as many as the population.
+    pub offspring: Option<usize>,
 }
 
 impl Default for Tuning {
     fn default() -> Self {
-        Tuning { population: None, sigma: 0.1, genes_mutated: 1.0, mutation_rate: 0.5, crossover_eta: 15.0 }
+        Tuning {
+            population: None,
+            sigma: 0.1,
+            genes_mutated: 1.0,
+            mutation_rate: 0.5,
+            crossover_eta: 15.0,
+            start: Start::Uniform,
+            polynomial_eta: None,
+            distinct: false,
+            algorithm: Algorithm::Nsga2,
+            offspring: None,
+        }
+    }
+}
+
+impl Tuning {
+    /// The population for a budget of `n` evaluations (at most `n`).
+    #[must_use]
+    pub fn population_for(&self, n: usize) -> usize {
+        self.population.map_or_else(|| population_size(n), |p| (p.max(2) / 2) * 2).min(n)
+    }
+
+    /// Children a generation for a population of `pop` (at least 2, even).
+    #[must_use]
+    pub fn offspring_for(&self, pop: usize) -> usize {
+        self.offspring.map_or(pop, |k| (k.max(2) / 2) * 2)
+    }
+
+    /// The mutation of a child over `nv` variables.
+    #[must_use]
+    pub fn mutation(&self, nv: usize) -> Mutation {
+        let gene_rate = (self.genes_mutated / nv.max(1) as f64).min(1.0);
+        match self.polynomial_eta {
+            Some(eta) => Mutation::Polynomial { gene_rate, eta },
+            None => Mutation::Gaussian(moors::GaussianMutation::new(gene_rate, self.sigma)),
+        }
     }
 }
 
@@ -974,7 +1021,7 @@ pub fn search_tuned(
     cancel: Option<&AtomicBool>,
     on_progress: &OnBatch<'_>,
 ) -> Result<Outcome, ThudError> {
-    use moors::{GaussianMutation, Nsga2Builder, RandomSamplingFloat, SimulatedBinaryCrossover};
+    use moors::SimulatedBinaryCrossover;
     problem.check()?;
     let n = settings.evaluations;
     let archive = Archive::new(problem, n, cancel, reference, on_progress);
@@ -996,27 +1043,37 @@ pub fn search_tuned(
         out
     };
     let constraints = Constraints { archive: &archive, n_con };
-    let pop = tuning.population.map_or_else(|| population_size(n), |p| (p.max(2) / 2) * 2).min(n);
+    let pop = tuning.population_for(n);
     // Offspring that copy a parent cost nothing (the cache): generations go on until the
     // budget is spent, at most three times as many as the budget would fill.
-    let iterations = 3 * n.saturating_sub(pop).div_ceil(pop).max(1);
-    let mut ga = Nsga2Builder::default()
-        .fitness_fn(fitness)
-        .constraints_fn(constraints)
-        .sampler(RandomSamplingFloat::new(0.0, 1.0))
-        .crossover(SimulatedBinaryCrossover::new(tuning.crossover_eta))
-        .mutation(GaussianMutation::new((tuning.genes_mutated / nv as f64).min(1.0), tuning.sigma))
-        .num_vars(nv)
-        .population_size(pop)
-        .num_offsprings(pop)
-        .num_iterations(iterations)
-        .crossover_rate(0.9)
-        .mutation_rate(tuning.mutation_rate)
-        .seed(settings.seed)
-        .build()
-        .map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser refused the problem: {e}")))?;
-    ga.run().map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser failed: {e}")))?;
-    drop(ga);
+    let kids = tuning.offspring_for(pop);
+    let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
+    macro_rules! run {
+        ($builder:ty) => {{
+            let mut ga = <$builder>::default()
+                .fitness_fn(fitness)
+                .constraints_fn(constraints)
+                .sampler(tuning.start)
+                .crossover(SimulatedBinaryCrossover::new(tuning.crossover_eta))
+                .mutation(tuning.mutation(nv))
+                .duplicates_cleaner(Distinct(tuning.distinct))
+                .num_vars(nv)
+                .population_size(pop)
+                .num_offsprings(kids)
+                .num_iterations(iterations)
+                .crossover_rate(0.9)
+                .mutation_rate(tuning.mutation_rate)
+                .seed(settings.seed)
+                .build()
+                .map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser refused the problem: {e}")))?;
+            ga.run().map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser failed: {e}")))?;
+        }};
+    }
+    match tuning.algorithm {
+        Algorithm::Nsga2 => run!(moors::Nsga2Builder<_, _, _, _, _>),
+        Algorithm::Spea2 => run!(moors::Spea2Builder<_, _, _, _, _>),
+        Algorithm::AgeMoea => run!(moors::AgeMoeaBuilder<_, _, _, _, _>),
+    }
     let partial = archive.cancelled();
     Ok(archive.into_outcome(partial))
 }

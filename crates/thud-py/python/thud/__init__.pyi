@@ -1272,8 +1272,10 @@ def design(
     seed: int = 0,
     reference: Optional[Sequence[float]] = None,
     no_limit: bool = False,
+    progress: ProgressArg = None,
 ) -> Front:
-    """The best dampers within the user's limits, as a Pareto front (``thud design``)."""
+    """The best dampers within the user's limits, as a Pareto front (``thud design``). Ctrl-C
+    raises KeyboardInterrupt whose ``front`` is the front found so far, marked partial."""
 
 class Designer:
     """The design search in ask/tell form: ask for points, evaluate them anywhere, tell the

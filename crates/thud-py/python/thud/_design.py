@@ -177,7 +177,18 @@ def _error(param: str, message: str) -> Exception:
 
 
 def design(**params: Any) -> Front:
-    return Front(json.loads(_thud._design(**params)))
+    from ._wrap import with_progress
+
+    try:
+        text = _thud._design(**with_progress(params, "design"))
+    except BaseException as stop:
+        # Ctrl-C (or the progress callback's exception): the front found so far rides on it.
+        found = getattr(stop, "_thud_front", None)
+        if isinstance(found, str):
+            del stop._thud_front  # type: ignore[attr-defined]
+            stop.front = Front(json.loads(found))  # type: ignore[attr-defined]
+        raise
+    return Front(json.loads(text))
 
 
 def _read(result: Any, column: str) -> Optional[float]:
@@ -306,7 +317,8 @@ def _signature() -> inspect.Signature:
                P("evaluations", P.KEYWORD_ONLY, default=400, annotation=Union[int, str]),
                P("seed", P.KEYWORD_ONLY, default=0, annotation=int),
                P("reference", P.KEYWORD_ONLY, default=None, annotation=Optional[Sequence[float]]),
-               P("no_limit", P.KEYWORD_ONLY, default=False, annotation=bool)]
+               P("no_limit", P.KEYWORD_ONLY, default=False, annotation=bool),
+               P("progress", P.KEYWORD_ONLY, default=None, annotation=_OPTION_TYPES["progress"])]
     return inspect.Signature(params, return_annotation=Front)
 
 
@@ -322,8 +334,14 @@ COLUMN<=VALUE or COLUMN>=VALUE on a result or a parameter (mass<=60g); over:
 "freqs=FROM:TO:N", each result at its worst over the band (a forced design); evaluations: the
 budget (default 400); seed (default 0); reference: (V1, V2), the hypervolume's reference point
 with two objectives (default: the worst of each among the first designs); no_limit: lift the
-work caps. Every other keyword is the base design's, as for ``simulate``.
+work caps; progress: a callable progress(done, total) called with the designs evaluated out of
+the budget (at most every 0.1 s, and at the end), or True for a bar on stderr (tqdm if
+installed). Every other keyword is the base design's, as for ``simulate``.
 
 Raises ParameterError naming the keyword for bad input. The engine runs without the GIL on
-all cores; Ctrl-C stops the search (KeyboardInterrupt)."""
+all cores. Ctrl-C stops the search after the batch under way and raises KeyboardInterrupt, as
+any long call does; the front found so far is not lost: it is the exception's ``front``, a
+``Front`` marked ``partial`` (``except KeyboardInterrupt as e: front = e.front``), as ``thud
+design`` keeps it on Ctrl-C. An exception the progress callback raises stops the search the
+same way and carries the same ``front``."""
 design.__signature__ = _signature()  # type: ignore[attr-defined]

@@ -1,0 +1,162 @@
+//! The operators the design search hands `moors`' NSGA-II beside its own: how the first
+//! population is drawn ([`Start`]: uniform, or a Latin hypercube), how a child mutates
+//! ([`Mutation`]: Gaussian, or Deb's polynomial mutation within [0, 1]) and whether a
+//! generation's children repeating a parent or each other are drawn again ([`Distinct`]).
+//! Genes span [0, 1] (the search's decoding maps them to the variables).
+
+use moors::{
+    ExactDuplicatesCleaner, GaussianMutation, MutationOperator, PopulationCleaner, RandomGenerator, SamplingOperator,
+};
+use ndarray::{Array1, Array2, ArrayViewMut1};
+
+/// The algorithm of `moors` a search runs: its selection of parents and survival of children.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Algorithm {
+    /// NSGA-II: non-dominated rank, then crowding distance.
+    Nsga2,
+    /// SPEA2: strength and density by nearest neighbours.
+    Spea2,
+    /// AGE-MOEA: rank, then a survival score from the front's estimated geometry.
+    AgeMoea,
+}
+
+/// How the first population is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Start {
+    /// Each gene uniform in [0, 1].
+    Uniform,
+    /// A Latin hypercube: each gene's [0, 1] cut in as many equal strata as the population,
+    /// one individual in each, the strata shuffled per gene.
+    Latin,
+}
+
+impl SamplingOperator for Start {
+    fn sample_individual(&self, num_vars: usize, rng: &mut impl RandomGenerator) -> Array1<f64> {
+        (0..num_vars).map(|_| rng.gen_range_f64(0.0, 1.0)).collect()
+    }
+
+    fn operate(&self, population_size: usize, num_vars: usize, rng: &mut impl RandomGenerator) -> Array2<f64> {
+        let n = population_size;
+        let mut genes = Array2::zeros((n, num_vars));
+        match self {
+            Start::Uniform => {
+                for mut row in genes.outer_iter_mut() {
+                    row.assign(&self.sample_individual(num_vars, rng));
+                }
+            }
+            Start::Latin => {
+                for k in 0..num_vars {
+                    let mut strata: Vec<usize> = (0..n).collect();
+                    rng.shuffle_vec_usize(&mut strata);
+                    for (i, s) in strata.into_iter().enumerate() {
+                        genes[[i, k]] = (s as f64 + rng.gen_range_f64(0.0, 1.0)) / n as f64;
+                    }
+                }
+            }
+        }
+        genes
+    }
+}
+
+/// How a child mutates: each gene with chance `gene_rate`.
+#[derive(Debug, Clone)]
+pub enum Mutation {
+    /// `moors`' normal step (the gene then clamped to [0, 1] by the search's bounds).
+    Gaussian(GaussianMutation),
+    /// Deb's polynomial mutation with distribution index `eta`, its step shaped by the
+    /// distance to either end of [0, 1], so the gene stays inside (as pymoo's default).
+    Polynomial { gene_rate: f64, eta: f64 },
+}
+
+impl MutationOperator for Mutation {
+    fn mutate(&self, mut individual: ArrayViewMut1<'_, f64>, rng: &mut impl RandomGenerator) {
+        match *self {
+            Mutation::Gaussian(ref m) => m.mutate(individual, rng),
+            Mutation::Polynomial { gene_rate, eta } => {
+                for g in &mut individual {
+                    if rng.gen_bool(gene_rate) {
+                        *g = polynomial_step(g.clamp(0.0, 1.0), eta, rng.gen_range_f64(0.0, 1.0));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The polynomial mutation of `y` in [0, 1] with index `eta` for the uniform draw `r`
+/// (Deb and Goyal 1996, the bounded form): a step below for r < ½, above otherwise, never past
+/// an end.
+fn polynomial_step(y: f64, eta: f64, r: f64) -> f64 {
+    let power = 1.0 / (eta + 1.0);
+    let dq = if r < 0.5 {
+        let v = 2.0 * r + (1.0 - 2.0 * r) * (1.0 - y).powf(eta + 1.0);
+        v.powf(power) - 1.0
+    } else {
+        let v = 2.0 * (1.0 - r) + 2.0 * (r - 0.5) * y.powf(eta + 1.0);
+        1.0 - v.powf(power)
+    };
+    (y + dq).clamp(0.0, 1.0)
+}
+
+/// Whether a generation's children that repeat a parent or an earlier child are dropped (and
+/// more drawn) rather than kept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Distinct(pub bool);
+
+impl PopulationCleaner for Distinct {
+    fn remove(&self, population: Array2<f64>, reference: Option<&Array2<f64>>) -> Array2<f64> {
+        if self.0 {
+            ExactDuplicatesCleaner::new().remove(population, reference)
+        } else {
+            population
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use moors::MOORandomGenerator;
+
+    #[test]
+    fn a_latin_start_puts_one_individual_in_each_stratum_of_each_gene() {
+        let mut rng = MOORandomGenerator::new_from_seed(Some(3));
+        let g = Start::Latin.operate(40, 3, &mut rng);
+        for k in 0..3 {
+            let mut strata: Vec<usize> = g.column(k).iter().map(|&x| (x * 40.0) as usize).collect();
+            strata.sort_unstable();
+            assert_eq!(strata, (0..40).collect::<Vec<_>>(), "gene {k}");
+        }
+        let u = Start::Uniform.operate(40, 3, &mut rng);
+        assert_eq!(u.dim(), (40, 3));
+        assert!(u.iter().all(|x| (0.0..1.0).contains(x)));
+    }
+
+    #[test]
+    fn a_polynomial_step_stays_inside_and_is_small_for_a_large_index() {
+        for &y in &[0.0, 0.01, 0.5, 0.99, 1.0] {
+            for i in 0..=100 {
+                let r = f64::from(i) / 100.0;
+                let z = polynomial_step(y, 20.0, r);
+                assert!((0.0..=1.0).contains(&z), "y {y}, r {r}: {z}");
+            }
+        }
+        // r = ½ is no step; r below moves down, above moves up.
+        assert!((polynomial_step(0.5, 20.0, 0.5) - 0.5).abs() < 1e-12);
+        assert!(polynomial_step(0.5, 20.0, 0.2) < 0.5 && polynomial_step(0.5, 20.0, 0.8) > 0.5);
+        // A larger index takes a smaller step for the same draw.
+        let step = |eta: f64| (polynomial_step(0.5, eta, 0.9) - 0.5).abs();
+        assert!(step(50.0) < step(20.0) && step(20.0) < step(5.0));
+        // Drawn at the extremes it reaches an end and no further.
+        assert!(polynomial_step(0.5, 20.0, 0.0) < 1e-9);
+        assert!(polynomial_step(0.5, 20.0, 1.0) > 1.0 - 1e-9);
+    }
+
+    #[test]
+    fn distinct_drops_repeats_of_the_reference_and_of_each_other() {
+        let parents = ndarray::array![[0.1, 0.2], [0.3, 0.4]];
+        let kids = ndarray::array![[0.1, 0.2], [0.5, 0.6], [0.5, 0.6]];
+        assert_eq!(Distinct(true).remove(kids.clone(), Some(&parents)), ndarray::array![[0.5, 0.6]]);
+        assert_eq!(Distinct(false).remove(kids.clone(), Some(&parents)), kids);
+    }
+}
