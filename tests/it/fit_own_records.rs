@@ -25,45 +25,12 @@ struct Fitted {
     line: String,
 }
 
-/// Design `seed` as the coverage test draws them (M 0.3–2 kg, f_n 4–10 Hz, ζ 0.1–1 %, the
-/// ball 4–10 % of M, struck at 0.5–2 m/s, the clearance 0.3–1.2 of the first swing, the
-/// restitution at v0 0.35–0.85, the ball at rest anywhere in the clearance, 8 periods), run by
-/// `thud simulate --csv` at 50 kHz. The velocity and the acceleration are the displacement's
-/// central first and second differences; each record is sampled unevenly (x and x' at about
-/// 2 kHz, x'' at about 10 kHz, each sample kept with probability 3/4) with white noise of 1–3 %
-/// of its own peak (an acceleration's peak is an impact's spike), an offset of 5 % and a drift
-/// of 2 % of the peak a second, and fitted by `thud fit damper --json` with the design's flags.
-fn design_fits(home: &Path, seed: u64) -> Vec<Fitted> {
-    let mut g = Draws(seed);
-    let mut des = Design::default();
-    let p = &mut des.damper;
-    p.main_mass_kg = g.between(0.3, 2.0);
-    let omega = 2.0 * std::f64::consts::PI * g.between(4.0, 10.0);
-    p.stiffness_n_m = p.main_mass_kg * omega * omega;
-    p.damping_n_s_m = 2.0 * p.main_mass_kg * omega * g.between(0.001, 0.01);
-    p.impact_mass_kg = p.main_mass_kg * g.between(0.04, 0.10);
-    p.v0_m_s = g.between(0.5, 2.0);
-    p.gap_m = p.v0_m_s / omega * g.between(0.3, 1.2);
-    let duration = 8.0 * 2.0 * std::f64::consts::PI / omega;
-    let d0 = des.clone().check().unwrap();
-    let truth = design::c1_for_restitution(&d0, des.damper.v0_m_s, g.between(0.35, 0.85)).unwrap();
-    let p = des.damper.clone();
-    let y0 = (g.uniform() - 0.5) * p.gap_m * 0.999;
-    let flags: Vec<String> = [
-        ("--main-mass", p.main_mass_kg),
-        ("--k", p.stiffness_n_m),
-        ("--c", p.damping_n_s_m),
-        ("--mass", p.impact_mass_kg),
-        ("--gap", p.gap_m),
-        ("--v0", p.v0_m_s),
-        ("--k-hz", p.k_hz),
-    ]
-    .iter()
-    .flat_map(|(f, v)| [(*f).to_string(), format!("{v:e}")])
-    .collect();
+/// The main mass's displacement (times, x) of `thud simulate --csv` at 50 kHz with the design
+/// `flags`, contact damping `c1`, the ball at rest at `y0`, for `duration` (s).
+fn simulated(home: &Path, flags: &[String], c1: f64, y0: f64, duration: f64) -> (Vec<f64>, Vec<f64>) {
     let h = 2e-5;
     let samples = ((duration / h).round() as usize + 1).to_string();
-    let (c1, y0s, dur) = (format!("{truth:e}"), format!("{y0:e}"), format!("{duration:e}"));
+    let (c1, y0s, dur) = (format!("{c1:e}"), format!("{y0:e}"), format!("{duration:e}"));
     let mut args: Vec<&str> = vec!["simulate"];
     args.extend(flags.iter().map(String::as_str));
     args.extend([
@@ -88,7 +55,46 @@ fn design_fits(home: &Path, seed: u64) -> Vec<Fitted> {
             (c.next().unwrap(), c.next().unwrap())
         })
         .collect();
-    let (t, x): (Vec<f64>, Vec<f64>) = rows.into_iter().unzip();
+    rows.into_iter().unzip()
+}
+
+/// Design `seed` as the coverage test draws them (M 0.3–2 kg, f_n 4–10 Hz, ζ 0.1–1 %, the
+/// ball 4–10 % of M, struck at 0.5–2 m/s, the clearance 0.3–1.2 of the first swing, the
+/// restitution at v0 0.35–0.85, the ball at rest anywhere in the clearance, 8 periods), run by
+/// `thud simulate --csv` at 50 kHz. The velocity and the acceleration are the displacement's
+/// central first and second differences; each record is sampled unevenly (x and x' at about
+/// 2 kHz, x'' at about 10 kHz, each sample kept with probability 3/4) with white noise of 1–3 %
+/// of its own peak (an acceleration's peak is an impact's spike), an offset of 5 % and a drift
+/// of 2 % of the peak a second, and fitted by `thud fit damper --json` with the design's flags.
+fn design_fits(home: &Path, seed: u64) -> Vec<Fitted> {
+    let mut g = Draws(seed);
+    let mut des = Design::default();
+    let p = &mut des.damper;
+    p.main_mass_kg = g.between(0.3, 2.0);
+    let omega = 2.0 * std::f64::consts::PI * g.between(4.0, 10.0);
+    p.stiffness_n_m = p.main_mass_kg * omega * omega;
+    p.damping_n_s_m = 2.0 * p.main_mass_kg * omega * g.between(0.001, 0.01);
+    p.impact_mass_kg = p.main_mass_kg * g.between(0.04, 0.10);
+    p.v0_m_s = g.between(0.5, 2.0);
+    p.gap_m = p.v0_m_s / omega * g.between(0.3, 1.2);
+    let duration = 8.0 * 2.0 * std::f64::consts::PI / omega;
+    let d0 = des.clone().check().unwrap();
+    let truth = design::c1_for_restitution(&d0, des.damper.v0_m_s, g.between(0.35, 0.85)).unwrap();
+    let p = des.damper;
+    let y0 = (g.uniform() - 0.5) * p.gap_m * 0.999;
+    let flags: Vec<String> = [
+        ("--main-mass", p.main_mass_kg),
+        ("--k", p.stiffness_n_m),
+        ("--c", p.damping_n_s_m),
+        ("--mass", p.impact_mass_kg),
+        ("--gap", p.gap_m),
+        ("--v0", p.v0_m_s),
+        ("--k-hz", p.k_hz),
+    ]
+    .iter()
+    .flat_map(|(f, v)| [(*f).to_string(), format!("{v:e}")])
+    .collect();
+    let (t, x) = simulated(home, &flags, truth, y0, duration);
     let n = t.len();
     let mut v = vec![p.v0_m_s; n];
     let mut a = vec![-p.damping_n_s_m / p.main_mass_kg * p.v0_m_s; n];
