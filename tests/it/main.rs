@@ -48,6 +48,7 @@ mod files;
 mod fit_cli;
 mod fit_coverage;
 mod fit_note;
+mod fit_own_records;
 mod flag_names;
 mod forced;
 mod forced_cli;
