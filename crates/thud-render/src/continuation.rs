@@ -174,11 +174,14 @@ pub fn continuation_svg(branches: &[Branch], title: &str, look: &Look) -> String
     svg.finish()
 }
 
+/// Plot points (parameter, mm), lines apart by a NaN point.
+pub type Line = Vec<(f64, f64)>;
+
 /// Each branch's x(kT) (mm) against the parameter as plot lines, (stable, unstable): one line
 /// per sample index of each stretch ([`stretches`]), the lines apart by a NaN point (a break).
 /// The explorer's bifurcation view draws these.
 #[must_use]
-pub fn strobe_lines(branches: &[Branch]) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+pub fn strobe_lines(branches: &[Branch]) -> (Line, Line) {
     let (mut stable, mut unstable) = (Vec::new(), Vec::new());
     for (is_stable, run) in branches.iter().flat_map(|b| stretches(&b.points)) {
         let into = if is_stable { &mut stable } else { &mut unstable };
