@@ -2,7 +2,8 @@
 //! Hostile round 6: `thud design --save DIR --out FILE` writes its result as one set (the
 //! folder of front designs and the report: a failure or a signal between the two leaves the old
 //! set or the new one, and no temporary file), and refuses a `--save` folder it could not write
-//! before the search.
+//! before the search; a range FROM:TO:N whose ends are one value and N > 1 (N identical rows)
+//! is refused by every command that reads one.
 //!
 //! Runs of the built binary, with HOME and the XDG folders in a temporary folder, each killed
 //! after 30 s (a failure).
@@ -243,4 +244,46 @@ fn a_save_folder_that_cannot_be_written_is_refused_before_the_search() {
     refused("front", &["--svg", "./front/f.svg", "--maximize", "inclination_cm_s"], &["front", "--svg"]);
     assert_eq!(temps(dir), Vec::<String>::new());
     assert!(!dir.join("front").exists());
+}
+
+#[test]
+fn a_range_with_one_value_at_both_ends_and_several_values_is_refused_everywhere() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path();
+    let cases: [(&[&str], &[&str]); 7] = [
+        (
+            &["sweep", "--vary", "mass=30g:30g:3"],
+            &["invalid --vary: ", "'mass=30g:30g:3'", "FROM and TO are one value"],
+        ),
+        (&["sweep", "--vary", "mass=30g:0.03kg:3"], &["invalid --vary: ", "'mass=30g:0.03kg:3'"]),
+        (&["sweep", "--masses", "30g:30g:3", "--gaps", "2cm:5cm:2"], &["invalid --masses: ", "'30g:30g:3'"]),
+        (&["bifurcation", "--vary", "f=5Hz:5Hz:3", "--force-amplitude", "1"], &["invalid --vary: ", "'f=5Hz:5Hz:3'"]),
+        (&["continue", "--vary", "f=5Hz:5Hz:4", "--force-amplitude", "1"], &["invalid --vary: ", "'f=5Hz:5Hz:4'"]),
+        (&["continue", "--vary", "f=5Hz:5Hz", "--force-amplitude", "1"], &["invalid --vary: ", "'f=5Hz:5Hz':"]),
+        (
+            &[
+                "design",
+                "--vary",
+                "mass=20g:120g",
+                "--minimize",
+                "spl_max_db",
+                "--force-amplitude",
+                "1",
+                "--freq",
+                "5Hz",
+                "--over",
+                "freqs=5Hz:5Hz:3",
+            ],
+            &["invalid --over: ", "'5Hz:5Hz:3'"],
+        ),
+    ];
+    for (args, words) in cases {
+        assert_refused(dir, args, words);
+    }
+    // One value once is a plain axis: one row.
+    let (code, out, err) = thud(dir, &["sweep", "--vary", "mass=30g:30g:1", "--csv"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.lines().count(), 2, "a header and one row: {out}");
+    // The design's own range: FROM below TO, as before.
+    assert_refused(dir, &["design", "--vary", "mass=30g:30g", "--minimize", "spl_max_db"], &["--vary mass", "below"]);
 }
