@@ -206,7 +206,7 @@ fn long_save(save: &str, more: &[&'static str]) -> Vec<String> {
     args.split_whitespace()
         .map(str::to_string)
         .chain([save.to_string()])
-        .chain(more.iter().map(|s| s.to_string()))
+        .chain(more.iter().map(std::string::ToString::to_string))
         .collect()
 }
 
@@ -286,4 +286,12 @@ fn a_range_with_one_value_at_both_ends_and_several_values_is_refused_everywhere(
     assert_eq!(out.lines().count(), 2, "a header and one row: {out}");
     // The design's own range: FROM below TO, as before.
     assert_refused(dir, &["design", "--vary", "mass=30g:30g", "--minimize", "spl_max_db"], &["--vary mass", "below"]);
+}
+
+/// An orbit not found from the user's `--guess` is refused naming `--guess`, the start given.
+#[test]
+fn an_orbit_not_found_from_a_guess_names_the_guess() {
+    let home = tempfile::tempdir().unwrap();
+    let args = ["orbit", "--force-amplitude", "1", "--freq", "5Hz", "--guess", "0,0,0,0"];
+    assert_refused(home.path(), &args, &["invalid --guess: ", "no periodic orbit found"]);
 }
