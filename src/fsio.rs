@@ -699,6 +699,17 @@ impl Placed {
 /// cannot be taken back: they are written through after the files are in place. Two entries
 /// naming one path are the caller's to refuse beforehand.
 pub fn write_set(files: &[(&Path, &[u8])], overwrite: Overwrite) -> Result<(), FsError> {
+    write_set_with_folder(files, None, overwrite)
+}
+
+/// [`write_set`] with a folder among the set: the staged `folder` is put in place first, then
+/// the files, in the same guarded step; a failure puts back the old folder (or nothing) with
+/// the old files, and a signal before that step removes the staged folder with the staged files.
+pub fn write_set_with_folder(
+    files: &[(&Path, &[u8])],
+    folder: Option<StagedFolder>,
+    overwrite: Overwrite,
+) -> Result<(), FsError> {
     let mut streams = Vec::new();
     let mut staged = Vec::new();
     let mut folders = Vec::new();
@@ -726,9 +737,15 @@ pub fn write_set(files: &[(&Path, &[u8])], overwrite: Overwrite) -> Result<(), F
     }
     hold_for_test();
     signals::guarded(|| {
+        let mut folder_placed = None;
+        if let Some(f) = &folder {
+            let names: Vec<&str> = f.names.iter().map(String::as_str).collect();
+            folder_placed = Some(fail_set_for_test(0).and_then(|()| f.temp.rename_to(&f.target, f.replace, &names))?);
+        }
+        let first = usize::from(folder.is_some());
         let mut placed: Vec<Placed> = Vec::new();
         let mut result = Ok(());
-        for (i, (path, temp)) in staged.into_iter().enumerate() {
+        for (i, (path, temp)) in staged.into_iter().enumerate().map(|(i, s)| (i + first, s)) {
             if i > 0 {
                 hold_set_for_test();
             }
@@ -743,6 +760,9 @@ pub fn write_set(files: &[(&Path, &[u8])], overwrite: Overwrite) -> Result<(), F
         }
         if result.is_err() {
             placed.into_iter().rev().for_each(Placed::undo);
+            if let (Some(f), Some(how)) = (&folder, folder_placed) {
+                f.temp.undo(&f.target, how);
+            }
         }
         result
     })?;
@@ -751,6 +771,10 @@ pub fn write_set(files: &[(&Path, &[u8])], overwrite: Overwrite) -> Result<(), F
     }
     drop(registrations);
     folders.into_iter().for_each(NewFolders::keep);
+    if let Some(f) = folder {
+        sync_dir(&parent_dir(&f.target));
+        f.folders.keep();
+    }
     for (path, sink, bytes) in streams {
         write_through(path, sink, bytes)?;
     }
@@ -885,26 +909,94 @@ impl TempFolder {
     /// an atomic exchange with the folder there, which is then removed — if it still holds only
     /// regular files named in `names` (else it is swapped back and nothing is replaced).
     pub fn put_in_place(self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
-        signals::guarded(|| self.rename_to(target, replace, names))
+        signals::guarded(|| self.rename_to(target, replace, names)).map(drop)
     }
 
-    fn rename_to(&self, target: &Path, replace: bool, names: &[&str]) -> Result<(), FsError> {
+    fn rename_to(&self, target: &Path, replace: bool, names: &[&str]) -> Result<FolderPlaced, FsError> {
         let temp = self.path();
         if replace && exchange(temp, target, |old| only_named_files(old, names))? {
-            return Ok(()); // `temp` now names the old set: removed on drop.
+            return Ok(FolderPlaced::Exchanged); // `temp` now names the old set: removed on drop.
         }
         match rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::NOREPLACE) {
-            Ok(()) => Ok(()),
+            Ok(()) => Ok(FolderPlaced::Renamed(None)),
             // An empty folder is there: rename(2) replaces only an empty folder.
-            Err(Errno::EXIST) => fs::rename(temp, target).map_err(|e| match Errno::from_io_error(&e) {
-                Some(Errno::NOTEMPTY | Errno::NOTDIR | Errno::EXIST) => FsError::Changed(target.to_path_buf()),
-                _ => io_at(target)(e),
-            }),
+            Err(Errno::EXIST) => {
+                let empty = fs::symlink_metadata(target).map(|m| m.permissions()).ok();
+                fs::rename(temp, target).map_err(|e| match Errno::from_io_error(&e) {
+                    Some(Errno::NOTEMPTY | Errno::NOTDIR | Errno::EXIST) => FsError::Changed(target.to_path_buf()),
+                    _ => io_at(target)(e),
+                })?;
+                Ok(FolderPlaced::Renamed(empty))
+            }
             Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) if !target.exists() => {
-                fs::rename(temp, target).map_err(io_at(target))
+                fs::rename(temp, target).map_err(io_at(target))?;
+                Ok(FolderPlaced::Renamed(None))
             }
             Err(e) => Err(io_at(target)(e.into())),
         }
+    }
+
+    /// Takes back [`TempFolder::rename_to`]: the new folder returns to the temporary name
+    /// (removed on drop) and the old folder, or the empty one, to `target`.
+    fn undo(&self, target: &Path, placed: FolderPlaced) {
+        let temp = self.path();
+        match placed {
+            FolderPlaced::Exchanged => {
+                let _ = rustix::fs::renameat_with(CWD, temp, CWD, target, RenameFlags::EXCHANGE);
+            }
+            FolderPlaced::Renamed(empty) => {
+                if rustix::fs::renameat_with(CWD, target, CWD, temp, RenameFlags::NOREPLACE).is_ok() {
+                    if let Some(permissions) = empty {
+                        let _ = fs::create_dir(target).and_then(|()| fs::set_permissions(target, permissions));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// How a [`TempFolder`] was given its target's name, so that it can be taken back.
+enum FolderPlaced {
+    /// Exchanged with the previous folder, which the temporary name now holds.
+    Exchanged,
+    /// Renamed over nothing (`None`) or over an empty folder of these permissions.
+    Renamed(Option<Permissions>),
+}
+
+/// A folder of files written beside its target and synced, to be put in place together with a
+/// set of files by [`write_set_with_folder`] (or not at all: dropped, it is removed, and so are
+/// the folders made above it).
+#[derive(Debug)]
+pub struct StagedFolder {
+    temp: TempFolder,
+    target: PathBuf,
+    replace: bool,
+    names: Vec<String>,
+    folders: NewFolders,
+}
+
+impl StagedFolder {
+    /// Writes `files` (name, contents) into a new temporary folder beside `target` (making
+    /// the missing folders above it). With `replace`, the folder at `target` is exchanged with
+    /// it if it holds only regular files named in `files` or in `replaceable`; else `target`
+    /// must be absent or empty when the set is put in place.
+    pub fn new(
+        target: &Path,
+        files: &[(&str, &[u8])],
+        replace: bool,
+        replaceable: &[String],
+    ) -> Result<StagedFolder, FsError> {
+        let parent = parent_dir(target);
+        let folders = NewFolders::create(&parent).map_err(io_at(target))?;
+        remove_stale_temps(&parent);
+        let temp = TempFolder::new(&parent, target).map_err(io_at(target))?;
+        for (name, contents) in files {
+            temp.write(name, contents)?;
+        }
+        temp.sync();
+        let mut names: Vec<String> = files.iter().map(|(n, _)| (*n).to_string()).collect();
+        names.extend(replaceable.iter().filter(|n| !names.contains(n)).cloned().collect::<Vec<_>>());
+        Ok(StagedFolder { temp, target: target.to_path_buf(), replace, names, folders })
     }
 }
 

@@ -129,7 +129,13 @@ fn parse_vary(text: &str) -> Result<(Vary, Option<usize>), ThudError> {
         }
     }
     let full = if colons == 1 { format!("{text}:2") } else { text.to_string() };
-    let v = Vary::parse(&full, Spelling::Flag)?;
+    // An error quotes what was typed, not the two-value form it was read as.
+    let v = Vary::parse(&full, Spelling::Flag).map_err(|e| match e {
+        ThudError::Invalid { param, message } => {
+            ThudError::Invalid { param, message: message.replace(&format!("'{full}'"), &format!("'{text}'")) }
+        }
+        e => e,
+    })?;
     let (Some(&a), Some(&b)) = (v.values.first(), v.values.last()) else {
         return Err(ThudError::invalid("--vary", format!("'{text}'; expected NAME=FROM:TO")));
     };

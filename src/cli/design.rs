@@ -184,7 +184,11 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
     let target = Target::new(a.out.as_deref(), a.force)?;
     check_figure(a, &p)?;
     if let Some(dir) = &a.save {
-        check_save(dir, a.force)?;
+        check_save(
+            dir,
+            a.force,
+            &[("--out", a.out.as_deref()), ("--svg", a.svg.as_deref()), ("--pdf", a.pdf.as_deref())],
+        )?;
     }
     let r = search::check_work(&p, evaluations, &|n| a.design.has(n));
     a.design.refuse_work(ctx, &p.base, r, ("--evaluations", &a.evaluations))?;
@@ -215,15 +219,15 @@ pub fn run(a: &DesignSearchArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliErro
     let search_s = started.elapsed().as_secs_f64();
     progress.done();
     let saved = match &a.save {
-        Some(dir) => Some(save(dir, &p, &outcome, a.force)?),
+        Some(dir) => Some(stage_save(dir, &p, &outcome, a.force)?),
         None => None,
     };
-    let text = render(&p, &outcome, settings, format, saved.as_deref())?;
-    if a.svg.is_none() && a.pdf.is_none() {
-        return target.write(&text, out);
-    }
-    let zones = zone_chart(a, &p, evaluations, search_s / outcome.all.len().max(1) as f64);
-    write_with_figure(a, &target, &text, &figure(&p, &outcome, zones), out)
+    let text = render(&p, &outcome, settings, format, saved.as_ref().map(|(_, names)| names.as_slice()))?;
+    let svg = (a.svg.is_some() || a.pdf.is_some()).then(|| {
+        let zones = zone_chart(a, &p, evaluations, search_s / outcome.all.len().max(1) as f64);
+        figure(&p, &outcome, zones)
+    });
+    write_all(a, &target, &text, svg.as_deref(), saved, out)
 }
 
 /// Cells a side of the zone chart behind the front: about the search's budget in all, 8 to 40.
@@ -367,25 +371,27 @@ fn figure(p: &Problem, o: &Outcome, zones: Option<crate::export::front::ZoneChar
     front_svg(&FrontFigure { title, objectives, variables, zone_borders, zones }, &crate::export::svg::Look::default())
 }
 
-/// Writes the report (to `--out` or standard output) and the figure to `--svg`/`--pdf`, the
-/// files as one set: all in place, or (a failure, a signal) none.
-fn write_with_figure(
+/// Writes the result as one set: the `--save` folder (staged), the report (to `--out` or
+/// standard output) and the figure `svg` to `--svg`/`--pdf`; all in place, or (a failure, a
+/// signal) none, the old files and folder left as they were.
+fn write_all(
     a: &DesignSearchArgs,
     target: &Target,
     text: &str,
-    svg: &str,
+    svg: Option<&str>,
+    saved: Option<(fsio::StagedFolder, Vec<String>)>,
     out: &mut Out,
 ) -> Result<(), CliError> {
     super::output::check_text(text)?;
-    let pdf = match &a.pdf {
-        Some(_) => Some(
+    let pdf = match (&a.pdf, svg) {
+        (Some(_), Some(svg)) => Some(
             crate::export::pdf::from_svg(svg)
                 .map_err(|e| ThudError::invalid("--pdf", format!("cannot draw the PDF: {e}")))?,
         ),
-        None => None,
+        _ => None,
     };
     let mut files: Vec<(&Path, &[u8])> = Vec::new();
-    if let Some(p) = &a.svg {
+    if let (Some(p), Some(svg)) = (&a.svg, svg) {
         files.push((p, svg.as_bytes()));
     }
     if let (Some(p), Some(pdf)) = (&a.pdf, &pdf) {
@@ -394,13 +400,17 @@ fn write_with_figure(
     if let Some(p) = target.file() {
         files.push((p, text.as_bytes()));
     }
-    if let Err(e) = fsio::write_set(&files, fsio::Overwrite::from_force(a.force)) {
+    let (folder, designs) = saved.map_or((None, None), |(f, names)| (Some(f), Some(names.len())));
+    if let Err(e) = fsio::write_set_with_folder(&files, folder, fsio::Overwrite::from_force(a.force)) {
         let p = e.path().to_path_buf();
-        let flag = [("--svg", &a.svg), ("--pdf", &a.pdf)]
+        let flag = [("--svg", &a.svg), ("--pdf", &a.pdf), ("--save", &a.save)]
             .into_iter()
             .find(|(_, f)| f.as_deref() == Some(p.as_path()))
             .map_or("--out", |(flag, _)| flag);
         return Err(super::export::write_error_as(flag, &p, &e));
+    }
+    if let (Some(dir), Some(n)) = (&a.save, designs) {
+        super::warn(&format!("saved {n} front designs in {}", fsio::shown(dir)));
     }
     for (p, _) in &files {
         super::warn(&format!("wrote {}", fsio::shown(p)));
@@ -462,19 +472,70 @@ fn on_stop(latest: Arc<Mutex<Option<String>>>, out: Option<PathBuf>, force: bool
     .0
 }
 
-/// Refuses `--save DIR` before the search when DIR holds anything and `--force` is not given.
-fn check_save(dir: &Path, force: bool) -> Result<(), ThudError> {
-    let busy = std::fs::read_dir(dir).is_ok_and(|mut d| d.next().is_some());
-    if dir.exists() && !dir.is_dir() {
-        return Err(ThudError::invalid("--save", format!("{} is not a folder", fsio::shown(dir))));
+/// Refuses `--save DIR` before the search: DIR a symbolic link, not a folder, read-only or in
+/// a folder that cannot be written; holding anything without `--force`, or (with it) anything
+/// but a previous front's design files; or one of `outputs` (flag, file) naming DIR or a file
+/// inside it.
+fn check_save(dir: &Path, force: bool, outputs: &[(&str, Option<&Path>)]) -> Result<(), ThudError> {
+    let bad = |why: String| ThudError::invalid("--save", format!("{} {why}", fsio::shown(dir)));
+    let writable = |p: &Path, m: &std::fs::Metadata| {
+        use rustix::fs::{access, Access};
+        !m.permissions().readonly() && access(p, Access::WRITE_OK | Access::EXEC_OK).is_ok()
+    };
+    for (flag, path) in outputs {
+        let Some(path) = path.filter(|p| !fsio::is_stdout(p)) else { continue };
+        let inside = match (std::path::absolute(dir), std::path::absolute(path)) {
+            (Ok(d), Ok(f)) => f.starts_with(d),
+            _ => false,
+        };
+        if inside || super::figure_out::same_output(dir, path) {
+            return Err(bad(format!("is the folder of the {flag} file {} too; write it elsewhere", fsio::shown(path))));
+        }
     }
-    if busy && !force {
-        return Err(ThudError::invalid(
-            "--save",
-            format!("{} is not empty; give a new or empty folder, or --force to replace its designs", fsio::shown(dir)),
-        ));
+    match std::fs::symlink_metadata(dir) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(bad(format!("cannot be read: {e}"))),
+        Ok(m) if m.file_type().is_symlink() => {
+            return Err(bad("is a symbolic link; thud neither follows nor replaces one: name the folder itself".into()))
+        }
+        Ok(m) if !m.is_dir() => return Err(bad("is not a folder".into())),
+        Ok(m) if !writable(dir, &m) => return Err(bad("is read-only; give a folder thud may write".into())),
+        Ok(_) => {
+            let entries = std::fs::read_dir(dir).map_err(|e| bad(format!("cannot be read: {e}")))?;
+            for entry in entries {
+                let entry = entry.map_err(|e| bad(format!("cannot be read: {e}")))?;
+                if !force {
+                    return Err(bad(
+                        "is not empty; give a new or empty folder, or --force to replace its designs".into()
+                    ));
+                }
+                if !is_previous_design(&entry) {
+                    return Err(bad(format!(
+                        "holds {} that thud design does not write; give a new or empty folder (or, with --force, one holding only a previous front)",
+                        fsio::shown(Path::new(&entry.file_name()))
+                    )));
+                }
+            }
+        }
+    }
+    // The folder is written beside DIR, then renamed into place: the nearest folder there is
+    // must be writable.
+    let parent = dir.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if let Some((above, m)) = parent.ancestors().find_map(|d| std::fs::metadata(d).ok().map(|m| (d, m))) {
+        if !m.is_dir() || !writable(above, &m) {
+            return Err(bad(format!("cannot be written: {} is not a folder thud may write", fsio::shown(above))));
+        }
     }
     Ok(())
+}
+
+/// Whether `entry` is a design file of a previous front: a regular file `design-K.toml`.
+fn is_previous_design(entry: &std::fs::DirEntry) -> bool {
+    let name = entry.file_name();
+    let name = name.to_string_lossy();
+    let k = name.strip_prefix("design-").and_then(|n| n.strip_suffix(".toml"));
+    k.is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+        && entry.file_type().is_ok_and(|t| t.is_file())
 }
 
 /// The file name of front design `k` (from 1).
@@ -483,9 +544,15 @@ fn file_name(k: usize, n: usize) -> String {
     format!("design-{k:0width$}.toml")
 }
 
-/// Writes each front design as a design file into `dir` (whole or not at all); returns the
-/// names in front order.
-fn save(dir: &Path, p: &Problem, o: &Outcome, force: bool) -> Result<Vec<String>, CliError> {
+/// Writes each front design as a design file into a folder staged beside `dir`, put in place
+/// with the other outputs by [`write_all`] (with `force`, over the previous front's design
+/// files); returns it with the names in front order.
+fn stage_save(
+    dir: &Path,
+    p: &Problem,
+    o: &Outcome,
+    force: bool,
+) -> Result<(fsio::StagedFolder, Vec<String>), CliError> {
     let mut files: Vec<(String, String)> = Vec::with_capacity(o.front.len());
     for (k, &i) in o.front.iter().enumerate() {
         let c = &o.all[i];
@@ -505,10 +572,12 @@ fn save(dir: &Path, p: &Problem, o: &Outcome, force: bool) -> Result<Vec<String>
         files.push((file_name(k + 1, o.front.len()), file.to_toml().map_err(|e| e.renamed("save"))?));
     }
     let refs: Vec<(&str, &[u8])> = files.iter().map(|(n, t)| (n.as_str(), t.as_bytes())).collect();
-    crate::export::report::write_bundle(dir, &refs, fsio::Overwrite::from_force(force))
-        .map_err(|e| ThudError::invalid("save", e.to_string()))?;
-    super::warn(&format!("saved {} front designs in {}", files.len(), fsio::shown(dir)));
-    Ok(files.into_iter().map(|(n, _)| n).collect())
+    let previous: Vec<String> = std::fs::read_dir(dir)
+        .map(|d| d.flatten().filter(is_previous_design).map(|e| e.file_name().to_string_lossy().into_owned()).collect())
+        .unwrap_or_default();
+    let staged = fsio::StagedFolder::new(dir, &refs, force, &previous)
+        .map_err(|e| super::export::write_error_as("--save", dir, &e))?;
+    Ok((staged, files.into_iter().map(|(n, _)| n).collect()))
 }
 
 /// One front design as `--json` writes it.

@@ -57,7 +57,11 @@ pub fn run(a: &OrbitArgs, _ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let periods = parse_period(a.period.as_deref())?;
     let guess = a.guess.as_deref().map(parse_guess).transpose()?;
     let req = Request { periods, symmetric: a.symmetric, guess };
-    let o = orbit::find(&d, &req, None).map_err(named)?;
+    let o = orbit::find(&d, &req, None).map_err(|e| match e.param() {
+        // No orbit from the start the user gave: the refusal names that start.
+        "orbit" if a.guess.is_some() => e.renamed("--guess"),
+        _ => named(e),
+    })?;
     super::output::check_finite(&o)?;
     let text = match a.output.format() {
         OutputFormat::Json => {

@@ -58,6 +58,7 @@ mod hostile_inputs;
 mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;
+mod hostile_round6;
 mod masri_caughey;
 mod masri_caughey_stability;
 mod one_schema;

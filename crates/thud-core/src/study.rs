@@ -131,6 +131,7 @@ impl Vary {
         let from = parse_value(row, &param, from)?;
         let to = parse_value(row, &param, to)?;
         let n = limits::GRID_N.parse_count(&param, n)?;
+        params::check_ends(bare(spelling), text, from, to, n)?;
         let mut values = design::linspace(from, to, n);
         if matches!(row.accepts, Accepts::Count { .. }) {
             for v in &mut values {
@@ -457,6 +458,20 @@ mod tests {
         let nu = Vary::parse("sphere-poisson=0.2:0.3:2", Spelling::Flag).unwrap();
         let e = Grid::new(Design::default().check().unwrap(), vec![nu], Spelling::Flag).unwrap_err();
         assert_eq!(e.param(), "--vary sphere-poisson");
+    }
+
+    #[test]
+    fn one_value_at_both_ends_with_several_is_refused() {
+        // 30 g twice, spelled two ways: three identical rows.
+        for text in ["mass=30g:30g:3", "mass=30g:0.03kg:3"] {
+            let e = Vary::parse(text, Spelling::Flag).unwrap_err();
+            assert_eq!(e.param(), "--vary", "{text}");
+            assert!(e.to_string().contains(&format!("'{text}'")), "{e}");
+            assert!(e.to_string().contains("all its values would be the same"), "{e}");
+        }
+        assert_eq!(Vary::parse("v0=2:2:2", Spelling::Keyword).unwrap_err().param(), "vary");
+        // One value once is a plain axis.
+        assert_eq!(Vary::parse("mass=30g:30g:1", Spelling::Flag).unwrap().values, vec![0.03]);
     }
 
     #[test]

@@ -208,5 +208,21 @@ pub fn parse_range(param: &str, text: &str, kind: Kind, range: &Range) -> Result
     let from = range.check_as(param, units::parse(param, from, kind)?)?;
     let to = range.check_as(param, units::parse(param, to, kind)?)?;
     let n = limits::GRID_N.parse_count(param, n)?;
+    check_ends(param, text, from, to, n)?;
     Ok(crate::design::linspace(from, to, n))
+}
+
+/// Refuses a range FROM:TO:N whose two ends are one value while N > 1: its N values would be
+/// the same, every row alike. The one rule of every FROM:TO:N ([`parse_range`],
+/// [`crate::study::Vary::parse`]); `param` is the flag and `typed` what was typed.
+pub fn check_ends(param: &str, typed: &str, from: f64, to: f64, n: usize) -> Result<(), ThudError> {
+    if from == to && n > 1 {
+        return Err(ThudError::invalid(
+            param,
+            format!(
+                "'{typed}': FROM and TO are one value, so all its values would be the same; give two different ends"
+            ),
+        ));
+    }
+    Ok(())
 }

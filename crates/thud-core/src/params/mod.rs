@@ -34,7 +34,7 @@ mod tests;
 pub use ball::follow_material;
 use ball::{base_ball_of, resolve_ball, BallGiven};
 pub use design::*;
-pub use given::parse_range;
+pub use given::{check_ends, parse_range};
 use given::{edit_distance, physical_conflicts, Given};
 pub use pulse::*;
 

@@ -241,6 +241,9 @@ fn ranges_parse_like_the_command_line() {
     assert_eq!(m, crate::design::linspace(0.03, 0.1, 3));
     let e = parse_range("masses", "30g:100g", Kind::Mass, &limits::MASS).unwrap_err().to_string();
     assert!(e.starts_with("invalid masses: '30g:100g'; expected FROM:TO:N"), "{e}");
+    let e = parse_range("--masses", "30g:30g:3", Kind::Mass, &limits::MASS).unwrap_err().to_string();
+    assert!(e.starts_with("invalid --masses: '30g:30g:3': FROM and TO are one value"), "{e}");
+    assert_eq!(parse_range("--masses", "30g:30g:1", Kind::Mass, &limits::MASS).unwrap(), vec![0.03]);
 }
 
 #[test]
