@@ -218,15 +218,7 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         .map_err(super::bifurcation::flagged)?;
     bar.finish_and_clear();
     super::output::check_finite(&b)?;
-    let (lo, hi) = vary.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
-    let unit = if vary.unit().is_empty() { String::new() } else { format!(" {}", vary.unit()) };
-    let title = format!(
-        "Bifurcation diagram over {} {}–{}{unit} — {}",
-        vary.name(),
-        short(lo),
-        short(hi),
-        short_design(&d, vary.name())
-    );
+    let title = crate::export::dynamics::bifurcation_title(&d, &b);
     a.orbit.write(
         |format| render(&d, &b, format),
         || crate::export::dynamics::bifurcation_svg(&b, &title, &look()),

@@ -219,6 +219,21 @@ pub fn short_design(d: &thud_core::design::Design, varied: &str) -> String {
     .join(", ")
 }
 
+/// The title of a bifurcation diagram: what varies and over which range, then the design
+/// without it ("Bifurcation diagram over freq 3–8 Hz — F0 3 N, gap 20 mm, m 40 g"); the
+/// title of `thud bifurcation --svg` and of the Python figure of the same diagram.
+pub fn bifurcation_title(d: &thud_core::design::Design, b: &Bifurcation) -> String {
+    let (lo, hi) = b.axis.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+    let unit = if b.axis.unit.is_empty() { String::new() } else { format!(" {}", b.axis.unit) };
+    format!(
+        "Bifurcation diagram over {} {}–{}{unit} — {}",
+        b.axis.name,
+        short(lo),
+        short(hi),
+        short_design(d, &b.axis.name)
+    )
+}
+
 /// The bifurcation diagram: above, x(kT) (mm) against the parameter; below, the relative
 /// impact speed (m/s) of every impact after the transient. With continuation the rising sweep
 /// is drawn in blue dots, the falling one in vermilion squares, so hysteresis shows.
