@@ -200,7 +200,8 @@ pub enum PulseFile {
 /// The bytes `thud export svg|pdf|wav pulse` writes for the pulse whose record (`thud pulse
 /// --json`) is `record`: the same impact, so the same bytes.
 pub fn pulse_bytes<'py>(py: Python<'py>, record: &serde_json::Value, what: PulseFile) -> PyResult<Bound<'py, PyBytes>> {
-    let spec = thud_render::pulse::PulseSpec::deserialize(record)
+    let spec = thud_core::report::PulseReport::deserialize(record)
+        .map(thud_render::pulse::PulseSpec::from)
         .map_err(|e| parameter_error(py, "record", format!("invalid record: not a thud pulse ({e})")))?;
     let failed = |e: String| engine_error(py, ThudError::invalid("render", e));
     let bytes = match what {
