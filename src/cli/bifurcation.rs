@@ -225,15 +225,7 @@ pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         Some(n) => continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(flagged)?,
         None => Vec::new(),
     };
-    let (lo, hi) = vary.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
-    let unit = if vary.unit().is_empty() { String::new() } else { format!(" {}", vary.unit()) };
-    let title = format!(
-        "Bifurcation diagram over {} {}–{}{unit} — {}",
-        vary.name(),
-        short(lo),
-        short(hi),
-        short_design(&d, vary.name())
-    );
+    let title = crate::export::dynamics::bifurcation_title(&d, &b);
     a.orbit.write(
         |format| render(&d, &b, format),
         || crate::export::dynamics::bifurcation_with_branches_svg(&b, &branches, &title, &look()),

@@ -77,15 +77,7 @@ impl ContinueArgs {
 
 /// The figure's title: what varies over which range, and the rest of the design.
 fn title(d: &Design, vary: &Vary) -> String {
-    let (lo, hi) = vary.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
-    let unit = if vary.unit().is_empty() { String::new() } else { format!(" {}", vary.unit()) };
-    format!(
-        "Orbits continued over {} {}–{}{unit} — {}",
-        vary.name(),
-        crate::limits::short(lo),
-        crate::limits::short(hi),
-        super::bifurcation::short_design(d, vary.name())
-    )
+    crate::export::dynamics::range_title("Orbits continued", d, vary.name(), vary.unit(), &vary.values)
 }
 
 /// The figure of `branches` as SVG, if one is asked for.

@@ -197,7 +197,7 @@ fn multiplier(m: &orbit::Multiplier) -> String {
 /// orbit's own columns on every row.
 fn csv(o: &PeriodicOrbit) -> String {
     let mut t = String::from(
-        "orbit,periods,impacts_per_orbit,symmetric,amplitude_m,stable,critical,multiplier_abs_max,impact,period,phase_T,wall,u_in_m_s,u_out_m_s\n",
+        "orbit,periods,impacts_per_orbit,symmetric,amplitude_m,stable,critical,multiplier_abs_max,impact,period,phase,wall,u_in_m_s,u_out_m_s\n",
     );
     let lead = o.multipliers.first().map_or(0.0, |m| m.abs);
     let head = format!(

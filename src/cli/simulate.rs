@@ -10,7 +10,7 @@ use crate::damper::{free_response, Run, Solver};
 use crate::design::{self, Design, Evaluation, ValidDesign};
 use crate::ensemble::{self, Ensemble, Percentiles};
 use crate::error::ThudError;
-use crate::limits;
+use crate::limits::{self, short};
 use crate::report::{EnsembleReport, RunReport};
 
 #[derive(Debug, Clone, Args)]
@@ -166,36 +166,37 @@ fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or("—".into(), |x| format!("{x:.digits$}"))
 }
 
-/// One line describing a design, in the units people use.
+/// One line describing a design, in the units people use, each number to the precision it
+/// has (as typed: `M 0.5 kg`, not `0.5000 kg`; [`short`], the rule of the figures' titles).
 pub fn describe(d: &Design) -> String {
     let p = &d.damper;
     let solver = match d.solver {
         Solver::Event => "event-driven solver".to_string(),
-        Solver::Newmark { dt_s } => format!("Newmark-β solver, dt {} s", num(dt_s)),
+        Solver::Newmark { dt_s } => format!("Newmark-β solver, dt {} s", short(dt_s)),
     };
     let mut extra = String::new();
     if p.forced() {
-        extra += &format!("; force {} N at {} Hz", num(p.force_n), num(p.freq_hz));
+        extra += &format!("; force {} N at {} Hz", short(p.force_n), short(p.freq_hz));
         if p.settle {
             extra += ", settling";
         }
     }
     if p.ball_position_m != 0.0 || p.ball_velocity_m_s != 0.0 {
-        extra += &format!("; ball from y0 {} cm at {} m/s", num(p.ball_position_m * 1e2), num(p.ball_velocity_m_s));
+        extra += &format!("; ball from y0 {} cm at {} m/s", short(p.ball_position_m * 1e2), short(p.ball_velocity_m_s));
     }
     format!(
-        "m {} g (a {} mm), d {} cm, v0 {} m/s; M {} kg, K {} N/m, C {} N·s/m; c1 {} N·s/m{}, K_HZ {:.4e} N/m^1.5; {solver}, {} s{extra}",
-        num(p.impact_mass_kg * 1e3),
-        num(d.ball_radius_m() * 1e3),
-        num(p.gap_m * 1e2),
-        num(p.v0_m_s),
-        num(p.main_mass_kg),
-        num(p.stiffness_n_m),
-        num(p.damping_n_s_m),
-        num(p.c1_n_s_m),
+        "m {} g (a {} mm), d {} cm, v0 {} m/s; M {} kg, K {} N/m, C {} N·s/m; c1 {} N·s/m{}, K_HZ {} N/m^1.5; {solver}, {} s{extra}",
+        short(p.impact_mass_kg * 1e3),
+        short(d.ball_radius_m() * 1e3),
+        short(p.gap_m * 1e2),
+        short(p.v0_m_s),
+        short(p.main_mass_kg),
+        short(p.stiffness_n_m),
+        short(p.damping_n_s_m),
+        short(p.c1_n_s_m),
         if p.no_tension { " (no tension)" } else { "" },
-        p.k_hz,
-        num(p.duration_s)
+        short(p.k_hz),
+        short(p.duration_s)
     )
 }
 
@@ -226,8 +227,8 @@ fn summary(d: &ValidDesign, e: &Evaluation, show: usize, truncated: Option<&str>
     s += &format!(
         "listener  {} source{signs}, r {} m, θ {}°; {level}\n",
         d.radiation.source.name(),
-        num(d.observer.r_m),
-        num(d.observer.theta_rad.to_degrees())
+        short(d.observer.r_m),
+        short(d.observer.theta_rad.to_degrees())
     );
     s += &format!(
         "damping   e {} cm/s (Eq 27), e_fit {} cm/s; {} impacts; mean restitution {}\n",

@@ -1,5 +1,6 @@
 //! Figures that tell the truth, checked on every figure kind thud draws (the ones the gallery's
-//! commands write, the paper's every figure among them: `pictures::made`):
+//! commands write, the paper's every figure among them: `pictures::made`; and the kinds the
+//! gallery does not show, [`MORE`]):
 //! - the legend is complete: every look a series is drawn with (a curve's colour and dash, a
 //!   marker's colour and shape, a map cell's colour) is in the legend, or the legend says it
 //!   leaves some out (an entry starting or ending with "…"); a figure of one look needs none;
@@ -13,7 +14,55 @@
 use crate::cvd::{closest_pair, MIN_DELTA_E};
 use crate::pictures::made;
 use roxmltree::{Document, Node};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The figure kinds the gallery does not show, each made by its command in a folder of its
+/// own: the pulse of `export svg pulse` (a quadrupole's, and the physical model's), a
+/// bifurcation diagram with continuation (its two sweeps told apart). The design front has its
+/// own test below (`thud design --svg`, the same checks).
+const MORE: &[(&str, &[&str])] = &[
+    ("more/pulse.svg", &["export", "svg", "pulse", "--theta", "30", "--source", "quadrupole", "--out", "FILE"]),
+    (
+        "more/pulse-physical.svg",
+        &["export", "svg", "pulse", "--model", "physical", "--sphere", "steel", "--r", "0.5", "--out", "FILE"],
+    ),
+    (
+        "more/bifurcation-continuation.svg",
+        &[
+            "bifurcation",
+            "--preset",
+            "forced-rattle",
+            "--vary",
+            "f=7Hz:8Hz:6",
+            "--continuation",
+            "--transient",
+            "20",
+            "--periods",
+            "4",
+            "--svg",
+            "FILE",
+        ],
+    ),
+];
+
+/// Every figure kind thud draws: the gallery's figures ([`made`]) and [`MORE`]'s.
+fn figures() -> &'static BTreeMap<String, String> {
+    static ALL: std::sync::OnceLock<BTreeMap<String, String>> = std::sync::OnceLock::new();
+    ALL.get_or_init(|| {
+        let mut all = made().figures.clone();
+        for (name, args) in MORE {
+            let home = tempfile::tempdir().unwrap();
+            let mut args = args.to_vec();
+            let out = home.path().join("figure.svg");
+            let out = out.to_str().unwrap();
+            *args.last_mut().unwrap() = out;
+            let (code, _, err) = crate::common::thud_in(home.path(), &args);
+            assert_eq!(code, 0, "{name}: {err}");
+            all.insert((*name).to_string(), std::fs::read_to_string(out).unwrap());
+        }
+        all
+    })
+}
 
 /// How one mark is drawn: what it is (a curve, a marker of a shape, a cell), its colour and
 /// its dash pattern.
@@ -133,8 +182,8 @@ fn looks_of(svg: &str) -> (BTreeSet<Look>, BTreeSet<Look>, bool) {
 
 #[test]
 fn every_figure_s_legend_names_every_look_it_draws() {
-    let figures = &made().figures;
-    assert!(figures.len() >= 25, "every figure kind: {:?}", figures.keys());
+    let figures = figures();
+    assert!(figures.len() >= 28, "every figure kind: {:?}", figures.keys());
     for (name, svg) in figures {
         let (data, legend, says_more) = looks_of(svg);
         // One series (one colour, one dash, one marker shape: a line with its markers) needs
@@ -171,7 +220,7 @@ fn the_legend_check_fails_on_a_missing_entry_and_passes_on_an_ellipsis() {
 
 #[test]
 fn every_figure_s_colours_stay_apart_for_red_green_colour_blindness() {
-    for (name, svg) in &made().figures {
+    for (name, svg) in figures() {
         let (data, legend, _) = looks_of(svg);
         // The colours that tell series apart: of the data's looks, and the legend's entries.
         let colors: BTreeSet<&str> = data
@@ -223,7 +272,7 @@ fn text_box(n: &Node) -> (f64, f64, f64, f64) {
 #[test]
 fn labels_inside_a_plot_sit_clear_of_its_data() {
     let mut checked = 0;
-    for (name, svg) in &made().figures {
+    for (name, svg) in figures() {
         let doc = Document::parse(svg).unwrap();
         let (frames, marks) = marks(&doc);
         // Every marker's centre and every point of every curve inside a plot.
@@ -350,7 +399,7 @@ fn bar_problems(name: &str, svg: &str) -> Vec<String> {
 #[test]
 fn every_colour_bar_reads_in_order_with_red_green_colour_blindness() {
     let mut bars = 0;
-    for (name, svg) in &made().figures {
+    for (name, svg) in figures() {
         bars += color_bars(svg).0.len();
         let problems = bar_problems(name, svg);
         assert!(problems.is_empty(), "{}", problems.join("\n"));

@@ -179,7 +179,12 @@ fn check_study_and_orbit_headers(checked: &mut Vec<&'static str>) {
         ),
         ("impact-map --csv", [&["impact-map", "--csv"][..], &forced[..]].concat(), &schema::IMPACT_MAP, vec![]),
         ("basins --csv", [&["basins", "--csv", "--grid", "2"][..], &forced[..]].concat(), &schema::BASINS, vec![]),
-        ("restitution --csv", vec!["restitution", "--csv"], &schema::RESTITUTION_TABLE, vec![]),
+        (
+            "restitution --csv --target",
+            vec!["restitution", "--csv", "--target", "0.8"],
+            &schema::RESTITUTION_TABLE,
+            vec![],
+        ),
         ("orbit --csv", vec!["orbit", "--csv", "--preset", "forced-rattle"], &schema::ORBIT_TABLE, vec![]),
         (
             "continue --csv",
@@ -270,10 +275,65 @@ fn every_cli_csv_header_is_the_one_definition() {
     let merged = ok(&["merge", &paths[0], &paths[1], "--out", "-", "--csv"]);
     check("merge --csv".into(), &merged, &schema::SWEEP_ENSEMBLE);
     check_study_and_orbit_headers(&mut checked);
+    // Without --target, restitution's table stops before its target column.
+    let plain = header(&ok(&["restitution", "--csv"]));
+    assert_eq!(plain, names(&schema::RESTITUTION_TABLE)[..2], "restitution --csv without --target");
     let mut ids = checked.clone();
     ids.sort_unstable();
     ids.dedup();
-    assert_eq!(ids.len(), schema::TABLES.len(), "every table of the schema is written by some command: {ids:?}");
+    let mut csv: Vec<&str> = schema::TABLES.iter().filter(|t| t.written_by.contains("csv")).map(|t| t.id).collect();
+    csv.sort_unstable();
+    assert_eq!(ids, csv, "every CSV table of the schema is written by some command, and checked here");
+}
+
+/// `keys` are all columns of `t` (a record may leave out an optional key).
+fn within(what: &str, keys: &[String], t: &Table) {
+    let known = names(t);
+    let unknown: Vec<&String> = keys.iter().filter(|k| !known.contains(k)).collect();
+    assert!(unknown.is_empty(), "{what}: {unknown:?} not in the schema's `{}` table ({known:?})", t.id);
+}
+
+/// The JSON records that are not a CSV table's rows (orbit, continue, limits, paper): every key,
+/// of the record and of its lists' entries, is in the schema, in order where the record is fixed.
+#[test]
+fn every_other_json_record_s_keys_are_in_the_schema() {
+    let orbit = ok(&["orbit", "--json", "--preset", "forced-rattle"]);
+    assert_eq!(top_keys(&orbit), names(&schema::ORBIT_RECORD), "orbit --json");
+    within("orbit --json impacts[]", &top_keys(&first_record(&orbit, "impacts")), &schema::ORBIT_TABLE);
+
+    let one = ok(&["continue", "--json", "--preset", "forced-rattle", "--vary", "f=5.5:5.6"]);
+    within("continue --json", &top_keys(&one), &schema::CONTINUATION_RECORD);
+    let mut point = top_keys(&first_record(&one, "points"));
+    assert_eq!(point.first().map(String::as_str), Some("value"), "continue --json points[]: the parameter first");
+    point.remove(0);
+    within("continue --json points[]", &point, &schema::CONTINUATION);
+    let v: Value = serde_json::from_str(&one).unwrap();
+    assert!(!v["specials"].as_array().unwrap().is_empty(), "a special point to check: {one}");
+    assert_eq!(top_keys(&first_record(&one, "specials")), names(&schema::SPECIAL), "continue --json specials[]");
+    let family = ok(&["continue", "--json", "--preset", "forced-rattle", "--vary", "f=5.5:5.6:2"]);
+    within("continue N --json", &top_keys(&family), &schema::CONTINUATION_RECORD);
+    within("continue N --json branches[]", &top_keys(&first_record(&family, "branches")), &schema::CONTINUATION_RECORD);
+
+    let limits = ok(&["limits", "--json"]);
+    assert_eq!(top_keys(&limits), names(&schema::LIMITS), "limits --json");
+    for list in ["caps", "solver_caps"] {
+        assert_eq!(top_keys(&first_record(&limits, list)), names(&schema::CAP), "limits --json {list}[]");
+    }
+    assert_eq!(top_keys(&first_record(&limits, "ranges")), names(&schema::RANGE), "limits --json ranges[]");
+
+    for id in ["table1", "table3", "table5", "fig2"] {
+        let text = ok(&["paper", id, "--json"]);
+        within(&format!("paper {id} --json"), &top_keys(&text), &schema::PAPER);
+        // A paper table describes its own rows: their keys are its columns' keys.
+        let v: Value = serde_json::from_str(&text).unwrap();
+        let columns: Vec<String> =
+            v["columns"].as_array().unwrap().iter().map(|c| c["key"].as_str().unwrap().to_string()).collect();
+        let mut row = top_keys(&first_record(&text, "rows"));
+        let mut want = columns.clone();
+        row.sort_unstable();
+        want.sort_unstable();
+        assert_eq!(row, want, "paper {id} --json: a row's keys are its columns' keys");
+    }
 }
 
 #[test]

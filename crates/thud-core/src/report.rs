@@ -7,9 +7,9 @@
 //! one runs no solver: it gathers what an evaluation, an ensemble or a response already
 //! computed (plus the SPL of each impact, Eqs 9–24, for a run's impact list).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-use crate::acoustics::{Extremum, Field};
+use crate::acoustics::{Extremum, Field, PulseShape, QuadSigns, Source};
 use crate::contact::Contact;
 use crate::damper::{EnergyLedger, ImpactEvent, Maximum};
 use crate::design::{self, Design, Evaluation, Metrics, ValidDesign, Zone};
@@ -23,7 +23,7 @@ use crate::response::{EnsembleSweep, Response, ResponseEnsemble, ResponseSweep};
 pub const SPL_DEFINITION: &str = "rms over one contact duration from the direct arrival";
 
 /// A pressure waveform: times (s, from the contact's start) and pressures (Pa).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Waveform {
     pub t_s: Vec<f64>,
     pub p_pa: Vec<f64>,
@@ -32,7 +32,7 @@ pub struct Waveform {
 /// One Hertzian impact heard at one observer (`thud pulse --json`, Python's `thud.pulse`): the
 /// inputs as used, the contact (Eqs 5–7), the levels (dB re 20 µPa) and the waveform. SI
 /// units; angles in degrees.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PulseReport {
     /// Sphere radius a (m).
     pub radius_m: f64,
@@ -48,11 +48,11 @@ pub struct PulseReport {
     /// Observer angle θ (degrees).
     pub theta_deg: f64,
     /// "single", "dipole" or "quadrupole".
-    pub source: String,
+    pub source: Source,
     /// "paper" or "rigid".
-    pub quad_signs: String,
+    pub quad_signs: QuadSigns,
     /// "half-sine" or "hertz".
-    pub pulse: String,
+    pub pulse: PulseShape,
     /// Air impedance ρ0·c (Pa·s/m).
     pub rho_c_pa_s_m: f64,
     /// Speed of sound c (m/s).
@@ -84,7 +84,7 @@ pub struct PulseReport {
     /// The waveform at `points` points.
     pub waveform: Waveform,
     /// The model, written only when not the paper's: "physical", whose level is `spl_peak_db`.
-    #[serde(skip_serializing_if = "str::is_empty")]
+    #[serde(default, skip_serializing_if = "str::is_empty")]
     pub model: String,
 }
 
@@ -103,9 +103,9 @@ impl PulseReport {
             k_hz: input.impact.k_hz,
             r_m: input.observer.r_m,
             theta_deg: input.observer.theta_rad.to_degrees(),
-            source: r.source.name().to_string(),
-            quad_signs: r.quad_signs.name().to_string(),
-            pulse: r.pulse.name().to_string(),
+            source: r.source,
+            quad_signs: r.quad_signs,
+            pulse: r.pulse,
             rho_c_pa_s_m: r.air.rho_c_pa_s_m,
             c_m_s: r.air.c_m_s,
             alpha_max_m: contact.alpha_max_m,

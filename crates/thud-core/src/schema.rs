@@ -302,11 +302,15 @@ pub const BASINS: Table = Table {
 };
 
 /// `thud restitution --csv`: the paper's restitution against the ball's mass (Fig 6), the
-/// mass in grams as the paper's axis.
+/// mass in grams as the paper's axis; the last column only with `--target`.
 pub const RESTITUTION_TABLE: Table = Table {
     id: "restitution",
     written_by: "restitution --csv",
-    columns: &[col("mass_g", "g", "ball mass m, in grams as the paper's axis"), RESTITUTION_OF_MASS],
+    columns: &[
+        col("mass_g", "g", "ball mass m, in grams as the paper's axis"),
+        RESTITUTION_OF_MASS,
+        col("c1_for_target_n_s_m", "N·s/m", "with --target R: the contact damping c1 that gives R at that mass"),
+    ],
 };
 const RESTITUTION_OF_MASS: Column = col("restitution", "1", "the coefficient of restitution at that mass (Fig 6)");
 
@@ -330,7 +334,7 @@ pub const ORBIT_TABLE: Table = Table {
         MULTIPLIER_ABS_MAX,
         col("impact", "1", "the impact's number in the orbit (from 0)"),
         PERIOD,
-        col("phase_T", "1", "the force's phase at the impact's onset (fraction of the period T)"),
+        PHASE,
         WALL,
         U_IN_M_S,
         U_OUT_M_S,
@@ -356,8 +360,123 @@ pub const CONTINUATION: Table = Table {
     ],
 };
 
+// The JSON records whose keys are not a table's columns: each key of the record, in order.
+const DESIGN_KEY: Column = col("design", "—", "the design as run (the keys of a saved design)");
+const VALUE: Column = col("value", "—", "the varied parameter's value, in the unit of the record's `unit`");
+/// The keys of the record of `thud orbit --json`; its `impacts[]` have the `orbit` table's
+/// impact columns (period, phase, wall, u_in_m_s, u_out_m_s).
+pub const ORBIT_RECORD: Table = Table {
+    id: "orbit_record",
+    written_by: "orbit --json",
+    columns: &[
+        DESIGN_KEY,
+        ORBIT_PERIODS,
+        IMPACTS_PER_ORBIT,
+        col("symmetric", "—", "x(t + T/2) = −x(t)"),
+        X_M,
+        V_M_S,
+        Z_M,
+        ZDOT_M_S,
+        ORBIT_AMPLITUDE_M,
+        AMPLITUDE_LINEAR_M,
+        col("impacts", "—", "the orbit's impacts, each with the orbit table's impact columns"),
+        col("multipliers", "—", "the Floquet multipliers, largest modulus first, each {re, im}"),
+        STABLE,
+        col(
+            "critical",
+            "—",
+            "how the largest multiplier crosses the unit circle: fold, period_doubling, neimark_sacker",
+        ),
+        col("residual", "m, m/s", "|Pⁿ(s) − s| at the orbit, the largest component (m or m/s)"),
+        col("iterations", "1", "Newton iterations taken"),
+        col("periods_simulated", "1", "forcing periods simulated to find the orbit and its multipliers"),
+    ],
+};
+
+/// The keys of the record of `thud continue --json`; its `points[]` are the `continuation`
+/// table's columns with the parameter as `value`, its `specials[]` the `special` table.
+pub const CONTINUATION_RECORD: Table = Table {
+    id: "continuation_record",
+    written_by: "continue --json",
+    columns: &[
+        DESIGN_KEY,
+        col("name", "—", "the varied parameter's name (freq, gap, …)"),
+        col("unit", "—", "the varied parameter's unit (Hz, m, …; empty for a plain number)"),
+        col("points", "—", "the branch's points, each with the continuation table's columns ({varied} as value)"),
+        col("specials", "—", "the special points of the branch (the special table)"),
+        col("ended", "—", "why the branch ended before the range's end (null when it reached it)"),
+        col("branches", "—", "with a point count N: every branch, each with points, specials and ended"),
+    ],
+};
+
+/// A special point of a continued branch: `thud continue --json` `specials[]`.
+pub const SPECIAL: Table = Table {
+    id: "special",
+    written_by: "continue --json specials[]",
+    columns: &[
+        col("kind", "—", "fold, period_doubling, neimark_sacker, branch_point or grazing"),
+        VALUE,
+        ORBIT_AMPLITUDE_M,
+    ],
+};
+
+/// A cap of `thud limits --json` (`caps[]`, `solver_caps[]`); its other keys are the
+/// `limits` table.
+pub const CAP: Table = Table {
+    id: "cap",
+    written_by: "limits --json caps[], solver_caps[]",
+    columns: &[
+        col("basis", "—", "what the cap was measured on"),
+        col("max", "—", "the cap, in its own unit (steps, samples, cells, …)"),
+        col("what", "—", "what the cap counts"),
+    ],
+};
+
+/// The keys of `thud limits --json`; a `ranges[]` entry is the `range` table.
+pub const LIMITS: Table = Table {
+    id: "limits",
+    written_by: "limits --json",
+    columns: &[
+        col("caps", "—", "the work caps (the cap table), lifted by --no-limit"),
+        col("orbit_seed_impacts_max", "1", "most impacts of an orbit seed searched"),
+        col("orbit_transient_periods_max", "1", "most forcing periods run to find an orbit's seed"),
+        col("ranges", "—", "every parameter's range (the range table)"),
+        col("settle_periods_max", "1", "most forcing periods a settling run adds"),
+        col("solver_caps", "—", "the solver's work caps (the cap table)"),
+    ],
+};
+
+/// A parameter's range: `thud limits --json` `ranges[]`.
+pub const RANGE: Table = Table {
+    id: "range",
+    written_by: "limits --json ranges[]",
+    columns: &[
+        col("max", "—", "largest valid value, in unit"),
+        col("min", "—", "smallest valid value, in unit"),
+        col("param", "—", "the parameter as the command line names it, without dashes"),
+        col("reason", "—", "why the range is what it is"),
+        col("unit", "—", "the unit of min and max"),
+        col("what", "—", "what the parameter is"),
+    ],
+};
+
+/// The keys of `thud paper ID --json`: a table of the paper, self-describing: each row's keys
+/// are its `columns[].key` (in the paper's units, stated in the key: `mass_g`, `gap_cm`).
+pub const PAPER: Table = Table {
+    id: "paper",
+    written_by: "paper ID --json",
+    columns: &[
+        col("columns", "—", "the table's columns, each {key, label}: the keys of its rows"),
+        col("id", "—", "the table's or figure's id (table3, fig10, …)"),
+        col("notes", "—", "notes on how the numbers were made"),
+        col("rows", "—", "the rows, each keyed by the columns' keys"),
+        col("summary", "—", "summary rows, by name (only some tables)"),
+        col("title", "—", "the table's title"),
+    ],
+};
+
 /// Every table, in the guide's order.
-pub const TABLES: [Table; 16] = [
+pub const TABLES: [Table; 23] = [
     PULSE,
     HISTORY,
     IMPACTS,
@@ -374,6 +493,13 @@ pub const TABLES: [Table; 16] = [
     RESTITUTION_TABLE,
     ORBIT_TABLE,
     CONTINUATION,
+    ORBIT_RECORD,
+    CONTINUATION_RECORD,
+    SPECIAL,
+    LIMITS,
+    CAP,
+    RANGE,
+    PAPER,
 ];
 
 /// The table `id`, if there is one.
@@ -393,10 +519,8 @@ mod tests {
             let names: BTreeSet<&str> = t.names().into_iter().collect();
             assert_eq!(names.len(), t.columns.len(), "{}: a name twice", t.id);
             for c in t.columns {
-                // `phase_T`: the orbit's CSV names the period T as the paper writes it.
                 assert!(
                     *c == VARIED
-                        || c.name == "phase_T"
                         || c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'),
                     "{}",
                     c.name

@@ -128,8 +128,9 @@ pub fn _render<'py>(
 
 /// _figure(kind, record, pdf=False, size=None, title=True) -> bytes
 ///
-/// The figure `thud basins --svg` (kind "basins") or `thud impact-map --svg` (kind
-/// "impact_map") draws, from the result's record (its `--json` object); `pdf=True`: `--pdf`.
+/// The figure `thud basins --svg` (kind "basins"), `thud impact-map --svg` (kind
+/// "impact_map") or `thud bifurcation --svg` (kind "bifurcation") draws, from the result's
+/// record (its `--json` object; a bifurcation's under "bifurcation"); `pdf=True`: `--pdf`.
 #[pyfunction]
 #[pyo3(signature = (kind, record, pdf = false, size = None, title = true))]
 pub fn _figure<'py>(
@@ -156,8 +157,14 @@ pub fn _figure<'py>(
             let t = format!("Impact map — {}", short_design(&design, ""));
             thud_render::dynamics::impact_map_svg(&run, &t, &look)
         }
+        "bifurcation" => {
+            let b: thud_core::dynamics::Bifurcation =
+                serde_json::from_value(value.get("bifurcation").cloned().unwrap_or_default()).map_err(bad)?;
+            let t = thud_render::dynamics::bifurcation_title(&design, &b);
+            thud_render::dynamics::bifurcation_svg(&b, &t, &look)
+        }
         _ => {
-            let msg = format!("invalid kind: '{kind}'; expected basins or impact_map");
+            let msg = format!("invalid kind: '{kind}'; expected basins, impact_map or bifurcation");
             return Err(parameter_error(py, "kind", msg));
         }
     };
@@ -193,7 +200,8 @@ pub enum PulseFile {
 /// The bytes `thud export svg|pdf|wav pulse` writes for the pulse whose record (`thud pulse
 /// --json`) is `record`: the same impact, so the same bytes.
 pub fn pulse_bytes<'py>(py: Python<'py>, record: &serde_json::Value, what: PulseFile) -> PyResult<Bound<'py, PyBytes>> {
-    let spec = thud_render::pulse::PulseSpec::deserialize(record)
+    let spec = thud_core::report::PulseReport::deserialize(record)
+        .map(thud_render::pulse::PulseSpec::from)
         .map_err(|e| parameter_error(py, "record", format!("invalid record: not a thud pulse ({e})")))?;
     let failed = |e: String| engine_error(py, ThudError::invalid("render", e));
     let bytes = match what {

@@ -163,3 +163,29 @@ def test_basins_and_impact_maps_draw_what_their_commands_draw(cli, tmp_path):
                        str(out))
     assert code == 0, err
     assert written(tmp_path, m.to_svg) == out.read_bytes()
+
+
+def test_a_bifurcation_diagram_draws_what_thud_bifurcation_draws(cli, tmp_path):
+    # 7, 7.5 and 8 Hz: the same three values from the command line's FROM:TO:N and from here.
+    kw = dict(preset="forced-rattle", transient=20, periods=4)
+    args = ["bifurcation", "--preset", "forced-rattle", "--transient", "20", "--periods", "4"]
+    for continuation in (False, True):
+        ds = thud.bifurcation(freq=[7.0, 7.5, 8.0], continuation=continuation, **kw)
+        extra = ["--vary", "f=7Hz:8Hz:3"] + (["--continuation"] if continuation else [])
+        for method, flag in ((ds.to_svg, "--svg"), (ds.to_pdf, "--pdf")):
+            out = tmp_path / f"bif-{continuation}{flag}"
+            code, _, err = cli(*args, *extra, flag, str(out))
+            assert code == 0, err
+            assert written(tmp_path, method) == out.read_bytes()
+    # The title names what varies and over which range.
+    svg = written(tmp_path, ds.to_svg).decode()
+    assert "over freq 7–8 Hz" in svg
+    # A Dataset derived from the diagram is data only: no figure of the whole drawn for a part.
+    with pytest.raises(ValueError, match="derived"):
+        ds.isel(point=[0]).to_svg(tmp_path / "part.svg")
+    assert not (tmp_path / "part.svg").exists()
+    # Pickled and back, it draws the same figure.
+    import pickle
+
+    again = pickle.loads(pickle.dumps(ds))
+    assert written(tmp_path, again.to_svg) == written(tmp_path, ds.to_svg)

@@ -47,7 +47,7 @@ def test_an_orbit_pickles_to_an_equal_orbit_and_tables():
     back = pickle.loads(pickle.dumps(o))
     assert back == o and back is not o and back.as_dict() == o.as_dict()
     df = o.to_dataframe()
-    assert list(df.columns) == ["impact", "period", "phase_T", "wall", "u_in_m_s", "u_out_m_s"]
+    assert list(df.columns) == ["impact", "period", "phase", "wall", "u_in_m_s", "u_out_m_s"]
     assert len(df) == o.impacts_per_orbit
     assert np.array_equal(o.to_xarray()["u_in_m_s"].values, o.impacts["u_in_m_s"])
 

@@ -29,12 +29,13 @@ def header(text):
 def test_the_schema_is_every_table_with_name_unit_and_meaning():
     assert set(SCHEMA) == {"pulse", "history", "impacts", "ensemble", "sweep", "sweep_ensemble", "shard_part",
                            "response", "response_ensemble", "study", "bifurcation", "impact_map", "basins",
-                           "restitution", "orbit", "continuation"}
+                           "restitution", "orbit", "continuation", "orbit_record", "continuation_record",
+                           "special", "limits", "cap", "range", "paper"}
     for table, cols in SCHEMA.items():
         assert len({c[0] for c in cols}) == len(cols), table
         for name, unit, doc in cols:
-            # `{varied}`: one column per varied parameter; `phase_T`: the orbit's CSV names T.
-            plain = name in ("{varied}", "phase_T") or name == name.lower()
+            # `{varied}`: one column per varied parameter.
+            plain = name == "{varied}" or name == name.lower()
             assert plain and " " not in name and unit and doc, (table, name)
     assert names("sweep")[:2] == ["mass_kg", "gap_m"]
     assert names("response")[0] == "direction"
@@ -137,7 +138,7 @@ WRITERS = [
                      "--periods", "4"], ["freq_hz"]),
     ("impact_map", ["impact-map", "--preset", "forced-rattle", "--transient", "20", "--periods", "4"], []),
     ("basins", ["basins", "--preset", "forced-rattle", "--grid", "2", "--transient", "20", "--periods", "4"], []),
-    ("restitution", ["restitution"], []),
+    ("restitution", ["restitution", "--target", "0.8"], []),
     ("orbit", ["orbit", "--preset", "forced-rattle"], []),
     ("continuation", ["continue", "--preset", "forced-rattle", "--vary", "f=5.5:5.6"], ["freq_hz"]),
 ]

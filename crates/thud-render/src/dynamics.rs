@@ -219,6 +219,22 @@ pub fn short_design(d: &thud_core::design::Design, varied: &str) -> String {
     .join(", ")
 }
 
+/// The title of a bifurcation diagram: what varies and over which range, then the design
+/// without it ("Bifurcation diagram over freq 3–8 Hz — F0 3 N, gap 20 mm, m 40 g"); the
+/// title of `thud bifurcation --svg` and of the Python figure of the same diagram.
+pub fn bifurcation_title(d: &thud_core::design::Design, b: &Bifurcation) -> String {
+    range_title("Bifurcation diagram", d, &b.axis.name, &b.axis.unit, &b.axis.values)
+}
+
+/// `what` over the range of the parameter `name` (`unit`) its `values` span, then the design
+/// without it: the titles of the figures over one parameter (`thud bifurcation`, `thud
+/// continue`).
+pub fn range_title(what: &str, d: &thud_core::design::Design, name: &str, unit: &str, values: &[f64]) -> String {
+    let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+    let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+    format!("{what} over {name} {}–{}{unit} — {}", short(lo), short(hi), short_design(d, name))
+}
+
 /// The bifurcation diagram: above, x(kT) (mm) against the parameter; below, the relative
 /// impact speed (m/s) of every impact after the transient. With continuation the rising sweep
 /// is drawn in blue dots, the falling one in vermilion squares, so hysteresis shows.

@@ -3,119 +3,78 @@
 //! the same [`PulseSpec`], the impact as its record (`thud pulse --json`) states it, so both
 //! write the same bytes.
 
-use serde::de::IgnoredAny;
-use serde::Deserialize;
-
-use crate::acoustics::{Air, Field, Observer, PulseShape, QuadSigns, Radiation, Source};
+use crate::acoustics::{Air, Field, Observer, Radiation};
 use crate::contact::Contact;
 use crate::error::ThudError;
 use crate::svg::Look;
 use crate::units::short;
 use crate::{figures, wav};
 use thud_core::params::PulseInput;
+use thud_core::report::PulseReport;
 
-/// One impact as its record states it: the sphere, the contact (Eqs 5–7), the observer, the
-/// radiation and the number of waveform points. Read from the record of `thud pulse --json`
-/// (the Python `Pulse`'s), or made from the impact the command line resolved ([`PulseSpec::new`]).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct PulseSpec {
-    /// Sphere radius a (m).
-    pub radius_m: f64,
-    /// Sphere mass m (kg).
-    pub mass_kg: f64,
-    /// Impact speed U0 (m/s).
-    pub u0_m_s: f64,
-    /// Observer distance r (m).
-    pub r_m: f64,
-    /// Observer angle θ (degrees).
-    pub theta_deg: f64,
-    /// The reflecting surfaces.
-    pub source: Source,
-    /// The quadrupole's wall-image signs.
-    pub quad_signs: QuadSigns,
-    /// The acceleration pulse.
-    pub pulse: PulseShape,
-    /// Air impedance ρ0·c (Pa·s/m).
-    pub rho_c_pa_s_m: f64,
-    /// Speed of sound c (m/s).
-    pub c_m_s: f64,
-    /// Peak approach α_max (m).
-    pub alpha_max_m: f64,
-    /// Peak acceleration A_max (m/s²).
-    pub accel_max_m_s2: f64,
-    /// Contact duration τ (s).
-    pub tau_s: f64,
-    /// Peak contact force (N).
-    pub force_max_n: f64,
-    /// The waveform's samples: only their number is read (the figure's points).
-    #[serde(deserialize_with = "count")]
-    pub waveform: usize,
-}
+/// One impact as its record states it: the engine's [`PulseReport`] (`thud pulse --json`,
+/// the Python `Pulse`'s record), whose sphere, contact (Eqs 5–7), observer, radiation and
+/// waveform's number of points are what the figure and the sound are drawn from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PulseSpec(PulseReport);
 
-/// The number of samples of a record's waveform `{"t_s": […], "p_pa": […]}`.
-fn count<'de, D: serde::Deserializer<'de>>(d: D) -> Result<usize, D::Error> {
-    #[derive(Deserialize)]
-    struct Samples {
-        t_s: Vec<IgnoredAny>,
+impl From<PulseReport> for PulseSpec {
+    fn from(report: PulseReport) -> Self {
+        PulseSpec(report)
     }
-    Ok(Samples::deserialize(d)?.t_s.len())
 }
 
 impl PulseSpec {
     /// The impact `input` (as [`thud_core::params::pulse`] resolved it) drawn with `points`
-    /// waveform points: the numbers its record holds, exactly. Refuses an impact without a field
-    /// (an observer inside the ball) as `thud pulse` does, naming the parameter typed.
+    /// waveform points: its record, exactly as `thud pulse --json` prints it. Refuses an impact
+    /// without a field (an observer inside the ball) as `thud pulse` does, naming the parameter
+    /// typed.
     pub fn new(input: &PulseInput, points: usize) -> Result<PulseSpec, ThudError> {
         let c = input.contact();
-        input.field(&c)?;
-        let r = &input.radiation;
-        Ok(PulseSpec {
-            radius_m: input.radius_m,
-            mass_kg: input.impact.mass_kg,
-            u0_m_s: input.impact.u0_m_s,
-            r_m: input.observer.r_m,
-            theta_deg: input.observer.theta_rad.to_degrees(),
-            source: r.source,
-            quad_signs: r.quad_signs,
-            pulse: r.pulse,
-            rho_c_pa_s_m: r.air.rho_c_pa_s_m,
-            c_m_s: r.air.c_m_s,
-            alpha_max_m: c.alpha_max_m,
-            accel_max_m_s2: c.accel_max_m_s2,
-            tau_s: c.tau_s,
-            force_max_n: c.force_max_n,
-            waveform: points,
-        })
+        let field = input.field(&c)?;
+        Ok(PulseSpec(PulseReport::new(input, &c, &field, points)))
+    }
+
+    /// The record drawn.
+    pub fn report(&self) -> &PulseReport {
+        &self.0
     }
 
     /// The sound field at the observer (Eqs 9–24) of this contact.
     pub fn field(&self) -> Result<Field, ThudError> {
+        let r = &self.0;
         let contact = Contact {
-            alpha_max_m: self.alpha_max_m,
-            accel_max_m_s2: self.accel_max_m_s2,
-            tau_s: self.tau_s,
-            force_max_n: self.force_max_n,
+            alpha_max_m: r.alpha_max_m,
+            accel_max_m_s2: r.accel_max_m_s2,
+            tau_s: r.tau_s,
+            force_max_n: r.force_max_n,
         };
         let radiation = Radiation {
-            source: self.source,
-            quad_signs: self.quad_signs,
-            air: Air { rho_c_pa_s_m: self.rho_c_pa_s_m, c_m_s: self.c_m_s },
-            pulse: self.pulse,
+            source: r.source,
+            quad_signs: r.quad_signs,
+            air: Air { rho_c_pa_s_m: r.rho_c_pa_s_m, c_m_s: r.c_m_s },
+            pulse: r.pulse,
         };
-        Field::new(self.radius_m, &contact, &Observer::new(self.r_m, self.theta_deg), &radiation)
+        Field::new(r.radius_m, &contact, &Observer::new(r.r_m, r.theta_deg), &radiation)
+    }
+
+    /// The number of points the figure draws: the record's waveform's.
+    pub fn points(&self) -> usize {
+        self.0.waveform.t_s.len()
     }
 
     /// The figure's title: the sphere, its speed and where it is heard, each number as given
     /// (to 6 significant digits, no trailing zeros).
     pub fn title(&self) -> String {
+        let r = &self.0;
         format!(
             "Sound pressure of one impact: sphere a {} mm, m {} g, U0 {} m/s (r {} m, θ {}°, {})",
-            short(self.radius_m * 1e3),
-            short(self.mass_kg * 1e3),
-            short(self.u0_m_s),
-            short(self.r_m),
-            short(self.theta_deg),
-            self.source.name()
+            short(r.radius_m * 1e3),
+            short(r.mass_kg * 1e3),
+            short(r.u0_m_s),
+            short(r.r_m),
+            short(r.theta_deg),
+            r.source.name()
         )
     }
 }
@@ -123,7 +82,7 @@ impl PulseSpec {
 /// The pulse's figure as SVG: its pressure against time after the direct arrival, at the
 /// record's number of points.
 pub fn svg(spec: &PulseSpec, look: &Look) -> Result<String, ThudError> {
-    Ok(figures::waveform(&spec.field()?, spec.waveform, &spec.title(), look))
+    Ok(figures::waveform(&spec.field()?, spec.points(), &spec.title(), look))
 }
 
 /// The pulse's sound as WAV ([`wav::pulse_sound`]).

@@ -133,7 +133,8 @@ def sweep(masses_kg: _Any = None, gaps_m: _Any = None, **params: _Any) -> _Any:
 def bifurcation(**params: _Any) -> _Any:
     """The bifurcation diagram of a forced design over one parameter given as a sequence
     (``thud bifurcation --vary``): ``bifurcation(freq=np.linspace(3, 8, 200), force=3,
-    preset="forced-rattle")`` → an xarray Dataset (``thud._frames.bifurcation_xarray``).
+    preset="forced-rattle")`` → an xarray Dataset (``thud._frames.bifurcation_xarray``) that
+    draws its diagram (``ds.to_svg(path)``, ``ds.to_pdf(path)``: ``thud bifurcation --svg|--pdf``).
     Options: transient (periods run before sampling, default 200), periods (sampled, default
     100), continuation (rising then falling, each value from the last one's end state),
     progress, no_limit; every other keyword is the design's, as for ``simulate``."""

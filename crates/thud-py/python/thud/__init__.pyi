@@ -739,7 +739,9 @@ def bifurcation(
     (``freq=np.linspace(3, 8, 200)``), as ``thud bifurcation --vary``: an xarray Dataset of the
     stroboscopic samples x(kT) on point × period, the impacts on point × impact, each point's
     value, direction and orbit type ("2/1", "4/2", "chaotic", "not settled"); periods: the
-    sampled periods (default 100 here); transient: periods run first (default 200)."""
+    sampled periods (default 100 here); transient: periods run first (default 200). The
+    Dataset draws its diagram: ``ds.to_svg(path)``, ``ds.to_pdf(path)`` (``thud bifurcation
+    --svg|--pdf``, byte for byte)."""
 
 def response(
     freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,

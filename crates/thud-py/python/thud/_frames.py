@@ -397,7 +397,8 @@ def bifurcation_xarray(record: Dict[str, Any]) -> Any:
     point (each value of each sweep) × period the stroboscopic samples x_m, v_m_s, z_m,
     zdot_m_s at t = kT; per point the parameter's value, the direction and the orbit; the
     impacts on point × impact (phase, wall, u_in_m_s, u_out_m_s, period; NaN past a point's
-    last impact); the bands in attrs as JSON."""
+    last impact); the bands in attrs as JSON. It draws its figure (``to_svg``, ``to_pdf``:
+    ``thud bifurcation --svg|--pdf``)."""
     xr = _need("xarray", "thud.bifurcation()")
     b = record["bifurcation"]
     axis = b["axis"]
@@ -435,7 +436,9 @@ def bifurcation_xarray(record: Dict[str, Any]) -> Any:
     attrs = {"design": json.dumps(record["design"]), "bands": json.dumps(b["bands"]),
              "transient_periods": b["settings"]["transient_periods"], "periods": b["settings"]["periods"],
              "parameter": axis["name"]}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    from ._diagram import bifurcation_dataset
+
+    return bifurcation_dataset(xr.Dataset(data, coords=coords, attrs=attrs), record)
 
 
 def _orbit_label(orbit: Dict[str, Any]) -> str:

@@ -136,11 +136,11 @@ class Orbit(_Record):
 
     def to_dataframe(self) -> Any:
         """The impacts as a table, one row per impact (the columns of ``thud orbit --csv``'s
-        impact part: impact, period, phase_T, wall, u_in_m_s, u_out_m_s); the orbit's scalars in
+        impact part: impact, period, phase, wall, u_in_m_s, u_out_m_s); the orbit's scalars in
         ``.attrs``. Needs pandas."""
         pd = _need("pandas", "Orbit.to_dataframe()")
         i = self.impacts
-        df = pd.DataFrame({"impact": np.arange(len(i["period"])), "period": i["period"], "phase_T": i["phase"],
+        df = pd.DataFrame({"impact": np.arange(len(i["period"])), "period": i["period"], "phase": i["phase"],
                            "wall": i["wall"], "u_in_m_s": i["u_in_m_s"], "u_out_m_s": i["u_out_m_s"]})
         df.attrs.update({"orbit": self.label, "amplitude_m": self.amplitude_m, "stable": self.stable,
                          "critical": self.critical, "design": self.design})
@@ -153,7 +153,7 @@ class Orbit(_Record):
         i = self.impacts
         data = {
             "period": (("impact",), i["period"]),
-            "phase_T": (("impact",), i["phase"], {"units": "1", "long_name": "phase of the force (fraction of T)"}),
+            "phase": (("impact",), i["phase"], {"units": "1", "long_name": "phase of the force (fraction of T)"}),
             "wall": (("impact",), i["wall"]),
             "u_in_m_s": (("impact",), i["u_in_m_s"], {"units": "m/s"}),
             "u_out_m_s": (("impact",), i["u_out_m_s"], {"units": "m/s"}),
