@@ -157,29 +157,26 @@ pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let d = a.design.design_over(&[&vary])?;
     a.outputs().check()?;
     let periods = super::orbit::parse_period(a.period.as_deref())?;
-    let mut branches = match seeds {
-        Some(n) => {
-            if periods.is_some() || a.symmetric {
-                return Err(ThudError::invalid(
+    let mut branches = if let Some(n) = seeds {
+        if periods.is_some() || a.symmetric {
+            return Err(ThudError::invalid(
                     "--vary",
                     format!("'{}' with N: the branches start from the motion's own orbits; give NAME=FROM:TO with --period or --symmetric", a.vary),
                 )
                 .into());
-            }
-            if d.solver != crate::damper::Solver::Event {
-                return Err(renamed(ThudError::invalid(
-                    "solver",
-                    "newmark: orbits are found with the event solver; use --solver event",
-                ))
-                .into());
-            }
-            ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
-            continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?
         }
-        None => {
-            let req = Request { periods, symmetric: a.symmetric, guess: None };
-            vec![continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(renamed)?]
+        if d.solver != crate::damper::Solver::Event {
+            return Err(renamed(ThudError::invalid(
+                "solver",
+                "newmark: orbits are found with the event solver; use --solver event",
+            ))
+            .into());
         }
+        ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
+        continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?
+    } else {
+        let req = Request { periods, symmetric: a.symmetric, guess: None };
+        vec![continuation::continue_branch(&d, &vary, &req, None, &|_| {}).map_err(renamed)?]
     };
     if a.doublings {
         branches = continuation::with_doublings(&d, &vary, branches, None, &|_| {}).map_err(renamed)?;

@@ -455,9 +455,7 @@ fn commands() -> Vec<Cmd> {
         ),
         (
             vec!["orbit"],
-            // --guess is left out: a guess of 1e308 m ends in an internal error (a result
-            // came out as inf), still to be fixed in the orbit search.
-            vec![part("period", "{}", "3cm")],
+            vec![part("period", "{}", "3cm"), part("guess", "{},0,0,0", "3kg,0,0,0"), part("guess", "0,{},0,0", "0,3cm,0,0")],
             false,
             vec!["", "--json"],
         ),

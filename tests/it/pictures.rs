@@ -117,6 +117,18 @@ pub const FIGURES: &[Figure] = &[
         made: "bifurcation.svg",
     },
     Figure {
+        file: "continue.svg",
+        heading: "Periodic orbits continued over the forcing frequency, stable and unstable",
+        commands: &["thud continue --preset forced-rattle --vary f=6Hz:8Hz:5 --svg continue.svg"],
+        made: "continue.svg",
+    },
+    Figure {
+        file: "branches.svg",
+        heading: "The continued branches over the bifurcation diagram",
+        commands: &["thud bifurcation --preset forced-rattle --vary f=6.5Hz:8Hz:30 --periods 8 --branches 5 --svg branches.svg"],
+        made: "branches.svg",
+    },
+    Figure {
         file: "impact-map.svg",
         heading: "The impact map of a chaotic orbit",
         commands: &["thud impact-map --preset forced-rattle --freq 7.4Hz --periods 60 --svg impact-map.svg"],
@@ -182,7 +194,7 @@ const SHOWN: &[(&str, &[&str])] = &[
     ("docs/guide/commands/restitution.md", &["restitution.svg"]),
     ("docs/guide/commands/paper.md", &["paper-fig2.svg", "paper-fig11.svg"]),
     ("docs/guide/commands/export.md", &["waveform.svg"]),
-    ("docs/guide/dynamics.md", &["bifurcation.svg", "impact-map.svg", "basins.svg"]),
+    ("docs/guide/dynamics.md", &["bifurcation.svg", "continue.svg", "branches.svg", "impact-map.svg", "basins.svg"]),
     ("docs/guide/fit.md", &["fit.svg"]),
     ("docs/guide/physical-model.md", &["paper-table1.svg"]),
 ];

@@ -448,6 +448,9 @@ pub fn find_damper(p: &DamperParams, req: &Request, cancel: Option<&AtomicBool>)
     }
 }
 
+/// How many of the design's scales (L, V) a guess may lie from rest.
+const GUESS_SCALES: f64 = 1e3;
+
 /// The state (x, x', y, y') of a guess.
 fn absolute(g: &Guess) -> [f64; 4] {
     [g.x_m, g.v_m_s, g.x_m + g.z_m, g.v_m_s + g.zdot_m_s]
@@ -464,6 +467,20 @@ fn from_guess(
         return Err(ThudError::invalid(
             "guess",
             "the ball must start inside the clearance, |z| < d/2, with finite numbers",
+        ));
+    }
+    // A guess far beyond any orbit of the design (its scale L, the half gap plus the linear
+    // steady amplitude, and V = L·2πf) is no guess at an orbit: its run overflows.
+    let (l, v) = scales(p);
+    let far = g.x_m.abs() > GUESS_SCALES * l || g.v_m_s.abs() > GUESS_SCALES * v || g.zdot_m_s.abs() > GUESS_SCALES * v;
+    if far {
+        return Err(ThudError::invalid(
+            "guess",
+            format!(
+                "|x| at most {} m and speeds at most {} m/s: {GUESS_SCALES} times the orbit's scale (the half gap plus the linear steady amplitude, and that times 2πf)",
+                crate::units::short(GUESS_SCALES * l),
+                crate::units::short(GUESS_SCALES * v)
+            ),
         ));
     }
     let n = if req.symmetric { 1 } else { req.periods.unwrap_or(1) };
