@@ -1,7 +1,9 @@
 //! `thud continue --vary NAME=FROM:TO`: pseudo-arclength continuation of the design's periodic
 //! orbit over one numeric parameter (docs/model.md §6.8), through folds and along unstable
 //! parts, with its fold, period-doubling, Neimark–Sacker and grazing points. Text (the branch's
-//! stretches and special points), `--json` or `--csv` (one row per point).
+//! stretches and special points), `--json` or `--csv` (one row per point); `--svg`/`--pdf` draw
+//! each branch's amplitude against the parameter, stable solid, unstable dashed, the special
+//! points marked.
 
 use std::path::PathBuf;
 
@@ -42,8 +44,7 @@ pub struct ContinueArgs {
     /// its doublings in turn, up to a period of 16.
     #[arg(long)]
     doublings: bool,
-    /// Also write the figure as SVG to this file: each branch's amplitude against the
-    /// parameter, stable solid, unstable dashed, the special points marked.
+    /// Also write the figure as SVG to this file.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
     /// Also write the figure as PDF to this file.

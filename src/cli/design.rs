@@ -1,3 +1,4 @@
+// Over 800 lines: the command's flags, checks, one-set writes of the front and its files, and its text.
 //! `thud design`: the best dampers within the user's limits, as a Pareto front. The search is
 //! the engine's ([`crate::design::search`]); each design is run as `thud simulate` runs it, so
 //! every front design saved with `--save DIR` and run again gives exactly its printed

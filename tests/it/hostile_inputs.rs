@@ -455,7 +455,11 @@ fn commands() -> Vec<Cmd> {
         ),
         (
             vec!["orbit"],
-            vec![part("period", "{}", "3cm"), part("guess", "{},0,0,0", "3kg,0,0,0"), part("guess", "0,{},0,0", "0,3cm,0,0")],
+            vec![
+                part("period", "{}", "3cm"),
+                part("guess", "{},0,0,0", "3kg,0,0,0"),
+                part("guess", "0,{},0,0", "0,3cm,0,0"),
+            ],
             false,
             vec!["", "--json"],
         ),

@@ -125,7 +125,9 @@ pub const FIGURES: &[Figure] = &[
     Figure {
         file: "branches.svg",
         heading: "The continued branches over the bifurcation diagram",
-        commands: &["thud bifurcation --preset forced-rattle --vary f=6.5Hz:8Hz:30 --periods 8 --branches 5 --svg branches.svg"],
+        commands: &[
+            "thud bifurcation --preset forced-rattle --vary f=6.5Hz:8Hz:30 --periods 8 --branches 5 --svg branches.svg",
+        ],
         made: "branches.svg",
     },
     Figure {

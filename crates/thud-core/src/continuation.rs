@@ -1,3 +1,4 @@
+// Over 800 lines: one continuation method (predictor, corrector, step control, special points) and its families.
 //! Pseudo-arclength continuation of a family of periodic orbits in one numeric parameter
 //! (docs/model.md §6.8; Keller 1977; Allgower & Georg, "Numerical Continuation Methods", 1990,
 //! ch. 2 and 8), through folds and along unstable parts, with the fold, period-doubling,
@@ -20,8 +21,8 @@
 //! of complex multipliers outside the unit circle (Neimark–Sacker), or the impacts per orbit
 //! (grazing: an impact appears or vanishes; the map is not smooth there and the branch may end).
 //! Folds, doublings and torus points are then located by the secant method on the arclength,
-//! each iterate corrected back onto the branch. Switching to the doubled branch is not done here:
-//! a period-doubling point is reported with the state to start it from (`thud orbit --period 2n`).
+//! each iterate corrected back onto the branch. At a period doubling, [`with_doublings`] switches
+//! onto the doubled orbit's branch where the doubling is supercritical.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 

@@ -4,15 +4,16 @@
 //! diagram's samples (`thud bifurcation --branches N`), where each branch's x(kT) at each of
 //! its orbit's periods is a curve through the simulated dots.
 
-use super::svg::{self, Anchor, Axis, Frame, Look, Shape, Svg};
+use super::svg::{self, param_label, Anchor, Axis, Frame, Look, Shape, Svg};
 use crate::units::sig;
 use thud_core::continuation::{Branch, BranchPoint, Special};
 
-/// Colour of the stable parts (Okabe–Ito bluish green) and of the unstable ones (reddish
-/// purple), apart from the bifurcation diagram's blue and vermilion sweeps and from each other
-/// under red–green colour blindness; unstable parts are dashed as well.
-pub const STABLE: &str = "#009E73";
-pub const UNSTABLE: &str = "#CC79A7";
+/// Colour of the stable parts (Okabe–Ito orange) and of the unstable ones (sky blue), apart
+/// from the bifurcation diagram's blue and vermilion sweeps, its grey unsettled points and from
+/// each other under red–green colour blindness (ΔE00 ≥ 12.5, the figure check's measure);
+/// unstable parts are dashed as well.
+pub const STABLE: &str = "#E69F00";
+pub const UNSTABLE: &str = "#56B4E9";
 /// Dash pattern of the unstable parts.
 const DASH: &str = "6 4";
 /// Colour of the special points' markers.
@@ -157,7 +158,7 @@ pub fn continuation_svg(branches: &[Branch], title: &str, look: &Look) -> String
     let k = svg.scale();
     let (name, unit) = branches.first().map_or(("", ""), |b| (b.name.as_str(), b.unit.as_str()));
     let points = || branches.iter().flat_map(|b| &b.points);
-    let x = Axis::fit(&super::dynamics::param_label(name, unit), points().map(|p| p.value));
+    let x = Axis::fit(&param_label(name, unit), points().map(|p| p.value));
     let y = Axis::fit("largest |x| over the orbit, main mass (mm)", points().map(|p| p.amplitude_m * 1e3).chain([0.0]));
     let mut frame = Frame::standard(&svg, x, y, true);
     frame.width = svg.width() - frame.left - RIGHT * k;

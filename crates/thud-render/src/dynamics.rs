@@ -3,7 +3,7 @@
 //! of an impact map and of a basin map; and their figures (SVG, and PDF through [`super::pdf`]):
 //! x(kT) and the impact speed against the parameter, the impact map, the basins.
 
-use super::svg::{self, Anchor, Axis, Frame, Look, Shape, Svg};
+use super::svg::{self, param_label, Anchor, Axis, Frame, Look, Shape, Svg};
 use crate::response::Direction;
 use crate::study::Study;
 use crate::units::short;
@@ -184,13 +184,6 @@ pub fn direction(d: Direction) -> &'static str {
     }
 }
 
-/// The label of the varied parameter on an axis: `freq (Hz)`.
-pub(crate) fn param_label(name: &str, unit: &str) -> String {
-    if unit.is_empty() {
-        name.to_string()
-    } else {
-        format!("{name} ({unit})")
-    }
 }
 
 /// Colour of the rising (or only) sweep and of the falling one (Okabe–Ito blue and vermilion).

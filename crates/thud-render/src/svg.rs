@@ -516,6 +516,14 @@ pub fn nice_step(raw: f64) -> f64 {
     }
 }
 
+/// The label of the varied parameter on an axis: `freq (Hz)`.
+pub fn param_label(name: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        name.to_string()
+    } else {
+        format!("{name} ({unit})")
+    }
+
 /// The plotting area of a figure and its axes: maps data to pixels and draws the frame.
 #[derive(Debug, Clone)]
 pub struct Frame {
