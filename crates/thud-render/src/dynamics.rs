@@ -184,8 +184,6 @@ pub fn direction(d: Direction) -> &'static str {
     }
 }
 
-}
-
 /// Colour of the rising (or only) sweep and of the falling one (Okabe–Ito blue and vermilion).
 const UP: &str = "#0072B2";
 const DOWN: &str = "#D55E00";

@@ -523,6 +523,7 @@ pub fn param_label(name: &str, unit: &str) -> String {
     } else {
         format!("{name} ({unit})")
     }
+}
 
 /// The plotting area of a figure and its axes: maps data to pixels and draws the frame.
 #[derive(Debug, Clone)]
