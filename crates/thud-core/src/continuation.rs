@@ -483,7 +483,7 @@ const PAST_DOUBLING: f64 = 0.01;
 /// the doubled period is at most [`orbit::MAX_ORBIT_PERIODS`]), the branch of the doubled orbit
 /// born there, continued both ways: branch switching at a period doubling. The doubled orbit is
 /// found by the attractor search from the undoubled orbit's state just past the doubling
-/// ([`PAST_DOUBLING`] of the range, on the side where the undoubled orbit is unstable), where a
+/// (1 % of the range, on the side where the undoubled orbit is unstable), where a
 /// supercritical doubling's doubled orbit is stable; a doubling where none is found there (a
 /// subcritical one: its doubled orbit is unstable), or whose doubled orbit lies on a branch
 /// already continued, adds none. The added branches come after the given ones, in the order of
