@@ -404,10 +404,11 @@ impl Constraint {
                 Accepts::Quantity { kind, .. } => kind,
                 _ => Kind::Number,
             };
-            (
-                Bound::Param(row),
-                units::parse(flag, value, kind).map_err(|e| ThudError::invalid(flag, format!("'{text}': {e}")))?,
-            )
+            let v = units::parse(flag, value, kind).map_err(|e| ThudError::invalid(flag, format!("'{text}': {e}")))?;
+            if !v.is_finite() {
+                return Err(ThudError::invalid(flag, format!("'{text}': '{value}' is not a finite number")));
+            }
+            (Bound::Param(row), v)
         };
         Ok(Constraint { bound, at_most, value, text: text.trim().to_string() })
     }
@@ -1219,6 +1220,12 @@ pub(super) mod tests {
         let c = Constraint::parse("spl_max_db >= 90").unwrap();
         assert!(!c.at_most && c.value == 90.0);
         assert!(Constraint::parse("spl_max_db=90").is_err());
+        // A bound that is no finite number is refused naming the flag, for a parameter as for a
+        // result column.
+        for bad in ["mass>=nan", "mass<=inf", "mass<=-inf", "gap<=NaN", "spl_max_db<=nan", "spl_max_db>=inf"] {
+            let e = Constraint::parse(bad).unwrap_err().to_string();
+            assert!(e.contains("--require") && e.contains(bad), "{bad}: {e}");
+        }
     }
 
     #[test]
