@@ -858,6 +858,21 @@ pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, Th
 mod tests {
     use super::*;
 
+    /// The `forced-rattle` preset's damper at forcing frequency `freq_hz` (Hz), from rest.
+    fn forced_rattle(freq_hz: f64) -> DamperParams {
+        DamperParams {
+            impact_mass_kg: 0.0405,
+            gap_m: 0.01,
+            main_mass_kg: 0.5,
+            stiffness_n_m: 500.0,
+            damping_n_s_m: 1.5,
+            force_n: 3.0,
+            freq_hz,
+            v0_m_s: 0.0,
+            ..DamperParams::table2()
+        }
+    }
+
     #[test]
     fn the_section_is_in_the_middle_of_the_longest_flight() {
         let omega = std::f64::consts::TAU;
@@ -879,17 +894,7 @@ mod tests {
     /// forward-difference Jacobian, at a 3/1 orbit of forced-rattle and off it.
     #[test]
     fn the_chained_jacobian_is_the_whole_maps() {
-        let p = DamperParams {
-            impact_mass_kg: 0.0405,
-            gap_m: 0.01,
-            main_mass_kg: 0.5,
-            stiffness_n_m: 500.0,
-            damping_n_s_m: 1.5,
-            force_n: 3.0,
-            freq_hz: 7.0,
-            v0_m_s: 0.0,
-            ..DamperParams::table2()
-        };
+        let p = forced_rattle(7.0);
         let o = find_damper(&p, &Request::default(), None).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!((o.impacts_per_orbit, o.periods), (3, 1), "{}", o.label());
         let s = [o.x_m, o.v_m_s, o.x_m + o.z_m, o.v_m_s + o.zdot_m_s];
@@ -909,17 +914,7 @@ mod tests {
     /// periods passes through them in turn, to 1e-9 m.
     #[test]
     fn the_strobe_samples_are_x_at_each_period_of_the_orbit() {
-        let p = DamperParams {
-            impact_mass_kg: 0.0405,
-            gap_m: 0.01,
-            main_mass_kg: 0.5,
-            stiffness_n_m: 500.0,
-            damping_n_s_m: 1.5,
-            force_n: 3.0,
-            freq_hz: 5.3116,
-            v0_m_s: 0.0,
-            ..DamperParams::table2()
-        };
+        let p = forced_rattle(5.3116);
         let o = find_damper(&p, &Request { periods: Some(2), ..Request::default() }, None)
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!((o.periods, o.strobe_m.len()), (2, 2), "{}", o.label());
