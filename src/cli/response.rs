@@ -148,12 +148,7 @@ fn ensemble_text(d: &Design, r: &ResponseEnsemble, continuation: bool) -> String
     let mut s = format!("design    {}\n", describe(d));
     let half = 0.5 * d.damper.gap_m;
     let edge = (half - half / r.runs as f64) * 1e2;
-    s += &format!(
-        "forcing   F0 {} N on the main mass; steady state over the last {} periods, each frequency {}, settled\n",
-        num(r.force_n),
-        d.damper.steady_periods,
-        if continuation { "from the previous one's final state (up, then down)" } else { "from rest" }
-    );
+    s += &forcing_line(d, r.force_n, continuation);
     s += &format!(
         "ensemble  {} runs a frequency, the ball at rest from y0 = −d/2 + (k + ½)·d/{} ({} to {} cm); median [p10–p90] by nearest rank\n\n",
         r.runs,
@@ -206,15 +201,26 @@ fn fixed(x: f64, digits: usize) -> String {
     }
 }
 
+/// The line that says how each point's steady state was reached: with the event solver, the
+/// periodic orbit the motion settles to, found by shooting, else the run simulated until its
+/// windows settle; with Newmark, always the latter.
+fn forcing_line(d: &Design, force_n: f64, continuation: bool) -> String {
+    let from = if continuation { "from the previous one's final state (up, then down)" } else { "from rest" };
+    let n = d.damper.steady_periods;
+    let how = if d.solver == crate::damper::Solver::Event {
+        format!(
+            "steady state over {n} periods (whole orbits) of the periodic orbit each frequency {from} settles to, found by shooting; where there is none, over the last {n} periods of its run, settled"
+        )
+    } else {
+        format!("steady state over the last {n} periods, each frequency {from}, settled")
+    };
+    format!("forcing   F0 {} N on the main mass; {how}\n", num(force_n))
+}
+
 /// The response as a table and a plot.
 fn text(d: &Design, r: &Response, continuation: bool) -> String {
     let mut s = format!("design    {}\n", describe(d));
-    s += &format!(
-        "forcing   F0 {} N on the main mass; steady state over the last {} periods, each frequency {}, settled\n",
-        num(r.force_n),
-        d.damper.steady_periods,
-        if continuation { "from the previous one's final state (up, then down)" } else { "from rest" }
-    );
+    s += &forcing_line(d, r.force_n, continuation);
     s += "without   the main mass alone: F0/√((K − MΩ²)² + (CΩ)²), its steady state in closed form\n\n";
     for sweep in &r.sweeps {
         if continuation {

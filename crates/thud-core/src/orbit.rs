@@ -171,6 +171,11 @@ pub struct PeriodicOrbit {
     pub iterations: u32,
     /// Forcing periods simulated to find it and its multipliers.
     pub periods_simulated: f64,
+    /// The force's phase (rad) at the orbit's section, in a flight, and the state there
+    /// `(x, x', y, y')` (m, m/s): where a run of the orbit starts clear of any contact (the
+    /// state at phase 0 may lie inside one). Not written to files.
+    #[serde(skip)]
+    pub(crate) section: Option<(f64, [f64; 4])>,
 }
 
 impl PeriodicOrbit {
@@ -574,24 +579,55 @@ pub(crate) fn settle_to(
     phase: f64,
     cancel: Option<&AtomicBool>,
 ) -> Result<PeriodicOrbit, ThudError> {
-    p.validate()?;
+    settle_from(p, start, phase, MAX_TRANSIENT_PERIODS, cancel).0
+}
+
+/// Where an attractor search left the motion it followed: the state `(x, x', y, y')` (m, m/s)
+/// at the force's phase 0, `time_s` (s) after the search's start (the motion's own time:
+/// Newton's trial runs are not counted).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Reached {
+    pub state: [f64; 4],
+    pub time_s: f64,
+}
+
+/// [`settle_to`] over at most `periods_max` forcing periods of the motion, with where the
+/// motion got to while it was looked for (None where a work cap or cancellation stopped its
+/// run): a steady state that is no orbit is simulated on from there.
+pub(crate) fn settle_from(
+    p: &DamperParams,
+    start: [f64; 4],
+    phase: f64,
+    periods_max: u32,
+    cancel: Option<&AtomicBool>,
+) -> (Result<PeriodicOrbit, ThudError>, Option<Reached>) {
+    if let Err(e) = p.validate() {
+        return (Err(e), None);
+    }
     if !p.forced() {
-        return Err(ThudError::invalid("force", "0 N: a periodic orbit needs a harmonic force"));
+        return (Err(ThudError::invalid("force", "0 N: a periodic orbit needs a harmonic force")), None);
     }
     let tau = std::f64::consts::TAU;
     let to_zero = ((tau - phase.rem_euclid(tau)) / tau).rem_euclid(1.0) / p.freq_hz;
     let (state, spent) = if to_zero > 0.0 {
         let f = damper::flow(p, start, phase, &[to_zero], cancel);
-        let s = f.states.first().copied().filter(|_| !f.halted).ok_or_else(|| not_found("the run stopped"))?;
-        (s, to_zero * p.freq_hz)
+        match f.states.first().copied().filter(|_| !f.halted) {
+            Some(s) => (s, to_zero * p.freq_hz),
+            None => return (Err(not_found("the run stopped")), None),
+        }
     } else {
         (start, 0.0)
     };
-    let o = attractor_from(p, state, None, SETTLE_IMPACTS_MAX, cancel)?;
-    if !o.stable {
-        return Err(not_found("the motion's orbit is unstable"));
-    }
-    Ok(PeriodicOrbit { periods_simulated: o.periods_simulated + spent, ..o })
+    let (found, motion) = search(p, state, (None, SETTLE_IMPACTS_MAX, periods_max), cancel);
+    let reached = motion.map(|(state, periods)| Reached { state, time_s: to_zero + f64::from(periods) / p.freq_hz });
+    let found = found.and_then(|o| {
+        if o.stable {
+            Ok(PeriodicOrbit { periods_simulated: o.periods_simulated + spent, ..o })
+        } else {
+            Err(not_found("the motion's orbit is unstable"))
+        }
+    });
+    (found, reached)
 }
 
 /// [`attractor`] from the state `start` at the force's phase 0, given up (an error) once the
@@ -602,6 +638,32 @@ fn attractor_from(
     periods: Option<u32>,
     impacts_max: usize,
     cancel: Option<&AtomicBool>,
+) -> Result<PeriodicOrbit, ThudError> {
+    search(p, start, (periods, impacts_max, MAX_TRANSIENT_PERIODS), cancel).0
+}
+
+/// [`attractor_from`] over at most `periods_max` forcing periods of the motion, with the
+/// motion's last state at the force's phase 0 and the forcing periods it took to get there
+/// (None where a work cap or cancellation stopped its run).
+fn search(
+    p: &DamperParams,
+    start: [f64; 4],
+    limits: (Option<u32>, usize, u32),
+    cancel: Option<&AtomicBool>,
+) -> (Result<PeriodicOrbit, ThudError>, Option<([f64; 4], u32)>) {
+    let mut at = Some((start, 0));
+    let found = follow(p, start, limits, cancel, &mut at);
+    (found, at)
+}
+
+/// The loop of [`search`]; `at` follows the motion (its state at phase 0 and its periods), None
+/// once a work cap has stopped its run.
+fn follow(
+    p: &DamperParams,
+    start: [f64; 4],
+    (periods, impacts_max, periods_max): (Option<u32>, usize, u32),
+    cancel: Option<&AtomicBool>,
+    at: &mut Option<([f64; 4], u32)>,
 ) -> Result<PeriodicOrbit, ThudError> {
     // Over 80 lines: one loop over the transient's stops, each with its three outcomes
     // (speculate, shoot the detected period, or its double) and their bookkeeping.
@@ -617,27 +679,29 @@ fn attractor_from(
     let mut unstable: Option<PeriodicOrbit> = None;
     let mut candidate: Option<(PeriodicOrbit, f64)> = None;
     let mut impacts_seen = 0;
-    while total < MAX_TRANSIENT_PERIODS {
+    while total < periods_max {
         let stops: Vec<f64> = (1..=chunk).map(|k| f64::from(k) * period).collect();
         let f = damper::flow(p, state, 0.0, &stops, cancel);
         if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
             return Err(ThudError::Cancelled);
         }
         if f.halted || f.states.len() != stops.len() {
+            *at = None;
             return Err(not_found("a solver work cap stopped the design's run"));
         }
         spent += f64::from(chunk);
         total += chunk;
+        state = *f.states.last().unwrap_or(&state);
+        *at = Some((state, total));
         impacts_seen += f.impacts.len();
         if impacts_seen > impacts_max {
             return Err(not_found("the motion rattles on: more impacts than the search allows"));
         }
         samples.extend(f.states.iter().map(|s| probe_sec.scale(*s)));
-        state = *f.states.last().unwrap_or(&state);
         let span = f64::from(chunk) * period;
         let recent: Vec<damper::ImpactEvent> = f.impacts.into_iter().filter(|i| i.t_s >= span - 2.0 * period).collect();
         let detected = periods.or_else(|| detect_period(&samples, 0.05));
-        let last_chance = total + chunk.max(8) > MAX_TRANSIENT_PERIODS;
+        let last_chance = total + chunk.max(8) > periods_max;
         let Some(n) = detected.or(last_chance.then_some(1)) else {
             // Nothing repeats yet: Newton's method for the simplest orbit from here, kept if
             // the motion is seen to approach it.
@@ -655,6 +719,7 @@ fn attractor_from(
                         samples.extend(states.iter().map(|x| probe_sec.scale(*x)));
                         total += APPROACH_PERIODS;
                         state = to;
+                        *at = Some((state, total));
                         spent = s;
                         candidate = stable.map(|o| {
                             let d = distance(p, &o, to);
@@ -851,6 +916,7 @@ pub(crate) fn report(sec: &mut Section, root: &Root) -> Result<PeriodicOrbit, Th
         residual: scale_r,
         iterations: root.iterations,
         periods_simulated: sec.spent,
+        section: Some((sec.phase, s)),
     })
 }
 
