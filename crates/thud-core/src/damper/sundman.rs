@@ -32,6 +32,7 @@ use crate::contact::{contact_duration, peak_approach};
 use super::contact::{ContactEnd, ContactOutcome, Load, State, Sys};
 #[cfg(feature = "research")]
 use super::contact::{ContactStart, Stretch};
+use super::roots::{self, NewtonEnd};
 
 /// The integrated state `[x, x', σ, δ', E_contact, E_viscous, t − t_onset]` (m, m/s, √m, m/s,
 /// J, J, s).
@@ -278,29 +279,7 @@ pub(crate) fn root_in(h: f64, f0: f64, f1: f64, f: impl Fn(f64) -> (f64, f64)) -
     if f1 == 0.0 {
         return h;
     }
-    let up = f1 > f0;
-    let (mut lo, mut hi) = (0.0, h);
-    let mut q = h * f0 / (f0 - f1);
-    for _ in 0..80 {
-        if !(q > lo && q < hi) {
-            q = 0.5 * (lo + hi);
-        }
-        let (v, d) = f(q);
-        if v == 0.0 {
-            return q;
-        }
-        if (v > 0.0) == up {
-            hi = q;
-        } else {
-            lo = q;
-        }
-        let next = q - v / d;
-        if hi - lo <= 4.0 * f64::EPSILON * h || (next - q).abs() <= 2.0 * f64::EPSILON * h {
-            return if next > lo && next < hi { next } else { q };
-        }
-        q = next;
-    }
-    q
+    roots::newton((0.0, h), f1 > f0, h * f0 / (f0 - f1), NewtonEnd::Span(h), f)
 }
 
 /// The system's constants the Sundman form's rates need, for the schemes that evaluate them
