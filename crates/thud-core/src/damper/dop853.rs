@@ -413,6 +413,7 @@ mod tests {
     fn a_cut_contact_resumes_where_it_stopped() {
         scheme_checks::cut_contacts(
             &[0.1, 0.5, 0.93],
+            [1e-9, 1e-9, 1e-8],
             |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
             |s, r, left| resume(Stretch::free(s, 1.0), r, left, Unobserved),
         );
