@@ -62,13 +62,7 @@ impl OrbitArgs {
 
     /// Where the table and its figure go.
     fn outputs(&self) -> super::figure_out::FigureOutputs<'_> {
-        super::figure_out::FigureOutputs {
-            out: self.out.as_deref(),
-            svg: self.svg.as_deref(),
-            pdf: self.pdf.as_deref(),
-            force: self.force,
-            ascii: self.ascii,
-        }
+        super::figure_out::FigureOutputs::new(&self.out, &self.svg, &self.pdf, self.force, self.ascii)
     }
 
     /// Whether a figure is asked for (`--svg` or `--pdf`).

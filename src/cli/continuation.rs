@@ -66,13 +66,7 @@ pub struct ContinueArgs {
 impl ContinueArgs {
     /// Where the table and its figure go.
     fn outputs(&self) -> FigureOutputs<'_> {
-        FigureOutputs {
-            out: self.out.as_deref(),
-            svg: self.svg.as_deref(),
-            pdf: self.pdf.as_deref(),
-            force: self.force,
-            ascii: self.ascii,
-        }
+        FigureOutputs::new(&self.out, &self.svg, &self.pdf, self.force, self.ascii)
     }
 }
 

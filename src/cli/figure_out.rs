@@ -2,7 +2,7 @@
 //! `--svg` and `--pdf`, each checked before any work and written as one set (all in place, or
 //! none), as the studies of orbits write theirs.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::{AsciiArgs, CliError, Out};
 use crate::error::ThudError;
@@ -10,14 +10,25 @@ use crate::fsio::{self, Overwrite};
 
 /// Where a table and its figure go.
 pub(super) struct FigureOutputs<'a> {
-    pub out: Option<&'a Path>,
-    pub svg: Option<&'a Path>,
-    pub pdf: Option<&'a Path>,
-    pub force: bool,
-    pub ascii: AsciiArgs,
+    out: Option<&'a Path>,
+    svg: Option<&'a Path>,
+    pdf: Option<&'a Path>,
+    force: bool,
+    ascii: AsciiArgs,
 }
 
 impl<'a> FigureOutputs<'a> {
+    /// A command's `--out`, `--svg`, `--pdf`, `--force` and `--ascii`, as it parsed them.
+    pub(super) fn new(
+        out: &'a Option<PathBuf>,
+        svg: &'a Option<PathBuf>,
+        pdf: &'a Option<PathBuf>,
+        force: bool,
+        ascii: AsciiArgs,
+    ) -> Self {
+        FigureOutputs { out: out.as_deref(), svg: svg.as_deref(), pdf: pdf.as_deref(), force, ascii }
+    }
+
     /// Whether a figure is asked for (`--svg` or `--pdf`).
     pub(super) fn wants_figure(&self) -> bool {
         self.svg.is_some() || self.pdf.is_some()

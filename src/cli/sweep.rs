@@ -68,13 +68,7 @@ pub struct SweepArgs {
 impl SweepArgs {
     /// Where the table and its figure go.
     fn outputs(&self) -> FigureOutputs<'_> {
-        FigureOutputs {
-            out: self.out.as_deref(),
-            svg: self.svg.as_deref(),
-            pdf: self.pdf.as_deref(),
-            force: self.force,
-            ascii: self.ascii,
-        }
+        FigureOutputs::new(&self.out, &self.svg, &self.pdf, self.force, self.ascii)
     }
 }
 

@@ -43,7 +43,7 @@ use std::cell::OnceCell;
 use super::adams_tableau::{AB, AM, BASIS, K};
 use super::contact::{ContactOutcome, ContactStart, Load, Stretch, Sys};
 use super::dop853;
-use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Rhs, Series, Span, NC, ORDER, Y};
+use super::sundman::{self, onset, root_in, step_end, Dense, Observer, Onset, Paused, Rhs, Series, Span, NC, ORDER, Y};
 
 /// Even steps a Hertz contact is cut into (θ units: the contact's estimated length over this).
 /// Chosen so that the release speeds agree with the Taylor scheme's to ~1e-10 of the speed
@@ -480,7 +480,8 @@ impl<'a, L: Load, O: Observer, const N: usize, const W: usize> Integration<'a, L
     /// This contact at state `y` as DOP853 carries it on, with its own nominal step.
     fn taken_over(&self, y: Y) -> dop853::Resume {
         let h_nom = self.length / dop853::STEPS_NOMINAL;
-        dop853::Resume::taken_over(self.rhs.s, self.sc, self.t_onset, y, self.pen, h_nom)
+        let at = Paused { s: self.rhs.s, sc: self.sc, t_onset: self.t_onset, y, pen: self.pen, h: h_nom };
+        dop853::Resume::taken_over(at)
     }
 
     fn end(&self, outcome: ContactOutcome) -> End {

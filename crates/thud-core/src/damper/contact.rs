@@ -29,6 +29,7 @@ use nalgebra::{Vector2, Vector4, Vector6};
 use crate::contact::{contact_duration, peak_approach};
 
 use super::forced::Harmonic;
+use super::roots::{illinois, IllinoisStop};
 use super::DamperParams;
 
 /// A force on the main mass as a function of time, per unit main mass (m/s²): none (the
@@ -756,48 +757,13 @@ fn quintic(y: &State, k1: &State, yn: &State, k7: &State, h: f64, q: f64) -> (f6
 /// Root in `(0, h)` of the quintic interpolant's δ (`WHICH = 0`) or δ' (`WHICH = 1`), by the
 /// Illinois regula falsi on the sign change between the step ends.
 fn quintic_root<const WHICH: usize>(y: &State, k1: &State, yn: &State, k7: &State, h: f64) -> f64 {
+    let (glo, ghi) = if WHICH == 0 { (y[2], yn[2]) } else { (y[3], yn[3]) };
+    let stop = IllinoisStop { width: 1e-14 * h, value: 1e-15 * glo.abs().max(ghi.abs()) };
     let g = |q: f64| {
         let (v, d) = quintic(y, k1, yn, k7, h, q);
-        if WHICH == 0 {
-            v
-        } else {
-            d
-        }
+        (if WHICH == 0 { v } else { d }, ())
     };
-    let (mut lo, mut hi) = (0.0, h);
-    let (mut glo, mut ghi) = if WHICH == 0 { (y[2], yn[2]) } else { (y[3], yn[3]) };
-    let scale = glo.abs().max(ghi.abs());
-    let mut side = 0;
-    let mut q = 0.5 * h;
-    for _ in 0..60 {
-        q = (lo * ghi - hi * glo) / (ghi - glo);
-        if !(q > lo && q < hi) {
-            q = 0.5 * (lo + hi);
-        }
-        let gq = g(q);
-        if gq == 0.0 || hi - lo <= 1e-14 * h {
-            break;
-        }
-        if (gq > 0.0) == (glo > 0.0) {
-            lo = q;
-            glo = gq;
-            if side == -1 {
-                ghi *= 0.5;
-            }
-            side = -1;
-        } else {
-            hi = q;
-            ghi = gq;
-            if side == 1 {
-                glo *= 0.5;
-            }
-            side = 1;
-        }
-        if gq.abs() <= 1e-15 * scale {
-            break;
-        }
-    }
-    q
+    illinois((0.0, glo), (h, ghi), stop, (0.5 * h, ()), g).0
 }
 
 /// The peak penetration inside a step where δ' goes from > 0 to ≤ 0, from the quintic Hermite

@@ -29,7 +29,7 @@ use std::cell::OnceCell;
 use super::contact::ContactStart;
 use super::contact::{ContactOutcome, Load, Stretch, Sys};
 use super::dop853_tableau as tab;
-use super::sundman::{self, root_in, step_end, Dense, Observer, Rhs, Series, Span, NC, Y};
+use super::sundman::{self, root_in, step_end, Dense, Observer, Paused, Rhs, Series, Span, NC, Y};
 
 /// Relative tolerance of a step on the contact's own scales (positions, speeds, √ of the peak
 /// penetration, the relative kinetic energy, the Hertz duration). Chosen so that the release
@@ -71,26 +71,20 @@ fn rate<L: Load, const N: usize>(rhs: &Rhs<'_>, m: &[f64; N], r: &mut [f64; N], 
 /// dense output).
 pub(crate) type End = super::contact::ContactEnd<Resume>;
 
-/// A contact cut by its time limit, as it stood.
+/// A contact cut by its time limit, as it stood: the part every Sundman scheme carries on, the
+/// nominal step (θ units) and whether a step ending with σ > 0 has been accepted.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Resume {
-    s: f64,
-    sc: [f64; 7],
-    t_onset: f64,
-    y: Y,
-    pen: f64,
-    h: f64,
+    at: Paused,
     h_nom: f64,
     had_pos: bool,
 }
 
 impl Resume {
-    /// The state of a contact taken over mid-way from another Sundman scheme (the Adams
-    /// scheme's hand-over, [`super::adams`]): wall `s`, error scales `sc`, onset time
-    /// `t_onset` (s), state `y`, peak penetration so far `pen` (m) and the nominal step `h_nom`
-    /// (θ units).
-    pub(crate) fn taken_over(s: f64, sc: [f64; 7], t_onset: f64, y: Y, pen: f64, h_nom: f64) -> Self {
-        Resume { s, sc, t_onset, y, pen, h: h_nom, h_nom, had_pos: true }
+    /// A contact taken over mid-way from another Sundman scheme (the Adams scheme's hand-over,
+    /// [`super::adams`]), its step `at.h` the nominal one.
+    pub(crate) fn taken_over(at: Paused) -> Self {
+        Resume { at, h_nom: at.h, had_pos: true }
     }
 }
 
@@ -126,7 +120,7 @@ pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize,
     let start = onset(sys, &y0);
     let h = start.theta_length() / STEPS_NOMINAL;
     let Onset { sc, y, .. } = start;
-    let r = Resume { s, sc, t_onset: t0, y, pen: 0.0, h, h_nom: h, had_pos: false };
+    let r = Resume { at: Paused { s, sc, t_onset: t0, y, pen: 0.0, h }, h_nom: h, had_pos: false };
     go(sys, load, &r, t_limit, budget, obs)
 }
 
@@ -146,30 +140,31 @@ fn go<L: Load, O: Observer>(sys: &Sys, load: L, r: &Resume, t_limit: f64, budget
 
 impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
     fn new(sys: &'a Sys, load: L, r: &Resume, t_limit: f64, obs: O) -> Self {
-        let (f, omega, phi) = load.harmonic(r.t_onset + r.y[6]);
-        let rhs = Rhs { sys, s: r.s, f, omega };
+        let Paused { s, sc, t_onset, y, pen, h } = r.at;
+        let (f, omega, phi) = load.harmonic(t_onset + y[6]);
+        let rhs = Rhs { sys, s, f, omega };
         let mut m = [0.0; N];
-        m[..4].copy_from_slice(&[r.y[0], r.y[1], r.y[2], r.y[3]]);
+        m[..4].copy_from_slice(&[y[0], y[1], y[2], y[3]]);
         if L::ON {
             let (sp, cp) = phi.sin_cos();
             m[4] = cp;
             m[5] = sp;
         }
-        let q = [r.y[4], r.y[5], r.y[6]];
+        let q = [y[4], y[5], y[6]];
         let (mut k0, mut kq0) = ([0.0; N], [0.0; 3]);
         rate::<L, N>(&rhs, &m, &mut k0, &mut kq0);
         Integration {
             rhs,
             load: std::marker::PhantomData,
-            sc: r.sc,
-            t_onset: r.t_onset,
+            sc,
+            t_onset,
             t_limit,
             m,
             q,
             k0,
             kq0,
-            pen: r.pen,
-            h: r.h,
+            pen,
+            h,
             h_nom: r.h_nom,
             had_pos: r.had_pos,
             obs,
@@ -388,12 +383,7 @@ impl<'a, L: Load, O: Observer, const N: usize> Integration<'a, L, O, N> {
     fn end(&self, outcome: ContactOutcome) -> End {
         let y = Self::y_of(&self.m, &self.q);
         let resume = (outcome == ContactOutcome::EndOfRun).then_some(Resume {
-            s: self.rhs.s,
-            sc: self.sc,
-            t_onset: self.t_onset,
-            y,
-            pen: self.pen,
-            h: self.h,
+            at: Paused { s: self.rhs.s, sc: self.sc, t_onset: self.t_onset, y, pen: self.pen, h: self.h },
             h_nom: self.h_nom,
             had_pos: self.had_pos,
         });
@@ -423,6 +413,7 @@ mod tests {
     fn a_cut_contact_resumes_where_it_stopped() {
         scheme_checks::cut_contacts(
             &[0.1, 0.5, 0.93],
+            [1e-9, 1e-9, 1e-8],
             |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
             |s, r, left| resume(Stretch::free(s, 1.0), r, left, Unobserved),
         );

@@ -20,6 +20,7 @@
 //! Units: metres, seconds, radians.
 
 use super::flight::{Oscillator, Regime};
+use super::roots::{self, NewtonEnd};
 
 /// A harmonic force on the main mass, per unit main mass: `f·cos(Ω·t + φ)` (m/s²), `t` the
 /// run's time (s).
@@ -332,43 +333,15 @@ impl Segment<'_> {
 /// The zero of `g` in `[lo, hi]` given `g(lo) = g_lo` and `g(hi) = g_hi` of opposite signs
 /// (or one of them 0); `g(τ)` returns the value and its derivative. Newton from the secant
 /// point, kept inside the bracket by bisection, to a bracket of a few ulp.
-fn root(mut lo: f64, mut hi: f64, g_lo: f64, g_hi: f64, g: impl Fn(f64) -> (f64, f64)) -> f64 {
+fn root(lo: f64, hi: f64, g_lo: f64, g_hi: f64, g: impl Fn(f64) -> (f64, f64)) -> f64 {
     if g_lo == 0.0 {
         return lo;
     }
     if g_hi == 0.0 {
         return hi;
     }
-    let up = g_lo < 0.0;
-    let mut t = lo + (hi - lo) * (g_lo / (g_lo - g_hi));
-    for _ in 0..100 {
-        if !(t > lo && t < hi) {
-            t = 0.5 * (lo + hi);
-        }
-        let (v, d) = g(t);
-        if v == 0.0 {
-            return t;
-        }
-        if (v < 0.0) == up {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        if hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1e-300) {
-            break;
-        }
-        let next = t - v / d;
-        if !next.is_finite() || (next - t).abs() <= f64::EPSILON * t.abs() {
-            // Newton has converged (or stalled): take the bracket end on the far side.
-            if next.is_finite() {
-                return next.clamp(lo, hi);
-            }
-            t = 0.5 * (lo + hi);
-            continue;
-        }
-        t = next;
-    }
-    0.5 * (lo + hi)
+    let start = lo + (hi - lo) * (g_lo / (g_lo - g_hi));
+    roots::newton((lo, hi), g_lo < 0.0, start, NewtonEnd::Ulp, g)
 }
 
 #[cfg(test)]

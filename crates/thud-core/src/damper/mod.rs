@@ -31,6 +31,7 @@ mod integrator;
 mod newmark;
 mod periodic;
 mod record;
+mod roots;
 #[cfg(test)]
 mod scheme_checks;
 mod steady;

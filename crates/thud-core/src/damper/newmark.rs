@@ -16,6 +16,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::contact::Sys;
 use super::forced::Harmonic;
 use super::record::Recorder;
+use super::roots::{illinois, IllinoisStop};
 use super::stepper::{Start, Stepper};
 use super::{
     DamperParams, EnergyLedger, ImpactEvent, Run, RunOptions, SingleContact, Truncation, Wall, NEWMARK_FINISH_CAP,
@@ -126,38 +127,10 @@ fn contact_step(sys: &Sys, s: f64, st: &St, h: f64, load1: Option<f64>) -> St {
 
 /// The fraction `θ ∈ (0, 1]` of the step `h` at which `g(step(θ·h)) = 0`, given `g0 = g(0)` and
 /// `g1 = g(step(h))` of opposite signs (Illinois regula falsi), and the substep state there.
-fn split(g0: f64, g1: f64, st1: St, mut eval: impl FnMut(f64) -> (f64, St)) -> (f64, St) {
-    let (mut lo, mut hi, mut glo, mut ghi) = (0.0, 1.0, g0, g1);
-    let mut best = (1.0, st1);
-    let mut side = 0;
-    for _ in 0..60 {
-        let th = (lo * ghi - hi * glo) / (ghi - glo);
-        let th = if th > lo && th < hi { th } else { 0.5 * (lo + hi) };
-        let (g, stt) = eval(th);
-        best = (th, stt);
-        if g == 0.0 || (hi - lo) < 1e-15 {
-            break;
-        }
-        if (g > 0.0) == (glo > 0.0) {
-            lo = th;
-            glo = g;
-            if side == -1 {
-                ghi *= 0.5;
-            }
-            side = -1;
-        } else {
-            hi = th;
-            ghi = g;
-            if side == 1 {
-                glo *= 0.5;
-            }
-            side = 1;
-        }
-        if g.abs() < 1e-17 {
-            break;
-        }
-    }
-    best
+fn split(g0: f64, g1: f64, st1: St, eval: impl FnMut(f64) -> (f64, St)) -> (f64, St) {
+    // Stops once the bracket is under 1e-15 wide or |g| under 1e-17 (both strict).
+    let stop = IllinoisStop { width: 1e-15_f64.next_down(), value: 1e-17_f64.next_down() };
+    illinois((0.0, g0), (1.0, g1), stop, (1.0, st1), eval)
 }
 
 /// At most this many onset/exit splits per grid step; past that the mode switches at the step end.

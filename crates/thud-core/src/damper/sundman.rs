@@ -32,6 +32,7 @@ use crate::contact::{contact_duration, peak_approach};
 use super::contact::{ContactEnd, ContactOutcome, Load, State, Sys};
 #[cfg(feature = "research")]
 use super::contact::{ContactStart, Stretch};
+use super::roots::{self, NewtonEnd};
 
 /// The integrated state `[x, x', σ, δ', E_contact, E_viscous, t − t_onset]` (m, m/s, √m, m/s,
 /// J, J, s).
@@ -278,29 +279,7 @@ pub(crate) fn root_in(h: f64, f0: f64, f1: f64, f: impl Fn(f64) -> (f64, f64)) -
     if f1 == 0.0 {
         return h;
     }
-    let up = f1 > f0;
-    let (mut lo, mut hi) = (0.0, h);
-    let mut q = h * f0 / (f0 - f1);
-    for _ in 0..80 {
-        if !(q > lo && q < hi) {
-            q = 0.5 * (lo + hi);
-        }
-        let (v, d) = f(q);
-        if v == 0.0 {
-            return q;
-        }
-        if (v > 0.0) == up {
-            hi = q;
-        } else {
-            lo = q;
-        }
-        let next = q - v / d;
-        if hi - lo <= 4.0 * f64::EPSILON * h || (next - q).abs() <= 2.0 * f64::EPSILON * h {
-            return if next > lo && next < hi { next } else { q };
-        }
-        q = next;
-    }
-    q
+    roots::newton((0.0, h), f1 > f0, h * f0 / (f0 - f1), NewtonEnd::Span(h), f)
 }
 
 /// The system's constants the Sundman form's rates need, for the schemes that evaluate them
@@ -537,18 +516,26 @@ impl Observer for super::contact::Unobserved {
 #[cfg(feature = "research")]
 pub(crate) type End = super::contact::ContactEnd<Resume>;
 
-/// A contact cut by its time limit, as it stood.
+/// A contact in the Sundman form cut by its time limit, as it stood, in what the Taylor and
+/// DOP853 schemes both carry on: wall `s`, error scales `sc`, onset time `t_onset` (s), state
+/// `y`, peak penetration so far `pen` (m) and the next step `h` (θ units).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Paused {
+    pub s: f64,
+    pub sc: [f64; 7],
+    pub t_onset: f64,
+    pub y: Y,
+    pub pen: f64,
+    pub h: f64,
+}
+
+/// A contact cut by its time limit, as it stood: the shared part and the clamp's state.
 #[cfg(feature = "research")]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Resume {
-    s: f64,
-    sc: [f64; 7],
-    t_onset: f64,
-    y: Y,
+    at: Paused,
     clamped: bool,
     switches: usize,
-    pen: f64,
-    h: f64,
 }
 
 /// Clamp switches located exactly per contact (see `contact.rs`); past them the clamp's state
@@ -619,20 +606,9 @@ pub(crate) fn integrate<L: Load>(start: ContactStart<'_, L>, budget: &mut usize,
 #[cfg(feature = "research")]
 pub(crate) fn resume<L: Load>(at: Stretch<'_, L>, r: &Resume, budget: &mut usize, obs: impl Observer) -> End {
     let Stretch { sys, load, t_limit } = at;
-    let it = Integration {
-        sys,
-        load,
-        s: r.s,
-        sc: r.sc,
-        t_onset: r.t_onset,
-        t_limit,
-        y: r.y,
-        clamped: r.clamped,
-        switches: r.switches,
-        pen: r.pen,
-        h: r.h,
-        obs,
-    };
+    let Paused { s, sc, t_onset, y, pen, h } = r.at;
+    let (clamped, switches) = (r.clamped, r.switches);
+    let it = Integration { sys, load, s, sc, t_onset, t_limit, y, clamped, switches, pen, h, obs };
     it.run(budget)
 }
 
@@ -738,14 +714,9 @@ impl<L: Load, O: Observer> Integration<'_, L, O> {
 
     fn end(&self, outcome: ContactOutcome) -> End {
         let resume = (outcome == ContactOutcome::EndOfRun).then_some(Resume {
-            s: self.s,
-            sc: self.sc,
-            t_onset: self.t_onset,
-            y: self.y,
+            at: Paused { s: self.s, sc: self.sc, t_onset: self.t_onset, y: self.y, pen: self.pen, h: self.h },
             clamped: self.clamped,
             switches: self.switches,
-            pen: self.pen,
-            h: self.h,
         });
         ended(&self.y, (self.t_onset, self.t_limit), self.pen, outcome, resume)
     }

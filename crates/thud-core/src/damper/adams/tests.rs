@@ -32,6 +32,7 @@ fn the_start_series_is_the_taylor_schemes() {
 fn a_cut_contact_resumes_where_it_stopped() {
     scheme_checks::cut_contacts(
         &[0.05, 0.1, 0.3, 0.5, 0.7, 0.93, 0.99],
+        [1e-9, 1e-9, 1e-8],
         |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, Unobserved),
         |s, r, left| dop853::resume(Stretch::free(s, 1.0), r, left, Unobserved),
     );

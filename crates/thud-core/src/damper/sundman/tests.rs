@@ -1,6 +1,6 @@
 use super::super::contact;
 use super::super::contact::ContactStart;
-use super::super::scheme_checks::{self, sys};
+use super::super::scheme_checks;
 use super::*;
 
 /// Isolated contacts from the same state: the release speed, time and dissipation of the
@@ -27,24 +27,10 @@ fn isolated_contacts_match_the_reference() {
 /// A contact cut by its time limit ends exactly there and carries on as if never cut.
 #[test]
 fn a_cut_contact_resumes_where_it_stopped() {
-    let s = sys(20.0, 500.0);
-    let y0 = State::new(0.01, 0.1, 0.0, 1.4, 0.0, 0.0);
-    let mut left = 100_000;
-    let whole = integrate(ContactStart::free(&s, y0, 1.0), &mut left, contact::Unobserved);
-    for cut in [0.1, 0.5, 0.93] {
-        let mut left = 100_000;
-        let first = integrate(ContactStart::free(&s, y0, cut * whole.t), &mut left, contact::Unobserved);
-        assert_eq!(first.outcome, ContactOutcome::EndOfRun);
-        assert_eq!(first.t, cut * whole.t);
-        let r = first.resume.expect("a cut contact can resume");
-        let end = resume(Stretch::free(&s, 1.0), &r, &mut left, contact::Unobserved);
-        assert_eq!(end.outcome, ContactOutcome::Separated);
-        assert!((end.t / whole.t - 1.0).abs() < 1e-12, "{} vs {}", end.t, whole.t);
-        assert!(
-            (end.y[3] / whole.y[3] - 1.0).abs() < 1e-11 && (end.y[4] / whole.y[4] - 1.0).abs() < 1e-10,
-            "{cut}: {:?} vs {:?}",
-            end.y,
-            whole.y
-        );
-    }
+    scheme_checks::cut_contacts(
+        &[0.1, 0.5, 0.93],
+        [1e-12, 1e-11, 1e-10],
+        |s, y0, t_limit, left| integrate(ContactStart::free(s, y0, t_limit), left, contact::Unobserved),
+        |s, r, left| resume(Stretch::free(s, 1.0), r, left, contact::Unobserved),
+    );
 }
