@@ -346,9 +346,7 @@ fn run(
     batches: &Sender<Batch>,
     answers: &Receiver<Vec<Candidate>>,
 ) -> Result<(), Failure> {
-    use moors::{Nsga2Builder, SimulatedBinaryCrossover};
     let n = settings.evaluations;
-    let tuning = search::Tuning::default();
     let archive = std::sync::Mutex::new(Mirror { seen: HashMap::new(), all: Vec::new(), gone: false });
     let batch = |genes: &Array2<f64>| -> Vec<Option<usize>> {
         let mut st = archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -395,26 +393,7 @@ fn run(
         out
     };
     let constraints = MirrorConstraints { batch: &batch, archive: &archive, n_con };
-    let pop = tuning.population_for(n);
-    let kids = tuning.offspring_for(pop);
-    let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
-    let mut ga = Nsga2Builder::default()
-        .fitness_fn(fitness)
-        .constraints_fn(constraints)
-        .sampler(tuning.start)
-        .crossover(SimulatedBinaryCrossover::new(tuning.crossover_eta))
-        .mutation(tuning.mutation(nv))
-        .duplicates_cleaner(search::Distinct(tuning.distinct))
-        .num_vars(nv)
-        .population_size(pop)
-        .num_offsprings(kids)
-        .num_iterations(iterations)
-        .crossover_rate(0.9)
-        .mutation_rate(tuning.mutation_rate)
-        .seed(settings.seed)
-        .build()
-        .map_err(|e| Failure(format!("the optimiser refused the problem: {e}")))?;
-    ga.run().map_err(|e| Failure(format!("the optimiser failed: {e}")))
+    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints).map_err(Failure)
 }
 
 /// The algorithm's copy of the archive: each point's index, every candidate in order.

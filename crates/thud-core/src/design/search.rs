@@ -1022,7 +1022,6 @@ pub fn search_tuned(
     cancel: Option<&AtomicBool>,
     on_progress: &OnBatch<'_>,
 ) -> Result<Outcome, ThudError> {
-    use moors::SimulatedBinaryCrossover;
     problem.check()?;
     let n = settings.evaluations;
     let archive = Archive::new(problem, n, cancel, reference, on_progress);
@@ -1044,6 +1043,29 @@ pub fn search_tuned(
         out
     };
     let constraints = Constraints { archive: &archive, n_con };
+    run_moors(tuning, nv, n, settings.seed, fitness, constraints)
+        .map_err(|e| ThudError::invalid("--evaluations", e))?;
+    let partial = archive.cancelled();
+    Ok(archive.into_outcome(partial))
+}
+
+/// Runs `moors`' algorithm `tuning.algorithm` with the search's operators over `nv` genes in
+/// [0, 1] for a budget of `n` evaluations, seeded by `seed`: the one place the optimiser is
+/// built, for [`search`] and the ask/tell form alike. `fitness` and `constraints` answer
+/// each batch. The error is the sentence to show.
+pub(super) fn run_moors<F, G>(
+    tuning: Tuning,
+    nv: usize,
+    n: usize,
+    seed: u64,
+    fitness: F,
+    constraints: G,
+) -> Result<(), String>
+where
+    F: Fn(&Array2<f64>) -> Array2<f64>,
+    G: moors::ConstraintsFn<Dim = ndarray::Ix2>,
+{
+    use moors::SimulatedBinaryCrossover;
     let pop = tuning.population_for(n);
     // Offspring that copy a parent cost nothing (the cache): generations go on until the
     // budget is spent, at most three times as many as the budget would fill.
@@ -1064,10 +1086,10 @@ pub fn search_tuned(
                 .num_iterations(iterations)
                 .crossover_rate(0.9)
                 .mutation_rate(tuning.mutation_rate)
-                .seed(settings.seed)
+                .seed(seed)
                 .build()
-                .map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser refused the problem: {e}")))?;
-            ga.run().map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser failed: {e}")))?;
+                .map_err(|e| format!("the optimiser refused the problem: {e}"))?;
+            ga.run().map_err(|e| format!("the optimiser failed: {e}"))
         }};
     }
     match tuning.algorithm {
@@ -1075,8 +1097,6 @@ pub fn search_tuned(
         Algorithm::Spea2 => run!(moors::Spea2Builder<_, _, _, _, _>),
         Algorithm::AgeMoea => run!(moors::AgeMoeaBuilder<_, _, _, _, _>),
     }
-    let partial = archive.cancelled();
-    Ok(archive.into_outcome(partial))
 }
 
 /// The constraints of a batch for `moors` (≤ 0: met): each constraint's margin negated, then
