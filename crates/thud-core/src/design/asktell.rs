@@ -393,7 +393,8 @@ fn run(
         out
     };
     let constraints = MirrorConstraints { batch: &batch, archive: &archive, n_con };
-    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints).map_err(Failure)
+    // The defaults (NSGA-II) read no reference point: none is handed over.
+    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints, &|| None).map_err(Failure)
 }
 
 /// The algorithm's copy of the archive: each point's index, every candidate in order.

@@ -36,7 +36,7 @@ use ndarray::Array2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-pub use crate::design::search_operators::{Algorithm, Distinct, Mutation, Start};
+pub use crate::design::search_operators::{Algorithm, Distinct, HypervolumeSurvival, Mutation, Start};
 use crate::design::{self, Design, Materials, Metrics, Steady, ValidDesign};
 use crate::draws::SplitMix64;
 use crate::error::ThudError;
@@ -1043,7 +1043,11 @@ pub fn search_tuned(
         out
     };
     let constraints = Constraints { archive: &archive, n_con };
-    run_moors(tuning, nv, n, settings.seed, fitness, constraints)
+    let reference = || {
+        let r = archive.reference.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone()?;
+        Some(r.iter().zip(&problem.objectives).map(|(v, o)| if o.sense == Sense::Maximize { -v } else { *v }).collect())
+    };
+    run_moors(tuning, nv, n, settings.seed, fitness, constraints, &reference)
         .map_err(|e| ThudError::invalid("--evaluations", e))?;
     let partial = archive.cancelled();
     Ok(archive.into_outcome(partial))
@@ -1052,7 +1056,8 @@ pub fn search_tuned(
 /// Runs `moors`' algorithm `tuning.algorithm` with the search's operators over `nv` genes in
 /// [0, 1] for a budget of `n` evaluations, seeded by `seed`: the one place the optimiser is
 /// built, for [`search`] and the ask/tell form alike. `fitness` and `constraints` answer
-/// each batch. The error is the sentence to show.
+/// each batch; `reference` is the hypervolume's reference point (the objectives minimised)
+/// once fixed, for the hypervolume-indicator survival. The error is the sentence to show.
 pub(super) fn run_moors<F, G>(
     tuning: Tuning,
     nv: usize,
@@ -1060,6 +1065,7 @@ pub(super) fn run_moors<F, G>(
     seed: u64,
     fitness: F,
     constraints: G,
+    reference: &dyn Fn() -> Option<Vec<f64>>,
 ) -> Result<(), String>
 where
     F: Fn(&Array2<f64>) -> Array2<f64>,
@@ -1072,8 +1078,9 @@ where
     let kids = tuning.offspring_for(pop);
     let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
     macro_rules! run {
-        ($builder:ty) => {{
+        ($builder:ty $(, $selector:expr, $survivor:expr)?) => {{
             let mut ga = <$builder>::default()
+                $(.selector($selector).survivor($survivor))?
                 .fitness_fn(fitness)
                 .constraints_fn(constraints)
                 .sampler(tuning.start)
@@ -1096,6 +1103,14 @@ where
         Algorithm::Nsga2 => run!(moors::Nsga2Builder<_, _, _, _, _>),
         Algorithm::Spea2 => run!(moors::Spea2Builder<_, _, _, _, _>),
         Algorithm::AgeMoea => run!(moors::AgeMoeaBuilder<_, _, _, _, _>),
+        Algorithm::Ibea | Algorithm::Nsga2ThenIbea => {
+            // The first population's survival, then half the generations the budget fills.
+            let nsga2_calls =
+                if tuning.algorithm == Algorithm::Ibea { 0 } else { 1 + n.saturating_sub(pop).div_ceil(kids) / 2 };
+            let survivor = HypervolumeSurvival { reference, kappa: 0.05, nsga2_calls };
+            let selector = moors::selection::moo::Nsga2RankAndScoringSelection::new();
+            run!(moors::AlgorithmBuilder<_, _, _, _, _, _, _>, selector, survivor)
+        }
     }
 }
 
