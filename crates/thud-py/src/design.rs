@@ -425,21 +425,27 @@ impl PyDesigner {
         Ok(out)
     }
 
-    /// Tells one point's result: `values` as asked; `result` a list of one number or None per
-    /// column, or a text saying why the point could not be run.
+    /// The forcing frequencies of the band (Hz), one run of a point each; empty without one.
+    fn band_hz(&self) -> Vec<f64> {
+        self.lock().problem().band_hz.clone()
+    }
+
+    /// Tells one point's result: `values` as asked; `result` one list per run of the point
+    /// (one run, or one per frequency of the band), each one number or None per column, or a
+    /// text saying why the point could not be run.
     fn tell(&self, py: Python<'_>, values: &Bound<'_, PyAny>, result: &Bound<'_, PyAny>) -> PyResult<()> {
         let mut at = self.lock();
         let x = values_of(py, &at, values)?;
-        let told: Result<Vec<Option<f64>>, Failure> = if let Ok(s) = result.cast::<PyString>() {
+        let told: Result<Vec<Vec<Option<f64>>>, Failure> = if let Ok(s) = result.cast::<PyString>() {
             Err(Failure(s.to_cow()?.into_owned()))
         } else {
-            let v: Vec<Option<f64>> = result.extract()?;
-            if let Some(bad) = v.iter().flatten().find(|x| !x.is_finite()) {
+            let runs: Vec<Vec<Option<f64>>> = result.extract()?;
+            if let Some(bad) = runs.iter().flatten().flatten().find(|x| !x.is_finite()) {
                 return Err(parameter_error(py, "results", format!("invalid results: {bad} is not a finite number")));
             }
-            Ok(v)
+            Ok(runs)
         };
-        at.tell(&x, told).map_err(|e| engine_error(py, e.renamed("xs")))
+        at.tell_runs(&x, told).map_err(|e| engine_error(py, e.renamed("xs")))
     }
 
     /// The record of what was found so far (partial until done), as `_design` returns it.
