@@ -203,12 +203,12 @@ impl AskTell {
         };
         if let Ok(runs) = &result {
             let want = self.problem.band_hz.len().max(1);
-            let why = if runs.len() != want {
-                Some(format!("{} runs told for a point of {want} (one per frequency of the band)", runs.len()))
-            } else {
+            let why = if runs.len() == want {
                 runs.iter()
                     .find(|v| v.len() != self.columns.len())
                     .map(|v| format!("{} values told for {} columns", v.len(), self.columns.len()))
+            } else {
+                Some(format!("{} runs told for a point of {want} (one per frequency of the band)", runs.len()))
             };
             if let Some(why) = why {
                 self.asked.insert(k, i);
