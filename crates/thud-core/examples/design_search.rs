@@ -8,7 +8,8 @@
 //!
 //! LATIN 1: a Latin-hypercube first population; PM_ETA > 0: polynomial mutation of that index in
 //! place of the Gaussian (SIGMA unused); DISTINCT 1: a generation's repeated children drawn again; ALGO 1: SPEA2, 2:
-//! AGE-MOEA (0: NSGA-II); KIDS > 0: children a generation (else the population).
+//! AGE-MOEA, 3: IBEA (hypervolume indicator against the reference 106 dB, 0 cm/s), 4: NSGA-II for
+//! the first half of the generations, then IBEA (0: NSGA-II); KIDS > 0: children a generation (else the population).
 //!
 //! With knobs after the grid's hypervolume (`-`: compute it), each setting of NSGA-II is
 //! measured on the same seeds instead of the defaults beside the baselines.
@@ -35,6 +36,8 @@ fn knobs(t: &str) -> Tuning {
         algorithm: match v.get(8).map_or(0, |&x| x as u8) {
             1 => search::Algorithm::Spea2,
             2 => search::Algorithm::AgeMoea,
+            3 => search::Algorithm::Ibea,
+            4 => search::Algorithm::Nsga2ThenIbea,
             _ => search::Algorithm::Nsga2,
         },
         offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),

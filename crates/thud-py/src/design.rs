@@ -30,26 +30,9 @@ use crate::args::{self, engine_error, parameter_error, refuse, Kwargs};
 use crate::progress::Progress;
 use crate::{design_of, detach, json_of};
 
-/// The keywords of `design` beside the design's own: `Designer`'s, and `progress`.
-pub const OPTIONS: &[&str] = &[
-    "preset",
-    "design",
-    "vary",
-    "choose",
-    "minimize",
-    "maximize",
-    "require",
-    "over",
-    "evaluations",
-    "seed",
-    "reference",
-    "no_limit",
-    "progress",
-];
-
 /// The keywords of `Designer` beside the design's own (its caller evaluates, so it has no
 /// progress of its own).
-pub const DESIGNER_OPTIONS: &[&str] = &[
+pub const DESIGNER_OPTIONS: [&str; 12] = [
     "preset",
     "design",
     "vary",
@@ -63,6 +46,20 @@ pub const DESIGNER_OPTIONS: &[&str] = &[
     "reference",
     "no_limit",
 ];
+
+/// The keywords of `design` beside the design's own: `Designer`'s, and `progress`.
+pub const OPTIONS: [&str; DESIGNER_OPTIONS.len() + 1] = with_progress(DESIGNER_OPTIONS);
+
+/// `options` and `progress` after them.
+const fn with_progress<const N: usize, const M: usize>(options: [&'static str; N]) -> [&'static str; M] {
+    let mut out = ["progress"; M];
+    let mut i = 0;
+    while i < N {
+        out[i] = options[i];
+        i += 1;
+    }
+    out
+}
 
 /// The budget unless `evaluations` is given (the command line's default).
 const EVALUATIONS_DEFAULT: usize = 400;
@@ -312,7 +309,7 @@ fn record_text(py: Python<'_>, p: &Problem, o: &Outcome, s: Settings) -> PyResul
 #[pyfunction]
 #[pyo3(signature = (**params))]
 pub fn _design(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
-    let kw = Kwargs::new(params, OPTIONS)?;
+    let kw = Kwargs::new(params, &OPTIONS)?;
     let (p, settings, reference) = setup(py, &kw)?;
     let progress = Progress::new(py, &kw, settings.evaluations)?;
     let done = &progress.done;
@@ -384,7 +381,7 @@ impl PyDesigner {
     #[new]
     #[pyo3(signature = (**params))]
     fn new(py: Python<'_>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
-        let kw = Kwargs::new(params, DESIGNER_OPTIONS)?;
+        let kw = Kwargs::new(params, &DESIGNER_OPTIONS)?;
         let (p, settings, reference) = setup(py, &kw)?;
         let at = AskTell::new(p, settings, reference).map_err(|e| error(py, e))?;
         Ok(PyDesigner { inner: Mutex::new(at) })
@@ -428,21 +425,27 @@ impl PyDesigner {
         Ok(out)
     }
 
-    /// Tells one point's result: `values` as asked; `result` a list of one number or None per
-    /// column, or a text saying why the point could not be run.
+    /// The forcing frequencies of the band (Hz), one run of a point each; empty without one.
+    fn band_hz(&self) -> Vec<f64> {
+        self.lock().problem().band_hz.clone()
+    }
+
+    /// Tells one point's result: `values` as asked; `result` one list per run of the point
+    /// (one run, or one per frequency of the band), each one number or None per column, or a
+    /// text saying why the point could not be run.
     fn tell(&self, py: Python<'_>, values: &Bound<'_, PyAny>, result: &Bound<'_, PyAny>) -> PyResult<()> {
         let mut at = self.lock();
         let x = values_of(py, &at, values)?;
-        let told: Result<Vec<Option<f64>>, Failure> = if let Ok(s) = result.cast::<PyString>() {
+        let told: Result<Vec<Vec<Option<f64>>>, Failure> = if let Ok(s) = result.cast::<PyString>() {
             Err(Failure(s.to_cow()?.into_owned()))
         } else {
-            let v: Vec<Option<f64>> = result.extract()?;
-            if let Some(bad) = v.iter().flatten().find(|x| !x.is_finite()) {
+            let runs: Vec<Vec<Option<f64>>> = result.extract()?;
+            if let Some(bad) = runs.iter().flatten().flatten().find(|x| !x.is_finite()) {
                 return Err(parameter_error(py, "results", format!("invalid results: {bad} is not a finite number")));
             }
-            Ok(v)
+            Ok(runs)
         };
-        at.tell(&x, told).map_err(|e| engine_error(py, e.renamed("xs")))
+        at.tell_runs(&x, told).map_err(|e| engine_error(py, e.renamed("xs")))
     }
 
     /// The record of what was found so far (partial until done), as `_design` returns it.

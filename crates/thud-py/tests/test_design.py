@@ -168,18 +168,42 @@ def test_bad_input_names_the_keyword(bad, param):
     else:
         args.update(bad)
     for make in (thud.design, thud.Designer):
-        if make is thud.Designer and param == "over":
-            continue
         with pytest.raises(thud.ParameterError) as e:
             make(**args)
         assert e.value.param == param, str(e.value)
         assert "\n" not in str(e.value)
 
 
-def test_a_designer_refuses_a_band():
+#: The command line's forced-band problem: worst steady amplitude against worst Leq over
+#: 4.5, 5 and 5.5 Hz (around the structure's 5.03 Hz), the ball at most 80 g.
+BAND = dict(force=2, freq=5, duration=3, vary=["mass=20g:120g", "gap=1cm:6cm"], over="freqs=4.5Hz:5.5Hz:3",
+            minimize=["steady_amplitude_m", "steady_leq_db"], require="mass<=80g")
+
+
+def test_ask_tell_over_a_band_told_simulate_s_runs_reaches_design_s_front(cli):
+    want = thud.design(**BAND, evaluations=24, seed=2)
+    flags = ["--force-amplitude", "2", "--freq", "5", "--duration", "3", "--vary", "mass=20g:120g", "--vary",
+             "gap=1cm:6cm", "--over", "freqs=4.5Hz:5.5Hz:3", "--minimize", "steady_amplitude_m", "--minimize",
+             "steady_leq_db", "--require", "mass<=80g"]
+    assert want.as_dict() == cli_record(cli, flags, "--evaluations", "24", "--seed", "2")
+    d = thud.Designer(**BAND, evaluations=24, seed=2)
+    assert d.band_hz == [4.5, 5.0, 5.5] == want.band_hz
+    assert d.columns == ["steady_amplitude_m", "steady_leq_db"]
+    while not d.done:
+        xs = d.ask(5)
+        runs = [[thud.simulate(**kw, samples=2) for kw in d.runs(x)] for x in xs]
+        assert all([kw["freq"] for kw in d.runs(x)] == d.band_hz for x in xs)
+        d.tell(xs[::-1], runs[::-1])
+    got = d.result()
+    assert len(got) > 0 and not got.partial
+    assert got == want
+    # A point of a band told one run is refused naming the results, and stays asked.
+    d = thud.Designer(**BAND, evaluations=24, seed=2)
+    x = d.ask(1)
     with pytest.raises(thud.ParameterError) as e:
-        thud.Designer(**PAPER, over="freqs=4.5Hz:5.5Hz:3", force=2)
-    assert e.value.param == "over"
+        d.tell(x, [thud.simulate(**d.runs(x[0])[0], samples=2)])
+    assert e.value.param == "results" and "3 results" in str(e.value)
+    assert d.outstanding == 1
 
 
 def test_no_variable_or_no_objective_is_refused():

@@ -180,19 +180,39 @@ impl AskTell {
 
     /// Tells what the point `values` (as asked) gave: `Ok` with one value per column of
     /// [`Self::columns`] (None where the run has none, e.g. no impact), or `Err` with why it
-    /// could not be run. Refuses a point not asked or told already.
+    /// could not be run. Refuses a point not asked or told already. With a band, see
+    /// [`Self::tell_runs`].
     pub fn tell(&mut self, values: &[Value], result: Result<Vec<Option<f64>>, Failure>) -> Result<(), ThudError> {
+        self.tell_runs(values, result.map(|v| vec![v]))
+    }
+
+    /// Tells what the point `values` (as asked) gave, one run at a time: `Ok` with one row per
+    /// run of the point ([`Problem::runs_at`]: the design itself, or one per frequency of the
+    /// band, in the band's order), each one value per column of [`Self::columns`]; each
+    /// objective and result constraint is then taken at its worst over the runs, as the
+    /// search takes it. `Err` with why the point could not be run. Refuses a point not asked
+    /// or told already, and a count of runs or values that is not the problem's.
+    pub fn tell_runs(
+        &mut self,
+        values: &[Value],
+        result: Result<Vec<Vec<Option<f64>>>, Failure>,
+    ) -> Result<(), ThudError> {
         let k = key(values);
         let Some(i) = self.asked.remove(&k) else {
             return Err(ThudError::invalid("tell", format!("{} was not asked, or is told already", shown(values))));
         };
-        if let Ok(v) = &result {
-            if v.len() != self.columns.len() {
+        if let Ok(runs) = &result {
+            let want = self.problem.band_hz.len().max(1);
+            let why = if runs.len() == want {
+                runs.iter()
+                    .find(|v| v.len() != self.columns.len())
+                    .map(|v| format!("{} values told for {} columns", v.len(), self.columns.len()))
+            } else {
+                Some(format!("{} runs told for a point of {want} (one per frequency of the band)", runs.len()))
+            };
+            if let Some(why) = why {
                 self.asked.insert(k, i);
-                return Err(ThudError::invalid(
-                    "tell",
-                    format!("{} values told for {} columns", v.len(), self.columns.len()),
-                ));
+                return Err(ThudError::invalid("tell", why));
             }
         }
         let Some((first, slots)) = &mut self.current else {
@@ -200,7 +220,7 @@ impl AskTell {
         };
         let index = *first + i;
         let candidate = match result {
-            Ok(v) => candidate(&self.problem, &self.columns, index, values.to_vec(), &v),
+            Ok(runs) => candidate(&self.problem, &self.columns, index, values.to_vec(), &runs),
             Err(why) => failed(&self.problem, index, values.to_vec(), why.0),
         };
         slots[i] = Some(candidate);
@@ -309,27 +329,38 @@ fn failed(problem: &Problem, index: usize, values: Vec<Value>, why: String) -> C
     }
 }
 
-/// The candidate of a point that ran and gave `told` (one value per column of `columns`):
-/// objectives and result constraints read from it, parameter constraints from the design.
+/// The candidate of a point whose runs gave `told` (one row per run, one value per column of
+/// `columns`): objectives and result constraints read from it at their worst over the runs
+/// (none where a run has no value), as [`Problem::evaluate`] takes them; parameter
+/// constraints from the design.
 fn candidate(
     problem: &Problem,
     columns: &[Column],
     index: usize,
     values: Vec<Value>,
-    told: &[Option<f64>],
+    told: &[Vec<Option<f64>>],
 ) -> Candidate {
-    let read = |col: Column| columns.iter().position(|c| *c == col).and_then(|i| told[i]);
+    // A column at its worst over the runs: the greatest where `high` is worse, else the least.
+    let worst = |col: Column, high: bool| -> Option<f64> {
+        let i = columns.iter().position(|c| *c == col)?;
+        let mut acc: Option<f64> = None;
+        for run in told {
+            let v = run[i]?;
+            acc = Some(acc.map_or(v, |a: f64| if high { a.max(v) } else { a.min(v) }));
+        }
+        acc
+    };
     let design = match problem.design_at(&values) {
         Ok(d) => d,
         Err(e) => return failed(problem, index, values, e.to_string()),
     };
-    let objectives = problem.objectives.iter().map(|o| read(o.column)).collect();
+    let objectives = problem.objectives.iter().map(|o| worst(o.column, o.sense == Sense::Minimize)).collect();
     let margins = problem
         .constraints
         .iter()
         .map(|c| {
             let actual = match c.bound {
-                Bound::Result(col) => read(col),
+                Bound::Result(col) => worst(col, c.at_most),
                 Bound::Param(row) => row.get.map(|get| get(design.design())),
             };
             actual.map(|a| if c.at_most { c.value - a } else { a - c.value })
@@ -346,9 +377,7 @@ fn run(
     batches: &Sender<Batch>,
     answers: &Receiver<Vec<Candidate>>,
 ) -> Result<(), Failure> {
-    use moors::{Nsga2Builder, SimulatedBinaryCrossover};
     let n = settings.evaluations;
-    let tuning = search::Tuning::default();
     let archive = std::sync::Mutex::new(Mirror { seen: HashMap::new(), all: Vec::new(), gone: false });
     let batch = |genes: &Array2<f64>| -> Vec<Option<usize>> {
         let mut st = archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -395,26 +424,8 @@ fn run(
         out
     };
     let constraints = MirrorConstraints { batch: &batch, archive: &archive, n_con };
-    let pop = tuning.population_for(n);
-    let kids = tuning.offspring_for(pop);
-    let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
-    let mut ga = Nsga2Builder::default()
-        .fitness_fn(fitness)
-        .constraints_fn(constraints)
-        .sampler(tuning.start)
-        .crossover(SimulatedBinaryCrossover::new(tuning.crossover_eta))
-        .mutation(tuning.mutation(nv))
-        .duplicates_cleaner(search::Distinct(tuning.distinct))
-        .num_vars(nv)
-        .population_size(pop)
-        .num_offsprings(kids)
-        .num_iterations(iterations)
-        .crossover_rate(0.9)
-        .mutation_rate(tuning.mutation_rate)
-        .seed(settings.seed)
-        .build()
-        .map_err(|e| Failure(format!("the optimiser refused the problem: {e}")))?;
-    ga.run().map_err(|e| Failure(format!("the optimiser failed: {e}")))
+    // The defaults (NSGA-II) read no reference point: none is handed over.
+    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints, &|| None).map_err(Failure)
 }
 
 /// The algorithm's copy of the archive: each point's index, every candidate in order.
@@ -456,26 +467,67 @@ mod tests {
     use crate::design::search::tests::paper_problem_with as problem;
     use crate::design::search::Constraint;
 
-    /// Drives an ask/tell search to its end, evaluating each point as the search does, `n`
-    /// points asked at a time, told in reverse order.
+    /// Drives an ask/tell search to its end, evaluating each run of each point as one run
+    /// (`thud simulate`) does, `n` points asked at a time, told in reverse order.
     fn drive(p: &Problem, s: Settings, n: usize) -> Outcome {
         let mut at = AskTell::new(p.clone(), s, None).unwrap();
         let columns = at.columns().to_vec();
         while !at.done() {
             let xs = at.ask(n).unwrap();
             for x in xs.iter().rev() {
-                let c = p.evaluate(0, x.clone(), None);
-                let told = if let Some(e) = c.error {
-                    Err(Failure(e))
+                let runs = p.runs_at(x).unwrap();
+                let told: Result<Vec<Vec<Option<f64>>>, Failure> = runs
+                    .iter()
+                    .map(|r| {
+                        let e = crate::design::evaluate(r, 0, None).map_err(|e| Failure(e.to_string()))?;
+                        Ok(columns.iter().map(|col| col.value(&e.metrics, e.steady.as_ref())).collect())
+                    })
+                    .collect();
+                if runs.len() == 1 {
+                    at.tell(x, told.map(|mut t| t.remove(0))).unwrap();
                 } else {
-                    let runs = p.runs_at(x).unwrap();
-                    let e = crate::design::evaluate(&runs[0], 0, None).unwrap();
-                    Ok(columns.iter().map(|col| col.value(&e.metrics, e.steady.as_ref())).collect())
-                };
-                at.tell(x, told).unwrap();
+                    at.tell_runs(x, told).unwrap();
+                }
             }
         }
         at.outcome()
+    }
+
+    #[test]
+    fn told_each_frequency_s_run_of_a_band_it_finds_the_band_search_s_front() {
+        // Worst steady amplitude against worst Leq over 4.5, 5 and 5.5 Hz (around the
+        // structure's 5.03 Hz), the ball at most 80 g: the command line's forced-band problem.
+        let mut d = crate::design::Design::default();
+        d.damper.force_n = 2.0;
+        d.damper.freq_hz = 5.0;
+        d.damper.duration_s = 3.0;
+        let p = Problem {
+            base: d.check().unwrap(),
+            variables: vec![
+                search::Variable::parse_range("mass=20g:120g").unwrap(),
+                search::Variable::parse_range("gap=1cm:6cm").unwrap(),
+            ],
+            objectives: vec![
+                Objective::parse("steady_amplitude_m", Sense::Minimize).unwrap(),
+                Objective::parse("steady_leq_db", Sense::Minimize).unwrap(),
+            ],
+            constraints: vec![Constraint::parse("mass<=80g").unwrap(), Constraint::parse("steady_leq_db>=0").unwrap()],
+            band_hz: vec![4.5, 5.0, 5.5],
+            robust: None,
+        };
+        let s = Settings { evaluations: 24, seed: 2 };
+        let want = search::search(&p, s, None, None, &|_, _, _| {}).unwrap();
+        assert!(!want.front.is_empty());
+        let got = drive(&p, s, 5);
+        assert_eq!(got.all, want.all);
+        assert_eq!(got.front, want.front);
+        assert_eq!(got.hypervolume, want.hypervolume);
+        // One run told for a point of three is refused, and the point stays asked.
+        let mut at = AskTell::new(p.clone(), s, None).unwrap();
+        let x = at.ask(1).unwrap().remove(0);
+        let e = at.tell(&x, Ok(vec![Some(0.01), Some(80.0)])).unwrap_err();
+        assert!(e.to_string().contains("1 runs told for a point of 3"), "{e}");
+        assert_eq!(at.outstanding(), 1);
     }
 
     #[test]

@@ -36,7 +36,7 @@ use ndarray::Array2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-pub use crate::design::search_operators::{Algorithm, Distinct, Mutation, Start};
+pub use crate::design::search_operators::{Algorithm, Distinct, HypervolumeSurvival, Mutation, Start};
 use crate::design::{self, Design, Materials, Metrics, Steady, ValidDesign};
 use crate::draws::SplitMix64;
 use crate::error::ThudError;
@@ -1022,7 +1022,6 @@ pub fn search_tuned(
     cancel: Option<&AtomicBool>,
     on_progress: &OnBatch<'_>,
 ) -> Result<Outcome, ThudError> {
-    use moors::SimulatedBinaryCrossover;
     problem.check()?;
     let n = settings.evaluations;
     let archive = Archive::new(problem, n, cancel, reference, on_progress);
@@ -1044,14 +1043,44 @@ pub fn search_tuned(
         out
     };
     let constraints = Constraints { archive: &archive, n_con };
+    let reference = || {
+        let r = archive.reference.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone()?;
+        Some(r.iter().zip(&problem.objectives).map(|(v, o)| if o.sense == Sense::Maximize { -v } else { *v }).collect())
+    };
+    run_moors(tuning, nv, n, settings.seed, fitness, constraints, &reference)
+        .map_err(|e| ThudError::invalid("--evaluations", e))?;
+    let partial = archive.cancelled();
+    Ok(archive.into_outcome(partial))
+}
+
+/// Runs `moors`' algorithm `tuning.algorithm` with the search's operators over `nv` genes in
+/// [0, 1] for a budget of `n` evaluations, seeded by `seed`: the one place the optimiser is
+/// built, for [`search`] and the ask/tell form alike. `fitness` and `constraints` answer
+/// each batch; `reference` is the hypervolume's reference point (the objectives minimised)
+/// once fixed, for the hypervolume-indicator survival. The error is the sentence to show.
+pub(super) fn run_moors<F, G>(
+    tuning: Tuning,
+    nv: usize,
+    n: usize,
+    seed: u64,
+    fitness: F,
+    constraints: G,
+    reference: &dyn Fn() -> Option<Vec<f64>>,
+) -> Result<(), String>
+where
+    F: Fn(&Array2<f64>) -> Array2<f64>,
+    G: moors::ConstraintsFn<Dim = ndarray::Ix2>,
+{
+    use moors::SimulatedBinaryCrossover;
     let pop = tuning.population_for(n);
     // Offspring that copy a parent cost nothing (the cache): generations go on until the
     // budget is spent, at most three times as many as the budget would fill.
     let kids = tuning.offspring_for(pop);
     let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
     macro_rules! run {
-        ($builder:ty) => {{
+        ($builder:ty $(, $selector:expr, $survivor:expr)?) => {{
             let mut ga = <$builder>::default()
+                $(.selector($selector).survivor($survivor))?
                 .fitness_fn(fitness)
                 .constraints_fn(constraints)
                 .sampler(tuning.start)
@@ -1064,19 +1093,25 @@ pub fn search_tuned(
                 .num_iterations(iterations)
                 .crossover_rate(0.9)
                 .mutation_rate(tuning.mutation_rate)
-                .seed(settings.seed)
+                .seed(seed)
                 .build()
-                .map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser refused the problem: {e}")))?;
-            ga.run().map_err(|e| ThudError::invalid("--evaluations", format!("the optimiser failed: {e}")))?;
+                .map_err(|e| format!("the optimiser refused the problem: {e}"))?;
+            ga.run().map_err(|e| format!("the optimiser failed: {e}"))
         }};
     }
     match tuning.algorithm {
         Algorithm::Nsga2 => run!(moors::Nsga2Builder<_, _, _, _, _>),
         Algorithm::Spea2 => run!(moors::Spea2Builder<_, _, _, _, _>),
         Algorithm::AgeMoea => run!(moors::AgeMoeaBuilder<_, _, _, _, _>),
+        Algorithm::Ibea | Algorithm::Nsga2ThenIbea => {
+            // The first population's survival, then half the generations the budget fills.
+            let nsga2_calls =
+                if tuning.algorithm == Algorithm::Ibea { 0 } else { 1 + n.saturating_sub(pop).div_ceil(kids) / 2 };
+            let survivor = HypervolumeSurvival { reference, kappa: 0.05, nsga2_calls };
+            let selector = moors::selection::moo::Nsga2RankAndScoringSelection::new();
+            run!(moors::AlgorithmBuilder<_, _, _, _, _, _, _>, selector, survivor)
+        }
     }
-    let partial = archive.cancelled();
-    Ok(archive.into_outcome(partial))
 }
 
 /// The constraints of a batch for `moors` (≤ 0: met): each constraint's margin negated, then

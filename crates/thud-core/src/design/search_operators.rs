@@ -1,13 +1,19 @@
 //! The operators the design search hands `moors`' NSGA-II beside its own: how the first
 //! population is drawn ([`Start`]: uniform, or a Latin hypercube), how a child mutates
 //! ([`Mutation`]: Gaussian, or Deb's polynomial mutation within [0, 1]) and whether a
-//! generation's children repeating a parent or each other are drawn again ([`Distinct`]).
-//! Genes span [0, 1] (the search's decoding maps them to the variables).
+//! generation's children repeating a parent or each other are drawn again ([`Distinct`]), and
+//! the survival of the hypervolume-indicator search ([`HypervolumeSurvival`]: `moors`' IBEA
+//! against the search's own reference point). Genes span [0, 1] (the search's decoding maps
+//! them to the variables).
 
+use moors::genetic::D12;
+use moors::survival::moo::{IbeaHyperVolumeSurvivalOperator, Nsga2RankCrowdingSurvival};
+use moors::survival::SurvivalOperator;
 use moors::{
-    ExactDuplicatesCleaner, GaussianMutation, MutationOperator, PopulationCleaner, RandomGenerator, SamplingOperator,
+    ExactDuplicatesCleaner, GaussianMutation, MutationOperator, Population, PopulationCleaner, RandomGenerator,
+    SamplingOperator,
 };
-use ndarray::{Array1, Array2, ArrayViewMut1};
+use ndarray::{Array1, Array2, ArrayViewMut1, Axis, Ix2};
 
 /// The algorithm of `moors` a search runs: its selection of parents and survival of children.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,6 +24,11 @@ pub enum Algorithm {
     Spea2,
     /// AGE-MOEA: rank, then a survival score from the front's estimated geometry.
     AgeMoea,
+    /// IBEA with the hypervolume indicator against the search's reference point
+    /// ([`HypervolumeSurvival`]).
+    Ibea,
+    /// NSGA-II for the first half of the budget's generations, then IBEA from its population.
+    Nsga2ThenIbea,
 }
 
 /// How the first population is drawn.
@@ -113,6 +124,67 @@ impl PopulationCleaner for Distinct {
     }
 }
 
+/// The survival of the hypervolume-indicator search: `moors`' IBEA (Zitzler and Künzli 2004,
+/// the hypervolume indicator) over the feasible individuals, against `reference` (in the
+/// objectives minimised, as `moors` reads them): `moors` scales each generation's objectives
+/// to [0, 1] by their least and greatest values, so the reference is scaled the same way each
+/// generation. With fewer feasible individuals than survive, all of them survive and the
+/// infeasible ones with the least violation fill the rest. The first `nsga2_calls` calls
+/// survive by NSGA-II's rank and crowding instead.
+pub struct HypervolumeSurvival<'r> {
+    /// The reference point, minimised; None: 1.1 times the scaled span (no feasible design
+    /// fixed one yet).
+    pub reference: &'r dyn Fn() -> Option<Vec<f64>>,
+    /// IBEA's κ (times the largest indicator value of the generation, as `moors` scales it).
+    pub kappa: f64,
+    /// Calls left under NSGA-II's survival.
+    pub nsga2_calls: usize,
+}
+
+impl SurvivalOperator for HypervolumeSurvival<'_> {
+    type FDim = Ix2;
+
+    fn operate<C: D12>(
+        &mut self,
+        population: Population<Ix2, C>,
+        num_survive: usize,
+        rng: &mut impl RandomGenerator,
+    ) -> Population<Ix2, C> {
+        if self.nsga2_calls > 0 {
+            self.nsga2_calls -= 1;
+            return Nsga2RankCrowdingSurvival::new().operate(population, num_survive, rng);
+        }
+        let n = population.len();
+        let cv = |i: usize| population.constraint_violation_totals.as_ref().map_or(0.0, |c| c[i]);
+        let feasible: Vec<usize> = (0..n).filter(|&i| cv(i) <= 0.0).collect();
+        if feasible.len() > num_survive {
+            let sub = population.selected(&feasible);
+            let r = scaled_reference(&sub.fitness, (self.reference)().as_deref());
+            return IbeaHyperVolumeSurvivalOperator::new(r, self.kappa).operate(sub, num_survive, rng);
+        }
+        let mut rest: Vec<usize> = (0..n).filter(|&i| cv(i) > 0.0).collect();
+        rest.sort_by(|&a, &b| cv(a).total_cmp(&cv(b)).then(a.cmp(&b)));
+        let keep: Vec<usize> = feasible.into_iter().chain(rest).take(num_survive).collect();
+        let score: Array1<f64> = keep.iter().map(|&i| -cv(i)).collect();
+        let mut out = population.selected(&keep);
+        out.set_survival_score(score);
+        out
+    }
+}
+
+/// `reference` scaled as `moors`' IBEA scales `fitness` (each objective from its least to its
+/// greatest value onto [0, 1], a span under 1e-12 taken as 1); None: 1.1 in each.
+fn scaled_reference(fitness: &Array2<f64>, reference: Option<&[f64]>) -> Array1<f64> {
+    let lo = fitness.fold_axis(Axis(0), f64::INFINITY, |a, &b| a.min(b));
+    let hi = fitness.fold_axis(Axis(0), f64::NEG_INFINITY, |a, &b| a.max(b));
+    (0..fitness.ncols())
+        .map(|k| {
+            let span = if (hi[k] - lo[k]).abs() < 1e-12 { 1.0 } else { hi[k] - lo[k] };
+            reference.and_then(|r| r.get(k)).map_or(1.1, |r| (r - lo[k]) / span)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,6 +222,15 @@ mod tests {
         // Drawn at the extremes it reaches an end and no further.
         assert!(polynomial_step(0.5, 20.0, 0.0) < 1e-9);
         assert!(polynomial_step(0.5, 20.0, 1.0) > 1.0 - 1e-9);
+    }
+
+    #[test]
+    fn the_reference_is_scaled_as_the_objectives_are() {
+        // Objectives spanning 90–100 and −2–0: the reference (106, 0) lies at 1.6 and 1.
+        let f = ndarray::array![[90.0, -2.0], [100.0, 0.0], [95.0, -1.0]];
+        let r = scaled_reference(&f, Some(&[106.0, 0.0]));
+        assert!((r[0] - 1.6).abs() < 1e-12 && (r[1] - 1.0).abs() < 1e-12, "{r}");
+        assert_eq!(scaled_reference(&f, None), ndarray::array![1.1, 1.1]);
     }
 
     #[test]

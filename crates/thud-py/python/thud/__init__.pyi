@@ -1337,6 +1337,11 @@ class Designer:
     def base(self) -> Dict[str, Any]:
         """The base design's keywords, to run a point with: ``thud.simulate(**d.base, **x)``."""
     @property
+    def band_hz(self) -> List[float]:
+        """The forcing frequencies of the band (Hz), one run of each point per frequency."""
+    def runs(self, x: Mapping[str, DesignValue]) -> List[Dict[str, Any]]:
+        """The keywords of each run of a point, for ``thud.simulate(**kw)`` (one per band frequency)."""
+    @property
     def columns(self) -> List[str]:
         """The result columns a told result carries."""
     @property
@@ -1350,8 +1355,17 @@ class Designer:
     def tell(
         self,
         xs: Sequence[Mapping[str, DesignValue]],
-        results: Sequence[Union[Run, Mapping[str, Optional[float]], str, BaseException]],
+        results: Sequence[
+            Union[
+                Run,
+                Mapping[str, Optional[float]],
+                str,
+                BaseException,
+                Sequence[Union[Run, Mapping[str, Optional[float]]]],
+            ]
+        ],
     ) -> None:
-        """What each point gave: a Run, a dict by column, or why it could not be run."""
+        """What each point gave: a Run, a dict by column, or why it could not be run; with a
+        band, a list of those, one per frequency of band_hz."""
     def result(self) -> Front:
         """The front of every design told so far (partial until done)."""

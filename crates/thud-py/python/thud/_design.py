@@ -224,24 +224,40 @@ class Designer:
     The same NSGA-II as ``thud.design`` (same operators, generations and seed): told the
     results ``thud.simulate`` gives, it finds exactly ``thud.design``'s front. The search waits
     for a whole batch (its population) to be told before it asks for the next, so ``ask(n)``
-    returns fewer than n points (or none) while points asked are still out. A band (``over``)
-    is ``thud.design``'s alone: a Designer is told one run's results per design."""
+    returns fewer than n points (or none) while points asked are still out.
+
+    With a band (``over="freqs=4.5Hz:5.5Hz:21"``, a forced design) a point is one run per
+    frequency of ``d.band_hz``: ``[thud.simulate(**kw) for kw in d.runs(x)]``, told as that
+    list; each objective and result constraint is then its worst over the band, as
+    ``thud.design --over`` takes it."""
 
     def __init__(self, **params: Any) -> None:
-        if params.get("over") is not None:
-            # A told result is one run's; a band's worst over its frequencies is thud.design's.
-            raise _error("over", "invalid over: a Designer is told one run's results per design; "
-                                 "search a band with thud.design")
         self._native = _thud._Designer(**params)
         self._base: Dict[str, Any] = {k: v for k, v in params.items() if k not in _SEARCH and v is not None}
         record = json.loads(self._native.result())
         self._front_keys: List[str] = record["python"]["keywords"]
+        self._band: List[float] = list(self._native.band_hz())
 
     @property
     def base(self) -> Dict[str, Any]:
         """The base design's keywords (``preset``, ``design`` and the design's own), to run a
         point with: ``thud.simulate(**d.base, **x)``."""
         return dict(self._base)
+
+    @property
+    def band_hz(self) -> List[float]:
+        """The forcing frequencies of the band (Hz), one run of each point per frequency;
+        empty without a band."""
+        return list(self._band)
+
+    def runs(self, x: Mapping[str, Union[float, int, str]]) -> List[Dict[str, Any]]:
+        """The keywords of each run of the point ``x`` (as ``ask`` gave it), for
+        ``thud.simulate(**kw)``: the base design with the point's values, once, or once per
+        frequency of the band (``freq`` set), in the band's order."""
+        one = {**self._base, **x}
+        if not self._band:
+            return [one]
+        return [{**one, "freq": f} for f in self._band]
 
     @property
     def columns(self) -> List[str]:
@@ -274,7 +290,9 @@ class Designer:
     def tell(self, xs: Sequence[Mapping[str, Union[float, int, str]]], results: Sequence[Any]) -> None:
         """Tells what the points ``xs`` (as ``ask`` gave them) gave: each result a ``thud.Run``,
         a mapping by column (``{"spl_max_db": 99.7, "inclination_cm_s": 0.79}``, None where the
-        run has no value), or an exception or text saying why the point could not be run."""
+        run has no value), or an exception or text saying why the point could not be run. With
+        a band, each result is a list of those, one per frequency of ``band_hz`` in its order
+        (the runs of ``runs(x)``)."""
         if len(xs) != len(results):
             raise _error("results", f"invalid results: {len(results)} results for {len(xs)} points")
         columns = self.columns
@@ -284,11 +302,16 @@ class Designer:
             except (KeyError, TypeError):
                 raise _error("xs", f"invalid xs: expected a point as ask gave it (keys "
                                   f"{', '.join(self._front_keys)}), not {x!r}") from None
-            told: Union[str, List[Optional[float]]]
+            told: Union[str, List[List[Optional[float]]]]
             if isinstance(r, (str, BaseException)):
                 told = str(r) or type(r).__name__
+            elif self._band:
+                if isinstance(r, Mapping) or not isinstance(r, Sequence) or len(r) != len(self._band):
+                    raise _error("results", f"invalid results: a point of a band is a list of "
+                                            f"{len(self._band)} results, one per frequency of band_hz")
+                told = [[_read(run, c) for c in columns] for run in r]
             else:
-                told = [_read(r, c) for c in columns]
+                told = [[_read(r, c) for c in columns]]
             self._native.tell(values, told)
 
     def result(self) -> Front:
