@@ -116,7 +116,8 @@ fn fitted(c: &Case, table: &Table, span: f64, s: &Series) -> (bool, f64, bool, S
 /// standard uncertainties for every record, and within 2 % of the truth in at least 38 of 40
 /// (95 %) displacements and velocities (measured: 38 and 40 of 40, worst 2.04 % and 1.92 %,
 /// worst 1.8 and 2.1 standard uncertainties); an acceleration's share within 2 % is listed
-/// (19 of 40, median 2.5 %, worst 2.7 standard uncertainties: its noise, not a bias).
+/// (19 of 40, median 2.5 %, worst 2.7 standard uncertainties: its noise, not a bias; 15–22
+/// of 40 with other seeds of the noise draws, which choose its window, so it is not asserted).
 /// About 30 s of CPU (41 × 39 runs a design); 3 minutes on a busy 2-core machine.
 /// Per record kind of one design: covered, width ratio, noted, and the note.
 type Fits = Vec<(bool, f64, bool, String)>;
