@@ -30,12 +30,14 @@ def test_the_schema_is_every_table_with_name_unit_and_meaning():
     assert set(SCHEMA) == {"pulse", "history", "impacts", "ensemble", "sweep", "sweep_ensemble", "shard_part",
                            "response", "response_ensemble", "study", "bifurcation", "impact_map", "basins",
                            "restitution", "orbit", "continuation", "orbit_record", "continuation_record",
-                           "special", "limits", "cap", "range", "paper"}
+                           "continuation_family", "special", "limits", "cap", "range", "paper", "design",
+                           "design_front", "design_record", "structure_fit", "decay_model", "damper_fit",
+                           "input_shift"}
     for table, cols in SCHEMA.items():
         assert len({c[0] for c in cols}) == len(cols), table
         for name, unit, doc in cols:
-            # `{varied}`: one column per varied parameter.
-            plain = name == "{varied}" or name == name.lower()
+            # `{varied}`, `{variable}`, …: a template, one column per varied parameter, variable, ….
+            plain = name.startswith("{") or name == name.lower()
             assert plain and " " not in name and unit and doc, (table, name)
     assert names("sweep")[:2] == ["mass_kg", "gap_m"]
     assert names("response")[0] == "direction"
