@@ -115,14 +115,16 @@ pub fn run(a: &PulseArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
 fn summary(input: &PulseInput, c: &Contact, field: &Field, lv: &Levels) -> String {
     let target = match input.impact.target {
         Target::FixedPlate => "a fixed plate".to_string(),
-        Target::MovableMass(m) => format!("a movable mass of {} kg", num(m)),
+        Target::MovableMass(m) => format!("a movable mass of {} kg", short(m)),
     };
+    // The design's numbers as given (`short`, as `describe`); what the contact makes of them to
+    // four decimals.
     let mut s = format!(
-        "impact    sphere a {} mm, m {} g at U0 {} m/s on {target}, K_HZ {:.4e} N/m^1.5\n",
-        num(input.radius_m * 1e3),
-        num(input.impact.mass_kg * 1e3),
-        num(input.impact.u0_m_s),
-        input.impact.k_hz
+        "impact    sphere a {} mm, m {} g at U0 {} m/s on {target}, K_HZ {} N/m^1.5\n",
+        short(input.radius_m * 1e3),
+        short(input.impact.mass_kg * 1e3),
+        short(input.impact.u0_m_s),
+        short(input.impact.k_hz)
     );
     s += &format!(
         "contact   α_max {} µm   A_max {} m/s²   τ {} µs   F_max {} N\n",
@@ -133,16 +135,16 @@ fn summary(input: &PulseInput, c: &Contact, field: &Field, lv: &Levels) -> Strin
     );
     s += &format!(
         "observer  r {} m, θ {}°, {} source{}, ρ0c {} Pa·s/m, c {} m/s; direct arrival {} ms\n",
-        num(input.observer.r_m),
-        num(input.observer.theta_rad.to_degrees()),
+        short(input.observer.r_m),
+        short(input.observer.theta_rad.to_degrees()),
         input.radiation.source.name(),
         if input.radiation.source == crate::acoustics::Source::Quadrupole {
             format!(" ({} signs)", input.radiation.quad_signs.name())
         } else {
             String::new()
         },
-        num(input.radiation.air.rho_c_pa_s_m),
-        num(input.radiation.air.c_m_s),
+        short(input.radiation.air.rho_c_pa_s_m),
+        short(input.radiation.air.c_m_s),
         num(field.arrival_s() * 1e3)
     );
     if input.model == crate::design::Model::Physical {

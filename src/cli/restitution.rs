@@ -7,7 +7,7 @@ use super::{quantity, CliError, Ctx, Out, OutputArgs};
 use crate::design;
 use crate::limits::{self, short};
 use crate::paper::{col, Table};
-use crate::units::{num, Kind};
+use crate::units::Kind;
 
 #[derive(Debug, Clone, Args)]
 pub struct RestitutionArgs {
@@ -58,11 +58,11 @@ pub fn run(a: &RestitutionArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError
         id: "restitution",
         title: format!(
             "Restitution of one contact at U0 {} m/s against M {} kg (c1 {} N·s/m{}, K_HZ {})",
-            num(u0),
-            num(p.main_mass_kg),
-            num(p.c1_n_s_m),
+            short(u0),
+            short(p.main_mass_kg),
+            short(p.c1_n_s_m),
             if p.no_tension { ", no tension" } else { "" },
-            if d.materials.is_some() { "from materials".to_string() } else { format!("{:.4e} N/m^1.5", p.k_hz) }
+            if d.materials.is_some() { "from materials".to_string() } else { format!("{} N/m^1.5", short(p.k_hz)) }
         ),
         notes: std::iter::once(
             "One isolated ball–main-mass contact: δ'' = −K*(K_HZ δ^1.5 + c1 δ'), K* = (m+M)/(mM), R = u_out/U0."

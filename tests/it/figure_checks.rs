@@ -444,3 +444,60 @@ fn the_gallery_s_basins_show_more_than_one_attractor() {
     assert!(cells.len() >= 2, "one colour of cell: {cells:?}");
     assert!(cells.iter().all(|c| legend.iter().any(|l| l.color == *c)), "{cells:?} against {legend:?}");
 }
+
+/// The branch lines of a continuation figure's legend (`1: 6–8 Hz`) and whether it says it
+/// leaves some out (`… and N more`).
+fn branch_entries(svg: &str) -> (usize, bool) {
+    let doc = Document::parse(svg).unwrap();
+    let texts: Vec<String> =
+        doc.descendants().filter(|n| n.has_tag_name("text")).filter_map(|n| n.text().map(str::to_string)).collect();
+    let listed = texts
+        .iter()
+        .filter(|t| t.split_once(": ").is_some_and(|(k, _)| !k.is_empty() && k.chars().all(|c| c.is_ascii_digit())))
+        .count();
+    (listed, texts.iter().any(|t| t.starts_with("… and ") && t.ends_with("more (in the CSV)")))
+}
+
+/// `thud continue --svg` and `thud bifurcation --branches N --svg`: the legend lists every
+/// branch the JSON has (or says how many it leaves out), and the stable and unstable colours
+/// and the special points' markers stay apart for red–green colour blindness and are the ones
+/// drawn.
+#[test]
+fn continued_branches_are_each_listed_and_their_looks_stay_apart() {
+    let home = tempfile::tempdir().unwrap();
+    let svg = home.path().join("continue.svg");
+    let args = ["continue", "--preset", "forced-rattle", "--vary", "f=6Hz:8Hz:4", "--json", "--svg"];
+    let (code, json, err) = crate::common::thud_in(home.path(), &[&args[..], &[svg.to_str().unwrap()]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let n = v["branches"].as_array().unwrap().len();
+    assert!(n >= 1, "{json}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let (listed, more) = branch_entries(&text);
+    assert!(listed == n || (more && listed == 10), "{n} branches, {listed} listed (more: {more})");
+    // The gallery's family (f 6–8 Hz from 5 seeds): its branches listed too. (Over a
+    // bifurcation diagram, `--branches N`, the legend names the stable and unstable looks, not
+    // each branch: the legend check of every figure covers it.)
+    let (listed, more) = branch_entries(&made().pictures["continue.svg"]);
+    assert!((1..=10).contains(&listed), "continue.svg: {listed} listed, more {more}");
+    // The looks: stable and unstable curves in their colours, the special points in black
+    // markers of a shape per kind; all of them apart under red–green colour blindness.
+    let stable = thud::export::continuation::STABLE;
+    let unstable = thud::export::continuation::UNSTABLE;
+    let (data, legend, _) = looks_of(&text);
+    assert!(data.iter().any(|l| l.kind == "curve" && l.color == stable), "a stable stretch drawn: {data:?}");
+    let colors: Vec<&str> = data.iter().chain(&legend).map(|l| l.color.as_str()).collect();
+    for c in &colors {
+        assert!([stable, unstable, "#000000"].contains(c), "an unexpected colour {c}");
+    }
+    let (d, vision, a, b) = crate::cvd::closest_pair(&[stable, unstable, "#000000"]);
+    assert!(d >= MIN_DELTA_E, "{a} and {b}: ΔE00 {d:.1} with {vision}");
+    let markers: BTreeSet<&str> = data.iter().filter(|l| l.kind != "curve").map(|l| l.kind.as_str()).collect();
+    let kinds: BTreeSet<&str> = v["branches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|b| b["specials"].as_array().unwrap().iter().map(|s| s["kind"].as_str().unwrap()))
+        .collect();
+    assert!(markers.len() <= kinds.len(), "a marker shape per kind of special point: {markers:?} for {kinds:?}");
+}

@@ -171,7 +171,7 @@ fn the_legend_lists_the_curves_in_the_order_they_lie() {
             }
         }
         ends.sort_by(|a, b| b.2.total_cmp(&a.2));
-        ends.into_iter().map(|e| (thud::units::sig(e.0, 4), e.2)).collect()
+        ends.into_iter().map(|e| (thud::units::short(e.0), e.2)).collect()
     };
     let doc = paper_svg("fig11");
     let legend: Vec<String> = legend_texts(&doc, 660.0);

@@ -192,6 +192,12 @@ fn check_study_and_orbit_headers(checked: &mut Vec<&'static str>) {
             &schema::CONTINUATION,
             vec!["freq_hz"],
         ),
+        (
+            "continue N --csv",
+            vec!["continue", "--csv", "--preset", "forced-rattle", "--vary", "f=5.5:5.6:2"],
+            &schema::CONTINUATION_FAMILY,
+            vec!["freq_hz"],
+        ),
     ];
     for (what, args, t, varied) in orbits {
         let want: Vec<String> = t
@@ -208,6 +214,74 @@ fn check_study_and_orbit_headers(checked: &mut Vec<&'static str>) {
         assert_eq!(header(&ok(&args)), want, "{what}: the header is not the schema's `{}` table", t.id);
         checked.push(t.id);
     }
+}
+
+/// A design search's flags: two numeric variables and a choice, two objectives, a parameter's
+/// and a result's constraint (a tiny search: only the columns matter here).
+const DESIGN_SEARCH: [&str; 22] = [
+    "design",
+    "--vary",
+    "mass=20g:80g",
+    "--vary",
+    "gap=2cm:4cm",
+    "--choose",
+    "sphere=steel,nylon",
+    "--minimize",
+    "spl_max_db",
+    "--maximize",
+    "inclination_cm_s",
+    "--require",
+    "mass<=60g",
+    "--require",
+    "spl_max_db>=10",
+    "--evaluations",
+    "8",
+    "--seed",
+    "1",
+    "--duration",
+    "0.5",
+    "--no-limit",
+];
+
+/// The `design` table's templates expanded for [`DESIGN_SEARCH`]: a numeric variable named as
+/// `sweep --vary` heads the same parameter, a choice bare, an objective as its result column, a
+/// constraint `margin_NAME_le|ge`; `file` only with `--save`.
+fn design_columns(saved: bool) -> Vec<String> {
+    // The rule "named as sweep --vary's column": read the names off that command's header.
+    let study = header(&ok(&["sweep", "--csv", "--vary", "mass=20g:80g:2", "--vary", "gap=2cm:4cm:2"]));
+    let varied: Vec<String> = study[1..3].to_vec();
+    assert_eq!(varied, ["mass_kg", "gap_m"], "sweep --vary's columns");
+    let mut out = Vec::new();
+    for c in schema::DESIGN.columns {
+        match c.name {
+            "{variable}" => out.extend(varied.iter().cloned().chain(["sphere".to_string()])),
+            "{objective}" => out.extend(["spl_max_db", "inclination_cm_s"].map(String::from)),
+            "{margin}" => out.extend(["margin_mass_le", "margin_spl_max_db_ge"].map(String::from)),
+            "file" if !saved => {}
+            name => out.push(name.to_string()),
+        }
+    }
+    // An objective is a result column: the sweep table's column of the same name.
+    for ob in ["spl_max_db", "inclination_cm_s"] {
+        assert!(schema::SWEEP.names().contains(&ob), "{ob}");
+    }
+    out
+}
+
+/// `thud design --csv`, with and without `--save DIR` (which adds `file`), is the `design`
+/// table with its templates expanded by the search's flags.
+fn check_design_header(checked: &mut Vec<&'static str>, dir: &Path) {
+    let home = dir.join("home");
+    std::fs::create_dir_all(&home).unwrap();
+    let plain = crate::common::thud_in(&home, &[&DESIGN_SEARCH[..], &["--csv"]].concat());
+    assert_eq!(plain.0, 0, "{}", plain.2);
+    assert_eq!(header(&plain.1), design_columns(false), "design --csv: the design table without file");
+    let save = dir.join("front");
+    let args = [&DESIGN_SEARCH[..], &["--csv", "--save", save.to_str().unwrap()]].concat();
+    let saved = crate::common::thud_in(&home, &args);
+    assert_eq!(saved.0, 0, "{}", saved.2);
+    assert_eq!(header(&saved.1), design_columns(true), "design --csv --save: the design table");
+    checked.push(schema::DESIGN.id);
 }
 
 #[test]
@@ -275,6 +349,7 @@ fn every_cli_csv_header_is_the_one_definition() {
     let merged = ok(&["merge", &paths[0], &paths[1], "--out", "-", "--csv"]);
     check("merge --csv".into(), &merged, &schema::SWEEP_ENSEMBLE);
     check_study_and_orbit_headers(&mut checked);
+    check_design_header(&mut checked, dir.path());
     // Without --target, restitution's table stops before its target column.
     let plain = header(&ok(&["restitution", "--csv"]));
     assert_eq!(plain, names(&schema::RESTITUTION_TABLE)[..2], "restitution --csv without --target");
@@ -334,6 +409,64 @@ fn every_other_json_record_s_keys_are_in_the_schema() {
         want.sort_unstable();
         assert_eq!(row, want, "paper {id} --json: a row's keys are its columns' keys");
     }
+}
+
+/// `thud design --json`: the record's keys, a front design's, and the keys inside a front
+/// design: its variables and objectives by the `design` table's columns, its margins by the
+/// constraints as typed.
+#[test]
+fn design_and_fit_json_records_are_the_schema_s() {
+    let home = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let (code, out, err) = crate::common::thud_in(home.path(), args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        out
+    };
+    let text = run(&[&DESIGN_SEARCH[..], &["--json"]].concat());
+    within("design --json", &top_keys(&text), &schema::DESIGN_RECORD);
+    let front = first_record(&text, "front");
+    within("design --json front[]", &top_keys(&front), &schema::DESIGN_FRONT);
+    let v: Value = serde_json::from_str(&front).unwrap();
+    let keys = |k: &str| -> Vec<String> {
+        let mut ks: Vec<String> = v[k].as_object().unwrap().keys().cloned().collect();
+        ks.sort();
+        ks
+    };
+    let columns = design_columns(false);
+    let (mut vars, mut obs) = (columns[1..4].to_vec(), columns[4..6].to_vec());
+    vars.sort();
+    obs.sort();
+    assert_eq!(keys("variables"), vars, "design --json front[].variables");
+    assert_eq!(keys("objectives"), obs, "design --json front[].objectives");
+    assert_eq!(keys("margins"), ["mass<=60g", "spl_max_db>=10"], "design --json front[].margins");
+
+    // A structure's free decay: M 2 kg, K 8e4 N/m, C 6 N·s/m, in mm, with a small ripple.
+    let (m, k, c) = (2.0f64, 8.0e4f64, 6.0f64);
+    let (s, wd) = (c / (2.0 * m), (k / m - (c / (2.0 * m)).powi(2)).sqrt());
+    let mut csv = String::from("t_ms,x_mm\n");
+    for i in 0..3000 {
+        let t = f64::from(i) / 2000.0;
+        let ripple = 0.01 * (f64::from(i) * 1.7).sin();
+        csv += &format!("{},{}\n", t * 1e3, 0.3 / wd * (-s * t).exp() * (wd * t).sin() * 1e3 + ripple);
+    }
+    let decay = home.path().join("decay.csv");
+    std::fs::write(&decay, csv).unwrap();
+    let fit = run(&["fit", "structure", "--data", decay.to_str().unwrap(), "--main-mass", "2", "--json"]);
+    assert_eq!(top_keys(&fit), names(&schema::STRUCTURE_FIT), "fit structure --json");
+    assert_eq!(top_keys(&object(&fit, "model")), names(&schema::DECAY_MODEL), "fit structure --json model");
+
+    // A damper's record: thud's own run, fitted with M's uncertainty carried (inputs[]).
+    let record = run(&["simulate", "--c1", "60", "--csv", "--samples", "6001"]);
+    let file = home.path().join("sim.csv");
+    std::fs::write(&file, record).unwrap();
+    let fit = run(&["fit", "damper", "--data", file.to_str().unwrap(), "--main-mass", "0.5kg±5%", "--json"]);
+    // Optional keys (inputs, the record's v0, note) are left out when empty: a subset, in order.
+    let keys = top_keys(&fit);
+    within("fit damper --json", &keys, &schema::DAMPER_FIT);
+    let order: Vec<String> = names(&schema::DAMPER_FIT).into_iter().filter(|k| keys.contains(k)).collect();
+    assert_eq!(keys, order, "fit damper --json: the schema's order");
+    assert!(keys.contains(&"inputs".to_string()), "an input carried: {fit}");
+    assert_eq!(top_keys(&first_record(&fit, "inputs")), names(&schema::INPUT_SHIFT), "fit damper --json inputs[]");
 }
 
 #[test]

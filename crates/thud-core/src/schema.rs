@@ -360,6 +360,14 @@ pub const CONTINUATION: Table = Table {
     ],
 };
 
+/// `thud continue --vary NAME=FROM:TO:N --csv`: every branch of the family, each point a row
+/// with its branch's number in front.
+pub const CONTINUATION_FAMILY: Table = Table {
+    id: "continuation_family",
+    written_by: "continue --vary NAME=FROM:TO:N --csv",
+    columns: &join::<12>(&[&[col("branch", "1", "the branch's number in the family, from 1")], CONTINUATION.columns]),
+};
+
 // The JSON records whose keys are not a table's columns: each key of the record, in order.
 const DESIGN_KEY: Column = col("design", "—", "the design as run (the keys of a saved design)");
 const VALUE: Column = col("value", "—", "the varied parameter's value, in the unit of the record's `unit`");
@@ -475,8 +483,170 @@ pub const PAPER: Table = Table {
     ],
 };
 
+// A design search (`thud design`): the front's columns follow the user's --vary, --minimize,
+// --maximize and --require, so three of them are templates, as `{varied}` is.
+/// A template: one column per `--vary` variable, named as `sweep --vary`'s column of its row
+/// (`mass_kg`, `gap_m`), a choice variable by its row's name alone (`sphere`).
+pub const VARIABLE: Column = col(
+    "{variable}",
+    "—",
+    "one column per --vary variable, named as sweep --vary's column (mass_kg, gap_m), a choice bare (sphere)",
+);
+/// A template: one column per `--minimize`/`--maximize` objective, named as the result
+/// column it is ([`crate::design::search::COLUMNS`]: `spl_max_db`, `steady_amplitude_m`).
+pub const OBJECTIVE: Column = col(
+    "{objective}",
+    "—",
+    "one column per --minimize/--maximize, named as the result column it is (spl_max_db, inclination_cm_s, steady_amplitude_m)",
+);
+/// A template: one column per `--require`, `margin_NAME_le` (NAME at most) or `margin_NAME_ge`
+/// (at least), NAME the result column or the parameter (`-` as `_`).
+pub const MARGIN: Column = col(
+    "{margin}",
+    "—",
+    "one column per --require: margin_NAME_le or margin_NAME_ge, the constraint's margin in NAME's unit (≥ 0: met)",
+);
+const DESIGN_INDEX: Column = col("index", "1", "the design's number in the search, in evaluation order, from 0");
+const DESIGN_FILE: Column = col("file", "—", "with --save DIR: the row's design file in DIR");
+
+/// `thud design --csv`: one row per front design; its `{…}` columns as the search's flags name
+/// them. `thud design --json` `front[]` holds the same values grouped (the `design_front` table).
+pub const DESIGN: Table = Table {
+    id: "design",
+    written_by: "design --csv",
+    columns: &[DESIGN_INDEX, VARIABLE, OBJECTIVE, MARGIN, DESIGN_FILE],
+};
+
+/// A front design of `thud design --json` (`front[]`).
+pub const DESIGN_FRONT: Table = Table {
+    id: "design_front",
+    written_by: "design --json front[]",
+    columns: &[
+        DESIGN_INDEX,
+        col("variables", "—", "each variable's value by its design table column ({variable})"),
+        col("objectives", "—", "each objective's value by its column ({objective})"),
+        col("margins", "—", "each constraint's margin (≥ 0: met), keyed by the constraint as typed"),
+        DESIGN_FILE,
+    ],
+};
+
+/// The keys of `thud design --json`.
+pub const DESIGN_RECORD: Table = Table {
+    id: "design_record",
+    written_by: "design --json",
+    columns: &[
+        DESIGN_KEY,
+        col("variables", "—", "each variable: {name, column, unit, from, to} or {name, column, options}"),
+        col("objectives", "—", "each objective: {column, sense} (minimize or maximize)"),
+        col("constraints", "—", "the --require constraints as typed"),
+        col("band_hz", "Hz", "with a forced objective over a band: the band's frequencies"),
+        col("ensemble", "—", "robust mode: {runs, quantile}, the ball starts and the quantile each result is taken at"),
+        col("evaluations", "1", "designs run"),
+        col("budget", "1", "designs the search was allowed (--evaluations)"),
+        col("seed", "1", "the search's seed"),
+        col("partial", "—", "true when the search stopped before its budget"),
+        col("reference", "—", "the hypervolume's reference point, one value per objective (null without)"),
+        col(
+            "hypervolume",
+            "—",
+            "the front's hypervolume against the reference, in the objectives' units (null without)",
+        ),
+        col("front", "—", "the front's designs (the design_front table)"),
+        col("binding", "—", "when no design is feasible: the constraint that binds, in words"),
+    ],
+};
+
+// Fits (`thud fit structure|damper --json`). A residual is in the record's signal unit.
+const RESIDUAL_RMS: Column =
+    col("residual_rms", "m, m/s, m/s²", "RMS of data − model: in the record's unit (structure fit), in m (damper fit)");
+const FIT_UNIT: Column = col("unit", "—", "the varied parameter's or the measured signal's unit");
+
+/// The keys of `thud fit structure --json`; its `model` is the `decay_model` table. With
+/// `--save` the fitted design is also written as a design file (TOML, a design's keys).
+pub const STRUCTURE_FIT: Table = Table {
+    id: "structure_fit",
+    written_by: "fit structure --json",
+    columns: &[
+        col("f_n_hz", "Hz", "undamped natural frequency f_n"),
+        col("f_n_hz_stderr", "Hz", "its standard error"),
+        col("zeta", "1", "damping ratio ζ"),
+        col("zeta_stderr", "1", "its standard error"),
+        col("k_n_m", "N/m", "stiffness K = M·ω_n²"),
+        col("k_n_m_stderr", "N/m", "its standard error"),
+        col("c_n_s_m", "N·s/m", "viscous damping C = 2·M·σ"),
+        col("c_n_s_m_stderr", "N·s/m", "its standard error"),
+        col("main_mass_kg", "kg", "the main mass M given"),
+        RESIDUAL_RMS,
+        FIT_UNIT,
+        col("converged", "—", "true when the least-squares fit converged (else its best estimate)"),
+        col("termination", "—", "how the optimiser ended, in words"),
+        col("samples", "1", "samples in the record"),
+        col("cycles", "1", "whole cycles in the record"),
+        col("start_f_hz", "Hz", "the fit's start: the spectrum's peak"),
+        col("start_zeta", "1", "the fit's start: the log decrement's ζ"),
+        col("model", "—", "the fitted free decay (the decay_model table)"),
+    ],
+};
+
+/// The fitted free decay of `thud fit structure --json` (`model`): s(t) = e^{−στ}(a cos ω_d τ
+/// + b sin ω_d τ) + offset + drift·τ, τ = t − t0, in the record's unit.
+pub const DECAY_MODEL: Table = Table {
+    id: "decay_model",
+    written_by: "fit structure --json model",
+    columns: &[
+        col("t0_s", "s", "time origin t0: the record's first sample"),
+        col("sigma_1_s", "1/s", "decay rate σ = ζ·ω_n"),
+        col("omega_d_rad_s", "rad/s", "damped angular frequency ω_d"),
+        col("a", "unit", "cosine amplitude, in the record's unit"),
+        col("b", "unit", "sine amplitude, in the record's unit"),
+        col("offset", "unit", "DC offset, in the record's unit"),
+        col("drift_per_s", "unit/s", "drift, in the record's unit per second"),
+    ],
+};
+
+/// The keys of `thud fit damper --json`; an `inputs[]` entry is the `input_shift` table. With
+/// `--save` the design with the fitted c1 is also written as a design file (TOML).
+pub const DAMPER_FIT: Table = Table {
+    id: "damper_fit",
+    written_by: "fit damper --json",
+    columns: &[
+        col("c1_n_s_m", "N·s/m", "the fitted contact damping c1"),
+        col("c1_n_s_m_stderr", "N·s/m", "half its 95 % interval over 1.96"),
+        col("c1_n_s_m_ci", "N·s/m", "its 95 % interval [low, high]"),
+        col("ci_open", "—", "true when the interval reaches an end of the c1 grid (the data do not bound c1 there)"),
+        col("restitution", "1", "restitution of one contact at the first impact's speed with the fitted c1"),
+        col("restitution_stderr", "1", "half its 95 % interval over 1.96"),
+        col("restitution_ci", "1", "its 95 % interval [low, high]"),
+        col("first_impact_speed_m_s", "m/s", "the first impact's speed, the median run's at the fitted c1"),
+        RESIDUAL_RMS,
+        col("statistic", "1", "the data's statistic, mean ln(A_j/A_0)"),
+        col("periods", "1", "the envelope's periods the statistic used"),
+        col("records", "1", "records fitted"),
+        col("starts", "1", "ball starts (runs) per value of c1"),
+        col("grid_points", "1", "values of c1 in the grid"),
+        col("envelope_period_s", "s", "the envelopes' period: one amplitude per period"),
+        col("measured_envelope_m", "m", "the first record's amplitude per period"),
+        col("model_envelope_m", "m", "the median run's amplitude per period at the fitted c1"),
+        col("inputs", "—", "the given inputs' uncertainties carried into the interval (the input_shift table)"),
+        col("v0_m_s_record", "m/s", "the strike's speed read from the records"),
+        col("v0_m_s_record_stderr", "m/s", "its standard uncertainty"),
+        col("note", "—", "where the data cannot bound c1 well: why and what to do"),
+    ],
+};
+
+/// An input's uncertainty carried into a damper fit: `thud fit damper --json` `inputs[]`.
+pub const INPUT_SHIFT: Table = Table {
+    id: "input_shift",
+    written_by: "fit damper --json inputs[]",
+    columns: &[
+        col("input", "—", "the input as its flag names it: main-mass, k, c, mass, gap or v0"),
+        col("relative_sd", "1", "its relative standard uncertainty"),
+        col("ln_c1_shift", "1", "how far one standard uncertainty moves ln c1"),
+    ],
+};
+
 /// Every table, in the guide's order.
-pub const TABLES: [Table; 23] = [
+pub const TABLES: [Table; 31] = [
     PULSE,
     HISTORY,
     IMPACTS,
@@ -493,6 +663,7 @@ pub const TABLES: [Table; 23] = [
     RESTITUTION_TABLE,
     ORBIT_TABLE,
     CONTINUATION,
+    CONTINUATION_FAMILY,
     ORBIT_RECORD,
     CONTINUATION_RECORD,
     SPECIAL,
@@ -500,6 +671,13 @@ pub const TABLES: [Table; 23] = [
     CAP,
     RANGE,
     PAPER,
+    DESIGN,
+    DESIGN_FRONT,
+    DESIGN_RECORD,
+    STRUCTURE_FIT,
+    DECAY_MODEL,
+    DAMPER_FIT,
+    INPUT_SHIFT,
 ];
 
 /// The table `id`, if there is one.
@@ -520,7 +698,7 @@ mod tests {
             assert_eq!(names.len(), t.columns.len(), "{}: a name twice", t.id);
             for c in t.columns {
                 assert!(
-                    *c == VARIED
+                    c.name.starts_with('{')
                         || c.name.chars().all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_'),
                     "{}",
                     c.name

@@ -43,7 +43,7 @@ use thud_core::params::{self, Spelling};
 use thud_core::report::{EnsembleReport, ResponseEnsembleReport, ResponseReport};
 use thud_core::response::{self, ResponseOptions};
 use thud_core::units::Kind;
-use thud_core::{dynamics, ensemble, study, ThudError};
+use thud_core::{continuation, dynamics, ensemble, study, ThudError};
 
 use args::{enforce, engine_error, parameter_error, refuse, Kwargs};
 use objects::{PyChart, PyEnsemble, PyPulse, PyResponse, PyRun};
@@ -59,7 +59,7 @@ const OPTIONS: [(&str, &[&str]); 13] = [
     ("response", &["preset", "design", "continuation", "ensemble", "progress", "no_limit"]),
     ("fit_damper", &["preset", "design", "quantity", "no_limit"]),
     ("study", &["preset", "design", "progress", "no_limit"]),
-    ("bifurcation", &["preset", "design", "transient", "continuation", "progress", "no_limit"]),
+    ("bifurcation", &["preset", "design", "transient", "continuation", "branches", "progress", "no_limit"]),
     ("orbit", &["preset", "design", "period", "symmetric", "guess"]),
     ("continuation", &["preset", "design", "period", "symmetric"]),
     ("impact_map", &["preset", "design", "transient", "no_limit"]),
@@ -487,7 +487,8 @@ fn _study(py: Python<'_>, axes: &Bound<'_, PyList>, params: Option<&Bound<'_, Py
 /// The bifurcation diagram of a forced design over one parameter (`thud bifurcation --vary
 /// NAME=… --json`): per value the stroboscopic samples, the impacts and the orbit's type.
 /// Options: transient (periods before sampling, default 200), periods (sampled, default
-/// here 100), continuation. Returns the JSON; `thud.bifurcation` turns it into xarray.
+/// here 100), continuation, branches (N seed values: the continued branches to draw over the
+/// figure, as `--branches N`). Returns the JSON; `thud.bifurcation` turns it into xarray.
 #[pyfunction]
 #[pyo3(signature = (name, values, **params))]
 fn _bifurcation(
@@ -506,6 +507,7 @@ fn _bifurcation(
     let periods = if args::given(&kw.params, "periods") { d.damper.steady_periods } else { dynamics::DEFAULT_PERIODS };
     let s = dynamics::Settings { transient_periods: u32::try_from(transient).unwrap_or(u32::MAX), periods };
     refuse(py, dynamics::check_work(vary.values.len(), s, continuation), "values", no_limit)?;
+    let seeds = branch_seeds(py, &kw, &d, no_limit)?;
     let n = vary.values.len() * if continuation { 2 } else { 1 };
     let progress = Progress::new(py, &kw, n)?;
     let done = &progress.done;
@@ -518,7 +520,56 @@ fn _bifurcation(
     thud_core::finite::check(&b).map_err(|e| args::non_finite(&e.0))?;
     // The parameter's column as `bifurcation --csv` heads it (`freq_hz`): Python's coordinate.
     let column = study::column(vary.name(), vary.unit());
-    json_of(py, &serde_json::json!({ "design": d.design(), "bifurcation": b, "column": column }))
+    let mut record = serde_json::json!({ "design": d.design(), "bifurcation": b, "column": column });
+    if let Some(n) = seeds {
+        let branches = {
+            let d = d.clone();
+            detach::run(py, move |cancel| continuation::continue_family(&d, &vary, n, Some(cancel), &|_| {}))?
+        };
+        let branches = branches.map_err(|e| engine_error(py, orbits::keyword(e)))?;
+        thud_core::finite::check(&branches).map_err(|e| args::non_finite(&e.0))?;
+        record["branches"] = orbits::branches_json(py, &branches)?;
+    }
+    json_of(py, &record)
+}
+
+/// `branches=N` of `bifurcation`: a whole number of seed values from 2 to
+/// [`continuation::MAX_SEEDS`] with the event solver, checked as `thud bifurcation --branches`.
+fn branch_seeds(
+    py: Python<'_>,
+    kw: &Kwargs<'_>,
+    d: &thud_core::design::ValidDesign,
+    no_limit: bool,
+) -> PyResult<Option<usize>> {
+    let Some(v) = kw.option("branches") else { return Ok(None) };
+    let max = continuation::MAX_SEEDS;
+    // As the command line reads `--branches N`: a number (or its text) that is whole.
+    let n = if v.is_instance_of::<pyo3::types::PyBool>() {
+        None
+    } else if let Ok(s) = v.cast::<PyString>() {
+        s.to_cow()?.trim().parse::<f64>().ok()
+    } else {
+        v.extract::<f64>().ok()
+    };
+    let n = n.filter(|x| x.fract() == 0.0 && (2.0..=max as f64).contains(x)).ok_or_else(|| {
+        let shown = v.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
+        parameter_error(
+            py,
+            "branches",
+            format!("invalid branches: {shown}; give a whole number of seed values from 2 to {max}"),
+        )
+    })?;
+    if d.solver != thud_core::damper::Solver::Event {
+        return Err(parameter_error(
+            py,
+            "solver",
+            "invalid solver: newmark: orbits are continued with the event solver; use solver=\"event\" with branches"
+                .into(),
+        ));
+    }
+    let n = n as usize;
+    enforce(py, limits::family_seed_periods(n), "branches", "give fewer seed values", no_limit)?;
+    Ok(Some(n))
 }
 
 /// `v` (its numbers checked finite before) as JSON text.
@@ -618,6 +669,7 @@ fn _parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     defaults.set_item("period", py.None())?;
     defaults.set_item("symmetric", false)?;
     defaults.set_item("guess", py.None())?;
+    defaults.set_item("branches", py.None())?;
     d.set_item("defaults", defaults)?;
     let refused = PyDict::new(py);
     // A response sweeps the frequency itself (`params::response_design` refuses `freq`).

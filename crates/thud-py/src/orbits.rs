@@ -62,7 +62,7 @@ fn guess(py: Python<'_>, kw: &Kwargs<'_>) -> PyResult<Option<Guess>> {
 }
 
 /// The engine's names of the orbit's options as this module's keywords.
-fn keyword(e: ThudError) -> ThudError {
+pub(crate) fn keyword(e: ThudError) -> ThudError {
     match e.param() {
         "vary" => e.renamed("values"),
         _ => e,
@@ -126,8 +126,39 @@ pub fn _continuation(
         m.insert("design".into(), serde_json::to_value(d.design()).unwrap_or_default());
         // The parameter's column as `thud continue --csv` heads it (`freq_hz`).
         m.insert("column".into(), study::column(&branch.name, &branch.unit).into());
+        // The range asked for, which the figure's title names (`thud continue --svg`'s).
+        m.insert("range".into(), serde_json::json!([a, b]));
     }
     json_of(py, &v)
+}
+
+/// `branches` as their JSON with each point's x(kT) at each of its orbit's periods
+/// (`strobe_m`, which the files leave out), for drawing them over a bifurcation diagram.
+pub(crate) fn branches_json(py: Python<'_>, branches: &[continuation::Branch]) -> PyResult<serde_json::Value> {
+    let mut v =
+        serde_json::to_value(branches).map_err(|e| engine_error(py, ThudError::invalid("json", e.to_string())))?;
+    for (b, bv) in branches.iter().zip(v.as_array_mut().into_iter().flatten()) {
+        for (p, pv) in b.points.iter().zip(bv["points"].as_array_mut().into_iter().flatten()) {
+            pv["strobe_m"] = serde_json::json!(p.strobe_m);
+        }
+    }
+    Ok(v)
+}
+
+/// The branches of a record's `branches` (as [`branches_json`] wrote them), each point's
+/// `strobe_m` restored.
+pub(crate) fn branches_of(v: &serde_json::Value) -> Result<Vec<continuation::Branch>, serde_json::Error> {
+    let Some(list) = v.as_array() else { return Ok(Vec::new()) };
+    list.iter()
+        .map(|bv| {
+            let mut b: continuation::Branch = serde_json::from_value(bv.clone())?;
+            for (p, pv) in b.points.iter_mut().zip(bv["points"].as_array().into_iter().flatten()) {
+                p.strobe_m =
+                    serde_json::from_value(pv.get("strobe_m").cloned().unwrap_or_default()).unwrap_or_default();
+            }
+            Ok(b)
+        })
+        .collect()
 }
 
 /// _impact_map(**params) -> str

@@ -129,7 +129,8 @@ pub fn _render<'py>(
 /// _figure(kind, record, pdf=False, size=None, title=True) -> bytes
 ///
 /// The figure `thud basins --svg` (kind "basins"), `thud impact-map --svg` (kind
-/// "impact_map") or `thud bifurcation --svg` (kind "bifurcation") draws, from the result's
+/// "impact_map"), `thud bifurcation --svg` (kind "bifurcation"; with the record's "branches",
+/// `--branches N`'s) or `thud continue --svg` (kind "continuation") draws, from the result's
 /// record (its `--json` object; a bifurcation's under "bifurcation"); `pdf=True`: `--pdf`.
 #[pyfunction]
 #[pyo3(signature = (kind, record, pdf = false, size = None, title = true))]
@@ -160,11 +161,20 @@ pub fn _figure<'py>(
         "bifurcation" => {
             let b: thud_core::dynamics::Bifurcation =
                 serde_json::from_value(value.get("bifurcation").cloned().unwrap_or_default()).map_err(bad)?;
+            let branches =
+                crate::orbits::branches_of(value.get("branches").unwrap_or(&serde_json::Value::Null)).map_err(bad)?;
             let t = thud_render::dynamics::bifurcation_title(&design, &b);
-            thud_render::dynamics::bifurcation_svg(&b, &t, &look)
+            thud_render::dynamics::bifurcation_with_branches_svg(&b, &branches, &t, &look)
+        }
+        "continuation" => {
+            let branch: thud_core::continuation::Branch = serde_json::from_value(value.clone()).map_err(bad)?;
+            let range: Vec<f64> =
+                serde_json::from_value(value.get("range").cloned().unwrap_or_default()).map_err(bad)?;
+            let t = thud_render::dynamics::range_title("Orbits continued", &design, &branch.name, &branch.unit, &range);
+            thud_render::continuation::continuation_svg(std::slice::from_ref(&branch), &t, &look)
         }
         _ => {
-            let msg = format!("invalid kind: '{kind}'; expected basins, impact_map or bifurcation");
+            let msg = format!("invalid kind: '{kind}'; expected basins, impact_map, bifurcation or continuation");
             return Err(parameter_error(py, "kind", msg));
         }
     };

@@ -189,3 +189,35 @@ def test_a_bifurcation_diagram_draws_what_thud_bifurcation_draws(cli, tmp_path):
 
     again = pickle.loads(pickle.dumps(ds))
     assert written(tmp_path, again.to_svg) == written(tmp_path, ds.to_svg)
+
+
+def test_a_continued_branch_draws_what_thud_continue_draws(cli, tmp_path):
+    ds = thud.continuation(preset="forced-rattle", freq=(5.5, 5.6))
+    for method, flag in ((ds.to_svg, "--svg"), (ds.to_pdf, "--pdf")):
+        out = tmp_path / f"continue{flag}"
+        code, _, err = cli("continue", "--preset", "forced-rattle", "--vary", "f=5.5:5.6", flag, str(out))
+        assert code == 0, err
+        assert written(tmp_path, method) == out.read_bytes()
+    svg = written(tmp_path, ds.to_svg).decode()
+    assert "Orbits continued over freq 5.5–5.6 Hz" in svg
+    with pytest.raises(ValueError, match="derived"):
+        ds.isel(point=[0]).to_svg(tmp_path / "part.svg")
+    assert not (tmp_path / "part.svg").exists()
+
+
+def test_a_bifurcation_with_branches_draws_what_thud_bifurcation_branches_draws(cli, tmp_path):
+    kw = dict(preset="forced-rattle", transient=20, periods=4)
+    args = ["bifurcation", "--preset", "forced-rattle", "--transient", "20", "--periods", "4", "--vary", "f=7Hz:8Hz:3"]
+    plain = thud.bifurcation(freq=[7.0, 7.5, 8.0], **kw)
+    ds = thud.bifurcation(freq=[7.0, 7.5, 8.0], branches=2, **kw)
+    for method, flag in ((ds.to_svg, "--svg"), (ds.to_pdf, "--pdf")):
+        out = tmp_path / f"branches{flag}"
+        code, _, err = cli(*args, "--branches", "2", flag, str(out))
+        assert code == 0, err
+        assert written(tmp_path, method) == out.read_bytes()
+    # The branches are drawn: not the plain diagram's figure.
+    assert written(tmp_path, ds.to_svg) != written(tmp_path, plain.to_svg)
+    for bad in (1, 1001, 2.5, True, "two"):
+        with pytest.raises(thud.ParameterError, match="branches") as info:
+            thud.bifurcation(freq=[7.0, 8.0], branches=bad, **kw)
+        assert info.value.param == "branches"

@@ -30,12 +30,14 @@ def test_the_schema_is_every_table_with_name_unit_and_meaning():
     assert set(SCHEMA) == {"pulse", "history", "impacts", "ensemble", "sweep", "sweep_ensemble", "shard_part",
                            "response", "response_ensemble", "study", "bifurcation", "impact_map", "basins",
                            "restitution", "orbit", "continuation", "orbit_record", "continuation_record",
-                           "special", "limits", "cap", "range", "paper"}
+                           "continuation_family", "special", "limits", "cap", "range", "paper", "design",
+                           "design_front", "design_record", "structure_fit", "decay_model", "damper_fit",
+                           "input_shift"}
     for table, cols in SCHEMA.items():
         assert len({c[0] for c in cols}) == len(cols), table
         for name, unit, doc in cols:
-            # `{varied}`: one column per varied parameter.
-            plain = name == "{varied}" or name == name.lower()
+            # `{varied}`, `{variable}`, …: a template, one column per varied parameter, variable, ….
+            plain = name.startswith("{") or name == name.lower()
             assert plain and " " not in name and unit and doc, (table, name)
     assert names("sweep")[:2] == ["mass_kg", "gap_m"]
     assert names("response")[0] == "direction"
@@ -162,3 +164,17 @@ def test_python_s_names_are_the_csv_s_columns(cli):
     assert set(names("continuation")[1:]) - {"orbit"} <= set(ds.data_vars)
     b = thud.bifurcation(preset="forced-rattle", freq=[7.5, 7.6], transient=20, periods=4)
     assert "freq_hz" in b.coords and b["freq"].attrs["deprecated"] == "use freq_hz"
+
+
+def test_a_structure_fit_has_the_schema_s_keys_in_order():
+    # A free decay of M 2 kg, K 8e4 N/m, C 6 N·s/m struck at 0.3 m/s, sampled at 3 kHz.
+    import math
+
+    import numpy as np
+
+    t = np.arange(3600) / 3000.0
+    s, wd = 1.5, math.sqrt(4.0e4 - 1.5 ** 2)
+    x = 0.3 / wd * np.exp(-s * t) * np.sin(wd * t) * (1 + 0.001 * np.sin(91.0 * t))
+    f = thud.fit_structure(t, x, main_mass=2.0)
+    assert list(f) == names("structure_fit")
+    assert list(f["model"]) == names("decay_model")

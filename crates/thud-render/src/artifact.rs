@@ -217,8 +217,8 @@ fn grid(opts: &ExportOptions) -> (Vec<f64>, Vec<f64>) {
 fn listener(d: &Design) -> String {
     format!(
         "r {} m, θ {}°, {}",
-        thud_core::units::sig(d.observer.r_m, 3),
-        thud_core::units::sig(d.observer.theta_rad.to_degrees(), 3),
+        thud_core::units::short(d.observer.r_m),
+        thud_core::units::short(d.observer.theta_rad.to_degrees()),
         d.radiation.source.name()
     )
 }
@@ -236,7 +236,7 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
                 csv::waveform(&field, points)?
             } else {
                 let title =
-                    format!("Sound pressure of one impact, U0 {} m/s ({})", thud_core::units::sig(u0, 4), listener(&d));
+                    format!("Sound pressure of one impact, U0 {} m/s ({})", thud_core::units::short(u0), listener(&d));
                 figures::waveform(&field, points, &title, &opts.look)
             }
         }
@@ -254,9 +254,9 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
             };
             let title = format!(
                 "{motion} with and without the damper (m {} g, d {} cm, v0 {} m/s)",
-                thud_core::units::sig(d.damper.impact_mass_kg * 1e3, 3),
-                thud_core::units::sig(d.damper.gap_m * 1e2, 3),
-                thud_core::units::sig(d.damper.v0_m_s, 3)
+                thud_core::units::short(d.damper.impact_mass_kg * 1e3),
+                thud_core::units::short(d.damper.gap_m * 1e2),
+                thud_core::units::short(d.damper.v0_m_s)
             );
             figures::history(&run(&d, points)?.run, &d.damper, &title, &opts.look)
         }
@@ -268,8 +268,8 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
             let u0 = impact_speed(&d, opts.u0_m_s)?;
             let title = format!(
                 "Directivity of one impact, U0 {} m/s, r {} m",
-                thud_core::units::sig(u0, 4),
-                thud_core::units::sig(d.observer.r_m, 3)
+                thud_core::units::short(u0),
+                thud_core::units::short(d.observer.r_m)
             );
             figures::directivity(&directivity_points(&d, u0)?, &title, &opts.look)
         }
@@ -279,9 +279,9 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
             let curve = design::restitution_curve(&d, &masses, u0)?;
             let title = format!(
                 "Restitution against impact mass (U0 {} m/s, c1 {} N·s/m, M {} kg)",
-                thud_core::units::sig(u0, 3),
-                thud_core::units::sig(d.damper.c1_n_s_m, 4),
-                thud_core::units::sig(d.damper.main_mass_kg, 3)
+                thud_core::units::short(u0),
+                thud_core::units::short(d.damper.c1_n_s_m),
+                thud_core::units::short(d.damper.main_mass_kg)
             );
             figures::restitution(&curve, &title, &opts.look)
         }
@@ -317,10 +317,10 @@ pub fn render(kind: Artifact, design: &ValidDesign, opts: &ExportOptions) -> Res
             } else {
                 let title = format!(
                     "Frequency response under F0 {} N (m {} g, d {} cm, M {} kg)",
-                    thud_core::units::sig(r.force_n, 3),
-                    thud_core::units::sig(d.damper.impact_mass_kg * 1e3, 3),
-                    thud_core::units::sig(d.damper.gap_m * 1e2, 3),
-                    thud_core::units::sig(d.damper.main_mass_kg, 3)
+                    thud_core::units::short(r.force_n),
+                    thud_core::units::short(d.damper.impact_mass_kg * 1e3),
+                    thud_core::units::short(d.damper.gap_m * 1e2),
+                    thud_core::units::short(d.damper.main_mass_kg)
                 );
                 figures::response(&r, &title, &opts.look)
             }

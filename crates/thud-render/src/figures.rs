@@ -484,7 +484,7 @@ pub fn paper_figure(table: &Table, thresholds: &Thresholds, look: &Look) -> Opti
                     // one marker shape per column: no colour stands for two groups.
                     let (gname, gunit) = split_unit(&label(table, group.unwrap_or_default()));
                     for (gi, &g) in groups.iter().enumerate() {
-                        let glabel = format!("{gname} {} {gunit}", sig(g, 4)).trim_end().to_string();
+                        let glabel = format!("{gname} {} {gunit}", short(g)).trim_end().to_string();
                         let name = if ys.len() > 1 { format!("{}, {glabel}", split_unit(&name).0) } else { glabel };
                         // Past the palette's colours a group repeats a colour with another
                         // dash pattern, and (one column) another marker: no two curves alike.

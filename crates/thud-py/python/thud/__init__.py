@@ -137,7 +137,9 @@ def bifurcation(**params: _Any) -> _Any:
     draws its diagram (``ds.to_svg(path)``, ``ds.to_pdf(path)``: ``thud bifurcation --svg|--pdf``).
     Options: transient (periods run before sampling, default 200), periods (sampled, default
     100), continuation (rising then falling, each value from the last one's end state),
-    progress, no_limit; every other keyword is the design's, as for ``simulate``."""
+    branches (N: the periodic orbits' branches continued from N seed values, drawn over the
+    figure's x(kT) panel, as ``--branches N``), progress, no_limit; every other keyword is the
+    design's, as for ``simulate``."""
     axes = _axes(params)
     if len(axes) != 1:
         raise ParameterError(f"invalid vary: bifurcation varies exactly one parameter given as a sequence, not {len(axes)}")
@@ -164,7 +166,9 @@ def continuation(**params: _Any) -> _Any:
     preset="forced-rattle")`` → an xarray Dataset on the dimension point (the value, orbit,
     stability, largest |λ|, amplitude and state at phase 0) with the special points (fold,
     period doubling, Neimark–Sacker, branch point, grazing) on the dimension special. A varied
-    frequency supplies the design's. Options: period, symmetric (as for ``orbit``)."""
+    frequency supplies the design's. The Dataset draws its figure (``ds.to_svg(path)``,
+    ``ds.to_pdf(path)``: ``thud continue --svg|--pdf``, byte for byte). Options: period,
+    symmetric (as for ``orbit``)."""
     axes = _axes(params)
     if len(axes) != 1:
         raise ParameterError(f"invalid vary: continuation varies exactly one parameter given as (FROM, TO), not {len(axes)}")

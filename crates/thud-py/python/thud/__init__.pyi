@@ -732,6 +732,7 @@ def bifurcation(
     settle: Optional[bool] = None,  # Run a forced run on past --duration, N periods at a time, until its steady amplitude settles
     transient: Count = 200,
     continuation: bool = False,
+    branches: Optional[Count] = None,
     progress: ProgressArg = None,
     no_limit: bool = False,
 ) -> Any:
@@ -741,7 +742,8 @@ def bifurcation(
     value, direction and orbit type ("2/1", "4/2", "chaotic", "not settled"); periods: the
     sampled periods (default 100 here); transient: periods run first (default 200). The
     Dataset draws its diagram: ``ds.to_svg(path)``, ``ds.to_pdf(path)`` (``thud bifurcation
-    --svg|--pdf``, byte for byte)."""
+    --svg|--pdf``, byte for byte); branches=N draws the periodic orbits' branches continued
+    from N seed values over its x(kT) panel (``--branches N``)."""
 
 def response(
     freqs_hz: Union[Sequence[Quantity], npt.ArrayLike, str, None] = None,
@@ -931,7 +933,9 @@ def continuation(
 ) -> Any:
     """The family of periodic orbits continued over the one keyword given as (FROM, TO), as
     ``thud continue``: an xarray Dataset on point (value, orbit, stability, amplitude) and
-    special (fold, period doubling, Neimark–Sacker, branch point, grazing)."""
+    special (fold, period doubling, Neimark–Sacker, branch point, grazing). The Dataset draws
+    its figure: ``ds.to_svg(path)``, ``ds.to_pdf(path)`` (``thud continue --svg|--pdf``, byte
+    for byte)."""
 
 def impact_map(
     *,

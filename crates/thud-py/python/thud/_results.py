@@ -352,7 +352,8 @@ def continuation_xarray(record: Dict[str, Any]) -> Any:
     first column, e.g. ``freq_hz``), the orbit, stability, largest |λ|, impacts per orbit,
     amplitude and the state at phase 0; the special points (fold, period doubling,
     Neimark–Sacker, branch point, grazing) on the dimension special; why the branch ended
-    early, if it did, in attrs."""
+    early, if it did, in attrs. The Dataset draws its figure (``ds.to_svg(path)``,
+    ``ds.to_pdf(path)``: ``thud continue --svg|--pdf``, byte for byte)."""
     xr = _need("xarray", "thud.continuation()")
     name, unit = record["name"], record["unit"]
     col = record["column"]
@@ -375,7 +376,9 @@ def continuation_xarray(record: Dict[str, Any]) -> Any:
               "orbit": ("point", np.array([p["orbit"] for p in pts], dtype=object))}
     attrs = {"parameter": name, "design": json.dumps(record["design"]),
              "ended": record["ended"] if record.get("ended") is not None else ""}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    from ._diagram import continuation_dataset
+
+    return continuation_dataset(xr.Dataset(data, coords=coords, attrs=attrs), record)
 
 
 

@@ -68,6 +68,7 @@ _OPTION_TYPES: Dict[str, Any] = {
     "no_limit": bool,
     "quantity": Literal["x", "v", "a"],
     "transient": Count,
+    "branches": Optional[Count],
 }
 
 #: The positional parameters of each function (name, annotation, default or P.empty).
