@@ -203,6 +203,7 @@ struct BifurcationJson<'a> {
 
 pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let vary = Vary::parse(&a.vary, Spelling::Flag)?;
+    super::continuation::refuse_motionless(&vary, &a.vary)?;
     refuse_run_flags(&a.design, "a bifurcation")?;
     let d = a.design.design_over(&[&vary])?;
     let s = a.orbit.settings(&a.design, &d)?;

@@ -18,7 +18,7 @@ use crate::continuation::{self, Branch};
 use crate::design::Design;
 use crate::error::ThudError;
 use crate::orbit::Request;
-use crate::params::Spelling;
+use crate::params::{Group, Spelling};
 use crate::study::Vary;
 
 #[derive(Debug, Clone, Args)]
@@ -152,8 +152,24 @@ fn renamed(e: ThudError) -> ThudError {
     }
 }
 
+/// Refuses a varied parameter that does not move the damper (the listener, the air, the zone
+/// thresholds): its orbits and diagram would be one motion repeated at every value.
+pub(super) fn refuse_motionless(vary: &Vary, typed: &str) -> Result<(), ThudError> {
+    if matches!(vary.row.group, Group::Listener | Group::Study) {
+        return Err(ThudError::invalid(
+            "--vary",
+            format!(
+                "'{typed}': {} does not change the motion (only how its sound is heard or judged); vary a parameter of the damper or its force",
+                vary.name()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let (vary, seeds) = parse_vary(&a.vary)?;
+    refuse_motionless(&vary, &a.vary)?;
     // A varied frequency is the design's (FROM stands in for --freq).
     let d = a.design.design_over(&[&vary])?;
     a.outputs().check()?;
@@ -172,6 +188,22 @@ pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 "newmark: orbits are found with the event solver; use --solver event",
             ))
             .into());
+        }
+        // No force at any seed value: no orbit to start a branch from, refused as one branch is.
+        if !d.damper.forced() && vary.name() != "force" {
+            return Err(renamed(ThudError::invalid(
+                "force",
+                "0 N: a periodic orbit needs a harmonic force; give a force and a frequency",
+            ))
+            .into());
+        }
+        // Each seed's design checked as one branch's is: a seed outside a range (a ball start
+        // outside the clearance) is refused, not skipped.
+        let (from, to) = (vary.values[0], vary.values[vary.values.len() - 1]);
+        let axis = Vary::of_values(vary.name(), &crate::design::linspace(from, to, n), Spelling::Flag)?;
+        let grid = crate::study::Grid::new(d.clone(), vec![axis], Spelling::Flag)?;
+        for i in 0..grid.cells() {
+            grid.point(i).map_err(renamed)?;
         }
         ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
         continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?
