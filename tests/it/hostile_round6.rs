@@ -327,6 +327,25 @@ fn a_family_without_a_force_is_refused_as_one_branch_is() {
     assert!(!v["branches"].as_array().unwrap().is_empty(), "a branch from the seed with a force: {out}");
 }
 
+/// `design --save DIR` puts DIR in place by renaming a folder onto it, which a path ending in
+/// `.` or `..` cannot take: `--save .` searched and then failed with exit 1 ("Device or resource
+/// busy"). It is refused before the search, naming what was typed, and nothing is written.
+#[test]
+fn a_save_folder_ending_in_a_dot_is_refused_before_the_search() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path();
+    fs::create_dir(dir.join("s")).unwrap();
+    for save in [".", "./", "s/.", "s/./", "s/..", ".."] {
+        let args =
+            ["design", "--vary", "mass=20g:120g", "--minimize", "spl_max_db", "--evaluations", "4", "--save", save];
+        assert_refused(dir, &args, &["invalid --save: ", save, "ends in . or .."]);
+        let (_, _, err) = thud(dir, &[&args[..], &["--force"]].concat());
+        assert!(err.contains("ends in . or .."), "{save} --force: {err}");
+    }
+    assert_eq!(fs::read_dir(dir.join("s")).unwrap().count(), 0);
+    assert_eq!(temps(dir), Vec::<String>::new());
+}
+
 /// A continuation or a bifurcation diagram over a parameter that does not move the damper (the
 /// listener's place, the air, the zone thresholds) gave one orbit repeated at every value; it
 /// is refused naming `--vary` and the parameter.
