@@ -18,7 +18,7 @@ use crate::continuation::{self, Branch};
 use crate::design::Design;
 use crate::error::ThudError;
 use crate::orbit::Request;
-use crate::params::{Group, Spelling};
+use crate::params::Spelling;
 use crate::study::Vary;
 
 #[derive(Debug, Clone, Args)]
@@ -152,24 +152,9 @@ fn renamed(e: ThudError) -> ThudError {
     }
 }
 
-/// Refuses a varied parameter that does not move the damper (the listener, the air, the zone
-/// thresholds): its orbits and diagram would be one motion repeated at every value.
-pub(super) fn refuse_motionless(vary: &Vary, typed: &str) -> Result<(), ThudError> {
-    if matches!(vary.row.group, Group::Listener | Group::Study) {
-        return Err(ThudError::invalid(
-            "--vary",
-            format!(
-                "'{typed}': {} does not change the motion (only how its sound is heard or judged); vary a parameter of the damper or its force",
-                vary.name()
-            ),
-        ));
-    }
-    Ok(())
-}
-
 pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let (vary, seeds) = parse_vary(&a.vary)?;
-    refuse_motionless(&vary, &a.vary)?;
+    super::bifurcation::refuse_motionless(&vary, &a.vary)?;
     // A varied frequency is the design's (FROM stands in for --freq).
     let d = a.design.design_over(&[&vary])?;
     a.outputs().check()?;
