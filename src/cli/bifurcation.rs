@@ -20,7 +20,7 @@ use crate::dynamics::{self, Bifurcation, Settings};
 use crate::error::ThudError;
 use crate::export::svg::Look;
 use crate::limits::{self, short};
-use crate::params::Spelling;
+use crate::params::{Group, Spelling};
 use crate::study::Vary;
 
 /// The flags every study of orbits shares: the transient, the files, the output.
@@ -195,8 +195,24 @@ struct BifurcationJson<'a> {
     bifurcation: &'a Bifurcation,
 }
 
+/// Refuses a varied parameter that does not move the damper (the listener, the air, the zone
+/// thresholds): its orbits and diagram would be one motion repeated at every value.
+pub(super) fn refuse_motionless(vary: &Vary, typed: &str) -> Result<(), ThudError> {
+    if matches!(vary.row.group, Group::Listener | Group::Study) {
+        return Err(ThudError::invalid(
+            "--vary",
+            format!(
+                "'{typed}': {} does not change the motion (only how its sound is heard or judged); vary a parameter of the damper or its force",
+                vary.name()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 pub fn run(a: &BifurcationArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let vary = Vary::parse(&a.vary, Spelling::Flag)?;
+    refuse_motionless(&vary, &a.vary)?;
     refuse_run_flags(&a.design, "a bifurcation")?;
     let d = a.design.design_over(&[&vary])?;
     let s = a.orbit.settings(&a.design, &d)?;

@@ -148,6 +148,7 @@ fn renamed(e: ThudError) -> ThudError {
 
 pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
     let (vary, seeds) = parse_vary(&a.vary)?;
+    super::bifurcation::refuse_motionless(&vary, &a.vary)?;
     // A varied frequency is the design's (FROM stands in for --freq).
     let d = a.design.design_over(&[&vary])?;
     a.outputs().check()?;
@@ -166,6 +167,22 @@ pub fn run(a: &ContinueArgs, ctx: &Ctx, out: &mut Out) -> Result<(), CliError> {
                 "newmark: orbits are found with the event solver; use --solver event",
             ))
             .into());
+        }
+        // No force at any seed value: no orbit to start a branch from, refused as one branch is.
+        if !d.damper.forced() && vary.name() != "force" {
+            return Err(renamed(ThudError::invalid(
+                "force",
+                "0 N: a periodic orbit needs a harmonic force; give a force and a frequency",
+            ))
+            .into());
+        }
+        // Each seed's design checked as one branch's is: a seed outside a range (a ball start
+        // outside the clearance) is refused, not skipped.
+        let (from, to) = (vary.values[0], vary.values[vary.values.len() - 1]);
+        let axis = Vary::of_values(vary.name(), &crate::design::linspace(from, to, n), Spelling::Flag)?;
+        let grid = crate::study::Grid::new(d.clone(), vec![axis], Spelling::Flag)?;
+        for i in 0..grid.cells() {
+            grid.point(i).map_err(renamed)?;
         }
         ctx.enforce(crate::limits::family_seed_periods(n), "--vary", &a.vary, "give fewer seed values")?;
         continuation::continue_family(&d, &vary, n, None, &|_| {}).map_err(renamed)?

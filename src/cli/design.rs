@@ -493,6 +493,16 @@ fn check_save(dir: &Path, force: bool, outputs: &[(&str, Option<&Path>)]) -> Res
             return Err(bad(format!("is the folder of the {flag} file {} too; write it elsewhere", fsio::shown(path))));
         }
     }
+    // DIR is put in place by renaming a folder onto it, which no path ending in `.` or `..`
+    // can take.
+    let mut typed = dir.as_os_str().as_encoded_bytes();
+    while let Some(t) = typed.strip_suffix(b"/") {
+        typed = t;
+    }
+    let last = typed.rsplit(|&b| b == b'/').next().unwrap_or_default();
+    if last == b"." || last == b".." {
+        return Err(bad("ends in . or ..; name the folder itself".into()));
+    }
     match std::fs::symlink_metadata(dir) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
         Err(e) => return Err(bad(format!("cannot be read: {e}"))),

@@ -378,6 +378,19 @@ fn pulse_sound_flags() -> Vec<Flag> {
 /// apply, and its output modes.
 type Cmd = (Vec<&'static str>, Vec<Flag>, bool, Vec<&'static str>);
 
+/// The search's own flags of `thud design`, each one part of its value hostile.
+const DESIGN_SEARCH_FLAGS: &[Flag] = &[
+    part("evaluations", "{}", "3cm"),
+    part("vary", "mass=20g:{}", "mass=20g:3cm"),
+    part("require", "spl_max_db<={}", "mass<=3cm"),
+    part("require", "mass>={}", "spl_max_db>=3kg"),
+    part("choose", "sphere=steel,{}", "sphere=steel,3kg"),
+    part("over", "freqs=4Hz:6Hz:{}", "freqs=4Hz:6kg:3"),
+    part("ensemble", "{}", "3cm"),
+    part("quantile", "{}", "3cm"),
+    part("reference", "{},0", "3kg,0"),
+];
+
 /// The commands under test.
 fn commands() -> Vec<Cmd> {
     vec![
@@ -463,19 +476,7 @@ fn commands() -> Vec<Cmd> {
             false,
             vec!["", "--json"],
         ),
-        (
-            vec!["design"],
-            vec![
-                part("evaluations", "{}", "3cm"),
-                part("vary", "mass=20g:{}", "mass=20g:3cm"),
-                part("require", "spl_max_db<={}", "mass<=3cm"),
-                part("require", "mass>={}", "spl_max_db>=3kg"),
-                part("choose", "sphere=steel,{}", "sphere=steel,3kg"),
-                part("over", "freqs=4Hz:6Hz:{}", "freqs=4Hz:6kg:3"),
-            ],
-            false,
-            vec!["", "--json", "--csv"],
-        ),
+        (vec!["design"], DESIGN_SEARCH_FLAGS.to_vec(), false, vec!["", "--json", "--csv"]),
         (vec!["export", "svg", "pulse"], PULSE_FLAGS.to_vec(), false, vec![""]),
         (vec!["export", "pdf", "pulse"], PULSE_FLAGS.to_vec(), false, vec![""]),
         (vec!["export", "wav", "pulse"], pulse_sound_flags(), false, vec![""]),

@@ -295,3 +295,73 @@ fn an_orbit_not_found_from_a_guess_names_the_guess() {
     let args = ["orbit", "--force-amplitude", "1", "--freq", "5Hz", "--guess", "0,0,0,0"];
     assert_refused(home.path(), &args, &["invalid --guess: ", "no periodic orbit found"]);
 }
+
+/// A family of branches (`continue --vary NAME=FROM:TO:N`) over a design with no force found
+/// no orbit at any seed and said "0 branches" with exit 0; it is refused as one branch is,
+/// naming --force-amplitude. Varying the force itself still starts the family.
+#[test]
+fn a_family_without_a_force_is_refused_as_one_branch_is() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path();
+    let words = ["invalid --force-amplitude: ", "0 N", "needs a harmonic force"];
+    for args in [
+        &["continue", "--vary", "f=3Hz:8Hz:3"][..],
+        &["continue", "--vary", "mass=30g:40g:3"][..],
+        &["continue", "--vary", "mass=30g:40g"][..],
+        &["continue", "--vary", "mass=30g:40g:3", "--freq", "5Hz", "--json"][..],
+    ] {
+        assert_refused(dir, args, &words);
+    }
+    // A seed outside a range was skipped the same way ("0 branches"); it is refused as FROM
+    // is for one branch, naming the parameter.
+    let forced = ["continue", "--force-amplitude", "1", "--freq", "5Hz", "--vary"];
+    for (vary, words) in [
+        ("ball-position=-1:-2:2", &["invalid --ball-position: ", "-1 m", "inside the clearance"][..]),
+        ("ball-position=0:3cm:4", &["invalid --ball-position: ", "0.02 m", "inside the clearance"][..]),
+    ] {
+        assert_refused(dir, &[&forced[..], &[vary]].concat(), words);
+    }
+    let (code, out, err) = thud(dir, &["continue", "--vary", "force=0N:3N:2", "--freq", "6Hz", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(!v["branches"].as_array().unwrap().is_empty(), "a branch from the seed with a force: {out}");
+}
+
+/// `design --save DIR` puts DIR in place by renaming a folder onto it, which a path ending in
+/// `.` or `..` cannot take: `--save .` searched and then failed with exit 1 ("Device or resource
+/// busy"). It is refused before the search, naming what was typed, and nothing is written.
+#[test]
+fn a_save_folder_ending_in_a_dot_is_refused_before_the_search() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path();
+    fs::create_dir(dir.join("s")).unwrap();
+    for save in [".", "./", "s/.", "s/./", "s/..", ".."] {
+        let args =
+            ["design", "--vary", "mass=20g:120g", "--minimize", "spl_max_db", "--evaluations", "4", "--save", save];
+        assert_refused(dir, &args, &["invalid --save: ", save, "ends in . or .."]);
+        let (_, _, err) = thud(dir, &[&args[..], &["--force"]].concat());
+        assert!(err.contains("ends in . or .."), "{save} --force: {err}");
+    }
+    assert_eq!(fs::read_dir(dir.join("s")).unwrap().count(), 0);
+    assert_eq!(temps(dir), Vec::<String>::new());
+}
+
+/// A continuation or a bifurcation diagram over a parameter that does not move the damper (the
+/// listener's place, the air, the zone thresholds) gave one orbit repeated at every value; it
+/// is refused naming `--vary` and the parameter.
+#[test]
+fn a_parameter_that_does_not_move_the_damper_is_not_varied_by_orbit_studies() {
+    let home = tempfile::tempdir().unwrap();
+    let dir = home.path();
+    let forced = ["--force-amplitude", "1", "--freq", "5Hz", "--vary"];
+    for (command, vary, name) in [
+        ("continue", "theta=10:20", "theta"),
+        ("continue", "l-star=90:100:3", "l-star"),
+        ("continue", "air-temperature=0:30:2", "air-temperature"),
+        ("bifurcation", "r=0.5:1:3", "r"),
+        ("bifurcation", "sound-speed=300:400:3", "sound-speed"),
+    ] {
+        let args = [&[command][..], &forced[..], &[vary]].concat();
+        assert_refused(dir, &args, &["invalid --vary: ", vary, &format!("{name} does not change the motion")]);
+    }
+}
