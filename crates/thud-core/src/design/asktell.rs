@@ -22,10 +22,7 @@ use ndarray::Array2;
 use super::search::{self, Bound, Candidate, Column, Objective, Outcome, Problem, Sense, Settings, Value, PENALTY};
 use crate::error::ThudError;
 
-/// Why a told point could not be run, or why the optimiser stopped: the words to show.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{0}")]
-pub struct Failure(pub String);
+pub use super::search::Failure;
 
 /// A point's identity: its values, bit for bit.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -425,7 +422,7 @@ fn run(
     };
     let constraints = MirrorConstraints { batch: &batch, archive: &archive, n_con };
     // The defaults (NSGA-II) read no reference point: none is handed over.
-    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints, &|| None).map_err(Failure)
+    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints, &|| None)
 }
 
 /// The algorithm's copy of the archive: each point's index, every candidate in order.

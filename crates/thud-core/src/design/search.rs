@@ -1048,10 +1048,15 @@ pub fn search_tuned(
         Some(r.iter().zip(&problem.objectives).map(|(v, o)| if o.sense == Sense::Maximize { -v } else { *v }).collect())
     };
     run_moors(tuning, nv, n, settings.seed, fitness, constraints, &reference)
-        .map_err(|e| ThudError::invalid("--evaluations", e))?;
+        .map_err(|e| ThudError::invalid("--evaluations", e.0))?;
     let partial = archive.cancelled();
     Ok(archive.into_outcome(partial))
 }
+
+/// Why a told point could not be run, or why the optimiser stopped: the words to show.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct Failure(pub String);
 
 /// Runs `moors`' algorithm `tuning.algorithm` with the search's operators over `nv` genes in
 /// [0, 1] for a budget of `n` evaluations, seeded by `seed`: the one place the optimiser is
@@ -1066,7 +1071,7 @@ pub(super) fn run_moors<F, G>(
     fitness: F,
     constraints: G,
     reference: &dyn Fn() -> Option<Vec<f64>>,
-) -> Result<(), String>
+) -> Result<(), Failure>
 where
     F: Fn(&Array2<f64>) -> Array2<f64>,
     G: moors::ConstraintsFn<Dim = ndarray::Ix2>,
@@ -1095,8 +1100,8 @@ where
                 .mutation_rate(tuning.mutation_rate)
                 .seed(seed)
                 .build()
-                .map_err(|e| format!("the optimiser refused the problem: {e}"))?;
-            ga.run().map_err(|e| format!("the optimiser failed: {e}"))
+                .map_err(|e| Failure(format!("the optimiser refused the problem: {e}")))?;
+            ga.run().map_err(|e| Failure(format!("the optimiser failed: {e}")))
         }};
     }
     match tuning.algorithm {
