@@ -642,6 +642,10 @@ fn attractor_from(
     search(p, start, (periods, impacts_max, MAX_TRANSIENT_PERIODS), cancel).0
 }
 
+/// Where a followed motion is: its state at the force's phase 0 and the forcing periods it took
+/// to get there; None once a work cap has stopped its run.
+type Followed = Option<([f64; 4], u32)>;
+
 /// [`attractor_from`] over at most `periods_max` forcing periods of the motion, with the
 /// motion's last state at the force's phase 0 and the forcing periods it took to get there
 /// (None where a work cap or cancellation stopped its run).
@@ -650,7 +654,7 @@ fn search(
     start: [f64; 4],
     limits: (Option<u32>, usize, u32),
     cancel: Option<&AtomicBool>,
-) -> (Result<PeriodicOrbit, ThudError>, Option<([f64; 4], u32)>) {
+) -> (Result<PeriodicOrbit, ThudError>, Followed) {
     let mut at = Some((start, 0));
     let found = follow(p, start, limits, cancel, &mut at);
     (found, at)
@@ -663,7 +667,7 @@ fn follow(
     start: [f64; 4],
     (periods, impacts_max, periods_max): (Option<u32>, usize, u32),
     cancel: Option<&AtomicBool>,
-    at: &mut Option<([f64; 4], u32)>,
+    at: &mut Followed,
 ) -> Result<PeriodicOrbit, ThudError> {
     // Over 80 lines: one loop over the transient's stops, each with its three outcomes
     // (speculate, shoot the detected period, or its double) and their bookkeeping.

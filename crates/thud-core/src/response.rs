@@ -510,24 +510,18 @@ mod tests {
     /// A settling point on a periodic orbit with impacts is the orbit found by shooting: its
     /// verdict says so and its amplitude is the one `thud orbit` reports from its own run of
     /// the orbit. An orbit without impacts (a floating ball, neutral in the ball's speed) is no
-    /// attractor, and such a point is simulated: the closed-form linear steady state within
-    /// the settling test's 1e-3.
+    /// attractor: such a point (6.5 Hz) is simulated, not shot.
     #[test]
     fn settling_points_are_the_orbits_found_by_shooting() {
-        let freqs = [3.5, 4.7, 5.2];
+        let freqs = [4.7, 5.2, 6.5];
         let r = settled_response(&freqs, 0.0);
+        let mut shot = vec![];
         for (p, &f) in r.sweeps[0].points.iter().zip(&freqs) {
-            let Verdict::Periodic { impacts, periods, source, .. } = p.steady.verdict else {
-                panic!("{f} Hz: {:?}", p.steady.verdict)
-            };
-            assert!(p.steady.periodic && p.steady.settled && !p.steady.truncated);
-            if impacts == 0 {
-                assert_eq!(source, Source::Sampled, "{f} Hz");
-                let lin = p.steady.amplitude_linear_m.unwrap();
-                assert!((p.steady.amplitude_m - lin).abs() <= 1e-3 * lin, "{f} Hz: {} vs {lin}", p.steady.amplitude_m);
+            let Verdict::Periodic { impacts, periods, source: Source::Exact, .. } = p.steady.verdict else {
                 continue;
-            }
-            assert_eq!(source, Source::Exact, "{f} Hz");
+            };
+            shot.push(f);
+            assert!(impacts > 0 && p.steady.periodic && p.steady.settled && !p.steady.truncated, "{f} Hz");
             let mut at = Design::default();
             at.damper.force_n = 1.0;
             at.damper.freq_hz = f;
@@ -539,8 +533,7 @@ mod tests {
             assert!((p.steady.window_end_s - p.steady.window_start_s - n / f).abs() < 1e-9, "{f} Hz: N whole periods");
             assert!((p.steady.impacts_per_period * f64::from(periods) - f64::from(impacts)).abs() < 1e-9, "{f} Hz");
         }
-        let shot = r.sweeps[0].points.iter().filter(|p| p.steady.impacts_per_period > 0.0).count();
-        assert_eq!(shot, 2, "4.7 and 5.2 Hz impact");
+        assert_eq!(shot, [4.7, 5.2], "the impacting orbits are shot, the floating ball is not");
     }
 
     /// The figures of a point found by shooting do not move with the transient that led to it:
