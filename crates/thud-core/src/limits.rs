@@ -574,9 +574,15 @@ pub const MERGED_RUNS: Cap = Cap {
     basis: "1e5 cells × 10 runs merged to 495 MB of JSON in 7.4 s with 730 MB peak memory (2e6 took 1.7 GB)",
 };
 
+/// Forcing periods of a response point's motion its periodic orbit is looked for over before
+/// the motion is simulated on until it settles (most impacting orbits of the presets are found
+/// within 30–170 periods).
+pub const RESPONSE_SEARCH_PERIODS: u32 = 256;
+
 /// Forcing periods simulated by one frequency response (`thud response`): over the
-/// frequencies, each run to its duration and then settled (at most
-/// [`crate::damper::SETTLE_PERIODS_MAX`] periods more), twice with `--continuation`.
+/// frequencies, with the event solver first the orbit search ([`RESPONSE_SEARCH_PERIODS`]),
+/// then each run to its duration and settled (at most [`crate::damper::SETTLE_PERIODS_MAX`]
+/// periods more), twice with `--continuation`.
 pub const RESPONSE_PERIODS: Cap = Cap {
     what: "forcing periods",
     max: 2e6,
@@ -686,7 +692,9 @@ pub fn response_work(d: &Design, freqs_hz: &[f64], continuation: bool) -> [Estim
     let n = f64::from(p.steady_periods);
     let settle = f64::from(crate::damper::SETTLE_PERIODS_MAX);
     let sweeps = if continuation { 2.0 } else { 1.0 };
-    let periods: f64 = freqs_hz.iter().map(|f| (p.duration_s * f).max(2.0 * n) + settle).sum::<f64>() * sweeps;
+    // The event solver first follows each point's motion looking for its orbit.
+    let search = if d.solver == Solver::Event { f64::from(RESPONSE_SEARCH_PERIODS) } else { 0.0 };
+    let periods: f64 = freqs_hz.iter().map(|f| (p.duration_s * f).max(2.0 * n) + settle + search).sum::<f64>() * sweeps;
     let steps = match d.solver {
         Solver::Event => 0.0,
         Solver::Newmark { dt_s } => {
@@ -1054,8 +1062,10 @@ mod tests {
         assert!((design_run(&d, 0)[0].value - (2.0 + settle / 5.0) * 1e7).abs() < 1.0);
         assert!(design_run(&d, 0)[0].exceeded(), "a settling Newmark run at 1e-7 s is over the cap");
         let [periods, _] = response_work(&Design::default(), &[3.0, 8.0], true);
-        // 2 s at 3 Hz is 6 periods < 2N = 20; at 8 Hz 16 < 20: 2 × (20 + settle) per sweep, two sweeps.
-        assert!((periods.value - 4.0 * (20.0 + settle)).abs() < 1e-9);
+        // 2 s at 3 Hz is 6 periods < 2N = 20; at 8 Hz 16 < 20: 2 × (20 + settle + the orbit
+        // search's periods) per sweep, two sweeps.
+        let search = f64::from(RESPONSE_SEARCH_PERIODS);
+        assert!((periods.value - 4.0 * (20.0 + settle + search)).abs() < 1e-9);
     }
 
     #[test]

@@ -151,11 +151,6 @@ pub fn at_frequency(base: &Design, freq_hz: f64, settle: bool) -> Design {
     d
 }
 
-/// Forcing periods of a point's motion its periodic orbit is looked for over before the motion
-/// is simulated on until it settles: most impacting orbits of the presets are found within
-/// 30–170 periods; a motion slower to settle costs no more than it did simulated alone.
-const SEARCH_PERIODS: u32 = 256;
-
 /// One frequency from `start`: the point and the state it ended in. A settling point of the
 /// event solver is first looked for as the periodic orbit the motion from `start` settles to
 /// ([`on_orbit`]); only where there is none (chaotic, quasi-periodic, a longer period, a
@@ -166,7 +161,7 @@ fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Op
         return simulated(d, start, 0.0, want_end);
     }
     let state = [start.x, start.v, start.y, start.w];
-    let (found, reached) = orbit::settle_from(&d.damper, state, start.phase, SEARCH_PERIODS, None);
+    let (found, reached) = orbit::settle_from(&d.damper, state, start.phase, limits::RESPONSE_SEARCH_PERIODS, None);
     match found {
         Ok(o) => {
             // The motion is on the orbit (to the search's tolerance) where the search left it.
@@ -199,6 +194,9 @@ fn on_orbit(
     offset_s: f64,
     want_end: bool,
 ) -> Result<Option<(ResponsePoint, Option<Start>)>, ThudError> {
+    // A floating ball (no impacts) is no attractor: its speed is neutral, and a ball that
+    // drifts meets a wall (the motion is then another's). Those points are simulated.
+    let (Some((phase, [x, v, y, w])), true) = (o.section, o.impacts_per_orbit > 0) else { return Ok(None) };
     let mut on = d.clone();
     let p = &mut on.damper;
     let n = o.periods.max(1);
@@ -206,21 +204,13 @@ fn on_orbit(
     p.settle = false;
     let period_s = 1.0 / p.freq_hz;
     p.duration_s = 2.0 * f64::from(p.steady_periods) * period_s;
-    // A floating ball (no impacts) is no attractor: its speed is neutral, and a ball that
-    // drifts meets a wall (the motion is then another's). Those points are simulated.
-    let (Some((phase, [x, v, y, w])), true) = (o.section, o.impacts_per_orbit > 0) else { return Ok(None) };
     let start = Start { x, v, y, w, phase };
     let (run, end) = damper::run_from(&on.damper, on.solver, &RunOptions::default(), &start, want_end)?;
     let Some(mut s) = run_steady(&run, &on)? else { return Ok(None) };
     if s.truncated {
         return Ok(None);
     }
-    // The run starts at the section, a fraction of a period after the phase 0 the search
-    // stopped at.
-    let offset_s = offset_s + phase / (std::f64::consts::TAU * d.damper.freq_hz);
     let m = &mut s.motion;
-    m.window_start_s += offset_s;
-    m.window_end_s += offset_s;
     m.periodic = true;
     m.settled = true;
     m.verdict = Verdict::Periodic {
@@ -229,8 +219,18 @@ fn on_orbit(
         symmetric: o.symmetric,
         source: Source::Exact,
     };
-    let point = ResponsePoint { freq_hz: d.damper.freq_hz, steady: s, final_time_s: run.final_time_s + offset_s };
-    Ok(Some((point, end)))
+    // The run starts at the section, a fraction of a period after the phase 0 the search
+    // stopped at.
+    let offset_s = offset_s + phase / (std::f64::consts::TAU * d.damper.freq_hz);
+    Ok(Some((placed(d, s, run.final_time_s, offset_s), end)))
+}
+
+/// The point of `d` with steady state `s` of a run that ended at `final_time_s` (s), its times
+/// moved `offset_s` (s) on: counted from the start of the point's motion, not of its last run.
+fn placed(d: &Design, mut s: Steady, final_time_s: f64, offset_s: f64) -> ResponsePoint {
+    s.motion.window_start_s += offset_s;
+    s.motion.window_end_s += offset_s;
+    ResponsePoint { freq_hz: d.damper.freq_hz, steady: s, final_time_s: final_time_s + offset_s }
 }
 
 /// One frequency from `start`, `offset_s` (s) into the motion, simulated until its windows
@@ -243,10 +243,8 @@ fn simulated(
     want_end: bool,
 ) -> Result<(ResponsePoint, Option<Start>), ThudError> {
     let (run, end) = damper::run_from(&d.damper, d.solver, &RunOptions::default(), start, want_end)?;
-    let mut s = run_steady(&run, d)?.ok_or_else(|| ThudError::invalid("force", "a response needs a force > 0"))?;
-    s.motion.window_start_s += offset_s;
-    s.motion.window_end_s += offset_s;
-    Ok((ResponsePoint { freq_hz: d.damper.freq_hz, steady: s, final_time_s: run.final_time_s + offset_s }, end))
+    let s = run_steady(&run, d)?.ok_or_else(|| ThudError::invalid("force", "a response needs a force > 0"))?;
+    Ok((placed(d, s, run.final_time_s, offset_s), end))
 }
 
 /// The frequency response of `base` (which must have a force) over `freqs_hz`: per frequency
