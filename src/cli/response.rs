@@ -202,14 +202,14 @@ fn fixed(x: f64, digits: usize) -> String {
 }
 
 /// The line that says how each point's steady state was reached: with the event solver, the
-/// periodic orbit the motion settles to, found by shooting, else the run simulated until its
-/// windows settle; with Newmark, always the latter.
+/// periodic orbit the motion settles to, found by shooting (or a ball proved never met), else
+/// the run simulated until its windows settle; with Newmark, always the latter.
 fn forcing_line(d: &Design, force_n: f64, continuation: bool) -> String {
     let from = if continuation { "from the previous one's final state (up, then down)" } else { "from rest" };
     let n = d.damper.steady_periods;
     let how = if d.solver == crate::damper::Solver::Event {
         format!(
-            "steady state over {n} periods (whole orbits) of the periodic orbit each frequency {from} settles to, found by shooting; where there is none, over the last {n} periods of its run, settled"
+            "steady state over {n} periods (whole orbits) of the periodic orbit each frequency {from} settles to, found by shooting (a ball never met: proved so, the steady state without it); where there is none, over the last {n} periods of its run, settled"
         )
     } else {
         format!("steady state over the last {n} periods, each frequency {from}, settled")

@@ -160,6 +160,11 @@ fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Op
     if !(d.damper.settle && d.solver == damper::Solver::Event) {
         return simulated(d, start, 0.0, want_end);
     }
+    if let Some(f) = damper::floating(&d.damper, start) {
+        if let Some(on) = afloat(d, &f, 0.0, want_end)? {
+            return Ok(on);
+        }
+    }
     let state = [start.x, start.v, start.y, start.w];
     let (found, reached) = orbit::settle_from(&d.damper, state, start.phase, limits::RESPONSE_SEARCH_PERIODS, None);
     match found {
@@ -176,7 +181,14 @@ fn point(d: &Design, start: &Start, want_end: bool) -> Result<(ResponsePoint, Op
     match reached {
         Some(r) => {
             let [x, v, y, w] = r.state;
-            simulated(d, &Start { x, v, y, w, phase: 0.0 }, r.time_s, want_end)
+            let from = Start { x, v, y, w, phase: 0.0 };
+            // A ball the search's motion never met may be proved never to be met from here on.
+            if let Some(f) = damper::floating(&d.damper, &from) {
+                if let Some(on) = afloat(d, &f, r.time_s, want_end)? {
+                    return Ok(on);
+                }
+            }
+            simulated(d, &from, r.time_s, want_end)
         }
         None => simulated(d, start, 0.0, want_end),
     }
@@ -197,19 +209,11 @@ fn on_orbit(
     // A floating ball (no impacts) is no attractor: its speed is neutral, and a ball that
     // drifts meets a wall (the motion is then another's). Those points are simulated.
     let (Some((phase, [x, v, y, w])), true) = (o.section, o.impacts_per_orbit > 0) else { return Ok(None) };
-    let mut on = d.clone();
-    let p = &mut on.damper;
     let n = o.periods.max(1);
-    p.steady_periods = p.steady_periods.div_ceil(n) * n;
-    p.settle = false;
-    let period_s = 1.0 / p.freq_hz;
-    p.duration_s = 2.0 * f64::from(p.steady_periods) * period_s;
     let start = Start { x, v, y, w, phase };
-    let (run, end) = damper::run_from(&on.damper, on.solver, &RunOptions::default(), &start, want_end)?;
-    let Some(mut s) = run_steady(&run, &on)? else { return Ok(None) };
-    if s.truncated {
+    let Some((mut s, final_time_s, end)) = run_on(d, d.damper.steady_periods.div_ceil(n) * n, &start, want_end)? else {
         return Ok(None);
-    }
+    };
     let m = &mut s.motion;
     m.periodic = true;
     m.settled = true;
@@ -222,7 +226,57 @@ fn on_orbit(
     // The run starts at the section, a fraction of a period after the phase 0 the search
     // stopped at.
     let offset_s = offset_s + phase / (std::f64::consts::TAU * d.damper.freq_hz);
-    Ok(Some((placed(d, s, run.final_time_s, offset_s), end)))
+    Ok(Some((placed(d, s, final_time_s, offset_s), end)))
+}
+
+/// The point of `d` on the floating orbit `f` its motion tends to, `offset_s` (s) into the
+/// motion (docs/model.md §6.4): the ball is proved never to be met ([`damper::floating`]), so
+/// the motion is the structure's own under the force and tends to its steady solution with the
+/// ball at rest. The window is read off a run that starts on that limit and is placed where
+/// the motion's free part has fallen to 1e-3 of the steady amplitude (rounded up to whole
+/// periods); the verdict, no impact in one period, is exact. None if the run does not bear it
+/// out.
+fn afloat(
+    d: &Design,
+    f: &damper::Floating,
+    offset_s: f64,
+    want_end: bool,
+) -> Result<Option<(ResponsePoint, Option<Start>)>, ThudError> {
+    let Some((mut s, final_time_s, end)) = run_on(d, d.damper.steady_periods, &f.on, want_end)? else {
+        return Ok(None);
+    };
+    let m = &mut s.motion;
+    let Verdict::Periodic { impacts: 0, periods: 1, symmetric, .. } = m.verdict else { return Ok(None) };
+    if m.impacts > 0 {
+        return Ok(None);
+    }
+    m.periodic = true;
+    m.settled = true;
+    m.verdict = Verdict::Periodic { impacts: 0, periods: 1, symmetric, source: Source::Exact };
+    let period_s = 1.0 / d.damper.freq_hz;
+    let settled_s = (f.settled_s / period_s).ceil() * period_s;
+    Ok(Some((placed(d, s, final_time_s, offset_s + settled_s), end)))
+}
+
+/// The steady state of `d` over `periods` forcing periods of a run from `start` on a limit of
+/// its motion (two windows long, not settled on): the steady state, the run's final time (s)
+/// and, with `want_end`, its final state. None where the run holds no window or a work cap
+/// cut it.
+fn run_on(
+    d: &Design,
+    periods: u32,
+    start: &Start,
+    want_end: bool,
+) -> Result<Option<(Steady, f64, Option<Start>)>, ThudError> {
+    let mut on = d.clone();
+    let p = &mut on.damper;
+    p.steady_periods = periods;
+    p.settle = false;
+    // 2N·T as 2N·(1/f): the product as it was always taken, bit for bit.
+    let period_s = 1.0 / p.freq_hz;
+    p.duration_s = 2.0 * f64::from(periods) * period_s;
+    let (run, end) = damper::run_from(&on.damper, on.solver, &RunOptions::default(), start, want_end)?;
+    Ok(run_steady(&run, &on)?.filter(|s| !s.truncated).map(|s| (s, run.final_time_s, end)))
 }
 
 /// The point of `d` with steady state `s` of a run that ended at `final_time_s` (s), its times
@@ -507,11 +561,13 @@ mod tests {
 
     /// A settling point on a periodic orbit with impacts is the orbit found by shooting: its
     /// verdict says so and its amplitude is the one `thud orbit` reports from its own run of
-    /// the orbit. An orbit without impacts (a floating ball, neutral in the ball's speed) is no
-    /// attractor: such a point (6.5 Hz) is simulated, not shot.
+    /// the orbit. At 5.3 Hz the search's speculative Newton finds a floating orbit the motion
+    /// does not keep: that point is the impacting 2/1 one. At 6.5 Hz the strike (v0) throws the
+    /// ball against a wall and it drifts on: a floating ball that is no attractor (neutral in
+    /// its speed), so the point is simulated, not shot.
     #[test]
     fn settling_points_are_the_orbits_found_by_shooting() {
-        let freqs = [4.7, 5.2, 6.5];
+        let freqs = [4.7, 5.2, 5.3, 6.5];
         let r = settled_response(&freqs, 0.0);
         let mut shot = vec![];
         for (p, &f) in r.sweeps[0].points.iter().zip(&freqs) {
@@ -531,7 +587,43 @@ mod tests {
             assert!((p.steady.window_end_s - p.steady.window_start_s - n / f).abs() < 1e-9, "{f} Hz: N whole periods");
             assert!((p.steady.impacts_per_period * f64::from(periods) - f64::from(impacts)).abs() < 1e-9, "{f} Hz");
         }
-        assert_eq!(shot, [4.7, 5.2], "the impacting orbits are shot, the floating ball is not");
+        assert_eq!(shot, [4.7, 5.2, 5.3], "the impacting orbits are shot, the drifting ball is not");
+        assert_eq!(r.sweeps[0].points[2].steady.verdict.label(), "2/1 sym", "5.3 Hz");
+    }
+
+    /// From rest (no strike) the ball of the default design under 1 N is never met below and
+    /// above the impacting band: proved so ([`damper::floating`]), the point is the floating
+    /// orbit, exact, its amplitude the closed form without the ball (to 1e-9), its window
+    /// whole periods; and the settled simulation of the same design, an independent path,
+    /// sees no impact and settles to that amplitude within its 1e-3.
+    #[test]
+    fn a_ball_never_met_is_the_steady_state_without_it() {
+        let freqs = [3.5, 6.5];
+        let mut d = Design::default();
+        d.damper.force_n = 1.0;
+        d.damper.v0_m_s = 0.0;
+        d.damper.freq_hz = freqs[0];
+        let d = d.check().unwrap();
+        let r = response(&d, &freqs, &ResponseOptions::default(), None, &|| {}).unwrap();
+        for (p, &f) in r.sweeps[0].points.iter().zip(&freqs) {
+            let s = &p.steady;
+            assert_eq!(s.verdict, Verdict::Periodic { impacts: 0, periods: 1, symmetric: true, source: Source::Exact });
+            assert!(s.periodic && s.settled && !s.truncated && s.impacts_per_period == 0.0 && s.leq_db.is_none());
+            let alone = s.amplitude_linear_m.unwrap();
+            assert!((s.amplitude_m - alone).abs() <= 1e-9 * alone, "{f} Hz: {} vs {alone}", s.amplitude_m);
+            let n = f64::from(s.periods);
+            assert!((s.window_end_s - s.window_start_s - n / f).abs() < 1e-9, "{f} Hz: N whole periods");
+            let mut at = at_frequency(&d, f, true);
+            at.damper.duration_s = 10.0;
+            let run = damper::simulate(&at.damper, at.solver, &RunOptions::default()).unwrap();
+            let sim = run_steady(&run, &at).unwrap().unwrap();
+            assert!(run.impacts.is_empty() && sim.settled, "{f} Hz: the simulation meets the ball or never settles");
+            assert!(
+                (sim.amplitude_m - alone).abs() <= 2e-3 * alone,
+                "{f} Hz: simulated {} vs {alone}",
+                sim.amplitude_m
+            );
+        }
     }
 
     /// The figures of a point found by shooting do not move with the transient that led to it:

@@ -168,6 +168,36 @@ impl Forced {
         Segment { fo: self, t0, h0, trig0 }
     }
 
+    /// The steady solution and its rate `(x_p, x_p')` (m, m/s) at time `t`; None in beat form
+    /// (undamped, where there is no steady solution to settle to).
+    pub fn steady_at(&self, t: f64) -> Option<(f64, f64)> {
+        match self.part {
+            Particular::Steady { a, b } => Some(self.particular(a, b, t)),
+            Particular::Beat { .. } => None,
+        }
+    }
+
+    /// The envelope of the flight from `(x0, v0)` at `t0` (docs/model.md §6.4): the steady
+    /// solution's amplitude `X = √(a² + b²)` (m), and `R` (m) with
+    /// `|x(t0 + τ) − x_p(t0 + τ)| ≤ R·e^{−γτ}` for every `τ ≥ 0` the flight lasts. The free part
+    /// is `e^{−γτ}·[h·cos ωd τ + (h' + γh)/ωd·sin ωd τ]` (flight.rs) with `(h, h')` its start, and
+    /// the bracket is at most `√(h² + ((h' + γh)/ωd)²)`. Underdamped (`γ > 0`) in steady form
+    /// only; None otherwise.
+    pub fn envelope(&self, t0: f64, x0: f64, v0: f64) -> Option<(f64, f64)> {
+        let (Particular::Steady { a, b }, Regime::Under { wd, .. }) = (self.part, self.osc.regime) else {
+            return None;
+        };
+        let g = self.osc.gamma;
+        if g <= 0.0 {
+            return None;
+        }
+        let (xp, vp) = self.particular(a, b, t0);
+        let (h, hd) = (x0 - xp, v0 - vp);
+        let r = h.hypot((hd + g * h) / wd);
+        let x = a.hypot(b);
+        (x.is_finite() && r.is_finite()).then_some((x, r))
+    }
+
     /// Acceleration `x''` (m/s²) at the state `(x, v)` at time `t`.
     #[inline]
     pub fn accel(&self, t: f64, x: f64, v: f64) -> f64 {
@@ -502,5 +532,36 @@ mod tests {
                 t += h;
             }
         }
+    }
+
+    /// The envelope bounds the free part of every flight: |x − x_p| ≤ R·e^{−γτ} at every sample
+    /// of twenty periods, for starts of every size and phase; the steady amplitude is √(a² + b²)
+    /// checked against the closed form F0/(M·|D|).
+    #[test]
+    fn the_envelope_bounds_the_free_part() {
+        for &(k, c, freq) in &[(500.0, 0.05, 5.0329), (500.0, 1.5, 3.0), (500.0, 20.0, 8.0)] {
+            let (big_m, f0) = (0.5, 3.0);
+            let fo = Forced::new(Oscillator::new(big_m, k, c), Harmonic::new(f0, big_m, freq, 0.7));
+            let om = std::f64::consts::TAU * freq;
+            let d = ((k / big_m - om * om).powi(2) + (c / big_m * om).powi(2)).sqrt();
+            for &(t0, x0, v0) in &[(0.0, 0.0, 0.0), (0.3, 0.02, -0.5), (1.1, -0.004, 2.0), (2.0, 1e-6, 0.0)] {
+                let (x_s, r) = fo.envelope(t0, x0, v0).unwrap();
+                assert!((x_s - f0 / big_m / d).abs() <= 1e-12 * x_s, "X {x_s}");
+                let g = c / (2.0 * big_m);
+                let mut touched = 0.0f64;
+                for j in 0..=4000 {
+                    let tau = 20.0 / freq * f64::from(j) / 4000.0;
+                    let (x, _) = fo.advance(t0, x0, v0, tau);
+                    let (xp, _) = fo.steady_at(t0 + tau).unwrap();
+                    let free = (x - xp).abs();
+                    let bound = r * (-g * tau).exp();
+                    assert!(free <= bound * (1.0 + 1e-9) + 1e-15, "k {k} c {c}: {free} > {bound}");
+                    touched = touched.max(free / bound.max(f64::MIN_POSITIVE));
+                }
+                assert!(touched > 0.99 || r < 1e-12, "the bound is reached (not loose): {touched}");
+            }
+        }
+        let undamped = Forced::new(Oscillator::new(0.5, 500.0, 0.0), Harmonic::new(1.0, 0.5, 4.0, 0.0));
+        assert!(undamped.envelope(0.0, 0.0, 0.0).is_none(), "no steady state to settle to");
     }
 }

@@ -42,6 +42,7 @@ mod sundman;
 #[cfg(feature = "timing")]
 pub use event::timing;
 pub(crate) use periodic::{chained_jacobian, flow, Flowed};
+pub(crate) use steady::{floating, Floating};
 pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
 pub(crate) use stepper::Start;
 pub(crate) use strobe::strobe;

@@ -81,6 +81,40 @@ pub fn linear_amplitude_m(p: &DamperParams) -> Option<f64> {
     (den > 0.0 && a.is_finite()).then_some(a)
 }
 
+/// A motion whose ball no wall ever meets (docs/model.md §6.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Floating {
+    /// The motion's limit at its start's time and phase: the structure on its steady solution,
+    /// the ball where it is, at rest.
+    pub on: Start,
+    /// When (s after the start) the structure's free part has fallen to [`SETTLED_TOLERANCE`]
+    /// of its steady amplitude.
+    pub settled_s: f64,
+}
+
+/// Whether the ball of a forced motion from `start` is never met by a wall, proved in closed
+/// form (docs/model.md §6.4): a ball at rest (`w = 0`) stays where it is while the structure
+/// flies, and the structure's flight is `x = x_p + x_h` with `|x_p| ≤ X` and
+/// `|x_h(t)| ≤ R·e^{−γt}` ([`Forced::envelope`]), so `|y − x(t)| ≤ |y| + X + R < d/2` for every
+/// `t ≥ 0` keeps the flight from ever ending (1e-9 of the half gap is kept for round-off). The
+/// motion then tends to the floating orbit: the structure's steady solution with the ball at
+/// rest where it is. None where that is not proved (a moving ball, a bound that reaches a wall,
+/// an undamped or overdamped structure, no force).
+pub(crate) fn floating(p: &DamperParams, start: &Start) -> Option<Floating> {
+    if !p.forced() || start.w != 0.0 {
+        return None;
+    }
+    let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
+    let forced = Forced::new(osc, Harmonic::new(p.force_n, p.main_mass_kg, p.freq_hz, start.phase));
+    let (x_s, r) = forced.envelope(0.0, start.x, start.v)?;
+    if !(start.y.abs() + x_s + r < 0.5 * p.gap_m * (1.0 - 1e-9)) || x_s <= 0.0 {
+        return None;
+    }
+    let (x, v) = forced.steady_at(0.0)?;
+    let settled_s = if r <= SETTLED_TOLERANCE * x_s { 0.0 } else { (r / (SETTLED_TOLERANCE * x_s)).ln() / osc.gamma };
+    settled_s.is_finite().then_some(Floating { on: Start { x, v, y: start.y, w: 0.0, phase: start.phase }, settled_s })
+}
+
 /// Whether window `b` has settled after window `a`.
 fn converged(a: &WindowStats, b: &WindowStats) -> bool {
     a.complete && b.complete && (b.amplitude_m - a.amplitude_m).abs() <= SETTLED_TOLERANCE * b.amplitude_m
@@ -223,5 +257,53 @@ fn settle<S: Stepper>(s: &mut S, p: &DamperParams) -> SteadyMotion {
         previous_amplitude_m: prev.filter(|p| p.complete).map(|p| p.amplitude_m),
         // The pattern until the run's end is known (see `drive`).
         verdict: pattern,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The floating proof never claims a ball that a wall meets: from starts drawn over the
+    /// clearance, with the structure's motion of every size, every start it proves floats for
+    /// a long run (200 s, past the free part's decay), and starts it does not prove include
+    /// ones that are met. A moving ball is never proved.
+    #[test]
+    fn a_ball_proved_never_met_is_never_met() {
+        let mut p = DamperParams::table2();
+        p.force_n = 1.0;
+        p.v0_m_s = 0.0;
+        p.duration_s = 200.0;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut draw = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut proved, mut met) = (0, 0);
+        for _ in 0..40 {
+            p.freq_hz = 3.0 + 5.0 * draw();
+            let h = 0.5 * p.gap_m;
+            let start = Start {
+                x: h * (draw() - 0.5),
+                v: 0.3 * (draw() - 0.5),
+                y: 1.6 * h * (draw() - 0.5),
+                w: 0.0,
+                phase: 6.0 * draw(),
+            };
+            let run = run(&p, Solver::Event, &RunOptions::default(), &start, false, ContactScheme::default()).0;
+            match floating(&p, &start) {
+                Some(f) => {
+                    proved += 1;
+                    assert!(run.impacts.is_empty(), "{} Hz {start:?}: proved, yet met", p.freq_hz);
+                    assert_eq!((f.on.y, f.on.w, f.on.phase), (start.y, 0.0, start.phase));
+                    assert!(f.settled_s.is_finite() && f.settled_s >= 0.0);
+                }
+                None => met += usize::from(!run.impacts.is_empty()),
+            }
+            assert!(floating(&p, &Start { w: 1e-9, ..start }).is_none(), "a moving ball drifts to a wall");
+        }
+        assert!(proved >= 5 && met >= 5, "both kinds drawn: {proved} proved, {met} met");
     }
 }
