@@ -32,7 +32,15 @@ def test_the_schema_is_every_table_with_name_unit_and_meaning():
                            "restitution", "orbit", "continuation", "orbit_record", "continuation_record",
                            "continuation_family", "special", "limits", "cap", "range", "paper", "design",
                            "design_front", "design_record", "structure_fit", "decay_model", "damper_fit",
-                           "input_shift"}
+                           "input_shift",
+                           # The JSON documents' keys, to the last level.
+                           "design_file", "damper", "ball", "materials", "observer", "radiation", "air",
+                           "thresholds", "atmosphere", "pulse_record", "metrics", "run_record", "maximum", "energy",
+                           "steady", "verdict", "ensemble_record", "spread", "percentiles", "sweep_record", "chart",
+                           "chart_cell", "table5", "response_record", "response_sweep", "response_point",
+                           "response_spread", "response_run", "study_record", "axis", "study_cell", "settings",
+                           "sample", "map_impact", "bifurcation_record", "bifurcation_point", "band",
+                           "impact_map_record", "basins_record", "attractor", "multiplier", "preset", "paper_column"}
     for table, cols in SCHEMA.items():
         assert len({c[0] for c in cols}) == len(cols), table
         for name, unit, doc in cols:
@@ -178,3 +186,4 @@ def test_a_structure_fit_has_the_schema_s_keys_in_order():
     f = thud.fit_structure(t, x, main_mass=2.0)
     assert list(f) == names("structure_fit")
     assert list(f["model"]) == names("decay_model")
+
