@@ -660,33 +660,6 @@ fn walk(what: &str, v: &Value, t: &'static Table, seen: &mut std::collections::B
 #[test]
 fn every_json_document_s_keys_are_the_schema_s_to_the_last_level() {
     let dir = tempfile::tempdir().unwrap();
-    let forced = ["--preset", "forced-rattle", "--transient", "20", "--periods", "4"];
-    // Every optional key of a design: materials, the physical model and its air, a forced run
-    // with a steady state, the ball's start.
-    let designed = [
-        "--duration",
-        "1",
-        "--force-amplitude",
-        "1N",
-        "--freq",
-        "5Hz",
-        "--ball-position",
-        "1mm",
-        "--ball-velocity",
-        "0.1",
-        "--periods",
-        "4",
-        "--sphere",
-        "steel",
-        "--plate",
-        "steel",
-        "--sphere-poisson",
-        "0.3",
-        "--model",
-        "physical",
-        "--air-temperature",
-        "30",
-    ];
     let parts: Vec<String> = (0..2)
         .map(|k| {
             let p = dir.path().join(format!("part-{k}.csv"));
@@ -701,11 +674,79 @@ fn every_json_document_s_keys_are_the_schema_s_to_the_last_level() {
             p.to_str().unwrap().to_string()
         })
         .collect();
+    let runs = json_documents(&parts);
+    let mut seen = std::collections::BTreeMap::new();
+    for (what, args, t) in runs {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let v: Value = serde_json::from_str(&ok(&args)).unwrap();
+        walk(what, &v, t, &mut seen);
+    }
+    // presets --json is a list of presets.
+    let presets: Value = serde_json::from_str(&ok(&["presets", "--json"])).unwrap();
+    let list = presets.as_array().unwrap();
+    assert!(!list.is_empty());
+    for p in list {
+        walk("presets", p, &schema::PRESET, &mut seen);
+    }
+    // Restitution's rows are the restitution table, its columns name them.
+    let rest: Value = serde_json::from_str(&ok(&["restitution", "--json", "--target", "0.8"])).unwrap();
+    walk("restitution rows", &rest["rows"][0], &schema::RESTITUTION_TABLE, &mut seen);
+    let mut missing = Vec::new();
+    for (id, keys) in &seen {
+        let t = schema::table(id).unwrap();
+        for n in t.names() {
+            if !keys.iter().any(|k| k == n) && !UNSEEN.iter().any(|(i, k, _)| i == id && *k == n) {
+                missing.push(format!("{id}.{n}"));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "the schema's {missing:?} written by none of the runs");
+    let stale: Vec<String> = UNSEEN
+        .iter()
+        .filter(|(id, key, _)| seen.get(id).is_none_or(|keys| keys.iter().any(|k| k == key)))
+        .map(|(id, key, why)| format!("{id}.{key} ({why})"))
+        .collect();
+    assert!(stale.is_empty(), "listed as unseen but written (or its table not reached): {stale:?}");
+    assert!(seen.len() >= 40, "tables reached: {:?}", seen.keys().collect::<Vec<_>>());
+}
+
+/// Every optional key of a design: materials, the physical model and its air, a forced run with
+/// a steady state, the ball's start.
+const DESIGNED: [&str; 22] = [
+    "--duration",
+    "1",
+    "--force-amplitude",
+    "1N",
+    "--freq",
+    "5Hz",
+    "--ball-position",
+    "1mm",
+    "--ball-velocity",
+    "0.1",
+    "--periods",
+    "4",
+    "--sphere",
+    "steel",
+    "--plate",
+    "steel",
+    "--sphere-poisson",
+    "0.3",
+    "--model",
+    "physical",
+    "--air-temperature",
+    "30",
+];
+
+/// The runs of [`every_json_document_s_keys_are_the_schema_s_to_the_last_level`]: each command's
+/// `--json` (small designs, few points), with the table of its document; `parts` two shard
+/// parts for `merge`.
+fn json_documents(parts: &[String]) -> Vec<(&'static str, Vec<String>, &'static Table)> {
+    let forced = ["--preset", "forced-rattle", "--transient", "20", "--periods", "4"];
     let runs: Vec<(&str, Vec<&str>, &Table)> = vec![
         ("pulse", vec!["pulse", "--json", "--points", "3"], &schema::PULSE_RECORD),
         ("pulse physical", vec!["pulse", "--json", "--points", "3", "--model", "physical"], &schema::PULSE_RECORD),
         ("simulate", vec!["simulate", "--json", "--duration", "0.5", "--radius", "1cm"], &schema::RUN_RECORD),
-        ("simulate forced", [&["simulate", "--json"][..], &designed[..]].concat(), &schema::RUN_RECORD),
+        ("simulate forced", [&["simulate", "--json"][..], &DESIGNED[..]].concat(), &schema::RUN_RECORD),
         (
             "simulate --ensemble",
             vec!["simulate", "--json", "--ensemble", "3", "--duration", "0.5"],
@@ -717,7 +758,7 @@ fn every_json_document_s_keys_are_the_schema_s_to_the_last_level() {
             [&["sweep", "--json", "--ensemble", "2", "--duration", "0.5"][..], &GRID[..]].concat(),
             &schema::SWEEP_RECORD,
         ),
-        ("merge", vec!["merge", &parts[0], &parts[1], "--out", "-", "--json"], &schema::SWEEP_RECORD),
+        ("merge", vec!["merge", parts[0].as_str(), parts[1].as_str(), "--out", "-", "--json"], &schema::SWEEP_RECORD),
         ("response", [&["response", "--json"][..], &FORCED[..]].concat(), &schema::RESPONSE_RECORD),
         (
             "response --ensemble",
@@ -752,38 +793,7 @@ fn every_json_document_s_keys_are_the_schema_s_to_the_last_level() {
         ),
         ("limits", vec!["limits", "--json"], &schema::LIMITS),
     ];
-    let mut seen = std::collections::BTreeMap::new();
-    for (what, args, t) in runs {
-        let v: Value = serde_json::from_str(&ok(&args)).unwrap();
-        walk(what, &v, t, &mut seen);
-    }
-    // presets --json is a list of presets.
-    let presets: Value = serde_json::from_str(&ok(&["presets", "--json"])).unwrap();
-    let list = presets.as_array().unwrap();
-    assert!(!list.is_empty());
-    for p in list {
-        walk("presets", p, &schema::PRESET, &mut seen);
-    }
-    // Restitution's rows are the restitution table, its columns name them.
-    let rest: Value = serde_json::from_str(&ok(&["restitution", "--json", "--target", "0.8"])).unwrap();
-    walk("restitution rows", &rest["rows"][0], &schema::RESTITUTION_TABLE, &mut seen);
-    let mut missing = Vec::new();
-    for (id, keys) in &seen {
-        let t = schema::table(id).unwrap();
-        for n in t.names() {
-            if !keys.iter().any(|k| k == n) && !UNSEEN.iter().any(|(i, k, _)| i == id && *k == n) {
-                missing.push(format!("{id}.{n}"));
-            }
-        }
-    }
-    assert!(missing.is_empty(), "the schema's {missing:?} written by none of the runs");
-    let stale: Vec<String> = UNSEEN
-        .iter()
-        .filter(|(id, key, _)| !seen.get(id).is_some_and(|keys| !keys.iter().any(|k| k == key)))
-        .map(|(id, key, why)| format!("{id}.{key} ({why})"))
-        .collect();
-    assert!(stale.is_empty(), "listed as unseen but written (or its table not reached): {stale:?}");
-    assert!(seen.len() >= 40, "tables reached: {:?}", seen.keys().collect::<Vec<_>>());
+    runs.into_iter().map(|(what, args, t)| (what, args.into_iter().map(String::from).collect(), t)).collect()
 }
 
 /// The columns of the tables reached above that none of its runs writes, each with why.

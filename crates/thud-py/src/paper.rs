@@ -16,14 +16,12 @@ use crate::args::engine_error;
 #[pyfunction]
 pub(crate) fn _paper(py: Python<'_>, id: &str) -> PyResult<String> {
     let key = id.to_ascii_lowercase();
-    let table = match py.detach(|| paper::get(&key)) {
-        Some(t) => t.map_err(|e| engine_error(py, e))?,
-        None => {
-            let ids: Vec<&str> = paper::items().map(|i| i.id).collect();
-            let e = ThudError::invalid("paper item", format!("unknown '{id}'; one of: {}", ids.join(", ")));
-            return Err(engine_error(py, e));
-        }
+    let Some(table) = py.detach(|| paper::get(&key)) else {
+        let ids: Vec<&str> = paper::items().map(|i| i.id).collect();
+        let e = ThudError::invalid("paper item", format!("unknown '{id}'; one of: {}", ids.join(", ")));
+        return Err(engine_error(py, e));
     };
+    let table = table.map_err(|e| engine_error(py, e))?;
     crate::json_of(py, &thud_render::json::table_json(&table))
 }
 
