@@ -72,18 +72,7 @@ pub(super) fn sweep_vary(
 /// The figure of a study over one or two parameters (None over more), titled with what varies
 /// over its whole range.
 pub(super) fn figure(s: &Study) -> Option<String> {
-    let range = |a: &Axis| {
-        let (lo, hi) = a.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
-        let unit = if a.unit.is_empty() { String::new() } else { format!(" {}", a.unit) };
-        if hi > lo {
-            format!("{} {}–{}{unit}", a.name, crate::units::short(lo), crate::units::short(hi))
-        } else {
-            format!("{} {}{unit}", a.name, crate::units::short(lo))
-        }
-    };
-    let over: Vec<String> = s.axes.iter().map(range).collect();
-    let title = format!("Study over {}", over.join(" × "));
-    crate::export::studies::study(s, &title, &crate::export::svg::Look::default())
+    crate::export::studies::study(s, &crate::export::studies::study_title(s), &crate::export::svg::Look::default())
 }
 
 /// The study as `thud sweep --vary` prints it (checked finite).

@@ -562,12 +562,20 @@ fn the_guide_s_schema_page_lists_every_table_of_the_definition() {
         for c in t.columns {
             // A percentile column `X_p10` is documented as its metric `X`.
             let name = ["_p10", "_median", "_p90"].iter().find_map(|s| c.name.strip_suffix(s)).unwrap_or(c.name);
-            let row = page
+            // A key that is a list in one document and a count in another has a row for each.
+            let units: Vec<&str> = page
                 .lines()
-                .find(|l| l.starts_with("| `") && l.split(" | ").next().unwrap().contains(&format!("`{name}`")));
-            let row = row.unwrap_or_else(|| panic!("`{}` ({}) has no row in the schema page's table", c.name, t.id));
-            let unit = row.split(" | ").nth(1).unwrap();
-            assert_eq!(unit, c.unit, "`{}` ({}): the page's unit and the schema's", c.name, t.id);
+                .filter(|l| l.starts_with("| `") && l.split(" | ").next().unwrap().contains(&format!("`{name}`")))
+                .map(|row| row.split(" | ").nth(1).unwrap())
+                .collect();
+            assert!(!units.is_empty(), "`{}` ({}) has no row in the schema page's table", c.name, t.id);
+            assert!(
+                units.contains(&c.unit),
+                "`{}` ({}): the page's units {units:?}, the schema's {}",
+                c.name,
+                t.id,
+                c.unit
+            );
         }
     }
 }
@@ -596,3 +604,202 @@ fn designs_saved_in_thud_0_1_s_spelling_still_load() {
     }
     assert_eq!(renamed, thud_presets::names().count(), "every preset had a renamed key");
 }
+
+/// Nested values no table's keys describe, each with why: a paper table's rows are keyed by its
+/// own `columns`, a continued branch's points are the `continuation` table with the parameter as
+/// `value` (checked above), a design search's values are keyed by its flags.
+const DESCRIBED_ELSEWHERE: [(&str, &str); 7] = [
+    ("paper", "rows"),
+    ("paper", "summary"),
+    ("continuation_record", "points"),
+    ("design_front", "variables"),
+    ("design_front", "objectives"),
+    ("design_front", "margins"),
+    ("design_record", "variables"),
+];
+
+/// Every key of the JSON value `v`, to the last level, is a column of `t` (the table of the
+/// document, or of the object a key's `keys` names); each object's keys are added to `seen`
+/// under its table's id. A nested object or list of objects under a key without `keys` fails,
+/// unless [`DESCRIBED_ELSEWHERE`] says where it is described.
+fn walk(what: &str, v: &Value, t: &'static Table, seen: &mut std::collections::BTreeMap<&'static str, Vec<String>>) {
+    let Some(map) = v.as_object() else { return };
+    for (k, x) in map {
+        let c = t.columns.iter().find(|c| c.name == k);
+        let c =
+            c.unwrap_or_else(|| panic!("{what}: key `{k}` is not in the schema's `{}` table ({:?})", t.id, t.names()));
+        let entry = seen.entry(t.id).or_default();
+        if !entry.contains(k) {
+            entry.push(k.clone());
+        }
+        let path = format!("{what}.{k}");
+        let nested: Vec<&Value> = match x {
+            Value::Object(_) => vec![x],
+            Value::Array(list) => list.iter().filter(|e| e.is_object()).collect(),
+            _ => Vec::new(),
+        };
+        match c.keys {
+            Some(id) => {
+                let inner = schema::table(id).unwrap();
+                for e in nested {
+                    walk(&path, e, inner, seen);
+                }
+            }
+            None => assert!(
+                nested.is_empty() || DESCRIBED_ELSEWHERE.contains(&(t.id, k.as_str())),
+                "{path}: an object with keys, and no table of them in the schema's `{}` table's `{k}`",
+                t.id
+            ),
+        }
+    }
+}
+
+/// Every JSON document the command line writes, key by key to the last level, is the schema's:
+/// each key a column of its table (a nested object's table named by the key), and every column
+/// of each table reached written by some run here, but those [`UNSEEN`] says why not.
+#[test]
+fn every_json_document_s_keys_are_the_schema_s_to_the_last_level() {
+    let dir = tempfile::tempdir().unwrap();
+    let parts: Vec<String> = (0..2)
+        .map(|k| {
+            let p = dir.path().join(format!("part-{k}.csv"));
+            let shard = format!("{k}/2");
+            let args = [
+                &["sweep", "--csv", "--ensemble", "2", "--duration", "0.5", "--shard", &shard, "--out"][..],
+                &[p.to_str().unwrap()][..],
+                &GRID[..],
+            ]
+            .concat();
+            ok(&args);
+            p.to_str().unwrap().to_string()
+        })
+        .collect();
+    let runs = json_documents(&parts);
+    let mut seen = std::collections::BTreeMap::new();
+    for (what, args, t) in runs {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let v: Value = serde_json::from_str(&ok(&args)).unwrap();
+        walk(what, &v, t, &mut seen);
+    }
+    // presets --json is a list of presets.
+    let presets: Value = serde_json::from_str(&ok(&["presets", "--json"])).unwrap();
+    let list = presets.as_array().unwrap();
+    assert!(!list.is_empty());
+    for p in list {
+        walk("presets", p, &schema::PRESET, &mut seen);
+    }
+    // Restitution's rows are the restitution table, its columns name them.
+    let rest: Value = serde_json::from_str(&ok(&["restitution", "--json", "--target", "0.8"])).unwrap();
+    walk("restitution rows", &rest["rows"][0], &schema::RESTITUTION_TABLE, &mut seen);
+    let mut missing = Vec::new();
+    for (id, keys) in &seen {
+        let t = schema::table(id).unwrap();
+        for n in t.names() {
+            if !keys.iter().any(|k| k == n) && !UNSEEN.iter().any(|(i, k, _)| i == id && *k == n) {
+                missing.push(format!("{id}.{n}"));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "the schema's {missing:?} written by none of the runs");
+    let stale: Vec<String> = UNSEEN
+        .iter()
+        .filter(|(id, key, _)| seen.get(id).is_none_or(|keys| keys.iter().any(|k| k == key)))
+        .map(|(id, key, why)| format!("{id}.{key} ({why})"))
+        .collect();
+    assert!(stale.is_empty(), "listed as unseen but written (or its table not reached): {stale:?}");
+    assert!(seen.len() >= 40, "tables reached: {:?}", seen.keys().collect::<Vec<_>>());
+}
+
+/// Every optional key of a design: materials, the physical model and its air, a forced run with
+/// a steady state, the ball's start.
+const DESIGNED: [&str; 22] = [
+    "--duration",
+    "1",
+    "--force-amplitude",
+    "1N",
+    "--freq",
+    "5Hz",
+    "--ball-position",
+    "1mm",
+    "--ball-velocity",
+    "0.1",
+    "--periods",
+    "4",
+    "--sphere",
+    "steel",
+    "--plate",
+    "steel",
+    "--sphere-poisson",
+    "0.3",
+    "--model",
+    "physical",
+    "--air-temperature",
+    "30",
+];
+
+/// The runs of [`every_json_document_s_keys_are_the_schema_s_to_the_last_level`]: each command's
+/// `--json` (small designs, few points), with the table of its document; `parts` two shard
+/// parts for `merge`.
+fn json_documents(parts: &[String]) -> Vec<(&'static str, Vec<String>, &'static Table)> {
+    let forced = ["--preset", "forced-rattle", "--transient", "20", "--periods", "4"];
+    let runs: Vec<(&str, Vec<&str>, &Table)> = vec![
+        ("pulse", vec!["pulse", "--json", "--points", "3"], &schema::PULSE_RECORD),
+        ("pulse physical", vec!["pulse", "--json", "--points", "3", "--model", "physical"], &schema::PULSE_RECORD),
+        ("simulate", vec!["simulate", "--json", "--duration", "0.5", "--radius", "1cm"], &schema::RUN_RECORD),
+        ("simulate forced", [&["simulate", "--json"][..], &DESIGNED[..]].concat(), &schema::RUN_RECORD),
+        (
+            "simulate --ensemble",
+            vec!["simulate", "--json", "--ensemble", "3", "--duration", "0.5"],
+            &schema::ENSEMBLE_RECORD,
+        ),
+        ("sweep", [&["sweep", "--json"][..], &GRID[..]].concat(), &schema::SWEEP_RECORD),
+        (
+            "sweep --ensemble",
+            [&["sweep", "--json", "--ensemble", "2", "--duration", "0.5"][..], &GRID[..]].concat(),
+            &schema::SWEEP_RECORD,
+        ),
+        ("merge", vec!["merge", parts[0].as_str(), parts[1].as_str(), "--out", "-", "--json"], &schema::SWEEP_RECORD),
+        ("response", [&["response", "--json"][..], &FORCED[..]].concat(), &schema::RESPONSE_RECORD),
+        (
+            "response --ensemble",
+            [&["response", "--json", "--ensemble", "2"][..], &FORCED[..]].concat(),
+            &schema::RESPONSE_RECORD,
+        ),
+        ("sweep --vary", vec!["sweep", "--json", "--vary", "v0=1:2:2", "--vary", "c1=10:20:2"], &schema::STUDY_RECORD),
+        (
+            "sweep --vary forced",
+            vec!["sweep", "--json", "--vary", "f=5:6:2", "--force-amplitude", "1N", "--duration", "1"],
+            &schema::STUDY_RECORD,
+        ),
+        (
+            "bifurcation",
+            [&["bifurcation", "--json", "--vary", "f=7.5:7.6:2"][..], &forced[..]].concat(),
+            &schema::BIFURCATION_RECORD,
+        ),
+        ("impact-map", [&["impact-map", "--json"][..], &forced[..]].concat(), &schema::IMPACT_MAP_RECORD),
+        ("basins", [&["basins", "--json", "--grid", "2"][..], &forced[..]].concat(), &schema::BASINS_RECORD),
+        ("restitution", vec!["restitution", "--json", "--target", "0.8"], &schema::PAPER),
+        ("paper table3", vec!["paper", "table3", "--json"], &schema::PAPER),
+        ("orbit", vec!["orbit", "--json", "--preset", "forced-rattle"], &schema::ORBIT_RECORD),
+        (
+            "continue",
+            vec!["continue", "--json", "--preset", "forced-rattle", "--vary", "f=5.5:5.6"],
+            &schema::CONTINUATION_RECORD,
+        ),
+        (
+            "continue N",
+            vec!["continue", "--json", "--preset", "forced-rattle", "--vary", "f=5.5:5.6:2"],
+            &schema::CONTINUATION_RECORD,
+        ),
+        ("limits", vec!["limits", "--json"], &schema::LIMITS),
+    ];
+    runs.into_iter().map(|(what, args, t)| (what, args.into_iter().map(String::from).collect(), t)).collect()
+}
+
+/// The columns of the tables reached above that none of its runs writes, each with why.
+const UNSEEN: [(&str, &str, &str); 4] = [
+    ("damper", "settle", "written only when true: a run that settles takes seconds"),
+    ("verdict", "cap", "only when a work cap stops a run"),
+    ("verdict", "source", "only of an orbit solved for: these runs' periodic verdicts are read off samples"),
+    ("paper", "summary", "only some tables of the paper (table 1's differences)"),
+];

@@ -12,12 +12,16 @@
 //! ensemble's `runs`) in front.
 
 /// One column: its name (the CSV header, the JSON key, the DataFrame column), its unit
-/// (`"1"` for a pure number, `"—"` for text or a flag) and what it is.
+/// (`"1"` for a pure number, `"—"` for text, a flag, an object or a list) and what it is; a
+/// JSON key whose value is an object (or a list of objects) names the table of that object's
+/// keys in `keys`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Column {
     pub name: &'static str,
     pub unit: &'static str,
     pub doc: &'static str,
+    /// The id of the table of the value's keys (of each entry's, for a list), if it has keys.
+    pub keys: Option<&'static str>,
 }
 
 /// One table: an identifier (`thud.schema()`'s key), what writes it, and its columns in order.
@@ -36,7 +40,17 @@ impl Table {
 }
 
 const fn col(name: &'static str, unit: &'static str, doc: &'static str) -> Column {
-    Column { name, unit, doc }
+    Column { name, unit, doc, keys: None }
+}
+
+/// A JSON key whose value (an object, or a list of objects) has the keys of the table `keys`.
+const fn nest(name: &'static str, doc: &'static str, keys: &'static str) -> Column {
+    Column { name, unit: "—", doc, keys: Some(keys) }
+}
+
+/// A metric's percentiles (the `percentiles` table), in the metric's unit `unit`.
+const fn percentiles(name: &'static str, unit: &'static str, doc: &'static str) -> Column {
+    Column { name, unit, doc, keys: Some("percentiles") }
 }
 
 /// The columns of `parts` one after the other, as one array of `N`, their count (checked when
@@ -369,7 +383,8 @@ pub const CONTINUATION_FAMILY: Table = Table {
 };
 
 // The JSON records whose keys are not a table's columns: each key of the record, in order.
-const DESIGN_KEY: Column = col("design", "—", "the design as run (the keys of a saved design)");
+const DESIGN_KEY: Column =
+    nest("design", "the design as run: the keys of a saved design (the design_file table)", "design_file");
 const VALUE: Column = col("value", "—", "the varied parameter's value, in the unit of the record's `unit`");
 /// The keys of the record of `thud orbit --json`; its `impacts[]` have the `orbit` table's
 /// impact columns (period, phase, wall, u_in_m_s, u_out_m_s).
@@ -387,8 +402,8 @@ pub const ORBIT_RECORD: Table = Table {
         ZDOT_M_S,
         ORBIT_AMPLITUDE_M,
         AMPLITUDE_LINEAR_M,
-        col("impacts", "—", "the orbit's impacts, each with the orbit table's impact columns"),
-        col("multipliers", "—", "the Floquet multipliers, largest modulus first, each {re, im}"),
+        nest("impacts", "the orbit's impacts (the map_impact table: the orbit table's impact columns)", "map_impact"),
+        nest("multipliers", "the Floquet multipliers, largest modulus first (the multiplier table)", "multiplier"),
         STABLE,
         col(
             "critical",
@@ -411,9 +426,13 @@ pub const CONTINUATION_RECORD: Table = Table {
         col("name", "—", "the varied parameter's name (freq, gap, …)"),
         col("unit", "—", "the varied parameter's unit (Hz, m, …; empty for a plain number)"),
         col("points", "—", "the branch's points, each with the continuation table's columns ({varied} as value)"),
-        col("specials", "—", "the special points of the branch (the special table)"),
+        nest("specials", "the special points of the branch (the special table)", "special"),
         col("ended", "—", "why the branch ended before the range's end (null when it reached it)"),
-        col("branches", "—", "with a point count N: every branch, each with points, specials and ended"),
+        nest(
+            "branches",
+            "with a point count N: every branch, each with name, unit, points, specials and ended",
+            "continuation_record",
+        ),
     ],
 };
 
@@ -445,12 +464,12 @@ pub const LIMITS: Table = Table {
     id: "limits",
     written_by: "limits --json",
     columns: &[
-        col("caps", "—", "the work caps (the cap table), lifted by --no-limit"),
+        nest("caps", "the work caps (the cap table), lifted by --no-limit", "cap"),
         col("orbit_seed_impacts_max", "1", "most impacts of an orbit seed searched"),
         col("orbit_transient_periods_max", "1", "most forcing periods run to find an orbit's seed"),
-        col("ranges", "—", "every parameter's range (the range table)"),
+        nest("ranges", "every parameter's range (the range table)", "range"),
         col("settle_periods_max", "1", "most forcing periods a settling run adds"),
-        col("solver_caps", "—", "the solver's work caps (the cap table)"),
+        nest("solver_caps", "the solver's work caps (the cap table)", "cap"),
     ],
 };
 
@@ -468,13 +487,14 @@ pub const RANGE: Table = Table {
     ],
 };
 
-/// The keys of `thud paper ID --json`: a table of the paper, self-describing: each row's keys
-/// are its `columns[].key` (in the paper's units, stated in the key: `mass_g`, `gap_cm`).
+/// The keys of `thud paper ID --json` and `thud restitution --json`: a table, self-describing:
+/// each row's keys are its `columns[].key` (in the paper's units, stated in the key: `mass_g`,
+/// `gap_cm`; restitution's rows are the `restitution` table).
 pub const PAPER: Table = Table {
     id: "paper",
-    written_by: "paper ID --json",
+    written_by: "paper ID --json, restitution --json",
     columns: &[
-        col("columns", "—", "the table's columns, each {key, label}: the keys of its rows"),
+        nest("columns", "the table's columns (the paper_column table): the keys of its rows", "paper_column"),
         col("id", "—", "the table's or figure's id (table3, fig10, …)"),
         col("notes", "—", "notes on how the numbers were made"),
         col("rows", "—", "the rows, each keyed by the columns' keys"),
@@ -551,7 +571,7 @@ pub const DESIGN_RECORD: Table = Table {
             "—",
             "the front's hypervolume against the reference, in the objectives' units (null without)",
         ),
-        col("front", "—", "the front's designs (the design_front table)"),
+        nest("front", "the front's designs (the design_front table)", "design_front"),
         col("binding", "—", "when no design is feasible: the constraint that binds, in words"),
     ],
 };
@@ -584,7 +604,7 @@ pub const STRUCTURE_FIT: Table = Table {
         col("cycles", "1", "whole cycles in the record"),
         col("start_f_hz", "Hz", "the fit's start: the spectrum's peak"),
         col("start_zeta", "1", "the fit's start: the log decrement's ζ"),
-        col("model", "—", "the fitted free decay (the decay_model table)"),
+        nest("model", "the fitted free decay (the decay_model table)", "decay_model"),
     ],
 };
 
@@ -627,7 +647,11 @@ pub const DAMPER_FIT: Table = Table {
         col("envelope_period_s", "s", "the envelopes' period: one amplitude per period"),
         col("measured_envelope_m", "m", "the first record's amplitude per period"),
         col("model_envelope_m", "m", "the median run's amplitude per period at the fitted c1"),
-        col("inputs", "—", "the given inputs' uncertainties carried into the interval (the input_shift table)"),
+        nest(
+            "inputs",
+            "the given inputs' uncertainties carried into the interval (the input_shift table)",
+            "input_shift",
+        ),
         col("v0_m_s_record", "m/s", "the strike's speed read from the records"),
         col("v0_m_s_record_stderr", "m/s", "its standard uncertainty"),
         col("note", "—", "where the data cannot bound c1 well: why and what to do"),
@@ -645,8 +669,592 @@ pub const INPUT_SHIFT: Table = Table {
     ],
 };
 
+// The other JSON documents, key by key: a key whose value has keys of its own names their table.
+const METRICS_KEY: Column = nest("metrics", "the cell's metrics (the metrics table)", "metrics");
+const SPREAD_KEY: Column = nest("spread", "per metric its percentiles over the runs (the spread table)", "spread");
+const SETTINGS_KEY: Column = nest("settings", "the forced run's periods (the settings table)", "settings");
+const ORBIT_VERDICT: Column =
+    nest("orbit", "the verdict on the motion, as an object (the verdict table; its label in the CSV)", "verdict");
+const SAMPLES_KEY: Column = nest("samples", "the samples x(kT), one a forcing period (the sample table)", "sample");
+const MAP_IMPACTS_KEY: Column = nest("impacts", "the impacts after the transient (the map_impact table)", "map_impact");
+const TRUNCATED_FLAG: Column = col("truncated", "—", "true when a work cap stopped the run before its end");
+const TRUNCATION_REASON: Column =
+    col("truncation_reason", "—", "the solver work cap that stopped the run, in words (null when none did)");
+const BALL_RADIUS_M: Column = col("ball_radius_m", "m", "ball radius a (from its mass and density)");
+const RUNS_KEY: Column = col("runs", "1", "runs N of an ensemble");
+
+/// A saved design (TOML; `design --save`, `fit … --save`, `simulate --save`) and the `design`
+/// of every JSON record.
+pub const DESIGN_FILE_TABLE: Table = Table {
+    id: "design_file",
+    written_by: "--save FILE, the design of every --json",
+    columns: &[
+        nest("damper", "the structure, the damper and the run (the damper table)", "damper"),
+        nest("ball", "the ball's size: its density or its radius (the ball table)", "ball"),
+        nest("materials", "the ball's and the main mass's materials (the materials table; null without)", "materials"),
+        nest("observer", "where the sound is heard (the observer table)", "observer"),
+        nest("radiation", "how the sound is made (the radiation table)", "radiation"),
+        col("solver", "—", "the solver: event or newmark"),
+        col("u0max_rule", "—", "how U0max is read: impacts (the largest contact speed) or the paper's rule"),
+        nest("thresholds", "the design chart's zone thresholds (the thresholds table)", "thresholds"),
+        col("model", "—", "the model the design is heard through: physical (written only when not the paper's)"),
+        nest(
+            "atmosphere",
+            "the physical model's air (the atmosphere table; written only when not room air)",
+            "atmosphere",
+        ),
+    ],
+};
+
+/// A design's `damper`.
+pub const DAMPER: Table = Table {
+    id: "damper",
+    written_by: "a design's damper",
+    columns: &[
+        col("main_mass_kg", "kg", "the main mass M given"),
+        col("stiffness_n_m", "N/m", "spring stiffness K"),
+        col("damping_n_s_m", "N·s/m", "viscous damping C"),
+        col("impact_mass_kg", "kg", "impact (ball) mass m"),
+        GAP_M,
+        col("k_hz_n_m1_5", "N/m^1.5", "Hertz stiffness K_HZ"),
+        col("c1_n_s_m", "N·s/m", "contact damping c1"),
+        col("no_tension", "—", "true: the contact force is clamped at ≥ 0"),
+        col("v0_m_s", "m/s", "initial velocity v0 of the main mass"),
+        col("duration_s", "s", "simulated time"),
+        col("force_n", "N", "amplitude F0 of the harmonic force (written only when forced)"),
+        FREQ_HZ,
+        col("ball_position_m", "m", "initial offset y0 of the ball of one run"),
+        col("ball_velocity_m_s", "m/s", "the ball's initial velocity w0 (written only when not 0)"),
+        col("steady_periods", "1", "forcing periods of each steady-state window (written only when not 10)"),
+        col("settle", "—", "true: a forced run goes on until its amplitude settles (written only when true)"),
+    ],
+};
+
+/// A design's `ball`: one of the two keys.
+pub const BALL: Table = Table {
+    id: "ball",
+    written_by: "a design's ball",
+    columns: &[
+        col("density_kg_m3", "kg/m³", "the ball's density: its radius follows from its mass"),
+        col("radius_m", "m", "sphere radius a (a fixed radius, whatever the mass)"),
+    ],
+};
+
+/// A design's `materials`.
+pub const MATERIALS: Table = Table {
+    id: "materials",
+    written_by: "a design's materials",
+    columns: &[
+        col("sphere", "—", "the ball's material"),
+        col("plate", "—", "the main mass's material"),
+        col("sphere_nu", "1", "the ball's Poisson ratio, when not its material's"),
+    ],
+};
+
+/// A design's `observer`.
+pub const OBSERVER: Table = Table {
+    id: "observer",
+    written_by: "a design's observer",
+    columns: &[col("r_m", "m", "observer distance r"), col("theta_deg", "deg", "observer angle θ")],
+};
+
+/// A design's `radiation`.
+pub const RADIATION: Table = Table {
+    id: "radiation",
+    written_by: "a design's radiation",
+    columns: &[
+        col("source", "—", "the source: single, dipole or quadrupole"),
+        col("quad_signs", "—", "the quadrupole's signs: paper or rigid"),
+        nest("air", "the paper model's air (the air table)", "air"),
+        col("pulse", "—", "the acceleration pulse: half-sine or hertz"),
+    ],
+};
+
+/// A design's `radiation.air`.
+pub const AIR: Table = Table {
+    id: "air",
+    written_by: "a design's radiation.air",
+    columns: &[col("rho_c_pa_s_m", "Pa·s/m", "air impedance ρ0·c"), col("c_m_s", "m/s", "speed of sound c")],
+};
+
+/// A design's (and a chart's) `thresholds`.
+pub const THRESHOLDS: Table = Table {
+    id: "thresholds",
+    written_by: "a design's thresholds, sweep --json chart.thresholds",
+    columns: &[
+        col("spl_db", "dB", "the SPLmax between noisy and quiet"),
+        col("inclination_cm_s", "cm/s", "the damping inclination e between weak and strong"),
+        col("zone_by", "—", "how a zone is read: paper or the robust inclination"),
+    ],
+};
+
+/// A design's `atmosphere`.
+pub const ATMOSPHERE: Table = Table {
+    id: "atmosphere",
+    written_by: "a design's atmosphere",
+    columns: &[
+        col("temperature_c", "°C", "air temperature (the physical model)"),
+        col("pressure_pa", "Pa", "air pressure (the physical model)"),
+    ],
+};
+
+/// The keys of `thud pulse --json`.
+pub const PULSE_RECORD: Table = Table {
+    id: "pulse_record",
+    written_by: "pulse --json",
+    columns: &[
+        col("radius_m", "m", "sphere radius a"),
+        col("mass_kg", "kg", "impact (ball) mass m"),
+        col("u0_m_s", "m/s", "impact speed U0"),
+        col("k_hz_n_m1_5", "N/m^1.5", "Hertz stiffness K_HZ"),
+        col("r_m", "m", "observer distance r"),
+        col("theta_deg", "deg", "observer angle θ"),
+        col("source", "—", "the source: single, dipole or quadrupole"),
+        col("quad_signs", "—", "the quadrupole's signs: paper or rigid"),
+        col("pulse", "—", "the acceleration pulse: half-sine or hertz"),
+        col("rho_c_pa_s_m", "Pa·s/m", "air impedance ρ0·c"),
+        col("c_m_s", "m/s", "speed of sound c"),
+        col("alpha_max_m", "m", "peak approach α_max"),
+        col("accel_max_m_s2", "m/s²", "peak acceleration A_max"),
+        col("tau_s", "s", "contact duration τ"),
+        col("force_max_n", "N", "peak contact force"),
+        col("arrival_s", "s", "arrival of the direct wave after the contact starts"),
+        col("spl_db", "dB", "SPL, as spl_definition says"),
+        col("spl_definition", "—", "how spl_db is defined, in words"),
+        col("spl_peak_db", "dB", "peak level"),
+        col("sel_db", "dB", "sound exposure level"),
+        col("p_rms_pa", "Pa", "rms pressure over the SPL window"),
+        col("p_max_pa", "Pa", "largest pressure"),
+        col("p_min_pa", "Pa", "smallest pressure"),
+        nest("extrema", "the waveform's local extrema after the direct arrival (the pulse table)", "pulse"),
+        nest("waveform", "the waveform: the pulse table's columns, each a list", "pulse"),
+        col("model", "—", "the model the design is heard through: physical (written only when not the paper's)"),
+    ],
+};
+
+/// The metrics of a run (design::Metrics): a sweep cell's `metrics`.
+pub const METRICS_TABLE: Table =
+    Table { id: "metrics", written_by: "sweep --json chart.cells[].metrics", columns: &METRICS };
+
+/// The keys of `thud simulate --json`.
+pub const RUN_RECORD: Table = Table {
+    id: "run_record",
+    written_by: "simulate --json",
+    columns: &join::<18>(&[
+        &[DESIGN_KEY, BALL_RADIUS_M],
+        &METRICS,
+        &[
+            nest("impacts", "every impact (the impacts table)", "impacts"),
+            nest("maxima", "the main mass's cycle maxima (the maximum table)", "maximum"),
+            nest("energy", "the energy ledger (the energy table)", "energy"),
+            FINAL_TIME_S,
+            TRUNCATED_FLAG,
+            TRUNCATION_REASON,
+            nest("steady", "with a force: the steady state (the steady table; absent without)", "steady"),
+        ],
+    ]),
+};
+
+/// A cycle maximum of the main mass: `simulate --json` `maxima[]`.
+pub const MAXIMUM: Table = Table { id: "maximum", written_by: "simulate --json maxima[]", columns: &[T_S, X_M] };
+
+/// The energy ledger of a run: `simulate --json` `energy`.
+pub const ENERGY: Table = Table {
+    id: "energy",
+    written_by: "simulate --json energy",
+    columns: &[
+        col("initial_j", "J", "the initial mechanical energy"),
+        col("final_mechanical_j", "J", "the mechanical energy at the end"),
+        col("dissipated_viscous_j", "J", "energy dissipated by the viscous damper C"),
+        col("dissipated_contact_j", "J", "energy dissipated in the contacts"),
+        col("forcing_work_j", "J", "work done by the harmonic force (only when forced)"),
+    ],
+};
+
+/// The steady state of a forced run: `simulate --json` `steady`.
+pub const STEADY: Table = Table {
+    id: "steady",
+    written_by: "simulate --force-amplitude F --json steady",
+    columns: &[
+        PERIODS,
+        WINDOW_START_S,
+        WINDOW_END_S,
+        AMPLITUDE_M,
+        AMPLITUDE_LINEAR_M,
+        REDUCTION_DB,
+        IMPACTS_PER_PERIOD,
+        LEQ_DB,
+        PERIODIC,
+        SETTLED,
+        TRUNCATED,
+        nest("verdict", "the verdict on the motion, as an object (the verdict table; its label in the CSV)", "verdict"),
+    ],
+};
+
+/// A verdict on a forced motion as an object: its `kind` and that kind's own keys.
+pub const VERDICT_TABLE: Table = Table {
+    id: "verdict",
+    written_by: "a response point's verdict, a map's orbit (--json)",
+    columns: &[
+        col("kind", "—", "periodic, settled, chaotic, not_settled or truncated"),
+        col("impacts", "1", "periodic: impacts in each period"),
+        col("periods", "1", "periodic: the period in forcing periods"),
+        col("symmetric", "—", "x(t + T/2) = −x(t)"),
+        col("source", "—", "periodic: exact when solved for as an orbit (absent: read off samples)"),
+        col("k", "1", "chaotic or not_settled: the 0–1 test's K (null when not run)"),
+        col("cap", "—", "truncated: the work cap that stopped the run (absent: cancelled)"),
+    ],
+};
+
+/// The keys of `thud simulate --ensemble N --json`.
+pub const ENSEMBLE_RECORD: Table = Table {
+    id: "ensemble_record",
+    written_by: "simulate --ensemble N --json",
+    columns: &[
+        DESIGN_KEY,
+        BALL_RADIUS_M,
+        RUNS_KEY,
+        col("zone", "1–4", "design-chart zone (empty when there is none)"),
+        ZONE3_PROBABILITY,
+        AGREEMENT,
+        SPREAD_KEY,
+        nest("ensemble", "every run (the ensemble table; truncated, the cap, when one stopped it)", "ensemble"),
+        TRUNCATED_FLAG,
+        TRUNCATION_REASON,
+    ],
+};
+
+/// The percentiles over an ensemble's runs of each metric: `spread`.
+pub const SPREAD: Table = Table {
+    id: "spread",
+    written_by: "simulate --ensemble N --json spread, a sweep cell's spread",
+    columns: &[
+        percentiles("inclination_cm_s", "cm/s", "damping inclination e's percentiles (the percentiles table)"),
+        percentiles("inclination_fit_cm_s", "cm/s", "the robust inclination's percentiles (the percentiles table)"),
+        percentiles("u0_max_m_s", "m/s", "U0max's percentiles (the percentiles table)"),
+        percentiles("spl_max_db", "dB", "SPLmax's percentiles (the percentiles table)"),
+    ],
+};
+
+/// Three percentiles of a metric over an ensemble's runs, in the metric's unit.
+pub const PERCENTILES: Table = Table {
+    id: "percentiles",
+    written_by: "a spread's metric",
+    columns: &[
+        col("p10", "unit", "10th percentile over the runs, in the metric's unit"),
+        col("median", "unit", "median over the runs, in the metric's unit"),
+        col("p90", "unit", "90th percentile over the runs, in the metric's unit"),
+    ],
+};
+
+/// The keys of `thud sweep --json` (and `merge --json`).
+pub const SWEEP_RECORD: Table = Table {
+    id: "sweep_record",
+    written_by: "sweep --json, sweep --ensemble N --json, merge --json",
+    columns: &[
+        DESIGN_KEY,
+        nest("chart", "the design chart (the chart table)", "chart"),
+        nest("table5", "Table 5 of the chart: its bands of e (the table5 table)", "table5"),
+    ],
+};
+
+/// A design chart: `sweep --json` `chart`.
+pub const CHART: Table = Table {
+    id: "chart",
+    written_by: "sweep --json chart",
+    columns: &[
+        col("masses_kg", "kg", "the chart's impact masses"),
+        col("gaps_m", "m", "the chart's clearances"),
+        RUNS_KEY,
+        nest(
+            "cells",
+            "the cells, gap outer (the chart_cell table; flattened: the sweep or sweep_ensemble table)",
+            "chart_cell",
+        ),
+        nest("thresholds", "the zone thresholds (the thresholds table)", "thresholds"),
+    ],
+};
+
+/// A cell of a design chart: `sweep --json` `chart.cells[]` (`runs` onwards: of ensembles).
+pub const CHART_CELL: Table = Table {
+    id: "chart_cell",
+    written_by: "sweep --json chart.cells[]",
+    columns: &[
+        MASS_KG,
+        GAP_M,
+        RUNS_KEY,
+        METRICS_KEY,
+        SPREAD_KEY,
+        ZONE3_PROBABILITY,
+        AGREEMENT,
+        nest("ensemble", "every run (the ensemble table; truncated, the cap, when one stopped it)", "ensemble"),
+    ],
+};
+
+/// A band of Table 5: `sweep --json` `table5[]`.
+pub const TABLE5: Table = Table {
+    id: "table5",
+    written_by: "sweep --json table5[]",
+    columns: &[
+        col("e_lo_cm_s", "cm/s", "a band of e (Table 5): its lower end"),
+        col("e_hi_cm_s", "cm/s", "a band of e (Table 5): its upper end"),
+        col("count", "1", "designs in the band"),
+        col("spl_min_db", "dB", "smallest SPLmax in the band"),
+        SPL_MAX_DB,
+    ],
+};
+
+/// The keys of `thud response --json` (`runs` only with `--ensemble N`).
+pub const RESPONSE_RECORD: Table = Table {
+    id: "response_record",
+    written_by: "response --json, response --ensemble N --json",
+    columns: &[
+        DESIGN_KEY,
+        col("force_n", "N", "amplitude F0 of the harmonic force (written only when forced)"),
+        col("periods", "1", "forcing periods N of each steady-state window"),
+        col("continuation", "—", "true when each frequency started from the previous one's final state"),
+        RUNS_KEY,
+        nest("sweeps", "the sweeps (the response_sweep table)", "response_sweep"),
+    ],
+};
+
+/// A sweep of a response: `response --json` `sweeps[]`.
+pub const RESPONSE_SWEEP: Table = Table {
+    id: "response_sweep",
+    written_by: "response --json sweeps[]",
+    columns: &[
+        DIRECTION,
+        nest(
+            "points",
+            "one per frequency (the response_point table; flattened: response or response_ensemble)",
+            "response_point",
+        ),
+    ],
+};
+
+/// A point of a response: `response --json` `sweeps[].points[]`; of a response of ensembles,
+/// `freq_hz`, `amplitude_linear_m`, `spread`, the fractions, `truncated` and `ensemble`.
+pub const RESPONSE_POINT: Table = Table {
+    id: "response_point",
+    written_by: "response --json sweeps[].points[]",
+    columns: &[
+        FREQ_HZ,
+        PERIODS,
+        WINDOW_START_S,
+        WINDOW_END_S,
+        AMPLITUDE_M,
+        AMPLITUDE_LINEAR_M,
+        REDUCTION_DB,
+        IMPACTS_PER_PERIOD,
+        LEQ_DB,
+        PERIODIC,
+        SETTLED,
+        TRUNCATED,
+        nest("verdict", "the verdict on the motion, as an object (the verdict table; its label in the CSV)", "verdict"),
+        FINAL_TIME_S,
+        nest("spread", "per quantity its percentiles over the runs (the response_spread table)", "response_spread"),
+        PERIODIC_FRACTION,
+        SETTLED_FRACTION,
+        nest("ensemble", "every run (the response_run table)", "response_run"),
+    ],
+};
+
+/// The percentiles of a response point of ensembles: `spread`.
+pub const RESPONSE_SPREAD: Table = Table {
+    id: "response_spread",
+    written_by: "response --ensemble N --json sweeps[].points[].spread",
+    columns: &[
+        percentiles("amplitude_m", "m", "the amplitude's percentiles (the percentiles table)"),
+        percentiles("reduction_db", "dB", "the reduction's, at the amplitude's percentiles (the percentiles table)"),
+        percentiles("impacts_per_period", "1", "the impacts per period's percentiles (the percentiles table)"),
+        percentiles("leq_db", "dB", "Leq's percentiles (the percentiles table)"),
+    ],
+};
+
+/// A run of a response point of ensembles: `ensemble[]`.
+pub const RESPONSE_RUN: Table = Table {
+    id: "response_run",
+    written_by: "response --ensemble N --json sweeps[].points[].ensemble[]",
+    columns: &[
+        BALL_POSITION_M,
+        PERIODS,
+        WINDOW_START_S,
+        WINDOW_END_S,
+        AMPLITUDE_M,
+        AMPLITUDE_LINEAR_M,
+        REDUCTION_DB,
+        IMPACTS_PER_PERIOD,
+        LEQ_DB,
+        PERIODIC,
+        SETTLED,
+        TRUNCATED,
+        nest("verdict", "the verdict on the motion, as an object (the verdict table; its label in the CSV)", "verdict"),
+        FINAL_TIME_S,
+    ],
+};
+
+/// The keys of `thud sweep --vary … --json`.
+pub const STUDY_RECORD: Table = Table {
+    id: "study_record",
+    written_by: "sweep --vary --json",
+    columns: &[
+        DESIGN_KEY,
+        nest("axes", "the varied parameters, in order (the axis table)", "axis"),
+        nest("cells", "the cells (the study_cell table)", "study_cell"),
+    ],
+};
+
+/// A varied parameter: `sweep --vary --json` `axes[]`, `bifurcation --json` `axis`.
+pub const AXIS: Table = Table {
+    id: "axis",
+    written_by: "sweep --vary --json axes[], bifurcation --json axis",
+    columns: &[
+        col("name", "—", "the varied parameter's name (freq, gap, …)"),
+        col("unit", "—", "the varied parameter's unit (Hz, m, …; empty for a plain number)"),
+        col("values", "—", "the parameter's values, in unit"),
+    ],
+};
+
+/// A cell of a study: `sweep --vary --json` `cells[]`; its `values` are the `{varied}`
+/// columns of the CSV, in the axes' order.
+pub const STUDY_CELL: Table = Table {
+    id: "study_cell",
+    written_by: "sweep --vary --json cells[]",
+    columns: &join::<12>(&[
+        &[STUDY_INDEX, col("values", "—", "the cell's value of each varied parameter, in the axes' order and units")],
+        &METRICS,
+        &[nest("steady", "with a force: the steady state (the steady table; absent without)", "steady")],
+    ]),
+};
+
+/// The periods of a forced map: `settings`.
+pub const SETTINGS: Table = Table {
+    id: "settings",
+    written_by: "bifurcation, impact-map, basins --json settings",
+    columns: &[
+        col("transient_periods", "1", "forcing periods run before the samples (the transient)"),
+        col("periods", "1", "forcing periods sampled after the transient"),
+    ],
+};
+
+/// A sample x(kT) of a forced map.
+pub const SAMPLE: Table = Table {
+    id: "sample",
+    written_by: "bifurcation, impact-map --json samples[]",
+    columns: &[PERIOD, X_M, V_M_S, Z_M, ZDOT_M_S],
+};
+
+/// An impact of a forced map or orbit.
+pub const MAP_IMPACT: Table = Table {
+    id: "map_impact",
+    written_by: "bifurcation, impact-map, orbit --json impacts[]",
+    columns: &[PERIOD, PHASE, WALL, U_IN_M_S, U_OUT_M_S],
+};
+
+/// The keys of `thud bifurcation --json`.
+pub const BIFURCATION_RECORD: Table = Table {
+    id: "bifurcation_record",
+    written_by: "bifurcation --json",
+    columns: &[
+        DESIGN_KEY,
+        nest("axis", "the varied parameter (the axis table)", "axis"),
+        SETTINGS_KEY,
+        nest("points", "one per value and direction (the bifurcation_point table)", "bifurcation_point"),
+        nest("bands", "the runs of values of one orbit type (the band table)", "band"),
+    ],
+};
+
+/// A value of a bifurcation diagram: `bifurcation --json` `points[]`.
+pub const BIFURCATION_POINT: Table = Table {
+    id: "bifurcation_point",
+    written_by: "bifurcation --json points[]",
+    columns: &[VALUE, DIRECTION, ORBIT_VERDICT, ORBIT_AMPLITUDE_M, SAMPLES_KEY, MAP_IMPACTS_KEY, TRUNCATED_FLAG],
+};
+
+/// A band of one orbit type in a bifurcation diagram: `bifurcation --json` `bands[]`.
+pub const BAND: Table = Table {
+    id: "band",
+    written_by: "bifurcation --json bands[]",
+    columns: &[
+        DIRECTION,
+        col("from", "—", "the band's first value, in the axis's unit"),
+        col("to", "—", "the band's last value, in the axis's unit"),
+        col("values", "1", "how many values the band holds"),
+        col("orbit", "—", "the orbit's type: m/n (impacts per forcing periods), sym, chaotic, not settled"),
+    ],
+};
+
+/// The keys of `thud impact-map --json`.
+pub const IMPACT_MAP_RECORD: Table = Table {
+    id: "impact_map_record",
+    written_by: "impact-map --json",
+    columns: &[
+        DESIGN_KEY,
+        SETTINGS_KEY,
+        ORBIT_VERDICT,
+        ORBIT_AMPLITUDE_M,
+        SAMPLES_KEY,
+        MAP_IMPACTS_KEY,
+        TRUNCATED_FLAG,
+    ],
+};
+
+/// The keys of `thud basins --json`.
+pub const BASINS_RECORD: Table = Table {
+    id: "basins_record",
+    written_by: "basins --json",
+    columns: &[
+        DESIGN_KEY,
+        SETTINGS_KEY,
+        col("y0_m", "m", "the ball's start offsets from the enclosure's centre (the grid's rows)"),
+        col("w0_m_s", "m/s", "the ball's start velocities (the grid's columns)"),
+        col("cells", "—", "per start (y0 outer) the id of the attractor it settles on"),
+        col("amplitudes_m", "m", "per start (y0 outer) the steady amplitude of the main mass"),
+        nest("attractors", "the attractors found (the attractor table)", "attractor"),
+    ],
+};
+
+/// An attractor of a basins map: `basins --json` `attractors[]`.
+pub const ATTRACTOR: Table = Table {
+    id: "attractor",
+    written_by: "basins --json attractors[]",
+    columns: &[
+        col("id", "—", "the attractor's number (as cells name it)"),
+        ORBIT_VERDICT,
+        col("label", "—", "the orbit's type in words, as the CSV's orbit"),
+        ORBIT_AMPLITUDE_M,
+        col("starts", "1", "the starts that settle on it"),
+        col("share", "1", "the fraction of the starts that settle on it"),
+    ],
+};
+
+/// A Floquet multiplier: `orbit --json` `multipliers[]`.
+pub const MULTIPLIER: Table = Table {
+    id: "multiplier",
+    written_by: "orbit --json multipliers[]",
+    columns: &[
+        col("re", "1", "the multiplier's real part"),
+        col("im", "1", "the multiplier's imaginary part"),
+        col("abs", "1", "its modulus |λ|"),
+    ],
+};
+
+/// A preset: `thud presets --json` (a list of them).
+pub const PRESET: Table = Table {
+    id: "preset",
+    written_by: "presets --json[]",
+    columns: &[col("name", "—", "the preset's name (--preset NAME)"), col("description", "—", "what the preset is")],
+};
+
+/// A column of a table of `thud paper ID --json`: `columns[]`.
+pub const PAPER_COLUMN: Table = Table {
+    id: "paper_column",
+    written_by: "paper ID --json columns[]",
+    columns: &[col("key", "—", "the column's key in each row"), col("label", "—", "the column's heading, as printed")],
+};
+
 /// Every table, in the guide's order.
-pub const TABLES: [Table; 31] = [
+pub const TABLES: [Table; 74] = [
     PULSE,
     HISTORY,
     IMPACTS,
@@ -678,6 +1286,49 @@ pub const TABLES: [Table; 31] = [
     DECAY_MODEL,
     DAMPER_FIT,
     INPUT_SHIFT,
+    DESIGN_FILE_TABLE,
+    DAMPER,
+    BALL,
+    MATERIALS,
+    OBSERVER,
+    RADIATION,
+    AIR,
+    THRESHOLDS,
+    ATMOSPHERE,
+    PULSE_RECORD,
+    METRICS_TABLE,
+    RUN_RECORD,
+    MAXIMUM,
+    ENERGY,
+    STEADY,
+    VERDICT_TABLE,
+    ENSEMBLE_RECORD,
+    SPREAD,
+    PERCENTILES,
+    SWEEP_RECORD,
+    CHART,
+    CHART_CELL,
+    TABLE5,
+    RESPONSE_RECORD,
+    RESPONSE_SWEEP,
+    RESPONSE_POINT,
+    RESPONSE_SPREAD,
+    RESPONSE_RUN,
+    STUDY_RECORD,
+    AXIS,
+    STUDY_CELL,
+    SETTINGS,
+    SAMPLE,
+    MAP_IMPACT,
+    BIFURCATION_RECORD,
+    BIFURCATION_POINT,
+    BAND,
+    IMPACT_MAP_RECORD,
+    BASINS_RECORD,
+    ATTRACTOR,
+    MULTIPLIER,
+    PRESET,
+    PAPER_COLUMN,
 ];
 
 /// The table `id`, if there is one.
@@ -704,7 +1355,8 @@ mod tests {
                     c.name
                 );
                 assert!(!c.doc.is_empty() && !c.unit.is_empty(), "{}", c.name);
-                if c.name != "truncated" {
+                // A key that is a list in one record and a count or a flag in another.
+                if !["truncated", "samples", "impacts", "values"].contains(&c.name) {
                     let was = unit_of.insert(c.name, c.unit);
                     assert!(was.is_none_or(|u| u == c.unit), "{}: two units", c.name);
                 }
@@ -712,6 +1364,25 @@ mod tests {
         }
         assert_eq!(table("sweep"), Some(&SWEEP));
         assert_eq!(table("nothing"), None);
+    }
+
+    #[test]
+    fn every_nested_key_names_a_table_and_every_table_is_reached() {
+        let ids: BTreeSet<&str> = TABLES.iter().map(|t| t.id).collect();
+        assert_eq!(ids.len(), TABLES.len(), "an id twice");
+        let mut reached = BTreeSet::new();
+        for t in &TABLES {
+            for c in t.columns {
+                if let Some(k) = c.keys {
+                    assert!(ids.contains(k), "{}.{}: no table `{k}`", t.id, c.name);
+                    reached.insert(k);
+                }
+            }
+        }
+        // A table no key points to is a whole file or document: something writes it.
+        for t in TABLES.iter().filter(|t| !reached.contains(t.id)) {
+            assert!(t.written_by.contains("csv") || t.written_by.contains("json"), "{}: {}", t.id, t.written_by);
+        }
     }
 
     #[test]

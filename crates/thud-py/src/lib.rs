@@ -25,6 +25,7 @@
 //! Python-facing documentation is in the `#[pyo3]` items and the stub `python/thud/__init__.pyi`.
 
 mod args;
+mod caps;
 #[path = "design.rs"]
 mod design_search;
 mod designfile;
@@ -32,6 +33,7 @@ mod detach;
 mod fit;
 mod objects;
 mod orbits;
+mod paper;
 mod progress;
 mod render;
 
@@ -767,6 +769,9 @@ fn thud_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(axis_values, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(ranges, m)?)?;
+    m.add_function(wrap_pyfunction!(caps::limits, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::_paper, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::paper_ids, m)?)?;
     m.add_function(wrap_pyfunction!(schema, m)?)?;
     m.add_function(wrap_pyfunction!(_parameters, m)?)?;
     m.add_function(wrap_pyfunction!(objects::_restore, m)?)?;

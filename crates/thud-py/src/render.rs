@@ -130,7 +130,8 @@ pub fn _render<'py>(
 ///
 /// The figure `thud basins --svg` (kind "basins"), `thud impact-map --svg` (kind
 /// "impact_map"), `thud bifurcation --svg` (kind "bifurcation"; with the record's "branches",
-/// `--branches N`'s) or `thud continue --svg` (kind "continuation") draws, from the result's
+/// `--branches N`'s), `thud continue --svg` (kind "continuation") or `thud sweep --vary … --svg`
+/// (kind "study", over one or two parameters) draws, from the result's
 /// record (its `--json` object; a bifurcation's under "bifurcation"); `pdf=True`: `--pdf`.
 #[pyfunction]
 #[pyo3(signature = (kind, record, pdf = false, size = None, title = true))]
@@ -173,8 +174,17 @@ pub fn _figure<'py>(
             let t = thud_render::dynamics::range_title("Orbits continued", &design, &branch.name, &branch.unit, &range);
             thud_render::continuation::continuation_svg(std::slice::from_ref(&branch), &t, &look)
         }
+        "study" => {
+            let study: thud_core::study::Study = serde_json::from_value(value).map_err(bad)?;
+            let t = thud_render::studies::study_title(&study);
+            thud_render::studies::study(&study, &t, &look).ok_or_else(|| {
+                let n = study.axes.len();
+                parameter_error(py, "vary", format!("a figure draws a study over one or two parameters, not {n}"))
+            })?
+        }
         _ => {
-            let msg = format!("invalid kind: '{kind}'; expected basins, impact_map, bifurcation or continuation");
+            let msg =
+                format!("invalid kind: '{kind}'; expected basins, impact_map, bifurcation, continuation or study");
             return Err(parameter_error(py, "kind", msg));
         }
     };

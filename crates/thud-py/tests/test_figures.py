@@ -221,3 +221,26 @@ def test_a_bifurcation_with_branches_draws_what_thud_bifurcation_branches_draws(
         with pytest.raises(thud.ParameterError, match="branches") as info:
             thud.bifurcation(freq=[7.0, 8.0], branches=bad, **kw)
         assert info.value.param == "branches"
+
+
+def test_a_study_draws_what_thud_sweep_vary_draws(cli, tmp_path):
+    """A study over one or two parameters draws the bytes of ``thud sweep --vary … --svg|--pdf``
+    for the same values; over three it is refused, naming why."""
+    two = thud.sweep(v0=[1.0, 2.0], c1=[10.0, 20.0], duration=0.5)
+    one = thud.sweep(v0=[1.0, 1.5, 2.0], duration=0.5)
+    cases = [(two, ["--vary", "v0=1:2:2", "--vary", "c1=10:20:2"]), (one, ["--vary", "v0=1:2:3"])]
+    for ds, vary in cases:
+        for method, flag in ((ds.to_svg, "--svg"), (ds.to_pdf, "--pdf")):
+            out = tmp_path / f"study-{len(vary)}{flag}"
+            code, _, err = cli("sweep", *vary, "--duration", "0.5", "--csv", flag, str(out))
+            assert code == 0, err
+            assert written(tmp_path, method) == out.read_bytes()
+    svg = written(tmp_path, two.to_svg).decode()
+    assert "Study over v0 1–2 m/s × c1 10–20 N·s/m" in svg
+    assert written(tmp_path, one.to_svg) != written(tmp_path, two.to_svg)
+    with pytest.raises(ValueError, match="derived"):
+        two.isel(v0_m_s=[0]).to_svg(tmp_path / "part.svg")
+    three = thud.sweep(v0=[1.0, 2.0], c1=[10.0, 20.0], gap=[0.03, 0.04], duration=0.5)
+    with pytest.raises(thud.ParameterError, match="one or two parameters, not 3"):
+        three.to_svg(tmp_path / "three.svg")
+    assert not (tmp_path / "three.svg").exists()

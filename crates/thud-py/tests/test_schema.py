@@ -32,7 +32,15 @@ def test_the_schema_is_every_table_with_name_unit_and_meaning():
                            "restitution", "orbit", "continuation", "orbit_record", "continuation_record",
                            "continuation_family", "special", "limits", "cap", "range", "paper", "design",
                            "design_front", "design_record", "structure_fit", "decay_model", "damper_fit",
-                           "input_shift"}
+                           "input_shift",
+                           # The JSON documents' keys, to the last level.
+                           "design_file", "damper", "ball", "materials", "observer", "radiation", "air",
+                           "thresholds", "atmosphere", "pulse_record", "metrics", "run_record", "maximum", "energy",
+                           "steady", "verdict", "ensemble_record", "spread", "percentiles", "sweep_record", "chart",
+                           "chart_cell", "table5", "response_record", "response_sweep", "response_point",
+                           "response_spread", "response_run", "study_record", "axis", "study_cell", "settings",
+                           "sample", "map_impact", "bifurcation_record", "bifurcation_point", "band",
+                           "impact_map_record", "basins_record", "attractor", "multiplier", "preset", "paper_column"}
     for table, cols in SCHEMA.items():
         assert len({c[0] for c in cols}) == len(cols), table
         for name, unit, doc in cols:
@@ -178,3 +186,39 @@ def test_a_structure_fit_has_the_schema_s_keys_in_order():
     f = thud.fit_structure(t, x, main_mass=2.0)
     assert list(f) == names("structure_fit")
     assert list(f["model"]) == names("decay_model")
+
+
+def test_limits_is_the_command_line_s_limits_json(cli):
+    """``thud.limits()`` is the table of ``thud limits --json``: the same keys in the same order,
+    the same ranges and caps."""
+    import json
+
+    code, text, err = cli("limits", "--json")
+    assert code == 0, err
+    want = json.loads(text)
+    have = thud.limits()
+    assert list(have) == list(want)
+    for key in ("ranges", "caps", "solver_caps"):
+        assert [list(r) for r in have[key]] == [list(r) for r in want[key]], key
+    assert have == want
+    assert {r["param"] for r in have["ranges"]} >= {"mass", "gap", "main-mass"}
+
+
+def test_every_paper_table_is_the_command_line_s_paper_json(cli):
+    """``thud.paper(id)`` is ``thud paper ID --json`` for every id ``thud paper --list`` lists,
+    and an unknown id is refused naming it."""
+    import json
+
+    code, text, err = cli("paper", "--list")
+    assert code == 0, err
+    listed = [line.split()[0] for line in text.splitlines() if line.split() and line.split()[0][:3] in ("tab", "fig")]
+    assert thud.paper_ids() == listed
+    for pid in listed:
+        code, text, err = cli("paper", pid, "--json")
+        assert code == 0, err
+        want = json.loads(text)
+        have = thud.paper(pid)
+        assert list(have) == list(want), pid
+        assert have == want, pid
+    with pytest.raises(thud.ParameterError, match="table9"):
+        thud.paper("table9")

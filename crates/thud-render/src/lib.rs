@@ -11,6 +11,7 @@ pub mod continuation;
 pub mod csv;
 pub mod dynamics;
 pub mod figures;
+pub mod json;
 pub mod pdf;
 pub mod pulse;
 pub mod studies;

@@ -105,6 +105,23 @@ fn height(n: usize) -> f64 {
     50.0 + n as f64 * (CAPTION + 70.0 + 190.0)
 }
 
+/// The title of a study's figure: what varies, over its whole range ("Study over v0 1–3 m/s ×
+/// c1 10–20 N·s/m"), the command line's and Python's.
+#[must_use]
+pub fn study_title(s: &Study) -> String {
+    let range = |a: &StudyAxis| {
+        let (lo, hi) = a.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+        let unit = if a.unit.is_empty() { String::new() } else { format!(" {}", a.unit) };
+        if hi > lo {
+            format!("{} {}–{}{unit}", a.name, short(lo), short(hi))
+        } else {
+            format!("{} {}{unit}", a.name, short(lo))
+        }
+    };
+    let over: Vec<String> = s.axes.iter().map(range).collect();
+    format!("Study over {}", over.join(" × "))
+}
+
 /// The figure of a study over one or two parameters; None over more (or none).
 #[must_use]
 pub fn study(s: &Study, title: &str, look: &Look) -> Option<String> {

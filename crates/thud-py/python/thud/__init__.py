@@ -21,6 +21,7 @@ from typing import Any as _Any
 from typing import Dict as _Dict
 from typing import List as _List
 from typing import Union as _Union
+from typing import TypedDict as _TypedDict
 
 from . import _frames, _thud
 from ._thud import (
@@ -32,6 +33,8 @@ from ._thud import (
     Run,
     __version__,
     axis,
+    limits,
+    paper_ids,
     presets,
     ranges,
     schema,
@@ -52,6 +55,11 @@ __all__ = [
     "Ensemble",
     "Front",
     "ImpactMap",
+    "PaperColumn",
+    "PaperTable",
+    "LimitCap",
+    "LimitRange",
+    "Limits",
     "Orbit",
     "ParameterError",
     "Pulse",
@@ -67,7 +75,10 @@ __all__ = [
     "fit_damper",
     "fit_structure",
     "impact_map",
+    "limits",
     "orbit",
+    "paper",
+    "paper_ids",
     "presets",
     "pulse",
     "ranges",
@@ -78,6 +89,61 @@ __all__ = [
     "simulate_ensemble",
     "sweep",
 ]
+
+
+class LimitRange(_TypedDict):
+    """A parameter's range in ``limits()["ranges"]``: param as the command line's flag."""
+
+    max: float
+    min: float
+    param: str
+    reason: str
+    unit: str
+    what: str
+
+
+class LimitCap(_TypedDict):
+    """A work cap in ``limits()["caps"]`` and ``["solver_caps"]``."""
+
+    basis: str
+    max: float
+    what: str
+
+
+class Limits(_TypedDict):
+    """``thud limits --json``, key for key."""
+
+    caps: _List[LimitCap]
+    orbit_seed_impacts_max: int
+    orbit_transient_periods_max: int
+    ranges: _List[LimitRange]
+    settle_periods_max: int
+    solver_caps: _List[LimitCap]
+
+
+class PaperColumn(_TypedDict):
+    """A column of a paper table: its key in each row, its heading as printed."""
+
+    key: str
+    label: str
+
+
+class PaperTable(_TypedDict, total=False):
+    """A table or figure of the paper, as ``thud paper ID --json`` (``summary`` only for some)."""
+
+    id: str
+    title: str
+    notes: _List[str]
+    columns: _List[PaperColumn]
+    rows: _List[_Dict[str, _Any]]
+    summary: _Dict[str, _Dict[str, _Any]]
+
+
+def paper(id: str) -> PaperTable:
+    """A table or figure of the paper reproduced beside the paper's numbers: the dict of
+    ``thud paper ID --json``, key for key (``paper_ids()`` lists the ids, table1 … fig17)."""
+    table: PaperTable = _json.loads(_thud._paper(id))
+    return table
 
 
 def _restore(kind: str, state: str) -> _Any:

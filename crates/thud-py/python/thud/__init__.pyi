@@ -16,7 +16,7 @@ bit-for-bit those of ``thud pulse|simulate|sweep|response --json`` for the same 
 """
 
 import os
-from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -1114,6 +1114,55 @@ def presets() -> Dict[str, str]:
 def ranges() -> List[Dict[str, object]]:
     """The valid range of every numeric parameter (``thud limits``): dicts with param (the
     keyword), what, min, max, unit (of a plain number) and reason."""
+
+class LimitRange(TypedDict):
+    """A parameter's range in ``limits()["ranges"]``: param as the command line's flag."""
+    max: float
+    min: float
+    param: str
+    reason: str
+    unit: str
+    what: str
+
+class LimitCap(TypedDict):
+    """A work cap in ``limits()["caps"]`` and ``["solver_caps"]``."""
+    basis: str
+    max: float
+    what: str
+
+class Limits(TypedDict):
+    """``thud limits --json``, key for key."""
+    caps: List[LimitCap]
+    orbit_seed_impacts_max: int
+    orbit_transient_periods_max: int
+    ranges: List[LimitRange]
+    settle_periods_max: int
+    solver_caps: List[LimitCap]
+
+class PaperColumn(TypedDict):
+    """A column of a paper table: its key in each row, its heading as printed."""
+    key: str
+    label: str
+
+class PaperTable(TypedDict, total=False):
+    """A table or figure of the paper, as ``thud paper ID --json`` (``summary`` only for some)."""
+    id: str
+    title: str
+    notes: List[str]
+    columns: List[PaperColumn]
+    rows: List[Dict[str, Any]]
+    summary: Dict[str, Dict[str, Any]]
+
+def paper(id: str) -> PaperTable:
+    """A table or figure of the paper reproduced beside the paper's numbers: the dict of
+    ``thud paper ID --json``, key for key; an unknown id raises ParameterError."""
+
+def paper_ids() -> List[str]:
+    """The ids of the paper's tables and figures (``thud paper --list``): table1 … fig17."""
+
+def limits() -> Limits:
+    """Every parameter's range and every work cap: the table of ``thud limits --json``, key for
+    key (a range's param is the flag without its dashes; ``ranges()`` gives the keywords)."""
 
 
 class StructureFit(Dict[str, Any]):

@@ -1,6 +1,7 @@
-"""The Datasets of ``thud.bifurcation`` and ``thud.continuation``: xarray Datasets that also
-draw their figure (``to_svg``, ``to_pdf``), the bytes ``thud bifurcation --svg|--pdf`` (with
-``branches=N``: ``--branches N``) or ``thud continue --svg|--pdf`` writes for the same result.
+"""The Datasets of ``thud.bifurcation``, ``thud.continuation`` and a study's ``thud.sweep``: xarray
+Datasets that also draw their figure (``to_svg``, ``to_pdf``), the bytes ``thud bifurcation
+--svg|--pdf`` (with ``branches=N``: ``--branches N``), ``thud continue --svg|--pdf`` or ``thud
+sweep --vary … --svg|--pdf`` (over one or two parameters) writes for the same result.
 Each keeps the command line's record it was built from; a Dataset derived from it (``sel``,
 ``copy``, arithmetic) is data only and has no figure. Imported with xarray."""
 
@@ -68,6 +69,15 @@ class ContinuationDataset(_DrawnDataset):
     _made_by = "thud.continuation"
 
 
+class StudyDataset(_DrawnDataset):
+    """A study over one or two parameters as an xarray Dataset (see ``thud._frames.study_xarray``)
+    that draws its figure: ``thud sweep --vary … --svg|--pdf`` over the same values."""
+
+    __slots__ = ()
+    _kind = "study"
+    _made_by = "thud.sweep"
+
+
 def _drawn(cls: Any, ds: xr.Dataset, record: Dict[str, Any]) -> Any:
     out = cls(ds.data_vars, coords=ds.coords, attrs=ds.attrs)
     object.__setattr__(out, "_thud_record", record)
@@ -83,4 +93,10 @@ def bifurcation_dataset(ds: xr.Dataset, record: Dict[str, Any]) -> BifurcationDa
 def continuation_dataset(ds: xr.Dataset, record: Dict[str, Any]) -> ContinuationDataset:
     """``ds`` as a ContinuationDataset drawing ``record`` (the native ``_continuation``'s)."""
     out: ContinuationDataset = _drawn(ContinuationDataset, ds, record)
+    return out
+
+
+def study_dataset(ds: xr.Dataset, record: Dict[str, Any]) -> StudyDataset:
+    """``ds`` as a StudyDataset drawing ``record`` (the native ``_study``'s)."""
+    out: StudyDataset = _drawn(StudyDataset, ds, record)
     return out

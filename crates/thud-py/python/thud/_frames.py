@@ -356,7 +356,8 @@ def study_xarray(record: Dict[str, Any]) -> Any:
     """A study over any parameters (`thud.sweep(v0=[…], c1=[…])`) as an xarray Dataset: one
     dimension per varied parameter (its keyword; units in attrs), every metric of every cell
     (NaN where there is none; zone 0 = none), and with a force the steady amplitude and
-    reduction. The design in attrs as JSON."""
+    reduction. The design in attrs as JSON. Over one or two parameters it draws its figure
+    (``to_svg``, ``to_pdf``: ``thud sweep --vary … --svg|--pdf``)."""
     xr = _need("xarray", "thud.sweep(**axes)")
     axes = record["axes"]
     # The dimensions are the CSV's columns (`v0_m_s`, `c1_n_s_m`), as `thud sweep --vary --csv`
@@ -389,7 +390,10 @@ def study_xarray(record: Dict[str, Any]) -> Any:
     ds = xr.Dataset(data, coords=coords, attrs={"design": json.dumps(record["design"])})
     for old in aliases:
         ds = ds.set_xindex(old)
-    return ds
+    # Over one or two parameters it draws `thud sweep --vary … --svg|--pdf`'s figure.
+    from ._diagram import study_dataset
+
+    return study_dataset(ds, record)
 
 
 def bifurcation_xarray(record: Dict[str, Any]) -> Any:
