@@ -3,11 +3,16 @@
 //! the ball's material; min SPLmax, max e; reference 110 dB, 0 cm/s): the median hypervolume
 //! over seeds against random search and a Latin hypercube of the same budget.
 //!
-//! `cargo run --release -p thud-core --example design_tune [BUDGET] [SEEDS] [POP,SIGMA,GENES,RATE,ETA[,LATIN,PM_ETA,DISTINCT,ALGO,KIDS]]…`
+//! `cargo run --release -p thud-core --example design_tune [BUDGET] [SEEDS] [POP,SIGMA,GENES,RATE,ETA[,LATIN,PM_ETA,DISTINCT,ALGO,KIDS,SHARE,MARGIN,THEN,FRONT,WIDEN,SIGMA_END]]…`
 //!
 //! LATIN 1: a Latin-hypercube first population; PM_ETA > 0: polynomial mutation of that index in
 //! place of the Gaussian (SIGMA unused); DISTINCT 1: a generation's repeated children drawn again; ALGO 1: SPEA2, 2:
 //! AGE-MOEA (0: NSGA-II); KIDS > 0: children a generation (else the population).
+//! SHARE > 0: two phases, the first over the whole box for that share of the budget, the second
+//! over the box the front then spans widened by MARGIN of each range a side (default 0.05), by
+//! THEN (3: IBEA, else NSGA-II), its first population the front's designs unless FRONT is 0; WIDEN: the box widened
+//! besides by that share of the front's span a side. SIGMA_END > 0: the Gaussian step lowered
+//! from SIGMA to it as the budget is spent.
 
 use std::time::Instant;
 
@@ -64,6 +69,18 @@ fn main() {
                 _ => search::Algorithm::Nsga2,
             },
             offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),
+            sigma_end: v.get(15).copied().filter(|&x| x > 0.0),
+            narrow: v.get(10).copied().filter(|&x| x > 0.0).map(|share| search::Narrowing {
+                share,
+                margin: v.get(11).copied().unwrap_or(0.05),
+                widen: v.get(14).copied().unwrap_or(0.0),
+                then: if v.get(12).is_some_and(|&x| x as u8 == 3) {
+                    search::Algorithm::Ibea
+                } else {
+                    search::Algorithm::Nsga2
+                },
+                start_at_front: v.get(13).is_none_or(|&x| x > 0.0),
+            }),
         });
     }
     let (mut random, mut lhs) = (Vec::new(), Vec::new());

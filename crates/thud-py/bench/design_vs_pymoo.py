@@ -101,8 +101,9 @@ def main() -> None:
         rows.append((t, p, q))
         print(f"{seed:>4}  {t[0]:>7.2f} {t[1]:>8.3f}  {p[0]:>7.2f} {p[1]:>8.3f} {p[2]:>8.3f}  {q[0]:>15.2f} {q[1]:>8.3f}")
     med = statistics.median
-    # The medians of the first ten seeds too (the acceptance's), from the same run.
-    for name, part in ([("seeds 1-10", rows[:10])] if len(rows) > 10 else []) + [(f"seeds 1-{len(rows)}", rows)]:
+    # The medians of the first ten and thirty seeds too (the acceptance's ten), from the same run.
+    parts = [(f"seeds 1-{k}", rows[:k]) for k in (10, 30) if len(rows) > k] + [(f"seeds 1-{len(rows)}", rows)]
+    for name, part in parts:
         print(f"median over {name}:  thud {med(r[0][0] for r in part):.2f} s, HV {med(r[0][1] for r in part):.3f};  "
               f"pymoo {med(r[1][0] for r in part):.2f} s, HV {med(r[1][1] for r in part):.3f} "
               f"(final population {med(r[1][2] for r in part):.3f});  "

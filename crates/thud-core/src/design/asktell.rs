@@ -1,6 +1,7 @@
 //! Ask/tell over the design search: the same NSGA-II as [`search::search`] (the `moors` crate,
-//! the same operators, population, generations and seed), but the designs are evaluated by
-//! the caller, anywhere (a Dask cluster, another machine), and told back.
+//! the same operators, population, generations, phases and seed: both run the search's one
+//! optimiser driver), but the designs are evaluated by the caller, anywhere (a Dask cluster,
+//! another machine), and told back.
 //!
 //! `moors` has no ask/tell interface of its own: its genetic algorithm calls a fitness
 //! function with each batch and waits for the answer. So the algorithm runs on a thread of
@@ -17,9 +18,7 @@ use std::collections::{HashMap, VecDeque};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::thread::JoinHandle;
 
-use ndarray::Array2;
-
-use super::search::{self, Bound, Candidate, Column, Objective, Outcome, Problem, Sense, Settings, Value, PENALTY};
+use super::search::{self, Bound, Candidate, Column, Outcome, Problem, Sense, Settings, Value};
 use crate::error::ThudError;
 
 pub use super::search::Failure;
@@ -38,16 +37,6 @@ fn key(values: &[Value]) -> Vec<Key> {
             Value::Number(x) => Key::Number(x.to_bits()),
             Value::Choice(s) => Key::Choice(s.clone()),
         })
-        .collect()
-}
-
-/// The objectives of a candidate to minimise (a maximised one negated); None unless all are
-/// defined.
-fn minimized(c: &Candidate, objectives: &[Objective]) -> Option<Vec<f64>> {
-    c.objectives
-        .iter()
-        .zip(objectives)
-        .map(|(v, o)| v.map(|v| if o.sense == Sense::Maximize { -v } else { v }))
         .collect()
 }
 
@@ -376,9 +365,9 @@ fn run(
 ) -> Result<(), Failure> {
     let n = settings.evaluations;
     let archive = std::sync::Mutex::new(Mirror { seen: HashMap::new(), all: Vec::new(), gone: false });
-    let batch = |genes: &Array2<f64>| -> Vec<Option<usize>> {
+    let look = |genes: &[Vec<f64>], cap: usize| -> Vec<Option<Candidate>> {
         let mut st = archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let points: Vec<Vec<Value>> = genes.outer_iter().map(|g| problem.decode(&g.to_vec())).collect();
+        let points: Vec<Vec<Value>> = genes.iter().map(|g| problem.decode(g)).collect();
         let keys: Vec<Vec<Key>> = points.iter().map(|p| key(p)).collect();
         let mut new: Vec<(Vec<Key>, Vec<Value>)> = Vec::new();
         for (k, p) in keys.iter().zip(&points) {
@@ -386,7 +375,7 @@ fn run(
                 new.push((k.clone(), p.clone()));
             }
         }
-        let room = if st.gone { 0 } else { n.saturating_sub(st.all.len()) };
+        let room = if st.gone { 0 } else { cap.min(n).saturating_sub(st.all.len()) };
         new.truncate(room);
         if !new.is_empty() {
             let first = st.all.len();
@@ -402,27 +391,10 @@ fn run(
                 None => st.gone = true,
             }
         }
-        keys.iter().map(|k| st.seen.get(k).copied()).collect()
+        keys.iter().map(|k| st.seen.get(k).map(|&i| st.all[i].clone())).collect()
     };
-    let n_obj = problem.objectives.len();
-    let n_con = problem.constraints.len() + 1;
-    let nv = problem.variables.len();
-    let fitness = |g: &Array2<f64>| -> Array2<f64> {
-        let idx = batch(g);
-        let st = archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let mut out = Array2::from_elem((idx.len(), n_obj), PENALTY);
-        for (r, i) in idx.iter().enumerate() {
-            if let Some(m) = i.and_then(|i| minimized(&st.all[i], &problem.objectives)) {
-                for (k, v) in m.into_iter().enumerate() {
-                    out[[r, k]] = v;
-                }
-            }
-        }
-        out
-    };
-    let constraints = MirrorConstraints { batch: &batch, archive: &archive, n_con };
     // The defaults (NSGA-II) read no reference point: none is handed over.
-    search::run_moors(search::Tuning::default(), nv, n, settings.seed, fitness, constraints, &|| None)
+    search::run_moors(problem, search::Tuning::default(), n, settings.seed, &look, &|| None)
 }
 
 /// The algorithm's copy of the archive: each point's index, every candidate in order.
@@ -432,37 +404,11 @@ struct Mirror {
     gone: bool,
 }
 
-/// The constraints of a batch for `moors`, as the search gives them: each constraint's margin
-/// negated (≤ 0: met), then one that is 0 for a point that ran with every objective defined.
-struct MirrorConstraints<'a, B: Fn(&Array2<f64>) -> Vec<Option<usize>>> {
-    batch: &'a B,
-    archive: &'a std::sync::Mutex<Mirror>,
-    n_con: usize,
-}
-
-impl<B: Fn(&Array2<f64>) -> Vec<Option<usize>>> moors::ConstraintsFn for MirrorConstraints<'_, B> {
-    type Dim = ndarray::Ix2;
-
-    fn call(&self, genes: &Array2<f64>) -> Array2<f64> {
-        let idx = (self.batch)(genes);
-        let st = self.archive.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        search::constraint_rows(&st.all, &idx, self.n_con)
-    }
-
-    fn lower_bound(&self) -> Option<f64> {
-        Some(0.0)
-    }
-
-    fn upper_bound(&self) -> Option<f64> {
-        Some(1.0)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::design::search::tests::paper_problem_with as problem;
-    use crate::design::search::Constraint;
+    use crate::design::search::{Constraint, Objective};
 
     /// Drives an ask/tell search to its end, evaluating each run of each point as one run
     /// (`thud simulate`) does, `n` points asked at a time, told in reverse order.

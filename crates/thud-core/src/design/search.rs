@@ -23,12 +23,22 @@
 //! only of the last population. [`random_search`] and [`latin_hypercube`] evaluate the same
 //! budget by the same path, the baselines the optimiser must beat.
 //!
+//! Measured beside the defaults and kept as [`Tuning`] options (none won over 100 seeds): two
+//! phases of one budget ([`Narrowing`]: a second `moors` run over the box around the first's
+//! front) and a Gaussian step that shrinks as the budget is spent ([`Tuning::sigma_end`]). No
+//! optimiser is written here for them: each phase is a `moors` run; what is written by hand is
+//! the box (the front's span widened), the first population handed to `moors`' sampler and the
+//! step the mutation reads at each child, because `moors` has no restart over a narrowed box
+//! and no step schedule of its own.
+//!
 //! The hypervolume of a two-objective front is computed here ([`hypervolume_2d`]): in two
 //! dimensions it is one sort and a sum of rectangles, exact, a dozen lines; a crate for it
 //! would bring a C library (the Fonseca et al. code) for what is needed in 2-D only. With more
 //! objectives no hypervolume is reported.
 
-use std::collections::HashMap;
+use std::cell::{Cell, RefCell};
+use std::collections::{BTreeMap, HashMap};
+use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
@@ -36,6 +46,7 @@ use ndarray::Array2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::design::search_operators::Sampler;
 pub use crate::design::search_operators::{Algorithm, Distinct, HypervolumeSurvival, Mutation, Start};
 use crate::design::{self, Design, Materials, Metrics, Steady, ValidDesign};
 use crate::draws::SplitMix64;
@@ -886,7 +897,8 @@ impl<'a> Archive<'a> {
 
     /// The candidate of each row of genes (its index into the archive), evaluating the points
     /// not seen yet (in row order, on rayon's pool) while the budget lasts: None past it.
-    fn batch(&self, genes: &[Vec<f64>]) -> Vec<Option<usize>> {
+    /// `cap` bounds the evaluations of a phase (at most the budget).
+    fn batch(&self, genes: &[Vec<f64>], cap: usize) -> Vec<Option<usize>> {
         let mut st = self.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let points: Vec<Vec<Value>> = genes.iter().map(|g| self.problem.decode(g)).collect();
         let keys: Vec<Vec<u64>> = points.iter().map(|p| p.iter().map(Value::key).collect()).collect();
@@ -896,7 +908,7 @@ impl<'a> Archive<'a> {
                 new.push((k.clone(), p.clone()));
             }
         }
-        let room = if self.cancelled() { 0 } else { self.budget.saturating_sub(st.1.len()) };
+        let room = if self.cancelled() { 0 } else { cap.min(self.budget).saturating_sub(st.1.len()) };
         new.truncate(room);
         let first = st.1.len();
         let done: Vec<Candidate> =
@@ -970,6 +982,30 @@ pub struct Tuning {
     pub algorithm: Algorithm,
     /// Children a generation: None for as many as the population.
     pub offspring: Option<usize>,
+    /// Two phases of the budget, the second over the box around the first's front; None: one.
+    pub narrow: Option<Narrowing>,
+    /// The Gaussian mutation's standard deviation once the budget is spent, lowered from
+    /// `sigma` geometrically with the designs evaluated; None: `sigma` throughout.
+    pub sigma_end: Option<f64>,
+}
+
+/// The second phase of a search in two ([`Tuning::narrow`]): after a share of the budget over
+/// the whole box, the rest over the box the front found so far spans.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Narrowing {
+    /// The share of the budget the first phase spends over the whole box.
+    pub share: f64,
+    /// How far the box is widened beyond the front's span on each side, as a share of each
+    /// variable's whole range.
+    pub margin: f64,
+    /// How far the box is widened beyond the front's span on each side besides, as a share of
+    /// that span (a front long in one variable keeps it long; a ridge narrow in another is
+    /// searched near it).
+    pub widen: f64,
+    /// The algorithm of the second phase.
+    pub then: Algorithm,
+    /// Whether the second phase's first population is the front's designs (else drawn).
+    pub start_at_front: bool,
 }
 
 impl Default for Tuning {
@@ -985,6 +1021,8 @@ impl Default for Tuning {
             distinct: false,
             algorithm: Algorithm::Nsga2,
             offspring: None,
+            narrow: None,
+            sigma_end: None,
         }
     }
 }
@@ -1002,14 +1040,22 @@ impl Tuning {
         self.offspring.map_or(pop, |k| (k.max(2) / 2) * 2)
     }
 
-    /// The mutation of a child over `nv` variables.
+    /// The mutation of a child over `nv` variables; with `sigma_end`, its step read from
+    /// `sigma`.
     #[must_use]
-    pub fn mutation(&self, nv: usize) -> Mutation {
+    pub fn mutation(&self, nv: usize, sigma: &Rc<Cell<f64>>) -> Mutation {
         let gene_rate = (self.genes_mutated / nv.max(1) as f64).min(1.0);
-        match self.polynomial_eta {
-            Some(eta) => Mutation::Polynomial { gene_rate, eta },
-            None => Mutation::Gaussian(moors::GaussianMutation::new(gene_rate, self.sigma)),
+        match (self.polynomial_eta, self.sigma_end) {
+            (Some(eta), _) => Mutation::Polynomial { gene_rate, eta },
+            (None, Some(_)) => Mutation::Shrinking { gene_rate, sigma: Rc::clone(sigma) },
+            (None, None) => Mutation::Gaussian(moors::GaussianMutation::new(gene_rate, self.sigma)),
         }
+    }
+
+    /// The Gaussian step once `done` of `n` evaluations are spent.
+    fn sigma_at(&self, done: usize, n: usize) -> f64 {
+        let t = (done as f64 / n.max(1) as f64).min(1.0);
+        self.sigma_end.map_or(self.sigma, |end| self.sigma * (end / self.sigma).powf(t))
     }
 }
 
@@ -1025,29 +1071,16 @@ pub fn search_tuned(
     problem.check()?;
     let n = settings.evaluations;
     let archive = Archive::new(problem, n, cancel, reference, on_progress);
-    let n_obj = problem.objectives.len();
-    let n_con = problem.constraints.len() + 1;
-    let nv = problem.variables.len();
-    let rows = |g: &Array2<f64>| -> Vec<Vec<f64>> { g.outer_iter().map(|r| r.to_vec()).collect() };
-    let fitness = |g: &Array2<f64>| -> Array2<f64> {
-        let idx = archive.batch(&rows(g));
+    let look = |genes: &[Vec<f64>], cap: usize| -> Vec<Option<Candidate>> {
+        let idx = archive.batch(genes, cap);
         let st = archive.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let mut out = Array2::from_elem((idx.len(), n_obj), PENALTY);
-        for (r, i) in idx.iter().enumerate() {
-            if let Some(m) = i.and_then(|i| st.1[i].minimized(&problem.objectives)) {
-                for (k, v) in m.into_iter().enumerate() {
-                    out[[r, k]] = v;
-                }
-            }
-        }
-        out
+        idx.iter().map(|i| i.map(|i| st.1[i].clone())).collect()
     };
-    let constraints = Constraints { archive: &archive, n_con };
     let reference = || {
         let r = archive.reference.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone()?;
         Some(r.iter().zip(&problem.objectives).map(|(v, o)| if o.sense == Sense::Maximize { -v } else { *v }).collect())
     };
-    run_moors(tuning, nv, n, settings.seed, fitness, constraints, &reference)
+    run_moors(problem, tuning, n, settings.seed, &look, &reference)
         .map_err(|e| ThudError::invalid("--evaluations", e.0))?;
     let partial = archive.cancelled();
     Ok(archive.into_outcome(partial))
@@ -1058,18 +1091,193 @@ pub fn search_tuned(
 #[error("{0}")]
 pub struct Failure(pub String);
 
-/// Runs `moors`' algorithm `tuning.algorithm` with the search's operators over `nv` genes in
-/// [0, 1] for a budget of `n` evaluations, seeded by `seed`: the one place the optimiser is
-/// built, for [`search`] and the ask/tell form alike. `fitness` and `constraints` answer
-/// each batch; `reference` is the hypervolume's reference point (the objectives minimised)
-/// once fixed, for the hypervolume-indicator survival. The error is the sentence to show.
-pub(super) fn run_moors<F, G>(
+/// The candidate of each row of genes (on [0, 1] of the whole box), the new points evaluated
+/// while the evaluations stay within the cap given (at most the budget); None past it.
+pub(super) type Look<'a> = dyn Fn(&[Vec<f64>], usize) -> Vec<Option<Candidate>> + 'a;
+
+/// Every candidate the optimiser has been given, by index, with the genes (of the whole box)
+/// it was first asked at.
+type Seen = RefCell<BTreeMap<usize, (Vec<f64>, Candidate)>>;
+
+/// A box of genes: each gene's `[lo, hi]` within [0, 1] of the whole box.
+#[derive(Debug, Clone, PartialEq)]
+struct GeneBox {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+}
+
+impl GeneBox {
+    fn whole(nv: usize) -> GeneBox {
+        GeneBox { lo: vec![0.0; nv], hi: vec![1.0; nv] }
+    }
+}
+
+/// Runs the search's optimiser over `problem` for a budget of `n` evaluations, seeded by
+/// `seed`: the one place it is built, for [`search`] and the ask/tell form alike, so both
+/// follow the same phases. Without `tuning.narrow`, `moors`' algorithm over the whole box.
+/// With it, two phases of the one budget: the algorithm over the whole box until a share of
+/// the budget is spent, then again over the box the front found so far spans (widened by a
+/// margin), its first population the front's designs; the front is the archive's over both.
+/// `look` evaluates each batch; `reference` is the hypervolume's reference point (the
+/// objectives minimised) once fixed, for the hypervolume-indicator survival. The error is
+/// the sentence to show.
+pub(super) fn run_moors(
+    problem: &Problem,
+    tuning: Tuning,
+    n: usize,
+    seed: u64,
+    look: &Look<'_>,
+    reference: &dyn Fn() -> Option<Vec<f64>>,
+) -> Result<(), Failure> {
+    let nv = problem.variables.len();
+    let seen: Seen = RefCell::default();
+    let whole = GeneBox::whole(nv);
+    let sigma = Rc::new(Cell::new(tuning.sigma));
+    let phase = Phase { problem, tuning, budget: n, sigma: &sigma, look, seen: &seen, reference };
+    let Some(narrow) = tuning.narrow else {
+        return phase.run(tuning.algorithm, n, n, seed, &whole, &[]);
+    };
+    let first = ((n as f64 * narrow.share).round() as usize).clamp(1, n);
+    phase.run(tuning.algorithm, first, first, seed, &whole, &[])?;
+    let (inner, start) = narrowed(problem, &seen.borrow(), narrow, tuning.population_for(n));
+    let left = n.saturating_sub(seen.borrow().len());
+    if left == 0 {
+        return Ok(());
+    }
+    let start = if narrow.start_at_front { start } else { Vec::new() };
+    phase.run(narrow.then, left, n, seed ^ 0x9e37_79b9_7f4a_7c15, &inner, &start)
+}
+
+/// The box around the front of the candidates `seen`: for each numeric variable the span of
+/// the front's genes widened on each side by `narrow.margin` of the whole range and
+/// `narrow.widen` of the span, within [0, 1]; a choice keeps all its options. With the front's
+/// designs (their genes), at most `most` of them, evenly along the front. No front: the whole
+/// box.
+fn narrowed(
+    problem: &Problem,
+    seen: &BTreeMap<usize, (Vec<f64>, Candidate)>,
+    narrow: Narrowing,
+    most: usize,
+) -> (GeneBox, Vec<Vec<f64>>) {
+    let nv = problem.variables.len();
+    let entries: Vec<&(Vec<f64>, Candidate)> = seen.values().collect();
+    let all: Vec<Candidate> = entries.iter().map(|(_, c)| c.clone()).collect();
+    let front: Vec<&Vec<f64>> = problem.front(&all).into_iter().map(|i| &entries[i].0).collect();
+    let mut b = GeneBox::whole(nv);
+    if front.is_empty() {
+        return (b, Vec::new());
+    }
+    for (k, v) in problem.variables.iter().enumerate() {
+        if matches!(v, Variable::Range { .. }) {
+            let lo = front.iter().map(|g| g[k]).fold(f64::INFINITY, f64::min);
+            let hi = front.iter().map(|g| g[k]).fold(f64::NEG_INFINITY, f64::max);
+            let margin = narrow.margin + narrow.widen * (hi - lo);
+            b.lo[k] = (lo - margin).clamp(0.0, 1.0);
+            b.hi[k] = (hi + margin).clamp(0.0, 1.0);
+            if b.hi[k] <= b.lo[k] {
+                (b.lo[k], b.hi[k]) = (0.0, 1.0);
+            }
+        }
+    }
+    let start: Vec<Vec<f64>> = if front.len() <= most {
+        front.into_iter().cloned().collect()
+    } else {
+        (0..most).map(|j| front[j * front.len() / most].clone()).collect()
+    };
+    (b, start)
+}
+
+/// One phase of a search: what every phase shares.
+struct Phase<'a, 'l> {
+    problem: &'a Problem,
+    tuning: Tuning,
+    /// The search's whole budget.
+    budget: usize,
+    /// The Gaussian step of the mutation, lowered as the budget is spent.
+    sigma: &'a Rc<Cell<f64>>,
+    look: &'a Look<'l>,
+    seen: &'a Seen,
+    reference: &'a dyn Fn() -> Option<Vec<f64>>,
+}
+
+impl Phase<'_, '_> {
+    /// `algorithm` over the genes of `inner` (mapped onto [0, 1] for `moors`), its generations
+    /// those a budget of `n` fills, its evaluations stopped at `cap` in all; its first
+    /// population `start` (genes of the whole box), the rest drawn.
+    fn run(
+        &self,
+        algorithm: Algorithm,
+        n: usize,
+        cap: usize,
+        seed: u64,
+        inner: &GeneBox,
+        start: &[Vec<f64>],
+    ) -> Result<(), Failure> {
+        let whole = *inner == GeneBox::whole(inner.lo.len());
+        let to_inner = |g: &Vec<f64>| -> Vec<f64> {
+            g.iter()
+                .enumerate()
+                .map(|(k, &x)| ((x - inner.lo[k]) / (inner.hi[k] - inner.lo[k])).clamp(0.0, 1.0))
+                .collect()
+        };
+        // A start design is asked at its own genes, not at their image mapped there and back.
+        let starts: HashMap<Vec<u64>, Vec<f64>> =
+            start.iter().map(|g| (to_inner(g).iter().map(|x| x.to_bits()).collect(), g.clone())).collect();
+        let eval = |genes: &Array2<f64>| -> Vec<Option<Candidate>> {
+            let rows: Vec<Vec<f64>> = genes
+                .outer_iter()
+                .map(|r| {
+                    let r = r.to_vec();
+                    if whole {
+                        return r;
+                    }
+                    let bits: Vec<u64> = r.iter().map(|x| x.to_bits()).collect();
+                    starts.get(&bits).cloned().unwrap_or_else(|| {
+                        r.iter().enumerate().map(|(k, &x)| inner.lo[k] + x * (inner.hi[k] - inner.lo[k])).collect()
+                    })
+                })
+                .collect();
+            let found = (self.look)(&rows, cap);
+            let mut seen = self.seen.borrow_mut();
+            for (g, c) in rows.into_iter().zip(&found) {
+                if let Some(c) = c {
+                    seen.entry(c.index).or_insert_with(|| (g, c.clone()));
+                }
+            }
+            self.sigma.set(self.tuning.sigma_at(seen.len(), self.budget));
+            found
+        };
+        let objectives = &self.problem.objectives;
+        let fitness = |g: &Array2<f64>| -> Array2<f64> {
+            let found = eval(g);
+            let mut out = Array2::from_elem((found.len(), objectives.len()), PENALTY);
+            for (r, c) in found.iter().enumerate() {
+                if let Some(m) = c.as_ref().and_then(|c| c.minimized(objectives)) {
+                    for (k, v) in m.into_iter().enumerate() {
+                        out[[r, k]] = v;
+                    }
+                }
+            }
+            out
+        };
+        let constraints = Constraints { eval: &eval, n_con: self.problem.constraints.len() + 1 };
+        let sampler = Sampler { rows: start.iter().map(to_inner).collect(), start: self.tuning.start };
+        let tuning = Tuning { algorithm, ..self.tuning };
+        let mutation = tuning.mutation(self.problem.variables.len(), self.sigma);
+        let parts = Parts { fitness, constraints, sampler, mutation };
+        build_and_run(tuning, self.problem.variables.len(), n, seed, parts, self.reference)
+    }
+}
+
+/// `moors`' algorithm `tuning.algorithm` with the search's operators over `nv` genes in
+/// [0, 1], its generations those a budget of `n` fills, seeded by `seed`, its first population
+/// from `sampler`.
+fn build_and_run<F, G>(
     tuning: Tuning,
     nv: usize,
     n: usize,
     seed: u64,
-    fitness: F,
-    constraints: G,
+    parts: Parts<F, G>,
     reference: &dyn Fn() -> Option<Vec<f64>>,
 ) -> Result<(), Failure>
 where
@@ -1077,20 +1285,23 @@ where
     G: moors::ConstraintsFn<Dim = ndarray::Ix2>,
 {
     use moors::SimulatedBinaryCrossover;
-    let pop = tuning.population_for(n);
+    let Parts { fitness, constraints, sampler, mutation } = parts;
+    let pop = tuning.population_for(n.max(sampler.rows.len()));
     // Offspring that copy a parent cost nothing (the cache): generations go on until the
-    // budget is spent, at most three times as many as the budget would fill.
+    // budget is spent, at most three times as many as the budget would fill. A first
+    // population given (designs already evaluated) costs nothing either.
     let kids = tuning.offspring_for(pop);
-    let iterations = 3 * n.saturating_sub(pop).div_ceil(kids).max(1);
+    let first = pop.saturating_sub(sampler.rows.len());
+    let iterations = 3 * n.saturating_sub(first).div_ceil(kids).max(1);
     macro_rules! run {
         ($builder:ty $(, $selector:expr, $survivor:expr)?) => {{
             let mut ga = <$builder>::default()
                 $(.selector($selector).survivor($survivor))?
                 .fitness_fn(fitness)
                 .constraints_fn(constraints)
-                .sampler(tuning.start)
+                .sampler(sampler)
                 .crossover(SimulatedBinaryCrossover::new(tuning.crossover_eta))
-                .mutation(tuning.mutation(nv))
+                .mutation(mutation)
                 .duplicates_cleaner(Distinct(tuning.distinct))
                 .num_vars(nv)
                 .population_size(pop)
@@ -1119,21 +1330,27 @@ where
     }
 }
 
+/// What a phase hands `moors` beside the settings: its evaluations, first population and
+/// mutation.
+struct Parts<F, G> {
+    fitness: F,
+    constraints: G,
+    sampler: Sampler,
+    mutation: Mutation,
+}
+
 /// The constraints of a batch for `moors` (≤ 0: met): each constraint's margin negated, then
 /// one that is 0 for a point that ran with every objective defined.
-struct Constraints<'a, 'b> {
-    archive: &'b Archive<'a>,
+struct Constraints<'e, E: Fn(&Array2<f64>) -> Vec<Option<Candidate>>> {
+    eval: &'e E,
     n_con: usize,
 }
 
-impl moors::ConstraintsFn for Constraints<'_, '_> {
+impl<E: Fn(&Array2<f64>) -> Vec<Option<Candidate>>> moors::ConstraintsFn for Constraints<'_, E> {
     type Dim = ndarray::Ix2;
 
     fn call(&self, genes: &Array2<f64>) -> Array2<f64> {
-        let rows: Vec<Vec<f64>> = genes.outer_iter().map(|r| r.to_vec()).collect();
-        let idx = self.archive.batch(&rows);
-        let st = self.archive.state.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        constraint_rows(&st.1, &idx, self.n_con)
+        constraint_rows(&(self.eval)(genes), self.n_con)
     }
 
     fn lower_bound(&self) -> Option<f64> {
@@ -1145,14 +1362,13 @@ impl moors::ConstraintsFn for Constraints<'_, '_> {
     }
 }
 
-/// The constraint rows `moors` reads for a batch whose points are the archived candidates
-/// `idx` of `all` (None: a point over the budget): each constraint's margin negated (≤ 0 is
-/// met), then one row that is 0 where the design evaluated and every objective has a value;
-/// [`PENALTY`] where a value is missing.
-pub(super) fn constraint_rows(all: &[Candidate], idx: &[Option<usize>], n_con: usize) -> Array2<f64> {
-    let mut out = Array2::from_elem((idx.len(), n_con), PENALTY);
-    for (r, i) in idx.iter().enumerate() {
-        let Some(c) = i.map(|i| &all[i]) else { continue };
+/// The constraint rows `moors` reads for a batch of candidates (None: a point over the
+/// budget): each constraint's margin negated (≤ 0 is met), then one row that is 0 where the
+/// design evaluated and every objective has a value; [`PENALTY`] where a value is missing.
+fn constraint_rows(found: &[Option<Candidate>], n_con: usize) -> Array2<f64> {
+    let mut out = Array2::from_elem((found.len(), n_con), PENALTY);
+    for (r, c) in found.iter().enumerate() {
+        let Some(c) = c else { continue };
         for (k, m) in c.margins.iter().enumerate() {
             out[[r, k]] = m.map_or(PENALTY, |m| -m);
         }
@@ -1195,7 +1411,7 @@ pub fn latin_hypercube(problem: &Problem, settings: Settings) -> Result<Outcome,
 fn baseline(problem: &Problem, n: usize, genes: &[Vec<f64>]) -> Outcome {
     let quiet = |_: Progress, _: &[Candidate], _: &[usize]| {};
     let archive = Archive::new(problem, n, None, None, &quiet);
-    archive.batch(genes);
+    archive.batch(genes, n);
     archive.into_outcome(false)
 }
 
@@ -1307,6 +1523,53 @@ pub(super) mod tests {
                 .filter(|c| c.feasible())
                 .all(|c| !dominates(&c.minimized(&p.objectives).unwrap(), &fi)));
         }
+    }
+
+    #[test]
+    fn a_search_in_two_phases_keeps_its_budget_and_searches_the_box_around_the_first_front() {
+        let p = paper_problem();
+        let narrow = Narrowing { share: 0.5, margin: 0.05, widen: 0.0, then: Algorithm::Nsga2, start_at_front: true };
+        let tuning = Tuning { narrow: Some(narrow), ..Tuning::default() };
+        let s = Settings { evaluations: 80, seed: 3 };
+        let a = search_tuned(&p, s, tuning, None, None, &|_, _, _| {}).unwrap();
+        let b = search_tuned(&p, s, tuning, None, None, &|_, _, _| {}).unwrap();
+        assert_eq!(a.all, b.all);
+        assert_eq!(a.all.len(), 80);
+        // The first phase spends its half over the whole box; every later design lies in the
+        // box its front spans, widened by 5 % of each range.
+        let genes = |c: &Candidate| -> Vec<f64> {
+            c.values
+                .iter()
+                .zip(&p.variables)
+                .map(|(v, var)| match (v, var) {
+                    (Value::Number(x), Variable::Range { lo, hi, .. }) => (x - lo) / (hi - lo),
+                    _ => panic!("numeric"),
+                })
+                .collect()
+        };
+        let first: BTreeMap<usize, (Vec<f64>, Candidate)> =
+            a.all[..40].iter().map(|c| (c.index, (genes(c), c.clone()))).collect();
+        let (inner, start) = narrowed(&p, &first, narrow, 8);
+        assert!(!start.is_empty() && start.len() <= 8);
+        assert!(inner.hi[1] - inner.lo[1] < 1.0, "the front's gaps span less than the range: {inner:?}");
+        for c in &a.all[40..] {
+            let g = genes(c);
+            for (k, x) in g.iter().enumerate() {
+                assert!(*x >= inner.lo[k] - 1e-12 && *x <= inner.hi[k] + 1e-12, "{:?} outside {inner:?}", c.values);
+            }
+        }
+        // The front is the archive's over both phases.
+        assert_eq!(a.front, p.front(&a.all));
+    }
+
+    #[test]
+    fn a_shrinking_step_goes_from_sigma_to_its_end_geometrically() {
+        let t = Tuning { sigma: 0.2, sigma_end: Some(0.05), ..Tuning::default() };
+        assert!((t.sigma_at(0, 400) - 0.2).abs() < 1e-15);
+        assert!((t.sigma_at(200, 400) - 0.1).abs() < 1e-12);
+        assert!((t.sigma_at(400, 400) - 0.05).abs() < 1e-12);
+        assert!((t.sigma_at(900, 400) - 0.05).abs() < 1e-12, "past the budget it stays at its end");
+        assert_eq!(Tuning::default().sigma_at(200, 400), 0.1);
     }
 
     #[test]

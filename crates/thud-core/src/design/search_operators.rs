@@ -6,6 +6,9 @@
 //! against the search's own reference point). Genes span [0, 1] (the search's decoding maps
 //! them to the variables).
 
+use std::cell::Cell;
+use std::rc::Rc;
+
 use moors::genetic::D12;
 use moors::survival::moo::{IbeaHyperVolumeSurvivalOperator, Nsga2RankCrowdingSurvival};
 use moors::survival::SurvivalOperator;
@@ -69,6 +72,41 @@ impl SamplingOperator for Start {
     }
 }
 
+/// The first population: the rows given (at most the population), then rows drawn by
+/// `start`; with none given, exactly `start`'s draw.
+#[derive(Debug, Clone)]
+pub struct Sampler {
+    /// Genes in [0, 1].
+    pub rows: Vec<Vec<f64>>,
+    pub start: Start,
+}
+
+impl SamplingOperator for Sampler {
+    fn sample_individual(&self, num_vars: usize, rng: &mut impl RandomGenerator) -> Array1<f64> {
+        self.start.sample_individual(num_vars, rng)
+    }
+
+    fn operate(&self, population_size: usize, num_vars: usize, rng: &mut impl RandomGenerator) -> Array2<f64> {
+        let given = self.rows.len().min(population_size);
+        if given == 0 {
+            return self.start.operate(population_size, num_vars, rng);
+        }
+        let mut genes = Array2::zeros((population_size, num_vars));
+        for (i, r) in self.rows.iter().take(given).enumerate() {
+            for (k, &g) in r.iter().enumerate().take(num_vars) {
+                genes[[i, k]] = g;
+            }
+        }
+        if population_size > given {
+            let drawn = self.start.operate(population_size - given, num_vars, rng);
+            for (mut row, d) in genes.outer_iter_mut().skip(given).zip(drawn.outer_iter()) {
+                row.assign(&d);
+            }
+        }
+        genes
+    }
+}
+
 /// How a child mutates: each gene with chance `gene_rate`.
 #[derive(Debug, Clone)]
 pub enum Mutation {
@@ -77,12 +115,18 @@ pub enum Mutation {
     /// Deb's polynomial mutation with distribution index `eta`, its step shaped by the
     /// distance to either end of [0, 1], so the gene stays inside (as pymoo's default).
     Polynomial { gene_rate: f64, eta: f64 },
+    /// `moors`' normal step whose standard deviation is read at each child from `sigma`
+    /// (which the search lowers as its budget is spent).
+    Shrinking { gene_rate: f64, sigma: Rc<Cell<f64>> },
 }
 
 impl MutationOperator for Mutation {
     fn mutate(&self, mut individual: ArrayViewMut1<'_, f64>, rng: &mut impl RandomGenerator) {
         match *self {
             Mutation::Gaussian(ref m) => m.mutate(individual, rng),
+            Mutation::Shrinking { gene_rate, ref sigma } => {
+                GaussianMutation::new(gene_rate, sigma.get()).mutate(individual, rng);
+            }
             Mutation::Polynomial { gene_rate, eta } => {
                 for g in &mut individual {
                     if rng.gen_bool(gene_rate) {
@@ -202,6 +246,23 @@ mod tests {
         let u = Start::Uniform.operate(40, 3, &mut rng);
         assert_eq!(u.dim(), (40, 3));
         assert!(u.iter().all(|x| (0.0..1.0).contains(x)));
+    }
+
+    #[test]
+    fn a_first_population_given_comes_first_and_the_rest_is_drawn() {
+        let draw = |s: &Sampler| s.operate(6, 2, &mut MOORandomGenerator::new_from_seed(Some(5)));
+        // None given: exactly the start's draw.
+        let none = Sampler { rows: vec![], start: Start::Uniform };
+        let plain = Start::Uniform.operate(6, 2, &mut MOORandomGenerator::new_from_seed(Some(5)));
+        assert_eq!(draw(&none), plain);
+        let given = Sampler { rows: vec![vec![0.25, 0.5], vec![0.75, 1.0]], start: Start::Uniform };
+        let g = draw(&given);
+        assert_eq!(g.row(0).to_vec(), vec![0.25, 0.5]);
+        assert_eq!(g.row(1).to_vec(), vec![0.75, 1.0]);
+        assert_eq!(g.row(2), plain.row(0), "the rest drawn as the start draws");
+        // More given than the population: the first ones.
+        let many = Sampler { rows: vec![vec![0.1, 0.1]; 9], start: Start::Uniform };
+        assert_eq!(draw(&many), ndarray::Array2::from_elem((6, 2), 0.1));
     }
 
     #[test]
