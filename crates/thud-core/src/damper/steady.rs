@@ -107,7 +107,9 @@ pub(crate) fn floating(p: &DamperParams, start: &Start) -> Option<Floating> {
     let osc = Oscillator::new(p.main_mass_kg, p.stiffness_n_m, p.damping_n_s_m);
     let forced = Forced::new(osc, Harmonic::new(p.force_n, p.main_mass_kg, p.freq_hz, start.phase));
     let (x_s, r) = forced.envelope(0.0, start.x, start.v)?;
-    if !(start.y.abs() + x_s + r < 0.5 * p.gap_m * (1.0 - 1e-9)) || x_s <= 0.0 {
+    // False for a NaN too.
+    let clear = start.y.abs() + x_s + r < 0.5 * p.gap_m * (1.0 - 1e-9);
+    if !clear || x_s <= 0.0 {
         return None;
     }
     let (x, v) = forced.steady_at(0.0)?;
