@@ -9,6 +9,7 @@
 //! ([`window_amplitude`]).
 
 pub mod damper;
+pub mod path;
 pub mod strike;
 pub mod structure;
 
