@@ -797,9 +797,8 @@ fn json_documents(parts: &[String]) -> Vec<(&'static str, Vec<String>, &'static 
 }
 
 /// The columns of the tables reached above that none of its runs writes, each with why.
-const UNSEEN: [(&str, &str, &str); 4] = [
+const UNSEEN: [(&str, &str, &str); 3] = [
     ("damper", "settle", "written only when true: a run that settles takes seconds"),
     ("verdict", "cap", "only when a work cap stops a run"),
-    ("verdict", "source", "only of an orbit solved for: these runs' periodic verdicts are read off samples"),
     ("paper", "summary", "only some tables of the paper (table 1's differences)"),
 ];

@@ -1,3 +1,4 @@
+// Over 800 lines: the one schema is data, a table of columns per file kind, read together.
 //! The one data schema: every table thud writes (the command line's CSV files, the rows of its
 //! JSON records, Python's DataFrames) as an ordered list of columns, each with its name, unit
 //! and meaning. The CSV writers take their header from here, Python builds its DataFrames from
