@@ -206,3 +206,52 @@ fn the_first_releases_design_files_and_every_writers_files_still_load() {
     }
     assert!(saved > 0, "design --save wrote no design file");
 }
+
+/// A continuation steps a little past its range's end before it lands on it. Where that end
+/// was the parameter's own bound (f = 1e5 Hz, the largest forcing frequency), the step past it
+/// was refused as out of range: `continue` and `bifurcation --branches` refused a range they
+/// had accepted, naming `--freq` (not typed) and a value inside the range, or ended each branch
+/// early at the bound.
+#[test]
+fn a_branch_continued_to_the_parameter_s_own_bound_lands_on_it() {
+    let home = tempfile::tempdir().unwrap();
+    for range in ["f=9e4Hz:1e5Hz:2", "f=1e5Hz:9e4Hz:2"] {
+        let (code, out, err) = thud(home.path(), &["continue", "--vary", range, "--force-amplitude", "1"]);
+        assert_eq!(code, 0, "{range}: {err}");
+        assert!(!out.contains("out of range") && !out.contains("ended early"), "{range}:\n{out}");
+        let (code, out, err) = thud(home.path(), &["continue", "--vary", range, "--force-amplitude", "1", "--json"]);
+        assert_eq!(code, 0, "{range}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let branches = v["branches"].as_array().unwrap();
+        assert!(!branches.is_empty(), "{range}: no branch");
+        for b in branches {
+            let ended = b["ended"].as_str().unwrap_or_default();
+            assert!(!ended.contains("out of range"), "{range}: {ended}");
+            let values: Vec<f64> =
+                b["points"].as_array().unwrap().iter().map(|p| p["value"].as_f64().unwrap()).collect();
+            assert!(values.iter().all(|f| (9e4..=1e5).contains(f)), "{range}: {values:?}");
+            // Each branch reaches both ends of the range.
+            let (lo, hi) = values.iter().fold((f64::MAX, f64::MIN), |(a, b), &f| (a.min(f), b.max(f)));
+            assert!(lo <= 9e4 * (1.0 + 1e-9) && hi >= 1e5 * (1.0 - 1e-9), "{range}: {lo} to {hi}");
+        }
+    }
+    let svg = home.path().join("b.svg");
+    let (code, _, err) = thud(
+        home.path(),
+        &[
+            "bifurcation",
+            "--force-amplitude",
+            "1",
+            "--vary",
+            "f=9e4Hz:1e5Hz:3",
+            "--svg",
+            svg.to_str().unwrap(),
+            "--branches",
+            "2",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let text = fs::read_to_string(&svg).unwrap();
+    let non_finite = text.split(|c: char| !c.is_ascii_alphanumeric()).find(|w| *w == "NaN" || *w == "inf");
+    assert!(non_finite.is_none(), "a non-finite number in the figure");
+}
