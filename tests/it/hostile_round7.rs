@@ -46,11 +46,13 @@ fn assert_refused(home: &Path, args: &[&str], words: &[&str]) {
 /// A design file as the explorer's save writes it, with every table a design file can hold:
 /// materials, the physical model's air, the Newmark solver, an ensemble size and uncertainties.
 fn every_table() -> String {
-    let mut design = Design::default();
-    design.materials = Some(Materials::new("steel", "steel"));
-    design.model = Model::Physical;
-    design.atmosphere = Atmosphere { temperature_c: 25.0, pressure_pa: 100_000.0 };
-    design.solver = Solver::Newmark { dt_s: 1e-6 };
+    let design = Design {
+        materials: Some(Materials::new("steel", "steel")),
+        model: Model::Physical,
+        atmosphere: Atmosphere { temperature_c: 25.0, pressure_pa: 100_000.0 },
+        solver: Solver::Newmark { dt_s: 1e-6 },
+        ..Design::default()
+    };
     let file = DesignFile {
         description: "every table".into(),
         ensemble: Some(3),
