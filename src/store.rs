@@ -202,15 +202,24 @@ impl DesignFile {
         toml::to_string(self).map_err(|e| ThudError::invalid("design", format!("cannot be written as TOML: {e}")))
     }
 
-    /// Parses TOML `text` read from `path` and validates the design.
+    /// Parses TOML `text` read from `path` and validates the design and the uncertainties (each
+    /// named by a flag `fit damper` takes it for, a finite fraction ≥ 0).
     pub fn parse(path: &Path, text: &str) -> Result<DesignFile, FileProblem> {
         let file: DesignFile = parse_toml(path, text)?;
-        file.design.validate().map_err(|e| FileProblem {
-            path: path.to_path_buf(),
-            line: None,
-            column: None,
-            message: e.to_string(),
-        })?;
+        let problem = |message: String| FileProblem { path: path.to_path_buf(), line: None, column: None, message };
+        file.design.validate().map_err(|e| problem(e.to_string()))?;
+        for (name, u) in &file.uncertainty {
+            if crate::fit::damper::Input::from_name(name).is_none() {
+                return Err(problem(format!(
+                    "unknown key `{name}` in [uncertainty]; expected one of main-mass, k, c, mass, gap, v0"
+                )));
+            }
+            if !(u.is_finite() && *u >= 0.0) {
+                return Err(problem(format!(
+                    "[uncertainty] {name}: a relative standard uncertainty is a finite fraction ≥ 0"
+                )));
+            }
+        }
         Ok(file)
     }
 }

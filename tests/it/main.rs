@@ -59,6 +59,7 @@ mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;
 mod hostile_round6;
+mod hostile_round7;
 mod masri_caughey;
 mod masri_caughey_stability;
 mod one_schema;

@@ -13,6 +13,7 @@ pub const P_REF_PA: f64 = 20e-6;
 
 /// The air the sound travels through.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Air {
     /// Characteristic impedance ρ0·c (Pa·s/m). The paper's numbers need 400.
     pub rho_c_pa_s_m: f64,
@@ -134,6 +135,7 @@ pub mod degrees {
 /// Where the sound is heard: distance `r_m` from the contact point and polar angle `theta_rad`
 /// from the plate's normal through the sphere's centre (docs/model.md §4).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Observer {
     pub r_m: f64,
     #[serde(rename = "theta_deg", with = "degrees")]
@@ -148,6 +150,7 @@ impl Observer {
 
 /// How the radiation is set up: source type, quadrupole signs and air.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Radiation {
     pub source: Source,
     pub quad_signs: QuadSigns,

@@ -164,7 +164,10 @@ impl<'a> Problem<'a> {
     }
 
     fn section(&self, lt: f64) -> Result<Section<'a>, ThudError> {
-        let d = crate::study::set(self.base.design().clone(), self.vary.row, self.value(lt)).check()?;
+        // A step may pass the range's end before it is landed on it; where that end is the
+        // row's own bound, the value is held at the bound, which the row's check accepts.
+        let value = self.vary.row.range().map_or(self.value(lt), |r| self.value(lt).clamp(r.min, r.max));
+        let d = crate::study::set(self.base.design().clone(), self.vary.row, value).check()?;
         let mut s = Section::new(d.damper, self.phase, self.periods, self.symmetric, self.cancel);
         s.l = self.l;
         s.v = self.v;

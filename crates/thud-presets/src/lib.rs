@@ -42,8 +42,8 @@ pub struct Preset {
 }
 
 /// A design file: what `thud … --save`, `thud fit … --save` and the explorer's save write (a
-/// preset's format, with the explorer's ensemble size N when it saved one). Unknown keys are
-/// refused.
+/// preset's format, with the explorer's ensemble size N when it saved one and the relative
+/// uncertainties `fit structure --save` writes). Unknown keys are refused, in every table.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct DesignFile {
@@ -51,6 +51,8 @@ struct DesignFile {
     _description: String,
     #[serde(default, rename = "ensemble")]
     _ensemble: Option<usize>,
+    #[serde(default)]
+    uncertainty: std::collections::BTreeMap<String, f64>,
     design: Design,
 }
 
@@ -67,6 +69,20 @@ pub fn design_file(text: &str) -> Result<Design, ThudError> {
         ThudError::invalid("design", format!("{}{}", at.unwrap_or_default(), e.message().trim()))
     })?;
     file.design.validate()?;
+    for (name, u) in &file.uncertainty {
+        if thud_core::fit::damper::Input::from_name(name).is_none() {
+            return Err(ThudError::invalid(
+                "design",
+                format!("unknown key `{name}` in [uncertainty]; expected one of main-mass, k, c, mass, gap, v0"),
+            ));
+        }
+        if !(u.is_finite() && *u >= 0.0) {
+            return Err(ThudError::invalid(
+                "design",
+                format!("[uncertainty] {name}: a relative standard uncertainty is a finite fraction ≥ 0"),
+            ));
+        }
+    }
     Ok(file.design)
 }
 

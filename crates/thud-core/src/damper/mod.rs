@@ -54,6 +54,7 @@ use crate::error::{check_non_negative, check_positive, ThudError};
 
 /// The design and the run: paper Table 2 notation, SI units.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct DamperParams {
     /// Main mass M (kg).
     pub main_mass_kg: f64,
@@ -221,6 +222,7 @@ impl DamperParams {
 /// as thud 0.1 wrote it (`"Event"`, `{"Newmark": …}`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[serde(deny_unknown_fields)]
 pub enum Solver {
     /// Event-driven: exact flights, root-found contacts, adaptive DOPRI5 inside contacts.
     #[serde(alias = "Event")]

@@ -9,8 +9,9 @@ use crate::damper::{DamperParams, Solver};
 use crate::error::{check_positive, ThudError};
 
 /// How the impact mass's radius is found (it sets the sound, Eq 15, and K_HZ from materials).
+/// Read as a table of its two keys, so that any other key is refused by its name.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "snake_case", try_from = "BallSizeKeys")]
 pub enum BallSize {
     /// From the mass and this density (kg/m³): a = (3m/(4πρ))^(1/3). Written `density_kg_m3`,
     /// read also as `density` (thud 0.1's spelling).
@@ -19,6 +20,28 @@ pub enum BallSize {
     /// A fixed radius (m), whatever the mass. Written `radius_m`, read also as `radius`.
     #[serde(rename = "radius_m", alias = "radius")]
     Radius(f64),
+}
+
+/// The keys a ball's table may hold: exactly one of them is given.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BallSizeKeys {
+    #[serde(alias = "density")]
+    density_kg_m3: Option<f64>,
+    #[serde(alias = "radius")]
+    radius_m: Option<f64>,
+}
+
+impl TryFrom<BallSizeKeys> for BallSize {
+    type Error = String;
+
+    fn try_from(k: BallSizeKeys) -> Result<Self, String> {
+        match (k.density_kg_m3, k.radius_m) {
+            (Some(rho), None) => Ok(BallSize::Density(rho)),
+            (None, Some(a)) => Ok(BallSize::Radius(a)),
+            _ => Err("a ball is given by one of `density_kg_m3` or `radius_m`".into()),
+        }
+    }
 }
 
 /// Density (kg/m³) of the paper's ball: acrylic, the material its K_HZ = 5.6e8 N/m^1.5 is for
@@ -32,6 +55,7 @@ pub const TABLE3_C1: f64 = 83.68;
 
 /// Materials from which K_HZ follows for each ball radius (Eq 2), instead of a fixed K_HZ.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Materials {
     pub sphere: String,
     pub plate: String,
@@ -109,6 +133,7 @@ impl Model {
 /// The air's state, from which the physical model derives ρ0, c and ρ0·c
 /// ([`crate::acoustics::Air::from_state`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Atmosphere {
     /// Air temperature (°C).
     pub temperature_c: f64,
@@ -167,6 +192,7 @@ pub enum ZoneBy {
 
 /// The zone thresholds L* (dB) and e* (cm/s) of the design chart (docs/model.md §6).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Thresholds {
     pub spl_db: f64,
     pub inclination_cm_s: f64,
@@ -183,6 +209,7 @@ impl Default for Thresholds {
 /// One design: the damper, the ball's size and materials, the listener, the solver and the
 /// conventions for the reported numbers. Everything SI.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Design {
     pub damper: DamperParams,
     pub ball: BallSize,

@@ -11,6 +11,11 @@
 //! grid points. Its standard uncertainty is the Gauss–Newton covariance `s²·(JᵀJ)⁻¹` at the
 //! optimum (`s²` the window's residual variance, J the model's derivatives in v0, z0, ln c1
 //! and the offset and drift).
+//!
+//! The simplex is written here (about 60 lines) and not taken from `argmin`: that crate would
+//! bring its own dependency tree into the engine, the wheel and the fuzz build for one
+//! three-parameter search whose misfit is infinite outside the clearance; it is used only on
+//! velocity records (docs/model.md §13.2).
 
 use super::{Quantity, Series};
 use crate::damper::{self, RunOptions};
@@ -276,13 +281,48 @@ pub fn path_speed(s: &Series, d: &Design, v0_start: f64, c1_grid: &[f64], o: &Pa
         }
         pr.model(x[0] * v0_start, x[1] * half, x[2].exp()).map_or(f64::INFINITY, |m| pr.rss(&m))
     };
-    // The coarse grid: the ball's start over the clearance and every few c1 of the grid, v0
-    // at each by one Gauss–Newton step from the identity's (the record is nearly linear in v0).
     let starts = crate::ensemble::ball_positions(2.0, o.starts.max(1));
     let c1s: Vec<f64> = c1_grid.iter().step_by(o.c1_every.max(1)).map(|c| c.ln()).collect();
-    let mut coarse: Vec<([f64; 3], f64)> = Vec::new();
-    for &z in &starts {
-        for &lc in &c1s {
+    let mut coarse = coarse_grid(&pr, v0_start, half, &starts, &c1s, &value);
+    coarse.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let step_c = if c1s.len() > 1 { (c1s[1] - c1s[0]).abs() } else { 0.3 };
+    let best = coarse
+        .iter()
+        .take(o.searches.max(1))
+        .map(|&(x, _)| nelder_mead(&value, x, [0.01, 1.0 / o.starts.max(1) as f64, 0.5 * step_c], o.evals))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let ([r, z, lc], rss) = best;
+    if !rss.is_finite() {
+        return None;
+    }
+    let base = [r * v0_start, z * half, lc];
+    let (sd, s2, n) = v0_sd(&pr, base, [1e-4 * v0_start.abs(), 1e-4 * half, 1e-3], rss)?;
+    Some(PathFit {
+        v0_m_s: base[0],
+        stderr_m_s: sd,
+        z0_m: base[1],
+        c1_n_s_m: lc.exp(),
+        residual_sd: s2.sqrt(),
+        samples: n,
+        rss,
+    })
+}
+
+/// The coarse grid of [`path_speed`]: the ball's start at each of `starts` (shares of the half
+/// gap `half`, m) and c1 at each of `c1s` (ln N·s/m), v0 at each by one Gauss–Newton step from
+/// `v0_start` (m/s; the record is nearly linear in v0); each point in the scaled unknowns
+/// (v0 / v0_start, z0 / (d/2), ln c1) with its misfit `value`.
+fn coarse_grid(
+    pr: &Problem,
+    v0_start: f64,
+    half: f64,
+    starts: &[f64],
+    c1s: &[f64],
+    value: &dyn Fn(&[f64; 3]) -> f64,
+) -> Vec<([f64; 3], f64)> {
+    let mut coarse = Vec::new();
+    for &z in starts {
+        for &lc in c1s {
             let (Some(m0), Some(m1)) =
                 (pr.model(v0_start, z * half, lc.exp()), pr.model(1.01 * v0_start, z * half, lc.exp()))
             else {
@@ -297,22 +337,15 @@ pub fn path_speed(s: &Series, d: &Design, v0_start: f64, c1_grid: &[f64], o: &Pa
             coarse.push((x, value(&x)));
         }
     }
-    coarse.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let step_c = if c1s.len() > 1 { (c1s[1] - c1s[0]).abs() } else { 0.3 };
-    let best = coarse
-        .iter()
-        .take(o.searches.max(1))
-        .map(|&(x, _)| nelder_mead(&value, x, [0.01, 1.0 / o.starts.max(1) as f64, 0.5 * step_c], o.evals))
-        .min_by(|a, b| a.1.total_cmp(&b.1))?;
-    let ([r, z, lc], rss) = best;
-    if !rss.is_finite() {
-        return None;
-    }
-    // The Gauss–Newton covariance: J of the model in (v0, z0, ln c1) by central differences,
-    // with the offset and drift as two more columns (a pseudo-inverse: c1 may not act in the
-    // window).
-    let base = [r * v0_start, z * half, lc];
-    let hs = [1e-4 * v0_start.abs(), 1e-4 * half, 1e-3];
+    coarse
+}
+
+/// v0's standard uncertainty (m/s) at the fit `base` = (v0 m/s, z0 m, ln c1) with misfit
+/// `rss`, by the Gauss–Newton covariance: J of the model in the three by central differences
+/// of steps `hs`, with the offset and drift as two more columns (a pseudo-inverse: c1 may not
+/// act in the window); with the residual variance and the samples. None where it is not
+/// finite.
+fn v0_sd(pr: &Problem, base: [f64; 3], hs: [f64; 3], rss: f64) -> Option<(f64, f64, usize)> {
     let n = pr.t.len();
     let mut jac = nalgebra::DMatrix::<f64>::zeros(n, 5);
     for (k, h) in hs.iter().enumerate() {
@@ -340,15 +373,7 @@ pub fn path_speed(s: &Series, d: &Design, v0_start: f64, c1_grid: &[f64], o: &Pa
     let s2 = rss / (n as f64 - 5.0);
     let cov = (jac.transpose() * &jac).pseudo_inverse(1e-12).ok()?;
     let sd = (s2 * cov[(0, 0)]).sqrt() / norms[0];
-    (sd.is_finite() && norms[0] > 0.0).then_some(PathFit {
-        v0_m_s: base[0],
-        stderr_m_s: sd,
-        z0_m: base[1],
-        c1_n_s_m: lc.exp(),
-        residual_sd: s2.sqrt(),
-        samples: n,
-        rss,
-    })
+    (sd.is_finite() && norms[0] > 0.0).then_some((sd, s2, n))
 }
 
 #[cfg(test)]
