@@ -42,9 +42,8 @@ mod sundman;
 #[cfg(feature = "timing")]
 pub use event::timing;
 pub(crate) use periodic::{chained_jacobian, flow, Flowed};
-pub(crate) use steady::{floating, Floating};
+pub(crate) use steady::{floating, Floating, Start};
 pub use steady::{linear_amplitude_m, SteadyMotion, SETTLE_PERIODS_MAX};
-pub(crate) use stepper::Start;
 pub(crate) use strobe::strobe;
 
 use serde::{Deserialize, Serialize};
@@ -221,8 +220,7 @@ impl DamperParams {
 /// Written as the `--solver` flag spells it (`"event"`, `{"newmark": {"dt_s": …}}`); read also
 /// as thud 0.1 wrote it (`"Event"`, `{"Newmark": …}`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-#[serde(deny_unknown_fields)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Solver {
     /// Event-driven: exact flights, root-found contacts, adaptive DOPRI5 inside contacts.
     #[serde(alias = "Event")]

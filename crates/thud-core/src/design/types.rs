@@ -32,14 +32,19 @@ struct BallSizeKeys {
     radius_m: Option<f64>,
 }
 
-impl TryFrom<BallSizeKeys> for BallSize {
-    type Error = String;
+/// A ball's table with neither or both of its keys.
+#[derive(Debug, thiserror::Error)]
+#[error("a ball is given by one of `density_kg_m3` or `radius_m`")]
+pub struct BallKeysError;
 
-    fn try_from(k: BallSizeKeys) -> Result<Self, String> {
+impl TryFrom<BallSizeKeys> for BallSize {
+    type Error = BallKeysError;
+
+    fn try_from(k: BallSizeKeys) -> Result<Self, BallKeysError> {
         match (k.density_kg_m3, k.radius_m) {
             (Some(rho), None) => Ok(BallSize::Density(rho)),
             (None, Some(a)) => Ok(BallSize::Radius(a)),
-            _ => Err("a ball is given by one of `density_kg_m3` or `radius_m`".into()),
+            _ => Err(BallKeysError),
         }
     }
 }

@@ -45,6 +45,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::{bad, noise_sd, Quantity, Series};
+pub use super::{grid, GRID_POINTS};
 use crate::damper::{self, RunOptions};
 use crate::design::{self, Design, ValidDesign};
 use crate::draws::SplitMix64;
@@ -52,8 +53,6 @@ use crate::error::ThudError;
 
 /// Ensemble members (ball starts) per c1.
 pub const STARTS: usize = 39;
-/// c1 values of the grid.
-pub const GRID_POINTS: usize = 41;
 /// History samples per period of each run (the envelope's least-squares sines).
 const SAMPLES_PER_PERIOD: f64 = 100.0;
 /// Means drawn per c1 for several records.
@@ -370,29 +369,6 @@ pub fn observe(s: &Series, d: &Design) -> Result<Observed, ThudError> {
         return Err(bad("too short: fewer than 3 periods stand above the noise; a fit needs at least 3"));
     }
     Ok(Observed { t_s: t, x_m: x, envelope_m: env, envelope_sd_m, amplitude_noise_m, usable })
-}
-
-/// The c1 grid (N·s/m): `GRID_POINTS` log-spaced from the c1 of restitution 0.995 to that of
-/// 0.02 (0.05 where 0.02 is out of reach), for one contact of the design's ball at the strike speed |v0|.
-pub fn grid(d: &ValidDesign) -> Result<Vec<f64>, ThudError> {
-    let u0 = d.damper.v0_m_s.abs();
-    if u0 <= 0.0 {
-        return Err(ThudError::invalid("v0", "0 m/s; a damper fit needs the strike's speed (give --v0)"));
-    }
-    let lo = design::c1_for_restitution(d, u0, 0.995)?.max(1e-6);
-    // The most damped end: restitution 0.02, or 0.05 where 0.02 is out of reach.
-    let hi = design::c1_for_restitution(d, u0, 0.02)
-        .or_else(|_| design::c1_for_restitution(d, u0, 0.05))?
-        .min(crate::limits::C1.max);
-    // A strike so slow (or so fast) that restitution 0.995 needs more c1 than the most damped
-    // end allows, or than a number holds, leaves no grid: the strike's speed is the cause.
-    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-        return Err(ThudError::invalid(
-            "v0",
-            format!("{u0:e} m/s is too slow a strike to fit c1 from (no contact damping up to the largest c1 gives restitution 0.995 to 0.02 at that speed); strike faster"),
-        ));
-    }
-    Ok(design::linspace(lo.ln(), hi.ln(), GRID_POINTS).into_iter().map(f64::exp).collect())
 }
 
 /// Every member's envelope and first impact speed for each c1 of a grid: the ensemble the

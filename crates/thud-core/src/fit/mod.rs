@@ -373,6 +373,57 @@ pub(crate) fn look(s: &Series) -> Result<Look, ThudError> {
     Ok(Look { detrended, noise, crossings, cycles, freq_hz })
 }
 
+/// c1 values of the grid.
+pub const GRID_POINTS: usize = 41;
+
+/// The c1 grid (N·s/m): `GRID_POINTS` log-spaced from the c1 of restitution 0.995 to that of
+/// 0.02 (0.05 where 0.02 is out of reach), for one contact of the design's ball at the strike speed |v0|.
+pub fn grid(d: &crate::design::ValidDesign) -> Result<Vec<f64>, ThudError> {
+    let u0 = d.damper.v0_m_s.abs();
+    if u0 <= 0.0 {
+        return Err(ThudError::invalid("v0", "0 m/s; a damper fit needs the strike's speed (give --v0)"));
+    }
+    let lo = crate::design::c1_for_restitution(d, u0, 0.995)?.max(1e-6);
+    // The most damped end: restitution 0.02, or 0.05 where 0.02 is out of reach.
+    let hi = crate::design::c1_for_restitution(d, u0, 0.02)
+        .or_else(|_| crate::design::c1_for_restitution(d, u0, 0.05))?
+        .min(crate::limits::C1.max);
+    // A strike so slow (or so fast) that restitution 0.995 needs more c1 than the most damped
+    // end allows, or than a number holds, leaves no grid: the strike's speed is the cause.
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return Err(ThudError::invalid(
+            "v0",
+            format!("{u0:e} m/s is too slow a strike to fit c1 from (no contact damping up to the largest c1 gives restitution 0.995 to 0.02 at that speed); strike faster"),
+        ));
+    }
+    Ok(crate::design::linspace(lo.ln(), hi.ln(), GRID_POINTS).into_iter().map(f64::exp).collect())
+}
+
+/// The samples of an acceleration without its impacts' spikes: every sample further than 4
+/// robust standard deviations (1.4826 × the median absolute deviation) from the median of its
+/// 9 neighbours is left out with the two samples each side; the first sample is kept.
+fn without_spikes(t: &[f64], y: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let n = y.len();
+    let h = 4usize;
+    let dev: Vec<f64> = (0..n)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(h), (i + h + 1).min(n));
+            let mut w = y[a..b].to_vec();
+            w.sort_by(f64::total_cmp);
+            (y[i] - w[w.len() / 2]).abs()
+        })
+        .collect();
+    let mut sorted = dev.clone();
+    sorted.sort_by(f64::total_cmp);
+    let cut = 4.0 * 1.4826 * sorted[n / 2];
+    let mut keep = vec![true; n];
+    for i in (0..n).filter(|&i| dev[i] > cut) {
+        keep[i.saturating_sub(2)..(i + 3).min(n)].iter_mut().for_each(|k| *k = false);
+    }
+    keep[0] = true;
+    (0..n).filter(|&i| keep[i]).map(|i| (t[i], y[i])).unzip()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

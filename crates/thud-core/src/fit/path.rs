@@ -239,7 +239,7 @@ fn problem<'a>(s: &Series, d: &'a Design, o: &PathOptions) -> Option<Problem<'a>
     let t0 = s.t_s()[0];
     let times: Vec<f64> = s.t_s().iter().map(|&ti| ti - t0).collect();
     let (t, y): (Vec<f64>, Vec<f64>) = match s.quantity() {
-        Quantity::Acceleration => super::strike::without_spikes(&times, s.values()),
+        Quantity::Acceleration => super::without_spikes(&times, s.values()),
         _ => (times, s.values().to_vec()),
     };
     let keep = t.partition_point(|&ti| ti <= span);
@@ -397,7 +397,7 @@ mod tests {
         let s = Series::new(t, x, Quantity::Displacement).unwrap();
         let mut dd = d.design().clone();
         dd.damper.c1_n_s_m = 1.0;
-        let grid = crate::fit::damper::grid(&d).unwrap();
+        let grid = crate::fit::grid(&d).unwrap();
         let f = path_speed(&s, &dd, 1.03 * p.v0_m_s, &grid, &PathOptions::default()).unwrap();
         assert!((f.v0_m_s / p.v0_m_s - 1.0).abs() < 1e-3, "{f:?}");
         assert!((f.z0_m - p.ball_position_m).abs() < 0.01 * p.gap_m, "{f:?}");

@@ -69,31 +69,6 @@ fn integral(t: &[f64], y: &[f64]) -> Vec<f64> {
     out
 }
 
-/// The samples of an acceleration without its impacts' spikes: every sample further than 4
-/// robust standard deviations (1.4826 × the median absolute deviation) from the median of its
-/// 9 neighbours is left out with the two samples each side; the first sample is kept.
-pub(super) fn without_spikes(t: &[f64], y: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let n = y.len();
-    let h = 4usize;
-    let dev: Vec<f64> = (0..n)
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(h), (i + h + 1).min(n));
-            let mut w = y[a..b].to_vec();
-            w.sort_by(f64::total_cmp);
-            (y[i] - w[w.len() / 2]).abs()
-        })
-        .collect();
-    let mut sorted = dev.clone();
-    sorted.sort_by(f64::total_cmp);
-    let cut = 4.0 * 1.4826 * sorted[n / 2];
-    let mut keep = vec![true; n];
-    for i in (0..n).filter(|&i| dev[i] > cut) {
-        keep[i.saturating_sub(2)..(i + 3).min(n)].iter_mut().for_each(|k| *k = false);
-    }
-    keep[0] = true;
-    (0..n).filter(|&i| keep[i]).map(|i| (t[i], y[i])).unzip()
-}
-
 /// The pieces of one fit: the design's rates and the window.
 struct Setup {
     /// K/M, C/M, m/M.
@@ -171,7 +146,7 @@ pub fn strike_speed(s: &Series, d: &Design) -> Result<Strike, ThudError> {
     // The record as displacement (`as_x`), the powers of t its offset and drift add there, and
     // the samples the fit reads (an acceleration's without its spikes).
     let (t, raw): (Vec<f64>, Vec<f64>) = match s.quantity() {
-        Quantity::Acceleration => without_spikes(&times, s.values()),
+        Quantity::Acceleration => super::without_spikes(&times, s.values()),
         _ => (times, s.values().to_vec()),
     };
     let polys = match s.quantity() {
@@ -229,7 +204,7 @@ fn by_path(s: &Series, d: &Design, identity: Strike) -> Option<Strike> {
     if s.quantity() != Quantity::Velocity {
         return None;
     }
-    let grid = super::damper::grid(&d.clone().check().ok()?).ok()?;
+    let grid = super::grid(&d.clone().check().ok()?).ok()?;
     let f = super::path::path_speed(s, d, identity.v0_m_s, &grid, &super::path::PathOptions::default())?;
     let sd = f.stderr_m_s.max(FLOOR * f.v0_m_s.abs());
     let agree = (f.v0_m_s - identity.v0_m_s).abs() <= DISAGREE_SDS * sd.hypot(identity.stderr_m_s);
