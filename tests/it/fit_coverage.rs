@@ -221,14 +221,17 @@ fn the_damper_fit_s_interval_holds_the_truth_on_independent_records_of_every_kin
 /// uncertainty, the identity's relative error, seconds.
 type Measured = (usize, f64, f64, f64, f64, f64);
 
+///
+/// Run in the suite at its smallest (2 designs, velocity records, one period: seconds), where
+/// it asserts what the measurement over 40 found for velocity (every v0 within 2 % and within
+/// 3 of its stated uncertainties); the measurement sets `PATH_N` and the rest.
 #[test]
-#[ignore = "a measurement: seconds a record"]
 fn measure_v0_by_the_model_s_path() {
-    let n: usize = std::env::var("PATH_N").map_or(40, |v| v.parse().unwrap());
+    let n: usize = std::env::var("PATH_N").map_or(2, |v| v.parse().unwrap());
     let windows: Vec<f64> = std::env::var("PATH_WINDOWS")
         .map_or_else(|_| vec![1.0], |w| w.split(',').map(|x| x.parse().unwrap()).collect());
-    let kinds: Vec<usize> = std::env::var("PATH_KINDS")
-        .map_or_else(|_| vec![0, 1, 2], |w| w.split(',').map(|x| x.parse().unwrap()).collect());
+    let kinds: Vec<usize> =
+        std::env::var("PATH_KINDS").map_or_else(|_| vec![1], |w| w.split(',').map(|x| x.parse().unwrap()).collect());
     let started = std::time::Instant::now();
     let rows: Vec<Vec<Measured>> = (0..n as u64)
         .into_par_iter()
@@ -272,6 +275,9 @@ fn measure_v0_by_the_model_s_path() {
                         c.y0 / (0.5 * c.design.damper.gap_m),
                     );
                     assert!(e.is_finite() && sd > 0.0, "case {k} kind {kind} window {w}: not fitted");
+                    if kind == 1 && w == 1.0 && noise == 1.0 {
+                        assert!(e.abs() <= 0.02 && e.abs() <= 3.0 * sd, "case {k}: velocity v0 off by {e:+.4} ({sd:.4})");
+                    }
                     out.push((kind, w, e, sd, id.v0_m_s / v0 - 1.0, el));
                 }
             }
