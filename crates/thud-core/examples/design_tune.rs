@@ -7,7 +7,7 @@
 //!
 //! LATIN 1: a Latin-hypercube first population; PM_ETA > 0: polynomial mutation of that index in
 //! place of the Gaussian (SIGMA unused); DISTINCT 1: a generation's repeated children drawn again; ALGO 1: SPEA2, 2:
-//! AGE-MOEA (0: NSGA-II); KIDS > 0: children a generation (else the population).
+//! AGE-MOEA, 3: IBEA, 4: NSGA-II then IBEA (0: NSGA-II; the parser shared with design_search); KIDS > 0: children a generation (else the population).
 //! SHARE > 0: two phases, the first over the whole box for that share of the budget, the second
 //! over the box the front then spans widened by MARGIN of each range a side (default 0.05), by
 //! THEN (3: IBEA, else NSGA-II), its first population the front's designs unless FRONT is 0; WIDEN: the box widened
@@ -16,7 +16,10 @@
 
 use std::time::Instant;
 
-use thud_core::design::search::{self, Objective, Outcome, Problem, Sense, Settings, Start, Tuning, Variable};
+#[path = "shared/knobs.rs"]
+mod knobs;
+use knobs::knobs;
+use thud_core::design::search::{self, Objective, Outcome, Problem, Sense, Settings, Tuning, Variable};
 use thud_core::design::Design;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -53,35 +56,7 @@ fn main() {
     let hv = |o: &Outcome| p.hypervolume(&o.all, &o.front, &reference).unwrap();
     let mut tunings = vec![Tuning::default()];
     for t in args.iter().skip(3) {
-        let v: Vec<f64> = t.split(',').map(|x| x.parse().unwrap()).collect();
-        tunings.push(Tuning {
-            population: (v[0] > 0.0).then_some(v[0] as usize),
-            sigma: v[1],
-            genes_mutated: v[2],
-            mutation_rate: v[3],
-            crossover_eta: v[4],
-            start: if v.get(5).is_some_and(|&x| x > 0.0) { Start::Latin } else { Start::Uniform },
-            polynomial_eta: v.get(6).copied().filter(|&x| x > 0.0),
-            distinct: v.get(7).is_some_and(|&x| x > 0.0),
-            algorithm: match v.get(8).map_or(0, |&x| x as u8) {
-                1 => search::Algorithm::Spea2,
-                2 => search::Algorithm::AgeMoea,
-                _ => search::Algorithm::Nsga2,
-            },
-            offspring: v.get(9).copied().filter(|&x| x > 0.0).map(|x| x as usize),
-            sigma_end: v.get(15).copied().filter(|&x| x > 0.0),
-            narrow: v.get(10).copied().filter(|&x| x > 0.0).map(|share| search::Narrowing {
-                share,
-                margin: v.get(11).copied().unwrap_or(0.05),
-                widen: v.get(14).copied().unwrap_or(0.0),
-                then: if v.get(12).is_some_and(|&x| x as u8 == 3) {
-                    search::Algorithm::Ibea
-                } else {
-                    search::Algorithm::Nsga2
-                },
-                start_at_front: v.get(13).is_none_or(|&x| x > 0.0),
-            }),
-        });
+        tunings.push(knobs(t));
     }
     let (mut random, mut lhs) = (Vec::new(), Vec::new());
     let t = Instant::now();
